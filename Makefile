@@ -1,0 +1,136 @@
+# filigree — header-only C toolkit. GNU make.
+#
+#   make demo            render the gallery into out/ (installs Debian packages as root)
+#   make test            header matrix + every test, normal and under ASan+UBSan
+#   make check-headers   the header compile matrix only
+#   make bench           error-against-time tables, CSV in out/bench, plots in docs/img
+#   make fuzz            long libFuzzer runs (FUZZ_SECONDS=600)
+#   make install PREFIX=/usr/local    headers + filigree.pc
+#   make clean
+#
+# Tests, benchmarks and examples are found by name (docs/conventions.md):
+#   tests/test_*.c|cpp, bench/bench_*.c|cpp, examples/<name>/*.c|cpp.
+
+CC      ?= gcc
+CXX     ?= g++
+PREFIX  ?= /usr/local
+B       := build
+OPT     ?= -O2 -march=native
+WARN    := -Wall -Wextra -Werror -Wno-unused-function
+# -ffp-contract=fast is gcc's default in GNU mode; we state it so the tests
+# prove the headers survive contraction of a*b+c into fma.
+CFLAGS_ALL   := $(OPT) -g -ffp-contract=fast -Iinclude -Itests -Iexamples/common $(WARN)
+TEST_CFLAGS  := -std=gnu11 $(CFLAGS_ALL)
+TEST_CXXFLAGS:= -std=gnu++17 $(CFLAGS_ALL)
+SAN_FLAGS    := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+LDLIBS_ALL   := -Wl,--as-needed -lembree3 -lquadmath -lpthread -lm
+EX_LDLIBS    := -Wl,--as-needed -lOpenImageIO -lOpenImageIO_Util -lembree3 -lpthread -lm
+BENCH_LDLIBS := -Wl,--as-needed -lOpenImageIO -lOpenImageIO_Util -lembree3 -lgsl -lgslcblas -lquadmath -lpthread -lm
+
+HEADERS  := $(wildcard include/*.h)
+TEST_C   := $(wildcard tests/test_*.c)
+TEST_CPP := $(wildcard tests/test_*.cpp)
+TESTS    := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_C)) $(patsubst tests/%.cpp,$(B)/tests/%,$(TEST_CPP))
+SAN_TESTS:= $(patsubst $(B)/tests/%,$(B)/san/%,$(TESTS))
+TEST_DEPS:= $(HEADERS) $(wildcard tests/*.h)
+
+BENCH_C  := $(wildcard bench/bench_*.c)
+BENCH_CPP:= $(wildcard bench/bench_*.cpp)
+BENCHES  := $(patsubst bench/%.c,$(B)/bench/%,$(BENCH_C)) $(patsubst bench/%.cpp,$(B)/bench/%,$(BENCH_CPP))
+
+EX_NAMES := $(filter-out common,$(notdir $(patsubst %/,%,$(wildcard examples/*/))))
+EXAMPLES := $(addprefix $(B)/examples/,$(EX_NAMES))
+EX_COMMON:= $(wildcard examples/common/*.c examples/common/*.cpp)
+EX_COMMON_OBJ := $(patsubst examples/common/%,$(B)/examples/common/%.o,$(EX_COMMON))
+
+.PHONY: all test tests check-headers demo bench fuzz install clean deps-test deps-demo deps-bench examples
+.DELETE_ON_ERROR:
+
+all: tests examples
+
+# ---------------------------------------------------------------- tests
+deps-test:
+	@scripts/deps.sh test
+tests: $(TESTS) $(SAN_TESTS)
+
+test: deps-test
+	@$(MAKE) --no-print-directory tests
+	@tests/run_all.sh $(B)/tests $(B)/san $(T)
+
+check-headers:
+	@tests/check_headers.sh
+
+$(B)/tests/%: tests/%.c $(TEST_DEPS)
+	@mkdir -p $(dir $@)
+	$(CC) $(TEST_CFLAGS) $< -o $@ $(LDLIBS_ALL)
+$(B)/tests/%: tests/%.cpp $(TEST_DEPS)
+	@mkdir -p $(dir $@)
+	$(CXX) $(TEST_CXXFLAGS) $< -o $@ $(LDLIBS_ALL)
+$(B)/san/%: tests/%.c $(TEST_DEPS)
+	@mkdir -p $(dir $@)
+	$(CC) $(TEST_CFLAGS) -O1 $(SAN_FLAGS) $< -o $@ $(LDLIBS_ALL)
+$(B)/san/%: tests/%.cpp $(TEST_DEPS)
+	@mkdir -p $(dir $@)
+	$(CXX) $(TEST_CXXFLAGS) -O1 $(SAN_FLAGS) $< -o $@ $(LDLIBS_ALL)
+
+# ---------------------------------------------------------------- examples
+deps-demo:
+	@scripts/deps.sh demo
+examples: $(EXAMPLES)
+
+$(B)/examples/common/%.c.o: examples/common/%.c $(HEADERS) $(wildcard examples/common/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) -std=gnu11 $(CFLAGS_ALL) -pthread -c $< -o $@
+$(B)/examples/common/%.cpp.o: examples/common/%.cpp $(HEADERS) $(wildcard examples/common/*.h)
+	@mkdir -p $(dir $@)
+	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -Wno-deprecated-declarations -pthread -c $< -o $@
+
+.SECONDEXPANSION:
+$(B)/examples/%: $$(wildcard examples/%/*.c examples/%/*.cpp examples/%/*.h) $(EX_COMMON_OBJ) $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -pthread -o $@ \
+	  $(foreach s,$(filter %.c,$^),-x c -std=gnu11 $(s)) -x none \
+	  $(filter %.cpp %.o,$^) $(EX_LDLIBS)
+
+demo: deps-demo
+	@$(MAKE) --no-print-directory examples
+	@mkdir -p out && [ -w out ] || { echo "filigree: cannot write to out/ (check its permissions)"; exit 1; }
+	@set -e; for e in $(EX_NAMES); do $(B)/examples/$$e --demo out; done
+	@echo "gallery written to out/"
+
+# ---------------------------------------------------------------- benchmarks
+deps-bench:
+	@scripts/deps.sh bench
+$(B)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(EX_COMMON_OBJ)
+	@mkdir -p $(dir $@)
+	$(CC) -std=gnu11 $(CFLAGS_ALL) -Ibench -c $< -o $@.o
+	$(CXX) -o $@ $@.o $(EX_COMMON_OBJ) $(BENCH_LDLIBS)
+$(B)/bench/%: bench/%.cpp $(HEADERS) $(wildcard bench/*.h) $(EX_COMMON_OBJ)
+	@mkdir -p $(dir $@)
+	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -Ibench -o $@ $< $(EX_COMMON_OBJ) $(BENCH_LDLIBS)
+
+bench: deps-bench
+	@$(MAKE) --no-print-directory $(BENCHES)
+	@mkdir -p out/bench docs/img
+	@set -e; for b in $(BENCHES); do echo "== $$b" >&2; $$b out/bench; done
+	@set -e; for g in $(wildcard bench/*.gp); do gnuplot -e "dir='out/bench'; img='docs/img'" $$g; done
+	@echo "tables in out/bench/*.csv, plots in docs/img/"
+
+# ---------------------------------------------------------------- fuzzing
+FUZZ_SECONDS ?= 600
+fuzz:
+	@scripts/deps.sh fuzz
+	@set -e; for f in $(wildcard tests/fuzz_*.c); do n=$$(basename $$f .c); mkdir -p $(B)/fuzz; \
+	  clang -std=gnu11 -O1 -g -Iinclude -fsanitize=fuzzer,address,undefined $$f -o $(B)/fuzz/$$n -lm; \
+	  mkdir -p $(B)/fuzz/$$n.corpus; $(B)/fuzz/$$n -max_total_time=$(FUZZ_SECONDS) $(B)/fuzz/$$n.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
+
+# ---------------------------------------------------------------- install
+install:
+	install -d $(DESTDIR)$(PREFIX)/include/filigree $(DESTDIR)$(PREFIX)/lib/pkgconfig
+	install -m 644 $(HEADERS) $(DESTDIR)$(PREFIX)/include/filigree/
+	printf 'prefix=%s\nincludedir=$${prefix}/include/filigree\n\nName: filigree\nDescription: header-only fine geometric detail for ray tracers\nVersion: 0.1.0\nCflags: -I$${includedir}\nLibs: -lm\n' \
+	  "$(PREFIX)" > $(DESTDIR)$(PREFIX)/lib/pkgconfig/filigree.pc
+	@echo "installed headers to $(DESTDIR)$(PREFIX)/include/filigree and filigree.pc"
+
+clean:
+	rm -rf $(B) out

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# The header compile matrix (make check-headers).
+# For gcc and clang, as C99, C11 and C++17, under -Werror with our warning set:
+#   - each header alone: declarations only; included twice; with the
+#     implementation (included twice, before and after); with XX_STATIC;
+#     and with the implementation for every combination of its XX_NO_* switches;
+#   - all four headers together, with and without the implementations.
+# XX_NO_* switches are found by grepping the header, so new ones are covered
+# without editing this file. Prints one line per failure and a final
+# `N passed, M failed`; exit status 1 on any failure.
+set -u
+cd "$(dirname "$0")/.."
+out=build/check_headers
+mkdir -p "$out"
+jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
+
+warn="-Wall -Wextra -Wpedantic -Werror -Wshadow -Wconversion -Wno-sign-conversion"
+cwarn="$warn -Wstrict-prototypes -Wmissing-prototypes"
+compilers=()
+for c in gcc clang; do command -v "$c" >/dev/null && compilers+=("$c"); done
+[ ${#compilers[@]} -gt 0 ] || { echo "check-headers: no C compiler (install gcc or clang)"; exit 1; }
+
+declare -A prefix=([interval.h]=IV [frep.h]=FR [rounded_edges.h]=RE [grooves.h]=GR)
+headers=()
+for h in interval.h frep.h rounded_edges.h grooves.h; do [ -f include/$h ] && headers+=("$h"); done
+
+# Emit one translation unit: $1 = name, rest = lines.
+unit() { local name=$1; shift; printf '%s\n' "$@" > "$out/$name.c"; echo "$name"; }
+
+cases=()
+for h in "${headers[@]}"; do
+  P=${prefix[$h]}; b=${h%.h}
+  switches=$(grep -oE "\b${P}_NO_[A-Z0-9_]+" include/$h | sort -u)
+  # optional switches that change semantics but are not NO_ (e.g. IV_FAST)
+  extra=$(grep -oE "^ *# *if(def)? *!?\(? *(defined)?\(? *${P}_FAST\b" include/$h | grep -oE "${P}_FAST" | sort -u)
+  cases+=("$(unit ${b}_decl "#include \"$h\"" "int filigree_check_dummy(void);" "int filigree_check_dummy(void) { return 0; }")")
+  cases+=("$(unit ${b}_twice "#include \"$h\"" "#include \"$h\"" "int filigree_check_dummy(void);" "int filigree_check_dummy(void) { return 0; }")")
+  cases+=("$(unit ${b}_impl "#include \"$h\"" "#define ${P}_IMPLEMENTATION" "#include \"$h\"" "#include \"$h\"")")
+  cases+=("$(unit ${b}_static "#define ${P}_STATIC" "#define ${P}_IMPLEMENTATION" "#include \"$h\"")")
+  # every combination of the switches (power set)
+  sw=($switches $extra)
+  n=${#sw[@]}
+  for ((mask = 1; mask < (1 << n); mask++)); do
+    lines=(); tag=""
+    for ((i = 0; i < n; i++)); do
+      if (( mask & (1 << i) )); then lines+=("#define ${sw[$i]}"); tag="${tag}_${sw[$i]#${P}_}"; fi
+    done
+    cases+=("$(unit "${b}_impl${tag,,}" "${lines[@]}" "#define ${P}_IMPLEMENTATION" "#include \"$h\"")")
+  done
+done
+all_decl=(); all_impl=()
+for h in "${headers[@]}"; do
+  all_decl+=("#include \"$h\""); all_impl+=("#define ${prefix[$h]}_IMPLEMENTATION" "#include \"$h\"")
+done
+cases+=("$(unit all_decl "${all_decl[@]}" "int filigree_check_dummy(void);" "int filigree_check_dummy(void) { return 0; }")")
+cases+=("$(unit all_impl "${all_impl[@]}" "${all_decl[@]}")")
+
+# Build the job list: case x compiler x standard.
+joblist=$out/jobs.txt; : > "$joblist"
+for c in "${cases[@]}"; do
+  for cc in "${compilers[@]}"; do
+    cxx=g++; [ "$cc" = clang ] && cxx=clang++
+    echo "$cc -std=c99 $cwarn -Iinclude -c $out/$c.c -o /dev/null" >> "$joblist"
+    echo "$cc -std=c11 $cwarn -Iinclude -c $out/$c.c -o /dev/null" >> "$joblist"
+    echo "$cxx -x c++ -std=c++17 $warn -Iinclude -c $out/$c.c -o /dev/null" >> "$joblist"
+  done
+done
+
+run_one() { if out=$(eval "$1" 2>&1); then echo PASS; else printf 'FAIL: %s\n%s\n' "$1" "$(printf '%s\n' "$out" | head -n 15)"; fi; }
+export -f run_one
+results=$(xargs -P "$jobs" -d '\n' -I{} bash -c 'run_one "$@"' _ {} < "$joblist")
+pass=$(grep -c '^PASS$' <<< "$results")
+fail=$(grep -c '^FAIL: ' <<< "$results")
+grep -v '^PASS$' <<< "$results"
+echo "check-headers: ${#headers[@]} headers, ${#cases[@]} units, ${#compilers[@]} compilers x 3 standards"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

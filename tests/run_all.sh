@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Runs every built test binary (normal pass, then the ASan+UBSan pass) and the
+# header compile matrix, then prints the grand total as its last line:
+# `N passed, M failed`. Exit status 1 when anything failed or a binary crashed.
+# Usage: tests/run_all.sh BUILD_DIR SAN_BUILD_DIR [case filters...]
+set -u
+cd "$(dirname "$0")/.."
+build=$1; san=$2; shift 2
+total_pass=0; total_fail=0; log=build/test_logs; mkdir -p "$log"
+
+add_counts() { # $1 = label, $2 = output file, $3 = exit status
+  local line p f
+  line=$(grep -E '^[0-9]+ passed, [0-9]+ failed' "$2" | tail -n 1)
+  if [ -z "$line" ]; then
+    echo "$1: crashed or printed no totals (exit $3); see $2" >&2; tail -n 20 "$2" >&2
+    total_fail=$((total_fail + 1)); return
+  fi
+  p=${line%% passed*}; f=${line#*, }; f=${f%% failed*}
+  if [ "$3" -ne 0 ] && [ "$f" -eq 0 ]; then f=1; echo "$1: exit $3 with no failed check" >&2; fi
+  # a whole binary that checked nothing (and was not filtered) is a defect
+  if [ "$p" -eq 0 ] && [ "$f" -eq 0 ] && [ "${4:-0}" -eq 0 ]; then f=1; echo "$1: ran no checks" >&2; fi
+  total_pass=$((total_pass + p)); total_fail=$((total_fail + f))
+  printf '%-44s %s\n' "$1" "$line" >&2
+}
+
+run_pass() { # $1 = dir, $2 = label, env applied by caller
+  local t name status dir=$1 label=$2
+  shift 2
+  for t in "$dir"/test_*; do
+    [ -x "$t" ] || continue
+    name=$(basename "$t")
+    start=$(date +%s)
+    "$t" "$@" > "$log/${label}_$name.log" 2> "$log/${label}_$name.err"; status=$?
+    cat "$log/${label}_$name.err" "$log/${label}_$name.log" > "$log/${label}_$name.all"
+    [ $status -ne 0 ] && grep -E 'FAIL|ERROR|runtime error' "$log/${label}_$name.all" | head -n 20 >&2
+    add_counts "$label $name ($(( $(date +%s) - start ))s)" "$log/${label}_$name.all" $status "$#"
+  done
+}
+
+echo "== header compile matrix" >&2
+tests/check_headers.sh > "$log/check_headers.log" 2>&1; status=$?
+grep -E '^FAIL' -A 15 "$log/check_headers.log" | head -n 40 >&2
+add_counts "check-headers" "$log/check_headers.log" $status
+
+echo "== tests" >&2
+filters=("$@")
+run_pass "$build" normal "${filters[@]}"
+echo "== tests under ASan + UBSan (FILIGREE_TEST_SCALE=${FILIGREE_SAN_SCALE:-0.05})" >&2
+FILIGREE_TEST_SCALE=${FILIGREE_SAN_SCALE:-0.05} \
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  run_pass "$san" sanitize "${filters[@]}"
+
+echo "$total_pass passed, $total_fail failed"
+[ "$total_fail" -eq 0 ]
