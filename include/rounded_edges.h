@@ -54,6 +54,9 @@ typedef enum re_result_t {
 /* A human-readable name for a result code; never NULL. */
 RE_DEF const char *re_result_string(re_result_t r);
 
+/* ==== [section: baselines] (owned by the baselines/example helper) ==== */
+/* ==== [end section: baselines] ==== */
+
 #ifdef __cplusplus
 }
 #endif
@@ -94,6 +97,9 @@ RE_DEF const char *re_result_string(re_result_t r)
     }
     return "unknown result";
 }
+
+/* ==== [section: baselines] (owned by the baselines/example helper) ==== */
+/* ==== [end section: baselines] ==== */
 
 #ifdef __cplusplus
 }
