@@ -32,6 +32,7 @@ TEST_C   := $(wildcard tests/test_*.c)
 TEST_CPP := $(wildcard tests/test_*.cpp)
 TESTS    := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_C)) $(patsubst tests/%.cpp,$(B)/tests/%,$(TEST_CPP))
 SAN_TESTS:= $(patsubst $(B)/tests/%,$(B)/san/%,$(TESTS))
+FUZZERS  := $(patsubst tests/%.c,$(B)/fuzz/%,$(wildcard tests/fuzz_*.c))
 TEST_DEPS:= $(HEADERS) $(wildcard tests/*.h)
 
 BENCH_C  := $(wildcard bench/bench_*.c)
@@ -51,11 +52,16 @@ all: tests examples
 # ---------------------------------------------------------------- tests
 deps-test:
 	@scripts/deps.sh test
-tests: $(TESTS) $(SAN_TESTS)
+tests: $(TESTS) $(SAN_TESTS) $(FUZZERS)
 
 test: deps-test
 	@$(MAKE) --no-print-directory tests
 	@tests/run_all.sh $(B)/tests $(B)/san $(T)
+
+# libFuzzer targets (clang): a short run inside make test, a long one in make fuzz.
+$(B)/fuzz/%: tests/%.c $(HEADERS)
+	@mkdir -p $(dir $@)
+	clang -std=gnu11 -O1 -g -Iinclude -Itests -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all $< -o $@ -lm
 
 check-headers:
 	@tests/check_headers.sh
@@ -120,9 +126,9 @@ bench: deps-bench
 FUZZ_SECONDS ?= 600
 fuzz:
 	@scripts/deps.sh fuzz
-	@set -e; for f in $(wildcard tests/fuzz_*.c); do n=$$(basename $$f .c); mkdir -p $(B)/fuzz; \
-	  clang -std=gnu11 -O1 -g -Iinclude -fsanitize=fuzzer,address,undefined $$f -o $(B)/fuzz/$$n -lm; \
-	  mkdir -p $(B)/fuzz/$$n.corpus; $(B)/fuzz/$$n -max_total_time=$(FUZZ_SECONDS) $(B)/fuzz/$$n.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
+	@$(MAKE) --no-print-directory $(FUZZERS)
+	@set -e; for f in $(FUZZERS); do n=$$(basename $$f); mkdir -p $$f.corpus; \
+	  $$f -max_total_time=$(FUZZ_SECONDS) $$f.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
 
 # ---------------------------------------------------------------- install
 install:

@@ -50,5 +50,29 @@ FILIGREE_TEST_SCALE=${FILIGREE_SAN_SCALE:-0.05} \
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   run_pass "$san" sanitize "${filters[@]}"
 
+echo "== short fuzz runs (${FILIGREE_FUZZ_SECONDS:-20} s each)" >&2
+for f in "$build"/../fuzz/fuzz_*; do
+  [ -x "$f" ] || continue
+  n=$(basename "$f"); corpus=build/fuzz/$n.corpus; mkdir -p "$corpus"
+  seeds=""; [ -d tests/corpus/$n ] && seeds=tests/corpus/$n
+  if "$f" -max_total_time="${FILIGREE_FUZZ_SECONDS:-20}" -print_final_stats=0 "$corpus" $seeds > "$log/$n.log" 2>&1; then
+    total_pass=$((total_pass + 1)); printf '%-44s ok\n' "fuzz $n" >&2
+  else
+    total_fail=$((total_fail + 1)); echo "fuzz $n: crash or sanitizer report; see $log/$n.log" >&2
+    grep -E 'ERROR|SUMMARY|Test unit written' "$log/$n.log" | head -n 10 >&2
+  fi
+done
+
+echo "== install and pkg-config" >&2
+inst=build/install_check; rm -rf "$inst"
+if make --no-print-directory install PREFIX="$PWD/$inst" > "$log/install.log" 2>&1 \
+   && cflags=$(PKG_CONFIG_PATH="$PWD/$inst/lib/pkgconfig" pkg-config --cflags filigree) \
+   && printf '#include "interval.h"\n#include "frep.h"\n#include "rounded_edges.h"\n#include "grooves.h"\nint main(void){return 0;}\n' \
+      | cc -std=c99 $cflags -x c - -o "$inst/a.out" >> "$log/install.log" 2>&1; then
+  total_pass=$((total_pass + 1)); printf '%-44s ok\n' "install + pkg-config" >&2
+else
+  total_fail=$((total_fail + 1)); echo "install + pkg-config failed; see $log/install.log" >&2
+fi
+
 echo "$total_pass passed, $total_fail failed"
 [ "$total_fail" -eq 0 ]
