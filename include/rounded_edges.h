@@ -3,6 +3,30 @@
    Rounding cylinders and spheres inside the convex edges and corners of a
    triangle mesh, found from a hit on the sharp mesh (Courtin et al. 2019).
 
+   The rounded solid is exact: near a convex corner it is the erosion of the
+   mesh by r followed by a dilation by r, so where k >= 4 face planes meet
+   (and their offsets miss one common point) the corner gets the spheres and
+   short extra cylinders of the local eroded polytope, not one cracked sphere.
+   Concave edges, open boundaries and mixed vertices stay sharp and are
+   reported. Details, limits and measurements: docs/rounded_edges.md.
+
+   INTEGRATION WITH A HOST RAY TRACER
+     1. Build once: fill re_mesh_t per object (the same vertices/triangles the
+        host traces), re_build() (or re_build_sizes() + re_build_into()).
+     2. Per ray: the host traces its sharp mesh. On a front-face hit of object
+        k, triangle f at t, call re_query(scene, o, dir, k, f, t, &h):
+          RE_UNCHANGED     shade the host hit as usual;
+          RE_HIT_ROUNDED   shade h.point with h.normal (h.t replaces t);
+          RE_PASS_THROUGH  the ray grazes the removed edge volume and leaves
+                           the sharp mesh at h.t: trace again from h.t,
+                           skipping hits of object k at t <= h.t (the exit
+                           face itself), and query again on the next hit.
+     3. Secondary rays from a rounded hit start at re_secondary_origin()
+        (paper §4, I''), on the sharp mesh, so the host's geometry does not
+        shadow the rounded point.
+   Rays starting inside an object (refraction) are not supported: the query
+   assumes the host hit is where the ray enters the sharp mesh.
+
    USAGE
      In exactly one C or C++ file:
          #define RE_IMPLEMENTATION
@@ -48,11 +72,226 @@ typedef enum re_result_t {
     RE_OK = 0,
     RE_ERR_INVALID_ARG,   /* a NULL pointer or an out-of-range parameter */
     RE_ERR_OUT_OF_MEMORY, /* the allocator hook returned NULL */
+    RE_ERR_NAN_VERTEX,    /* a used vertex has a NaN or infinite coordinate */
+    RE_ERR_INDEX_OUT_OF_RANGE,   /* an index >= vertex_count */
+    RE_ERR_BAD_FACE,             /* a polygon with fewer than 3 corners, or sizes
+                                    that do not add up to index_count */
+    RE_ERR_DEGENERATE_TRIANGLE,  /* zero area: repeated index, zero-length edge,
+                                    collinear corners */
+    RE_ERR_INCONSISTENT_WINDING, /* two triangles run through an edge the same way */
+    RE_ERR_BAD_RADIUS,           /* radius not finite, or <= 0 with no edge radii */
+    RE_ERR_RADIUS_TOO_LARGE,     /* RE_RADIUS_REJECT and a radius does not fit */
+    RE_ERR_BUFFER_TOO_SMALL,     /* re_build_into() buffers below re_build_sizes() */
+    RE_ERR_TOO_LARGE,            /* counts overflow 32-bit ids */
     RE_RESULT_COUNT_
 } re_result_t;
 
 /* A human-readable name for a result code; never NULL. */
 RE_DEF const char *re_result_string(re_result_t r);
+
+/* ---- Input ---------------------------------------------------------------
+   One object = one indexed mesh, triangles or polygons (each polygon is
+   split as the fan (v0, vi, vi+1); the host must number its triangles the
+   same way, polygon by polygon). Triangles are counter-clockwise seen from
+   outside. Objects are independent: a kd-tree per object (paper §3.2). */
+
+typedef enum re_scalar_t {
+    RE_FLOAT64 = 0, /* positions are double (default) */
+    RE_FLOAT32      /* positions are float */
+} re_scalar_t;
+
+typedef struct re_mesh_t {
+    const void *positions;      /* x,y,z per vertex, object units */
+    re_scalar_t position_type;  /* default RE_FLOAT64 */
+    size_t position_stride;     /* bytes from one vertex to the next; 0 = packed */
+    unsigned vertex_count;
+    const unsigned *indices;    /* 32-bit vertex indices */
+    unsigned index_count;       /* 3 * triangles, or the sum of face_sizes */
+    const unsigned *face_sizes; /* NULL: triangles. Else corners per polygon (>= 3) */
+    unsigned face_count;        /* polygons in face_sizes (ignored when NULL) */
+    double radius;              /* rounding radius of every convex edge, object
+                                   units, > 0 unless edge_radius is given */
+    const double *edge_radius;  /* optional, index_count entries: radius of the
+                                   edge from indices[j] to the next corner of its
+                                   polygon (either of the two half-edges; the
+                                   smaller wins). A value <= 0 falls back to
+                                   `radius`. Corners join cylinders C1 only with
+                                   one radius, so every rounded patch (edges
+                                   linked through rounded corners) takes the
+                                   smallest radius asked along it (reported). */
+} re_mesh_t;
+
+typedef enum re_radius_policy_t {
+    RE_RADIUS_CLAMP = 0, /* default: lower a too-large radius to the largest
+                            valid one for its patch, report it */
+    RE_RADIUS_REJECT     /* fail with RE_ERR_RADIUS_TOO_LARGE naming the element */
+} re_radius_policy_t;
+
+typedef enum re_bad_input_t {
+    RE_BAD_INPUT_REJECT = 0, /* default: fail on the first bad triangle */
+    RE_BAD_INPUT_SKIP        /* skip it (its edges become boundary: sharp), report it */
+} re_bad_input_t;
+
+/* What a report is about. Reports are informational (the build succeeded). */
+typedef enum re_report_kind_t {
+    RE_REPORT_CONCAVE_EDGE = 0,  /* left sharp (issue item 4) */
+    RE_REPORT_BOUNDARY_EDGE,     /* open mesh: left sharp */
+    RE_REPORT_NONMANIFOLD_EDGE,  /* more than two triangles: left sharp */
+    RE_REPORT_MIXED_VERTEX,      /* convex and concave/boundary edges meet: the
+                                    vertex and its edges stay sharp */
+    RE_REPORT_SHARP_PATCH_EDGE,  /* convex edge left sharp because a corner of
+                                    its patch is mixed (see docs: limits) */
+    RE_REPORT_RADIUS_CLAMPED,    /* value = new radius */
+    RE_REPORT_RADIUS_MISMATCH,   /* unequal edge radii met at a corner; value = radius kept */
+    RE_REPORT_SKIPPED_TRIANGLE,  /* RE_BAD_INPUT_SKIP dropped this triangle */
+    RE_REPORT_COMPLEX_CORNER     /* more than RE_MAX_CORNER_PLANES face planes
+                                    meet: the vertex stays sharp */
+} re_report_kind_t;
+
+/* Distinct face planes around one rounded corner, at most (the exact corner
+   enumerates plane triples, O(k^4)); vertices with more stay sharp. */
+#define RE_MAX_CORNER_PLANES 64
+
+typedef struct re_report_t {
+    re_report_kind_t kind;
+    unsigned object;
+    long long element;  /* triangle, vertex index, or for edges the first vertex */
+    long long element2; /* second vertex of an edge, else -1 */
+    double value;
+    const char *message; /* "object 0 edge 4-7 is concave: left sharp" (valid during the call) */
+} re_report_t;
+
+typedef void (*re_report_fn)(void *user, const re_report_t *report);
+
+typedef struct re_scene_desc_t {
+    const re_mesh_t *objects;
+    unsigned object_count;
+    re_radius_policy_t radius_policy; /* default RE_RADIUS_CLAMP */
+    re_bad_input_t bad_input;         /* default RE_BAD_INPUT_REJECT */
+    re_report_fn report;              /* optional, called during the build */
+    void *report_user;
+    void *alloc_ctx;                  /* passed to RE_MALLOC/RE_FREE */
+} re_scene_desc_t;
+
+/* The diagnostic filled when a build fails (docs/conventions.md). */
+typedef struct re_diag_t {
+    re_result_t result;
+    long long element; /* offending triangle/vertex, -1 if none */
+    unsigned object;
+    char message[160];
+} re_diag_t;
+
+/* ---- Build ---------------------------------------------------------------- */
+
+typedef struct re_sizes_t {
+    size_t scene_bytes;   /* the buffer re_build_into() needs for the scene */
+    size_t scratch_bytes; /* temporary buffer re_build_into() needs */
+} re_sizes_t;
+
+typedef struct re_stats_t {
+    unsigned long long triangles, edges;
+    unsigned long long flat_edges, convex_edges, concave_edges, boundary_edges,
+        nonmanifold_edges;
+    unsigned long long rounded_edges;      /* convex edges that got a cylinder */
+    unsigned long long rounded_corners;    /* mesh vertices with a rounded corner */
+    unsigned long long mixed_vertices;
+    unsigned long long spheres, cylinders; /* cylinders include the extra ones */
+    unsigned long long extra_cylinders;    /* exact-corner cylinders (degree >= 4) */
+    unsigned long long clamped;            /* patches whose radius was lowered */
+    unsigned long long kd_nodes;
+    size_t bytes;                          /* whole scene, header included */
+} re_stats_t;
+
+typedef struct re_scene_t re_scene_t; /* opaque; lives in one block */
+
+/* Sizes for re_build_into(). Runs the analysis (about half a build). */
+RE_DEF re_result_t re_build_sizes(const re_scene_desc_t *desc, re_sizes_t *sizes,
+                                  re_diag_t *diag);
+/* Build into caller buffers (sizes from re_build_sizes(); `scene_mem` aligned
+   to 16 bytes). *scene points into scene_mem; nothing to free. */
+RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem,
+                                 size_t scene_bytes, void *scratch, size_t scratch_bytes,
+                                 re_scene_t **scene, re_diag_t *diag);
+/* Build with RE_MALLOC (desc->alloc_ctx); release with re_free(). */
+RE_DEF re_result_t re_build(const re_scene_desc_t *desc, re_scene_t **scene,
+                            re_diag_t *diag);
+RE_DEF void re_free(re_scene_t *scene);
+RE_DEF void re_get_stats(const re_scene_t *scene, re_stats_t *stats);
+/* The largest radius used by object `object`'s rounded patches after
+   clamping (0 when it has no rounded edge). */
+RE_DEF double re_object_radius(const re_scene_t *scene, unsigned object);
+
+/* ---- Query ---------------------------------------------------------------- */
+
+typedef enum re_hit_kind_t {
+    RE_UNCHANGED = 0, /* the host's hit stands (outside every rounded zone) */
+    RE_HIT_ROUNDED,   /* the ray hits the rounded surface at out->t */
+    RE_PASS_THROUGH   /* the ray crosses the removed volume and leaves the sharp
+                         mesh at out->t: the host continues from there */
+} re_hit_kind_t;
+
+typedef enum re_feature_t {
+    RE_FEATURE_FACE = 0, /* flat part of a face (RE_UNCHANGED) */
+    RE_FEATURE_CYLINDER, /* index: re_get_cylinder() */
+    RE_FEATURE_SPHERE    /* index: re_get_sphere() */
+} re_feature_t;
+
+typedef struct re_hit_t {
+    re_hit_kind_t kind;
+    double t;              /* in units of the caller's dir */
+    double point[3];       /* o + t*dir */
+    double normal[3];      /* unit, outward: rounded-surface normal for
+                              RE_HIT_ROUNDED, else the face normal */
+    re_feature_t feature;
+    unsigned feature_index;
+    unsigned object;
+} re_hit_t;
+
+/* The host found `dir`-ray (o + t*dir) hits `triangle` of `object` at t_host,
+   from outside. Returns out->kind (also the return value). Pure, const,
+   allocation-free, thread-safe. Bad ids or non-finite rays give RE_UNCHANGED. */
+RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o[3],
+                              const double dir[3], unsigned object, unsigned triangle,
+                              double t_host, re_hit_t *out);
+
+/* Origin on the sharp mesh (I'' of paper §4) for a secondary ray leaving a
+   RE_HIT_ROUNDED hit along `dir` (dir . hit->normal > 0): where that ray
+   leaves the sharp mesh, pushed out along the crossed face's normal by
+   RE_ORIGIN_OFFSET_REL times the object's size so the host's own
+   self-intersection guard is not needed. For other kinds: hit->point pushed
+   out the same way. */
+#define RE_ORIGIN_OFFSET_REL 1e-9
+RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit,
+                                const double dir[3], double origin[3]);
+
+/* ---- Enumeration (tessellation, debugging) --------------------------------
+   The rounded surface of a patch is: the flat faces shrunk inward, a
+   cylinder of `radius` around every segment, a sphere at every centre. A
+   cylinder's visible arc runs from normal n0 to normal n1 (the two offset
+   faces it joins); extra cylinders (exact corners) have edge_v = -1. */
+typedef struct re_sphere_t {
+    double center[3];
+    double radius;
+    unsigned vertex; /* mesh vertex of the corner it belongs to */
+} re_sphere_t;
+
+typedef struct re_cylinder_t {
+    double a[3], b[3];   /* axis end points = centres of spheres sa, sb */
+    double radius;
+    double n0[3], n1[3]; /* unit normals of the two faces it joins */
+    unsigned sa, sb;     /* sphere indices */
+    long long edge_v0, edge_v1; /* the mesh edge, or -1 for an extra cylinder */
+} re_cylinder_t;
+
+RE_DEF unsigned re_object_count(const re_scene_t *scene);
+RE_DEF unsigned re_sphere_count(const re_scene_t *scene, unsigned object);
+RE_DEF unsigned re_cylinder_count(const re_scene_t *scene, unsigned object);
+/* Return 0 (and leave *out untouched) for an out-of-range index. */
+RE_DEF int re_get_sphere(const re_scene_t *scene, unsigned object, unsigned i,
+                         re_sphere_t *out);
+RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i,
+                           re_cylinder_t *out);
+
 
 /* ==== [section: baselines] (owned by the baselines/example helper) ==== */
 /* ---- Bevel-shader baselines (issue 6, item 3) --------------------------
@@ -168,6 +407,15 @@ RE_DEF const char *re_result_string(re_result_t r)
     case RE_OK: return "ok";
     case RE_ERR_INVALID_ARG: return "invalid argument";
     case RE_ERR_OUT_OF_MEMORY: return "out of memory";
+    case RE_ERR_NAN_VERTEX: return "vertex with a NaN or infinite coordinate";
+    case RE_ERR_INDEX_OUT_OF_RANGE: return "vertex index out of range";
+    case RE_ERR_BAD_FACE: return "bad polygon size";
+    case RE_ERR_DEGENERATE_TRIANGLE: return "degenerate (zero-area) triangle";
+    case RE_ERR_INCONSISTENT_WINDING: return "inconsistent triangle winding";
+    case RE_ERR_BAD_RADIUS: return "radius not finite or not positive";
+    case RE_ERR_RADIUS_TOO_LARGE: return "radius too large for the geometry";
+    case RE_ERR_BUFFER_TOO_SMALL: return "buffer smaller than re_build_sizes() asked";
+    case RE_ERR_TOO_LARGE: return "mesh too large for 32-bit ids";
     case RE_RESULT_COUNT_: break;
     }
     return "unknown result";
