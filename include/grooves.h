@@ -1,7 +1,15 @@
 /* grooves.h — grooved and scratched surfaces (part of filigree)
 
    Grooves as UV paths with polyline cross-sections, shaded exactly per pixel
-   footprint with clipping, masking and shadowing (Bosch et al. 2006).
+   footprint with clipping, masking and shadowing (Bosch et al. 2006, §3–4:
+   isolated and parallel grooves).
+
+   The host renderer builds a grid once from a list of grooves, then for each
+   shading point turns its ray differentials into a footprint and asks for the
+   facet list: for every visible facet its texture-space normal, reflectance
+   id, visible ratio r_i and lit fraction per light. It shades
+   Σ r_i ρ_i(N_i, E, L) with its own BRDFs (or lets gr_shade() call one).
+   Full guide: docs/grooves.md.
 
    USAGE
      In exactly one C or C++ file:
@@ -14,6 +22,11 @@
      GR_DEF             linkage of public functions (default extern)
      GR_ASSERT(c)       internal-invariant check (default assert)
      GR_MALLOC(sz,ctx) / GR_FREE(p,ctx)   allocator hooks (default malloc/free)
+     GR_MAX_LIGHTS      lights per query (default 4)
+     GR_MAX_FACETS      entries in a gr_facet_list_t (default 32)
+     GR_NO_CURVES       leave out Bézier paths (the builder then rejects them
+                        with GR_ERR_UNSUPPORTED)
+     GR_NO_OVERSAMPLE   leave out footprint oversampling (§4.2)
    CONVENTIONS
      See docs/conventions.md: results are gr_result_t codes with GR_OK = 0,
      zero-initialised config structs mean defaults, queries are const,
@@ -38,6 +51,12 @@
 #    define GR_DEF extern
 #  endif
 #endif
+#ifndef GR_MAX_LIGHTS
+#  define GR_MAX_LIGHTS 4
+#endif
+#ifndef GR_MAX_FACETS
+#  define GR_MAX_FACETS 32
+#endif
 
 #ifdef __cplusplus
 extern "C" {
@@ -46,13 +65,265 @@ extern "C" {
 /* Result codes. GR_OK is 0; gr_result_string() names each. */
 typedef enum gr_result_t {
     GR_OK = 0,
-    GR_ERR_INVALID_ARG,   /* a NULL pointer or an out-of-range parameter */
-    GR_ERR_OUT_OF_MEMORY, /* the allocator hook returned NULL */
+    GR_ERR_INVALID_ARG,      /* a NULL pointer or an out-of-range parameter */
+    GR_ERR_OUT_OF_MEMORY,    /* the allocator hook returned NULL */
+    GR_ERR_BUFFER_TOO_SMALL, /* a caller buffer is smaller than the size query said */
+    GR_ERR_NOT_FINITE,       /* a NaN or infinite coordinate */
+    GR_ERR_EMPTY_GRID,       /* no grooves, or an empty UV domain */
+    GR_ERR_PATH_POINTS,      /* wrong point count for the path kind */
+    GR_ERR_ZERO_LENGTH_PATH, /* a path whose points all coincide */
+    GR_ERR_SECTION_POINTS,   /* a cross-section with fewer than 2 points */
+    GR_ERR_SECTION_ENDS,     /* a cross-section whose first or last w is not 0 */
+    GR_ERR_SECTION_ORDER,    /* a cross-section whose last b is not above its first b */
+    GR_ERR_PERTURBATION,     /* a perturbation without a valid perturb_max */
+    GR_ERR_UNSUPPORTED,      /* a feature left out at compile time (GR_NO_...) */
     GR_RESULT_COUNT_
 } gr_result_t;
 
 /* A human-readable name for a result code; never NULL. */
 GR_DEF const char *gr_result_string(gr_result_t r);
+
+/* Filled by a builder that rejects user data, when the caller passes one. */
+typedef struct gr_diag_t {
+    gr_result_t result;
+    long long element;    /* index of the offending groove, -1 if none */
+    char message[160];    /* "groove 12: cross-section has 1 point" */
+} gr_diag_t;
+
+/* ---- Representation (§3) ------------------------------------------------ */
+
+/* How a groove's path points are read. All paths lie in UV. */
+typedef enum gr_path_kind_t {
+    GR_PATH_POLYLINE = 0,  /* >= 2 points; 2 points make a line segment */
+    GR_PATH_QUADRATIC = 1, /* chain of quadratic Béziers: 2k+1 points (k >= 1),
+                              pieces share end points */
+    GR_PATH_CUBIC = 2      /* chain of cubic Béziers: 3k+1 points (k >= 1) */
+} gr_path_kind_t;
+
+/* Optional perturbation f(t) of a groove (§3): every cross-section point is
+   multiplied by f(t) at path parameter t in [0,1]. t grows with arc length
+   along a polyline and uniformly per piece along a Bézier chain (piece j of
+   k covers [j/k, (j+1)/k]). Must be pure and thread-safe; values below 0
+   (and NaN) count as 0. */
+typedef double (*gr_perturb_fn)(double t, void *user);
+
+/* One groove. The builder copies everything except perturb/perturb_user, so
+   the caller's arrays may be freed after the build. Zero means default. */
+typedef struct gr_groove_desc_t {
+    gr_path_kind_t kind;          /* default GR_PATH_POLYLINE */
+    const double *points;         /* point_count (u, v) pairs, UV units */
+    int point_count;
+    /* Cross-section C_i = (b, w), section_count pairs, UV units: b is the
+       signed distance from the path along the binormal B = (-T_v, T_u)
+       (left of the direction of travel is b > 0), w the height: w < 0 cuts
+       in, w > 0 protrudes. First and last w must be 0 and the last b must be
+       above the first (points run from left to right, so facet normals
+       (-dw, db)/|(db, dw)| point out of the material). */
+    const double *section;
+    int section_count;            /* >= 2 */
+    int reflectance;              /* host id of every facet's BRDF, default 0 */
+    const int *facet_reflectance; /* optional: section_count-1 ids, one per
+                                     facet R_i = [C_i, C_i+1]; overrides reflectance */
+    gr_perturb_fn perturb;        /* optional scale f(t) (default: none, f = 1) */
+    void *perturb_user;
+    double perturb_max;           /* required with perturb: an upper bound of f
+                                     on [0,1], used for the global bounds w, h, d */
+} gr_groove_desc_t;
+
+/* Grid build options (§4.1). Zero means default. */
+typedef struct gr_grid_desc_t {
+    const gr_groove_desc_t *grooves;
+    int groove_count;             /* >= 1 */
+    double domain[4];             /* u0, v0, u1, v1 of the texture tile; all 0
+                                     means [0,1]x[0,1] */
+    int no_wrap;                  /* 0 (default): the tile repeats, paths and
+                                     footprints wrap around (§4.1); 1: no repeat */
+    int cells_u, cells_v;         /* grid resolution; 0 picks one from the
+                                     groove count and path lengths */
+    int base_reflectance;         /* id of the base surface (ground facets),
+                                     default 0 */
+    void *alloc_ctx;              /* passed to GR_MALLOC/GR_FREE */
+} gr_grid_desc_t;
+
+struct gr__groove_t; /* private per-groove record */
+
+/* The built grid: grooves in flat arrays and the uniform cell lists. Treat
+   every field as read-only; the layout of the arrays is private and may
+   change. One allocation (or the caller's buffer) holds everything. */
+typedef struct gr_grid_t {
+    /* global bounds of all cross-sections times perturb_max (§3, Figure 3):
+       w: largest |b| (distance of a cross-section point from its path),
+       h: largest w above the surface (0 if nothing protrudes),
+       d: largest depth -w below the surface */
+    double w, h, d;
+    int groove_count;
+    int cells_u, cells_v;
+    double domain[4];
+    int wrap;
+    int base_reflectance;
+    /* private */
+    size_t bytes;
+    void *alloc_ctx;
+    int owns_memory;
+    struct gr__groove_t *grooves_;
+    double *points_;         /* path points, all grooves */
+    double *section_;        /* cross-section points, all grooves */
+    int *facet_refl_;        /* one id per facet, all grooves */
+    int *blocker_start_;     /* per facet, into blockers_ */
+    int *blockers_;
+    int *cell_start_;        /* cells_u*cells_v + 1 */
+    int *cell_count_;        /* items used in each cell */
+    int *cell_items_;
+    int *anchor_start_;      /* grooves whose first point lies in the cell */
+    int *anchor_items_;
+    int *row_anchor_sum_;    /* per row, prefix counts of anchors */
+    int total_points_, total_section_, total_facets_, item_capacity_;
+} gr_grid_t;
+
+/* Size query for gr_grid_build_into(): *bytes receives the buffer size. It
+   validates every groove (with a diagnostic naming the first bad one). */
+GR_DEF gr_result_t gr_grid_size(const gr_grid_desc_t *desc, size_t *bytes, gr_diag_t *diag);
+/* Build into a caller buffer of at least gr_grid_size() bytes, aligned for
+   double. *grid points into the buffer; gr_grid_free() is not needed. */
+GR_DEF gr_result_t gr_grid_build_into(const gr_grid_desc_t *desc, void *buffer, size_t bytes,
+                                      gr_grid_t **grid, gr_diag_t *diag);
+/* Build with GR_MALLOC(desc->alloc_ctx); release with gr_grid_free(). */
+GR_DEF gr_result_t gr_grid_build(const gr_grid_desc_t *desc, gr_grid_t **grid, gr_diag_t *diag);
+/* Free a grid from gr_grid_build(); a NULL grid or one built into a caller
+   buffer is ignored. */
+GR_DEF void gr_grid_free(gr_grid_t *grid);
+
+/* The facets of a groove's cross-section that may block facet `facet`
+   (§3: those with a point higher than the lowest point of this facet).
+   Returns the count and sets *list (valid while the grid lives); 0 for
+   out-of-range indices. */
+GR_DEF int gr_facet_blockers(const gr_grid_t *grid, int groove, int facet, const int **list);
+
+/* ---- Footprint (§4, eq. 1) --------------------------------------------- */
+
+/* A pixel footprint in texture space: centre F and half-axes A1, A2 (the
+   footprint is the parallelogram/ellipse F + a A1 + b A2, |a|,|b| <= 1), plus
+   the unit direction E from the surface toward the viewer in texture space
+   (U, V, W), W the surface normal. A1 = A2 = 0 is a point sample. */
+typedef struct gr_footprint_t {
+    double center[2];
+    double axis1[2];
+    double axis2[2];
+    double view[3];
+} gr_footprint_t;
+
+/* Orthonormal texture-space frame at a hit: tu along dp/du, tw the unit
+   normal, tv = tw x tu. Texture space is assumed locally conformal (dp/du
+   and dp/dv orthogonal and of equal length); otherwise the grooves are seen
+   through this closest orthonormal frame. */
+typedef struct gr_frame_t {
+    double tu[3], tv[3], tw[3];
+} gr_frame_t;
+
+/* A hit with ray differentials, as a ray tracer has it (pbrt's model). */
+typedef struct gr_differentials_t {
+    double p[3];           /* hit point, world space */
+    double n[3];           /* surface normal (any length, on the viewer's side) */
+    double dpdu[3], dpdv[3]; /* surface partial derivatives */
+    double uv[2];          /* texture coordinates at p */
+    double dir[3];         /* main ray direction (any length) */
+    double rx_origin[3], rx_dir[3]; /* ray offset one pixel in x */
+    double ry_origin[3], ry_dir[3]; /* ray offset one pixel in y */
+    double filter_radius;  /* footprint half-size in pixels; 0 means 0.5 (a
+                              box pixel) */
+} gr_differentials_t;
+
+/* The footprint from ray differentials: the offset rays meet the tangent
+   plane at p; their offsets are solved for (du, dv) by least squares against
+   dp/du, dp/dv (as pbrt-v4 does), scaled by filter_radius. Also fills the
+   texture frame (for transforming light directions) when frame is non-NULL.
+   Offset rays parallel to the tangent plane give a zero axis (a line or
+   point footprint). Errors: GR_ERR_INVALID_ARG for NULL, GR_ERR_NOT_FINITE
+   for NaN input, degenerate dp/du x dp/dv or a zero-length ray direction. */
+GR_DEF gr_result_t gr_footprint_from_differentials(const gr_differentials_t *rd,
+                                                  gr_footprint_t *fp, gr_frame_t *frame);
+
+/* A world direction in texture space (U, V, W), normalised. Returns 0 (and
+   zeros) for a zero vector. */
+GR_DEF int gr_frame_to_texture(const gr_frame_t *frame, const double world[3], double tex[3]);
+
+/* ---- Query (§4.1-4.4) --------------------------------------------------- */
+
+/* One query. Zero means default. */
+typedef struct gr_query_t {
+    gr_footprint_t footprint;
+    const double *lights;  /* light_count unit directions toward the lights,
+                              texture space, 3 doubles each; L_w <= 0 means at
+                              or below the horizon: lit fraction 0 */
+    int light_count;       /* 0..GR_MAX_LIGHTS; 0 skips all shadowing work */
+    double oversample_tol; /* §4.2: split the footprint when the straight-line
+                              approximation of a path, or the change of the
+                              perturbation, exceeds this fraction of the groove
+                              width across the footprint; default 0 means
+                              0.05; negative disables oversampling */
+    int max_oversample;    /* most sub-footprints; default 0 means 8, at most 64 */
+    double parallel_tol;   /* grooves whose tangent differs from the nearest
+                              groove's by more than this angle (radians) are
+                              not parallel (§4.2); default 0 means 0.02 */
+} gr_query_t;
+
+/* One entry of the facet list: a texture-space facet orientation with its
+   share of the footprint. Facets of several grooves with the same normal and
+   reflectance id are merged into one entry (their ratios add, lit fractions
+   are ratio-weighted), so parallel grooves with one cross-section give one
+   entry per facet, whatever their number. */
+typedef struct gr_facet_t {
+    double normal[3];          /* unit, texture space (U, V, W), out of the material */
+    double ratio;              /* r_i: visible fraction of the footprint (§4.4) */
+    double lit[GR_MAX_LIGHTS]; /* fraction of the visible part lit by light k */
+    int reflectance;           /* the facet's id, or base_reflectance for ground */
+    int groove;                /* first contributing groove, -1 for ground */
+    int facet;                 /* its facet index R_i, -1 for ground */
+    int merged;                /* how many pieces were merged into this entry */
+} gr_facet_t;
+
+/* gr_facet_list_t.flags */
+#define GR_LIST_BELOW_HORIZON 1u  /* E_w <= 0: the surface is not seen; no facets */
+#define GR_LIST_APPROX_MERGE  2u  /* more than GR_MAX_FACETS distinct facets:
+                                     extra ones merged into the closest normal */
+#define GR_LIST_NONPARALLEL   4u  /* non-parallel grooves reach the footprint
+                                     (intersections, issue 8): only the grooves
+                                     parallel to the nearest one were used */
+#define GR_LIST_PATH_END      8u  /* a path ends inside the footprint: treated
+                                     as continuing until the footprint centre
+                                     passes the end */
+#define GR_LIST_OVERLAP      16u  /* parallel cross-sections overlap in UV:
+                                     joined in path order, approximate */
+
+/* The query result: caller-owned, fixed maximum size. The ratios sum to 1
+   (to rounding) unless GR_LIST_BELOW_HORIZON is set. */
+typedef struct gr_facet_list_t {
+    int count;
+    unsigned flags;
+    int grooves;       /* grooves in the merged cross-section(s) */
+    int subfootprints; /* 1, or the oversampling count */
+    gr_facet_t facets[GR_MAX_FACETS];
+} gr_facet_list_t;
+
+/* Scratch bytes any query on this grid needs (bounded by the grid size). */
+GR_DEF size_t gr_query_scratch_bytes(const gr_grid_t *grid);
+
+/* The facet list for one footprint. Const on the grid, allocation-free,
+   thread-safe (each thread its own scratch and list). Errors:
+   GR_ERR_INVALID_ARG (NULL, light_count out of range),
+   GR_ERR_BUFFER_TOO_SMALL (scratch), GR_ERR_NOT_FINITE (NaN footprint). */
+GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query,
+                            void *scratch, size_t scratch_bytes, gr_facet_list_t *list);
+
+/* Host BRDF for gr_shade(): reflected radiance toward e from light k along
+   l, for a facet with normal n and reflectance id, cosine and light
+   intensity included; all vectors unit, texture space. */
+typedef void (*gr_brdf_fn)(void *user, int reflectance, const double n[3],
+                           const double e[3], const double l[3], int light, double rgb[3]);
+
+/* Convenience: gr_query() then rgb = Σ_i r_i Σ_k lit_ik brdf(...) (eq. 6). */
+GR_DEF gr_result_t gr_shade(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
+                            size_t scratch_bytes, gr_brdf_fn brdf, void *user, double rgb[3]);
 
 #ifdef __cplusplus
 }
@@ -79,10 +350,45 @@ GR_DEF const char *gr_result_string(gr_result_t r);
 #  define GR_MALLOC(sz, ctx) ((void)(ctx), malloc(sz))
 #  define GR_FREE(p, ctx) ((void)(ctx), free(p))
 #endif
+#include <stdio.h>  /* snprintf for diagnostics */
+#include <stdlib.h> /* qsort */
+#include <string.h>
 
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* ---- Named tolerances ---------------------------------------------------- */
+/* A cross-section end with |w| below this fraction of the section's extent
+   counts as w = 0 (and is snapped to 0): authoring tools round. */
+#define GR__SECTION_END_REL 1e-12
+/* A path shorter than this fraction of the tile diagonal has zero length. */
+#define GR__ZERO_LENGTH_REL 1e-12
+/* A footprint segment S shorter than this fraction of the grooves' half
+   width w is a point sample: its ratios become 0 or 1 (the limit). */
+#define GR__POINT_FOOTPRINT_REL 1e-12
+/* Facet normals (unit vectors) closer than this per component are the same
+   orientation and share one facet-list entry. */
+#define GR__NORMAL_MERGE_EPS 1e-9
+/* dp/du x dp/dv below this fraction of |dp/du||dp/dv| is a degenerate
+   parameterisation (no footprint can be solved for). */
+#define GR__DEGENERATE_UV_REL 1e-12
+/* Bézier pieces are cut into this many sub-pieces for gridding; each
+   sub-piece's control points bound it (convex hull), so gridding is exact
+   up to that bound. */
+#define GR__CURVE_GRID_SPLITS 8
+/* Nearest point on a Bézier piece: samples to start from, Newton steps. */
+#define GR__CURVE_SAMPLES 8
+#define GR__CURVE_NEWTON 8
+/* Default query settings (documented in gr_query_t). */
+#define GR__DEFAULT_OVERSAMPLE_TOL 0.05
+#define GR__DEFAULT_MAX_OVERSAMPLE 8
+#define GR__LIMIT_MAX_OVERSAMPLE 64
+#define GR__DEFAULT_PARALLEL_TOL 0.02
+/* Automatic grid resolution: about this many cells per groove and axis,
+   capped, so a small footprint box meets few paths. */
+#define GR__AUTO_CELLS_PER_SQRT_GROOVE 2.0
+#define GR__AUTO_CELLS_MAX 512
 
 GR_DEF const char *gr_result_string(gr_result_t r)
 {
@@ -90,9 +396,1340 @@ GR_DEF const char *gr_result_string(gr_result_t r)
     case GR_OK: return "ok";
     case GR_ERR_INVALID_ARG: return "invalid argument";
     case GR_ERR_OUT_OF_MEMORY: return "out of memory";
+    case GR_ERR_BUFFER_TOO_SMALL: return "buffer too small";
+    case GR_ERR_NOT_FINITE: return "NaN or infinite coordinate";
+    case GR_ERR_EMPTY_GRID: return "empty grid (no grooves or empty domain)";
+    case GR_ERR_PATH_POINTS: return "wrong number of path points";
+    case GR_ERR_ZERO_LENGTH_PATH: return "zero-length path";
+    case GR_ERR_SECTION_POINTS: return "cross-section has fewer than 2 points";
+    case GR_ERR_SECTION_ENDS: return "cross-section first or last w is not 0";
+    case GR_ERR_SECTION_ORDER: return "cross-section does not run from low to high b";
+    case GR_ERR_PERTURBATION: return "perturbation without a valid perturb_max";
+    case GR_ERR_UNSUPPORTED: return "feature left out at compile time";
     case GR_RESULT_COUNT_: break;
     }
     return "unknown result";
+}
+
+/* ---- Private records ---------------------------------------------------- */
+
+typedef struct gr__groove_t {
+    int kind;              /* gr_path_kind_t */
+    int first_point;       /* index of its first (u, v) pair in points_ */
+    int point_count;
+    int first_sec;         /* index of its first (b, w) pair in section_ */
+    int sec_count;
+    int first_facet;       /* into facet_refl_ and blocker_start_ */
+    int pieces;            /* segments (polyline) or Bézier pieces */
+    int closed;            /* first point == last point: no path ends */
+    double length;         /* polyline arc length (t = s / length) */
+    double half_width;     /* max |b| of the section, times fmax */
+    double up, down;       /* max w and max -w of the section, times fmax */
+    double fmax;           /* perturb_max, or 1 */
+    double bbox[4];        /* control-point bounds of the path */
+    gr_perturb_fn perturb;
+    void *perturb_user;
+} gr__groove_t;
+
+static void gr__diag(gr_diag_t *diag, gr_result_t r, long long element, const char *msg)
+{
+    if (!diag) return;
+    diag->result = r;
+    diag->element = element;
+    if (element >= 0) snprintf(diag->message, sizeof diag->message, "groove %lld: %s", element, msg);
+    else snprintf(diag->message, sizeof diag->message, "%s", msg);
+}
+
+static int gr__finite(double x) { return x - x == 0.0; }
+
+/* Number of pieces a path of this kind and point count has; 0 if invalid. */
+static int gr__pieces(int kind, int n)
+{
+    if (kind == GR_PATH_POLYLINE) return n >= 2 ? n - 1 : 0;
+    if (kind == GR_PATH_QUADRATIC) return n >= 3 && (n - 1) % 2 == 0 ? (n - 1) / 2 : 0;
+    if (kind == GR_PATH_CUBIC) return n >= 4 && (n - 1) % 3 == 0 ? (n - 1) / 3 : 0;
+    return 0;
+}
+static int gr__degree(int kind) { return kind == GR_PATH_QUADRATIC ? 2 : kind == GR_PATH_CUBIC ? 3 : 1; }
+
+/* The tile [u0,u1]x[v0,v1] of a desc (all zero means the unit square). */
+static void gr__domain(const gr_grid_desc_t *desc, double dom[4])
+{
+    if (desc->domain[0] == 0 && desc->domain[1] == 0 && desc->domain[2] == 0 && desc->domain[3] == 0) {
+        dom[0] = 0; dom[1] = 0; dom[2] = 1; dom[3] = 1;
+    } else {
+        memcpy(dom, desc->domain, sizeof(double) * 4);
+    }
+}
+
+/* Validate one groove description; on error fill diag and return the code. */
+static gr_result_t gr__check_groove(const gr_groove_desc_t *g, long long idx, double diag_len, gr_diag_t *diag)
+{
+    char msg[120];
+    int i, pieces;
+    double len = 0, ext = 0;
+    if (g->kind != GR_PATH_POLYLINE && g->kind != GR_PATH_QUADRATIC && g->kind != GR_PATH_CUBIC) {
+        gr__diag(diag, GR_ERR_INVALID_ARG, idx, "unknown path kind");
+        return GR_ERR_INVALID_ARG;
+    }
+#ifdef GR_NO_CURVES
+    if (g->kind != GR_PATH_POLYLINE) {
+        gr__diag(diag, GR_ERR_UNSUPPORTED, idx, "Bézier path, but built with GR_NO_CURVES");
+        return GR_ERR_UNSUPPORTED;
+    }
+#endif
+    if (!g->points) { gr__diag(diag, GR_ERR_INVALID_ARG, idx, "points is NULL"); return GR_ERR_INVALID_ARG; }
+    pieces = gr__pieces((int)g->kind, g->point_count);
+    if (!pieces) {
+        snprintf(msg, sizeof msg, "path has %d points, which does not fit its kind", g->point_count);
+        gr__diag(diag, GR_ERR_PATH_POINTS, idx, msg);
+        return GR_ERR_PATH_POINTS;
+    }
+    for (i = 0; i < 2 * g->point_count; i++)
+        if (!gr__finite(g->points[i])) {
+            snprintf(msg, sizeof msg, "path point %d is not finite", i / 2);
+            gr__diag(diag, GR_ERR_NOT_FINITE, idx, msg);
+            return GR_ERR_NOT_FINITE;
+        }
+    /* control-polygon length: zero exactly when every point coincides */
+    for (i = 1; i < g->point_count; i++)
+        len += hypot(g->points[2 * i] - g->points[2 * i - 2], g->points[2 * i + 1] - g->points[2 * i - 1]);
+    if (!(len > GR__ZERO_LENGTH_REL * diag_len)) {
+        gr__diag(diag, GR_ERR_ZERO_LENGTH_PATH, idx, "path has zero length");
+        return GR_ERR_ZERO_LENGTH_PATH;
+    }
+    if (!g->section) { gr__diag(diag, GR_ERR_INVALID_ARG, idx, "section is NULL"); return GR_ERR_INVALID_ARG; }
+    if (g->section_count < 2) {
+        snprintf(msg, sizeof msg, "cross-section has %d point%s", g->section_count, g->section_count == 1 ? "" : "s");
+        gr__diag(diag, GR_ERR_SECTION_POINTS, idx, msg);
+        return GR_ERR_SECTION_POINTS;
+    }
+    for (i = 0; i < 2 * g->section_count; i++) {
+        if (!gr__finite(g->section[i])) {
+            snprintf(msg, sizeof msg, "cross-section point %d is not finite", i / 2);
+            gr__diag(diag, GR_ERR_NOT_FINITE, idx, msg);
+            return GR_ERR_NOT_FINITE;
+        }
+        if (fabs(g->section[i]) > ext) ext = fabs(g->section[i]);
+    }
+    if (fabs(g->section[1]) > GR__SECTION_END_REL * ext ||
+        fabs(g->section[2 * g->section_count - 1]) > GR__SECTION_END_REL * ext) {
+        snprintf(msg, sizeof msg, "cross-section %s point has w = %g, not 0",
+                 fabs(g->section[1]) > GR__SECTION_END_REL * ext ? "first" : "last",
+                 fabs(g->section[1]) > GR__SECTION_END_REL * ext ? g->section[1] : g->section[2 * g->section_count - 1]);
+        gr__diag(diag, GR_ERR_SECTION_ENDS, idx, msg);
+        return GR_ERR_SECTION_ENDS;
+    }
+    if (!(g->section[2 * g->section_count - 2] > g->section[0])) {
+        gr__diag(diag, GR_ERR_SECTION_ORDER, idx, "cross-section's last b is not above its first b");
+        return GR_ERR_SECTION_ORDER;
+    }
+    if (g->perturb && !(gr__finite(g->perturb_max) && g->perturb_max > 0)) {
+        snprintf(msg, sizeof msg, "perturbation needs perturb_max > 0 (got %g)", g->perturb_max);
+        gr__diag(diag, GR_ERR_PERTURBATION, idx, msg);
+        return GR_ERR_PERTURBATION;
+    }
+    return GR_OK;
+}
+
+/* Grid geometry shared by the builder and the query. */
+typedef struct gr__cells_t {
+    double u0, v0, cu, cv; /* origin and cell size */
+    int nu, nv, wrap;
+} gr__cells_t;
+
+static int gr__imod(long long a, int n) { long long r = a % n; return (int)(r < 0 ? r + n : r); }
+
+/* Unwrapped cell coordinate of u (floor), clamped to a safe integer range. */
+static long long gr__cell_coord(double x, double origin, double size)
+{
+    double c = floor((x - origin) / size);
+    if (c > 1e15) c = 1e15;
+    if (c < -1e15) c = -1e15;
+    return (long long)c;
+}
+
+/* Map an unwrapped cell range [a, b] to at most n indices (wrapping or
+   clamping); returns the first index and count of the range. */
+static void gr__cell_range(long long a, long long b, int n, int wrap, int *first, int *count)
+{
+    if (wrap) {
+        if (b - a + 1 >= n) { *first = 0; *count = n; return; }
+        *first = gr__imod(a, n);
+        *count = (int)(b - a + 1);
+        return;
+    }
+    if (a < 0) a = 0;
+    if (b > n - 1) b = n - 1;
+    if (a > n - 1) a = n - 1;
+    if (b < 0) b = 0;
+    *first = (int)a;
+    *count = (int)(b - a + 1);
+}
+
+/* Visit every cell of a UV box: counts (counts != NULL) or appends groove g
+   to each cell's list, skipping a cell whose last item already is g. */
+static void gr__mark_box(const gr__cells_t *c, const double box[4], int g, int *counts,
+                         const int *start, int *fill, int *items)
+{
+    int fu, nu_, fv, nv_, i, j;
+    gr__cell_range(gr__cell_coord(box[0], c->u0, c->cu), gr__cell_coord(box[2], c->u0, c->cu), c->nu, c->wrap, &fu, &nu_);
+    gr__cell_range(gr__cell_coord(box[1], c->v0, c->cv), gr__cell_coord(box[3], c->v0, c->cv), c->nv, c->wrap, &fv, &nv_);
+    for (j = 0; j < nv_; j++)
+        for (i = 0; i < nu_; i++) {
+            int cell = ((fv + j) % c->nv) * c->nu + (fu + i) % c->nu;
+            if (counts) { counts[cell]++; continue; }
+            if (fill[cell] > 0 && items[start[cell] + fill[cell] - 1] == g) continue;
+            items[start[cell] + fill[cell]++] = g;
+        }
+}
+
+/* Bounds of control points p[0..n-1] (pairs). */
+static void gr__bounds(const double *p, int n, double box[4])
+{
+    int i;
+    box[0] = box[2] = p[0];
+    box[1] = box[3] = p[1];
+    for (i = 1; i < n; i++) {
+        if (p[2 * i] < box[0]) box[0] = p[2 * i];
+        if (p[2 * i] > box[2]) box[2] = p[2 * i];
+        if (p[2 * i + 1] < box[1]) box[1] = p[2 * i + 1];
+        if (p[2 * i + 1] > box[3]) box[3] = p[2 * i + 1];
+    }
+}
+
+/* de Casteljau split of a degree-n Bézier (n <= 3) at t: left and right
+   control points (either may be NULL). */
+static void gr__bezier_split(const double *p, int n, double t, double *left, double *right)
+{
+    double q[8];
+    int k, i;
+    memcpy(q, p, sizeof(double) * 2 * (size_t)(n + 1));
+    for (k = 0; k <= n; k++) {
+        /* level k holds n-k+1 points: its first is left[k], its last right[n-k] */
+        if (left) { left[2 * k] = q[0]; left[2 * k + 1] = q[1]; }
+        if (right) { right[2 * (n - k)] = q[2 * (n - k)]; right[2 * (n - k) + 1] = q[2 * (n - k) + 1]; }
+        for (i = 0; i < n - k; i++) {
+            q[2 * i] = (1 - t) * q[2 * i] + t * q[2 * i + 2];
+            q[2 * i + 1] = (1 - t) * q[2 * i + 1] + t * q[2 * i + 3];
+        }
+    }
+}
+
+/* Control points of the Bézier restricted to [t0, t1]. */
+static void gr__bezier_sub(const double *p, int n, double t0, double t1, double *out)
+{
+    double l[8];
+    gr__bezier_split(p, n, t1, l, NULL);
+    gr__bezier_split(l, n, t1 > 0 ? t0 / t1 : 0, NULL, out);
+}
+
+/* ---- Grid build (§3 bounds and blockers, §4.1 uniform grid) ------------- */
+
+/* Everything the size query and the builder agree on. */
+typedef struct gr__plan_t {
+    double dom[4];
+    gr__cells_t cells;
+    int groove_count, total_points, total_section, total_facets, total_blockers;
+    long long item_capacity;
+    size_t off_grooves, off_points, off_section, off_refl, off_bstart, off_blockers,
+        off_cstart, off_ccount, off_items, off_astart, off_aitems, off_rowsum, bytes;
+} gr__plan_t;
+
+static size_t gr__align8(size_t x) { return (x + 7u) & ~(size_t)7u; }
+
+/* Calls fn for each gridding box of a groove's path: one per polyline
+   segment, GR__CURVE_GRID_SPLITS control-point boxes per Bézier piece. */
+static long long gr__path_boxes(const gr__cells_t *c, const double *pts, int kind, int n, int g,
+                                int *counts, const int *start, int *fill, int *items)
+{
+    int deg = gr__degree(kind), pieces = gr__pieces(kind, n), k, s;
+    long long cells = 0;
+    for (k = 0; k < pieces; k++) {
+        const double *p = pts + 2 * k * deg;
+        int splits = deg == 1 ? 1 : GR__CURVE_GRID_SPLITS;
+        for (s = 0; s < splits; s++) {
+            double sub[8], box[4];
+            int fu, nu_, fv, nv_;
+            if (deg == 1) memcpy(sub, p, sizeof(double) * 4);
+            else gr__bezier_sub(p, deg, (double)s / splits, (double)(s + 1) / splits, sub);
+            gr__bounds(sub, deg + 1, box);
+            gr__cell_range(gr__cell_coord(box[0], c->u0, c->cu), gr__cell_coord(box[2], c->u0, c->cu), c->nu, c->wrap, &fu, &nu_);
+            gr__cell_range(gr__cell_coord(box[1], c->v0, c->cv), gr__cell_coord(box[3], c->v0, c->cv), c->nv, c->wrap, &fv, &nv_);
+            cells += (long long)nu_ * nv_;
+            if (counts || items) gr__mark_box(c, box, g, counts, start, fill, items);
+        }
+    }
+    return cells;
+}
+
+/* Anchor cell of a groove: the cell of its first point. */
+static int gr__anchor_cell(const gr__cells_t *c, const double *p)
+{
+    int fu, nu_, fv, nv_;
+    long long a = gr__cell_coord(p[0], c->u0, c->cu), b = gr__cell_coord(p[1], c->v0, c->cv);
+    gr__cell_range(a, a, c->nu, c->wrap, &fu, &nu_);
+    gr__cell_range(b, b, c->nv, c->wrap, &fv, &nv_);
+    return fv * c->nu + fu;
+}
+
+static int gr__facet_blocks(const double *sec, int i, int j)
+{
+    double lowest_i = sec[2 * i + 1] < sec[2 * i + 3] ? sec[2 * i + 1] : sec[2 * i + 3];
+    return j != i && (sec[2 * j + 1] > lowest_i || sec[2 * j + 3] > lowest_i);
+}
+
+static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_t *diag)
+{
+    int g, i, j;
+    double diag_len;
+    size_t off;
+    if (diag) { diag->result = GR_OK; diag->element = -1; diag->message[0] = 0; }
+    if (!desc) { gr__diag(diag, GR_ERR_INVALID_ARG, -1, "desc is NULL"); return GR_ERR_INVALID_ARG; }
+    memset(pl, 0, sizeof *pl);
+    if (desc->groove_count <= 0 || !desc->grooves) {
+        gr__diag(diag, GR_ERR_EMPTY_GRID, -1, "grid has no grooves");
+        return GR_ERR_EMPTY_GRID;
+    }
+    gr__domain(desc, pl->dom);
+    for (i = 0; i < 4; i++)
+        if (!gr__finite(pl->dom[i])) { gr__diag(diag, GR_ERR_NOT_FINITE, -1, "domain is not finite"); return GR_ERR_NOT_FINITE; }
+    if (!(pl->dom[2] > pl->dom[0] && pl->dom[3] > pl->dom[1])) {
+        gr__diag(diag, GR_ERR_EMPTY_GRID, -1, "domain is empty (u1 <= u0 or v1 <= v0)");
+        return GR_ERR_EMPTY_GRID;
+    }
+    if (desc->cells_u < 0 || desc->cells_v < 0 || desc->cells_u > 65536 || desc->cells_v > 65536 ||
+        (long long)desc->cells_u * desc->cells_v > 16777216LL) {
+        gr__diag(diag, GR_ERR_INVALID_ARG, -1, "cells_u, cells_v out of range (0..65536, product <= 2^24)");
+        return GR_ERR_INVALID_ARG;
+    }
+    diag_len = hypot(pl->dom[2] - pl->dom[0], pl->dom[3] - pl->dom[1]);
+    for (g = 0; g < desc->groove_count; g++) {
+        const gr_groove_desc_t *gd = &desc->grooves[g];
+        gr_result_t r = gr__check_groove(gd, g, diag_len, diag);
+        if (r != GR_OK) return r;
+        pl->total_points += gd->point_count;
+        pl->total_section += gd->section_count;
+        pl->total_facets += gd->section_count - 1;
+        for (i = 0; i + 1 < gd->section_count; i++)
+            for (j = 0; j + 1 < gd->section_count; j++) pl->total_blockers += gr__facet_blocks(gd->section, i, j);
+        if (pl->total_points > 100000000 || pl->total_section > 100000000 || pl->total_blockers > 200000000) {
+            gr__diag(diag, GR_ERR_INVALID_ARG, g, "too many points in total (> 1e8)");
+            return GR_ERR_INVALID_ARG;
+        }
+    }
+    pl->groove_count = desc->groove_count;
+    {
+        int autoc = (int)ceil(GR__AUTO_CELLS_PER_SQRT_GROOVE * sqrt((double)desc->groove_count));
+        if (autoc > GR__AUTO_CELLS_MAX) autoc = GR__AUTO_CELLS_MAX;
+        pl->cells.nu = desc->cells_u ? desc->cells_u : autoc;
+        pl->cells.nv = desc->cells_v ? desc->cells_v : autoc;
+    }
+    pl->cells.u0 = pl->dom[0];
+    pl->cells.v0 = pl->dom[1];
+    pl->cells.cu = (pl->dom[2] - pl->dom[0]) / pl->cells.nu;
+    pl->cells.cv = (pl->dom[3] - pl->dom[1]) / pl->cells.nv;
+    pl->cells.wrap = !desc->no_wrap;
+    for (g = 0; g < desc->groove_count; g++) {
+        const gr_groove_desc_t *gd = &desc->grooves[g];
+        pl->item_capacity += gr__path_boxes(&pl->cells, gd->points, (int)gd->kind, gd->point_count, g, NULL, NULL, NULL, NULL);
+        if (pl->item_capacity > 400000000LL) {
+            gr__diag(diag, GR_ERR_INVALID_ARG, g, "grid cell lists too large (> 4e8 entries): use fewer cells");
+            return GR_ERR_INVALID_ARG;
+        }
+    }
+    {
+        size_t nc = (size_t)pl->cells.nu * (size_t)pl->cells.nv;
+        off = gr__align8(sizeof(gr_grid_t));
+        pl->off_grooves = off; off = gr__align8(off + sizeof(gr__groove_t) * (size_t)pl->groove_count);
+        pl->off_points = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_points);
+        pl->off_section = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_section);
+        pl->off_refl = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_facets);
+        pl->off_bstart = off; off = gr__align8(off + sizeof(int) * ((size_t)pl->total_facets + 1));
+        pl->off_blockers = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_blockers);
+        pl->off_cstart = off; off = gr__align8(off + sizeof(int) * (nc + 1));
+        pl->off_ccount = off; off = gr__align8(off + sizeof(int) * nc);
+        pl->off_items = off; off = gr__align8(off + sizeof(int) * (size_t)pl->item_capacity);
+        pl->off_astart = off; off = gr__align8(off + sizeof(int) * (nc + 1));
+        pl->off_aitems = off; off = gr__align8(off + sizeof(int) * (size_t)pl->groove_count);
+        pl->off_rowsum = off; off = gr__align8(off + sizeof(int) * (size_t)pl->cells.nv * ((size_t)pl->cells.nu + 1));
+        pl->bytes = off;
+    }
+    return GR_OK;
+}
+
+GR_DEF gr_result_t gr_grid_size(const gr_grid_desc_t *desc, size_t *bytes, gr_diag_t *diag)
+{
+    gr__plan_t pl;
+    gr_result_t r;
+    if (!bytes) { gr__diag(diag, GR_ERR_INVALID_ARG, -1, "bytes is NULL"); return GR_ERR_INVALID_ARG; }
+    r = gr__plan(desc, &pl, diag);
+    *bytes = r == GR_OK ? pl.bytes : 0;
+    return r;
+}
+
+/* Copy one groove into the flat arrays and fill its record (§3 bounds). */
+static void gr__store_groove(gr_grid_t *gr, const gr_groove_desc_t *gd, int g, int *pt, int *sc, int *fc, int *bc)
+{
+    gr__groove_t *rec = &gr->grooves_[g];
+    int n = gd->section_count, i, j;
+    double ext = 0, maxb = 0, maxw = 0, minw = 0;
+    memset(rec, 0, sizeof *rec);
+    rec->kind = (int)gd->kind;
+    rec->first_point = *pt;
+    rec->point_count = gd->point_count;
+    rec->first_sec = *sc;
+    rec->sec_count = n;
+    rec->first_facet = *fc;
+    rec->pieces = gr__pieces(rec->kind, gd->point_count);
+    rec->fmax = gd->perturb ? gd->perturb_max : 1.0;
+    rec->perturb = gd->perturb;
+    rec->perturb_user = gd->perturb_user;
+    memcpy(gr->points_ + 2 * *pt, gd->points, sizeof(double) * 2 * (size_t)gd->point_count);
+    memcpy(gr->section_ + 2 * *sc, gd->section, sizeof(double) * 2 * (size_t)n);
+    for (i = 0; i < 2 * n; i++) if (fabs(gd->section[i]) > ext) ext = fabs(gd->section[i]);
+    /* snap rounded ends to exactly 0 (checked against GR__SECTION_END_REL) */
+    gr->section_[2 * *sc + 1] = 0;
+    gr->section_[2 * (*sc + n - 1) + 1] = 0;
+    for (i = 0; i < n; i++) {
+        double b = gr->section_[2 * (*sc + i)], w = gr->section_[2 * (*sc + i) + 1];
+        if (fabs(b) > maxb) maxb = fabs(b);
+        if (w > maxw) maxw = w;
+        if (w < minw) minw = w;
+    }
+    rec->half_width = maxb * rec->fmax;
+    rec->up = maxw * rec->fmax;
+    rec->down = -minw * rec->fmax;
+    gr__bounds(gd->points, gd->point_count, rec->bbox);
+    {
+        const double *p = gd->points;
+        int last = gd->point_count - 1;
+        rec->closed = p[0] == p[2 * last] && p[1] == p[2 * last + 1];
+        rec->length = 0;
+        if (rec->kind == GR_PATH_POLYLINE)
+            for (i = 0; i < last; i++) rec->length += hypot(p[2 * i + 2] - p[2 * i], p[2 * i + 3] - p[2 * i + 1]);
+    }
+    for (i = 0; i + 1 < n; i++) {
+        gr->facet_refl_[*fc + i] = gd->facet_reflectance ? gd->facet_reflectance[i] : gd->reflectance;
+        gr->blocker_start_[*fc + i] = *bc;
+        for (j = 0; j + 1 < n; j++)
+            if (gr__facet_blocks(gd->section, i, j)) gr->blockers_[(*bc)++] = j;
+    }
+    gr->blocker_start_[*fc + n - 1] = *bc;
+    *pt += gd->point_count;
+    *sc += n;
+    *fc += n - 1;
+    (void)ext;
+}
+
+static gr__cells_t gr__grid_cells(const gr_grid_t *gr)
+{
+    gr__cells_t c;
+    c.u0 = gr->domain[0];
+    c.v0 = gr->domain[1];
+    c.nu = gr->cells_u;
+    c.nv = gr->cells_v;
+    c.cu = (gr->domain[2] - gr->domain[0]) / c.nu;
+    c.cv = (gr->domain[3] - gr->domain[1]) / c.nv;
+    c.wrap = gr->wrap;
+    return c;
+}
+
+GR_DEF gr_result_t gr_grid_build_into(const gr_grid_desc_t *desc, void *buffer, size_t bytes,
+                                      gr_grid_t **grid, gr_diag_t *diag)
+{
+    gr__plan_t pl;
+    gr_result_t r;
+    gr_grid_t *gr;
+    char *base = (char *)buffer;
+    int g, pt = 0, sc = 0, fc = 0, bc = 0, nc, i, j;
+    if (!buffer || !grid) { gr__diag(diag, GR_ERR_INVALID_ARG, -1, "buffer or grid is NULL"); return GR_ERR_INVALID_ARG; }
+    *grid = NULL;
+    r = gr__plan(desc, &pl, diag);
+    if (r != GR_OK) return r;
+    if (bytes < pl.bytes) {
+        gr__diag(diag, GR_ERR_BUFFER_TOO_SMALL, -1, "buffer smaller than gr_grid_size()");
+        return GR_ERR_BUFFER_TOO_SMALL;
+    }
+    gr = (gr_grid_t *)buffer;
+    memset(gr, 0, sizeof *gr);
+    gr->groove_count = pl.groove_count;
+    gr->cells_u = pl.cells.nu;
+    gr->cells_v = pl.cells.nv;
+    memcpy(gr->domain, pl.dom, sizeof pl.dom);
+    gr->wrap = pl.cells.wrap;
+    gr->base_reflectance = desc->base_reflectance;
+    gr->bytes = pl.bytes;
+    gr->alloc_ctx = desc->alloc_ctx;
+    gr->grooves_ = (gr__groove_t *)(void *)(base + pl.off_grooves);
+    gr->points_ = (double *)(void *)(base + pl.off_points);
+    gr->section_ = (double *)(void *)(base + pl.off_section);
+    gr->facet_refl_ = (int *)(void *)(base + pl.off_refl);
+    gr->blocker_start_ = (int *)(void *)(base + pl.off_bstart);
+    gr->blockers_ = (int *)(void *)(base + pl.off_blockers);
+    gr->cell_start_ = (int *)(void *)(base + pl.off_cstart);
+    gr->cell_count_ = (int *)(void *)(base + pl.off_ccount);
+    gr->cell_items_ = (int *)(void *)(base + pl.off_items);
+    gr->anchor_start_ = (int *)(void *)(base + pl.off_astart);
+    gr->anchor_items_ = (int *)(void *)(base + pl.off_aitems);
+    gr->row_anchor_sum_ = (int *)(void *)(base + pl.off_rowsum);
+    gr->total_points_ = pl.total_points;
+    gr->total_section_ = pl.total_section;
+    gr->total_facets_ = pl.total_facets;
+    gr->item_capacity_ = (int)pl.item_capacity;
+    for (g = 0; g < pl.groove_count; g++) {
+        const gr__groove_t *rec;
+        gr__store_groove(gr, &desc->grooves[g], g, &pt, &sc, &fc, &bc);
+        rec = &gr->grooves_[g];
+        if (rec->half_width > gr->w) gr->w = rec->half_width;
+        if (rec->up > gr->h) gr->h = rec->up;
+        if (rec->down > gr->d) gr->d = rec->down;
+    }
+    /* cell lists: count (upper bound), prefix sum, fill without repeats */
+    nc = pl.cells.nu * pl.cells.nv;
+    memset(gr->cell_start_, 0, sizeof(int) * ((size_t)nc + 1));
+    memset(gr->cell_count_, 0, sizeof(int) * (size_t)nc);
+    for (g = 0; g < pl.groove_count; g++) {
+        const gr__groove_t *rec = &gr->grooves_[g];
+        gr__path_boxes(&pl.cells, gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count, g,
+                       gr->cell_start_ + 1, NULL, NULL, NULL);
+    }
+    for (i = 0; i < nc; i++) gr->cell_start_[i + 1] += gr->cell_start_[i];
+    GR_ASSERT(gr->cell_start_[nc] == pl.item_capacity);
+    for (g = 0; g < pl.groove_count; g++) {
+        const gr__groove_t *rec = &gr->grooves_[g];
+        gr__path_boxes(&pl.cells, gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count, g,
+                       NULL, gr->cell_start_, gr->cell_count_, gr->cell_items_);
+    }
+    /* anchors: each groove in the cell of its first point, for grooves that
+       lie wholly inside a footprint box (missed by the boundary cells) */
+    memset(gr->anchor_start_, 0, sizeof(int) * ((size_t)nc + 1));
+    for (g = 0; g < pl.groove_count; g++)
+        gr->anchor_start_[gr__anchor_cell(&pl.cells, gr->points_ + 2 * gr->grooves_[g].first_point) + 1]++;
+    for (i = 0; i < nc; i++) gr->anchor_start_[i + 1] += gr->anchor_start_[i];
+    {
+        int *cursor = gr->row_anchor_sum_; /* borrowed as a per-cell fill cursor */
+        memset(cursor, 0, sizeof(int) * (size_t)nc);
+        for (g = 0; g < pl.groove_count; g++) {
+            int cell = gr__anchor_cell(&pl.cells, gr->points_ + 2 * gr->grooves_[g].first_point);
+            gr->anchor_items_[gr->anchor_start_[cell] + cursor[cell]++] = g;
+        }
+    }
+    for (j = 0; j < pl.cells.nv; j++) {
+        int *row = gr->row_anchor_sum_ + (size_t)j * (size_t)(pl.cells.nu + 1);
+        row[0] = 0;
+        for (i = 0; i < pl.cells.nu; i++) {
+            int cell = j * pl.cells.nu + i;
+            row[i + 1] = row[i] + gr->anchor_start_[cell + 1] - gr->anchor_start_[cell];
+        }
+    }
+    *grid = gr;
+    return GR_OK;
+}
+
+GR_DEF gr_result_t gr_grid_build(const gr_grid_desc_t *desc, gr_grid_t **grid, gr_diag_t *diag)
+{
+    size_t bytes = 0;
+    void *mem;
+    gr_result_t r;
+    if (!grid) { gr__diag(diag, GR_ERR_INVALID_ARG, -1, "grid is NULL"); return GR_ERR_INVALID_ARG; }
+    *grid = NULL;
+    r = gr_grid_size(desc, &bytes, diag);
+    if (r != GR_OK) return r;
+    mem = GR_MALLOC(bytes, desc->alloc_ctx);
+    if (!mem) { gr__diag(diag, GR_ERR_OUT_OF_MEMORY, -1, "allocator returned NULL"); return GR_ERR_OUT_OF_MEMORY; }
+    r = gr_grid_build_into(desc, mem, bytes, grid, diag);
+    if (r != GR_OK) { GR_FREE(mem, desc->alloc_ctx); return r; }
+    (*grid)->owns_memory = 1;
+    return GR_OK;
+}
+
+GR_DEF void gr_grid_free(gr_grid_t *grid)
+{
+    if (!grid || !grid->owns_memory) return;
+    GR_FREE((void *)grid, grid->alloc_ctx);
+}
+
+GR_DEF int gr_facet_blockers(const gr_grid_t *grid, int groove, int facet, const int **list)
+{
+    const gr__groove_t *rec;
+    int f;
+    if (list) *list = NULL;
+    if (!grid || groove < 0 || groove >= grid->groove_count) return 0;
+    rec = &grid->grooves_[groove];
+    if (facet < 0 || facet >= rec->sec_count - 1) return 0;
+    f = rec->first_facet + facet;
+    if (list) *list = grid->blockers_ + grid->blocker_start_[f];
+    return grid->blocker_start_[f + 1] - grid->blocker_start_[f];
+}
+
+/* ---- Footprint from ray differentials (§4; pbrt-v4's least squares) ----- */
+
+static double gr__dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void gr__cross3(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+static int gr__finite_n(const double *a, int n)
+{
+    int i;
+    for (i = 0; i < n; i++) if (!gr__finite(a[i])) return 0;
+    return 1;
+}
+
+GR_DEF int gr_frame_to_texture(const gr_frame_t *frame, const double world[3], double tex[3])
+{
+    double t[3], len;
+    t[0] = gr__dot3(world, frame->tu);
+    t[1] = gr__dot3(world, frame->tv);
+    t[2] = gr__dot3(world, frame->tw);
+    len = sqrt(gr__dot3(t, t));
+    if (!(len > 0) || !gr__finite(len)) { tex[0] = tex[1] = tex[2] = 0; return 0; }
+    tex[0] = t[0] / len;
+    tex[1] = t[1] / len;
+    tex[2] = t[2] / len;
+    return 1;
+}
+
+/* (du, dv) of the point where ray (o, d) meets the tangent plane at p,
+   solved in the least-squares sense against dp/du, dp/dv. A ray parallel to
+   the plane (or meeting it at infinity) gives (0, 0). */
+static void gr__offset_uv(const gr_differentials_t *rd, const double *n, const double *o, const double *d,
+                          double a00, double a01, double a11, double det, double out[2])
+{
+    double dn = gr__dot3(n, d), t, px[3], dp[3], b0, b1;
+    int i;
+    out[0] = out[1] = 0;
+    if (dn == 0) return;
+    t = (gr__dot3(n, rd->p) - gr__dot3(n, o)) / dn;
+    if (!gr__finite(t)) return;
+    for (i = 0; i < 3; i++) { px[i] = o[i] + t * d[i]; dp[i] = px[i] - rd->p[i]; }
+    b0 = gr__dot3(rd->dpdu, dp);
+    b1 = gr__dot3(rd->dpdv, dp);
+    out[0] = (a11 * b0 - a01 * b1) / det;
+    out[1] = (a00 * b1 - a01 * b0) / det;
+    if (!gr__finite(out[0]) || !gr__finite(out[1])) out[0] = out[1] = 0;
+}
+
+GR_DEF gr_result_t gr_footprint_from_differentials(const gr_differentials_t *rd, gr_footprint_t *fp, gr_frame_t *frame)
+{
+    double n[3], nl, a00, a01, a11, det, c[3], radius, dx[2], dy[2], neg[3];
+    gr_frame_t fr;
+    int i;
+    if (!rd || !fp) return GR_ERR_INVALID_ARG;
+    if (!gr__finite_n(rd->p, 3) || !gr__finite_n(rd->n, 3) || !gr__finite_n(rd->dpdu, 3) ||
+        !gr__finite_n(rd->dpdv, 3) || !gr__finite_n(rd->uv, 2) || !gr__finite_n(rd->dir, 3) ||
+        !gr__finite_n(rd->rx_origin, 3) || !gr__finite_n(rd->rx_dir, 3) || !gr__finite_n(rd->ry_origin, 3) ||
+        !gr__finite_n(rd->ry_dir, 3) || !gr__finite(rd->filter_radius) || rd->filter_radius < 0)
+        return GR_ERR_NOT_FINITE;
+    nl = sqrt(gr__dot3(rd->n, rd->n));
+    a00 = gr__dot3(rd->dpdu, rd->dpdu);
+    a01 = gr__dot3(rd->dpdu, rd->dpdv);
+    a11 = gr__dot3(rd->dpdv, rd->dpdv);
+    gr__cross3(rd->dpdu, rd->dpdv, c);
+    det = a00 * a11 - a01 * a01;
+    if (!(nl > 0) || !(gr__dot3(c, c) > GR__DEGENERATE_UV_REL * GR__DEGENERATE_UV_REL * a00 * a11) ||
+        !(gr__dot3(rd->dir, rd->dir) > 0))
+        return GR_ERR_INVALID_ARG;
+    for (i = 0; i < 3; i++) n[i] = rd->n[i] / nl;
+    radius = rd->filter_radius > 0 ? rd->filter_radius : 0.5;
+    gr__offset_uv(rd, n, rd->rx_origin, rd->rx_dir, a00, a01, a11, det, dx);
+    gr__offset_uv(rd, n, rd->ry_origin, rd->ry_dir, a00, a01, a11, det, dy);
+    fp->center[0] = rd->uv[0];
+    fp->center[1] = rd->uv[1];
+    fp->axis1[0] = radius * dx[0];
+    fp->axis1[1] = radius * dx[1];
+    fp->axis2[0] = radius * dy[0];
+    fp->axis2[1] = radius * dy[1];
+    /* orthonormal frame: tu along dp/du, tw the normal, tv following dp/dv */
+    {
+        double pu = gr__dot3(rd->dpdu, n), ul;
+        for (i = 0; i < 3; i++) fr.tu[i] = rd->dpdu[i] - pu * n[i];
+        ul = sqrt(gr__dot3(fr.tu, fr.tu));
+        if (!(ul > 0)) return GR_ERR_INVALID_ARG;
+        for (i = 0; i < 3; i++) { fr.tu[i] /= ul; fr.tw[i] = n[i]; }
+        gr__cross3(fr.tw, fr.tu, fr.tv);
+        if (gr__dot3(fr.tv, rd->dpdv) < 0)
+            for (i = 0; i < 3; i++) fr.tv[i] = -fr.tv[i];
+    }
+    for (i = 0; i < 3; i++) neg[i] = -rd->dir[i];
+    gr_frame_to_texture(&fr, neg, fp->view);
+    if (frame) *frame = fr;
+    return GR_OK;
+}
+
+/* ---- Query (§4.1-4.4) ---------------------------------------------------- */
+
+/* A groove found near the footprint, in its local straight approximation. */
+typedef struct gr__cand_t {
+    int groove;
+    int sigma;      /* +1 if its tangent agrees with the reference, -1 if opposite */
+    int end;        /* -1/+1: the footprint centre lies before/after an open path end */
+    double p[2];    /* nearest path point P (§4.2) */
+    double t[2];    /* unit tangent T at P */
+    double fc[2];   /* the footprint centre's periodic image nearest to the path */
+    double dist;    /* |F - P| */
+    double d;       /* d_P = B . (F - P), B = (-T_v, T_u) (eq. 2) */
+    double param;   /* path parameter at P, in [0,1] */
+    double dtds;    /* d param / d arc length at P */
+    double kappa;   /* path curvature at P */
+    double f;       /* perturbation scale f(param) */
+    double xmin;    /* leftmost point of its section in the merged profile */
+} gr__cand_t;
+
+/* One facet of the merged cross-section. */
+typedef struct gr__mfacet_t {
+    double n[3];
+    int groove, facet, refl;
+} gr__mfacet_t;
+
+typedef struct gr__scratch_t {
+    int *ids;
+    gr__cand_t *cand;
+    double *x, *w, *q, *lo, *hi, *va, *vb, *lit;
+    gr__mfacet_t *mf;
+} gr__scratch_t;
+
+static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *s)
+{
+    size_t off = 0, np = (size_t)g->total_section_ + 2, nid = (size_t)g->item_capacity_ + (size_t)g->groove_count;
+    char *b = (char *)base;
+    gr__scratch_t tmp;
+    if (!s) s = &tmp;
+#define GR__CARVE(field, type, count) \
+    s->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (count));
+    GR__CARVE(ids, int, nid)
+    GR__CARVE(cand, gr__cand_t, (size_t)g->groove_count)
+    GR__CARVE(x, double, np)
+    GR__CARVE(w, double, np)
+    GR__CARVE(q, double, np)
+    GR__CARVE(lo, double, np)
+    GR__CARVE(hi, double, np)
+    GR__CARVE(va, double, np)
+    GR__CARVE(vb, double, np)
+    GR__CARVE(lit, double, np * GR_MAX_LIGHTS)
+    GR__CARVE(mf, gr__mfacet_t, np)
+#undef GR__CARVE
+    return off;
+}
+
+GR_DEF size_t gr_query_scratch_bytes(const gr_grid_t *grid)
+{
+    return grid ? gr__scratch_layout(grid, NULL, NULL) : 0;
+}
+
+#ifndef GR_NO_CURVES
+/* Bézier position, first and second derivative at tau (degree n <= 3). */
+static void gr__bezier_eval(const double *p, int n, double tau, double b[2], double d1[2], double d2[2])
+{
+    double s = 1 - tau;
+    int k;
+    for (k = 0; k < 2; k++) {
+        if (n == 2) {
+            b[k] = s * s * p[k] + 2 * s * tau * p[2 + k] + tau * tau * p[4 + k];
+            d1[k] = 2 * (s * (p[2 + k] - p[k]) + tau * (p[4 + k] - p[2 + k]));
+            d2[k] = 2 * (p[4 + k] - 2 * p[2 + k] + p[k]);
+        } else {
+            b[k] = s * s * s * p[k] + 3 * s * s * tau * p[2 + k] + 3 * s * tau * tau * p[4 + k] + tau * tau * tau * p[6 + k];
+            d1[k] = 3 * (s * s * (p[2 + k] - p[k]) + 2 * s * tau * (p[4 + k] - p[2 + k]) + tau * tau * (p[6 + k] - p[4 + k]));
+            d2[k] = 6 * (s * (p[4 + k] - 2 * p[2 + k] + p[k]) + tau * (p[6 + k] - 2 * p[4 + k] + p[2 + k]));
+        }
+    }
+}
+
+#endif
+
+/* Nearest point of a groove's path to f (§4.2): fills p, t, param, dtds,
+   kappa, end and dist of c. */
+static void gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const double f[2], gr__cand_t *c)
+{
+    const double *pts = grid->points_ + 2 * rec->first_point;
+    double best = HUGE_VAL;
+    int k;
+    c->end = 0;
+    c->kappa = 0;
+    if (rec->kind == GR_PATH_POLYLINE) {
+        double acc = 0;
+        for (k = 0; k < rec->pieces; k++) {
+            const double *a = pts + 2 * k;
+            double ex = a[2] - a[0], ey = a[3] - a[1], len2 = ex * ex + ey * ey, len = sqrt(len2);
+            double s = len2 > 0 ? ((f[0] - a[0]) * ex + (f[1] - a[1]) * ey) / len2 : 0, raw = s, px, py, d2;
+            if (s < 0) s = 0;
+            if (s > 1) s = 1;
+            px = a[0] + s * ex;
+            py = a[1] + s * ey;
+            d2 = (f[0] - px) * (f[0] - px) + (f[1] - py) * (f[1] - py);
+            if (len2 > 0 && d2 < best) {
+                best = d2;
+                c->p[0] = px; c->p[1] = py;
+                c->t[0] = ex / len; c->t[1] = ey / len;
+                c->param = (acc + s * len) / rec->length;
+                c->dtds = 1 / rec->length;
+                c->end = rec->closed ? 0 : (k == 0 && raw < 0) ? -1 : (k == rec->pieces - 1 && raw > 1) ? 1 : 0;
+            }
+            acc += len;
+        }
+    }
+#ifndef GR_NO_CURVES
+    else {
+        int deg = gr__degree(rec->kind);
+        for (k = 0; k < rec->pieces; k++) {
+            const double *a = pts + 2 * k * deg;
+            double box[4], dx, dy, bt = 0, bd = HUGE_VAL, b[2], d1[2], d2[2], sp, cr;
+            int s, it;
+            /* the control polygon bounds the piece: skip it when farther */
+            gr__bounds(a, deg + 1, box);
+            dx = f[0] < box[0] ? box[0] - f[0] : f[0] > box[2] ? f[0] - box[2] : 0;
+            dy = f[1] < box[1] ? box[1] - f[1] : f[1] > box[3] ? f[1] - box[3] : 0;
+            if (dx * dx + dy * dy > best) continue;
+            for (s = 0; s <= GR__CURVE_SAMPLES; s++) {
+                double tau = (double)s / GR__CURVE_SAMPLES, dd;
+                gr__bezier_eval(a, deg, tau, b, d1, d2);
+                dd = (b[0] - f[0]) * (b[0] - f[0]) + (b[1] - f[1]) * (b[1] - f[1]);
+                if (dd < bd) { bd = dd; bt = tau; }
+            }
+            for (it = 0; it < GR__CURVE_NEWTON; it++) {
+                double g, gp, nt;
+                gr__bezier_eval(a, deg, bt, b, d1, d2);
+                g = (b[0] - f[0]) * d1[0] + (b[1] - f[1]) * d1[1];
+                gp = d1[0] * d1[0] + d1[1] * d1[1] + (b[0] - f[0]) * d2[0] + (b[1] - f[1]) * d2[1];
+                if (!(gp > 0)) break;
+                nt = bt - g / gp;
+                if (nt < 0) nt = 0;
+                if (nt > 1) nt = 1;
+                if (fabs(nt - bt) < 1e-14) { bt = nt; break; }
+                bt = nt;
+            }
+            gr__bezier_eval(a, deg, bt, b, d1, d2);
+            bd = (b[0] - f[0]) * (b[0] - f[0]) + (b[1] - f[1]) * (b[1] - f[1]);
+            sp = hypot(d1[0], d1[1]);
+            if (bd < best && sp > 0) {
+                best = bd;
+                c->p[0] = b[0]; c->p[1] = b[1];
+                c->t[0] = d1[0] / sp; c->t[1] = d1[1] / sp;
+                c->param = (k + bt) / rec->pieces;
+                c->dtds = 1 / (rec->pieces * sp);
+                cr = d1[0] * d2[1] - d1[1] * d2[0];
+                c->kappa = fabs(cr) / (sp * sp * sp);
+                c->end = 0;
+                if (!rec->closed && k == 0 && bt == 0 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] < 0) c->end = -1;
+                if (!rec->closed && k == rec->pieces - 1 && bt == 1 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] > 0) c->end = 1;
+            }
+        }
+    }
+#endif
+    c->dist = sqrt(best);
+}
+
+/* The groove's nearest approach over the periodic images of the footprint
+   centre (§4.1: repeating textures). */
+static void gr__locate(const gr_grid_t *grid, int g, const double f[2], gr__cand_t *c)
+{
+    const gr__groove_t *rec = &grid->grooves_[g];
+    double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
+    int ku, kv, span = grid->wrap ? 1 : 0;
+    gr__cand_t best, cur;
+    memset(&best, 0, sizeof best);
+    best.dist = HUGE_VAL;
+    for (kv = -span; kv <= span; kv++)
+        for (ku = -span; ku <= span; ku++) {
+            double fi[2], dx, dy;
+            fi[0] = f[0] + ku * wu;
+            fi[1] = f[1] + kv * wv;
+            dx = fi[0] < rec->bbox[0] ? rec->bbox[0] - fi[0] : fi[0] > rec->bbox[2] ? fi[0] - rec->bbox[2] : 0;
+            dy = fi[1] < rec->bbox[1] ? rec->bbox[1] - fi[1] : fi[1] > rec->bbox[3] ? fi[1] - rec->bbox[3] : 0;
+            if (hypot(dx, dy) >= best.dist) continue;
+            memset(&cur, 0, sizeof cur);
+            gr__nearest(grid, rec, fi, &cur);
+            if (cur.dist < best.dist) { best = cur; best.fc[0] = fi[0]; best.fc[1] = fi[1]; }
+        }
+    best.groove = g;
+    *c = best;
+}
+
+static int gr__cmp_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return x < y ? -1 : x > y;
+}
+static int gr__cmp_cand(const void *a, const void *b)
+{
+    const gr__cand_t *x = (const gr__cand_t *)a, *y = (const gr__cand_t *)b;
+    return x->xmin < y->xmin ? -1 : x->xmin > y->xmin ? 1 : (x->groove > y->groove) - (x->groove < y->groove);
+}
+
+static int gr__append_cell(const gr_grid_t *grid, int cell, int *ids, int n)
+{
+    int k, s = grid->cell_start_[cell];
+    for (k = 0; k < grid->cell_count_[cell]; k++) ids[n++] = grid->cell_items_[s + k];
+    return n;
+}
+
+/* Grooves whose paths cross the boundary cells of box (2m + 2(n-2) cells,
+   §4.1), plus those anchored inside it (paths wholly inside the box, which
+   the boundary cells would miss). Returns the sorted, unique ids. */
+static int gr__gather(const gr_grid_t *grid, const double box[4], int *ids)
+{
+    gr__cells_t c = gr__grid_cells(grid);
+    int fu, mu, fv, mv, i, j, n = 0, k, out;
+    gr__cell_range(gr__cell_coord(box[0], c.u0, c.cu), gr__cell_coord(box[2], c.u0, c.cu), c.nu, c.wrap, &fu, &mu);
+    gr__cell_range(gr__cell_coord(box[1], c.v0, c.cv), gr__cell_coord(box[3], c.v0, c.cv), c.nv, c.wrap, &fv, &mv);
+    for (j = 0; j < mv; j++) {
+        int row = (fv + j) % c.nv;
+        int edge_row = j == 0 || j == mv - 1;
+        for (i = 0; i < mu; i += edge_row || mu == 1 ? 1 : mu - 1) {
+            n = gr__append_cell(grid, row * c.nu + (fu + i) % c.nu, ids, n);
+            if (!edge_row && mu == 1) break;
+        }
+    }
+    /* interior rows: anchors, checked per row with prefix sums */
+    for (j = 1; j + 1 < mv; j++) {
+        int row = (fv + j) % c.nv, a = fu + 1, b = fu + mu - 2; /* columns a..b, may pass nu */
+        const int *sum = grid->row_anchor_sum_ + (size_t)row * (size_t)(c.nu + 1);
+        int part;
+        if (b < a) continue;
+        for (part = 0; part < 2; part++) {
+            int lo = part == 0 ? a : 0, hi = part == 0 ? (b < c.nu ? b : c.nu - 1) : b - c.nu;
+            if (part == 0 && a >= c.nu) { lo = a - c.nu; hi = b - c.nu; }
+            else if (part == 1 && (a >= c.nu || b < c.nu)) break;
+            if (hi < lo || sum[hi + 1] - sum[lo] == 0) continue;
+            for (i = lo; i <= hi; i++) {
+                int cell = row * c.nu + i;
+                for (k = grid->anchor_start_[cell]; k < grid->anchor_start_[cell + 1]; k++) ids[n++] = grid->anchor_items_[k];
+            }
+        }
+    }
+    if (n > 1) qsort(ids, (size_t)n, sizeof(int), gr__cmp_int);
+    for (k = 0, out = 0; k < n; k++)
+        if (out == 0 || ids[out - 1] != ids[k]) ids[out++] = ids[k];
+    return out;
+}
+
+/* Per-query settings after defaults. */
+typedef struct gr__qset_t {
+    const double *lights;
+    int light_count;
+    double oversample_tol;
+    int max_oversample;
+    double parallel_sin;
+} gr__qset_t;
+
+/* Visible (or lit) interval per facet of a profile with projected points q
+   (eq. 4). Points are visited in the order the direction meets them: left
+   to right (reverse = 0) keeping the running maximum, or right to left
+   keeping the running minimum. Facet i is seen on [lo_i, hi_i] when
+   hi_i > lo_i; a back-facing or masked facet gets hi_i <= lo_i. */
+static void gr__sweep(const double *q, int npts, int reverse, double *lo, double *hi)
+{
+    int i;
+    if (!reverse) {
+        double m = -HUGE_VAL;
+        for (i = 0; i + 1 < npts; i++) {
+            if (q[i] > m) m = q[i];
+            lo[i] = m;
+            hi[i] = q[i + 1];
+        }
+    } else {
+        double m = HUGE_VAL;
+        for (i = npts - 2; i >= 0; i--) {
+            if (q[i + 1] < m) m = q[i + 1];
+            lo[i] = q[i];
+            hi[i] = m;
+        }
+    }
+}
+
+/* Add weight * (facet's share) to the list, merging equal orientations. */
+static void gr__list_add(gr_facet_list_t *list, const gr__mfacet_t *m, double ratio, const double *lit, int nl)
+{
+    int e, k, best = -1;
+    double bestd = HUGE_VAL;
+    gr_facet_t *f;
+    for (e = 0; e < list->count; e++) {
+        f = &list->facets[e];
+        if (f->reflectance == m->refl && fabs(f->normal[0] - m->n[0]) <= GR__NORMAL_MERGE_EPS &&
+            fabs(f->normal[1] - m->n[1]) <= GR__NORMAL_MERGE_EPS && fabs(f->normal[2] - m->n[2]) <= GR__NORMAL_MERGE_EPS)
+            break;
+    }
+    if (e == list->count) {
+        if (list->count < GR_MAX_FACETS) {
+            f = &list->facets[list->count++];
+            memset(f, 0, sizeof *f);
+            f->normal[0] = m->n[0]; f->normal[1] = m->n[1]; f->normal[2] = m->n[2];
+            f->reflectance = m->refl;
+            f->groove = m->groove;
+            f->facet = m->facet;
+        } else {
+            /* full: fold into the closest orientation (prefer the same id) */
+            for (e = 0; e < list->count; e++) {
+                const gr_facet_t *g = &list->facets[e];
+                double dd = (g->normal[0] - m->n[0]) * (g->normal[0] - m->n[0]) + (g->normal[1] - m->n[1]) * (g->normal[1] - m->n[1]) +
+                            (g->normal[2] - m->n[2]) * (g->normal[2] - m->n[2]) + (g->reflectance == m->refl ? 0 : 8);
+                if (dd < bestd) { bestd = dd; best = e; }
+            }
+            e = best;
+            list->flags |= GR_LIST_APPROX_MERGE;
+        }
+    }
+    f = &list->facets[e];
+    f->ratio += ratio;
+    f->merged++;
+    for (k = 0; k < nl; k++) f->lit[k] += ratio * lit[k]; /* normalised in gr__list_finish */
+}
+
+static void gr__list_finish(gr_facet_list_t *list, int nl)
+{
+    int e, k;
+    for (e = 0; e < list->count; e++) {
+        gr_facet_t *f = &list->facets[e];
+        for (k = 0; k < nl; k++) {
+            double v = f->ratio > 0 ? f->lit[k] / f->ratio : 0;
+            f->lit[k] = v < 0 ? 0 : v > 1 ? 1 : v;
+        }
+    }
+}
+
+static double gr__perturb(const gr__groove_t *rec, double t)
+{
+    double v;
+    if (!rec->perturb) return 1;
+    v = rec->perturb(t < 0 ? 0 : t > 1 ? 1 : t, rec->perturb_user);
+    return v > 0 ? v : 0; /* NaN and negatives count as 0 */
+}
+
+/* tan θ of a direction (eq. 1), for box enlargement; huge near grazing. */
+static double gr__tan(const double *dir) { return hypot(dir[0], dir[1]) / dir[2]; }
+
+/* The shared part of the footprint's extent: half-extent of F + aA1 + bA2
+   along unit vector v. */
+static double gr__extent(const gr_footprint_t *fp, const double v[2])
+{
+    return fabs(fp->axis1[0] * v[0] + fp->axis1[1] * v[1]) + fabs(fp->axis2[0] * v[0] + fp->axis2[1] * v[1]);
+}
+
+#ifndef GR_NO_OVERSAMPLE
+/* Oversampling count asked for by this groove (§4.2): the path's sagitta
+   across the footprint, and the change of the perturbation, as fractions of
+   the groove width, against the tolerance. */
+static int gr__oversample_need(const gr_grid_t *grid, const gr__cand_t *c, const gr_footprint_t *fp, double tol)
+{
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    double ext = gr__extent(fp, c->t), width = 2 * rec->half_width / rec->fmax * c->f;
+    double need = 1;
+    if (!(width > 0) || !(ext > 0)) return 1;
+    if (c->kappa > 0) {
+        double sag = 0.5 * c->kappa * ext * ext;
+        double k = ceil(sqrt(sag / (tol * width)));
+        if (k > need) need = k;
+    }
+    if (rec->perturb) {
+        double dt = ext * c->dtds, fa = gr__perturb(rec, c->param - dt), fb = gr__perturb(rec, c->param + dt);
+        double fm = c->f > fa ? c->f : fa;
+        if (fb > fm) fm = fb;
+        if (fm > 0) {
+            double k = ceil(fabs(fb - fa) / fm / tol);
+            if (k > need) need = k;
+        }
+    }
+    return need > 1e6 ? 1000000 : (int)need;
+}
+
+#endif
+
+/* One footprint: gather, approximate, merge, project, clip, mask, shadow
+   (§4.1-4.4), adding weight x ratios to the list. With allow_split it
+   returns the oversampling count needed (> 1: nothing was added). */
+static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_footprint_t *fp, double weight,
+                         const gr__scratch_t *s, gr_facet_list_t *list, int allow_split)
+{
+    const double *e = fp->view;
+    double f[2], box[4], ext_u, ext_v, tanmax, bref[2], eb, sq0, sq1, pm, margin, maxhalf = 0;
+    int n, k, ref = -1, np = 0, nf, npar = 0, i, point, nl = qs->light_count;
+    gr__mfacet_t ground;
+    f[0] = fp->center[0];
+    f[1] = fp->center[1];
+    if (grid->wrap) { /* the centre's image in the tile */
+        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
+        f[0] -= floor((f[0] - grid->domain[0]) / wu) * wu;
+        f[1] -= floor((f[1] - grid->domain[1]) / wv) * wv;
+    }
+    /* §4.1: the footprint's box, enlarged by w, and by h tan θ toward the
+       viewer and each light (eq. 1) when something protrudes */
+    ext_u = fabs(fp->axis1[0]) + fabs(fp->axis2[0]);
+    ext_v = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
+    box[0] = f[0] - ext_u - grid->w;
+    box[2] = f[0] + ext_u + grid->w;
+    box[1] = f[1] - ext_v - grid->w;
+    box[3] = f[1] + ext_v + grid->w;
+    tanmax = gr__tan(e);
+    if (grid->h > 0) {
+        for (k = -1; k < nl; k++) {
+            const double *dir = k < 0 ? e : qs->lights + 3 * k;
+            double su, sv;
+            if (!(dir[2] > 0)) continue;
+            su = grid->h * dir[0] / dir[2];
+            sv = grid->h * dir[1] / dir[2];
+            if (k >= 0 && gr__tan(dir) > tanmax) tanmax = gr__tan(dir);
+            if (su < 0) box[0] += su; else box[2] += su;
+            if (sv < 0) box[1] += sv; else box[3] += sv;
+        }
+    }
+    n = gr__gather(grid, box, s->ids);
+    /* §4.2: each groove's nearest point, tangent and distance; keep those
+       that can reach the footprint */
+    for (k = 0; k < n; k++) {
+        gr__cand_t *c = &s->cand[npar];
+        const gr__groove_t *rec = &grid->grooves_[s->ids[k]];
+        double bn[2], reach;
+        gr__locate(grid, s->ids[k], f, c);
+        bn[0] = -c->t[1];
+        bn[1] = c->t[0];
+        c->d = bn[0] * (c->fc[0] - c->p[0]) + bn[1] * (c->fc[1] - c->p[1]);
+        reach = rec->half_width + gr__extent(fp, bn) + (rec->up > 0 ? rec->up * tanmax : 0);
+        if (!(fabs(c->d) <= reach)) continue;
+        if (c->end) {
+            double along = fabs(c->t[0] * (c->fc[0] - c->p[0]) + c->t[1] * (c->fc[1] - c->p[1]));
+            if (along <= gr__extent(fp, c->t) + rec->half_width) list->flags |= GR_LIST_PATH_END;
+            continue;
+        }
+        c->f = gr__perturb(rec, c->param);
+        if (ref < 0 || fabs(c->d) < fabs(s->cand[ref].d)) ref = npar;
+        npar++;
+    }
+    /* parallel to the nearest groove (§4.2); the others are intersections */
+    if (ref >= 0) {
+        gr__cand_t rc = s->cand[ref];
+        int m = 0;
+        for (k = 0; k < npar; k++) {
+            gr__cand_t *c = &s->cand[k];
+            double cr = c->t[0] * rc.t[1] - c->t[1] * rc.t[0], dt = c->t[0] * rc.t[0] + c->t[1] * rc.t[1];
+            if (fabs(cr) > qs->parallel_sin || dt == 0) { list->flags |= GR_LIST_NONPARALLEL; continue; }
+            c->sigma = dt > 0 ? 1 : -1;
+            s->cand[m++] = *c;
+        }
+        npar = m;
+        bref[0] = -rc.t[1];
+        bref[1] = rc.t[0];
+    } else {
+        bref[0] = 1;
+        bref[1] = 0;
+    }
+#ifndef GR_NO_OVERSAMPLE
+    if (allow_split && qs->oversample_tol > 0 && qs->max_oversample > 1) {
+        int need = 1;
+        for (k = 0; k < npar; k++) {
+            int nk = gr__oversample_need(grid, &s->cand[k], fp, qs->oversample_tol);
+            if (nk > need) need = nk;
+        }
+        if (need > 1) return need > qs->max_oversample ? qs->max_oversample : need;
+    }
+#else
+    (void)allow_split;
+#endif
+    /* the footprint segment S from the larger axis projection (§4.2) */
+    pm = fabs(fp->axis1[0] * bref[0] + fp->axis1[1] * bref[1]);
+    {
+        double p2 = fabs(fp->axis2[0] * bref[0] + fp->axis2[1] * bref[1]);
+        if (p2 > pm) pm = p2;
+    }
+    point = pm <= GR__POINT_FOOTPRINT_REL * grid->w;
+    /* the merged cross-section (§4.2, Figure 5b): sections shifted by d_P,
+       mirrored when their tangent is opposite, sorted, ground in between */
+    for (k = 0; k < npar; k++) {
+        gr__cand_t *c = &s->cand[k];
+        const gr__groove_t *rec = &grid->grooves_[c->groove];
+        const double *sec = grid->section_ + 2 * rec->first_sec;
+        c->xmin = c->sigma > 0 ? c->f * sec[0] - c->d : c->d - c->f * sec[2 * (rec->sec_count - 1)];
+        if (rec->half_width / rec->fmax * c->f > maxhalf) maxhalf = rec->half_width / rec->fmax * c->f;
+    }
+    if (npar > 1) qsort(s->cand, (size_t)npar, sizeof(gr__cand_t), gr__cmp_cand);
+    margin = pm + maxhalf;
+    if (!(margin > 0)) margin = 1;
+    ground.n[0] = 0; ground.n[1] = 0; ground.n[2] = 1;
+    ground.groove = -1; ground.facet = -1; ground.refl = grid->base_reflectance;
+    s->x[np] = (npar ? (s->cand[0].xmin < -pm ? s->cand[0].xmin : -pm) : -pm) - margin;
+    s->w[np++] = 0;
+    for (k = 0; k < npar; k++) {
+        const gr__cand_t *c = &s->cand[k];
+        const gr__groove_t *rec = &grid->grooves_[c->groove];
+        const double *sec = grid->section_ + 2 * rec->first_sec;
+        const int nsec = rec->sec_count;
+        double bg[2];
+        bg[0] = -c->t[1];
+        bg[1] = c->t[0];
+        if (c->xmin < s->x[np - 1]) list->flags |= GR_LIST_OVERLAP;
+        s->mf[np - 1] = ground; /* the ground facet leading to this groove */
+        for (i = 0; i < nsec; i++) {
+            int src = c->sigma > 0 ? i : nsec - 1 - i;
+            s->x[np] = c->sigma * (c->f * sec[2 * src] - c->d);
+            s->w[np] = c->f * sec[2 * src + 1];
+            if (i + 1 < nsec) {
+                /* facet R_j = [C_j, C_j+1] in the groove's own orientation */
+                int j = c->sigma > 0 ? i : nsec - 2 - i;
+                double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = hypot(db, dw);
+                gr__mfacet_t *m = &s->mf[np];
+                double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1;
+                m->n[0] = bg[0] * nb;
+                m->n[1] = bg[1] * nb;
+                m->n[2] = nw;
+                m->groove = c->groove;
+                m->facet = j;
+                m->refl = grid->facet_refl_[rec->first_facet + j];
+            }
+            np++;
+        }
+    }
+    s->mf[np - 1] = ground;
+    s->x[np] = (s->x[np - 1] > pm ? s->x[np - 1] : pm) + margin;
+    s->w[np++] = 0;
+    nf = np - 1;
+    if (list->grooves < npar) list->grooves = npar;
+    /* projection with the signed tan θ' (§4.2), scaled by E_w so grazing
+       views stay finite: q = E_w proj = E_w x - E_b w */
+    eb = e[0] * bref[0] + e[1] * bref[1];
+    for (i = 0; i < np; i++) s->q[i] = e[2] * s->x[i] - eb * s->w[i];
+    gr__sweep(s->q, np, eb > 0, s->lo, s->hi);     /* masking, eq. 4 */
+    sq0 = -pm * e[2];
+    sq1 = pm * e[2];
+    for (i = 0; i < nf; i++) {                      /* clipping, eq. 3 */
+        double a = s->lo[i], b = s->hi[i];
+        if (point) {
+            if (a <= 0 && 0 < b) { s->va[i] = 0; s->vb[i] = 0; }
+            else s->va[i] = s->vb[i] = HUGE_VAL;
+            continue;
+        }
+        if (a < sq0) a = sq0;
+        if (b > sq1) b = sq1;
+        s->va[i] = a;
+        s->vb[i] = b;
+    }
+    /* shadowing: the same projection and masking per light (§4.3), then
+       intersected with the visible part in the facet's own parameter */
+    for (k = 0; k < nl; k++) {
+        const double *l = qs->lights + 3 * k;
+        double lb = l[0] * bref[0] + l[1] * bref[1];
+        if (!(l[2] > 0)) { /* at or below the horizon */
+            for (i = 0; i < nf; i++) s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0;
+            continue;
+        }
+        for (i = 0; i < np; i++) s->q[i] = l[2] * s->x[i] - lb * s->w[i];
+        gr__sweep(s->q, np, lb > 0, s->lo, s->hi);
+        for (i = 0; i < nf; i++) {
+            double de, sa, sb, la, lbb, dl, ov, v;
+            if (!(s->vb[i] > s->va[i]) && !(point && s->va[i] == 0)) continue;
+            de = (e[2] * s->x[i + 1] - eb * s->w[i + 1]) - (e[2] * s->x[i] - eb * s->w[i]);
+            sa = (s->va[i] - (e[2] * s->x[i] - eb * s->w[i])) / de;
+            sb = (s->vb[i] - (e[2] * s->x[i] - eb * s->w[i])) / de;
+            if (!(s->hi[i] > s->lo[i])) { s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0; continue; }
+            dl = s->q[i + 1] - s->q[i];
+            la = (s->lo[i] - s->q[i]) / dl;
+            lbb = (s->hi[i] - s->q[i]) / dl;
+            if (point || !(sb > sa)) v = la <= sa && sa <= lbb;
+            else {
+                ov = (sb < lbb ? sb : lbb) - (sa > la ? sa : la);
+                v = ov > 0 ? ov / (sb - sa) : 0;
+            }
+            s->lit[(size_t)i * GR_MAX_LIGHTS + k] = v;
+        }
+    }
+    /* ratios r_i (§4.4) into the list */
+    for (i = 0; i < nf; i++) {
+        double r;
+        if (point) r = s->va[i] == 0 ? 1 : 0;
+        else r = s->vb[i] > s->va[i] ? (s->vb[i] - s->va[i]) / (sq1 - sq0) : 0;
+        if (r > 0) gr__list_add(list, &s->mf[i], weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
+    }
+    (void)ref;
+    return 1;
+}
+
+GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void *scratch, size_t scratch_bytes,
+                            gr_facet_list_t *list)
+{
+    gr__qset_t qs;
+    gr__scratch_t s;
+    const gr_footprint_t *fp;
+    double el;
+    int k, need;
+    if (!grid || !query || !scratch || !list) return GR_ERR_INVALID_ARG;
+    list->count = 0;
+    list->flags = 0;
+    list->grooves = 0;
+    list->subfootprints = 1;
+    if (query->light_count < 0 || query->light_count > GR_MAX_LIGHTS || (query->light_count > 0 && !query->lights))
+        return GR_ERR_INVALID_ARG;
+    if (scratch_bytes < gr_query_scratch_bytes(grid)) return GR_ERR_BUFFER_TOO_SMALL;
+    fp = &query->footprint;
+    if (!gr__finite_n(fp->center, 2) || !gr__finite_n(fp->axis1, 2) || !gr__finite_n(fp->axis2, 2) ||
+        !gr__finite_n(fp->view, 3) || !gr__finite(query->oversample_tol) || !gr__finite(query->parallel_tol))
+        return GR_ERR_NOT_FINITE;
+    for (k = 0; k < 3 * query->light_count; k++)
+        if (!gr__finite(query->lights[k])) return GR_ERR_NOT_FINITE;
+    qs.lights = query->lights;
+    qs.light_count = query->light_count;
+    qs.oversample_tol = query->oversample_tol == 0 ? GR__DEFAULT_OVERSAMPLE_TOL : query->oversample_tol;
+    qs.max_oversample = query->max_oversample <= 0 ? GR__DEFAULT_MAX_OVERSAMPLE : query->max_oversample;
+    if (qs.max_oversample > GR__LIMIT_MAX_OVERSAMPLE) qs.max_oversample = GR__LIMIT_MAX_OVERSAMPLE;
+    qs.parallel_sin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
+    el = sqrt(gr__dot3(fp->view, fp->view));
+    if (!(fp->view[2] > 0) || !(el > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
+    gr__scratch_layout(grid, scratch, &s);
+    need = gr__query_one(grid, &qs, fp, 1.0, &s, list, 1);
+    if (need > 1) {
+        /* §4.2 oversampling: split along the axis that runs most along the
+           nearest groove; each part keeps its own straight approximation */
+        gr_footprint_t sub = *fp;
+        double t[2], p1, p2;
+        const double *ax;
+        double *sa;
+        gr__cand_t c0 = s.cand[0];
+        t[0] = c0.t[0];
+        t[1] = c0.t[1];
+        p1 = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
+        p2 = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
+        ax = p1 >= p2 ? fp->axis1 : fp->axis2;
+        sa = p1 >= p2 ? sub.axis1 : sub.axis2;
+        sa[0] = ax[0] / need;
+        sa[1] = ax[1] / need;
+        list->count = 0;
+        list->flags = 0;
+        list->grooves = 0;
+        for (k = 0; k < need; k++) {
+            double o = (2.0 * k + 1) / need - 1;
+            sub.center[0] = fp->center[0] + o * ax[0];
+            sub.center[1] = fp->center[1] + o * ax[1];
+            gr__query_one(grid, &qs, &sub, 1.0 / need, &s, list, 0);
+        }
+        list->subfootprints = need;
+    }
+    gr__list_finish(list, qs.light_count);
+    return GR_OK;
+}
+
+GR_DEF gr_result_t gr_shade(const gr_grid_t *grid, const gr_query_t *query, void *scratch, size_t scratch_bytes,
+                            gr_brdf_fn brdf, void *user, double rgb[3])
+{
+    gr_facet_list_t list;
+    gr_result_t r;
+    int i, k;
+    if (!brdf || !rgb) return GR_ERR_INVALID_ARG;
+    rgb[0] = rgb[1] = rgb[2] = 0;
+    r = gr_query(grid, query, scratch, scratch_bytes, &list);
+    if (r != GR_OK) return r;
+    for (i = 0; i < list.count; i++) {
+        const gr_facet_t *f = &list.facets[i];
+        for (k = 0; k < query->light_count; k++) {
+            double c[3] = {0, 0, 0};
+            if (!(f->lit[k] > 0)) continue;
+            brdf(user, f->reflectance, f->normal, query->footprint.view, query->lights + 3 * k, k, c);
+            rgb[0] += f->ratio * f->lit[k] * c[0];
+            rgb[1] += f->ratio * f->lit[k] * c[1];
+            rgb[2] += f->ratio * f->lit[k] * c[2];
+        }
+    }
+    return GR_OK;
 }
 
 #ifdef __cplusplus

@@ -1,0 +1,180 @@
+/* grooves.h against hand-derived closed forms (Bosch et al. 2006, §4).
+   Every expected value here is derived in the comment above it from the
+   geometry of a V-groove, not from the code under test. */
+#define GR_IMPLEMENTATION
+#include "grooves.h"
+#include "test.h"
+
+/* One straight groove along +v at u = 0.5: T = (0,1), so B = (-T_v, T_u)
+   = (-1, 0): section b > 0 lies toward -u. */
+static gr_grid_t *one_groove(const double *sec, int nsec)
+{
+    static const double path[4] = {0.5, 0.0, 0.5, 1.0};
+    gr_groove_desc_t g;
+    gr_grid_desc_t d;
+    gr_grid_t *grid = NULL;
+    gr_diag_t diag;
+    memset(&g, 0, sizeof g);
+    memset(&d, 0, sizeof d);
+    g.points = path;
+    g.point_count = 2;
+    g.section = sec;
+    g.section_count = nsec;
+    g.reflectance = 7;
+    d.grooves = &g;
+    d.groove_count = 1;
+    d.base_reflectance = 1;
+    if (gr_grid_build(&d, &grid, &diag) != GR_OK) T_FAIL("build: %s", diag.message);
+    return grid;
+}
+
+static gr_query_t square_query(double cu, double cv, double r, double ex, double ey, double ez)
+{
+    gr_query_t q;
+    double len = sqrt(ex * ex + ey * ey + ez * ez);
+    memset(&q, 0, sizeof q);
+    q.footprint.center[0] = cu;
+    q.footprint.center[1] = cv;
+    q.footprint.axis1[0] = r;
+    q.footprint.axis2[1] = r;
+    q.footprint.view[0] = ex / len;
+    q.footprint.view[1] = ey / len;
+    q.footprint.view[2] = ez / len;
+    return q;
+}
+
+static int run(const gr_grid_t *grid, const gr_query_t *q, gr_facet_list_t *list)
+{
+    static unsigned char scratch[1 << 16];
+    size_t need = gr_query_scratch_bytes(grid);
+    gr_result_t r;
+    if (need > sizeof scratch) { T_FAIL("scratch %zu too large", need); return 0; }
+    r = gr_query(grid, q, scratch, sizeof scratch, list);
+    T_INT_EQ(r, GR_OK);
+    return r == GR_OK;
+}
+
+/* ratio of the entry of (groove, facet) -- facet -1 for ground; 0 if absent */
+static const gr_facet_t *entry(const gr_facet_list_t *l, int facet)
+{
+    int i;
+    for (i = 0; i < l->count; i++)
+        if (l->facets[i].facet == facet) return &l->facets[i];
+    return NULL;
+}
+static double ratio_of(const gr_facet_list_t *l, int facet)
+{
+    const gr_facet_t *f = entry(l, facet);
+    return f ? f->ratio : 0.0;
+}
+static double ratio_sum(const gr_facet_list_t *l)
+{
+    double s = 0;
+    int i;
+    for (i = 0; i < l->count; i++) s += l->facets[i].ratio;
+    return s;
+}
+
+/* Symmetric V (half-width a, depth D) from straight above with a square
+   footprint of half-size r > a centred on the path: each slope projects to
+   width a, the ground to 2r - 2a, out of S = [-r, r]: ratios a/2r, a/2r,
+   1 - a/r. Normals: facet 0 from (-a,0) to (0,-D) has (b,w)-normal
+   (D, a)/sqrt(a²+D²), i.e. texture (-D, 0, a)/len since B = (-1, 0). */
+static void v_groove_from_above(void)
+{
+    const double a = 0.01, D = 0.02, r = 0.05;
+    const double sec[6] = {-a, 0, 0, -D, a, 0};
+    gr_grid_t *grid = one_groove(sec, 3);
+    gr_query_t q = square_query(0.5, 0.5, r, 0, 0, 1);
+    gr_facet_list_t l;
+    const gr_facet_t *f0;
+    double len = sqrt(a * a + D * D);
+    if (!grid || !run(grid, &q, &l)) return;
+    T_INT_EQ(l.count, 3);
+    T_NEAR(ratio_of(&l, 0), a / (2 * r), 1e-14);
+    T_NEAR(ratio_of(&l, 1), a / (2 * r), 1e-14);
+    T_NEAR(ratio_of(&l, -1), 1 - a / r, 1e-14);
+    f0 = entry(&l, 0);
+    if (T_CHECK(f0 != NULL)) {
+        T_NEAR(f0->normal[0], -D / len, 1e-14);
+        T_NEAR(f0->normal[1], 0, 1e-14);
+        T_NEAR(f0->normal[2], a / len, 1e-14);
+        T_INT_EQ(f0->reflectance, 7);
+    }
+    T_INT_EQ(entry(&l, -1) ? entry(&l, -1)->reflectance : -99, 1);
+    T_INT_EQ(l.flags, 0);
+    gr_grid_free(grid);
+}
+
+/* Viewer tilted by θ toward +u (E = (sin θ, 0, cos θ)), so toward -b.
+   A ray at angle θ through the rim (-a, 0)... rather: the profile point
+   (b, w) is seen at b + w tan θ on the base line (E_b = -sin θ, tan θ' =
+   tan θ). The bottom (0, -D) lands at -D tan θ: while D tan θ < a, facet 0
+   covers [-a, -D tan θ] (width a - D tan θ) and facet 1 [-D tan θ, a]
+   (width a + D tan θ); once D tan θ >= a, facet 0 is hidden and facet 1 is
+   seen from its masked start at the rim: [-a, a]. */
+static void v_groove_masking_at_known_angles(void)
+{
+    const double a = 0.01, D = 0.02, r = 0.05;
+    const double sec[6] = {-a, 0, 0, -D, a, 0};
+    const double deg[] = {5, 10, 20, 26.5, 30, 45, 60, 80};
+    gr_grid_t *grid = one_groove(sec, 3);
+    unsigned i;
+    if (!grid) return;
+    for (i = 0; i < sizeof deg / sizeof deg[0]; i++) {
+        double th = deg[i] * M_PI / 180, t = tan(th);
+        gr_query_t q = square_query(0.5, 0.5, r, sin(th), 0, cos(th));
+        gr_facet_list_t l;
+        double w0 = D * t < a ? a - D * t : 0, w1 = D * t < a ? a + D * t : 2 * a;
+        if (!run(grid, &q, &l)) continue;
+        T_NEAR(ratio_of(&l, 0), w0 / (2 * r), 1e-13);
+        T_NEAR(ratio_of(&l, 1), w1 / (2 * r), 1e-13);
+        T_NEAR(ratio_of(&l, -1), 1 - a / r, 1e-13);
+    }
+    gr_grid_free(grid);
+}
+
+/* Light at angle φ toward +u, viewer straight above. Facet 0 (near wall,
+   (b,w)-normal (D, a)) faces the light while tan φ < a/D and nothing can
+   block it, so it is lit wholly, else not at all. Facet 1 is shadowed by the
+   rim (-a, 0): the light ray through the rim, (-a + s sin φ, -s cos φ),
+   meets facet 1's point (ua, -D + uD) at u* = (D tan φ - a)/(a + D tan φ);
+   the lit part is u in [max(u*, 0), 1]. */
+static void v_groove_shadowing_at_known_angles(void)
+{
+    const double a = 0.01, D = 0.02, r = 0.05;
+    const double sec[6] = {-a, 0, 0, -D, a, 0};
+    const double deg[] = {0, 10, 20, 26, 27, 40, 60, 85};
+    gr_grid_t *grid = one_groove(sec, 3);
+    unsigned i;
+    if (!grid) return;
+    for (i = 0; i < sizeof deg / sizeof deg[0]; i++) {
+        double ph = deg[i] * M_PI / 180, t = tan(ph);
+        double light[3] = {sin(ph), 0, cos(ph)};
+        gr_query_t q = square_query(0.5, 0.5, r, 0, 0, 1);
+        gr_facet_list_t l;
+        double us = (D * t - a) / (a + D * t);
+        const gr_facet_t *f0, *f1, *g;
+        q.lights = light;
+        q.light_count = 1;
+        if (!run(grid, &q, &l)) continue;
+        f0 = entry(&l, 0);
+        f1 = entry(&l, 1);
+        g = entry(&l, -1);
+        if (!T_CHECK(f0 && f1 && g)) continue;
+        T_NEAR(f0->lit[0], t < a / D ? 1.0 : 0.0, 1e-13);
+        T_NEAR(f1->lit[0], 1 - (us > 0 ? us : 0), 1e-13);
+        T_NEAR(g->lit[0], 1.0, 1e-13);
+    }
+    gr_grid_free(grid);
+}
+
+int main(int argc, char **argv)
+{
+    static const t_case_t cases[] = {
+        T_CASE(v_groove_from_above),
+        T_CASE(v_groove_masking_at_known_angles),
+        T_CASE(v_groove_shadowing_at_known_angles),
+    };
+    return T_RUN(argc, argv, cases);
+}
