@@ -292,6 +292,35 @@ RE_DEF int re_get_sphere(const re_scene_t *scene, unsigned object, unsigned i,
 RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i,
                            re_cylinder_t *out);
 
+/* Small vector helpers, inline because the query calls them per candidate. */
+static inline double re__dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+static inline void re__sub(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[0] - b[0];
+    out[1] = a[1] - b[1];
+    out[2] = a[2] - b[2];
+}
+static inline void re__cross(const double a[3], const double b[3], double out[3])
+{
+    double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2],
+           z = a[0] * b[1] - a[1] * b[0];
+    out[0] = x;
+    out[1] = y;
+    out[2] = z;
+}
+/* out = a + s*b */
+static inline void re__madd(const double a[3], double s, const double b[3], double out[3])
+{
+    out[0] = a[0] + s * b[0];
+    out[1] = a[1] + s * b[1];
+    out[2] = a[2] + s * b[2];
+}
+static inline double re__len(const double a[3]) { return sqrt(re__dot(a, a)); }
+
+
 
 /* ==== [section: baselines] (owned by the baselines/example helper) ==== */
 /* ---- Bevel-shader baselines (issue 6, item 3) --------------------------
@@ -384,6 +413,10 @@ RE_DEF re_result_t re_bevel_cycles(const re_bevel_cycles_desc_t *desc, const dou
 #ifndef FILIGREE_RE_IMPLEMENTATION_DONE
 #define FILIGREE_RE_IMPLEMENTATION_DONE
 
+#include <stdio.h>  /* snprintf for diagnostics; nothing is printed */
+#include <stdlib.h> /* qsort */
+#include <string.h>
+
 #ifndef RE_ASSERT
 #  include <assert.h>
 #  define RE_ASSERT(c) assert(c)
@@ -420,6 +453,1729 @@ RE_DEF const char *re_result_string(re_result_t r)
     }
     return "unknown result";
 }
+
+/* ---- Tolerances (all relative; see docs/rounded_edges.md "Tolerances") ---- */
+
+/* Two faces are coplanar (their edge is "flat", e.g. a quad diagonal) when
+   the sine of the angle between their normals is below this: far below any
+   modelled dihedral (179.9 degrees is 1.7e-3), far above the rounding of
+   normals computed from float coordinates near 1e6. */
+#define RE__FLAT_SIN 1e-9
+/* A triangle is degenerate when |cross(e1, e2)| <= this * (longest edge)^2,
+   i.e. its smallest angle is below about 1e-12 rad. */
+#define RE__DEGENERATE_REL 1e-12
+/* Three face planes are treated as parallel when |det(n_i, n_j, n_l)| is
+   below this (their offsets would meet at a point farther than 1e12 radii). */
+#define RE__PARALLEL_DET 1e-12
+/* Feasibility and merging of eroded-corner vertices, in units of r times
+   max(1, |u|) (u = vertex position relative to the corner, per unit radius). */
+#define RE__CORNER_EPS 1e-9
+/* A requested radius up to r_max * (1 + this) counts as valid (the largest
+   valid radius is then used as is, with zero-length cylinders). */
+#define RE__RADIUS_SLACK 1e-9
+/* Rounding slack of a plane-side test n.x - c, in units of the magnitudes
+   that enter it (|c| + |x|): a few ulps of the inputs. */
+#define RE__SIDE_ULPS (64.0 * 2.220446049250313e-16)
+/* Most mesh corners one query may visit when a grazing ray travels along the
+   removed volume (adjacency-graph walk, paper §3.1). */
+#define RE__MAX_WALK 64
+
+#define RE__NONE 0xFFFFFFFFu
+
+/* ---- Stored structure ------------------------------------------------------ */
+
+typedef struct re__plane_t {
+    double n[3]; /* unit outward normal */
+    double c;    /* n.x = c on the face; n.x <= c inside */
+} re__plane_t;
+
+/* A rounding cylinder between two sphere centres. k[1] == RE__NONE marks an
+   extra (exact-corner) cylinder inside corner k[0]. */
+typedef struct re__cyl_t {
+    unsigned s[2]; /* spheres at the axis ends */
+    unsigned p[2]; /* the two offset planes it joins */
+    unsigned k[2]; /* corners at its ends */
+} re__cyl_t;
+
+/* A rounded mesh vertex. refs[first ...]: np planes (fan order), np edge
+   cylinders (cylinder j joins planes j and j+1), ns spheres, nx extra cylinders. */
+typedef struct re__corner_t {
+    double v[3];  /* the mesh vertex */
+    double r;     /* rounding radius of its patch */
+    double reach; /* the removed volume near v lies within this of v */
+    unsigned vertex, first;
+    unsigned char np, ns, nx, pad_;
+} re__corner_t;
+
+/* kd-tree node (§3.2): inner nodes split at `split` on axis info&3 (left
+   child follows the node, right child at `index`); leaves have info&3 == 3,
+   info>>2 references starting at leafrefs[index]. */
+typedef struct re__node_t {
+    double split;
+    unsigned info, index;
+} re__node_t;
+
+typedef struct re__object_t {
+    unsigned n_tris, n_planes, n_spheres, n_cyls, n_corners, n_refs, n_nodes, n_leafrefs;
+    double size; /* bounding-box diagonal: the object's length scale */
+    double rmax;
+    const unsigned *tri_plane; /* per triangle: plane id, RE__NONE if not rounded nearby */
+    const re__plane_t *planes;
+    const double *sph; /* 3 per sphere */
+    const unsigned *sph_corner;
+    const re__cyl_t *cyls;
+    const re__corner_t *corners;
+    const unsigned *refs;
+    const re__node_t *nodes;
+    const unsigned *leafrefs;
+    re_stats_t stats;
+    void *block; /* RE_MALLOC'd storage (re_build) or NULL */
+} re__object_t;
+
+struct re_scene_t {
+    unsigned n_objects;
+    re__object_t *objects;
+    void *alloc_ctx;
+    int owned; /* built by re_build(): free with re_free() */
+    re_stats_t stats;
+};
+
+/* ---- Arena over a caller buffer --------------------------------------------- */
+
+typedef struct re__arena_t {
+    unsigned char *base;
+    size_t cap, used, high;
+} re__arena_t;
+
+static void *re__take(re__arena_t *a, size_t bytes)
+{
+    size_t off = (a->used + 15u) & ~(size_t)15u;
+    if (off > a->cap || bytes > a->cap - off) return NULL;
+    a->used = off + bytes;
+    if (a->used > a->high) a->high = a->used;
+    return a->base + off;
+}
+
+#define RE__TAKE(ptr, type, count)                                                   \
+    do {                                                                             \
+        (ptr) = (type *)re__take(ar, sizeof(type) * (size_t)(count) + 1u);           \
+        if (!(ptr)) return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "scratch buffer too small"); \
+    } while (0)
+
+/* ---- Analysis state (scratch) ------------------------------------------------ */
+
+typedef struct re__edge_t {
+    unsigned v[2];  /* v[0] < v[1] */
+    unsigned he[2]; /* half-edges 3*t+k (edge k of triangle t runs tri[k] -> tri[k+1]) */
+    unsigned count; /* triangles using it */
+    unsigned char cls;
+    unsigned char rounded;
+} re__edge_t;
+
+enum { RE__E_FLAT, RE__E_CONVEX, RE__E_CONCAVE, RE__E_BOUNDARY, RE__E_NONMANIFOLD };
+enum { RE__V_NONE, RE__V_CORNER, RE__V_SHARP };
+
+typedef struct re__an_t {
+    const re_scene_desc_t *desc;
+    const re_mesh_t *m;
+    unsigned obj;
+    re_diag_t *diag;
+    unsigned V, T, E;
+    double *pos;
+    unsigned *tri, *tsrc, *tplane;
+    double *tn, *tarea;
+    unsigned char *tbad;
+    re__edge_t *edges;
+    unsigned *he_edge;
+    unsigned *voff, *vinc;
+    unsigned char *vstate;
+    unsigned *vcorner;
+    /* per candidate corner */
+    unsigned nc;
+    unsigned *c_vertex, *c_pfirst, *c_sfirst, *c_xfirst;
+    unsigned char *c_np, *c_ns, *c_nx;
+    unsigned *c_planes, *c_edges; /* fan-ordered planes / crossing edges */
+    unsigned *c_x;                /* extra cylinders: pairs of plane slots */
+    unsigned *c_start;            /* per plane slot j: sphere (local) where edge j starts */
+    double *su;                   /* unit-radius sphere offsets, 3 per sphere */
+    unsigned ns_total, nx_total, np_total;
+    unsigned *edge_end; /* 2 per edge: local sphere index at v[0], v[1] side */
+    unsigned n_planes;
+    re__plane_t *planes;
+    unsigned *plane_used;
+    re_stats_t st;
+    double size;
+} re__an_t;
+
+static re_result_t re__fail(re__an_t *an, re_result_t r, long long element, const char *msg)
+{
+    if (an->diag) {
+        an->diag->result = r;
+        an->diag->element = element;
+        an->diag->object = an->obj;
+        snprintf(an->diag->message, sizeof an->diag->message, "object %u: %.138s", an->obj, msg);
+    }
+    return r;
+}
+
+static void re__report(re__an_t *an, re_report_kind_t kind, long long e1, long long e2,
+                       double value, const char *msg)
+{
+    re_report_t rep;
+    if (!an->desc->report) return;
+    rep.kind = kind;
+    rep.object = an->obj;
+    rep.element = e1;
+    rep.element2 = e2;
+    rep.value = value;
+    rep.message = msg;
+    an->desc->report(an->desc->report_user, &rep);
+}
+
+static int re__finite3(const double p[3])
+{
+    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+}
+
+static unsigned re__uf_find(unsigned *uf, unsigned i)
+{
+    while (uf[i] != i) {
+        uf[i] = uf[uf[i]];
+        i = uf[i];
+    }
+    return i;
+}
+static void re__uf_join(unsigned *uf, unsigned a, unsigned b)
+{
+    a = re__uf_find(uf, a);
+    b = re__uf_find(uf, b);
+    if (a != b) uf[a < b ? b : a] = a < b ? a : b;
+}
+
+/* Triangle count after splitting polygons into fans; 0 and an error code on bad sizes. */
+static re_result_t re__count_tris(const re_mesh_t *m, unsigned *T, long long *bad)
+{
+    unsigned long long sum = 0, tris = 0;
+    unsigned f;
+    *bad = -1;
+    if (!m->face_sizes) {
+        if (m->index_count % 3u) return RE_ERR_BAD_FACE;
+        *T = m->index_count / 3u;
+        return RE_OK;
+    }
+    for (f = 0; f < m->face_count; f++) {
+        if (m->face_sizes[f] < 3u) {
+            *bad = f;
+            return RE_ERR_BAD_FACE;
+        }
+        sum += m->face_sizes[f];
+        tris += m->face_sizes[f] - 2u;
+    }
+    if (sum != m->index_count) return RE_ERR_BAD_FACE;
+    if (tris >= 0x40000000ull) return RE_ERR_TOO_LARGE;
+    *T = (unsigned)tris;
+    return RE_OK;
+}
+
+static void re__read_pos(const re_mesh_t *m, unsigned i, double out[3])
+{
+    size_t stride = m->position_stride;
+    const unsigned char *base = (const unsigned char *)m->positions;
+    if (m->position_type == RE_FLOAT32) {
+        const float *p = (const float *)(const void *)(base + (stride ? stride : 3 * sizeof(float)) * i);
+        out[0] = p[0];
+        out[1] = p[1];
+        out[2] = p[2];
+    } else {
+        const double *p = (const double *)(const void *)(base + (stride ? stride : 3 * sizeof(double)) * i);
+        out[0] = p[0];
+        out[1] = p[1];
+        out[2] = p[2];
+    }
+}
+
+/* Step 1: fan-split polygons, validate, face normals. */
+static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
+{
+    const re_mesh_t *m = an->m;
+    unsigned t = 0, f, nf, base = 0, i, k;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    char msg[128];
+    RE__TAKE(an->pos, double, 3 * (size_t)an->V);
+    RE__TAKE(an->tri, unsigned, 3 * (size_t)an->T);
+    RE__TAKE(an->tsrc, unsigned, 3 * (size_t)an->T);
+    RE__TAKE(an->tn, double, 3 * (size_t)an->T);
+    RE__TAKE(an->tarea, double, an->T);
+    RE__TAKE(an->tbad, unsigned char, an->T);
+    for (i = 0; i < an->V; i++) re__read_pos(m, i, an->pos + 3 * (size_t)i);
+    nf = m->face_sizes ? m->face_count : an->T;
+    for (f = 0; f < nf; f++) {
+        unsigned n = m->face_sizes ? m->face_sizes[f] : 3u, j;
+        for (j = 1; j + 1 < n; j++, t++) {
+            unsigned *tr = an->tri + 3 * (size_t)t, *src = an->tsrc + 3 * (size_t)t;
+            double e1[3], e2[3], e3[3], cr[3], len, lmax;
+            int bad = 0;
+            tr[0] = m->indices[base];
+            tr[1] = m->indices[base + j];
+            tr[2] = m->indices[base + j + 1];
+            /* index positions of the polygon's own edges (fan diagonals have none) */
+            src[0] = j == 1 ? base : RE__NONE;
+            src[1] = base + j;
+            src[2] = j + 2 == n ? base + j + 1 : RE__NONE;
+            an->tbad[t] = 0;
+            for (k = 0; k < 3; k++)
+                if (tr[k] >= an->V) {
+                    snprintf(msg, sizeof msg, "triangle %u has vertex index %u >= vertex_count %u", t, tr[k], an->V);
+                    bad = 1;
+                    if (an->desc->bad_input != RE_BAD_INPUT_SKIP)
+                        return re__fail(an, RE_ERR_INDEX_OUT_OF_RANGE, t, msg);
+                }
+            if (!bad)
+                for (k = 0; k < 3; k++)
+                    if (!re__finite3(an->pos + 3 * (size_t)tr[k])) {
+                        snprintf(msg, sizeof msg, "triangle %u uses vertex %u, which has a NaN or infinite coordinate", t, tr[k]);
+                        bad = 1;
+                        if (an->desc->bad_input != RE_BAD_INPUT_SKIP)
+                            return re__fail(an, RE_ERR_NAN_VERTEX, tr[k], msg);
+                        break;
+                    }
+            if (!bad) {
+                re__sub(an->pos + 3 * (size_t)tr[1], an->pos + 3 * (size_t)tr[0], e1);
+                re__sub(an->pos + 3 * (size_t)tr[2], an->pos + 3 * (size_t)tr[0], e2);
+                re__sub(an->pos + 3 * (size_t)tr[2], an->pos + 3 * (size_t)tr[1], e3);
+                re__cross(e1, e2, cr);
+                len = re__len(cr);
+                lmax = fmax(re__dot(e1, e1), fmax(re__dot(e2, e2), re__dot(e3, e3)));
+                if (!(len > RE__DEGENERATE_REL * lmax)) {
+                    snprintf(msg, sizeof msg, "triangle %u (vertices %u %u %u) is degenerate (zero area or zero-length edge)",
+                             t, tr[0], tr[1], tr[2]);
+                    bad = 1;
+                    if (an->desc->bad_input != RE_BAD_INPUT_SKIP)
+                        return re__fail(an, RE_ERR_DEGENERATE_TRIANGLE, t, msg);
+                } else {
+                    an->tn[3 * (size_t)t] = cr[0] / len;
+                    an->tn[3 * (size_t)t + 1] = cr[1] / len;
+                    an->tn[3 * (size_t)t + 2] = cr[2] / len;
+                    an->tarea[t] = len;
+                    for (k = 0; k < 3; k++) {
+                        const double *p = an->pos + 3 * (size_t)tr[k];
+                        int a;
+                        for (a = 0; a < 3; a++) {
+                            lo[a] = fmin(lo[a], p[a]);
+                            hi[a] = fmax(hi[a], p[a]);
+                        }
+                    }
+                }
+            }
+            if (bad) {
+                an->tbad[t] = 1;
+                re__report(an, RE_REPORT_SKIPPED_TRIANGLE, t, -1, 0.0, msg);
+            }
+        }
+        base += n;
+    }
+    an->size = 0;
+    if (lo[0] <= hi[0]) {
+        double dd[3];
+        re__sub(hi, lo, dd);
+        an->size = re__len(dd);
+    }
+    return RE_OK;
+}
+
+static int re__cmp_u64(const void *a, const void *b)
+{
+    unsigned long long x = *(const unsigned long long *)a, y = *(const unsigned long long *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Step 2: edges from half-edges (bucketed by the smaller vertex), and their
+   class from the two face normals. */
+static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
+{
+    unsigned V = an->V, T = an->T, t, k, i, E = 0;
+    unsigned *cnt;
+    unsigned long long *key;
+    char msg[160];
+    RE__TAKE(cnt, unsigned, (size_t)V + 1);
+    RE__TAKE(key, unsigned long long, 3 * (size_t)T);
+    RE__TAKE(an->he_edge, unsigned, 3 * (size_t)T);
+    RE__TAKE(an->edges, re__edge_t, 3 * (size_t)T);
+    memset(cnt, 0, sizeof(unsigned) * ((size_t)V + 1));
+    for (t = 0; t < T; t++)
+        for (k = 0; k < 3; k++) {
+            unsigned a = an->tri[3 * t + k], b = an->tri[3 * t + (k + 1) % 3];
+            an->he_edge[3 * t + k] = RE__NONE;
+            if (!an->tbad[t]) cnt[(a < b ? a : b) + 1]++;
+        }
+    for (i = 0; i < V; i++) cnt[i + 1] += cnt[i];
+    for (t = 0; t < T; t++)
+        for (k = 0; k < 3; k++) {
+            unsigned a = an->tri[3 * t + k], b = an->tri[3 * t + (k + 1) % 3];
+            if (an->tbad[t]) continue;
+            key[cnt[a < b ? a : b]++] = ((unsigned long long)(a < b ? b : a) << 32) | (3u * t + k);
+        }
+    /* cnt[i] is now the end of bucket i; bucket i starts at cnt[i-1] */
+    for (i = 0; i < V; i++) {
+        unsigned s = i ? cnt[i - 1] : 0, e = cnt[i], j;
+        if (e - s > 1) qsort(key + s, e - s, sizeof *key, re__cmp_u64);
+        for (j = s; j < e;) {
+            unsigned hi = (unsigned)(key[j] >> 32), j2 = j;
+            re__edge_t *ed = &an->edges[E];
+            ed->v[0] = i;
+            ed->v[1] = hi;
+            ed->count = 0;
+            ed->rounded = 0;
+            while (j2 < e && (unsigned)(key[j2] >> 32) == hi) {
+                unsigned he = (unsigned)(key[j2] & 0xFFFFFFFFu);
+                if (ed->count < 2) ed->he[ed->count] = he;
+                ed->count++;
+                an->he_edge[he] = E;
+                j2++;
+            }
+            if (ed->count == 1) {
+                ed->cls = RE__E_BOUNDARY;
+            } else if (ed->count > 2) {
+                ed->cls = RE__E_NONMANIFOLD;
+            } else {
+                unsigned h0 = ed->he[0], h1 = ed->he[1];
+                unsigned t0 = h0 / 3, t1 = h1 / 3;
+                unsigned a0 = an->tri[3 * t0 + h0 % 3], a1 = an->tri[3 * t1 + h1 % 3];
+                if (a0 == a1) {
+                    snprintf(msg, sizeof msg, "triangles %u and %u run through edge %u-%u the same way (inconsistent winding)",
+                             t0, t1, i, hi);
+                    if (an->desc->bad_input != RE_BAD_INPUT_SKIP)
+                        return re__fail(an, RE_ERR_INCONSISTENT_WINDING, t1, msg);
+                    ed->cls = RE__E_NONMANIFOLD;
+                } else {
+                    const double *na = an->tn + 3 * (size_t)t0, *nb = an->tn + 3 * (size_t)t1;
+                    double cr[3], e3[3];
+                    re__cross(na, nb, cr);
+                    /* the edge as triangle t0 runs it */
+                    re__sub(an->pos + 3 * (size_t)an->tri[3 * t0 + (h0 % 3 + 1) % 3], an->pos + 3 * (size_t)a0, e3);
+                    if (re__len(cr) <= RE__FLAT_SIN)
+                        ed->cls = re__dot(na, nb) > 0 ? RE__E_FLAT : RE__E_CONCAVE; /* folded back: sharp */
+                    else
+                        ed->cls = re__dot(cr, e3) > 0 ? RE__E_CONVEX : RE__E_CONCAVE;
+                }
+            }
+            E++;
+            j = j2;
+        }
+    }
+    an->E = E;
+    an->st.edges += E;
+    for (i = 0; i < E; i++) {
+        const re__edge_t *ed = &an->edges[i];
+        switch (ed->cls) {
+        case RE__E_FLAT: an->st.flat_edges++; break;
+        case RE__E_CONVEX: an->st.convex_edges++; break;
+        case RE__E_CONCAVE:
+            an->st.concave_edges++;
+            snprintf(msg, sizeof msg, "edge %u-%u is concave: left sharp", ed->v[0], ed->v[1]);
+            re__report(an, RE_REPORT_CONCAVE_EDGE, ed->v[0], ed->v[1], 0.0, msg);
+            break;
+        case RE__E_BOUNDARY:
+            an->st.boundary_edges++;
+            snprintf(msg, sizeof msg, "edge %u-%u is a boundary (open mesh): left sharp", ed->v[0], ed->v[1]);
+            re__report(an, RE_REPORT_BOUNDARY_EDGE, ed->v[0], ed->v[1], 0.0, msg);
+            break;
+        default:
+            an->st.nonmanifold_edges++;
+            snprintf(msg, sizeof msg, "edge %u-%u is non-manifold (%u triangles) or inconsistently wound: left sharp",
+                     ed->v[0], ed->v[1], ed->count);
+            re__report(an, RE_REPORT_NONMANIFOLD_EDGE, ed->v[0], ed->v[1], 0.0, msg);
+            break;
+        }
+    }
+    return RE_OK;
+}
+
+/* Step 3: face planes = groups of triangles joined by flat edges; the
+   largest triangle of a group gives its normal (the best-conditioned cross
+   product). */
+static re_result_t re__planes(re__an_t *an, re__arena_t *ar)
+{
+    unsigned T = an->T, t, i, *uf, *best;
+    RE__TAKE(uf, unsigned, T);
+    RE__TAKE(best, unsigned, T);
+    RE__TAKE(an->tplane, unsigned, T);
+    for (t = 0; t < T; t++) uf[t] = t, best[t] = RE__NONE;
+    for (i = 0; i < an->E; i++)
+        if (an->edges[i].cls == RE__E_FLAT) re__uf_join(uf, an->edges[i].he[0] / 3, an->edges[i].he[1] / 3);
+    for (t = 0; t < T; t++) {
+        unsigned r;
+        if (an->tbad[t]) continue;
+        r = re__uf_find(uf, t);
+        if (best[r] == RE__NONE || an->tarea[t] > an->tarea[best[r]]) best[r] = t;
+    }
+    an->n_planes = 0;
+    RE__TAKE(an->planes, re__plane_t, T);
+    for (t = 0; t < T; t++) an->tplane[t] = RE__NONE;
+    for (t = 0; t < T; t++)
+        if (!an->tbad[t] && uf[t] == t) {
+            re__plane_t *p = &an->planes[an->n_planes];
+            const double *n = an->tn + 3 * (size_t)best[t];
+            p->n[0] = n[0];
+            p->n[1] = n[1];
+            p->n[2] = n[2];
+            p->c = re__dot(n, an->pos + 3 * (size_t)an->tri[3 * best[t]]);
+            an->tplane[t] = an->n_planes++;
+        }
+    for (t = 0; t < T; t++)
+        if (!an->tbad[t]) an->tplane[t] = an->tplane[re__uf_find(uf, t)];
+    return RE_OK;
+}
+
+/* The eroded corner at unit radius (issue item 1, exact corners). With the
+   k face planes n_i.(x - v) = 0 around v shifted inward by 1, the local
+   eroded polytope E_v = {u : n_i.u <= -1} has finite vertices where three
+   or more shifted planes meet (the sphere centres) and finite edges
+   between non-neighbouring planes (the extra cylinders); the edges between
+   fan neighbours i, i+1 are rays along the mesh edges (the paper's cylinder
+   axes, v + d*H, §3). Every plane passes through v, so E_v scales with r:
+   spheres sit at v + r*u. Brute force over plane triples, O(k^4), k <= 64. */
+static int re__erode_corner(re__an_t *an, unsigned c)
+{
+    unsigned k = an->c_np[c], i, j, l, ns = 0, nx = 0;
+    const unsigned *pl = an->c_planes + an->c_pfirst[c];
+    const unsigned *ed = an->c_edges + an->c_pfirst[c];
+    double *su = an->su + 3 * (size_t)an->c_sfirst[c];
+    unsigned *start = an->c_start + an->c_pfirst[c];
+    unsigned *xs = an->c_x + 4 * (size_t)an->c_xfirst[c];
+    unsigned cap = 2 * k;
+    unsigned long long mask[2 * RE_MAX_CORNER_PLANES];
+    const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
+#define RE__N(s) (an->planes[pl[s]].n)
+    if (k == 2) {
+        /* a vertex inside a straight convex edge: no corner, one sphere on the
+           axis (at v + d*H) so the two cylinders meet */
+        double cs = re__dot(RE__N(0), RE__N(1));
+        for (i = 0; i < 3; i++) su[i] = -(RE__N(0)[i] + RE__N(1)[i]) / (1 + cs);
+        mask[0] = 3ull;
+        ns = 1;
+    } else {
+        for (i = 0; i < k; i++)
+            for (j = i + 1; j < k; j++)
+                for (l = j + 1; l < k; l++) {
+                    double a[3], b[3], cc[3], u[3], det, tol, un;
+                    unsigned g, q;
+                    unsigned long long mk = 0;
+                    int ok = 1;
+                    re__cross(RE__N(j), RE__N(l), a);
+                    det = re__dot(RE__N(i), a);
+                    if (fabs(det) <= RE__PARALLEL_DET) continue;
+                    re__cross(RE__N(l), RE__N(i), b);
+                    re__cross(RE__N(i), RE__N(j), cc);
+                    for (q = 0; q < 3; q++) u[q] = -(a[q] + b[q] + cc[q]) / det;
+                    un = re__len(u);
+                    tol = RE__CORNER_EPS * fmax(1.0, un);
+                    for (g = 0; g < k && ok; g++) {
+                        double s = re__dot(RE__N(g), u) + 1.0;
+                        if (s > tol) ok = 0;
+                        else if (s > -tol) mk |= 1ull << g;
+                    }
+                    if (!ok) continue;
+                    for (q = 0; q < ns; q++) {
+                        double dd[3];
+                        re__sub(su + 3 * q, u, dd);
+                        if (re__len(dd) <= tol) break;
+                    }
+                    if (q < ns) {
+                        mask[q] |= mk;
+                        continue;
+                    }
+                    if (ns == cap) return 0;
+                    su[3 * ns] = u[0], su[3 * ns + 1] = u[1], su[3 * ns + 2] = u[2];
+                    mask[ns++] = mk;
+                }
+        if (!ns) return 0;
+    }
+    /* where each mesh-edge cylinder starts: the eroded vertex on planes j and
+       j+1 nearest to v along the edge */
+    for (j = 0; j < k; j++) {
+        const re__edge_t *e = &an->edges[ed[j]];
+        unsigned other = e->v[0] == an->c_vertex[c] ? e->v[1] : e->v[0], best = RE__NONE;
+        unsigned long long need = (1ull << j) | (1ull << ((j + 1) % k));
+        double dir[3], bp = HUGE_VAL;
+        re__sub(an->pos + 3 * (size_t)other, v, dir);
+        for (i = 0; i < ns; i++)
+            if ((mask[i] & need) == need) {
+                double pr = re__dot(su + 3 * i, dir);
+                if (pr < bp) bp = pr, best = i;
+            }
+        if (best == RE__NONE) return 0;
+        start[j] = best;
+        an->edge_end[2 * ed[j] + (e->v[0] == an->c_vertex[c] ? 0u : 1u)] = best;
+    }
+    /* extra cylinders: finite eroded edges between non-neighbouring planes */
+    for (i = 0; i < k; i++)
+        for (j = i + 2; j < k; j++) {
+            unsigned long long need = (1ull << i) | (1ull << j);
+            unsigned lo = RE__NONE, hi = RE__NONE, q;
+            double ax[3], plo = HUGE_VAL, phi = -HUGE_VAL, dd[3];
+            if (i == 0 && j == k - 1) continue; /* neighbours through the wrap */
+            re__cross(RE__N(i), RE__N(j), ax);
+            for (q = 0; q < ns; q++)
+                if ((mask[q] & need) == need) {
+                    double pr = re__dot(su + 3 * q, ax);
+                    if (pr < plo) plo = pr, lo = q;
+                    if (pr > phi) phi = pr, hi = q;
+                }
+            if (lo == RE__NONE || lo == hi) continue;
+            re__sub(su + 3 * lo, su + 3 * hi, dd);
+            if (re__len(dd) <= RE__CORNER_EPS * fmax(1.0, re__len(su + 3 * lo))) continue;
+            if (nx == cap) return 0;
+            xs[4 * nx] = i, xs[4 * nx + 1] = j, xs[4 * nx + 2] = lo, xs[4 * nx + 3] = hi;
+            nx++;
+        }
+#undef RE__N
+    an->c_ns[c] = (unsigned char)ns;
+    an->c_nx[c] = (unsigned char)nx;
+    return 1;
+}
+
+/* Step 4: vertices. A corner candidate has only flat and convex edges, at
+   least one convex, and a single closed fan; its distinct planes in fan
+   order are eroded by re__erode_corner(). Mixed vertices stay sharp. */
+static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
+{
+    unsigned V = an->V, E = an->E, i, v, t;
+    unsigned *tfan, *hfan;
+    char msg[160];
+    RE__TAKE(an->voff, unsigned, (size_t)V + 1);
+    RE__TAKE(an->vinc, unsigned, 2 * (size_t)E + 1);
+    RE__TAKE(an->vstate, unsigned char, V);
+    RE__TAKE(an->vcorner, unsigned, V);
+    RE__TAKE(an->edge_end, unsigned, 2 * (size_t)E + 1);
+    memset(an->voff, 0, sizeof(unsigned) * ((size_t)V + 1));
+    for (i = 0; i < E; i++) an->voff[an->edges[i].v[0] + 1]++, an->voff[an->edges[i].v[1] + 1]++;
+    for (v = 0; v < V; v++) an->voff[v + 1] += an->voff[v];
+    for (i = 0; i < E; i++) {
+        unsigned a = an->edges[i].v[0], b = an->edges[i].v[1];
+        an->vinc[an->voff[a]++] = i;
+        an->vinc[an->voff[b]++] = i;
+        an->edge_end[2 * i] = an->edge_end[2 * i + 1] = RE__NONE;
+    }
+    for (v = V; v > 0; v--) an->voff[v] = an->voff[v - 1];
+    an->voff[0] = 0;
+    /* candidate count and plane slots */
+    an->nc = 0;
+    an->np_total = 0;
+    for (v = 0; v < V; v++) {
+        unsigned conv = 0, bad = 0, deg = an->voff[v + 1] - an->voff[v];
+        an->vstate[v] = RE__V_NONE;
+        an->vcorner[v] = RE__NONE;
+        for (i = an->voff[v]; i < an->voff[v + 1]; i++) {
+            unsigned cl = an->edges[an->vinc[i]].cls;
+            if (cl == RE__E_CONVEX) conv++;
+            else if (cl != RE__E_FLAT) bad++;
+        }
+        if (conv && bad) {
+            an->vstate[v] = RE__V_SHARP;
+            an->st.mixed_vertices++;
+            snprintf(msg, sizeof msg, "vertex %u joins convex and concave/boundary/non-manifold edges: left sharp", v);
+            re__report(an, RE_REPORT_MIXED_VERTEX, v, -1, 0.0, msg);
+        } else if (conv) {
+            an->vstate[v] = RE__V_CORNER;
+            an->vcorner[v] = an->nc++;
+            an->np_total += deg;
+        }
+    }
+    RE__TAKE(an->c_vertex, unsigned, an->nc);
+    RE__TAKE(an->c_pfirst, unsigned, an->nc);
+    RE__TAKE(an->c_sfirst, unsigned, an->nc);
+    RE__TAKE(an->c_xfirst, unsigned, an->nc);
+    RE__TAKE(an->c_np, unsigned char, an->nc);
+    RE__TAKE(an->c_ns, unsigned char, an->nc);
+    RE__TAKE(an->c_nx, unsigned char, an->nc);
+    RE__TAKE(an->c_planes, unsigned, an->np_total);
+    RE__TAKE(an->c_edges, unsigned, an->np_total);
+    RE__TAKE(an->c_start, unsigned, an->np_total);
+    RE__TAKE(an->su, double, 3 * 2 * (size_t)an->np_total);
+    RE__TAKE(an->c_x, unsigned, 4 * 2 * (size_t)an->np_total);
+    RE__TAKE(tfan, unsigned, an->T + 1);
+    RE__TAKE(hfan, unsigned, an->T + 1);
+    {
+        unsigned off = 0;
+        for (v = 0; v < V; v++) {
+            unsigned c = an->vcorner[v], deg, m = 0, h, i0, k = 0, j, ok = 1;
+            if (c == RE__NONE) continue;
+            deg = an->voff[v + 1] - an->voff[v];
+            an->c_vertex[c] = v;
+            an->c_pfirst[c] = off;
+            an->c_sfirst[c] = 2 * off;
+            an->c_xfirst[c] = 2 * off;
+            an->c_np[c] = 0;
+            an->c_ns[c] = an->c_nx[c] = 0;
+            off += deg;
+            /* walk the fan: in triangle t, cross the edge prev -> v */
+            t = an->edges[an->vinc[an->voff[v]]].he[0] / 3;
+            do {
+                unsigned s = an->tri[3 * t] == v ? 0u : an->tri[3 * t + 1] == v ? 1u : 2u, e, o;
+                h = 3 * t + (s + 2) % 3;
+                if (m == deg) { ok = 0; break; }
+                tfan[m] = t;
+                hfan[m++] = h;
+                e = an->he_edge[h];
+                o = an->edges[e].he[0] == h ? an->edges[e].he[1] : an->edges[e].he[0];
+                t = o / 3;
+            } while (t != tfan[0]);
+            if (!ok || m != deg) {
+                an->vstate[v] = RE__V_SHARP;
+                an->st.mixed_vertices++;
+                snprintf(msg, sizeof msg, "vertex %u is non-manifold (its triangles form more than one fan): left sharp", v);
+                re__report(an, RE_REPORT_MIXED_VERTEX, v, -1, 0.0, msg);
+                continue;
+            }
+            for (i0 = 0; i0 < m; i0++)
+                if (an->tplane[tfan[i0]] != an->tplane[tfan[(i0 + m - 1) % m]]) break;
+            for (i = 0; i < m && ok; i++) {
+                unsigned a = tfan[(i0 + i) % m], b = tfan[(i0 + i + 1) % m];
+                unsigned e = an->he_edge[hfan[(i0 + i) % m]];
+                int change = an->tplane[a] != an->tplane[b];
+                if (change != (an->edges[e].cls == RE__E_CONVEX)) ok = 0;
+                if (!change) continue;
+                if (k == RE_MAX_CORNER_PLANES) { ok = 0; break; }
+                an->c_planes[an->c_pfirst[c] + k] = an->tplane[a];
+                an->c_edges[an->c_pfirst[c] + k] = e;
+                k++;
+            }
+            for (i = 0; i < k && ok; i++)
+                for (j = i + 1; j < k; j++)
+                    if (an->c_planes[an->c_pfirst[c] + i] == an->c_planes[an->c_pfirst[c] + j]) ok = 0;
+            an->c_np[c] = (unsigned char)(k > 255 ? 255 : k);
+            if (!ok || k < 2 || !re__erode_corner(an, c)) {
+                an->vstate[v] = RE__V_SHARP;
+                snprintf(msg, sizeof msg, "vertex %u: corner too complex to round (%u face planes, limit %d): left sharp",
+                         v, k, RE_MAX_CORNER_PLANES);
+                re__report(an, RE_REPORT_COMPLEX_CORNER, v, -1, (double)k, msg);
+            }
+        }
+    }
+    return RE_OK;
+}
+
+/* Step 5: a convex edge is rounded when both ends are corners; a corner
+   with a convex edge that cannot be rounded cannot be eroded consistently,
+   so it turns sharp too, and so on along its patch. */
+static re_result_t re__propagate(re__an_t *an, re__arena_t *ar)
+{
+    unsigned *queue, qn = 0, v, i;
+    unsigned char *inq;
+    char msg[160];
+    RE__TAKE(queue, unsigned, an->V + 1);
+    RE__TAKE(inq, unsigned char, an->V + 1);
+    for (v = 0; v < an->V; v++) {
+        inq[v] = an->vstate[v] == RE__V_CORNER;
+        if (inq[v]) queue[qn++] = v;
+    }
+    while (qn) {
+        v = queue[--qn];
+        inq[v] = 0;
+        if (an->vstate[v] != RE__V_CORNER) continue;
+        for (i = an->voff[v]; i < an->voff[v + 1]; i++) {
+            const re__edge_t *e = &an->edges[an->vinc[i]];
+            unsigned o = e->v[0] == v ? e->v[1] : e->v[0];
+            if (e->cls == RE__E_CONVEX && an->vstate[o] != RE__V_CORNER) break;
+        }
+        if (i == an->voff[v + 1]) continue;
+        an->vstate[v] = RE__V_SHARP;
+        for (i = an->voff[v]; i < an->voff[v + 1]; i++) {
+            const re__edge_t *e = &an->edges[an->vinc[i]];
+            unsigned o = e->v[0] == v ? e->v[1] : e->v[0];
+            if (e->cls == RE__E_CONVEX && an->vstate[o] == RE__V_CORNER && !inq[o]) inq[o] = 1, queue[qn++] = o;
+        }
+    }
+    for (i = 0; i < an->E; i++) {
+        re__edge_t *e = &an->edges[i];
+        if (e->cls != RE__E_CONVEX) continue;
+        e->rounded = an->vstate[e->v[0]] == RE__V_CORNER && an->vstate[e->v[1]] == RE__V_CORNER;
+        if (!e->rounded) {
+            snprintf(msg, sizeof msg, "convex edge %u-%u left sharp: a corner of its patch is mixed, open or too complex",
+                     e->v[0], e->v[1]);
+            re__report(an, RE_REPORT_SHARP_PATCH_EDGE, e->v[0], e->v[1], 0.0, msg);
+        } else
+            an->st.rounded_edges++;
+    }
+    return RE_OK;
+}
+
+static double re__edge_request(const re__an_t *an, const re__edge_t *e)
+{
+    double r = HUGE_VAL;
+    unsigned q;
+    if (an->m->edge_radius)
+        for (q = 0; q < 2 && q < e->count; q++) {
+            unsigned src = an->tsrc[e->he[q]];
+            if (src != RE__NONE && an->m->edge_radius[src] > 0) r = fmin(r, an->m->edge_radius[src]);
+        }
+    return r == HUGE_VAL ? an->m->radius : r;
+}
+
+/* Step 6: one radius per patch (corners linked by rounded edges) and its
+   largest valid value. Everything at a corner scales linearly with r, so
+   each constraint gives a bound r <= b directly:
+   - an edge must be at least as long as its two set-backs (the cylinder
+     from s_a to s_b must not turn over);
+   - a corner's spheres must stay inside the shifted planes of the
+     neighbouring corners (a slab thinner than 2r, a short prism). */
+static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out, unsigned **uf_out)
+{
+    unsigned *uf, i, c;
+    double *req, *rmax, *r;
+    long long *lim0, *lim1;
+    unsigned char *mism;
+    char msg[160];
+    unsigned nc = an->nc;
+    RE__TAKE(uf, unsigned, nc + 1);
+    RE__TAKE(req, double, nc + 1);
+    RE__TAKE(rmax, double, nc + 1);
+    RE__TAKE(r, double, nc + 1);
+    RE__TAKE(lim0, long long, nc + 1);
+    RE__TAKE(lim1, long long, nc + 1);
+    RE__TAKE(mism, unsigned char, nc + 1);
+    for (c = 0; c < nc; c++) uf[c] = c, req[c] = HUGE_VAL, rmax[c] = HUGE_VAL, mism[c] = 0, lim0[c] = lim1[c] = -1;
+    for (i = 0; i < an->E; i++) {
+        const re__edge_t *e = &an->edges[i];
+        double rq;
+        if (!e->rounded) continue;
+        rq = re__edge_request(an, e);
+        if (!(rq > 0) || !isfinite(rq)) {
+            snprintf(msg, sizeof msg, "edge %u-%u has radius %g (must be finite and > 0)", e->v[0], e->v[1], rq);
+            return re__fail(an, RE_ERR_BAD_RADIUS, e->v[0], msg);
+        }
+        re__uf_join(uf, an->vcorner[e->v[0]], an->vcorner[e->v[1]]);
+    }
+    for (i = 0; i < an->E; i++) {
+        const re__edge_t *e = &an->edges[i];
+        unsigned p, ca, cb;
+        double rq, L, den, dir[3], du[3];
+        if (!e->rounded) continue;
+        ca = an->vcorner[e->v[0]];
+        cb = an->vcorner[e->v[1]];
+        p = re__uf_find(uf, ca);
+        rq = re__edge_request(an, e);
+        if (req[p] != HUGE_VAL && req[p] != rq) mism[p] = 1;
+        req[p] = fmin(req[p], rq);
+        re__sub(an->pos + 3 * (size_t)e->v[1], an->pos + 3 * (size_t)e->v[0], dir);
+        L = re__len(dir);
+        re__sub(an->su + 3 * (size_t)(an->c_sfirst[ca] + an->edge_end[2 * i]),
+                an->su + 3 * (size_t)(an->c_sfirst[cb] + an->edge_end[2 * i + 1]), du);
+        den = re__dot(du, dir) / L;
+        if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = e->v[0], lim1[p] = e->v[1];
+    }
+    for (c = 0; c < nc; c++) {
+        unsigned v = an->c_vertex[c], p, q, s, g;
+        if (an->vstate[v] != RE__V_CORNER) continue;
+        p = re__uf_find(uf, c);
+        for (q = an->voff[v]; q < an->voff[v + 1]; q++) {
+            const re__edge_t *e = &an->edges[an->vinc[q]];
+            unsigned w, cw;
+            if (!e->rounded) continue;
+            w = e->v[0] == v ? e->v[1] : e->v[0];
+            cw = an->vcorner[w];
+            for (g = 0; g < an->c_np[cw]; g++) {
+                const re__plane_t *pl = &an->planes[an->c_planes[an->c_pfirst[cw] + g]];
+                double b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
+                if (b < 0) continue; /* not a locally convex configuration */
+                for (s = 0; s < an->c_np[c]; s++)
+                    if (an->c_planes[an->c_pfirst[c] + s] == an->c_planes[an->c_pfirst[cw] + g]) break;
+                if (s < an->c_np[c]) continue;
+                for (s = 0; s < an->c_ns[c]; s++) {
+                    double a = re__dot(pl->n, an->su + 3 * (size_t)(an->c_sfirst[c] + s)) + 1.0;
+                    if (a > 0 && b / a < rmax[p]) rmax[p] = b / a, lim0[p] = v, lim1[p] = -1;
+                }
+            }
+        }
+    }
+    for (c = 0; c < nc; c++) {
+        r[c] = 0;
+        if (uf[c] != c || req[c] == HUGE_VAL) continue;
+        r[c] = req[c];
+        if (mism[c]) {
+            snprintf(msg, sizeof msg, "unequal edge radii meet in the patch of vertex %u: all use %g", an->c_vertex[c], req[c]);
+            re__report(an, RE_REPORT_RADIUS_MISMATCH, an->c_vertex[c], -1, req[c], msg);
+        }
+        if (req[c] > rmax[c] * (1 + RE__RADIUS_SLACK)) {
+            if (lim1[c] >= 0)
+                snprintf(msg, sizeof msg, "radius %g too large: edge %lld-%lld is shorter than its two set-backs (largest %.17g)",
+                         req[c], lim0[c], lim1[c], rmax[c]);
+            else
+                snprintf(msg, sizeof msg, "radius %g too large at vertex %lld: the solid is thinner than 2r there (largest %.17g)",
+                         req[c], lim0[c], rmax[c]);
+            if (an->desc->radius_policy == RE_RADIUS_REJECT)
+                return re__fail(an, RE_ERR_RADIUS_TOO_LARGE, lim0[c], msg);
+            r[c] = rmax[c];
+            an->st.clamped++;
+            re__report(an, RE_REPORT_RADIUS_CLAMPED, lim0[c], lim1[c], r[c], msg);
+        }
+    }
+    *patch_r_out = r;
+    *uf_out = uf;
+    return RE_OK;
+}
+
+/* ---- kd-tree over the rounded edges (paper §3.2: split the longest axis) ---- */
+
+#define RE__KD_LEAF 4
+#define RE__KD_DEPTH 40
+
+typedef struct re__kd_t {
+    const double *box; /* 6 per primitive: lo[3], hi[3] */
+    re__node_t *nodes;
+    unsigned n_nodes, cap_nodes;
+    unsigned *leafrefs;
+    unsigned n_leafrefs, cap_leafrefs;
+    unsigned *tmp;
+    unsigned n_tmp, cap_tmp;
+    unsigned dup_left; /* leaf references still free for duplicates */
+} re__kd_t;
+
+static unsigned re__kd_leaf(re__kd_t *kd, const unsigned *list, unsigned n)
+{
+    unsigned id = kd->n_nodes++, i;
+    kd->nodes[id].split = 0;
+    kd->nodes[id].info = 3u | (n << 2);
+    kd->nodes[id].index = kd->n_leafrefs;
+    for (i = 0; i < n; i++) kd->leafrefs[kd->n_leafrefs++] = list[i];
+    return id;
+}
+
+/* `list` lives in kd->tmp; children's lists are pushed after it and popped. */
+static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, int depth)
+{
+    const unsigned *list = kd->tmp + list_at;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, split;
+    unsigned i, a, axis = 0, nl = 0, nr = 0, id, mark = kd->n_tmp;
+    if (kd->n_nodes + 2 > kd->cap_nodes) return RE__NONE;
+    if (n <= RE__KD_LEAF || depth >= RE__KD_DEPTH || kd->n_tmp + 2 * n > kd->cap_tmp ||
+        kd->n_nodes + 3 > kd->cap_nodes)
+        goto leaf;
+    /* bounds of the primitive centres; split the longest axis at their mean */
+    for (i = 0; i < n; i++)
+        for (a = 0; a < 3; a++) {
+            double c = 0.5 * (kd->box[6 * list[i] + a] + kd->box[6 * list[i] + 3 + a]);
+            lo[a] = fmin(lo[a], c);
+            hi[a] = fmax(hi[a], c);
+        }
+    for (a = 1; a < 3; a++)
+        if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
+    if (!(hi[axis] > lo[axis])) goto leaf;
+    split = 0.5 * (lo[axis] + hi[axis]);
+    for (i = 0; i < n; i++)
+        if (kd->box[6 * list[i] + axis] <= split) kd->tmp[kd->n_tmp + nl++] = list[i];
+    for (i = 0; i < n; i++)
+        if (kd->box[6 * list[i] + 3 + axis] >= split) kd->tmp[kd->n_tmp + nl + nr++] = list[i];
+    /* a split that duplicates most primitives does not pay */
+    if (nl == n || nr == n || nl + nr > n + n / 2 || nl + nr - n > kd->dup_left) goto leaf;
+    kd->dup_left -= nl + nr - n;
+    {
+        unsigned left_at = kd->n_tmp, right_at = kd->n_tmp + nl, r;
+        kd->n_tmp += nl + nr;
+        id = kd->n_nodes++;
+        kd->nodes[id].split = split;
+        kd->nodes[id].info = axis;
+        if (re__kd_build(kd, left_at, nl, depth + 1) == RE__NONE) return RE__NONE;
+        r = re__kd_build(kd, right_at, nr, depth + 1);
+        if (r == RE__NONE) return RE__NONE;
+        kd->nodes[id].index = r;
+        kd->n_tmp = mark;
+        return id;
+    }
+leaf:
+    if (kd->n_leafrefs + n > kd->cap_leafrefs) return RE__NONE;
+    return re__kd_leaf(kd, list, n);
+}
+
+/* ---- Step 7: final arrays, packed into one block ------------------------------ */
+
+typedef struct re__final_t {
+    unsigned n_corners, n_spheres, n_cyls, n_edge_cyls, n_planes, n_refs;
+    unsigned *tri_plane;
+    re__plane_t *planes;
+    double *sph;
+    unsigned *sph_corner;
+    re__cyl_t *cyls;
+    re__corner_t *corners;
+    unsigned *refs;
+    re__kd_t kd;
+} re__final_t;
+
+static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
+                              re__final_t *F)
+{
+    unsigned c, i, j, *fc, *sbase, *xbase, *ecyl, *pmap, ns = 0, ncyl = 0, nref = 0, nco = 0;
+    double *box;
+    RE__TAKE(fc, unsigned, an->nc + 1);
+    RE__TAKE(sbase, unsigned, an->nc + 1);
+    RE__TAKE(xbase, unsigned, an->nc + 1);
+    RE__TAKE(ecyl, unsigned, an->E + 1);
+    RE__TAKE(pmap, unsigned, an->n_planes + 1);
+    for (i = 0; i < an->n_planes; i++) pmap[i] = RE__NONE;
+    for (i = 0; i < an->E; i++) ecyl[i] = an->edges[i].rounded ? ncyl++ : RE__NONE;
+    F->n_edge_cyls = ncyl;
+    F->n_planes = 0;
+    for (c = 0; c < an->nc; c++) {
+        fc[c] = RE__NONE;
+        if (an->vstate[an->c_vertex[c]] != RE__V_CORNER) continue;
+        fc[c] = nco++;
+        sbase[c] = ns;
+        ns += an->c_ns[c];
+        xbase[c] = ncyl;
+        ncyl += an->c_nx[c];
+        nref += 2u * an->c_np[c] + an->c_ns[c] + an->c_nx[c];
+        for (j = 0; j < an->c_np[c]; j++) {
+            unsigned p = an->c_planes[an->c_pfirst[c] + j];
+            if (pmap[p] == RE__NONE) pmap[p] = F->n_planes++;
+        }
+    }
+    F->n_corners = nco;
+    F->n_spheres = ns;
+    F->n_cyls = ncyl;
+    F->n_refs = nref;
+    RE__TAKE(F->tri_plane, unsigned, an->T);
+    RE__TAKE(F->planes, re__plane_t, F->n_planes);
+    RE__TAKE(F->sph, double, 3 * (size_t)ns);
+    RE__TAKE(F->sph_corner, unsigned, ns);
+    RE__TAKE(F->cyls, re__cyl_t, ncyl);
+    RE__TAKE(F->corners, re__corner_t, nco);
+    RE__TAKE(F->refs, unsigned, nref);
+    for (i = 0; i < an->T; i++)
+        F->tri_plane[i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
+    for (i = 0; i < an->n_planes; i++)
+        if (pmap[i] != RE__NONE) F->planes[pmap[i]] = an->planes[i];
+    nref = 0;
+    for (c = 0; c < an->nc; c++) {
+        re__corner_t *K;
+        const double *v;
+        double r, reach = 0;
+        unsigned pf = an->c_pfirst[c];
+        if (fc[c] == RE__NONE) continue;
+        K = &F->corners[fc[c]];
+        v = an->pos + 3 * (size_t)an->c_vertex[c];
+        r = patch_r[re__uf_find(uf, c)];
+        K->v[0] = v[0], K->v[1] = v[1], K->v[2] = v[2];
+        K->r = r;
+        K->vertex = an->c_vertex[c];
+        K->first = nref;
+        K->np = an->c_np[c];
+        K->ns = an->c_ns[c];
+        K->nx = an->c_nx[c];
+        K->pad_ = 0;
+        for (j = 0; j < K->np; j++) F->refs[nref++] = pmap[an->c_planes[pf + j]];
+        for (j = 0; j < K->np; j++) F->refs[nref++] = ecyl[an->c_edges[pf + j]];
+        for (j = 0; j < K->ns; j++) {
+            double *s = F->sph + 3 * (size_t)(sbase[c] + j), dd[3];
+            re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), s);
+            F->sph_corner[sbase[c] + j] = fc[c];
+            F->refs[nref++] = sbase[c] + j;
+            re__sub(s, v, dd);
+            reach = fmax(reach, re__len(dd));
+        }
+        /* removed points whose nearest eroded point is a corner feature y lie
+           within |v - y| of y (docs: "Detection"), so within 2 max|v - s| of v */
+        K->reach = 2.0 * reach;
+        for (j = 0; j < K->nx; j++) {
+            const unsigned *x = an->c_x + 4 * (size_t)(an->c_xfirst[c] + j);
+            re__cyl_t *cy = &F->cyls[xbase[c] + j];
+            cy->p[0] = pmap[an->c_planes[pf + x[0]]];
+            cy->p[1] = pmap[an->c_planes[pf + x[1]]];
+            cy->s[0] = sbase[c] + x[2];
+            cy->s[1] = sbase[c] + x[3];
+            cy->k[0] = fc[c];
+            cy->k[1] = RE__NONE;
+            F->refs[nref++] = xbase[c] + j;
+        }
+    }
+    for (i = 0; i < an->E; i++) {
+        const re__edge_t *e = &an->edges[i];
+        re__cyl_t *cy;
+        unsigned ca, cb;
+        if (ecyl[i] == RE__NONE) continue;
+        cy = &F->cyls[ecyl[i]];
+        ca = an->vcorner[e->v[0]];
+        cb = an->vcorner[e->v[1]];
+        cy->s[0] = sbase[ca] + an->edge_end[2 * i];
+        cy->s[1] = sbase[cb] + an->edge_end[2 * i + 1];
+        cy->p[0] = pmap[an->tplane[e->he[0] / 3]];
+        cy->p[1] = pmap[an->tplane[e->he[1] / 3]];
+        cy->k[0] = fc[ca];
+        cy->k[1] = fc[cb];
+    }
+    /* kd-tree over the edge cylinders' detection boxes */
+    RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls);
+    for (i = 0; i < F->n_edge_cyls; i++) {
+        const re__corner_t *A = &F->corners[F->cyls[i].k[0]], *B = &F->corners[F->cyls[i].k[1]];
+        double g = 1.5 * fmax(A->reach, B->reach);
+        unsigned a;
+        for (a = 0; a < 3; a++) {
+            box[6 * i + a] = fmin(A->v[a], B->v[a]) - g;
+            box[6 * i + 3 + a] = fmax(A->v[a], B->v[a]) + g;
+        }
+    }
+    F->kd.box = box;
+    F->kd.cap_leafrefs = 4 * F->n_edge_cyls + 64;
+    F->kd.cap_nodes = 2 * F->kd.cap_leafrefs;
+    F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
+    F->kd.n_nodes = F->kd.n_leafrefs = 0;
+    F->kd.dup_left = F->kd.cap_leafrefs - F->n_edge_cyls;
+    RE__TAKE(F->kd.nodes, re__node_t, F->kd.cap_nodes);
+    RE__TAKE(F->kd.leafrefs, unsigned, F->kd.cap_leafrefs);
+    RE__TAKE(F->kd.tmp, unsigned, F->kd.cap_tmp);
+    for (i = 0; i < F->n_edge_cyls; i++) F->kd.tmp[i] = i;
+    F->kd.n_tmp = F->n_edge_cyls;
+    if (re__kd_build(&F->kd, 0, F->n_edge_cyls, 0) == RE__NONE)
+        return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "kd-tree scratch too small");
+    an->st.rounded_corners += nco;
+    an->st.spheres += ns;
+    an->st.cylinders += ncyl;
+    an->st.extra_cylinders += ncyl - F->n_edge_cyls;
+    an->st.kd_nodes += F->kd.n_nodes;
+    return RE_OK;
+}
+
+#define RE__ALIGN(x) (((x) + 15u) & ~(size_t)15u)
+
+static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
+{
+    return RE__ALIGN(sizeof(unsigned) * an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
+           RE__ALIGN(sizeof(double) * 3 * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_spheres) +
+           RE__ALIGN(sizeof(re__cyl_t) * F->n_cyls) + RE__ALIGN(sizeof(re__corner_t) * F->n_corners) +
+           RE__ALIGN(sizeof(unsigned) * F->n_refs) + RE__ALIGN(sizeof(re__node_t) * F->kd.n_nodes) +
+           RE__ALIGN(sizeof(unsigned) * F->kd.n_leafrefs);
+}
+
+static void *re__put(unsigned char **at, const void *src, size_t bytes)
+{
+    void *dst = *at;
+    if (bytes) memcpy(dst, src, bytes);
+    *at += RE__ALIGN(bytes);
+    return dst;
+}
+
+static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *mem, re__object_t *o)
+{
+    unsigned char *at = mem;
+    o->n_tris = an->T;
+    o->n_planes = F->n_planes;
+    o->n_spheres = F->n_spheres;
+    o->n_cyls = F->n_cyls;
+    o->n_corners = F->n_corners;
+    o->n_refs = F->n_refs;
+    o->n_nodes = F->kd.n_nodes;
+    o->n_leafrefs = F->kd.n_leafrefs;
+    o->size = an->size;
+    o->tri_plane = (const unsigned *)re__put(&at, F->tri_plane, sizeof(unsigned) * an->T);
+    o->planes = (const re__plane_t *)re__put(&at, F->planes, sizeof(re__plane_t) * F->n_planes);
+    o->sph = (const double *)re__put(&at, F->sph, sizeof(double) * 3 * F->n_spheres);
+    o->sph_corner = (const unsigned *)re__put(&at, F->sph_corner, sizeof(unsigned) * F->n_spheres);
+    o->cyls = (const re__cyl_t *)re__put(&at, F->cyls, sizeof(re__cyl_t) * F->n_cyls);
+    o->corners = (const re__corner_t *)re__put(&at, F->corners, sizeof(re__corner_t) * F->n_corners);
+    o->refs = (const unsigned *)re__put(&at, F->refs, sizeof(unsigned) * F->n_refs);
+    o->nodes = (const re__node_t *)re__put(&at, F->kd.nodes, sizeof(re__node_t) * F->kd.n_nodes);
+    o->leafrefs = (const unsigned *)re__put(&at, F->kd.leafrefs, sizeof(unsigned) * F->kd.n_leafrefs);
+    {
+        unsigned c;
+        o->rmax = 0;
+        for (c = 0; c < F->n_corners; c++) o->rmax = fmax(o->rmax, F->corners[c].r);
+    }
+}
+
+/* ---- Per-object driver --------------------------------------------------------- */
+
+static size_t re__scratch_bound(const re_mesh_t *m)
+{
+    unsigned T = 0;
+    long long bad;
+    if (re__count_tris(m, &T, &bad) != RE_OK) T = 0;
+    return 128u * (size_t)m->vertex_count + 1800u * (size_t)T + 65536u;
+}
+
+static re_result_t re__analyze(const re_scene_desc_t *desc, unsigned obj, re__arena_t *ar,
+                               re_diag_t *diag, re__an_t *an, re__final_t *F)
+{
+    const re_mesh_t *m = &desc->objects[obj];
+    re_result_t rc;
+    double *patch_r;
+    unsigned *uf;
+    long long bad;
+    char msg[128];
+    memset(an, 0, sizeof *an);
+    memset(F, 0, sizeof *F);
+    an->desc = desc;
+    an->m = m;
+    an->obj = obj;
+    an->diag = diag;
+    if ((m->vertex_count && !m->positions) || (m->index_count && !m->indices) ||
+        (m->position_type != RE_FLOAT64 && m->position_type != RE_FLOAT32))
+        return re__fail(an, RE_ERR_INVALID_ARG, -1, "NULL positions/indices or unknown position_type");
+    if (m->position_stride && m->position_stride < 3 * (m->position_type == RE_FLOAT32 ? sizeof(float) : sizeof(double)))
+        return re__fail(an, RE_ERR_INVALID_ARG, -1, "position_stride smaller than one vertex");
+    if (!m->edge_radius && !(m->radius > 0 && isfinite(m->radius))) {
+        snprintf(msg, sizeof msg, "radius %g must be finite and > 0", m->radius);
+        return re__fail(an, RE_ERR_BAD_RADIUS, -1, msg);
+    }
+    if (!isfinite(m->radius)) return re__fail(an, RE_ERR_BAD_RADIUS, -1, "radius is not finite");
+    rc = re__count_tris(m, &an->T, &bad);
+    if (rc == RE_ERR_BAD_FACE) {
+        if (bad >= 0) snprintf(msg, sizeof msg, "polygon %lld has fewer than 3 corners", bad);
+        else snprintf(msg, sizeof msg, "index_count %u is not 3 * triangles or the sum of face_sizes", m->index_count);
+        return re__fail(an, rc, bad, msg);
+    }
+    if (rc != RE_OK) return re__fail(an, rc, -1, "too many triangles");
+    an->V = m->vertex_count;
+    if (an->V >= 0x7FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many vertices");
+    an->st.triangles = an->T;
+    if ((rc = re__triangles(an, ar)) != RE_OK) return rc;
+    if ((rc = re__edges(an, ar)) != RE_OK) return rc;
+    if ((rc = re__planes(an, ar)) != RE_OK) return rc;
+    if ((rc = re__corners(an, ar)) != RE_OK) return rc;
+    if ((rc = re__propagate(an, ar)) != RE_OK) return rc;
+    if ((rc = re__radii(an, ar, &patch_r, &uf)) != RE_OK) return rc;
+    return re__finish(an, ar, patch_r, uf, F);
+}
+
+static void re__add_stats(re_stats_t *a, const re_stats_t *b)
+{
+    a->triangles += b->triangles;
+    a->edges += b->edges;
+    a->flat_edges += b->flat_edges;
+    a->convex_edges += b->convex_edges;
+    a->concave_edges += b->concave_edges;
+    a->boundary_edges += b->boundary_edges;
+    a->nonmanifold_edges += b->nonmanifold_edges;
+    a->rounded_edges += b->rounded_edges;
+    a->rounded_corners += b->rounded_corners;
+    a->mixed_vertices += b->mixed_vertices;
+    a->spheres += b->spheres;
+    a->cylinders += b->cylinders;
+    a->extra_cylinders += b->extra_cylinders;
+    a->clamped += b->clamped;
+    a->kd_nodes += b->kd_nodes;
+    a->bytes += b->bytes;
+}
+
+static re_result_t re__check_desc(const re_scene_desc_t *desc, re_diag_t *diag)
+{
+    if (diag) {
+        diag->result = RE_OK;
+        diag->element = -1;
+        diag->object = 0;
+        diag->message[0] = 0;
+    }
+    if (!desc || (desc->object_count && !desc->objects) || desc->object_count >= 0x10000000u ||
+        (desc->radius_policy != RE_RADIUS_CLAMP && desc->radius_policy != RE_RADIUS_REJECT) ||
+        (desc->bad_input != RE_BAD_INPUT_REJECT && desc->bad_input != RE_BAD_INPUT_SKIP)) {
+        if (diag) {
+            diag->result = RE_ERR_INVALID_ARG;
+            snprintf(diag->message, sizeof diag->message, "NULL desc/objects or an unknown policy value");
+        }
+        return RE_ERR_INVALID_ARG;
+    }
+    return RE_OK;
+}
+
+static size_t re__header_bytes(unsigned n) { return RE__ALIGN(sizeof(re_scene_t)) + RE__ALIGN(sizeof(re__object_t) * n); }
+
+RE_DEF re_result_t re_build_sizes(const re_scene_desc_t *desc, re_sizes_t *sizes, re_diag_t *diag)
+{
+    re_result_t rc = re__check_desc(desc, diag);
+    size_t total, high = 0, cap = 0;
+    unsigned i;
+    void *scratch = NULL;
+    if (rc != RE_OK) return rc;
+    if (!sizes) return RE_ERR_INVALID_ARG;
+    total = re__header_bytes(desc->object_count);
+    for (i = 0; i < desc->object_count; i++) cap = cap > re__scratch_bound(&desc->objects[i]) ? cap : re__scratch_bound(&desc->objects[i]);
+    if (cap && !(scratch = RE_MALLOC(cap, desc->alloc_ctx))) return RE_ERR_OUT_OF_MEMORY;
+    for (i = 0; i < desc->object_count; i++) {
+        re__an_t an;
+        re__final_t F;
+        re__arena_t ar;
+        ar.base = (unsigned char *)scratch;
+        ar.cap = cap;
+        ar.used = ar.high = 0;
+        rc = re__analyze(desc, i, &ar, diag, &an, &F);
+        if (rc != RE_OK) break;
+        total += re__object_bytes(&an, &F);
+        if (ar.high + 16 > high) high = ar.high + 16;
+    }
+    if (scratch) RE_FREE(scratch, desc->alloc_ctx);
+    if (rc == RE_OK) {
+        sizes->scene_bytes = total;
+        sizes->scratch_bytes = high;
+    }
+    return rc;
+}
+
+RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem, size_t scene_bytes,
+                                 void *scratch, size_t scratch_bytes, re_scene_t **scene, re_diag_t *diag)
+{
+    re_result_t rc = re__check_desc(desc, diag);
+    unsigned char *at;
+    re_scene_t *S;
+    unsigned i;
+    if (rc != RE_OK) return rc;
+    if (!scene || !scene_mem || ((size_t)scene_mem & 15u) || (!scratch && scratch_bytes)) return RE_ERR_INVALID_ARG;
+    *scene = NULL;
+    if (scene_bytes < re__header_bytes(desc->object_count)) return RE_ERR_BUFFER_TOO_SMALL;
+    S = (re_scene_t *)scene_mem;
+    memset(S, 0, sizeof *S);
+    S->n_objects = desc->object_count;
+    S->objects = (re__object_t *)((unsigned char *)scene_mem + RE__ALIGN(sizeof(re_scene_t)));
+    S->alloc_ctx = desc->alloc_ctx;
+    at = (unsigned char *)scene_mem + re__header_bytes(desc->object_count);
+    for (i = 0; i < desc->object_count; i++) {
+        re__an_t an;
+        re__final_t F;
+        re__arena_t ar;
+        size_t need;
+        ar.base = (unsigned char *)scratch;
+        ar.cap = scratch_bytes;
+        ar.used = ar.high = 0;
+        rc = re__analyze(desc, i, &ar, diag, &an, &F);
+        if (rc != RE_OK) return rc;
+        need = re__object_bytes(&an, &F);
+        if ((size_t)(at - (unsigned char *)scene_mem) + need > scene_bytes) return RE_ERR_BUFFER_TOO_SMALL;
+        memset(&S->objects[i], 0, sizeof S->objects[i]);
+        re__pack(&an, &F, at, &S->objects[i]);
+        at += need;
+        an.st.bytes = need;
+        S->objects[i].stats = an.st;
+        re__add_stats(&S->stats, &an.st);
+    }
+    S->stats.bytes = (size_t)(at - (unsigned char *)scene_mem);
+    *scene = S;
+    return RE_OK;
+}
+
+RE_DEF void re_free(re_scene_t *scene)
+{
+    unsigned i;
+    if (!scene || !scene->owned) return;
+    for (i = 0; i < scene->n_objects; i++)
+        if (scene->objects[i].block) RE_FREE(scene->objects[i].block, scene->alloc_ctx);
+    RE_FREE(scene, scene->alloc_ctx);
+}
+
+RE_DEF re_result_t re_build(const re_scene_desc_t *desc, re_scene_t **scene, re_diag_t *diag)
+{
+    re_result_t rc = re__check_desc(desc, diag);
+    size_t cap = 0, hb;
+    unsigned i;
+    void *scratch = NULL;
+    re_scene_t *S;
+    if (rc != RE_OK) return rc;
+    if (!scene) return RE_ERR_INVALID_ARG;
+    *scene = NULL;
+    hb = re__header_bytes(desc->object_count);
+    S = (re_scene_t *)RE_MALLOC(hb, desc->alloc_ctx);
+    if (!S) return RE_ERR_OUT_OF_MEMORY;
+    memset(S, 0, hb);
+    S->n_objects = desc->object_count;
+    S->objects = (re__object_t *)((unsigned char *)S + RE__ALIGN(sizeof(re_scene_t)));
+    S->alloc_ctx = desc->alloc_ctx;
+    S->owned = 1;
+    S->stats.bytes = hb;
+    for (i = 0; i < desc->object_count; i++) {
+        size_t b = re__scratch_bound(&desc->objects[i]);
+        if (b > cap) cap = b;
+    }
+    for (i = 0; i < desc->object_count && rc == RE_OK; i++) {
+        re__an_t an;
+        re__final_t F;
+        re__arena_t ar;
+        size_t need;
+        for (;;) {
+            if (!scratch && !(scratch = RE_MALLOC(cap, desc->alloc_ctx))) {
+                rc = RE_ERR_OUT_OF_MEMORY;
+                break;
+            }
+            ar.base = (unsigned char *)scratch;
+            ar.cap = cap;
+            ar.used = ar.high = 0;
+            rc = re__analyze(desc, i, &ar, diag, &an, &F);
+            if (rc != RE_ERR_BUFFER_TOO_SMALL) break;
+            RE_FREE(scratch, desc->alloc_ctx); /* the bound was short: grow, retry */
+            scratch = NULL;
+            cap *= 2;
+        }
+        if (rc != RE_OK) break;
+        need = re__object_bytes(&an, &F);
+        S->objects[i].block = need ? RE_MALLOC(need, desc->alloc_ctx) : NULL;
+        if (need && !S->objects[i].block) {
+            rc = RE_ERR_OUT_OF_MEMORY;
+            break;
+        }
+        re__pack(&an, &F, (unsigned char *)S->objects[i].block, &S->objects[i]);
+        an.st.bytes = need;
+        S->objects[i].stats = an.st;
+        re__add_stats(&S->stats, &an.st);
+    }
+    if (scratch) RE_FREE(scratch, desc->alloc_ctx);
+    if (rc != RE_OK) {
+        re_free(S);
+        return rc;
+    }
+    *scene = S;
+    return RE_OK;
+}
+
+RE_DEF void re_get_stats(const re_scene_t *scene, re_stats_t *stats)
+{
+    if (!stats) return;
+    memset(stats, 0, sizeof *stats);
+    if (scene) *stats = scene->stats;
+}
+
+RE_DEF double re_object_radius(const re_scene_t *scene, unsigned object)
+{
+    return scene && object < scene->n_objects ? scene->objects[object].rmax : 0.0;
+}
+
+/* ---- Query ------------------------------------------------------------------------ */
+
+/* Entry of the ray I + s*d into a sphere: the smaller root, or HUGE_VAL. */
+static double re__sphere_entry(const double I[3], const double d[3], const double c[3], double r)
+{
+    double w[3], A = re__dot(d, d), B, C, disc, q, s0, s1;
+    re__sub(I, c, w);
+    B = re__dot(d, w);
+    C = re__dot(w, w) - r * r;
+    disc = B * B - A * C;
+    if (disc < 0) return HUGE_VAL;
+    q = -(B + (B < 0 ? -sqrt(disc) : sqrt(disc))); /* no cancellation */
+    if (q == 0) return HUGE_VAL;
+    s0 = q / A;
+    s1 = C / q;
+    if (s0 > s1) { double x = s0; s0 = s1; s1 = x; }
+    return s1 < 0 ? HUGE_VAL : fmax(s0, 0.0);
+}
+
+/* Entry into the side of the finite cylinder of radius r around a -> b;
+   *h gets the axial position of the entry point. */
+static double re__cyl_entry(const double I[3], const double d[3], const double a[3], const double b[3],
+                            double r, double *h)
+{
+    double u[3], w[3], dp[3], wp[3], L, du, wu, A, B, C, disc, q, s0, s1, hh;
+    re__sub(b, a, u);
+    L = re__len(u);
+    if (!(L > 0)) return HUGE_VAL;
+    u[0] /= L, u[1] /= L, u[2] /= L;
+    re__sub(I, a, w);
+    du = re__dot(d, u);
+    wu = re__dot(w, u);
+    re__madd(d, -du, u, dp);
+    re__madd(w, -wu, u, wp);
+    A = re__dot(dp, dp);
+    if (!(A > 0)) return HUGE_VAL; /* parallel to the axis: only the spheres matter */
+    B = re__dot(dp, wp);
+    C = re__dot(wp, wp) - r * r;
+    disc = B * B - A * C;
+    if (disc < 0) return HUGE_VAL;
+    q = -(B + (B < 0 ? -sqrt(disc) : sqrt(disc)));
+    if (q == 0) return HUGE_VAL;
+    s0 = q / A;
+    s1 = C / q;
+    if (s0 > s1) { double x = s0; s0 = s1; s1 = x; }
+    if (s1 < 0) return HUGE_VAL;
+    s0 = fmax(s0, 0.0);
+    hh = wu + s0 * du;
+    if (hh < 0 || hh > L) return HUGE_VAL; /* beyond the span: a sphere cap */
+    *h = hh;
+    return s0;
+}
+
+static double re__dist2_segment(const double p[3], const double a[3], const double b[3])
+{
+    double ab[3], ap[3], t, l2, q[3];
+    re__sub(b, a, ab);
+    re__sub(p, a, ap);
+    l2 = re__dot(ab, ab);
+    t = l2 > 0 ? re__dot(ap, ab) / l2 : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    re__madd(a, t, ab, q);
+    re__sub(p, q, q);
+    return re__dot(q, q);
+}
+
+static int re__corner_has_plane(const re__object_t *o, const re__corner_t *K, unsigned f)
+{
+    unsigned j;
+    for (j = 0; j < K->np; j++)
+        if (o->refs[K->first + j] == f) return 1;
+    return 0;
+}
+
+static int re__add_corner(unsigned *set, unsigned *n, unsigned c)
+{
+    unsigned i;
+    for (i = 0; i < *n; i++)
+        if (set[i] == c) return 0;
+    if (*n == RE__MAX_WALK) return 0;
+    set[(*n)++] = c;
+    return 1;
+}
+
+/* Is I (on plane f) on the flat part of its face, i.e. is I - r*n_f inside
+   every shifted plane of the corners around it? (erosion + dilation: the
+   flat part is the offset of the eroded face.) */
+static int re__on_flat_part(const re__object_t *o, const unsigned *set, unsigned n, unsigned f, const double I[3])
+{
+    const re__plane_t *pf = &o->planes[f];
+    unsigned i, j;
+    for (i = 0; i < n; i++) {
+        const re__corner_t *K = &o->corners[set[i]];
+        double q[3], mag;
+        re__madd(I, -K->r, pf->n, q);
+        mag = fabs(q[0]) + fabs(q[1]) + fabs(q[2]);
+        for (j = 0; j < K->np; j++) {
+            const re__plane_t *g = &o->planes[o->refs[K->first + j]];
+            if (o->refs[K->first + j] == f) continue;
+            if (re__dot(g->n, q) - (g->c - K->r) > RE__SIDE_ULPS * (fabs(g->c) + mag + K->r)) return 0;
+        }
+    }
+    return 1;
+}
+
+typedef struct re__best_t {
+    double s;
+    re_feature_t kind;
+    unsigned index;
+    double h; /* axial position for cylinders */
+} re__best_t;
+
+static void re__try_sphere(const re__object_t *o, unsigned s, double r, const double I[3], const double d[3], re__best_t *b)
+{
+    double e = re__sphere_entry(I, d, o->sph + 3 * (size_t)s, r);
+    if (e < b->s) b->s = e, b->kind = RE_FEATURE_SPHERE, b->index = s;
+}
+
+static void re__try_cyl(const re__object_t *o, unsigned c, double r, const double I[3], const double d[3], re__best_t *b)
+{
+    const re__cyl_t *cy = &o->cyls[c];
+    double h = 0, e = re__cyl_entry(I, d, o->sph + 3 * (size_t)cy->s[0], o->sph + 3 * (size_t)cy->s[1], r, &h);
+    if (e < b->s) b->s = e, b->kind = RE_FEATURE_CYLINDER, b->index = c, b->h = h;
+}
+
+/* First entry into the rounded solid among the features of the corners in
+   `set`: the solid is the union of the capsules around the eroded
+   polytope's vertices and edges and the flat slabs, and past I the ray is
+   inside the sharp mesh, so only capsules can be entered (docs: "Query"). */
+static void re__nearest_feature(const re__object_t *o, const unsigned *set, unsigned n, const double I[3],
+                                const double d[3], re__best_t *b)
+{
+    unsigned i, j;
+    b->s = HUGE_VAL;
+    b->kind = RE_FEATURE_FACE;
+    b->index = 0;
+    b->h = 0;
+    for (i = 0; i < n; i++) {
+        const re__corner_t *K = &o->corners[set[i]];
+        const unsigned *ref = o->refs + K->first;
+        for (j = 0; j < K->np; j++) {
+            unsigned c = ref[K->np + j];
+            re__try_cyl(o, c, K->r, I, d, b);
+            /* the far end sphere may belong to a corner not in the set */
+            re__try_sphere(o, o->cyls[c].s[0], K->r, I, d, b);
+            re__try_sphere(o, o->cyls[c].s[1], K->r, I, d, b);
+        }
+        for (j = 0; j < K->ns; j++) re__try_sphere(o, ref[2 * K->np + j], K->r, I, d, b);
+        for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[2 * K->np + K->ns + j], K->r, I, d, b);
+    }
+}
+
+/* Where the ray leaves the sharp mesh: the first shifted-out plane among
+   the corners' faces (the mesh is convex around a rounded corner). */
+static double re__exit(const re__object_t *o, const unsigned *set, unsigned n, const double I[3], const double d[3],
+                       unsigned *plane)
+{
+    double best = HUGE_VAL;
+    unsigned i, j;
+    *plane = RE__NONE;
+    for (i = 0; i < n; i++) {
+        const re__corner_t *K = &o->corners[set[i]];
+        for (j = 0; j < K->np; j++) {
+            const re__plane_t *g = &o->planes[o->refs[K->first + j]];
+            double nd = re__dot(g->n, d), s;
+            if (!(nd > 0)) continue;
+            s = fmax(0.0, (g->c - re__dot(g->n, I)) / nd);
+            if (s < best) best = s, *plane = o->refs[K->first + j];
+        }
+    }
+    return best;
+}
+
+static void re__feature_normal(const re__object_t *o, const re__best_t *b, const double P[3], double nrm[3])
+{
+    double c[3], len;
+    if (b->kind == RE_FEATURE_SPHERE) {
+        re__sub(P, o->sph + 3 * (size_t)b->index, nrm);
+    } else {
+        const re__cyl_t *cy = &o->cyls[b->index];
+        const double *a = o->sph + 3 * (size_t)cy->s[0];
+        double u[3];
+        re__sub(o->sph + 3 * (size_t)cy->s[1], a, u);
+        len = re__len(u);
+        re__madd(a, b->h / len, u, c);
+        re__sub(P, c, nrm);
+    }
+    len = re__len(nrm);
+    if (len > 0) nrm[0] /= len, nrm[1] /= len, nrm[2] /= len;
+}
+
+RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                              unsigned triangle, double t_host, re_hit_t *out)
+{
+    const re__object_t *o;
+    unsigned set[RE__MAX_WALK], n = 0, f, node, i, j, iter, exit_plane;
+    double I[3];
+    re__best_t best;
+    double s_exit;
+    if (!out) return RE_UNCHANGED;
+    memset(out, 0, sizeof *out);
+    out->kind = RE_UNCHANGED;
+    out->t = t_host;
+    out->object = object;
+    out->feature = RE_FEATURE_FACE;
+    out->feature_index = triangle;
+    if (!scene || !o3 || !dir || object >= scene->n_objects) return RE_UNCHANGED;
+    re__madd(o3, t_host, dir, I);
+    out->point[0] = I[0], out->point[1] = I[1], out->point[2] = I[2];
+    o = &scene->objects[object];
+    if (triangle >= o->n_tris || !re__finite3(I) || !re__finite3(dir) || !o->n_nodes) return RE_UNCHANGED;
+    f = o->tri_plane[triangle];
+    if (f == RE__NONE) return RE_UNCHANGED;
+    out->normal[0] = o->planes[f].n[0], out->normal[1] = o->planes[f].n[1], out->normal[2] = o->planes[f].n[2];
+    /* detection: the kd-tree leaf holding I, then the corners whose rounded
+       zone can reach I (paper §3.1 detection cylinders, widened to cover the
+       exact corners) */
+    for (node = 0; (o->nodes[node].info & 3u) != 3u;) {
+        const re__node_t *nd = &o->nodes[node];
+        node = I[nd->info & 3u] <= nd->split ? node + 1 : nd->index;
+    }
+    for (i = 0; i < (o->nodes[node].info >> 2); i++) {
+        const re__cyl_t *cy = &o->cyls[o->leafrefs[o->nodes[node].index + i]];
+        const re__corner_t *A = &o->corners[cy->k[0]], *B = &o->corners[cy->k[1]];
+        double g = 1.5 * fmax(A->reach, B->reach);
+        if (re__dist2_segment(I, A->v, B->v) > g * g) continue;
+        if (re__corner_has_plane(o, A, f)) re__add_corner(set, &n, cy->k[0]);
+        if (re__corner_has_plane(o, B, f)) re__add_corner(set, &n, cy->k[1]);
+    }
+    if (!n || re__on_flat_part(o, set, n, f, I)) return RE_UNCHANGED;
+    /* inside the removed volume: nearest capsule or the exit, walking the
+       adjacency graph (cylinder -> corner) while the ray runs toward corners
+       not yet in the set (grazing rays, §3.1) */
+    for (iter = 0;; iter++) {
+        double P[3], s;
+        int grown = 0;
+        re__nearest_feature(o, set, n, I, dir, &best);
+        s_exit = re__exit(o, set, n, I, dir, &exit_plane);
+        s = fmin(best.s, s_exit);
+        if (!(s < HUGE_VAL) || iter == RE__MAX_WALK) break;
+        re__madd(I, s, dir, P);
+        for (i = 0; i < n && n < RE__MAX_WALK; i++) {
+            const re__corner_t *K = &o->corners[set[i]];
+            for (j = 0; j < K->np; j++) {
+                const re__cyl_t *cy = &o->cyls[o->refs[K->first + K->np + j]];
+                unsigned w = cy->k[0] == set[i] ? cy->k[1] : cy->k[0];
+                double g = 1.5 * o->corners[w].reach;
+                if (re__dist2_segment(o->corners[w].v, I, P) <= g * g && re__add_corner(set, &n, w)) grown = 1;
+            }
+        }
+        if (!grown) break;
+    }
+    if (best.s <= s_exit && best.s < HUGE_VAL) {
+        out->kind = RE_HIT_ROUNDED;
+        out->t = t_host + best.s;
+        re__madd(I, best.s, dir, out->point);
+        re__feature_normal(o, &best, out->point, out->normal);
+        out->feature = best.kind;
+        out->feature_index = best.index;
+    } else if (s_exit < HUGE_VAL) {
+        const re__plane_t *g = &o->planes[exit_plane];
+        out->kind = RE_PASS_THROUGH;
+        out->t = t_host + s_exit;
+        re__madd(I, s_exit, dir, out->point);
+        out->normal[0] = g->n[0], out->normal[1] = g->n[1], out->normal[2] = g->n[2];
+    }
+    return out->kind;
+}
+
+RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
+{
+    const re__object_t *o;
+    unsigned set[2], n = 0, plane;
+    double s, push;
+    const double *nrm;
+    if (!origin) return;
+    if (!hit) return;
+    origin[0] = hit->point[0], origin[1] = hit->point[1], origin[2] = hit->point[2];
+    if (!scene || hit->object >= scene->n_objects) return;
+    o = &scene->objects[hit->object];
+    push = RE_ORIGIN_OFFSET_REL * o->size;
+    nrm = hit->normal;
+    if (hit->kind == RE_HIT_ROUNDED && dir) {
+        if (hit->feature == RE_FEATURE_SPHERE && hit->feature_index < o->n_spheres) {
+            set[n++] = o->sph_corner[hit->feature_index];
+        } else if (hit->feature == RE_FEATURE_CYLINDER && hit->feature_index < o->n_cyls) {
+            set[n++] = o->cyls[hit->feature_index].k[0];
+            if (o->cyls[hit->feature_index].k[1] != RE__NONE) set[n++] = o->cyls[hit->feature_index].k[1];
+        }
+        s = re__exit(o, set, n, hit->point, dir, &plane);
+        if (s < HUGE_VAL) {
+            re__madd(hit->point, s, dir, origin);
+            nrm = o->planes[plane].n;
+        }
+    }
+    re__madd(origin, push, nrm, origin);
+}
+
+RE_DEF unsigned re_object_count(const re_scene_t *scene) { return scene ? scene->n_objects : 0u; }
+RE_DEF unsigned re_sphere_count(const re_scene_t *scene, unsigned object)
+{
+    return scene && object < scene->n_objects ? scene->objects[object].n_spheres : 0u;
+}
+RE_DEF unsigned re_cylinder_count(const re_scene_t *scene, unsigned object)
+{
+    return scene && object < scene->n_objects ? scene->objects[object].n_cyls : 0u;
+}
+RE_DEF int re_get_sphere(const re_scene_t *scene, unsigned object, unsigned i, re_sphere_t *out)
+{
+    const re__object_t *o;
+    const re__corner_t *K;
+    if (!scene || !out || object >= scene->n_objects || i >= scene->objects[object].n_spheres) return 0;
+    o = &scene->objects[object];
+    K = &o->corners[o->sph_corner[i]];
+    out->center[0] = o->sph[3 * (size_t)i], out->center[1] = o->sph[3 * (size_t)i + 1],
+    out->center[2] = o->sph[3 * (size_t)i + 2];
+    out->radius = K->r;
+    out->vertex = K->vertex;
+    return 1;
+}
+RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i, re_cylinder_t *out)
+{
+    const re__object_t *o;
+    const re__cyl_t *cy;
+    unsigned a;
+    if (!scene || !out || object >= scene->n_objects || i >= scene->objects[object].n_cyls) return 0;
+    o = &scene->objects[object];
+    cy = &o->cyls[i];
+    for (a = 0; a < 3; a++) {
+        out->a[a] = o->sph[3 * (size_t)cy->s[0] + a];
+        out->b[a] = o->sph[3 * (size_t)cy->s[1] + a];
+        out->n0[a] = o->planes[cy->p[0]].n[a];
+        out->n1[a] = o->planes[cy->p[1]].n[a];
+    }
+    out->radius = o->corners[cy->k[0]].r;
+    out->sa = cy->s[0];
+    out->sb = cy->s[1];
+    out->edge_v0 = cy->k[1] == RE__NONE ? -1 : (long long)o->corners[cy->k[0]].vertex;
+    out->edge_v1 = cy->k[1] == RE__NONE ? -1 : (long long)o->corners[cy->k[1]].vertex;
+    return 1;
+}
+
 
 /* ==== [section: baselines] (owned by the baselines/example helper) ==== */
 /* ---- Bevel-shader baselines: implementation ---------------------------- */

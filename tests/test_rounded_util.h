@@ -1,0 +1,238 @@
+/* tests/test_rounded_util.h — meshes, host hits and independent oracles for
+   the rounded_edges.h tests. Nothing here calls the code under test. */
+#ifndef TEST_ROUNDED_UTIL_H
+#define TEST_ROUNDED_UTIL_H
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct tm_mesh_t {
+    double *v;
+    unsigned nv, cap_v;
+    unsigned *idx;
+    unsigned ni, cap_i;
+} tm_mesh_t;
+
+static void tm_free(tm_mesh_t *m) { free(m->v); free(m->idx); memset(m, 0, sizeof *m); }
+static unsigned tm_vert(tm_mesh_t *m, double x, double y, double z)
+{
+    if (m->nv == m->cap_v) { m->cap_v = m->cap_v ? 2 * m->cap_v : 64; m->v = (double *)realloc(m->v, sizeof(double) * 3 * m->cap_v); }
+    m->v[3 * m->nv] = x, m->v[3 * m->nv + 1] = y, m->v[3 * m->nv + 2] = z;
+    return m->nv++;
+}
+static void tm_tri(tm_mesh_t *m, unsigned a, unsigned b, unsigned c)
+{
+    if (m->ni + 3 > m->cap_i) { m->cap_i = m->cap_i ? 2 * m->cap_i : 192; m->idx = (unsigned *)realloc(m->idx, sizeof(unsigned) * m->cap_i); }
+    m->idx[m->ni++] = a, m->idx[m->ni++] = b, m->idx[m->ni++] = c;
+}
+/* quad a b c d counter-clockwise from outside, split along a-c */
+static void tm_quad(tm_mesh_t *m, unsigned a, unsigned b, unsigned c, unsigned d) { tm_tri(m, a, b, c); tm_tri(m, a, c, d); }
+
+/* axis-aligned box [lo, hi] */
+static void tm_box(tm_mesh_t *m, const double lo[3], const double hi[3])
+{
+    unsigned b = m->nv, i;
+    for (i = 0; i < 8; i++) tm_vert(m, i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]);
+    tm_quad(m, b + 0, b + 2, b + 3, b + 1); /* z- */
+    tm_quad(m, b + 4, b + 5, b + 7, b + 6); /* z+ */
+    tm_quad(m, b + 0, b + 1, b + 5, b + 4); /* y- */
+    tm_quad(m, b + 2, b + 6, b + 7, b + 3); /* y+ */
+    tm_quad(m, b + 0, b + 4, b + 6, b + 2); /* x- */
+    tm_quad(m, b + 1, b + 3, b + 7, b + 5); /* x+ */
+}
+
+static void tm_sub(const double a[3], const double b[3], double o[3]) { o[0] = a[0] - b[0], o[1] = a[1] - b[1], o[2] = a[2] - b[2]; }
+static double tm_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void tm_cross(const double a[3], const double b[3], double o[3])
+{
+    double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
+    o[0] = x, o[1] = y, o[2] = z;
+}
+static double tm_len(const double a[3]) { return sqrt(tm_dot(a, a)); }
+static void tm_norm(double a[3]) { double l = tm_len(a); a[0] /= l, a[1] /= l, a[2] /= l; }
+
+/* Brute-force nearest front-face hit (Moller-Trumbore in double). */
+static int tm_hit(const tm_mesh_t *m, const double o[3], const double d[3], double *t_out, unsigned *tri_out)
+{
+    unsigned t;
+    double best = HUGE_VAL;
+    int found = 0;
+    for (t = 0; t < m->ni / 3; t++) {
+        const double *a = m->v + 3 * m->idx[3 * t], *b = m->v + 3 * m->idx[3 * t + 1], *c = m->v + 3 * m->idx[3 * t + 2];
+        double e1[3], e2[3], p[3], q[3], s[3], det, u, v, tt, n[3];
+        tm_sub(b, a, e1);
+        tm_sub(c, a, e2);
+        tm_cross(e1, e2, n);
+        if (tm_dot(n, d) >= 0) continue; /* back face */
+        tm_cross(d, e2, p);
+        det = tm_dot(e1, p);
+        if (det == 0) continue;
+        tm_sub(o, a, s);
+        u = tm_dot(s, p) / det;
+        if (u < -1e-12 || u > 1 + 1e-12) continue;
+        tm_cross(s, e1, q);
+        v = tm_dot(d, q) / det;
+        if (v < -1e-12 || u + v > 1 + 1e-12) continue;
+        tt = tm_dot(e2, q) / det;
+        if (tt > 0 && tt < best) best = tt, *tri_out = t, found = 1;
+    }
+    *t_out = best;
+    return found;
+}
+
+/* ---- Oracle 1: the analytic rounded box (inner box (+) ball) ---- */
+static double tm_rbox_sdf(const double c[3], const double half[3], double r, const double p[3])
+{
+    double q[3], m = -HUGE_VAL, o = 0;
+    int i;
+    for (i = 0; i < 3; i++) {
+        q[i] = fabs(p[i] - c[i]) - (half[i] - r);
+        m = fmax(m, q[i]);
+        o += q[i] > 0 ? q[i] * q[i] : 0;
+    }
+    return sqrt(o) + fmin(m, 0.0) - r;
+}
+static void tm_rbox_normal(const double c[3], const double half[3], double r, const double p[3], double n[3])
+{
+    double q[3];
+    int i, k = 0;
+    (void)r;
+    for (i = 0; i < 3; i++) q[i] = fabs(p[i] - c[i]) - (half[i] - r);
+    if (q[0] > 0 || q[1] > 0 || q[2] > 0) {
+        for (i = 0; i < 3; i++) n[i] = q[i] > 0 ? (p[i] > c[i] ? q[i] : -q[i]) : 0;
+        tm_norm(n);
+        return;
+    }
+    for (i = 1; i < 3; i++) if (q[i] > q[k]) k = i;
+    n[0] = n[1] = n[2] = 0;
+    n[k] = p[k] > c[k] ? 1 : -1;
+}
+
+/* Sphere tracing of an exact distance (1-Lipschitz), then the residual.
+   Returns the first t with sdf <= eps*scale, or HUGE_VAL beyond tmax. */
+typedef double (*tm_sdf_fn)(const void *ctx, const double p[3]);
+static double tm_trace(tm_sdf_fn f, const void *ctx, const double o[3], const double d[3], double tmax, double scale)
+{
+    double t = 0, dl = tm_len(d), p[3];
+    int it;
+    for (it = 0; it < 2000000; it++) {
+        double s;
+        p[0] = o[0] + t * d[0], p[1] = o[1] + t * d[1], p[2] = o[2] + t * d[2];
+        s = f(ctx, p);
+        if (s <= 1e-15 * scale) return t;
+        t += s / dl;
+        if (t > tmax) return HUGE_VAL;
+    }
+    return HUGE_VAL;
+}
+
+/* ---- Oracle 2: distance to the eroded polytope {x : n_i.x <= c_i - r},
+   from its vertices (all plane triples, global) and its facet polygons. ---- */
+typedef struct tm_poly_t {
+    int np;
+    double n[64][3], c[64];
+    int nv;
+    double v[512][3];
+    int fv[64][64]; /* facet g: vertex ids in angular order */
+    int fn[64];
+} tm_poly_t;
+
+static void tm_erode(tm_poly_t *P, double r)
+{
+    int i, j, k, g, q;
+    P->nv = 0;
+    for (i = 0; i < P->np; i++)
+        for (j = i + 1; j < P->np; j++)
+            for (k = j + 1; k < P->np; k++) {
+                double a[3], b[3], cc[3], x[3], det, ci = P->c[i] - r, cj = P->c[j] - r, ck = P->c[k] - r;
+                int ok = 1;
+                tm_cross(P->n[j], P->n[k], a);
+                tm_cross(P->n[k], P->n[i], b);
+                tm_cross(P->n[i], P->n[j], cc);
+                det = tm_dot(P->n[i], a);
+                if (fabs(det) < 1e-12) continue;
+                for (q = 0; q < 3; q++) x[q] = (ci * a[q] + cj * b[q] + ck * cc[q]) / det;
+                for (g = 0; g < P->np && ok; g++) if (tm_dot(P->n[g], x) > P->c[g] - r + 1e-11) ok = 0;
+                if (!ok) continue;
+                for (q = 0; q < P->nv; q++) { double dd[3]; tm_sub(P->v[q], x, dd); if (tm_len(dd) < 1e-11) break; }
+                if (q < P->nv || P->nv == 512) continue;
+                memcpy(P->v[P->nv++], x, sizeof x);
+            }
+    for (g = 0; g < P->np; g++) {
+        double cen[3] = {0, 0, 0}, e1[3], e2[3], ang[64];
+        int m = 0, a2, b2;
+        for (q = 0; q < P->nv; q++)
+            if (fabs(tm_dot(P->n[g], P->v[q]) - (P->c[g] - r)) < 1e-10 && m < 64) P->fv[g][m++] = q;
+        P->fn[g] = m;
+        if (m < 3) continue;
+        for (q = 0; q < m; q++) cen[0] += P->v[P->fv[g][q]][0] / m, cen[1] += P->v[P->fv[g][q]][1] / m, cen[2] += P->v[P->fv[g][q]][2] / m;
+        e1[0] = fabs(P->n[g][0]) < 0.9 ? 1 : 0, e1[1] = fabs(P->n[g][0]) < 0.9 ? 0 : 1, e1[2] = 0;
+        tm_cross(P->n[g], e1, e2); tm_norm(e2); tm_cross(e2, P->n[g], e1);
+        for (q = 0; q < m; q++) { double dd[3]; tm_sub(P->v[P->fv[g][q]], cen, dd); ang[q] = atan2(tm_dot(dd, e2), tm_dot(dd, e1)); }
+        for (a2 = 1; a2 < m; a2++) for (b2 = a2; b2 > 0 && ang[b2 - 1] > ang[b2]; b2--) {
+            double ta = ang[b2]; int tv = P->fv[g][b2];
+            ang[b2] = ang[b2 - 1], P->fv[g][b2] = P->fv[g][b2 - 1], ang[b2 - 1] = ta, P->fv[g][b2 - 1] = tv;
+        }
+    }
+}
+static double tm_seg_dist(const double p[3], const double a[3], const double b[3])
+{
+    double ab[3], ap[3], t, q[3];
+    tm_sub(b, a, ab); tm_sub(p, a, ap);
+    t = tm_dot(ab, ab) > 0 ? tm_dot(ap, ab) / tm_dot(ab, ab) : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    q[0] = a[0] + t * ab[0] - p[0], q[1] = a[1] + t * ab[1] - p[1], q[2] = a[2] + t * ab[2] - p[2];
+    return tm_len(q);
+}
+typedef struct tm_eroded_t { const tm_poly_t *P; double r; } tm_eroded_t;
+static double tm_eroded_sdf(const void *ctx, const double x[3])
+{
+    const tm_eroded_t *E = (const tm_eroded_t *)ctx;
+    const tm_poly_t *P = E->P;
+    double best = HUGE_VAL, inside = -HUGE_VAL;
+    int g, q;
+    for (g = 0; g < P->np; g++) inside = fmax(inside, tm_dot(P->n[g], x) - (P->c[g] - E->r));
+    if (inside <= 0) return inside - E->r;
+    for (g = 0; g < P->np; g++) {
+        int m = P->fn[g], in = 1;
+        double h = tm_dot(P->n[g], x) - (P->c[g] - E->r);
+        if (m < 3 || h <= 0) continue;
+        for (q = 0; q < m; q++) {
+            const double *a = P->v[P->fv[g][q]], *b = P->v[P->fv[g][(q + 1) % m]];
+            double ab[3], ax[3], cr[3];
+            tm_sub(b, a, ab); tm_sub(x, a, ax); tm_cross(ab, ax, cr);
+            if (tm_dot(cr, P->n[g]) < 0) { in = 0; break; }
+        }
+        if (in) best = fmin(best, h);
+        else for (q = 0; q < m; q++) best = fmin(best, tm_seg_dist(x, P->v[P->fv[g][q]], P->v[P->fv[g][(q + 1) % m]]));
+    }
+    if (best == HUGE_VAL) for (q = 0; q < P->nv; q++) { double dd[3]; tm_sub(x, P->v[q], dd); best = fmin(best, tm_len(dd)); }
+    return best - E->r;
+}
+
+/* Convex hull of points (brute force over triples; points in general
+   position), as an outward-wound triangle mesh plus its planes. */
+static void tm_hull(const double (*p)[3], int n, tm_mesh_t *m, tm_poly_t *P)
+{
+    int i, j, k, q;
+    for (i = 0; i < n; i++) tm_vert(m, p[i][0], p[i][1], p[i][2]);
+    P->np = 0;
+    for (i = 0; i < n; i++)
+        for (j = i + 1; j < n; j++)
+            for (k = j + 1; k < n; k++) {
+                double e1[3], e2[3], nn[3], c;
+                int pos = 0, neg = 0;
+                tm_sub(p[j], p[i], e1); tm_sub(p[k], p[i], e2); tm_cross(e1, e2, nn); tm_norm(nn);
+                c = tm_dot(nn, p[i]);
+                for (q = 0; q < n; q++) {
+                    double s = tm_dot(nn, p[q]) - c;
+                    if (q == i || q == j || q == k) continue;
+                    if (s > 1e-12) pos++; else if (s < -1e-12) neg++;
+                }
+                if (pos && neg) continue;
+                if (pos) { tm_tri(m, (unsigned)i, (unsigned)k, (unsigned)j); nn[0] = -nn[0], nn[1] = -nn[1], nn[2] = -nn[2]; c = -c; }
+                else tm_tri(m, (unsigned)i, (unsigned)j, (unsigned)k);
+                if (P->np < 64) { memcpy(P->n[P->np], nn, sizeof nn); P->c[P->np++] = c; }
+            }
+}
+#endif
