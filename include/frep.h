@@ -32,6 +32,9 @@
 
 #include <stddef.h>
 #include <math.h>
+#ifndef FR_NO_INTERVAL
+#include "interval.h"
+#endif
 #ifndef FR_DEF
 #  ifdef FR_STATIC
 #    if defined(__GNUC__) || defined(__clang__)
@@ -53,6 +56,11 @@ typedef enum fr_result_t {
     FR_OK = 0,
     FR_ERR_INVALID_ARG,   /* a NULL pointer or an out-of-range parameter */
     FR_ERR_OUT_OF_MEMORY, /* the allocator hook returned NULL */
+    FR_ERR_LIMIT,         /* a model exceeds a documented size limit */
+    FR_ERR_NO_INTERVAL,   /* a callback has no interval function */
+    FR_ERR_NO_GRADIENT,   /* a callback has no gradient function */
+    FR_ERR_BUFFER_TOO_SMALL, /* a caller buffer is smaller than required */
+    FR_ERR_PARSE,         /* model text rejected (see fr_diag_t line:column) */
     FR_RESULT_COUNT_
 } fr_result_t;
 
@@ -60,10 +68,342 @@ typedef enum fr_result_t {
 FR_DEF const char *fr_result_string(fr_result_t r);
 
 /* ==== [section: model] declarations: tape, primitives, operations, evaluation, parser ==== */
+/* ---------------------------------------------------------------- model --
+   SIGN CONVENTION (FRep, paper section 3 "Function representation")
+     f(p) >= 0 inside the solid, f(p) = 0 on its surface, f(p) < 0 outside.
+     A signed-distance function d (negative inside) enters a model through
+     fr_from_sdf(), which negates it and records its Lipschitz bound.
+
+   THE TAPE
+     A model is a flat array of instructions (fr_instr_t) in evaluation order,
+     in static single assignment form: instruction i writes slot i, and reads
+     only slots j < i through its operands a, b, c. There are no other
+     registers. Constants live in the instruction itself (field k); the four
+     parameters of each gradient-noise instruction live in tape->params at
+     index aux; black-box callbacks live in tape->callbacks at index aux.
+     tape->outputs[0] is the shape slot, outputs[1..n_outputs-1] are
+     attribute (colour) slots evaluated with it.
+
+     op            reads        meaning of the slot value
+     CONST         -            k
+     VAR_X/Y/Z     -            the point's x / y / z
+     NEG SQR SQRT  a            -a, a*a, sqrt(a)
+     ABS EXP LOG   a            |a|, e^a, ln a
+     SIN COS ATAN  a            sin a, cos a, atan a
+     POWI          a            a^k, k a small integer (stored as double)
+     POWC          a            a^k for a >= 0, k a real constant (pow)
+     ADD SUB MUL   a b          a+b, a-b, a*b
+     DIV MIN MAX   a b          a/b, min, max
+     RUNI          a b          R-union  a+b+sqrt(a^2+b^2-2 k a b), k = alpha;
+                                max(a,b) when k == 1 (HyperFun's rule)
+     RINT          a b          R-intersection a+b-sqrt(...); min when k == 1
+     SMAX SMIN     a b          polynomial smooth max / min of width k > 0
+     NOISE         a b c        params[aux..aux+3] = amp, freq, ox, oy, oz:
+                                amp * gnoise(freq*(a,b,c) + (ox,oy,oz))
+     CALL          a b c        callbacks[aux].point((a,b,c))
+   Every evaluator walks the same array; a new evaluator needs only a switch
+   over these opcodes. The set is closed: the builder lowers primitives and
+   operations into it (a sphere is SUBs, SQRs, ADDs), so pruning, interval and
+   Taylor evaluators see elementary operations only.
+*/
+
+/* A handle to a node (= a tape slot) while building. */
+typedef unsigned int fr_node_t;
+#define FR_NODE_NONE 0xFFFFFFFFu
+
+/* A point as three nodes: the coordinates after any space maps. */
+typedef struct fr_p3_t {
+    fr_node_t x, y, z;
+} fr_p3_t;
+
+typedef enum fr_op_t {
+    FR_OP_CONST = 0,
+    FR_OP_VAR_X, FR_OP_VAR_Y, FR_OP_VAR_Z,
+    FR_OP_NEG, FR_OP_SQR, FR_OP_SQRT, FR_OP_ABS, FR_OP_EXP, FR_OP_LOG,
+    FR_OP_SIN, FR_OP_COS, FR_OP_ATAN, FR_OP_POWI, FR_OP_POWC,
+    FR_OP_ADD, FR_OP_SUB, FR_OP_MUL, FR_OP_DIV, FR_OP_MIN, FR_OP_MAX,
+    FR_OP_RUNI, FR_OP_RINT, FR_OP_SMAX, FR_OP_SMIN,
+    FR_OP_NOISE, FR_OP_CALL,
+    FR_OP_COUNT_
+} fr_op_t;
+
+/* One instruction: 32 bytes. Unused operands are 0. */
+typedef struct fr_instr_t {
+    unsigned int op;      /* fr_op_t */
+    unsigned int a, b, c; /* operand slots, each < this instruction's index */
+    unsigned int aux;     /* NOISE: index into params; CALL: callback index */
+    double k;             /* CONST value, alpha, exponent or smoothing width */
+} fr_instr_t;
+
+#define FR_MAX_OUTPUTS 8   /* shape + up to 7 attributes */
+#define FR_NOISE_PARAMS 5  /* amp, freq, ox, oy, oz per NOISE instruction */
+
+/* Tape flags. */
+#define FR_TAPE_NO_INTERVAL 1u /* a callback lacks an interval function */
+#define FR_TAPE_NO_GRADIENT 2u /* a callback lacks a gradient function */
+#define FR_TAPE_SIGN_ONLY   4u /* pruned with sign-preserving replacements:
+                                  the sign matches the full tape, the value
+                                  need not */
+
+/* A black-box primitive. point is required; interval and grad are optional
+   and open the interval/affine and gradient paths for this tape. */
+typedef struct fr_callback_t {
+    double (*point)(const double p[3], void *user);
+    /* value and gradient at p; may be NULL */
+    double (*grad)(const double p[3], void *user, double g[3]);
+#ifndef FR_NO_INTERVAL
+    /* an enclosure of f over the box; may be NULL */
+    iv_t (*interval)(const iv_t box[3], void *user);
+#endif
+    void *user;
+} fr_callback_t;
+
+/* A finished model. Read-only once built: any number of threads may
+   evaluate one tape at once, each with its own scratch. */
+typedef struct fr_tape_t {
+    const fr_instr_t *code;
+    unsigned int n_code;
+    const double *params;            /* NOISE parameters */
+    unsigned int n_params;
+    const fr_callback_t *callbacks;
+    unsigned int n_callbacks;
+    unsigned int outputs[FR_MAX_OUTPUTS]; /* [0] shape, then attributes */
+    unsigned int n_outputs;
+    unsigned int flags;              /* FR_TAPE_* */
+    double lipschitz;                /* |grad f| <= lipschitz everywhere
+                                        (a distance bound when <= 1);
+                                        INFINITY when unknown */
+    void *alloc_ctx;                 /* for fr_tape_free */
+    void *owned;                     /* NULL for tapes in caller buffers */
+} fr_tape_t;
+
+/* A diagnostic for rejected input. element is the node index for builder
+   errors; line and column (1-based) locate parser errors, 0 otherwise. */
+typedef struct fr_diag_t {
+    fr_result_t result;
+    long long element;
+    int line, column;
+    char message[160];
+} fr_diag_t;
+
+/* Builder options; zero means defaults. */
+typedef struct fr_builder_desc_t {
+    void *alloc_ctx;        /* passed to FR_MALLOC / FR_FREE */
+    unsigned int max_nodes; /* 0: 1<<24. Building more fails with
+                               FR_ERR_LIMIT */
+} fr_builder_desc_t;
+
+/* The builder: grows a tape node by node. Every node function returns
+   FR_NODE_NONE once an error has occurred (the error is sticky and is
+   reported by fr_builder_finish), so expressions can be nested freely. */
+typedef struct fr_builder_t {
+    fr_instr_t *code;
+    double *lip;            /* per node: declared Lipschitz bound, 0 = none */
+    double *params;
+    fr_callback_t *callbacks;
+    unsigned int n, cap, n_params, cap_params, n_callbacks, cap_callbacks;
+    unsigned int max_nodes;
+    fr_node_t var[3];
+    void *alloc_ctx;
+    fr_diag_t diag;         /* the first error */
+} fr_builder_t;
+
+FR_DEF fr_result_t fr_builder_init(fr_builder_t *b, const fr_builder_desc_t *desc);
+FR_DEF void fr_builder_free(fr_builder_t *b);
+/* Compile the nodes reachable from shape (and attrs) into *out, dropping
+   the rest. *out owns its memory: release it with fr_tape_free. */
+FR_DEF fr_result_t fr_builder_finish(fr_builder_t *b, fr_node_t shape, const fr_node_t *attrs,
+                                     unsigned int n_attrs, fr_tape_t *out, fr_diag_t *diag);
+FR_DEF void fr_tape_free(fr_tape_t *t);
+
+/* ---- elementary nodes */
+FR_DEF fr_p3_t fr_coords(fr_builder_t *b);
+FR_DEF fr_node_t fr_const(fr_builder_t *b, double v);
+FR_DEF fr_node_t fr_unary(fr_builder_t *b, fr_op_t op, fr_node_t a);
+FR_DEF fr_node_t fr_binary(fr_builder_t *b, fr_op_t op, fr_node_t a, fr_node_t c);
+FR_DEF fr_node_t fr_powi(fr_builder_t *b, fr_node_t a, int n);
+FR_DEF fr_node_t fr_powc(fr_builder_t *b, fr_node_t a, double e);
+FR_DEF fr_node_t fr_add(fr_builder_t *b, fr_node_t a, fr_node_t c);
+FR_DEF fr_node_t fr_sub(fr_builder_t *b, fr_node_t a, fr_node_t c);
+FR_DEF fr_node_t fr_mul(fr_builder_t *b, fr_node_t a, fr_node_t c);
+FR_DEF fr_node_t fr_div(fr_builder_t *b, fr_node_t a, fr_node_t c);
+
+/* ---- primitives (HyperFun's library forms; f >= 0 inside) */
+/* r^2 - |p-c|^2 (hfSphere) */
+FR_DEF fr_node_t fr_sphere(fr_builder_t *b, fr_p3_t p, const double c[3], double r);
+/* 1 - (dx/a)^2 - (dy/b)^2 - (dz/c)^2 (hfEllipsoid) */
+FR_DEF fr_node_t fr_ellipsoid(fr_builder_t *b, fr_p3_t p, const double c[3], double ra, double rb, double rc);
+/* slabs (x-v)(v+d-x) intersected with R-functions of alpha (hfBlock) */
+FR_DEF fr_node_t fr_block(fr_builder_t *b, fr_p3_t p, const double vertex[3], const double size[3], double alpha);
+/* axis 0,1,2 = x,y,z: r^2 - (off-axis distance)^2 (hfCylinderX/Y/Z) */
+FR_DEF fr_node_t fr_cylinder(fr_builder_t *b, fr_p3_t p, int axis, const double c[3], double r);
+/* 1 - (u/ra)^2 - (v/rb)^2, (u,v) the off-axis offsets in x,y,z order (hfEllCylX/Y/Z) */
+FR_DEF fr_node_t fr_ell_cylinder(fr_builder_t *b, fr_p3_t p, int axis, const double c[3], double ra, double rb);
+/* any axis through point q with direction dir (need not be unit) */
+FR_DEF fr_node_t fr_cylinder_axis(fr_builder_t *b, fr_p3_t p, const double q[3], const double dir[3], double r);
+/* (along-axis offset)^2 - (off-axis distance / r)^2: double cone of radius r at unit height (hfConeX/Y/Z) */
+FR_DEF fr_node_t fr_cone(fr_builder_t *b, fr_p3_t p, int axis, const double c[3], double r);
+/* r0^2 - |p-c|^2 - R^2 + 2 R rho, rho the distance to the axis (hfTorusX/Y/Z) */
+FR_DEF fr_node_t fr_torus(fr_builder_t *b, fr_p3_t p, int axis, const double c[3], double R, double r0);
+/* the half-space n.p <= d (its boundary is the plane n.p = d): d - n.p */
+FR_DEF fr_node_t fr_halfspace(fr_builder_t *b, fr_p3_t p, const double n[3], double d);
+/* 1 - (|x'|^(2/s2) + |y'|^(2/s2))^(s2/s1) - |z'|^(2/s1), x' = (x-cx)/a ... (hfSuperell) */
+FR_DEF fr_node_t fr_superellipsoid(fr_builder_t *b, fr_p3_t p, const double c[3], const double abc[3],
+                                   double s1, double s2);
+
+/* Skeletal primitives: sum over elements of weight * kernel(r) - threshold,
+   r the distance to a point (a == b) or to the segment ab. */
+typedef enum fr_kernel_t {
+    FR_KERNEL_BLOBBY,   /* Blinn: weight * exp(-width * r^2) (hfBlobby: b, a) */
+    FR_KERNEL_METABALL, /* Nishimura: weight * (1 - 3q^2) for q = r/width <= 1/3,
+                           weight * 1.5 (1-q)^2 for q <= 1, else 0 */
+    FR_KERNEL_SOFT      /* Wyvill: weight * (1 - 22s/9 + 17s^2/9 - 4s^3/9),
+                           s = r^2/width^2 <= 1, else 0 (hfSoft) */
+} fr_kernel_t;
+typedef struct fr_skeleton_t {
+    double a[3], b[3]; /* a point when a == b, else the segment ab */
+    double width;      /* kernel width (see fr_kernel_t), > 0 */
+    double weight;     /* kernel weight */
+} fr_skeleton_t;
+FR_DEF fr_node_t fr_skeletal(fr_builder_t *b, fr_p3_t p, fr_kernel_t kernel, const fr_skeleton_t *el,
+                             unsigned int n, double threshold);
+/* Convolution surface: sum of weight * integral over the segment of the
+   Cauchy kernel 1/(1+width^2 r^2)^2 (closed form), minus threshold. */
+FR_DEF fr_node_t fr_convolution(fr_builder_t *b, fr_p3_t p, const fr_skeleton_t *segments,
+                                unsigned int n, double threshold);
+/* Gradient noise amp * g(freq * p + offset) with |g| <= 2 and
+   |g(u)-g(v)| <= 8.5 |u-v|_1, so interval evaluation stays rigorous. */
+FR_DEF fr_node_t fr_noise(fr_builder_t *b, fr_p3_t p, double amp, double freq, const double offset[3]);
+/* HyperFun's hfNoiseG (Gardner series), |value| <= (1.855 amp)^3. */
+FR_DEF fr_node_t fr_noise_gardner(fr_builder_t *b, fr_p3_t p, double amp, double freq, double phase);
+/* A black-box primitive; *cb is copied. */
+FR_DEF fr_node_t fr_callback(fr_builder_t *b, fr_p3_t p, const fr_callback_t *cb);
+/* Wrap a signed distance (negative inside): returns -sdf and records that
+   the result's gradient is bounded by lipschitz (1 for an exact SDF). */
+FR_DEF fr_node_t fr_from_sdf(fr_builder_t *b, fr_node_t sdf, double lipschitz);
+
+/* ---- operations */
+/* R-functions with HyperFun's alpha in [0,1]: f1+f2 +- sqrt(f1^2+f2^2-2 alpha f1 f2),
+   min/max for alpha == 1. difference = f1 & ~f2, negation = -f. */
+FR_DEF fr_node_t fr_union(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double alpha);
+FR_DEF fr_node_t fr_intersect(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double alpha);
+FR_DEF fr_node_t fr_subtract(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double alpha);
+FR_DEF fr_node_t fr_negate(fr_builder_t *b, fr_node_t f);
+/* R-union/intersection (alpha 0) + a0 / (1 + (f1/a1)^2 + (f2/a2)^2) (hfBlendUni/Int) */
+FR_DEF fr_node_t fr_blend_union(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double a0, double a1, double a2);
+FR_DEF fr_node_t fr_blend_intersect(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double a0, double a1, double a2);
+/* polynomial smooth max (union) / min (intersection) of width k > 0:
+   equal to max/min where |f1-f2| >= k */
+FR_DEF fr_node_t fr_smooth_union(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double k);
+FR_DEF fr_node_t fr_smooth_intersect(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double k);
+/* f + d: grows the solid for d > 0 (by d when f is a distance) */
+FR_DEF fr_node_t fr_offset(fr_builder_t *b, fr_node_t f, double d);
+/* metamorphosis (1-t) f1 + t f2 */
+FR_DEF fr_node_t fr_morph(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double t);
+
+/* ---- space maps: each returns the inverse-mapped point that primitives
+   are then evaluated at (HyperFun's convention), so the solid moves forward */
+FR_DEF fr_p3_t fr_translate(fr_builder_t *b, fr_p3_t p, const double d[3]);   /* hfShift3D */
+FR_DEF fr_p3_t fr_scale(fr_builder_t *b, fr_p3_t p, const double s[3]);       /* hfScale3D */
+FR_DEF fr_p3_t fr_rotate(fr_builder_t *b, fr_p3_t p, int axis, double theta); /* hfRotate3DX/Y/Z */
+/* p' = m p + t with m row-major 3x3: the inverse of the wanted transform */
+FR_DEF fr_p3_t fr_affine(fr_builder_t *b, fr_p3_t p, const double m[9], const double t[3]);
+/* rotation about axis by theta(s), theta linear from th1 at s1 to th2 at s2 (hfTwistX/Y/Z) */
+FR_DEF fr_p3_t fr_twist(fr_builder_t *b, fr_p3_t p, int axis, double s1, double s2, double th1, double th2);
+/* off-axis coordinates divided by a scale that goes from sc1 at s1 to sc2 at
+   s2, constant outside (hfTaperX/Y/Z); sc1, sc2 > 0 */
+FR_DEF fr_p3_t fr_taper(fr_builder_t *b, fr_p3_t p, int axis, double s1, double s2, double sc1, double sc2);
+/* c + (p - c) / s per axis (hfStretch3D) */
+FR_DEF fr_p3_t fr_stretch(fr_builder_t *b, fr_p3_t p, const double c[3], const double s[3]);
+/* bend: rotate the plane normal to axis by the angle k * (coordinate along
+   the next axis), axis 2 bends x into y by k*x */
+FR_DEF fr_p3_t fr_bend(fr_builder_t *b, fr_p3_t p, int axis, double k);
+
+/* ---- evaluation. Scratch: a caller buffer of fr_scratch_size() bytes,
+   aligned for double (malloc is fine), one per thread. */
+typedef enum fr_eval_kind_t {
+    FR_EVAL_POINT, FR_EVAL_BATCH, FR_EVAL_GRAD, FR_EVAL_INTERVAL, FR_EVAL_AFFINE, FR_EVAL_PRUNE
+} fr_eval_kind_t;
+#define FR_BATCH 32 /* points per inner batch */
+FR_DEF size_t fr_scratch_size(const fr_tape_t *t, fr_eval_kind_t kind);
+/* f(p) (shape). */
+FR_DEF double fr_eval(const fr_tape_t *t, const double p[3], void *scratch);
+/* all outputs: out[0] shape, out[1..] attributes (n_outputs values). */
+FR_DEF void fr_eval_outputs(const fr_tape_t *t, const double p[3], void *scratch, double *out);
+/* out[i] = f(x[i], y[i], z[i]) for i < n. */
+FR_DEF void fr_eval_batch(const fr_tape_t *t, size_t n, const double *x, const double *y, const double *z,
+                          double *out, void *scratch);
+/* value and exact gradient (forward-mode AD). FR_ERR_NO_GRADIENT when a
+   callback has no gradient function. At a kink (min/max/abs of equal
+   arguments) the gradient of one side is returned. */
+FR_DEF fr_result_t fr_eval_grad(const fr_tape_t *t, const double p[3], void *scratch, double *value,
+                                double grad[3]);
+
+#ifndef FR_NO_INTERVAL
+/* An enclosure of f over the box (rigorous unless interval.h is built with
+   IV_FAST). FR_ERR_NO_INTERVAL when a callback has no interval function. */
+FR_DEF fr_result_t fr_eval_interval(const fr_tape_t *t, const iv_t box[3], void *scratch, iv_t *out);
+#ifndef IV_NO_AFFINE
+/* An affine enclosure of f for affine inputs, e.g. x(t) = o.x + t d.x with
+   t from iv_affine_ray_param(t0, t1), so the result stays correlated with t. */
+FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], void *scratch, iv_affine_t *out);
+#endif
+/* Tape pruning (libfive; Keeter 2020): a shorter tape valid inside box.
+   Choice nodes whose interval decides them on the box are replaced by the
+   operand they take: min/max, alpha = 1 R-functions and smooth min/max
+   keep the value exactly; an alpha < 1 R-function whose other operand has a
+   fixed sign is replaced by the deciding operand, which keeps the sign only
+   (FR_TAPE_SIGN_ONLY is then set), and only where the result reaches the
+   shape through sign-preserving operations (negation, min/max, R-functions).
+   The result lives in code_buf (cap >= t->n_code instructions) and shares
+   params and callbacks with t: do not free it, keep t alive. Attribute
+   outputs are dropped. *range (optional) receives f's enclosure on box.
+   Allocation-free; scratch of fr_scratch_size(t, FR_EVAL_PRUNE) bytes. */
+FR_DEF fr_result_t fr_prune(const fr_tape_t *t, const iv_t box[3], void *scratch, fr_instr_t *code_buf,
+                            unsigned int cap, fr_tape_t *out, iv_t *range);
+#endif
 
 /* ==== [end section: model] ==== */
 
 /* ==== [section: solvers] declarations: polynomial solvers ==== */
+
+/* Real roots of polynomials, for analytic ray intersection (paper §3.1.1, §4.1.2).
+
+   Coefficients are in increasing degree: c[0] + c[1] t + ... + c[n] t^n.
+   Real roots come back in ascending order in r, and the count is returned;
+   r must have room for `degree` doubles (2, 3, 4 for the fixed-degree forms).
+   A multiple root (or two roots closer than the precision can separate) is
+   returned once. Leading zero coefficients lower the degree; exact zero
+   roots are split off first. A polynomial that is identically zero has no
+   isolated roots: 0 is returned. Invalid input -- a NULL pointer, a degree
+   outside [0, FR_POLY_MAX_DEGREE], a non-finite coefficient, t0 > t1 or a
+   NaN bound -- returns -1.
+
+   Guarantee (measured in tests/test_frep_solve.c and docs/benchmarks.md):
+   every returned root is within a few ulps of a true root of the polynomial
+   whose coefficients are the given doubles, unless the roots are so close
+   that double-double evaluation cannot separate them (then it is within
+   about 1e-16 relative of the cluster). Method: derivative-sequence
+   isolation (the roots of p' cut p into monotone pieces, recursively), a
+   safeguarded Newton iteration in each piece, and a final Newton polish
+   whose residual comes from compensated Horner evaluation (Graillat,
+   Langlois & Louvet 2005), so roots are found as if the polynomial were
+   evaluated in twice the working precision. Coefficients are rescaled by
+   powers of two only (exact), so scales from 1e-300 to 1e300 behave alike. */
+
+#define FR_POLY_MAX_DEGREE 16
+
+FR_DEF int fr_solve_quadratic(const double c[3], double r[2]);
+FR_DEF int fr_solve_cubic(const double c[4], double r[3]);
+FR_DEF int fr_solve_quartic(const double c[5], double r[4]);
+/* Roots in [t0, t1] only (either bound may be infinite); degree <= FR_POLY_MAX_DEGREE. */
+FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, double *r);
+
+/* p(t) by compensated Horner evaluation: as accurate as Horner in twice the
+   working precision, then rounded. If abs_bound is not NULL it receives
+   sum |c_i| |t|^i, which scales the remaining error: the result differs
+   from the exact value by at most u |p(t)| + 4 n^2 u^2 abs_bound, u = 2^-53. */
+FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, double *abs_bound);
 
 /* ==== [end section: solvers] ==== */
 
@@ -108,16 +448,1797 @@ FR_DEF const char *fr_result_string(fr_result_t r)
     case FR_OK: return "ok";
     case FR_ERR_INVALID_ARG: return "invalid argument";
     case FR_ERR_OUT_OF_MEMORY: return "out of memory";
+    case FR_ERR_LIMIT: return "size limit exceeded";
+    case FR_ERR_NO_INTERVAL: return "interval evaluation unavailable (a callback has no interval function)";
+    case FR_ERR_NO_GRADIENT: return "gradient unavailable (a callback has no gradient function)";
+    case FR_ERR_BUFFER_TOO_SMALL: return "buffer too small";
+    case FR_ERR_PARSE: return "parse error";
     case FR_RESULT_COUNT_: break;
     }
     return "unknown result";
 }
 
 /* ==== [section: model] implementation: tape, primitives, operations, evaluation, parser ==== */
+#include <string.h>
+#include <stdio.h>
+#include <float.h>
+
+/* ---- builder internals */
+
+static fr_node_t fr__fail(fr_builder_t *b, fr_result_t r, const char *msg)
+{
+    if (b->diag.result == FR_OK) {
+        b->diag.result = r;
+        b->diag.element = (long long)b->n;
+        snprintf(b->diag.message, sizeof b->diag.message, "node %u: %s", b->n, msg);
+    }
+    return FR_NODE_NONE;
+}
+
+static int fr__grow(fr_builder_t *b, void **arr, unsigned int *cap, unsigned int need, size_t elem)
+{
+    unsigned int nc;
+    void *p;
+    if (need <= *cap) return 1;
+    nc = *cap ? *cap : 64u;
+    while (nc < need) nc *= 2u;
+    p = FR_MALLOC((size_t)nc * elem, b->alloc_ctx);
+    if (!p) return 0;
+    if (*arr) {
+        memcpy(p, *arr, (size_t)*cap * elem);
+        FR_FREE(*arr, b->alloc_ctx);
+    }
+    *arr = p;
+    *cap = nc;
+    return 1;
+}
+
+static int fr__ok(const fr_builder_t *b, fr_node_t a) { return a != FR_NODE_NONE && a < b->n; }
+
+static fr_node_t fr__emit(fr_builder_t *b, fr_op_t op, fr_node_t a, fr_node_t c, fr_node_t d,
+                          unsigned int aux, double k)
+{
+    unsigned int cap = b->cap, cap2 = b->cap;
+    fr_instr_t *in;
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (b->n >= b->max_nodes) return fr__fail(b, FR_ERR_LIMIT, "too many nodes (fr_builder_desc_t.max_nodes)");
+    if (b->n + 1 > b->cap) {
+        if (!fr__grow(b, (void **)&b->code, &cap, b->n + 1, sizeof(fr_instr_t)) ||
+            !fr__grow(b, (void **)&b->lip, &cap2, b->n + 1, sizeof(double)))
+            return fr__fail(b, FR_ERR_OUT_OF_MEMORY, "out of memory");
+        b->cap = cap < cap2 ? cap : cap2;
+    }
+    in = &b->code[b->n];
+    in->op = (unsigned int)op;
+    in->a = a;
+    in->b = c;
+    in->c = d;
+    in->aux = aux;
+    in->k = k;
+    b->lip[b->n] = 0.0;
+    return b->n++;
+}
+
+/* operand arity of each opcode */
+static int fr__arity(unsigned int op)
+{
+    if (op <= FR_OP_VAR_Z) return 0;
+    if (op <= FR_OP_POWC) return 1;
+    if (op <= FR_OP_SMIN) return 2;
+    return 3;
+}
+
+FR_DEF fr_result_t fr_builder_init(fr_builder_t *b, const fr_builder_desc_t *desc)
+{
+    if (!b) return FR_ERR_INVALID_ARG;
+    memset(b, 0, sizeof *b);
+    b->diag.element = -1;
+    b->alloc_ctx = desc ? desc->alloc_ctx : NULL;
+    b->max_nodes = desc && desc->max_nodes ? desc->max_nodes : (1u << 24);
+    b->var[0] = b->var[1] = b->var[2] = FR_NODE_NONE;
+    return FR_OK;
+}
+
+FR_DEF void fr_builder_free(fr_builder_t *b)
+{
+    if (!b) return;
+    if (b->code) FR_FREE(b->code, b->alloc_ctx);
+    if (b->lip) FR_FREE(b->lip, b->alloc_ctx);
+    if (b->params) FR_FREE(b->params, b->alloc_ctx);
+    if (b->callbacks) FR_FREE(b->callbacks, b->alloc_ctx);
+    memset(b, 0, sizeof *b);
+}
+
+/* ---- elementary nodes */
+
+FR_DEF fr_p3_t fr_coords(fr_builder_t *b)
+{
+    fr_p3_t p;
+    int i;
+    for (i = 0; i < 3; i++)
+        if (b && (b->var[i] == FR_NODE_NONE || b->var[i] >= b->n))
+            b->var[i] = fr__emit(b, (fr_op_t)(FR_OP_VAR_X + i), 0, 0, 0, 0, 0.0);
+    p.x = b ? b->var[0] : FR_NODE_NONE;
+    p.y = b ? b->var[1] : FR_NODE_NONE;
+    p.z = b ? b->var[2] : FR_NODE_NONE;
+    return p;
+}
+
+FR_DEF fr_node_t fr_const(fr_builder_t *b, double v)
+{
+    if (!b) return FR_NODE_NONE;
+    if (!isfinite(v)) return fr__fail(b, FR_ERR_INVALID_ARG, "constant is not finite");
+    return fr__emit(b, FR_OP_CONST, 0, 0, 0, 0, v);
+}
+
+FR_DEF fr_node_t fr_unary(fr_builder_t *b, fr_op_t op, fr_node_t a)
+{
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (fr__arity((unsigned int)op) != 1 || op == FR_OP_POWI || op == FR_OP_POWC)
+        return fr__fail(b, FR_ERR_INVALID_ARG, "fr_unary: not a unary opcode");
+    if (!fr__ok(b, a)) return fr__fail(b, FR_ERR_INVALID_ARG, "invalid operand node");
+    return fr__emit(b, op, a, 0, 0, 0, 0.0);
+}
+
+FR_DEF fr_node_t fr_binary(fr_builder_t *b, fr_op_t op, fr_node_t a, fr_node_t c)
+{
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (op < FR_OP_ADD || op > FR_OP_MAX) return fr__fail(b, FR_ERR_INVALID_ARG, "fr_binary: not a binary opcode");
+    if (!fr__ok(b, a) || !fr__ok(b, c)) return fr__fail(b, FR_ERR_INVALID_ARG, "invalid operand node");
+    return fr__emit(b, op, a, c, 0, 0, 0.0);
+}
+
+FR_DEF fr_node_t fr_powi(fr_builder_t *b, fr_node_t a, int n)
+{
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (!fr__ok(b, a)) return fr__fail(b, FR_ERR_INVALID_ARG, "invalid operand node");
+    if (n < -64 || n > 64) return fr__fail(b, FR_ERR_INVALID_ARG, "integer power outside [-64, 64]");
+    return fr__emit(b, FR_OP_POWI, a, 0, 0, 0, (double)n);
+}
+
+FR_DEF fr_node_t fr_powc(fr_builder_t *b, fr_node_t a, double e)
+{
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (!fr__ok(b, a)) return fr__fail(b, FR_ERR_INVALID_ARG, "invalid operand node");
+    if (!isfinite(e) || e <= 0) return fr__fail(b, FR_ERR_INVALID_ARG, "real power exponent must be finite and > 0");
+    return fr__emit(b, FR_OP_POWC, a, 0, 0, 0, e);
+}
+
+FR_DEF fr_node_t fr_add(fr_builder_t *b, fr_node_t a, fr_node_t c) { return fr_binary(b, FR_OP_ADD, a, c); }
+FR_DEF fr_node_t fr_sub(fr_builder_t *b, fr_node_t a, fr_node_t c) { return fr_binary(b, FR_OP_SUB, a, c); }
+FR_DEF fr_node_t fr_mul(fr_builder_t *b, fr_node_t a, fr_node_t c) { return fr_binary(b, FR_OP_MUL, a, c); }
+FR_DEF fr_node_t fr_div(fr_builder_t *b, fr_node_t a, fr_node_t c) { return fr_binary(b, FR_OP_DIV, a, c); }
+
+/* small private helpers: node op constant */
+static fr_node_t fr__sqr(fr_builder_t *b, fr_node_t a) { return fr_unary(b, FR_OP_SQR, a); }
+static fr_node_t fr__addk(fr_builder_t *b, fr_node_t a, double k) { return k == 0 ? a : fr_add(b, a, fr_const(b, k)); }
+static fr_node_t fr__subk(fr_builder_t *b, fr_node_t a, double k) { return k == 0 ? a : fr_sub(b, a, fr_const(b, k)); }
+static fr_node_t fr__mulk(fr_builder_t *b, fr_node_t a, double k) { return k == 1 ? a : fr_mul(b, a, fr_const(b, k)); }
+static fr_node_t fr__ksub(fr_builder_t *b, double k, fr_node_t a) { return fr_sub(b, fr_const(b, k), a); }
+static fr_node_t fr__coord(fr_p3_t p, int i) { return i == 0 ? p.x : i == 1 ? p.y : p.z; }
+static int fr__finite_pos(double v) { return isfinite(v) && v > 0; }
+static int fr__finite3(const double *v) { return v && isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+static int fr__p3_ok(const fr_builder_t *b, fr_p3_t p) { return fr__ok(b, p.x) && fr__ok(b, p.y) && fr__ok(b, p.z); }
+
+/* checks shared by every primitive: point nodes valid, centre finite */
+static int fr__prim_ok(fr_builder_t *b, fr_p3_t p, const double *c, const char *name)
+{
+    char msg[120];
+    if (!b || b->diag.result != FR_OK) return 0;
+    if (!fr__p3_ok(b, p)) {
+        snprintf(msg, sizeof msg, "%s: invalid point node", name);
+        fr__fail(b, FR_ERR_INVALID_ARG, msg);
+        return 0;
+    }
+    if (c && !fr__finite3(c)) {
+        snprintf(msg, sizeof msg, "%s: centre/vector is NULL or not finite", name);
+        fr__fail(b, FR_ERR_INVALID_ARG, msg);
+        return 0;
+    }
+    return 1;
+}
+static int fr__param_fail(fr_builder_t *b, const char *name, const char *what)
+{
+    char msg[140];
+    snprintf(msg, sizeof msg, "%s: %s", name, what);
+    fr__fail(b, FR_ERR_INVALID_ARG, msg);
+    return 0;
+}
+
+/* ---- primitives */
+
+/* sum of (p_i - c_i)^2 over the axes whose bit is set in mask, each divided by s_i if s given */
+static fr_node_t fr__sumsq(fr_builder_t *b, fr_p3_t p, const double c[3], const double *s, int mask)
+{
+    fr_node_t acc = FR_NODE_NONE;
+    int i;
+    for (i = 0; i < 3; i++) {
+        fr_node_t t;
+        if (!(mask & (1 << i))) continue;
+        t = fr__subk(b, fr__coord(p, i), c[i]);
+        if (s) t = fr__mulk(b, t, 1.0 / s[i]);
+        t = fr__sqr(b, t);
+        acc = acc == FR_NODE_NONE ? t : fr_add(b, acc, t);
+    }
+    return acc;
+}
+
+FR_DEF fr_node_t fr_sphere(fr_builder_t *b, fr_p3_t p, const double c[3], double r)
+{
+    if (!fr__prim_ok(b, p, c, "sphere")) return FR_NODE_NONE;
+    if (!fr__finite_pos(r)) return fr__param_fail(b, "sphere", "radius must be finite and > 0"), FR_NODE_NONE;
+    return fr__ksub(b, r * r, fr__sumsq(b, p, c, NULL, 7));
+}
+
+FR_DEF fr_node_t fr_ellipsoid(fr_builder_t *b, fr_p3_t p, const double c[3], double ra, double rb, double rc)
+{
+    double s[3];
+    if (!fr__prim_ok(b, p, c, "ellipsoid")) return FR_NODE_NONE;
+    if (!fr__finite_pos(ra) || !fr__finite_pos(rb) || !fr__finite_pos(rc))
+        return fr__param_fail(b, "ellipsoid", "half-axes must be finite and > 0"), FR_NODE_NONE;
+    s[0] = ra; s[1] = rb; s[2] = rc;
+    return fr__ksub(b, 1.0, fr__sumsq(b, p, c, s, 7));
+}
+
+static int fr__alpha_ok(fr_builder_t *b, double alpha, const char *name)
+{
+    if (!(alpha >= 0 && alpha <= 1)) return fr__param_fail(b, name, "alpha must be in [0, 1]");
+    return 1;
+}
+
+FR_DEF fr_node_t fr_block(fr_builder_t *b, fr_p3_t p, const double vertex[3], const double size[3], double alpha)
+{
+    fr_node_t f = FR_NODE_NONE;
+    int i;
+    if (!fr__prim_ok(b, p, vertex, "block")) return FR_NODE_NONE;
+    if (!size || !fr__finite_pos(size[0]) || !fr__finite_pos(size[1]) || !fr__finite_pos(size[2]))
+        return fr__param_fail(b, "block", "edge lengths must be finite and > 0"), FR_NODE_NONE;
+    if (!fr__alpha_ok(b, alpha, "block")) return FR_NODE_NONE;
+    for (i = 0; i < 3; i++) {
+        fr_node_t q = fr__coord(p, i);
+        /* (x - v)(v + d - x): the slab, positive between its two planes */
+        fr_node_t s = fr_mul(b, fr__subk(b, q, vertex[i]), fr__ksub(b, vertex[i] + size[i], q));
+        f = i == 0 ? s : fr_intersect(b, f, s, alpha);
+    }
+    return f;
+}
+
+static int fr__axis_ok(fr_builder_t *b, int axis, const char *name)
+{
+    if (axis < 0 || axis > 2) return fr__param_fail(b, name, "axis must be 0, 1 or 2");
+    return 1;
+}
+
+FR_DEF fr_node_t fr_cylinder(fr_builder_t *b, fr_p3_t p, int axis, const double c[3], double r)
+{
+    if (!fr__prim_ok(b, p, c, "cylinder") || !fr__axis_ok(b, axis, "cylinder")) return FR_NODE_NONE;
+    if (!fr__finite_pos(r)) return fr__param_fail(b, "cylinder", "radius must be finite and > 0"), FR_NODE_NONE;
+    return fr__ksub(b, r * r, fr__sumsq(b, p, c, NULL, 7 & ~(1 << axis)));
+}
+
+FR_DEF fr_node_t fr_ell_cylinder(fr_builder_t *b, fr_p3_t p, int axis, const double c[3], double ra, double rb)
+{
+    double s[3];
+    if (!fr__prim_ok(b, p, c, "elliptic cylinder") || !fr__axis_ok(b, axis, "elliptic cylinder")) return FR_NODE_NONE;
+    if (!fr__finite_pos(ra) || !fr__finite_pos(rb))
+        return fr__param_fail(b, "elliptic cylinder", "radii must be finite and > 0"), FR_NODE_NONE;
+    s[axis] = 1.0;
+    s[axis == 0 ? 1 : 0] = ra;
+    s[axis == 2 ? 1 : 2] = rb;
+    return fr__ksub(b, 1.0, fr__sumsq(b, p, c, s, 7 & ~(1 << axis)));
+}
+
+FR_DEF fr_node_t fr_cylinder_axis(fr_builder_t *b, fr_p3_t p, const double q[3], const double dir[3], double r)
+{
+    double len, u[3];
+    fr_node_t d[3], along, sq;
+    int i;
+    if (!fr__prim_ok(b, p, q, "cylinder") || !fr__prim_ok(b, p, dir, "cylinder")) return FR_NODE_NONE;
+    len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    if (!(len > 0) || !isfinite(len)) return fr__param_fail(b, "cylinder", "axis direction is zero"), FR_NODE_NONE;
+    if (!fr__finite_pos(r)) return fr__param_fail(b, "cylinder", "radius must be finite and > 0"), FR_NODE_NONE;
+    for (i = 0; i < 3; i++) {
+        u[i] = dir[i] / len;
+        d[i] = fr__subk(b, fr__coord(p, i), q[i]);
+    }
+    /* |d|^2 - (d.u)^2 is the squared distance to the axis */
+    along = fr_add(b, fr_add(b, fr__mulk(b, d[0], u[0]), fr__mulk(b, d[1], u[1])), fr__mulk(b, d[2], u[2]));
+    sq = fr_add(b, fr_add(b, fr__sqr(b, d[0]), fr__sqr(b, d[1])), fr__sqr(b, d[2]));
+    return fr_sub(b, fr_add(b, fr_const(b, r * r), fr__sqr(b, along)), sq);
+}
+
+FR_DEF fr_node_t fr_cone(fr_builder_t *b, fr_p3_t p, int axis, const double c[3], double r)
+{
+    double s[3];
+    fr_node_t t;
+    if (!fr__prim_ok(b, p, c, "cone") || !fr__axis_ok(b, axis, "cone")) return FR_NODE_NONE;
+    if (!fr__finite_pos(r)) return fr__param_fail(b, "cone", "radius must be finite and > 0"), FR_NODE_NONE;
+    s[0] = s[1] = s[2] = r;
+    t = fr__subk(b, fr__coord(p, axis), c[axis]);
+    return fr_sub(b, fr__sqr(b, t), fr__sumsq(b, p, c, s, 7 & ~(1 << axis)));
+}
+
+FR_DEF fr_node_t fr_torus(fr_builder_t *b, fr_p3_t p, int axis, const double c[3], double R, double r0)
+{
+    fr_node_t rho2, all2;
+    if (!fr__prim_ok(b, p, c, "torus") || !fr__axis_ok(b, axis, "torus")) return FR_NODE_NONE;
+    if (!fr__finite_pos(R) || !fr__finite_pos(r0))
+        return fr__param_fail(b, "torus", "radii must be finite and > 0"), FR_NODE_NONE;
+    rho2 = fr__sumsq(b, p, c, NULL, 7 & ~(1 << axis));
+    all2 = fr_add(b, rho2, fr__sqr(b, fr__subk(b, fr__coord(p, axis), c[axis])));
+    /* r0^2 - R^2 - |d|^2 + 2 R rho */
+    return fr_add(b, fr__ksub(b, r0 * r0 - R * R, all2), fr__mulk(b, fr_unary(b, FR_OP_SQRT, rho2), 2.0 * R));
+}
+
+FR_DEF fr_node_t fr_halfspace(fr_builder_t *b, fr_p3_t p, const double n[3], double d)
+{
+    fr_node_t dot;
+    if (!fr__prim_ok(b, p, n, "half-space")) return FR_NODE_NONE;
+    if (!isfinite(d)) return fr__param_fail(b, "half-space", "offset must be finite"), FR_NODE_NONE;
+    if (n[0] == 0 && n[1] == 0 && n[2] == 0) return fr__param_fail(b, "half-space", "normal is zero"), FR_NODE_NONE;
+    dot = fr_add(b, fr_add(b, fr__mulk(b, p.x, n[0]), fr__mulk(b, p.y, n[1])), fr__mulk(b, p.z, n[2]));
+    return fr__ksub(b, d, dot);
+}
+
+FR_DEF fr_node_t fr_superellipsoid(fr_builder_t *b, fr_p3_t p, const double c[3], const double abc[3], double s1,
+                                   double s2)
+{
+    fr_node_t t[3], xy;
+    int i;
+    if (!fr__prim_ok(b, p, c, "superellipsoid")) return FR_NODE_NONE;
+    if (!abc || !fr__finite_pos(abc[0]) || !fr__finite_pos(abc[1]) || !fr__finite_pos(abc[2]) ||
+        !fr__finite_pos(s1) || !fr__finite_pos(s2))
+        return fr__param_fail(b, "superellipsoid", "half-axes and shape exponents must be finite and > 0"),
+               FR_NODE_NONE;
+    for (i = 0; i < 3; i++)
+        t[i] = fr_unary(b, FR_OP_ABS, fr__mulk(b, fr__subk(b, fr__coord(p, i), c[i]), 1.0 / abc[i]));
+    xy = fr_add(b, fr_powc(b, t[0], 2.0 / s2), fr_powc(b, t[1], 2.0 / s2));
+    return fr_sub(b, fr__ksub(b, 1.0, fr_powc(b, xy, s2 / s1)), fr_powc(b, t[2], 2.0 / s1));
+}
+
+/* ---- skeletal primitives */
+
+/* squared distance from p to the point a or the segment ab: the segment
+   parameter is clamped with min/max so the expression stays elementary */
+static fr_node_t fr__dist2(fr_builder_t *b, fr_p3_t p, const double a[3], const double e[3])
+{
+    double ab[3], l2;
+    fr_node_t d[3], t, r2 = FR_NODE_NONE;
+    int i;
+    for (i = 0; i < 3; i++) {
+        ab[i] = e[i] - a[i];
+        d[i] = fr__subk(b, fr__coord(p, i), a[i]);
+    }
+    l2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+    if (l2 == 0) return fr__sumsq(b, p, a, NULL, 7);
+    t = fr_add(b, fr_add(b, fr__mulk(b, d[0], ab[0] / l2), fr__mulk(b, d[1], ab[1] / l2)), fr__mulk(b, d[2], ab[2] / l2));
+    t = fr_binary(b, FR_OP_MIN, fr_binary(b, FR_OP_MAX, t, fr_const(b, 0.0)), fr_const(b, 1.0));
+    for (i = 0; i < 3; i++) {
+        fr_node_t q = fr__sqr(b, fr_sub(b, d[i], fr__mulk(b, t, ab[i])));
+        r2 = i == 0 ? q : fr_add(b, r2, q);
+    }
+    return r2;
+}
+
+/* Nishimura's metaball profile of q = r/width, written with min/max:
+   g1(min(q,1/3)) + g2(clamp(q,1/3,1)) - 2/3, g1 = 1-3q^2, g2 = 1.5(1-q)^2,
+   both 2/3 at q = 1/3, so each branch contributes only on its own piece */
+static fr_node_t fr__metaball_profile(fr_builder_t *b, fr_node_t q)
+{
+    fr_node_t lo = fr_binary(b, FR_OP_MIN, q, fr_const(b, 1.0 / 3.0));
+    fr_node_t mid = fr_binary(b, FR_OP_MIN, fr_binary(b, FR_OP_MAX, q, fr_const(b, 1.0 / 3.0)), fr_const(b, 1.0));
+    fr_node_t g1 = fr__ksub(b, 1.0, fr__mulk(b, fr__sqr(b, lo), 3.0));
+    fr_node_t g2 = fr__mulk(b, fr__sqr(b, fr__ksub(b, 1.0, mid)), 1.5);
+    return fr__subk(b, fr_add(b, g1, g2), 2.0 / 3.0);
+}
+
+/* Wyvill's soft-object polynomial of s = min(r^2/width^2, 1); zero at s = 1 */
+static fr_node_t fr__soft_profile(fr_builder_t *b, fr_node_t s)
+{
+    fr_node_t c = fr_binary(b, FR_OP_MIN, s, fr_const(b, 1.0));
+    /* Horner: 1 + s(-22/9 + s(17/9 - 4/9 s)) */
+    fr_node_t h = fr__ksub(b, 17.0 / 9.0, fr__mulk(b, c, 4.0 / 9.0));
+    h = fr__addk(b, fr_mul(b, c, h), -22.0 / 9.0);
+    return fr__addk(b, fr_mul(b, c, h), 1.0);
+}
+
+static int fr__skel_ok(fr_builder_t *b, fr_p3_t p, const fr_skeleton_t *el, unsigned int n, const char *name)
+{
+    unsigned int i;
+    char msg[120];
+    if (!fr__prim_ok(b, p, NULL, name)) return 0;
+    if (!el || n == 0) return fr__param_fail(b, name, "no skeleton elements");
+    for (i = 0; i < n; i++)
+        if (!fr__finite3(el[i].a) || !fr__finite3(el[i].b) || !fr__finite_pos(el[i].width) ||
+            !isfinite(el[i].weight)) {
+            snprintf(msg, sizeof msg, "element %u: non-finite point or width <= 0", i);
+            return fr__param_fail(b, name, msg);
+        }
+    return 1;
+}
+
+FR_DEF fr_node_t fr_skeletal(fr_builder_t *b, fr_p3_t p, fr_kernel_t kernel, const fr_skeleton_t *el,
+                             unsigned int n, double threshold)
+{
+    fr_node_t sum = FR_NODE_NONE;
+    unsigned int i;
+    if (!fr__skel_ok(b, p, el, n, "skeletal")) return FR_NODE_NONE;
+    if (!isfinite(threshold)) return fr__param_fail(b, "skeletal", "threshold must be finite"), FR_NODE_NONE;
+    if (kernel != FR_KERNEL_BLOBBY && kernel != FR_KERNEL_METABALL && kernel != FR_KERNEL_SOFT)
+        return fr__param_fail(b, "skeletal", "unknown kernel"), FR_NODE_NONE;
+    for (i = 0; i < n; i++) {
+        fr_node_t r2 = fr__dist2(b, p, el[i].a, el[i].b), term;
+        double w = el[i].width;
+        if (kernel == FR_KERNEL_BLOBBY)
+            term = fr_unary(b, FR_OP_EXP, fr__mulk(b, r2, -w));
+        else if (kernel == FR_KERNEL_METABALL)
+            term = fr__metaball_profile(b, fr__mulk(b, fr_unary(b, FR_OP_SQRT, r2), 1.0 / w));
+        else
+            term = fr__soft_profile(b, fr__mulk(b, r2, 1.0 / (w * w)));
+        term = fr__mulk(b, term, el[i].weight);
+        sum = i == 0 ? term : fr_add(b, sum, term);
+    }
+    return fr__subk(b, sum, threshold);
+}
+
+FR_DEF fr_node_t fr_convolution(fr_builder_t *b, fr_p3_t p, const fr_skeleton_t *seg, unsigned int n,
+                                double threshold)
+{
+    fr_node_t sum = FR_NODE_NONE;
+    unsigned int i;
+    if (!fr__skel_ok(b, p, seg, n, "convolution")) return FR_NODE_NONE;
+    if (!isfinite(threshold)) return fr__param_fail(b, "convolution", "threshold must be finite"), FR_NODE_NONE;
+    for (i = 0; i < n; i++) {
+        double ab[3], l, s = seg[i].width;
+        fr_node_t d[3], x, lx, c2, c, t1, t2, t3, F;
+        int j;
+        for (j = 0; j < 3; j++) ab[j] = seg[i].b[j] - seg[i].a[j];
+        l = sqrt(ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]);
+        if (!(l > 0)) return fr__param_fail(b, "convolution", "a segment has zero length"), FR_NODE_NONE;
+        for (j = 0; j < 3; j++) d[j] = fr__subk(b, fr__coord(p, j), seg[i].a[j]);
+        /* x = along-segment coordinate, c^2 = 1 + s^2 (distance to the line)^2 >= 1:
+           int_{-x}^{l-x} du/(c^2+s^2u^2)^2 = [u/(2c^2(c^2+s^2u^2)) + atan(su/c)/(2sc^3)] */
+        x = fr_add(b, fr_add(b, fr__mulk(b, d[0], ab[0] / l), fr__mulk(b, d[1], ab[1] / l)), fr__mulk(b, d[2], ab[2] / l));
+        lx = fr__ksub(b, l, x);
+        c2 = fr_sub(b, fr_add(b, fr_add(b, fr__sqr(b, d[0]), fr__sqr(b, d[1])), fr__sqr(b, d[2])), fr__sqr(b, x));
+        c2 = fr__addk(b, fr__mulk(b, fr_binary(b, FR_OP_MAX, c2, fr_const(b, 0.0)), s * s), 1.0);
+        c = fr_unary(b, FR_OP_SQRT, c2);
+        t1 = fr_div(b, x, fr__mulk(b, fr_mul(b, c2, fr_add(b, c2, fr__mulk(b, fr__sqr(b, x), s * s))), 2.0));
+        t2 = fr_div(b, lx, fr__mulk(b, fr_mul(b, c2, fr_add(b, c2, fr__mulk(b, fr__sqr(b, lx), s * s))), 2.0));
+        t3 = fr_add(b, fr_unary(b, FR_OP_ATAN, fr_div(b, fr__mulk(b, x, s), c)),
+                    fr_unary(b, FR_OP_ATAN, fr_div(b, fr__mulk(b, lx, s), c)));
+        t3 = fr_div(b, t3, fr__mulk(b, fr_mul(b, c2, c), 2.0 * s));
+        F = fr__mulk(b, fr_add(b, fr_add(b, t1, t2), t3), seg[i].weight);
+        sum = i == 0 ? F : fr_add(b, sum, F);
+    }
+    return fr__subk(b, sum, threshold);
+}
+
+FR_DEF fr_node_t fr_noise(fr_builder_t *b, fr_p3_t p, double amp, double freq, const double offset[3])
+{
+    unsigned int cap = b ? b->cap_params : 0;
+    double *q;
+    if (!fr__prim_ok(b, p, offset, "noise")) return FR_NODE_NONE;
+    if (!isfinite(amp) || !fr__finite_pos(freq))
+        return fr__param_fail(b, "noise", "amplitude must be finite and frequency finite and > 0"), FR_NODE_NONE;
+    if (!fr__grow(b, (void **)&b->params, &cap, b->n_params + FR_NOISE_PARAMS, sizeof(double)))
+        return fr__fail(b, FR_ERR_OUT_OF_MEMORY, "out of memory");
+    b->cap_params = cap;
+    q = b->params + b->n_params;
+    q[0] = amp; q[1] = freq; q[2] = offset[0]; q[3] = offset[1]; q[4] = offset[2];
+    b->n_params += FR_NOISE_PARAMS;
+    return fr__emit(b, FR_OP_NOISE, p.x, p.y, p.z, b->n_params - FR_NOISE_PARAMS, 0.0);
+}
+
+FR_DEF fr_node_t fr_noise_gardner(fr_builder_t *b, fr_p3_t p, double amp, double freq, double phase)
+{
+    fr_node_t s[3], ser[3];
+    int i;
+    if (!fr__prim_ok(b, p, NULL, "hfNoiseG")) return FR_NODE_NONE;
+    if (!isfinite(amp) || !isfinite(freq) || !isfinite(phase))
+        return fr__param_fail(b, "hfNoiseG", "parameters must be finite"), FR_NODE_NONE;
+    for (i = 0; i < 3; i++) s[i] = fr_unary(b, FR_OP_SIN, fr__mulk(b, fr__coord(p, i), freq));
+    /* Gardner's series: each axis term is modulated by the sine of the next-but-one axis */
+    for (i = 0; i < 3; i++) {
+        fr_node_t arg = fr_add(b, fr__mulk(b, fr__coord(p, i), freq / 1.35), fr__mulk(b, s[(i + 2) % 3], phase));
+        ser[i] = fr_add(b, fr__mulk(b, s[i], amp), fr__mulk(b, fr_unary(b, FR_OP_SIN, arg), amp / 1.17));
+    }
+    return fr_mul(b, fr_mul(b, ser[0], ser[1]), ser[2]);
+}
+
+FR_DEF fr_node_t fr_callback(fr_builder_t *b, fr_p3_t p, const fr_callback_t *cb)
+{
+    unsigned int cap = b ? b->cap_callbacks : 0;
+    if (!fr__prim_ok(b, p, NULL, "callback")) return FR_NODE_NONE;
+    if (!cb || !cb->point) return fr__param_fail(b, "callback", "point function is NULL"), FR_NODE_NONE;
+    if (!fr__grow(b, (void **)&b->callbacks, &cap, b->n_callbacks + 1, sizeof(fr_callback_t)))
+        return fr__fail(b, FR_ERR_OUT_OF_MEMORY, "out of memory");
+    b->cap_callbacks = cap;
+    b->callbacks[b->n_callbacks] = *cb;
+    return fr__emit(b, FR_OP_CALL, p.x, p.y, p.z, b->n_callbacks++, 0.0);
+}
+
+FR_DEF fr_node_t fr_from_sdf(fr_builder_t *b, fr_node_t sdf, double lipschitz)
+{
+    fr_node_t f;
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (!fr__finite_pos(lipschitz)) return fr__param_fail(b, "sdf", "Lipschitz bound must be finite and > 0"), FR_NODE_NONE;
+    f = fr_unary(b, FR_OP_NEG, sdf);
+    if (f != FR_NODE_NONE) b->lip[f] = lipschitz;
+    return f;
+}
+
+/* ---- operations */
+
+static fr_node_t fr__rop(fr_builder_t *b, fr_op_t op, fr_node_t f1, fr_node_t f2, double alpha, const char *name)
+{
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (!fr__ok(b, f1) || !fr__ok(b, f2)) return fr__param_fail(b, name, "invalid operand node"), FR_NODE_NONE;
+    if (!fr__alpha_ok(b, alpha, name)) return FR_NODE_NONE;
+    return fr__emit(b, op, f1, f2, 0, 0, alpha);
+}
+
+FR_DEF fr_node_t fr_union(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double alpha)
+{
+    return fr__rop(b, FR_OP_RUNI, f1, f2, alpha, "union");
+}
+FR_DEF fr_node_t fr_intersect(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double alpha)
+{
+    return fr__rop(b, FR_OP_RINT, f1, f2, alpha, "intersection");
+}
+FR_DEF fr_node_t fr_negate(fr_builder_t *b, fr_node_t f) { return fr_unary(b, FR_OP_NEG, f); }
+FR_DEF fr_node_t fr_subtract(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double alpha)
+{
+    return fr__rop(b, FR_OP_RINT, f1, fr_negate(b, f2), alpha, "difference");
+}
+
+static fr_node_t fr__blend(fr_builder_t *b, fr_op_t op, fr_node_t f1, fr_node_t f2, double a0, double a1, double a2,
+                           const char *name)
+{
+    fr_node_t den;
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (!isfinite(a0) || !isfinite(a1) || !isfinite(a2) || a1 == 0 || a2 == 0)
+        return fr__param_fail(b, name, "a0 must be finite, a1 and a2 finite and non-zero"), FR_NODE_NONE;
+    /* HyperFun's displacement: the squares are summed in the denominator */
+    den = fr__addk(b, fr_add(b, fr__sqr(b, fr__mulk(b, f1, 1.0 / a1)), fr__sqr(b, fr__mulk(b, f2, 1.0 / a2))), 1.0);
+    return fr_add(b, fr__rop(b, op, f1, f2, 0.0, name), fr_div(b, fr_const(b, a0), den));
+}
+FR_DEF fr_node_t fr_blend_union(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double a0, double a1, double a2)
+{
+    return fr__blend(b, FR_OP_RUNI, f1, f2, a0, a1, a2, "blend union");
+}
+FR_DEF fr_node_t fr_blend_intersect(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double a0, double a1, double a2)
+{
+    return fr__blend(b, FR_OP_RINT, f1, f2, a0, a1, a2, "blend intersection");
+}
+
+static fr_node_t fr__smooth(fr_builder_t *b, fr_op_t op, fr_node_t f1, fr_node_t f2, double k, const char *name)
+{
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (!fr__ok(b, f1) || !fr__ok(b, f2)) return fr__param_fail(b, name, "invalid operand node"), FR_NODE_NONE;
+    if (!fr__finite_pos(k)) return fr__param_fail(b, name, "width must be finite and > 0"), FR_NODE_NONE;
+    return fr__emit(b, op, f1, f2, 0, 0, k);
+}
+FR_DEF fr_node_t fr_smooth_union(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double k)
+{
+    return fr__smooth(b, FR_OP_SMAX, f1, f2, k, "smooth union");
+}
+FR_DEF fr_node_t fr_smooth_intersect(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double k)
+{
+    return fr__smooth(b, FR_OP_SMIN, f1, f2, k, "smooth intersection");
+}
+
+FR_DEF fr_node_t fr_offset(fr_builder_t *b, fr_node_t f, double d)
+{
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (!isfinite(d)) return fr__param_fail(b, "offset", "distance must be finite"), FR_NODE_NONE;
+    return fr_add(b, f, fr_const(b, d));
+}
+
+FR_DEF fr_node_t fr_morph(fr_builder_t *b, fr_node_t f1, fr_node_t f2, double t)
+{
+    if (!b || b->diag.result != FR_OK) return FR_NODE_NONE;
+    if (!isfinite(t)) return fr__param_fail(b, "metamorphosis", "parameter must be finite"), FR_NODE_NONE;
+    return fr_add(b, fr__mulk(b, f1, 1.0 - t), fr__mulk(b, f2, t));
+}
+
+/* ---- space maps */
+
+static fr_p3_t fr__p3(fr_node_t x, fr_node_t y, fr_node_t z)
+{
+    fr_p3_t p;
+    p.x = x; p.y = y; p.z = z;
+    return p;
+}
+static fr_p3_t fr__p3_none(void) { return fr__p3(FR_NODE_NONE, FR_NODE_NONE, FR_NODE_NONE); }
+static fr_p3_t fr__p3_set(fr_p3_t p, int i, fr_node_t v)
+{
+    if (i == 0) p.x = v; else if (i == 1) p.y = v; else p.z = v;
+    return p;
+}
+
+FR_DEF fr_p3_t fr_translate(fr_builder_t *b, fr_p3_t p, const double d[3])
+{
+    if (!fr__prim_ok(b, p, d, "shift")) return fr__p3_none();
+    return fr__p3(fr__subk(b, p.x, d[0]), fr__subk(b, p.y, d[1]), fr__subk(b, p.z, d[2]));
+}
+
+FR_DEF fr_p3_t fr_scale(fr_builder_t *b, fr_p3_t p, const double s[3])
+{
+    if (!fr__prim_ok(b, p, s, "scale")) return fr__p3_none();
+    if (s[0] == 0 || s[1] == 0 || s[2] == 0) return fr__param_fail(b, "scale", "a factor is zero"), fr__p3_none();
+    return fr__p3(fr__mulk(b, p.x, 1.0 / s[0]), fr__mulk(b, p.y, 1.0 / s[1]), fr__mulk(b, p.z, 1.0 / s[2]));
+}
+
+/* (u, v) -> (u cos + v sin, -u sin + v cos) with (u, v) the cyclic pair
+   after axis: (y,z) for x, (z,x) for y, (x,y) for z, as HyperFun's
+   hfRotate3D and hfTwist have it; the angle is a node (twist, bend) or a
+   constant (rotate) */
+static fr_p3_t fr__rotate_by(fr_builder_t *b, fr_p3_t p, int axis, fr_node_t ct, fr_node_t st)
+{
+    int iu = (axis + 1) % 3, iv = (axis + 2) % 3;
+    fr_node_t u = fr__coord(p, iu), v = fr__coord(p, iv);
+    fr_node_t nu = fr_add(b, fr_mul(b, u, ct), fr_mul(b, v, st));
+    fr_node_t nv = fr_sub(b, fr_mul(b, v, ct), fr_mul(b, u, st));
+    return fr__p3_set(fr__p3_set(p, iu, nu), iv, nv);
+}
+
+FR_DEF fr_p3_t fr_rotate(fr_builder_t *b, fr_p3_t p, int axis, double theta)
+{
+    if (!fr__prim_ok(b, p, NULL, "rotate") || !fr__axis_ok(b, axis, "rotate")) return fr__p3_none();
+    if (!isfinite(theta)) return fr__param_fail(b, "rotate", "angle must be finite"), fr__p3_none();
+    return fr__rotate_by(b, p, axis, fr_const(b, cos(theta)), fr_const(b, sin(theta)));
+}
+
+FR_DEF fr_p3_t fr_affine(fr_builder_t *b, fr_p3_t p, const double m[9], const double t[3])
+{
+    fr_node_t r[3];
+    int i, j;
+    if (!fr__prim_ok(b, p, t, "affine")) return fr__p3_none();
+    for (i = 0; i < 9; i++)
+        if (!m || !isfinite(m[i])) return fr__param_fail(b, "affine", "matrix is NULL or not finite"), fr__p3_none();
+    for (i = 0; i < 3; i++) {
+        fr_node_t acc = fr_const(b, t[i]);
+        for (j = 0; j < 3; j++)
+            if (m[3 * i + j] != 0) acc = fr_add(b, acc, fr__mulk(b, fr__coord(p, j), m[3 * i + j]));
+        r[i] = acc;
+    }
+    return fr__p3(r[0], r[1], r[2]);
+}
+
+FR_DEF fr_p3_t fr_twist(fr_builder_t *b, fr_p3_t p, int axis, double s1, double s2, double th1, double th2)
+{
+    fr_node_t t, th;
+    if (!fr__prim_ok(b, p, NULL, "twist") || !fr__axis_ok(b, axis, "twist")) return fr__p3_none();
+    if (!isfinite(s1) || !isfinite(s2) || !isfinite(th1) || !isfinite(th2) || s1 == s2)
+        return fr__param_fail(b, "twist", "parameters must be finite with s1 != s2"), fr__p3_none();
+    t = fr__mulk(b, fr__subk(b, fr__coord(p, axis), s1), 1.0 / (s2 - s1));
+    th = fr__addk(b, fr__mulk(b, t, th2 - th1), th1);
+    return fr__rotate_by(b, p, axis, fr_unary(b, FR_OP_COS, th), fr_unary(b, FR_OP_SIN, th));
+}
+
+FR_DEF fr_p3_t fr_taper(fr_builder_t *b, fr_p3_t p, int axis, double s1, double s2, double sc1, double sc2)
+{
+    fr_node_t t, sc;
+    int i;
+    if (!fr__prim_ok(b, p, NULL, "taper") || !fr__axis_ok(b, axis, "taper")) return fr__p3_none();
+    if (!isfinite(s1) || !isfinite(s2) || !(s2 > s1) || !fr__finite_pos(sc1) || !fr__finite_pos(sc2))
+        return fr__param_fail(b, "taper", "need s2 > s1 and positive finite scales"), fr__p3_none();
+    t = fr__mulk(b, fr__subk(b, fr__coord(p, axis), s1), 1.0 / (s2 - s1));
+    t = fr_binary(b, FR_OP_MIN, fr_binary(b, FR_OP_MAX, t, fr_const(b, 0.0)), fr_const(b, 1.0));
+    sc = fr__addk(b, fr__mulk(b, t, sc2 - sc1), sc1);
+    for (i = 0; i < 3; i++)
+        if (i != axis) p = fr__p3_set(p, i, fr_div(b, fr__coord(p, i), sc));
+    return p;
+}
+
+FR_DEF fr_p3_t fr_stretch(fr_builder_t *b, fr_p3_t p, const double c[3], const double s[3])
+{
+    int i;
+    if (!fr__prim_ok(b, p, c, "stretch") || !fr__prim_ok(b, p, s, "stretch")) return fr__p3_none();
+    if (s[0] == 0 || s[1] == 0 || s[2] == 0) return fr__param_fail(b, "stretch", "a factor is zero"), fr__p3_none();
+    for (i = 0; i < 3; i++)
+        p = fr__p3_set(p, i, fr__addk(b, fr__mulk(b, fr__subk(b, fr__coord(p, i), c[i]), 1.0 / s[i]), c[i]));
+    return p;
+}
+
+FR_DEF fr_p3_t fr_bend(fr_builder_t *b, fr_p3_t p, int axis, double k)
+{
+    int iu = (axis + 1) % 3;
+    fr_node_t th;
+    if (!fr__prim_ok(b, p, NULL, "bend") || !fr__axis_ok(b, axis, "bend")) return fr__p3_none();
+    if (!isfinite(k)) return fr__param_fail(b, "bend", "curvature must be finite"), fr__p3_none();
+    th = fr__mulk(b, fr__coord(p, iu), k);
+    return fr__rotate_by(b, p, axis, fr_unary(b, FR_OP_COS, th), fr_unary(b, FR_OP_SIN, th));
+}
+
+/* ---- finishing: keep what the outputs use */
+
+/* Lipschitz bound of each slot from its operands (Euclidean gradient norm);
+   INFINITY where no simple rule applies. A declared bound (fr_from_sdf)
+   takes precedence. */
+static double fr__lip_rule(const fr_instr_t *in, const double *L, const fr_instr_t *code)
+{
+    double la = L[in->a], lb = L[in->b];
+    switch ((fr_op_t)in->op) {
+    case FR_OP_CONST: return 0.0;
+    case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: return 1.0;
+    case FR_OP_NEG: case FR_OP_ABS: return la;
+    case FR_OP_ADD: case FR_OP_SUB: return la + lb;
+    case FR_OP_MIN: case FR_OP_MAX: case FR_OP_SMAX: case FR_OP_SMIN: return la > lb ? la : lb;
+    case FR_OP_RUNI: case FR_OP_RINT: return in->k == 1.0 ? (la > lb ? la : lb) : INFINITY;
+    case FR_OP_MUL:
+        if (code[in->a].op == FR_OP_CONST) return fabs(code[in->a].k) * lb;
+        if (code[in->b].op == FR_OP_CONST) return fabs(code[in->b].k) * la;
+        return INFINITY;
+    case FR_OP_DIV:
+        if (code[in->b].op == FR_OP_CONST) return la / fabs(code[in->b].k);
+        return INFINITY;
+    case FR_OP_SIN: case FR_OP_COS: case FR_OP_ATAN: return la;
+    default: return INFINITY;
+    }
+}
+
+/* Copy the live instructions of src (those reachable from outs through rep,
+   where rep[i] is the slot standing in for slot i) into dst in order, and
+   renumber. live and newidx are scratch of n entries. Returns the count. */
+static unsigned int fr__compact(const fr_instr_t *src, unsigned int n, const unsigned int *rep, const unsigned int *outs,
+                                unsigned int n_outs, unsigned char *live, unsigned int *newidx, fr_instr_t *dst,
+                                unsigned int *new_outs)
+{
+    unsigned int i, m = 0;
+    memset(live, 0, n);
+    for (i = 0; i < n_outs; i++) live[rep[outs[i]]] = 1;
+    for (i = n; i-- > 0;) {
+        int ar;
+        if (!live[i]) continue;
+        FR_ASSERT(rep[i] == i);
+        ar = fr__arity(src[i].op);
+        if (ar >= 1) live[rep[src[i].a]] = 1;
+        if (ar >= 2) live[rep[src[i].b]] = 1;
+        if (ar >= 3) live[rep[src[i].c]] = 1;
+    }
+    for (i = 0; i < n; i++) {
+        fr_instr_t in;
+        int ar;
+        if (!live[i]) continue;
+        in = src[i];
+        ar = fr__arity(in.op);
+        in.a = ar >= 1 ? newidx[rep[in.a]] : 0;
+        in.b = ar >= 2 ? newidx[rep[in.b]] : 0;
+        in.c = ar >= 3 ? newidx[rep[in.c]] : 0;
+        newidx[i] = m;
+        dst[m++] = in;
+    }
+    for (i = 0; i < n_outs; i++) new_outs[i] = newidx[rep[outs[i]]];
+    return m;
+}
+
+FR_DEF fr_result_t fr_builder_finish(fr_builder_t *b, fr_node_t shape, const fr_node_t *attrs, unsigned int n_attrs,
+                                     fr_tape_t *out, fr_diag_t *diag)
+{
+    unsigned int outs[FR_MAX_OUTPUTS], i, n, m;
+    size_t code_bytes, param_bytes, cb_bytes, work_bytes;
+    unsigned char *mem, *live;
+    unsigned int *rep, *newidx;
+    fr_instr_t *code;
+    double *L;
+    fr_result_t r = FR_OK;
+    if (diag) {
+        memset(diag, 0, sizeof *diag);
+        diag->element = -1;
+    }
+    if (!b || !out) return FR_ERR_INVALID_ARG;
+    memset(out, 0, sizeof *out);
+    if (b->diag.result == FR_OK) {
+        if (!fr__ok(b, shape)) fr__fail(b, FR_ERR_INVALID_ARG, "finish: invalid shape node");
+        else if (n_attrs > FR_MAX_OUTPUTS - 1 || (n_attrs && !attrs))
+            fr__fail(b, FR_ERR_INVALID_ARG, "finish: too many attributes (FR_MAX_OUTPUTS)");
+        else
+            for (i = 0; i < n_attrs; i++)
+                if (!fr__ok(b, attrs[i])) fr__fail(b, FR_ERR_INVALID_ARG, "finish: invalid attribute node");
+    }
+    if (b->diag.result != FR_OK) {
+        if (diag) *diag = b->diag;
+        return b->diag.result;
+    }
+    n = b->n;
+    outs[0] = shape;
+    for (i = 0; i < n_attrs; i++) outs[i + 1] = attrs[i];
+    code_bytes = (size_t)n * sizeof(fr_instr_t);
+    param_bytes = (size_t)b->n_params * sizeof(double);
+    cb_bytes = (size_t)b->n_callbacks * sizeof(fr_callback_t);
+    work_bytes = (size_t)n * (2 * sizeof(unsigned int) + sizeof(double) + 1);
+    mem = (unsigned char *)FR_MALLOC(code_bytes + param_bytes + cb_bytes + work_bytes + 16, b->alloc_ctx);
+    if (!mem) {
+        r = FR_ERR_OUT_OF_MEMORY;
+        if (diag) {
+            diag->result = r;
+            snprintf(diag->message, sizeof diag->message, "out of memory compiling %u nodes", n);
+        }
+        return r;
+    }
+    code = (fr_instr_t *)mem;
+    if (param_bytes) memcpy(mem + code_bytes, b->params, param_bytes);
+    if (cb_bytes) memcpy(mem + code_bytes + param_bytes, b->callbacks, cb_bytes);
+    /* work area after the kept data; it is reused, never exposed */
+    L = (double *)(void *)(mem + code_bytes + param_bytes + cb_bytes);
+    rep = (unsigned int *)(void *)(L + n);
+    newidx = rep + n;
+    live = (unsigned char *)(newidx + n);
+    for (i = 0; i < n; i++) {
+        rep[i] = i;
+        L[i] = 0.0;
+    }
+    m = fr__compact(b->code, n, rep, outs, n_attrs + 1, live, newidx, code, out->outputs);
+    /* Lipschitz bounds on the compacted tape, with declared bounds carried over */
+    {
+        unsigned int j = 0;
+        for (i = 0; i < n; i++)
+            if (live[i]) {
+                double d = b->lip[i];
+                L[j] = d > 0 ? d : fr__lip_rule(&code[j], L, code);
+                j++;
+            }
+        out->lipschitz = m ? L[out->outputs[0]] : INFINITY;
+    }
+    out->code = code;
+    out->n_code = m;
+    out->params = b->n_params ? (const double *)(void *)(mem + code_bytes) : NULL;
+    out->n_params = b->n_params;
+    out->callbacks = b->n_callbacks ? (const fr_callback_t *)(void *)(mem + code_bytes + param_bytes) : NULL;
+    out->n_callbacks = b->n_callbacks;
+    out->n_outputs = n_attrs + 1;
+    out->alloc_ctx = b->alloc_ctx;
+    out->owned = mem;
+    for (i = 0; i < b->n_callbacks; i++) {
+        if (!b->callbacks[i].grad) out->flags |= FR_TAPE_NO_GRADIENT;
+#ifndef FR_NO_INTERVAL
+        if (!b->callbacks[i].interval) out->flags |= FR_TAPE_NO_INTERVAL;
+#endif
+    }
+    return FR_OK;
+}
+
+FR_DEF void fr_tape_free(fr_tape_t *t)
+{
+    if (!t) return;
+    if (t->owned) FR_FREE(t->owned, t->alloc_ctx);
+    memset(t, 0, sizeof *t);
+}
+
+/* ---- gradient noise (Perlin's improved noise, our own tables) */
+
+static const unsigned char fr__perm[256] = {
+    151, 160, 137, 91,  90,  15,  131, 13,  201, 95,  96,  53,  194, 233, 7,   225, 140, 36,  103, 30,  69,  142,
+    8,   99,  37,  240, 21,  10,  23,  190, 6,   148, 247, 120, 234, 75,  0,   26,  197, 62,  94,  252, 219, 203,
+    117, 35,  11,  32,  57,  177, 33,  88,  237, 149, 56,  87,  174, 20,  125, 136, 171, 168, 68,  175, 74,  165,
+    71,  134, 139, 48,  27,  166, 77,  146, 158, 231, 83,  111, 229, 122, 60,  211, 133, 230, 220, 105, 92,  41,
+    55,  46,  245, 40,  244, 102, 143, 54,  65,  25,  63,  161, 1,   216, 80,  73,  209, 76,  132, 187, 208, 89,
+    18,  169, 200, 196, 135, 130, 116, 188, 159, 86,  164, 100, 109, 198, 173, 186, 3,   64,  52,  217, 226, 250,
+    124, 123, 5,   202, 38,  147, 118, 126, 255, 82,  85,  212, 207, 206, 59,  227, 47,  16,  58,  17,  182, 189,
+    28,  42,  223, 183, 170, 213, 119, 248, 152, 2,   44,  154, 163, 70,  221, 153, 101, 155, 167, 43,  172, 9,
+    129, 22,  39,  253, 19,  98,  108, 110, 79,  113, 224, 232, 178, 185, 112, 104, 218, 246, 97,  228, 251, 34,
+    242, 193, 238, 210, 144, 12,  191, 179, 162, 241, 81,  51,  145, 235, 249, 14,  239, 107, 49,  192, 214, 31,
+    181, 199, 106, 157, 184, 84,  204, 176, 115, 121, 50,  45,  127, 4,   150, 254, 138, 236, 205, 93,  222, 114,
+    67,  29,  24,  72,  243, 141, 128, 195, 78,  66,  215, 61,  156, 180};
+/* the 12 cube-edge directions, padded to 16 (two non-zero unit components each) */
+static const signed char fr__grad3[16][3] = {{1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1}, {-1, 0, 1},
+                                             {1, 0, -1}, {-1, 0, -1}, {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1},
+                                             {1, 1, 0}, {0, -1, 1}, {-1, 1, 0}, {0, -1, -1}};
+
+/* Value and gradient of the noise at u. Each of the 8 lattice corners
+   contributes w(corner) * (g . d) with |g . d| <= 2 (two unit components,
+   |d_i| <= 1) and the weights a partition of unity: |value| <= 2. The
+   fade 6t^5-15t^4+10t^3 has slope <= 15/8, so |d value/du_i| <=
+   2 * 15/8 * 2 + 1 = 8.5: the bounds FR__NOISE_MAX and FR__NOISE_LIP. */
+#define FR__NOISE_MAX 2.0
+#define FR__NOISE_LIP 8.5
+static double fr__gnoise(const double u[3], double g[3])
+{
+    double fl[3], fr[3], w[3], dw[3], v = 0;
+    int i, cx, cy, cz, ix[3];
+    for (i = 0; i < 3; i++) {
+        double t;
+        fl[i] = floor(u[i]);
+        fr[i] = u[i] - fl[i];
+        t = fr[i];
+        w[i] = t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+        dw[i] = 30.0 * t * t * (t * (t - 2.0) + 1.0);
+        ix[i] = (int)(fmod(fl[i], 256.0) + 256.0) & 255;
+    }
+    if (g) g[0] = g[1] = g[2] = 0;
+    for (cx = 0; cx < 2; cx++)
+        for (cy = 0; cy < 2; cy++)
+            for (cz = 0; cz < 2; cz++) {
+                int h = fr__perm[(fr__perm[(fr__perm[(ix[0] + cx) & 255] + ix[1] + cy) & 255] + ix[2] + cz) & 255] & 15;
+                double d0 = fr[0] - cx, d1 = fr[1] - cy, d2 = fr[2] - cz;
+                double dot = fr__grad3[h][0] * d0 + fr__grad3[h][1] * d1 + fr__grad3[h][2] * d2;
+                double wx = cx ? w[0] : 1 - w[0], wy = cy ? w[1] : 1 - w[1], wz = cz ? w[2] : 1 - w[2];
+                double sx = cx ? dw[0] : -dw[0], sy = cy ? dw[1] : -dw[1], sz = cz ? dw[2] : -dw[2];
+                v += wx * wy * wz * dot;
+                if (g) {
+                    g[0] += sx * wy * wz * dot + wx * wy * wz * fr__grad3[h][0];
+                    g[1] += wx * sy * wz * dot + wx * wy * wz * fr__grad3[h][1];
+                    g[2] += wx * wy * sz * dot + wx * wy * wz * fr__grad3[h][2];
+                }
+            }
+    return v;
+}
+
+static double fr__noise_at(const double *q, double x, double y, double z, double g[3])
+{
+    double u[3], v;
+    u[0] = q[1] * x + q[2];
+    u[1] = q[1] * y + q[3];
+    u[2] = q[1] * z + q[4];
+    v = q[0] * fr__gnoise(u, g);
+    if (g) {
+        g[0] *= q[0] * q[1];
+        g[1] *= q[0] * q[1];
+        g[2] *= q[0] * q[1];
+    }
+    return v;
+}
+
+/* ---- scalar semantics of each opcode, shared by the point and batch paths */
+
+/* R-functions (HyperFun): alpha == 1 is exactly max/min; otherwise
+   a + b +- sqrt(a^2 + b^2 - 2 alpha a b), with the radicand written as
+   (a - alpha b)^2 + (1 - alpha^2) b^2 so it is never negative. */
+static inline double fr__runi(double a, double b, double al)
+{
+    double t = a - al * b;
+    return al == 1.0 ? (a > b ? a : b) : a + b + sqrt(t * t + (1.0 - al * al) * b * b);
+}
+static inline double fr__rint(double a, double b, double al)
+{
+    double t = a - al * b;
+    return al == 1.0 ? (a < b ? a : b) : a + b - sqrt(t * t + (1.0 - al * al) * b * b);
+}
+/* polynomial smooth max/min: h = max(k - |a-b|, 0)/k, max + h^2 k/4 */
+static inline double fr__smax(double a, double b, double k)
+{
+    double h = k - fabs(a - b);
+    h = h > 0 ? h / k : 0;
+    return (a > b ? a : b) + h * h * k * 0.25;
+}
+static inline double fr__smin(double a, double b, double k)
+{
+    double h = k - fabs(a - b);
+    h = h > 0 ? h / k : 0;
+    return (a < b ? a : b) - h * h * k * 0.25;
+}
+static inline double fr__powi(double a, int n)
+{
+    double r = 1.0, x = a;
+    unsigned int m = (unsigned int)(n < 0 ? -n : n);
+    while (m) {
+        if (m & 1u) r *= x;
+        x *= x;
+        m >>= 1;
+    }
+    return n < 0 ? 1.0 / r : r;
+}
+
+static double fr__call_point(const fr_tape_t *t, const fr_instr_t *in, double x, double y, double z)
+{
+    double p[3];
+    p[0] = x; p[1] = y; p[2] = z;
+    return t->callbacks[in->aux].point(p, t->callbacks[in->aux].user);
+}
+
+/* ---- point evaluation */
+
+static void fr__run_point(const fr_tape_t *t, const double p[3], double *v)
+{
+    const fr_instr_t *code = t->code;
+    unsigned int i, n = t->n_code;
+    for (i = 0; i < n; i++) {
+        const fr_instr_t *in = &code[i];
+        double a = v[in->a], c = v[in->b], r;
+        switch ((fr_op_t)in->op) {
+        case FR_OP_CONST: r = in->k; break;
+        case FR_OP_VAR_X: r = p[0]; break;
+        case FR_OP_VAR_Y: r = p[1]; break;
+        case FR_OP_VAR_Z: r = p[2]; break;
+        case FR_OP_NEG: r = -a; break;
+        case FR_OP_SQR: r = a * a; break;
+        case FR_OP_SQRT: r = sqrt(a); break;
+        case FR_OP_ABS: r = fabs(a); break;
+        case FR_OP_EXP: r = exp(a); break;
+        case FR_OP_LOG: r = log(a); break;
+        case FR_OP_SIN: r = sin(a); break;
+        case FR_OP_COS: r = cos(a); break;
+        case FR_OP_ATAN: r = atan(a); break;
+        case FR_OP_POWI: r = fr__powi(a, (int)in->k); break;
+        case FR_OP_POWC: r = pow(a, in->k); break;
+        case FR_OP_ADD: r = a + c; break;
+        case FR_OP_SUB: r = a - c; break;
+        case FR_OP_MUL: r = a * c; break;
+        case FR_OP_DIV: r = a / c; break;
+        case FR_OP_MIN: r = a < c ? a : c; break;
+        case FR_OP_MAX: r = a > c ? a : c; break;
+        case FR_OP_RUNI: r = fr__runi(a, c, in->k); break;
+        case FR_OP_RINT: r = fr__rint(a, c, in->k); break;
+        case FR_OP_SMAX: r = fr__smax(a, c, in->k); break;
+        case FR_OP_SMIN: r = fr__smin(a, c, in->k); break;
+        case FR_OP_NOISE: r = fr__noise_at(t->params + in->aux, a, c, v[in->c], NULL); break;
+        case FR_OP_CALL: r = fr__call_point(t, in, a, c, v[in->c]); break;
+        default: r = NAN; break;
+        }
+        v[i] = r;
+    }
+}
+
+FR_DEF size_t fr_scratch_size(const fr_tape_t *t, fr_eval_kind_t kind)
+{
+    size_t n = t ? (size_t)t->n_code : 0;
+    if (n == 0) n = 1;
+    switch (kind) {
+    case FR_EVAL_POINT: return n * sizeof(double);
+    case FR_EVAL_BATCH: return n * FR_BATCH * sizeof(double);
+    case FR_EVAL_GRAD: return n * 4 * sizeof(double);
+#ifndef FR_NO_INTERVAL
+    case FR_EVAL_INTERVAL: return n * sizeof(iv_t);
+    case FR_EVAL_AFFINE: return n * sizeof(iv_affine_t);
+    case FR_EVAL_PRUNE: return n * (sizeof(iv_t) + 3 * sizeof(unsigned int) + 2);
+#else
+    case FR_EVAL_INTERVAL: case FR_EVAL_AFFINE: case FR_EVAL_PRUNE: return 0;
+#endif
+    }
+    return 0;
+}
+
+FR_DEF double fr_eval(const fr_tape_t *t, const double p[3], void *scratch)
+{
+    double *v = (double *)scratch;
+    if (!t || !p || !v || t->n_code == 0) return NAN;
+    fr__run_point(t, p, v);
+    return v[t->outputs[0]];
+}
+
+FR_DEF void fr_eval_outputs(const fr_tape_t *t, const double p[3], void *scratch, double *out)
+{
+    double *v = (double *)scratch;
+    unsigned int i;
+    if (!t || !p || !v || !out || t->n_code == 0) return;
+    fr__run_point(t, p, v);
+    for (i = 0; i < t->n_outputs; i++) out[i] = v[t->outputs[i]];
+}
+
+/* ---- batch evaluation: one instruction at a time over FR_BATCH lanes, so
+   each case is a plain loop over contiguous doubles that the compiler
+   vectorises; transcendental cases call libm per lane */
+#define FR__LANES(expr)                                      \
+    do {                                                     \
+        for (j = 0; j < m; j++) r[j] = (expr);               \
+    } while (0)
+
+static void fr__run_batch(const fr_tape_t *t, unsigned int m, const double *x, const double *y, const double *z,
+                          double *v)
+{
+    const fr_instr_t *code = t->code;
+    unsigned int i, j, n = t->n_code;
+    for (i = 0; i < n; i++) {
+        const fr_instr_t *in = &code[i];
+        double *r = v + (size_t)i * FR_BATCH;
+        const double *A = v + (size_t)in->a * FR_BATCH, *B = v + (size_t)in->b * FR_BATCH;
+        const double k = in->k;
+        switch ((fr_op_t)in->op) {
+        case FR_OP_CONST: FR__LANES(k); break;
+        case FR_OP_VAR_X: FR__LANES(x[j]); break;
+        case FR_OP_VAR_Y: FR__LANES(y[j]); break;
+        case FR_OP_VAR_Z: FR__LANES(z[j]); break;
+        case FR_OP_NEG: FR__LANES(-A[j]); break;
+        case FR_OP_SQR: FR__LANES(A[j] * A[j]); break;
+        case FR_OP_SQRT: FR__LANES(sqrt(A[j])); break;
+        case FR_OP_ABS: FR__LANES(fabs(A[j])); break;
+        case FR_OP_EXP: FR__LANES(exp(A[j])); break;
+        case FR_OP_LOG: FR__LANES(log(A[j])); break;
+        case FR_OP_SIN: FR__LANES(sin(A[j])); break;
+        case FR_OP_COS: FR__LANES(cos(A[j])); break;
+        case FR_OP_ATAN: FR__LANES(atan(A[j])); break;
+        case FR_OP_POWI: FR__LANES(fr__powi(A[j], (int)k)); break;
+        case FR_OP_POWC: FR__LANES(pow(A[j], k)); break;
+        case FR_OP_ADD: FR__LANES(A[j] + B[j]); break;
+        case FR_OP_SUB: FR__LANES(A[j] - B[j]); break;
+        case FR_OP_MUL: FR__LANES(A[j] * B[j]); break;
+        case FR_OP_DIV: FR__LANES(A[j] / B[j]); break;
+        case FR_OP_MIN: FR__LANES(A[j] < B[j] ? A[j] : B[j]); break;
+        case FR_OP_MAX: FR__LANES(A[j] > B[j] ? A[j] : B[j]); break;
+        case FR_OP_RUNI: FR__LANES(fr__runi(A[j], B[j], k)); break;
+        case FR_OP_RINT: FR__LANES(fr__rint(A[j], B[j], k)); break;
+        case FR_OP_SMAX: FR__LANES(fr__smax(A[j], B[j], k)); break;
+        case FR_OP_SMIN: FR__LANES(fr__smin(A[j], B[j], k)); break;
+        case FR_OP_NOISE: {
+            const double *C = v + (size_t)in->c * FR_BATCH;
+            FR__LANES(fr__noise_at(t->params + in->aux, A[j], B[j], C[j], NULL));
+            break;
+        }
+        case FR_OP_CALL: {
+            const double *C = v + (size_t)in->c * FR_BATCH;
+            FR__LANES(fr__call_point(t, in, A[j], B[j], C[j]));
+            break;
+        }
+        default: FR__LANES(NAN); break;
+        }
+    }
+}
+#undef FR__LANES
+
+FR_DEF void fr_eval_batch(const fr_tape_t *t, size_t n, const double *x, const double *y, const double *z, double *out,
+                          void *scratch)
+{
+    double *v = (double *)scratch;
+    size_t s;
+    if (!t || !x || !y || !z || !out || !v || t->n_code == 0) return;
+    for (s = 0; s < n; s += FR_BATCH) {
+        unsigned int m = (unsigned int)(n - s < FR_BATCH ? n - s : FR_BATCH), j;
+        const double *r = v + (size_t)t->outputs[0] * FR_BATCH;
+        fr__run_batch(t, m, x + s, y + s, z + s, v);
+        for (j = 0; j < m; j++) out[s + j] = r[j];
+    }
+}
+
+/* ---- forward-mode AD: each slot holds (value, d/dx, d/dy, d/dz) */
+
+static fr_result_t fr__run_grad(const fr_tape_t *t, const double p[3], double *v)
+{
+    const fr_instr_t *code = t->code;
+    unsigned int i, n = t->n_code;
+    int d;
+    for (i = 0; i < n; i++) {
+        const fr_instr_t *in = &code[i];
+        const double *A = v + 4 * (size_t)in->a, *B = v + 4 * (size_t)in->b;
+        double *R = v + 4 * (size_t)i;
+        double a = A[0], c = B[0], da = 0, db = 0, val; /* R' = da A' + db B' */
+        switch ((fr_op_t)in->op) {
+        case FR_OP_CONST: R[0] = in->k; R[1] = R[2] = R[3] = 0; continue;
+        case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z:
+            R[0] = p[in->op - FR_OP_VAR_X];
+            R[1] = R[2] = R[3] = 0;
+            R[1 + in->op - FR_OP_VAR_X] = 1;
+            continue;
+        case FR_OP_NEG: val = -a; da = -1; break;
+        case FR_OP_SQR: val = a * a; da = 2 * a; break;
+        case FR_OP_SQRT: val = sqrt(a); da = 0.5 / val; break;
+        case FR_OP_ABS: val = fabs(a); da = a < 0 ? -1 : 1; break;
+        case FR_OP_EXP: val = exp(a); da = val; break;
+        case FR_OP_LOG: val = log(a); da = 1 / a; break;
+        case FR_OP_SIN: val = sin(a); da = cos(a); break;
+        case FR_OP_COS: val = cos(a); da = -sin(a); break;
+        case FR_OP_ATAN: val = atan(a); da = 1 / (1 + a * a); break;
+        case FR_OP_POWI: val = fr__powi(a, (int)in->k); da = in->k * fr__powi(a, (int)in->k - 1); break;
+        case FR_OP_POWC: val = pow(a, in->k); da = in->k * pow(a, in->k - 1); break;
+        case FR_OP_ADD: val = a + c; da = 1; db = 1; break;
+        case FR_OP_SUB: val = a - c; da = 1; db = -1; break;
+        case FR_OP_MUL: val = a * c; da = c; db = a; break;
+        case FR_OP_DIV: val = a / c; da = 1 / c; db = -val / c; break;
+        case FR_OP_MIN: if (a <= c) { val = a; da = 1; } else { val = c; db = 1; } break;
+        case FR_OP_MAX: if (a >= c) { val = a; da = 1; } else { val = c; db = 1; } break;
+        case FR_OP_RUNI: case FR_OP_RINT: {
+            double al = in->k, sg = in->op == FR_OP_RUNI ? 1.0 : -1.0;
+            if (al == 1.0) {
+                int first = in->op == FR_OP_RUNI ? a >= c : a <= c;
+                val = first ? a : c;
+                da = first; db = !first;
+            } else {
+                double t1 = a - al * c, s = sqrt(t1 * t1 + (1 - al * al) * c * c);
+                val = a + c + sg * s;
+                /* d s = ((a - alpha c) da + (c - alpha a) dc) / s; 0 at the kink s = 0 */
+                da = 1 + (s > 0 ? sg * (a - al * c) / s : 0);
+                db = 1 + (s > 0 ? sg * (c - al * a) / s : 0);
+            }
+            break;
+        }
+        case FR_OP_SMAX: case FR_OP_SMIN: {
+            double k = in->k, h = k - fabs(a - c), sg = in->op == FR_OP_SMAX ? 1.0 : -1.0;
+            int first = in->op == FR_OP_SMAX ? a >= c : a <= c;
+            double e = h > 0 ? h / k : 0, de; /* d(h^2 k/4)/d(a-c) = -e/2 sign(a-c) */
+            val = (first ? a : c) + sg * e * e * k * 0.25;
+            de = sg * 0.5 * e * (a >= c ? -1.0 : 1.0);
+            da = (first ? 1.0 : 0.0) + de;
+            db = (first ? 0.0 : 1.0) - de;
+            break;
+        }
+        case FR_OP_NOISE: case FR_OP_CALL: {
+            const double *C = v + 4 * (size_t)in->c;
+            double q[3], g[3];
+            q[0] = a; q[1] = c; q[2] = C[0];
+            if (in->op == FR_OP_NOISE)
+                val = fr__noise_at(t->params + in->aux, a, c, C[0], g);
+            else {
+                const fr_callback_t *cb = &t->callbacks[in->aux];
+                if (!cb->grad) return FR_ERR_NO_GRADIENT;
+                val = cb->grad(q, cb->user, g);
+            }
+            R[0] = val;
+            for (d = 1; d < 4; d++) R[d] = g[0] * A[d] + g[1] * B[d] + g[2] * C[d];
+            continue;
+        }
+        default: val = NAN; break;
+        }
+        R[0] = val;
+        for (d = 1; d < 4; d++) R[d] = (da != 0 ? da * A[d] : 0) + (db != 0 ? db * B[d] : 0);
+    }
+    return FR_OK;
+}
+
+FR_DEF fr_result_t fr_eval_grad(const fr_tape_t *t, const double p[3], void *scratch, double *value, double grad[3])
+{
+    double *v = (double *)scratch, *o;
+    fr_result_t r;
+    if (!t || !p || !v || !value || !grad || t->n_code == 0) return FR_ERR_INVALID_ARG;
+    r = fr__run_grad(t, p, v);
+    if (r != FR_OK) return r;
+    o = v + 4 * (size_t)t->outputs[0];
+    *value = o[0];
+    grad[0] = o[1]; grad[1] = o[2]; grad[2] = o[3];
+    return FR_OK;
+}
+
+#ifndef FR_NO_INTERVAL
+/* ---- interval evaluation (paper section 3.1.2: Moore's inclusion) */
+
+/* Rounding slack for values computed in plain double arithmetic (R-function
+   and smooth-max endpoints, the noise centre value): each is a short
+   expression whose rounding error is below 8 ulps of the magnitudes
+   involved; 16 leaves a factor of two, relative to mag. */
+#define FR__ROUND_SLACK (16.0 * DBL_EPSILON)
+static iv_t fr__widen(double lo, double hi, double mag)
+{
+    double s = FR__ROUND_SLACK * mag + DBL_MIN;
+    lo = isnan(lo) ? -HUGE_VAL : lo - s;
+    hi = isnan(hi) ? HUGE_VAL : hi + s;
+    return iv_make(lo, hi);
+}
+static double fr__mag2(iv_t a, iv_t b)
+{
+    double m = fabs(a.lo);
+    if (fabs(a.hi) > m) m = fabs(a.hi);
+    if (fabs(b.lo) > m) m = fabs(b.lo);
+    if (fabs(b.hi) > m) m = fabs(b.hi);
+    return 4.0 * m;
+}
+
+/* R-functions with alpha in [0,1] and the smooth max/min are monotone
+   non-decreasing in both arguments (|d sqrt/da| <= 1 since the radicand is
+   (a - alpha b)^2 + (1 - alpha^2) b^2 >= (a - alpha b)^2), so their exact
+   range over a box is spanned by the two corner values. */
+static iv_t fr__iv_monotone2(const fr_instr_t *in, iv_t a, iv_t b)
+{
+    double lo, hi;
+    if (iv_is_empty(a) || iv_is_empty(b)) return iv_empty();
+    switch ((fr_op_t)in->op) {
+    case FR_OP_RUNI:
+        if (in->k == 1.0) return iv_max(a, b);
+        lo = fr__runi(a.lo, b.lo, in->k); hi = fr__runi(a.hi, b.hi, in->k);
+        break;
+    case FR_OP_RINT:
+        if (in->k == 1.0) return iv_min(a, b);
+        lo = fr__rint(a.lo, b.lo, in->k); hi = fr__rint(a.hi, b.hi, in->k);
+        break;
+    case FR_OP_SMAX: lo = fr__smax(a.lo, b.lo, in->k); hi = fr__smax(a.hi, b.hi, in->k); break;
+    default: lo = fr__smin(a.lo, b.lo, in->k); hi = fr__smin(a.hi, b.hi, in->k); break;
+    }
+    return fr__widen(lo, hi, fr__mag2(a, b) + in->k);
+}
+
+/* Noise over a box: the value at the centre plus the Lipschitz bound times
+   the l1 radius, clipped to |value| <= amp * FR__NOISE_MAX. The centre and
+   radius are rounded outward; the slack covers the noise evaluation's own
+   rounding and that of freq * x + offset. */
+static iv_t fr__iv_noise(const double *q, iv_t x, iv_t y, iv_t z)
+{
+    iv_t box[3];
+    double c[3], r = 0, v, amp = fabs(q[0]), bound = amp * FR__NOISE_MAX, scale = 0, slack;
+    int i;
+    box[0] = x; box[1] = y; box[2] = z;
+    for (i = 0; i < 3; i++) {
+        if (iv_is_empty(box[i])) return iv_empty();
+        if (!isfinite(box[i].lo) || !isfinite(box[i].hi)) return iv_make(-bound, bound);
+        c[i] = 0.5 * box[i].lo + 0.5 * box[i].hi;
+        r += (box[i].hi - c[i] > c[i] - box[i].lo ? box[i].hi - c[i] : c[i] - box[i].lo);
+        scale += fabs(q[1] * c[i]) + fabs(q[2 + i]);
+    }
+    r *= 1.0 + 4.0 * DBL_EPSILON;
+    v = fr__noise_at(q, c[0], c[1], c[2], NULL);
+    slack = FR__ROUND_SLACK * amp * (FR__NOISE_MAX + FR__NOISE_LIP * (scale + 1.0));
+    r = amp * q[1] * FR__NOISE_LIP * r + slack;
+    return iv_make(v - r > -bound ? v - r : -bound, v + r < bound ? v + r : bound);
+}
+
+static fr_result_t fr__run_interval(const fr_tape_t *t, const iv_t box[3], iv_t *v)
+{
+    const fr_instr_t *code = t->code;
+    unsigned int i, n = t->n_code;
+    for (i = 0; i < n; i++) {
+        const fr_instr_t *in = &code[i];
+        iv_t a = v[in->a], c = v[in->b], r;
+        switch ((fr_op_t)in->op) {
+        case FR_OP_CONST: r = iv_point(in->k); break;
+        case FR_OP_VAR_X: r = box[0]; break;
+        case FR_OP_VAR_Y: r = box[1]; break;
+        case FR_OP_VAR_Z: r = box[2]; break;
+        case FR_OP_NEG: r = iv_neg(a); break;
+        case FR_OP_SQR: r = iv_sqr(a); break;
+        case FR_OP_SQRT: r = iv_sqrt(a); break;
+        case FR_OP_ABS: r = iv_abs(a); break;
+        case FR_OP_EXP: r = iv_exp(a); break;
+        case FR_OP_LOG: r = iv_log(a); break;
+        case FR_OP_SIN: r = iv_sin(a); break;
+        case FR_OP_COS: r = iv_cos(a); break;
+        case FR_OP_ATAN: r = iv_atan(a); break;
+        case FR_OP_POWI: r = iv_pow_n(a, (int)in->k); break;
+        case FR_OP_POWC: r = iv_pow(a, iv_point(in->k)); break;
+        case FR_OP_ADD: r = iv_add(a, c); break;
+        case FR_OP_SUB: r = iv_sub(a, c); break;
+        case FR_OP_MUL: r = iv_mul(a, c); break;
+        case FR_OP_DIV: r = iv_div(a, c); break;
+        case FR_OP_MIN: r = iv_min(a, c); break;
+        case FR_OP_MAX: r = iv_max(a, c); break;
+        case FR_OP_RUNI: case FR_OP_RINT: case FR_OP_SMAX: case FR_OP_SMIN: r = fr__iv_monotone2(in, a, c); break;
+        case FR_OP_NOISE: r = fr__iv_noise(t->params + in->aux, a, c, v[in->c]); break;
+        case FR_OP_CALL: {
+            const fr_callback_t *cb = &t->callbacks[in->aux];
+            iv_t q[3];
+            if (!cb->interval) return FR_ERR_NO_INTERVAL;
+            q[0] = a; q[1] = c; q[2] = v[in->c];
+            r = cb->interval(q, cb->user);
+            break;
+        }
+        default: r = iv_entire(); break;
+        }
+        v[i] = r;
+    }
+    return FR_OK;
+}
+
+FR_DEF fr_result_t fr_eval_interval(const fr_tape_t *t, const iv_t box[3], void *scratch, iv_t *out)
+{
+    iv_t *v = (iv_t *)scratch;
+    fr_result_t r;
+    if (!t || !box || !v || !out || t->n_code == 0) return FR_ERR_INVALID_ARG;
+    if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+    r = fr__run_interval(t, box, v);
+    if (r == FR_OK) *out = v[t->outputs[0]];
+    return r;
+}
+
+#ifndef IV_NO_AFFINE
+/* ---- affine evaluation: elementary operations keep the correlation with
+   the ray symbol; choice operations without an affine rule go through their
+   exact interval image */
+static iv_affine_t fr__af_monotone2(const fr_instr_t *in, iv_affine_t a, iv_affine_t b)
+{
+    iv_t r = fr__iv_monotone2(in, iv_from_affine(a), iv_from_affine(b));
+    if ((in->op == FR_OP_RUNI || in->op == FR_OP_RINT) && in->k != 1.0) {
+        /* a + b +- sqrt((a - alpha b)^2 + (1 - alpha^2) b^2) keeps eps_t; use it
+           when it is the tighter of the two enclosures */
+        iv_affine_t d = iv_affine_sub(a, iv_affine_mul_d(b, in->k));
+        iv_affine_t s = iv_affine_sqrt(iv_affine_add(iv_affine_sqr(d), iv_affine_mul_d(iv_affine_sqr(b), 1.0 - in->k * in->k)));
+        iv_affine_t f = in->op == FR_OP_RUNI ? iv_affine_add(iv_affine_add(a, b), s) : iv_affine_sub(iv_affine_add(a, b), s);
+        iv_t fi = iv_from_affine(f);
+        if (!iv_affine_is_empty(f) && iv_width(fi) < iv_width(r)) return f;
+    }
+    if (in->op == FR_OP_RUNI && in->k == 1.0) return iv_affine_max(a, b);
+    if (in->op == FR_OP_RINT && in->k == 1.0) return iv_affine_min(a, b);
+    return iv_affine_from_iv(r);
+}
+
+FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], void *scratch, iv_affine_t *out)
+{
+    iv_affine_t *v = (iv_affine_t *)scratch;
+    const fr_instr_t *code;
+    unsigned int i, n;
+    if (!t || !p || !v || !out || t->n_code == 0) return FR_ERR_INVALID_ARG;
+    if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+    code = t->code;
+    n = t->n_code;
+    for (i = 0; i < n; i++) {
+        const fr_instr_t *in = &code[i];
+        iv_affine_t a = v[in->a], c = v[in->b], r;
+        switch ((fr_op_t)in->op) {
+        case FR_OP_CONST: r = iv_affine_const(in->k); break;
+        case FR_OP_VAR_X: r = p[0]; break;
+        case FR_OP_VAR_Y: r = p[1]; break;
+        case FR_OP_VAR_Z: r = p[2]; break;
+        case FR_OP_NEG: r = iv_affine_neg(a); break;
+        case FR_OP_SQR: r = iv_affine_sqr(a); break;
+        case FR_OP_SQRT: r = iv_affine_sqrt(a); break;
+        case FR_OP_ABS: r = iv_affine_abs(a); break;
+        case FR_OP_EXP: r = iv_affine_exp(a); break;
+        case FR_OP_LOG: r = iv_affine_log(a); break;
+        case FR_OP_SIN: r = iv_affine_sin(a); break;
+        case FR_OP_COS: r = iv_affine_cos(a); break;
+        case FR_OP_ATAN: r = iv_affine_atan(a); break;
+        case FR_OP_POWI: r = iv_affine_pow_n(a, (int)in->k); break;
+        case FR_OP_POWC: r = iv_affine_pow(a, iv_affine_const(in->k)); break;
+        case FR_OP_ADD:
+            /* a constant operand keeps the other form's error radius exact */
+            r = code[in->b].op == FR_OP_CONST ? iv_affine_add_d(a, code[in->b].k) : iv_affine_add(a, c);
+            break;
+        case FR_OP_SUB:
+            r = code[in->b].op == FR_OP_CONST ? iv_affine_sub_d(a, code[in->b].k) : iv_affine_sub(a, c);
+            break;
+        case FR_OP_MUL:
+            r = code[in->b].op == FR_OP_CONST   ? iv_affine_mul_d(a, code[in->b].k)
+                : code[in->a].op == FR_OP_CONST ? iv_affine_mul_d(c, code[in->a].k)
+                                                : iv_affine_mul(a, c);
+            break;
+        case FR_OP_DIV: r = iv_affine_div(a, c); break;
+        case FR_OP_MIN: r = iv_affine_min(a, c); break;
+        case FR_OP_MAX: r = iv_affine_max(a, c); break;
+        case FR_OP_RUNI: case FR_OP_RINT: case FR_OP_SMAX: case FR_OP_SMIN: r = fr__af_monotone2(in, a, c); break;
+        case FR_OP_NOISE:
+            r = iv_affine_from_iv(fr__iv_noise(t->params + in->aux, iv_from_affine(a), iv_from_affine(c),
+                                               iv_from_affine(v[in->c])));
+            break;
+        case FR_OP_CALL: {
+            const fr_callback_t *cb = &t->callbacks[in->aux];
+            iv_t q[3];
+            q[0] = iv_from_affine(a); q[1] = iv_from_affine(c); q[2] = iv_from_affine(v[in->c]);
+            r = iv_affine_from_iv(cb->interval(q, cb->user));
+            break;
+        }
+        default: r = iv_affine_from_iv(iv_entire()); break;
+        }
+        v[i] = r;
+    }
+    *out = v[t->outputs[0]];
+    return FR_OK;
+}
+#endif /* IV_NO_AFFINE */
+
+/* ---- pruning (libfive; Keeter 2020, section 3): evaluate the box in
+   intervals, record which operand each choice node takes there, then keep
+   only what the shape still reaches. */
+
+/* Choice decided on a box: 0 undecided, 1 the first operand, 2 the second.
+   *exact says the replacement has the same value, not only the same sign. */
+static int fr__choose(const fr_instr_t *in, iv_t a, iv_t b, int *exact)
+{
+    *exact = 1;
+    if (iv_is_empty(a) || iv_is_empty(b)) return 0;
+    switch ((fr_op_t)in->op) {
+    case FR_OP_MAX: return a.lo >= b.hi ? 1 : b.lo >= a.hi ? 2 : 0;
+    case FR_OP_MIN: return a.hi <= b.lo ? 1 : b.hi <= a.lo ? 2 : 0;
+    case FR_OP_SMAX: return a.lo - b.hi >= in->k ? 1 : b.lo - a.hi >= in->k ? 2 : 0;
+    case FR_OP_SMIN: return b.lo - a.hi >= in->k ? 1 : a.lo - b.hi >= in->k ? 2 : 0;
+    case FR_OP_RUNI:
+        if (in->k == 1.0) return a.lo >= b.hi ? 1 : b.lo >= a.hi ? 2 : 0;
+        /* an R-union has the sign of its larger argument: with b < 0
+           throughout it has the sign of a (Rvachev; sign only) */
+        *exact = 0;
+        return b.hi < 0 ? 1 : a.hi < 0 ? 2 : 0;
+    case FR_OP_RINT:
+        if (in->k == 1.0) return a.hi <= b.lo ? 1 : b.hi <= a.lo ? 2 : 0;
+        *exact = 0;
+        return b.lo > 0 ? 1 : a.lo > 0 ? 2 : 0;
+    default: return 0;
+    }
+}
+
+/* operations whose result's sign depends only on their operands' signs */
+static int fr__sign_preserving(unsigned int op)
+{
+    return op == FR_OP_NEG || op == FR_OP_MIN || op == FR_OP_MAX || op == FR_OP_RUNI || op == FR_OP_RINT;
+}
+
+FR_DEF fr_result_t fr_prune(const fr_tape_t *t, const iv_t box[3], void *scratch, fr_instr_t *code_buf,
+                            unsigned int cap, fr_tape_t *out, iv_t *range)
+{
+    iv_t *v = (iv_t *)scratch;
+    unsigned int n, i, *rep, *newidx, outs[1];
+    unsigned char *live, *sign_ctx;
+    int sign_only = 0;
+    fr_result_t r;
+    if (!t || !box || !scratch || !code_buf || !out || t->n_code == 0) return FR_ERR_INVALID_ARG;
+    if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+    n = t->n_code;
+    if (cap < n) return FR_ERR_BUFFER_TOO_SMALL;
+    rep = (unsigned int *)(void *)(v + n);
+    newidx = rep + n;
+    live = (unsigned char *)(newidx + n);
+    sign_ctx = live + n;
+    r = fr__run_interval(t, box, v);
+    if (r != FR_OK) return r;
+    if (range) *range = v[t->outputs[0]];
+    /* sign context: every use of the slot is a sign-preserving operation
+       that is itself in sign context, down to the shape output */
+    memset(sign_ctx, 1, n);
+    for (i = 0; i < t->n_outputs; i++) sign_ctx[t->outputs[i]] = i == 0 ? sign_ctx[t->outputs[i]] : 0;
+    for (i = n; i-- > 0;) {
+        const fr_instr_t *in = &t->code[i];
+        int ar = fr__arity(in->op), pass = fr__sign_preserving(in->op) && sign_ctx[i];
+        if (pass) continue;
+        if (ar >= 1) sign_ctx[in->a] = 0;
+        if (ar >= 2) sign_ctx[in->b] = 0;
+        if (ar >= 3) sign_ctx[in->c] = 0;
+    }
+    for (i = 0; i < n; i++) {
+        const fr_instr_t *in = &t->code[i];
+        int exact, ch = fr__arity(in->op) == 2 ? fr__choose(in, v[in->a], v[in->b], &exact) : 0;
+        rep[i] = i;
+        if (ch && (exact || sign_ctx[i])) {
+            rep[i] = rep[ch == 1 ? in->a : in->b];
+            if (!exact) sign_only = 1;
+        }
+    }
+    outs[0] = t->outputs[0];
+    *out = *t;
+    out->n_code = fr__compact(t->code, n, rep, outs, 1, live, newidx, code_buf, out->outputs);
+    out->code = code_buf;
+    out->n_outputs = 1;
+    out->owned = NULL;
+    if (sign_only) {
+        out->flags |= FR_TAPE_SIGN_ONLY;
+        out->lipschitz = INFINITY;
+    }
+    return FR_OK;
+}
+#endif /* FR_NO_INTERVAL */
 
 /* ==== [end section: model] ==== */
 
 /* ==== [section: solvers] implementation: polynomial solvers ==== */
+
+#include <limits.h>
+
+/* Unit roundoff of double, 2^-53. */
+#define FR__U 1.1102230246251565404e-16
+/* A value within FR__ZERO_K n^2 u^2 sum|c_i||t|^i of zero has no certain sign
+   after compensated evaluation (its a-priori bound is 4 n^2 u^2 sum|c_i||t|^i);
+   the factor 8 also covers the few-ulp error of the critical point at which
+   we evaluate, which moves p by p'' dt^2 / 2, again of order u^2. */
+#define FR__ZERO_K 8.0
+/* Widest band of root magnitudes, in bits times the degree, solved with one
+   power-of-two scaling: inside it no term of the scaled polynomial leaves the
+   normal double range, so compensated evaluation keeps its accuracy. */
+#define FR__BAND_BITS 900
+/* Iteration caps: safeguarded Newton halves the bracket at worst, and a band
+   spans at most FR__BAND_BITS bits, bisected geometrically. */
+#define FR__PLAIN_ITERS 120
+#define FR__POLISH_ITERS 80
+
+/* Plain Horner with derivative, for Newton steps. */
+static inline double fr__horner_deriv(const double *c, int n, double x, double *dp)
+{
+    double p = c[n], d = 0.0;
+    int i;
+    for (i = n - 1; i >= 0; i--) {
+        d = d * x + p;
+        p = p * x + c[i];
+    }
+    *dp = d;
+    return p;
+}
+
+/* Compensated Horner for coefficients hi[i] + lo[i] (lo may be NULL): TwoProd
+   by fma and TwoSum keep each step's rounding error, and the errors are
+   summed by a second Horner pass (Graillat, Langlois & Louvet 2005, Alg. 4).
+   Each error-free step's product is used by a non-add operation, so compilers
+   cannot contract it into an fma under -ffp-contract=fast. */
+static double fr__horner_comp(const double *hi, const double *lo, int n, double x, double *abs_poly)
+{
+    double s = hi[n], err = lo ? lo[n] : 0.0, a = fabs(hi[n]), ax = fabs(x);
+    int i;
+    for (i = n - 1; i >= 0; i--) {
+        double p = s * x;
+        double pe = fma(s, x, -p);
+        double t = p + hi[i];
+        double z = t - p;
+        double te = (p - (t - z)) + (hi[i] - z);
+        err = err * x + (pe + te + (lo ? lo[i] : 0.0));
+        s = t;
+        a = a * ax + fabs(hi[i]);
+    }
+    *abs_poly = a;
+    return s + err;
+}
+
+/* Sign of p(x) as -1, 0, +1, where 0 means "zero within what compensated
+   evaluation can resolve" (a root, possibly multiple, at x). */
+static int fr__sign_at(const double *hi, const double *lo, int n, double x, double *value)
+{
+    double a, v = fr__horner_comp(hi, lo, n, x, &a);
+    double tol = FR__ZERO_K * (double)(n * n) * FR__U * FR__U * a;
+    *value = v;
+    if (fabs(v) <= tol) return 0;
+    return v > 0 ? 1 : -1;
+}
+
+/* A bisection point of [a, b] that halves the exponent range when both ends
+   have the same sign and very different magnitudes, so a root of 1e-30 in
+   [1e-40, 1] is reached in a few dozen steps rather than a hundred. */
+static double fr__split_point(double a, double b)
+{
+    double lo = a < b ? a : b, hi = a < b ? b : a;
+    if (lo > 0 && hi > 4.0 * lo) return sqrt(lo) * sqrt(hi);
+    if (hi < 0 && lo < 4.0 * hi) return -(sqrt(-lo) * sqrt(-hi));
+    return 0.5 * (lo + hi);
+}
+
+/* The single root of p in the monotone piece (l, r), where p(l) has sign sl
+   and p(r) the other sign. Phase 1: safeguarded Newton in plain arithmetic.
+   Phase 2: Newton with compensated residuals, inside the original bracket,
+   with bisection wherever a step leaves it; this phase alone decides the
+   last bits, so plain-arithmetic sign noise in phase 1 cannot mislead it. */
+static double fr__root_in_piece(const double *hi, const double *lo, int n, double l, double r,
+                                double vl, double vr, int sl)
+{
+    double a = l, b = r, x, f, df, xn;
+    int it;
+    /* regula falsi start: inside (l, r) because vl and vr differ in sign */
+    x = l - vl * ((r - l) / (vr - vl));
+    if (!(x > l && x < r)) x = fr__split_point(l, r);
+    for (it = 0; it < FR__PLAIN_ITERS; it++) {
+        f = fr__horner_deriv(hi, n, x, &df);
+        if (f == 0) break;
+        if ((f > 0) == (sl > 0)) a = x; else b = x;
+        xn = x - f / df;
+        if (!(xn > (a < b ? a : b) && xn < (a < b ? b : a))) xn = fr__split_point(a, b);
+        if (xn == x || fabs(xn - x) <= 4.0 * FR__U * fabs(xn)) { x = xn; break; }
+        x = xn;
+    }
+    a = l; b = r;
+    for (it = 0; it < FR__POLISH_ITERS; it++) {
+        double v;
+        int s = fr__sign_at(hi, lo, n, x, &v);
+        if (s == 0) break;
+        if (s == sl) a = x; else b = x;
+        fr__horner_deriv(hi, n, x, &df);
+        xn = x - v / df;
+        if (!(xn > (a < b ? a : b) && xn < (a < b ? b : a))) xn = fr__split_point(a, b);
+        if (xn == x) break;
+        if (fabs(xn - x) <= FR__U * fabs(x)) { x = xn; break; }
+        x = xn;
+    }
+    return x;
+}
+
+/* Roots of p (degree n, hi + lo) in [ya, yb], given the ascending roots bp of
+   p' there: between consecutive breakpoints p is monotone, so a sign change
+   means exactly one root; a breakpoint where p is zero is a multiple root. */
+static int fr__roots_between(const double *hi, const double *lo, int n, double ya, double yb,
+                             const double *bp, int nbp, double *out)
+{
+    double xl = ya, vl, xr, vr;
+    int sl = fr__sign_at(hi, lo, n, ya, &vl), sr, j, cnt = 0;
+    if (sl == 0) out[cnt++] = ya;
+    for (j = 0; j <= nbp && cnt < n; j++) {
+        xr = j < nbp ? bp[j] : yb;
+        if (!(xr > xl)) continue;
+        sr = fr__sign_at(hi, lo, n, xr, &vr);
+        if (sl * sr < 0) out[cnt++] = fr__root_in_piece(hi, lo, n, xl, xr, vl, vr, sl);
+        if (sr == 0 && cnt < n) out[cnt++] = xr;
+        xl = xr; sl = sr; vl = vr;
+    }
+    return cnt;
+}
+
+/* Roots of c (degree n, c[0] != 0) with x in [xa, xb], a band inside
+   |x| <= 2^K. The substitution x = 2^K y (exact) maps the band into [-1, 1],
+   and the coefficients are normalised by a power of two. Each derivative
+   level D_k = p^(k)/k! has coefficients q[i+k] C(i+k, k); the products are
+   split exactly into hi + lo by fma, so every level is evaluated as
+   accurately as p itself. */
+static int fr__solve_band(const double *c, int n, int K, double xa, double xb, double *out)
+{
+    double q[FR_POLY_MAX_DEGREE + 1], hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
+    double bp[FR_POLY_MAX_DEGREE + 1], cur[FR_POLY_MAX_DEGREE + 1];
+    double ya = ldexp(xa, -K), yb = ldexp(xb, -K);
+    int i, k, nbp = 0, ncur = 0, M = INT_MIN;
+    if (ya < -1.0) ya = -1.0;
+    if (yb > 1.0) yb = 1.0;
+    if (!(ya <= yb)) return 0;
+    for (i = 0; i <= n; i++)
+        if (c[i] != 0 && ilogb(c[i]) + K * i > M) M = ilogb(c[i]) + K * i;
+    for (i = 0; i <= n; i++) q[i] = c[i] != 0 ? ldexp(c[i], K * i - M) : 0.0;
+    for (k = n - 1; k >= 0; k--) {
+        int m = n - k;
+        double binom = 1.0; /* C(i + k, k), exact */
+        for (i = 0; i <= m; i++) {
+            if (i > 0) binom = binom * (double)(i + k) / (double)i;
+            hi[i] = q[i + k] * binom;
+            lo[i] = fma(q[i + k], binom, -hi[i]);
+        }
+        ncur = fr__roots_between(hi, lo, m, ya, yb, bp, nbp, cur);
+        for (i = 0; i < ncur; i++) bp[i] = cur[i];
+        nbp = ncur;
+    }
+    for (i = 0; i < ncur; i++) out[i] = ldexp(cur[i], K);
+    return ncur;
+}
+
+/* ceil(a / b) for b > 0. */
+static int fr__ceil_div(int a, int b) { return a >= 0 ? (a + b - 1) / b : -((-a) / b); }
+
+/* An exponent E with every root |x| < 2^E (Fujiwara's bound
+   |x| <= 2 max |c_i / c_n|^(1/(n-i)), evaluated on exponents only so that it
+   cannot overflow). rev reads the coefficients backwards, which bounds 1/|x|. */
+static int fr__root_exponent_bound(const double *c, int n, int rev)
+{
+    int i, E = INT_MIN, lead = ilogb(c[rev ? 0 : n]);
+    for (i = 0; i < n; i++) {
+        double ci = c[rev ? n - i : i];
+        if (ci != 0) {
+            int e = fr__ceil_div(ilogb(ci) - lead + 1, n - i) + 1;
+            if (e > E) E = e;
+        }
+    }
+    return E == INT_MIN ? 0 : E;
+}
+
+FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, double *abs_bound)
+{
+    double a, v;
+    if (!c || degree < 0) { if (abs_bound) *abs_bound = 0; return 0.0; }
+    v = fr__horner_comp(c, NULL, degree, t, &a);
+    if (abs_bound) *abs_bound = a;
+    return v;
+}
+
+FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, double *r)
+{
+    double buf[FR_POLY_MAX_DEGREE + 1];
+    const double *d;
+    int i, n, z, m, cnt = 0, Ehi, Elo, W;
+    if (!c || !r || degree < 0 || degree > FR_POLY_MAX_DEGREE || !(t0 <= t1)) return -1;
+    for (i = 0; i <= degree; i++)
+        if (!(c[i] - c[i] == 0)) return -1; /* NaN or infinite */
+    n = degree;
+    while (n > 0 && c[n] == 0) n--;
+    z = 0;
+    while (z < n && c[z] == 0) z++;
+    if (n == 0) return 0;
+    d = c + z; /* zero roots split off: d has d[0] != 0 */
+    m = n - z;
+    Ehi = fr__root_exponent_bound(d, m, 0);
+    Elo = -fr__root_exponent_bound(d, m, 1); /* every root has |x| > 2^Elo */
+    W = FR__BAND_BITS / (m > 0 ? m : 1);
+    if (m == 0) {
+        /* only the zero root */
+    } else if (Ehi - Elo <= W) {
+        double B = ldexp(1.0, Ehi);
+        cnt = fr__solve_band(d, m, Ehi, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
+    } else {
+        /* Roots spread over more than W bits: bands of at most W bits each,
+           negative side from the largest magnitude down, then positive. */
+        int e, side;
+        for (side = -1; side <= 1; side += 2) {
+            for (e = 0; e < Ehi - Elo; e += W) {
+                int e1 = side < 0 ? Ehi - e : Elo + e + W, e0 = e1 - W;
+                double lo = ldexp(1.0, e0 < Elo ? Elo : e0), hi = ldexp(1.0, e1 > Ehi ? Ehi : e1);
+                double xa = side < 0 ? -hi : lo, xb = side < 0 ? -lo : hi;
+                if (xa < t0) xa = t0;
+                if (xb > t1) xb = t1;
+                if (xa <= xb && cnt < m) {
+                    double band[FR_POLY_MAX_DEGREE + 1];
+                    int k, nb = fr__solve_band(d, m, e1 > Ehi ? Ehi : e1, xa, xb, band);
+                    for (k = 0; k < nb && cnt < m; k++)
+                        if (cnt == 0 || band[k] > buf[cnt - 1]) buf[cnt++] = band[k];
+                }
+            }
+        }
+    }
+    /* merge the zero root into the ascending list, keep roots inside [t0, t1] */
+    {
+        int k = 0, zdone = !(z > 0 && t0 <= 0 && 0 <= t1);
+        for (i = 0; i < cnt; i++) {
+            double x = buf[i];
+            if (!zdone && x >= 0) { r[k++] = 0.0; zdone = 1; if (x == 0) continue; }
+            if (x >= t0 && x <= t1 && x - x == 0 && (k == 0 || x > r[k - 1])) r[k++] = x;
+        }
+        if (!zdone) r[k++] = 0.0;
+        return k;
+    }
+}
+
+FR_DEF int fr_solve_quadratic(const double c[3], double r[2]) { return fr_solve_poly(c, 2, -HUGE_VAL, HUGE_VAL, r); }
+FR_DEF int fr_solve_cubic(const double c[4], double r[3]) { return fr_solve_poly(c, 3, -HUGE_VAL, HUGE_VAL, r); }
+FR_DEF int fr_solve_quartic(const double c[5], double r[4]) { return fr_solve_poly(c, 4, -HUGE_VAL, HUGE_VAL, r); }
 
 /* ==== [end section: solvers] ==== */
 
