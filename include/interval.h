@@ -312,6 +312,107 @@ static inline iv_t iv_max(iv_t a, iv_t b)
     return iv__raw(iv__max(a.lo, b.lo), iv__max(a.hi, b.hi));
 }
 
+
+/* ------------------------------------------------------------------------ */
+/* Elementary functions. Each result contains f over x ∩ dom(f); empty when */
+/* nothing is left. libm values are stepped 2*IV_LIBM_ULPS doubles outward; */
+/* exact cases (exp 0, log 1, sin/tan/atan 0, cos 0) are kept exact.        */
+/* ------------------------------------------------------------------------ */
+
+/* x^n for an integer n, via an error-bounded double-double power so each
+   endpoint is at most one ulp outside the correctly rounded one (for results
+   in the normal range). Even n never goes below 0; odd n is monotone.
+   n = 0 gives [1,1]; n < 0 follows iv_div for x containing 0 (empty for
+   x = [0,0]). */
+IV_DEF iv_t iv_pow_n(iv_t x, int n);
+/* x^y = exp(y log x) over x ∩ [0, inf] with C's pow conventions at 0 and
+   inf (0^0 = 1, 0^-y = inf); negative bases are outside the domain (use
+   iv_pow_n for integer powers of negative numbers). */
+IV_DEF iv_t iv_pow(iv_t x, iv_t y);
+IV_DEF iv_t iv_exp(iv_t x);
+/* Natural log over x ∩ (0, inf]: iv_log([0,1]) = [-inf, 0]. */
+IV_DEF iv_t iv_log(iv_t x);
+/* sin, cos: exact extremum detection for widths below pi, tested at 1e15
+   and beyond; intervals wider than 2pi (and every non-point interval at
+   |x| >= 2^55, where doubles are 8 apart) give [-1, 1] in constant time. */
+IV_DEF iv_t iv_sin(iv_t x);
+IV_DEF iv_t iv_cos(iv_t x);
+/* tan: entire when x may contain a pole (width >= 3.14 or a sign change of
+   cos), else the monotone image. */
+IV_DEF iv_t iv_tan(iv_t x);
+IV_DEF iv_t iv_atan(iv_t x);
+/* sqrt(x^2 + y^2) without intermediate overflow or underflow: computed on
+   arguments scaled by a power of two, with this header's rigorous + sqr
+   sqrt, so it does not depend on libm's hypot. */
+IV_DEF iv_t iv_hypot(iv_t x, iv_t y);
+
+#ifndef IV_NO_AFFINE
+/* ------------------------------------------------------------------------ */
+/* Reduced affine arithmetic (Knoll et al. 2009, "Fast ray tracing of        */
+/* arbitrary implicit surfaces with interval and affine arithmetic").       */
+/* ------------------------------------------------------------------------ */
+
+/* The affine form  c + t*eps_t + e*eps_x, with eps_t, eps_x in [-1, 1].
+   eps_t is one noise symbol shared by every form of a computation: the ray
+   parameter (iv_affine_ray_param), so forms of x(t), y(t), z(t) stay
+   correlated through the whole expression. e >= 0 collects everything else
+   (non-affine approximation errors, floating-point rounding errors, and
+   independent input ranges); each form's eps_x is a fresh symbol,
+   independent of all others, which is always sound.
+   Empty form: c = t = e = NaN. Unbounded form: c = t = 0, e = +inf
+   (iv_from_affine gives the entire line); any overflow yields it. */
+typedef struct iv_affine_t {
+    double c; /* centre */
+    double t; /* coefficient of the shared ray symbol eps_t */
+    double e; /* accumulated error radius, >= 0 */
+} iv_affine_t;
+
+/* The point d (empty for NaN or infinite d). */
+IV_DEF iv_affine_t iv_affine_const(double d);
+/* A new independent range x: centre mid(x), radius in e (not in eps_t), so
+   it is uncorrelated with every other form. Entire form for unbounded x. */
+IV_DEF iv_affine_t iv_affine_from_iv(iv_t x);
+/* The ray parameter t over [t0, t1]: centre (t0+t1)/2, eps_t coefficient
+   the half-length rounded up, e = 0. Empty when t0 > t1 or either is NaN
+   or infinite. */
+IV_DEF iv_affine_t iv_affine_ray_param(double t0, double t1);
+/* An interval enclosing every value the form can take. */
+IV_DEF iv_t iv_from_affine(iv_affine_t x);
+IV_DEF int iv_affine_is_empty(iv_affine_t x);
+
+IV_DEF iv_affine_t iv_affine_add(iv_affine_t x, iv_affine_t y);
+IV_DEF iv_affine_t iv_affine_sub(iv_affine_t x, iv_affine_t y);
+IV_DEF iv_affine_t iv_affine_neg(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_add_d(iv_affine_t x, double d);
+IV_DEF iv_affine_t iv_affine_sub_d(iv_affine_t x, double d);
+IV_DEF iv_affine_t iv_affine_mul_d(iv_affine_t x, double d);
+/* Products keep the eps_t^2 term's mean (t*t'/2 into the centre), the
+   standard affine treatment of a squared symbol. */
+IV_DEF iv_affine_t iv_affine_mul(iv_affine_t x, iv_affine_t y);
+IV_DEF iv_affine_t iv_affine_sqr(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_div(iv_affine_t x, iv_affine_t y);
+/* The non-affine operations below use a first-order Taylor form with an
+   interval Lagrange remainder: f(c) + f'(c)(x - c) + [0, r^2] f''(X)/2.
+   For convex or concave f the remainder has one sign, so its error is
+   M r^2 / 4, the Chebyshev (best) linear approximation's error for a
+   quadratic. When that error would exceed the plain interval image, the
+   result is iv_affine_from_iv(interval image) instead. */
+IV_DEF iv_affine_t iv_affine_recip(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_sqrt(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_pow_n(iv_affine_t x, int n);
+IV_DEF iv_affine_t iv_affine_pow(iv_affine_t x, iv_affine_t y);
+IV_DEF iv_affine_t iv_affine_exp(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_log(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_sin(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_cos(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_tan(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_atan(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_abs(iv_affine_t x);
+IV_DEF iv_affine_t iv_affine_min(iv_affine_t x, iv_affine_t y);
+IV_DEF iv_affine_t iv_affine_max(iv_affine_t x, iv_affine_t y);
+IV_DEF iv_affine_t iv_affine_hypot(iv_affine_t x, iv_affine_t y);
+#endif /* IV_NO_AFFINE */
+
 #ifdef __cplusplus
 }
 #endif
@@ -383,6 +484,672 @@ IV_DEF int iv_div_ext(iv_t a, iv_t b, iv_t out[2])
     out[1] = pos;
     return 2;
 }
+
+/* ------------------------------------------------------------------------ */
+/* libm-based functions                                                     */
+/* ------------------------------------------------------------------------ */
+
+/* If libm's result y is within N ulps of f (N = IV_LIBM_ULPS, measured in
+   ulps of f as glibc does), at most N doubles lie between y and f on the
+   side above f, but up to 2N below it (the spacing halves below a power of
+   two). Stepping 2N doubles outward therefore always reaches past f. */
+#define IV__LIBM_STEPS (2 * (IV_LIBM_ULPS))
+
+static double iv__libm_down(double y)
+{
+    int i;
+    for (i = 0; i < IV__LIBM_STEPS; i++) y = iv__down(y);
+    return y;
+}
+static double iv__libm_up(double y)
+{
+    int i;
+    for (i = 0; i < IV__LIBM_STEPS; i++) y = iv__up(y);
+    return y;
+}
+/* Interval from an already-ordered pair of libm values. */
+static iv_t iv__libm_hull(double lo, double hi) { return iv__raw(iv__libm_down(lo), iv__libm_up(hi)); }
+
+IV_DEF iv_t iv_exp(iv_t x)
+{
+    double lo, hi;
+    if (iv_is_empty(x)) return iv_empty();
+    lo = x.lo == 0 ? 1.0 : iv__max(0.0, iv__libm_down(exp(x.lo)));
+    hi = x.hi == 0 ? 1.0 : iv__libm_up(exp(x.hi));
+    return iv__raw(lo, hi);
+}
+
+IV_DEF iv_t iv_log(iv_t x)
+{
+    double lo, hi;
+    if (iv_is_empty(x) || x.hi <= 0) return iv_empty();
+    lo = x.lo <= 0 ? -HUGE_VAL : x.lo == 1 ? 0.0 : iv__libm_down(log(x.lo));
+    hi = x.hi == 1 ? 0.0 : iv__libm_up(log(x.hi));
+    return iv__raw(lo, hi);
+}
+
+IV_DEF iv_t iv_atan(iv_t x)
+{
+    if (iv_is_empty(x)) return iv_empty();
+    return iv__raw(x.lo == 0 ? 0.0 : iv__libm_down(atan(x.lo)), x.hi == 0 ? 0.0 : iv__libm_up(atan(x.hi)));
+}
+
+/* A real width below pi: then [a, b] holds at most one zero of a function
+   whose zeros are pi apart (sin, cos), so comparing signs at the ends finds
+   it. b - a is rounded to nearest; 3.14 + half an ulp is still below pi. */
+#define IV__NARROW 3.14
+/* A real width above 2pi holds a full period of sin and cos. */
+#define IV__FULL_PERIOD 6.2832
+
+/* libm sin/cos at a double; exact at 0. glibc reduces arguments exactly
+   (Payne-Hanek), so the value, and in particular its sign, is accurate to
+   IV_LIBM_ULPS at every double, including 1e15..1e300. */
+static iv_t iv__sin_point(double a)
+{
+    double s = sin(a);
+    return a == 0 ? iv__raw(0.0, 0.0) : iv__libm_hull(s, s);
+}
+static iv_t iv__cos_point(double a)
+{
+    double c = cos(a);
+    return a == 0 ? iv__raw(1.0, 1.0) : iv__libm_hull(c, c);
+}
+static iv_t iv__clamp_unit(iv_t y) { return iv__raw(iv__max(y.lo, -1.0), iv__min(y.hi, 1.0)); }
+
+/* sin over [a, b] with b - a < pi: the image of the ends, plus +1 (-1)
+   when cos = sin' changes sign from + to - (- to +) inside. cos is never 0
+   at a double, so the signs are strict. */
+static iv_t iv__sin_narrow(double a, double b)
+{
+    iv_t y = iv_hull(iv__sin_point(a), iv__sin_point(b));
+    double ca = cos(a), cb = cos(b);
+    if (ca > 0 && cb < 0) y.hi = 1.0;
+    if (ca < 0 && cb > 0) y.lo = -1.0;
+    return iv__clamp_unit(y);
+}
+/* cos over [a, b] with b - a < pi; cos' = -sin, and sin(a) = 0 only at
+   a = 0, where the extremum is the end value itself. */
+static iv_t iv__cos_narrow(double a, double b)
+{
+    iv_t y = iv_hull(iv__cos_point(a), iv__cos_point(b));
+    double sa = sin(a), sb = sin(b);
+    if (sa > 0 && sb < 0) y.lo = -1.0;
+    if (sa < 0 && sb > 0) y.hi = 1.0;
+    return iv__clamp_unit(y);
+}
+
+/* Shared by sin and cos: narrow intervals directly; widths in [3.14, 2pi)
+   as three narrow pieces (no loop); wider ones (and infinite) give [-1,1]. */
+static iv_t iv__periodic(iv_t x, iv_t (*narrow)(double, double))
+{
+    double w, m1, m2;
+    if (iv_is_empty(x)) return iv_empty();
+    w = x.hi - x.lo;
+    if (w < IV__NARROW) return narrow(x.lo, x.hi);
+    if (!(w < IV__FULL_PERIOD)) return iv__raw(-1.0, 1.0);
+    /* each piece is about w/3 < 2.1 wide, far below pi even after the
+       rounding of m1, m2 (at most half an ulp of |x|, and |x| < 2^55 here
+       since doubles there are less than 6.28 apart) */
+    m1 = iv__min(iv__max(x.lo + w / 3, x.lo), x.hi);
+    m2 = iv__min(iv__max(x.hi - w / 3, m1), x.hi);
+    return iv_hull(iv_hull(narrow(x.lo, m1), narrow(m1, m2)), narrow(m2, x.hi));
+}
+
+IV_DEF iv_t iv_sin(iv_t x) { return iv__periodic(x, iv__sin_narrow); }
+IV_DEF iv_t iv_cos(iv_t x) { return iv__periodic(x, iv__cos_narrow); }
+
+IV_DEF iv_t iv_tan(iv_t x)
+{
+    double ca, cb;
+    if (iv_is_empty(x)) return iv_empty();
+    if (!(x.hi - x.lo < IV__NARROW)) return iv_entire();
+    /* poles are the zeros of cos, pi apart: at most one inside */
+    ca = cos(x.lo);
+    cb = cos(x.hi);
+    if ((ca > 0) != (cb > 0)) return iv_entire();
+    return iv__raw(x.lo == 0 ? 0.0 : iv__libm_down(tan(x.lo)), x.hi == 0 ? 0.0 : iv__libm_up(tan(x.hi)));
+}
+
+/* pow at one corner (x >= 0), stepped outward; exact C conventions for the
+   exact cases 1^y, x^0. */
+static iv_t iv__pow_point(double x, double y)
+{
+    double p = pow(x, y);
+    if (x == 1 || y == 0) return iv__raw(1.0, 1.0);
+    if (x == 0 || x == HUGE_VAL || y == HUGE_VAL || y == -HUGE_VAL)
+        return iv__raw(p, p); /* exact limits (0, 1 or inf) */
+    return iv__raw(iv__max(0.0, iv__libm_down(p)), iv__libm_up(p));
+}
+
+/* x^y is monotone in x for fixed y and in y for fixed x (on x >= 0), so
+   its range over a box is the hull of the four corners. */
+IV_DEF iv_t iv_pow(iv_t x, iv_t y)
+{
+    iv_t r;
+    if (iv_is_empty(x) || iv_is_empty(y) || x.hi < 0) return iv_empty();
+    x.lo = iv__max(x.lo, 0.0);
+    r = iv_hull(iv_hull(iv__pow_point(x.lo, y.lo), iv__pow_point(x.lo, y.hi)),
+                iv_hull(iv__pow_point(x.hi, y.lo), iv__pow_point(x.hi, y.hi)));
+    /* pow(0, y) = 0 exactly only for y > 0: a corner 0^0 or 0^-y is handled
+       by C's pow, and 0 * inf-type limits do not arise for x >= 0 */
+    if (r.lo == HUGE_VAL) return iv_empty(); /* only 0^-y: no real value */
+    return r;
+}
+
+/* ------------------------------------------------------------------------ */
+/* pow_n: double-double power with a proven relative error bound            */
+/* ------------------------------------------------------------------------ */
+
+/* (ah + al)(bh + bl) as a normalised double-double. The product residual
+   comes from fma, exact in any compilation; cross terms and the Fast2Sum
+   renormalisation may be contracted by the compiler, which only changes
+   errors of order u^2 |ab| that the bound below already covers. */
+static void iv__dd_mul(double ah, double al, double bh, double bl, double *rh, double *rl)
+{
+    double p = ah * bh;
+    double e = fma(ah, bh, -p);
+    double s;
+    e += ah * bl + al * bh;
+    s = p + e;
+    *rl = e - (s - p);
+    *rh = s;
+}
+/* Keep the high part in [0.5, 1): exponents are tracked apart, so no
+   intermediate overflows or underflows whatever n is. */
+static void iv__dd_renorm(double *h, double *l, long long *ex)
+{
+    int k;
+    *h = frexp(*h, &k);
+    *l = ldexp(*l, -k);
+    *ex += k;
+}
+/* Per double-double product the relative error is below 7u^2 = 2^-103.2
+   (Joldes, Muller, Popescu 2017, DWTimesDW); we charge 2^-100 per
+   operation, an 8x margin that also absorbs contraction effects. */
+#define IV__DD_REL 7.888609052210118e-31 /* 2^-100 */
+
+/* Bounds lo <= x^n <= hi for x > 0 finite, n != 0. Each is the correctly
+   rounded bound or one double beyond it when the result is normal. */
+static void iv__pown_bounds(double x, int n, double *lo, double *hi)
+{
+    double rh = 1.0, rl = 0.0, bh, bl = 0.0, s, l, err, dn, up;
+    long long re = 0, be;
+    unsigned long k = n < 0 ? 0ul - (unsigned long)n : (unsigned long)n;
+    int ops = 0, exact = 1, e0;
+    bh = frexp(x, &e0);
+    be = e0;
+    while (k) {
+        if (k & 1ul) {
+            iv__dd_mul(rh, rl, bh, bl, &rh, &rl);
+            re += be;
+            iv__dd_renorm(&rh, &rl, &re);
+            exact &= rl == 0;
+            ops++;
+        }
+        k >>= 1;
+        if (k) {
+            iv__dd_mul(bh, bl, bh, bl, &bh, &bl);
+            be *= 2;
+            iv__dd_renorm(&bh, &bl, &be);
+            exact &= bl == 0;
+            ops++;
+        }
+    }
+    if (n < 0) {
+        /* 1/(rh + rl): Newton correction from the exact residual 1 - q rh */
+        double q = 1.0 / rh;
+        double res = fma(-q, rh, 1.0) - q * rl;
+        double corr = res * q;
+        exact &= res == 0;
+        rh = q + corr;
+        rl = corr - (rh - q);
+        re = -re;
+        ops += 2;
+    }
+    s = rh + rl;
+    l = rl - (s - rh);
+    err = (double)(ops + 1) * IV__DD_REL * s;
+    /* s is within half an ulp of the value; l (and the error bound) say on
+       which side the value lies when that is certain */
+    dn = exact && l == 0 ? s : l > err ? s : iv__down(s);
+    up = exact && l == 0 ? s : -l > err ? s : iv__up(s);
+    if (re > 2200) re = 2200;
+    if (re < -2200) re = -2200;
+    dn = ldexp(dn, (int)re);
+    up = ldexp(up, (int)re);
+    /* scaling is exact unless it overflowed or went subnormal */
+    if (!(fabs(dn) >= 2.2250738585072014e-308) || dn == HUGE_VAL) dn = iv__down(dn);
+    if (!(fabs(up) >= 2.2250738585072014e-308) && up != 0) up = iv__up(up);
+    if (up == 0) up = iv__up(up);
+    *lo = iv__max(dn, 0.0);
+    *hi = up;
+}
+
+/* Bounds of t^n for one endpoint t >= 0 (t may be 0 or inf). */
+static iv_t iv__pown_mag(double t, int n)
+{
+    double lo, hi;
+    if (t == 0) return n > 0 ? iv__raw(0.0, 0.0) : iv__raw(HUGE_VAL, HUGE_VAL);
+    if (t == HUGE_VAL) return n > 0 ? iv__raw(HUGE_VAL, HUGE_VAL) : iv__raw(0.0, 0.0);
+    if (t == 1) return iv__raw(1.0, 1.0);
+    iv__pown_bounds(t, n, &lo, &hi);
+    return iv__raw(lo, hi);
+}
+
+IV_DEF iv_t iv_pow_n(iv_t x, int n)
+{
+    iv_t a, b;
+    if (iv_is_empty(x)) return iv_empty();
+    if (n == 0) return iv__raw(1.0, 1.0);
+    if (n == 1) return x;
+    if (n % 2 == 0) {
+        iv_t m = iv_abs(x); /* |x|^n, monotone in |x| */
+        a = iv__pown_mag(m.lo, n);
+        b = iv__pown_mag(m.hi, n);
+        return n > 0 ? iv_make(a.lo, b.hi) : iv_make(b.lo, a.hi);
+    }
+    if (n > 0) { /* odd: increasing on the whole line */
+        double lo = x.lo >= 0 ? iv__pown_mag(x.lo, n).lo : -iv__pown_mag(-x.lo, n).hi;
+        double hi = x.hi >= 0 ? iv__pown_mag(x.hi, n).hi : -iv__pown_mag(-x.hi, n).lo;
+        return iv__raw(lo, hi);
+    }
+    /* odd negative: decreasing on each side of the pole at 0 */
+    if (x.lo > 0) return iv__raw(iv__pown_mag(x.hi, n).lo, iv__pown_mag(x.lo, n).hi);
+    if (x.hi < 0) return iv__raw(-iv__pown_mag(-x.hi, n).hi, -iv__pown_mag(-x.lo, n).lo);
+    if (x.lo == 0 && x.hi > 0) return iv__raw(iv__pown_mag(x.hi, n).lo, HUGE_VAL);
+    if (x.hi == 0 && x.lo < 0) return iv__raw(-HUGE_VAL, -iv__pown_mag(-x.lo, n).lo);
+    if (x.lo == 0 && x.hi == 0) return iv_empty();
+    return iv_entire();
+}
+
+/* ------------------------------------------------------------------------ */
+/* hypot                                                                    */
+/* ------------------------------------------------------------------------ */
+
+/* Scale a bound by 2^k: exact unless the result overflows or is subnormal,
+   in which case it is stepped outward once more. */
+static double iv__scale_down(double v, int k)
+{
+    double r = ldexp(v, k);
+    return (r == HUGE_VAL || (r != 0 && fabs(r) < 2.2250738585072014e-308) || (r == 0 && v != 0)) ? iv__down(r) : r;
+}
+static double iv__scale_up(double v, int k)
+{
+    double r = ldexp(v, k);
+    return ((r != 0 && fabs(r) < 2.2250738585072014e-308) || (r == 0 && v != 0)) ? iv__up(r) : r;
+}
+
+/* Enclosure of hypot(a, b) for a, b >= 0. */
+static iv_t iv__hypot_point(double a, double b)
+{
+    double m = iv__max(a, b), as, bs;
+    iv_t ai, bi, s;
+    int k;
+    if (m == HUGE_VAL) return iv__raw(HUGE_VAL, HUGE_VAL);
+    if (m == 0) return iv__raw(0.0, 0.0);
+    (void)frexp(m, &k);
+    as = ldexp(a, -k);
+    bs = ldexp(b, -k);
+    /* the larger one scales exactly into [0.5, 1); the smaller may lose bits
+       if it falls into the subnormal range */
+    ai = fabs(as) < 2.2250738585072014e-308 ? iv__raw(iv__max(0.0, iv__down(as)), iv__up(as)) : iv__raw(as, as);
+    bi = fabs(bs) < 2.2250738585072014e-308 ? iv__raw(iv__max(0.0, iv__down(bs)), iv__up(bs)) : iv__raw(bs, bs);
+    if (as == 0 && a == 0) ai = iv__raw(0.0, 0.0);
+    if (bs == 0 && b == 0) bi = iv__raw(0.0, 0.0);
+    s = iv_sqrt(iv_add(iv_sqr(ai), iv_sqr(bi)));
+    return iv__raw(iv__max(0.0, iv__scale_down(s.lo, k)), iv__scale_up(s.hi, k));
+}
+
+IV_DEF iv_t iv_hypot(iv_t x, iv_t y)
+{
+    iv_t ax, ay;
+    if (iv_is_empty(x) || iv_is_empty(y)) return iv_empty();
+    ax = iv_abs(x);
+    ay = iv_abs(y);
+    return iv__raw(iv__hypot_point(ax.lo, ay.lo).lo, iv__hypot_point(ax.hi, ay.hi).hi);
+}
+
+#ifndef IV_NO_AFFINE
+/* ------------------------------------------------------------------------ */
+/* Reduced affine arithmetic                                                */
+/* ------------------------------------------------------------------------ */
+
+/* Rounding-error accounting. A coefficient computed in round-to-nearest
+   from at most three operations on terms whose magnitudes sum to S is off
+   by at most gamma_3 S + 3*2^-1075 (standard model; an fma from
+   contraction only removes roundings). We charge IV__AFF_REL*S + IV__AFF_ABS.
+   The error radius itself is summed in round-to-nearest from at most 16
+   operations and then inflated by IV__AFF_UP, which exceeds the relative
+   error gamma_16 of that sum. Under IV_FAST rounding errors are ignored. */
+#define IV__AFF_REL 8.881784197001252e-16  /* 2^-50 > gamma_3 */
+#define IV__AFF_ABS 8.289046e-317          /* > 16 * 2^-1075, subnormal */
+#define IV__AFF_UP  1.0000000000000142     /* 1 + 2^-46 > 1 + 2 gamma_16 */
+
+#ifdef IV_FAST
+static double iv__aff_rnd(double s) { (void)s; return 0.0; }
+static double iv__aff_radius(double r) { return r; }
+#else
+static double iv__aff_rnd(double s) { return IV__AFF_REL * s + IV__AFF_ABS; }
+static double iv__aff_radius(double r) { return r * IV__AFF_UP + IV__AFF_ABS; }
+#endif
+
+static iv_affine_t iv__aff(double c, double t, double e)
+{
+    iv_affine_t r;
+    r.c = c;
+    r.t = t;
+    r.e = e;
+    return r;
+}
+static iv_affine_t iv__aff_empty(void) { return iv__aff(NAN, NAN, NAN); }
+static iv_affine_t iv__aff_entire(void) { return iv__aff(0.0, 0.0, HUGE_VAL); }
+IV_DEF int iv_affine_is_empty(iv_affine_t x) { return x.e != x.e; }
+/* Inputs were non-empty; anything non-finite now is overflow (or an
+   unbounded input): the sound answer is the unbounded form. */
+static iv_affine_t iv__aff_finish(double c, double t, double e)
+{
+    if (c - c == 0 && t - t == 0 && e - e == 0) return iv__aff(c, t, e);
+    return iv__aff_entire();
+}
+
+IV_DEF iv_affine_t iv_affine_const(double d)
+{
+    if (!(d - d == 0)) return iv__aff_empty();
+    return iv__aff(d, 0.0, 0.0);
+}
+
+IV_DEF iv_affine_t iv_affine_from_iv(iv_t x)
+{
+    double m;
+    if (iv_is_empty(x)) return iv__aff_empty();
+    if (x.lo == -HUGE_VAL || x.hi == HUGE_VAL) return iv__aff_entire();
+    m = iv_mid(x);
+    return iv__aff_finish(m, 0.0, iv__up(iv__max(x.hi - m, m - x.lo)));
+}
+
+IV_DEF iv_affine_t iv_affine_ray_param(double t0, double t1)
+{
+    double m;
+    if (!(t0 <= t1) || !(t0 - t0 == 0) || !(t1 - t1 == 0)) return iv__aff_empty();
+    m = iv_mid(iv__raw(t0, t1));
+    /* c - t <= t0 and c + t >= t1 exactly, so every t in [t0, t1] is
+       c + t*eps_t for some eps_t in [-1, 1] */
+    return iv__aff_finish(m, t0 == t1 ? 0.0 : iv__up(iv__max(t1 - m, m - t0)), 0.0);
+}
+
+IV_DEF iv_t iv_from_affine(iv_affine_t x)
+{
+    double r;
+    if (iv_affine_is_empty(x)) return iv_empty();
+    if (x.e == HUGE_VAL) return iv_entire();
+    r = fabs(x.t) + x.e;
+    r = r == 0 ? 0.0 : iv__up(r);
+    if (r == 0) return iv__raw(x.c, x.c);
+    return iv_make(iv__down(x.c - r), iv__up(x.c + r));
+}
+
+IV_DEF iv_affine_t iv_affine_add(iv_affine_t x, iv_affine_t y)
+{
+    double c, t;
+    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
+    c = x.c + y.c;
+    t = x.t + y.t;
+    return iv__aff_finish(c, t, iv__aff_radius(x.e + y.e + iv__aff_rnd(fabs(c) + fabs(t))));
+}
+IV_DEF iv_affine_t iv_affine_neg(iv_affine_t x) { return iv__aff(-x.c, -x.t, x.e); }
+IV_DEF iv_affine_t iv_affine_sub(iv_affine_t x, iv_affine_t y) { return iv_affine_add(x, iv_affine_neg(y)); }
+
+IV_DEF iv_affine_t iv_affine_add_d(iv_affine_t x, double d)
+{
+    double c;
+    if (iv_affine_is_empty(x) || !(d - d == 0)) return iv__aff_empty();
+    c = x.c + d;
+    return iv__aff_finish(c, x.t, iv__aff_radius(x.e + iv__aff_rnd(fabs(c))));
+}
+IV_DEF iv_affine_t iv_affine_sub_d(iv_affine_t x, double d) { return iv_affine_add_d(x, -d); }
+
+IV_DEF iv_affine_t iv_affine_mul_d(iv_affine_t x, double d)
+{
+    double c, t;
+    if (iv_affine_is_empty(x) || !(d - d == 0)) return iv__aff_empty();
+    if (x.e == HUGE_VAL) return d == 0 ? iv__aff(0.0, 0.0, 0.0) : x;
+    c = x.c * d;
+    t = x.t * d;
+    return iv__aff_finish(c, t, iv__aff_radius(x.e * fabs(d) + iv__aff_rnd(fabs(c) + fabs(t))));
+}
+
+/* x + K for an interval constant K (its radius goes into e). */
+static iv_affine_t iv__aff_add_iv(iv_affine_t x, iv_t k)
+{
+    double m, r, c;
+    if (iv_affine_is_empty(x) || iv_is_empty(k)) return iv__aff_empty();
+    if (k.lo == -HUGE_VAL || k.hi == HUGE_VAL) return iv__aff_entire();
+    m = iv_mid(k);
+    r = iv__max(k.hi - m, m - k.lo);
+    c = x.c + m;
+    return iv__aff_finish(c, x.t, iv__aff_radius(x.e + r + iv__aff_rnd(fabs(c))));
+}
+
+/* (xc + xt E + xe X)(yc + yt E + ye Y), E = eps_t shared, X, Y independent:
+   E^2 in [0, 1] is split as 1/2 + [-1/2, 1/2]. */
+IV_DEF iv_affine_t iv_affine_mul(iv_affine_t x, iv_affine_t y)
+{
+    double cc, tt, c, t, e;
+    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
+    if (x.e == HUGE_VAL || y.e == HUGE_VAL) return iv__aff_entire();
+    cc = x.c * y.c;
+    tt = 0.5 * (x.t * y.t);
+    c = cc + tt;
+    t = x.c * y.t + x.t * y.c;
+    e = fabs(x.c) * y.e + fabs(y.c) * x.e + fabs(tt) + fabs(x.t) * y.e + x.e * fabs(y.t) + x.e * y.e;
+    e += iv__aff_rnd(fabs(cc) + fabs(tt) + fabs(x.c * y.t) + fabs(x.t * y.c));
+    return iv__aff_finish(c, t, iv__aff_radius(e));
+}
+
+/* (c + t E + e X)^2 with one X for both factors: E^2 and X^2 in [0, 1]
+   give centre terms t^2/2 + e^2/2 of radius t^2/2 + e^2/2. */
+IV_DEF iv_affine_t iv_affine_sqr(iv_affine_t x)
+{
+    double cc, tt, ee, c, t, e;
+    if (iv_affine_is_empty(x)) return iv__aff_empty();
+    if (x.e == HUGE_VAL) return iv__aff_entire();
+    cc = x.c * x.c;
+    tt = 0.5 * (x.t * x.t);
+    ee = 0.5 * (x.e * x.e);
+    c = cc + tt + ee;
+    t = 2.0 * x.c * x.t;
+    e = 2.0 * fabs(x.c) * x.e + tt + ee + 2.0 * fabs(x.t) * x.e;
+    e += iv__aff_rnd(cc + tt + ee + fabs(t));
+    return iv__aff_finish(c, t, iv__aff_radius(e));
+}
+
+/* The first-order Taylor form of f on the form x whose values of interest
+   lie in dom = range(x) ∩ dom(f):
+     f(x) = f(c) + a (x - c) + (f'(c) - a)(x - c) + f''(xi)/2 (x - c)^2,
+   with c in dom, a a double near f'(c), |x - c| <= r. Everything but
+   a (x - c) is enclosed by interval arithmetic into K and added as a
+   constant range. fc, d1 enclose f(c), f'(c); d2 encloses f'' on dom; img
+   encloses f(dom) and is used when the form would be wider. */
+static iv_affine_t iv__aff_taylor(iv_affine_t x, iv_t dom, double c, iv_t fc, iv_t d1, iv_t d2, iv_t img)
+{
+    double r, a, w;
+    iv_t k, rem;
+    iv_affine_t z;
+    if (iv_is_empty(img)) return iv__aff_empty();
+    r = iv__up(iv__max(dom.hi - c, c - dom.lo));
+    a = iv_mid(d1);
+    w = iv__up(iv__max(d1.hi - a, a - d1.lo));
+    rem = iv_mul(iv__raw(0.0, iv__up(r * r)), iv_mul_d(d2, 0.5));
+    k = iv_add(iv_add(fc, rem), iv_mul_d(iv__raw(-r, r), w));
+    if (iv_is_empty(k) || !(iv_width(k) < iv_width(img)) || !(a - a == 0))
+        return iv_affine_from_iv(img);
+    z = iv__aff_add_iv(iv_affine_mul_d(iv_affine_sub_d(x, c), a), k);
+    return z;
+}
+
+/* The range of x clipped to [lo, hi] and an expansion point inside it. */
+static int iv__aff_domain(iv_affine_t x, double lo, double hi, iv_t *dom, double *c)
+{
+    *dom = iv_intersect(iv_from_affine(x), iv__raw(lo, hi));
+    if (iv_is_empty(*dom)) return 0;
+    *c = iv__min(iv__max(x.c, dom->lo), dom->hi);
+    if (!(*c - *c == 0)) *c = iv_mid(*dom);
+    return 1;
+}
+
+IV_DEF iv_affine_t iv_affine_exp(iv_affine_t x)
+{
+    iv_t dom, fc;
+    double c;
+    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    fc = iv_exp(iv__raw(c, c));
+    return iv__aff_taylor(x, dom, c, fc, fc, iv_exp(dom), iv_exp(dom));
+}
+
+IV_DEF iv_affine_t iv_affine_log(iv_affine_t x)
+{
+    iv_t dom, cc;
+    double c;
+    if (iv_affine_is_empty(x) || !iv__aff_domain(x, 0.0, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    if (c == 0) return iv_affine_from_iv(iv_log(dom));
+    cc = iv__raw(c, c);
+    return iv__aff_taylor(x, dom, c, iv_log(cc), iv_recip(cc), iv_neg(iv_recip(iv_sqr(dom))), iv_log(dom));
+}
+
+IV_DEF iv_affine_t iv_affine_sqrt(iv_affine_t x)
+{
+    iv_t dom, cc, sc;
+    double c;
+    if (iv_affine_is_empty(x) || !iv__aff_domain(x, 0.0, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    if (c == 0) return iv_affine_from_iv(iv_sqrt(dom));
+    cc = iv__raw(c, c);
+    sc = iv_sqrt(cc);
+    /* f' = 1/(2 sqrt c), f'' = -1/(4 x sqrt x) */
+    return iv__aff_taylor(x, dom, c, sc, iv_recip(iv_mul_d(sc, 2.0)),
+                          iv_neg(iv_recip(iv_mul_d(iv_mul(dom, iv_sqrt(dom)), 4.0))), iv_sqrt(dom));
+}
+
+IV_DEF iv_affine_t iv_affine_recip(iv_affine_t x)
+{
+    iv_t dom, cc, rc;
+    double c;
+    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    if (dom.lo <= 0 && dom.hi >= 0) return iv_affine_from_iv(iv_recip(dom));
+    cc = iv__raw(c, c);
+    rc = iv_recip(cc);
+    /* f' = -1/c^2, f'' = 2/x^3 */
+    return iv__aff_taylor(x, dom, c, rc, iv_neg(iv_sqr(rc)), iv_mul_d(iv_pow_n(dom, -3), 2.0), iv_recip(dom));
+}
+
+IV_DEF iv_affine_t iv_affine_div(iv_affine_t x, iv_affine_t y) { return iv_affine_mul(x, iv_affine_recip(y)); }
+
+IV_DEF iv_affine_t iv_affine_pow_n(iv_affine_t x, int n)
+{
+    iv_t dom, cc;
+    double c;
+    if (iv_affine_is_empty(x)) return iv__aff_empty();
+    if (n == 0) return iv_affine_const(1.0);
+    if (n == 1) return x;
+    if (n == 2) return iv_affine_sqr(x);
+    if (!iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    if (n < 0 && dom.lo <= 0 && dom.hi >= 0) return iv_affine_from_iv(iv_pow_n(dom, n));
+    cc = iv__raw(c, c);
+    /* f' = n c^(n-1), f'' = n (n-1) x^(n-2) */
+    return iv__aff_taylor(x, dom, c, iv_pow_n(cc, n), iv_mul_d(iv_pow_n(cc, n - 1), (double)n),
+                          iv_mul_d(iv_pow_n(dom, n - 2), (double)n * (double)(n - 1)), iv_pow_n(dom, n));
+}
+
+IV_DEF iv_affine_t iv_affine_sin(iv_affine_t x)
+{
+    iv_t dom, cc;
+    double c;
+    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    cc = iv__raw(c, c);
+    return iv__aff_taylor(x, dom, c, iv_sin(cc), iv_cos(cc), iv_neg(iv_sin(dom)), iv_sin(dom));
+}
+
+IV_DEF iv_affine_t iv_affine_cos(iv_affine_t x)
+{
+    iv_t dom, cc;
+    double c;
+    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    cc = iv__raw(c, c);
+    return iv__aff_taylor(x, dom, c, iv_cos(cc), iv_neg(iv_sin(cc)), iv_neg(iv_cos(dom)), iv_cos(dom));
+}
+
+IV_DEF iv_affine_t iv_affine_tan(iv_affine_t x)
+{
+    iv_t dom, cc, tc, td;
+    double c;
+    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    cc = iv__raw(c, c);
+    tc = iv_tan(cc);
+    td = iv_tan(dom);
+    /* f' = 1 + tan^2, f'' = 2 tan (1 + tan^2) */
+    return iv__aff_taylor(x, dom, c, tc, iv_add_d(iv_sqr(tc), 1.0),
+                          iv_mul_d(iv_mul(td, iv_add_d(iv_sqr(td), 1.0)), 2.0), td);
+}
+
+IV_DEF iv_affine_t iv_affine_atan(iv_affine_t x)
+{
+    iv_t dom, cc, q;
+    double c;
+    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    cc = iv__raw(c, c);
+    q = iv_add_d(iv_sqr(dom), 1.0);
+    /* f' = 1/(1 + c^2), f'' = -2x/(1 + x^2)^2 */
+    return iv__aff_taylor(x, dom, c, iv_atan(cc), iv_recip(iv_add_d(iv_sqr(cc), 1.0)),
+                          iv_div(iv_mul_d(dom, -2.0), iv_sqr(q)), iv_atan(dom));
+}
+
+IV_DEF iv_affine_t iv_affine_abs(iv_affine_t x)
+{
+    iv_t r = iv_from_affine(x);
+    if (iv_affine_is_empty(x)) return iv__aff_empty();
+    if (r.lo >= 0) return x;
+    if (r.hi <= 0) return iv_affine_neg(x);
+    return iv_affine_from_iv(iv_abs(r));
+}
+
+/* min(x, y) = (x + y - |x - y|) / 2, max with + |x - y|; when the ranges
+   do not overlap the answer is one of the inputs. */
+IV_DEF iv_affine_t iv_affine_min(iv_affine_t x, iv_affine_t y)
+{
+    iv_t rx = iv_from_affine(x), ry = iv_from_affine(y);
+    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
+    if (rx.hi <= ry.lo) return x;
+    if (ry.hi <= rx.lo) return y;
+    return iv_affine_mul_d(iv_affine_sub(iv_affine_add(x, y), iv_affine_abs(iv_affine_sub(x, y))), 0.5);
+}
+IV_DEF iv_affine_t iv_affine_max(iv_affine_t x, iv_affine_t y)
+{
+    iv_t rx = iv_from_affine(x), ry = iv_from_affine(y);
+    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
+    if (rx.hi <= ry.lo) return y;
+    if (ry.hi <= rx.lo) return x;
+    return iv_affine_mul_d(iv_affine_add(iv_affine_add(x, y), iv_affine_abs(iv_affine_sub(x, y))), 0.5);
+}
+
+/* x^y = exp(y log x) over x > 0 (x = 0 is reached through log's interval
+   fallback, which makes the result unbounded but still sound). */
+IV_DEF iv_affine_t iv_affine_pow(iv_affine_t x, iv_affine_t y)
+{
+    iv_t rx = iv_from_affine(x);
+    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
+    if (rx.lo <= 0) return iv_affine_from_iv(iv_pow(rx, iv_from_affine(y)));
+    return iv_affine_exp(iv_affine_mul(y, iv_affine_log(x)));
+}
+
+IV_DEF iv_affine_t iv_affine_hypot(iv_affine_t x, iv_affine_t y)
+{
+    iv_affine_t s;
+    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
+    s = iv_affine_sqrt(iv_affine_add(iv_affine_sqr(x), iv_affine_sqr(y)));
+    /* squares overflow long before hypot does: fall back to the interval */
+    if (s.e == HUGE_VAL) return iv_affine_from_iv(iv_hypot(iv_from_affine(x), iv_from_affine(y)));
+    return s;
+}
+#endif /* IV_NO_AFFINE */
 
 #ifdef __cplusplus
 }
