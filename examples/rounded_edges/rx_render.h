@@ -1,0 +1,436 @@
+/* rx_render.h — one rendering "world" per mode for the rounded-edges example
+   and its benchmark: Embree traces the sharp (or tessellated) meshes, and the
+   mode decides what a hit on a rounded object becomes.
+
+     sharp           the host hit as is
+     rounded         rounded_edges.h: re_query() on every front-face hit of a
+                     rounded object (the integration protocol, docs/rounded_edges.md)
+     bevel-blog-N    re_bevel_blog() shading normal, N probe rays, delta = r
+     bevel-cycles-N  re_bevel_cycles() shading normal, N samples, R = r
+     tess-N          a triangle mesh of the same rounded solid (rx_tess.h), N
+                     segments per quarter turn of arc, flat shaded
+
+   Stb-style: define RX_RENDER_IMPLEMENTATION in one file (which must also
+   define RE_IMPLEMENTATION, RX_SCENE_IMPLEMENTATION and RX_TESS_IMPLEMENTATION
+   or link them). */
+#ifndef FILIGREE_RX_RENDER_H
+#define FILIGREE_RX_RENDER_H
+
+#include <embree3/rtcore.h>
+
+#include "ex_camera.h"
+#include "ex_shade.h"
+#include "rounded_edges.h"
+#include "rx_scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum rx_mode_kind_t { RX_SHARP, RX_ROUNDED, RX_BLOG, RX_CYCLES, RX_TESS } rx_mode_kind_t;
+typedef struct rx_mode_t {
+    rx_mode_kind_t kind;
+    int n; /* probe rays (blog), samples (cycles), level (tess); else 0 */
+} rx_mode_t;
+
+/* "sharp", "rounded", "bevel-blog-N", "bevel-cycles-N", "tess-N" -> *m; 0 or -1. */
+int rx_mode_parse(const char *s, rx_mode_t *m);
+/* The same names back. Returns buf. */
+const char *rx_mode_name(rx_mode_t m, char *buf, size_t size);
+
+typedef struct rx_world_t {
+    const rx_scene_t *scene;
+    rx_mode_t mode;
+    RTCDevice dev;
+    RTCScene rtc;
+    re_scene_t *round;          /* rounded mode only */
+    int *re_object;             /* scene object -> re object, -1 if not rounded */
+    size_t *tess_first_round;   /* tess mode: first rounded-part triangle per object */
+    ex_world_t shade;
+    ex_camera_t cam;
+    /* figures */
+    double build_seconds;       /* Embree + rounding structure or tessellation */
+    double round_seconds;       /* rounding structure or tessellation alone */
+    long long embree_bytes;     /* live bytes of the Embree device after the build */
+    size_t round_bytes;         /* re_get_stats().bytes */
+    size_t triangles;           /* triangles given to Embree */
+    re_stats_t round_stats;
+    long long concave_reports;  /* build reports of edges/vertices left sharp */
+    /* counters, updated atomically during rendering */
+    long long rays;             /* path rays (camera and bounce; shadow rays not counted) */
+    long long chamfer_rays;     /* of those, the ones the rounding changed */
+    long long embree_mem_live;  /* device memory monitor */
+} rx_world_t;
+
+/* Builds everything mode `m` needs for scene s and a width x height camera.
+   0, or -1 after printing one line. */
+int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, int height);
+void rx_world_free(rx_world_t *w);
+/* Renders spp samples per pixel into rgb (width*height*3). Returns the
+   seconds spent, or a negative value after printing one line. */
+double rx_world_render(rx_world_t *w, int spp, int threads, unsigned long long seed, int quiet, float *rgb);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* FILIGREE_RX_RENDER_H */
+
+#ifdef RX_RENDER_IMPLEMENTATION
+#ifndef RX_RENDER_IMPLEMENTATION_DONE
+#define RX_RENDER_IMPLEMENTATION_DONE
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ex_embree.h"
+#include "ex_render.h"
+#include "ex_timer.h"
+#include "rx_tess.h"
+
+int rx_mode_parse(const char *s, rx_mode_t *m)
+{
+    char *end;
+    long n;
+    const char *num = NULL;
+    memset(m, 0, sizeof *m);
+    if (!strcmp(s, "sharp")) { m->kind = RX_SHARP; return 0; }
+    if (!strcmp(s, "rounded")) { m->kind = RX_ROUNDED; return 0; }
+    if (!strncmp(s, "bevel-blog-", 11)) { m->kind = RX_BLOG; num = s + 11; }
+    else if (!strncmp(s, "bevel-cycles-", 13)) { m->kind = RX_CYCLES; num = s + 13; }
+    else if (!strncmp(s, "tess-", 5)) { m->kind = RX_TESS; num = s + 5; }
+    else return -1;
+    n = strtol(num, &end, 10);
+    if (end == num || *end || n < 1 || n > 4096) return -1;
+    m->n = (int)n;
+    return 0;
+}
+
+const char *rx_mode_name(rx_mode_t m, char *buf, size_t size)
+{
+    switch (m.kind) {
+    case RX_SHARP: snprintf(buf, size, "sharp"); break;
+    case RX_ROUNDED: snprintf(buf, size, "rounded"); break;
+    case RX_BLOG: snprintf(buf, size, "bevel-blog-%d", m.n); break;
+    case RX_CYCLES: snprintf(buf, size, "bevel-cycles-%d", m.n); break;
+    case RX_TESS: snprintf(buf, size, "tess-%d", m.n); break;
+    }
+    return buf;
+}
+
+static bool rx__memory_monitor(void *user, ssize_t bytes, bool post)
+{
+    (void)post;
+    __atomic_fetch_add((long long *)user, (long long)bytes, __ATOMIC_RELAXED);
+    return true;
+}
+
+static void rx__count_report(void *user, const re_report_t *r)
+{
+    if (r->kind == RE_REPORT_CONCAVE_EDGE || r->kind == RE_REPORT_MIXED_VERTEX ||
+        r->kind == RE_REPORT_SHARP_PATCH_EDGE || r->kind == RE_REPORT_BOUNDARY_EDGE)
+        (*(long long *)user)++;
+}
+
+/* The rounding structure over the scene's rounded objects (float positions,
+   the same triangles Embree traces). */
+static int rx__build_round(rx_world_t *w)
+{
+    const rx_scene_t *s = w->scene;
+    re_mesh_t *meshes = (re_mesh_t *)calloc((size_t)s->nobj + 1, sizeof *meshes);
+    re_scene_desc_t desc;
+    re_diag_t diag;
+    re_result_t rc;
+    int i, n = 0;
+    if (!meshes) return -1;
+    for (i = 0; i < s->nobj; i++) {
+        const rx_object_t *o = &s->obj[i];
+        w->re_object[i] = -1;
+        if (!(o->radius > 0)) continue;
+        meshes[n].positions = o->mesh.pos;
+        meshes[n].position_type = RE_FLOAT32;
+        meshes[n].vertex_count = (unsigned)o->mesh.nverts;
+        meshes[n].indices = o->mesh.idx;
+        meshes[n].index_count = (unsigned)(3 * o->mesh.ntris);
+        meshes[n].radius = o->radius;
+        w->re_object[i] = n++;
+    }
+    memset(&desc, 0, sizeof desc);
+    memset(&diag, 0, sizeof diag);
+    desc.objects = meshes;
+    desc.object_count = (unsigned)n;
+    desc.report = rx__count_report;
+    desc.report_user = &w->concave_reports;
+    rc = re_build(&desc, &w->round, &diag);
+    free(meshes);
+    if (rc != RE_OK) {
+        fprintf(stderr, "rounded_edges: build failed: %s (%s)\n", re_result_string(rc), diag.message);
+        return -1;
+    }
+    re_get_stats(w->round, &w->round_stats);
+    w->round_bytes = w->round_stats.bytes;
+    return 0;
+}
+
+int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, int height)
+{
+    double t0 = ex_now(), t1;
+    int i;
+    memset(w, 0, sizeof *w);
+    w->scene = s;
+    w->mode = m;
+    w->re_object = (int *)malloc(sizeof(int) * (size_t)(s->nobj + 1));
+    w->tess_first_round = (size_t *)calloc((size_t)s->nobj + 1, sizeof(size_t));
+    if (!w->re_object || !w->tess_first_round) { fprintf(stderr, "out of memory\n"); rx_world_free(w); return -1; }
+    if (!(w->dev = ex_embree_device())) { rx_world_free(w); return -1; }
+    rtcSetDeviceMemoryMonitorFunction(w->dev, rx__memory_monitor, &w->embree_mem_live);
+    w->rtc = rtcNewScene(w->dev);
+    if ((m.kind == RX_ROUNDED || m.kind == RX_TESS) && rx__build_round(w)) { rx_world_free(w); return -1; }
+    t1 = ex_now();
+    for (i = 0; i < s->nobj; i++) {
+        const rx_object_t *o = &s->obj[i];
+        unsigned id;
+        if (m.kind == RX_TESS && o->radius > 0) {
+            ex_mesh_t t;
+            memset(&t, 0, sizeof t);
+            if (rx_tess_object(w->round, (unsigned)w->re_object[i], &o->mesh, m.n, &t, &w->tess_first_round[i])) {
+                fprintf(stderr, "tessellation of object %d failed\n", i);
+                rx_world_free(w);
+                return -1;
+            }
+            id = ex_embree_add_mesh(w->dev, w->rtc, t.pos, t.nverts, t.idx, t.ntris);
+            w->triangles += t.ntris;
+            ex_mesh_free(&t);
+        } else {
+            id = ex_embree_add_mesh(w->dev, w->rtc, o->mesh.pos, o->mesh.nverts, o->mesh.idx, o->mesh.ntris);
+            w->tess_first_round[i] = o->mesh.ntris;
+            w->triangles += o->mesh.ntris;
+        }
+        if (id != (unsigned)i) { fprintf(stderr, "embree: unexpected geometry id %u\n", id); rx_world_free(w); return -1; }
+    }
+    if (m.kind == RX_TESS) {
+        /* the tessellation replaces the rounding structure: count it, drop it */
+        w->round_seconds = ex_now() - t0; /* includes copying into Embree */
+        re_free(w->round);
+        w->round = NULL;
+        w->round_bytes = 0;
+    }
+    else if (m.kind == RX_ROUNDED) w->round_seconds = t1 - t0;
+    if (ex_embree_commit(w->dev, w->rtc)) { rx_world_free(w); return -1; }
+    w->build_seconds = ex_now() - t0;
+    w->embree_bytes = w->embree_mem_live;
+    if (ex_camera_init(&w->cam, s->eye, s->at, s->up, s->vfov, width, height)) {
+        fprintf(stderr, "bad camera for scene %s\n", s->name);
+        rx_world_free(w);
+        return -1;
+    }
+    return 0;
+}
+
+void rx_world_free(rx_world_t *w)
+{
+    if (w->round) re_free(w->round);
+    ex_embree_release(w->dev, w->rtc);
+    free(w->re_object);
+    free(w->tess_first_round);
+    memset(w, 0, sizeof *w);
+}
+
+/* ---- tracing ------------------------------------------------------------- */
+
+/* Past a hit at t, the next search starts at t * (1 + RX_STEP_REL) + RX_STEP_REL * scale:
+   above Embree's single-precision self-intersection error at both small and
+   large t, far below any feature of our scenes. */
+#define RX_STEP_REL 1e-5
+
+static double rx__next_t(const rx_world_t *w, double t)
+{
+    return t * (1 + RX_STEP_REL) + RX_STEP_REL * w->scene->scale;
+}
+
+static void rx__surface_from_hit(const rx_world_t *w, const ex_ray_t *ray, const ex_hit_t *h, ex_surface_t *s)
+{
+    s->t = h->t;
+    s->p = ex_madd(ray->o, ray->d, h->t);
+    s->ng = h->ng;
+    s->n = h->ng;
+    s->mat = &w->scene->mats[w->scene->obj[h->geom_id].material];
+}
+
+/* Host trace callback for the bevel baselines: Embree, object = geometry id. */
+static int rx__bevel_trace(void *user, const double o[3], const double d[3], double tmin, double tmax,
+                           re_trace_hit_t *hit)
+{
+    const rx_world_t *w = (const rx_world_t *)user;
+    ex_hit_t h = ex_embree_intersect(w->rtc, ex_v3(o[0], o[1], o[2]), ex_v3(d[0], d[1], d[2]), tmin, tmax);
+    if (!h.hit) return 0;
+    hit->t = h.t;
+    hit->normal[0] = h.ng.x; hit->normal[1] = h.ng.y; hit->normal[2] = h.ng.z;
+    hit->object = h.geom_id;
+    return 1;
+}
+
+/* A per-ray seed for the bevel baselines from the ray's bits: the callback
+   has no access to the path's random stream, and this keeps it deterministic. */
+static unsigned rx__ray_seed(const ex_ray_t *ray)
+{
+    unsigned long long z = 0;
+    double v[6];
+    int i;
+    v[0] = ray->o.x; v[1] = ray->o.y; v[2] = ray->o.z; v[3] = ray->d.x; v[4] = ray->d.y; v[5] = ray->d.z;
+    for (i = 0; i < 6; i++) {
+        unsigned long long b;
+        memcpy(&b, &v[i], sizeof b);
+        z = (z ^ b) * 0x9E3779B97F4A7C15ull;
+        z ^= z >> 29;
+    }
+    return (unsigned)(z >> 32);
+}
+
+/* The closest hit of the mode's surface along ray, (0, tmax). *chamfer is
+   set when the rounding (or bevel, or tessellated rounding) changed it. */
+static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, ex_surface_t *s, int *chamfer_out)
+{
+    const rx_scene_t *sc = w->scene;
+    double tnear = 0;
+    int chamfer = 0;
+    int iter, found = 0;
+    for (iter = 0; iter < 64; iter++) {
+        ex_hit_t h = ex_embree_intersect(w->rtc, ray->o, ray->d, tnear, tmax);
+        const rx_object_t *ob;
+        int front;
+        if (!h.hit) break;
+        ob = &sc->obj[h.geom_id];
+        front = ex_dot(h.ng, ray->d) < 0;
+        rx__surface_from_hit(w, ray, &h, s);
+        found = 1;
+        if (!(ob->radius > 0)) break;
+        if (w->mode.kind == RX_ROUNDED) {
+            double o[3], d[3];
+            re_hit_t q;
+            re_hit_kind_t k;
+            if (!front) {
+                /* Leaving the sharp mesh from inside: this ray started in the
+                   removed volume at a rounded hit (its origin is I' pushed out
+                   along the rounded normal), and the exit is the paper's I''.
+                   Continue past it. */
+                found = 0;
+                tnear = rx__next_t(w, h.t);
+                continue;
+            }
+            o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
+            d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
+            k = re_query(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, &q);
+            if (k == RE_HIT_ROUNDED) {
+                chamfer = 1;
+                s->t = q.t;
+                s->p = ex_v3(q.point[0], q.point[1], q.point[2]);
+                s->n = s->ng = ex_v3(q.normal[0], q.normal[1], q.normal[2]);
+                break;
+            }
+            if (k == RE_PASS_THROUGH) {
+                chamfer = 1;
+                found = 0;
+                tnear = rx__next_t(w, q.t);
+                continue;
+            }
+            break;
+        }
+        if ((w->mode.kind == RX_BLOG || w->mode.kind == RX_CYCLES) && front) {
+            double p[3], n[3];
+            re_bevel_result_t b;
+            re_result_t rc;
+            p[0] = s->p.x; p[1] = s->p.y; p[2] = s->p.z;
+            n[0] = h.ng.x; n[1] = h.ng.y; n[2] = h.ng.z;
+            if (w->mode.kind == RX_BLOG) {
+                re_bevel_blog_desc_t bd;
+                memset(&bd, 0, sizeof bd);
+                bd.delta = ob->radius;
+                bd.rays = w->mode.n;
+                bd.seed = rx__ray_seed(ray);
+                rc = re_bevel_blog(&bd, p, n, rx__bevel_trace, w, &b);
+            } else {
+                re_bevel_cycles_desc_t cd;
+                memset(&cd, 0, sizeof cd);
+                cd.radius = ob->radius;
+                cd.samples = w->mode.n;
+                cd.seed = rx__ray_seed(ray);
+                rc = re_bevel_cycles(&cd, p, n, h.geom_id, rx__bevel_trace, w, &b);
+            }
+            if (rc == RE_OK) {
+                ex_v3_t bn = ex_v3(b.normal[0], b.normal[1], b.normal[2]);
+                if (ex_dot(bn, h.ng) < 1 - 1e-12) chamfer = 1;
+                s->n = bn;
+            }
+        }
+        if (w->mode.kind == RX_TESS && h.prim_id >= w->tess_first_round[h.geom_id]) chamfer = 1;
+        break;
+    }
+    *chamfer_out = chamfer;
+    return found;
+}
+
+static int rx__intersect(void *user, const ex_ray_t *ray, double tmax, ex_surface_t *s)
+{
+    rx_world_t *w = (rx_world_t *)user;
+    int chamfer, found = rx__trace(w, ray, tmax, s, &chamfer);
+    __atomic_fetch_add(&w->rays, 1, __ATOMIC_RELAXED);
+    if (chamfer) __atomic_fetch_add(&w->chamfer_rays, 1, __ATOMIC_RELAXED);
+    return found;
+}
+
+static int rx__occluded(void *user, ex_v3_t o, ex_v3_t d, double tmax)
+{
+    rx_world_t *w = (rx_world_t *)user;
+    ex_ray_t ray;
+    ex_surface_t s;
+    int chamfer;
+    if (!ex_embree_occluded(w->rtc, o, d, 0, tmax)) return 0;
+    /* The rounded solid lies inside the sharp one, so only a blocked shadow
+       ray needs the careful walk (it may start in a removed volume or pass
+       through one). */
+    if (w->mode.kind != RX_ROUNDED) return 1;
+    memset(&ray, 0, sizeof ray);
+    ray.o = o;
+    ray.d = d;
+    return rx__trace(w, &ray, tmax, &s, &chamfer);
+}
+
+static void rx__pixel(void *user, int x, int y, int sample, ex_rng_t *rng, float rgb[3])
+{
+    rx_world_t *w = (rx_world_t *)user;
+    ex_ray_t ray = ex_camera_ray(&w->cam, x + ex_rng_unit(rng), y + ex_rng_unit(rng));
+    ex_v3_t L = ex_radiance(&w->shade, &ray, rng);
+    (void)sample;
+    rgb[0] = (float)L.x; rgb[1] = (float)L.y; rgb[2] = (float)L.z;
+}
+
+double rx_world_render(rx_world_t *w, int spp, int threads, unsigned long long seed, int quiet, float *rgb)
+{
+    ex_render_desc_t d;
+    double t0;
+    char name[64];
+    memset(&w->shade, 0, sizeof w->shade);
+    w->shade.intersect = rx__intersect;
+    w->shade.occluded = rx__occluded;
+    w->shade.user = w;
+    w->shade.lights = w->scene->lights;
+    w->shade.nlights = w->scene->nlights;
+    w->shade.env = w->scene->env;
+    w->shade.max_bounces = 3;
+    w->shade.ray_eps = 1e-5 * w->scene->scale;
+    memset(&d, 0, sizeof d);
+    d.width = w->cam.width;
+    d.height = w->cam.height;
+    d.spp = spp;
+    d.threads = threads;
+    d.seed = seed;
+    d.label = rx_mode_name(w->mode, name, sizeof name);
+    d.quiet = quiet;
+    w->rays = w->chamfer_rays = 0;
+    t0 = ex_now();
+    if (ex_render(&d, rx__pixel, w, rgb)) return -1;
+    return ex_now() - t0;
+}
+
+#endif /* RX_RENDER_IMPLEMENTATION_DONE */
+#endif /* RX_RENDER_IMPLEMENTATION */
