@@ -1442,7 +1442,7 @@ static int gr__oversample_need(const gr_grid_t *grid, const gr__cand_t *c, const
    (§4.1-4.4), adding weight x ratios to the list. With allow_split it
    returns the oversampling count needed (> 1: nothing was added). */
 static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_footprint_t *fp, double weight,
-                         const gr__scratch_t *s, gr_facet_list_t *list, int allow_split)
+                         const gr__scratch_t *s, gr_facet_list_t *list, int allow_split, double split_t[2])
 {
     const double *e = fp->view;
     double f[2], box[4], ext_u, ext_v, tanmax, bref[2], eb, sq0, sq1, pm, margin, maxhalf = 0;
@@ -1521,12 +1521,13 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         int need = 1;
         for (k = 0; k < npar; k++) {
             int nk = gr__oversample_need(grid, &s->cand[k], fp, qs->oversample_tol);
-            if (nk > need) need = nk;
+            if (nk > need) { need = nk; split_t[0] = s->cand[k].t[0]; split_t[1] = s->cand[k].t[1]; }
         }
         if (need > 1) return need > qs->max_oversample ? qs->max_oversample : need;
     }
 #else
     (void)allow_split;
+    (void)split_t;
 #endif
     /* the footprint segment S from the larger axis projection (§4.2) */
     pm = fabs(fp->axis1[0] * bref[0] + fp->axis1[1] * bref[1]);
@@ -1651,7 +1652,7 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     gr__qset_t qs;
     gr__scratch_t s;
     const gr_footprint_t *fp;
-    double el;
+    double el, t[2] = {0, 1};
     int k, need;
     if (!grid || !query || !scratch || !list) return GR_ERR_INVALID_ARG;
     list->count = 0;
@@ -1676,17 +1677,14 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     el = sqrt(gr__dot3(fp->view, fp->view));
     if (!(fp->view[2] > 0) || !(el > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
     gr__scratch_layout(grid, scratch, &s);
-    need = gr__query_one(grid, &qs, fp, 1.0, &s, list, 1);
+    need = gr__query_one(grid, &qs, fp, 1.0, &s, list, 1, t);
     if (need > 1) {
         /* §4.2 oversampling: split along the axis that runs most along the
            nearest groove; each part keeps its own straight approximation */
         gr_footprint_t sub = *fp;
-        double t[2], p1, p2;
+        double p1, p2;
         const double *ax;
         double *sa;
-        gr__cand_t c0 = s.cand[0];
-        t[0] = c0.t[0];
-        t[1] = c0.t[1];
         p1 = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
         p2 = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
         ax = p1 >= p2 ? fp->axis1 : fp->axis2;
@@ -1700,7 +1698,7 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
             double o = (2.0 * k + 1) / need - 1;
             sub.center[0] = fp->center[0] + o * ax[0];
             sub.center[1] = fp->center[1] + o * ax[1];
-            gr__query_one(grid, &qs, &sub, 1.0 / need, &s, list, 0);
+            gr__query_one(grid, &qs, &sub, 1.0 / need, &s, list, 0, t);
         }
         list->subfootprints = need;
     }

@@ -165,6 +165,14 @@ static void v_groove_shadowing_at_known_angles(void)
         T_NEAR(f0->lit[0], t < a / D ? 1.0 : 0.0, 1e-13);
         T_NEAR(f1->lit[0], 1 - (us > 0 ? us : 0), 1e-13);
         T_NEAR(g->lit[0], 1.0, 1e-13);
+        /* the mirror image: light toward -u swaps the roles of the slopes */
+        light[0] = -sin(ph);
+        if (!run(grid, &q, &l)) continue;
+        f0 = entry(&l, 0);
+        f1 = entry(&l, 1);
+        if (!T_CHECK(f0 && f1)) continue;
+        T_NEAR(f1->lit[0], t < a / D ? 1.0 : 0.0, 1e-13);
+        T_NEAR(f0->lit[0], 1 - (us > 0 ? us : 0), 1e-13);
     }
     gr_grid_free(grid);
 }
