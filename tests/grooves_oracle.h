@@ -43,17 +43,20 @@ enum { GRO_HIT_NONE = 0, GRO_HIT_GROUND = 1, GRO_HIT_FACET = 2 };
 
 /* One groove: a path in UV and a cross-section in the path's (B, W) plane. */
 typedef struct gro_groove_t {
-    int kind;              /* GRO_LINE (2 points), GRO_POLYLINE (>= 2), GRO_QUADRATIC (3), GRO_CUBIC (4) */
+    int kind;              /* GRO_LINE (2 points), GRO_POLYLINE (>= 2), GRO_QUADRATIC (chain of
+                              2k+1 points), GRO_CUBIC (chain of 3k+1 points); piece j of k
+                              covers t in [j/k, (j+1)/k] */
     int nctrl;             /* number of UV points in ctrl */
     const double *ctrl;    /* u0, v0, u1, v1, ... */
     int nsec;              /* section points, 2..GRO_MAX_FACETS+1, first and last with w = 0 */
     const double *sec;     /* b0, w0, b1, w1, ... (UV units; w < 0 cuts into the surface) */
-    double (*scale)(double t, const void *ctx); /* perturbation s(t); NULL means 1 */
-    const void *scale_ctx;
+    double (*scale)(double t, void *ctx); /* perturbation s(t); NULL means 1; < 0 and NaN count as 0 */
+    void *scale_ctx;
 } gro_groove_t;
 
 typedef struct gro_build_t {
     int wrap;              /* 1: the texture repeats, grooves are copied to the 8 neighbouring tiles */
+    double period[2];      /* tile size in u and v; 0 → 1 (the tile [0,1)²) */
     double roi[4];         /* u0, v0, u1, v1: only geometry near this box is built; u1 <= u0 → all */
     double origin[2];      /* UV subtracted before conversion to float (keeps precision); default 0 */
     double ground[4];      /* the ground exists only inside u0, v0, u1, v1; u1 <= u0 → everywhere */
@@ -115,13 +118,27 @@ static void gro__lerp2(const double *a, const double *b, double t, double *r)
 }
 
 /* Point of the path at t in [0, 1] (de Casteljau for Béziers, arc length for polylines). */
+static int gro__bezier_degree(const gro_groove_t *g)
+{
+    return g->kind == GRO_QUADRATIC ? 2 : g->kind == GRO_CUBIC ? 3 : 0;
+}
+static int gro__pieces(const gro_groove_t *g)
+{
+    int deg = gro__bezier_degree(g);
+    return deg ? (g->nctrl - 1) / deg : g->nctrl - 1;
+}
+
 static void gro__path_point(const gro_groove_t *g, double t, double *p)
 {
     const double *c = g->ctrl;
-    if (g->kind == GRO_QUADRATIC || g->kind == GRO_CUBIC) {
+    int deg = gro__bezier_degree(g);
+    if (deg) {
         double q[8];
-        int n = g->kind == GRO_QUADRATIC ? 3 : 4, i, j;
-        memcpy(q, c, sizeof(double) * 2 * (size_t)n);
+        int n = deg + 1, i, j, k = gro__pieces(g), piece = (int)floor(t * k);
+        if (piece < 0) piece = 0;
+        if (piece > k - 1) piece = k - 1;
+        t = t * k - piece;
+        memcpy(q, c + 2 * deg * piece, sizeof(double) * 2 * (size_t)n);
         for (j = n - 1; j > 0; j--)
             for (i = 0; i < j; i++) gro__lerp2(q + 2 * i, q + 2 * i + 2, t, q + 2 * i);
         p[0] = q[0]; p[1] = q[1];
@@ -143,12 +160,18 @@ static void gro__path_point(const gro_groove_t *g, double t, double *p)
     }
 }
 
-/* Parameters where a polyline has corners (they must be sample points). */
+/* Parameters where a polyline or a Bézier chain may have corners (they
+   must be sample points). */
 static int gro__corners(const gro_groove_t *g, double *ts, int max)
 {
     int i, n = 0, nseg = g->nctrl - 1;
     double total = 0, acc = 0;
     const double *c = g->ctrl;
+    if (gro__bezier_degree(g)) {
+        int k = gro__pieces(g);
+        for (i = 1; i < k && n < max; i++) ts[n++] = (double)i / k;
+        return n;
+    }
     if (g->kind != GRO_POLYLINE) return 0;
     for (i = 0; i < nseg; i++) total += hypot(c[2 * i + 2] - c[2 * i], c[2 * i + 3] - c[2 * i + 1]);
     for (i = 0; i + 1 < nseg && n < max; i++) {
@@ -163,18 +186,21 @@ static double gro__second_derivative_bound(const gro_groove_t *g)
 {
     const double *c = g->ctrl;
     double m = 0;
-    int i, n;
-    if (g->kind != GRO_QUADRATIC && g->kind != GRO_CUBIC) return 0;
-    n = g->kind == GRO_QUADRATIC ? 2 : 3;
-    for (i = 0; i + 2 <= n; i++) {
+    int i, n = gro__bezier_degree(g), k = gro__pieces(g);
+    if (!n) return 0;
+    for (i = 0; i + 2 <= n * k; i++) { /* over every piece; t runs k times faster */
         double du = c[2 * i + 4] - 2 * c[2 * i + 2] + c[2 * i];
         double dv = c[2 * i + 5] - 2 * c[2 * i + 3] + c[2 * i + 1];
         m = fmax(m, hypot(du, dv));
     }
-    return n * (n - 1) * m;
+    return n * (n - 1) * m * k * k;
 }
 
-static double gro__scale(const gro_groove_t *g, double t) { return g->scale ? g->scale(t, g->scale_ctx) : 1.0; }
+static double gro__scale(const gro_groove_t *g, double t)
+{
+    double s = g->scale ? g->scale(t, g->scale_ctx) : 1.0;
+    return s > 0 ? s : 0.0;
+}
 
 /* Largest |b| and |w| of a section (before perturbation). */
 static void gro__section_extent(const gro_groove_t *g, double *bmax, double *wmax, double *top)
@@ -370,6 +396,7 @@ static int gro_scene_build(gro_scene_t *sc, RTCDevice dev, const gro_groove_t *g
     gro__buf_t b;
     gro_build_t o;
     int gi, du, dv, w = 0;
+    double per[2];
     double minwidth = INFINITY;
     memset(sc, 0, sizeof *sc);
     memset(&b, 0, sizeof b);
@@ -379,6 +406,8 @@ static int gro_scene_build(gro_scene_t *sc, RTCDevice dev, const gro_groove_t *g
     sc->origin[0] = o.origin[0]; sc->origin[1] = o.origin[1];
     memcpy(sc->ground, o.ground, sizeof sc->ground);
     w = o.wrap ? 1 : 0;
+    per[0] = o.period[0] > 0 ? o.period[0] : 1.0;
+    per[1] = o.period[1] > 0 ? o.period[1] : 1.0;
     for (gi = 0; gi < ng; gi++) {
         const gro_groove_t *g = &gs[gi];
         double bmax, wmax, top, smax = 0, corners[64];
@@ -397,13 +426,13 @@ static int gro_scene_build(gro_scene_t *sc, RTCDevice dev, const gro_groove_t *g
         c.width = bmax * smax;
         c.tol = o.chord_tol > 0 ? o.chord_tol : 1e-4 * fmax(bmax, wmax) * fmax(smax, 1e-12);
         nc = gro__corners(g, corners, 64);
-        nint = g->kind == GRO_POLYLINE ? nc + 1 : 1;
+        nint = nc + 1;
         for (du = -w; du <= w; du++)
             for (dv = -w; dv <= w; dv++) {
                 gro__run_t runs[256];
                 int nruns = 0, r, q;
                 memset(runs, 0, sizeof runs);
-                c.off[0] = du; c.off[1] = dv;
+                c.off[0] = du * per[0]; c.off[1] = dv * per[1];
                 for (q = 0; q < nint; q++) {
                     double a = q == 0 ? 0 : corners[q - 1], e = q == nint - 1 ? 1 : corners[q];
                     int m, nsub = 64;
@@ -421,7 +450,14 @@ static int gro_scene_build(gro_scene_t *sc, RTCDevice dev, const gro_groove_t *g
         free(b.v); free(b.t); free(b.tg); free(b.tf); free(b.mv); free(b.mt);
         return -1;
     }
-    sc->eps = 1e-5 * (minwidth < INFINITY ? minwidth : 1.0);
+    /* shadow-ray offset: above float noise of the coordinates (ulp 6e-8 of
+       their magnitude), else a small fraction of the narrowest groove */
+    {
+        double ext = 0;
+        size_t i;
+        for (i = 0; i < 3 * b.nv; i++) ext = fmax(ext, fabs((double)b.v[i]));
+        sc->eps = fmax(1e-5 * (minwidth < INFINITY ? minwidth : 1.0), 1e-6 * ext);
+    }
     sc->mesh = gro__commit_mesh(dev, b.v, b.nv, b.t, b.nt);
     sc->mouths = gro__commit_mesh(dev, b.mv, b.nmv, b.mt, b.nmt);
     sc->tri_groove = b.tg; sc->tri_facet = b.tf;
@@ -535,7 +571,8 @@ static int gro_scene_lit(const gro_scene_t *sc, const gro_hit_t *h, const double
 typedef struct gro_query_t {
     const gro_groove_t *grooves;
     int ngrooves;
-    int wrap;                     /* 1: repeating texture on [0,1)² */
+    int wrap;                     /* 1: repeating texture, tile size period (0 → 1) */
+    double period[2];
     double F[2], A1[2], A2[2];    /* footprint F + a·A1 + c·A2, a, c in [-1, 1] */
     double E[3];                  /* unit, toward the viewer, E_w > 0 */
     const double *lights;         /* nlights unit vectors, 3 doubles each */
@@ -599,14 +636,15 @@ static int gro_query(const gro_query_t *q, RTCDevice dev, gro_result_t *res)
     uint64_t seed = q->seed ^ 0x5DEECE66Dull;
     memset(res, 0, sizeof *res);
     /* How far from the footprint geometry can matter: the widest groove, and
-       protrusions seen or casting shadows along E and the lights (eq. 1). */
+       what E and the light rays pass over or under on their way: protrusions
+       (eq. 1) and, since a ray inside a groove can run along it, the depth. */
     for (g = 0; g < q->ngrooves; g++) {
         double bm, wm, tp, smax = 0;
         int k;
         gro__section_extent(&q->grooves[g], &bm, &wm, &tp);
         for (k = 0; k <= 64; k++) smax = fmax(smax, fabs(gro__scale(&q->grooves[g], k / 64.0)));
         reach = fmax(reach, 2 * bm * smax);
-        top = fmax(top, tp * smax);
+        top = fmax(top, fmax(tp, wm) * smax);
     }
     tanE = sqrt(fmax(0, 1 - q->E[2] * q->E[2])) / fmax(q->E[2], 1e-6);
     {
@@ -621,6 +659,7 @@ static int gro_query(const gro_query_t *q, RTCDevice dev, gro_result_t *res)
     ext[1] = fabs(q->A1[1]) + fabs(q->A2[1]);
     memset(&b, 0, sizeof b);
     b.wrap = q->wrap;
+    b.period[0] = q->period[0]; b.period[1] = q->period[1];
     b.roi[0] = q->F[0] - ext[0] - reach; b.roi[2] = q->F[0] + ext[0] + reach;
     b.roi[1] = q->F[1] - ext[1] - reach; b.roi[3] = q->F[1] + ext[1] + reach;
     b.origin[0] = q->F[0]; b.origin[1] = q->F[1];
@@ -630,7 +669,7 @@ static int gro_query(const gro_query_t *q, RTCDevice dev, gro_result_t *res)
     res->lit = (double *)calloc((size_t)(nl > 0 ? nl : 1) * q->ngrooves * GRO_MAX_FACETS + 1, sizeof(double));
     if (!res->vis || !res->lit) { gro_scene_free(&sc); gro_result_free(res); return -1; }
     /* rays start above the highest protrusion, at a distance in UV scale */
-    start = (sc.top + ext[0] + ext[1] + reach + 1e-3) / fmax(q->E[2], 1e-9);
+    start = (sc.top + 1e3 * sc.eps) / fmax(q->E[2], 1e-9); /* just above the highest protrusion */
     for (i = 0; i < n; i++)
         for (j = 0; j < n; j++) {
             double a = -1 + 2 * (i + gro__unit(&seed)) / n, c = -1 + 2 * (j + gro__unit(&seed)) / n;
@@ -664,5 +703,21 @@ static int gro_query(const gro_query_t *q, RTCDevice dev, gro_result_t *res)
     gro_scene_free(&sc);
     return 0;
 }
+
+/* ------------------------------------------------------------ from grooves.h */
+#ifdef FILIGREE_GR_H
+/* The same groove as grooves.h describes it (reads the public description
+   only). The arrays stay the caller's. */
+static gro_groove_t gro_from_gr(const gr_groove_desc_t *d)
+{
+    gro_groove_t g;
+    memset(&g, 0, sizeof g);
+    g.kind = d->kind == GR_PATH_QUADRATIC ? GRO_QUADRATIC : d->kind == GR_PATH_CUBIC ? GRO_CUBIC : GRO_POLYLINE;
+    g.nctrl = d->point_count; g.ctrl = d->points;
+    g.nsec = d->section_count; g.sec = d->section;
+    g.scale = d->perturb; g.scale_ctx = d->perturb_user;
+    return g;
+}
+#endif
 
 #endif /* FILIGREE_GROOVES_ORACLE_H */

@@ -216,7 +216,7 @@ static void footprint_across_the_seam(void)
 
 /* A constant perturbation s = 0.5 halves the section: the closed form for
    (a/2, D/2) holds; two parallel grooves add up. */
-static double half(double t, const void *ctx) { (void)t; (void)ctx; return 0.5; }
+static double half(double t, void *ctx) { (void)t; (void)ctx; return 0.5; }
 static void perturbation_and_parallel_grooves(void)
 {
     static const double sec[6] = {-0.02, 0, 0, -0.03, 0.02, 0};
