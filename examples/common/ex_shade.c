@@ -47,7 +47,7 @@ static double ex__shade_p_glossy(const ex_material_t *m, double cos_o)
 {
     double ws = ex__shade_lum(ex__shade_fresnel(m->specular, cos_o));
     double wd = ex__shade_lum(m->diffuse) * (1 - ex_max_comp(m->specular));
-    if (ws <= 0) return 0;
+    if (ws <= 0 || ex_max_comp(m->specular) <= 0) return 0;
     if (wd <= 0) return 1;
     return ex_clamp(ws / (ws + wd), 0.1, 0.9);
 }
@@ -66,6 +66,7 @@ ex_v3_t ex_bsdf_eval(const ex_material_t *m, ex_v3_t n, ex_v3_t wo, ex_v3_t wi, 
     f_diff = ex_scale(m->diffuse, (1 - ex_max_comp(m->specular)) * cos_i / EX_PI);
     /* f·cos_i = D F G / (4 cos_o) */
     f_gl = ex_scale(fr, d * ex__shade_g1(a, cos_o) * ex__shade_g1(a, cos_i) / (4 * cos_o));
+    if (ex_max_comp(m->specular) <= 0) f_gl = ex_v3(0, 0, 0);   /* F0 = 0: no glossy lobe at all */
     p_gl = ex__shade_p_glossy(m, cos_o);
     pdf_gl = d * cos_h / (4 * fabs(ex_dot(wo, h)));
     if (pdf) *pdf = p_gl * pdf_gl + (1 - p_gl) * cos_i / EX_PI;

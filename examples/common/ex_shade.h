@@ -30,7 +30,8 @@ typedef enum ex_lobe_t { EX_LOBE_GGX = 0, EX_LOBE_BLINN_PHONG = 1 } ex_lobe_t;
 
 typedef struct ex_material_t {
     ex_v3_t diffuse;     /* Lambertian albedo */
-    ex_v3_t specular;    /* reflectance at normal incidence F0: ~0.04 for plastics, the colour for metals */
+    ex_v3_t specular;    /* reflectance at normal incidence F0: ~0.04 for plastics, the colour for
+                            metals; 0 = no glossy lobe (purely diffuse) */
     double roughness;    /* 0..1, clamped to >= 0.02; GGX alpha = roughness², Blinn-Phong
                             exponent = 2/alpha² - 2 */
     ex_lobe_t lobe;      /* default (0) GGX */
