@@ -133,10 +133,144 @@ static void box_exact_vs_analytic(void)
     box_rays(lo, hi, 0.05, t_count(100000), 1e-9, 1);
 }
 
+/* Rays at a convex polyhedron (hull mesh + planes), compared with sphere
+   tracing of dist(x, eroded polytope) - r. Returns rays that hit a corner
+   feature of a vertex with degree >= 4 planes. */
+static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays, double tol_rel,
+                      unsigned long long seed, const char *what)
+{
+    re_scene_t *s;
+    re_diag_t dg;
+    re_stats_t st;
+    tm_eroded_t E;
+    t_rng_t rng;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, scale, r;
+    long i, n_round = 0, n_pass = 0, bad = 0;
+    unsigned k;
+    int a;
+    rng.s = seed;
+    s = build1(m, r_req, &dg);
+    if (!T_CHECK(s != NULL)) { fprintf(stderr, "%s: %s\n", what, dg.message); return; }
+    re_get_stats(s, &st);
+    r = re_object_radius(s, 0);
+    T_GT(r, 0.0);
+    T_INT_EQ(st.rounded_edges, st.convex_edges); /* a convex hull rounds every convex edge */
+    for (k = 0; k < m->nv; k++)
+        for (a = 0; a < 3; a++) lo[a] = fmin(lo[a], m->v[3 * k + a]), hi[a] = fmax(hi[a], m->v[3 * k + a]);
+    scale = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    E.P = P;
+    E.r = r;
+    tm_erode(P, r);
+    for (i = 0; i < nrays; i++) {
+        double o[3], d[3], tgt[3], u, v, w, t_host, t_ref;
+        unsigned tri;
+        re_hit_t h;
+        const double *vx = m->v + 3 * (t_rng_u64(&rng) % m->nv);
+        const double *vy = m->v + 3 * (t_rng_u64(&rng) % m->nv);
+        double f = i % 2 ? 0 : t_rng_unit(&rng); /* a vertex, or along a chord toward another */
+        for (a = 0; a < 3; a++) tgt[a] = vx[a] + f * (vy[a] - vx[a]) + t_rng_range(&rng, -3, 3) * r;
+        u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+        o[0] = tgt[0] + 3 * scale * w * cos(u), o[1] = tgt[1] + 3 * scale * w * sin(u), o[2] = tgt[2] + 3 * scale * v;
+        tm_sub(tgt, o, d);
+        if (!tm_hit(m, o, d, &t_host, &tri)) continue;
+        re_query(s, o, d, 0, tri, t_host, &h);
+        t_ref = tm_trace(tm_eroded_sdf, &E, o, d, 10.0, scale);
+        if (h.kind == RE_PASS_THROUGH) {
+            n_pass++;
+            if (t_ref != HUGE_VAL) { bad++; if (bad < 5) T_FAIL("%s ray %ld: pass-through but reference hits at %.17g", what, i, t_ref); }
+        } else {
+            if (h.kind == RE_HIT_ROUNDED) n_round++;
+            if (!(fabs(h.t - t_ref) <= tol_rel * scale)) {
+                bad++;
+                if (bad < 5) T_FAIL("%s ray %ld: kind %d feature %d t %.17g, reference %.17g (host %.17g)", what, i, (int)h.kind,
+                                    (int)h.feature, h.t, t_ref, t_host);
+            }
+        }
+    }
+    T_INT_EQ(bad, 0);
+    T_GT(n_round, nrays / 20);
+    re_free(s);
+}
+
+/* Random convex hulls of 8..14 points on a jittered sphere: vertices of
+   degree 3 to 8, with offset planes that miss one common point. */
+static void random_convex_polyhedra_vs_eroded(void)
+{
+    t_rng_t rng = {7};
+    int it, nit = (int)t_count(30), deg_hist[16] = {0};
+    unsigned long long extra = 0;
+    for (it = 0; it < nit; it++) {
+        double p[14][3];
+        int n = 8 + (int)(t_rng_u64(&rng) % 7), i;
+        tm_mesh_t m = {0};
+        static tm_poly_t P;
+        re_scene_t *s;
+        re_diag_t dg;
+        re_stats_t st;
+        for (i = 0; i < n; i++) {
+            double u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v), R = t_rng_range(&rng, 0.8, 1.2);
+            p[i][0] = R * w * cos(u), p[i][1] = R * w * sin(u), p[i][2] = R * v;
+        }
+        tm_hull((const double(*)[3])p, n, &m, &P);
+        for (i = 0; i < n; i++) {
+            unsigned k, d = 0;
+            for (k = 0; k < m.ni; k++) d += m.idx[k] == (unsigned)i;
+            if (d < 16) deg_hist[d]++;
+        }
+        s = build1(&m, 0.03, &dg);
+        if (s) { re_get_stats(s, &st); extra += st.extra_cylinders; re_free(s); }
+        poly_rays(&m, &P, 0.03, t_count(1500), 1e-7, 100 + (unsigned long long)it, "hull");
+        tm_free(&m);
+    }
+    T_GT(deg_hist[4] + deg_hist[5], 0);
+    T_GT(deg_hist[6] + deg_hist[7] + deg_hist[8], 0);
+    T_GT(extra, 0); /* exact corners were needed and built */
+}
+
+/* A pyramid over a regular k-gon (fan-triangulated base) with its apex off
+   centre: the apex has degree k; for k >= 4 its offset planes miss one point. */
+static void apex_case(int k, double r)
+{
+    tm_mesh_t m = {0};
+    static tm_poly_t P;
+    double p[12][3];
+    int i;
+    char what[32];
+    for (i = 0; i < k; i++) p[i][0] = cos(2 * M_PI * i / k + 0.1 * sin(3.0 * i)), p[i][1] = sin(2 * M_PI * i / k + 0.1 * sin(3.0 * i)), p[i][2] = 0;
+    p[k][0] = 0.23, p[k][1] = -0.11, p[k][2] = 0.9;
+    /* the base is one plane: tm_hull would list it k-2 times; build by hand */
+    for (i = 0; i <= k; i++) tm_vert(&m, p[i][0], p[i][1], p[i][2]);
+    for (i = 0; i < k; i++) tm_tri(&m, (unsigned)i, (unsigned)((i + 1) % k), (unsigned)k);
+    for (i = 1; i + 1 < k; i++) tm_tri(&m, 0, (unsigned)(i + 1), (unsigned)i);
+    P.np = 0;
+    for (i = 0; i < k; i++) {
+        double e1[3], e2[3], n[3];
+        tm_sub(p[(i + 1) % k], p[i], e1);
+        tm_sub(p[k], p[i], e2);
+        tm_cross(e1, e2, n);
+        tm_norm(n);
+        memcpy(P.n[P.np], n, sizeof n);
+        P.c[P.np++] = tm_dot(n, p[i]);
+    }
+    P.n[P.np][0] = 0, P.n[P.np][1] = 0, P.n[P.np][2] = -1, P.c[P.np++] = 0;
+    snprintf(what, sizeof what, "apex degree %d", k);
+    poly_rays(&m, &P, r, t_count(6000), 1e-7, (unsigned long long)k, what);
+    tm_free(&m);
+}
+static void apex_degree_3(void) { apex_case(3, 0.05); }
+static void apex_degree_4(void) { apex_case(4, 0.1); }
+static void apex_degree_5(void) { apex_case(5, 0.05); }
+static void apex_degree_6(void) { apex_case(6, 0.05); }
+static void apex_degree_7(void) { apex_case(7, 0.04); }
+static void apex_degree_8(void) { apex_case(8, 0.03); }
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(box_exact_vs_analytic),
+        T_CASE(random_convex_polyhedra_vs_eroded),
+        T_CASE(apex_degree_3), T_CASE(apex_degree_4), T_CASE(apex_degree_5),
+        T_CASE(apex_degree_6), T_CASE(apex_degree_7), T_CASE(apex_degree_8),
     };
     return T_RUN(argc, argv, cases);
 }

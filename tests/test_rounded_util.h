@@ -126,15 +126,19 @@ static double tm_trace(tm_sdf_fn f, const void *ctx, const double o[3], const do
     return HUGE_VAL;
 }
 
-/* ---- Oracle 2: distance to the eroded polytope {x : n_i.x <= c_i - r},
-   from its vertices (all plane triples, global) and its facet polygons. ---- */
+/* ---- Oracle 2: distance to the eroded polytope E = {x : n_i.x <= c_i - r}.
+   Every candidate below is a point set inside E (a feasible projection onto
+   a facet plane, a segment between two vertices of E, a vertex), and the nearest point of E lies on one of them, so the minimum
+   over candidates is the distance. Vertices come from all plane triples
+   (global, nothing shared with the library's per-corner construction). ---- */
 typedef struct tm_poly_t {
     int np;
     double n[64][3], c[64];
     int nv;
     double v[512][3];
-    int fv[64][64]; /* facet g: vertex ids in angular order */
-    int fn[64];
+    unsigned long long mask[512];
+    int ne;
+    int e[8192][2];
 } tm_poly_t;
 
 static void tm_erode(tm_poly_t *P, double r)
@@ -146,34 +150,32 @@ static void tm_erode(tm_poly_t *P, double r)
             for (k = j + 1; k < P->np; k++) {
                 double a[3], b[3], cc[3], x[3], det, ci = P->c[i] - r, cj = P->c[j] - r, ck = P->c[k] - r;
                 int ok = 1;
+                unsigned long long mk = 0;
                 tm_cross(P->n[j], P->n[k], a);
                 tm_cross(P->n[k], P->n[i], b);
                 tm_cross(P->n[i], P->n[j], cc);
                 det = tm_dot(P->n[i], a);
                 if (fabs(det) < 1e-12) continue;
                 for (q = 0; q < 3; q++) x[q] = (ci * a[q] + cj * b[q] + ck * cc[q]) / det;
-                for (g = 0; g < P->np && ok; g++) if (tm_dot(P->n[g], x) > P->c[g] - r + 1e-11) ok = 0;
+                for (g = 0; g < P->np && ok; g++) {
+                    double sv = tm_dot(P->n[g], x) - (P->c[g] - r);
+                    if (sv > 1e-11) ok = 0;
+                    else if (sv > -1e-11) mk |= 1ull << g;
+                }
                 if (!ok) continue;
                 for (q = 0; q < P->nv; q++) { double dd[3]; tm_sub(P->v[q], x, dd); if (tm_len(dd) < 1e-11) break; }
-                if (q < P->nv || P->nv == 512) continue;
+                if (q < P->nv) { P->mask[q] |= mk; continue; }
+                if (P->nv == 512) continue;
+                P->mask[P->nv] = mk;
                 memcpy(P->v[P->nv++], x, sizeof x);
             }
-    for (g = 0; g < P->np; g++) {
-        double cen[3] = {0, 0, 0}, e1[3], e2[3], ang[64];
-        int m = 0, a2, b2;
-        for (q = 0; q < P->nv; q++)
-            if (fabs(tm_dot(P->n[g], P->v[q]) - (P->c[g] - r)) < 1e-10 && m < 64) P->fv[g][m++] = q;
-        P->fn[g] = m;
-        if (m < 3) continue;
-        for (q = 0; q < m; q++) cen[0] += P->v[P->fv[g][q]][0] / m, cen[1] += P->v[P->fv[g][q]][1] / m, cen[2] += P->v[P->fv[g][q]][2] / m;
-        e1[0] = fabs(P->n[g][0]) < 0.9 ? 1 : 0, e1[1] = fabs(P->n[g][0]) < 0.9 ? 0 : 1, e1[2] = 0;
-        tm_cross(P->n[g], e1, e2); tm_norm(e2); tm_cross(e2, P->n[g], e1);
-        for (q = 0; q < m; q++) { double dd[3]; tm_sub(P->v[P->fv[g][q]], cen, dd); ang[q] = atan2(tm_dot(dd, e2), tm_dot(dd, e1)); }
-        for (a2 = 1; a2 < m; a2++) for (b2 = a2; b2 > 0 && ang[b2 - 1] > ang[b2]; b2--) {
-            double ta = ang[b2]; int tv = P->fv[g][b2];
-            ang[b2] = ang[b2 - 1], P->fv[g][b2] = P->fv[g][b2 - 1], ang[b2 - 1] = ta, P->fv[g][b2 - 1] = tv;
+    P->ne = 0;
+    for (i = 0; i < P->nv; i++)
+        for (j = i + 1; j < P->nv; j++) {
+            /* every segment between two points of E lies in E (convexity), so
+               all pairs are safe candidates; the true edges are among them */
+            if (P->ne < 8192) P->e[P->ne][0] = i, P->e[P->ne][1] = j, P->ne++;
         }
-    }
 }
 static double tm_seg_dist(const double p[3], const double a[3], const double b[3])
 {
@@ -194,19 +196,16 @@ static double tm_eroded_sdf(const void *ctx, const double x[3])
     for (g = 0; g < P->np; g++) inside = fmax(inside, tm_dot(P->n[g], x) - (P->c[g] - E->r));
     if (inside <= 0) return inside - E->r;
     for (g = 0; g < P->np; g++) {
-        int m = P->fn[g], in = 1;
-        double h = tm_dot(P->n[g], x) - (P->c[g] - E->r);
-        if (m < 3 || h <= 0) continue;
-        for (q = 0; q < m; q++) {
-            const double *a = P->v[P->fv[g][q]], *b = P->v[P->fv[g][(q + 1) % m]];
-            double ab[3], ax[3], cr[3];
-            tm_sub(b, a, ab); tm_sub(x, a, ax); tm_cross(ab, ax, cr);
-            if (tm_dot(cr, P->n[g]) < 0) { in = 0; break; }
-        }
-        if (in) best = fmin(best, h);
-        else for (q = 0; q < m; q++) best = fmin(best, tm_seg_dist(x, P->v[P->fv[g][q]], P->v[P->fv[g][(q + 1) % m]]));
+        double h = tm_dot(P->n[g], x) - (P->c[g] - E->r), y[3];
+        int ok = 1;
+        if (h <= 0 || h >= best) continue;
+        y[0] = x[0] - h * P->n[g][0], y[1] = x[1] - h * P->n[g][1], y[2] = x[2] - h * P->n[g][2];
+        for (q = 0; q < P->np && ok; q++)
+            if (q != g && tm_dot(P->n[q], y) - (P->c[q] - E->r) > 1e-10) ok = 0; /* lenient: may only underestimate */
+        if (ok) best = h;
     }
-    if (best == HUGE_VAL) for (q = 0; q < P->nv; q++) { double dd[3]; tm_sub(x, P->v[q], dd); best = fmin(best, tm_len(dd)); }
+    for (q = 0; q < P->ne; q++) best = fmin(best, tm_seg_dist(x, P->v[P->e[q][0]], P->v[P->e[q][1]]));
+    for (q = 0; q < P->nv; q++) { double dd[3]; tm_sub(x, P->v[q], dd); best = fmin(best, tm_len(dd)); }
     return best - E->r;
 }
 
