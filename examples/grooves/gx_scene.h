@@ -1,0 +1,383 @@
+/* gx_scene.h — the grooves example's scenes and its two renderers, shared
+   with bench/bench_grooves.c (header-only, static functions).
+
+   World space is texture space: the grooved plane is z = 0 over the tile
+   [0,1]², u = x, v = y, W = z up. Every scene is rendered two ways with one
+   shading model (ex_bsdf_eval from examples/common, directional lights, a
+   constant ambient term):
+     ours      the plane is two triangles in Embree; at each hit the footprint
+               comes from the camera's ray differentials and gr_query() returns
+               the visible facets, shaded by eq. 6 (1 sample per pixel);
+     geometry  the same grooves swept into a triangle mesh in Embree
+               (tests/grooves_oracle.h) and ray traced at N jittered samples
+               per pixel with one shadow ray per light. */
+#ifndef GX_SCENE_H
+#define GX_SCENE_H
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "grooves.h"
+#include "grooves_oracle.h"
+#include "ex_camera.h"
+#include "ex_embree.h"
+#include "ex_math.h"
+#include "ex_render.h"
+#include "ex_shade.h"
+
+#define GX_MAX_MATS 4
+#define GX_MAX_LIGHTS 2
+#define GX_SCRATCH (1 << 18) /* per-pixel stack scratch for gr_query */
+
+typedef struct gx_scene_t {
+    const char *name, *title;
+    gr_groove_desc_t *desc;       /* grooves as grooves.h describes them */
+    gro_groove_t *geo;            /* the same, for the geometry renderer */
+    int ngrooves;
+    double *store;                /* points and sections of every groove */
+    ex_material_t mats[GX_MAX_MATS]; /* by reflectance id; 0 is the base surface */
+    double light[GX_MAX_LIGHTS][3];  /* unit directions toward the lights */
+    ex_v3_t radiance[GX_MAX_LIGHTS];
+    int nlights;
+    ex_v3_t ambient, background;
+    ex_v3_t eye, at;
+    double fov;                   /* vertical, degrees */
+    double exposure;              /* stops, for the PNG */
+} gx_scene_t;
+
+static ex_material_t gx_material(double r, double g, double b, double f0r, double f0g, double f0b, double rough)
+{
+    ex_material_t m;
+    memset(&m, 0, sizeof m);
+    m.diffuse = ex_v3(r, g, b);
+    m.specular = ex_v3(f0r, f0g, f0b);
+    m.roughness = rough;
+    return m;
+}
+
+static void gx_dir(double elev_deg, double azim_deg, double *d)
+{
+    double e = elev_deg * EX_PI / 180, a = azim_deg * EX_PI / 180;
+    d[0] = cos(e) * cos(a); d[1] = cos(e) * sin(a); d[2] = sin(e);
+}
+
+static int gx_alloc(gx_scene_t *s, int ngrooves, size_t ndoubles)
+{
+    s->ngrooves = ngrooves;
+    s->desc = (gr_groove_desc_t *)calloc((size_t)ngrooves, sizeof *s->desc);
+    s->geo = (gro_groove_t *)calloc((size_t)ngrooves, sizeof *s->geo);
+    s->store = (double *)calloc(ndoubles, sizeof(double));
+    return s->desc && s->geo && s->store ? 0 : -1;
+}
+
+static void gx_scene_free(gx_scene_t *s)
+{
+    free(s->desc); free(s->geo); free(s->store);
+    memset(s, 0, sizeof *s);
+}
+
+/* Figure 14: 250 touching parallel V-grooves running away from the viewer,
+   a few pixels wide in front and hundreds per pixel at the horizon (macro-
+   to micro-geometry), lit from low on the right so that one wall of each V
+   is lit and the other in shadow; masking changes from left to right. */
+static int gx_scene_parallel(gx_scene_t *s)
+{
+    int i, n = 250;
+    double a = 0.5 / n, *sec, *pts;
+    memset(s, 0, sizeof *s);
+    s->name = "parallel"; s->title = "250 parallel V-grooves, near to far (Fig. 14)";
+    if (gx_alloc(s, n, 6 + 4 * (size_t)n)) return -1;
+    sec = s->store; pts = s->store + 6;
+    sec[0] = -a; sec[1] = 0; sec[2] = 0.2 * a; sec[3] = -1.1 * a; sec[4] = a; sec[5] = 0; /* asymmetric V */
+    for (i = 0; i < n; i++) {
+        double u = (i + 0.5) / n;
+        pts[4 * i] = u; pts[4 * i + 1] = 0; pts[4 * i + 2] = u; pts[4 * i + 3] = 1;
+        s->desc[i].points = pts + 4 * i; s->desc[i].point_count = 2;
+        s->desc[i].section = sec; s->desc[i].section_count = 3;
+        s->desc[i].reflectance = 1;
+    }
+    s->mats[0] = gx_material(0.5, 0.5, 0.5, 0.04, 0.04, 0.04, 0.5);
+    s->mats[1] = gx_material(0.40, 0.25, 0.14, 0.9, 0.64, 0.35, 0.3); /* brushed copper */
+    s->nlights = 2;
+    gx_dir(30, 10, s->light[0]); s->radiance[0] = ex_v3(3.2, 3.0, 2.7);
+    gx_dir(55, 120, s->light[1]); s->radiance[1] = ex_v3(0.45, 0.5, 0.65);
+    s->ambient = ex_v3(0.06, 0.07, 0.09);
+    s->background = ex_v3(0.20, 0.24, 0.32);
+    s->eye = ex_v3(0.45, -0.06, 0.035); s->at = ex_v3(0.52, 0.6, 0.0); s->fov = 50;
+    return 0;
+}
+
+/* Figure 2: a curved groove with a sinusoidal perturbation and a straight
+   one that shrinks along its path, each with its own BRDF. */
+static double gx_sine(double t, void *u) { (void)u; return 1.0 + 0.45 * sin(6 * EX_PI * t); }
+static double gx_shrink(double t, void *u) { (void)u; return 1.0 - 0.85 * t; }
+static int gx_scene_curves(gx_scene_t *s)
+{
+    static const double curve[8] = {0.15, 0.2, 0.3, 0.95, 0.75, -0.1, 0.85, 0.75};
+    static const double line[4] = {0.08, 0.9, 0.66, 0.93};
+    double *sec;
+    memset(s, 0, sizeof *s);
+    s->name = "curves"; s->title = "curved groove (sine perturbation), straight groove (shrinking) (Fig. 2)";
+    if (gx_alloc(s, 2, 18)) return -1;
+    sec = s->store;
+    /* rounded U (curved groove), and a V with a raised lip (straight groove) */
+    {
+        static const double u[10] = {-0.03, 0, -0.024, -0.02, 0, -0.028, 0.024, -0.02, 0.03, 0};
+        static const double v[8] = {-0.028, 0, -0.022, 0.006, 0, -0.024, 0.028, 0};
+        memcpy(sec, u, sizeof u);
+        memcpy(sec + 10, v, sizeof v);
+    }
+    s->desc[0].kind = GR_PATH_CUBIC; s->desc[0].points = curve; s->desc[0].point_count = 4;
+    s->desc[0].section = sec; s->desc[0].section_count = 5; s->desc[0].reflectance = 1;
+    s->desc[0].perturb = gx_sine; s->desc[0].perturb_max = 1.45;
+    s->desc[1].points = line; s->desc[1].point_count = 2;
+    s->desc[1].section = sec + 10; s->desc[1].section_count = 4; s->desc[1].reflectance = 2;
+    s->desc[1].perturb = gx_shrink; s->desc[1].perturb_max = 1.0;
+    s->mats[0] = gx_material(0.62, 0.60, 0.55, 0.04, 0.04, 0.04, 0.45);  /* pale stone */
+    s->mats[1] = gx_material(0.05, 0.12, 0.35, 0.3, 0.35, 0.45, 0.2);    /* blue glaze */
+    s->mats[2] = gx_material(0.45, 0.08, 0.05, 0.05, 0.05, 0.05, 0.3);   /* red lacquer */
+    s->nlights = 2;
+    gx_dir(40, 200, s->light[0]); s->radiance[0] = ex_v3(2.6, 2.5, 2.3);
+    gx_dir(70, 10, s->light[1]); s->radiance[1] = ex_v3(0.6, 0.65, 0.8);
+    s->ambient = ex_v3(0.10, 0.11, 0.13);
+    s->background = ex_v3(0.20, 0.24, 0.32);
+    s->eye = ex_v3(0.5, -0.45, 0.75); s->at = ex_v3(0.5, 0.5, 0.0); s->fov = 50;
+    return 0;
+}
+
+/* Scratches on polished metal: 60 thin isolated V-grooves (lines and
+   quadratic curves), far narrower than a pixel, catching a low light. */
+static int gx_scene_scratches(gx_scene_t *s)
+{
+    int i, n = 60;
+    double *sec, *pts;
+    ex_rng_t rng = ex_rng_for_sample(0x5eed, 0, 0, 0);
+    memset(s, 0, sizeof *s);
+    s->name = "scratches"; s->title = "scratches on polished metal (isolated thin grooves)";
+    if (gx_alloc(s, n, 8 + 6 * (size_t)n)) return -1;
+    sec = s->store; pts = s->store + 8;
+    sec[0] = -0.0006; sec[1] = 0; sec[2] = 0.0001; sec[3] = -0.0005; sec[4] = 0.0006; sec[5] = 0;
+    for (i = 0; i < n; i++) {
+        double cu = 0.1 + 0.8 * ex_rng_unit(&rng), cv = 0.1 + 0.8 * ex_rng_unit(&rng);
+        double ang = EX_PI * ex_rng_unit(&rng), len = 0.1 + 0.3 * ex_rng_unit(&rng), bend = 0.15 * (ex_rng_unit(&rng) - 0.5);
+        double du = 0.5 * len * cos(ang), dv = 0.5 * len * sin(ang);
+        double *p = pts + 6 * i;
+        p[0] = cu - du; p[1] = cv - dv;
+        p[2] = cu - bend * dv; p[3] = cv + bend * du;
+        p[4] = cu + du; p[5] = cv + dv;
+        s->desc[i].kind = GR_PATH_QUADRATIC; s->desc[i].points = p; s->desc[i].point_count = 3;
+        s->desc[i].section = sec; s->desc[i].section_count = 3;
+        s->desc[i].reflectance = 0;
+    }
+    s->mats[0] = gx_material(0.02, 0.02, 0.02, 0.95, 0.93, 0.88, 0.12);   /* polished steel */
+    s->nlights = 2;
+    gx_dir(35, 80, s->light[0]); s->radiance[0] = ex_v3(4.0, 3.9, 3.6);
+    gx_dir(50, 250, s->light[1]); s->radiance[1] = ex_v3(1.2, 1.25, 1.4);
+    s->ambient = ex_v3(0.15, 0.16, 0.18);
+    s->background = ex_v3(0.20, 0.24, 0.32);
+    s->eye = ex_v3(0.5, -0.35, 0.45); s->at = ex_v3(0.5, 0.55, 0.0); s->fov = 45;
+    return 0;
+}
+
+typedef int (*gx_scene_fn)(gx_scene_t *);
+static const char *const gx_scene_names[] = {"parallel", "curves", "scratches", NULL};
+static const gx_scene_fn gx_scene_makers[] = {gx_scene_parallel, gx_scene_curves, gx_scene_scratches};
+
+/* Builds scene `name`; 0, or -1 for an unknown name or no memory. */
+static int gx_scene_make(gx_scene_t *s, const char *name)
+{
+    int i, j;
+    for (i = 0; gx_scene_names[i]; i++)
+        if (!strcmp(name, gx_scene_names[i])) {
+            if (gx_scene_makers[i](s)) return -1;
+            for (j = 0; j < s->ngrooves; j++) s->geo[j] = gro_from_gr(&s->desc[j]);
+            return 0;
+        }
+    return -1;
+}
+
+/* The shading both renderers share: ambient plus the directional lights. */
+static ex_v3_t gx_shade(const gx_scene_t *s, int refl, const double *n, const double *e, const unsigned *lit_mask,
+                        const double *lit_frac)
+{
+    const ex_material_t *m = &s->mats[refl >= 0 && refl < GX_MAX_MATS ? refl : 0];
+    ex_v3_t nn = ex_v3(n[0], n[1], n[2]), wo = ex_v3(e[0], e[1], e[2]);
+    ex_v3_t c = ex_mul(s->ambient, m->diffuse);
+    int k;
+    for (k = 0; k < s->nlights; k++) {
+        double w = lit_frac ? lit_frac[k] : (double)((*lit_mask >> k) & 1u);
+        if (w > 0) {
+            ex_v3_t f = ex_bsdf_eval(m, nn, wo, ex_v3(s->light[k][0], s->light[k][1], s->light[k][2]), NULL);
+            c = ex_madd(c, ex_mul(f, s->radiance[k]), w);
+        }
+    }
+    return c;
+}
+
+static int gx_camera(const gx_scene_t *s, ex_camera_t *cam, int w, int h)
+{
+    return ex_camera_init(cam, s->eye, s->at, ex_v3(0, 0, 1), s->fov, w, h);
+}
+
+/* ---------------------------------------------------------------- ours */
+
+typedef struct gx_ours_t {
+    const gx_scene_t *s;
+    gr_grid_t *grid;
+    size_t grid_bytes;
+    gro_device_t dev;
+    RTCScene plane;
+    ex_camera_t cam;
+} gx_ours_t;
+
+/* Builds the grid and the two-triangle plane. 0, or -1 after one line. */
+static int gx_ours_init(gx_ours_t *o, const gx_scene_t *s, int w, int h)
+{
+    static const float pos[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    static const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    gr_grid_desc_t gd;
+    gr_diag_t diag;
+    gr_result_t r;
+    memset(o, 0, sizeof *o);
+    o->s = s;
+    memset(&gd, 0, sizeof gd);
+    gd.grooves = s->desc; gd.groove_count = s->ngrooves; gd.no_wrap = 1;
+    r = gr_grid_build(&gd, &o->grid, &diag);
+    if (r != GR_OK) { fprintf(stderr, "grooves: %s: %s\n", s->name, diag.message); return -1; }
+    if (gr_grid_size(&gd, &o->grid_bytes, NULL) != GR_OK) o->grid_bytes = 0;
+    if (gr_query_scratch_bytes(o->grid) > GX_SCRATCH) {
+        fprintf(stderr, "grooves: %s needs %zu bytes of query scratch (more than %d)\n", s->name,
+                gr_query_scratch_bytes(o->grid), GX_SCRATCH);
+        return -1;
+    }
+    if (gro_device_init(&o->dev)) { fprintf(stderr, "grooves: Embree does not start\n"); return -1; }
+    o->plane = rtcNewScene(o->dev.dev);
+    if (ex_embree_add_mesh(o->dev.dev, o->plane, pos, 4, idx, 2) == RTC_INVALID_GEOMETRY_ID ||
+        ex_embree_commit(o->dev.dev, o->plane))
+        return -1;
+    return gx_camera(s, &o->cam, w, h) ? -1 : 0;
+}
+
+static void gx_ours_free(gx_ours_t *o)
+{
+    if (o->plane) rtcReleaseScene(o->plane);
+    gro_device_free(&o->dev);
+    gr_grid_free(o->grid);
+    memset(o, 0, sizeof *o);
+}
+
+/* Bytes ours needs: the grid and Embree's plane (the query scratch lives on
+   the stack, gr_query_scratch_bytes per thread). */
+static long long gx_ours_bytes(const gx_ours_t *o) { return (long long)o->grid_bytes + o->dev.bytes; }
+
+/* Radiance through continuous pixel position (px, py). */
+static ex_v3_t gx_ours_radiance(const gx_ours_t *o, double px, double py)
+{
+    const gx_scene_t *s = o->s;
+    unsigned char scratch[GX_SCRATCH];
+    ex_ray_t ray = ex_camera_ray(&o->cam, px, py);
+    ex_hit_t h = ex_embree_intersect(o->plane, ray.o, ray.d, 0, INFINITY);
+    gr_differentials_t rd;
+    gr_query_t q;
+    gr_frame_t frame;
+    gr_facet_list_t list;
+    double L[GX_MAX_LIGHTS * 3];
+    ex_v3_t c = ex_v3(0, 0, 0), p;
+    int i, k;
+    if (!h.hit) return s->background;
+    p = ex_madd(ray.o, ray.d, h.t);
+    memset(&rd, 0, sizeof rd);
+    rd.p[0] = p.x; rd.p[1] = p.y; rd.p[2] = p.z;
+    rd.n[2] = 1; rd.dpdu[0] = 1; rd.dpdv[1] = 1;
+    rd.uv[0] = p.x; rd.uv[1] = p.y;
+    rd.dir[0] = ray.d.x; rd.dir[1] = ray.d.y; rd.dir[2] = ray.d.z;
+    rd.rx_origin[0] = ray.rx_o.x; rd.rx_origin[1] = ray.rx_o.y; rd.rx_origin[2] = ray.rx_o.z;
+    rd.rx_dir[0] = ray.rx_d.x; rd.rx_dir[1] = ray.rx_d.y; rd.rx_dir[2] = ray.rx_d.z;
+    rd.ry_origin[0] = ray.ry_o.x; rd.ry_origin[1] = ray.ry_o.y; rd.ry_origin[2] = ray.ry_o.z;
+    rd.ry_dir[0] = ray.ry_d.x; rd.ry_dir[1] = ray.ry_d.y; rd.ry_dir[2] = ray.ry_d.z;
+    memset(&q, 0, sizeof q);
+    if (gr_footprint_from_differentials(&rd, &q.footprint, &frame) != GR_OK) return s->background;
+    for (k = 0; k < s->nlights; k++) gr_frame_to_texture(&frame, s->light[k], L + 3 * k);
+    q.lights = L; q.light_count = s->nlights;
+    if (gr_query(o->grid, &q, scratch, sizeof scratch, &list) != GR_OK) return s->background;
+    for (i = 0; i < list.count; i++) {
+        const gr_facet_t *f = &list.facets[i];
+        c = ex_madd(c, gx_shade(s, f->reflectance, f->normal, q.footprint.view, NULL, f->lit), f->ratio);
+    }
+    return c;
+}
+
+/* ---------------------------------------------------------------- geometry */
+
+typedef struct gx_geo_t {
+    const gx_scene_t *s;
+    gro_device_t dev;
+    gro_scene_t sc;
+    ex_camera_t cam;
+} gx_geo_t;
+
+static int gx_geo_init(gx_geo_t *g, const gx_scene_t *s, int w, int h)
+{
+    gro_build_t b;
+    memset(g, 0, sizeof *g);
+    g->s = s;
+    if (gro_device_init(&g->dev)) { fprintf(stderr, "grooves: Embree does not start\n"); return -1; }
+    memset(&b, 0, sizeof b);
+    b.ground[0] = 0; b.ground[1] = 0; b.ground[2] = 1; b.ground[3] = 1;
+    if (gro_scene_build(&g->sc, g->dev.dev, s->geo, s->ngrooves, &b)) {
+        fprintf(stderr, "grooves: %s: cannot build the geometry (out of memory?)\n", s->name);
+        return -1;
+    }
+    return gx_camera(s, &g->cam, w, h) ? -1 : 0;
+}
+
+static void gx_geo_free(gx_geo_t *g)
+{
+    gro_scene_free(&g->sc);
+    gro_device_free(&g->dev);
+    memset(g, 0, sizeof *g);
+}
+
+/* Bytes the geometry needs: Embree's (BVH, vertex and index buffers, as its
+   memory monitor counts them) and the per-triangle facet labels. */
+static long long gx_geo_bytes(const gx_geo_t *g) { return g->dev.bytes + (long long)g->sc.ntris * 2 * (long long)sizeof(int); }
+
+static ex_v3_t gx_geo_radiance(const gx_geo_t *g, double px, double py)
+{
+    const gx_scene_t *s = g->s;
+    ex_v3_t d = ex_camera_dir(&g->cam, px, py);
+    double o[3] = {g->cam.eye.x, g->cam.eye.y, g->cam.eye.z}, dd[3] = {d.x, d.y, d.z}, e[3];
+    gro_hit_t h = gro_scene_intersect(&g->sc, o, dd, 0, INFINITY);
+    unsigned mask = 0;
+    int k, refl;
+    if (h.kind == GRO_HIT_NONE) return s->background;
+    for (k = 0; k < s->nlights; k++)
+        if (gro_scene_lit(&g->sc, &h, s->light[k])) mask |= 1u << k;
+    refl = 0;
+    if (h.kind == GRO_HIT_FACET) {
+        const gr_groove_desc_t *gd = &s->desc[h.groove];
+        refl = gd->facet_reflectance ? gd->facet_reflectance[h.facet] : gd->reflectance;
+    }
+    e[0] = -d.x; e[1] = -d.y; e[2] = -d.z;
+    return gx_shade(s, refl, h.n, e, &mask, NULL);
+}
+
+/* ex_render callbacks */
+static void gx_ours_pixel(void *user, int x, int y, int sample, ex_rng_t *rng, float rgb[3])
+{
+    ex_v3_t c = gx_ours_radiance((const gx_ours_t *)user, x + 0.5, y + 0.5);
+    (void)sample; (void)rng;
+    rgb[0] = (float)c.x; rgb[1] = (float)c.y; rgb[2] = (float)c.z;
+}
+
+static void gx_geo_pixel(void *user, int x, int y, int sample, ex_rng_t *rng, float rgb[3])
+{
+    double jx = ex_rng_unit(rng), jy = ex_rng_unit(rng);
+    ex_v3_t c = gx_geo_radiance((const gx_geo_t *)user, x + jx, y + jy);
+    (void)sample;
+    rgb[0] = (float)c.x; rgb[1] = (float)c.y; rgb[2] = (float)c.z;
+}
+
+#endif /* GX_SCENE_H */
