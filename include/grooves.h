@@ -1494,6 +1494,10 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (along <= gr__extent(fp, c->t) + rec->half_width) list->flags |= GR_LIST_PATH_END;
             continue;
         }
+        if (!rec->closed) { /* an end inside the footprint (issue 8 treats ends) */
+            double to_end = (c->param < 1 - c->param ? c->param : 1 - c->param) / c->dtds;
+            if (to_end < gr__extent(fp, c->t)) list->flags |= GR_LIST_PATH_END;
+        }
         c->f = gr__perturb(rec, c->param);
         if (ref < 0 || fabs(c->d) < fabs(s->cand[ref].d)) ref = npar;
         npar++;
