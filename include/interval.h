@@ -627,7 +627,7 @@ IV_DEF iv_t iv_pow(iv_t x, iv_t y)
 {
     iv_t r;
     if (iv_is_empty(x) || iv_is_empty(y) || x.hi < 0) return iv_empty();
-    x.lo = iv__max(x.lo, 0.0);
+    if (x.lo <= 0) x.lo = 0.0; /* also turns -0 into +0: pow(-0, -3) = -inf */
     r = iv_hull(iv_hull(iv__pow_point(x.lo, y.lo), iv__pow_point(x.lo, y.hi)),
                 iv_hull(iv__pow_point(x.hi, y.lo), iv__pow_point(x.hi, y.hi)));
     /* pow(0, y) = 0 exactly only for y > 0: a corner 0^0 or 0^-y is handled

@@ -1,0 +1,308 @@
+/* Stiff and extreme cases of interval.h (issue 3), one named test each,
+   every one asserting a bound against a __float128 reference; the ulp
+   bounds of the libm-based functions and of pow_n; affine bad input. */
+#define IV_IMPLEMENTATION
+#include "test_interval_gen.h"
+
+/* Doubles from x outward to y (x <= y), 0 when x == y. */
+static long long gap(double x, double y) { return ig_ulps(x, y); }
+
+/* z encloses [flo, fhi] (quad) with each end at most `ulps` doubles beyond
+   the correctly rounded outward end. */
+static void check_tight(iv_t z, q_t flo, q_t fhi, long long ulps)
+{
+    T_CHECK(ig_in(z, flo) && ig_in(z, fhi));
+    T_LE(gap(z.lo, ig_rd(flo)), ulps);
+    T_LE(gap(ig_ru(fhi), z.hi), ulps);
+}
+
+/* Guaranteed bound for the libm-based functions: libm's value y is at most
+   IV_LIBM_ULPS from f, so y is at most IV_LIBM_ULPS + 1 doubles beyond the
+   correctly rounded end, plus our 2*IV_LIBM_ULPS outward steps. */
+#define LIBM_BOUND (3 * IV_LIBM_ULPS + 1)
+
+static void sin_cos_at_1e15(void)
+{
+    double a = 1e15, b = 1e15 + 1;
+    q_t sa = sinq((q_t)a), sb = sinq((q_t)b), ca = cosq((q_t)a), cb = cosq((q_t)b);
+    iv_t s = iv_sin(iv_make(a, b)), c = iv_cos(iv_make(a, b));
+    /* reference range: end values, plus +-1 where the derivative changes sign */
+    q_t slo = sa < sb ? sa : sb, shi = sa < sb ? sb : sa, clo = ca < cb ? ca : cb, chi = ca < cb ? cb : ca;
+    if (ca > 0 && cb < 0) shi = 1;
+    if (ca < 0 && cb > 0) slo = -1;
+    if (sa > 0 && sb < 0) clo = -1;
+    if (sa < 0 && sb > 0) chi = 1;
+    check_tight(s, slo, shi, LIBM_BOUND);
+    check_tight(c, clo, chi, LIBM_BOUND);
+    T_LT(iv_width(s), 1.0); /* not the trivial [-1, 1] */
+}
+
+static void sin_cos_near_half_pi_multiples(void)
+{
+    static const double ms[] = {0, 1, 3, 1000, 1e6, 1e9};
+    int i;
+    for (i = 0; i < 6; i++) {
+        q_t top = M_PIq / 2 + 2 * M_PIq * (q_t)ms[i]; /* sin = 1, cos = 0 */
+        q_t bottom = top + M_PIq;                      /* sin = -1 */
+        double x = (double)top, d = ldexp(fabs(x), -40) + 1e-12;
+        iv_t s = iv_sin(iv_make(x - d, x + d)), c = iv_cos(iv_make(x - d, x + d)), p = iv_sin(iv_point(x));
+        iv_t s2 = iv_sin(iv_make((double)bottom - d, (double)bottom + d));
+        iv_t c2 = iv_cos(iv_make((double)(top - M_PIq / 2) - d, (double)(top - M_PIq / 2) + d));
+        iv_t c3 = iv_cos(iv_make((double)(top + M_PIq / 2) - d, (double)(top + M_PIq / 2) + d));
+        T_EQ(s.hi, 1.0);                       /* the maximum inside is found */
+        T_LE(s.lo, (double)sinq((q_t)(x - d)));
+        T_GE(s.lo, 0.99);
+        T_EQ(s2.lo, -1.0);
+        T_EQ(c2.hi, 1.0);
+        T_EQ(c3.lo, -1.0);
+        T_CHECK(ig_in(c, cosq((q_t)(x - d))) && ig_in(c, cosq((q_t)(x + d))) && c.lo < 0 && c.hi > 0);
+        T_CHECK(ig_in(p, sinq((q_t)x)) && p.hi <= 1.0);
+        T_LE(gap(p.lo, ig_rd(sinq((q_t)x))), LIBM_BOUND);
+    }
+}
+
+static void sin_cos_wide_is_unit(void)
+{
+    iv_t w[] = {iv_make(0, 100), iv_make(-1e300, 1e300), iv_entire(), iv_make(1e17, 1e17 + 64), iv_make(0, 6.3)};
+    int i;
+    for (i = 0; i < 5; i++) {
+        T_EQ(iv_sin(w[i]).lo, -1); T_EQ(iv_sin(w[i]).hi, 1);
+        T_EQ(iv_cos(w[i]).lo, -1); T_EQ(iv_cos(w[i]).hi, 1);
+    }
+    T_CHECK(iv_is_empty(iv_sin(iv_empty())));
+    /* widths between pi and 2pi are split, not widened: sin([0, 4]) = [sin 4, 1] */
+    T_LE(gap(iv_sin(iv_make(0, 4)).lo, ig_rd(sinq(4))), LIBM_BOUND);
+    T_EQ(iv_sin(iv_make(0, 4)).hi, 1);
+}
+
+static void huge_arguments(void)
+{
+    static const double xs[] = {1e15, 3.3e18, 1e22, 1e100, 1e200, 1e300, 1.7976931348623157e308};
+    int i;
+    for (i = 0; i < 7; i++) {
+        q_t x = (q_t)xs[i];
+        check_tight(iv_sin(iv_point(xs[i])), sinq(x), sinq(x), LIBM_BOUND);
+        check_tight(iv_cos(iv_point(xs[i])), cosq(x), cosq(x), LIBM_BOUND);
+        check_tight(iv_tan(iv_point(xs[i])), tanq(x), tanq(x), LIBM_BOUND);
+        check_tight(iv_atan(iv_point(-xs[i])), atanq(-x), atanq(-x), LIBM_BOUND);
+        check_tight(iv_log(iv_point(xs[i])), logq(x), logq(x), LIBM_BOUND);
+    }
+}
+
+static void exp_overflows_upper_only(void)
+{
+    iv_t z = iv_exp(iv_make(700, 710));
+    T_EQ(z.hi, HUGE_VAL);
+    T_LT(z.lo, HUGE_VAL);
+    T_LE(gap(z.lo, ig_rd(expq(700))), LIBM_BOUND);
+    T_CHECK(ig_in(z, expq(700)));
+    z = iv_exp(iv_make(-HUGE_VAL, -800));
+    T_EQ(z.lo, 0); T_GT(z.hi, 0); T_LT(z.hi, 1e-300);
+    z = iv_exp(iv_make(0, 0));
+    T_EQ(z.lo, 1); T_EQ(z.hi, 1);
+}
+
+static void log_zero_one(void)
+{
+    iv_t z = iv_log(iv_make(0, 1));
+    T_EQ(z.lo, -HUGE_VAL); T_EQ(z.hi, 0);
+    z = iv_log(iv_make(-5, 1));
+    T_EQ(z.lo, -HUGE_VAL); T_EQ(z.hi, 0);
+    T_CHECK(iv_is_empty(iv_log(iv_make(-1, 0))));
+    z = iv_log(iv_make(1, HUGE_VAL));
+    T_EQ(z.lo, 0); T_EQ(z.hi, HUGE_VAL);
+}
+
+static void pow_n_negative_intervals(void)
+{
+    iv_t x = iv_make(-3, -2), s = iv_make(-3, 2);
+    check_tight(iv_pow_n(x, 3), -27, -8, 1);
+    check_tight(iv_pow_n(x, 2), 4, 9, 1);
+    check_tight(iv_pow_n(x, 4), 16, 81, 1);
+    check_tight(iv_pow_n(s, 3), -27, 8, 1);
+    T_EQ(iv_pow_n(s, 2).lo, 0); T_EQ(iv_pow_n(s, 4).lo, 0);
+    check_tight(iv_pow_n(s, 2), 0, 9, 1);
+    check_tight(iv_pow_n(x, -2), (q_t)1 / 9, (q_t)1 / 4, 1);
+    check_tight(iv_pow_n(x, -3), (q_t)-1 / 8, (q_t)-1 / 27, 1);
+    T_EQ(iv_pow_n(s, -3).lo, -HUGE_VAL); T_EQ(iv_pow_n(s, -3).hi, HUGE_VAL);
+    T_EQ(iv_pow_n(s, -2).hi, HUGE_VAL); T_GE(iv_pow_n(s, -2).lo, nextafter(1.0 / 9, 0));
+    T_EQ(iv_pow_n(iv_point(-2), 3).lo, -8); /* exact powers stay exact */
+    T_EQ(iv_pow_n(iv_point(-2), 3).hi, -8);
+    T_CHECK(iv_is_empty(iv_pow_n(iv_point(0), -1)));
+    T_EQ(iv_pow_n(iv_make(-1, 1), 0).lo, 1);
+}
+
+/* pow_n endpoints are at most one ulp outside the correctly rounded ones
+   whenever the result is normal, for n up to 1000 and both signs. */
+static void pow_n_tightness(void)
+{
+    t_rng_t r = {99};
+    long i, n = t_count(300000);
+    long long worst = 0;
+    for (i = 0; i < n; i++) {
+        int e = (int)(t_rng_u64(&r) % 1000) + 1;
+        double x = t_rng_range(&r, 0.5, 2) * (t_rng_u64(&r) % 2 ? 1 : -1);
+        q_t v;
+        iv_t z;
+        if (t_rng_u64(&r) % 2) e = -e;
+        x = ldexp(x, (int)(t_rng_u64(&r) % 9) - 4);
+        v = powq((q_t)x, (q_t)e);
+        if (!(fabsq(v) > (q_t)2.2250738585072014e-308 && fabsq(v) < (q_t)1.7976931348623157e308)) continue;
+        z = iv_pow_n(iv_point(x), e);
+        if (!T_CHECK(ig_in(z, v))) break;
+        if (gap(z.lo, ig_rd(v)) > worst) worst = gap(z.lo, ig_rd(v));
+        if (gap(ig_ru(v), z.hi) > worst) worst = gap(ig_ru(v), z.hi);
+    }
+    T_LE(worst, 1);
+    fprintf(stderr, "    pow_n: worst endpoint %lld ulp outside the correctly rounded one\n", worst);
+}
+
+/* Measured ulp distance of the libm-based functions, asserted against the
+   derived bound LIBM_BOUND. */
+static void libm_functions_ulp_bound(void)
+{
+    t_rng_t r = {5};
+    long i, n = t_count(200000);
+    long long worst[7] = {0};
+    static const char *names[7] = {"exp", "log", "sin", "cos", "tan", "atan", "pow"};
+    int f;
+    for (i = 0; i < n; i++) {
+        double x = ig_value(&r), y = t_rng_range(&r, -4, 4);
+        for (f = 0; f < 7; f++) {
+            q_t v;
+            iv_t z;
+            double xx = f == 0 ? fmod(x, 700.0) : f == 1 || f == 6 ? fabs(x) : x;
+            if (f == 1 && xx == 0) continue;
+            switch (f) {
+            case 0: v = expq(xx); z = iv_exp(iv_point(xx)); break;
+            case 1: v = logq(xx); z = iv_log(iv_point(xx)); break;
+            case 2: v = sinq(xx); z = iv_sin(iv_point(xx)); break;
+            case 3: v = cosq(xx); z = iv_cos(iv_point(xx)); break;
+            case 4: v = tanq(xx); z = iv_tan(iv_point(xx)); break;
+            case 5: v = atanq(xx); z = iv_atan(iv_point(xx)); break;
+            default: v = powq(xx, y); z = iv_pow(iv_point(xx), iv_point(y)); break;
+            }
+            if (!(fabsq(v) > (q_t)2.2250738585072014e-308 && fabsq(v) < (q_t)1.7976931348623157e308)) continue;
+            if (!ig_in(z, v)) { T_FAIL("%s(%a) misses", names[f], xx); continue; }
+            if (gap(z.lo, ig_rd(v)) > worst[f]) worst[f] = gap(z.lo, ig_rd(v));
+            if (gap(ig_ru(v), z.hi) > worst[f]) worst[f] = gap(ig_ru(v), z.hi);
+        }
+    }
+    for (f = 0; f < 7; f++) {
+        T_LE(worst[f], LIBM_BOUND);
+        fprintf(stderr, "    %-5s worst endpoint %lld ulp outside the correctly rounded one (bound %d)\n", names[f],
+                worst[f], LIBM_BOUND);
+    }
+}
+
+static void hypot_huge_and_tiny(void)
+{
+    q_t big = sqrtq((q_t)1e300 * (q_t)1e300 * 2), tiny = sqrtq((q_t)1e-300 * (q_t)1e-300 * 2);
+    iv_t z = iv_hypot(iv_point(1e300), iv_point(-1e300));
+    check_tight(z, big, big, 4);
+    z = iv_hypot(iv_point(1e-300), iv_point(1e-300));
+    check_tight(z, tiny, tiny, 4);
+    z = iv_hypot(iv_point(3e-320), iv_point(4e-320));
+    T_CHECK(ig_in(z, sqrtq((q_t)3e-320 * (q_t)3e-320 + (q_t)4e-320 * (q_t)4e-320)));
+    T_GT(z.lo, 0);
+    z = iv_hypot(iv_point(1.7976931348623157e308), iv_point(1.7976931348623157e308));
+    T_EQ(z.hi, HUGE_VAL); T_GE(z.lo, 1.7976931348623157e308 * 0.5);
+    z = iv_hypot(iv_point(1e300), iv_point(1e-300));
+    check_tight(z, 1e300, (q_t)1e300 + 1, 4);
+    z = iv_hypot(iv_make(-3, 4), iv_make(-4, 5));
+    T_EQ(z.lo, 0); T_GE(z.hi, sqrt(41.0));
+}
+
+static void pow_domain(void)
+{
+    iv_t z = iv_pow(iv_make(-2, -1), iv_make(0.5, 1));
+    T_CHECK(iv_is_empty(z));
+    z = iv_pow(iv_make(-1, 4), iv_make(0.5, 0.5));
+    T_EQ(z.lo, 0); T_GE(z.hi, 2); T_LE(z.hi, 2.000000000000001);
+    z = iv_pow(iv_make(0, 2), iv_make(-1, 1));
+    T_EQ(z.lo, 0); T_EQ(z.hi, HUGE_VAL);
+    T_CHECK(iv_is_empty(iv_pow(iv_point(0), iv_point(-1))));
+    z = iv_pow(iv_make(-0.0, 2), iv_point(-3));
+    T_GE(z.lo, 0.125 * 0.99); T_EQ(z.hi, HUGE_VAL);
+}
+
+static void tan_poles(void)
+{
+    iv_t z = iv_tan(iv_make(1, 2));
+    T_EQ(z.lo, -HUGE_VAL); T_EQ(z.hi, HUGE_VAL);
+    z = iv_tan(iv_make(-1, 1));
+    check_tight(z, tanq(-1), tanq(1), LIBM_BOUND);
+    z = iv_tan(iv_make(0, 0));
+    T_EQ(z.lo, 0); T_EQ(z.hi, 0);
+}
+
+#ifndef IV_NO_AFFINE
+static void affine_bad_input(void)
+{
+    iv_affine_t t = iv_affine_ray_param(0, 1);
+    T_CHECK(iv_affine_is_empty(iv_affine_const(NAN)));
+    T_CHECK(iv_affine_is_empty(iv_affine_const(HUGE_VAL)));
+    T_CHECK(iv_affine_is_empty(iv_affine_ray_param(1, 0)));
+    T_CHECK(iv_affine_is_empty(iv_affine_ray_param(NAN, 1)));
+    T_CHECK(iv_affine_is_empty(iv_affine_from_iv(iv_empty())));
+    T_CHECK(iv_affine_is_empty(iv_affine_add(t, iv_affine_const(NAN))));
+    T_CHECK(iv_affine_is_empty(iv_affine_mul_d(t, NAN)));
+    T_CHECK(iv_affine_is_empty(iv_affine_sqrt(iv_affine_sub_d(t, 5))));
+    T_CHECK(iv_affine_is_empty(iv_affine_log(iv_affine_sub_d(t, 1.5))));
+    T_CHECK(iv_is_empty(iv_from_affine(iv_affine_sqrt(iv_affine_sub_d(t, 2)))));
+    /* overflow gives the unbounded form, never a wrong finite one */
+    T_EQ(iv_from_affine(iv_affine_sqr(iv_affine_mul_d(t, 1e300))).hi, HUGE_VAL);
+    T_EQ(iv_from_affine(iv_affine_from_iv(iv_make(0, HUGE_VAL))).hi, HUGE_VAL);
+    T_EQ(iv_from_affine(iv_affine_exp(iv_affine_add_d(t, 800))).hi, HUGE_VAL);
+}
+
+/* Dependency: x - x and x*x - x^2 on the ray parameter collapse to
+   rounding-error size with affine forms, not with intervals. */
+static void affine_cancels_dependency(void)
+{
+    iv_affine_t t = iv_affine_ray_param(2, 3), x = iv_affine_add_d(iv_affine_mul_d(t, 0.5), 1);
+    iv_t d = iv_from_affine(iv_affine_sub(x, x));
+    iv_t q = iv_from_affine(iv_affine_sub(iv_affine_mul(x, x), iv_affine_sqr(x)));
+    iv_t tr = iv_from_affine(t), xi = iv_from_affine(x);
+    T_LE(iv_width(d), 1e-13);
+    /* x*x and sqr(x) each carry the eps_t^2 radius t^2/2 = 1/32 */
+    T_LE(iv_width(q), 0.13);
+    T_LE(iv_width(q), 0.05 * iv_width(iv_sub(iv_mul(xi, xi), iv_sqr(xi))));
+    T_LE(tr.lo, 2); T_GE(tr.hi, 3); T_GE(tr.lo, 2 - 1e-15); T_LE(tr.hi, 3 + 1e-15);
+    /* tangle-cube term x^4 - 5x^2 on a short segment: affine at least 2x tighter */
+    {
+        iv_affine_t s = iv_affine_ray_param(0.4, 0.5);
+        iv_t ia = iv_from_affine(iv_affine_sub(iv_affine_pow_n(s, 4), iv_affine_mul_d(iv_affine_sqr(s), 5)));
+        iv_t si = iv_make(0.4, 0.5);
+        iv_t ii = iv_sub(iv_pow_n(si, 4), iv_mul_d(iv_sqr(si), 5));
+        q_t f0 = (q_t)0.4 * 0.4 * 0.4 * 0.4 - 5 * (q_t)0.4 * 0.4, f1 = (q_t)0.0625 - (q_t)1.25;
+        T_CHECK(ig_in(ia, f0) && ig_in(ia, f1));
+        /* overestimation (width beyond the true range's) at least halved */
+        double range = (double)(f0 - f1);
+        T_LE(2 * (iv_width(ia) - range), iv_width(ii) - range);
+    }
+}
+#endif
+
+int main(int argc, char **argv)
+{
+    static const t_case_t cases[] = {
+        T_CASE(sin_cos_at_1e15),
+        T_CASE(sin_cos_near_half_pi_multiples),
+        T_CASE(sin_cos_wide_is_unit),
+        T_CASE(huge_arguments),
+        T_CASE(exp_overflows_upper_only),
+        T_CASE(log_zero_one),
+        T_CASE(pow_n_negative_intervals),
+        T_CASE(pow_n_tightness),
+        T_CASE(libm_functions_ulp_bound),
+        T_CASE(hypot_huge_and_tiny),
+        T_CASE(pow_domain),
+        T_CASE(tan_poles),
+#ifndef IV_NO_AFFINE
+        T_CASE(affine_bad_input),
+        T_CASE(affine_cancels_dependency),
+#endif
+    };
+    return T_RUN(argc, argv, cases);
+}
