@@ -132,11 +132,11 @@ static double tm_trace(tm_sdf_fn f, const void *ctx, const double o[3], const do
    over candidates is the distance. Vertices come from all plane triples
    (global, nothing shared with the library's per-corner construction). ---- */
 typedef struct tm_poly_t {
-    int np;
-    double n[64][3], c[64];
+    int np; /* <= 128 */
+    double n[128][3], c[128];
     int nv;
     double v[512][3];
-    unsigned long long mask[512];
+    unsigned long long mask[512][2];
     int ne;
     int e[8192][2];
 } tm_poly_t;
@@ -150,7 +150,7 @@ static void tm_erode(tm_poly_t *P, double r)
             for (k = j + 1; k < P->np; k++) {
                 double a[3], b[3], cc[3], x[3], det, ci = P->c[i] - r, cj = P->c[j] - r, ck = P->c[k] - r;
                 int ok = 1;
-                unsigned long long mk = 0;
+                unsigned long long mk[2] = {0, 0};
                 tm_cross(P->n[j], P->n[k], a);
                 tm_cross(P->n[k], P->n[i], b);
                 tm_cross(P->n[i], P->n[j], cc);
@@ -160,21 +160,24 @@ static void tm_erode(tm_poly_t *P, double r)
                 for (g = 0; g < P->np && ok; g++) {
                     double sv = tm_dot(P->n[g], x) - (P->c[g] - r);
                     if (sv > 1e-11) ok = 0;
-                    else if (sv > -1e-11) mk |= 1ull << g;
+                    else if (sv > -1e-9) mk[g >> 6] |= 1ull << (g & 63);
                 }
                 if (!ok) continue;
                 for (q = 0; q < P->nv; q++) { double dd[3]; tm_sub(P->v[q], x, dd); if (tm_len(dd) < 1e-11) break; }
-                if (q < P->nv) { P->mask[q] |= mk; continue; }
+                if (q < P->nv) { P->mask[q][0] |= mk[0], P->mask[q][1] |= mk[1]; continue; }
                 if (P->nv == 512) continue;
-                P->mask[P->nv] = mk;
+                P->mask[P->nv][0] = mk[0], P->mask[P->nv][1] = mk[1];
                 memcpy(P->v[P->nv++], x, sizeof x);
             }
     P->ne = 0;
     for (i = 0; i < P->nv; i++)
         for (j = i + 1; j < P->nv; j++) {
             /* every segment between two points of E lies in E (convexity), so
-               all pairs are safe candidates; the true edges are among them */
-            if (P->ne < 8192) P->e[P->ne][0] = i, P->e[P->ne][1] = j, P->ne++;
+               all pairs are safe candidates and the true edges are among them;
+               for large polytopes keep the pairs sharing two planes (loose tolerance) */
+            unsigned long long a0 = P->mask[i][0] & P->mask[j][0], a1 = P->mask[i][1] & P->mask[j][1];
+            int two = (a0 && a1) || (a0 & (a0 - 1)) || (a1 & (a1 - 1));
+            if ((P->nv <= 64 || two) && P->ne < 8192) P->e[P->ne][0] = i, P->e[P->ne][1] = j, P->ne++;
         }
 }
 static double tm_seg_dist(const double p[3], const double a[3], const double b[3])
@@ -231,7 +234,113 @@ static void tm_hull(const double (*p)[3], int n, tm_mesh_t *m, tm_poly_t *P)
                 if (pos && neg) continue;
                 if (pos) { tm_tri(m, (unsigned)i, (unsigned)k, (unsigned)j); nn[0] = -nn[0], nn[1] = -nn[1], nn[2] = -nn[2]; c = -c; }
                 else tm_tri(m, (unsigned)i, (unsigned)j, (unsigned)k);
-                if (P->np < 64) { memcpy(P->n[P->np], nn, sizeof nn); P->c[P->np++] = c; }
+                if (P->np < 128) { memcpy(P->n[P->np], nn, sizeof nn); P->c[P->np++] = c; }
             }
+}
+
+/* Flip triangles of a convex mesh whose normal points toward the centroid. */
+static void tm_orient_outward(tm_mesh_t *m)
+{
+    double c[3] = {0, 0, 0};
+    unsigned i, t;
+    for (i = 0; i < m->nv; i++) c[0] += m->v[3 * i] / m->nv, c[1] += m->v[3 * i + 1] / m->nv, c[2] += m->v[3 * i + 2] / m->nv;
+    for (t = 0; t < m->ni / 3; t++) {
+        const double *A = m->v + 3 * m->idx[3 * t], *B = m->v + 3 * m->idx[3 * t + 1], *C = m->v + 3 * m->idx[3 * t + 2];
+        double e1[3], e2[3], nn[3], g[3];
+        tm_sub(B, A, e1); tm_sub(C, A, e2); tm_cross(e1, e2, nn);
+        g[0] = (A[0] + B[0] + C[0]) / 3 - c[0], g[1] = (A[1] + B[1] + C[1]) / 3 - c[1], g[2] = (A[2] + B[2] + C[2]) / 3 - c[2];
+        if (tm_dot(nn, g) < 0) { unsigned x = m->idx[3 * t + 1]; m->idx[3 * t + 1] = m->idx[3 * t + 2]; m->idx[3 * t + 2] = x; }
+    }
+}
+
+/* Prism: convex polygon (x, z) pairs counter-clockwise seen from +y... built
+   so faces wind outward; extruded over y in [-h, h]. Planes go to P. */
+static void tm_prism(tm_mesh_t *m, tm_poly_t *P, const double (*q)[2], int n, double h)
+{
+    unsigned b = m->nv;
+    int i;
+    for (i = 0; i < n; i++) tm_vert(m, q[i][0], -h, q[i][1]);
+    for (i = 0; i < n; i++) tm_vert(m, q[i][0], h, q[i][1]);
+    for (i = 0; i < n; i++) {
+        unsigned a = b + (unsigned)i, c = b + (unsigned)((i + 1) % n);
+        tm_quad(m, a, c, c + (unsigned)n, a + (unsigned)n);
+    }
+    for (i = 1; i + 1 < n; i++) {
+        tm_tri(m, b, b + (unsigned)i + 1, b + (unsigned)i);
+        tm_tri(m, b + (unsigned)n, b + (unsigned)n + (unsigned)i, b + (unsigned)n + (unsigned)i + 1);
+    }
+    tm_orient_outward(m);
+    if (P) {
+        unsigned t;
+        P->np = 0;
+        for (t = 0; t < m->ni / 3 && P->np < 128; t++) {
+            const double *A = m->v + 3 * m->idx[3 * t], *B = m->v + 3 * m->idx[3 * t + 1], *C = m->v + 3 * m->idx[3 * t + 2];
+            double e1[3], e2[3], nn[3];
+            int g, dup = 0;
+            tm_sub(B, A, e1); tm_sub(C, A, e2); tm_cross(e1, e2, nn); tm_norm(nn);
+            for (g = 0; g < P->np; g++) if (tm_dot(P->n[g], nn) > 1 - 1e-15 && fabs(P->c[g] - tm_dot(nn, A)) < 1e-14) dup = 1;
+            if (dup) continue;
+            memcpy(P->n[P->np], nn, sizeof nn);
+            P->c[P->np++] = tm_dot(nn, A);
+        }
+    }
+}
+
+/* Icosphere of radius R: icosahedron, each triangle split in 4, `level` times. */
+static unsigned tm_mid(tm_mesh_t *m, unsigned a, unsigned b, double R)
+{
+    double p[3];
+    unsigned i;
+    p[0] = m->v[3 * a] + m->v[3 * b], p[1] = m->v[3 * a + 1] + m->v[3 * b + 1], p[2] = m->v[3 * a + 2] + m->v[3 * b + 2];
+    tm_norm(p);
+    p[0] *= R, p[1] *= R, p[2] *= R;
+    for (i = 0; i < m->nv; i++)
+        if (m->v[3 * i] == p[0] && m->v[3 * i + 1] == p[1] && m->v[3 * i + 2] == p[2]) return i;
+    return tm_vert(m, p[0], p[1], p[2]);
+}
+static void tm_icosphere(tm_mesh_t *m, int level, double R)
+{
+    static const unsigned f[20][3] = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                      {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                                      {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    double t = (1 + sqrt(5.0)) / 2;
+    double v[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                       {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    int i, l;
+    tm_mesh_t cur = {0};
+    for (i = 0; i < 12; i++) { tm_norm(v[i]); tm_vert(&cur, R * v[i][0], R * v[i][1], R * v[i][2]); }
+    for (i = 0; i < 20; i++) tm_tri(&cur, f[i][0], f[i][1], f[i][2]);
+    for (l = 0; l < level; l++) {
+        tm_mesh_t nx = {0};
+        unsigned k;
+        for (k = 0; k < cur.nv; k++) tm_vert(&nx, cur.v[3 * k], cur.v[3 * k + 1], cur.v[3 * k + 2]);
+        for (k = 0; k < cur.ni; k += 3) {
+            unsigned a = cur.idx[k], b = cur.idx[k + 1], c = cur.idx[k + 2];
+            unsigned ab = tm_mid(&nx, a, b, R), bc = tm_mid(&nx, b, c, R), ca = tm_mid(&nx, c, a, R);
+            tm_tri(&nx, a, ab, ca); tm_tri(&nx, b, bc, ab); tm_tri(&nx, c, ca, bc); tm_tri(&nx, ab, bc, ca);
+        }
+        tm_free(&cur);
+        cur = nx;
+    }
+    tm_orient_outward(&cur);
+    for (i = 0; i < (int)cur.nv; i++) tm_vert(m, cur.v[3 * i], cur.v[3 * i + 1], cur.v[3 * i + 2]);
+    {
+        unsigned base = m->nv - cur.nv, k;
+        for (k = 0; k < cur.ni; k += 3) tm_tri(m, base + cur.idx[k], base + cur.idx[k + 1], base + cur.idx[k + 2]);
+    }
+    tm_free(&cur);
+}
+/* planes of a convex triangle mesh (one per triangle) */
+static void tm_planes(const tm_mesh_t *m, tm_poly_t *P)
+{
+    unsigned t;
+    P->np = 0;
+    for (t = 0; t < m->ni / 3 && P->np < 128; t++) {
+        const double *A = m->v + 3 * m->idx[3 * t], *B = m->v + 3 * m->idx[3 * t + 1], *C = m->v + 3 * m->idx[3 * t + 2];
+        double e1[3], e2[3], nn[3];
+        tm_sub(B, A, e1); tm_sub(C, A, e2); tm_cross(e1, e2, nn); tm_norm(nn);
+        memcpy(P->n[P->np], nn, sizeof nn);
+        P->c[P->np++] = tm_dot(nn, A);
+    }
 }
 #endif

@@ -1,0 +1,200 @@
+/* tests/test_rounded_rays.h — ray batteries shared by the rounded_edges.h
+   tests: random rays at a mesh, host hit by brute force, query, and the
+   comparison with an independent oracle. Include after test.h,
+   rounded_edges.h and test_rounded_util.h. */
+#ifndef TEST_ROUNDED_RAYS_H
+#define TEST_ROUNDED_RAYS_H
+
+/* set by a test whose coordinates are large: compare t within the error
+   the positions' own rounding allows, rel * scale / |cos(ray, normal)| */
+static int g_t_conditioned;
+
+static re_scene_t *build1(const tm_mesh_t *m, double r, re_diag_t *dg)
+{
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    memset(&mesh, 0, sizeof mesh);
+    memset(&desc, 0, sizeof desc);
+    mesh.positions = m->v;
+    mesh.vertex_count = m->nv;
+    mesh.indices = m->idx;
+    mesh.index_count = m->ni;
+    mesh.radius = r;
+    desc.objects = &mesh;
+    desc.object_count = 1;
+    if (re_build(&desc, &s, dg) != RE_OK) return NULL;
+    return s;
+}
+
+typedef struct rbox_t { double c[3], half[3], r; } rbox_t;
+static double rbox_sdf(const void *ctx, const double p[3])
+{
+    const rbox_t *b = (const rbox_t *)ctx;
+    return tm_rbox_sdf(b->c, b->half, b->r, p);
+}
+
+/* One ray against the sharp mesh + query, compared with the rounded-box
+   oracle. Returns 1 if the query changed the host hit. */
+static int check_box_ray(const re_scene_t *s, const tm_mesh_t *m, const rbox_t *b, const double o[3],
+                         const double d[3], double rel, double scale, long *n_round, long *n_pass)
+{
+    double t_host, t_ref, n_ref[3];
+    unsigned tri;
+    re_hit_t h;
+    if (!tm_hit(m, o, d, &t_host, &tri)) return 0;
+    re_query(s, o, d, 0, tri, t_host, &h);
+    t_ref = tm_trace(rbox_sdf, b, o, d, 1e3 * scale, scale);
+    if (h.kind == RE_UNCHANGED || h.kind == RE_HIT_ROUNDED) {
+        double p[3];
+        if (!T_LT(t_ref, HUGE_VAL)) return 1;
+        double tol_t = rel * scale;
+        if (g_t_conditioned) { /* t error of a grazing ray grows as 1/cos: bound the point, not t */
+            double pr[3], nr[3], c;
+            pr[0] = o[0] + t_ref * d[0], pr[1] = o[1] + t_ref * d[1], pr[2] = o[2] + t_ref * d[2];
+            tm_rbox_normal(b->c, b->half, b->r, pr, nr);
+            c = fabs(tm_dot(nr, d)) / tm_len(d);
+            tol_t /= fmax(c, 1e-6);
+        }
+        if (!T_NEAR(h.t, t_ref, tol_t)) {
+            T_FAIL("kind %d t %.17g ref %.17g host %.17g", (int)h.kind, h.t, t_ref, t_host);
+            return 1;
+        }
+        p[0] = o[0] + h.t * d[0], p[1] = o[1] + h.t * d[1], p[2] = o[2] + h.t * d[2];
+        T_NEAR(tm_rbox_sdf(b->c, b->half, b->r, p), 0.0, rel * scale);
+        if (h.kind == RE_HIT_ROUNDED) {
+            tm_rbox_normal(b->c, b->half, b->r, p, n_ref);
+            T_NEAR(h.normal[0], n_ref[0], 1e3 * rel);
+            T_NEAR(h.normal[1], n_ref[1], 1e3 * rel);
+            T_NEAR(h.normal[2], n_ref[2], 1e3 * rel);
+            (*n_round)++;
+        }
+    } else {
+        /* pass-through: the rounded box is missed entirely */
+        T_EQ(t_ref, HUGE_VAL);
+        T_GE(h.t, t_host);
+        (*n_pass)++;
+    }
+    return h.kind != RE_UNCHANGED;
+}
+
+/* Random rays at the rounded box: half aimed at points near edges and
+   corners, a quarter grazing the rounded surface, a quarter anywhere. */
+static void box_rays(const double lo[3], const double hi[3], double r, long nrays, double rel, unsigned long long seed)
+{
+    tm_mesh_t m = {0};
+    rbox_t b;
+    re_scene_t *s;
+    re_diag_t dg;
+    t_rng_t rng;
+    long i, n_round = 0, n_pass = 0, changed = 0;
+    double scale = 0;
+    int a;
+    rng.s = seed;
+    tm_box(&m, lo, hi);
+    for (a = 0; a < 3; a++) b.c[a] = 0.5 * (lo[a] + hi[a]), b.half[a] = 0.5 * (hi[a] - lo[a]), scale = fmax(scale, hi[a] - lo[a]);
+    b.r = r;
+    s = build1(&m, r, &dg);
+    if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
+    for (i = 0; i < nrays; i++) {
+        double o[3], d[3], tgt[3], u, v, w;
+        int mode = (int)(i % 4);
+        if (mode <= 1) { /* near an edge or corner of the sharp box */
+            for (a = 0; a < 3; a++) {
+                u = t_rng_unit(&rng);
+                tgt[a] = u < 0.35 ? lo[a] + 1.5 * r * t_rng_unit(&rng) : u < 0.7 ? hi[a] - 1.5 * r * t_rng_unit(&rng)
+                                                                                    : t_rng_range(&rng, lo[a], hi[a]);
+            }
+            u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+            o[0] = tgt[0] + 3 * scale * w * cos(u), o[1] = tgt[1] + 3 * scale * w * sin(u), o[2] = tgt[2] + 3 * scale * v;
+            tm_sub(tgt, o, d);
+        } else if (mode == 2) { /* grazing: nearly tangent at a point of the rounded surface */
+            double p0[3], n0[3], tdir[3], e[3] = {0.3, 0.5, 0.8}, tt;
+            for (a = 0; a < 3; a++) p0[a] = t_rng_range(&rng, lo[a] - 0.1 * scale, hi[a] + 0.1 * scale);
+            /* project onto the rounded surface along the gradient (exact for this SDF) */
+            for (a = 0; a < 50; a++) {
+                double sd = tm_rbox_sdf(b.c, b.half, r, p0);
+                tm_rbox_normal(b.c, b.half, r, p0, n0);
+                p0[0] -= sd * n0[0], p0[1] -= sd * n0[1], p0[2] -= sd * n0[2];
+            }
+            tm_rbox_normal(b.c, b.half, r, p0, n0);
+            e[0] = t_rng_range(&rng, -1, 1), e[1] = t_rng_range(&rng, -1, 1), e[2] = t_rng_range(&rng, -1, 1);
+            tm_cross(n0, e, tdir); tm_norm(tdir);
+            tt = -pow(10.0, t_rng_range(&rng, -4, -0.5));
+            for (a = 0; a < 3; a++) d[a] = tdir[a] + tt * n0[a];
+            for (a = 0; a < 3; a++) o[a] = p0[a] - 2 * scale * d[a] + 1e-3 * scale * n0[a];
+        } else {
+            for (a = 0; a < 3; a++) tgt[a] = t_rng_range(&rng, lo[a], hi[a]);
+            u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+            o[0] = tgt[0] + 3 * scale * w * cos(u), o[1] = tgt[1] + 3 * scale * w * sin(u), o[2] = tgt[2] + 3 * scale * v;
+            tm_sub(tgt, o, d);
+        }
+        changed += check_box_ray(s, &m, &b, o, d, rel, scale, &n_round, &n_pass);
+    }
+    fprintf(stderr, "    rays %ld: rounded %ld, pass-through %ld, changed %ld\n", nrays, n_round, n_pass, changed);
+    T_GT(n_round, nrays / 10); /* the rays do exercise the rounded surface */
+    T_GT(n_pass, 0);
+    re_free(s);
+    tm_free(&m);
+}
+
+/* Rays at a convex polyhedron (hull mesh + planes), compared with sphere
+   tracing of dist(x, eroded polytope) - r. Returns rays that hit a corner
+   feature of a vertex with degree >= 4 planes. */
+static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays, double tol_rel,
+                      unsigned long long seed, const char *what)
+{
+    re_scene_t *s;
+    re_diag_t dg;
+    re_stats_t st;
+    tm_eroded_t E;
+    t_rng_t rng;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, scale, r;
+    long i, n_round = 0, n_pass = 0, bad = 0;
+    unsigned k;
+    int a;
+    rng.s = seed;
+    s = build1(m, r_req, &dg);
+    if (!T_CHECK(s != NULL)) { fprintf(stderr, "%s: %s\n", what, dg.message); return; }
+    re_get_stats(s, &st);
+    r = re_object_radius(s, 0);
+    T_GT(r, 0.0);
+    T_INT_EQ(st.rounded_edges, st.convex_edges); /* a convex hull rounds every convex edge */
+    for (k = 0; k < m->nv; k++)
+        for (a = 0; a < 3; a++) lo[a] = fmin(lo[a], m->v[3 * k + a]), hi[a] = fmax(hi[a], m->v[3 * k + a]);
+    scale = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    E.P = P;
+    E.r = r;
+    tm_erode(P, r);
+    for (i = 0; i < nrays; i++) {
+        double o[3], d[3], tgt[3], u, v, w, t_host, t_ref;
+        unsigned tri;
+        re_hit_t h;
+        const double *vx = m->v + 3 * (t_rng_u64(&rng) % m->nv);
+        const double *vy = m->v + 3 * (t_rng_u64(&rng) % m->nv);
+        double f = i % 2 ? 0 : t_rng_unit(&rng); /* a vertex, or along a chord toward another */
+        for (a = 0; a < 3; a++) tgt[a] = vx[a] + f * (vy[a] - vx[a]) + t_rng_range(&rng, -3, 3) * r;
+        u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+        o[0] = tgt[0] + 3 * scale * w * cos(u), o[1] = tgt[1] + 3 * scale * w * sin(u), o[2] = tgt[2] + 3 * scale * v;
+        tm_sub(tgt, o, d);
+        if (!tm_hit(m, o, d, &t_host, &tri)) continue;
+        re_query(s, o, d, 0, tri, t_host, &h);
+        t_ref = tm_trace(tm_eroded_sdf, &E, o, d, 10.0, scale);
+        if (h.kind == RE_PASS_THROUGH) {
+            n_pass++;
+            if (t_ref != HUGE_VAL) { bad++; if (bad < 5) T_FAIL("%s ray %ld: pass-through but reference hits at %.17g", what, i, t_ref); }
+        } else {
+            if (h.kind == RE_HIT_ROUNDED) n_round++;
+            if (!(fabs(h.t - t_ref) <= tol_rel * scale)) {
+                bad++;
+                if (bad < 5) T_FAIL("%s ray %ld: kind %d feature %d t %.17g, reference %.17g (host %.17g)", what, i, (int)h.kind,
+                                    (int)h.feature, h.t, t_ref, t_host);
+            }
+        }
+    }
+    T_INT_EQ(bad, 0);
+    T_GT(n_round, nrays / 20);
+    re_free(s);
+}
+
+#endif

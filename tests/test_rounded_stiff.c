@@ -1,0 +1,247 @@
+/* tests/test_rounded_stiff.c — rounded_edges.h: the stiff and extreme cases
+   of issue 6, one named case each, every one asserting a bound against an
+   independent oracle (analytic rounded box, or sphere tracing of the
+   eroded polytope). */
+#define RE_IMPLEMENTATION
+#include "rounded_edges.h"
+#include "test.h"
+#include "test_rounded_util.h"
+#include "test_rounded_rays.h"
+
+static const double BOX_LO[3] = {-0.5, -0.3, -0.2}, BOX_HI[3] = {0.5, 0.3, 0.2};
+
+static void tiny_radius_1e6_of_size_box(void) { box_rays(BOX_LO, BOX_HI, 1e-6, t_count(20000), 1e-9, 3); }
+
+static void tiny_radius_1e6_of_size_hull(void)
+{
+    static const double q[6][2] = {{-1, -0.4}, {0.3, -0.7}, {1, -0.1}, {0.8, 0.6}, {-0.2, 0.8}, {-0.9, 0.3}};
+    tm_mesh_t m = {0};
+    static tm_poly_t P;
+    tm_prism(&m, &P, q, 6, 0.6);
+    poly_rays(&m, &P, 2e-6, t_count(6000), 1e-9, 5, "tiny r prism");
+    tm_free(&m);
+}
+
+static void largest_valid_radius_box(void)
+{
+    tm_mesh_t m = {0};
+    re_diag_t dg;
+    re_scene_t *s;
+    re_stats_t st;
+    tm_box(&m, BOX_LO, BOX_HI);
+    s = build1(&m, 0.2, &dg); /* half the thinnest extent: the eroded box is flat */
+    if (T_CHECK(s != NULL)) {
+        re_get_stats(s, &st);
+        T_INT_EQ(st.clamped, 0);
+        T_EQ(re_object_radius(s, 0), 0.2);
+        re_free(s);
+    }
+    box_rays(BOX_LO, BOX_HI, 0.2, t_count(20000), 1e-9, 4);
+    tm_free(&m);
+}
+
+static int n_clamp_reports;
+static void count_clamp(void *u, const re_report_t *r)
+{
+    (void)u;
+    if (r->kind == RE_REPORT_RADIUS_CLAMPED) n_clamp_reports++;
+}
+
+static void radius_above_largest_is_clamped(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    re_diag_t dg;
+    tm_box(&m, BOX_LO, BOX_HI);
+    memset(&mesh, 0, sizeof mesh);
+    memset(&desc, 0, sizeof desc);
+    mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.radius = 0.25;
+    desc.objects = &mesh, desc.object_count = 1, desc.report = count_clamp;
+    n_clamp_reports = 0;
+    T_INT_EQ(re_build(&desc, &s, &dg), RE_OK);
+    T_INT_EQ(n_clamp_reports, 1);
+    T_NEAR(re_object_radius(s, 0), 0.2, 1e-15);
+    re_free(s);
+    tm_free(&m);
+}
+
+static void radius_above_largest_is_rejected(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    re_diag_t dg;
+    tm_box(&m, BOX_LO, BOX_HI);
+    memset(&mesh, 0, sizeof mesh);
+    memset(&desc, 0, sizeof desc);
+    mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.radius = 0.2001;
+    desc.objects = &mesh, desc.object_count = 1, desc.radius_policy = RE_RADIUS_REJECT;
+    T_INT_EQ(re_build(&desc, &s, &dg), RE_ERR_RADIUS_TOO_LARGE);
+    T_INT_EQ(dg.result, RE_ERR_RADIUS_TOO_LARGE);
+    T_GE(dg.element, 0);
+    T_CHECK(strstr(dg.message, "too large") != NULL);
+    T_CHECK(s == NULL);
+    tm_free(&m);
+}
+
+/* a ridge of 179.9 degrees on top of a slab */
+static void dihedral_179_9_degrees(void)
+{
+    double q[5][2] = {{-1, 0}, {1, 0}, {1, 0.5}, {0, 0}, {-1, 0.5}};
+    tm_mesh_t m = {0};
+    static tm_poly_t P;
+    re_scene_t *s;
+    re_diag_t dg;
+    re_stats_t st;
+    q[3][1] = 0.5 + tan(0.05 * M_PI / 180);
+    tm_prism(&m, &P, (const double(*)[2])q, 5, 0.5);
+    s = build1(&m, 0.05, &dg);
+    if (T_CHECK(s != NULL)) {
+        re_get_stats(s, &st);
+        T_INT_EQ(st.rounded_edges, 15); /* 5 + 5 + 5: the ridge is rounded, not merged as flat */
+        re_free(s);
+    }
+    poly_rays(&m, &P, 0.05, t_count(8000), 1e-7, 6, "179.9 ridge");
+    tm_free(&m);
+}
+
+/* a knife wedge: dihedral 1 degree along its apex edge */
+static void dihedral_1_degree(void)
+{
+    double q[3][2] = {{0, 0}, {1, 0}, {1, 0}};
+    tm_mesh_t m = {0};
+    static tm_poly_t P;
+    q[1][1] = -tan(0.5 * M_PI / 180), q[2][1] = tan(0.5 * M_PI / 180);
+    tm_prism(&m, &P, (const double(*)[2])q, 3, 0.5);
+    poly_rays(&m, &P, 0.003, t_count(8000), 1e-7, 7, "1 degree wedge");
+    tm_free(&m);
+}
+
+static void icosphere_level1(void)
+{
+    tm_mesh_t m = {0};
+    static tm_poly_t P;
+    tm_icosphere(&m, 1, 1.0);
+    tm_planes(&m, &P);
+    poly_rays(&m, &P, 0.02, t_count(4000), 1e-7, 8, "icosphere");
+    tm_free(&m);
+}
+
+static void coordinates_offset_1e6(void)
+{
+    double lo[3], hi[3];
+    int a;
+    for (a = 0; a < 3; a++) lo[a] = BOX_LO[a] + 1e6, hi[a] = BOX_HI[a] + 1e6;
+    /* positions carry ulp(1e6) = 1.2e-10 each: hit points within 1e-9 of the
+       size (about 10 ulps), t within that over the cosine of incidence */
+    g_t_conditioned = 1;
+    box_rays(lo, hi, 0.05, t_count(20000), 1e-9, 9);
+    g_t_conditioned = 0;
+}
+
+/* rays aimed exactly at the box's vertices and edge midpoints */
+static void rays_exactly_through_edges_and_vertices(void)
+{
+    tm_mesh_t m = {0};
+    rbox_t b;
+    re_scene_t *s;
+    re_diag_t dg;
+    t_rng_t rng = {10};
+    long n_round = 0, n_pass = 0, n = 0;
+    int a, k, i;
+    tm_box(&m, BOX_LO, BOX_HI);
+    for (a = 0; a < 3; a++) b.c[a] = 0, b.half[a] = BOX_HI[a];
+    b.r = 0.05;
+    s = build1(&m, 0.05, &dg);
+    if (!T_CHECK(s != NULL)) return;
+    for (k = 0; k < 8 + 12; k++) {
+        double tgt[3];
+        if (k < 8)
+            for (a = 0; a < 3; a++) tgt[a] = (k >> a) & 1 ? BOX_HI[a] : BOX_LO[a];
+        else {
+            int e = k - 8, ax = e / 4;
+            for (a = 0; a < 3; a++) tgt[a] = a == ax ? 0 : (((e % 4) >> (a > ax ? a - 1 : a)) & 1) ? BOX_HI[a] : BOX_LO[a];
+        }
+        for (i = 0; i < 200; i++) {
+            double o[3], d[3], u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+            o[0] = tgt[0] + 3 * w * cos(u), o[1] = tgt[1] + 3 * w * sin(u), o[2] = tgt[2] + 3 * v;
+            tm_sub(tgt, o, d);
+            n += check_box_ray(s, &m, &b, o, d, 1e-9, 1.0, &n_round, &n_pass);
+        }
+    }
+    T_GT(n, 1000); /* most of these rays are changed by the rounding */
+    re_free(s);
+    tm_free(&m);
+}
+
+/* rays nearly parallel to the top face: on its flat part the host hit must
+   stand; near its edges the rounded hit must lie on the surface with no
+   earlier crossing. */
+static void rays_grazing_a_face(void)
+{
+    tm_mesh_t m = {0};
+    rbox_t b;
+    re_scene_t *s;
+    re_diag_t dg;
+    t_rng_t rng = {11};
+    long i, n_flat = 0, n_round = 0;
+    int a;
+    tm_box(&m, BOX_LO, BOX_HI);
+    for (a = 0; a < 3; a++) b.c[a] = 0, b.half[a] = BOX_HI[a];
+    b.r = 0.05;
+    s = build1(&m, 0.05, &dg);
+    if (!T_CHECK(s != NULL)) return;
+    for (i = 0; i < t_count(20000); i++) {
+        double eps = pow(10.0, -(double)(1 + i % 9)), phi = t_rng_range(&rng, 0, 2 * M_PI), tgt[3], d[3], o[3], t_host;
+        unsigned tri;
+        re_hit_t h;
+        int inner = i % 2;
+        tgt[0] = inner ? t_rng_range(&rng, -0.4, 0.4) : t_rng_range(&rng, 0.42, 0.5);
+        tgt[1] = t_rng_range(&rng, -0.25, 0.25);
+        tgt[2] = 0.2;
+        d[0] = cos(phi), d[1] = sin(phi), d[2] = -eps;
+        for (a = 0; a < 3; a++) o[a] = tgt[a] - 2 * d[a];
+        if (!tm_hit(&m, o, d, &t_host, &tri)) continue;
+        re_query(s, o, d, 0, tri, t_host, &h);
+        if (h.kind == RE_UNCHANGED) {
+            double p[3];
+            for (a = 0; a < 3; a++) p[a] = o[a] + h.t * d[a];
+            T_NEAR(tm_rbox_sdf(b.c, b.half, b.r, p), 0.0, 1e-12);
+            n_flat++;
+        } else if (h.kind == RE_HIT_ROUNDED) {
+            int k;
+            T_NEAR(tm_rbox_sdf(b.c, b.half, b.r, h.point), 0.0, 1e-12);
+            for (k = 1; k < 64; k++) { /* no earlier entry (sampled) */
+                double p[3], tt = h.t * k / 64.0;
+                for (a = 0; a < 3; a++) p[a] = o[a] + tt * d[a];
+                if (!T_GT(tm_rbox_sdf(b.c, b.half, b.r, p), -1e-12)) break;
+            }
+            n_round++;
+        }
+    }
+    T_GT(n_flat, t_count(20000) / 4);
+    T_GT(n_round, 10);
+    re_free(s);
+    tm_free(&m);
+}
+
+int main(int argc, char **argv)
+{
+    static const t_case_t cases[] = {
+        T_CASE(tiny_radius_1e6_of_size_box),
+        T_CASE(tiny_radius_1e6_of_size_hull),
+        T_CASE(largest_valid_radius_box),
+        T_CASE(radius_above_largest_is_clamped),
+        T_CASE(radius_above_largest_is_rejected),
+        T_CASE(dihedral_179_9_degrees),
+        T_CASE(dihedral_1_degree),
+        T_CASE(icosphere_level1),
+        T_CASE(coordinates_offset_1e6),
+        T_CASE(rays_exactly_through_edges_and_vertices),
+        T_CASE(rays_grazing_a_face),
+    };
+    return T_RUN(argc, argv, cases);
+}
