@@ -184,6 +184,8 @@ int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, i
     if (!(w->dev = ex_embree_device())) { rx_world_free(w); return -1; }
     rtcSetDeviceMemoryMonitorFunction(w->dev, rx__memory_monitor, &w->embree_mem_live);
     w->rtc = rtcNewScene(w->dev);
+    /* rounded mode hides exit faces with an intersect-context filter */
+    if (m.kind == RX_ROUNDED) rtcSetSceneFlags(w->rtc, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     if ((m.kind == RX_ROUNDED || m.kind == RX_TESS) && rx__build_round(w)) { rx_world_free(w); return -1; }
     t1 = ex_now();
     for (i = 0; i < s->nobj; i++) {
@@ -288,14 +290,71 @@ static unsigned rx__ray_seed(const ex_ray_t *ray)
 
 /* The closest hit of the mode's surface along ray, (0, tmax). *chamfer is
    set when the rounding (or bevel, or tessellated rounding) changed it. */
+/* An intersect context that hides the hits of one geometry up to a distance:
+   after a pass-through, or when a ray that started in a removed volume
+   leaves its object, the host must skip that object's exit face but still
+   see any other surface at the same distance (a cube resting on a floor
+   leaves through its bottom face exactly where the floor is). */
+typedef struct rx__ctx_t {
+    struct RTCIntersectContext ctx; /* first: Embree passes its address to the filter */
+    unsigned skip_geom;
+    float skip_t;
+} rx__ctx_t;
+
+static void rx__skip_filter(const struct RTCFilterFunctionNArguments *args)
+{
+    const rx__ctx_t *c = (const rx__ctx_t *)args->context;
+    unsigned i;
+    for (i = 0; i < args->N; i++)
+        if (args->valid[i] == -1 && RTCHitN_geomID(args->hit, args->N, i) == c->skip_geom &&
+            RTCRayN_tfar(args->ray, args->N, i) <= c->skip_t) /* tfar holds the candidate's t */
+            args->valid[i] = 0;
+}
+
+/* ex_embree_intersect, hiding geometry skip_geom's hits at t <= skip_t. */
+static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, double tnear, double tfar,
+                                   unsigned skip_geom, double skip_t)
+{
+    rx__ctx_t c;
+    struct RTCRayHit rh;
+    ex_hit_t h;
+    if (skip_geom == RTC_INVALID_GEOMETRY_ID) return ex_embree_intersect(w->rtc, o, d, tnear, tfar);
+    memset(&h, 0, sizeof h);
+    memset(&rh, 0, sizeof rh);
+    rtcInitIntersectContext(&c.ctx);
+    c.ctx.filter = rx__skip_filter;
+    c.skip_geom = skip_geom;
+    c.skip_t = (float)skip_t;
+    rh.ray.org_x = (float)o.x; rh.ray.org_y = (float)o.y; rh.ray.org_z = (float)o.z;
+    rh.ray.dir_x = (float)d.x; rh.ray.dir_y = (float)d.y; rh.ray.dir_z = (float)d.z;
+    rh.ray.tnear = (float)tnear;
+    rh.ray.tfar = tfar < 3e38 ? (float)tfar : INFINITY;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(w->rtc, &c.ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+    h.hit = 1;
+    h.t = rh.ray.tfar;
+    h.geom_id = rh.hit.geomID;
+    h.prim_id = rh.hit.primID;
+    h.ng = ex_normalize(ex_v3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z)); /* right-hand normal, as ex_embree */
+    h.u = rh.hit.u;
+    h.v = rh.hit.v;
+    return h;
+}
+
+/* The closest hit of the mode's surface along ray, (0, tmax). *chamfer is
+   set when the rounding (or bevel, or tessellated rounding) changed it. */
 static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, ex_surface_t *s, int *chamfer_out)
 {
     const rx_scene_t *sc = w->scene;
-    double tnear = 0;
+    double tnear = 0, skip_t = 0;
+    unsigned skip_geom = RTC_INVALID_GEOMETRY_ID;
     int chamfer = 0;
     int iter, found = 0;
     for (iter = 0; iter < 64; iter++) {
-        ex_hit_t h = ex_embree_intersect(w->rtc, ray->o, ray->d, tnear, tmax);
+        ex_hit_t h = rx__intersect_skip(w, ray->o, ray->d, tnear, tmax, skip_geom, skip_t);
         const rx_object_t *ob;
         int front;
         if (!h.hit) break;
@@ -309,12 +368,36 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, ex_surface
             re_hit_t q;
             re_hit_kind_t k;
             if (!front) {
-                /* Leaving the sharp mesh from inside: this ray started in the
-                   removed volume at a rounded hit (its origin is I' pushed out
-                   along the rounded normal), and the exit is the paper's I''.
-                   Continue past it. */
+                /* The ray leaves object k's sharp mesh from inside: it started
+                   in the removed volume (a secondary ray from a rounded hit,
+                   whose origin is I' pushed out along the rounded normal, or a
+                   ray from another surface lying under a chamfer, such as the
+                   floor under a cube's rounded bottom edge). The query only
+                   takes rays from outside, so ask it about the reversed ray,
+                   which enters k at this exit face: if that ray meets the
+                   rounded solid before reaching our origin (or meets the flat
+                   face, the solid itself), the segment crosses the rounded
+                   solid; otherwise the exit is the paper's I'' and we go on. */
+                double back = rx__next_t(w, h.t), step = back - h.t;
+                ex_v3_t o2 = ex_madd(ray->o, ray->d, back), d2 = ex_neg(ray->d);
+                o[0] = o2.x; o[1] = o2.y; o[2] = o2.z;
+                d[0] = d2.x; d[1] = d2.y; d[2] = d2.z;
+                k = re_query(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, step, &q);
+                if (k == RE_UNCHANGED) break; /* through the flat face: the solid blocks it here */
+                if (k == RE_HIT_ROUNDED && q.t < back) {
+                    /* exact for visibility (shadow rays); as a hit it is where
+                       the ray leaves the rounded solid, which only a ray born
+                       under a chamfer can produce */
+                    chamfer = 1;
+                    s->t = back - q.t;
+                    s->p = ex_v3(q.point[0], q.point[1], q.point[2]);
+                    s->n = s->ng = ex_v3(q.normal[0], q.normal[1], q.normal[2]);
+                    break;
+                }
                 found = 0;
-                tnear = rx__next_t(w, h.t);
+                if (skip_geom != RTC_INVALID_GEOMETRY_ID) tnear = skip_t; /* earlier skips are behind */
+                skip_geom = h.geom_id;
+                skip_t = back;
                 continue;
             }
             o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
@@ -330,7 +413,9 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, ex_surface
             if (k == RE_PASS_THROUGH) {
                 chamfer = 1;
                 found = 0;
-                tnear = rx__next_t(w, q.t);
+                if (skip_geom != RTC_INVALID_GEOMETRY_ID) tnear = skip_t;
+                skip_geom = h.geom_id;
+                skip_t = rx__next_t(w, q.t);
                 continue;
             }
             break;
