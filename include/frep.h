@@ -1689,8 +1689,9 @@ FR_DEF fr_result_t fr_eval_grad(const fr_tape_t *t, const double p[3], void *scr
 static iv_t fr__widen(double lo, double hi, double mag)
 {
     double s = FR__ROUND_SLACK * mag + DBL_MIN;
-    lo = isnan(lo) ? -HUGE_VAL : lo - s;
-    hi = isnan(hi) ? HUGE_VAL : hi + s;
+    /* an overflowed corner value (inf or NaN) says nothing: open that end */
+    lo = isfinite(lo) ? lo - s : -HUGE_VAL;
+    hi = isfinite(hi) ? hi + s : HUGE_VAL;
     return iv_make(lo, hi);
 }
 static double fr__mag2(iv_t a, iv_t b)
@@ -2049,15 +2050,39 @@ static int fr__sign_at(const double *hi, const double *lo, int n, double x, doub
     return v > 0 ? 1 : -1;
 }
 
-/* A bisection point of [a, b] that halves the exponent range when both ends
-   have the same sign and very different magnitudes, so a root of 1e-30 in
-   [1e-40, 1] is reached in a few dozen steps rather than a hundred. */
+/* Smallest positive double; stands in for 0 as a bisection end so that the
+   exponent range can still be halved. */
+#define FR__TINY 4.9406564584124654e-324
+
+/* A bisection point of [a, b]: when the ends differ a lot in magnitude it
+   halves the exponent range instead of the length (0 first, if the ends have
+   opposite signs), so a root of 1e-30 in [-1e20, 1] takes dozens of steps,
+   not hundreds. */
 static double fr__split_point(double a, double b)
 {
     double lo = a < b ? a : b, hi = a < b ? b : a;
-    if (lo > 0 && hi > 4.0 * lo) return sqrt(lo) * sqrt(hi);
-    if (hi < 0 && lo < 4.0 * hi) return -(sqrt(-lo) * sqrt(-hi));
-    return 0.5 * (lo + hi);
+    if (lo >= 0) {
+        double l = lo > FR__TINY ? lo : FR__TINY;
+        return hi > 4.0 * l ? sqrt(l) * sqrt(hi) : 0.5 * (lo + hi);
+    }
+    if (hi <= 0) return -fr__split_point(-hi, -lo);
+    return (hi > -4.0 * lo || -lo > 4.0 * hi) ? 0.0 : 0.5 * (lo + hi);
+}
+
+/* Next iterate inside the bracket (a, b): the Newton point if it stays
+   strictly inside, else a split point. Newton far from a root of p ~ x^k
+   only shrinks x by (k-1)/k per step, so after two steps in a row that did
+   not shrink by 4x (no sign of quadratic convergence) one split is forced.
+   st[0] is the last step length, st[1] counts slow steps. */
+static double fr__newton_or_split(double x, double f, double df, double a, double b, double st[2])
+{
+    double lo = a < b ? a : b, hi = a < b ? b : a, xn = x - f / df, step;
+    int newton = xn > lo && xn < hi && st[1] < 2.0;
+    if (!newton) xn = fr__split_point(lo, hi);
+    step = fabs(xn - x);
+    st[1] = newton && step > 0.25 * st[0] ? st[1] + 1.0 : 0.0;
+    st[0] = step;
+    return xn;
 }
 
 /* The single root of p in the monotone piece (l, r), where p(l) has sign sl
@@ -2068,29 +2093,31 @@ static double fr__split_point(double a, double b)
 static double fr__root_in_piece(const double *hi, const double *lo, int n, double l, double r,
                                 double vl, double vr, int sl)
 {
-    double a = l, b = r, x, f, df, xn;
+    double a = l, b = r, x, f, df, xn, steps[2];
     int it;
     /* regula falsi start: inside (l, r) because vl and vr differ in sign */
     x = l - vl * ((r - l) / (vr - vl));
     if (!(x > l && x < r)) x = fr__split_point(l, r);
+    steps[0] = r - l;
+    steps[1] = 0.0;
     for (it = 0; it < FR__PLAIN_ITERS; it++) {
         f = fr__horner_deriv(hi, n, x, &df);
         if (f == 0) break;
         if ((f > 0) == (sl > 0)) a = x; else b = x;
-        xn = x - f / df;
-        if (!(xn > (a < b ? a : b) && xn < (a < b ? b : a))) xn = fr__split_point(a, b);
+        xn = fr__newton_or_split(x, f, df, a, b, steps);
         if (xn == x || fabs(xn - x) <= 4.0 * FR__U * fabs(xn)) { x = xn; break; }
         x = xn;
     }
     a = l; b = r;
+    steps[0] = r - l;
+    steps[1] = 0.0;
     for (it = 0; it < FR__POLISH_ITERS; it++) {
         double v;
         int s = fr__sign_at(hi, lo, n, x, &v);
         if (s == 0) break;
         if (s == sl) a = x; else b = x;
         fr__horner_deriv(hi, n, x, &df);
-        xn = x - v / df;
-        if (!(xn > (a < b ? a : b) && xn < (a < b ? b : a))) xn = fr__split_point(a, b);
+        xn = fr__newton_or_split(x, v, df, a, b, steps);
         if (xn == x) break;
         if (fabs(xn - x) <= FR__U * fabs(x)) { x = xn; break; }
         x = xn;
