@@ -85,10 +85,85 @@ static void apex_degree_6(void) { apex_case(6, 0.05); }
 static void apex_degree_7(void) { apex_case(7, 0.04); }
 static void apex_degree_8(void) { apex_case(8, 0.03); }
 
+/* C1: normals are Lipschitz with constant 1/r across face/cylinder/sphere
+   seams. Pairs of parallel rays 1e-3 r apart: |n1 - n2| <= |P1 - P2| / r
+   (curvature at most 1/r, no crease), with a margin for the chord. A crack
+   or a crease (one sphere at a degree-4 corner) fails this. */
+static void c1_pairs(const tm_mesh_t *m, double r, long npairs, unsigned long long seed, const char *what)
+{
+    re_scene_t *s;
+    re_diag_t dg;
+    t_rng_t rng;
+    long i, seams = 0, bad = 0;
+    rng.s = seed;
+    s = build1(m, r, &dg);
+    if (!T_CHECK(s != NULL)) return;
+    for (i = 0; i < npairs; i++) {
+        double tgt[3], o[3], o2[3], d[3], side[3], e[3], u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1),
+            w = sqrt(1 - v * v), t1, t2, dn[3], dp[3];
+        unsigned tri1, tri2;
+        re_hit_t h1, h2;
+        const double *vx = m->v + 3 * (t_rng_u64(&rng) % m->nv);
+        int a;
+        for (a = 0; a < 3; a++) tgt[a] = vx[a] + t_rng_range(&rng, -2, 2) * r;
+        o[0] = tgt[0] + 3 * w * cos(u), o[1] = tgt[1] + 3 * w * sin(u), o[2] = tgt[2] + 3 * v;
+        tm_sub(tgt, o, d);
+        e[0] = t_rng_range(&rng, -1, 1), e[1] = t_rng_range(&rng, -1, 1), e[2] = t_rng_range(&rng, -1, 1);
+        tm_cross(d, e, side);
+        tm_norm(side);
+        for (a = 0; a < 3; a++) o2[a] = o[a] + 1e-3 * r * side[a];
+        if (!tm_hit(m, o, d, &t1, &tri1) || !tm_hit(m, o2, d, &t2, &tri2)) continue;
+        re_query(s, o, d, 0, tri1, t1, &h1);
+        re_query(s, o2, d, 0, tri2, t2, &h2);
+        if (h1.kind == RE_PASS_THROUGH || h2.kind == RE_PASS_THROUGH) continue;
+        tm_sub(h1.normal, h2.normal, dn);
+        tm_sub(h1.point, h2.point, dp);
+        if (h1.feature != h2.feature || h1.feature_index != h2.feature_index) seams++;
+        if (!(tm_len(dn) <= 1.01 * tm_len(dp) / r + 1e-9)) {
+            if (bad++ < 5) T_FAIL("%s pair %ld: |dn| %.3g > |dP|/r %.3g (features %d/%u, %d/%u)", what, i, tm_len(dn),
+                                  tm_len(dp) / r, (int)h1.feature, h1.feature_index, (int)h2.feature, h2.feature_index);
+        }
+    }
+    T_INT_EQ(bad, 0);
+    T_GT(seams, npairs / 5000); /* the pairs do straddle seams */
+    re_free(s);
+}
+
+static void c1_continuity_box(void)
+{
+    tm_mesh_t m = {0};
+    double lo[3] = {-0.5, -0.3, -0.2}, hi[3] = {0.5, 0.3, 0.2};
+    tm_box(&m, lo, hi);
+    c1_pairs(&m, 0.05, t_count(100000), 21, "box");
+    tm_free(&m);
+}
+
+/* degree-4..8 corners: the extra cylinders must join C1 too */
+static void c1_continuity_hulls(void)
+{
+    t_rng_t rng = {22};
+    int it;
+    for (it = 0; it < 10; it++) {
+        double p[14][3];
+        int i;
+        tm_mesh_t m = {0};
+        static tm_poly_t P;
+        for (i = 0; i < 14; i++) {
+            double u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+            p[i][0] = w * cos(u), p[i][1] = w * sin(u), p[i][2] = v;
+        }
+        tm_hull((const double(*)[3])p, 14, &m, &P);
+        c1_pairs(&m, 0.03, t_count(50000), 30 + (unsigned long long)it, "hull");
+        tm_free(&m);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(box_exact_vs_analytic),
+        T_CASE(c1_continuity_box),
+        T_CASE(c1_continuity_hulls),
         T_CASE(random_convex_polyhedra_vs_eroded),
         T_CASE(apex_degree_3), T_CASE(apex_degree_4), T_CASE(apex_degree_5),
         T_CASE(apex_degree_6), T_CASE(apex_degree_7), T_CASE(apex_degree_8),
