@@ -1,0 +1,503 @@
+/* tests/test_rounded_input.c — rounded_edges.h: bad input (each case gets a
+   clear error naming the element, or a documented skip), classification
+   reports, the input variants (float, stride, polygons, several objects,
+   per-edge radii), caller buffers, and the query's guards. */
+#define RE_IMPLEMENTATION
+#include "rounded_edges.h"
+#include "test.h"
+#include "test_rounded_util.h"
+
+static const double LO[3] = {-0.5, -0.3, -0.2}, HI[3] = {0.5, 0.3, 0.2};
+
+typedef struct counts_t { int n[16]; } counts_t;
+static void count_reports(void *u, const re_report_t *r)
+{
+    counts_t *c = (counts_t *)u;
+    if ((int)r->kind < 16) c->n[r->kind]++;
+    if (!r->message || !r->message[0]) c->n[15] = -1000; /* every report has a message */
+}
+
+static re_mesh_t mesh_of(const tm_mesh_t *m, double r)
+{
+    re_mesh_t mesh;
+    memset(&mesh, 0, sizeof mesh);
+    mesh.positions = m->v, mesh.vertex_count = m->nv, mesh.indices = m->idx, mesh.index_count = m->ni, mesh.radius = r;
+    return mesh;
+}
+
+static re_result_t try_build(const re_mesh_t *mesh, re_bad_input_t bad, counts_t *c, re_diag_t *dg, re_scene_t **out)
+{
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    re_result_t rc;
+    memset(&desc, 0, sizeof desc);
+    desc.objects = mesh, desc.object_count = 1, desc.bad_input = bad;
+    if (c) memset(c, 0, sizeof *c), desc.report = count_reports, desc.report_user = c;
+    rc = re_build(&desc, &s, dg);
+    if (out) *out = s;
+    else re_free(s);
+    if (rc != RE_OK) T_CHECK(s == NULL);
+    return rc;
+}
+
+/* the box with one vertex set to v, expecting code rc naming `element` */
+static void box_with_bad_vertex(double v, re_result_t rc)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_diag_t dg;
+    tm_box(&m, LO, HI);
+    m.v[3 * 5 + 1] = v;
+    mesh = mesh_of(&m, 0.05);
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, NULL), rc);
+    T_INT_EQ(dg.result, rc);
+    T_INT_EQ(dg.element, 5);
+    T_CHECK(strstr(dg.message, "vertex 5") != NULL);
+    tm_free(&m);
+}
+static void nan_position(void) { box_with_bad_vertex(NAN, RE_ERR_NAN_VERTEX); }
+static void inf_position(void) { box_with_bad_vertex(INFINITY, RE_ERR_NAN_VERTEX); }
+
+static void nan_in_unused_vertex_is_ignored(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_diag_t dg;
+    tm_box(&m, LO, HI);
+    tm_vert(&m, NAN, 0, 0); /* referenced by no triangle */
+    mesh = mesh_of(&m, 0.05);
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, NULL), RE_OK);
+    tm_free(&m);
+}
+
+/* the box plus one bad triangle (index 12): rejected naming it, or skipped
+   with a report while the box still rounds all 12 edges */
+static void box_plus_triangle(unsigned a, unsigned b, unsigned c, re_result_t rc, const char *needle)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_diag_t dg;
+    re_scene_t *s;
+    re_stats_t st;
+    counts_t cn;
+    tm_box(&m, LO, HI);
+    tm_vert(&m, 0.1, 0.1, 0.5);
+    tm_vert(&m, 0.2, 0.2, 0.5);
+    tm_vert(&m, 0.3, 0.3, 0.5); /* 8, 9, 10: collinear; 11: copy of 8 */
+    tm_vert(&m, 0.1, 0.1, 0.5);
+    tm_tri(&m, a, b, c);
+    mesh = mesh_of(&m, 0.05);
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, NULL), rc);
+    T_INT_EQ(dg.element, rc == RE_ERR_INDEX_OUT_OF_RANGE || rc == RE_ERR_DEGENERATE_TRIANGLE ? 12 : dg.element);
+    T_CHECK(strstr(dg.message, needle) != NULL);
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_SKIP, &cn, &dg, &s), RE_OK);
+    T_INT_EQ(cn.n[RE_REPORT_SKIPPED_TRIANGLE], 1);
+    if (s) {
+        re_get_stats(s, &st);
+        T_INT_EQ(st.rounded_edges, 12);
+        re_free(s);
+    }
+    tm_free(&m);
+}
+static void degenerate_repeated_index(void) { box_plus_triangle(8, 8, 9, RE_ERR_DEGENERATE_TRIANGLE, "triangle 12"); }
+static void zero_area_collinear(void) { box_plus_triangle(8, 9, 10, RE_ERR_DEGENERATE_TRIANGLE, "degenerate"); }
+static void zero_length_edge(void) { box_plus_triangle(8, 11, 9, RE_ERR_DEGENERATE_TRIANGLE, "zero-length"); }
+static void out_of_range_index(void) { box_plus_triangle(8, 9, 99, RE_ERR_INDEX_OUT_OF_RANGE, "index 99"); }
+
+/* the top face built from its own copies of the corners: the mesh is open
+   along the copies (edges match by index). Documented: boundary edges and
+   their vertices stay sharp, the patch loses its rounding, all reported. */
+static void duplicate_vertices_make_a_seam(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_diag_t dg;
+    re_scene_t *s;
+    re_stats_t st;
+    counts_t cn;
+    unsigned k, t;
+    tm_box(&m, LO, HI);
+    for (k = 4; k < 8; k++) tm_vert(&m, m.v[3 * k], m.v[3 * k + 1], m.v[3 * k + 2]); /* 8..11 = copies of 4..7 */
+    for (t = 2; t < 4; t++) /* triangles 2, 3 are the z+ face */
+        for (k = 0; k < 3; k++) m.idx[3 * t + k] += 4;
+    mesh = mesh_of(&m, 0.05);
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, &cn, &dg, &s), RE_OK);
+    if (s) {
+        re_get_stats(s, &st);
+        T_INT_EQ(st.boundary_edges, 8);
+        T_INT_EQ(cn.n[RE_REPORT_BOUNDARY_EDGE], 8);
+        T_GT(cn.n[RE_REPORT_MIXED_VERTEX], 0);
+        T_INT_EQ(st.rounded_edges, 0);
+        T_GE(cn.n[15], 0);
+        re_free(s);
+    }
+    tm_free(&m);
+}
+
+static void non_manifold_edge_left_sharp(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_diag_t dg;
+    re_scene_t *s;
+    re_stats_t st;
+    counts_t cn;
+    unsigned x;
+    tm_box(&m, LO, HI);
+    x = tm_vert(&m, 0.9, 0, 0.6);
+    tm_tri(&m, 5, 7, x); /* a fin on edge 5-7: three triangles share it */
+    mesh = mesh_of(&m, 0.05);
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, &cn, &dg, &s), RE_OK);
+    if (s) {
+        re_get_stats(s, &st);
+        T_INT_EQ(st.nonmanifold_edges, 1);
+        T_INT_EQ(cn.n[RE_REPORT_NONMANIFOLD_EDGE], 1);
+        re_free(s);
+    }
+    tm_free(&m);
+}
+
+static void open_mesh_left_sharp(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_diag_t dg;
+    re_scene_t *s;
+    re_stats_t st;
+    counts_t cn;
+    re_hit_t h;
+    double o[3] = {0.49, 0, 1}, d[3] = {0, 0, -1};
+    tm_box(&m, LO, HI);
+    m.ni -= 6; /* drop the x+ face */
+    mesh = mesh_of(&m, 0.05);
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, &cn, &dg, &s), RE_OK);
+    if (s) {
+        re_get_stats(s, &st);
+        T_INT_EQ(st.boundary_edges, 4);
+        T_INT_EQ(cn.n[RE_REPORT_BOUNDARY_EDGE], 4);
+        T_INT_EQ(st.mixed_vertices, 4);
+        T_INT_EQ(st.rounded_edges, 0); /* the patch reaches the open rim */
+        T_INT_EQ(re_query(s, o, d, 0, 2, 0.8, &h), RE_UNCHANGED);
+        re_free(s);
+    }
+    tm_free(&m);
+}
+
+static void inconsistent_winding(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_diag_t dg;
+    re_scene_t *s;
+    re_stats_t st;
+    counts_t cn;
+    unsigned x;
+    tm_box(&m, LO, HI);
+    x = m.idx[3 * 7 + 1], m.idx[3 * 7 + 1] = m.idx[3 * 7 + 2], m.idx[3 * 7 + 2] = x;
+    mesh = mesh_of(&m, 0.05);
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, NULL), RE_ERR_INCONSISTENT_WINDING);
+    T_CHECK(dg.element == 7 || strstr(dg.message, "triangles") != NULL);
+    T_CHECK(strstr(dg.message, "7") != NULL);
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_SKIP, &cn, &dg, &s), RE_OK);
+    if (s) {
+        re_get_stats(s, &st);
+        T_INT_EQ(st.nonmanifold_edges, 3); /* the flipped triangle's three edges */
+        re_free(s);
+    }
+    tm_free(&m);
+}
+
+static void bad_polygon_sizes(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_diag_t dg;
+    unsigned sizes[3] = {4, 2, 6};
+    tm_box(&m, LO, HI);
+    mesh = mesh_of(&m, 0.05);
+    mesh.face_sizes = sizes, mesh.face_count = 3;
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, NULL), RE_ERR_BAD_FACE);
+    T_INT_EQ(dg.element, 1);
+    sizes[1] = 3; /* 13 != 36 */
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, NULL), RE_ERR_BAD_FACE);
+    mesh.face_sizes = NULL, mesh.index_count = 35;
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, NULL), RE_ERR_BAD_FACE);
+    tm_free(&m);
+}
+
+static void bad_radius(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_diag_t dg;
+    double r[3] = {0, -1, NAN};
+    int i;
+    tm_box(&m, LO, HI);
+    for (i = 0; i < 3; i++) {
+        mesh = mesh_of(&m, r[i]);
+        T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, NULL), RE_ERR_BAD_RADIUS);
+        T_CHECK(strstr(dg.message, "radius") != NULL);
+    }
+    tm_free(&m);
+}
+
+static void null_and_junk_arguments(void)
+{
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    re_sizes_t sz;
+    re_diag_t dg;
+    re_mesh_t mesh;
+    memset(&desc, 0, sizeof desc);
+    memset(&mesh, 0, sizeof mesh);
+    T_INT_EQ(re_build(NULL, &s, &dg), RE_ERR_INVALID_ARG);
+    T_INT_EQ(re_build(&desc, NULL, &dg), RE_ERR_INVALID_ARG);
+    desc.object_count = 1;
+    T_INT_EQ(re_build(&desc, &s, &dg), RE_ERR_INVALID_ARG);
+    desc.objects = &mesh;
+    mesh.index_count = 3, mesh.vertex_count = 3, mesh.radius = 1; /* NULL arrays */
+    T_INT_EQ(re_build(&desc, &s, &dg), RE_ERR_INVALID_ARG);
+    T_INT_EQ(re_build_sizes(&desc, NULL, &dg), RE_ERR_INVALID_ARG);
+    desc.radius_policy = (re_radius_policy_t)7;
+    T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_ERR_INVALID_ARG);
+    T_CHECK(s == NULL);
+    re_free(NULL);
+}
+
+static void empty_scene(void)
+{
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    re_stats_t st;
+    memset(&desc, 0, sizeof desc);
+    T_INT_EQ(re_build(&desc, &s, NULL), RE_OK);
+    re_get_stats(s, &st);
+    T_INT_EQ(st.rounded_edges, 0);
+    T_INT_EQ(re_object_count(s), 0);
+    re_free(s);
+}
+
+static void result_strings(void)
+{
+    int i, j;
+    for (i = 0; i < RE_RESULT_COUNT_; i++) {
+        T_CHECK(strcmp(re_result_string((re_result_t)i), "unknown result") != 0);
+        for (j = 0; j < i; j++) T_CHECK(strcmp(re_result_string((re_result_t)i), re_result_string((re_result_t)j)) != 0);
+    }
+    T_CHECK(strcmp(re_result_string((re_result_t)999), "unknown result") == 0);
+}
+
+static void query_guards(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_scene_t *s;
+    re_diag_t dg;
+    re_hit_t h;
+    double o[3] = {0.49, 0, 1}, d[3] = {0, 0, -1}, bad[3] = {NAN, 0, 0};
+    tm_box(&m, LO, HI);
+    mesh = mesh_of(&m, 0.05);
+    if (!T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, &s), RE_OK)) return;
+    T_INT_EQ(re_query(s, o, d, 0, 2, 0.8, &h), RE_HIT_ROUNDED); /* sanity: near the x+ top edge */
+    T_INT_EQ(re_query(s, o, d, 1, 2, 0.8, &h), RE_UNCHANGED);   /* no object 1 */
+    T_INT_EQ(re_query(s, o, d, 0, 12, 0.8, &h), RE_UNCHANGED);  /* no triangle 12 */
+    T_INT_EQ(re_query(s, bad, d, 0, 2, 0.8, &h), RE_UNCHANGED);
+    T_INT_EQ(re_query(s, o, bad, 0, 2, 0.8, &h), RE_UNCHANGED);
+    T_INT_EQ(re_query(s, o, d, 0, 2, NAN, &h), RE_UNCHANGED);
+    T_INT_EQ(re_query(NULL, o, d, 0, 2, 0.8, &h), RE_UNCHANGED);
+    T_INT_EQ(re_query(s, o, d, 0, 2, 0.8, NULL), RE_UNCHANGED);
+    T_INT_EQ(re_get_sphere(s, 0, 99999, NULL), 0);
+    re_free(s);
+    tm_free(&m);
+}
+
+/* same box four ways: doubles, floats with a stride, quads as polygons,
+   caller buffers. Queries must agree. */
+static void input_variants_agree(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh[4];
+    re_scene_desc_t desc;
+    re_scene_t *s[4];
+    re_sizes_t sz;
+    re_diag_t dg;
+    float fpos[8][4];
+    unsigned quads[24], sizes[6], i, k;
+    void *mem, *scratch;
+    t_rng_t rng = {5};
+    tm_box(&m, LO, HI);
+    for (i = 0; i < 8; i++) for (k = 0; k < 3; k++) fpos[i][k] = (float)m.v[3 * i + k];
+    for (i = 0; i < 6; i++) { /* the quad a b c d behind triangles (a b c), (a c d) */
+        quads[4 * i] = m.idx[6 * i], quads[4 * i + 1] = m.idx[6 * i + 1], quads[4 * i + 2] = m.idx[6 * i + 2], quads[4 * i + 3] = m.idx[6 * i + 5];
+        sizes[i] = 4;
+    }
+    mesh[0] = mesh_of(&m, 0.05);
+    mesh[1] = mesh[0];
+    mesh[1].positions = fpos, mesh[1].position_type = RE_FLOAT32, mesh[1].position_stride = sizeof fpos[0];
+    mesh[2] = mesh[0];
+    mesh[2].indices = quads, mesh[2].index_count = 24, mesh[2].face_sizes = sizes, mesh[2].face_count = 6;
+    memset(&desc, 0, sizeof desc);
+    desc.objects = mesh, desc.object_count = 3;
+    T_INT_EQ(re_build(&desc, &s[0], &dg), RE_OK);
+    T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_OK);
+    mem = malloc(sz.scene_bytes), scratch = malloc(sz.scratch_bytes);
+    T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes - 16, scratch, sz.scratch_bytes, &s[1], &dg), RE_ERR_BUFFER_TOO_SMALL);
+    T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes / 2, &s[1], &dg), RE_ERR_BUFFER_TOO_SMALL);
+    T_INT_EQ(re_build_into(&desc, (char *)mem + 8, sz.scene_bytes - 16, scratch, sz.scratch_bytes, &s[1], &dg), RE_ERR_INVALID_ARG);
+    T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes, &s[1], &dg), RE_OK);
+    {
+        re_stats_t a, b;
+        re_get_stats(s[0], &a);
+        re_get_stats(s[1], &b);
+        T_INT_EQ(a.bytes, b.bytes - 0); /* one block or several, same payload */
+        T_INT_EQ(a.rounded_edges, 36);
+        T_INT_EQ(b.spheres, 24);
+    }
+    for (i = 0; i < (unsigned)t_count(5000); i++) {
+        double o[3], d[3], tgt[3], t;
+        unsigned tri, obj, a;
+        re_hit_t h0, h;
+        for (a = 0; a < 3; a++) tgt[a] = t_rng_range(&rng, LO[a], HI[a]) * 1.05;
+        for (a = 0; a < 3; a++) o[a] = tgt[a] + t_rng_range(&rng, -2, 2);
+        tm_sub(tgt, o, d);
+        if (!tm_hit(&m, o, d, &t, &tri)) continue;
+        re_query(s[0], o, d, 0, tri, t, &h0);
+        for (obj = 0; obj < 3; obj++) {
+            /* float positions round 0.3 and 0.2 by ~1e-8 */
+            double tol = obj == 1 ? 1e-6 : 1e-15;
+            re_query(s[0], o, d, obj, tri, t, &h);
+            if (obj != 1) T_INT_EQ(h.kind, h0.kind);
+            T_NEAR(h.t, h0.t, tol);
+            re_query(s[1], o, d, obj, tri, t, &h);
+            if (obj != 1) T_INT_EQ(h.kind, h0.kind);
+            T_NEAR(h.t, h0.t, tol);
+        }
+    }
+    re_free(s[0]);
+    free(mem), free(scratch);
+    tm_free(&m);
+}
+
+/* two boxes in one object with their own radii; a third box where one edge
+   asks for less: its patch takes the smallest (reported) */
+static void per_edge_radius(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_scene_t *s;
+    re_diag_t dg;
+    counts_t cn;
+    double lo2[3] = {2, 0, 0}, hi2[3] = {3, 1, 1}, lo3[3] = {5, 0, 0}, hi3[3] = {6, 1, 1}, *er;
+    unsigned i, n;
+    tm_box(&m, LO, HI);
+    tm_box(&m, lo2, hi2);
+    tm_box(&m, lo3, hi3);
+    er = (double *)malloc(sizeof(double) * m.ni);
+    for (i = 0; i < m.ni; i++) er[i] = i < 36 ? 0.05 : i < 72 ? 0.1 : 0.2;
+    er[72] = 0.15; /* one half-edge of box 3 (its edge 16-18) asks for less */
+    mesh = mesh_of(&m, 0);
+    mesh.edge_radius = er;
+    if (T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, &cn, &dg, &s), RE_OK)) {
+        n = re_sphere_count(s, 0);
+        T_INT_EQ(n, 24);
+        for (i = 0; i < n; i++) {
+            re_sphere_t sp;
+            re_get_sphere(s, 0, i, &sp);
+            T_EQ(sp.radius, sp.vertex < 8 ? 0.05 : sp.vertex < 16 ? 0.1 : 0.15);
+        }
+        T_INT_EQ(cn.n[RE_REPORT_RADIUS_MISMATCH], 1);
+        re_free(s);
+    }
+    free(er);
+    tm_free(&m);
+}
+
+/* an L-shaped prism: the re-entrant edge is concave, its ends are mixed;
+   both are reported and nothing is faked there */
+static void concave_edges_and_mixed_vertices_reported(void)
+{
+    static const double q[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_scene_t *s;
+    re_diag_t dg;
+    re_stats_t st;
+    counts_t cn;
+    unsigned i;
+    /* extrude by hand: the fan must start at the reflex vertex 3 */
+    for (i = 0; i < 6; i++) tm_vert(&m, q[i][0], q[i][1], 0);
+    for (i = 0; i < 6; i++) tm_vert(&m, q[i][0], q[i][1], 1);
+    for (i = 0; i < 6; i++) tm_quad(&m, i, (i + 1) % 6, (i + 1) % 6 + 6, i + 6);
+    for (i = 1; i < 5; i++) {
+        unsigned a = (3 + i) % 6, b = (3 + i + 1) % 6;
+        tm_tri(&m, 3, b, a);
+        tm_tri(&m, 9, a + 6, b + 6);
+    }
+    mesh = mesh_of(&m, 0.05);
+    if (T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, &cn, &dg, &s), RE_OK)) {
+        re_get_stats(s, &st);
+        T_INT_EQ(st.concave_edges, 1);
+        T_INT_EQ(cn.n[RE_REPORT_CONCAVE_EDGE], 1);
+        T_INT_EQ(st.mixed_vertices, 2);
+        T_INT_EQ(cn.n[RE_REPORT_MIXED_VERTEX], 2);
+        T_INT_EQ(st.convex_edges, 17); /* 12 outline + 5 vertical */
+        T_INT_EQ(st.rounded_edges, 0);  /* one patch, reaching the mixed vertices */
+        re_free(s);
+    }
+    tm_free(&m);
+}
+
+/* re_secondary_origin() puts I'' on the sharp mesh, just outside */
+static void secondary_origin_on_the_sharp_mesh(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_scene_t *s;
+    re_diag_t dg;
+    t_rng_t rng = {9};
+    long i, n = 0;
+    tm_box(&m, LO, HI);
+    mesh = mesh_of(&m, 0.05);
+    if (!T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, &s), RE_OK)) return;
+    for (i = 0; i < t_count(20000); i++) {
+        double o[3], d[3], tgt[3], t, dir[3], org[3], dist = HUGE_VAL, inside = -HUGE_VAL;
+        unsigned tri, a;
+        re_hit_t h;
+        for (a = 0; a < 3; a++) tgt[a] = (t_rng_unit(&rng) < 0.5 ? LO[a] : HI[a]) * t_rng_range(&rng, 0.85, 1.0);
+        for (a = 0; a < 3; a++) o[a] = tgt[a] * 4 + t_rng_range(&rng, -0.5, 0.5);
+        tm_sub(tgt, o, d);
+        if (!tm_hit(&m, o, d, &t, &tri)) continue;
+        if (re_query(s, o, d, 0, tri, t, &h) != RE_HIT_ROUNDED) continue;
+        /* a reflected direction leaves the rounded surface */
+        {
+            double dn = tm_dot(d, h.normal);
+            for (a = 0; a < 3; a++) dir[a] = d[a] - 2 * dn * h.normal[a];
+        }
+        re_secondary_origin(s, &h, dir, org);
+        /* on the sharp box (distance to its surface <= 1e-8), just outside */
+        for (a = 0; a < 3; a++) {
+            inside = fmax(inside, fmax(org[a] - HI[a], LO[a] - org[a]));
+            dist = fmin(dist, fmin(fabs(org[a] - HI[a]), fabs(org[a] - LO[a])));
+        }
+        T_GE(inside, 0.0);
+        T_LE(inside, 1e-8);
+        n++;
+    }
+    T_GT(n, 100);
+    re_free(s);
+    tm_free(&m);
+}
+
+int main(int argc, char **argv)
+{
+    static const t_case_t cases[] = {
+        T_CASE(nan_position), T_CASE(inf_position), T_CASE(nan_in_unused_vertex_is_ignored),
+        T_CASE(degenerate_repeated_index), T_CASE(zero_area_collinear), T_CASE(zero_length_edge),
+        T_CASE(out_of_range_index), T_CASE(duplicate_vertices_make_a_seam), T_CASE(non_manifold_edge_left_sharp),
+        T_CASE(open_mesh_left_sharp), T_CASE(inconsistent_winding), T_CASE(bad_polygon_sizes), T_CASE(bad_radius),
+        T_CASE(null_and_junk_arguments), T_CASE(empty_scene), T_CASE(result_strings), T_CASE(query_guards),
+        T_CASE(input_variants_agree), T_CASE(per_edge_radius), T_CASE(concave_edges_and_mixed_vertices_reported),
+        T_CASE(secondary_origin_on_the_sharp_mesh),
+    };
+    return T_RUN(argc, argv, cases);
+}
