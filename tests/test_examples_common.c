@@ -159,6 +159,41 @@ static void tile_renderer_is_deterministic_across_thread_counts(void)
     free(ref); free(img); free(count); free(samples);
 }
 
+/* Stratified draws: every point is in [0,1)², a pixel's n samples fill the
+   4×4 cells of the square evenly (R2 sets have discrepancy O(log n / n)), and
+   across many pixels the k-th draw is uniform (mean 1/2, variance 1/12). */
+static void rng_2d_is_stratified_and_uniform(void)
+{
+    const int n = 64;
+    int px, k, bad_range = 0, worst_cell = 0;
+    double sum = 0, sum2 = 0;
+    long cnt = 0;
+    for (px = 0; px < 200; px++)
+        for (k = 0; k < 3; k++) {
+            int cells[16] = {0}, s, c;
+            for (s = 0; s < n; s++) {
+                ex_rng_t r = ex_rng_for_pixel(5, px, 7, s, n);
+                double u = 0, v = 0;
+                int j;
+                for (j = 0; j <= k; j++) ex_rng_2d(&r, &u, &v);
+                bad_range += !(u >= 0 && u < 1 && v >= 0 && v < 1);
+                cells[(int)(u * 4) * 4 + (int)(v * 4)]++;
+                sum += u + v; sum2 += u * u + v * v; cnt += 2;
+            }
+            for (c = 0; c < 16; c++) worst_cell = abs(cells[c] - n / 16) > worst_cell ? abs(cells[c] - n / 16) : worst_cell;
+        }
+    T_INT_EQ(bad_range, 0);
+    T_LE(worst_cell, 2);          /* 4 expected per cell; independent draws would reach 5+ */
+    T_NEAR(sum / cnt, 0.5, 0.01);
+    T_NEAR(sum2 / cnt - 0.25, 1.0 / 12, 0.005);
+    {
+        ex_rng_t a = ex_rng_for_sample(5, 1, 2, 3);  /* count 0: plain random, still in range */
+        double u, v;
+        ex_rng_2d(&a, &u, &v);
+        T_CHECK(u >= 0 && u < 1 && v >= 0 && v < 1);
+    }
+}
+
 /* ---------------------------------------------------------------- Embree */
 
 static void embree_hits_a_known_triangle(void)
@@ -404,6 +439,7 @@ int main(int argc, char **argv)
         T_CASE(ray_footprint_is_one_pixel_on_a_facing_plane),
         T_CASE(tile_renderer_visits_every_pixel_once_per_sample),
         T_CASE(tile_renderer_is_deterministic_across_thread_counts),
+        T_CASE(rng_2d_is_stratified_and_uniform),
         T_CASE(embree_hits_a_known_triangle),
         T_CASE(embree_refuses_out_of_range_indices),
         T_CASE(cube_is_closed_outward_with_volume_8),

@@ -39,7 +39,7 @@ static void ex__render_tile(ex__render_job_t *job, int t)
             double sum[3] = {0, 0, 0};
             float *out = job->rgb + 3 * ((size_t)y * (size_t)d->width + (size_t)x);
             for (s = 0; s < job->spp; s++) {
-                ex_rng_t rng = ex_rng_for_sample(d->seed, x, y, s);
+                ex_rng_t rng = ex_rng_for_pixel(d->seed, x, y, s, job->spp);
                 float c[3] = {0, 0, 0};
                 job->fn(job->user, x, y, s, &rng, c);
                 sum[0] += c[0]; sum[1] += c[1]; sum[2] += c[2];

@@ -2,8 +2,8 @@
 
    Calls `fn` for every pixel and sample on all cores (pthreads, tiles handed
    out by an atomic counter) and stores the average of the samples per pixel.
-   Each call gets its own deterministic random stream, ex_rng_for_sample(seed,
-   x, y, sample), and a pixel's samples are summed in order by one thread, so
+   Each call gets its own deterministic random stream, ex_rng_for_pixel(seed,
+   x, y, sample, spp) (use ex_rng_2d for stratified 2D draws), and a pixel's samples are summed in order by one thread, so
    the image is bit-identical for any thread count. Shows a progress bar on
    stderr when the render takes longer than a second. */
 #ifndef FILIGREE_EX_RENDER_H

@@ -88,8 +88,9 @@ static ex_v3_t ex__shade_sample_half(const ex_material_t *m, double a, ex_v3_t n
 int ex_bsdf_sample(const ex_material_t *m, ex_v3_t n, ex_v3_t wo, ex_rng_t *rng, ex_v3_t *wi, ex_v3_t *weight,
                    double *pdf)
 {
-    double cos_o = ex_dot(n, wo), u0 = ex_rng_unit(rng), u1 = ex_rng_unit(rng), u2 = ex_rng_unit(rng);
+    double cos_o = ex_dot(n, wo), u0 = ex_rng_unit(rng), u1, u2;
     ex_v3_t f;
+    ex_rng_2d(rng, &u1, &u2);
     if (cos_o <= EX__SHADE_MIN_COS) return 0;
     if (u0 < ex__shade_p_glossy(m, cos_o)) {
         ex_v3_t h = ex__shade_sample_half(m, ex__shade_alpha(m), n, u1, u2);
@@ -155,8 +156,10 @@ ex_v3_t ex_direct_light(const ex_world_t *w, const ex_surface_t *s, ex_v3_t wo, 
     int i;
     for (i = 0; i < w->nlights; i++) {
         const ex_rect_light_t *l = &w->lights[i];
-        double u = ex_rng_unit(rng), v = ex_rng_unit(rng), dist, pdf_l, pdf_b;
-        ex_v3_t x = ex_madd(ex_madd(l->corner, l->edge_u, u), l->edge_v, v), wi, f;
+        double u, v, dist, pdf_l, pdf_b;
+        ex_v3_t x, wi, f;
+        ex_rng_2d(rng, &u, &v);
+        x = ex_madd(ex_madd(l->corner, l->edge_u, u), l->edge_v, v);
         wi = ex_sub(x, o);
         dist = ex_len(wi);
         if (!(dist > 0)) continue;
@@ -200,8 +203,18 @@ static void ex__shade_orient(ex_surface_t *s, ex_v3_t wo)
     if (c < 0.01) s->n = ex_normalize(ex_madd(s->n, wo, 0.01 - c));
 }
 
+/* Adds beta·c to L; after the first bounce the term is clamped to `limit`. */
+static ex_v3_t ex__shade_accumulate(ex_v3_t L, ex_v3_t beta, ex_v3_t c, int depth, double limit)
+{
+    ex_v3_t term = ex_mul(beta, c);
+    double m = ex_max_comp(term);
+    if (depth > 0 && limit > 0 && m > limit) term = ex_scale(term, limit / m);
+    return ex_add(L, term);
+}
+
 ex_v3_t ex_radiance(const ex_world_t *w, const ex_ray_t *camera_ray, ex_rng_t *rng)
 {
+    double limit = w->indirect_clamp == 0 ? 8.0 : w->indirect_clamp;
     int bounces = w->max_bounces == 0 ? 3 : w->max_bounces < 0 ? 0 : w->max_bounces, depth;
     ex_v3_t L = ex_v3(0, 0, 0), beta = ex_v3(1, 1, 1);
     ex_ray_t ray = *camera_ray;
@@ -210,12 +223,13 @@ ex_v3_t ex_radiance(const ex_world_t *w, const ex_ray_t *camera_ray, ex_rng_t *r
         ex_surface_t s;
         ex_v3_t wo, wi, weight;
         int hit = w->intersect(w->user, &ray, INFINITY, &s);
-        L = ex_add(L, ex_mul(beta, ex__shade_emitters(w, ray.o, ray.d, hit ? s.t : INFINITY, !hit, pdf_b)));
+        L = ex__shade_accumulate(L, beta, ex__shade_emitters(w, ray.o, ray.d, hit ? s.t : INFINITY, !hit, pdf_b),
+                                 depth > 1 ? depth : 0, limit);
         if (!hit || depth > bounces) break;
         wo = ex_neg(ray.d);
         ex__shade_orient(&s, wo);
-        L = ex_add(L, ex_mul(beta, s.mat->emission));
-        L = ex_add(L, ex_mul(beta, ex_direct_light(w, &s, wo, rng)));
+        L = ex__shade_accumulate(L, beta, s.mat->emission, depth, limit);
+        L = ex__shade_accumulate(L, beta, ex_direct_light(w, &s, wo, rng), depth, limit);
         if (depth == bounces && w->nlights == 0 && ex_max_comp(w->env.zenith) <= 0 &&
             ex_max_comp(w->env.horizon) <= 0 && ex_max_comp(w->env.ground) <= 0)
             break;

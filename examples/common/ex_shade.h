@@ -73,6 +73,9 @@ typedef struct ex_world_t {
     ex_env_t env;
     int max_bounces;              /* indirect bounces; 0 → 3, negative → direct light only */
     double ray_eps;               /* secondary-ray offset along ng, scene units; 0 → 1e-4 */
+    double indirect_clamp;        /* each contribution after the first bounce is clamped to this
+                                     max component (kills fireflies, slightly biased);
+                                     0 → 8, negative → no clamp */
 } ex_world_t;
 
 /* Radiance arriving along `ray` (one path sample). */

@@ -24,7 +24,7 @@ typedef struct scene_t {
     RTCDevice dev;
     RTCScene rtc;
     ex_material_t materials[GEOM_COUNT];
-    ex_rect_light_t lights[2];
+    ex_rect_light_t lights[3];
     ex_world_t world;
     ex_camera_t cam;
 } scene_t;
@@ -49,9 +49,12 @@ static int occluded(void *user, ex_v3_t o, ex_v3_t d, double tmax)
 static void pixel(void *user, int x, int y, int sample, ex_rng_t *rng, float rgb[3])
 {
     const scene_t *sc = (const scene_t *)user;
-    double jx = ex_rng_unit(rng), jy = ex_rng_unit(rng);
-    ex_ray_t ray = ex_camera_ray(&sc->cam, x + jx, y + jy);
-    ex_v3_t L = ex_radiance(&sc->world, &ray, rng);
+    double jx, jy;
+    ex_ray_t ray;
+    ex_v3_t L;
+    ex_rng_2d(rng, &jx, &jy);
+    ray = ex_camera_ray(&sc->cam, x + jx, y + jy);
+    L = ex_radiance(&sc->world, &ray, rng);
     (void)sample;
     rgb[0] = (float)L.x; rgb[1] = (float)L.y; rgb[2] = (float)L.z;
 }
@@ -98,29 +101,35 @@ static int build_scene(scene_t *sc, int width, int height)
     sc->materials[GEOM_ICOSPHERE] = glossy(0.08, 0.22, 0.55, 0.05, 0.18); /* blue lacquer */
     sc->materials[GEOM_GROUND] = glossy(0.48, 0.47, 0.45, 0.03, 0.6);     /* warm grey floor */
 
-    /* key: a large soft box above, front-left, facing the objects */
-    sc->lights[0].corner = ex_v3(-6.0, 6.5, 2.0);
-    sc->lights[0].edge_u = ex_v3(3.0, 0, 0);
-    sc->lights[0].edge_v = ex_v3(0, -1.2, 3.0);
-    sc->lights[0].radiance = ex_v3(4.2, 4.0, 3.7);
-    /* rim: a long strip behind and to the right, grazing the far edges */
-    sc->lights[1].corner = ex_v3(1.5, 2.2, -5.5);
-    sc->lights[1].edge_u = ex_v3(0, 2.5, 0);
-    sc->lights[1].edge_v = ex_v3(4.5, 0, 0.8);
-    sc->lights[1].radiance = ex_v3(6.0, 6.3, 7.0);
+    /* key: a large soft box overhead, a little in front: top faces and the
+       edges between top and front faces would catch it */
+    sc->lights[0].corner = ex_v3(-3.0, 6.0, 0.0);
+    sc->lights[0].edge_u = ex_v3(6.0, 0, 0);
+    sc->lights[0].edge_v = ex_v3(0, 0, 4.0);
+    sc->lights[0].radiance = ex_v3(2.6, 2.5, 2.3);
+    /* fill: a tall panel on the left, facing the objects */
+    sc->lights[1].corner = ex_v3(-6.5, 0.3, 4.5);
+    sc->lights[1].edge_u = ex_v3(1.6, 0, -2.4);
+    sc->lights[1].edge_v = ex_v3(0, 3.5, 0);
+    sc->lights[1].radiance = ex_v3(2.2, 2.3, 2.6);
+    /* rim: a strip behind on the right, grazing the far vertical edges */
+    sc->lights[2].corner = ex_v3(6.5, 1.2, -4.0);
+    sc->lights[2].edge_u = ex_v3(-2.0, 0, -2.5);
+    sc->lights[2].edge_v = ex_v3(0, 3.0, 0);
+    sc->lights[2].radiance = ex_v3(5.0, 4.6, 4.0);
 
     memset(&sc->world, 0, sizeof sc->world);
     sc->world.intersect = intersect;
     sc->world.occluded = occluded;
     sc->world.user = sc;
     sc->world.lights = sc->lights;
-    sc->world.nlights = 2;
-    sc->world.env.zenith = ex_v3(0.22, 0.30, 0.45);
-    sc->world.env.horizon = ex_v3(0.50, 0.50, 0.52);
-    sc->world.env.ground = ex_v3(0.10, 0.10, 0.10);
-    sc->world.max_bounces = 3;
+    sc->world.nlights = 3;
+    sc->world.env.zenith = ex_v3(0.10, 0.11, 0.13);
+    sc->world.env.horizon = ex_v3(0.16, 0.16, 0.17);
+    sc->world.env.ground = ex_v3(0.05, 0.05, 0.05);
+    sc->world.max_bounces = 1;   /* one bounce of floor light; deeper paths add noise, not looks */
 
-    return ex_camera_init(&sc->cam, ex_v3(0.3, 3.0, 7.8), ex_v3(0.0, 0.75, 0.0), ex_v3(0, 1, 0), 32.0, width, height);
+    return ex_camera_init(&sc->cam, ex_v3(0.4, 4.0, 7.6), ex_v3(0.0, 0.7, 0.0), ex_v3(0, 1, 0), 30.0, width, height);
 }
 
 static int selftest(void)
