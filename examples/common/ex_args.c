@@ -2,6 +2,7 @@
 #include "ex_args.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -126,6 +127,16 @@ static int ex__args_is(const char *name, size_t len, const char *flag)
     return strlen(flag) == len && !strncmp(name, flag, len);
 }
 
+static int ex__args_known(const char *name, size_t len)
+{
+    static const char *const common[] = {"help", "selftest", "demo", "out", "width", "height",
+                                         "spp", "threads", "scene", "mode", NULL};
+    const char *const *c;
+    for (c = common; *c; c++)
+        if (ex__args_is(name, len, *c)) return 1;
+    return 0;
+}
+
 void ex_args_parse(int argc, char **argv, const ex_args_spec_t *spec, ex_args_t *a)
 {
     ex_args_t defaults = *a;
@@ -139,6 +150,7 @@ void ex_args_parse(int argc, char **argv, const ex_args_spec_t *spec, ex_args_t 
         name = arg + 2;
         len = ex__args_split(name, &val);
         extra = ex__args_find_extra(spec, name, len);
+        if (!extra && !ex__args_known(name, len)) ex__args_bad(spec, &defaults, "unknown flag '%s'%s", arg, "");
         is_bool = ex__args_is(name, len, "help") || ex__args_is(name, len, "selftest") ||
                   (extra && extra->kind == EX_FLAG_BOOL);
         if (is_bool) {
@@ -195,14 +207,37 @@ static int ex__args_mkdirs(const char *dir)
     return 0;
 }
 
-/* Fails unless dir exists (creating it) and is a writable directory. */
-static void ex__args_need_dir(const char *dir)
+/* Fails unless dir is an existing directory (created first when `create`). */
+static void ex__args_need_dir(const char *dir, int create)
 {
     struct stat st;
-    if (ex__args_mkdirs(dir) != 0) ex_fail(1, "cannot create directory %s/: %s", dir, strerror(errno));
-    if (stat(dir, &st) != 0) ex_fail(1, "cannot use %s/: %s", dir, strerror(errno));
+    if (create && ex__args_mkdirs(dir) != 0) ex_fail(1, "cannot create directory %s/: %s", dir, strerror(errno));
+    if (stat(dir, &st) != 0) ex_fail(1, "cannot write to %s/: %s", dir, strerror(errno));
     if (!S_ISDIR(st.st_mode)) ex_fail(1, "cannot write to %s/: not a directory", dir);
-    if (access(dir, W_OK) != 0) ex_fail(1, "cannot write to %s/: %s", dir, strerror(errno));
+}
+
+/* Fails unless `path` can be opened for writing; a file created by the probe
+   is removed again. Catches what access() misses (read-only or pseudo file
+   systems, running as root). */
+static void ex__args_probe_file(const char *path)
+{
+    struct stat st;
+    int existed = stat(path, &st) == 0, fd;
+    if (existed && S_ISDIR(st.st_mode)) ex_fail(1, "cannot write %s: it is a directory", path);
+    fd = open(path, O_WRONLY | O_CREAT, 0666);
+    if (fd < 0) ex_fail(1, "cannot write %s: %s", path, strerror(errno));
+    close(fd);
+    if (!existed) unlink(path);
+}
+
+/* The directory part of path ("." when none). */
+static void ex__args_dirname(const char *path, char *dir, size_t size)
+{
+    snprintf(dir, size, "%s", path);
+    if (strrchr(dir, '/')) {
+        *strrchr(dir, '/') = '\0';
+        if (!dir[0]) snprintf(dir, size, "/");
+    } else snprintf(dir, size, ".");
 }
 
 static void ex__args_join(char *buf, size_t size, const char *dir, const char *name)
@@ -215,34 +250,22 @@ const char *ex_args_output_extra(const ex_args_t *a, const char *name, char *buf
 {
     char dir[4096];
     if (a->demo_dir) snprintf(dir, sizeof dir, "%s", a->demo_dir);
-    else if (a->out && strrchr(a->out, '/')) {
-        snprintf(dir, sizeof dir, "%s", a->out);
-        *strrchr(dir, '/') = '\0';
-        if (!dir[0]) snprintf(dir, sizeof dir, "/");
-    } else snprintf(dir, sizeof dir, ".");
-    ex__args_need_dir(dir);
+    else if (a->out) ex__args_dirname(a->out, dir, sizeof dir);
+    else snprintf(dir, sizeof dir, ".");
+    ex__args_need_dir(dir, a->demo_dir != NULL);
     ex__args_join(buf, size, dir, name);
+    ex__args_probe_file(buf);
     return buf;
 }
 
 const char *ex_args_output(const ex_args_t *a, const char *name, char *buf, size_t size)
 {
+    char dir[4096];
     if (!a->out) return ex_args_output_extra(a, name, buf, size);
     if (strlen(a->out) >= size) ex_fail(1, "output path too long: %s", a->out);
     snprintf(buf, size, "%s", a->out);
-    {
-        char dir[4096];
-        snprintf(dir, sizeof dir, "%s", a->out);
-        if (strrchr(dir, '/')) {
-            *strrchr(dir, '/') = '\0';
-            if (!dir[0]) snprintf(dir, sizeof dir, "/");
-        } else snprintf(dir, sizeof dir, ".");
-        ex__args_need_dir(dir);
-    }
-    {
-        struct stat st;
-        if (stat(buf, &st) == 0 && S_ISDIR(st.st_mode)) ex_fail(1, "cannot write %s: it is a directory", buf);
-        if (stat(buf, &st) == 0 && access(buf, W_OK) != 0) ex_fail(1, "cannot write %s: %s", buf, strerror(errno));
-    }
+    ex__args_dirname(a->out, dir, sizeof dir);
+    ex__args_need_dir(dir, 0);
+    ex__args_probe_file(buf);
     return buf;
 }

@@ -64,10 +64,10 @@ void ex_args_parse(int argc, char **argv, const ex_args_spec_t *spec, ex_args_t 
 void ex_args_usage(const ex_args_spec_t *spec, const ex_args_t *defaults);
 
 /* The path of an output file: --out when given, else DIR/name where DIR is the
-   --demo directory, else name in the current directory. Creates DIR if
-   missing and checks that the file's directory is writable; on failure prints
-   one line ("cannot write to out/: Permission denied") and exits 1, so a
-   render never runs only to fail at the end. Returns buf. */
+   --demo directory (created if missing), else name in the current directory.
+   Probes that the file can be written (a probe file it creates is removed);
+   on failure prints one line ("cannot write out/x.png: Permission denied")
+   and exits 1, so a render never runs only to fail at the end. Returns buf. */
 const char *ex_args_output(const ex_args_t *args, const char *name, char *buf, size_t size);
 
 /* Like ex_args_output but always DIR/name (DIR from --demo, else the

@@ -67,11 +67,16 @@ double srgb_decode(double y) { return y <= 0.04045 ? y / 12.92 : std::pow((y + 0
 
 } // namespace
 
+extern "C" int ex_image_check_path(const char *path)
+{
+    if (format_of(path) != Format::unknown) return 0;
+    return fail("write", path, "unknown image extension '" + extension_of(path) + "' (use .png or .exr)");
+}
+
 extern "C" int ex_image_write(const char *path, const float *rgb, int width, int height)
 {
     Format f = format_of(path);
-    if (f == Format::unknown)
-        return fail("write", path, "unknown image extension '" + extension_of(path) + "' (use .png or .exr)");
+    if (f == Format::unknown) return ex_image_check_path(path);
     if (width <= 0 || height <= 0 || !rgb) return fail("write", path, "empty image");
     std::string dir_problem = directory_problem(path);
     if (!dir_problem.empty()) return fail("write", path, dir_problem);

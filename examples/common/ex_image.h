@@ -17,6 +17,11 @@ extern "C" {
 /* Writes width × height RGB floats to `path` (.png or .exr). 0 or -1. */
 int ex_image_write(const char *path, const float *rgb, int width, int height);
 
+/* 0 when `path` has an extension ex_image_write handles (.png, .exr);
+   otherwise prints the same one line ex_image_write would and returns -1.
+   Call it before a long render. */
+int ex_image_check_path(const char *path);
+
 /* Reads `path` into a new linear RGB float buffer (*rgb, free with
    ex_image_free). Images with one channel are replicated, alpha is dropped.
    0 or -1. */

@@ -158,6 +158,7 @@ int main(int argc, char **argv)
     ex_args_parse(argc, argv, &spec, &args);
     if (args.selftest) return selftest();
     ex_args_output(&args, "sharp_cube_icosphere.png", path, sizeof path);
+    if (ex_image_check_path(path)) return 1;
 
     ex_timer_start(&tm);
     memset(&sc, 0, sizeof sc);
