@@ -44,6 +44,8 @@ typedef struct gx_scene_t {
     ex_v3_t ambient, background;
     ex_v3_t eye, at;
     double fov;                   /* vertical, degrees */
+    ex_v3_t bench_eye, bench_at;  /* a closer view that sees only the tile (no plane edge, */
+    double bench_fov;             /* no sky): bench_grooves measures grooves, not silhouettes */
     double exposure;              /* stops, for the PNG */
 } gx_scene_t;
 
@@ -106,6 +108,7 @@ static int gx_scene_parallel(gx_scene_t *s)
     s->ambient = ex_v3(0.06, 0.07, 0.09);
     s->background = ex_v3(0.20, 0.24, 0.32);
     s->eye = ex_v3(0.45, -0.06, 0.035); s->at = ex_v3(0.52, 0.6, 0.0); s->fov = 50;
+    s->bench_eye = ex_v3(0.5, 0.03, 0.06); s->bench_at = ex_v3(0.52, 0.22, 0.0); s->bench_fov = 20;
     return 0;
 }
 
@@ -144,6 +147,7 @@ static int gx_scene_curves(gx_scene_t *s)
     s->ambient = ex_v3(0.10, 0.11, 0.13);
     s->background = ex_v3(0.20, 0.24, 0.32);
     s->eye = ex_v3(0.5, -0.45, 0.75); s->at = ex_v3(0.5, 0.5, 0.0); s->fov = 50;
+    s->bench_eye = s->eye; s->bench_at = ex_v3(0.5, 0.45, 0.0); s->bench_fov = 16;
     return 0;
 }
 
@@ -178,12 +182,19 @@ static int gx_scene_scratches(gx_scene_t *s)
     s->ambient = ex_v3(0.15, 0.16, 0.18);
     s->background = ex_v3(0.20, 0.24, 0.32);
     s->eye = ex_v3(0.5, -0.35, 0.45); s->at = ex_v3(0.5, 0.55, 0.0); s->fov = 45;
+    s->bench_eye = s->eye; s->bench_at = ex_v3(0.5, 0.5, 0.0); s->bench_fov = 16;
     return 0;
 }
 
 typedef int (*gx_scene_fn)(gx_scene_t *);
 static const char *const gx_scene_names[] = {"parallel", "curves", "scratches", NULL};
 static const gx_scene_fn gx_scene_makers[] = {gx_scene_parallel, gx_scene_curves, gx_scene_scratches};
+
+/* Switches the scene to its benchmark view. */
+static void gx_scene_bench_view(gx_scene_t *s)
+{
+    s->eye = s->bench_eye; s->at = s->bench_at; s->fov = s->bench_fov;
+}
 
 /* Builds scene `name`; 0, or -1 for an unknown name or no memory. */
 static int gx_scene_make(gx_scene_t *s, const char *name)
