@@ -355,10 +355,13 @@ static void rx__skip_filter(const struct RTCFilterFunctionNArguments *args)
 {
     const rx__ctx_t *c = (const rx__ctx_t *)args->context;
     unsigned i;
+    /* SOA access as Embree's C++ helpers RTCHitN_geomID / RTCRayN_tfar do
+       (those are not available in C): geomID is the 7th field of RTCHitN,
+       tfar the 9th of RTCRayN; tfar holds the candidate's t. */
+    const unsigned *geom = (const unsigned *)args->hit + 6 * args->N;
+    const float *tfar = (const float *)args->ray + 8 * args->N;
     for (i = 0; i < args->N; i++)
-        if (args->valid[i] == -1 && RTCHitN_geomID(args->hit, args->N, i) == c->skip_geom &&
-            RTCRayN_tfar(args->ray, args->N, i) <= c->skip_t) /* tfar holds the candidate's t */
-            args->valid[i] = 0;
+        if (args->valid[i] == -1 && geom[i] == c->skip_geom && tfar[i] <= c->skip_t) args->valid[i] = 0;
 }
 
 /* ex_embree_intersect, hiding geometry skip_geom's hits at t <= skip_t. */
