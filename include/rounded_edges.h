@@ -476,6 +476,12 @@ RE_DEF const char *re_result_string(re_result_t r)
 /* Rounding slack of a plane-side test n.x - c, in units of the magnitudes
    that enter it (|c| + |x|): a few ulps of the inputs. */
 #define RE__SIDE_ULPS (64.0 * 2.220446049250313e-16)
+/* A host that traces in float reports t late or early by ~1e-7 relative;
+   when its hit point lands just inside a rounding capsule (next to the
+   tangent line), the capsule entry up to this fraction of t_host before
+   the host's t is accepted, so the rounded hit is still computed exactly
+   in double from the ray itself. */
+#define RE__HOST_T_SLACK 1e-5
 /* Most mesh corners one query may visit when a grazing ray travels along the
    removed volume (adjacency-graph walk, paper §3.1). */
 #define RE__MAX_WALK 64
@@ -1836,8 +1842,9 @@ RE_DEF double re_object_radius(const re_scene_t *scene, unsigned object)
 
 /* ---- Query ------------------------------------------------------------------------ */
 
-/* Entry of the ray I + s*d into a sphere: the smaller root, or HUGE_VAL. */
-static double re__sphere_entry(const double I[3], const double d[3], const double c[3], double r)
+/* Entry of the ray I + s*d into a sphere: the smaller root (not before
+   smin <= 0, see RE__HOST_T_SLACK), or HUGE_VAL. */
+static double re__sphere_entry(const double I[3], const double d[3], const double c[3], double r, double smin)
 {
     double w[3], A = re__dot(d, d), B, C, disc, q, s0, s1;
     re__sub(I, c, w);
@@ -1850,13 +1857,13 @@ static double re__sphere_entry(const double I[3], const double d[3], const doubl
     s0 = q / A;
     s1 = C / q;
     if (s0 > s1) { double x = s0; s0 = s1; s1 = x; }
-    return s1 < 0 ? HUGE_VAL : fmax(s0, 0.0);
+    return s1 < smin ? HUGE_VAL : fmax(s0, smin);
 }
 
 /* Entry into the side of the finite cylinder of radius r around a -> b;
    *h gets the axial position of the entry point. */
 static double re__cyl_entry(const double I[3], const double d[3], const double a[3], const double b[3],
-                            double r, double *h)
+                            double r, double smin, double *h)
 {
     double u[3], w[3], dp[3], wp[3], L, du, wu, A, B, C, disc, q, s0, s1, hh;
     re__sub(b, a, u);
@@ -1879,8 +1886,8 @@ static double re__cyl_entry(const double I[3], const double d[3], const double a
     s0 = q / A;
     s1 = C / q;
     if (s0 > s1) { double x = s0; s0 = s1; s1 = x; }
-    if (s1 < 0) return HUGE_VAL;
-    s0 = fmax(s0, 0.0);
+    if (s1 < smin) return HUGE_VAL;
+    s0 = fmax(s0, smin);
     hh = wu + s0 * du;
     if (hh < 0 || hh > L) return HUGE_VAL; /* beyond the span: a sphere cap */
     *h = hh;
@@ -1941,6 +1948,7 @@ static int re__on_flat_part(const re__object_t *o, const unsigned *set, unsigned
 
 typedef struct re__best_t {
     double s;
+    double smin; /* earliest entry accepted (<= 0): the host's t may be late */
     re_feature_t kind;
     unsigned index;
     double h; /* axial position for cylinders */
@@ -1948,14 +1956,14 @@ typedef struct re__best_t {
 
 static void re__try_sphere(const re__object_t *o, unsigned s, double r, const double I[3], const double d[3], re__best_t *b)
 {
-    double e = re__sphere_entry(I, d, o->sph + 3 * (size_t)s, r);
+    double e = re__sphere_entry(I, d, o->sph + 3 * (size_t)s, r, b->smin);
     if (e < b->s) b->s = e, b->kind = RE_FEATURE_SPHERE, b->index = s;
 }
 
 static void re__try_cyl(const re__object_t *o, unsigned c, double r, const double I[3], const double d[3], re__best_t *b)
 {
     const re__cyl_t *cy = &o->cyls[c];
-    double h = 0, e = re__cyl_entry(I, d, o->sph + 3 * (size_t)cy->s[0], o->sph + 3 * (size_t)cy->s[1], r, &h);
+    double h = 0, e = re__cyl_entry(I, d, o->sph + 3 * (size_t)cy->s[0], o->sph + 3 * (size_t)cy->s[1], r, b->smin, &h);
     if (e < b->s) b->s = e, b->kind = RE_FEATURE_CYLINDER, b->index = c, b->h = h;
 }
 
@@ -2070,6 +2078,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     for (iter = 0;; iter++) {
         double P[3], s;
         int grown = 0;
+        best.smin = -RE__HOST_T_SLACK * fabs(t_host);
         re__nearest_feature(o, set, n, I, dir, &best);
         s_exit = re__exit(o, set, n, I, dir, &exit_plane);
         s = fmin(best.s, s_exit);
