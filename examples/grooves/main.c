@@ -83,6 +83,8 @@ static void demo(const ex_args_t *a)
 {
     static const int spps[3] = {0, 1, 64};
     int si, i, W;
+    char probe[4096];
+    ex_args_output_extra(a, "grooves_parallel.png", probe, sizeof probe); /* fail now, not after rendering */
     for (si = 0; gx_scene_names[si]; si++) {
         gx_scene_t s;
         gx_image_t p[3];
@@ -113,7 +115,7 @@ int main(int argc, char **argv)
     ex_args_t a;
     ex_args_spec_t spec;
     memset(&a, 0, sizeof a);
-    a.width = 480; a.height = 300; a.spp = 16;
+    a.width = 400; a.height = 250; a.spp = 16;
     memset(&spec, 0, sizeof spec);
     spec.summary = "grooved surfaces: grooves.h at 1 spp beside the grooves as Embree geometry";
     spec.scenes = gx_scene_names;
