@@ -74,7 +74,7 @@ static run_t run_geometry(gx_geo_t *g, int spp, const float *ref, float *out)
     rd.label = label;
     rd.quiet = spp < REF_SPP; /* the progress bar's polling would be timed too */
     if (rd.quiet) fprintf(stderr, "bench_grooves: %s\n", label);
-    r.seconds = best_time(&rd, gx_geo_pixel, g, out, spp <= 16 ? 3 : 1);
+    r.seconds = best_time(&rd, gx_geo_pixel, g, out, spp <= 16 ? 9 : spp <= 64 ? 3 : 1);
     r.bytes = gx_geo_bytes(g);
     r.rmse = ref ? display_rmse(out, ref, g->s->exposure) : 0;
     return r;
@@ -88,7 +88,7 @@ static run_t run_ours(const gx_scene_t *s, const float *ref, float *out)
     memset(&rd, 0, sizeof rd);
     rd.width = W; rd.height = H; rd.spp = 1; rd.quiet = 1;
     if (gx_ours_init(&o, s, W, H)) exit(1);
-    r.seconds = best_time(&rd, gx_ours_pixel, &o, out, 5);
+    r.seconds = best_time(&rd, gx_ours_pixel, &o, out, 9);
     r.bytes = gx_ours_bytes(&o);
     r.rmse = display_rmse(out, ref, s->exposure);
     gx_ours_free(&o);
