@@ -88,8 +88,9 @@ static ex_v3_t ex__shade_sample_half(const ex_material_t *m, double a, ex_v3_t n
 int ex_bsdf_sample(const ex_material_t *m, ex_v3_t n, ex_v3_t wo, ex_rng_t *rng, ex_v3_t *wi, ex_v3_t *weight,
                    double *pdf)
 {
-    double cos_o = ex_dot(n, wo), u0 = ex_rng_unit(rng), u1, u2;
+    double cos_o = ex_dot(n, wo), u0, u_unused, u1, u2;
     ex_v3_t f;
+    ex_rng_2d(rng, &u0, &u_unused);   /* stratified lobe choice: each lobe gets its share of a pixel's samples */
     ex_rng_2d(rng, &u1, &u2);
     if (cos_o <= EX__SHADE_MIN_COS) return 0;
     if (u0 < ex__shade_p_glossy(m, cos_o)) {

@@ -99,7 +99,7 @@ static int build_scene(scene_t *sc, int width, int height)
 
     sc->materials[GEOM_CUBE] = glossy(0.62, 0.08, 0.05, 0.05, 0.18);      /* red lacquer */
     sc->materials[GEOM_ICOSPHERE] = glossy(0.08, 0.22, 0.55, 0.05, 0.18); /* blue lacquer */
-    sc->materials[GEOM_GROUND] = glossy(0.48, 0.47, 0.45, 0.03, 0.6);     /* warm grey floor */
+    sc->materials[GEOM_GROUND] = glossy(0.40, 0.39, 0.37, 0.03, 0.5);     /* warm grey floor */
 
     /* key: a large soft box overhead, a little in front: top faces and the
        edges between top and front faces would catch it */
@@ -113,10 +113,10 @@ static int build_scene(scene_t *sc, int width, int height)
     sc->lights[1].edge_v = ex_v3(0, 3.5, 0);
     sc->lights[1].radiance = ex_v3(2.2, 2.3, 2.6);
     /* rim: a strip behind on the right, grazing the far vertical edges */
-    sc->lights[2].corner = ex_v3(6.5, 1.2, -4.0);
+    sc->lights[2].corner = ex_v3(6.5, 1.8, -5.0);
     sc->lights[2].edge_u = ex_v3(-2.0, 0, -2.5);
     sc->lights[2].edge_v = ex_v3(0, 3.0, 0);
-    sc->lights[2].radiance = ex_v3(5.0, 4.6, 4.0);
+    sc->lights[2].radiance = ex_v3(7.0, 6.5, 5.8);
 
     memset(&sc->world, 0, sizeof sc->world);
     sc->world.intersect = intersect;
