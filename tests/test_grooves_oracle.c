@@ -324,8 +324,11 @@ static void groove_much_wider_than_footprint(void)
     scene_add(GR_PATH_POLYLINE, path, 2, V_SEC, 3);
     if (!scene_build()) return;
     for (i = 0; i < 9; i++) {
-        double L[3];
-        gr_footprint_t f = footprint(0.5 - 0.0095 + 0.019 * i / 8, 0.5, VERTICAL, 0.00025, 0.00025, 10 * i, i % 2 ? 0 : 180);
+        /* straddle a boundary: the rim u = 0.5 + a (ground | facet), or the
+           apex where it is seen, u = 0.5 ± D tan θ (E toward ±u) */
+        double L[3], th = 10 * i * M_PI / 180, sgn = i % 2 ? 1 : -1, apex = 0.5 + sgn * 0.012 * tan(th);
+        double c = (i % 2 && fabs(apex - 0.5) < 0.009) ? apex : 0.51;
+        gr_footprint_t f = footprint(c + 0.0001 * (i % 3 - 1), 0.5, VERTICAL, 0.00025, 0.00025, 10 * i, i % 2 ? 0 : 180);
         dir_deg(20 + 8 * i, i % 3 ? 0 : 180, L);
         compare(&f, L, 1, 256);
     }
