@@ -6,6 +6,9 @@
    (Image I/O needs OpenImageIO: `build/examples/sharp_cube_icosphere --selftest`.) */
 #include "test.h"
 
+#include <sys/wait.h>
+
+#include "../examples/common/ex_args.c"
 #include "../examples/common/ex_camera.c"
 #include "../examples/common/ex_embree.c"
 #include "../examples/common/ex_mesh.c"
@@ -370,6 +373,105 @@ static void transform_and_append_keep_meshes_outward(void)
     ex_mesh_free(&b);
 }
 
+static void obj_writer_writes_every_vertex_and_face(void)
+{
+    ex_mesh_t m = {0};
+    char line[256];
+    const char *tmp = getenv("TMPDIR");
+    char path[4096];
+    int nv = 0, nf = 0, max_index = 0;
+    FILE *f;
+    snprintf(path, sizeof path, "%s/test_examples_common_%d.obj", tmp && *tmp ? tmp : "/tmp", (int)getpid());
+    T_INT_EQ(ex_mesh_cube(&m), 0);
+    T_INT_EQ(ex_mesh_write_obj(&m, path), 0);
+    f = fopen(path, "r");
+    T_CHECK(f != NULL);
+    if (!f) return;
+    while (fgets(line, sizeof line, f)) {
+        int a, b, c;
+        if (line[0] == 'v') nv++;
+        if (line[0] == 'f' && sscanf(line + 1, "%d %d %d", &a, &b, &c) == 3) {
+            nf++;
+            max_index = a > max_index ? a : max_index;
+            max_index = b > max_index ? b : max_index;
+            max_index = c > max_index ? c : max_index;
+        }
+    }
+    fclose(f);
+    remove(path);
+    T_INT_EQ(nv, 8);
+    T_INT_EQ(nf, 12);
+    T_INT_EQ(max_index, 8);   /* OBJ indices are 1-based */
+    fprintf(stderr, "  (an expected error line follows)\n");
+    T_INT_EQ(ex_mesh_write_obj(&m, "/nonexistent-filigree-dir/x.obj"), -1);
+    ex_mesh_free(&m);
+}
+
+/* ---------------------------------------------------------------- arguments */
+
+static void args_parse_common_and_extra_flags(void)
+{
+    char *argv[] = {"prog", "--width=320", "--height", "200", "--spp", "4", "--mode", "b",
+                    "--radius", "0.25", "--wire", "--name=x", "--count", "-7", NULL};
+    static const char *const modes[] = {"a", "b", NULL};
+    double radius = 1;
+    int wire = 0, count = 0;
+    const char *name = "default";
+    ex_flag_t extra[4] = {{"radius", EX_FLAG_DOUBLE, NULL, "r"}, {"wire", EX_FLAG_BOOL, NULL, "w"},
+                          {"name", EX_FLAG_STRING, NULL, "n"}, {"count", EX_FLAG_INT, NULL, "c"}};
+    ex_args_spec_t spec;
+    ex_args_t a;
+    extra[0].value = &radius; extra[1].value = &wire; extra[2].value = &name; extra[3].value = &count;
+    memset(&spec, 0, sizeof spec);
+    spec.modes = modes; spec.extra = extra; spec.nextra = 4;
+    memset(&a, 0, sizeof a);
+    a.width = 1; a.height = 1; a.spp = 1;
+    ex_args_parse(14, argv, &spec, &a);
+    T_INT_EQ(a.width, 320); T_INT_EQ(a.height, 200); T_INT_EQ(a.spp, 4);
+    T_CHECK(a.mode && !strcmp(a.mode, "b"));
+    T_EQ(radius, 0.25); T_INT_EQ(wire, 1); T_CHECK(!strcmp(name, "x")); T_INT_EQ(count, -7);
+    T_CHECK(a.demo_dir == NULL && a.out == NULL && !a.selftest);
+}
+
+/* Runs ex_args_parse on argv in a child (stderr silenced); returns its exit status. */
+static int args_exit_status(int argc, char **argv)
+{
+    static const char *const modes[] = {"a", NULL};
+    pid_t pid;
+    int st = 0;
+    fflush(NULL);
+    pid = fork();
+    if (pid == 0) {
+        ex_args_spec_t spec;
+        ex_args_t a;
+        if (!freopen("/dev/null", "w", stderr) || !freopen("/dev/null", "w", stdout)) _exit(99);
+        memset(&spec, 0, sizeof spec);
+        spec.modes = modes;
+        memset(&a, 0, sizeof a);
+        a.width = a.height = a.spp = 1;
+        ex_args_parse(argc, argv, &spec, &a);
+        _exit(0);
+    }
+    if (pid < 0 || waitpid(pid, &st, 0) != pid || !WIFEXITED(st)) return -1;
+    return WEXITSTATUS(st);
+}
+
+static void args_bad_input_exits_2_and_help_exits_0(void)
+{
+    char *unknown[] = {"prog", "--bogus", NULL}, *badint[] = {"prog", "--width", "12x", NULL};
+    char *range[] = {"prog", "--spp", "0", NULL}, *missing[] = {"prog", "--height", NULL};
+    char *mode[] = {"prog", "--mode", "zzz", NULL}, *stray[] = {"prog", "file.png", NULL};
+    char *help[] = {"prog", "--help", NULL}, *ok[] = {"prog", "--mode", "a", NULL};
+    T_INT_EQ(args_exit_status(2, unknown), 2);
+    T_INT_EQ(args_exit_status(3, badint), 2);
+    T_INT_EQ(args_exit_status(3, range), 2);
+    T_INT_EQ(args_exit_status(2, missing), 2);
+    T_INT_EQ(args_exit_status(3, mode), 2);
+    T_INT_EQ(args_exit_status(2, stray), 2);
+    T_INT_EQ(args_exit_status(2, help), 0);
+    T_INT_EQ(args_exit_status(3, ok), 0);
+}
+
 /* ---------------------------------------------------------------- shading */
 
 /* White Lambertian: f·cos/pdf is exactly the albedo for every sample. */
@@ -446,6 +548,9 @@ int main(int argc, char **argv)
         T_CASE(icosphere_counts_and_unit_radius),
         T_CASE(rounded_cube_lies_on_the_rounded_box),
         T_CASE(transform_and_append_keep_meshes_outward),
+        T_CASE(obj_writer_writes_every_vertex_and_face),
+        T_CASE(args_parse_common_and_extra_flags),
+        T_CASE(args_bad_input_exits_2_and_help_exits_0),
         T_CASE(lambert_sampling_weight_is_albedo),
         T_CASE(glossy_pdf_and_weights_are_consistent),
         T_CASE(rect_light_hit_and_front_side_only),

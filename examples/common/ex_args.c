@@ -29,40 +29,45 @@ static const char *ex__args_kind_meta(ex_flag_kind_t k)
     return k == EX_FLAG_INT ? " N" : k == EX_FLAG_DOUBLE ? " X" : k == EX_FLAG_STRING ? " NAME" : "";
 }
 
-static void ex__args_list(const char *const *names)
+static void ex__args_list(FILE *f, const char *const *names)
 {
-    for (; names && *names; names++) fprintf(stderr, "%s%s", *names, names[1] ? "|" : "");
+    for (; names && *names; names++) fprintf(f, "%s%s", *names, names[1] ? "|" : "");
 }
 
-void ex_args_usage(const ex_args_spec_t *spec, const ex_args_t *d)
+static void ex__args_usage_to(FILE *f, const ex_args_spec_t *spec, const ex_args_t *d)
 {
     int i;
-    fprintf(stderr, "usage: %s [flags]\n", program_invocation_short_name);
-    if (spec && spec->summary) fprintf(stderr, "  %s\n", spec->summary);
-    fprintf(stderr, "  --demo DIR      render the gallery image(s) into DIR\n"
+    fprintf(f, "usage: %s [flags]\n", program_invocation_short_name);
+    if (spec && spec->summary) fprintf(f, "  %s\n", spec->summary);
+    fprintf(f, "  --demo DIR      render the gallery image(s) into DIR\n"
                     "  --out FILE      write the image to FILE (.png or .exr)\n");
-    fprintf(stderr, "  --width N       image width in pixels (default %d)\n", d->width);
-    fprintf(stderr, "  --height N      image height in pixels (default %d)\n", d->height);
-    fprintf(stderr, "  --spp N         samples per pixel (default %d)\n", d->spp);
-    fprintf(stderr, "  --threads N     worker threads, 0 = every core (default %d)\n", d->threads);
+    fprintf(f, "  --width N       image width in pixels (default %d)\n", d->width);
+    fprintf(f, "  --height N      image height in pixels (default %d)\n", d->height);
+    fprintf(f, "  --spp N         samples per pixel (default %d)\n", d->spp);
+    fprintf(f, "  --threads N     worker threads, 0 = every core (default %d)\n", d->threads);
     if (spec && spec->scenes) {
-        fprintf(stderr, "  --scene NAME    one of ");
-        ex__args_list(spec->scenes);
-        fprintf(stderr, " (default %s)\n", d->scene ? d->scene : "-");
+        fprintf(f, "  --scene NAME    one of ");
+        ex__args_list(f, spec->scenes);
+        fprintf(f, " (default %s)\n", d->scene ? d->scene : "-");
     }
     if (spec && spec->modes) {
-        fprintf(stderr, "  --mode NAME     one of ");
-        ex__args_list(spec->modes);
-        fprintf(stderr, " (default %s)\n", d->mode ? d->mode : "-");
+        fprintf(f, "  --mode NAME     one of ");
+        ex__args_list(f, spec->modes);
+        fprintf(f, " (default %s)\n", d->mode ? d->mode : "-");
     }
     for (i = 0; spec && i < spec->nextra; i++) {
-        const ex_flag_t *f = &spec->extra[i];
+        const ex_flag_t *flag = &spec->extra[i];
         char left[64];
-        snprintf(left, sizeof left, "--%s%s", f->name, ex__args_kind_meta(f->kind));
-        fprintf(stderr, "  %-15s %s\n", left, f->help ? f->help : "");
+        snprintf(left, sizeof left, "--%s%s", flag->name, ex__args_kind_meta(flag->kind));
+        fprintf(f, "  %-15s %s\n", left, flag->help ? flag->help : "");
     }
-    fprintf(stderr, "  --selftest      run the self checks and exit\n"
-                    "  --help          this text\n");
+    fprintf(f, "  --selftest      run the self checks and exit\n"
+               "  --help          this text\n");
+}
+
+void ex_args_usage(const ex_args_spec_t *spec, const ex_args_t *defaults)
+{
+    ex__args_usage_to(stderr, spec, defaults);
 }
 
 /* Prints one line and the usage, exits 2. */
@@ -159,7 +164,7 @@ void ex_args_parse(int argc, char **argv, const ex_args_spec_t *spec, ex_args_t 
             if (i + 1 >= argc) ex__args_bad(spec, &defaults, "flag '%s' needs a value%s", arg, "");
             val = argv[++i];
         }
-        if (ex__args_is(name, len, "help")) { ex_args_usage(spec, &defaults); exit(0); }
+        if (ex__args_is(name, len, "help")) { ex__args_usage_to(stdout, spec, &defaults); exit(0); }
         else if (ex__args_is(name, len, "selftest")) a->selftest = 1;
         else if (ex__args_is(name, len, "demo")) a->demo_dir = val;
         else if (ex__args_is(name, len, "out")) a->out = val;

@@ -4,7 +4,8 @@
    --threads N, --scene NAME, --mode NAME, --selftest, --help; plus flags an
    example adds with an ex_flag_t table. Values are given as "--flag value"
    or "--flag=value". An unknown flag or a bad value prints one line and the
-   usage on stderr and exits with status 2; --help prints the usage and exits 0.
+   usage on stderr and exits with status 2; --help prints the usage on stdout
+   and exits 0.
 
    ex_args_t a = {0};
    a.width = 640; a.height = 400; a.spp = 16;      // the example's defaults

@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <string.h>
 
+extern char *program_invocation_short_name; /* glibc */
+
 static const char *ex__embree_error_name(enum RTCError e)
 {
     switch (e) {
@@ -22,14 +24,16 @@ static const char *ex__embree_error_name(enum RTCError e)
 static void ex__embree_on_error(void *user, enum RTCError code, const char *msg)
 {
     (void)user;
-    fprintf(stderr, "embree: %s: %s\n", ex__embree_error_name(code), msg && *msg ? msg : "(no message)");
+    fprintf(stderr, "%s: embree: %s: %s\n", program_invocation_short_name, ex__embree_error_name(code),
+            msg && *msg ? msg : "(no message)");
 }
 
 RTCDevice ex_embree_device(void)
 {
     RTCDevice dev = rtcNewDevice(NULL);
     if (!dev) {
-        fprintf(stderr, "embree: cannot create a device: %s\n", ex__embree_error_name(rtcGetDeviceError(NULL)));
+        fprintf(stderr, "%s: embree: cannot create a device: %s\n", program_invocation_short_name,
+                ex__embree_error_name(rtcGetDeviceError(NULL)));
         return NULL;
     }
     rtcSetDeviceErrorFunction(dev, ex__embree_on_error, NULL);
@@ -46,8 +50,8 @@ unsigned ex_embree_add_mesh(RTCDevice dev, RTCScene scene, const float *pos, siz
     size_t i;
     for (i = 0; i < 3 * ntris; i++)
         if (idx[i] >= nverts) {
-            fprintf(stderr, "embree: triangle %zu uses vertex %u but the mesh has %zu vertices\n", i / 3,
-                    idx[i], nverts);
+            fprintf(stderr, "%s: embree: triangle %zu uses vertex %u but the mesh has %zu vertices\n",
+                    program_invocation_short_name, i / 3, idx[i], nverts);
             return RTC_INVALID_GEOMETRY_ID;
         }
     g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);

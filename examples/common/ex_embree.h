@@ -8,7 +8,7 @@
    ex_embree_release(dev, scn);
 
    Every Embree error is reported on stderr as one line
-   "embree: <error name>: <message>" by the device's error callback. */
+   "<program>: embree: <error name>: <message>" by the device's error callback. */
 #ifndef FILIGREE_EX_EMBREE_H
 #define FILIGREE_EX_EMBREE_H
 

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+extern char *program_invocation_short_name; /* glibc */
+
 void ex_mesh_free(ex_mesh_t *m)
 {
     free(m->pos);
@@ -293,11 +295,14 @@ int ex_mesh_write_obj(const ex_mesh_t *m, const char *path)
 {
     FILE *f = fopen(path, "w");
     size_t i;
-    if (!f) { fprintf(stderr, "cannot write %s: %s\n", path, strerror(errno)); return -1; }
+    if (!f) { fprintf(stderr, "%s: cannot write %s: %s\n", program_invocation_short_name, path, strerror(errno)); return -1; }
     fprintf(f, "# filigree example mesh: %zu vertices, %zu triangles\n", m->nverts, m->ntris);
     for (i = 0; i < m->nverts; i++) fprintf(f, "v %.9g %.9g %.9g\n", m->pos[3 * i], m->pos[3 * i + 1], m->pos[3 * i + 2]);
     for (i = 0; i < m->ntris; i++)
         fprintf(f, "f %u %u %u\n", m->idx[3 * i] + 1, m->idx[3 * i + 1] + 1, m->idx[3 * i + 2] + 1);
-    if (fclose(f) != 0) { fprintf(stderr, "cannot write %s: %s\n", path, strerror(errno)); return -1; }
+    if (fclose(f) != 0) {
+        fprintf(stderr, "%s: cannot write %s: %s\n", program_invocation_short_name, path, strerror(errno));
+        return -1;
+    }
     return 0;
 }

@@ -11,6 +11,8 @@
 
 #include "ex_progress.h"
 
+extern char *program_invocation_short_name; /* glibc */
+
 typedef struct ex__render_job_t {
     const ex_render_desc_t *desc;
     ex_pixel_fn fn;
@@ -85,8 +87,8 @@ int ex_render(const ex_render_desc_t *desc, ex_pixel_fn fn, void *user, float *r
     int nthreads, i, started = 0, err = 0;
     if (!desc || !fn || !rgb || desc->width <= 0 || desc->height <= 0 || desc->width > 65536 ||
         desc->height > 65536 || desc->spp < 0 || desc->threads < 0 || desc->tile < 0) {
-        fprintf(stderr, "ex_render: bad render description (size %dx%d)\n", desc ? desc->width : 0,
-                desc ? desc->height : 0);
+        fprintf(stderr, "%s: bad render description (size %dx%d)\n", program_invocation_short_name,
+                desc ? desc->width : 0, desc ? desc->height : 0);
         return -1;
     }
     memset(&job, 0, sizeof job);
@@ -98,7 +100,7 @@ int ex_render(const ex_render_desc_t *desc, ex_pixel_fn fn, void *user, float *r
     nthreads = desc->threads ? desc->threads : ex_cpu_count();
     if (nthreads > job.ntiles) nthreads = job.ntiles;
     threads = (pthread_t *)malloc(sizeof(pthread_t) * (size_t)nthreads);
-    if (!threads) { fprintf(stderr, "ex_render: out of memory\n"); return -1; }
+    if (!threads) { fprintf(stderr, "%s: out of memory for threads\n", program_invocation_short_name); return -1; }
     for (i = 0; i < nthreads; i++) {
         err = pthread_create(&threads[i], NULL, ex__render_worker, &job);
         if (err) break;
@@ -106,7 +108,7 @@ int ex_render(const ex_render_desc_t *desc, ex_pixel_fn fn, void *user, float *r
     }
     if (started == 0) {
         free(threads);
-        fprintf(stderr, "ex_render: cannot start a thread: %s\n", strerror(err));
+        fprintf(stderr, "%s: cannot start a thread: %s\n", program_invocation_short_name, strerror(err));
         return -1;
     }
     /* with fewer threads than asked the started ones still finish every tile */
