@@ -240,6 +240,7 @@ typedef struct gx_ours_t {
     size_t grid_bytes;
     gro_device_t dev;
     RTCScene plane;
+    long long embree_bytes;       /* Embree's bytes once the plane is committed */
     ex_camera_t cam;
 } gx_ours_t;
 
@@ -268,6 +269,7 @@ static int gx_ours_init(gx_ours_t *o, const gx_scene_t *s, int w, int h)
     if (ex_embree_add_mesh(o->dev.dev, o->plane, pos, 4, idx, 2) == RTC_INVALID_GEOMETRY_ID ||
         ex_embree_commit(o->dev.dev, o->plane))
         return -1;
+    o->embree_bytes = o->dev.bytes;
     return gx_camera(s, &o->cam, w, h) ? -1 : 0;
 }
 
@@ -279,9 +281,9 @@ static void gx_ours_free(gx_ours_t *o)
     memset(o, 0, sizeof *o);
 }
 
-/* Bytes ours needs: the grid and Embree's plane (the query scratch lives on
-   the stack, gr_query_scratch_bytes per thread). */
-static long long gx_ours_bytes(const gx_ours_t *o) { return (long long)o->grid_bytes + o->dev.bytes; }
+/* Bytes ours keeps: the grid and Embree's plane as committed (the query
+   scratch, gr_query_scratch_bytes per thread, lives on the stack). */
+static long long gx_ours_bytes(const gx_ours_t *o) { return (long long)o->grid_bytes + o->embree_bytes; }
 
 /* Radiance through continuous pixel position (px, py). */
 static ex_v3_t gx_ours_radiance(const gx_ours_t *o, double px, double py)
@@ -326,6 +328,7 @@ typedef struct gx_geo_t {
     const gx_scene_t *s;
     gro_device_t dev;
     gro_scene_t sc;
+    long long embree_bytes;       /* Embree's bytes once the meshes are committed */
     ex_camera_t cam;
 } gx_geo_t;
 
@@ -341,6 +344,7 @@ static int gx_geo_init(gx_geo_t *g, const gx_scene_t *s, int w, int h)
         fprintf(stderr, "grooves: %s: cannot build the geometry (out of memory?)\n", s->name);
         return -1;
     }
+    g->embree_bytes = g->dev.bytes;
     return gx_camera(s, &g->cam, w, h) ? -1 : 0;
 }
 
@@ -351,9 +355,13 @@ static void gx_geo_free(gx_geo_t *g)
     memset(g, 0, sizeof *g);
 }
 
-/* Bytes the geometry needs: Embree's (BVH, vertex and index buffers, as its
-   memory monitor counts them) and the per-triangle facet labels. */
-static long long gx_geo_bytes(const gx_geo_t *g) { return g->dev.bytes + (long long)g->sc.ntris * 2 * (long long)sizeof(int); }
+/* Bytes the geometry keeps: Embree's once committed (BVH, vertex and index
+   buffers, as its memory monitor counts them) and the per-triangle facet
+   labels. */
+static long long gx_geo_bytes(const gx_geo_t *g)
+{
+    return g->embree_bytes + (long long)g->sc.ntris * 2 * (long long)sizeof(int);
+}
 
 static ex_v3_t gx_geo_radiance(const gx_geo_t *g, double px, double py)
 {

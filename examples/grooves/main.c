@@ -19,7 +19,7 @@
 #include "ex_image.h"
 #include "ex_timer.h"
 
-typedef struct gx_image_t { float *rgb; int w, h; double seconds; long long bytes; } gx_image_t;
+typedef struct gx_image_t { float *rgb; int w, h; double seconds, build_seconds; long long bytes; } gx_image_t;
 
 /* Renders one panel; exits with one line on failure. */
 static gx_image_t render_mode(const gx_scene_t *s, int geometry, int spp, int w, int h, int threads)
@@ -40,20 +40,23 @@ static gx_image_t render_mode(const gx_scene_t *s, int geometry, int spp, int w,
     rd.label = label;
     if (geometry) {
         if (gx_geo_init(&geo, s, w, h)) ex_fail(1, "%s: cannot set up the geometry renderer", s->name);
+        im.build_seconds = ex_now() - t0;
         rd.spp = spp;
         if (ex_render(&rd, gx_geo_pixel, &geo, im.rgb)) ex_fail(1, "%s: render failed", s->name);
         im.bytes = gx_geo_bytes(&geo);
         gx_geo_free(&geo);
     } else {
         if (gx_ours_init(&ours, s, w, h)) ex_fail(1, "%s: cannot set up the grooves.h renderer", s->name);
+        im.build_seconds = ex_now() - t0;
         rd.spp = 1;
         if (ex_render(&rd, gx_ours_pixel, &ours, im.rgb)) ex_fail(1, "%s: render failed", s->name);
         im.bytes = gx_ours_bytes(&ours);
         gx_ours_free(&ours);
     }
     im.seconds = ex_now() - t0;
-    printf("  %-9s %-8s %4d spp  %7.2f s  %9.1f KiB\n", s->name, geometry ? "geometry" : "ours", geometry ? spp : 1,
-           im.seconds, im.bytes / 1024.0);
+    printf("  %-9s %-8s %4d spp  build %6.3f s  render %7.2f s  memory %9.1f KiB\n", s->name,
+           geometry ? "geometry" : "ours", geometry ? spp : 1, im.build_seconds, im.seconds - im.build_seconds,
+           im.bytes / 1024.0);
     fflush(stdout);
     return im;
 }
