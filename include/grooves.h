@@ -388,6 +388,7 @@ extern "C" {
 /* Automatic grid resolution: about this many cells per groove and axis,
    capped, so a small footprint box meets few paths. */
 #define GR__AUTO_CELLS_PER_SQRT_GROOVE 2.0
+#define GR__AUTO_ITEMS_PER_CELL 8.0
 #define GR__AUTO_CELLS_MAX 512
 
 GR_DEF const char *gr_result_string(gr_result_t r)
@@ -720,8 +721,20 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
     }
     pl->groove_count = desc->groove_count;
     {
-        int autoc = (int)ceil(GR__AUTO_CELLS_PER_SQRT_GROOVE * sqrt((double)desc->groove_count));
-        if (autoc > GR__AUTO_CELLS_MAX) autoc = GR__AUTO_CELLS_MAX;
+        /* long paths cross about n cells per tile length: aim at
+           GR__AUTO_ITEMS_PER_CELL paths per cell, and at least
+           GR__AUTO_CELLS_PER_SQRT_GROOVE sqrt(G) cells per axis for short ones */
+        double total = 0, tile = 0.5 * ((pl->dom[2] - pl->dom[0]) + (pl->dom[3] - pl->dom[1])), want;
+        int autoc;
+        for (g = 0; g < desc->groove_count; g++) {
+            const gr_groove_desc_t *gd = &desc->grooves[g];
+            for (i = 1; i < gd->point_count; i++)
+                total += sqrt((gd->points[2 * i] - gd->points[2 * i - 2]) * (gd->points[2 * i] - gd->points[2 * i - 2]) +
+                              (gd->points[2 * i + 1] - gd->points[2 * i - 1]) * (gd->points[2 * i + 1] - gd->points[2 * i - 1]));
+        }
+        want = GR__AUTO_CELLS_PER_SQRT_GROOVE * sqrt((double)desc->groove_count);
+        if (total / tile / GR__AUTO_ITEMS_PER_CELL > want) want = total / tile / GR__AUTO_ITEMS_PER_CELL;
+        autoc = want < GR__AUTO_CELLS_MAX ? (int)ceil(want) : GR__AUTO_CELLS_MAX;
         pl->cells.nu = desc->cells_u ? desc->cells_u : autoc;
         pl->cells.nv = desc->cells_v ? desc->cells_v : autoc;
     }
@@ -1086,6 +1099,7 @@ typedef struct gr__mfacet_t {
 } gr__mfacet_t;
 
 typedef struct gr__scratch_t {
+    unsigned char *seen; /* one bit per groove, cleared per footprint */
     int *ids;
     gr__cand_t *cand;
     double *x, *w, *q, *lo, *hi, *va, *vb, *lit;
@@ -1094,12 +1108,13 @@ typedef struct gr__scratch_t {
 
 static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *s)
 {
-    size_t off = 0, np = (size_t)g->total_section_ + 2, nid = (size_t)g->item_capacity_ + (size_t)g->groove_count;
+    size_t off = 0, np = (size_t)g->total_section_ + 2, nid = (size_t)g->groove_count;
     char *b = (char *)base;
     gr__scratch_t tmp;
     if (!s) s = &tmp;
 #define GR__CARVE(field, type, count) \
     s->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (count));
+    GR__CARVE(seen, unsigned char, nid / 8 + 1)
     GR__CARVE(ids, int, nid)
     GR__CARVE(cand, gr__cand_t, (size_t)g->groove_count)
     GR__CARVE(x, double, np)
@@ -1141,12 +1156,17 @@ static void gr__bezier_eval(const double *p, int n, double tau, double b[2], dou
 
 #endif
 
-/* Nearest point of a groove's path to f (§4.2): fills p, t, param, dtds,
-   kappa, end and dist of c. */
-static void gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const double f[2], gr__cand_t *c)
+/* Distance from x to the interval [lo, hi]. */
+static double gr__interval_dist(double x, double lo, double hi) { return x < lo ? lo - x : x > hi ? x - hi : 0; }
+
+/* Nearest point of a groove's path to f (§4.2), among points closer than
+   sqrt(limit2): fills p, t, param, dtds, kappa, end and dist of c and
+   returns 1, or returns 0 when no point is that close. */
+static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const double f[2], double limit2, gr__cand_t *c)
 {
     const double *pts = grid->points_ + 2 * rec->first_point;
-    double best = HUGE_VAL;
+    double best = limit2;
+    int found = 0;
     int k;
     c->end = 0;
     c->kappa = 0;
@@ -1163,6 +1183,7 @@ static void gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const do
             d2 = (f[0] - px) * (f[0] - px) + (f[1] - py) * (f[1] - py);
             if (len2 > 0 && d2 < best) {
                 best = d2;
+                found = 1;
                 c->p[0] = px; c->p[1] = py;
                 c->t[0] = ex / len; c->t[1] = ey / len;
                 c->param = (acc + s * len) / rec->length;
@@ -1181,8 +1202,8 @@ static void gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const do
             int s, it;
             /* the control polygon bounds the piece: skip it when farther */
             gr__bounds(a, deg + 1, box);
-            dx = f[0] < box[0] ? box[0] - f[0] : f[0] > box[2] ? f[0] - box[2] : 0;
-            dy = f[1] < box[1] ? box[1] - f[1] : f[1] > box[3] ? f[1] - box[3] : 0;
+            dx = gr__interval_dist(f[0], box[0], box[2]);
+            dy = gr__interval_dist(f[1], box[1], box[3]);
             if (dx * dx + dy * dy > best) continue;
             for (s = 0; s <= GR__CURVE_SAMPLES; s++) {
                 double tau = (double)s / GR__CURVE_SAMPLES, dd;
@@ -1204,9 +1225,10 @@ static void gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const do
             }
             gr__bezier_eval(a, deg, bt, b, d1, d2);
             bd = (b[0] - f[0]) * (b[0] - f[0]) + (b[1] - f[1]) * (b[1] - f[1]);
-            sp = hypot(d1[0], d1[1]);
+            sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]);
             if (bd < best && sp > 0) {
                 best = bd;
+                found = 1;
                 c->p[0] = b[0]; c->p[1] = b[1];
                 c->t[0] = d1[0] / sp; c->t[1] = d1[1] / sp;
                 c->param = (k + bt) / rec->pieces;
@@ -1221,66 +1243,80 @@ static void gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const do
     }
 #endif
     c->dist = sqrt(best);
+    return found;
 }
 
-/* The groove's nearest approach over the periodic images of the footprint
-   centre (§4.1: repeating textures). */
-static void gr__locate(const gr_grid_t *grid, int g, const double f[2], gr__cand_t *c)
+/* The groove's nearest approach within distance `reach` over the periodic
+   images of the footprint centre (§4.1: repeating textures). The image
+   nearest the path's box is tried first (the box distance separates per
+   axis), so the others are usually pruned by their box. Returns 0 when no
+   image of the path comes within reach. */
+static int gr__locate(const gr_grid_t *grid, int g, const double f[2], double reach, gr__cand_t *c)
 {
     const gr__groove_t *rec = &grid->grooves_[g];
     double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
-    int ku, kv, span = grid->wrap ? 1 : 0;
-    gr__cand_t best, cur;
-    memset(&best, 0, sizeof best);
-    best.dist = HUGE_VAL;
-    for (kv = -span; kv <= span; kv++)
-        for (ku = -span; ku <= span; ku++) {
-            double fi[2], dx, dy;
-            fi[0] = f[0] + ku * wu;
-            fi[1] = f[1] + kv * wv;
-            dx = fi[0] < rec->bbox[0] ? rec->bbox[0] - fi[0] : fi[0] > rec->bbox[2] ? fi[0] - rec->bbox[2] : 0;
-            dy = fi[1] < rec->bbox[1] ? rec->bbox[1] - fi[1] : fi[1] > rec->bbox[3] ? fi[1] - rec->bbox[3] : 0;
-            if (hypot(dx, dy) >= best.dist) continue;
-            memset(&cur, 0, sizeof cur);
-            gr__nearest(grid, rec, fi, &cur);
-            if (cur.dist < best.dist) { best = cur; best.fc[0] = fi[0]; best.fc[1] = fi[1]; }
+    double du[3], dv[3], limit2 = reach * reach;
+    int k, ku, kv, bu = 1, bv = 1, found = 0;
+    for (k = 0; k < 3; k++) {
+        du[k] = grid->wrap || k == 1 ? gr__interval_dist(f[0] + (k - 1) * wu, rec->bbox[0], rec->bbox[2]) : HUGE_VAL;
+        dv[k] = grid->wrap || k == 1 ? gr__interval_dist(f[1] + (k - 1) * wv, rec->bbox[1], rec->bbox[3]) : HUGE_VAL;
+        if (du[k] < du[bu]) bu = k;
+        if (dv[k] < dv[bv]) bv = k;
+    }
+    for (k = -1; k < 9; k++) {
+        double fi[2];
+        ku = k < 0 ? bu : k % 3;
+        kv = k < 0 ? bv : k / 3;
+        if ((k >= 0 && ku == bu && kv == bv) || !(du[ku] * du[ku] + dv[kv] * dv[kv] <= limit2)) continue;
+        fi[0] = f[0] + (ku - 1) * wu;
+        fi[1] = f[1] + (kv - 1) * wv;
+        if (gr__nearest(grid, rec, fi, limit2, c)) {
+            found = 1;
+            limit2 = c->dist * c->dist;
+            c->fc[0] = fi[0];
+            c->fc[1] = fi[1];
         }
-    best.groove = g;
-    *c = best;
+    }
+    c->groove = g;
+    return found;
 }
 
-static int gr__cmp_int(const void *a, const void *b)
-{
-    int x = *(const int *)a, y = *(const int *)b;
-    return x < y ? -1 : x > y;
-}
 static int gr__cmp_cand(const void *a, const void *b)
 {
     const gr__cand_t *x = (const gr__cand_t *)a, *y = (const gr__cand_t *)b;
     return x->xmin < y->xmin ? -1 : x->xmin > y->xmin ? 1 : (x->groove > y->groove) - (x->groove < y->groove);
 }
 
-static int gr__append_cell(const gr_grid_t *grid, int cell, int *ids, int n)
+/* Append the grooves of list[0..count) not seen yet. */
+static int gr__append_new(const int *list, int count, unsigned char *seen, int *ids, int n)
 {
-    int k, s = grid->cell_start_[cell];
-    for (k = 0; k < grid->cell_count_[cell]; k++) ids[n++] = grid->cell_items_[s + k];
+    int k;
+    for (k = 0; k < count; k++) {
+        int g = list[k];
+        if (seen[g >> 3] & (1u << (g & 7))) continue;
+        seen[g >> 3] = (unsigned char)(seen[g >> 3] | (1u << (g & 7)));
+        ids[n++] = g;
+    }
     return n;
 }
 
 /* Grooves whose paths cross the boundary cells of box (2m + 2(n-2) cells,
    §4.1), plus those anchored inside it (paths wholly inside the box, which
-   the boundary cells would miss). Returns the sorted, unique ids. */
-static int gr__gather(const gr_grid_t *grid, const double box[4], int *ids)
+   the boundary cells would miss). Returns the count of unique ids, in the
+   order found; `seen` (one bit per groove) is scratch. */
+static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char *seen, int *ids)
 {
     gr__cells_t c = gr__grid_cells(grid);
-    int fu, mu, fv, mv, i, j, n = 0, k, out;
+    int fu, mu, fv, mv, i, j, n = 0;
+    memset(seen, 0, (size_t)grid->groove_count / 8 + 1);
     gr__cell_range(gr__cell_coord(box[0], c.u0, c.cu), gr__cell_coord(box[2], c.u0, c.cu), c.nu, c.wrap, &fu, &mu);
     gr__cell_range(gr__cell_coord(box[1], c.v0, c.cv), gr__cell_coord(box[3], c.v0, c.cv), c.nv, c.wrap, &fv, &mv);
     for (j = 0; j < mv; j++) {
         int row = (fv + j) % c.nv;
         int edge_row = j == 0 || j == mv - 1;
         for (i = 0; i < mu; i += edge_row || mu == 1 ? 1 : mu - 1) {
-            n = gr__append_cell(grid, row * c.nu + (fu + i) % c.nu, ids, n);
+            int cell = row * c.nu + (fu + i) % c.nu;
+            n = gr__append_new(grid->cell_items_ + grid->cell_start_[cell], grid->cell_count_[cell], seen, ids, n);
             if (!edge_row && mu == 1) break;
         }
     }
@@ -1297,14 +1333,12 @@ static int gr__gather(const gr_grid_t *grid, const double box[4], int *ids)
             if (hi < lo || sum[hi + 1] - sum[lo] == 0) continue;
             for (i = lo; i <= hi; i++) {
                 int cell = row * c.nu + i;
-                for (k = grid->anchor_start_[cell]; k < grid->anchor_start_[cell + 1]; k++) ids[n++] = grid->anchor_items_[k];
+                n = gr__append_new(grid->anchor_items_ + grid->anchor_start_[cell],
+                                   grid->anchor_start_[cell + 1] - grid->anchor_start_[cell], seen, ids, n);
             }
         }
     }
-    if (n > 1) qsort(ids, (size_t)n, sizeof(int), gr__cmp_int);
-    for (k = 0, out = 0; k < n; k++)
-        if (out == 0 || ids[out - 1] != ids[k]) ids[out++] = ids[k];
-    return out;
+    return n;
 }
 
 /* Per-query settings after defaults. */
@@ -1400,7 +1434,7 @@ static double gr__perturb(const gr__groove_t *rec, double t)
 }
 
 /* tan θ of a direction (eq. 1), for box enlargement; huge near grazing. */
-static double gr__tan(const double *dir) { return hypot(dir[0], dir[1]) / dir[2]; }
+static double gr__tan(const double *dir) { return sqrt(dir[0] * dir[0] + dir[1] * dir[1]) / dir[2]; }
 
 /* The shared part of the footprint's extent: half-extent of F + aA1 + bA2
    along unit vector v. */
@@ -1445,7 +1479,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
                          const gr__scratch_t *s, gr_facet_list_t *list, int allow_split, double split_t[2])
 {
     const double *e = fp->view;
-    double f[2], box[4], ext_u, ext_v, tanmax, bref[2], eb, sq0, sq1, pm, margin, maxhalf = 0;
+    double f[2], box[4], ext_u, ext_v, radius, tanmax, bref[2], eb, sq0, sq1, pm, margin, maxhalf = 0;
     int n, k, ref = -1, np = 0, nf, npar = 0, i, point, nl = qs->light_count;
     gr__mfacet_t ground;
     f[0] = fp->center[0];
@@ -1476,19 +1510,21 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (sv < 0) box[1] += sv; else box[3] += sv;
         }
     }
-    n = gr__gather(grid, box, s->ids);
+    n = gr__gather(grid, box, s->seen, s->ids);
+    radius = sqrt(ext_u * ext_u + ext_v * ext_v);
     /* §4.2: each groove's nearest point, tangent and distance; keep those
        that can reach the footprint */
     for (k = 0; k < n; k++) {
         gr__cand_t *c = &s->cand[npar];
         const gr__groove_t *rec = &grid->grooves_[s->ids[k]];
-        double bn[2], reach;
-        gr__locate(grid, s->ids[k], f, c);
+        double bn[2], reach = rec->half_width + (rec->up > 0 ? rec->up * tanmax : 0);
+        /* a groove farther than its half width plus the footprint's radius
+           (and its peaks' projected height) cannot touch the footprint */
+        if (!gr__locate(grid, s->ids[k], f, reach + radius, c)) continue;
         bn[0] = -c->t[1];
         bn[1] = c->t[0];
         c->d = bn[0] * (c->fc[0] - c->p[0]) + bn[1] * (c->fc[1] - c->p[1]);
-        reach = rec->half_width + gr__extent(fp, bn) + (rec->up > 0 ? rec->up * tanmax : 0);
-        if (!(fabs(c->d) <= reach)) continue;
+        if (!(fabs(c->d) <= reach + gr__extent(fp, bn))) continue;
         if (c->end) {
             double along = fabs(c->t[0] * (c->fc[0] - c->p[0]) + c->t[1] * (c->fc[1] - c->p[1]));
             if (along <= gr__extent(fp, c->t) + rec->half_width) list->flags |= GR_LIST_PATH_END;
