@@ -363,6 +363,44 @@ FR_DEF fr_result_t fr_prune(const fr_tape_t *t, const iv_t box[3], void *scratch
                             unsigned int cap, fr_tape_t *out, iv_t *range);
 #endif
 
+
+#ifndef FR_NO_PARSER
+/* ---- the HyperFun-subset text front end
+
+     my_model(x[3], a[2], s[3]) {          -- coordinates, parameters, attributes
+         array c[3], xt[3];                 -- arrays are declared
+         c = [0, 0, 0.5];  xt = x;          -- literals and copies
+         hfShift3D(xt, a[1], 0, 0);         -- space maps change xt in place
+         r = hfSphere(xt, c, 1) | hfCylinderZ(x, c, 0.3) \ hfBlock(x, c, 1, 1, 1);
+         s[1] = abs(x[1]);                  -- attribute outputs
+         my_model = r & ~(0.5 - x[3]^2);
+     }
+   Scalars need no declaration; indices are 1-based constants. Operators,
+   loosest first: | & \ (R-union, intersection, difference, alpha from
+   fr_parse_desc_t), + -, * /, unary - and ~ (negation), ^ (right
+   associative). Functions: sqrt exp log sin cos atan abs and the library
+   calls hfSphere hfEllipsoid hfBlock hfCylinderX/Y/Z hfConeX/Y/Z
+   hfTorusX/Y/Z hfSuperEll (also hfSuperell) hfBlobby hfSoft hfNoiseG
+   hfBlendUni hfBlendInt hfShift3D hfScale3D hfRotate3DX/Y/Z hfTwistX/Y/Z
+   hfTaperX/Y/Z hfStretch3D, with HyperFun's argument orders. Comments:
+   -- or // to the end of the line, and block comments. Constant
+   subexpressions are folded. */
+typedef struct fr_parse_desc_t {
+    void *alloc_ctx;        /* passed to FR_MALLOC / FR_FREE */
+    const double *params;   /* values of the model's second array (a[]); missing ones are 0 */
+    unsigned int n_params;
+    double alpha;           /* alpha of | & \ (HyperFun's ALPHA): default 0,
+                               1 gives min/max; must be in [0, 1] */
+    unsigned int max_nodes; /* 0: 1<<20 */
+} fr_parse_desc_t;
+
+/* Parse len bytes of text into *out (free with fr_tape_free). On error
+   returns FR_ERR_PARSE (or FR_ERR_LIMIT / FR_ERR_OUT_OF_MEMORY) and fills
+   diag with line:column and a message. Never reads past text + len. */
+FR_DEF fr_result_t fr_parse(const char *text, size_t len, const fr_parse_desc_t *desc, fr_tape_t *out,
+                            fr_diag_t *diag);
+#endif
+
 /* ==== [end section: model] ==== */
 
 /* ==== [section: solvers] declarations: polynomial solvers ==== */
@@ -1981,6 +2019,1044 @@ FR_DEF fr_result_t fr_prune(const fr_tape_t *t, const iv_t box[3], void *scratch
 }
 #endif /* FR_NO_INTERVAL */
 
+
+#ifndef FR_NO_PARSER
+/* ---- parser: a recursive-descent reader that calls the builder directly */
+
+#define FR__P_MAX_SYMS 256      /* variables and arrays per model */
+#define FR__P_MAX_NAME 48       /* identifier length */
+#define FR__P_POOL 16384        /* array elements in all */
+#define FR__P_MAX_DEPTH 200     /* expression nesting */
+#define FR__P_MAX_ARGS 16
+
+typedef enum fr__tok_t {
+    FR__T_END, FR__T_NUM, FR__T_ID, FR__T_PUNCT
+} fr__tok_t;
+
+typedef struct fr__sym_t {
+    char name[FR__P_MAX_NAME];
+    int is_array;
+    unsigned int len;  /* array length */
+    unsigned int off;  /* array: first element in pool; scalar: unused */
+    fr_node_t node;    /* scalar value */
+    int assigned;
+} fr__sym_t;
+
+typedef struct fr__parser_t {
+    const char *s;
+    size_t len, pos;
+    int line, col;
+    /* current token */
+    fr__tok_t tok;
+    char punct;
+    double num;
+    char id[FR__P_MAX_NAME];
+    int tline, tcol;
+    fr_builder_t b;
+    fr_diag_t *diag;
+    fr_result_t err;
+    int depth;
+    double alpha;
+    fr__sym_t *syms;
+    unsigned int n_syms;
+    fr_node_t *pool;
+    unsigned int n_pool;
+    int coords, params, attrs, model; /* symbol indices, -1 if none */
+} fr__parser_t;
+
+static void fr__perr(fr__parser_t *p, fr_result_t r, const char *msg)
+{
+    if (p->err != FR_OK) return;
+    p->err = r;
+    if (p->diag) {
+        p->diag->result = r;
+        p->diag->line = p->tline;
+        p->diag->column = p->tcol;
+        p->diag->element = -1;
+        snprintf(p->diag->message, sizeof p->diag->message, "%d:%d: %.130s", p->tline, p->tcol, msg);
+    }
+}
+
+/* an error at an earlier token's position */
+static void fr__perr_at(fr__parser_t *p, int line, int col, const char *msg)
+{
+    p->tline = line;
+    p->tcol = col;
+    fr__perr(p, FR_ERR_PARSE, msg);
+}
+
+static int fr__pc(const fr__parser_t *p, size_t k) { return p->pos + k < p->len ? (unsigned char)p->s[p->pos + k] : -1; }
+static void fr__padv(fr__parser_t *p)
+{
+    if (p->s[p->pos] == '\n') {
+        p->line++;
+        p->col = 1;
+    } else
+        p->col++;
+    p->pos++;
+}
+static int fr__isalpha(int c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+static int fr__isdigit(int c) { return c >= '0' && c <= '9'; }
+
+/* next token; comments: -- and // to end of line, slash-star blocks */
+static void fr__next(fr__parser_t *p)
+{
+    int c;
+    char msg[96];
+    for (;;) {
+        c = fr__pc(p, 0);
+        if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v') {
+            fr__padv(p);
+        } else if ((c == '-' && fr__pc(p, 1) == '-') || (c == '/' && fr__pc(p, 1) == '/')) {
+            while (fr__pc(p, 0) != -1 && fr__pc(p, 0) != '\n') fr__padv(p);
+        } else if (c == '/' && fr__pc(p, 1) == '*') {
+            p->tline = p->line;
+            p->tcol = p->col;
+            fr__padv(p);
+            fr__padv(p);
+            while (fr__pc(p, 0) != -1 && !(fr__pc(p, 0) == '*' && fr__pc(p, 1) == '/')) fr__padv(p);
+            if (fr__pc(p, 0) == -1) {
+                fr__perr(p, FR_ERR_PARSE, "unterminated comment");
+                p->tok = FR__T_END;
+                return;
+            }
+            fr__padv(p);
+            fr__padv(p);
+        } else
+            break;
+    }
+    p->tline = p->line;
+    p->tcol = p->col;
+    if (c == -1) {
+        p->tok = FR__T_END;
+        return;
+    }
+    if (fr__isalpha(c)) {
+        size_t n = 0;
+        while (fr__isalpha(fr__pc(p, 0)) || fr__isdigit(fr__pc(p, 0))) {
+            if (n + 1 >= FR__P_MAX_NAME) {
+                fr__perr(p, FR_ERR_PARSE, "identifier too long");
+                p->tok = FR__T_END;
+                return;
+            }
+            p->id[n++] = (char)fr__pc(p, 0);
+            fr__padv(p);
+        }
+        p->id[n] = 0;
+        p->tok = FR__T_ID;
+        return;
+    }
+    if (fr__isdigit(c) || (c == '.' && fr__isdigit(fr__pc(p, 1)))) {
+        char buf[72];
+        size_t n = 0;
+        int e = 0;
+        while (n + 1 < sizeof buf) {
+            int d = fr__pc(p, 0);
+            if (fr__isdigit(d) || d == '.' || ((d == 'e' || d == 'E') && !e)) {
+                if (d == 'e' || d == 'E') {
+                    e = 1;
+                    buf[n++] = (char)d;
+                    fr__padv(p);
+                    d = fr__pc(p, 0);
+                    if (d == '+' || d == '-') {
+                        buf[n++] = (char)d;
+                        fr__padv(p);
+                    }
+                    continue;
+                }
+                buf[n++] = (char)d;
+                fr__padv(p);
+            } else
+                break;
+        }
+        buf[n] = 0;
+        if (n + 1 >= sizeof buf) {
+            fr__perr(p, FR_ERR_PARSE, "number too long");
+            p->tok = FR__T_END;
+            return;
+        }
+        {
+            char *end = NULL;
+            p->num = strtod(buf, &end);
+            if (!end || *end != 0) {
+                snprintf(msg, sizeof msg, "malformed number '%.40s'", buf);
+                fr__perr(p, FR_ERR_PARSE, msg);
+            } else if (!isfinite(p->num) || fabs(p->num) > 1e300) {
+                snprintf(msg, sizeof msg, "number out of range '%.40s'", buf);
+                fr__perr(p, FR_ERR_PARSE, msg);
+            }
+        }
+        p->tok = FR__T_NUM;
+        return;
+    }
+    if (strchr("()[]{},;=+-*/^|&\\~", c) && c != 0) {
+        p->punct = (char)c;
+        p->tok = FR__T_PUNCT;
+        fr__padv(p);
+        return;
+    }
+    if (c >= 32 && c < 127)
+        snprintf(msg, sizeof msg, "unexpected character '%c'", c);
+    else
+        snprintf(msg, sizeof msg, "unexpected byte 0x%02x", (unsigned int)c);
+    fr__perr(p, FR_ERR_PARSE, msg);
+    p->tok = FR__T_END;
+}
+
+static int fr__is(const fr__parser_t *p, char c) { return p->tok == FR__T_PUNCT && p->punct == c; }
+static int fr__expect(fr__parser_t *p, char c, const char *ctx)
+{
+    char msg[120];
+    if (p->err != FR_OK) return 0;
+    if (fr__is(p, c)) {
+        fr__next(p);
+        return 1;
+    }
+    snprintf(msg, sizeof msg, "expected '%c' %s", c, ctx);
+    fr__perr(p, FR_ERR_PARSE, msg);
+    return 0;
+}
+
+static int fr__find_sym(const fr__parser_t *p, const char *name)
+{
+    unsigned int i;
+    for (i = 0; i < p->n_syms; i++)
+        if (!strcmp(p->syms[i].name, name)) return (int)i;
+    return -1;
+}
+static int fr__new_sym(fr__parser_t *p, const char *name, int is_array, unsigned int len)
+{
+    fr__sym_t *s;
+    if (p->n_syms >= FR__P_MAX_SYMS) {
+        fr__perr(p, FR_ERR_LIMIT, "too many variables");
+        return -1;
+    }
+    if (is_array && (len == 0 || len > FR__P_POOL - p->n_pool)) {
+        fr__perr(p, FR_ERR_LIMIT, len == 0 ? "array length must be at least 1" : "arrays too large in total");
+        return -1;
+    }
+    s = &p->syms[p->n_syms];
+    memset(s, 0, sizeof *s);
+    memcpy(s->name, name, strlen(name) + 1);
+    s->is_array = is_array;
+    s->len = len;
+    s->node = FR_NODE_NONE;
+    if (is_array) {
+        unsigned int i;
+        s->off = p->n_pool;
+        for (i = 0; i < len; i++) p->pool[p->n_pool + i] = FR_NODE_NONE;
+        p->n_pool += len;
+    }
+    return (int)p->n_syms++;
+}
+
+/* ---- values: an expression is a scalar node or a whole array (by symbol) */
+typedef struct fr__val_t {
+    fr_node_t node;
+    int array; /* symbol index of an array value, -1 for scalars */
+} fr__val_t;
+
+static fr__val_t fr__scalar(fr_node_t n)
+{
+    fr__val_t v;
+    v.node = n;
+    v.array = -1;
+    return v;
+}
+
+static int fr__is_const(const fr__parser_t *p, fr_node_t n, double *v)
+{
+    if (n == FR_NODE_NONE || n >= p->b.n || p->b.code[n].op != FR_OP_CONST) return 0;
+    if (v) *v = p->b.code[n].k;
+    return 1;
+}
+
+/* node from a builder call; a builder error becomes a parse error at the current token */
+static fr_node_t fr__chk(fr__parser_t *p, fr_node_t n)
+{
+    if (n == FR_NODE_NONE && p->err == FR_OK) {
+        const char *m = p->b.diag.message;
+        fr__perr(p, p->b.diag.result != FR_OK ? p->b.diag.result : FR_ERR_PARSE, *m ? m : "invalid expression");
+    }
+    return n;
+}
+
+/* arithmetic with constant folding */
+static fr_node_t fr__arith(fr__parser_t *p, char op, fr_node_t a, fr_node_t c)
+{
+    double x, y, r = 0;
+    if (p->err != FR_OK) return FR_NODE_NONE;
+    if (fr__is_const(p, a, &x) && fr__is_const(p, c, &y) && op != '|' && op != '&' && op != '\\') {
+        switch (op) {
+        case '+': r = x + y; break;
+        case '-': r = x - y; break;
+        case '*': r = x * y; break;
+        case '/': r = x / y; break;
+        default: r = NAN; break;
+        }
+        if (!isfinite(r)) {
+            fr__perr(p, FR_ERR_PARSE, "constant expression is not finite (division by zero or overflow)");
+            return FR_NODE_NONE;
+        }
+        return fr__chk(p, fr_const(&p->b, r));
+    }
+    switch (op) {
+    case '+': return fr__chk(p, fr_add(&p->b, a, c));
+    case '-': return fr__chk(p, fr_sub(&p->b, a, c));
+    case '*': return fr__chk(p, fr_mul(&p->b, a, c));
+    case '/': return fr__chk(p, fr_div(&p->b, a, c));
+    case '|': return fr__chk(p, fr_union(&p->b, a, c, p->alpha));
+    case '&': return fr__chk(p, fr_intersect(&p->b, a, c, p->alpha));
+    default: return fr__chk(p, fr_subtract(&p->b, a, c, p->alpha));
+    }
+}
+
+static fr_node_t fr__power(fr__parser_t *p, fr_node_t a, fr_node_t e)
+{
+    double x, y;
+    if (p->err != FR_OK) return FR_NODE_NONE;
+    if (fr__is_const(p, e, &y)) {
+        if (fr__is_const(p, a, &x)) {
+            double r = pow(x, y);
+            if (!isfinite(r)) {
+                fr__perr(p, FR_ERR_PARSE, "constant power is not finite");
+                return FR_NODE_NONE;
+            }
+            return fr__chk(p, fr_const(&p->b, r));
+        }
+        if (y == floor(y) && fabs(y) <= 64) return fr__chk(p, fr_powi(&p->b, a, (int)y));
+        if (y > 0) return fr__chk(p, fr_powc(&p->b, a, y));
+    }
+    /* general a^e = exp(e ln a), as C's pow for a > 0 */
+    return fr__chk(p, fr_unary(&p->b, FR_OP_EXP, fr_mul(&p->b, e, fr_unary(&p->b, FR_OP_LOG, a))));
+}
+
+static fr__val_t fr__expr(fr__parser_t *p);
+
+static fr_node_t fr__scalar_expr(fr__parser_t *p, const char *ctx)
+{
+    fr__val_t v = fr__expr(p);
+    char msg[120];
+    if (p->err == FR_OK && v.array >= 0) {
+        snprintf(msg, sizeof msg, "array '%s' used where a number is expected %s", p->syms[v.array].name, ctx);
+        fr__perr(p, FR_ERR_PARSE, msg);
+        return FR_NODE_NONE;
+    }
+    return v.node;
+}
+
+/* a constant 1-based index into symbol si, as a pool offset */
+static int fr__index(fr__parser_t *p, int si, unsigned int *slot)
+{
+    fr_node_t n;
+    double v;
+    char msg[120];
+    int line = p->tline, col = p->tcol;
+    n = fr__scalar_expr(p, "as an index");
+    if (p->err != FR_OK) return 0;
+    if (!fr__is_const(p, n, &v)) {
+        fr__perr_at(p, line, col, "array index must be a constant");
+        return 0;
+    }
+    if (v != floor(v) || v < 1 || v > (double)p->syms[si].len) {
+        snprintf(msg, sizeof msg, "index %g out of range 1..%u for '%s'", v, p->syms[si].len, p->syms[si].name);
+        fr__perr_at(p, line, col, msg);
+        return 0;
+    }
+    *slot = p->syms[si].off + (unsigned int)v - 1;
+    return 1;
+}
+
+/* ---- library calls */
+
+typedef enum fr__fn_t {
+    FR__F_SQRT, FR__F_EXP, FR__F_LOG, FR__F_SIN, FR__F_COS, FR__F_ATAN, FR__F_ABS,
+    FR__F_SPHERE, FR__F_ELLIPSOID, FR__F_BLOCK, FR__F_CYL, FR__F_CONE, FR__F_TORUS, FR__F_SUPERELL,
+    FR__F_BLOBBY, FR__F_SOFT, FR__F_NOISEG, FR__F_BLENDUNI, FR__F_BLENDINT,
+    FR__F_SHIFT, FR__F_SCALE, FR__F_ROTATE, FR__F_TWIST, FR__F_TAPER, FR__F_STRETCH
+} fr__fn_t;
+
+typedef struct fr__fninfo_t {
+    const char *name;
+    int fn, axis, nargs;
+    const char *sig; /* per argument: p point array (3), a constant array, k constant, n node, m mutable point array */
+} fr__fninfo_t;
+
+static const fr__fninfo_t fr__fns[] = {
+    {"sqrt", FR__F_SQRT, 0, 1, "n"}, {"exp", FR__F_EXP, 0, 1, "n"}, {"log", FR__F_LOG, 0, 1, "n"},
+    {"sin", FR__F_SIN, 0, 1, "n"}, {"cos", FR__F_COS, 0, 1, "n"}, {"atan", FR__F_ATAN, 0, 1, "n"},
+    {"abs", FR__F_ABS, 0, 1, "n"},
+    {"hfSphere", FR__F_SPHERE, 0, 3, "pak"}, {"hfEllipsoid", FR__F_ELLIPSOID, 0, 5, "pakkk"},
+    {"hfBlock", FR__F_BLOCK, 0, 5, "pakkk"},
+    {"hfCylinderX", FR__F_CYL, 0, 3, "pak"}, {"hfCylinderY", FR__F_CYL, 1, 3, "pak"},
+    {"hfCylinderZ", FR__F_CYL, 2, 3, "pak"},
+    {"hfConeX", FR__F_CONE, 0, 3, "pak"}, {"hfConeY", FR__F_CONE, 1, 3, "pak"}, {"hfConeZ", FR__F_CONE, 2, 3, "pak"},
+    {"hfTorusX", FR__F_TORUS, 0, 4, "pakk"}, {"hfTorusY", FR__F_TORUS, 1, 4, "pakk"},
+    {"hfTorusZ", FR__F_TORUS, 2, 4, "pakk"},
+    {"hfSuperEll", FR__F_SUPERELL, 0, 7, "pakkkkk"}, {"hfSuperell", FR__F_SUPERELL, 0, 7, "pakkkkk"},
+    {"hfBlobby", FR__F_BLOBBY, 0, 7, "paaaaak"}, {"hfSoft", FR__F_SOFT, 0, 6, "paaaak"},
+    {"hfNoiseG", FR__F_NOISEG, 0, 4, "pkkk"},
+    {"hfBlendUni", FR__F_BLENDUNI, 0, 5, "nnkkk"}, {"hfBlendInt", FR__F_BLENDINT, 0, 5, "nnkkk"},
+    {"hfShift3D", FR__F_SHIFT, 0, 4, "mkkk"}, {"hfScale3D", FR__F_SCALE, 0, 4, "mkkk"},
+    {"hfRotate3DX", FR__F_ROTATE, 0, 2, "mk"}, {"hfRotate3DY", FR__F_ROTATE, 1, 2, "mk"},
+    {"hfRotate3DZ", FR__F_ROTATE, 2, 2, "mk"},
+    {"hfTwistX", FR__F_TWIST, 0, 5, "mkkkk"}, {"hfTwistY", FR__F_TWIST, 1, 5, "mkkkk"},
+    {"hfTwistZ", FR__F_TWIST, 2, 5, "mkkkk"},
+    {"hfTaperX", FR__F_TAPER, 0, 5, "mkkkk"}, {"hfTaperY", FR__F_TAPER, 1, 5, "mkkkk"},
+    {"hfTaperZ", FR__F_TAPER, 2, 5, "mkkkk"},
+    {"hfStretch3D", FR__F_STRETCH, 0, 5, "makkk"},
+};
+
+typedef struct fr__args_t {
+    fr__val_t v[FR__P_MAX_ARGS];
+    double k[FR__P_MAX_ARGS];
+    int n;
+} fr__args_t;
+
+static fr_p3_t fr__arr_p3(const fr__parser_t *p, int si)
+{
+    fr_p3_t q;
+    q.x = p->pool[p->syms[si].off];
+    q.y = p->pool[p->syms[si].off + 1];
+    q.z = p->pool[p->syms[si].off + 2];
+    return q;
+}
+
+/* check the arguments against the signature; constant arrays are copied to k-space by the caller */
+static int fr__check_args(fr__parser_t *p, const fr__fninfo_t *f, fr__args_t *a)
+{
+    int i;
+    char msg[150];
+    if (a->n != f->nargs) {
+        snprintf(msg, sizeof msg, "%s expects %d argument%s, got %d", f->name, f->nargs, f->nargs == 1 ? "" : "s", a->n);
+        fr__perr(p, FR_ERR_PARSE, msg);
+        return 0;
+    }
+    for (i = 0; i < a->n; i++) {
+        char c = f->sig[i];
+        int si = a->v[i].array;
+        if (c == 'n' || c == 'k') {
+            if (si >= 0) {
+                snprintf(msg, sizeof msg, "%s argument %d must be a number, not array '%s'", f->name, i + 1, p->syms[si].name);
+                fr__perr(p, FR_ERR_PARSE, msg);
+                return 0;
+            }
+            if (c == 'k' && !fr__is_const(p, a->v[i].node, &a->k[i])) {
+                snprintf(msg, sizeof msg, "%s argument %d must be a constant", f->name, i + 1);
+                fr__perr(p, FR_ERR_PARSE, msg);
+                return 0;
+            }
+        } else {
+            unsigned int j;
+            if (si < 0) {
+                snprintf(msg, sizeof msg, "%s argument %d must be an array", f->name, i + 1);
+                fr__perr(p, FR_ERR_PARSE, msg);
+                return 0;
+            }
+            if ((c == 'p' || c == 'm') && p->syms[si].len != 3) {
+                snprintf(msg, sizeof msg, "%s argument %d must be an array of 3 coordinates", f->name, i + 1);
+                fr__perr(p, FR_ERR_PARSE, msg);
+                return 0;
+            }
+            if (c == 'm' && (si == p->coords || si == p->params)) {
+                snprintf(msg, sizeof msg, "%s cannot change '%s'; copy it to a local array first", f->name, p->syms[si].name);
+                fr__perr(p, FR_ERR_PARSE, msg);
+                return 0;
+            }
+            for (j = 0; j < p->syms[si].len; j++) {
+                fr_node_t e = p->pool[p->syms[si].off + j];
+                if (e == FR_NODE_NONE) {
+                    snprintf(msg, sizeof msg, "array '%s' element %u is used before it is set", p->syms[si].name, j + 1);
+                    fr__perr(p, FR_ERR_PARSE, msg);
+                    return 0;
+                }
+                if (c == 'a' && !fr__is_const(p, e, NULL)) {
+                    snprintf(msg, sizeof msg, "%s argument %d must be an array of constants", f->name, i + 1);
+                    fr__perr(p, FR_ERR_PARSE, msg);
+                    return 0;
+                }
+            }
+        }
+    }
+    return 1;
+}
+
+static double fr__arr_k(const fr__parser_t *p, int si, unsigned int j)
+{
+    return p->b.code[p->pool[p->syms[si].off + j]].k;
+}
+
+static int fr__arr3(fr__parser_t *p, int si, double out[3], const char *fname)
+{
+    char msg[120];
+    if (p->syms[si].len != 3) {
+        snprintf(msg, sizeof msg, "%s: array '%s' must have 3 elements", fname, p->syms[si].name);
+        fr__perr(p, FR_ERR_PARSE, msg);
+        return 0;
+    }
+    out[0] = fr__arr_k(p, si, 0);
+    out[1] = fr__arr_k(p, si, 1);
+    out[2] = fr__arr_k(p, si, 2);
+    return 1;
+}
+
+/* skeleton arrays x0,y0,z0 + per-element parameters (HyperFun argument order) */
+static fr_node_t fr__skeletal_call(fr__parser_t *p, const fr__fninfo_t *f, fr__args_t *a)
+{
+    fr_skeleton_t el[64];
+    unsigned int n = p->syms[a->v[1].array].len, i;
+    int k, np = f->fn == FR__F_BLOBBY ? 6 : 5; /* arrays are arguments 1 .. np-1, the threshold is argument np */
+    for (k = 1; k < np; k++)
+        if (p->syms[a->v[k].array].len != n) {
+            char msg[120];
+            snprintf(msg, sizeof msg, "%s: arrays must have equal lengths", f->name);
+            fr__perr(p, FR_ERR_PARSE, msg);
+            return FR_NODE_NONE;
+        }
+    if (n > 64) {
+        fr__perr(p, FR_ERR_LIMIT, "at most 64 skeleton elements per call");
+        return FR_NODE_NONE;
+    }
+    for (i = 0; i < n; i++) {
+        el[i].a[0] = el[i].b[0] = fr__arr_k(p, a->v[1].array, i);
+        el[i].a[1] = el[i].b[1] = fr__arr_k(p, a->v[2].array, i);
+        el[i].a[2] = el[i].b[2] = fr__arr_k(p, a->v[3].array, i);
+        if (f->fn == FR__F_BLOBBY) { /* hfBlobby(x, x0, y0, z0, a, b, T): b exp(-a r^2) */
+            el[i].width = fr__arr_k(p, a->v[4].array, i);
+            el[i].weight = fr__arr_k(p, a->v[5].array, i);
+        } else { /* hfSoft(x, x0, y0, z0, d, T) */
+            el[i].width = fr__arr_k(p, a->v[4].array, i);
+            el[i].weight = 1.0;
+        }
+    }
+    return fr_skeletal(&p->b, fr__arr_p3(p, a->v[0].array), f->fn == FR__F_BLOBBY ? FR_KERNEL_BLOBBY : FR_KERNEL_SOFT,
+                       el, n, a->k[np]);
+}
+
+static void fr__set_p3(fr__parser_t *p, int si, fr_p3_t q)
+{
+    if (q.x == FR_NODE_NONE) return;
+    p->pool[p->syms[si].off] = q.x;
+    p->pool[p->syms[si].off + 1] = q.y;
+    p->pool[p->syms[si].off + 2] = q.z;
+}
+
+static fr__val_t fr__call(fr__parser_t *p, const fr__fninfo_t *f, fr__args_t *a)
+{
+    fr_builder_t *b = &p->b;
+    fr_node_t r = FR_NODE_NONE;
+    double c[3], s[3];
+    fr_p3_t X;
+    if (!fr__check_args(p, f, a)) return fr__scalar(FR_NODE_NONE);
+    X = a->v[0].array >= 0 ? fr__arr_p3(p, a->v[0].array) : fr_coords(b);
+    if (f->nargs > 1 && f->sig[1] == 'a' && f->fn != FR__F_BLOBBY && f->fn != FR__F_SOFT &&
+        !fr__arr3(p, a->v[1].array, c, f->name))
+        return fr__scalar(FR_NODE_NONE);
+    switch ((fr__fn_t)f->fn) {
+    case FR__F_SQRT: case FR__F_EXP: case FR__F_LOG: case FR__F_SIN: case FR__F_COS: case FR__F_ATAN:
+    case FR__F_ABS: {
+        static const fr_op_t ops[] = {FR_OP_SQRT, FR_OP_EXP, FR_OP_LOG, FR_OP_SIN, FR_OP_COS, FR_OP_ATAN, FR_OP_ABS};
+        double v;
+        if (fr__is_const(p, a->v[0].node, &v)) {
+            double rv = f->fn == FR__F_SQRT ? sqrt(v) : f->fn == FR__F_EXP ? exp(v) : f->fn == FR__F_LOG ? log(v)
+                      : f->fn == FR__F_SIN ? sin(v) : f->fn == FR__F_COS ? cos(v) : f->fn == FR__F_ATAN ? atan(v) : fabs(v);
+            if (!isfinite(rv)) {
+                fr__perr(p, FR_ERR_PARSE, "constant function value is not finite");
+                return fr__scalar(FR_NODE_NONE);
+            }
+            r = fr_const(b, rv);
+        } else
+            r = fr_unary(b, ops[f->fn - FR__F_SQRT], a->v[0].node);
+        break;
+    }
+    case FR__F_SPHERE: r = fr_sphere(b, X, c, a->k[2]); break;
+    case FR__F_ELLIPSOID: r = fr_ellipsoid(b, X, c, a->k[2], a->k[3], a->k[4]); break;
+    case FR__F_BLOCK: s[0] = a->k[2]; s[1] = a->k[3]; s[2] = a->k[4]; r = fr_block(b, X, c, s, p->alpha); break;
+    case FR__F_CYL: r = fr_cylinder(b, X, f->axis, c, a->k[2]); break;
+    case FR__F_CONE: r = fr_cone(b, X, f->axis, c, a->k[2]); break;
+    case FR__F_TORUS: r = fr_torus(b, X, f->axis, c, a->k[2], a->k[3]); break;
+    case FR__F_SUPERELL: s[0] = a->k[2]; s[1] = a->k[3]; s[2] = a->k[4]; r = fr_superellipsoid(b, X, c, s, a->k[5], a->k[6]); break;
+    case FR__F_BLOBBY: case FR__F_SOFT: r = fr__skeletal_call(p, f, a); break;
+    case FR__F_NOISEG: r = fr_noise_gardner(b, X, a->k[1], a->k[2], a->k[3]); break;
+    case FR__F_BLENDUNI: r = fr_blend_union(b, a->v[0].node, a->v[1].node, a->k[2], a->k[3], a->k[4]); break;
+    case FR__F_BLENDINT: r = fr_blend_intersect(b, a->v[0].node, a->v[1].node, a->k[2], a->k[3], a->k[4]); break;
+    case FR__F_SHIFT: s[0] = a->k[1]; s[1] = a->k[2]; s[2] = a->k[3]; X = fr_translate(b, X, s); break;
+    case FR__F_SCALE: s[0] = a->k[1]; s[1] = a->k[2]; s[2] = a->k[3]; X = fr_scale(b, X, s); break;
+    case FR__F_ROTATE: X = fr_rotate(b, X, f->axis, a->k[1]); break;
+    case FR__F_TWIST: X = fr_twist(b, X, f->axis, a->k[1], a->k[2], a->k[3], a->k[4]); break;
+    case FR__F_TAPER: X = fr_taper(b, X, f->axis, a->k[1], a->k[2], a->k[3], a->k[4]); break;
+    case FR__F_STRETCH: s[0] = a->k[2]; s[1] = a->k[3]; s[2] = a->k[4]; X = fr_stretch(b, X, c, s); break;
+    }
+    if (f->sig[0] == 'm') {
+        /* space maps change their array in place and return 1, as in HyperFun */
+        if (X.x == FR_NODE_NONE) return fr__scalar(fr__chk(p, FR_NODE_NONE));
+        fr__set_p3(p, a->v[0].array, X);
+        r = fr_const(b, 1.0);
+    }
+    return fr__scalar(fr__chk(p, r));
+}
+
+static const fr__fninfo_t *fr__lookup_fn(const char *name)
+{
+    size_t i;
+    for (i = 0; i < sizeof fr__fns / sizeof fr__fns[0]; i++)
+        if (!strcmp(fr__fns[i].name, name)) return &fr__fns[i];
+    return NULL;
+}
+
+/* ---- expressions */
+
+static fr__val_t fr__primary(fr__parser_t *p)
+{
+    char msg[120], name[FR__P_MAX_NAME];
+    int si, nline, ncol;
+    if (p->err != FR_OK) return fr__scalar(FR_NODE_NONE);
+    if (p->tok == FR__T_NUM) {
+        double v = p->num;
+        fr__next(p);
+        return fr__scalar(fr__chk(p, fr_const(&p->b, v)));
+    }
+    if (fr__is(p, '(')) {
+        fr__val_t v;
+        fr__next(p);
+        v = fr__expr(p);
+        fr__expect(p, ')', "to close '('");
+        return v;
+    }
+    if (p->tok != FR__T_ID) {
+        if (p->tok == FR__T_END) fr__perr(p, FR_ERR_PARSE, "unexpected end of input in an expression");
+        else {
+            snprintf(msg, sizeof msg, "unexpected '%c' in an expression", p->punct);
+            fr__perr(p, FR_ERR_PARSE, msg);
+        }
+        return fr__scalar(FR_NODE_NONE);
+    }
+    memcpy(name, p->id, sizeof name);
+    nline = p->tline;
+    ncol = p->tcol;
+    fr__next(p);
+    if (fr__is(p, '(')) {
+        const fr__fninfo_t *f = fr__lookup_fn(name);
+        fr__args_t a;
+        if (!f) {
+            snprintf(msg, sizeof msg, "unknown function '%s'", name);
+            fr__perr_at(p, nline, ncol, msg);
+            return fr__scalar(FR_NODE_NONE);
+        }
+        fr__next(p);
+        a.n = 0;
+        if (!fr__is(p, ')'))
+            for (;;) {
+                fr__val_t v = fr__expr(p);
+                if (p->err != FR_OK) return fr__scalar(FR_NODE_NONE);
+                if (a.n >= FR__P_MAX_ARGS) {
+                    snprintf(msg, sizeof msg, "%s: too many arguments", name);
+                    fr__perr(p, FR_ERR_PARSE, msg);
+                    return fr__scalar(FR_NODE_NONE);
+                }
+                a.v[a.n++] = v;
+                if (!fr__is(p, ',')) break;
+                fr__next(p);
+            }
+        if (!fr__expect(p, ')', "to close the argument list")) return fr__scalar(FR_NODE_NONE);
+        /* errors in the call itself point at the function name */
+        {
+            int tl = p->tline, tc = p->tcol;
+            fr__val_t v;
+            p->tline = nline;
+            p->tcol = ncol;
+            v = fr__call(p, f, &a);
+            p->tline = tl;
+            p->tcol = tc;
+            return v;
+        }
+    }
+    si = fr__find_sym(p, name);
+    if (si < 0) {
+        snprintf(msg, sizeof msg, "unknown variable '%s'", name);
+        fr__perr_at(p, nline, ncol, msg);
+        return fr__scalar(FR_NODE_NONE);
+    }
+    if (fr__is(p, '[')) {
+        unsigned int slot;
+        if (!p->syms[si].is_array) {
+            snprintf(msg, sizeof msg, "'%s' is not an array", name);
+            fr__perr(p, FR_ERR_PARSE, msg);
+            return fr__scalar(FR_NODE_NONE);
+        }
+        fr__next(p);
+        if (!fr__index(p, si, &slot) || !fr__expect(p, ']', "after the index")) return fr__scalar(FR_NODE_NONE);
+        if (p->pool[slot] == FR_NODE_NONE) {
+            snprintf(msg, sizeof msg, "'%s[%u]' is used before it is set", name, slot - p->syms[si].off + 1);
+            fr__perr(p, FR_ERR_PARSE, msg);
+        }
+        return fr__scalar(p->pool[slot]);
+    }
+    if (p->syms[si].is_array) {
+        fr__val_t v;
+        v.node = FR_NODE_NONE;
+        v.array = si;
+        return v;
+    }
+    if (!p->syms[si].assigned) {
+        snprintf(msg, sizeof msg, "'%s' is used before it is set", name);
+        fr__perr(p, FR_ERR_PARSE, msg);
+    }
+    return fr__scalar(p->syms[si].node);
+}
+
+static fr__val_t fr__unary_expr(fr__parser_t *p);
+
+static fr__val_t fr__power_expr(fr__parser_t *p)
+{
+    fr__val_t v = fr__primary(p);
+    if (p->err == FR_OK && fr__is(p, '^')) {
+        fr_node_t e;
+        if (v.array >= 0) {
+            fr__perr(p, FR_ERR_PARSE, "'^' needs a number on its left");
+            return v;
+        }
+        fr__next(p);
+        e = fr__unary_expr(p).node; /* right associative: a^b^c = a^(b^c) */
+        return fr__scalar(fr__power(p, v.node, e));
+    }
+    return v;
+}
+
+static fr__val_t fr__unary_expr(fr__parser_t *p)
+{
+    fr__val_t v;
+    if (p->err != FR_OK) return fr__scalar(FR_NODE_NONE);
+    if (++p->depth > FR__P_MAX_DEPTH) {
+        fr__perr(p, FR_ERR_LIMIT, "expression nested too deeply");
+        return fr__scalar(FR_NODE_NONE);
+    }
+    if (fr__is(p, '-') || fr__is(p, '~') || fr__is(p, '+')) {
+        char op = p->punct;
+        double k;
+        fr__next(p);
+        v = fr__unary_expr(p);
+        if (p->err == FR_OK && v.array >= 0) fr__perr(p, FR_ERR_PARSE, "unary operator applied to an array");
+        if (p->err == FR_OK && op != '+')
+            v.node = fr__is_const(p, v.node, &k) ? fr__chk(p, fr_const(&p->b, -k)) : fr__chk(p, fr_negate(&p->b, v.node));
+    } else
+        v = fr__power_expr(p);
+    p->depth--;
+    return v;
+}
+
+static fr__val_t fr__binary_level(fr__parser_t *p, int level)
+{
+    static const char *ops[3] = {"|&\\", "+-", "*/"};
+    fr__val_t v = level == 2 ? fr__unary_expr(p) : fr__binary_level(p, level + 1);
+    while (p->err == FR_OK && p->tok == FR__T_PUNCT && strchr(ops[level], p->punct)) {
+        char op = p->punct;
+        fr__val_t w;
+        fr__next(p);
+        w = level == 2 ? fr__unary_expr(p) : fr__binary_level(p, level + 1);
+        if (p->err != FR_OK) break;
+        if (v.array >= 0 || w.array >= 0) {
+            fr__perr(p, FR_ERR_PARSE, "arithmetic on a whole array");
+            break;
+        }
+        v = fr__scalar(fr__arith(p, op, v.node, w.node));
+    }
+    return v;
+}
+
+static fr__val_t fr__expr(fr__parser_t *p)
+{
+    fr__val_t v;
+    if (++p->depth > FR__P_MAX_DEPTH) {
+        fr__perr(p, FR_ERR_LIMIT, "expression nested too deeply");
+        return fr__scalar(FR_NODE_NONE);
+    }
+    v = fr__binary_level(p, 0);
+    p->depth--;
+    return v;
+}
+
+/* ---- statements */
+
+static void fr__array_decl(fr__parser_t *p)
+{
+    char msg[120];
+    fr__next(p); /* 'array' */
+    for (;;) {
+        char name[FR__P_MAX_NAME];
+        double n;
+        if (p->tok != FR__T_ID) {
+            fr__perr(p, FR_ERR_PARSE, "expected an array name after 'array'");
+            return;
+        }
+        memcpy(name, p->id, sizeof name);
+        if (fr__find_sym(p, name) >= 0) {
+            snprintf(msg, sizeof msg, "'%s' is already defined", name);
+            fr__perr(p, FR_ERR_PARSE, msg);
+            return;
+        }
+        fr__next(p);
+        if (!fr__expect(p, '[', "after the array name")) return;
+        if (p->tok != FR__T_NUM) {
+            fr__perr(p, FR_ERR_PARSE, "array length must be a number");
+            return;
+        }
+        n = p->num;
+        if (n != floor(n) || n < 1 || n > FR__P_POOL) {
+            fr__perr(p, FR_ERR_PARSE, "array length must be an integer from 1 to 16384");
+            return;
+        }
+        fr__next(p);
+        if (!fr__expect(p, ']', "after the array length")) return;
+        if (fr__new_sym(p, name, 1, (unsigned int)n) < 0) return;
+        if (!fr__is(p, ',')) break;
+        fr__next(p);
+    }
+    fr__expect(p, ';', "after the array declaration");
+}
+
+static void fr__assign_array(fr__parser_t *p, int si)
+{
+    char msg[120];
+    fr__sym_t *s = &p->syms[si];
+    if (si == p->coords || si == p->params) {
+        snprintf(msg, sizeof msg, "'%s' cannot be assigned", s->name);
+        fr__perr(p, FR_ERR_PARSE, msg);
+        return;
+    }
+    if (fr__is(p, '[')) { /* literal [e1, e2, ...] */
+        unsigned int i = 0;
+        fr__next(p);
+        for (;;) {
+            fr_node_t n = fr__scalar_expr(p, "in an array literal");
+            if (p->err != FR_OK) return;
+            if (i >= s->len) {
+                snprintf(msg, sizeof msg, "too many elements for '%s[%u]'", s->name, s->len);
+                fr__perr(p, FR_ERR_PARSE, msg);
+                return;
+            }
+            p->pool[s->off + i++] = n;
+            if (!fr__is(p, ',')) break;
+            fr__next(p);
+        }
+        if (!fr__expect(p, ']', "to close the array literal")) return;
+        if (i != s->len) {
+            snprintf(msg, sizeof msg, "'%s' has %u elements, the literal %u", s->name, s->len, i);
+            fr__perr(p, FR_ERR_PARSE, msg);
+            return;
+        }
+    } else {
+        fr__val_t v = fr__expr(p);
+        if (p->err != FR_OK) return;
+        if (v.array < 0 || p->syms[v.array].len != s->len) {
+            snprintf(msg, sizeof msg, "'%s' needs an array of %u elements", s->name, s->len);
+            fr__perr(p, FR_ERR_PARSE, msg);
+            return;
+        }
+        memmove(p->pool + s->off, p->pool + p->syms[v.array].off, s->len * sizeof(fr_node_t));
+    }
+}
+
+static void fr__statement(fr__parser_t *p)
+{
+    char msg[120], name[FR__P_MAX_NAME];
+    int si;
+    if (p->tok == FR__T_ID && !strcmp(p->id, "array")) {
+        fr__array_decl(p);
+        return;
+    }
+    if (p->tok == FR__T_ID) {
+        const fr__fninfo_t *f = fr__lookup_fn(p->id);
+        if (!f) {
+            memcpy(name, p->id, sizeof name);
+            fr__next(p);
+            si = fr__find_sym(p, name);
+            if (fr__is(p, '[')) {
+                unsigned int slot;
+                if (si < 0 || !p->syms[si].is_array) {
+                    snprintf(msg, sizeof msg, "'%s' is not an array", name);
+                    fr__perr(p, FR_ERR_PARSE, msg);
+                    return;
+                }
+                if (si == p->coords || si == p->params) {
+                    snprintf(msg, sizeof msg, "'%s' cannot be assigned", name);
+                    fr__perr(p, FR_ERR_PARSE, msg);
+                    return;
+                }
+                fr__next(p);
+                if (!fr__index(p, si, &slot) || !fr__expect(p, ']', "after the index") ||
+                    !fr__expect(p, '=', "in an element assignment"))
+                    return;
+                p->pool[slot] = fr__scalar_expr(p, "in an element assignment");
+            } else {
+                if (!fr__expect(p, '=', "(a statement is an assignment or a call)")) return;
+                if (si >= 0 && p->syms[si].is_array) {
+                    fr__assign_array(p, si);
+                } else {
+                    fr_node_t n = fr__scalar_expr(p, "on the right of '='");
+                    if (p->err != FR_OK) return;
+                    if (si < 0) si = fr__new_sym(p, name, 0, 0);
+                    if (si < 0) return;
+                    p->syms[si].node = n;
+                    p->syms[si].assigned = 1;
+                }
+            }
+            fr__expect(p, ';', "after the statement");
+            return;
+        }
+    }
+    fr__expr(p); /* a call statement such as hfShift3D(xt, 1, 0, 0); */
+    fr__expect(p, ';', "after the statement");
+}
+
+static void fr__header(fr__parser_t *p)
+{
+    int k = 0;
+    char msg[120];
+    if (p->tok == FR__T_END) {
+        if (p->err == FR_OK) fr__perr(p, FR_ERR_PARSE, "empty input: expected a model 'name(x[3], a[1]) { ... }'");
+        return;
+    }
+    if (p->tok != FR__T_ID) {
+        fr__perr(p, FR_ERR_PARSE, "expected the model name");
+        return;
+    }
+    p->model = fr__new_sym(p, p->id, 0, 0);
+    fr__next(p);
+    if (!fr__expect(p, '(', "after the model name")) return;
+    for (;;) {
+        char name[FR__P_MAX_NAME];
+        double n;
+        int si;
+        if (p->tok != FR__T_ID) {
+            fr__perr(p, FR_ERR_PARSE, "expected an array parameter like x[3]");
+            return;
+        }
+        memcpy(name, p->id, sizeof name);
+        if (fr__find_sym(p, name) >= 0) {
+            snprintf(msg, sizeof msg, "'%s' is already defined", name);
+            fr__perr(p, FR_ERR_PARSE, msg);
+            return;
+        }
+        fr__next(p);
+        if (!fr__expect(p, '[', "after the parameter name")) return;
+        if (p->tok != FR__T_NUM) {
+            fr__perr(p, FR_ERR_PARSE, "array length must be a number");
+            return;
+        }
+        n = p->num;
+        if (n != floor(n) || n < 1 || n > (k == 2 ? FR_MAX_OUTPUTS - 1 : 1024) || (k == 0 && n != 3)) {
+            fr__perr(p, FR_ERR_PARSE, k == 0 ? "the coordinate array must be x[3]"
+                                             : k == 2 ? "at most 7 attributes" : "bad parameter array length");
+            return;
+        }
+        fr__next(p);
+        if (!fr__expect(p, ']', "after the array length")) return;
+        si = fr__new_sym(p, name, 1, (unsigned int)n);
+        if (si < 0) return;
+        if (k == 0) {
+            fr_p3_t X = fr_coords(&p->b);
+            p->coords = si;
+            fr__set_p3(p, si, X);
+        } else if (k == 1)
+            p->params = si;
+        else if (k == 2)
+            p->attrs = si;
+        else {
+            fr__perr(p, FR_ERR_PARSE, "at most three array parameters (coordinates, parameters, attributes)");
+            return;
+        }
+        k++;
+        if (!fr__is(p, ',')) break;
+        fr__next(p);
+    }
+    fr__expect(p, ')', "after the parameter list");
+}
+
+FR_DEF fr_result_t fr_parse(const char *text, size_t len, const fr_parse_desc_t *desc, fr_tape_t *out,
+                            fr_diag_t *diag)
+{
+    fr__parser_t *p;
+    fr_builder_desc_t bd;
+    void *ctx = desc ? desc->alloc_ctx : NULL;
+    fr_result_t r;
+    unsigned int i;
+    if (diag) {
+        memset(diag, 0, sizeof *diag);
+        diag->element = -1;
+    }
+    if (!out || (!text && len)) return FR_ERR_INVALID_ARG;
+    memset(out, 0, sizeof *out);
+    if (desc && !(desc->alpha >= 0 && desc->alpha <= 1)) {
+        if (diag) {
+            diag->result = FR_ERR_INVALID_ARG;
+            snprintf(diag->message, sizeof diag->message, "fr_parse_desc_t.alpha must be in [0, 1]");
+        }
+        return FR_ERR_INVALID_ARG;
+    }
+    p = (fr__parser_t *)FR_MALLOC(sizeof *p, ctx);
+    if (!p) return FR_ERR_OUT_OF_MEMORY;
+    memset(p, 0, sizeof *p);
+    p->syms = (fr__sym_t *)FR_MALLOC(FR__P_MAX_SYMS * sizeof(fr__sym_t), ctx);
+    p->pool = (fr_node_t *)FR_MALLOC(FR__P_POOL * sizeof(fr_node_t), ctx);
+    memset(&bd, 0, sizeof bd);
+    bd.alloc_ctx = ctx;
+    bd.max_nodes = desc && desc->max_nodes ? desc->max_nodes : (1u << 20);
+    fr_builder_init(&p->b, &bd);
+    if (!p->syms || !p->pool) {
+        r = FR_ERR_OUT_OF_MEMORY;
+        goto done;
+    }
+    p->s = text ? text : "";
+    p->len = text ? len : 0;
+    p->line = p->col = 1;
+    p->diag = diag;
+    p->alpha = desc ? desc->alpha : 0.0;
+    p->coords = p->params = p->attrs = p->model = -1;
+    fr__next(p);
+    fr__header(p);
+    /* parameter values are constants: missing ones are 0 */
+    if (p->err == FR_OK && p->params >= 0)
+        for (i = 0; i < p->syms[p->params].len; i++)
+            p->pool[p->syms[p->params].off + i] =
+                fr__chk(p, fr_const(&p->b, desc && i < desc->n_params && desc->params ? desc->params[i] : 0.0));
+    fr__expect(p, '{', "to open the model body");
+    while (p->err == FR_OK && !fr__is(p, '}')) {
+        if (p->tok == FR__T_END) {
+            fr__perr(p, FR_ERR_PARSE, "unbalanced braces: expected '}' before the end of input");
+            break;
+        }
+        fr__statement(p);
+    }
+    fr__expect(p, '}', "to close the model body");
+    if (p->err == FR_OK && p->tok != FR__T_END) fr__perr(p, FR_ERR_PARSE, "text after the end of the model");
+    if (p->err == FR_OK && !p->syms[p->model].assigned) {
+        char msg[120];
+        snprintf(msg, sizeof msg, "the model value '%s' is never assigned", p->syms[p->model].name);
+        fr__perr(p, FR_ERR_PARSE, msg);
+    }
+    r = p->err;
+    if (r == FR_OK) {
+        fr_node_t attrs[FR_MAX_OUTPUTS];
+        unsigned int na = 0;
+        if (p->attrs >= 0) {
+            na = p->syms[p->attrs].len;
+            for (i = 0; i < na; i++) {
+                fr_node_t n = p->pool[p->syms[p->attrs].off + i];
+                attrs[i] = n == FR_NODE_NONE ? fr_const(&p->b, 0.0) : n; /* unset attributes are 0 */
+            }
+        }
+        r = fr_builder_finish(&p->b, p->syms[p->model].node, attrs, na, out, diag);
+    }
+done:
+    fr_builder_free(&p->b);
+    if (p->syms) FR_FREE(p->syms, ctx);
+    if (p->pool) FR_FREE(p->pool, ctx);
+    FR_FREE(p, ctx);
+    return r;
+}
+#endif /* FR_NO_PARSER */
+
 /* ==== [end section: model] ==== */
 
 /* ==== [section: solvers] implementation: polynomial solvers ==== */
@@ -2040,33 +3116,43 @@ static double fr__horner_comp(const double *hi, const double *lo, int n, double 
 }
 
 /* Sign of p(x) as -1, 0, +1, where 0 means "zero within what compensated
-   evaluation can resolve" (a root, possibly multiple, at x). */
+   evaluation can resolve" (a root, possibly multiple, at x). Plain Horner
+   decides first when its value exceeds its error bound gamma_2n sum|c_i||x|^i
+   (Higham 2002, eq. 5.3; lo adds at most u of that); compensated evaluation
+   only runs near a root. */
 static int fr__sign_at(const double *hi, const double *lo, int n, double x, double *value)
 {
-    double a, v = fr__horner_comp(hi, lo, n, x, &a);
-    double tol = FR__ZERO_K * (double)(n * n) * FR__U * FR__U * a;
+    double a = fabs(hi[n]), v = hi[n], ax = fabs(x), tol;
+    int i;
+    for (i = n - 1; i >= 0; i--) {
+        v = v * x + hi[i];
+        a = a * ax + fabs(hi[i]);
+    }
+    if (fabs(v) > (2.0 * n + 2.0) * FR__U * a) {
+        *value = v;
+        return v > 0 ? 1 : -1;
+    }
+    v = fr__horner_comp(hi, lo, n, x, &a);
+    tol = FR__ZERO_K * (double)(n * n) * FR__U * FR__U * a;
     *value = v;
     if (fabs(v) <= tol) return 0;
     return v > 0 ? 1 : -1;
 }
 
-/* Smallest positive double; stands in for 0 as a bisection end so that the
-   exponent range can still be halved. */
-#define FR__TINY 4.9406564584124654e-324
-
 /* A bisection point of [a, b]: when the ends differ a lot in magnitude it
    halves the exponent range instead of the length (0 first, if the ends have
    opposite signs), so a root of 1e-30 in [-1e20, 1] takes dozens of steps,
-   not hundreds. */
-static double fr__split_point(double a, double b)
+   not hundreds. tiny > 0 is the smallest root magnitude possible here, and
+   stands in for an end at 0. */
+static double fr__split_point(double a, double b, double tiny)
 {
     double lo = a < b ? a : b, hi = a < b ? b : a;
     if (lo >= 0) {
-        double l = lo > FR__TINY ? lo : FR__TINY;
-        return hi > 4.0 * l ? sqrt(l) * sqrt(hi) : 0.5 * (lo + hi);
+        double l = lo > tiny ? lo : tiny;
+        return hi > 16.0 * l ? sqrt(l) * sqrt(hi) : 0.5 * (lo + hi);
     }
-    if (hi <= 0) return -fr__split_point(-hi, -lo);
-    return (hi > -4.0 * lo || -lo > 4.0 * hi) ? 0.0 : 0.5 * (lo + hi);
+    if (hi <= 0) return -fr__split_point(-hi, -lo, tiny);
+    return (hi > -16.0 * lo || -lo > 16.0 * hi) ? 0.0 : 0.5 * (lo + hi);
 }
 
 /* Next iterate inside the bracket (a, b): the Newton point if it stays
@@ -2074,11 +3160,11 @@ static double fr__split_point(double a, double b)
    only shrinks x by (k-1)/k per step, so after two steps in a row that did
    not shrink by 4x (no sign of quadratic convergence) one split is forced.
    st[0] is the last step length, st[1] counts slow steps. */
-static double fr__newton_or_split(double x, double f, double df, double a, double b, double st[2])
+static double fr__newton_or_split(double x, double dx, double a, double b, double tiny, double st[2])
 {
-    double lo = a < b ? a : b, hi = a < b ? b : a, xn = x - f / df, step;
+    double lo = a < b ? a : b, hi = a < b ? b : a, xn = x - dx, step;
     int newton = xn > lo && xn < hi && st[1] < 2.0;
-    if (!newton) xn = fr__split_point(lo, hi);
+    if (!newton) xn = fr__split_point(lo, hi, tiny);
     step = fabs(xn - x);
     st[1] = newton && step > 0.25 * st[0] ? st[1] + 1.0 : 0.0;
     st[0] = step;
@@ -2086,59 +3172,133 @@ static double fr__newton_or_split(double x, double f, double df, double a, doubl
 }
 
 /* The single root of p in the monotone piece (l, r), where p(l) has sign sl
-   and p(r) the other sign. Phase 1: safeguarded Newton in plain arithmetic.
-   Phase 2: Newton with compensated residuals, inside the original bracket,
-   with bisection wherever a step leaves it; this phase alone decides the
-   last bits, so plain-arithmetic sign noise in phase 1 cannot mislead it. */
+   and p(r) the other sign. Phase 1: safeguarded Newton in plain arithmetic,
+   until the step is an ulp or the value sinks below plain Horner's rounding
+   error (2n u sum|c_i||x|^i, Higham 2002 eq. 5.3). Phase 2: Newton with
+   compensated residuals inside the original bracket, with bisection wherever
+   a step leaves it; it alone decides the last bits, so sign noise in phase
+   1 cannot mislead it. */
 static double fr__root_in_piece(const double *hi, const double *lo, int n, double l, double r,
-                                double vl, double vr, int sl)
+                                double vl, double vr, int sl, double start, double tiny)
 {
-    double a = l, b = r, x, f, df, xn, steps[2];
+    double a = l, b = r, x, f, df, st[2];
     int it;
-    /* regula falsi start: inside (l, r) because vl and vr differ in sign */
-    x = l - vl * ((r - l) / (vr - vl));
-    if (!(x > l && x < r)) x = fr__split_point(l, r);
-    steps[0] = r - l;
-    steps[1] = 0.0;
+    /* the caller's estimate, else regula falsi (inside: vl, vr differ in sign) */
+    x = start > l && start < r ? start : l - vl * ((r - l) / (vr - vl));
+    if (!(x > l && x < r)) x = fr__split_point(l, r, tiny);
+    st[0] = r - l;
+    st[1] = 0.0;
     for (it = 0; it < FR__PLAIN_ITERS; it++) {
+        double dx, ab = fabs(hi[n]), ax = fabs(x);
+        int i;
         f = fr__horner_deriv(hi, n, x, &df);
-        if (f == 0) break;
+        for (i = n - 1; i >= 0; i--) ab = ab * ax + fabs(hi[i]);
+        if (fabs(f) <= 2.0 * n * FR__U * ab) break;
+        dx = f / df;
+        if (fabs(dx) <= 4.0 * FR__U * ax) { x -= dx; break; }
         if ((f > 0) == (sl > 0)) a = x; else b = x;
-        xn = fr__newton_or_split(x, f, df, a, b, steps);
-        if (xn == x || fabs(xn - x) <= 4.0 * FR__U * fabs(xn)) { x = xn; break; }
-        x = xn;
+        x = fr__newton_or_split(x, dx, a, b, tiny, st);
     }
+    if (!(x >= (l < r ? l : r) && x <= (l < r ? r : l))) x = fr__split_point(l, r, tiny);
     a = l; b = r;
-    steps[0] = r - l;
-    steps[1] = 0.0;
+    st[0] = r - l;
+    st[1] = 0.0;
     for (it = 0; it < FR__POLISH_ITERS; it++) {
-        double v;
+        double v, xn;
         int s = fr__sign_at(hi, lo, n, x, &v);
         if (s == 0) break;
         if (s == sl) a = x; else b = x;
         fr__horner_deriv(hi, n, x, &df);
-        xn = fr__newton_or_split(x, v, df, a, b, steps);
-        if (xn == x) break;
-        if (fabs(xn - x) <= FR__U * fabs(x)) { x = xn; break; }
+        if (fabs(v / df) <= 2.0 * FR__U * fabs(x)) { x -= v / df; break; } /* an ulp */
+        xn = fr__newton_or_split(x, v / df, a, b, tiny, st);
+        if (fabs(xn - x) <= 2.0 * FR__U * fabs(x)) { x = xn; break; }
         x = xn;
     }
     return x;
+}
+
+/* Closed-form estimates of the real roots for degree <= 4 (quadratic formula,
+   Cardano, Ferrari, as the paper's §3.1.1 uses them), in plain arithmetic.
+   They only seed Newton inside pieces that the derivative sequence has
+   already certified; an estimate that is wrong or missing (Ferrari fails on
+   Flocke's and Strobach's quartics) costs iterations, never a root. */
+static int fr__estimate_roots(const double *c, int n, double *est)
+{
+    double a, b, cc, d;
+    if (n < 2 || n > 4 || c[n] == 0) return 0;
+    if (n == 2) {
+        double disc, q;
+        b = c[1] / c[2]; cc = c[0] / c[2];
+        disc = b * b - 4.0 * cc;
+        if (disc < 0) return 0;
+        q = -0.5 * (b + (b < 0 ? -sqrt(disc) : sqrt(disc)));
+        est[0] = q;
+        est[1] = q != 0 ? cc / q : 0.0;
+        return 2;
+    }
+    if (n == 3) {
+        double Q, R;
+        a = c[2] / c[3]; b = c[1] / c[3]; cc = c[0] / c[3];
+        Q = (a * a - 3.0 * b) / 9.0;
+        R = (2.0 * a * a * a - 9.0 * a * b + 27.0 * cc) / 54.0;
+        if (R * R < Q * Q * Q) {
+            double th = acos(R / sqrt(Q * Q * Q)), sq = -2.0 * sqrt(Q);
+            est[0] = sq * cos(th / 3.0) - a / 3.0;
+            est[1] = sq * cos((th + 6.283185307179586) / 3.0) - a / 3.0;
+            est[2] = sq * cos((th - 6.283185307179586) / 3.0) - a / 3.0;
+            return 3;
+        } else {
+            double A = -(R < 0 ? -1.0 : 1.0) * cbrt(fabs(R) + sqrt(R * R - Q * Q * Q));
+            est[0] = A + (A != 0 ? Q / A : 0.0) - a / 3.0;
+            return 1;
+        }
+    }
+    {
+        /* depressed quartic y^4 + p y^2 + q y + r, x = y - a/4; Ferrari's
+           resolvent m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0 */
+        double p, q, r, m, s2, rc[4], y[4];
+        int i, ny = 0, k;
+        a = c[3] / c[4]; b = c[2] / c[4]; cc = c[1] / c[4]; d = c[0] / c[4];
+        p = b - 0.375 * a * a;
+        q = cc - 0.5 * a * b + 0.125 * a * a * a;
+        r = d - 0.25 * a * cc + a * a * b / 16.0 - 3.0 * a * a * a * a / 256.0;
+        rc[0] = -q * q / 8.0; rc[1] = p * p / 4.0 - r; rc[2] = p; rc[3] = 1.0;
+        k = fr__estimate_roots(rc, 3, y);
+        m = -HUGE_VAL;
+        for (i = 0; i < k; i++) if (y[i] > m) m = y[i];
+        if (!(m > 0)) return 0;
+        s2 = sqrt(2.0 * m);
+        for (k = -1; k <= 1; k += 2) {
+            double qc[3], z[2];
+            int nz;
+            qc[2] = 1.0; qc[1] = k * s2; qc[0] = 0.5 * p + m - k * q / (2.0 * s2);
+            nz = fr__estimate_roots(qc, 2, z);
+            for (i = 0; i < nz; i++) y[ny++] = z[i];
+        }
+        for (i = 0; i < ny; i++) est[i] = y[i] - 0.25 * a;
+        return ny;
+    }
 }
 
 /* Roots of p (degree n, hi + lo) in [ya, yb], given the ascending roots bp of
    p' there: between consecutive breakpoints p is monotone, so a sign change
    means exactly one root; a breakpoint where p is zero is a multiple root. */
 static int fr__roots_between(const double *hi, const double *lo, int n, double ya, double yb,
-                             const double *bp, int nbp, double *out)
+                             const double *bp, int nbp, double tiny, double *out)
 {
-    double xl = ya, vl, xr, vr;
-    int sl = fr__sign_at(hi, lo, n, ya, &vl), sr, j, cnt = 0;
+    double xl = ya, vl, xr, vr, est[4];
+    int sl = fr__sign_at(hi, lo, n, ya, &vl), sr, j, k, cnt = 0, nest = fr__estimate_roots(hi, n, est);
     if (sl == 0) out[cnt++] = ya;
     for (j = 0; j <= nbp && cnt < n; j++) {
         xr = j < nbp ? bp[j] : yb;
         if (!(xr > xl)) continue;
         sr = fr__sign_at(hi, lo, n, xr, &vr);
-        if (sl * sr < 0) out[cnt++] = fr__root_in_piece(hi, lo, n, xl, xr, vl, vr, sl);
+        if (sl * sr < 0) {
+            double start = xl; /* none: regula falsi */
+            for (k = 0; k < nest; k++)
+                if (est[k] > xl && est[k] < xr) start = est[k];
+            out[cnt++] = fr__root_in_piece(hi, lo, n, xl, xr, vl, vr, sl, start, tiny);
+        }
         if (sr == 0 && cnt < n) out[cnt++] = xr;
         xl = xr; sl = sr; vl = vr;
     }
@@ -2151,7 +3311,7 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
    level D_k = p^(k)/k! has coefficients q[i+k] C(i+k, k); the products are
    split exactly into hi + lo by fma, so every level is evaluated as
    accurately as p itself. */
-static int fr__solve_band(const double *c, int n, int K, double xa, double xb, double *out)
+static int fr__solve_band(const double *c, int n, int K, int Elo, double xa, double xb, double *out)
 {
     double q[FR_POLY_MAX_DEGREE + 1], hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
     double bp[FR_POLY_MAX_DEGREE + 1], cur[FR_POLY_MAX_DEGREE + 1];
@@ -2171,7 +3331,7 @@ static int fr__solve_band(const double *c, int n, int K, double xa, double xb, d
             hi[i] = q[i + k] * binom;
             lo[i] = fma(q[i + k], binom, -hi[i]);
         }
-        ncur = fr__roots_between(hi, lo, m, ya, yb, bp, nbp, cur);
+        ncur = fr__roots_between(hi, lo, m, ya, yb, bp, nbp, ldexp(1.0, Elo - K), cur);
         for (i = 0; i < ncur; i++) bp[i] = cur[i];
         nbp = ncur;
     }
@@ -2229,7 +3389,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
         /* only the zero root */
     } else if (Ehi - Elo <= W) {
         double B = ldexp(1.0, Ehi);
-        cnt = fr__solve_band(d, m, Ehi, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
+        cnt = fr__solve_band(d, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
     } else {
         /* Roots spread over more than W bits: bands of at most W bits each,
            negative side from the largest magnitude down, then positive. */
@@ -2243,7 +3403,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
                 if (xb > t1) xb = t1;
                 if (xa <= xb && cnt < m) {
                     double band[FR_POLY_MAX_DEGREE + 1];
-                    int k, nb = fr__solve_band(d, m, e1 > Ehi ? Ehi : e1, xa, xb, band);
+                    int k, nb = fr__solve_band(d, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, band);
                     for (k = 0; k < nb && cnt < m; k++)
                         if (cnt == 0 || band[k] > buf[cnt - 1]) buf[cnt++] = band[k];
                 }
