@@ -445,6 +445,31 @@ static void vertical_and_zero_width_facets(void)
     scene_end();
 }
 
+/* Stiff: degenerate footprints. A line (A2 = 0) across the groove, and
+   along it; a point (A1 = A2 = 0), where every oracle ray is the same ray
+   and the answer is one facet with ratio 1 (or a 0/1 lit fraction). */
+static void line_and_point_footprints(void)
+{
+    static const double path[4] = {0.5, 0, 0.5, 1};
+    static const double views[] = {0, 30, 60, 80};
+    int i;
+    scene_begin();
+    scene_add(GR_PATH_POLYLINE, path, 2, V_SEC, 3);
+    if (!scene_build()) return;
+    for (i = 0; i < 4; i++) {
+        double L[3];
+        gr_footprint_t f = footprint(0.5 + 0.002 * i, 0.5, VERTICAL, 0.015, 0, views[i], i % 2 ? 0 : 180);
+        dir_deg(30 + 10 * i, i % 2 ? 180 : 0, L);
+        compare(&f, L, 1, 256);                     /* line across */
+        f = footprint(0.5 + 0.002 * i, 0.5, VERTICAL, 0, 0.01, views[i], i % 2 ? 0 : 180);
+        compare(&f, L, 1, 256);                     /* line along: a point in the section */
+        f = footprint(0.497 + 0.002 * i, 0.5, VERTICAL, 0, 0, views[i], i % 2 ? 0 : 180);
+        compare(&f, L, 1, 256);                     /* point */
+    }
+    report("line/point footprints");
+    scene_end();
+}
+
 /* Curved (cubic Bézier) and perturbed (sinusoidal scale) grooves, footprints
    small against the radius of curvature and perturbation changing by ~1 %
    over the distance a ray travels inside the groove (the paper's local
@@ -584,6 +609,7 @@ int main(int argc, char **argv)
         T_CASE(light_near_horizon),
         T_CASE(grazing_views),
         T_CASE(vertical_and_zero_width_facets),
+        T_CASE(line_and_point_footprints),
         T_CASE(curved_and_perturbed_grooves),
         T_CASE(thousands_of_grooves_under_one_footprint),
         T_CASE(steep_perturbation_model_limit),
