@@ -532,6 +532,94 @@ static void rect_light_hit_and_front_side_only(void)
     T_EQ(ex_rect_light_hit(&l, ex_v3(0.5, 8, 0.5), ex_v3(0, -1, 0)), 0); /* behind */
 }
 
+/* A floor y = 0 under one square light, no occluders: the path tracer's
+   direct light (NEE + BSDF sampling combined by MIS) must match the
+   irradiance integral done independently, by the closed-form form factor
+   for a Lambertian floor and by midpoint quadrature over the light's area
+   for a glossy one. */
+static const ex_material_t *floor_mat_;
+static int floor_hit(void *user, const ex_ray_t *r, double tmax, ex_surface_t *s)
+{
+    double t;
+    (void)user;
+    if (!(r->d.y < 0) || !(r->o.y > 0)) return 0;
+    t = -r->o.y / r->d.y;
+    if (t >= tmax) return 0;
+    s->t = t;
+    s->p = ex_madd(r->o, r->d, t);
+    s->p.y = 0;
+    s->n = s->ng = ex_v3(0, 1, 0);
+    s->mat = floor_mat_;
+    return 1;
+}
+static int never_occluded(void *user, ex_v3_t o, ex_v3_t d, double tmax)
+{
+    (void)user; (void)o; (void)d; (void)tmax;
+    return 0;
+}
+
+/* Form factor from a point to a parallel a×b rectangle at height c with one
+   corner straight above it (Howell's catalogue, configuration B-3). */
+static double corner_form_factor(double a, double b, double c)
+{
+    double A = a / c, B = b / c, sa = sqrt(1 + A * A), sb = sqrt(1 + B * B);
+    return (A / sa * atan(B / sa) + B / sb * atan(A / sb)) / (2 * EX_PI);
+}
+
+static double mean_radiance(const ex_world_t *w, ex_v3_t eye, long n)
+{
+    double sum = 0;
+    long i;
+    for (i = 0; i < n; i++) {
+        ex_rng_t rng = ex_rng_for_pixel(3, 0, 0, (int)i, (int)n);
+        ex_ray_t ray;
+        memset(&ray, 0, sizeof ray);
+        ray.o = eye;
+        ray.d = ex_normalize(ex_sub(ex_v3(0, 0, 0), eye));
+        sum += ex_radiance(w, &ray, &rng).x;
+    }
+    return sum / (double)n;
+}
+
+static void direct_light_matches_the_irradiance_integral(void)
+{
+    ex_rect_light_t light;
+    ex_world_t w;
+    ex_material_t m;
+    const double h = 1.5, half = 1.0, Le = 3.0;
+    ex_v3_t eye = ex_v3(1.8, 1.0, 1.2);
+    long n = t_count(40000), i, j, q = 400;
+    double want, got;
+    memset(&light, 0, sizeof light);
+    light.corner = ex_v3(-half, h, -half);
+    light.edge_u = ex_v3(2 * half, 0, 0);   /* u×v = -y: faces the floor */
+    light.edge_v = ex_v3(0, 0, 2 * half);
+    light.radiance = ex_v3(Le, Le, Le);
+    memset(&w, 0, sizeof w);
+    w.intersect = floor_hit; w.occluded = never_occluded;
+    w.lights = &light; w.nlights = 1; w.max_bounces = -1;
+    memset(&m, 0, sizeof m);
+    m.diffuse = ex_v3(0.5, 0.5, 0.5);
+    floor_mat_ = &m;
+    /* Lambertian: L = albedo · Le · F, the light split into four corner rectangles */
+    want = 0.5 * Le * 4 * corner_form_factor(half, half, h);
+    got = mean_radiance(&w, eye, n);
+    T_REL(got, want, 0.01);
+    /* glossy: quadrature of f·cos_i · Le · cos_l / d² over the light */
+    m.specular = ex_v3(0.5, 0.5, 0.5);
+    m.roughness = 0.35;
+    want = 0;
+    for (i = 0; i < q; i++)
+        for (j = 0; j < q; j++) {
+            ex_v3_t x = ex_v3(-half + 2 * half * (i + 0.5) / q, h, -half + 2 * half * (j + 0.5) / q);
+            ex_v3_t wi = ex_normalize(x), wo = ex_normalize(eye);
+            double d2 = ex_dot(x, x), cos_l = h / sqrt(d2), dA = 4 * half * half / (double)(q * q);
+            want += ex_bsdf_eval(&m, ex_v3(0, 1, 0), wo, wi, NULL).x * Le * cos_l / d2 * dA;
+        }
+    got = mean_radiance(&w, eye, n);
+    T_REL(got, want, 0.01);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -554,6 +642,7 @@ int main(int argc, char **argv)
         T_CASE(lambert_sampling_weight_is_albedo),
         T_CASE(glossy_pdf_and_weights_are_consistent),
         T_CASE(rect_light_hit_and_front_side_only),
+        T_CASE(direct_light_matches_the_irradiance_integral),
     };
     return T_RUN(argc, argv, cases);
 }

@@ -112,11 +112,12 @@ static int build_scene(scene_t *sc, int width, int height)
     sc->lights[1].edge_u = ex_v3(1.6, 0, -2.4);
     sc->lights[1].edge_v = ex_v3(0, 3.5, 0);
     sc->lights[1].radiance = ex_v3(2.2, 2.3, 2.6);
-    /* rim: a strip behind on the right, grazing the far vertical edges */
-    sc->lights[2].corner = ex_v3(6.5, 1.8, -5.0);
-    sc->lights[2].edge_u = ex_v3(-2.0, 0, -2.5);
-    sc->lights[2].edge_v = ex_v3(0, 3.0, 0);
-    sc->lights[2].radiance = ex_v3(7.0, 6.5, 5.8);
+    /* rim: a strip behind on the right, grazing the far vertical edges.
+       A rect light emits on the side of edge_u × edge_v. */
+    sc->lights[2].corner = ex_v3(8.0, 1.5, -3.5);
+    sc->lights[2].edge_u = ex_v3(0, 3.0, 0);
+    sc->lights[2].edge_v = ex_v3(-2.0, 0, -2.5);
+    sc->lights[2].radiance = ex_v3(4.5, 4.2, 3.8);
 
     memset(&sc->world, 0, sizeof sc->world);
     sc->world.intersect = intersect;
