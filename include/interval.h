@@ -107,18 +107,25 @@ static inline iv_t iv__raw(double lo, double hi)
     return r;
 }
 
-/* The next double below x (x may be +inf: gives DBL_MAX; -inf and NaN stay).
-   Bit arithmetic, so it is exact in any rounding mode and immune to
-   contraction. Magnitude grows by one step for negative x. */
+/* Doubles mapped to integers in the same order (+0 -> 0, -0 -> -1): a
+   negative double's magnitude bits are flipped. The map is its own inverse. */
+static inline uint64_t iv__ordered(uint64_t u) { return u ^ ((uint64_t)((int64_t)u >> 63) >> 1); }
+
+/* The double just below x, by integer arithmetic on the ordered bit
+   pattern: exact in any rounding mode and immune to contraction. +inf gives
+   DBL_MAX; -inf and NaN stay. Zeros: +0 steps to -0 and -0 to the negative
+   denormal. That is enough because a round-to-nearest result is +0 only
+   when the exact value is >= 0 (a sum or difference that rounds to 0 is
+   exactly 0, and an underflowing product, quotient or libm value keeps the
+   sign of the exact value, IEEE 754 section 6.3). Branch-free. */
 static inline double iv__next_down(double x)
 {
     uint64_t u;
-    if (x == 0) return -4.9406564584124654e-324; /* -denormal min */
-    if (!(x > -HUGE_VAL)) return x;             /* -inf or NaN */
+    double y;
     memcpy(&u, &x, sizeof u);
-    if (x > 0) u -= 1; else u += 1;
-    memcpy(&x, &u, sizeof u);
-    return x;
+    u = iv__ordered(iv__ordered(u) - 1u);
+    memcpy(&y, &u, sizeof u);
+    return x > -HUGE_VAL ? y : x; /* -inf and NaN stay */
 }
 static inline double iv__next_up(double x) { return -iv__next_down(-x); }
 
@@ -208,14 +215,15 @@ static inline void iv_split(iv_t x, iv_t *left, iv_t *right)
 /* ------------------------------------------------------------------------ */
 
 static inline iv_t iv_neg(iv_t x) { return iv__raw(-x.hi, -x.lo); }
+/* + and -: an empty input (NaN endpoints) propagates through the
+   arithmetic, and valid endpoints never give inf - inf, so no test is
+   needed (keeps these branch-free). */
 static inline iv_t iv_add(iv_t a, iv_t b)
 {
-    if (iv_is_empty(a) || iv_is_empty(b)) return iv_empty();
     return iv__raw(iv__down(a.lo + b.lo), iv__up(a.hi + b.hi));
 }
 static inline iv_t iv_sub(iv_t a, iv_t b)
 {
-    if (iv_is_empty(a) || iv_is_empty(b)) return iv_empty();
     return iv__raw(iv__down(a.lo - b.hi), iv__up(a.hi - b.lo));
 }
 /* x + d for a scalar d; empty for NaN or infinite d. */
@@ -223,14 +231,16 @@ static inline iv_t iv_add_d(iv_t x, double d) { return iv_add(x, iv_point(d)); }
 static inline iv_t iv_sub_d(iv_t x, double d) { return iv_add(x, iv_point(-d)); }
 static inline iv_t iv_mul(iv_t a, iv_t b)
 {
-    double p1, p2, p3, p4;
-    if (iv_is_empty(a) || iv_is_empty(b)) return iv_empty();
-    p1 = iv__mul0(a.lo, b.lo);
-    p2 = iv__mul0(a.lo, b.hi);
-    p3 = iv__mul0(a.hi, b.lo);
-    p4 = iv__mul0(a.hi, b.hi);
-    return iv__raw(iv__down(iv__min(iv__min(p1, p2), iv__min(p3, p4))),
-                   iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4))));
+    double p1 = iv__mul0(a.lo, b.lo), p2 = iv__mul0(a.lo, b.hi);
+    double p3 = iv__mul0(a.hi, b.lo), p4 = iv__mul0(a.hi, b.hi);
+    /* min and max may pick either sign of a zero: make a zero lower end -0
+       and a zero upper end +0 (x + 0.0 maps -0 to +0 and is never folded
+       away by the compiler), so the outward step below passes 0 */
+    double lo = iv__down(-(-iv__min(iv__min(p1, p2), iv__min(p3, p4)) + 0.0));
+    double hi = iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4)) + 0.0);
+    /* iv__mul0 maps NaN to 0, so emptiness is restored by a select */
+    int empty = iv_is_empty(a) | iv_is_empty(b);
+    return iv__raw(empty ? NAN : lo, empty ? NAN : hi);
 }
 /* x * d for a scalar d (two products instead of four); empty for NaN or
    infinite d. */
@@ -242,16 +252,14 @@ static inline iv_t iv_mul_d(iv_t x, double d)
     q = iv__mul0(x.hi, d);
     return d >= 0 ? iv__raw(iv__down(p), iv__up(q)) : iv__raw(iv__down(q), iv__up(p));
 }
-/* x^2 >= 0 (tighter than x*x when x straddles 0: no dependency). */
+/* x^2 >= 0 (tighter than x*x when x straddles 0: no dependency): the
+   squares of the smallest and largest |x|, branch-free. */
 static inline iv_t iv_sqr(iv_t x)
 {
-    double a, b;
-    if (iv_is_empty(x)) return iv_empty();
-    a = x.lo * x.lo;
-    b = x.hi * x.hi;
-    if (x.lo >= 0) return iv__raw(iv__max(0.0, iv__down(a)), iv__up(b));
-    if (x.hi <= 0) return iv__raw(iv__max(0.0, iv__down(b)), iv__up(a));
-    return iv__raw(0.0, iv__up(iv__max(a, b)));
+    double mig = iv__max(iv__max(x.lo, -x.hi), 0.0), mag = iv__max(-x.lo, x.hi);
+    double lo = iv__max(iv__down(mig * mig), 0.0), hi = iv__up(mag * mag);
+    int empty = iv_is_empty(x);
+    return iv__raw(empty ? NAN : lo, empty ? NAN : hi);
 }
 /* a / b for b > 0 strictly (b.hi may be +inf): no 0/0 or inf/inf occurs. */
 static inline iv_t iv__div_pos(iv_t a, iv_t b)

@@ -95,10 +95,18 @@ static void sqrt_clips_domain(void)
 static void mul_zero_times_unbounded(void)
 {
     iv_t p = iv_mul(iv_make(0, 0), iv_entire());
-    T_EQ(p.lo, 0 * 1.0 - 4.9406564584124654e-324 * 1); /* 0 stepped outward */
-    T_LE(p.hi, 4.9406564584124654e-324);
+    T_LE(p.lo, 0); T_GE(p.lo, -4.9406564584124654e-324); /* at most one step */
+    T_LE(p.hi, 4.9406564584124654e-324); T_GE(p.hi, 0);
     p = iv_mul(iv_make(0, 1), iv_make(1, HUGE_VAL));
     T_LE(p.lo, 0); T_GE(p.lo, -4.9406564584124654e-324); T_EQ(p.hi, HUGE_VAL);
+    /* a product that underflows to -0 must still step below 0 */
+    p = iv_mul(iv_point(-1e-200), iv_point(1e-200));
+    T_LT(p.lo, 0); T_GE(p.hi, 0);
+    T_EQ(iv__next_down(0.0), 0); T_LT(iv__next_down(-0.0), 0);
+    T_EQ(iv__next_down(HUGE_VAL), DBL_MAX); T_EQ(iv__next_down(-HUGE_VAL), -HUGE_VAL);
+    T_EQ(iv__next_down(1.0), nextafter(1.0, 0)); T_EQ(iv__next_down(-1.0), nextafter(-1.0, -2));
+    T_EQ(iv__next_down(-DBL_MAX), -HUGE_VAL); T_EQ(iv__next_up(DBL_MAX), HUGE_VAL);
+    T_EQ(iv__next_down(4.9406564584124654e-324), 0);
 }
 
 /* Exact endpoint references in quad for the tightness test. */

@@ -1,0 +1,383 @@
+/* bench/bench_interval_ops.cpp — cost of one interval operation (issue 3):
+   plain double, interval.h rigorous, interval.h IV_FAST (round-to-nearest
+   endpoints, NOT rigorous) and Boost.Interval with its default rigorous
+   policy (rounded_math<double>: directed rounding via the FPU mode, saved
+   and restored per operation), side by side in one run, as ratios to the
+   double operation. Also the enclosure error of IV_FAST: how often its
+   result misses the exact value (from __float128).
+   Output: table on stdout, out/bench/interval_ops.csv. */
+#include <math.h>
+#include <string.h>
+#include <stdint.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <assert.h>
+#include <stdio.h>
+#include <chrono>
+#include <vector>
+#include <quadmath.h>
+#include <boost/numeric/interval.hpp>
+
+#define IV_STATIC
+#define IV_IMPLEMENTATION
+#include "interval.h"
+
+/* The same header a second time in IV_FAST mode. Its C-linkage names
+   would collide with the first copy, so every public and private name is
+   renamed to F_... for this inclusion (list generated from the header). */
+#undef FILIGREE_IV_H
+#undef FILIGREE_IV_IMPLEMENTATION_DONE
+#define IV_FAST
+#define IV_ERR_INVALID_ARG F_IV_ERR_INVALID_ARG
+#define IV_ERR_OUT_OF_MEMORY F_IV_ERR_OUT_OF_MEMORY
+#define IV_OK F_IV_OK
+#define IV_RESULT_COUNT_ F_IV_RESULT_COUNT_
+#define iv__aff F_iv__aff
+#define iv__aff_add_iv F_iv__aff_add_iv
+#define iv__aff_domain F_iv__aff_domain
+#define iv__aff_empty F_iv__aff_empty
+#define iv__aff_entire F_iv__aff_entire
+#define iv__aff_finish F_iv__aff_finish
+#define iv__aff_radius F_iv__aff_radius
+#define iv__aff_rnd F_iv__aff_rnd
+#define iv__aff_taylor F_iv__aff_taylor
+#define iv__clamp_unit F_iv__clamp_unit
+#define iv__cos_narrow F_iv__cos_narrow
+#define iv__cos_point F_iv__cos_point
+#define iv__dd_mul F_iv__dd_mul
+#define iv__dd_renorm F_iv__dd_renorm
+#define iv__div_pos F_iv__div_pos
+#define iv__div_zero_pos F_iv__div_zero_pos
+#define iv__down F_iv__down
+#define iv__hypot_point F_iv__hypot_point
+#define iv__libm_down F_iv__libm_down
+#define iv__libm_hull F_iv__libm_hull
+#define iv__libm_up F_iv__libm_up
+#define iv__max F_iv__max
+#define iv__min F_iv__min
+#define iv__mul0 F_iv__mul0
+#define iv__next_down F_iv__next_down
+#define iv__next_up F_iv__next_up
+#define iv__ordered F_iv__ordered
+#define iv__periodic F_iv__periodic
+#define iv__pow_point F_iv__pow_point
+#define iv__pown_bounds F_iv__pown_bounds
+#define iv__pown_mag F_iv__pown_mag
+#define iv__raw F_iv__raw
+#define iv__scale_down F_iv__scale_down
+#define iv__scale_up F_iv__scale_up
+#define iv__sin_narrow F_iv__sin_narrow
+#define iv__sin_point F_iv__sin_point
+#define iv__up F_iv__up
+#define iv_abs F_iv_abs
+#define iv_add F_iv_add
+#define iv_add_d F_iv_add_d
+#define iv_affine_abs F_iv_affine_abs
+#define iv_affine_add F_iv_affine_add
+#define iv_affine_add_d F_iv_affine_add_d
+#define iv_affine_atan F_iv_affine_atan
+#define iv_affine_const F_iv_affine_const
+#define iv_affine_cos F_iv_affine_cos
+#define iv_affine_div F_iv_affine_div
+#define iv_affine_exp F_iv_affine_exp
+#define iv_affine_from_iv F_iv_affine_from_iv
+#define iv_affine_hypot F_iv_affine_hypot
+#define iv_affine_is_empty F_iv_affine_is_empty
+#define iv_affine_log F_iv_affine_log
+#define iv_affine_max F_iv_affine_max
+#define iv_affine_min F_iv_affine_min
+#define iv_affine_mul F_iv_affine_mul
+#define iv_affine_mul_d F_iv_affine_mul_d
+#define iv_affine_neg F_iv_affine_neg
+#define iv_affine_pow F_iv_affine_pow
+#define iv_affine_pow_n F_iv_affine_pow_n
+#define iv_affine_ray_param F_iv_affine_ray_param
+#define iv_affine_recip F_iv_affine_recip
+#define iv_affine_sin F_iv_affine_sin
+#define iv_affine_sqr F_iv_affine_sqr
+#define iv_affine_sqrt F_iv_affine_sqrt
+#define iv_affine_sub F_iv_affine_sub
+#define iv_affine_sub_d F_iv_affine_sub_d
+#define iv_affine_t F_iv_affine_t
+#define iv_affine_tan F_iv_affine_tan
+#define iv_atan F_iv_atan
+#define iv_contains F_iv_contains
+#define iv_cos F_iv_cos
+#define iv_div F_iv_div
+#define iv_div_d F_iv_div_d
+#define iv_div_ext F_iv_div_ext
+#define iv_empty F_iv_empty
+#define iv_entire F_iv_entire
+#define iv_exp F_iv_exp
+#define iv_from_affine F_iv_from_affine
+#define iv_hull F_iv_hull
+#define iv_hypot F_iv_hypot
+#define iv_intersect F_iv_intersect
+#define iv_is_empty F_iv_is_empty
+#define iv_log F_iv_log
+#define iv_make F_iv_make
+#define iv_max F_iv_max
+#define iv_mid F_iv_mid
+#define iv_min F_iv_min
+#define iv_mul F_iv_mul
+#define iv_mul_d F_iv_mul_d
+#define iv_neg F_iv_neg
+#define iv_point F_iv_point
+#define iv_pow F_iv_pow
+#define iv_pow_n F_iv_pow_n
+#define iv_recip F_iv_recip
+#define iv_result_string F_iv_result_string
+#define iv_result_t F_iv_result_t
+#define iv_sin F_iv_sin
+#define iv_split F_iv_split
+#define iv_sqr F_iv_sqr
+#define iv_sqrt F_iv_sqrt
+#define iv_sub F_iv_sub
+#define iv_sub_d F_iv_sub_d
+#define iv_t F_iv_t
+#define iv_tan F_iv_tan
+#define iv_width F_iv_width
+#include "interval.h"
+/* end of the renaming: plain names are the rigorous copy again */
+#undef IV_ERR_INVALID_ARG
+#undef IV_ERR_OUT_OF_MEMORY
+#undef IV_OK
+#undef IV_RESULT_COUNT_
+#undef iv__aff
+#undef iv__aff_add_iv
+#undef iv__aff_domain
+#undef iv__aff_empty
+#undef iv__aff_entire
+#undef iv__aff_finish
+#undef iv__aff_radius
+#undef iv__aff_rnd
+#undef iv__aff_taylor
+#undef iv__clamp_unit
+#undef iv__cos_narrow
+#undef iv__cos_point
+#undef iv__dd_mul
+#undef iv__dd_renorm
+#undef iv__div_pos
+#undef iv__div_zero_pos
+#undef iv__down
+#undef iv__hypot_point
+#undef iv__libm_down
+#undef iv__libm_hull
+#undef iv__libm_up
+#undef iv__max
+#undef iv__min
+#undef iv__mul0
+#undef iv__next_down
+#undef iv__next_up
+#undef iv__ordered
+#undef iv__periodic
+#undef iv__pow_point
+#undef iv__pown_bounds
+#undef iv__pown_mag
+#undef iv__raw
+#undef iv__scale_down
+#undef iv__scale_up
+#undef iv__sin_narrow
+#undef iv__sin_point
+#undef iv__up
+#undef iv_abs
+#undef iv_add
+#undef iv_add_d
+#undef iv_affine_abs
+#undef iv_affine_add
+#undef iv_affine_add_d
+#undef iv_affine_atan
+#undef iv_affine_const
+#undef iv_affine_cos
+#undef iv_affine_div
+#undef iv_affine_exp
+#undef iv_affine_from_iv
+#undef iv_affine_hypot
+#undef iv_affine_is_empty
+#undef iv_affine_log
+#undef iv_affine_max
+#undef iv_affine_min
+#undef iv_affine_mul
+#undef iv_affine_mul_d
+#undef iv_affine_neg
+#undef iv_affine_pow
+#undef iv_affine_pow_n
+#undef iv_affine_ray_param
+#undef iv_affine_recip
+#undef iv_affine_sin
+#undef iv_affine_sqr
+#undef iv_affine_sqrt
+#undef iv_affine_sub
+#undef iv_affine_sub_d
+#undef iv_affine_t
+#undef iv_affine_tan
+#undef iv_atan
+#undef iv_contains
+#undef iv_cos
+#undef iv_div
+#undef iv_div_d
+#undef iv_div_ext
+#undef iv_empty
+#undef iv_entire
+#undef iv_exp
+#undef iv_from_affine
+#undef iv_hull
+#undef iv_hypot
+#undef iv_intersect
+#undef iv_is_empty
+#undef iv_log
+#undef iv_make
+#undef iv_max
+#undef iv_mid
+#undef iv_min
+#undef iv_mul
+#undef iv_mul_d
+#undef iv_neg
+#undef iv_point
+#undef iv_pow
+#undef iv_pow_n
+#undef iv_recip
+#undef iv_result_string
+#undef iv_result_t
+#undef iv_sin
+#undef iv_split
+#undef iv_sqr
+#undef iv_sqrt
+#undef iv_sub
+#undef iv_sub_d
+#undef iv_t
+#undef iv_tan
+#undef iv_width
+
+typedef boost::numeric::interval<double> biv_t;
+typedef std::chrono::steady_clock clk;
+
+static double now_ns(void) { return (double)std::chrono::duration_cast<std::chrono::nanoseconds>(clk::now().time_since_epoch()).count(); }
+
+enum { N = 4096 };
+static double xs[N], ys[N];       /* lower ends */
+static double xw[N], yw[N];       /* widths */
+static volatile double sink;
+
+static unsigned long long rng_s = 88172645463325252ull;
+static double urand(void)
+{
+    rng_s ^= rng_s << 13; rng_s ^= rng_s >> 7; rng_s ^= rng_s << 17;
+    return (double)(rng_s >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* Each kernel runs `reps` passes over the arrays and returns ns per op. */
+template <class T, class MK, class OP, class SUM>
+static double time_op(MK make, OP op, SUM sum, int reps)
+{
+    std::vector<T> a(N), b(N), c(N);
+    for (int i = 0; i < N; i++) { a[i] = make(xs[i], xw[i]); b[i] = make(ys[i], yw[i]); }
+    double best = 1e30;
+    for (int trial = 0; trial < 3; trial++) {
+        double t0 = now_ns();
+        for (int r = 0; r < reps; r++) {
+            for (int i = 0; i < N; i++) c[i] = op(a[i], b[i]);
+            a[r % N] = c[(r * 7) % N]; /* keep the loop from being hoisted */
+        }
+        double t = (now_ns() - t0) / ((double)reps * N);
+        if (t < best) best = t;
+        double s = 0;
+        for (int i = 0; i < N; i += 64) s += sum(c[i]);
+        sink = s;
+    }
+    return best;
+}
+
+struct row_t { const char *op; double d, rig, fast, boost; };
+
+static double d_make(double lo, double w) { return lo + 0.5 * w; }
+static iv_t r_make(double lo, double w) { return iv_make(lo, lo + w); }
+static F_iv_t f_make(double lo, double w) { return F_iv_make(lo, lo + w); }
+static biv_t b_make(double lo, double w) { return biv_t(lo, lo + w); }
+static double d_sum(double x) { return x; }
+static double r_sum(iv_t x) { return x.lo + x.hi; }
+static double f_sum(F_iv_t x) { return x.lo + x.hi; }
+static double b_sum(const biv_t &x) { return x.lower() + x.upper(); }
+
+/* the tangle cube x^4 - 5x^2 + y^4 - 5y^2 + z^4 - 5z^2 + 11.8 with z = x*y */
+static double d_tangle(double x, double y) { double z = x * y; return x*x*x*x - 5*x*x + y*y*y*y - 5*y*y + z*z*z*z - 5*z*z + 11.8; }
+static iv_t r_tangle(iv_t x, iv_t y)
+{
+    iv_t z = iv_mul(x, y), x2 = iv_sqr(x), y2 = iv_sqr(y), z2 = iv_sqr(z);
+    return iv_add_d(iv_add(iv_add(iv_sub(iv_sqr(x2), iv_mul_d(x2, 5)), iv_sub(iv_sqr(y2), iv_mul_d(y2, 5))),
+                           iv_sub(iv_sqr(z2), iv_mul_d(z2, 5))), 11.8);
+}
+static F_iv_t f_tangle(F_iv_t x, F_iv_t y)
+{
+    F_iv_t z = F_iv_mul(x, y), x2 = F_iv_sqr(x), y2 = F_iv_sqr(y), z2 = F_iv_sqr(z);
+    return F_iv_add_d(F_iv_add(F_iv_add(F_iv_sub(F_iv_sqr(x2), F_iv_mul_d(x2, 5)), F_iv_sub(F_iv_sqr(y2), F_iv_mul_d(y2, 5))),
+                               F_iv_sub(F_iv_sqr(z2), F_iv_mul_d(z2, 5))), 11.8);
+}
+static biv_t b_tangle(const biv_t &x, const biv_t &y)
+{
+    using namespace boost::numeric;
+    biv_t z = x * y, x2 = square(x), y2 = square(y), z2 = square(z);
+    return square(x2) - 5.0 * x2 + square(y2) - 5.0 * y2 + square(z2) - 5.0 * z2 + 11.8;
+}
+
+/* How often IV_FAST misses the exact result, and how often rigorous does. */
+static void fast_mode_errors(FILE *csv)
+{
+    long miss_f = 0, miss_r = 0, n = 2000000;
+    for (long i = 0; i < n; i++) {
+        double a = (urand() - 0.5) * 10, b = (urand() - 0.5) * 10;
+        int op = (int)(i % 4);
+        __float128 v = op == 0 ? (__float128)a + b : op == 1 ? (__float128)a * b : op == 2 ? (__float128)a / b : sqrtq(fabsq(a));
+        iv_t r = op == 0 ? iv_add(iv_point(a), iv_point(b)) : op == 1 ? iv_mul(iv_point(a), iv_point(b)) : op == 2 ? iv_div(iv_point(a), iv_point(b)) : iv_sqrt(iv_point(fabs(a)));
+        F_iv_t f = op == 0 ? F_iv_add(F_iv_point(a), F_iv_point(b)) : op == 1 ? F_iv_mul(F_iv_point(a), F_iv_point(b)) : op == 2 ? F_iv_div(F_iv_point(a), F_iv_point(b)) : F_iv_sqrt(F_iv_point(fabs(a)));
+        if (!((__float128)f.lo <= v && v <= (__float128)f.hi)) miss_f++;
+        if (!((__float128)r.lo <= v && v <= (__float128)r.hi)) miss_r++;
+    }
+    printf("\ncontainment of point operations (+ * / sqrt, %ld random cases, __float128 reference):\n", n);
+    printf("  rigorous: %ld misses (%.3f%%)   IV_FAST: %ld misses (%.2f%%)\n", miss_r, 100.0 * miss_r / n, miss_f, 100.0 * miss_f / n);
+    fprintf(csv, "# containment misses of %ld point ops: rigorous %ld, fast %ld\n", n, miss_r, miss_f);
+}
+
+int main(int argc, char **argv)
+{
+    const char *dir = argc > 1 ? argv[1] : "out/bench";
+    char path[512];
+    snprintf(path, sizeof path, "%s/interval_ops.csv", dir);
+    FILE *csv = fopen(path, "w");
+    if (!csv) { fprintf(stderr, "cannot write %s\n", path); return 1; }
+    for (int i = 0; i < N; i++) {
+        xs[i] = (urand() - 0.5) * 8; ys[i] = 0.5 + urand() * 4; /* ys > 0: no division by zero */
+        xw[i] = urand() < 0.5 ? 0 : urand() * 0.5; yw[i] = urand() * 0.5;
+    }
+    const int reps = 1500;
+    std::vector<row_t> rows;
+    using namespace boost::numeric;
+#define ROW(name, dexpr, rexpr, fexpr, bexpr) do { \
+        fprintf(stderr, "timing %s\n", name); \
+        row_t r_; r_.op = name; \
+        r_.d = time_op<double>(d_make, [](double a, double b) { (void)a; (void)b; return dexpr; }, d_sum, reps); \
+        r_.rig = time_op<iv_t>(r_make, [](iv_t a, iv_t b) { (void)a; (void)b; return rexpr; }, r_sum, reps); \
+        r_.fast = time_op<F_iv_t>(f_make, [](F_iv_t a, F_iv_t b) { (void)a; (void)b; return fexpr; }, f_sum, reps); \
+        r_.boost = time_op<biv_t>(b_make, [](const biv_t &a, const biv_t &b) { (void)a; (void)b; return bexpr; }, b_sum, reps / 30 + 1); \
+        rows.push_back(r_); } while (0)
+    ROW("add", a + b, iv_add(a, b), F_iv_add(a, b), a + b);
+    ROW("sub", a - b, iv_sub(a, b), F_iv_sub(a, b), a - b);
+    ROW("mul", a * b, iv_mul(a, b), F_iv_mul(a, b), a * b);
+    ROW("div", a / b, iv_div(a, b), F_iv_div(a, b), a / b);
+    ROW("sqr", a * a, iv_sqr(a), F_iv_sqr(a), square(a));
+    ROW("sqrt", sqrt(b + 0 * a), iv_sqrt(b), F_iv_sqrt(b), sqrt(b));
+    ROW("tangle", d_tangle(a, b), r_tangle(a, b), f_tangle(a, b), b_tangle(a, b));
+    printf("interval operation cost, ns per operation (best of 3, %d ops each (Boost: 1/30 of that)), ratios to double\n", reps * N);
+    printf("%-8s %9s %9s %9s %9s   %8s %8s %8s  %s\n", "op", "double", "rigorous", "IV_FAST", "boost", "rig/dbl", "fast/dbl", "bst/dbl", "boost/rig");
+    fprintf(csv, "op,double_ns,rigorous_ns,fast_ns,boost_ns,rig_over_double,fast_over_double,boost_over_double,boost_over_rig\n");
+    for (size_t i = 0; i < rows.size(); i++) {
+        const row_t &r = rows[i];
+        printf("%-8s %9.3f %9.3f %9.3f %9.3f   %8.2f %8.2f %8.2f  %8.2f\n", r.op, r.d, r.rig, r.fast, r.boost,
+               r.rig / r.d, r.fast / r.d, r.boost / r.d, r.boost / r.rig);
+        fprintf(csv, "%s,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.3f\n", r.op, r.d, r.rig, r.fast, r.boost, r.rig / r.d,
+                r.fast / r.d, r.boost / r.d, r.boost / r.rig);
+    }
+    fast_mode_errors(csv);
+    fclose(csv);
+    return 0;
+}
