@@ -88,6 +88,7 @@ double rx_world_render(rx_world_t *w, int spp, int threads, unsigned long long s
 #include "ex_render.h"
 #include "ex_timer.h"
 #include "rx_tess.h"
+#include "rx_band.h"
 
 int rx_mode_parse(const char *s, rx_mode_t *m)
 {
@@ -133,50 +134,6 @@ static void rx__count_report(void *user, const re_report_t *r)
         (*(long long *)user)++;
 }
 
-/* A distance beyond which no point of object k's faces is rounded: every
-   rounding sphere belongs to a mesh vertex v and lies within |c - v| + r of
-   it, every cylinder runs between two such spheres, and the flat part of a
-   face begins where the spheres and cylinders stop touching it. A hit whose
-   distance to its own triangle's boundary exceeds the band is farther than
-   that from every mesh edge and vertex (the straight path to any of them
-   crosses the triangle's boundary first), so it is on the flat part and
-   re_query would say RE_UNCHANGED: the renderer skips the call (profiling
-   showed the query at a quarter of the render time). RX_BAND_SAFETY covers
-   float positions. */
-#define RX_BAND_SAFETY 1e-5
-static double rx__band(const re_scene_t *rs, unsigned k, const ex_mesh_t *m)
-{
-    unsigned i, n = re_sphere_count(rs, k);
-    double band = 0;
-    for (i = 0; i < n; i++) {
-        re_sphere_t sp;
-        ex_v3_t v;
-        if (!re_get_sphere(rs, k, i, &sp) || sp.vertex >= m->nverts) return HUGE_VAL; /* unknown: always query */
-        v = ex_v3(m->pos[3 * sp.vertex], m->pos[3 * sp.vertex + 1], m->pos[3 * sp.vertex + 2]);
-        band = fmax(band, ex_len(ex_sub(ex_v3(sp.center[0], sp.center[1], sp.center[2]), v)) + sp.radius);
-    }
-    return band * (1 + RX_BAND_SAFETY) + RX_BAND_SAFETY * sqrt(band * band + 1e-300);
-}
-
-static double rx__seg_dist2(ex_v3_t p, ex_v3_t a, ex_v3_t b)
-{
-    ex_v3_t ab = ex_sub(b, a), ap = ex_sub(p, a);
-    double l2 = ex_dot(ab, ab), t = l2 > 0 ? ex_clamp(ex_dot(ap, ab) / l2, 0, 1) : 0;
-    ex_v3_t d = ex_sub(ap, ex_scale(ab, t));
-    return ex_dot(d, d);
-}
-
-/* 1 when point p of triangle tri of mesh m is within `band` of the triangle's boundary. */
-static int rx__near_boundary(const ex_mesh_t *m, unsigned tri, ex_v3_t p, double band)
-{
-    const uint32_t *q = m->idx + 3 * (size_t)tri;
-    ex_v3_t v0 = ex_v3(m->pos[3 * q[0]], m->pos[3 * q[0] + 1], m->pos[3 * q[0] + 2]);
-    ex_v3_t v1 = ex_v3(m->pos[3 * q[1]], m->pos[3 * q[1] + 1], m->pos[3 * q[1] + 2]);
-    ex_v3_t v2 = ex_v3(m->pos[3 * q[2]], m->pos[3 * q[2] + 1], m->pos[3 * q[2] + 2]);
-    double b2 = band * band;
-    return rx__seg_dist2(p, v0, v1) <= b2 || rx__seg_dist2(p, v1, v2) <= b2 || rx__seg_dist2(p, v2, v0) <= b2;
-}
-
 /* The rounding structure over the scene's rounded objects (float positions,
    the same triangles Embree traces). */
 static int rx__build_round(rx_world_t *w)
@@ -215,7 +172,7 @@ static int rx__build_round(rx_world_t *w)
     re_get_stats(w->round, &w->round_stats);
     w->round_bytes = w->round_stats.bytes;
     for (i = 0; i < s->nobj; i++)
-        if (w->re_object[i] >= 0) w->band[i] = rx__band(w->round, (unsigned)w->re_object[i], &s->obj[i].mesh);
+        if (w->re_object[i] >= 0) w->band[i] = rx_band(w->round, (unsigned)w->re_object[i], &s->obj[i].mesh);
     return 0;
 }
 
@@ -453,7 +410,7 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, ex_surface
                 skip_t = back;
                 continue;
             }
-            if (!rx__near_boundary(&ob->mesh, h.prim_id, s->p, w->band[h.geom_id])) break; /* flat part */
+            if (!rx_near_boundary(&ob->mesh, h.prim_id, s->p, w->band[h.geom_id])) break; /* flat part */
             o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
             d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
             k = re_query(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, &q);

@@ -28,7 +28,7 @@ extern "C" {
 #endif
 
 /* Tessellates object `re_obj` of `rs` (built from `sharp`) at `level` >= 1
-   into *out (zeroed on entry; free with ex_mesh_free). *first_round is the
+   into *out (zeroed on entry; free out->pos and out->idx with free()). *first_round is the
    number of flat-face triangles, which come first. 0, or -1 (out of memory,
    or the object is not a closed convex rounded solid). */
 int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp, int level, ex_mesh_t *out,
@@ -297,7 +297,7 @@ int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp
     for (i = 0; rc == 0 && i < nc; i++) rx__tess_cylinder(&b, &cy[i], level);
     for (i = 0; rc == 0 && i < ns; i++) rc = rx__tess_sphere(&b, &sp[i], i, cy, nc, level);
     free(sp); free(cy);
-    if (rc || b.oom) { ex_mesh_free(out); return -1; }
+    if (rc || b.oom) { free(out->pos); free(out->idx); memset(out, 0, sizeof *out); return -1; }
     return 0;
 }
 
