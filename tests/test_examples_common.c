@@ -530,6 +530,20 @@ static void rect_light_hit_and_front_side_only(void)
     T_NEAR(ex_rect_light_hit(&l, ex_v3(0.5, 0, 0.5), ex_v3(0, 1, 0)), 4.0, 1e-12);
     T_EQ(ex_rect_light_hit(&l, ex_v3(1.5, 0, 0.5), ex_v3(0, 1, 0)), 0);  /* misses */
     T_EQ(ex_rect_light_hit(&l, ex_v3(0.5, 8, 0.5), ex_v3(0, -1, 0)), 0); /* behind */
+    {
+        /* ex_rect_light_toward: seen from the target it is hit at the centre's distance */
+        t_rng_t r = {11};
+        int i;
+        for (i = 0; i < 50; i++) {
+            ex_v3_t c = ex_v3(t_rng_range(&r, -5, 5), t_rng_range(&r, -5, 5), t_rng_range(&r, -5, 5));
+            ex_v3_t target = ex_v3(t_rng_range(&r, -5, 5), t_rng_range(&r, -5, 5), t_rng_range(&r, -5, 5));
+            ex_rect_light_t k = ex_rect_light_toward(c, target, 2, 1, ex_v3(1, 1, 1));
+            ex_v3_t d = ex_normalize(ex_sub(c, target));
+            T_REL(ex_rect_light_hit(&k, target, d), ex_len(ex_sub(c, target)), 1e-9);
+            T_EQ(ex_rect_light_hit(&k, ex_madd(c, d, 3), ex_neg(d)), 0);     /* dark from behind */
+            T_REL(ex_len(ex_cross(k.edge_u, k.edge_v)), 2.0, 1e-12);          /* area */
+        }
+    }
 }
 
 /* A floor y = 0 under one square light, no occluders: the path tracer's

@@ -121,6 +121,19 @@ ex_v3_t ex_env_radiance(const ex_env_t *env, ex_v3_t d)
     }
 }
 
+ex_rect_light_t ex_rect_light_toward(ex_v3_t center, ex_v3_t target, double width, double height, ex_v3_t radiance)
+{
+    ex_rect_light_t l;
+    ex_v3_t n = ex_normalize(ex_sub(target, center)), t, b;
+    ex_onb(n, &t, &b);
+    l.edge_u = ex_scale(t, width);
+    l.edge_v = ex_scale(b, height);
+    if (ex_dot(ex_cross(l.edge_u, l.edge_v), n) < 0) l.edge_v = ex_neg(l.edge_v);
+    l.corner = ex_madd(ex_madd(center, l.edge_u, -0.5), l.edge_v, -0.5);
+    l.radiance = radiance;
+    return l;
+}
+
 double ex_rect_light_hit(const ex_rect_light_t *l, ex_v3_t o, ex_v3_t d)
 {
     ex_v3_t n = ex_cross(l->edge_u, l->edge_v), q;

@@ -45,6 +45,10 @@ typedef struct ex_rect_light_t {
     ex_v3_t radiance;
 } ex_rect_light_t;
 
+/* A width × height light centred at `center`, its emitting side facing
+   `target` (saves working out which way edge_u × edge_v points). */
+ex_rect_light_t ex_rect_light_toward(ex_v3_t center, ex_v3_t target, double width, double height, ex_v3_t radiance);
+
 /* Sky radiance: `zenith` straight up (+y), `horizon` at the horizon, blended
    smoothly; `ground` for every direction below the horizon. All zero = black. */
 typedef struct ex_env_t { ex_v3_t zenith, horizon, ground; } ex_env_t;
