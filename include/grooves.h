@@ -167,9 +167,9 @@ typedef struct gr_grid_t {
     int owns_memory;
     struct gr__groove_t *grooves_;
     double *points_;         /* path points, all grooves */
-    double *section_;        /* cross-section points, all grooves */
+    double *section_;        /* cross-section points (shared by consecutive equal sections) */
     int *facet_refl_;        /* one id per facet, all grooves */
-    int *blocker_start_;     /* per facet, into blockers_ */
+    int *blocker_start_;     /* per section point, into blockers_ */
     int *blockers_;
     int *cell_start_;        /* cells_u*cells_v + 1 */
     int *cell_count_;        /* items used in each cell */
@@ -680,6 +680,14 @@ static int gr__facet_blocks(const double *sec, int i, int j)
     return j != i && (sec[2 * j + 1] > lowest_i || sec[2 * j + 3] > lowest_i);
 }
 
+/* Consecutive grooves passing the same section array share its storage
+   and blocker lists (§3: one cross-section for many paths is the rule). */
+static int gr__shares_section(const gr_grid_desc_t *desc, int g)
+{
+    return g > 0 && desc->grooves[g].section == desc->grooves[g - 1].section &&
+           desc->grooves[g].section_count == desc->grooves[g - 1].section_count;
+}
+
 static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_t *diag)
 {
     int g, i, j;
@@ -710,10 +718,12 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
         gr_result_t r = gr__check_groove(gd, g, diag_len, diag);
         if (r != GR_OK) return r;
         pl->total_points += gd->point_count;
-        pl->total_section += gd->section_count;
         pl->total_facets += gd->section_count - 1;
-        for (i = 0; i + 1 < gd->section_count; i++)
-            for (j = 0; j + 1 < gd->section_count; j++) pl->total_blockers += gr__facet_blocks(gd->section, i, j);
+        if (!gr__shares_section(desc, g)) {
+            pl->total_section += gd->section_count;
+            for (i = 0; i + 1 < gd->section_count; i++)
+                for (j = 0; j + 1 < gd->section_count; j++) pl->total_blockers += gr__facet_blocks(gd->section, i, j);
+        }
         if (pl->total_points > 100000000 || pl->total_section > 100000000 || pl->total_blockers > 200000000) {
             gr__diag(diag, GR_ERR_INVALID_ARG, g, "too many points in total (> 1e8)");
             return GR_ERR_INVALID_ARG;
@@ -758,7 +768,7 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
         pl->off_points = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_points);
         pl->off_section = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_section);
         pl->off_refl = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_facets);
-        pl->off_bstart = off; off = gr__align8(off + sizeof(int) * ((size_t)pl->total_facets + 1));
+        pl->off_bstart = off; off = gr__align8(off + sizeof(int) * ((size_t)pl->total_section + 1));
         pl->off_blockers = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_blockers);
         pl->off_cstart = off; off = gr__align8(off + sizeof(int) * (nc + 1));
         pl->off_ccount = off; off = gr__align8(off + sizeof(int) * nc);
@@ -781,17 +791,18 @@ GR_DEF gr_result_t gr_grid_size(const gr_grid_desc_t *desc, size_t *bytes, gr_di
     return r;
 }
 
-/* Copy one groove into the flat arrays and fill its record (§3 bounds). */
-static void gr__store_groove(gr_grid_t *gr, const gr_groove_desc_t *gd, int g, int *pt, int *sc, int *fc, int *bc)
+/* Copy one groove into the flat arrays and fill its record (§3 bounds).
+   A section shared with the previous groove is not copied again. */
+static void gr__store_groove(gr_grid_t *gr, const gr_groove_desc_t *gd, int g, int shared, int *pt, int *sc, int *fc, int *bc)
 {
     gr__groove_t *rec = &gr->grooves_[g];
-    int n = gd->section_count, i, j;
-    double ext = 0, maxb = 0, maxw = 0, minw = 0;
+    int n = gd->section_count, i, j, first_sec = shared ? gr->grooves_[g - 1].first_sec : *sc;
+    double maxb = 0, maxw = 0, minw = 0;
     memset(rec, 0, sizeof *rec);
     rec->kind = (int)gd->kind;
     rec->first_point = *pt;
     rec->point_count = gd->point_count;
-    rec->first_sec = *sc;
+    rec->first_sec = first_sec;
     rec->sec_count = n;
     rec->first_facet = *fc;
     rec->pieces = gr__pieces(rec->kind, gd->point_count);
@@ -799,13 +810,23 @@ static void gr__store_groove(gr_grid_t *gr, const gr_groove_desc_t *gd, int g, i
     rec->perturb = gd->perturb;
     rec->perturb_user = gd->perturb_user;
     memcpy(gr->points_ + 2 * *pt, gd->points, sizeof(double) * 2 * (size_t)gd->point_count);
-    memcpy(gr->section_ + 2 * *sc, gd->section, sizeof(double) * 2 * (size_t)n);
-    for (i = 0; i < 2 * n; i++) if (fabs(gd->section[i]) > ext) ext = fabs(gd->section[i]);
-    /* snap rounded ends to exactly 0 (checked against GR__SECTION_END_REL) */
-    gr->section_[2 * *sc + 1] = 0;
-    gr->section_[2 * (*sc + n - 1) + 1] = 0;
+    if (!shared) {
+        memcpy(gr->section_ + 2 * first_sec, gd->section, sizeof(double) * 2 * (size_t)n);
+        /* snap rounded ends to exactly 0 (checked against GR__SECTION_END_REL) */
+        gr->section_[2 * first_sec + 1] = 0;
+        gr->section_[2 * (first_sec + n - 1) + 1] = 0;
+        /* blockers of facet i: blockers_[blocker_start_[s+i] .. blocker_start_[s+i+1]) */
+        for (i = 0; i + 1 < n; i++) {
+            gr->blocker_start_[first_sec + i] = *bc;
+            for (j = 0; j + 1 < n; j++)
+                if (gr__facet_blocks(gd->section, i, j)) gr->blockers_[(*bc)++] = j;
+        }
+        gr->blocker_start_[first_sec + n - 1] = *bc;
+        gr->blocker_start_[first_sec + n] = *bc;
+        *sc += n;
+    }
     for (i = 0; i < n; i++) {
-        double b = gr->section_[2 * (*sc + i)], w = gr->section_[2 * (*sc + i) + 1];
+        double b = gr->section_[2 * (first_sec + i)], w = gr->section_[2 * (first_sec + i) + 1];
         if (fabs(b) > maxb) maxb = fabs(b);
         if (w > maxw) maxw = w;
         if (w < minw) minw = w;
@@ -822,17 +843,10 @@ static void gr__store_groove(gr_grid_t *gr, const gr_groove_desc_t *gd, int g, i
         if (rec->kind == GR_PATH_POLYLINE)
             for (i = 0; i < last; i++) rec->length += hypot(p[2 * i + 2] - p[2 * i], p[2 * i + 3] - p[2 * i + 1]);
     }
-    for (i = 0; i + 1 < n; i++) {
+    for (i = 0; i + 1 < n; i++)
         gr->facet_refl_[*fc + i] = gd->facet_reflectance ? gd->facet_reflectance[i] : gd->reflectance;
-        gr->blocker_start_[*fc + i] = *bc;
-        for (j = 0; j + 1 < n; j++)
-            if (gr__facet_blocks(gd->section, i, j)) gr->blockers_[(*bc)++] = j;
-    }
-    gr->blocker_start_[*fc + n - 1] = *bc;
     *pt += gd->point_count;
-    *sc += n;
     *fc += n - 1;
-    (void)ext;
 }
 
 static gr__cells_t gr__grid_cells(const gr_grid_t *gr)
@@ -892,7 +906,7 @@ GR_DEF gr_result_t gr_grid_build_into(const gr_grid_desc_t *desc, void *buffer, 
     gr->item_capacity_ = (int)pl.item_capacity;
     for (g = 0; g < pl.groove_count; g++) {
         const gr__groove_t *rec;
-        gr__store_groove(gr, &desc->grooves[g], g, &pt, &sc, &fc, &bc);
+        gr__store_groove(gr, &desc->grooves[g], g, gr__shares_section(desc, g), &pt, &sc, &fc, &bc);
         rec = &gr->grooves_[g];
         if (rec->half_width > gr->w) gr->w = rec->half_width;
         if (rec->up > gr->h) gr->h = rec->up;
@@ -971,7 +985,7 @@ GR_DEF int gr_facet_blockers(const gr_grid_t *grid, int groove, int facet, const
     if (!grid || groove < 0 || groove >= grid->groove_count) return 0;
     rec = &grid->grooves_[groove];
     if (facet < 0 || facet >= rec->sec_count - 1) return 0;
-    f = rec->first_facet + facet;
+    f = rec->first_sec + facet;
     if (list) *list = grid->blockers_ + grid->blocker_start_[f];
     return grid->blocker_start_[f + 1] - grid->blocker_start_[f];
 }
@@ -1108,7 +1122,7 @@ typedef struct gr__scratch_t {
 
 static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *s)
 {
-    size_t off = 0, np = (size_t)g->total_section_ + 2, nid = (size_t)g->groove_count;
+    size_t off = 0, np = (size_t)g->total_facets_ + (size_t)g->groove_count + 2, nid = (size_t)g->groove_count;
     char *b = (char *)base;
     gr__scratch_t tmp;
     if (!s) s = &tmp;
