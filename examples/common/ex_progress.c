@@ -27,13 +27,19 @@ static void ex__progress_draw(const ex_progress_t *p, long long done, double now
     int i, fill;
     if (f > 1) f = 1;
     if (!p->tty) {
-        fprintf(stderr, "%s: %3.0f%% (%.1f s)\n", p->label, 100 * f, now - p->start);
+        if (f > 0.02 && f < 1)
+            fprintf(stderr, "%s: %3.0f%% (%.1f s, ~%.0f s left)\n", p->label, 100 * f, now - p->start,
+                    (now - p->start) * (1 - f) / f);
+        else
+            fprintf(stderr, "%s: %3.0f%% (%.1f s)\n", p->label, 100 * f, now - p->start);
         return;
     }
     fill = (int)(f * EX__PROGRESS_WIDTH);
     fprintf(stderr, "\r%s [", p->label);
     for (i = 0; i < EX__PROGRESS_WIDTH; i++) fputc(i < fill ? '#' : '.', stderr);
     fprintf(stderr, "] %3.0f%%  %.1f s", 100 * f, now - p->start);
+    if (f > 0.02 && f < 1) fprintf(stderr, ", ~%.0f s left   ", (now - p->start) * (1 - f) / f);
+    else fprintf(stderr, "              ");
     fflush(stderr);
 }
 
