@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "ex_args.h"
 #include "ex_camera.h"
@@ -89,6 +90,7 @@ static int build_scene(scene_t *sc, int width, int height)
     if (!sc->dev) return -1;
     sc->rtc = rtcNewScene(sc->dev);
     if (ex_mesh_cube(&cube) || ex_mesh_icosphere(&ico, 1) || ex_mesh_ground(&ground, 40)) {
+        ex_mesh_free(&cube); ex_mesh_free(&ico); ex_mesh_free(&ground);
         fprintf(stderr, "sharp_cube_icosphere: out of memory building meshes\n");
         return -1;
     }
@@ -175,7 +177,8 @@ int main(int argc, char **argv)
     ex_timer_phase(&tm, "render");
 
     len = strlen(path);
-    if (len < 4 || strcmp(path + len - 4, ".exr") != 0) ex_image_tonemap(rgb, args.width, args.height, 0.0);
+    /* PNG gets the display transform; EXR keeps linear radiance */
+    if (len < 4 || strcasecmp(path + len - 4, ".exr") != 0) ex_image_tonemap(rgb, args.width, args.height, 0.0);
     if (ex_image_write(path, rgb, args.width, args.height)) { free(rgb); ex_embree_release(sc.dev, sc.rtc); return 1; }
     ex_timer_phase(&tm, "write");
     printf("sharp_cube_icosphere: %dx%d, %d spp\n", args.width, args.height, args.spp);
