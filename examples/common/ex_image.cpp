@@ -193,7 +193,7 @@ double selftest_round_trip(const std::string &path, bool png)
 extern "C" int ex_image_selftest(const char *dir)
 {
     int failures = 0;
-    std::string base = std::string(dir) + "/ex_image_selftest";
+    std::string base = std::string(dir) + "/ex_image_selftest_" + std::to_string((long)getpid());
     double e = selftest_round_trip(base + ".png", true);
     // 8-bit quantisation: half a step, plus float slack
     failures += selftest_check(e >= 0 && e <= 0.5 / 255 + 1e-6, "PNG round trip, max sRGB error", e, 0.5 / 255 + 1e-6);
