@@ -108,8 +108,10 @@ static inline iv_t iv__raw(double lo, double hi)
 }
 
 /* Doubles mapped to integers in the same order (+0 -> 0, -0 -> -1): a
-   negative double's magnitude bits are flipped. The map is its own inverse. */
-static inline uint64_t iv__ordered(uint64_t u) { return u ^ ((uint64_t)((int64_t)u >> 63) >> 1); }
+   negative double's magnitude bits are flipped. The map is its own inverse.
+   Written with a logical shift so compilers vectorise it (no 64-bit
+   arithmetic shift before AVX-512). */
+static inline uint64_t iv__ordered(uint64_t u) { return u ^ ((0u - (u >> 63)) >> 1); }
 
 /* The double just below x, by integer arithmetic on the ordered bit
    pattern: exact in any rounding mode and immune to contraction. +inf gives
@@ -218,13 +220,16 @@ static inline iv_t iv_neg(iv_t x) { return iv__raw(-x.hi, -x.lo); }
 /* + and -: an empty input (NaN endpoints) propagates through the
    arithmetic, and valid endpoints never give inf - inf, so no test is
    needed (keeps these branch-free). */
+/* The upper end is computed negated, -(a.hi + b.hi) = (-a.hi) - b.hi
+   exactly (round-to-nearest is symmetric), so both ends take the same
+   downward step: the compiler then packs them into one vector operation. */
 static inline iv_t iv_add(iv_t a, iv_t b)
 {
-    return iv__raw(iv__down(a.lo + b.lo), iv__up(a.hi + b.hi));
+    return iv__raw(iv__down(a.lo + b.lo), -iv__down(-a.hi - b.hi));
 }
 static inline iv_t iv_sub(iv_t a, iv_t b)
 {
-    return iv__raw(iv__down(a.lo - b.hi), iv__up(a.hi - b.lo));
+    return iv__raw(iv__down(a.lo - b.hi), -iv__down(b.lo - a.hi));
 }
 /* x + d for a scalar d; empty for NaN or infinite d. */
 static inline iv_t iv_add_d(iv_t x, double d) { return iv_add(x, iv_point(d)); }
