@@ -84,7 +84,7 @@ static void blit(float *dst, int dw, int dx, const float *src, int sw, int cx, i
 static int demo(const ex_args_t *base, double radius_scale)
 {
     static const char *const scenes[3] = {"article", "blocks", "cornell"};
-    static const int spp[3] = {16, 8, 32};
+    static const int spp[3] = {16, 8, 16};
     char path[4096], file[128];
     int i;
     for (i = 0; i < 3; i++) {
@@ -110,16 +110,18 @@ static int demo(const ex_args_t *base, double radius_scale)
         ex_args_t a = *base;
         int k, cw, ch;
         float *strip;
+        double t0;
         a.spp = 16;
         if (rx_scene_make(&s, "article", radius_scale)) return -1;
-        s.eye = ex_v3(-0.2, 2.6, 2.6);
-        s.at = ex_v3(-1.3, 1.4, 0.0);
-        s.vfov = 30;
+        s.eye = ex_v3(-0.3, 3.3, 4.0); /* the cube's front top corner, (-1.56, 2, 1.39) */
+        s.at = ex_v3(-1.45, 1.85, 1.2);
+        s.vfov = 22;
         cw = a.width / 2;
         ch = a.height;
         strip = (float *)calloc((size_t)4 * (size_t)cw * (size_t)ch * 3, sizeof(float));
         if (!strip) { rx_scene_free(&s); fprintf(stderr, "out of memory\n"); return -1; }
         printf("scene article close-up: the baselines side by side\n");
+        t0 = ex_now();
         for (k = 0; k < 4; k++) {
             rx_mode_t m;
             float *rgb;
@@ -131,7 +133,7 @@ static int demo(const ex_args_t *base, double radius_scale)
         ex_image_tonemap(strip, 4 * cw, ch, 0);
         ex_args_output_extra(&a, "rounded_edges_baselines.png", path, sizeof path);
         if (ex_image_write(path, strip, 4 * cw, ch)) { free(strip); rx_scene_free(&s); return -1; }
-        ex_report_written(path, 0);
+        ex_report_written(path, ex_now() - t0);
         printf("  (left to right: %s, %s, %s, %s)\n", modes[0], modes[1], modes[2], modes[3]);
         free(strip);
         rx_scene_free(&s);
