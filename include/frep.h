@@ -358,9 +358,20 @@ FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], vo
    The result lives in code_buf (cap >= t->n_code instructions) and shares
    params and callbacks with t: do not free it, keep t alive. Attribute
    outputs are dropped. *range (optional) receives f's enclosure on box.
-   Allocation-free; scratch of fr_scratch_size(t, FR_EVAL_PRUNE) bytes. */
+   Allocation-free; scratch of fr_scratch_size(t, FR_EVAL_PRUNE) bytes.
+   fr_prune is fr_prune_ex with FR_PRUNE_DEFAULT. */
 FR_DEF fr_result_t fr_prune(const fr_tape_t *t, const iv_t box[3], void *scratch, fr_instr_t *code_buf,
                             unsigned int cap, fr_tape_t *out, iv_t *range);
+typedef enum fr_prune_mode_t {
+    FR_PRUNE_DEFAULT = 0, /* as fr_prune: exact min/max, sign-only alpha < 1 R-functions */
+    FR_PRUNE_EXACT,       /* value-exact replacements only: the result keeps the
+                             value and the Lipschitz bound (for sphere tracing) */
+    FR_PRUNE_SIGN         /* also drop a min/max operand whose sign alone settles
+                             the result's sign (a union operand < 0 on the box):
+                             shortest tapes, for sign-based root isolation */
+} fr_prune_mode_t;
+FR_DEF fr_result_t fr_prune_ex(const fr_tape_t *t, const iv_t box[3], fr_prune_mode_t mode, void *scratch,
+                               fr_instr_t *code_buf, unsigned int cap, fr_tape_t *out, iv_t *range);
 #endif
 
 
@@ -1519,7 +1530,11 @@ FR_DEF size_t fr_scratch_size(const fr_tape_t *t, fr_eval_kind_t kind)
     case FR_EVAL_GRAD: return n * 4 * sizeof(double);
 #ifndef FR_NO_INTERVAL
     case FR_EVAL_INTERVAL: return n * sizeof(iv_t);
-    case FR_EVAL_AFFINE: return n * sizeof(iv_affine_t);
+#ifndef IV_NO_AFFINE
+    case FR_EVAL_AFFINE: return n * (sizeof(iv_affine_t) + sizeof(iv_t));
+#else
+    case FR_EVAL_AFFINE: return 0;
+#endif
     case FR_EVAL_PRUNE: return n * (sizeof(iv_t) + 3 * sizeof(unsigned int) + 2);
 #else
     case FR_EVAL_INTERVAL: case FR_EVAL_AFFINE: case FR_EVAL_PRUNE: return 0;
@@ -1788,49 +1803,50 @@ static iv_t fr__iv_noise(const double *q, iv_t x, iv_t y, iv_t z)
     return iv_make(v - r > -bound ? v - r : -bound, v + r < bound ? v + r : bound);
 }
 
+/* one instruction in interval arithmetic; box is the VAR inputs */
+static iv_t fr__iv_step(const fr_tape_t *t, const fr_instr_t *in, const iv_t *v, const iv_t box[3])
+{
+    iv_t a = v[in->a], c = v[in->b];
+    switch ((fr_op_t)in->op) {
+    case FR_OP_CONST: return iv_point(in->k);
+    case FR_OP_VAR_X: return box[0];
+    case FR_OP_VAR_Y: return box[1];
+    case FR_OP_VAR_Z: return box[2];
+    case FR_OP_NEG: return iv_neg(a);
+    case FR_OP_SQR: return iv_sqr(a);
+    case FR_OP_SQRT: return iv_sqrt(a);
+    case FR_OP_ABS: return iv_abs(a);
+    case FR_OP_EXP: return iv_exp(a);
+    case FR_OP_LOG: return iv_log(a);
+    case FR_OP_SIN: return iv_sin(a);
+    case FR_OP_COS: return iv_cos(a);
+    case FR_OP_ATAN: return iv_atan(a);
+    case FR_OP_POWI: return iv_pow_n(a, (int)in->k);
+    case FR_OP_POWC: return iv_pow(a, iv_point(in->k));
+    case FR_OP_ADD: return iv_add(a, c);
+    case FR_OP_SUB: return iv_sub(a, c);
+    case FR_OP_MUL: return iv_mul(a, c);
+    case FR_OP_DIV: return iv_div(a, c);
+    case FR_OP_MIN: return iv_min(a, c);
+    case FR_OP_MAX: return iv_max(a, c);
+    case FR_OP_RUNI: case FR_OP_RINT: case FR_OP_SMAX: case FR_OP_SMIN: return fr__iv_monotone2(in, a, c);
+    case FR_OP_NOISE: return fr__iv_noise(t->params + in->aux, a, c, v[in->c]);
+    case FR_OP_CALL: {
+        const fr_callback_t *cb = &t->callbacks[in->aux];
+        iv_t q[3];
+        q[0] = a; q[1] = c; q[2] = v[in->c];
+        /* tapes with a callback lacking an interval function are refused up front */
+        return cb->interval ? cb->interval(q, cb->user) : iv_entire();
+    }
+    default: return iv_entire();
+    }
+}
+
 static fr_result_t fr__run_interval(const fr_tape_t *t, const iv_t box[3], iv_t *v)
 {
-    const fr_instr_t *code = t->code;
     unsigned int i, n = t->n_code;
-    for (i = 0; i < n; i++) {
-        const fr_instr_t *in = &code[i];
-        iv_t a = v[in->a], c = v[in->b], r;
-        switch ((fr_op_t)in->op) {
-        case FR_OP_CONST: r = iv_point(in->k); break;
-        case FR_OP_VAR_X: r = box[0]; break;
-        case FR_OP_VAR_Y: r = box[1]; break;
-        case FR_OP_VAR_Z: r = box[2]; break;
-        case FR_OP_NEG: r = iv_neg(a); break;
-        case FR_OP_SQR: r = iv_sqr(a); break;
-        case FR_OP_SQRT: r = iv_sqrt(a); break;
-        case FR_OP_ABS: r = iv_abs(a); break;
-        case FR_OP_EXP: r = iv_exp(a); break;
-        case FR_OP_LOG: r = iv_log(a); break;
-        case FR_OP_SIN: r = iv_sin(a); break;
-        case FR_OP_COS: r = iv_cos(a); break;
-        case FR_OP_ATAN: r = iv_atan(a); break;
-        case FR_OP_POWI: r = iv_pow_n(a, (int)in->k); break;
-        case FR_OP_POWC: r = iv_pow(a, iv_point(in->k)); break;
-        case FR_OP_ADD: r = iv_add(a, c); break;
-        case FR_OP_SUB: r = iv_sub(a, c); break;
-        case FR_OP_MUL: r = iv_mul(a, c); break;
-        case FR_OP_DIV: r = iv_div(a, c); break;
-        case FR_OP_MIN: r = iv_min(a, c); break;
-        case FR_OP_MAX: r = iv_max(a, c); break;
-        case FR_OP_RUNI: case FR_OP_RINT: case FR_OP_SMAX: case FR_OP_SMIN: r = fr__iv_monotone2(in, a, c); break;
-        case FR_OP_NOISE: r = fr__iv_noise(t->params + in->aux, a, c, v[in->c]); break;
-        case FR_OP_CALL: {
-            const fr_callback_t *cb = &t->callbacks[in->aux];
-            iv_t q[3];
-            if (!cb->interval) return FR_ERR_NO_INTERVAL;
-            q[0] = a; q[1] = c; q[2] = v[in->c];
-            r = cb->interval(q, cb->user);
-            break;
-        }
-        default: r = iv_entire(); break;
-        }
-        v[i] = r;
-    }
+    if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+    for (i = 0; i < n; i++) v[i] = fr__iv_step(t, &t->code[i], v, box);
     return FR_OK;
 }
 
@@ -1866,18 +1882,26 @@ static iv_affine_t fr__af_monotone2(const fr_instr_t *in, iv_affine_t a, iv_affi
     return iv_affine_from_iv(r);
 }
 
+/* Affine evaluation runs an interval shadow beside the forms: each slot's
+   enclosure is the tighter of the two, so affine results are never wider
+   than interval ones (an affine square or product can dip below zero and
+   then make a blend's denominator straddle 0 when the interval cannot). */
 FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], void *scratch, iv_affine_t *out)
 {
     iv_affine_t *v = (iv_affine_t *)scratch;
+    iv_t *w, box[3];
     const fr_instr_t *code;
     unsigned int i, n;
     if (!t || !p || !v || !out || t->n_code == 0) return FR_ERR_INVALID_ARG;
     if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
     code = t->code;
     n = t->n_code;
+    w = (iv_t *)(void *)(v + n);
+    for (i = 0; i < 3; i++) box[i] = iv_from_affine(p[i]);
     for (i = 0; i < n; i++) {
         const fr_instr_t *in = &code[i];
         iv_affine_t a = v[in->a], c = v[in->b], r;
+        iv_t ri, wi = fr__iv_step(t, in, w, box);
         switch ((fr_op_t)in->op) {
         case FR_OP_CONST: r = iv_affine_const(in->k); break;
         case FR_OP_VAR_X: r = p[0]; break;
@@ -1910,18 +1934,17 @@ FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], vo
         case FR_OP_MIN: r = iv_affine_min(a, c); break;
         case FR_OP_MAX: r = iv_affine_max(a, c); break;
         case FR_OP_RUNI: case FR_OP_RINT: case FR_OP_SMAX: case FR_OP_SMIN: r = fr__af_monotone2(in, a, c); break;
-        case FR_OP_NOISE:
-            r = iv_affine_from_iv(fr__iv_noise(t->params + in->aux, iv_from_affine(a), iv_from_affine(c),
-                                               iv_from_affine(v[in->c])));
-            break;
-        case FR_OP_CALL: {
-            const fr_callback_t *cb = &t->callbacks[in->aux];
-            iv_t q[3];
-            q[0] = iv_from_affine(a); q[1] = iv_from_affine(c); q[2] = iv_from_affine(v[in->c]);
-            r = iv_affine_from_iv(cb->interval(q, cb->user));
-            break;
+        default: r = iv_affine_from_iv(wi); break; /* NOISE, CALL: their interval image */
         }
-        default: r = iv_affine_from_iv(iv_entire()); break;
+        ri = iv_from_affine(r);
+        if (iv_affine_is_empty(r) || !(iv_width(ri) <= iv_width(wi))) {
+            r = iv_affine_from_iv(wi);
+            ri = iv_from_affine(r);
+        }
+        /* both enclose the slot's range: the shadow keeps their intersection */
+        {
+            iv_t x = iv_intersect(wi, ri);
+            w[i] = iv_is_empty(x) ? wi : x;
         }
         v[i] = r;
     }
@@ -1936,27 +1959,30 @@ FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], vo
 
 /* Choice decided on a box: 0 undecided, 1 the first operand, 2 the second.
    *exact says the replacement has the same value, not only the same sign. */
-static int fr__choose(const fr_instr_t *in, iv_t a, iv_t b, int *exact)
+static int fr__choose(const fr_instr_t *in, iv_t a, iv_t b, fr_prune_mode_t mode, int *exact)
 {
+    int ch = 0, unionlike, alpha1;
     *exact = 1;
     if (iv_is_empty(a) || iv_is_empty(b)) return 0;
     switch ((fr_op_t)in->op) {
-    case FR_OP_MAX: return a.lo >= b.hi ? 1 : b.lo >= a.hi ? 2 : 0;
-    case FR_OP_MIN: return a.hi <= b.lo ? 1 : b.hi <= a.lo ? 2 : 0;
     case FR_OP_SMAX: return a.lo - b.hi >= in->k ? 1 : b.lo - a.hi >= in->k ? 2 : 0;
     case FR_OP_SMIN: return b.lo - a.hi >= in->k ? 1 : a.lo - b.hi >= in->k ? 2 : 0;
-    case FR_OP_RUNI:
-        if (in->k == 1.0) return a.lo >= b.hi ? 1 : b.lo >= a.hi ? 2 : 0;
-        /* an R-union has the sign of its larger argument: with b < 0
-           throughout it has the sign of a (Rvachev; sign only) */
-        *exact = 0;
-        return b.hi < 0 ? 1 : a.hi < 0 ? 2 : 0;
-    case FR_OP_RINT:
-        if (in->k == 1.0) return a.hi <= b.lo ? 1 : b.hi <= a.lo ? 2 : 0;
-        *exact = 0;
-        return b.lo > 0 ? 1 : a.lo > 0 ? 2 : 0;
+    case FR_OP_MAX: case FR_OP_MIN: case FR_OP_RUNI: case FR_OP_RINT: break;
     default: return 0;
     }
+    unionlike = in->op == FR_OP_MAX || in->op == FR_OP_RUNI;
+    alpha1 = in->op == FR_OP_MAX || in->op == FR_OP_MIN || in->k == 1.0;
+    if (alpha1) { /* max/min: one operand dominates on the whole box */
+        ch = unionlike ? (a.lo >= b.hi ? 1 : b.lo >= a.hi ? 2 : 0) : (a.hi <= b.lo ? 1 : b.hi <= a.lo ? 2 : 0);
+        if (ch || mode != FR_PRUNE_SIGN) return ch;
+    } else if (mode == FR_PRUNE_EXACT)
+        return 0;
+    /* An R-function has the sign of max (union) or min (intersection) of its
+       arguments (Rvachev): a union with b < 0 on the whole box has the sign
+       of a, an intersection with b > 0 that of a. Sign only. */
+    *exact = 0;
+    if (unionlike) return b.hi < 0 ? 1 : a.hi < 0 ? 2 : 0;
+    return b.lo > 0 ? 1 : a.lo > 0 ? 2 : 0;
 }
 
 /* operations whose result's sign depends only on their operands' signs */
@@ -1967,6 +1993,12 @@ static int fr__sign_preserving(unsigned int op)
 
 FR_DEF fr_result_t fr_prune(const fr_tape_t *t, const iv_t box[3], void *scratch, fr_instr_t *code_buf,
                             unsigned int cap, fr_tape_t *out, iv_t *range)
+{
+    return fr_prune_ex(t, box, FR_PRUNE_DEFAULT, scratch, code_buf, cap, out, range);
+}
+
+FR_DEF fr_result_t fr_prune_ex(const fr_tape_t *t, const iv_t box[3], fr_prune_mode_t mode, void *scratch,
+                               fr_instr_t *code_buf, unsigned int cap, fr_tape_t *out, iv_t *range)
 {
     iv_t *v = (iv_t *)scratch;
     unsigned int n, i, *rep, *newidx, outs[1];
@@ -1998,7 +2030,7 @@ FR_DEF fr_result_t fr_prune(const fr_tape_t *t, const iv_t box[3], void *scratch
     }
     for (i = 0; i < n; i++) {
         const fr_instr_t *in = &t->code[i];
-        int exact, ch = fr__arity(in->op) == 2 ? fr__choose(in, v[in->a], v[in->b], &exact) : 0;
+        int exact, ch = fr__arity(in->op) == 2 ? fr__choose(in, v[in->a], v[in->b], mode, &exact) : 0;
         rep[i] = i;
         if (ch && (exact || sign_ctx[i])) {
             rep[i] = rep[ch == 1 ? in->a : in->b];

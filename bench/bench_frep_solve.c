@@ -1,0 +1,381 @@
+/* bench/bench_frep_solve.c -- quartic solvers, error against run time.
+
+   Three solvers side by side, in one run:
+     frep    fr_solve_quartic (derivative-sequence isolation + compensated polish)
+     naive   textbook Ferrari with a Cardano resolvent (written here)
+     gsl     gsl_poly_complex_solve (companion-matrix QR), real roots taken
+   Accuracy is the relative forward error of every real root returned, against
+   the roots of the polynomial whose coefficients are the doubles passed in,
+   computed in __float128 (tests/test_frep_solve_ref.h). A reference real root
+   with no returned root within 1e-6 relative is a miss; a returned root with
+   no reference root (real, or complex with |Im|/|z| <= 1e-6) within 1e-6 is
+   spurious.
+   Sets: the 24 cases of Orellana & De Michele's published accuracy driver
+   (ACM TOMS Algorithm 1010, cases 1-24: Flocke's and Strobach's quartics),
+   and 10^6 random quartics with roots uniform in [-1, 1] (real parts and
+   imaginary parts), a third each with 4, 2 and 0 real roots.
+   Usage: bench_frep_solve OUTDIR  (CSV: OUTDIR/frep_solve_odm.csv, frep_solve_random.csv) */
+#define IV_IMPLEMENTATION
+#include "interval.h"
+#define FR_IMPLEMENTATION
+#include "frep.h"
+#include "test_frep_solve_ref.h"
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_poly.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define MATCH_REL 1e-6
+#define NEAR_REAL 1e-6
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ---------------------------------------------------------------- naive Ferrari / Cardano */
+
+/* One real root of y^3 + a y^2 + b y + c (Cardano, trigonometric when three real). */
+static double naive_cubic_root(double a, double b, double c)
+{
+    double Q = (a * a - 3 * b) / 9, R = (2 * a * a * a - 9 * a * b + 27 * c) / 54;
+    if (R * R < Q * Q * Q) {
+        double th = acos(R / sqrt(Q * Q * Q));
+        return -2 * sqrt(Q) * cos(th / 3) - a / 3;
+    } else {
+        double A = -copysign(cbrt(fabs(R) + sqrt(R * R - Q * Q * Q)), R), B = A != 0 ? Q / A : 0;
+        return A + B - a / 3;
+    }
+}
+
+static int naive_quadratic(double b, double c, double *r) /* y^2 + b y + c */
+{
+    double d = b * b - 4 * c;
+    if (d < 0) return 0;
+    r[0] = (-b - sqrt(d)) / 2;
+    r[1] = (-b + sqrt(d)) / 2;
+    return 2;
+}
+
+static int naive_quartic(const double *cf, double *r)
+{
+    double a = cf[3] / cf[4], b = cf[2] / cf[4], c = cf[1] / cf[4], d = cf[0] / cf[4];
+    double p = b - 3 * a * a / 8, q = c - a * b / 2 + a * a * a / 8;
+    double rr = d - a * c / 4 + a * a * b / 16 - 3 * a * a * a * a / 256, y[4];
+    int n = 0, i;
+    if (q == 0) { /* biquadratic */
+        double z[2];
+        int k, nz = naive_quadratic(p, rr, z);
+        for (k = 0; k < nz; k++)
+            if (z[k] >= 0) { y[n++] = sqrt(z[k]); y[n++] = -sqrt(z[k]); }
+    } else {
+        /* resolvent m^3 + p m^2 + (p^2/4 - r) m - q^2/8 = 0, largest real root */
+        double m = naive_cubic_root(p, p * p / 4 - rr, -q * q / 8), s;
+        if (m <= 0) return 0;
+        s = sqrt(2 * m);
+        n = naive_quadratic(s, p / 2 + m - q / (2 * s), y);
+        n += naive_quadratic(-s, p / 2 + m + q / (2 * s), y + n);
+    }
+    for (i = 0; i < n; i++) r[i] = y[i] - a / 4;
+    return n;
+}
+
+/* ---------------------------------------------------------------- GSL */
+
+static gsl_poly_complex_workspace *gsl_ws;
+static int gsl_quartic(const double *c, double *r)
+{
+    double z[8];
+    int i, n = 0;
+    if (gsl_poly_complex_solve(c, 5, gsl_ws, z) != GSL_SUCCESS) return 0;
+    for (i = 0; i < 4; i++)
+        if (z[2 * i + 1] == 0) r[n++] = z[2 * i];
+    return n;
+}
+
+static int frep_quartic(const double *c, double *r) { return fr_solve_quartic(c, r); }
+
+typedef int (*solver_fn)(const double *, double *);
+static const char *solver_names[3] = {"frep", "naive", "gsl"};
+static solver_fn solvers[3] = {frep_quartic, naive_quartic, gsl_quartic};
+
+/* ---------------------------------------------------------------- scoring */
+
+typedef struct ref_t {
+    int n;
+    double re[4], im_rel[4];
+    __float128 qre[4];
+} ref_t;
+
+typedef struct score_t {
+    double max_rel;
+    long misses, spurious, roots;
+} score_t;
+
+static void score(const ref_t *ref, const double *r, int n, score_t *s)
+{
+    int i, k;
+    /* misses: each real reference root needs a returned root nearby */
+    for (k = 0; k < ref->n; k++) {
+        double best = HUGE_VAL;
+        if (ref->im_rel[k] > 1e-20) continue;
+        for (i = 0; i < n; i++) {
+            double e = (double)(fabsq((__float128)r[i] - ref->qre[k]) / fabsq(ref->qre[k]));
+            if (e < best) best = e;
+        }
+        if (!(best <= MATCH_REL)) s->misses++;
+    }
+    for (i = 0; i < n; i++) {
+        double best = HUGE_VAL;
+        for (k = 0; k < ref->n; k++) {
+            double e;
+            if (ref->im_rel[k] > NEAR_REAL) continue;
+            e = (double)(fabsq((__float128)r[i] - ref->qre[k]) / fabsq(ref->qre[k]));
+            if (e < best) best = e;
+        }
+        s->roots++;
+        if (!(best <= MATCH_REL)) s->spurious++;
+        else if (best > s->max_rel) s->max_rel = best;
+    }
+}
+
+/* Reference: Aberth in quad on the double coefficients (no merging: a
+   complex pair 1e-8 off the axis stays complex). */
+static void reference_aberth(const double *c, ref_t *ref)
+{
+    ref_root_t all[4];
+    int i;
+    ref_roots_all(c, 4, all);
+    ref->n = 4;
+    for (i = 0; i < 4; i++) {
+        ref->qre[i] = all[i].qre;
+        ref->im_rel[i] = all[i].im_rel;
+        ref->re[i] = (double)ref->qre[i];
+    }
+}
+
+/* Fast reference for well-separated random roots: quad Newton from the known
+   roots on the double-coefficient polynomial; falls back to Aberth when two
+   iterates meet or one does not settle. */
+static void reference_newton(const double *c, const __float128 *kre, const __float128 *kim, ref_t *ref)
+{
+    __float128 q[5];
+    int i, k, j, ok = 1;
+    for (i = 0; i < 5; i++) q[i] = c[i];
+    for (k = 0; k < 4 && ok; k++) {
+        __complex128 z;
+        __real__ z = kre[k];
+        __imag__ z = kim[k];
+        for (j = 0; j < 12; j++) {
+            __complex128 p = q[4], d = 0, step;
+            for (i = 3; i >= 0; i--) { d = d * z + p; p = p * z + q[i]; }
+            if (p == 0) break;
+            step = p / d;
+            z -= step;
+            if (cabsq(step) <= 1e-32Q * cabsq(z)) break;
+        }
+        if (j == 12) ok = 0;
+        ref->qre[k] = crealq(z);
+        ref->im_rel[k] = (double)(fabsq(cimagq(z)) / cabsq(z));
+        if (ref->im_rel[k] < 1e-25) ref->im_rel[k] = 0;
+        for (i = 0; i < k; i++)
+            if (fabsq(ref->qre[i] - ref->qre[k]) < 1e-20Q * fabsq(ref->qre[k]) &&
+                fabs(ref->im_rel[i] - ref->im_rel[k]) < 1e-20)
+                ok = 0;
+    }
+    ref->n = 4;
+    if (!ok) reference_aberth(c, ref);
+}
+
+/* ---------------------------------------------------------------- ODM cases */
+
+static int odm_case(int k, double *c, ref_t *known)
+{
+    /* roots (re, im) of cases 1-22 */
+    static const double R[22][4][2] = {
+        {{1e9, 0}, {1e6, 0}, {1e3, 0}, {1, 0}},
+        {{2.003, 0}, {2.002, 0}, {2.001, 0}, {2, 0}},
+        {{1e53, 0}, {1e50, 0}, {1e49, 0}, {1e47, 0}},
+        {{1e14, 0}, {2, 0}, {1, 0}, {-1, 0}},
+        {{-2e7, 0}, {1e7, 0}, {1, 0}, {-1, 0}},
+        {{1e7, 0}, {-1e6, 0}, {1, 1}, {1, -1}},
+        {{-7, 0}, {-4, 0}, {-1e6, 1e5}, {-1e6, -1e5}},
+        {{1e8, 0}, {11, 0}, {1e3, 1}, {1e3, -1}},
+        {{1e7, 1e6}, {1e7, -1e6}, {1, 2}, {1, -2}},
+        {{1e4, 3}, {1e4, -3}, {-7, 1e3}, {-7, -1e3}},
+        {{1.001, 4.998}, {1.001, -4.998}, {1.000, 5.001}, {1.000, -5.001}},
+        {{1e3, 3}, {1e3, -3}, {1e3, 1}, {1e3, -1}},
+        {{2, 1e4}, {2, -1e4}, {1, 1e3}, {1, -1e3}},
+        {{1000, 0}, {1000, 0}, {1000, 0}, {1000, 0}},
+        {{1000, 0}, {1000, 0}, {1000, 0}, {3.552713678800501e-15, 0}}, /* 2^-48 */
+        {{1e16, 1e7}, {1e16, -1e7}, {1, 0.1}, {1, -0.1}},
+        {{10000, 0}, {10001, 0}, {10010, 0}, {10100, 0}},
+        {{4e5, 3e2}, {4e5, -3e2}, {3e4, 7e3}, {3e4, -7e3}},
+        {{1e44, 0}, {1e30, 0}, {1e30, 0}, {1, 0}},
+        {{1e14, 0}, {1e7, 0}, {1e7, 0}, {1, 0}},
+        {{1e15, 0}, {1e7, 0}, {1e7, 0}, {1, 0}},
+        {{1e154, 0}, {1e152, 0}, {10, 0}, {1, 0}},
+    };
+    if (k <= 22) {
+        __float128 re[4], pairs[2][2];
+        int nr = 0, np = 0, i;
+        for (i = 0; i < 4; i++) {
+            if (R[k - 1][i][1] == 0) re[nr++] = R[k - 1][i][0];
+            else if (R[k - 1][i][1] > 0) { pairs[np][0] = R[k - 1][i][0]; pairs[np][1] = R[k - 1][i][1]; np++; }
+        }
+        ref_coeffs_from_roots(re, nr, (const __float128(*)[2])pairs, np, 1, c);
+        {
+            /* the doubles are the exact coefficients (as for (x-1000)^4, whose
+               quadruple root Aberth cannot resolve): the known roots are exact */
+            __float128 q[5] = {1, 0, 0, 0, 0};
+            int j, m = 0, exact = 1;
+            for (i = 0; i < 4; i++) {
+                __float128 z = R[k - 1][i][0];
+                if (R[k - 1][i][1] != 0) return 0;
+                for (j = m + 1; j > 0; j--) q[j] = q[j - 1] - z * q[j];
+                q[0] = -z * q[0];
+                m++;
+            }
+            for (i = 0; i < 5; i++) exact = exact && (__float128)c[i] == q[i];
+            if (!exact) return 0;
+            known->n = 4;
+            for (i = 0; i < 4; i++) { known->qre[i] = R[k - 1][i][0]; known->re[i] = R[k - 1][i][0]; known->im_rel[i] = 0; }
+            return 1;
+        }
+    } else if (k == 23) {
+        c[4] = 1; c[3] = 1; c[2] = 1; c[1] = 0.375; c[0] = 0.001;
+    } else {
+        __float128 S = 1e30Q;
+        c[4] = 1;
+        c[3] = (double)(-(1 + 1 / S));
+        c[2] = (double)(1 / S - S * S);
+        c[1] = (double)(S * S + S);
+        c[0] = (double)(-S);
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    const char *dir = argc > 1 ? argv[1] : ".";
+    char path[1024];
+    FILE *csv;
+    long N = 1000000, i;
+    int k, s;
+    double *coef;
+    ref_t *refs;
+    score_t tot[3];
+    double ns[3];
+    gsl_set_error_handler_off();
+    gsl_ws = gsl_poly_complex_workspace_alloc(5);
+
+    /* ---- ODM cases */
+    snprintf(path, sizeof path, "%s/frep_solve_odm.csv", dir);
+    csv = fopen(path, "w");
+    if (csv) fprintf(csv, "case,real_roots,frep_rel,frep_miss,frep_spur,naive_rel,naive_miss,naive_spur,gsl_rel,gsl_miss,gsl_spur\n");
+    printf("ODM 2020 accuracy cases: max relative forward error of real roots (misses/spurious)\n");
+    printf("%5s %5s | %-20s | %-20s | %-20s\n", "case", "real", "frep", "naive Ferrari", "gsl complex_solve");
+    memset(tot, 0, sizeof tot);
+    for (k = 1; k <= 24; k++) {
+        double c[5], r[4];
+        ref_t ref;
+        score_t sc[3];
+        int nreal = 0, j;
+        if (!odm_case(k, c, &ref)) reference_aberth(c, &ref);
+        for (j = 0; j < 4; j++) nreal += ref.im_rel[j] <= 1e-20;
+        memset(sc, 0, sizeof sc);
+        for (s = 0; s < 3; s++) {
+            int n = solvers[s](c, r);
+            score(&ref, r, n, &sc[s]);
+            if (sc[s].max_rel > tot[s].max_rel) tot[s].max_rel = sc[s].max_rel;
+            tot[s].misses += sc[s].misses;
+            tot[s].spurious += sc[s].spurious;
+        }
+        printf("%5d %5d |", k, nreal);
+        for (s = 0; s < 3; s++) printf(" %9.2e (%ld/%ld)    |", sc[s].max_rel, sc[s].misses, sc[s].spurious);
+        printf("\n");
+        if (csv) {
+            fprintf(csv, "%d,%d", k, nreal);
+            for (s = 0; s < 3; s++) fprintf(csv, ",%.3e,%ld,%ld", sc[s].max_rel, sc[s].misses, sc[s].spurious);
+            fprintf(csv, "\n");
+        }
+    }
+    printf("  all       |");
+    for (s = 0; s < 3; s++) printf(" %9.2e (%ld/%ld)    |", tot[s].max_rel, tot[s].misses, tot[s].spurious);
+    printf("\n\n");
+    if (csv) fclose(csv);
+
+    /* ---- random quartics */
+    if (getenv("FILIGREE_BENCH_N")) N = atol(getenv("FILIGREE_BENCH_N"));
+    coef = (double *)malloc(sizeof(double) * 5 * (size_t)N);
+    refs = (ref_t *)malloc(sizeof(ref_t) * (size_t)N);
+    if (!coef || !refs) return 1;
+    {
+        unsigned long long st = 2024;
+        for (i = 0; i < N; i++) {
+            __float128 kre[4], kim[4], re[4], pr[2][2];
+            double u[8];
+            int kind = (int)(i % 3), j, nr = 0, np = 0;
+            for (j = 0; j < 8; j++) {
+                unsigned long long z = (st += 0x9E3779B97F4A7C15ull);
+                z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+                z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+                z ^= z >> 31;
+                u[j] = 2.0 * ((double)(z >> 11) * (1.0 / 9007199254740992.0)) - 1.0;
+            }
+            if (kind == 0) { for (j = 0; j < 4; j++) re[nr++] = u[j]; }
+            else if (kind == 1) { re[nr++] = u[0]; re[nr++] = u[1]; pr[np][0] = u[2]; pr[np][1] = fabs(u[3]); np++; }
+            else { pr[np][0] = u[0]; pr[np][1] = fabs(u[1]); np++; pr[np][0] = u[2]; pr[np][1] = fabs(u[3]); np++; }
+            ref_coeffs_from_roots(re, nr, (const __float128(*)[2])pr, np, 1, coef + 5 * i);
+            for (j = 0; j < nr; j++) { kre[j] = re[j]; kim[j] = 0; }
+            for (j = 0; j < np; j++) {
+                kre[nr + 2 * j] = pr[j][0]; kim[nr + 2 * j] = pr[j][1];
+                kre[nr + 2 * j + 1] = pr[j][0]; kim[nr + 2 * j + 1] = -pr[j][1];
+            }
+            reference_newton(coef + 5 * i, kre, kim, &refs[i]);
+            if (i % 100000 == 0) fprintf(stderr, "reference %ld/%ld\n", i, N);
+        }
+    }
+    memset(tot, 0, sizeof tot);
+    for (s = 0; s < 3; s++) {
+        double t0, sink = 0, r[4];
+        int rep;
+        for (i = 0; i < N; i++) {
+            int n = solvers[s](coef + 5 * i, r);
+            score(&refs[i], r, n, &tot[s]);
+        }
+        ns[s] = HUGE_VAL;
+        for (rep = 0; rep < 3; rep++) {
+            t0 = now_s();
+            for (i = 0; i < N; i++) {
+                int n = solvers[s](coef + 5 * i, r);
+                if (n > 0) sink += r[0];
+            }
+            t0 = (now_s() - t0) * 1e9 / (double)N;
+            if (t0 < ns[s]) ns[s] = t0;
+        }
+        if (sink == 12345.678) printf(" ");
+        fprintf(stderr, "timed %s\n", solver_names[s]);
+    }
+    printf("%ld random quartics (roots in [-1,1]^2): max rel error, misses, spurious, ns/solve, time vs frep\n", N);
+    printf("%-8s %11s %9s %9s %9s %8s\n", "solver", "max_rel", "misses", "spurious", "ns", "ratio");
+    snprintf(path, sizeof path, "%s/frep_solve_random.csv", dir);
+    csv = fopen(path, "w");
+    if (csv) fprintf(csv, "solver,n,max_rel,misses,spurious,ns_per_solve,time_ratio_vs_frep\n");
+    for (s = 0; s < 3; s++) {
+        printf("%-8s %11.2e %9ld %9ld %9.1f %8.2f\n", solver_names[s], tot[s].max_rel, tot[s].misses, tot[s].spurious,
+               ns[s], ns[s] / ns[0]);
+        if (csv)
+            fprintf(csv, "%s,%ld,%.3e,%ld,%ld,%.1f,%.2f\n", solver_names[s], N, tot[s].max_rel, tot[s].misses,
+                    tot[s].spurious, ns[s], ns[s] / ns[0]);
+    }
+    if (csv) fclose(csv);
+    gsl_poly_complex_workspace_free(gsl_ws);
+    free(coef);
+    free(refs);
+    return 0;
+}

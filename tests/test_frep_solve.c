@@ -1,0 +1,345 @@
+/* Polynomial solvers of frep.h (issue 5, item 1), against an independent
+   __float128 oracle (tests/test_frep_solve_ref.h): the reference roots are
+   those of the polynomial whose coefficients are the very doubles we pass,
+   so every bound below is about the solver, not about coefficient rounding. */
+#include "test.h"
+#define IV_IMPLEMENTATION
+#include "interval.h"
+#define FR_IMPLEMENTATION
+#include "frep.h"
+#include "test_frep_solve_ref.h"
+
+/* A reference root counts as real when |Im|/|z| is at most this. */
+#define REAL_TOL 1e-20
+
+/* Compare fr_solve_poly on [t0, t1] with the oracle: same count (after
+   merging reference roots closer than merge_rel, which a solver may return
+   once), and every root within rel (relative to max(|root|, abs_floor)). */
+static void check_roots(const char *what, const double *c, int degree, double t0, double t1, double rel,
+                        double merge_rel)
+{
+    double r[REF_MAX_DEG + 1];
+    __float128 ref[REF_MAX_DEG + 1], m[REF_MAX_DEG + 1];
+    int n = fr_solve_poly(c, degree, t0, t1, r), nref, nm = 0, i;
+    nref = ref_real_roots(c, degree, REAL_TOL, ref);
+    for (i = 0; i < nref; i++) {
+        if (ref[i] < (__float128)t0 || ref[i] > (__float128)t1) continue;
+        if (nm > 0 && fabsq(ref[i] - m[nm - 1]) <= (__float128)merge_rel * fabsq(ref[i])) continue;
+        m[nm++] = ref[i];
+    }
+    if (n != nm) {
+        T_FAIL("%s: %d roots, reference has %d", what, n, nm);
+        for (i = 0; i < n; i++) fprintf(stderr, "   got %.17g\n", r[i]);
+        for (i = 0; i < nm; i++) fprintf(stderr, "   ref %.17g\n", (double)m[i]);
+        return;
+    }
+    T_INT_EQ(n, nm);
+    for (i = 0; i < n; i++) {
+        __float128 err = fabsq((__float128)r[i] - m[i]) / (fabsq(m[i]) > 0 ? fabsq(m[i]) : 1);
+        if (!(err <= (__float128)rel))
+            T_FAIL("%s: root %d = %.17g, reference %.17g, rel error %.3g > %.3g", what, i, r[i], (double)m[i],
+                   (double)err, rel);
+        else
+            T_CHECK(1);
+    }
+}
+
+/* Coefficients from real roots and complex pairs (rounded once from quad). */
+static void from_roots(double *c, const double *re, int nr, const double (*pairs)[2], int np, double lead)
+{
+    __float128 q[REF_MAX_DEG], p[REF_MAX_DEG][2];
+    int i;
+    for (i = 0; i < nr; i++) q[i] = re[i];
+    for (i = 0; i < np; i++) { p[i][0] = pairs[i][0]; p[i][1] = pairs[i][1]; }
+    ref_coeffs_from_roots(q, nr, (const __float128(*)[2])p, np, lead, c);
+}
+
+/* ---------------------------------------------------------------- the oracle itself */
+
+static void oracle_recovers_known_roots(void)
+{
+    static const double roots[4] = {-3, 0.5, 2, 7};
+    double c[5];
+    __float128 ref[5];
+    int n, i;
+    from_roots(c, roots, 4, NULL, 0, 1);
+    n = ref_real_roots(c, 4, REAL_TOL, ref);
+    T_INT_EQ(n, 4);
+    for (i = 0; i < 4 && i < n; i++) T_REL((double)ref[i], roots[i], 1e-15);
+}
+
+/* ---------------------------------------------------------------- compensated Horner */
+
+/* (x-1)^8 has exact integer coefficients; near x = 1 plain Horner loses every
+   digit to cancellation, compensated Horner must keep about 16 of them. This
+   fails if the compiler contracts the error-free transformations into fmas. */
+static void compensated_horner_survives_contraction(void)
+{
+    static const double c[9] = {1, -8, 28, -56, 70, -56, 28, -8, 1};
+    double x;
+    for (x = 1.0009765625; x < 1.1; x += 0.0078125) { /* exact binary points */
+        __float128 exact = powq((__float128)x - 1, 8);
+        double a, v = fr_poly_eval_compensated(c, 8, x, &a);
+        T_REL(v, (double)exact, 1e-12);
+        T_LE(fabs(v - (double)exact), 1e-15 * fabs((double)exact) + 4 * 64 * 1.3e-32 * a);
+    }
+}
+
+/* ---------------------------------------------------------------- quadratic */
+
+static void quadratic_textbook(void)
+{
+    static const double c[3] = {6, -5, 1};
+    double r[2];
+    T_INT_EQ(fr_solve_quadratic(c, r), 2);
+    T_EQ(r[0], 2);
+    T_EQ(r[1], 3);
+}
+
+/* b^2 ~ 4ac: the discriminant cancels; near-double roots 1 +- 1e-8. */
+static void quadratic_near_double_root(void)
+{
+    static const double roots[2] = {1 - 1e-8, 1 + 1e-8};
+    double c[3];
+    from_roots(c, roots, 2, NULL, 0, 1);
+    check_roots("near double", c, 2, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+}
+
+/* Complex pair with imaginary part 1e-9: no real root may appear. */
+static void quadratic_complex_pair_near_axis(void)
+{
+    static const double pair[1][2] = {{1.5, 1e-7}};
+    double c[3], r[2];
+    from_roots(c, NULL, 0, pair, 1, 1);
+    T_INT_EQ(fr_solve_quadratic(c, r), 0);
+}
+
+/* Cancellation-prone: roots 1e-9 and 1e9 (|b| >> |a c|). */
+static void quadratic_roots_1e_minus9_and_1e9(void)
+{
+    static const double roots[2] = {1e-9, 1e9};
+    double c[3];
+    from_roots(c, roots, 2, NULL, 0, 1);
+    check_roots("spread quadratic", c, 2, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+}
+
+/* ---------------------------------------------------------------- stiff cases */
+
+static void quartic_roots_spread_1e_minus9_to_1e9(void)
+{
+    static const double roots[4] = {1e-9, 1e-3, 1e3, 1e9};
+    double c[5];
+    from_roots(c, roots, 4, NULL, 0, 1);
+    check_roots("spread quartic", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+}
+
+static void quartic_cluster_2_2001_2002_2003(void)
+{
+    static const double roots[4] = {2, 2.001, 2.002, 2.003};
+    double c[5];
+    from_roots(c, roots, 4, NULL, 0, 1);
+    check_roots("cluster", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+}
+
+/* Roots clustered within 1e-8 (relative 5e-9) plus a far one. */
+static void quartic_cluster_within_1e_minus8(void)
+{
+    static const double roots[4] = {-4, 2, 2 + 1e-8, 2 + 2e-8};
+    double c[5];
+    from_roots(c, roots, 4, NULL, 0, 1);
+    check_roots("cluster 1e-8", c, 4, -HUGE_VAL, HUGE_VAL, 1e-15, 1e-15);
+}
+
+/* Exact multiple roots (coefficients exact): each returned once, exactly. */
+static void exact_multiple_roots(void)
+{
+    static const double d2[5] = {6, -17, 17, -7, 1};      /* (x-1)^2 (x-2)(x-3) */
+    static const double t3[5] = {-2, 7, -9, 5, -1};       /* -(x-1)^3 (x-2) */
+    static const double q4[5] = {1, -4, 6, -4, 1};        /* (x-1)^4 */
+    static const double dd[5] = {4, 4, -3, -2, 1};        /* (x-2)^2 (x+1)^2 */
+    static const double s5[6] = {32, -80, 80, -40, 10, -1}; /* -(x-2)^5 */
+    double r[5];
+    T_INT_EQ(fr_solve_quartic(d2, r), 3);
+    T_EQ(r[0], 1); T_EQ(r[1], 2); T_EQ(r[2], 3);
+    T_INT_EQ(fr_solve_quartic(t3, r), 2);
+    T_EQ(r[0], 1); T_EQ(r[1], 2);
+    T_INT_EQ(fr_solve_quartic(q4, r), 1);
+    T_EQ(r[0], 1);
+    T_INT_EQ(fr_solve_quartic(dd, r), 2);
+    T_EQ(r[0], -1); T_EQ(r[1], 2);
+    T_INT_EQ(fr_solve_poly(s5, 5, -HUGE_VAL, HUGE_VAL, r), 1);
+    T_EQ(r[0], 2);
+}
+
+/* A tangent ray: two real roots 1e-7 apart relative, next to a double root
+   perturbed into a complex pair. Counts and values against the oracle. */
+static void near_double_roots_tangent(void)
+{
+    static const double roots[4] = {-1, 0.75, 0.75 + 1e-7, 3};
+    static const double pair[1][2] = {{0.75, 1e-7}};
+    static const double roots2[2] = {-1, 3};
+    double c[5];
+    from_roots(c, roots, 4, NULL, 0, 1);
+    check_roots("near double (real pair)", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    from_roots(c, roots2, 2, pair, 1, 1);
+    check_roots("near double (complex pair)", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+}
+
+static void zero_leading_coefficient_drops_degree(void)
+{
+    static const double c[5] = {-6, 11, -6, 1, 0}; /* (x-1)(x-2)(x-3) */
+    static const double lin[3] = {-3, 2, 0};
+    double r[4];
+    T_INT_EQ(fr_solve_quartic(c, r), 3);
+    T_EQ(r[0], 1); T_EQ(r[1], 2); T_EQ(r[2], 3);
+    T_INT_EQ(fr_solve_quadratic(lin, r), 1);
+    T_EQ(r[0], 1.5);
+}
+
+/* 1e-20 t^4 + (t-1)(t-2)(t-3): three moderate roots and one near -1e20. */
+static void tiny_leading_coefficient(void)
+{
+    double c[5] = {-6, 11, -6, 1, 1e-20};
+    check_roots("tiny leading", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    c[4] = 1e-300;
+    check_roots("tiny leading 1e-300", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+}
+
+static void coefficient_scales_1e150_and_1e_minus150(void)
+{
+    static const double roots[4] = {-2.5, 0.1, 1.7, 40};
+    double c[5], s[5];
+    int i, k;
+    from_roots(c, roots, 4, NULL, 0, 1);
+    for (k = 0; k < 4; k++) {
+        double scale = k == 0 ? 1e150 : k == 1 ? 1e-150 : k == 2 ? 1e300 : 1e-300;
+        for (i = 0; i < 5; i++) s[i] = c[i] * scale;
+        check_roots("scaled", s, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    }
+}
+
+/* ODM 2020 case 22: roots 1e154, 1e152, 10, 1 -- coefficients near 1e307. */
+static void quartic_roots_1e154_1e152_10_1(void)
+{
+    static const double roots[4] = {1, 10, 1e152, 1e154};
+    double c[5];
+    from_roots(c, roots, 4, NULL, 0, 1);
+    check_roots("1e154", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+}
+
+static void zero_roots_split_off(void)
+{
+    static const double c[6] = {0, 0, -2, 1, 0, 0}; /* t^2 (t - 2) */
+    double r[5];
+    T_INT_EQ(fr_solve_poly(c, 5, -HUGE_VAL, HUGE_VAL, r), 2);
+    T_EQ(r[0], 0); T_EQ(r[1], 2);
+    T_INT_EQ(fr_solve_poly(c, 5, 0.5, 3, r), 1);
+    T_EQ(r[0], 2);
+}
+
+static void invalid_input_returns_minus_one(void)
+{
+    double c[5] = {1, 2, 3, 4, 5}, r[4];
+    T_INT_EQ(fr_solve_poly(c, FR_POLY_MAX_DEGREE + 1, 0, 1, r), -1);
+    T_INT_EQ(fr_solve_poly(c, -1, 0, 1, r), -1);
+    T_INT_EQ(fr_solve_poly(c, 4, 1, 0, r), -1);
+    T_INT_EQ(fr_solve_poly(c, 4, NAN, 0, r), -1);
+    T_INT_EQ(fr_solve_poly(NULL, 4, 0, 1, r), -1);
+    c[2] = NAN;
+    T_INT_EQ(fr_solve_quartic(c, r), -1);
+    c[2] = HUGE_VAL;
+    T_INT_EQ(fr_solve_quartic(c, r), -1);
+    {
+        static const double zero[3] = {0, 0, 0}, cst[3] = {2, 0, 0};
+        T_INT_EQ(fr_solve_quadratic(zero, r), 0);
+        T_INT_EQ(fr_solve_quadratic(cst, r), 0);
+    }
+}
+
+/* ---------------------------------------------------------------- property tests */
+
+static void random_quartics_against_oracle(void)
+{
+    t_rng_t g = {12345};
+    long n = t_count(3000), i;
+    for (i = 0; i < n; i++) {
+        double re[4], pairs[2][2], c[5];
+        int kind = (int)(t_rng_u64(&g) % 3), k;
+        for (k = 0; k < 4; k++) re[k] = t_rng_range(&g, -1, 1) * pow(10, t_rng_range(&g, -3, 3));
+        pairs[0][0] = re[2]; pairs[0][1] = fabs(re[3]);
+        pairs[1][0] = re[0]; pairs[1][1] = fabs(re[1]);
+        if (kind == 0) from_roots(c, re, 4, NULL, 0, t_rng_range(&g, 0.5, 2));
+        else if (kind == 1) from_roots(c, re, 2, (const double(*)[2])pairs, 1, 1);
+        else from_roots(c, NULL, 0, (const double(*)[2])pairs, 2, -3);
+        check_roots("random quartic", c, 4, -HUGE_VAL, HUGE_VAL, 2e-15, 0);
+    }
+}
+
+static void random_cubics_against_oracle(void)
+{
+    t_rng_t g = {777};
+    long n = t_count(3000), i;
+    for (i = 0; i < n; i++) {
+        double re[3], pair[1][2], c[4];
+        int k;
+        for (k = 0; k < 3; k++) re[k] = t_rng_range(&g, -10, 10);
+        pair[0][0] = re[1]; pair[0][1] = fabs(re[2]);
+        if (t_rng_u64(&g) & 1) from_roots(c, re, 3, NULL, 0, 1);
+        else from_roots(c, re, 1, (const double(*)[2])pair, 1, 1);
+        check_roots("random cubic", c, 3, -HUGE_VAL, HUGE_VAL, 2e-15, 0);
+    }
+}
+
+/* Degree 5..10 with real roots and pairs, on a sub-interval [t0, t1]. */
+static void random_degree_5_to_10_on_interval(void)
+{
+    t_rng_t g = {4242};
+    long n = t_count(1000), i;
+    for (i = 0; i < n; i++) {
+        int deg = 5 + (int)(t_rng_u64(&g) % 6), np = (int)(t_rng_u64(&g) % (unsigned)(deg / 2 + 1)), nr = deg - 2 * np, k;
+        double re[10], pairs[5][2], c[11], t0 = t_rng_range(&g, -3, 0), t1 = t_rng_range(&g, 0, 3);
+        for (k = 0; k < nr; k++) re[k] = t_rng_range(&g, -4, 4);
+        for (k = 0; k < np; k++) { pairs[k][0] = t_rng_range(&g, -4, 4); pairs[k][1] = t_rng_range(&g, 0.01, 2); }
+        from_roots(c, re, nr, (const double(*)[2])pairs, np, 1);
+        check_roots("degree 5..10", c, deg, t0, t1, 1e-14, 0);
+    }
+}
+
+/* Barth-sextic-like degree 6 and a degree 10 Wilkinson-type (roots 1..10). */
+static void wilkinson_degree_10(void)
+{
+    double re[10], c[11];
+    int k;
+    for (k = 0; k < 10; k++) re[k] = k + 1;
+    from_roots(c, re, 10, NULL, 0, 1);
+    check_roots("wilkinson 10", c, 10, -HUGE_VAL, HUGE_VAL, 1e-15, 0);
+    check_roots("wilkinson 10 on [2.5, 7.5]", c, 10, 2.5, 7.5, 1e-15, 0);
+}
+
+int main(int argc, char **argv)
+{
+    static const t_case_t cases[] = {
+        T_CASE(oracle_recovers_known_roots),
+        T_CASE(compensated_horner_survives_contraction),
+        T_CASE(quadratic_textbook),
+        T_CASE(quadratic_near_double_root),
+        T_CASE(quadratic_complex_pair_near_axis),
+        T_CASE(quadratic_roots_1e_minus9_and_1e9),
+        T_CASE(quartic_roots_spread_1e_minus9_to_1e9),
+        T_CASE(quartic_cluster_2_2001_2002_2003),
+        T_CASE(quartic_cluster_within_1e_minus8),
+        T_CASE(exact_multiple_roots),
+        T_CASE(near_double_roots_tangent),
+        T_CASE(zero_leading_coefficient_drops_degree),
+        T_CASE(tiny_leading_coefficient),
+        T_CASE(coefficient_scales_1e150_and_1e_minus150),
+        T_CASE(quartic_roots_1e154_1e152_10_1),
+        T_CASE(zero_roots_split_off),
+        T_CASE(invalid_input_returns_minus_one),
+        T_CASE(random_quartics_against_oracle),
+        T_CASE(random_cubics_against_oracle),
+        T_CASE(random_degree_5_to_10_on_interval),
+        T_CASE(wilkinson_degree_10),
+    };
+    return T_RUN(argc, argv, cases);
+}
