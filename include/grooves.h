@@ -265,6 +265,11 @@ typedef struct gr_query_t {
     double parallel_tol;   /* grooves whose tangent differs from the nearest
                               groove's by more than this angle (radians) are
                               not parallel (§4.2); default 0 means 0.02 */
+    int perturb_normals;   /* 0 (default): facet normals as §4.4, (0, N_b, N_w)
+                              in groove space. 1: also tilt them along T by the
+                              perturbation's slope, f'(s) (b dw - w db)/|(db, dw)|
+                              (the true normal of the swept, scaled section,
+                              with f' averaged across the footprint) */
 } gr_query_t;
 
 /* One entry of the facet list: a texture-space facet orientation with its
@@ -380,6 +385,8 @@ extern "C" {
 /* Nearest point on a Bézier piece: samples to start from, Newton steps. */
 #define GR__CURVE_SAMPLES 8
 #define GR__CURVE_NEWTON 8
+/* Smallest step in the path parameter t for the perturbation's slope. */
+#define GR__PERTURB_STEP 1e-6
 /* Default query settings (documented in gr_query_t). */
 #define GR__DEFAULT_OVERSAMPLE_TOL 0.05
 #define GR__DEFAULT_MAX_OVERSAMPLE 8
@@ -1103,6 +1110,7 @@ typedef struct gr__cand_t {
     double dtds;    /* d param / d arc length at P */
     double kappa;   /* path curvature at P */
     double f;       /* perturbation scale f(param) */
+    double dfds;    /* its slope per unit arc length, averaged across the footprint */
     double xmin;    /* leftmost point of its section in the merged profile */
 } gr__cand_t;
 
@@ -1362,6 +1370,7 @@ typedef struct gr__qset_t {
     double oversample_tol;
     int max_oversample;
     double parallel_sin;
+    int perturb_normals;
 } gr__qset_t;
 
 /* Visible (or lit) interval per facet of a profile with projected points q
@@ -1397,9 +1406,13 @@ static void gr__list_add(gr_facet_list_t *list, const gr__mfacet_t *m, double ra
     gr_facet_t *f;
     for (e = 0; e < list->count; e++) {
         f = &list->facets[e];
-        if (f->reflectance == m->refl && fabs(f->normal[0] - m->n[0]) <= GR__NORMAL_MERGE_EPS &&
-            fabs(f->normal[1] - m->n[1]) <= GR__NORMAL_MERGE_EPS && fabs(f->normal[2] - m->n[2]) <= GR__NORMAL_MERGE_EPS)
+        if (f->reflectance != m->refl) continue;
+        if (fabs(f->normal[0] - m->n[0]) <= GR__NORMAL_MERGE_EPS && fabs(f->normal[1] - m->n[1]) <= GR__NORMAL_MERGE_EPS &&
+            fabs(f->normal[2] - m->n[2]) <= GR__NORMAL_MERGE_EPS)
             break;
+        /* one facet of one groove seen in several sub-footprints (§4.2
+           oversampling) stays one entry, its normal ratio-averaged */
+        if (m->groove >= 0 && f->groove == m->groove && f->facet == m->facet) break;
     }
     if (e == list->count) {
         if (list->count < GR_MAX_FACETS) {
@@ -1422,6 +1435,13 @@ static void gr__list_add(gr_facet_list_t *list, const gr__mfacet_t *m, double ra
         }
     }
     f = &list->facets[e];
+    if (f->ratio > 0 && (f->normal[0] != m->n[0] || f->normal[1] != m->n[1] || f->normal[2] != m->n[2])) {
+        double n[3], len;
+        for (k = 0; k < 3; k++) n[k] = f->ratio * f->normal[k] + ratio * m->n[k];
+        len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (len > 0)
+            for (k = 0; k < 3; k++) f->normal[k] = n[k] / len;
+    }
     f->ratio += ratio;
     f->merged++;
     for (k = 0; k < nl; k++) f->lit[k] += ratio * lit[k]; /* normalised in gr__list_finish */
@@ -1549,6 +1569,16 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (to_end < gr__extent(fp, c->t)) list->flags |= GR_LIST_PATH_END;
         }
         c->f = gr__perturb(rec, c->param);
+        c->dfds = 0;
+        if (rec->perturb && qs->perturb_normals) {
+            /* slope of f across the footprint (a central difference over
+               its extent along T), which tilts the facets along the path */
+            double h = gr__extent(fp, c->t) * c->dtds, ta, tb;
+            if (!(h > GR__PERTURB_STEP)) h = GR__PERTURB_STEP;
+            ta = c->param - h < 0 ? 0 : c->param - h;
+            tb = c->param + h > 1 ? 1 : c->param + h;
+            if (tb > ta) c->dfds = (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * c->dtds;
+        }
         if (ref < 0 || fabs(c->d) < fabs(s->cand[ref].d)) ref = npar;
         npar++;
     }
@@ -1625,10 +1655,14 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
                 int j = c->sigma > 0 ? i : nsec - 2 - i;
                 double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = hypot(db, dw);
                 gr__mfacet_t *m = &s->mf[np];
-                double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1;
-                m->n[0] = bg[0] * nb;
-                m->n[1] = bg[1] * nb;
-                m->n[2] = nw;
+                double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nl;
+                /* beyond §4.4's (0, N_b, N_w): with X = P(s) + f(s)(b B + w W),
+                   dX/ds x dX/dtau adds f'(s)(b dw - w db) T to the normal */
+                if (c->dfds != 0 && len > 0) nt = c->dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / len;
+                nl = sqrt(nb * nb + nw * nw + nt * nt);
+                m->n[0] = (bg[0] * nb + c->t[0] * nt) / nl;
+                m->n[1] = (bg[1] * nb + c->t[1] * nt) / nl;
+                m->n[2] = nw / nl;
                 m->groove = c->groove;
                 m->facet = j;
                 m->refl = grid->facet_refl_[rec->first_facet + j];
@@ -1727,6 +1761,7 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     qs.oversample_tol = query->oversample_tol == 0 ? GR__DEFAULT_OVERSAMPLE_TOL : query->oversample_tol;
     qs.max_oversample = query->max_oversample <= 0 ? GR__DEFAULT_MAX_OVERSAMPLE : query->max_oversample;
     if (qs.max_oversample > GR__LIMIT_MAX_OVERSAMPLE) qs.max_oversample = GR__LIMIT_MAX_OVERSAMPLE;
+    qs.perturb_normals = query->perturb_normals != 0;
     qs.parallel_sin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     el = sqrt(gr__dot3(fp->view, fp->view));
     if (!(fp->view[2] > 0) || !(el > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }

@@ -319,6 +319,37 @@ static void perturbation_and_oversampling_converge(void)
     gr_grid_free(grid);
 }
 
+/* perturb_normals: f(s) = s on the path along +v (s = v). Facet 0 of the V
+   sweeps X(s, τ) = (0.5 + s a (1-τ), s, -s D τ); dX/ds x dX/dτ =
+   s (-D, a D, a): the unit normal (-D, aD, a)/|.|, at any s. Default
+   (perturb_normals = 0): §4.4's (-D, 0, a)/|.|. */
+static double ramp(double t, void *u) { (void)u; return t; }
+static void perturbation_tilts_normals(void)
+{
+    const double a = 0.01, D = 0.02, sec[6] = {-a, 0, 0, -D, a, 0};
+    gr_groove_desc_t g = groove(VPATH, 2, sec, 3);
+    gr_grid_t *grid;
+    gr_query_t q = query(0.5 + a / 2 * 0.6, 0.6, 0, 0, 0, 1);
+    gr_facet_list_t l;
+    double n1 = sqrt(D * D + a * a * D * D + a * a), n0 = hypot(a, D);
+    g.perturb = ramp;
+    g.perturb_max = 1;
+    grid = build(&g, 1, 0);
+    if (!grid) return;
+    if (run(grid, &q, &l) && T_CHECK(entry(&l, 0, 0) != NULL)) {
+        T_NEAR(entry(&l, 0, 0)->normal[0], -D / n0, 1e-14);
+        T_NEAR(entry(&l, 0, 0)->normal[1], 0, 0);
+    }
+    q.perturb_normals = 1;
+    if (run(grid, &q, &l) && T_CHECK(entry(&l, 0, 0) != NULL)) {
+        T_NEAR(entry(&l, 0, 0)->normal[0], -D / n1, 1e-9);
+        T_NEAR(entry(&l, 0, 0)->normal[1], a * D / n1, 1e-9);
+        T_NEAR(entry(&l, 0, 0)->normal[2], a / n1, 1e-9);
+        T_NEAR(entry(&l, 0, 0)->ratio, 1, 0);
+    }
+    gr_grid_free(grid);
+}
+
 /* Footprint from differentials on the plane z = 0 with dp/du = (2,0,0),
    dp/dv = (0,2,0) (2 world units per UV unit), the camera ray from
    (0,-1,1) to the origin, offset rays shifted by (0.01, 0, 0) and
@@ -541,6 +572,7 @@ int main(int argc, char **argv)
         T_CASE(straight_beziers_match_segment),
         T_CASE(curved_path_local_frame_and_oversampling),
         T_CASE(perturbation_and_oversampling_converge),
+        T_CASE(perturbation_tilts_normals),
         T_CASE(footprint_from_differentials_closed_form),
         T_CASE(short_groove_inside_large_footprint),
         T_CASE(nonparallel_groove_flagged),
