@@ -141,6 +141,44 @@ static int demo(const ex_args_t *base, double radius_scale)
     return 0;
 }
 
+/* --selftest: mode names round-trip; every scene builds in rounded and
+   tess-1 mode and, rendered small, has rays that hit chamfers. Prints one
+   line per check; returns the number of failures. */
+static int selftest(void)
+{
+    static const char *const modes[] = {"sharp", "rounded", "bevel-blog-8", "bevel-cycles-4", "tess-3"};
+    static const char *const scenes[] = {"article", "blocks", "cornell"};
+    int fails = 0, i, k;
+    for (i = 0; i < 5; i++) {
+        rx_mode_t m;
+        char buf[64];
+        int ok = !rx_mode_parse(modes[i], &m) && !strcmp(rx_mode_name(m, buf, sizeof buf), modes[i]);
+        printf("%s mode name %s round-trips\n", ok ? "ok  " : "FAIL", modes[i]);
+        fails += !ok;
+    }
+    for (i = 0; i < 3; i++) {
+        rx_scene_t s;
+        if (rx_scene_make(&s, scenes[i], 1.0)) { printf("FAIL scene %s builds\n", scenes[i]); fails++; continue; }
+        for (k = 0; k < 2; k++) {
+            rx_world_t w;
+            rx_mode_t m;
+            float rgb[3 * 48 * 30];
+            int ok;
+            rx_mode_parse(k ? "tess-1" : "rounded", &m);
+            ok = !rx_world_build(&w, &s, m, 48, 30);
+            if (ok) {
+                ok = rx_world_render(&w, 2, 0, 1, 1, rgb) >= 0 && w.chamfer_rays > 0;
+                rx_world_free(&w);
+            }
+            printf("%s scene %s, mode %s: builds, renders, has chamfer rays\n", ok ? "ok  " : "FAIL", scenes[i],
+                   k ? "tess-1" : "rounded");
+            fails += !ok;
+        }
+        rx_scene_free(&s);
+    }
+    return fails;
+}
+
 int main(int argc, char **argv)
 {
     static const char *const scenes[] = {"article", "blocks", "cornell", NULL};
@@ -169,6 +207,7 @@ int main(int argc, char **argv)
     spec.nextra = 1;
     ex_args_parse(argc, argv, &spec, &a);
     if (!(radius_scale > 0) || radius_scale > 10) ex_fail(2, "--radius-scale must be in (0, 10], got %g", radius_scale);
+    if (a.selftest) return selftest() ? 1 : 0;
     if (a.demo_dir) return demo(&a, radius_scale) ? 1 : 0;
     if (rx_mode_parse(a.mode, &m))
         ex_fail(2, "unknown mode '%s' (sharp, rounded, bevel-blog-N, bevel-cycles-N, tess-N with N >= 1)", a.mode);
