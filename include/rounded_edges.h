@@ -454,6 +454,10 @@ RE_DEF const char *re_result_string(re_result_t r)
     return "unknown result";
 }
 
+/* min/max without libm's NaN handling (inputs here are finite): inlined */
+static double re__max(double a, double b) { return a > b ? a : b; }
+static double re__min(double a, double b) { return a < b ? a : b; }
+
 /* ---- Tolerances (all relative; see docs/rounded_edges.md "Tolerances") ---- */
 
 /* Two faces are coplanar (their edge is "flat", e.g. a quad diagonal) when
@@ -508,7 +512,9 @@ typedef struct re__cyl_t {
 typedef struct re__corner_t {
     double v[3];  /* the mesh vertex */
     double r;     /* rounding radius of its patch */
-    double reach; /* the removed volume near v lies within this of v */
+    double reach;      /* the removed volume near v lies within this of v */
+    double face_reach; /* on a face, the removed zone near v or along its edges
+                          lies within this of v / of the edge */
     unsigned vertex, first;
     unsigned char np, ns, nx, pad_;
 } re__corner_t;
@@ -751,7 +757,7 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
                 re__sub(an->pos + 3 * (size_t)tr[2], an->pos + 3 * (size_t)tr[1], e3);
                 re__cross(e1, e2, cr);
                 len = re__len(cr);
-                lmax = fmax(re__dot(e1, e1), fmax(re__dot(e2, e2), re__dot(e3, e3)));
+                lmax = re__max(re__dot(e1, e1), re__max(re__dot(e2, e2), re__dot(e3, e3)));
                 if (!(len > RE__DEGENERATE_REL * lmax)) {
                     snprintf(msg, sizeof msg, "triangle %u (vertices %u %u %u) is degenerate (zero area or zero-length edge)",
                              t, tr[0], tr[1], tr[2]);
@@ -767,8 +773,8 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
                         const double *p = an->pos + 3 * (size_t)tr[k];
                         int a;
                         for (a = 0; a < 3; a++) {
-                            lo[a] = fmin(lo[a], p[a]);
-                            hi[a] = fmax(hi[a], p[a]);
+                            lo[a] = re__min(lo[a], p[a]);
+                            hi[a] = re__max(hi[a], p[a]);
                         }
                     }
                 }
@@ -824,7 +830,15 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
     /* cnt[i] is now the end of bucket i; bucket i starts at cnt[i-1] */
     for (i = 0; i < V; i++) {
         unsigned s = i ? cnt[i - 1] : 0, e = cnt[i], j;
-        if (e - s > 1) qsort(key + s, e - s, sizeof *key, re__cmp_u64);
+        if (e - s > 16) qsort(key + s, e - s, sizeof *key, re__cmp_u64);
+        else { /* typical vertex degree: insertion sort beats qsort's calls */
+            unsigned x, y;
+            for (x = s + 1; x < e; x++)
+                for (y = x; y > s && key[y - 1] > key[y]; y--) {
+                    unsigned long long tmp = key[y];
+                    key[y] = key[y - 1], key[y - 1] = tmp;
+                }
+        }
         for (j = s; j < e;) {
             unsigned hi = (unsigned)(key[j] >> 32), j2 = j;
             re__edge_t *ed = &an->edges[E];
@@ -949,8 +963,8 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     double *su = an->su + 3 * (size_t)an->c_sfirst[c];
     unsigned *start = an->c_start + an->c_pfirst[c];
     unsigned *xs = an->c_x + 4 * (size_t)an->c_xfirst[c];
-    unsigned cap = 2 * k;
-    unsigned long long mask[2 * RE_MAX_CORNER_PLANES];
+    unsigned cap = k; /* a k-plane corner has at most k - 2 eroded vertices (k = 2: one) */
+    unsigned long long mask[RE_MAX_CORNER_PLANES];
     const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
 #define RE__N(s) (an->planes[pl[s]].n)
     if (k == 2) {
@@ -975,7 +989,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
                     re__cross(RE__N(i), RE__N(j), cc);
                     for (q = 0; q < 3; q++) u[q] = -(a[q] + b[q] + cc[q]) / det;
                     un = re__len(u);
-                    tol = RE__CORNER_EPS * fmax(1.0, un);
+                    tol = RE__CORNER_EPS * re__max(1.0, un);
                     for (g = 0; g < k && ok; g++) {
                         double s = re__dot(RE__N(g), u) + 1.0;
                         if (s > tol) ok = 0;
@@ -1030,7 +1044,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
                 }
             if (lo == RE__NONE || lo == hi) continue;
             re__sub(su + 3 * lo, su + 3 * hi, dd);
-            if (re__len(dd) <= RE__CORNER_EPS * fmax(1.0, re__len(su + 3 * lo))) continue;
+            if (re__len(dd) <= RE__CORNER_EPS * re__max(1.0, re__len(su + 3 * lo))) continue;
             if (nx == cap) return 0;
             xs[4 * nx] = i, xs[4 * nx + 1] = j, xs[4 * nx + 2] = lo, xs[4 * nx + 3] = hi;
             nx++;
@@ -1098,8 +1112,8 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->c_planes, unsigned, an->np_total);
     RE__TAKE(an->c_edges, unsigned, an->np_total);
     RE__TAKE(an->c_start, unsigned, an->np_total);
-    RE__TAKE(an->su, double, 3 * 2 * (size_t)an->np_total);
-    RE__TAKE(an->c_x, unsigned, 4 * 2 * (size_t)an->np_total);
+    RE__TAKE(an->su, double, 3 * (size_t)an->np_total);
+    RE__TAKE(an->c_x, unsigned, 4 * (size_t)an->np_total);
     RE__TAKE(tfan, unsigned, an->T + 1);
     RE__TAKE(hfan, unsigned, an->T + 1);
     {
@@ -1110,8 +1124,8 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
             deg = an->voff[v + 1] - an->voff[v];
             an->c_vertex[c] = v;
             an->c_pfirst[c] = off;
-            an->c_sfirst[c] = 2 * off;
-            an->c_xfirst[c] = 2 * off;
+            an->c_sfirst[c] = off;
+            an->c_xfirst[c] = off;
             an->c_np[c] = 0;
             an->c_ns[c] = an->c_nx[c] = 0;
             off += deg;
@@ -1214,7 +1228,7 @@ static double re__edge_request(const re__an_t *an, const re__edge_t *e)
     if (an->m->edge_radius)
         for (q = 0; q < 2 && q < e->count; q++) {
             unsigned src = an->tsrc[e->he[q]];
-            if (src != RE__NONE && an->m->edge_radius[src] > 0) r = fmin(r, an->m->edge_radius[src]);
+            if (src != RE__NONE && an->m->edge_radius[src] > 0) r = re__min(r, an->m->edge_radius[src]);
         }
     return r == HUGE_VAL ? an->m->radius : r;
 }
@@ -1263,7 +1277,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         p = re__uf_find(uf, ca);
         rq = re__edge_request(an, e);
         if (req[p] != HUGE_VAL && req[p] != rq) mism[p] = 1;
-        req[p] = fmin(req[p], rq);
+        req[p] = re__min(req[p], rq);
         re__sub(an->pos + 3 * (size_t)e->v[1], an->pos + 3 * (size_t)e->v[0], dir);
         L = re__len(dir);
         re__sub(an->su + 3 * (size_t)(an->c_sfirst[ca] + an->edge_end[2 * i]),
@@ -1324,7 +1338,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
 
 /* ---- kd-tree over the rounded edges (paper §3.2: split the longest axis) ---- */
 
-#define RE__KD_LEAF 4
+#define RE__KD_LEAF 6
 #define RE__KD_DEPTH 40
 
 typedef struct re__kd_t {
@@ -1362,8 +1376,8 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, int dep
     for (i = 0; i < n; i++)
         for (a = 0; a < 3; a++) {
             double c = 0.5 * (kd->box[6 * list[i] + a] + kd->box[6 * list[i] + 3 + a]);
-            lo[a] = fmin(lo[a], c);
-            hi[a] = fmax(hi[a], c);
+            lo[a] = re__min(lo[a], c);
+            hi[a] = re__max(hi[a], c);
         }
     for (a = 1; a < 3; a++)
         if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
@@ -1411,7 +1425,7 @@ typedef struct re__final_t {
 static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
                               re__final_t *F)
 {
-    unsigned c, i, j, *fc, *sbase, *xbase, *ecyl, *pmap, ns = 0, ncyl = 0, nref = 0, nco = 0;
+    unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, ns = 0, ncyl = 0, nref = 0, nco = 0;
     double *box;
     RE__TAKE(fc, unsigned, an->nc + 1);
     RE__TAKE(sbase, unsigned, an->nc + 1);
@@ -1455,7 +1469,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     for (c = 0; c < an->nc; c++) {
         re__corner_t *K;
         const double *v;
-        double r, reach = 0;
+        double r, reach = 0, freach = 0;
         unsigned pf = an->c_pfirst[c];
         if (fc[c] == RE__NONE) continue;
         K = &F->corners[fc[c]];
@@ -1477,8 +1491,31 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             F->sph_corner[sbase[c] + j] = fc[c];
             F->refs[nref++] = sbase[c] + j;
             re__sub(s, v, dd);
-            reach = fmax(reach, re__len(dd));
+            reach = re__max(reach, re__len(dd));
+            /* on a face g through s, the corner zone is the hull of v and the
+               eroded vertices seen from above: their tangential offsets */
+            for (k = 0; k < K->np; k++) {
+                const double *n = an->planes[an->c_planes[pf + k]].n;
+                double h = re__dot(n, dd), tg[3];
+                if (fabs(h + r) > RE__CORNER_EPS * re__max(r, re__len(dd))) continue;
+                re__madd(dd, -h, n, tg);
+                freach = re__max(freach, re__len(tg));
+            }
         }
+        /* along an edge the strip between the edge and the tangent line is
+           sqrt(d^2 - r^2) wide, d = distance from the axis to the edge */
+        for (j = 0; j < K->np; j++) {
+            const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
+            const double *s = F->sph + 3 * (size_t)(sbase[c] + an->c_start[pf + j]);
+            double dd[3], ed[3], cr[3], dist;
+            unsigned o2 = e->v[0] == K->vertex ? e->v[1] : e->v[0];
+            re__sub(s, v, dd);
+            re__sub(an->pos + 3 * (size_t)o2, v, ed);
+            re__cross(dd, ed, cr);
+            dist = re__len(cr) / re__len(ed);
+            freach = re__max(freach, sqrt(re__max(dist * dist - r * r, 0.0)));
+        }
+        K->face_reach = 1.5 * freach;
         /* removed points whose nearest eroded point is a corner feature y lie
            within |v - y| of y (docs: "Detection"), so within 2 max|v - s| of v */
         K->reach = 2.0 * reach;
@@ -1513,11 +1550,11 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls);
     for (i = 0; i < F->n_edge_cyls; i++) {
         const re__corner_t *A = &F->corners[F->cyls[i].k[0]], *B = &F->corners[F->cyls[i].k[1]];
-        double g = 1.5 * fmax(A->reach, B->reach);
+        double g = re__max(A->face_reach, B->face_reach);
         unsigned a;
         for (a = 0; a < 3; a++) {
-            box[6 * i + a] = fmin(A->v[a], B->v[a]) - g;
-            box[6 * i + 3 + a] = fmax(A->v[a], B->v[a]) + g;
+            box[6 * i + a] = re__min(A->v[a], B->v[a]) - g;
+            box[6 * i + 3 + a] = re__max(A->v[a], B->v[a]) + g;
         }
     }
     F->kd.box = box;
@@ -1584,7 +1621,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     {
         unsigned c;
         o->rmax = 0;
-        for (c = 0; c < F->n_corners; c++) o->rmax = fmax(o->rmax, F->corners[c].r);
+        for (c = 0; c < F->n_corners; c++) o->rmax = re__max(o->rmax, F->corners[c].r);
     }
 }
 
@@ -1857,7 +1894,7 @@ static double re__sphere_entry(const double I[3], const double d[3], const doubl
     s0 = q / A;
     s1 = C / q;
     if (s0 > s1) { double x = s0; s0 = s1; s1 = x; }
-    return s1 < smin ? HUGE_VAL : fmax(s0, smin);
+    return s1 < smin ? HUGE_VAL : re__max(s0, smin);
 }
 
 /* Entry into the side of the finite cylinder of radius r around a -> b;
@@ -1887,7 +1924,7 @@ static double re__cyl_entry(const double I[3], const double d[3], const double a
     s1 = C / q;
     if (s0 > s1) { double x = s0; s0 = s1; s1 = x; }
     if (s1 < smin) return HUGE_VAL;
-    s0 = fmax(s0, smin);
+    s0 = re__max(s0, smin);
     hh = wu + s0 * du;
     if (hh < 0 || hh > L) return HUGE_VAL; /* beyond the span: a sphere cap */
     *h = hh;
@@ -2008,7 +2045,7 @@ static double re__exit(const re__object_t *o, const unsigned *set, unsigned n, c
             const re__plane_t *g = &o->planes[o->refs[K->first + j]];
             double nd = re__dot(g->n, d), s;
             if (!(nd > 0)) continue;
-            s = fmax(0.0, (g->c - re__dot(g->n, I)) / nd);
+            s = re__max(0.0, (g->c - re__dot(g->n, I)) / nd);
             if (s < best) best = s, *plane = o->refs[K->first + j];
         }
     }
@@ -2066,7 +2103,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     for (i = 0; i < (o->nodes[node].info >> 2); i++) {
         const re__cyl_t *cy = &o->cyls[o->leafrefs[o->nodes[node].index + i]];
         const re__corner_t *A = &o->corners[cy->k[0]], *B = &o->corners[cy->k[1]];
-        double g = 1.5 * fmax(A->reach, B->reach);
+        double g = re__max(A->face_reach, B->face_reach);
         if (re__dist2_segment(I, A->v, B->v) > g * g) continue;
         if (re__corner_has_plane(o, A, f)) re__add_corner(set, &n, cy->k[0]);
         if (re__corner_has_plane(o, B, f)) re__add_corner(set, &n, cy->k[1]);
@@ -2081,7 +2118,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
         best.smin = -RE__HOST_T_SLACK * fabs(t_host);
         re__nearest_feature(o, set, n, I, dir, &best);
         s_exit = re__exit(o, set, n, I, dir, &exit_plane);
-        s = fmin(best.s, s_exit);
+        s = re__min(best.s, s_exit);
         if (!(s < HUGE_VAL) || iter == RE__MAX_WALK) break;
         re__madd(I, s, dir, P);
         for (i = 0; i < n && n < RE__MAX_WALK; i++) {
@@ -2089,7 +2126,10 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             for (j = 0; j < K->np; j++) {
                 const re__cyl_t *cy = &o->cyls[o->refs[K->first + K->np + j]];
                 unsigned w = cy->k[0] == set[i] ? cy->k[1] : cy->k[0];
-                double g = 1.5 * o->corners[w].reach;
+                /* removed points lie within r of the removed zone on the faces
+                   (below a flat point the ball of radius r is solid), and that
+                   zone lies within face_reach of its corner */
+                double g = o->corners[w].face_reach + o->corners[w].r;
                 if (re__dist2_segment(o->corners[w].v, I, P) <= g * g && re__add_corner(set, &n, w)) grown = 1;
             }
         }
