@@ -1655,14 +1655,14 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
                 int j = c->sigma > 0 ? i : nsec - 2 - i;
                 double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = hypot(db, dw);
                 gr__mfacet_t *m = &s->mf[np];
-                double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nl;
+                double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nlen;
                 /* beyond §4.4's (0, N_b, N_w): with X = P(s) + f(s)(b B + w W),
                    dX/ds x dX/dtau adds f'(s)(b dw - w db) T to the normal */
                 if (c->dfds != 0 && len > 0) nt = c->dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / len;
-                nl = sqrt(nb * nb + nw * nw + nt * nt);
-                m->n[0] = (bg[0] * nb + c->t[0] * nt) / nl;
-                m->n[1] = (bg[1] * nb + c->t[1] * nt) / nl;
-                m->n[2] = nw / nl;
+                nlen = sqrt(nb * nb + nw * nw + nt * nt);
+                m->n[0] = (bg[0] * nb + c->t[0] * nt) / nlen;
+                m->n[1] = (bg[1] * nb + c->t[1] * nt) / nlen;
+                m->n[2] = nw / nlen;
                 m->groove = c->groove;
                 m->facet = j;
                 m->refl = grid->facet_refl_[rec->first_facet + j];
