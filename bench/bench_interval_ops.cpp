@@ -57,6 +57,8 @@
 #define iv__min F_iv__min
 #define iv__mul0 F_iv__mul0
 #define iv__next_down F_iv__next_down
+#define iv__next_down_bits F_iv__next_down_bits
+#define iv__next_down_fma F_iv__next_down_fma
 #define iv__next_up F_iv__next_up
 #define iv__ordered F_iv__ordered
 #define iv__periodic F_iv__periodic
@@ -168,6 +170,8 @@
 #undef iv__min
 #undef iv__mul0
 #undef iv__next_down
+#undef iv__next_down_bits
+#undef iv__next_down_fma
 #undef iv__next_up
 #undef iv__ordered
 #undef iv__periodic
@@ -273,7 +277,7 @@ static double time_op(MK make, OP op, SUM sum, int reps)
     std::vector<T> a(N), b(N), c(N);
     for (int i = 0; i < N; i++) { a[i] = make(xs[i], xw[i]); b[i] = make(ys[i], yw[i]); }
     double best = 1e30;
-    for (int trial = 0; trial < 3; trial++) {
+    for (int trial = 0; trial < 7; trial++) {
         double t0 = now_ns();
         for (int r = 0; r < reps; r++) {
             for (int i = 0; i < N; i++) c[i] = op(a[i], b[i]);
@@ -284,6 +288,27 @@ static double time_op(MK make, OP op, SUM sum, int reps)
         double s = 0;
         for (int i = 0; i < N; i += 64) s += sum(c[i]);
         sink = s;
+    }
+    return best;
+}
+
+/* Latency: one dependent chain x = op(x, b[i]) (how a tape evaluates an
+   expression). b holds point values v, then 1/v or -v, so x stays bounded. */
+static double chain_b[N];
+template <class T, class MK, class OP, class SUM>
+static double time_chain(MK make, OP op, SUM sum, int reps)
+{
+    std::vector<T> b(N);
+    for (int i = 0; i < N; i++) b[i] = make(chain_b[i], 0.0);
+    double best = 1e30;
+    for (int trial = 0; trial < 7; trial++) {
+        T x = make(1.0, 0.0);
+        double t0 = now_ns();
+        for (int r = 0; r < reps; r++)
+            for (int i = 0; i < N; i++) x = op(x, b[i]);
+        double t = (now_ns() - t0) / ((double)reps * N);
+        if (t < best) best = t;
+        sink = sum(x);
     }
     return best;
 }
@@ -349,7 +374,7 @@ int main(int argc, char **argv)
         xs[i] = (urand() - 0.5) * 8; ys[i] = 0.5 + urand() * 4; /* ys > 0: no division by zero */
         xw[i] = urand() < 0.5 ? 0 : urand() * 0.5; yw[i] = urand() * 0.5;
     }
-    const int reps = 1500;
+    const int reps = 600;
     std::vector<row_t> rows;
     using namespace boost::numeric;
 #define ROW(name, dexpr, rexpr, fexpr, bexpr) do { \
@@ -367,7 +392,7 @@ int main(int argc, char **argv)
     ROW("sqr", a * a, iv_sqr(a), F_iv_sqr(a), square(a));
     ROW("sqrt", sqrt(b + 0 * a), iv_sqrt(b), F_iv_sqrt(b), sqrt(b));
     ROW("tangle", d_tangle(a, b), r_tangle(a, b), f_tangle(a, b), b_tangle(a, b));
-    printf("interval operation cost, ns per operation (best of 3, %d ops each (Boost: 1/30 of that)), ratios to double\n", reps * N);
+    printf("throughput: independent operations over arrays, ns per operation (best of 7, %d ops each (Boost: 1/30 of that)), ratios to double\n", reps * N);
     printf("%-8s %9s %9s %9s %9s   %8s %8s %8s  %s\n", "op", "double", "rigorous", "IV_FAST", "boost", "rig/dbl", "fast/dbl", "bst/dbl", "boost/rig");
     fprintf(csv, "op,double_ns,rigorous_ns,fast_ns,boost_ns,rig_over_double,fast_over_double,boost_over_double,boost_over_rig\n");
     for (size_t i = 0; i < rows.size(); i++) {
@@ -376,6 +401,36 @@ int main(int argc, char **argv)
                r.rig / r.d, r.fast / r.d, r.boost / r.d, r.boost / r.rig);
         fprintf(csv, "%s,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.3f\n", r.op, r.d, r.rig, r.fast, r.boost, r.rig / r.d,
                 r.fast / r.d, r.boost / r.d, r.boost / r.rig);
+    }
+    /* latency rows */
+    {
+        std::vector<row_t> lat;
+        for (int k = 0; k < 2; k++) {
+            for (int i = 0; i < N; i += 2) {
+                double v = 0.5 + urand();
+                chain_b[i] = v;
+                chain_b[i + 1] = k == 0 ? -v : 1.0 / v;
+            }
+#define LAT(name, dexpr, rexpr, fexpr, bexpr) do { \
+            fprintf(stderr, "timing chain %s\n", name); \
+            row_t r_; r_.op = name; \
+            r_.d = time_chain<double>(d_make, [](double a, double b) { return dexpr; }, d_sum, reps); \
+            r_.rig = time_chain<iv_t>(r_make, [](iv_t a, iv_t b) { return rexpr; }, r_sum, reps); \
+            r_.fast = time_chain<F_iv_t>(f_make, [](F_iv_t a, F_iv_t b) { return fexpr; }, f_sum, reps); \
+            r_.boost = time_chain<biv_t>(b_make, [](const biv_t &a, const biv_t &b) { return bexpr; }, b_sum, reps / 30 + 1); \
+            lat.push_back(r_); } while (0)
+            if (k == 0) LAT("add", a + b, iv_add(a, b), F_iv_add(a, b), a + b);
+            else LAT("mul", a * b, iv_mul(a, b), F_iv_mul(a, b), a * b);
+        }
+        printf("\nlatency: one dependent chain x = op(x, b), ns per operation (best of 7)\n");
+        printf("%-8s %9s %9s %9s %9s   %8s %8s %8s  %s\n", "op", "double", "rigorous", "IV_FAST", "boost", "rig/dbl", "fast/dbl", "bst/dbl", "boost/rig");
+        for (size_t i = 0; i < lat.size(); i++) {
+            const row_t &r = lat[i];
+            printf("%-8s %9.3f %9.3f %9.3f %9.3f   %8.2f %8.2f %8.2f  %8.2f\n", r.op, r.d, r.rig, r.fast, r.boost,
+                   r.rig / r.d, r.fast / r.d, r.boost / r.d, r.boost / r.rig);
+            fprintf(csv, "chain_%s,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.3f\n", r.op, r.d, r.rig, r.fast, r.boost, r.rig / r.d,
+                    r.fast / r.d, r.boost / r.d, r.boost / r.rig);
+        }
     }
     fast_mode_errors(csv);
     fclose(csv);

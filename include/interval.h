@@ -107,28 +107,50 @@ static inline iv_t iv__raw(double lo, double hi)
     return r;
 }
 
-/* Doubles mapped to integers in the same order (+0 -> 0, -0 -> -1): a
-   negative double's magnitude bits are flipped. The map is its own inverse.
-   Written with a logical shift so compilers vectorise it (no 64-bit
-   arithmetic shift before AVX-512). */
-static inline uint64_t iv__ordered(uint64_t u) { return u ^ ((0u - (u >> 63)) >> 1); }
+/* The double just below x, two proven ways; both give exactly the next
+   double below for every x (+0 and -0 both go to the negative denormal,
+   +inf to DBL_MAX; -inf and NaN stay), in any rounding mode, and no
+   compiler contraction can change them.
 
-/* The double just below x, by integer arithmetic on the ordered bit
-   pattern: exact in any rounding mode and immune to contraction. +inf gives
-   DBL_MAX; -inf and NaN stay. Zeros: +0 steps to -0 and -0 to the negative
-   denormal. That is enough because a round-to-nearest result is +0 only
-   when the exact value is >= 0 (a sum or difference that rounds to 0 is
-   exactly 0, and an underflowing product, quotient or libm value keeps the
-   sign of the exact value, IEEE 754 section 6.3). Branch-free. */
-static inline double iv__next_down(double x)
+   Bits: the bit pattern is mapped to an integer of the same order (a
+   negative double's magnitude bits are flipped; the map is its own inverse),
+   decremented, and mapped back. A logical shift keeps it vectorisable. */
+static inline uint64_t iv__ordered(uint64_t u) { return u ^ ((0u - (u >> 63)) >> 1); }
+static inline double iv__next_down_bits(double x)
 {
     uint64_t u;
-    double y;
-    memcpy(&u, &x, sizeof u);
+    double y, z = x == 0 ? -0.0 : x; /* -0 steps to the negative denormal */
+    memcpy(&u, &z, sizeof u);
     u = iv__ordered(iv__ordered(u) - 1u);
     memcpy(&y, &u, sizeof u);
     return x > -HUGE_VAL ? y : x; /* -inf and NaN stay */
 }
+/* FMA (Rump, Zimmermann, Boldo, Melquiond 2009, "Computing predecessor and
+   successor in rounding to nearest", with the fused form): for normal x,
+   phi|x| with phi = 2^-53 + 2^-105 lies strictly between half an ulp of x
+   and an ulp (times 1 + 2^-52), so fma(-phi, |x|, x) rounds to exactly the
+   next double below, also when |x| is a power of two (the spacing below is
+   then half as large and phi|x| is just over half of it). For subnormal x
+   that term is below half the spacing 2^-1074 and x - 2^-1074 is the exact
+   answer; the min picks whichever applies. Lower latency than the bit path
+   and no moves between float and integer registers. */
+#define IV__PHI 1.1102230246251568e-16   /* 2^-53 + 2^-105 */
+#define IV__ETA 4.9406564584124654e-324  /* 2^-1074 */
+static inline double iv__next_down_fma(double x)
+{
+    /* a: the subnormal answer; +inf is clamped first so that a = DBL_MAX
+       there, and NaN passes (the comparison is false) */
+    double a = (1.7976931348623157e308 < x ? 1.7976931348623157e308 : x) - IV__ETA;
+    double b = fma(-IV__PHI, fabs(x), x); /* NaN for x = +inf: then a wins */
+    return b < a ? b : a;
+}
+/* The fused form is used when the target has a hardware fma (with no fma
+   instruction, fma() is a slow software routine). */
+#if defined(FP_FAST_FMA) || defined(__FMA__)
+static inline double iv__next_down(double x) { return iv__next_down_fma(x); }
+#else
+static inline double iv__next_down(double x) { return iv__next_down_bits(x); }
+#endif
 static inline double iv__next_up(double x) { return -iv__next_down(-x); }
 
 /* Outward rounding of a round-to-nearest endpoint (identity under IV_FAST). */
@@ -238,11 +260,8 @@ static inline iv_t iv_mul(iv_t a, iv_t b)
 {
     double p1 = iv__mul0(a.lo, b.lo), p2 = iv__mul0(a.lo, b.hi);
     double p3 = iv__mul0(a.hi, b.lo), p4 = iv__mul0(a.hi, b.hi);
-    /* min and max may pick either sign of a zero: make a zero lower end -0
-       and a zero upper end +0 (x + 0.0 maps -0 to +0 and is never folded
-       away by the compiler), so the outward step below passes 0 */
-    double lo = iv__down(-(-iv__min(iv__min(p1, p2), iv__min(p3, p4)) + 0.0));
-    double hi = iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4)) + 0.0);
+    double lo = iv__down(iv__min(iv__min(p1, p2), iv__min(p3, p4)));
+    double hi = iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4)));
     /* iv__mul0 maps NaN to 0, so emptiness is restored by a select */
     int empty = iv_is_empty(a) | iv_is_empty(b);
     return iv__raw(empty ? NAN : lo, empty ? NAN : hi);

@@ -99,14 +99,41 @@ static void mul_zero_times_unbounded(void)
     T_LE(p.hi, 4.9406564584124654e-324); T_GE(p.hi, 0);
     p = iv_mul(iv_make(0, 1), iv_make(1, HUGE_VAL));
     T_LE(p.lo, 0); T_GE(p.lo, -4.9406564584124654e-324); T_EQ(p.hi, HUGE_VAL);
-    /* a product that underflows to -0 must still step below 0 */
-    p = iv_mul(iv_point(-1e-200), iv_point(1e-200));
-    T_LT(p.lo, 0); T_GE(p.hi, 0);
-    T_EQ(iv__next_down(0.0), 0); T_LT(iv__next_down(-0.0), 0);
-    T_EQ(iv__next_down(HUGE_VAL), DBL_MAX); T_EQ(iv__next_down(-HUGE_VAL), -HUGE_VAL);
-    T_EQ(iv__next_down(1.0), nextafter(1.0, 0)); T_EQ(iv__next_down(-1.0), nextafter(-1.0, -2));
-    T_EQ(iv__next_down(-DBL_MAX), -HUGE_VAL); T_EQ(iv__next_up(DBL_MAX), HUGE_VAL);
-    T_EQ(iv__next_down(4.9406564584124654e-324), 0);
+
+}
+
+/* Both implementations of the outward step (bit pattern and fused
+   multiply-add; the header picks one per target) are exactly nextafter
+   toward -inf, on special values and on random doubles and bit patterns. */
+static void outward_step_both_paths(void)
+{
+    static const double special[] = {0.0, -0.0, 4.9406564584124654e-324, -4.9406564584124654e-324,
+        2.2250738585072014e-308, -2.2250738585072014e-308, 2.2250738585072009e-308, 4.4501477170144028e-308,
+        4.4501477170144033e-308, 1.0, -1.0, 2.0, -2.0, 0.5, 3.0, 1.7976931348623157e308, -1.7976931348623157e308,
+        HUGE_VAL, -HUGE_VAL, 1e-310, -1e-310, 9007199254740992.0, 1.0000000000000002};
+    t_rng_t r = {3};
+    long i, n = t_count(2000000), bad = 0;
+    for (i = 0; i < (long)(sizeof special / sizeof special[0]) + n; i++) {
+        double x, want;
+        if (i < (long)(sizeof special / sizeof special[0])) x = special[i];
+        else if (i % 2) x = ig_value(&r);
+        else { unsigned long long u = t_rng_u64(&r); memcpy(&x, &u, sizeof x); if (x != x) continue; }
+        want = x == 0 ? -4.9406564584124654e-324 : x == -HUGE_VAL ? x : nextafter(x, -HUGE_VAL);
+        if (iv__next_down_bits(x) != want || iv__next_down_fma(x) != want ||
+            iv__next_up(x) != (x == 0 ? 4.9406564584124654e-324 : x == HUGE_VAL ? x : nextafter(x, HUGE_VAL))) {
+            if (bad++ < 5) T_FAIL("step at %a: bits %a fma %a want %a", x, iv__next_down_bits(x), iv__next_down_fma(x), want);
+        }
+    }
+    T_INT_EQ(bad, 0);
+    T_CHECK(iv__next_down_bits(NAN) != iv__next_down_bits(NAN));
+    T_CHECK(iv__next_down_fma(NAN) != iv__next_down_fma(NAN));
+    /* a product that underflows must still be enclosed */
+    {
+        iv_t p = iv_mul(iv_point(-1e-200), iv_point(1e-200));
+        T_LT(p.lo, 0); T_GE(p.hi, 0);
+        p = iv_mul(iv_point(1e-200), iv_point(1e-200));
+        T_LE(p.lo, 0); T_GT(p.hi, 0);
+    }
 }
 
 /* Exact endpoint references in quad for the tightness test. */
@@ -191,6 +218,7 @@ int main(int argc, char **argv)
         T_CASE(sqrt_clips_domain),
         T_CASE(mul_zero_times_unbounded),
         T_CASE(tightness_basic_ops),
+        T_CASE(outward_step_both_paths),
     };
     return T_RUN(argc, argv, cases);
 }
