@@ -61,6 +61,8 @@ typedef enum fr_result_t {
     FR_ERR_NO_GRADIENT,   /* a callback has no gradient function */
     FR_ERR_BUFFER_TOO_SMALL, /* a caller buffer is smaller than required */
     FR_ERR_PARSE,         /* model text rejected (see fr_diag_t line:column) */
+    FR_ERR_NOT_POLYNOMIAL, /* the tape is not a polynomial in the ray parameter */
+    FR_ERR_NO_LIPSCHITZ,  /* sphere tracing needs a finite Lipschitz bound */
     FR_RESULT_COUNT_
 } fr_result_t;
 
@@ -458,6 +460,113 @@ FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, do
 
 /* ==== [section: trace] declarations: ray-surface intersection ==== */
 
+/* Ray-surface intersection (paper §3.1, §4.1). The ray is o + t d for t in
+   [t0, t1]; t is in the units of the caller's d. The hit is the first root of
+   g(t) = f(o + t d) in the segment: where the ray enters or leaves the solid
+   (or touches it). Five methods trade accuracy for speed
+   (docs/frep.md "Polynomial solvers and ray intersection"):
+
+   FR_METHOD_ANALYTIC  the paper's §3.1.1 / §4.1.2: if the whole tape is a
+       polynomial in t, its coefficients (fr_ray_poly) go to fr_solve_poly;
+       otherwise every polynomial leaf under min/max/R-function nodes is
+       solved, the leaf roots are sorted, and the first one where f changes
+       sign is the hit (CSG of polynomial primitives).
+   FR_METHOD_STEP      §3.1.3 / §4.1.1: march to the first sign change with a
+       fixed step, or with steps |g| / (L |d|) from the Lipschitz bound L;
+       then Illinois regula falsi (default), Newton or Brent, each with a
+       bisection fallback. May miss features thinner than the step.
+   FR_METHOD_INTERVAL  §3.1.2 / §4.1.3: interval bisection on t with an
+       explicit stack, affine forms (reduced affine arithmetic, Knoll et al.
+       2009) or plain intervals, and the tape pruned per segment. Never
+       misses a root: the hit is the leftmost segment of width <= tol whose
+       enclosure contains 0 (a near miss closer than the enclosure width may
+       be reported as a touch).
+   FR_METHOD_SPHERE    sphere tracing for distance bounds (Hart 1996) with
+       Keinert et al. 2014's over-relaxation as an option. Needs a finite
+       Lipschitz bound (tape->lipschitz or desc->lipschitz).
+   FR_METHOD_AUTO (0)  ANALYTIC when the tape is polynomial of degree <=
+       FR_POLY_MAX_DEGREE, else INTERVAL when the tape allows it, else STEP. */
+
+typedef enum fr_method_t {
+    FR_METHOD_AUTO = 0,
+    FR_METHOD_ANALYTIC,
+    FR_METHOD_STEP,
+    FR_METHOD_INTERVAL,
+    FR_METHOD_SPHERE,
+    FR_METHOD_COUNT_
+} fr_method_t;
+
+typedef enum fr_refine_t {
+    FR_REFINE_ILLINOIS = 0, /* regula falsi, Illinois variant (Dowell & Jarratt 1971) */
+    FR_REFINE_NEWTON,       /* Newton on g' = grad f . d (AD), safeguarded */
+    FR_REFINE_BRENT,        /* Brent 1973, zeroin */
+    FR_REFINE_BISECT        /* plain bisection */
+} fr_refine_t;
+
+typedef enum fr_normal_mode_t {
+    FR_NORMAL_AD = 0, /* exact gradient by forward-mode AD (fr_eval_grad) */
+    FR_NORMAL_FD,     /* central finite differences (black boxes without gradients) */
+    FR_NORMAL_NONE    /* skip the normal */
+} fr_normal_mode_t;
+
+/* Method and parameters; zero means the documented default. */
+typedef struct fr_trace_desc_t {
+    fr_method_t method;
+    /* the t tolerance of STEP, INTERVAL and SPHERE: a root is located within
+       tol (absolute, t units). 0: 1e-9 * (t1 - t0) for finite segments,
+       otherwise 1e-9 * (1 + |t0|). Negative asks for the limit of doubles:
+       a few ulps of t. */
+    double tol;
+    /* STEP: the step length in t units. 0: the step comes from the
+       Lipschitz bound, |g(t)| / (L |d|), never below tol; with no finite
+       bound, (t1 - t0) / 256. */
+    double step;
+    fr_refine_t refine;       /* STEP: the refinement (default Illinois) */
+    double lipschitz;         /* |grad f| bound; 0: tape->lipschitz */
+    double over_relax;        /* SPHERE: Keinert's omega in [1, 2); 0: 1.6. 1 turns it off */
+    int plain_intervals;      /* INTERVAL: 1 uses intervals, 0 (default) affine forms */
+    int no_prune;             /* INTERVAL: 1 keeps the full tape on every segment */
+    unsigned int max_iters;   /* iteration cap of every loop; 0: 100000 */
+    fr_normal_mode_t normal;  /* default AD */
+    double fd_step;           /* FD normals: step relative to max(1, |p|); 0: 1e-6 */
+} fr_trace_desc_t;
+
+typedef struct fr_hit_t {
+    int hit;                /* 1 if the segment meets the surface */
+    double t;               /* the ray parameter of the hit */
+    double point[3];        /* o + t d */
+    double normal[3];       /* unit outward normal (along -grad f); 0 if unknown */
+    double t_err;           /* the root is within t +- t_err (tolerance reached;
+                               for ANALYTIC an error estimate from the polish) */
+    unsigned long long evals;      /* tape evaluations (any arithmetic) */
+    unsigned long long iterations; /* loop iterations (steps, bisections, polish) */
+    fr_method_t method;     /* the method used (AUTO resolved) */
+} fr_hit_t;
+
+/* Bytes of scratch fr_trace needs for this tape and method (one buffer per
+   thread; malloc alignment is enough). */
+FR_DEF size_t fr_trace_scratch_size(const fr_tape_t *t, const fr_trace_desc_t *desc);
+
+/* The first intersection of o + t d, t in [t0, t1], with the surface of t.
+   desc may be NULL (defaults). Errors: FR_ERR_INVALID_ARG (NULL, NaN, t0 >
+   t1, d = 0), FR_ERR_NOT_POLYNOMIAL (ANALYTIC on a tape with no polynomial
+   leaves), FR_ERR_NO_INTERVAL, FR_ERR_NO_GRADIENT (NEWTON or AD normals
+   with a gradient-less callback), FR_ERR_NO_LIPSCHITZ (SPHERE). A miss is
+   FR_OK with hit->hit = 0. */
+FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
+                            const fr_trace_desc_t *desc, void *scratch, fr_hit_t *hit);
+
+/* The coefficients of g(t) = f(o + t d), lowest degree first, by evaluating
+   the tape in truncated Taylor (polynomial) arithmetic: coef must hold
+   FR_POLY_MAX_DEGREE + 1 doubles, *degree receives the degree (trailing
+   zero coefficients trimmed). FR_ERR_NOT_POLYNOMIAL when an operation is not
+   polynomial (sqrt, min, R-functions, noise, callbacks, division by a
+   non-constant) or the degree exceeds FR_POLY_MAX_DEGREE. Scratch:
+   fr_ray_poly_scratch_size(t) bytes. */
+FR_DEF size_t fr_ray_poly_scratch_size(const fr_tape_t *t);
+FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const double d[3], void *scratch,
+                               double *coef, int *degree);
+
 /* ==== [end section: trace] ==== */
 
 
@@ -502,6 +611,8 @@ FR_DEF const char *fr_result_string(fr_result_t r)
     case FR_ERR_NO_GRADIENT: return "gradient unavailable (a callback has no gradient function)";
     case FR_ERR_BUFFER_TOO_SMALL: return "buffer too small";
     case FR_ERR_PARSE: return "parse error";
+    case FR_ERR_NOT_POLYNOMIAL: return "not a polynomial along the ray";
+    case FR_ERR_NO_LIPSCHITZ: return "no Lipschitz bound for sphere tracing";
     case FR_RESULT_COUNT_: break;
     }
     return "unknown result";
@@ -1882,16 +1993,30 @@ static iv_affine_t fr__af_monotone2(const fr_instr_t *in, iv_affine_t a, iv_affi
     return iv_affine_from_iv(r);
 }
 
-/* Affine evaluation runs an interval shadow beside the forms: each slot's
-   enclosure is the tighter of the two, so affine results are never wider
-   than interval ones (an affine square or product can dip below zero and
-   then make a blend's denominator straddle 0 when the interval cannot). */
+/* Affine evaluation runs an interval shadow beside the forms. Forms keep
+   their correlation with the ray symbol even where they are wider than the
+   interval (x^4 - 5x^2 cancels only in affine form); the shadow, the
+   intersection of both enclosures, repairs an operand whose form leaves an
+   operation's domain (an affine square dipping below 0 under a sqrt or a
+   blend's denominator straddling 0) and bounds the output, so the result is
+   never wider than plain interval evaluation. */
+static iv_affine_t fr__af_repair(iv_affine_t x, iv_t shadow, int need_pos, int avoid_zero)
+{
+    iv_t r = iv_from_affine(x);
+    if (iv_affine_is_empty(x) || !isfinite(r.lo) || !isfinite(r.hi) || (need_pos && r.lo < 0 && shadow.lo >= 0) ||
+        (avoid_zero && r.lo <= 0 && r.hi >= 0 && !(shadow.lo <= 0 && shadow.hi >= 0)))
+        return iv_affine_from_iv(shadow);
+    return x;
+}
+
 FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], void *scratch, iv_affine_t *out)
 {
     iv_affine_t *v = (iv_affine_t *)scratch;
     iv_t *w, box[3];
+    iv_affine_t zero;
     const fr_instr_t *code;
     unsigned int i, n;
+    zero.c = zero.t = zero.e = 0.0;
     if (!t || !p || !v || !out || t->n_code == 0) return FR_ERR_INVALID_ARG;
     if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
     code = t->code;
@@ -1900,7 +2025,10 @@ FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], vo
     for (i = 0; i < 3; i++) box[i] = iv_from_affine(p[i]);
     for (i = 0; i < n; i++) {
         const fr_instr_t *in = &code[i];
-        iv_affine_t a = v[in->a], c = v[in->b], r;
+        int ar = fr__arity(in->op), dom = in->op == FR_OP_SQRT || in->op == FR_OP_LOG || in->op == FR_OP_POWC;
+        iv_affine_t a = ar >= 1 ? fr__af_repair(v[in->a], w[in->a], dom, 0) : zero;
+        iv_affine_t c = ar >= 2 ? fr__af_repair(v[in->b], w[in->b], 0, in->op == FR_OP_DIV) : zero;
+        iv_affine_t r;
         iv_t ri, wi = fr__iv_step(t, in, w, box);
         switch ((fr_op_t)in->op) {
         case FR_OP_CONST: r = iv_affine_const(in->k); break;
@@ -1937,7 +2065,7 @@ FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], vo
         default: r = iv_affine_from_iv(wi); break; /* NOISE, CALL: their interval image */
         }
         ri = iv_from_affine(r);
-        if (iv_affine_is_empty(r) || !(iv_width(ri) <= iv_width(wi))) {
+        if (iv_affine_is_empty(r) && !iv_is_empty(wi)) {
             r = iv_affine_from_iv(wi);
             ri = iv_from_affine(r);
         }
@@ -1948,7 +2076,10 @@ FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], vo
         }
         v[i] = r;
     }
-    *out = v[t->outputs[0]];
+    {
+        unsigned int o = t->outputs[0];
+        *out = iv_width(iv_from_affine(v[o])) <= iv_width(w[o]) ? v[o] : iv_affine_from_iv(w[o]);
+    }
     return FR_OK;
 }
 #endif /* IV_NO_AFFINE */
@@ -3462,6 +3593,688 @@ FR_DEF int fr_solve_quartic(const double c[5], double r[4]) { return fr_solve_po
 /* ==== [end section: solvers] ==== */
 
 /* ==== [section: trace] implementation: ray-surface intersection ==== */
+
+#define FR__TAYLOR_N (FR_POLY_MAX_DEGREE + 1)
+/* Interval bisection depth limit: 2^-62 of a segment is below any useful
+   tolerance, and the explicit stack needs one entry per level. */
+#define FR__TRACE_MAX_DEPTH 62
+/* The tape is pruned on every FR__PRUNE_EVERY-th bisection level; a pruned
+   tape is kept per level group, so scratch holds this many tape buffers. */
+#define FR__PRUNE_EVERY 4
+#define FR__PRUNE_LEVELS (FR__TRACE_MAX_DEPTH / FR__PRUNE_EVERY + 2)
+/* Interval leaves without a sign change are bisected down to tol times
+   this before they count as a touch (2^-10: ten more levels). */
+#define FR__TOUCH_SCALE (1.0 / 1024.0)
+/* Analytic CSG: a leaf root is on the solid's surface when f changes sign
+   across it within this many ulps of the point's scale |t| + |o|/|d| (the
+   point o + t d itself is only known to that accuracy). */
+#define FR__CSG_SIGN_ULPS 64.0
+/* Default t tolerance, relative to the segment length. */
+#define FR__TRACE_TOL_REL 1e-9
+#define FR__TRACE_MAX_ITERS 100000u
+/* Sphere tracing: default over-relaxation (Keinert et al. 2014 use 1.2-1.6). */
+#define FR__SPHERE_OMEGA 1.6
+/* Finite-difference normal step, relative to max(1, |p|). */
+#define FR__FD_STEP 1e-6
+
+static size_t fr__align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
+
+/* Scratch layout, every part 8-aligned:
+     [eval]   max of the point/grad/interval/affine/prune evaluator scratch
+     [taylor] n * FR__TAYLOR_N doubles, then n ints (degree, -1 = not polynomial)
+     [flags]  n bytes (analytic CSG: slot needed)
+     [cand]   n * FR_POLY_MAX_DEGREE doubles (analytic CSG candidate roots)
+     [prune]  FR__PRUNE_LEVELS * n instructions (interval: pruned tapes) */
+typedef struct fr__trace_mem_t {
+    void *eval;
+    double *taylor;
+    int *deg;
+    unsigned char *need;
+    double *cand;
+    fr_instr_t *prune;
+} fr__trace_mem_t;
+
+static size_t fr__eval_scratch_max(const fr_tape_t *t)
+{
+    size_t m = fr_scratch_size(t, FR_EVAL_POINT), s;
+    s = fr_scratch_size(t, FR_EVAL_GRAD); if (s > m) m = s;
+    s = fr_scratch_size(t, FR_EVAL_INTERVAL); if (s > m) m = s;
+    s = fr_scratch_size(t, FR_EVAL_AFFINE); if (s > m) m = s;
+    s = fr_scratch_size(t, FR_EVAL_PRUNE); if (s > m) m = s;
+    return fr__align8(m);
+}
+
+static size_t fr__trace_layout(const fr_tape_t *t, void *base, fr__trace_mem_t *mem)
+{
+    size_t n = t->n_code ? (size_t)t->n_code : 1, off = 0;
+    unsigned char *b = (unsigned char *)base;
+    if (mem) mem->eval = b;
+    off += fr__eval_scratch_max(t);
+    if (mem) mem->taylor = (double *)(void *)(b + off);
+    off += fr__align8(n * FR__TAYLOR_N * sizeof(double));
+    if (mem) mem->deg = (int *)(void *)(b + off);
+    off += fr__align8(n * sizeof(int));
+    if (mem) mem->need = b + off;
+    off += fr__align8(n);
+    if (mem) mem->cand = (double *)(void *)(b + off);
+    off += fr__align8(n * FR_POLY_MAX_DEGREE * sizeof(double));
+    if (mem) mem->prune = (fr_instr_t *)(void *)(b + off);
+#ifndef FR_NO_INTERVAL
+    off += fr__align8((size_t)FR__PRUNE_LEVELS * n * sizeof(fr_instr_t));
+#endif
+    return off;
+}
+
+FR_DEF size_t fr_trace_scratch_size(const fr_tape_t *t, const fr_trace_desc_t *desc)
+{
+    (void)desc;
+    if (!t) return 0;
+    return fr__trace_layout(t, NULL, NULL);
+}
+
+FR_DEF size_t fr_ray_poly_scratch_size(const fr_tape_t *t)
+{
+    size_t n = t && t->n_code ? (size_t)t->n_code : 1;
+    return fr__align8(n * FR__TAYLOR_N * sizeof(double)) + fr__align8(n * sizeof(int));
+}
+
+/* ---------------------------------------------------------------- Taylor arithmetic */
+
+/* c = a * b truncated; returns the degree or -1 if it would exceed the cap. */
+static int fr__tpoly_mul(const double *a, int da, const double *b, int db, double *c)
+{
+    int i, j, dc = da + db;
+    double tmp[FR__TAYLOR_N];
+    if (dc > FR_POLY_MAX_DEGREE) return -1;
+    for (i = 0; i <= dc; i++) tmp[i] = 0.0;
+    for (i = 0; i <= da; i++)
+        for (j = 0; j <= db; j++) tmp[i + j] += a[i] * b[j];
+    for (i = 0; i <= dc; i++) c[i] = tmp[i];
+    return dc;
+}
+
+static int fr__tpoly_trim(const double *c, int d)
+{
+    while (d > 0 && c[d] == 0) d--;
+    return d;
+}
+
+/* A scalar op on constant operands (degree 0), so constant subtrees that the
+   builder did not fold stay polynomial. Returns 0 if the op is not handled. */
+static int fr__tpoly_const_op(const fr_instr_t *in, double a, double b, double *out)
+{
+    switch ((fr_op_t)in->op) {
+    case FR_OP_SQRT: *out = sqrt(a); return 1;
+    case FR_OP_ABS: *out = fabs(a); return 1;
+    case FR_OP_EXP: *out = exp(a); return 1;
+    case FR_OP_LOG: *out = log(a); return 1;
+    case FR_OP_SIN: *out = sin(a); return 1;
+    case FR_OP_COS: *out = cos(a); return 1;
+    case FR_OP_ATAN: *out = atan(a); return 1;
+    case FR_OP_POWC: *out = pow(a, in->k); return 1;
+    case FR_OP_MIN: *out = a < b ? a : b; return 1;
+    case FR_OP_MAX: *out = a > b ? a : b; return 1;
+    default: return 0;
+    }
+}
+
+/* Evaluate every slot of the tape as a polynomial in t (paper §3.1.1: turn
+   f(X) = 0 into g(t) = 0). deg[i] = -1 marks a slot that is not a
+   polynomial of degree <= FR_POLY_MAX_DEGREE; such slots propagate. */
+static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d[3], double *P, int *deg)
+{
+    unsigned int i;
+    for (i = 0; i < t->n_code; i++) {
+        const fr_instr_t *in = &t->code[i];
+        double *c = P + (size_t)i * FR__TAYLOR_N;
+        const double *A = P + (size_t)in->a * FR__TAYLOR_N, *B = P + (size_t)in->b * FR__TAYLOR_N;
+        int da = deg[in->a], db = deg[in->b], k, dc = -1;
+        switch ((fr_op_t)in->op) {
+        case FR_OP_CONST: c[0] = in->k; dc = 0; break;
+        case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: {
+            int ax = (int)in->op - (int)FR_OP_VAR_X;
+            c[0] = o[ax]; c[1] = d[ax];
+            dc = d[ax] != 0 ? 1 : 0;
+            break;
+        }
+        case FR_OP_NEG:
+            if (da >= 0) { for (k = 0; k <= da; k++) c[k] = -A[k]; dc = da; }
+            break;
+        case FR_OP_ADD: case FR_OP_SUB:
+            if (da >= 0 && db >= 0) {
+                double sgn = in->op == FR_OP_ADD ? 1.0 : -1.0;
+                dc = da > db ? da : db;
+                for (k = 0; k <= dc; k++) c[k] = (k <= da ? A[k] : 0.0) + sgn * (k <= db ? B[k] : 0.0);
+                dc = fr__tpoly_trim(c, dc);
+            }
+            break;
+        case FR_OP_MUL:
+            if (da >= 0 && db >= 0) dc = fr__tpoly_mul(A, da, B, db, c);
+            break;
+        case FR_OP_SQR:
+            if (da >= 0) dc = fr__tpoly_mul(A, da, A, da, c);
+            break;
+        case FR_OP_POWI:
+            if (da >= 0 && in->k >= 0 && in->k == floor(in->k) && in->k * da <= FR_POLY_MAX_DEGREE) {
+                double base[FR__TAYLOR_N];
+                int n = (int)in->k, db2 = da;
+                for (k = 0; k <= da; k++) base[k] = A[k];
+                c[0] = 1.0; dc = 0;
+                while (n > 0 && dc >= 0) { /* binary powering */
+                    if (n & 1) dc = fr__tpoly_mul(c, dc, base, db2, c);
+                    n >>= 1;
+                    if (n > 0) db2 = fr__tpoly_mul(base, db2, base, db2, base);
+                    if (db2 < 0) { dc = -1; break; }
+                }
+            }
+            break;
+        case FR_OP_DIV:
+            if (da >= 0 && db == 0 && B[0] != 0) { for (k = 0; k <= da; k++) c[k] = A[k] / B[0]; dc = da; }
+            break;
+        default:
+            if (da == 0 && (db == 0 || in->op == FR_OP_SQRT || in->op == FR_OP_ABS || in->op == FR_OP_EXP ||
+                            in->op == FR_OP_LOG || in->op == FR_OP_SIN || in->op == FR_OP_COS ||
+                            in->op == FR_OP_ATAN || in->op == FR_OP_POWC) &&
+                fr__tpoly_const_op(in, A[0], B[0], c))
+                dc = 0;
+            break;
+        }
+        if (dc >= 0) for (k = 0; k <= dc; k++) if (!(c[k] - c[k] == 0)) dc = -1; /* inf/NaN */
+        deg[i] = dc;
+    }
+}
+
+FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const double d[3], void *scratch,
+                               double *coef, int *degree)
+{
+    double *P;
+    int *deg, k, dg;
+    unsigned int out;
+    if (!t || !o || !d || !scratch || !coef || !degree || t->n_code == 0) return FR_ERR_INVALID_ARG;
+    P = (double *)scratch;
+    deg = (int *)(void *)((unsigned char *)scratch + fr__align8((size_t)t->n_code * FR__TAYLOR_N * sizeof(double)));
+    fr__taylor_run(t, o, d, P, deg);
+    out = t->outputs[0];
+    dg = deg[out];
+    if (dg < 0) return FR_ERR_NOT_POLYNOMIAL;
+    for (k = 0; k <= FR_POLY_MAX_DEGREE; k++) coef[k] = k <= dg ? P[(size_t)out * FR__TAYLOR_N + (size_t)k] : 0.0;
+    *degree = dg;
+    return FR_OK;
+}
+
+/* ---------------------------------------------------------------- shared helpers */
+
+typedef struct fr__ray_t {
+    const fr_tape_t *tape;
+    double o[3], d[3], t0, t1, tol;
+    void *eval;
+    unsigned long long evals, iters;
+    unsigned int max_iters;
+} fr__ray_t;
+
+static double fr__g(fr__ray_t *R, double t)
+{
+    double p[3];
+    p[0] = R->o[0] + t * R->d[0];
+    p[1] = R->o[1] + t * R->d[1];
+    p[2] = R->o[2] + t * R->d[2];
+    R->evals++;
+    return fr_eval(R->tape, p, R->eval);
+}
+
+/* g'(t) = grad f . d by AD; 0 if unavailable. */
+static double fr__dg(fr__ray_t *R, double t, double *g)
+{
+    double p[3], gr[3];
+    p[0] = R->o[0] + t * R->d[0];
+    p[1] = R->o[1] + t * R->d[1];
+    p[2] = R->o[2] + t * R->d[2];
+    R->evals++;
+    if (fr_eval_grad(R->tape, p, R->eval, g, gr) != FR_OK) { *g = fr_eval(R->tape, p, R->eval); return 0.0; }
+    return gr[0] * R->d[0] + gr[1] * R->d[1] + gr[2] * R->d[2];
+}
+
+static int fr__opposite(double a, double b) { return (a < 0 && b > 0) || (a > 0 && b < 0); }
+
+/* ---------------------------------------------------------------- refinement (§3.1.3, §4.1.1) */
+
+/* Brent's method (Brent 1973, "zeroin"): inverse quadratic interpolation or
+   secant steps while they shrink the bracket fast enough, bisection
+   otherwise. b is the best estimate, [b, c] brackets the root. */
+static double fr__brent(fr__ray_t *R, double a, double b, double ga, double gb, double *t_err)
+{
+    double c = b, gc = gb, dstep = b - a, estep = dstep;
+    unsigned int it;
+    for (it = 0; it < R->max_iters; it++) {
+        double tol1, xm;
+        R->iters++;
+        if ((gb > 0 && gc > 0) || (gb < 0 && gc < 0)) { c = a; gc = ga; dstep = estep = b - a; }
+        if (fabs(gc) < fabs(gb)) { a = b; b = c; c = a; ga = gb; gb = gc; gc = ga; }
+        tol1 = 2.0 * FR__U * fabs(b) + 0.5 * R->tol;
+        xm = 0.5 * (c - b);
+        if (fabs(xm) <= tol1 || gb == 0) break;
+        if (fabs(estep) >= tol1 && fabs(ga) > fabs(gb)) {
+            double p, q, r, sr = gb / ga, lim1, lim2;
+            if (a == c) { p = 2.0 * xm * sr; q = 1.0 - sr; }
+            else {
+                q = ga / gc; r = gb / gc;
+                p = sr * (2.0 * xm * q * (q - r) - (b - a) * (r - 1.0));
+                q = (q - 1.0) * (r - 1.0) * (sr - 1.0);
+            }
+            if (p > 0) q = -q;
+            p = fabs(p);
+            lim1 = 3.0 * xm * q - fabs(tol1 * q);
+            lim2 = fabs(estep * q);
+            if (2.0 * p < (lim1 < lim2 ? lim1 : lim2)) { estep = dstep; dstep = p / q; }
+            else { dstep = xm; estep = dstep; }
+        } else { dstep = xm; estep = dstep; }
+        a = b; ga = gb;
+        b += fabs(dstep) > tol1 ? dstep : (xm > 0 ? tol1 : -tol1);
+        gb = fr__g(R, b);
+        if (!(gb == gb)) { b = 0.5 * (a + c); gb = fr__g(R, b); } /* NaN inside: bisect */
+    }
+    *t_err = fabs(c - b);
+    return b;
+}
+
+/* Refine a sign change of g on [a, b] (ga, gb of opposite signs, a < b) to a
+   bracket no wider than 2 tol. Every method keeps a valid bracket and falls
+   back to bisection when its step leaves it, so all converge. */
+static double fr__refine(fr__ray_t *R, fr_refine_t m, double a, double b, double ga, double gb, double *t_err)
+{
+    double x = 0.5 * (a + b), gx;
+    int side = 0; /* Illinois: which end moved last */
+    unsigned int it;
+    if (m == FR_REFINE_BRENT) return fr__brent(R, a, b, ga, gb, t_err);
+    for (it = 0; it < R->max_iters && b - a > 2.0 * R->tol; it++) {
+        R->iters++;
+        if (m == FR_REFINE_NEWTON) {
+            double dg = fr__dg(R, x, &gx), xn;
+            if (gx == 0) { *t_err = 0; return x; }
+            if (fr__opposite(ga, gx)) { b = x; gb = gx; } else { a = x; ga = gx; }
+            xn = dg != 0 ? x - gx / dg : 0.5 * (a + b);
+            if (!(xn > a && xn < b)) xn = 0.5 * (a + b);
+            if (fabs(xn - x) <= 0.5 * R->tol) { *t_err = fabs(xn - x); return xn; }
+            x = xn;
+            continue;
+        }
+        if (m == FR_REFINE_ILLINOIS) {
+            x = (a * gb - b * ga) / (gb - ga);
+            if (!(x > a && x < b)) x = 0.5 * (a + b);
+        } else {
+            x = 0.5 * (a + b);
+        }
+        gx = fr__g(R, x);
+        if (gx == 0) { *t_err = 0; return x; }
+        if (!(gx == gx)) { x = 0.5 * (a + b); gx = fr__g(R, x); if (!(gx == gx)) break; }
+        if (fr__opposite(ga, gx)) {
+            b = x; gb = gx;
+            if (side == -1) ga *= 0.5; /* Illinois: halve the stale end's value */
+            side = -1;
+        } else {
+            a = x; ga = gx;
+            if (side == 1) gb *= 0.5;
+            side = 1;
+        }
+    }
+    *t_err = 0.5 * (b - a);
+    return 0.5 * (a + b);
+}
+
+/* ---------------------------------------------------------------- stepping */
+
+static int fr__trace_step(fr__ray_t *R, double step, fr_refine_t refine, double L, double *t_hit, double *t_err)
+{
+    double ta = R->t0, ga = fr__g(R, ta), dn = sqrt(R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2]);
+    unsigned int it;
+    if (ga == 0) { *t_hit = ta; *t_err = 0; return 1; }
+    for (it = 0; it < R->max_iters && ta < R->t1; it++) {
+        double h = step, tb, gb;
+        R->iters++;
+        if (h <= 0) { /* Lipschitz step: no root within |g| / (L |d|) */
+            h = ga == ga ? fabs(ga) / (L * dn) : R->tol;
+            if (h < R->tol) h = R->tol;
+        }
+        tb = ta + h > R->t1 ? R->t1 : ta + h;
+        gb = fr__g(R, tb);
+        if (gb == 0) { *t_hit = tb; *t_err = 0; return 1; }
+        if (fr__opposite(ga, gb)) { /* NaN never opposes: no root is claimed in a NaN region */
+            *t_hit = fr__refine(R, refine, ta, tb, ga, gb, t_err);
+            return 1;
+        }
+        ta = tb; ga = gb;
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- sphere tracing */
+
+/* Hart 1996 with Keinert et al. 2014's over-relaxation: steps of omega r,
+   r = |g| / (L |d|) the unbounding radius; if the new sphere does not
+   overlap the previous one, the relaxed step may have skipped the surface,
+   so we return to the safe step and continue with omega = 1. */
+static int fr__trace_sphere(fr__ray_t *R, double L, double omega, double *t_hit, double *t_err)
+{
+    double dn = sqrt(R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2]);
+    double t = R->t0, t_prev = R->t0, r_prev = 0.0;
+    int have_prev = 0;
+    unsigned int it;
+    for (it = 0; it < R->max_iters && t <= R->t1; it++) {
+        double g = fr__g(R, t), r;
+        R->iters++;
+        if (!(g == g)) return 0; /* NaN: the bound says nothing, no hit is claimed */
+        r = fabs(g) / (L * dn);
+        if (omega > 1.0 && have_prev && r + r_prev < t - t_prev) {
+            t = t_prev + r_prev;
+            omega = 1.0;
+            continue;
+        }
+        if (r <= R->tol) { *t_hit = t; *t_err = R->tol; return 1; }
+        t_prev = t; r_prev = r; have_prev = 1;
+        t += omega * r;
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- interval bisection */
+
+#ifndef FR_NO_INTERVAL
+typedef struct fr__seg_t {
+    double a, b;
+    int depth;
+} fr__seg_t;
+
+static void fr__ray_box(const fr__ray_t *R, double a, double b, iv_t box[3])
+{
+    int k;
+    for (k = 0; k < 3; k++) box[k] = iv_add(iv_point(R->o[k]), iv_mul(iv_make(a, b), iv_point(R->d[k])));
+}
+
+/* An enclosure of g over [a, b]: affine forms in t (reduced affine
+   arithmetic, Knoll et al. 2009) or plain intervals of the ray's box. */
+static fr_result_t fr__g_range(fr__ray_t *R, const fr_tape_t *tp, double a, double b, int plain, iv_t *out)
+{
+    R->evals++;
+#ifndef IV_NO_AFFINE
+    if (!plain) {
+        iv_affine_t T = iv_affine_ray_param(a, b), P[3], res;
+        fr_result_t e;
+        int k;
+        for (k = 0; k < 3; k++) P[k] = iv_affine_add_d(iv_affine_mul_d(T, R->d[k]), R->o[k]);
+        e = fr_eval_affine(tp, P, R->eval, &res);
+        if (e == FR_OK) *out = iv_from_affine(res);
+        return e;
+    }
+#endif
+    {
+        iv_t box[3];
+        (void)plain;
+        fr__ray_box(R, a, b, box);
+        return fr_eval_interval(tp, box, R->eval, out);
+    }
+}
+
+/* Leftmost-first bisection on t with an explicit stack (paper §4.1.3: no
+   recursion). A segment whose enclosure excludes 0 (or is empty: f is NaN
+   throughout) holds no root and is dropped; the first segment no wider
+   than tol whose enclosure contains 0 is the hit. Pruned tapes (Keeter
+   2020) are made every FR__PRUNE_EVERY levels and reused by the segment's
+   descendants, which depth-first order keeps alive. */
+static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_instr_t *bufs, int *found,
+                                      double *t_hit, double *t_err)
+{
+    fr__seg_t stack[FR__TRACE_MAX_DEPTH + 2];
+    fr_tape_t tapes[FR__PRUNE_LEVELS];
+    int sp = 0;
+    unsigned int it;
+    tapes[0] = *R->tape;
+    stack[sp].a = R->t0; stack[sp].b = R->t1; stack[sp].depth = 0; sp++;
+    *found = 0;
+    for (it = 0; sp > 0 && it < R->max_iters; it++) {
+        fr__seg_t s = stack[--sp];
+        int lvl = s.depth / FR__PRUNE_EVERY;
+        const fr_tape_t *tp;
+        iv_t range;
+        fr_result_t e;
+        R->iters++;
+        if (prune && s.depth % FR__PRUNE_EVERY == 0 && s.depth > 0 && lvl < FR__PRUNE_LEVELS) {
+            iv_t box[3];
+            fr__ray_box(R, s.a, s.b, box);
+            R->evals++;
+            e = fr_prune_ex(&tapes[lvl - 1], box, FR_PRUNE_SIGN, R->eval, bufs + (size_t)lvl * R->tape->n_code,
+                            R->tape->n_code, &tapes[lvl], NULL);
+            if (e != FR_OK) tapes[lvl] = tapes[lvl - 1];
+        }
+        tp = prune ? &tapes[lvl < FR__PRUNE_LEVELS ? lvl : FR__PRUNE_LEVELS - 1] : R->tape;
+        e = fr__g_range(R, tp, s.a, s.b, plain, &range);
+        if (e != FR_OK) return e;
+        if (iv_is_empty(range) || !iv_contains(range, 0.0)) continue;
+        if (s.b - s.a <= R->tol) {
+            /* A sign change at the ends proves a root inside. Without one the
+               enclosure may just be loose (a near miss), so such a segment
+               is bisected FR__TOUCH_LEVELS levels further: a near miss is
+               then excluded, a feature thinner than tol shows its sign
+               change, and what survives is reported as a touch. */
+            double ga = fr__g(R, s.a), gb = fr__g(R, s.b);
+            if (ga == 0 || gb == 0 || fr__opposite(ga, gb) || s.b - s.a <= R->tol * FR__TOUCH_SCALE ||
+                s.depth >= FR__TRACE_MAX_DEPTH) {
+                *found = 1;
+                *t_hit = ga == 0 ? s.a : gb == 0 && !fr__opposite(ga, gb) ? s.b : 0.5 * (s.a + s.b);
+                *t_err = 0.5 * (s.b - s.a);
+                return FR_OK;
+            }
+        }
+        if (s.depth >= FR__TRACE_MAX_DEPTH) { *found = 1; *t_hit = 0.5 * (s.a + s.b); *t_err = 0.5 * (s.b - s.a); return FR_OK; }
+        {
+            double m = 0.5 * (s.a + s.b);
+            if (!(m > s.a && m < s.b)) { /* adjacent doubles: as narrow as t can be */
+                *found = 1; *t_hit = s.a; *t_err = s.b - s.a;
+                return FR_OK;
+            }
+            stack[sp].a = m; stack[sp].b = s.b; stack[sp].depth = s.depth + 1; sp++;
+            stack[sp].a = s.a; stack[sp].b = m; stack[sp].depth = s.depth + 1; sp++;
+        }
+    }
+    return FR_OK;
+}
+#endif
+
+/* ---------------------------------------------------------------- analytic */
+
+/* The paper's analytic method. A polynomial tape: the roots of g. Otherwise
+   the shape must be min/max/R-function/negation nodes over polynomial
+   leaves; the zero set of such a node lies in the union of its operands'
+   zero sets, so the hit is among the leaf roots: sorted, the first where f
+   changes sign (§3.1.1, "select the root ... placed on the surface of the
+   CSG solid"). */
+static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, int *found, double *t_hit,
+                                      double *t_err)
+{
+    const fr_tape_t *t = R->tape;
+    unsigned int out = t->outputs[0], i, n = t->n_code;
+    int nc = 0, k;
+    double oscale, *cand = mem->cand, ts, ob[3], s0, s1;
+    /* Expand g about the segment's point nearest the coordinate origin, not
+       about o: with o at 1e6 and the model near 0, coefficients about o
+       would carry 1e12-sized terms whose rounding moves the roots by 1e-5,
+       while o + t d itself is known to ulp(1e6) = 1e-10. */
+    ts = -(R->o[0] * R->d[0] + R->o[1] * R->d[1] + R->o[2] * R->d[2]) /
+         (R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2]);
+    if (!(ts >= R->t0)) ts = R->t0;
+    if (!(ts <= R->t1)) ts = R->t1;
+    if (!(ts - ts == 0)) ts = 0; /* unbounded segment */
+    for (k = 0; k < 3; k++) ob[k] = R->o[k] + ts * R->d[k];
+    s0 = R->t0 - ts; s1 = R->t1 - ts;
+    fr__taylor_run(t, ob, R->d, mem->taylor, mem->deg);
+    *found = 0;
+    oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) /
+             (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
+    if (mem->deg[out] >= 0) {
+        double r[FR_POLY_MAX_DEGREE];
+        int nr = fr_solve_poly(mem->taylor + (size_t)out * FR__TAYLOR_N, mem->deg[out], s0, s1, r);
+        R->iters++;
+        if (nr > 0) { *found = 1; *t_hit = ts + r[0]; *t_err = 4.0 * FR__U * (fabs(*t_hit) + oscale); }
+        return FR_OK;
+    }
+    for (i = 0; i < n; i++) mem->need[i] = 0;
+    mem->need[out] = 1;
+    for (i = n; i-- > 0;) {
+        const fr_instr_t *in = &t->code[i];
+        if (!mem->need[i]) continue;
+        if (mem->deg[i] >= 0) { /* a polynomial leaf: collect its roots */
+            int nr;
+            if (mem->deg[i] == 0) continue;
+            nr = fr_solve_poly(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i], s0, s1, cand + nc);
+            R->iters++;
+            for (k = 0; k < nr; k++) cand[nc + k] += ts;
+            if (nr > 0) nc += nr;
+            continue;
+        }
+        switch ((fr_op_t)in->op) {
+        case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
+            mem->need[in->a] = 1; mem->need[in->b] = 1; break;
+        case FR_OP_NEG: mem->need[in->a] = 1; break;
+        default: return FR_ERR_NOT_POLYNOMIAL;
+        }
+    }
+    /* insertion sort: few candidates */
+    for (k = 1; k < nc; k++) {
+        double v = cand[k];
+        int j = k;
+        while (j > 0 && cand[j - 1] > v) { cand[j] = cand[j - 1]; j--; }
+        cand[j] = v;
+    }
+    for (k = 0; k < nc; k++) {
+        double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
+        double lo = tc - dt < R->t0 ? R->t0 : tc - dt, hi = tc + dt > R->t1 ? R->t1 : tc + dt;
+        double glo = fr__g(R, lo), ghi = fr__g(R, hi);
+        R->iters++;
+        if (fr__opposite(glo, ghi) || (tc == R->t0 && glo == 0) ) {
+            *found = 1; *t_hit = tc; *t_err = dt;
+            return FR_OK;
+        }
+    }
+    return FR_OK;
+}
+
+/* ---------------------------------------------------------------- normals and the entry point */
+
+static void fr__normal(fr__ray_t *R, const fr_trace_desc_t *desc, const double p[3], double nrm[3])
+{
+    double g[3] = {0, 0, 0}, v, len;
+    int k;
+    if (desc->normal == FR_NORMAL_NONE) { nrm[0] = nrm[1] = nrm[2] = 0; return; }
+    if (desc->normal == FR_NORMAL_AD) {
+        R->evals++;
+        if (fr_eval_grad(R->tape, p, R->eval, &v, g) != FR_OK) g[0] = g[1] = g[2] = 0;
+    } else {
+        double scale = fabs(p[0]) + fabs(p[1]) + fabs(p[2]), h;
+        h = (desc->fd_step > 0 ? desc->fd_step : FR__FD_STEP) * (scale > 1 ? scale : 1);
+        for (k = 0; k < 3; k++) {
+            double q[3];
+            q[0] = p[0]; q[1] = p[1]; q[2] = p[2];
+            q[k] = p[k] + h; v = fr_eval(R->tape, q, R->eval);
+            q[k] = p[k] - h; g[k] = (v - fr_eval(R->tape, q, R->eval)) / (2.0 * h);
+            R->evals += 2;
+        }
+    }
+    len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    for (k = 0; k < 3; k++) nrm[k] = len > 0 && len == len ? -g[k] / len : 0.0;
+}
+
+FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
+                            const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
+{
+    fr_trace_desc_t desc;
+    fr__trace_mem_t mem;
+    fr__ray_t R;
+    fr_method_t m;
+    fr_result_t e = FR_OK;
+    double t_hit = 0, t_err = 0, L;
+    int found = 0, k;
+    if (!t || !o || !d || !scratch || !hit || t->n_code == 0) return FR_ERR_INVALID_ARG;
+    if (desc_in) desc = *desc_in;
+    else {
+        unsigned char *z = (unsigned char *)&desc;
+        size_t zi;
+        for (zi = 0; zi < sizeof desc; zi++) z[zi] = 0;
+    }
+    for (k = 0; k < 3; k++)
+        if (!(o[k] - o[k] == 0) || !(d[k] - d[k] == 0)) return FR_ERR_INVALID_ARG;
+    if (!(t0 <= t1) || t0 != t0 || (d[0] == 0 && d[1] == 0 && d[2] == 0) || (int)desc.method < 0 || (int)desc.method >= (int)FR_METHOD_COUNT_)
+        return FR_ERR_INVALID_ARG;
+    fr__trace_layout(t, scratch, &mem);
+    R.tape = t;
+    for (k = 0; k < 3; k++) { R.o[k] = o[k]; R.d[k] = d[k]; }
+    R.t0 = t0; R.t1 = t1;
+    R.eval = mem.eval;
+    R.evals = R.iters = 0;
+    R.max_iters = desc.max_iters ? desc.max_iters : FR__TRACE_MAX_ITERS;
+    if (desc.tol > 0) R.tol = desc.tol;
+    else if (desc.tol < 0) R.tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
+    else R.tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + fabs(t0));
+    if (!(R.tol > 0)) R.tol = FR__U;
+    L = desc.lipschitz > 0 ? desc.lipschitz : t->lipschitz;
+    m = desc.method;
+    if (m == FR_METHOD_AUTO) {
+        fr__taylor_run(t, o, d, mem.taylor, mem.deg);
+        m = FR_METHOD_ANALYTIC;
+        {   /* analytic if every shape path ends in polynomial leaves */
+            unsigned int i;
+            for (i = 0; i < t->n_code; i++) mem.need[i] = 0;
+            mem.need[t->outputs[0]] = 1;
+            for (i = t->n_code; i-- > 0 && m == FR_METHOD_ANALYTIC;) {
+                const fr_instr_t *in = &t->code[i];
+                if (!mem.need[i] || mem.deg[i] >= 0) continue;
+                if (in->op == FR_OP_MIN || in->op == FR_OP_MAX || in->op == FR_OP_RUNI || in->op == FR_OP_RINT) {
+                    mem.need[in->a] = 1; mem.need[in->b] = 1;
+                } else if (in->op == FR_OP_NEG) mem.need[in->a] = 1;
+                else m = FR_METHOD_STEP;
+            }
+        }
+#ifndef FR_NO_INTERVAL
+        if (m == FR_METHOD_STEP && !(t->flags & FR_TAPE_NO_INTERVAL) && t1 - t0 < HUGE_VAL) m = FR_METHOD_INTERVAL;
+#endif
+    }
+    switch (m) {
+    case FR_METHOD_ANALYTIC:
+        e = fr__trace_analytic(&R, &mem, &found, &t_hit, &t_err);
+        break;
+    case FR_METHOD_STEP:
+        if (desc.refine == FR_REFINE_NEWTON && (t->flags & FR_TAPE_NO_GRADIENT)) return FR_ERR_NO_GRADIENT;
+        if (desc.step <= 0 && !(L > 0 && L < HUGE_VAL)) {
+            if (!(t1 - t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
+            desc.step = (t1 - t0) / 256.0;
+        }
+        found = fr__trace_step(&R, desc.step, desc.refine, L, &t_hit, &t_err);
+        break;
+    case FR_METHOD_INTERVAL:
+#ifndef FR_NO_INTERVAL
+        if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+        if (!(t1 - t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
+        e = fr__trace_interval(&R, desc.plain_intervals, !desc.no_prune, mem.prune, &found, &t_hit, &t_err);
+        break;
+#else
+        return FR_ERR_NO_INTERVAL;
+#endif
+    case FR_METHOD_SPHERE:
+        if (!(L > 0 && L < HUGE_VAL)) return FR_ERR_NO_LIPSCHITZ;
+        found = fr__trace_sphere(&R, L, desc.over_relax > 0 ? desc.over_relax : FR__SPHERE_OMEGA, &t_hit, &t_err);
+        break;
+    default:
+        return FR_ERR_INVALID_ARG;
+    }
+    if (e != FR_OK) return e;
+    hit->hit = found;
+    hit->method = m;
+    hit->t = found ? t_hit : 0.0;
+    hit->t_err = found ? t_err : 0.0;
+    for (k = 0; k < 3; k++) { hit->point[k] = found ? o[k] + t_hit * d[k] : 0.0; hit->normal[k] = 0.0; }
+    if (found) fr__normal(&R, &desc, hit->point, hit->normal);
+    hit->evals = R.evals;
+    hit->iterations = R.iters;
+    return FR_OK;
+}
 
 /* ==== [end section: trace] ==== */
 

@@ -1,0 +1,509 @@
+/* Ray-surface intersection of frep.h (issue 5, items 2-7): ray to polynomial,
+   analytic CSG, stepping, interval bisection, sphere tracing, the entry
+   point, and the stability cases of the issue, one named test each with an
+   asserted bound. References are closed forms evaluated in __float128. */
+#include "test.h"
+#define IV_IMPLEMENTATION
+#include "interval.h"
+#define FR_IMPLEMENTATION
+#include "frep.h"
+#include <quadmath.h>
+
+/* ---------------------------------------------------------------- models */
+
+typedef struct model_t {
+    fr_tape_t tape;
+    void *scratch;
+} model_t;
+
+static void model_finish(model_t *m, fr_builder_t *b, fr_node_t shape)
+{
+    fr_diag_t dg;
+    fr_result_t r = fr_builder_finish(b, shape, NULL, 0, &m->tape, &dg);
+    if (r != FR_OK) T_FAIL("builder: %s", dg.message);
+    fr_builder_free(b);
+    m->scratch = malloc(fr_trace_scratch_size(&m->tape, NULL));
+}
+
+static void model_free(model_t *m)
+{
+    free(m->scratch);
+    fr_tape_free(&m->tape);
+}
+
+/* HyperFun sphere r^2 - |p - c|^2 (polynomial). */
+static void make_sphere(model_t *m, const double c[3], double r)
+{
+    fr_builder_t b;
+    fr_builder_init(&b, NULL);
+    model_finish(m, &b, fr_sphere(&b, fr_coords(&b), c, r));
+}
+
+/* A torus about z as a user polynomial (degree 4):
+   4 R^2 (x^2 + y^2) - (x^2 + y^2 + z^2 + R^2 - r^2)^2 >= 0 inside. */
+static void make_torus_poly(model_t *m, double R, double r)
+{
+    fr_builder_t b;
+    fr_p3_t p;
+    fr_node_t rho2, s, f;
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    rho2 = fr_add(&b, fr_unary(&b, FR_OP_SQR, p.x), fr_unary(&b, FR_OP_SQR, p.y));
+    s = fr_add(&b, fr_add(&b, rho2, fr_unary(&b, FR_OP_SQR, p.z)), fr_const(&b, R * R - r * r));
+    f = fr_sub(&b, fr_mul(&b, fr_const(&b, 4 * R * R), rho2), fr_unary(&b, FR_OP_SQR, s));
+    model_finish(m, &b, f);
+}
+
+/* HyperFun's torus (with a square root: not polynomial). */
+static void make_torus_hf(model_t *m, double R, double r)
+{
+    fr_builder_t b;
+    static const double c[3] = {0, 0, 0};
+    fr_builder_init(&b, NULL);
+    model_finish(m, &b, fr_torus(&b, fr_coords(&b), 2, c, R, r));
+}
+
+/* exact distance bound: r - |p - c| (an SDF wrapped, Lipschitz 1) */
+static void make_sdf_sphere(model_t *m, const double c[3], double r)
+{
+    fr_builder_t b;
+    fr_p3_t p;
+    fr_node_t dx, dy, dz, len;
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    dx = fr_sub(&b, p.x, fr_const(&b, c[0]));
+    dy = fr_sub(&b, p.y, fr_const(&b, c[1]));
+    dz = fr_sub(&b, p.z, fr_const(&b, c[2]));
+    len = fr_unary(&b, FR_OP_SQRT, fr_add(&b, fr_add(&b, fr_unary(&b, FR_OP_SQR, dx), fr_unary(&b, FR_OP_SQR, dy)),
+                                          fr_unary(&b, FR_OP_SQR, dz)));
+    model_finish(m, &b, fr_from_sdf(&b, fr_sub(&b, len, fr_const(&b, r)), 1.0));
+}
+
+static fr_hit_t trace(model_t *m, const double o[3], const double d[3], double t0, double t1, fr_trace_desc_t desc)
+{
+    fr_hit_t h;
+    fr_result_t r = fr_trace(&m->tape, o, d, t0, t1, &desc, m->scratch, &h);
+    if (r != FR_OK) { T_FAIL("fr_trace: %s", fr_result_string(r)); h.hit = 0; }
+    return h;
+}
+
+static fr_trace_desc_t method(fr_method_t m, double tol)
+{
+    fr_trace_desc_t d;
+    memset(&d, 0, sizeof d);
+    d.method = m;
+    d.tol = tol;
+    return d;
+}
+
+/* first entry of a ray x = ox + t along +x at height rho into a sphere of
+   radius r at the origin, in quad */
+static double sphere_entry(double ox, double rho, double r)
+{
+    __float128 h = (__float128)r * r - (__float128)rho * rho;
+    return (double)(-(__float128)ox - sqrtq(h));
+}
+
+/* ---------------------------------------------------------------- ray to polynomial */
+
+static void ray_poly_matches_point_evaluation(void)
+{
+    model_t m;
+    double o[3] = {0.3, -1.7, 2.2}, d[3] = {0.5, 0.25, -0.8}, coef[FR_POLY_MAX_DEGREE + 1], t;
+    void *s;
+    int deg;
+    make_torus_poly(&m, 2, 0.5);
+    s = malloc(fr_ray_poly_scratch_size(&m.tape));
+    T_INT_EQ(fr_ray_poly(&m.tape, o, d, s, coef, &deg), FR_OK);
+    T_INT_EQ(deg, 4);
+    for (t = -3; t <= 3; t += 0.37) {
+        double p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
+        double a, v = fr_poly_eval_compensated(coef, deg, t, &a);
+        T_LE(fabs(v - fr_eval(&m.tape, p, m.scratch)), 1e-13 * a);
+    }
+    free(s);
+    model_free(&m);
+}
+
+static void ray_poly_reports_non_polynomial_tape(void)
+{
+    model_t m;
+    double o[3] = {0.5, 0.1, -3}, d[3] = {0.1, 0.2, 1}, coef[FR_POLY_MAX_DEGREE + 1];
+    void *s;
+    int deg;
+    make_torus_hf(&m, 2, 0.5);
+    s = malloc(fr_ray_poly_scratch_size(&m.tape));
+    T_INT_EQ(fr_ray_poly(&m.tape, o, d, s, coef, &deg), FR_ERR_NOT_POLYNOMIAL);
+    free(s);
+    model_free(&m);
+}
+
+/* ---------------------------------------------------------------- stability cases */
+
+/* A ray 1e-10 inside the silhouette of a unit sphere (two roots 2.8e-5
+   apart), one exactly tangent, one 1e-10 outside. */
+static void grazing_ray_sphere(void)
+{
+    static const double c[3] = {0, 0, 0};
+    model_t m;
+    double d[3] = {1, 0, 0};
+    int k;
+    make_sphere(&m, c, 1);
+    for (k = 0; k < 3; k++) {
+        double rho = k == 0 ? 1 - 1e-10 : k == 1 ? 1.0 : 1 + 1e-10, o[3] = {-5, rho, 0};
+        fr_hit_t a = trace(&m, o, d, 0, 10, method(FR_METHOD_ANALYTIC, 0));
+        fr_hit_t iv = trace(&m, o, d, 0, 10, method(FR_METHOD_INTERVAL, 1e-10));
+        if (k < 2) {
+            double tr = sphere_entry(-5, rho, 1);
+            T_INT_EQ(a.hit, 1);
+            T_NEAR(a.t, tr, 1e-9);
+            T_INT_EQ(iv.hit, 1);
+            T_NEAR(iv.t, tr, 2e-5); /* the enclosure cannot tell the two roots apart closer than this */
+        } else {
+            T_INT_EQ(a.hit, 0);
+            /* a reported touch must be within the enclosure's reach of the surface */
+            if (iv.hit) T_LE(fabs(sqrt(iv.point[0] * iv.point[0] + iv.point[1] * iv.point[1]) - 1), 1e-6);
+        }
+    }
+    model_free(&m);
+}
+
+/* Tangent to the torus' outer equator (R + r = 2.5) from 1e-9 inside. */
+static void grazing_ray_torus(void)
+{
+    model_t m, h;
+    double d[3] = {1, 0, 0}, y = 2.5 - 1e-9, o[3] = {-5, 2.5 - 1e-9, 0};
+    double tr = (double)(5 - sqrtq((__float128)2.5 * 2.5 - (__float128)y * y));
+    fr_hit_t a, iv;
+    make_torus_poly(&m, 2, 0.5);
+    make_torus_hf(&h, 2, 0.5);
+    a = trace(&m, o, d, 0, 10, method(FR_METHOD_ANALYTIC, 0));
+    T_INT_EQ(a.hit, 1);
+    T_NEAR(a.t, tr, 1e-8);
+    iv = trace(&h, o, d, 0, 10, method(FR_METHOD_INTERVAL, 1e-9));
+    T_INT_EQ(iv.hit, 1);
+    T_NEAR(iv.t, tr, 1e-4);
+    model_free(&m);
+    model_free(&h);
+}
+
+/* Along the axis the ray passes through the hole: every method misses. */
+static void ray_along_torus_axis_misses(void)
+{
+    model_t m, h;
+    double o[3] = {0, 0, -5}, d[3] = {0, 0, 1};
+    fr_trace_desc_t st = method(FR_METHOD_STEP, 1e-9);
+    make_torus_poly(&m, 2, 0.5);
+    make_torus_hf(&h, 2, 0.5);
+    st.step = 0.01;
+    T_INT_EQ(trace(&m, o, d, 0, 10, method(FR_METHOD_ANALYTIC, 0)).hit, 0);
+    T_INT_EQ(trace(&h, o, d, 0, 10, method(FR_METHOD_INTERVAL, 1e-9)).hit, 0);
+    T_INT_EQ(trace(&h, o, d, 0, 10, st).hit, 0);
+    model_free(&m);
+    model_free(&h);
+}
+
+/* Edge-on, in the torus plane through the centre: first hit at x = -2.5. */
+static void ray_edge_on_torus(void)
+{
+    model_t m, h;
+    double o[3] = {-5, 0, 0}, d[3] = {1, 0, 0};
+    fr_trace_desc_t st = method(FR_METHOD_STEP, 1e-11);
+    fr_hit_t a, iv, s;
+    make_torus_poly(&m, 2, 0.5);
+    make_torus_hf(&h, 2, 0.5);
+    st.step = 0.01;
+    a = trace(&m, o, d, 0, 10, method(FR_METHOD_ANALYTIC, 0));
+    iv = trace(&h, o, d, 0, 10, method(FR_METHOD_INTERVAL, 1e-11));
+    s = trace(&h, o, d, 0, 10, st);
+    T_INT_EQ(a.hit, 1); T_NEAR(a.t, 2.5, 1e-14);
+    T_INT_EQ(iv.hit, 1); T_NEAR(iv.t, 2.5, 1e-11);
+    T_INT_EQ(s.hit, 1); T_NEAR(s.t, 2.5, 1e-11);
+    model_free(&m);
+    model_free(&h);
+}
+
+/* A slab 2e-5 thick between the sample points of a 0.01 step: stepping
+   misses it (the documented trade), interval bisection must not. */
+static void thin_feature_stepping_misses_interval_finds(void)
+{
+    fr_builder_t b;
+    model_t m;
+    fr_p3_t p;
+    double o[3] = {-1, 0.1, 0.2}, d[3] = {1, 0, 0}, w = 1e-5, xc = 0.3037;
+    fr_trace_desc_t st = method(FR_METHOD_STEP, 1e-12);
+    fr_hit_t s, iv;
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    model_finish(&m, &b, fr_sub(&b, fr_const(&b, w * w), fr_unary(&b, FR_OP_SQR, fr_sub(&b, p.x, fr_const(&b, xc)))));
+    st.step = 0.01;
+    s = trace(&m, o, d, 0, 2, st);
+    T_INT_EQ(s.hit, 0);
+    iv = trace(&m, o, d, 0, 2, method(FR_METHOD_INTERVAL, 1e-12));
+    T_INT_EQ(iv.hit, 1);
+    T_NEAR(iv.t, 1 + xc - w, 1e-12);
+    model_free(&m);
+}
+
+/* Ray origin at 1e6 towards a unit sphere at the origin. */
+static void ray_origin_at_1e6(void)
+{
+    static const double c[3] = {0, 0, 0};
+    model_t m, sd;
+    double o[3] = {1e6, 0.3, 0.2}, d[3] = {-1, 0, 0};
+    double tr = (double)(1e6Q - sqrtq(1 - 0.3Q * 0.3Q - 0.2Q * 0.2Q));
+    fr_trace_desc_t st = method(FR_METHOD_STEP, 1e-9), sp = method(FR_METHOD_SPHERE, 1e-9);
+    fr_hit_t h;
+    st.step = 0.01;
+    make_sphere(&m, c, 1);
+    make_sdf_sphere(&sd, c, 1);
+    h = trace(&m, o, d, 1e6 - 3, 1e6, method(FR_METHOD_ANALYTIC, 0));
+    T_INT_EQ(h.hit, 1); T_NEAR(h.t, tr, 1e-8);
+    h = trace(&m, o, d, 1e6 - 3, 1e6, method(FR_METHOD_INTERVAL, 1e-8));
+    T_INT_EQ(h.hit, 1); T_NEAR(h.t, tr, 2e-8);
+    h = trace(&m, o, d, 1e6 - 3, 1e6, st);
+    T_INT_EQ(h.hit, 1); T_NEAR(h.t, tr, 2e-8);
+    h = trace(&sd, o, d, 0, 2e6, sp);
+    T_INT_EQ(h.hit, 1); T_NEAR(h.t, tr, 1e-7);
+    model_free(&m);
+    model_free(&sd);
+}
+
+/* A shell 1e-8 thick (A minus a concentric B of radius 1 - 1e-8): the
+   ray's roots 4 and 4 + 1e-8 are clustered within 1e-8. */
+static void roots_clustered_within_1e_minus8(void)
+{
+    static const double c[3] = {0, 0, 0};
+    fr_builder_t b;
+    model_t m;
+    fr_p3_t p;
+    double o[3] = {-5, 0, 0}, d[3] = {1, 0, 0};
+    fr_hit_t h;
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    model_finish(&m, &b, fr_subtract(&b, fr_sphere(&b, p, c, 1), fr_sphere(&b, p, c, 1 - 1e-8), 1.0));
+    h = trace(&m, o, d, 0, 10, method(FR_METHOD_ANALYTIC, 0));
+    T_INT_EQ(h.hit, 1); T_NEAR(h.t, 4, 1e-14);
+    h = trace(&m, o, d, 0, 10, method(FR_METHOD_INTERVAL, 1e-10));
+    T_INT_EQ(h.hit, 1); T_NEAR(h.t, 4, 1e-10);
+    /* the exit of the shell, from inside it */
+    o[0] = -1 + 5e-9;
+    h = trace(&m, o, d, 0, 1, method(FR_METHOD_ANALYTIC, 0));
+    T_INT_EQ(h.hit, 1); T_NEAR(h.t, 5e-9, 1e-15);
+    model_free(&m);
+}
+
+/* Concentric spheres 1e-12 apart: their union is hit at the outer one; A
+   minus the larger B is empty, so the analytic CSG method reports no hit. */
+static void near_coincident_csg_surfaces(void)
+{
+    static const double c[3] = {0, 0, 0};
+    fr_builder_t b;
+    model_t u, e;
+    fr_p3_t p;
+    double o[3] = {-5, 0.25, 0}, d[3] = {1, 0, 0};
+    fr_hit_t h;
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    model_finish(&u, &b, fr_union(&b, fr_sphere(&b, p, c, 1), fr_sphere(&b, p, c, 1 + 1e-12), 1.0));
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    model_finish(&e, &b, fr_subtract(&b, fr_sphere(&b, p, c, 1), fr_sphere(&b, p, c, 1 + 1e-12), 1.0));
+    h = trace(&u, o, d, 0, 10, method(FR_METHOD_ANALYTIC, 0));
+    T_INT_EQ(h.hit, 1);
+    T_NEAR(h.t, sphere_entry(-5, 0.25, 1 + 1e-12), 1e-14);
+    T_INT_EQ(trace(&e, o, d, 0, 10, method(FR_METHOD_ANALYTIC, 0)).hit, 0);
+    /* R-functions with alpha = 0 (HyperFun's default) behave alike */
+    model_free(&u);
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    model_finish(&u, &b, fr_union(&b, fr_sphere(&b, p, c, 1), fr_sphere(&b, p, c, 1 + 1e-12), 0.0));
+    h = trace(&u, o, d, 0, 10, method(FR_METHOD_ANALYTIC, 0));
+    T_INT_EQ(h.hit, 1);
+    T_NEAR(h.t, sphere_entry(-5, 0.25, 1 + 1e-12), 1e-14);
+    model_free(&u);
+    model_free(&e);
+}
+
+/* f = 1 - x + 0 sqrt(x): NaN for x < 0, the plane x = 1 beyond. No method
+   may report a hit in the NaN half-space. */
+static void nan_region_never_hit(void)
+{
+    fr_builder_t b;
+    model_t m;
+    fr_p3_t p;
+    double o[3] = {-5, 0, 0}, d[3] = {1, 0, 0};
+    fr_method_t ms[4] = {FR_METHOD_STEP, FR_METHOD_INTERVAL, FR_METHOD_SPHERE, FR_METHOD_AUTO};
+    int k;
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    model_finish(&m, &b, fr_add(&b, fr_sub(&b, fr_const(&b, 1), p.x),
+                                fr_mul(&b, fr_const(&b, 0), fr_unary(&b, FR_OP_SQRT, p.x))));
+    for (k = 0; k < 4; k++) {
+        fr_trace_desc_t ds = method(ms[k], 1e-10);
+        fr_hit_t h;
+        ds.step = 0.1;
+        ds.lipschitz = 1;
+        h = trace(&m, o, d, 0, 10, ds);
+        if (h.hit) T_NEAR(h.t, 6, 1e-9); /* only the plane */
+        else T_CHECK(ms[k] == FR_METHOD_SPHERE); /* sphere tracing stops at NaN: a miss */
+    }
+    model_free(&m);
+}
+
+/* ---------------------------------------------------------------- methods against closed forms */
+
+static void all_methods_on_random_sphere_rays(void)
+{
+    static const double c[3] = {0.1, -0.2, 0.3};
+    model_t m, sd;
+    t_rng_t g = {99};
+    long n = t_count(400), i;
+    fr_refine_t refs[4] = {FR_REFINE_ILLINOIS, FR_REFINE_NEWTON, FR_REFINE_BRENT, FR_REFINE_BISECT};
+    make_sphere(&m, c, 1.5);
+    make_sdf_sphere(&sd, c, 1.5);
+    for (i = 0; i < n; i++) {
+        double o[3], d[3], oc[3], b2, cc, disc, tr;
+        __float128 qb, qc, qd;
+        int k;
+        for (k = 0; k < 3; k++) { o[k] = t_rng_range(&g, -6, 6); d[k] = t_rng_range(&g, -1, 1); }
+        for (k = 0; k < 3; k++) d[k] = (c[k] + t_rng_range(&g, -1, 1)) - o[k]; /* roughly at the sphere */
+        for (k = 0; k < 3; k++) oc[k] = o[k] - c[k];
+        qb = 0; qc = 0; qd = 0;
+        for (k = 0; k < 3; k++) {
+            qb += (__float128)oc[k] * d[k];
+            qc += (__float128)oc[k] * oc[k];
+            qd += (__float128)d[k] * d[k];
+        }
+        qc -= 2.25Q;
+        b2 = (double)qb; cc = (double)qc;
+        disc = (double)(qb * qb - qd * qc);
+        if (disc <= 1e-6 || cc <= 0) { (void)b2; continue; } /* grazing or origin inside: other tests */
+        tr = (double)((-qb - sqrtq(qb * qb - qd * qc)) / qd);
+        {
+            fr_hit_t a = trace(&m, o, d, 0, 4, method(FR_METHOD_ANALYTIC, 0));
+            fr_hit_t iv = trace(&m, o, d, 0, 4, method(FR_METHOD_INTERVAL, 1e-10));
+            fr_hit_t ip, sp;
+            fr_trace_desc_t pd = method(FR_METHOD_INTERVAL, 1e-10);
+            pd.plain_intervals = 1;
+            ip = trace(&m, o, d, 0, 4, pd);
+            T_INT_EQ(a.hit, 1); T_NEAR(a.t, tr, 1e-13);
+            T_INT_EQ(iv.hit, 1); T_NEAR(iv.t, tr, 1e-10);
+            T_INT_EQ(ip.hit, 1); T_NEAR(ip.t, tr, 1e-10);
+            for (k = 0; k < 4; k++) {
+                fr_trace_desc_t sd2 = method(FR_METHOD_STEP, 1e-11);
+                fr_hit_t s;
+                sd2.step = 0.01;
+                sd2.refine = refs[k];
+                s = trace(&m, o, d, 0, 4, sd2);
+                T_INT_EQ(s.hit, 1); T_NEAR(s.t, tr, 2e-11);
+            }
+            sp = trace(&sd, o, d, 0, 4, method(FR_METHOD_SPHERE, 1e-10));
+            T_INT_EQ(sp.hit, 1); T_NEAR(sp.t, tr, 1e-9);
+            /* AD normal against the closed form (p - c) / r */
+            for (k = 0; k < 3; k++) T_NEAR(a.normal[k], (a.point[k] - c[k]) / 1.5, 1e-12);
+        }
+    }
+    model_free(&m);
+    model_free(&sd);
+}
+
+static void finite_difference_normals_match_ad(void)
+{
+    static const double c[3] = {0, 0, 0};
+    model_t m;
+    double o[3] = {-4, 0.7, -0.4}, d[3] = {1, 0, 0.05};
+    fr_trace_desc_t ad = method(FR_METHOD_ANALYTIC, 0), fd = ad;
+    fr_hit_t a, f;
+    int k;
+    make_torus_poly(&m, 2, 0.5);
+    fd.normal = FR_NORMAL_FD;
+    a = trace(&m, o, d, 0, 10, ad);
+    f = trace(&m, o, d, 0, 10, fd);
+    T_INT_EQ(a.hit, 1);
+    for (k = 0; k < 3; k++) T_NEAR(f.normal[k], a.normal[k], 1e-8);
+    T_NEAR(a.normal[0] * a.normal[0] + a.normal[1] * a.normal[1] + a.normal[2] * a.normal[2], 1, 1e-15);
+    (void)c;
+    model_free(&m);
+}
+
+/* Keinert's over-relaxation must not skip a surface and must not cost more
+   evaluations than plain sphere tracing on a grazing-ish ray. */
+static void sphere_tracing_over_relaxation(void)
+{
+    static const double c[3] = {0, 0, 0};
+    model_t m;
+    double o[3] = {-20, 0.9, 0}, d[3] = {1, 0, 0};
+    fr_trace_desc_t plain = method(FR_METHOD_SPHERE, 1e-10), relax = plain;
+    fr_hit_t a, b;
+    make_sdf_sphere(&m, c, 1);
+    plain.over_relax = 1;
+    relax.over_relax = 1.9;
+    a = trace(&m, o, d, 0, 40, plain);
+    b = trace(&m, o, d, 0, 40, relax);
+    T_INT_EQ(a.hit, 1); T_INT_EQ(b.hit, 1);
+    T_NEAR(a.t, sphere_entry(-20, 0.9, 1), 1e-9);
+    T_NEAR(b.t, sphere_entry(-20, 0.9, 1), 1e-9);
+    T_LE(b.evals, a.evals + 4); /* at worst a couple of fallback steps */
+    model_free(&m);
+}
+
+static void auto_method_choices_and_stats(void)
+{
+    static const double c[3] = {0, 0, 0};
+    model_t p, h;
+    double o[3] = {-5, 0.1, 0.05}, d[3] = {1, 0, 0};
+    fr_hit_t a, b;
+    make_sphere(&p, c, 1);
+    make_torus_hf(&h, 2, 0.5);
+    a = trace(&p, o, d, 0, 10, method(FR_METHOD_AUTO, 0));
+    b = trace(&h, o, d, 0, 10, method(FR_METHOD_AUTO, 0));
+    T_INT_EQ(a.method, FR_METHOD_ANALYTIC);
+    T_INT_EQ(b.method, FR_METHOD_INTERVAL);
+    T_GT(a.evals, 0); T_GT(b.evals, 0); T_GT(b.iterations, 0);
+    T_LE(b.t_err, 1e-8);
+    model_free(&p);
+    model_free(&h);
+}
+
+static void invalid_arguments(void)
+{
+    static const double c[3] = {0, 0, 0};
+    model_t m;
+    double o[3] = {-5, 0, 0}, d[3] = {1, 0, 0}, z[3] = {0, 0, 0}, nan3[3] = {NAN, 0, 0};
+    fr_hit_t h;
+    fr_trace_desc_t sp = method(FR_METHOD_SPHERE, 0), an = method(FR_METHOD_ANALYTIC, 0);
+    make_sphere(&m, c, 1);
+    T_INT_EQ(fr_trace(&m.tape, o, d, 1, 0, NULL, m.scratch, &h), FR_ERR_INVALID_ARG);
+    T_INT_EQ(fr_trace(&m.tape, o, z, 0, 1, NULL, m.scratch, &h), FR_ERR_INVALID_ARG);
+    T_INT_EQ(fr_trace(&m.tape, nan3, d, 0, 1, NULL, m.scratch, &h), FR_ERR_INVALID_ARG);
+    T_INT_EQ(fr_trace(&m.tape, o, d, 0, 1, &sp, m.scratch, &h), FR_ERR_NO_LIPSCHITZ);
+    model_free(&m);
+    make_torus_hf(&m, 2, 0.5);
+    T_INT_EQ(fr_trace(&m.tape, o, d, 0, 10, &an, m.scratch, &h), FR_ERR_NOT_POLYNOMIAL);
+    T_CHECK(strcmp(fr_result_string(FR_ERR_NOT_POLYNOMIAL), "unknown result") != 0);
+    model_free(&m);
+}
+
+int main(int argc, char **argv)
+{
+    static const t_case_t cases[] = {
+        T_CASE(ray_poly_matches_point_evaluation),
+        T_CASE(ray_poly_reports_non_polynomial_tape),
+        T_CASE(grazing_ray_sphere),
+        T_CASE(grazing_ray_torus),
+        T_CASE(ray_along_torus_axis_misses),
+        T_CASE(ray_edge_on_torus),
+        T_CASE(thin_feature_stepping_misses_interval_finds),
+        T_CASE(ray_origin_at_1e6),
+        T_CASE(roots_clustered_within_1e_minus8),
+        T_CASE(near_coincident_csg_surfaces),
+        T_CASE(nan_region_never_hit),
+        T_CASE(all_methods_on_random_sphere_rays),
+        T_CASE(finite_difference_normals_match_ad),
+        T_CASE(sphere_tracing_over_relaxation),
+        T_CASE(auto_method_choices_and_stats),
+        T_CASE(invalid_arguments),
+    };
+    return T_RUN(argc, argv, cases);
+}
