@@ -15,6 +15,7 @@ CC      ?= gcc
 CXX     ?= g++
 PREFIX  ?= /usr/local
 B       := build
+NPROC   := $(shell nproc 2>/dev/null || echo 2)
 OPT     ?= -O2 -march=native
 WARN    := -Wall -Wextra -Werror -Wno-unused-function
 # -ffp-contract=fast is gcc's default in GNU mode; we state it so the tests
@@ -39,7 +40,9 @@ BENCH_C  := $(wildcard bench/bench_*.c)
 BENCH_CPP:= $(wildcard bench/bench_*.cpp)
 BENCHES  := $(patsubst bench/%.c,$(B)/bench/%,$(BENCH_C)) $(patsubst bench/%.cpp,$(B)/bench/%,$(BENCH_CPP))
 
-EX_NAMES := $(filter-out common,$(notdir $(patsubst %/,%,$(wildcard examples/*/))))
+# an example is a folder under examples/ with C or C++ sources (models/ holds data)
+EX_NAMES := $(filter-out common,$(notdir $(patsubst %/,%,$(dir $(wildcard examples/*/*.c examples/*/*.cpp)))))
+EX_NAMES := $(sort $(EX_NAMES))
 EXAMPLES := $(addprefix $(B)/examples/,$(EX_NAMES))
 EX_COMMON:= $(wildcard examples/common/*.c examples/common/*.cpp)
 EX_COMMON_OBJ := $(patsubst examples/common/%,$(B)/examples/common/%.o,$(EX_COMMON))
@@ -55,7 +58,7 @@ deps-test:
 tests: $(TESTS) $(SAN_TESTS) $(FUZZERS)
 
 test: deps-test
-	@$(MAKE) --no-print-directory tests
+	@$(MAKE) --no-print-directory -j$(NPROC) tests examples
 	@tests/run_all.sh $(B)/tests $(B)/san $(T)
 
 # libFuzzer targets (clang): a short run inside make test, a long one in make fuzz.
@@ -92,10 +95,11 @@ $(B)/examples/common/%.cpp.o: examples/common/%.cpp $(HEADERS) $(wildcard exampl
 	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -Wno-deprecated-declarations -pthread -c $< -o $@
 
 .SECONDEXPANSION:
-$(B)/examples/%: $$(wildcard examples/%/*.c examples/%/*.cpp examples/%/*.h) $(EX_COMMON_OBJ) $(HEADERS)
+$(B)/examples/%: $$(wildcard examples/$$*/*.c examples/$$*/*.cpp examples/$$*/*.h) $(EX_COMMON_OBJ) $(HEADERS)
 	@mkdir -p $(dir $@)
+	$(foreach s,$(filter %.c,$^),$(CC) -std=gnu11 $(CFLAGS_ALL) -pthread -c $(s) -o $@.$(notdir $(s)).o &&) true
 	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -pthread -o $@ \
-	  $(foreach s,$(filter %.c,$^),-x c -std=gnu11 $(s)) -x none \
+	  $(foreach s,$(filter %.c,$^),$@.$(notdir $(s)).o) \
 	  $(filter %.cpp %.o,$^) $(EX_LDLIBS)
 
 demo: deps-demo

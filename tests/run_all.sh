@@ -7,6 +7,7 @@ set -u
 cd "$(dirname "$0")/.."
 build=$1; san=$2; shift 2
 total_pass=0; total_fail=0; log=build/test_logs; mkdir -p "$log"
+jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 
 add_counts() { # $1 = label, $2 = output file, $3 = exit status
   local line p f
@@ -23,17 +24,27 @@ add_counts() { # $1 = label, $2 = output file, $3 = exit status
   printf '%-44s %s\n' "$1" "$line" >&2
 }
 
-run_pass() { # $1 = dir, $2 = label, env applied by caller
-  local t name status dir=$1 label=$2
+run_one() { # $1 = binary, $2 = label, rest = case filters; writes $log/<label>_<name>.all
+  local t=$1 label=$2 name start status
   shift 2
+  name=$(basename "$t"); start=$(date +%s)
+  "$t" "$@" > "$log/${label}_$name.log" 2> "$log/${label}_$name.err"; status=$?
+  cat "$log/${label}_$name.err" "$log/${label}_$name.log" > "$log/${label}_$name.all"
+  echo "$status $(( $(date +%s) - start ))" > "$log/${label}_$name.status"
+}
+export -f run_one
+export log
+
+run_pass() { # $1 = dir, $2 = label, rest = case filters; binaries run $jobs at a time
+  local dir=$1 label=$2 t name status secs
+  shift 2
+  ls "$dir"/test_* 2>/dev/null | xargs -r -P "$jobs" -I{} bash -c 'run_one "$@"' _ {} "$label" "$@"
   for t in "$dir"/test_*; do
     [ -x "$t" ] || continue
     name=$(basename "$t")
-    start=$(date +%s)
-    "$t" "$@" > "$log/${label}_$name.log" 2> "$log/${label}_$name.err"; status=$?
-    cat "$log/${label}_$name.err" "$log/${label}_$name.log" > "$log/${label}_$name.all"
-    [ $status -ne 0 ] && grep -E 'FAIL|ERROR|runtime error' "$log/${label}_$name.all" | head -n 20 >&2
-    add_counts "$label $name ($(( $(date +%s) - start ))s)" "$log/${label}_$name.all" $status "$#"
+    read -r status secs < "$log/${label}_$name.status" || { status=99; secs=0; }
+    [ "$status" -ne 0 ] && grep -E 'FAIL|ERROR|runtime error' "$log/${label}_$name.all" | head -n 20 >&2
+    add_counts "$label $name (${secs}s)" "$log/${label}_$name.all" "$status" "$#"
   done
 }
 
@@ -49,6 +60,15 @@ echo "== tests under ASan + UBSan (FILIGREE_TEST_SCALE=${FILIGREE_SAN_SCALE:-0.0
 FILIGREE_TEST_SCALE=${FILIGREE_SAN_SCALE:-0.05} \
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   run_pass "$san" sanitize "${filters[@]}"
+
+echo "== example self-tests" >&2
+# examples whose --selftest prints the harness's `N passed, M failed` line
+for n in sharp_cube_icosphere; do
+  e=$build/../examples/$n
+  [ -f "$e" ] || { total_fail=$((total_fail + 1)); echo "selftest $n: example not built" >&2; continue; }
+  "$e" --selftest > "$log/selftest_$n.all" 2>&1; status=$?
+  add_counts "selftest $n" "$log/selftest_$n.all" "$status"
+done
 
 echo "== short fuzz runs (${FILIGREE_FUZZ_SECONDS:-20} s each)" >&2
 for f in "$build"/../fuzz/fuzz_*; do
