@@ -1388,7 +1388,7 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, int dep
     for (i = 0; i < n; i++)
         if (kd->box[6 * list[i] + 3 + axis] >= split) kd->tmp[kd->n_tmp + nl + nr++] = list[i];
     /* a split that duplicates most primitives does not pay */
-    if (nl == n || nr == n || nl + nr > n + n / 2 || nl + nr - n > kd->dup_left) goto leaf;
+    if (nl == n || nr == n || nl + nr > n + n / 4 || nl + nr - n > kd->dup_left) goto leaf;
     kd->dup_left -= nl + nr - n;
     {
         unsigned left_at = kd->n_tmp, right_at = kd->n_tmp + nl, r;

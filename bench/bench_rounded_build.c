@@ -1,0 +1,230 @@
+/* bench/bench_rounded_build.c — rounded_edges.h build cost and memory, on
+   generated scenes sized like the paper's Table 1 (42k-276k triangles), and
+   the cost of one query near the edges.
+   Usage: build/bench/bench_rounded_build [out_dir]   (CSV: out_dir/rounded_build.csv)
+   Table on stdout, progress on stderr. The build is exact (no accuracy is
+   traded), so the table shows time and memory only; the paper's times are
+   the 'cylinders generated in' figures of its Fig. 8. */
+#define RE_IMPLEMENTATION
+#include "rounded_edges.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+typedef struct mesh_t {
+    double *v;
+    unsigned nv, cv;
+    unsigned *idx;
+    unsigned ni, ci;
+} mesh_t;
+
+static unsigned vert(mesh_t *m, double x, double y, double z)
+{
+    if (m->nv == m->cv) m->cv = m->cv ? 2 * m->cv : 1024, m->v = (double *)realloc(m->v, sizeof(double) * 3 * m->cv);
+    m->v[3 * m->nv] = x, m->v[3 * m->nv + 1] = y, m->v[3 * m->nv + 2] = z;
+    return m->nv++;
+}
+static void tri(mesh_t *m, unsigned a, unsigned b, unsigned c)
+{
+    if (m->ni + 3 > m->ci) m->ci = m->ci ? 2 * m->ci : 3072, m->idx = (unsigned *)realloc(m->idx, sizeof(unsigned) * m->ci);
+    m->idx[m->ni++] = a, m->idx[m->ni++] = b, m->idx[m->ni++] = c;
+}
+static void quad(mesh_t *m, unsigned a, unsigned b, unsigned c, unsigned d) { tri(m, a, b, c), tri(m, a, c, d); }
+
+static void box(mesh_t *m, double x0, double y0, double z0, double x1, double y1, double z1)
+{
+    unsigned b = m->nv, i;
+    for (i = 0; i < 8; i++) vert(m, i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
+    quad(m, b, b + 2, b + 3, b + 1), quad(m, b + 4, b + 5, b + 7, b + 6), quad(m, b, b + 1, b + 5, b + 4);
+    quad(m, b + 2, b + 6, b + 7, b + 3), quad(m, b, b + 4, b + 6, b + 2), quad(m, b + 1, b + 3, b + 7, b + 5);
+}
+/* a closed cylinder (knob) of n segments standing on z = z0 */
+static void knob(mesh_t *m, double cx, double cy, double z0, double rad, double h, int n)
+{
+    unsigned b = m->nv, i, un = (unsigned)n;
+    for (i = 0; i < un; i++) {
+        double a = 2 * M_PI * i / n;
+        vert(m, cx + rad * cos(a), cy + rad * sin(a), z0);
+        vert(m, cx + rad * cos(a), cy + rad * sin(a), z0 + h);
+    }
+    for (i = 0; i < un; i++) quad(m, b + 2 * i, b + 2 * ((i + 1) % un), b + 2 * ((i + 1) % un) + 1, b + 2 * i + 1);
+    for (i = 1; i + 1 < un; i++) tri(m, b, b + 2 * (i + 1), b + 2 * i), tri(m, b + 1, b + 2 * i + 1, b + 2 * (i + 1) + 1);
+}
+/* a 2x4 play block: a box and 8 knobs, each a closed convex part */
+static void block(mesh_t *m, double x, double y, double z)
+{
+    int i, j;
+    box(m, x, y, z, x + 3.2, y + 1.6, z + 0.96);
+    for (i = 0; i < 4; i++)
+        for (j = 0; j < 2; j++) knob(m, x + 0.4 + 0.8 * i, y + 0.4 + 0.8 * j, z + 0.96, 0.24, 0.17, 24);
+}
+static unsigned mid(mesh_t *m, unsigned *cache, unsigned a, unsigned b)
+{
+    /* cache: per (a,b) edge key in a simple open-addressing table */
+    unsigned long long key = a < b ? ((unsigned long long)a << 32) | b : ((unsigned long long)b << 32) | a;
+    unsigned cap = cache[0], h = (unsigned)((key * 0x9E3779B97F4A7C15ull) >> 40) % cap;
+    double p[3], l;
+    while (cache[1 + 3 * h + 2]) {
+        if (((unsigned long long)cache[1 + 3 * h] << 32 | cache[1 + 3 * h + 1]) == key) return cache[1 + 3 * h + 2] - 1;
+        h = (h + 1) % cap;
+    }
+    p[0] = m->v[3 * a] + m->v[3 * b], p[1] = m->v[3 * a + 1] + m->v[3 * b + 1], p[2] = m->v[3 * a + 2] + m->v[3 * b + 2];
+    l = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    cache[1 + 3 * h] = (unsigned)(key >> 32), cache[1 + 3 * h + 1] = (unsigned)key;
+    cache[1 + 3 * h + 2] = vert(m, p[0] / l, p[1] / l, p[2] / l) + 1;
+    return cache[1 + 3 * h + 2] - 1;
+}
+static void icosphere(mesh_t *out, int level, double ox, double oy, double oz, double R)
+{
+    static const unsigned f[20][3] = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                      {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                                      {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    double t = (1 + sqrt(5.0)) / 2, v[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                                {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    mesh_t cur;
+    int i, l;
+    unsigned k, base;
+    memset(&cur, 0, sizeof cur);
+    for (i = 0; i < 12; i++) {
+        double n = sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+        vert(&cur, v[i][0] / n, v[i][1] / n, v[i][2] / n);
+    }
+    for (i = 0; i < 20; i++) tri(&cur, f[i][0], f[i][1], f[i][2]);
+    for (l = 0; l < level; l++) {
+        mesh_t nx;
+        unsigned cap = 4 * cur.ni + 7, *cache = (unsigned *)calloc(1 + 3 * (size_t)cap, sizeof(unsigned));
+        cache[0] = cap;
+        memset(&nx, 0, sizeof nx);
+        for (k = 0; k < cur.nv; k++) vert(&nx, cur.v[3 * k], cur.v[3 * k + 1], cur.v[3 * k + 2]);
+        for (k = 0; k < cur.ni; k += 3) {
+            unsigned a = cur.idx[k], b = cur.idx[k + 1], c = cur.idx[k + 2];
+            unsigned ab = mid(&nx, cache, a, b), bc = mid(&nx, cache, b, c), ca = mid(&nx, cache, c, a);
+            tri(&nx, a, ab, ca), tri(&nx, b, bc, ab), tri(&nx, c, ca, bc), tri(&nx, ab, bc, ca);
+        }
+        free(cache), free(cur.v), free(cur.idx);
+        cur = nx;
+    }
+    base = out->nv;
+    for (k = 0; k < cur.nv; k++) vert(out, ox + R * cur.v[3 * k], oy + R * cur.v[3 * k + 1], oz + R * cur.v[3 * k + 2]);
+    for (k = 0; k < cur.ni; k += 3) tri(out, base + cur.idx[k], base + cur.idx[k + 1], base + cur.idx[k + 2]);
+    free(cur.v), free(cur.idx);
+}
+
+/* thread CPU time: the build is single-threaded, and this stays fair on a
+   machine shared with other jobs */
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct scene_t {
+    const char *name;
+    double paper_s; /* the paper's cylinder generation time for its scene of this size */
+    mesh_t m;
+    double r;
+} scene_t;
+
+int main(int argc, char **argv)
+{
+    const char *dir = argc > 1 ? argv[1] : ".";
+    scene_t sc[4];
+    char path[512];
+    FILE *csv;
+    int i, k;
+    memset(sc, 0, sizeof sc);
+    /* like Scene 1 (42k triangles): many small boxes */
+    sc[0].name = "boxes-42k", sc[0].paper_s = 1.5, sc[0].r = 0.02;
+    for (i = 0; i < 3500; i++) box(&sc[0].m, (i % 70) * 1.5, (i / 70) * 1.5, 0, (i % 70) * 1.5 + 1, (i / 70) * 1.5 + 0.7, 0.5);
+    /* like Scene 2 (103k): five level-5 icospheres (vertices of degree 5-6: exact corners everywhere) */
+    sc[1].name = "icospheres-102k", sc[1].paper_s = 3.6, sc[1].r = 0.004;
+    for (i = 0; i < 5; i++) icosphere(&sc[1].m, 5, 3.0 * i, 0, 0, 1);
+    /* like Scene 3 (252k): play blocks mixed with icospheres */
+    sc[2].name = "blocks+spheres-252k", sc[2].paper_s = 9.7, sc[2].r = 0.01;
+    for (i = 0; i < 200; i++) block(&sc[2].m, (i % 20) * 3.6, (i / 20) * 2.0, 0);
+    for (i = 0; i < 5; i++) icosphere(&sc[2].m, 5, 3.0 * i, -5, 0, 1);
+    /* like Blocks (276k): 2x4 play blocks, 8 knobs of 24 segments each */
+    sc[3].name = "blocks-276k", sc[3].paper_s = 9.5, sc[3].r = 0.02;
+    for (i = 0; i < 369; i++) block(&sc[3].m, (i % 24) * 3.6, (i / 24) * 2.0, 0);
+    snprintf(path, sizeof path, "%s/rounded_build.csv", dir);
+    csv = fopen(path, "w");
+    if (csv) fprintf(csv, "scene,triangles,rounded_edges,spheres,cylinders,extra_cylinders,build_ms,into_ms,paper_ms,speedup,bytes,bytes_per_rounded_edge,query_ns\n");
+    printf("%-20s %9s %8s %8s %9s %7s %9s %8s %8s %8s %10s %7s %8s\n", "scene", "triangles", "rounded", "spheres", "cylinders",
+           "extra", "build ms", "into ms", "paper ms", "speedup", "bytes", "B/edge", "query ns");
+    for (k = 0; k < 4; k++) {
+        re_mesh_t mesh;
+        re_scene_desc_t desc;
+        re_scene_t *s = NULL;
+        re_stats_t st;
+        re_diag_t dg;
+        double best = HUGE_VAL, best_into = HUGE_VAL, tq, sink = 0;
+        re_sizes_t sz;
+        void *mem, *scratch;
+        int rep, nq = 300000, q;
+        unsigned long long rng = 12345;
+        memset(&mesh, 0, sizeof mesh);
+        memset(&desc, 0, sizeof desc);
+        mesh.positions = sc[k].m.v, mesh.vertex_count = sc[k].m.nv, mesh.indices = sc[k].m.idx;
+        mesh.index_count = sc[k].m.ni, mesh.radius = sc[k].r;
+        desc.objects = &mesh, desc.object_count = 1;
+        fprintf(stderr, "  %s: %u triangles\n", sc[k].name, sc[k].m.ni / 3);
+        for (rep = 0; rep < 5; rep++) {
+            double t0 = now();
+            if (re_build(&desc, &s, &dg) != RE_OK) { fprintf(stderr, "build failed: %s\n", dg.message); return 1; }
+            t0 = now() - t0;
+            if (t0 < best) best = t0;
+            if (rep < 4) re_free(s), s = NULL;
+        }
+        re_get_stats(s, &st);
+        /* caller buffers, reused from build to build (a renderer rebuilding per frame) */
+        if (re_build_sizes(&desc, &sz, &dg) != RE_OK) return 1;
+        mem = malloc(sz.scene_bytes), scratch = malloc(sz.scratch_bytes);
+        for (rep = 0; rep < 5; rep++) {
+            re_scene_t *s2;
+            double t0 = now();
+            if (re_build_into(&desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes, &s2, &dg) != RE_OK) return 1;
+            t0 = now() - t0;
+            if (t0 < best_into) best_into = t0;
+        }
+        free(mem), free(scratch);
+        /* query cost: rays toward random points of random triangles, the
+           host hit given exactly (t = 1); about a third land in rounded zones */
+        tq = now();
+        for (q = 0; q < nq; q++) {
+            unsigned t, a;
+            double u, v, p[3], o[3], d[3], n[3], e1[3], e2[3], l;
+            re_hit_t h;
+            const double *A, *B, *C;
+            rng = rng * 6364136223846793005ull + 1442695040888963407ull;
+            t = (unsigned)((rng >> 33) % (sc[k].m.ni / 3));
+            u = (double)((rng >> 11) & 0xFFFF) / 65536.0, v = (double)((rng >> 27) & 0xFFFF) / 65536.0;
+            if (u + v > 1) u = 1 - u, v = 1 - v;
+            A = sc[k].m.v + 3 * sc[k].m.idx[3 * t], B = sc[k].m.v + 3 * sc[k].m.idx[3 * t + 1], C = sc[k].m.v + 3 * sc[k].m.idx[3 * t + 2];
+            for (a = 0; a < 3; a++) p[a] = A[a] + u * (B[a] - A[a]) + v * (C[a] - A[a]), e1[a] = B[a] - A[a], e2[a] = C[a] - A[a];
+            n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (a = 0; a < 3; a++) d[a] = -n[a] / l + 0.7 * (double)(((rng >> (a * 7)) & 127) - 64) / 64.0;
+            if (d[0] * n[0] + d[1] * n[1] + d[2] * n[2] >= 0) for (a = 0; a < 3; a++) d[a] = -n[a];
+            for (a = 0; a < 3; a++) o[a] = p[a] - d[a];
+            re_query(s, o, d, 0, t, 1.0, &h);
+            sink += h.t;
+        }
+        tq = (now() - tq) / nq * 1e9;
+        printf("%-20s %9llu %8llu %8llu %9llu %7llu %9.1f %8.1f %8.0f %7.0fx %10zu %7.1f %8.0f\n", sc[k].name, st.triangles,
+               st.rounded_edges, st.spheres, st.cylinders, st.extra_cylinders, best * 1e3, best_into * 1e3, sc[k].paper_s * 1e3,
+               sc[k].paper_s / best, st.bytes, (double)st.bytes / (double)st.rounded_edges, tq);
+        fflush(stdout);
+        if (csv)
+            fprintf(csv, "%s,%llu,%llu,%llu,%llu,%llu,%.3f,%.3f,%.0f,%.1f,%zu,%.2f,%.1f\n", sc[k].name, st.triangles, st.rounded_edges,
+                    st.spheres, st.cylinders, st.extra_cylinders, best * 1e3, best_into * 1e3, sc[k].paper_s * 1e3,
+                    sc[k].paper_s / best, st.bytes, (double)st.bytes / (double)st.rounded_edges, tq);
+        if (sink == 12345.678) printf(" ");
+        re_free(s);
+        free(sc[k].m.v), free(sc[k].m.idx);
+    }
+    if (csv) fclose(csv);
+    return 0;
+}
