@@ -56,6 +56,7 @@
 #define iv__max F_iv__max
 #define iv__min F_iv__min
 #define iv__mul0 F_iv__mul0
+#define iv__mul_slow F_iv__mul_slow
 #define iv__next_down F_iv__next_down
 #define iv__next_down_bits F_iv__next_down_bits
 #define iv__next_down_fma F_iv__next_down_fma
@@ -169,6 +170,7 @@
 #undef iv__max
 #undef iv__min
 #undef iv__mul0
+#undef iv__mul_slow
 #undef iv__next_down
 #undef iv__next_down_bits
 #undef iv__next_down_fma

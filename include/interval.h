@@ -256,13 +256,28 @@ static inline iv_t iv_sub(iv_t a, iv_t b)
 /* x + d for a scalar d; empty for NaN or infinite d. */
 static inline iv_t iv_add_d(iv_t x, double d) { return iv_add(x, iv_point(d)); }
 static inline iv_t iv_sub_d(iv_t x, double d) { return iv_add(x, iv_point(-d)); }
+/* Bounded inputs (the common case, one predictable branch) need no 0*inf
+   repair and no empty test: NaN endpoints fail the comparisons. */
+static inline iv_t iv__mul_slow(iv_t a, iv_t b);
 static inline iv_t iv_mul(iv_t a, iv_t b)
+{
+    double p1, p2, p3, p4;
+    if (!(a.lo > -HUGE_VAL && a.hi < HUGE_VAL && b.lo > -HUGE_VAL && b.hi < HUGE_VAL)) return iv__mul_slow(a, b);
+    p1 = a.lo * b.lo;
+    p2 = a.lo * b.hi;
+    p3 = a.hi * b.lo;
+    p4 = a.hi * b.hi;
+    return iv__raw(iv__down(iv__min(iv__min(p1, p2), iv__min(p3, p4))),
+                   iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4))));
+}
+/* Unbounded or empty inputs: 0 * inf is an exact zero times an unbounded
+   real, i.e. 0 (iv__mul0), and emptiness is restored by a select. */
+static inline iv_t iv__mul_slow(iv_t a, iv_t b)
 {
     double p1 = iv__mul0(a.lo, b.lo), p2 = iv__mul0(a.lo, b.hi);
     double p3 = iv__mul0(a.hi, b.lo), p4 = iv__mul0(a.hi, b.hi);
     double lo = iv__down(iv__min(iv__min(p1, p2), iv__min(p3, p4)));
     double hi = iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4)));
-    /* iv__mul0 maps NaN to 0, so emptiness is restored by a select */
     int empty = iv_is_empty(a) | iv_is_empty(b);
     return iv__raw(empty ? NAN : lo, empty ? NAN : hi);
 }
@@ -280,10 +295,10 @@ static inline iv_t iv_mul_d(iv_t x, double d)
    squares of the smallest and largest |x|, branch-free. */
 static inline iv_t iv_sqr(iv_t x)
 {
+    /* NaN (empty) endpoints propagate: every max keeps its first argument
+       when the comparison fails */
     double mig = iv__max(iv__max(x.lo, -x.hi), 0.0), mag = iv__max(-x.lo, x.hi);
-    double lo = iv__max(iv__down(mig * mig), 0.0), hi = iv__up(mag * mag);
-    int empty = iv_is_empty(x);
-    return iv__raw(empty ? NAN : lo, empty ? NAN : hi);
+    return iv__raw(iv__max(iv__down(mig * mig), 0.0), iv__up(mag * mag));
 }
 /* a / b for b > 0 strictly (b.hi may be +inf): no 0/0 or inf/inf occurs. */
 static inline iv_t iv__div_pos(iv_t a, iv_t b)
