@@ -52,6 +52,8 @@ static int render_one(const rx_scene_t *s, rx_mode_t m, const ex_args_t *a, cons
         printf("  %-16s %llu rounded edges, %llu spheres, %llu cylinders (%llu extra), %lld edges/vertices left sharp\n",
                "", w.round_stats.rounded_edges, w.round_stats.spheres, w.round_stats.cylinders,
                w.round_stats.extra_cylinders, w.concave_reports);
+    if (m.kind == RX_TESS && w.tess_sharp_objects)
+        printf("  %-16s %d objects not fully rounded by the build: tessellated sharp\n", "", w.tess_sharp_objects);
     rx_world_free(&w);
     if (path) {
         float *img = rgb;

@@ -58,6 +58,7 @@ typedef struct rx_world_t {
     size_t triangles;           /* triangles given to Embree */
     re_stats_t round_stats;
     long long concave_reports;  /* build reports of edges/vertices left sharp */
+    int tess_sharp_objects;     /* tess mode: objects left sharp (a corner without sphere) */
     /* counters, updated atomically during rendering */
     long long rays;             /* path rays (camera and bounce; shadow rays not counted) */
     long long chamfer_rays;     /* of those, the ones the rounding changed */
@@ -199,12 +200,15 @@ int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, i
         unsigned id;
         if (m.kind == RX_TESS && o->radius > 0) {
             ex_mesh_t t;
+            int rc;
             memset(&t, 0, sizeof t);
-            if (rx_tess_object(w->round, (unsigned)w->re_object[i], &o->mesh, m.n, &t, &w->tess_first_round[i])) {
-                fprintf(stderr, "tessellation of object %d failed\n", i);
+            rc = rx_tess_object(w->round, (unsigned)w->re_object[i], &o->mesh, m.n, &t, &w->tess_first_round[i]);
+            if (rc < 0) {
+                fprintf(stderr, "out of memory tessellating object %d\n", i);
                 rx_world_free(w);
                 return -1;
             }
+            if (rc == 1) w->tess_sharp_objects++;
             id = ex_embree_add_mesh(w->dev, w->rtc, t.pos, t.nverts, t.idx, t.ntris);
             w->triangles += t.ntris;
             ex_mesh_free(&t);

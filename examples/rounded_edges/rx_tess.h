@@ -29,8 +29,10 @@ extern "C" {
 
 /* Tessellates object `re_obj` of `rs` (built from `sharp`) at `level` >= 1
    into *out (zeroed on entry; free out->pos and out->idx with free()). *first_round is the
-   number of flat-face triangles, which come first. 0, or -1 (out of memory,
-   or the object is not a closed convex rounded solid). */
+   number of flat-face triangles, which come first. Returns 0; 1 when some
+   vertex of the object got no rounding sphere (the build left it sharp and
+   reported why): the shrunk-face construction needs every corner rounded,
+   so *out is then a copy of the sharp mesh; -1 when out of memory. */
 int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp, int level, ex_mesh_t *out,
                    size_t *first_round);
 
@@ -291,6 +293,29 @@ int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp
     if (!sp || !cy || level < 1) { free(sp); free(cy); return -1; }
     for (i = 0; i < ns; i++) re_get_sphere(rs, re_obj, i, &sp[i]);
     for (i = 0; i < nc; i++) re_get_cylinder(rs, re_obj, i, &cy[i]);
+    {
+        /* every vertex needs a sphere, else fall back to the sharp mesh */
+        unsigned char *has = (unsigned char *)calloc(sharp->nverts + 1, 1);
+        int partial = 0;
+        if (!has) { free(sp); free(cy); return -1; }
+        for (i = 0; i < ns; i++)
+            if (sp[i].vertex < sharp->nverts) has[sp[i].vertex] = 1;
+        for (v = 0; v < sharp->nverts; v++)
+            if (!has[v]) partial = 1;
+        free(has);
+        if (partial) {
+            free(sp); free(cy);
+            out->pos = (float *)malloc(3 * sizeof(float) * (sharp->nverts + 1));
+            out->idx = (uint32_t *)malloc(3 * sizeof(uint32_t) * (sharp->ntris + 1));
+            if (!out->pos || !out->idx) { free(out->pos); free(out->idx); memset(out, 0, sizeof *out); return -1; }
+            memcpy(out->pos, sharp->pos, 3 * sizeof(float) * sharp->nverts);
+            memcpy(out->idx, sharp->idx, 3 * sizeof(uint32_t) * sharp->ntris);
+            out->nverts = sharp->nverts;
+            out->ntris = sharp->ntris;
+            *first_round = sharp->ntris;
+            return 1;
+        }
+    }
     for (v = 0; v < 3 * sharp->nverts; v++) size = fmax(size, fabs(sharp->pos[v]));
     if (rx__tess_faces(&b, sp, ns, sharp, size > 0 ? size : 1)) rc = -1;
     *first_round = out->ntris;
