@@ -586,6 +586,7 @@ typedef struct gro_result_t {
     long long nsamples;
     double *vis;                  /* [g*GRO_MAX_FACETS + k]: fraction of the footprint where facet k of groove g is seen */
     double *lit;                  /* [(l*ngrooves + g)*GRO_MAX_FACETS + k]: ... seen and lit by light l */
+    double *nsum;                 /* [3*(g*GRO_MAX_FACETS + k)]: sum of the unit normals hit on that facet */
     double ground_vis, ground_lit[GRO_MAX_LIGHTS];
     double miss;                  /* rays that hit nothing (should be 0) */
 } gro_result_t;
@@ -613,7 +614,7 @@ static double gro_lit_all(const gro_result_t *r, int l, int k)
 
 static void gro_result_free(gro_result_t *r)
 {
-    free(r->vis); free(r->lit);
+    free(r->vis); free(r->lit); free(r->nsum);
     memset(r, 0, sizeof *r);
 }
 
@@ -667,7 +668,8 @@ static int gro_query(const gro_query_t *q, RTCDevice dev, gro_result_t *res)
     res->ngrooves = q->ngrooves;
     res->vis = (double *)calloc((size_t)q->ngrooves * GRO_MAX_FACETS + 1, sizeof(double));
     res->lit = (double *)calloc((size_t)(nl > 0 ? nl : 1) * q->ngrooves * GRO_MAX_FACETS + 1, sizeof(double));
-    if (!res->vis || !res->lit) { gro_scene_free(&sc); gro_result_free(res); return -1; }
+    res->nsum = (double *)calloc((size_t)q->ngrooves * GRO_MAX_FACETS * 3 + 1, sizeof(double));
+    if (!res->vis || !res->lit || !res->nsum) { gro_scene_free(&sc); gro_result_free(res); return -1; }
     /* rays start above the highest protrusion, at a distance in UV scale */
     start = (sc.top + 1e3 * sc.eps) / fmax(q->E[2], 1e-9); /* just above the highest protrusion */
     for (i = 0; i < n; i++)
@@ -683,7 +685,11 @@ static int gro_query(const gro_query_t *q, RTCDevice dev, gro_result_t *res)
             h = gro_scene_intersect(&sc, o, d, 0, INFINITY);
             if (h.kind == GRO_HIT_NONE) { res->miss += 1; continue; }
             if (h.kind == GRO_HIT_GROUND) res->ground_vis += 1;
-            else res->vis[h.groove * GRO_MAX_FACETS + h.facet] += 1;
+            else {
+                double *ns = res->nsum + 3 * (h.groove * GRO_MAX_FACETS + h.facet);
+                res->vis[h.groove * GRO_MAX_FACETS + h.facet] += 1;
+                ns[0] += h.n[0]; ns[1] += h.n[1]; ns[2] += h.n[2];
+            }
             for (l = 0; l < nl; l++) {
                 if (!gro_scene_lit(&sc, &h, q->lights + 3 * l)) continue;
                 if (h.kind == GRO_HIT_GROUND) res->ground_lit[l] += 1;
