@@ -30,10 +30,11 @@
    THE METHOD
      Every endpoint is first computed in round-to-nearest, so it lies within
      half an ulp of the exact value (IEEE 754: + - * / sqrt are correctly
-     rounded). It is then stepped one floating-point number outward (the
-     next double below for a lower endpoint, above for an upper one) by
-     integer arithmetic on its bit pattern. The step is exact, needs no
-     rounding mode, and no compiler contraction can change it. Hence each
+     rounded). It is then stepped exactly one double outward (the next
+     double below for a lower endpoint, above for an upper one), by one
+     fused multiply-add where the target has one, else by integer
+     arithmetic on the bit pattern (iv__next_down). The step needs no
+     rounding mode and no compiler contraction can change it. Hence each
      endpoint of + - * / sqrt sqr pow_n is either the correctly rounded
      outward endpoint or one ulp outside it (pow_n uses an error-bounded
      double-double evaluation, see iv_pow_n). The libm functions are trusted
@@ -414,29 +415,22 @@ typedef struct iv_affine_t {
     double e; /* accumulated error radius, >= 0 */
 } iv_affine_t;
 
-/* The point d (empty for NaN or infinite d). */
-IV_DEF iv_affine_t iv_affine_const(double d);
-/* A new independent range x: centre mid(x), radius in e (not in eps_t), so
-   it is uncorrelated with every other form. Entire form for unbounded x. */
-IV_DEF iv_affine_t iv_affine_from_iv(iv_t x);
-/* The ray parameter t over [t0, t1]: centre (t0+t1)/2, eps_t coefficient
-   the half-length rounded up, e = 0. Empty when t0 > t1 or either is NaN
-   or infinite. */
-IV_DEF iv_affine_t iv_affine_ray_param(double t0, double t1);
-/* An interval enclosing every value the form can take. */
-IV_DEF iv_t iv_from_affine(iv_affine_t x);
-IV_DEF int iv_affine_is_empty(iv_affine_t x);
-
-IV_DEF iv_affine_t iv_affine_add(iv_affine_t x, iv_affine_t y);
-IV_DEF iv_affine_t iv_affine_sub(iv_affine_t x, iv_affine_t y);
-IV_DEF iv_affine_t iv_affine_neg(iv_affine_t x);
-IV_DEF iv_affine_t iv_affine_add_d(iv_affine_t x, double d);
-IV_DEF iv_affine_t iv_affine_sub_d(iv_affine_t x, double d);
-IV_DEF iv_affine_t iv_affine_mul_d(iv_affine_t x, double d);
-/* Products keep the eps_t^2 term's mean (t*t'/2 into the centre), the
-   standard affine treatment of a squared symbol. */
-IV_DEF iv_affine_t iv_affine_mul(iv_affine_t x, iv_affine_t y);
-IV_DEF iv_affine_t iv_affine_sqr(iv_affine_t x);
+/* Defined inline after these declarations (small and hot):
+     iv_affine_const(d)          the point d; empty for NaN or infinite d
+     iv_affine_from_iv(x)        a new independent range: centre mid(x), the
+                                 radius in e (never in eps_t), so it is
+                                 uncorrelated with every other form; the
+                                 unbounded form for an unbounded x
+     iv_affine_ray_param(t0, t1) the ray parameter t over [t0, t1]: centre
+                                 (t0+t1)/2, eps_t coefficient the half-length
+                                 rounded up, e = 0; empty when t0 > t1 or
+                                 either is NaN or infinite
+     iv_from_affine(x)           an interval holding every value of the form
+     iv_affine_is_empty(x)
+     iv_affine_add, _sub, _neg, _add_d, _sub_d, _mul_d
+     iv_affine_mul, iv_affine_sqr  products keep the mean of the squared
+                                 shared symbol (t*t'/2 into the centre), the
+                                 standard affine treatment of eps_t^2 */
 IV_DEF iv_affine_t iv_affine_div(iv_affine_t x, iv_affine_t y);
 /* The non-affine operations below use a first-order Taylor form with an
    interval Lagrange remainder: f(c) + f'(c)(x - c) + [0, r^2] f''(X)/2.
@@ -458,6 +452,145 @@ IV_DEF iv_affine_t iv_affine_abs(iv_affine_t x);
 IV_DEF iv_affine_t iv_affine_min(iv_affine_t x, iv_affine_t y);
 IV_DEF iv_affine_t iv_affine_max(iv_affine_t x, iv_affine_t y);
 IV_DEF iv_affine_t iv_affine_hypot(iv_affine_t x, iv_affine_t y);
+
+/* The linear operations and products are small and hot: inline. */
+/* Rounding-error accounting. A coefficient computed in round-to-nearest
+   from at most three operations on terms whose magnitudes sum to S is off
+   by at most gamma_3 S + 3*2^-1075 (standard model; an fma from
+   contraction only removes roundings). We charge IV__AFF_REL*S + IV__AFF_ABS.
+   The error radius itself is summed in round-to-nearest from at most 16
+   operations and then inflated by IV__AFF_UP, which exceeds the relative
+   error gamma_16 of that sum. Under IV_FAST rounding errors are ignored. */
+#define IV__AFF_REL 8.881784197001252e-16  /* 2^-50 > gamma_3 */
+#define IV__AFF_ABS 8.289046e-317          /* > 16 * 2^-1075, subnormal */
+#define IV__AFF_UP  1.0000000000000142     /* 1 + 2^-46 > 1 + 2 gamma_16 */
+
+#ifdef IV_FAST
+static inline double iv__aff_rnd(double s) { (void)s; return 0.0; }
+static inline double iv__aff_radius(double r) { return r; }
+#else
+static inline double iv__aff_rnd(double s) { return IV__AFF_REL * s + IV__AFF_ABS; }
+static inline double iv__aff_radius(double r) { return r * IV__AFF_UP + IV__AFF_ABS; }
+#endif
+
+static inline iv_affine_t iv__aff(double c, double t, double e)
+{
+    iv_affine_t r;
+    r.c = c;
+    r.t = t;
+    r.e = e;
+    return r;
+}
+static inline iv_affine_t iv__aff_empty(void) { return iv__aff(NAN, NAN, NAN); }
+static inline iv_affine_t iv__aff_entire(void) { return iv__aff(0.0, 0.0, HUGE_VAL); }
+static inline int iv_affine_is_empty(iv_affine_t x) { return x.e != x.e; }
+/* Inputs were non-empty; anything non-finite now is overflow (or an
+   unbounded input): the sound answer is the unbounded form. */
+static inline iv_affine_t iv__aff_finish(double c, double t, double e)
+{
+    if (c - c == 0 && t - t == 0 && e - e == 0) return iv__aff(c, t, e);
+    return iv__aff_entire();
+}
+
+static inline iv_affine_t iv_affine_const(double d)
+{
+    if (!(d - d == 0)) return iv__aff_empty();
+    return iv__aff(d, 0.0, 0.0);
+}
+
+static inline iv_affine_t iv_affine_from_iv(iv_t x)
+{
+    double m;
+    if (iv_is_empty(x)) return iv__aff_empty();
+    if (x.lo == -HUGE_VAL || x.hi == HUGE_VAL) return iv__aff_entire();
+    m = iv_mid(x);
+    return iv__aff_finish(m, 0.0, iv__up(iv__max(x.hi - m, m - x.lo)));
+}
+
+static inline iv_affine_t iv_affine_ray_param(double t0, double t1)
+{
+    double m;
+    if (!(t0 <= t1) || !(t0 - t0 == 0) || !(t1 - t1 == 0)) return iv__aff_empty();
+    m = iv_mid(iv__raw(t0, t1));
+    /* c - t <= t0 and c + t >= t1 exactly, so every t in [t0, t1] is
+       c + t*eps_t for some eps_t in [-1, 1] */
+    return iv__aff_finish(m, t0 == t1 ? 0.0 : iv__up(iv__max(t1 - m, m - t0)), 0.0);
+}
+
+static inline iv_t iv_from_affine(iv_affine_t x)
+{
+    double r;
+    if (iv_affine_is_empty(x)) return iv_empty();
+    if (x.e == HUGE_VAL) return iv_entire();
+    r = fabs(x.t) + x.e;
+    r = r == 0 ? 0.0 : iv__up(r);
+    if (r == 0) return iv__raw(x.c, x.c);
+    return iv_make(iv__down(x.c - r), iv__up(x.c + r));
+}
+
+static inline iv_affine_t iv_affine_add(iv_affine_t x, iv_affine_t y)
+{
+    double c, t;
+    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
+    c = x.c + y.c;
+    t = x.t + y.t;
+    return iv__aff_finish(c, t, iv__aff_radius(x.e + y.e + iv__aff_rnd(fabs(c) + fabs(t))));
+}
+static inline iv_affine_t iv_affine_neg(iv_affine_t x) { return iv__aff(-x.c, -x.t, x.e); }
+static inline iv_affine_t iv_affine_sub(iv_affine_t x, iv_affine_t y) { return iv_affine_add(x, iv_affine_neg(y)); }
+
+static inline iv_affine_t iv_affine_add_d(iv_affine_t x, double d)
+{
+    double c;
+    if (iv_affine_is_empty(x) || !(d - d == 0)) return iv__aff_empty();
+    c = x.c + d;
+    return iv__aff_finish(c, x.t, iv__aff_radius(x.e + iv__aff_rnd(fabs(c))));
+}
+static inline iv_affine_t iv_affine_sub_d(iv_affine_t x, double d) { return iv_affine_add_d(x, -d); }
+
+static inline iv_affine_t iv_affine_mul_d(iv_affine_t x, double d)
+{
+    double c, t;
+    if (iv_affine_is_empty(x) || !(d - d == 0)) return iv__aff_empty();
+    if (x.e == HUGE_VAL) return d == 0 ? iv__aff(0.0, 0.0, 0.0) : x;
+    c = x.c * d;
+    t = x.t * d;
+    return iv__aff_finish(c, t, iv__aff_radius(x.e * fabs(d) + iv__aff_rnd(fabs(c) + fabs(t))));
+}
+
+/* (xc + xt E + xe X)(yc + yt E + ye Y), E = eps_t shared, X, Y independent:
+   E^2 in [0, 1] is split as 1/2 + [-1/2, 1/2]. */
+static inline iv_affine_t iv_affine_mul(iv_affine_t x, iv_affine_t y)
+{
+    double cc, tt, c, t, e;
+    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
+    if (x.e == HUGE_VAL || y.e == HUGE_VAL) return iv__aff_entire();
+    cc = x.c * y.c;
+    tt = 0.5 * (x.t * y.t);
+    c = cc + tt;
+    t = x.c * y.t + x.t * y.c;
+    e = fabs(x.c) * y.e + fabs(y.c) * x.e + fabs(tt) + fabs(x.t) * y.e + x.e * fabs(y.t) + x.e * y.e;
+    e += iv__aff_rnd(fabs(cc) + fabs(tt) + fabs(x.c * y.t) + fabs(x.t * y.c));
+    return iv__aff_finish(c, t, iv__aff_radius(e));
+}
+
+/* (c + t E + e X)^2 with one X for both factors: E^2 and X^2 in [0, 1]
+   give centre terms t^2/2 + e^2/2 of radius t^2/2 + e^2/2. */
+static inline iv_affine_t iv_affine_sqr(iv_affine_t x)
+{
+    double cc, tt, ee, c, t, e;
+    if (iv_affine_is_empty(x)) return iv__aff_empty();
+    if (x.e == HUGE_VAL) return iv__aff_entire();
+    cc = x.c * x.c;
+    tt = 0.5 * (x.t * x.t);
+    ee = 0.5 * (x.e * x.e);
+    c = cc + tt + ee;
+    t = 2.0 * x.c * x.t;
+    e = 2.0 * fabs(x.c) * x.e + tt + ee + 2.0 * fabs(x.t) * x.e;
+    e += iv__aff_rnd(cc + tt + ee + fabs(t));
+    return iv__aff_finish(c, t, iv__aff_radius(e));
+}
+
 #endif /* IV_NO_AFFINE */
 
 #ifdef __cplusplus
@@ -861,110 +994,6 @@ IV_DEF iv_t iv_hypot(iv_t x, iv_t y)
 /* Reduced affine arithmetic                                                */
 /* ------------------------------------------------------------------------ */
 
-/* Rounding-error accounting. A coefficient computed in round-to-nearest
-   from at most three operations on terms whose magnitudes sum to S is off
-   by at most gamma_3 S + 3*2^-1075 (standard model; an fma from
-   contraction only removes roundings). We charge IV__AFF_REL*S + IV__AFF_ABS.
-   The error radius itself is summed in round-to-nearest from at most 16
-   operations and then inflated by IV__AFF_UP, which exceeds the relative
-   error gamma_16 of that sum. Under IV_FAST rounding errors are ignored. */
-#define IV__AFF_REL 8.881784197001252e-16  /* 2^-50 > gamma_3 */
-#define IV__AFF_ABS 8.289046e-317          /* > 16 * 2^-1075, subnormal */
-#define IV__AFF_UP  1.0000000000000142     /* 1 + 2^-46 > 1 + 2 gamma_16 */
-
-#ifdef IV_FAST
-static double iv__aff_rnd(double s) { (void)s; return 0.0; }
-static double iv__aff_radius(double r) { return r; }
-#else
-static double iv__aff_rnd(double s) { return IV__AFF_REL * s + IV__AFF_ABS; }
-static double iv__aff_radius(double r) { return r * IV__AFF_UP + IV__AFF_ABS; }
-#endif
-
-static iv_affine_t iv__aff(double c, double t, double e)
-{
-    iv_affine_t r;
-    r.c = c;
-    r.t = t;
-    r.e = e;
-    return r;
-}
-static iv_affine_t iv__aff_empty(void) { return iv__aff(NAN, NAN, NAN); }
-static iv_affine_t iv__aff_entire(void) { return iv__aff(0.0, 0.0, HUGE_VAL); }
-IV_DEF int iv_affine_is_empty(iv_affine_t x) { return x.e != x.e; }
-/* Inputs were non-empty; anything non-finite now is overflow (or an
-   unbounded input): the sound answer is the unbounded form. */
-static iv_affine_t iv__aff_finish(double c, double t, double e)
-{
-    if (c - c == 0 && t - t == 0 && e - e == 0) return iv__aff(c, t, e);
-    return iv__aff_entire();
-}
-
-IV_DEF iv_affine_t iv_affine_const(double d)
-{
-    if (!(d - d == 0)) return iv__aff_empty();
-    return iv__aff(d, 0.0, 0.0);
-}
-
-IV_DEF iv_affine_t iv_affine_from_iv(iv_t x)
-{
-    double m;
-    if (iv_is_empty(x)) return iv__aff_empty();
-    if (x.lo == -HUGE_VAL || x.hi == HUGE_VAL) return iv__aff_entire();
-    m = iv_mid(x);
-    return iv__aff_finish(m, 0.0, iv__up(iv__max(x.hi - m, m - x.lo)));
-}
-
-IV_DEF iv_affine_t iv_affine_ray_param(double t0, double t1)
-{
-    double m;
-    if (!(t0 <= t1) || !(t0 - t0 == 0) || !(t1 - t1 == 0)) return iv__aff_empty();
-    m = iv_mid(iv__raw(t0, t1));
-    /* c - t <= t0 and c + t >= t1 exactly, so every t in [t0, t1] is
-       c + t*eps_t for some eps_t in [-1, 1] */
-    return iv__aff_finish(m, t0 == t1 ? 0.0 : iv__up(iv__max(t1 - m, m - t0)), 0.0);
-}
-
-IV_DEF iv_t iv_from_affine(iv_affine_t x)
-{
-    double r;
-    if (iv_affine_is_empty(x)) return iv_empty();
-    if (x.e == HUGE_VAL) return iv_entire();
-    r = fabs(x.t) + x.e;
-    r = r == 0 ? 0.0 : iv__up(r);
-    if (r == 0) return iv__raw(x.c, x.c);
-    return iv_make(iv__down(x.c - r), iv__up(x.c + r));
-}
-
-IV_DEF iv_affine_t iv_affine_add(iv_affine_t x, iv_affine_t y)
-{
-    double c, t;
-    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
-    c = x.c + y.c;
-    t = x.t + y.t;
-    return iv__aff_finish(c, t, iv__aff_radius(x.e + y.e + iv__aff_rnd(fabs(c) + fabs(t))));
-}
-IV_DEF iv_affine_t iv_affine_neg(iv_affine_t x) { return iv__aff(-x.c, -x.t, x.e); }
-IV_DEF iv_affine_t iv_affine_sub(iv_affine_t x, iv_affine_t y) { return iv_affine_add(x, iv_affine_neg(y)); }
-
-IV_DEF iv_affine_t iv_affine_add_d(iv_affine_t x, double d)
-{
-    double c;
-    if (iv_affine_is_empty(x) || !(d - d == 0)) return iv__aff_empty();
-    c = x.c + d;
-    return iv__aff_finish(c, x.t, iv__aff_radius(x.e + iv__aff_rnd(fabs(c))));
-}
-IV_DEF iv_affine_t iv_affine_sub_d(iv_affine_t x, double d) { return iv_affine_add_d(x, -d); }
-
-IV_DEF iv_affine_t iv_affine_mul_d(iv_affine_t x, double d)
-{
-    double c, t;
-    if (iv_affine_is_empty(x) || !(d - d == 0)) return iv__aff_empty();
-    if (x.e == HUGE_VAL) return d == 0 ? iv__aff(0.0, 0.0, 0.0) : x;
-    c = x.c * d;
-    t = x.t * d;
-    return iv__aff_finish(c, t, iv__aff_radius(x.e * fabs(d) + iv__aff_rnd(fabs(c) + fabs(t))));
-}
-
 /* x + K for an interval constant K (its radius goes into e). */
 static iv_affine_t iv__aff_add_iv(iv_affine_t x, iv_t k)
 {
@@ -975,39 +1004,6 @@ static iv_affine_t iv__aff_add_iv(iv_affine_t x, iv_t k)
     r = iv__max(k.hi - m, m - k.lo);
     c = x.c + m;
     return iv__aff_finish(c, x.t, iv__aff_radius(x.e + r + iv__aff_rnd(fabs(c))));
-}
-
-/* (xc + xt E + xe X)(yc + yt E + ye Y), E = eps_t shared, X, Y independent:
-   E^2 in [0, 1] is split as 1/2 + [-1/2, 1/2]. */
-IV_DEF iv_affine_t iv_affine_mul(iv_affine_t x, iv_affine_t y)
-{
-    double cc, tt, c, t, e;
-    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
-    if (x.e == HUGE_VAL || y.e == HUGE_VAL) return iv__aff_entire();
-    cc = x.c * y.c;
-    tt = 0.5 * (x.t * y.t);
-    c = cc + tt;
-    t = x.c * y.t + x.t * y.c;
-    e = fabs(x.c) * y.e + fabs(y.c) * x.e + fabs(tt) + fabs(x.t) * y.e + x.e * fabs(y.t) + x.e * y.e;
-    e += iv__aff_rnd(fabs(cc) + fabs(tt) + fabs(x.c * y.t) + fabs(x.t * y.c));
-    return iv__aff_finish(c, t, iv__aff_radius(e));
-}
-
-/* (c + t E + e X)^2 with one X for both factors: E^2 and X^2 in [0, 1]
-   give centre terms t^2/2 + e^2/2 of radius t^2/2 + e^2/2. */
-IV_DEF iv_affine_t iv_affine_sqr(iv_affine_t x)
-{
-    double cc, tt, ee, c, t, e;
-    if (iv_affine_is_empty(x)) return iv__aff_empty();
-    if (x.e == HUGE_VAL) return iv__aff_entire();
-    cc = x.c * x.c;
-    tt = 0.5 * (x.t * x.t);
-    ee = 0.5 * (x.e * x.e);
-    c = cc + tt + ee;
-    t = 2.0 * x.c * x.t;
-    e = 2.0 * fabs(x.c) * x.e + tt + ee + 2.0 * fabs(x.t) * x.e;
-    e += iv__aff_rnd(cc + tt + ee + fabs(t));
-    return iv__aff_finish(c, t, iv__aff_radius(e));
 }
 
 /* The first-order Taylor form of f on the form x whose values of interest
