@@ -7,7 +7,8 @@
    constant ambient term):
      ours      the plane is two triangles in Embree; at each hit the footprint
                comes from the camera's ray differentials and gr_query() returns
-               the visible facets, shaded by eq. 6 (1 sample per pixel);
+               the visible facets, shaded by eq. 6 (1 sample per pixel); the
+               example turns on perturb_normals (facets tilted by f'(t));
      geometry  the same grooves swept into a triangle mesh in Embree
                (tests/grooves_oracle.h) and ray traced at N jittered samples
                per pixel with one shadow ray per light. */
@@ -241,6 +242,7 @@ typedef struct gx_ours_t {
     gro_device_t dev;
     RTCScene plane;
     long long embree_bytes;       /* Embree's bytes once the plane is committed */
+    int perturb_normals;          /* gr_query_t.perturb_normals: tilt facets by f'(t) */
     ex_camera_t cam;
 } gx_ours_t;
 
@@ -311,6 +313,7 @@ static ex_v3_t gx_ours_radiance(const gx_ours_t *o, double px, double py)
     rd.ry_origin[0] = ray.ry_o.x; rd.ry_origin[1] = ray.ry_o.y; rd.ry_origin[2] = ray.ry_o.z;
     rd.ry_dir[0] = ray.ry_d.x; rd.ry_dir[1] = ray.ry_d.y; rd.ry_dir[2] = ray.ry_d.z;
     memset(&q, 0, sizeof q);
+    q.perturb_normals = o->perturb_normals;
     if (gr_footprint_from_differentials(&rd, &q.footprint, &frame) != GR_OK) return s->background;
     for (k = 0; k < s->nlights; k++) gr_frame_to_texture(&frame, s->light[k], L + 3 * k);
     q.lights = L; q.light_count = s->nlights;
