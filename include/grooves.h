@@ -330,6 +330,80 @@ typedef void (*gr_brdf_fn)(void *user, int reflectance, const double n[3],
 GR_DEF gr_result_t gr_shade(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                             size_t scratch_bytes, gr_brdf_fn brdf, void *user, double rgb[3]);
 
+/* ==== [section: intersections] declarations (issue 8: §5–6) ==== */
+
+/* ---- 2D polygons (§5.2-5.5) ---------------------------------------------- */
+/* At intersections and ends the footprint is a polygon (§5.2): it is clipped
+   to a facet's bounds, the projected cross-sections of crossing grooves and
+   the occlusion profiles are subtracted from it (§5.3-5.4), and the facet's
+   ratio is an area ratio r_i = A_R / A_F (§5.5). These routines do that 2D
+   work. A polygon is a ring of (x, y) pairs in either orientation, closed
+   implicitly (the last point joins the first); repeated and collinear points
+   are allowed. */
+
+/* Signed area by the shoelace formula: > 0 counter-clockwise, 0 for fewer
+   than 3 points or a NULL pointer. */
+GR_DEF double gr_poly_area(const double *xy, int n);
+
+/* Sutherland-Hodgman: subject ∩ clip, for a convex clip ring (either
+   orientation, collinear points allowed; a clip of zero area gives an empty
+   result). out and work each hold `cap` points; *nout receives the result's
+   point count (0 when empty). cap = ns + nc suffices for a convex subject;
+   a non-convex subject can need more (the call then fails cleanly). A
+   non-convex subject cut into pieces comes back as
+   one ring joined by zero-width bridges along the clip edges: its area is
+   exact, but use gr_poly_boolean() for separate pieces. Errors:
+   GR_ERR_INVALID_ARG (NULL, a negative count, a clip with fewer than 3
+   points or not convex), GR_ERR_NOT_FINITE, GR_ERR_BUFFER_TOO_SMALL (more
+   than cap points needed; *nout is then 0). */
+GR_DEF gr_result_t gr_poly_clip_convex(const double *subject, int ns, const double *clip, int nc,
+                                       double *out, double *work, int cap, int *nout);
+
+/* Boolean operations for gr_poly_boolean(). */
+typedef enum gr_poly_op_t {
+    GR_POLY_INTERSECTION = 0, /* a ∩ b */
+    GR_POLY_DIFFERENCE = 1,   /* a \ b */
+    GR_POLY_UNION = 2,        /* a ∪ b */
+    GR_POLY_XOR = 3           /* (a \ b) ∪ (b \ a) */
+} gr_poly_op_t;
+
+/* A set of rings. A point belongs to the set when it lies inside any of
+   its rings, each ring taken by the even-odd rule (so overlapping rings
+   unite, a self-intersecting ring such as a bow tie is its two lobes, and
+   there are no holes). */
+typedef struct gr_polyset_t {
+    const double *points;   /* (x, y) pairs, ring after ring */
+    int point_count;
+    const int *ring_sizes;  /* points in each ring; NULL: ring_count rings of
+                               point_count / ring_count points each (so the
+                               trapezoids from gr_poly_boolean() feed back in
+                               with ring_count = their count) */
+    int ring_count;         /* 0 or 1 with ring_sizes NULL: one ring */
+} gr_polyset_t;
+
+/* Scratch bytes gr_poly_boolean() needs for two sets with `total_points`
+   points together (it grows as total_points^2: crossings of edge pairs). */
+GR_DEF size_t gr_poly_boolean_scratch_bytes(int total_points);
+
+/* a op b for arbitrary (non-convex, self-intersecting, touching, collinear)
+   rings, by a slab sweep: the plane is cut at every vertex height and every
+   edge crossing, so inside a slab the edges are straight and never cross
+   and the result is a set of trapezoids, exact up to the rounding of the
+   crossing heights. *area (optional) receives the result's area. traps
+   (optional, NULL for the area only) receives up to trap_cap trapezoids, 8
+   doubles each: 4 counter-clockwise (x, y) corners, bottom edge first;
+   *trap_count (optional) receives how many the result has. The trapezoids
+   do not overlap and their union is the result. Errors: GR_ERR_INVALID_ARG
+   (NULL sets or scratch, negative counts, ring sizes that do not add up),
+   GR_ERR_NOT_FINITE, GR_ERR_BUFFER_TOO_SMALL (scratch below
+   gr_poly_boolean_scratch_bytes(), or more trapezoids than trap_cap: *area
+   and *trap_count are still right, traps holds the first trap_cap). */
+GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op,
+                                   void *scratch, size_t scratch_bytes,
+                                   double *traps, int trap_cap, int *trap_count, double *area);
+
+/* ==== [end section: intersections] ==== */
+
 #ifdef __cplusplus
 }
 #endif
@@ -1120,10 +1194,18 @@ typedef struct gr__mfacet_t {
     int groove, facet, refl;
 } gr__mfacet_t;
 
+/* Sort key of a groove in the merged cross-section. */
+typedef struct gr__key_t {
+    double x;  /* leftmost point */
+    int cand;  /* index into the candidates */
+    int groove;
+} gr__key_t;
+
 typedef struct gr__scratch_t {
     unsigned char *seen; /* one bit per groove, cleared per footprint */
     int *ids;
     gr__cand_t *cand;
+    gr__key_t *key;
     double *x, *w, *q, *lo, *hi, *va, *vb, *lit;
     gr__mfacet_t *mf;
 } gr__scratch_t;
@@ -1139,6 +1221,7 @@ static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *
     GR__CARVE(seen, unsigned char, nid / 8 + 1)
     GR__CARVE(ids, int, nid)
     GR__CARVE(cand, gr__cand_t, (size_t)g->groove_count)
+    GR__CARVE(key, gr__key_t, (size_t)g->groove_count)
     GR__CARVE(x, double, np)
     GR__CARVE(w, double, np)
     GR__CARVE(q, double, np)
@@ -1190,8 +1273,6 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
     double best = limit2;
     int found = 0;
     int k;
-    c->end = 0;
-    c->kappa = 0;
     if (rec->kind == GR_PATH_POLYLINE) {
         double acc = 0;
         for (k = 0; k < rec->pieces; k++) {
@@ -1210,6 +1291,7 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
                 c->t[0] = ex / len; c->t[1] = ey / len;
                 c->param = (acc + s * len) / rec->length;
                 c->dtds = 1 / rec->length;
+                c->kappa = 0;
                 c->end = rec->closed ? 0 : (k == 0 && raw < 0) ? -1 : (k == rec->pieces - 1 && raw > 1) ? 1 : 0;
             }
             acc += len;
@@ -1264,7 +1346,7 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
         }
     }
 #endif
-    c->dist = sqrt(best);
+    if (found) c->dist = sqrt(best);
     return found;
 }
 
@@ -1282,14 +1364,22 @@ static int gr__locate(const gr_grid_t *grid, int g, const double f[2], double re
     for (k = 0; k < 3; k++) {
         du[k] = grid->wrap || k == 1 ? gr__interval_dist(f[0] + (k - 1) * wu, rec->bbox[0], rec->bbox[2]) : HUGE_VAL;
         dv[k] = grid->wrap || k == 1 ? gr__interval_dist(f[1] + (k - 1) * wv, rec->bbox[1], rec->bbox[3]) : HUGE_VAL;
+    }
+    for (k = 0; k < 3; k += 2) {
         if (du[k] < du[bu]) bu = k;
         if (dv[k] < dv[bv]) bv = k;
     }
+    c->groove = g;
+    if (!(du[bu] * du[bu] + dv[bv] * dv[bv] <= limit2)) return 0; /* no image within reach */
     for (k = -1; k < 9; k++) {
         double fi[2];
-        ku = k < 0 ? bu : k % 3;
-        kv = k < 0 ? bv : k / 3;
-        if ((k >= 0 && ku == bu && kv == bv) || !(du[ku] * du[ku] + dv[kv] * dv[kv] <= limit2)) continue;
+        if (k < 0) { ku = bu; kv = bv; }
+        else {
+            ku = k - 3 * (k / 3);
+            kv = k / 3;
+            if (ku == bu && kv == bv) continue;
+        }
+        if (!(du[ku] * du[ku] + dv[kv] * dv[kv] <= limit2)) continue;
         fi[0] = f[0] + (ku - 1) * wu;
         fi[1] = f[1] + (kv - 1) * wv;
         if (gr__nearest(grid, rec, fi, limit2, c)) {
@@ -1298,15 +1388,32 @@ static int gr__locate(const gr_grid_t *grid, int g, const double f[2], double re
             c->fc[0] = fi[0];
             c->fc[1] = fi[1];
         }
+        if (!grid->wrap) break; /* one image only */
     }
     c->groove = g;
     return found;
 }
 
-static int gr__cmp_cand(const void *a, const void *b)
+static int gr__key_less(const gr__key_t *a, const gr__key_t *b)
 {
-    const gr__cand_t *x = (const gr__cand_t *)a, *y = (const gr__cand_t *)b;
-    return x->xmin < y->xmin ? -1 : x->xmin > y->xmin ? 1 : (x->groove > y->groove) - (x->groove < y->groove);
+    return a->x < b->x || (a->x == b->x && a->groove < b->groove);
+}
+static int gr__cmp_key(const void *a, const void *b)
+{
+    const gr__key_t *x = (const gr__key_t *)a, *y = (const gr__key_t *)b;
+    return gr__key_less(x, y) ? -1 : gr__key_less(y, x);
+}
+/* Candidates arrive nearly in order for parallel families: insertion sort
+   while short, qsort beyond. */
+static void gr__sort_keys(gr__key_t *k, int n)
+{
+    int i, j;
+    if (n > 32) { qsort(k, (size_t)n, sizeof *k, gr__cmp_key); return; }
+    for (i = 1; i < n; i++) {
+        gr__key_t t = k[i];
+        for (j = i; j > 0 && gr__key_less(&t, &k[j - 1]); j--) k[j] = k[j - 1];
+        k[j] = t;
+    }
 }
 
 /* Append the grooves of list[0..count) not seen yet. */
@@ -1628,16 +1735,19 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         const double *sec = grid->section_ + 2 * rec->first_sec;
         c->xmin = c->sigma > 0 ? c->f * sec[0] - c->d : c->d - c->f * sec[2 * (rec->sec_count - 1)];
         if (rec->half_width / rec->fmax * c->f > maxhalf) maxhalf = rec->half_width / rec->fmax * c->f;
+        s->key[k].x = c->xmin;
+        s->key[k].cand = k;
+        s->key[k].groove = c->groove;
     }
-    if (npar > 1) qsort(s->cand, (size_t)npar, sizeof(gr__cand_t), gr__cmp_cand);
+    gr__sort_keys(s->key, npar);
     margin = pm + maxhalf;
     if (!(margin > 0)) margin = 1;
     ground.n[0] = 0; ground.n[1] = 0; ground.n[2] = 1;
     ground.groove = -1; ground.facet = -1; ground.refl = grid->base_reflectance;
-    s->x[np] = (npar ? (s->cand[0].xmin < -pm ? s->cand[0].xmin : -pm) : -pm) - margin;
+    s->x[np] = (npar ? (s->key[0].x < -pm ? s->key[0].x : -pm) : -pm) - margin;
     s->w[np++] = 0;
     for (k = 0; k < npar; k++) {
-        const gr__cand_t *c = &s->cand[k];
+        const gr__cand_t *c = &s->cand[s->key[k].cand];
         const gr__groove_t *rec = &grid->grooves_[c->groove];
         const double *sec = grid->section_ + 2 * rec->first_sec;
         const int nsec = rec->sec_count;
@@ -1653,7 +1763,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (i + 1 < nsec) {
                 /* facet R_j = [C_j, C_j+1] in the groove's own orientation */
                 int j = c->sigma > 0 ? i : nsec - 2 - i;
-                double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = hypot(db, dw);
+                double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = sqrt(db * db + dw * dw);
                 gr__mfacet_t *m = &s->mf[np];
                 double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nlen;
                 /* beyond §4.4's (0, N_b, N_w): with X = P(s) + f(s)(b B + w W),
@@ -1818,6 +1928,348 @@ GR_DEF gr_result_t gr_shade(const gr_grid_t *grid, const gr_query_t *query, void
     }
     return GR_OK;
 }
+
+/* ==== [section: intersections] implementation (issue 8: §5–6) ==== */
+
+/* ---- 2D polygons (§5.2-5.5) ---------------------------------------------- */
+
+static double gr__cross2(const double *o, const double *a, const double *b)
+{
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+GR_DEF double gr_poly_area(const double *xy, int n)
+{
+    double s = 0;
+    int i;
+    if (!xy || n < 3) return 0;
+    /* shoelace about the first point: smaller terms, less cancellation */
+    for (i = 1; i + 1 < n; i++) s += gr__cross2(xy, xy + 2 * i, xy + 2 * i + 2);
+    return 0.5 * s;
+}
+
+/* A ring is convex when every turn has one sign and it winds once: the x
+   direction of its edges changes sign at most twice (a pentagram turns one
+   way throughout but winds twice). */
+static int gr__ring_convex(const double *p, int n, double orient)
+{
+    int i, changes = 0, last = 0;
+    for (i = 0; i < n; i++) {
+        const double *a = p + 2 * i, *b = p + 2 * ((i + 1) % n), *c = p + 2 * ((i + 2) % n);
+        double dx = b[0] - a[0];
+        int sx = dx > 0 ? 1 : dx < 0 ? -1 : 0;
+        if (orient * gr__cross2(a, b, c) < 0) return 0;
+        if (sx != 0) {
+            if (last != 0 && sx != last) changes++;
+            last = sx;
+        }
+    }
+    return changes <= 2;
+}
+
+GR_DEF gr_result_t gr_poly_clip_convex(const double *subject, int ns, const double *clip, int nc,
+                                       double *out, double *work, int cap, int *nout)
+{
+    double orient;
+    const double *src;
+    double *dst;
+    int n, j, i, stages;
+    if (nout) *nout = 0;
+    if (!nout || (!subject && ns > 0) || !clip || !out || !work || ns < 0 || nc < 3 || cap < 0)
+        return GR_ERR_INVALID_ARG;
+    if (!gr__finite_n(subject, 2 * ns) || !gr__finite_n(clip, 2 * nc)) return GR_ERR_NOT_FINITE;
+    orient = gr_poly_area(clip, nc);
+    if (orient == 0 || ns < 3) return GR_OK; /* empty clip region or subject */
+    orient = orient > 0 ? 1 : -1;
+    if (!gr__ring_convex(clip, nc, orient)) return GR_ERR_INVALID_ARG;
+    if (ns > cap) return GR_ERR_BUFFER_TOO_SMALL;
+    /* each clip edge is one stage; stages ping-pong so the last lands in out */
+    stages = 0;
+    for (j = 0; j < nc; j++) {
+        const double *c0 = clip + 2 * j, *c1 = clip + 2 * ((j + 1) % nc);
+        if (c0[0] != c1[0] || c0[1] != c1[1]) stages++;
+    }
+    src = subject;
+    n = ns;
+    dst = stages % 2 ? out : work;
+    for (j = 0; j < nc && n > 0; j++) {
+        const double *c0 = clip + 2 * j, *c1 = clip + 2 * ((j + 1) % nc);
+        int m = 0;
+        if (c0[0] == c1[0] && c0[1] == c1[1]) continue; /* repeated clip point */
+        for (i = 0; i < n; i++) {
+            const double *p = src + 2 * i, *q = src + 2 * ((i + 1) % n);
+            /* signed side of each end against the clip line, > 0 inside */
+            double dp = orient * gr__cross2(c0, c1, p), dq = orient * gr__cross2(c0, c1, q);
+            if ((dp >= 0) != (dq >= 0)) { /* the edge crosses: emit the crossing */
+                double t = dp / (dp - dq);
+                if (m >= cap) return GR_ERR_BUFFER_TOO_SMALL;
+                dst[2 * m] = p[0] + t * (q[0] - p[0]);
+                dst[2 * m + 1] = p[1] + t * (q[1] - p[1]);
+                m++;
+            }
+            if (dq >= 0) {
+                if (m >= cap) return GR_ERR_BUFFER_TOO_SMALL;
+                dst[2 * m] = q[0];
+                dst[2 * m + 1] = q[1];
+                m++;
+            }
+        }
+        n = m;
+        src = dst;
+        dst = dst == out ? work : out;
+    }
+    GR_ASSERT(n == 0 || src == out);
+    if (n > 0 && src != out) memcpy(out, src, sizeof(double) * 2 * (size_t)n);
+    *nout = n < 3 ? 0 : n;
+    return GR_OK;
+}
+
+/* gr_poly_boolean: one edge, stored bottom to top. */
+typedef struct gr__pedge_t {
+    double x0, y0, x1, y1;
+    int set;  /* 0: a, 1: b */
+    int ring; /* global ring index (a's rings first) */
+} gr__pedge_t;
+
+/* A crossing of an edge with a slab's mid line. */
+typedef struct gr__pcross_t {
+    double x;
+    int edge;
+} gr__pcross_t;
+
+static double gr__pedge_x(const gr__pedge_t *e, double y)
+{
+    double t = (y - e->y0) / (e->y1 - e->y0);
+    if (t < 0) t = 0;
+    if (t > 1) t = 1;
+    return e->x0 + t * (e->x1 - e->x0);
+}
+
+static int gr__cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static int gr__cmp_pcross(const void *a, const void *b)
+{
+    const gr__pcross_t *x = (const gr__pcross_t *)a, *y = (const gr__pcross_t *)b;
+    return x->x < y->x ? -1 : x->x > y->x ? 1 : (x->edge > y->edge) - (x->edge < y->edge);
+}
+
+/* Scratch of gr_poly_boolean for E edges (= points). */
+typedef struct gr__pscratch_t {
+    gr__pedge_t *edge;
+    double *ys;
+    gr__pcross_t *cross, *ia, *ib;
+    unsigned char *parity;
+} gr__pscratch_t;
+
+static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
+{
+    size_t off = 0, ne = e > 0 ? (size_t)e : 1, ny = 2 * ne + ne * (ne - 1) / 2;
+    char *b = (char *)base;
+#define GR__PCARVE(field, type, count) \
+    s->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (count));
+    GR__PCARVE(edge, gr__pedge_t, ne)
+    GR__PCARVE(ys, double, ny)
+    GR__PCARVE(cross, gr__pcross_t, ne)
+    GR__PCARVE(ia, gr__pcross_t, ne)
+    GR__PCARVE(ib, gr__pcross_t, ne)
+    GR__PCARVE(parity, unsigned char, ne)
+#undef GR__PCARVE
+    return off;
+}
+
+GR_DEF size_t gr_poly_boolean_scratch_bytes(int total_points)
+{
+    gr__pscratch_t s;
+    return total_points < 0 ? 0 : gr__pscratch_layout(total_points, NULL, &s);
+}
+
+/* Ring sizes of a set: the r-th ring's size, or -1 when they do not add up. */
+static int gr__pset_rings(const gr_polyset_t *p)
+{
+    if (p->ring_sizes) return p->ring_count;
+    return p->ring_count > 1 ? p->ring_count : 1;
+}
+static int gr__pset_size(const gr_polyset_t *p, int r)
+{
+    if (p->ring_sizes) return p->ring_sizes[r];
+    return p->ring_count > 1 ? p->point_count / p->ring_count : p->point_count;
+}
+
+static gr_result_t gr__pset_check(const gr_polyset_t *p)
+{
+    int r, sum = 0, nr;
+    if (p->point_count < 0 || p->ring_count < 0 || (p->point_count > 0 && !p->points)) return GR_ERR_INVALID_ARG;
+    nr = gr__pset_rings(p);
+    if (!p->ring_sizes && nr > 1 && p->point_count % nr != 0) return GR_ERR_INVALID_ARG;
+    for (r = 0; r < nr; r++) {
+        if (gr__pset_size(p, r) < 0) return GR_ERR_INVALID_ARG;
+        sum += gr__pset_size(p, r);
+    }
+    if (sum != p->point_count) return GR_ERR_INVALID_ARG;
+    return gr__finite_n(p->points, 2 * p->point_count) ? GR_OK : GR_ERR_NOT_FINITE;
+}
+
+/* Non-horizontal edges of a set into e[], returns the new edge count. Rings
+   with fewer than 3 points enclose nothing and are skipped; the others are
+   numbered from *ring on (so ring ids stay below points / 3). */
+static int gr__pset_edges(const gr_polyset_t *p, int set, int *ring, gr__pedge_t *e, int ne)
+{
+    int r, i, first = 0, nr = gr__pset_rings(p);
+    for (r = 0; r < nr; r++) {
+        int n = gr__pset_size(p, r), id = *ring;
+        if (n >= 3) (*ring)++;
+        for (i = 0; n >= 3 && i < n; i++) {
+            const double *u = p->points + 2 * (first + i), *v = p->points + 2 * (first + (i + 1) % n);
+            gr__pedge_t *d;
+            if (u[1] == v[1]) continue; /* horizontal: never crosses a slab's mid line */
+            d = &e[ne++];
+            if (u[1] < v[1]) { d->x0 = u[0]; d->y0 = u[1]; d->x1 = v[0]; d->y1 = v[1]; }
+            else { d->x0 = v[0]; d->y0 = v[1]; d->x1 = u[0]; d->y1 = u[1]; }
+            d->set = set;
+            d->ring = id;
+        }
+        first += n;
+    }
+    return ne;
+}
+
+/* Heights where two edges cross properly (strictly inside both): the slab
+   boundaries besides the vertex heights. */
+static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny)
+{
+    int i, j;
+    for (i = 0; i < ne; i++)
+        for (j = i + 1; j < ne; j++) {
+            const gr__pedge_t *p = &e[i], *q = &e[j];
+            double lo = p->y0 > q->y0 ? p->y0 : q->y0, hi = p->y1 < q->y1 ? p->y1 : q->y1;
+            double a0, a1, b0, b1, d0, d1;
+            if (!(hi > lo)) continue;
+            /* signed horizontal gap at both ends of the shared height range */
+            a0 = gr__pedge_x(p, lo); a1 = gr__pedge_x(p, hi);
+            b0 = gr__pedge_x(q, lo); b1 = gr__pedge_x(q, hi);
+            d0 = a0 - b0;
+            d1 = a1 - b1;
+            if ((d0 < 0 && d1 > 0) || (d0 > 0 && d1 < 0)) {
+                double y = lo + (hi - lo) * (d0 / (d0 - d1));
+                if (y > lo && y < hi) ys[ny++] = y;
+            }
+        }
+    return ny;
+}
+
+/* The union of one set's rings along a slab's mid line: sorted crossings
+   in, intervals out as (left, right) pairs of crossings. Each ring keeps
+   its even-odd parity; the set is inside while any ring is. */
+static int gr__pset_intervals(const gr__pcross_t *cr, int nc, const gr__pedge_t *e, int set,
+                              unsigned char *parity, gr__pcross_t *iv)
+{
+    int k, inside = 0, n = 0;
+    for (k = 0; k < nc; k++) {
+        const gr__pedge_t *d = &e[cr[k].edge];
+        if (d->set != set) continue;
+        parity[d->ring] ^= 1u;
+        if (parity[d->ring]) {
+            if (inside++ == 0) iv[n++] = cr[k];
+        } else if (--inside == 0) {
+            iv[n++] = cr[k];
+        }
+    }
+    GR_ASSERT(inside == 0);
+    return n;
+}
+
+static int gr__pop_in(gr_poly_op_t op, int in_a, int in_b)
+{
+    switch (op) {
+    case GR_POLY_INTERSECTION: return in_a && in_b;
+    case GR_POLY_DIFFERENCE: return in_a && !in_b;
+    case GR_POLY_UNION: return in_a || in_b;
+    default: return in_a != in_b;
+    }
+}
+
+GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op,
+                                   void *scratch, size_t scratch_bytes,
+                                   double *traps, int trap_cap, int *trap_count, double *area)
+{
+    gr__pscratch_t s;
+    gr_result_t r;
+    double total = 0;
+    int ne, ny, nys, k, ntrap = 0, over = 0, rings = 0;
+    if (area) *area = 0;
+    if (trap_count) *trap_count = 0;
+    if (!a || !b || !scratch || (traps && trap_cap < 0) || (int)op < 0 || (int)op > 3) return GR_ERR_INVALID_ARG;
+    if ((r = gr__pset_check(a)) != GR_OK || (r = gr__pset_check(b)) != GR_OK) return r;
+    if (scratch_bytes < gr_poly_boolean_scratch_bytes(a->point_count + b->point_count)) return GR_ERR_BUFFER_TOO_SMALL;
+    gr__pscratch_layout(a->point_count + b->point_count, scratch, &s);
+    ne = gr__pset_edges(a, 0, &rings, s.edge, 0);
+    ne = gr__pset_edges(b, 1, &rings, s.edge, ne);
+    memset(s.parity, 0, (size_t)rings);
+    /* slab boundaries: every vertex height and every edge crossing */
+    ny = 0;
+    for (k = 0; k < ne; k++) {
+        s.ys[ny++] = s.edge[k].y0;
+        s.ys[ny++] = s.edge[k].y1;
+    }
+    ny = gr__pedge_crossings(s.edge, ne, s.ys, ny);
+    qsort(s.ys, (size_t)ny, sizeof(double), gr__cmp_double);
+    for (nys = 0, k = 0; k < ny; k++)
+        if (nys == 0 || s.ys[k] != s.ys[nys - 1]) s.ys[nys++] = s.ys[k];
+    for (k = 0; k + 1 < nys; k++) {
+        double y0 = s.ys[k], y1 = s.ys[k + 1], ym = 0.5 * (y0 + y1);
+        int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, e;
+        gr__pcross_t left;
+        left.x = 0;
+        left.edge = -1;
+        /* two adjacent doubles: the mid line would fall on a vertex height,
+           where the strict crossing test loses a pass-through vertex */
+        if (!(y0 < ym && ym < y1)) continue;
+        for (e = 0; e < ne; e++)
+            if (s.edge[e].y0 < ym && ym < s.edge[e].y1) {
+                s.cross[nc].x = gr__pedge_x(&s.edge[e], ym);
+                s.cross[nc++].edge = e;
+            }
+        if (nc == 0) continue;
+        qsort(s.cross, (size_t)nc, sizeof(gr__pcross_t), gr__cmp_pcross);
+        na = gr__pset_intervals(s.cross, nc, s.edge, 0, s.parity, s.ia);
+        nb = gr__pset_intervals(s.cross, nc, s.edge, 1, s.parity, s.ib);
+        /* merge the two interval lists; all boundaries at one x are applied
+           together, so coincident edges (a polygon against itself) give no
+           sliver */
+        while (i < na || j < nb) {
+            double x = i < na && (j >= nb || s.ia[i].x <= s.ib[j].x) ? s.ia[i].x : s.ib[j].x;
+            int edge = -1, now;
+            while (i < na && s.ia[i].x == x) { in_a = !(i & 1); edge = s.ia[i].edge; i++; }
+            while (j < nb && s.ib[j].x == x) { in_b = !(j & 1); edge = s.ib[j].edge; j++; }
+            now = gr__pop_in(op, in_a, in_b);
+            if (now && !was) { left.x = x; left.edge = edge; }
+            else if (!now && was && x > left.x) {
+                /* a trapezoid; its mid-line width times the slab height is
+                   its exact area (the sides are straight in the slab) */
+                const gr__pedge_t *el = &s.edge[left.edge], *er = &s.edge[edge];
+                total += (x - left.x) * (y1 - y0);
+                if (traps && ntrap < trap_cap) {
+                    double *t = traps + 8 * ntrap;
+                    t[0] = gr__pedge_x(el, y0); t[1] = y0;
+                    t[2] = gr__pedge_x(er, y0); t[3] = y0;
+                    t[4] = gr__pedge_x(er, y1); t[5] = y1;
+                    t[6] = gr__pedge_x(el, y1); t[7] = y1;
+                } else if (traps) over = 1;
+                ntrap++;
+            }
+            was = now;
+        }
+    }
+    if (area) *area = total;
+    if (trap_count) *trap_count = ntrap;
+    return over ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
+}
+
+/* ==== [end section: intersections] ==== */
 
 #ifdef __cplusplus
 }
