@@ -1546,15 +1546,28 @@ static double fr__noise_at(const double *q, double x, double y, double z, double
 /* R-functions (HyperFun): alpha == 1 is exactly max/min; otherwise
    a + b +- sqrt(a^2 + b^2 - 2 alpha a b), with the radicand written as
    (a - alpha b)^2 + (1 - alpha^2) b^2 so it is never negative. */
+/* sqrt((a - alpha b)^2 + (1 - alpha^2) b^2), rescaled when the squares
+   would overflow or underflow (|arguments| beyond 2^+-500), so blends of
+   huge or tiny field values stay finite */
+#define FR__RROOT_BIG 3.2733906078961419e150   /* 2^500 */
+#define FR__RROOT_SMALL 3.0549363634996047e-151 /* 2^-500 */
+static inline double fr__rroot(double a, double b, double al)
+{
+    double t = a - al * b, u = b, m = fabs(t) > fabs(u) ? fabs(t) : fabs(u);
+    if (m > FR__RROOT_BIG || (m < FR__RROOT_SMALL && m > 0)) {
+        t /= m;
+        u /= m;
+        return m * sqrt(t * t + (1.0 - al * al) * u * u);
+    }
+    return sqrt(t * t + (1.0 - al * al) * u * u);
+}
 static inline double fr__runi(double a, double b, double al)
 {
-    double t = a - al * b;
-    return al == 1.0 ? (a > b ? a : b) : a + b + sqrt(t * t + (1.0 - al * al) * b * b);
+    return al == 1.0 ? (a > b ? a : b) : a + b + fr__rroot(a, b, al);
 }
 static inline double fr__rint(double a, double b, double al)
 {
-    double t = a - al * b;
-    return al == 1.0 ? (a < b ? a : b) : a + b - sqrt(t * t + (1.0 - al * al) * b * b);
+    return al == 1.0 ? (a < b ? a : b) : a + b - fr__rroot(a, b, al);
 }
 /* polynomial smooth max/min: h = max(k - |a-b|, 0)/k, max + h^2 k/4 */
 static inline double fr__smax(double a, double b, double k)
@@ -1788,7 +1801,7 @@ static fr_result_t fr__run_grad(const fr_tape_t *t, const double p[3], double *v
                 val = first ? a : c;
                 da = first; db = !first;
             } else {
-                double t1 = a - al * c, s = sqrt(t1 * t1 + (1 - al * al) * c * c);
+                double s = fr__rroot(a, c, al);
                 val = a + c + sg * s;
                 /* d s = ((a - alpha c) da + (c - alpha a) dc) / s; 0 at the kink s = 0 */
                 da = 1 + (s > 0 ? sg * (a - al * c) / s : 0);
