@@ -355,6 +355,22 @@ static void footprint_across_texture_seam(void)
     if (run(flat, &q, &l)) T_NEAR(ratio_of(&l, -1), 1, 0);
     gr_grid_free(grid);
     gr_grid_free(flat);
+    /* the mirror image: groove at u = 0.998, footprint at 0.002 - 1 + ...:
+       its image at -0.002 lies 0.004 toward -u, x = b + 0.004: facet 1
+       (b in [0, a]) covers x in [0.004, 0.006], clipped to 0.001 (0.1),
+       facet 0 [0.002, 0.004] (0.2) */
+    {
+        double um = 0.998;
+        gr_grid_t *m = grooves_at(&um, 1, sec, 3, 0);
+        if (!m) return;
+        for (i = 0; i < sizeof shifts / sizeof shifts[0]; i++) {
+            q = query(0.002 + shifts[i], 0.7, 0.005, 0, 0, 1);
+            if (!run(m, &q, &l)) continue;
+            T_NEAR(ratio_of(&l, 1), 0.1, 1e-9);
+            T_NEAR(ratio_of(&l, 0), 0.2, 1e-9);
+        }
+        gr_grid_free(m);
+    }
 }
 
 /* A groove much wider than the footprint (a = D = 0.1, r = 0.001): F at
