@@ -204,7 +204,8 @@ typedef struct re_stats_t {
 
 typedef struct re_scene_t re_scene_t; /* opaque; lives in one block */
 
-/* Sizes for re_build_into(). Runs the analysis (about half a build). */
+/* Exact sizes for re_build_into(). Runs the analysis once, in working
+   memory taken from RE_MALLOC (desc->alloc_ctx) and freed before returning. */
 RE_DEF re_result_t re_build_sizes(const re_scene_desc_t *desc, re_sizes_t *sizes,
                                   re_diag_t *diag);
 /* Build into caller buffers (sizes from re_build_sizes(); `scene_mem` aligned

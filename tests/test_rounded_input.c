@@ -488,6 +488,48 @@ static void secondary_origin_on_the_sharp_mesh(void)
     tm_free(&m);
 }
 
+/* the enumeration a tessellator reads: the box's inner box corners as
+   spheres, its 12 edges as cylinders between them, arcs between face normals */
+static void enumeration_of_box_features(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_scene_t *s;
+    re_diag_t dg;
+    unsigned i;
+    int a;
+    tm_box(&m, LO, HI);
+    mesh = mesh_of(&m, 0.05);
+    if (!T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, &s), RE_OK)) return;
+    T_INT_EQ(re_object_count(s), 1);
+    T_INT_EQ(re_sphere_count(s, 0), 8);
+    T_INT_EQ(re_cylinder_count(s, 0), 12);
+    for (i = 0; i < 8; i++) {
+        re_sphere_t sp;
+        T_CHECK(re_get_sphere(s, 0, i, &sp));
+        T_EQ(sp.radius, 0.05);
+        for (a = 0; a < 3; a++) T_NEAR(fabs(sp.center[a]), HI[a] - 0.05, 1e-15);
+        for (a = 0; a < 3; a++) T_EQ(sp.center[a] > 0, m.v[3 * sp.vertex + a] > 0); /* its own corner */
+    }
+    for (i = 0; i < 12; i++) {
+        re_cylinder_t cy;
+        re_sphere_t sa, sb;
+        double ab[3], el[3];
+        T_CHECK(re_get_cylinder(s, 0, i, &cy));
+        re_get_sphere(s, 0, cy.sa, &sa);
+        re_get_sphere(s, 0, cy.sb, &sb);
+        for (a = 0; a < 3; a++) T_EQ(cy.a[a], sa.center[a]), T_EQ(cy.b[a], sb.center[a]);
+        T_NEAR(tm_dot(cy.n0, cy.n1), 0.0, 1e-15); /* a right-angle edge: a quarter arc */
+        T_GE(cy.edge_v0, 0);
+        tm_sub(cy.b, cy.a, ab);
+        tm_sub(m.v + 3 * cy.edge_v1, m.v + 3 * cy.edge_v0, el);
+        T_NEAR(tm_len(ab), tm_len(el) - 0.1, 1e-15); /* set back by r at both ends */
+    }
+    T_INT_EQ(re_get_cylinder(s, 0, 12, NULL), 0);
+    re_free(s);
+    tm_free(&m);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -497,7 +539,7 @@ int main(int argc, char **argv)
         T_CASE(open_mesh_left_sharp), T_CASE(inconsistent_winding), T_CASE(bad_polygon_sizes), T_CASE(bad_radius),
         T_CASE(null_and_junk_arguments), T_CASE(empty_scene), T_CASE(result_strings), T_CASE(query_guards),
         T_CASE(input_variants_agree), T_CASE(per_edge_radius), T_CASE(concave_edges_and_mixed_vertices_reported),
-        T_CASE(secondary_origin_on_the_sharp_mesh),
+        T_CASE(secondary_origin_on_the_sharp_mesh), T_CASE(enumeration_of_box_features),
     };
     return T_RUN(argc, argv, cases);
 }
