@@ -139,11 +139,11 @@ static inline double iv__next_down_bits(double x)
 #define IV__ETA 4.9406564584124654e-324  /* 2^-1074 */
 static inline double iv__next_down_fma(double x)
 {
-    /* a: the subnormal answer; +inf is clamped first so that a = DBL_MAX
-       there, and NaN passes (the comparison is false) */
-    double a = (1.7976931348623157e308 < x ? 1.7976931348623157e308 : x) - IV__ETA;
-    double b = fma(-IV__PHI, fabs(x), x); /* NaN for x = +inf: then a wins */
-    return b < a ? b : a;
+    double a = x - IV__ETA;               /* the answer for subnormal x */
+    double b = fma(-IV__PHI, fabs(x), x); /* for normal x; NaN for +-inf */
+    double y = b < a ? b : a;              /* a when b is NaN */
+    /* +inf -> DBL_MAX; NaN passes (the comparison is false): one minsd */
+    return 1.7976931348623157e308 < y ? 1.7976931348623157e308 : y;
 }
 /* The fused form is used when the target has a hardware fma (with no fma
    instruction, fma() is a slow software routine). */
