@@ -152,6 +152,32 @@ static void grazing_view_behind_a_ridge(void)
     gr_grid_free(grid);
 }
 
+/* The same ridge (peak H = 0.01 at u = 0.5) and a footprint at u = 0.2
+   seen from above, with a light toward +u at L_w = 1e-3: the peak's shadow
+   reaches H tan φ ~ 10 >> 0.3 toward -u, so the ground under the footprint
+   is wholly shadowed. Finding the ridge needs the box enlarged by h tan θ
+   toward the light (eq. 1), since the view alone does not reach it. */
+static void grazing_light_behind_a_ridge(void)
+{
+    const double H = 0.01, sec[6] = {-A, 0, 0, H, A, 0};
+    gr_grid_t *grid = one_groove(sec, 3);
+    double lw = 1e-3, light[3];
+    gr_query_t q = query(0.2, 0.5, 0.01, 0, 0, 1);
+    gr_facet_list_t l;
+    if (!grid) return;
+    light[0] = sqrt(1 - lw * lw); light[1] = 0; light[2] = lw;
+    q.lights = light;
+    q.light_count = 1;
+    if (run(grid, &q, &l)) {
+        T_NEAR(ratio_of(&l, -1), 1, 1e-15);
+        T_NEAR(entry(&l, -1) ? entry(&l, -1)->lit[0] : -1, 0, 1e-12);
+        T_INT_EQ(l.grooves, 1);
+    }
+    light[0] = -light[0]; /* from the other side: nothing in the way */
+    if (run(grid, &q, &l)) T_NEAR(entry(&l, -1) ? entry(&l, -1)->lit[0] : -1, 1, 1e-12);
+    gr_grid_free(grid);
+}
+
 /* Light at or below the horizon (L_w <= 0): nothing is lit. Just above it
    (L_w = 1e-12, toward +u): the ground, with nothing protruding, is lit
    wholly; the near slope faces away (unlit); the far slope is lit on
@@ -431,6 +457,7 @@ int main(int argc, char **argv)
         T_CASE(grazing_view_across_groove),
         T_CASE(grazing_view_along_groove),
         T_CASE(grazing_view_behind_a_ridge),
+        T_CASE(grazing_light_behind_a_ridge),
         T_CASE(light_at_and_below_horizon),
         T_CASE(vertical_facets),
         T_CASE(zero_width_facets),
