@@ -530,6 +530,49 @@ static void enumeration_of_box_features(void)
     tm_free(&m);
 }
 
+/* random soups: few vertices, many triangles (bowties, fins, folds,
+   repeated faces), both policies; the build and queries must neither crash
+   nor read out of bounds (the ASan pass), and a rejected build names an
+   element. */
+static void random_soups_do_not_crash(void)
+{
+    t_rng_t rng = {99};
+    int it, nit = (int)t_count(400);
+    long built = 0;
+    for (it = 0; it < nit; it++) {
+        tm_mesh_t m = {0};
+        re_mesh_t mesh;
+        re_scene_t *s;
+        re_diag_t dg;
+        unsigned nv = 4 + (unsigned)(t_rng_u64(&rng) % 12), nt = 2 + (unsigned)(t_rng_u64(&rng) % 40), i;
+        re_result_t rc;
+        for (i = 0; i < nv; i++)
+            tm_vert(&m, (double)(t_rng_u64(&rng) % 5), (double)(t_rng_u64(&rng) % 5), (double)(t_rng_u64(&rng) % 5));
+        if (it % 3 == 0) { tm_free(&m); tm_icosphere(&m, 0, 1.0); nv = m.nv; } /* a closed start, then damage */
+        for (i = 0; i < nt; i++)
+            tm_tri(&m, (unsigned)(t_rng_u64(&rng) % (nv + (it % 7 == 0))), (unsigned)(t_rng_u64(&rng) % nv), (unsigned)(t_rng_u64(&rng) % nv));
+        mesh = mesh_of(&m, t_rng_range(&rng, 0.01, 2.0));
+        rc = try_build(&mesh, it % 2 ? RE_BAD_INPUT_SKIP : RE_BAD_INPUT_REJECT, NULL, &dg, &s);
+        if (rc != RE_OK) {
+            T_CHECK(dg.message[0] != 0);
+            tm_free(&m);
+            continue;
+        }
+        built++;
+        for (i = 0; i < 200; i++) {
+            double o[3], d[3];
+            re_hit_t h;
+            int a;
+            for (a = 0; a < 3; a++) o[a] = t_rng_range(&rng, -3, 8), d[a] = t_rng_range(&rng, -1, 1);
+            re_query(s, o, d, 0, (unsigned)(t_rng_u64(&rng) % (m.ni / 3 + 1)), t_rng_range(&rng, 0, 3), &h);
+            T_CHECK(h.kind == RE_UNCHANGED || h.kind == RE_HIT_ROUNDED || h.kind == RE_PASS_THROUGH);
+        }
+        re_free(s);
+        tm_free(&m);
+    }
+    T_GT(built, nit / 10);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -540,6 +583,7 @@ int main(int argc, char **argv)
         T_CASE(null_and_junk_arguments), T_CASE(empty_scene), T_CASE(result_strings), T_CASE(query_guards),
         T_CASE(input_variants_agree), T_CASE(per_edge_radius), T_CASE(concave_edges_and_mixed_vertices_reported),
         T_CASE(secondary_origin_on_the_sharp_mesh), T_CASE(enumeration_of_box_features),
+        T_CASE(random_soups_do_not_crash),
     };
     return T_RUN(argc, argv, cases);
 }
