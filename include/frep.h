@@ -549,10 +549,12 @@ FR_DEF size_t fr_trace_scratch_size(const fr_tape_t *t, const fr_trace_desc_t *d
 
 /* The first intersection of o + t d, t in [t0, t1], with the surface of t.
    desc may be NULL (defaults). Errors: FR_ERR_INVALID_ARG (NULL, NaN, t0 >
-   t1, d = 0), FR_ERR_NOT_POLYNOMIAL (ANALYTIC on a tape with no polynomial
-   leaves), FR_ERR_NO_INTERVAL, FR_ERR_NO_GRADIENT (NEWTON or AD normals
-   with a gradient-less callback), FR_ERR_NO_LIPSCHITZ (SPHERE). A miss is
-   FR_OK with hit->hit = 0. */
+   t1, d = 0, an infinite segment for INTERVAL or for a STEP without step
+   length or Lipschitz bound), FR_ERR_NOT_POLYNOMIAL (ANALYTIC on a shape
+   that is not min/max/R-functions over polynomial leaves),
+   FR_ERR_NO_INTERVAL, FR_ERR_NO_GRADIENT (NEWTON refinement with a
+   gradient-less callback; AD normals fall back to differences there),
+   FR_ERR_NO_LIPSCHITZ (SPHERE). A miss is FR_OK with hit->hit = 0. */
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc, void *scratch, fr_hit_t *hit);
 
@@ -1687,13 +1689,24 @@ FR_DEF void fr_eval_outputs(const fr_tape_t *t, const double p[3], void *scratch
 /* ---- batch evaluation: one instruction at a time over FR_BATCH lanes, so
    each case is a plain loop over contiguous doubles that the compiler
    vectorises; transcendental cases call libm per lane */
+/* The lanes of one instruction never overlap its operands' lanes (slot i
+   reads slots < i), which the compiler cannot see; we tell it, and every
+   loop runs exactly FR_BATCH lanes so no scalar epilogue is needed (gcc's
+   -O2 cost model vectorises only such loops). */
+#if defined(__clang__)
+#  define FR__IVDEP _Pragma("clang loop vectorize(assume_safety)")
+#elif defined(__GNUC__)
+#  define FR__IVDEP _Pragma("GCC ivdep")
+#else
+#  define FR__IVDEP
+#endif
 #define FR__LANES(expr)                                      \
     do {                                                     \
-        for (j = 0; j < m; j++) r[j] = (expr);               \
+        FR__IVDEP                                            \
+        for (j = 0; j < FR_BATCH; j++) r[j] = (expr);        \
     } while (0)
 
-static void fr__run_batch(const fr_tape_t *t, unsigned int m, const double *x, const double *y, const double *z,
-                          double *v)
+static void fr__run_batch(const fr_tape_t *t, const double *x, const double *y, const double *z, double *v)
 {
     const fr_instr_t *code = t->code;
     unsigned int i, j, n = t->n_code;
@@ -1743,6 +1756,7 @@ static void fr__run_batch(const fr_tape_t *t, unsigned int m, const double *x, c
     }
 }
 #undef FR__LANES
+#undef FR__IVDEP
 
 FR_DEF void fr_eval_batch(const fr_tape_t *t, size_t n, const double *x, const double *y, const double *z, double *out,
                           void *scratch)
@@ -1753,7 +1767,18 @@ FR_DEF void fr_eval_batch(const fr_tape_t *t, size_t n, const double *x, const d
     for (s = 0; s < n; s += FR_BATCH) {
         unsigned int m = (unsigned int)(n - s < FR_BATCH ? n - s : FR_BATCH), j;
         const double *r = v + (size_t)t->outputs[0] * FR_BATCH;
-        fr__run_batch(t, m, x + s, y + s, z + s, v);
+        if (m == FR_BATCH)
+            fr__run_batch(t, x + s, y + s, z + s, v);
+        else { /* the tail: pad a full batch with copies of the last point */
+            double px[FR_BATCH], py[FR_BATCH], pz[FR_BATCH];
+            for (j = 0; j < FR_BATCH; j++) {
+                size_t q = s + (j < m ? j : m - 1);
+                px[j] = x[q];
+                py[j] = y[q];
+                pz[j] = z[q];
+            }
+            fr__run_batch(t, px, py, pz, v);
+        }
         for (j = 0; j < m; j++) out[s + j] = r[j];
     }
 }
@@ -4177,10 +4202,9 @@ static void fr__normal(fr__ray_t *R, const fr_trace_desc_t *desc, const double p
     double g[3] = {0, 0, 0}, v, len;
     int k;
     if (desc->normal == FR_NORMAL_NONE) { nrm[0] = nrm[1] = nrm[2] = 0; return; }
-    if (desc->normal == FR_NORMAL_AD) {
-        R->evals++;
-        if (fr_eval_grad(R->tape, p, R->eval, &v, g) != FR_OK) g[0] = g[1] = g[2] = 0;
-    } else {
+    R->evals++;
+    if (desc->normal != FR_NORMAL_AD || fr_eval_grad(R->tape, p, R->eval, &v, g) != FR_OK) {
+        /* central differences, also when a callback has no gradient */
         double scale = fabs(p[0]) + fabs(p[1]) + fabs(p[2]), h;
         h = (desc->fd_step > 0 ? desc->fd_step : FR__FD_STEP) * (scale > 1 ? scale : 1);
         for (k = 0; k < 3; k++) {
