@@ -158,34 +158,38 @@ static void reference_aberth(const double *c, ref_t *ref)
     }
 }
 
-/* Fast reference for well-separated random roots: quad Newton from the known
-   roots on the double-coefficient polynomial; falls back to Aberth when two
-   iterates meet or one does not settle. */
+/* Fast reference for well-separated random roots: real quad Newton from
+   each known real root on the double-coefficient polynomial. A complex
+   pair at least 1e-6 (relative) off the axis cannot turn real under the
+   rounding of the coefficients (which moves roots by ~1e-16 relative), so it
+   is kept as the known pair; only real roots need quad values. Falls back to
+   Aberth when two real iterates meet or one does not settle. */
 static void reference_newton(const double *c, const __float128 *kre, const __float128 *kim, ref_t *ref)
 {
     __float128 q[5];
     int i, k, j, ok = 1;
     for (i = 0; i < 5; i++) q[i] = c[i];
     for (k = 0; k < 4 && ok; k++) {
-        __complex128 z;
-        __real__ z = kre[k];
-        __imag__ z = kim[k];
-        for (j = 0; j < 12; j++) {
-            __complex128 p = q[4], d = 0, step;
+        __float128 z = kre[k], mag = sqrtq(kre[k] * kre[k] + kim[k] * kim[k]);
+        ref->qre[k] = kre[k];
+        ref->im_rel[k] = mag > 0 ? (double)(fabsq(kim[k]) / mag) : 0.0;
+        if (kim[k] != 0) {
+            if (ref->im_rel[k] < 1e-6) ok = 0;
+            continue;
+        }
+        for (j = 0; j < 40; j++) {
+            __float128 p = q[4], d = 0, step;
             for (i = 3; i >= 0; i--) { d = d * z + p; p = p * z + q[i]; }
-            if (p == 0) break;
+            if (p == 0 || d == 0) break;
             step = p / d;
             z -= step;
-            if (cabsq(step) <= 1e-32Q * cabsq(z)) break;
+            if (fabsq(step) <= 1e-30Q * fabsq(z)) break;
         }
-        if (j == 12) ok = 0;
-        ref->qre[k] = crealq(z);
-        ref->im_rel[k] = (double)(fabsq(cimagq(z)) / cabsq(z));
-        if (ref->im_rel[k] < 1e-25) ref->im_rel[k] = 0;
+        if (j == 40) ok = 0;
+        ref->qre[k] = z;
+        ref->im_rel[k] = 0;
         for (i = 0; i < k; i++)
-            if (fabsq(ref->qre[i] - ref->qre[k]) < 1e-20Q * fabsq(ref->qre[k]) &&
-                fabs(ref->im_rel[i] - ref->im_rel[k]) < 1e-20)
-                ok = 0;
+            if (kim[i] == 0 && fabsq(ref->qre[i] - z) < 1e-20Q * fabsq(z)) ok = 0;
     }
     ref->n = 4;
     if (!ok) reference_aberth(c, ref);

@@ -402,6 +402,95 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
                                    void *scratch, size_t scratch_bytes,
                                    double *traps, int trap_cap, int *trap_count, double *area);
 
+/* ---- Intersections and ends: detection (§5, §5.1) ------------------------ */
+
+/* Entries in a gr_junctions_t (default 16). */
+#ifndef GR_MAX_JUNCTIONS
+#  define GR_MAX_JUNCTIONS 16
+#endif
+
+/* What a footprint meets besides isolated or parallel grooves (§5, Figure 7). */
+typedef enum gr_junction_kind_t {
+    GR_JUNCTION_CROSSING = 0,        /* two non-parallel grooves (Figure 7a) */
+    GR_JUNCTION_INTERSECTED_END = 1, /* a path end closer to another groove's
+                                        path than the sum of their widths w:
+                                        a half intersection (Figure 7b) */
+    GR_JUNCTION_ISOLATED_END = 2,    /* a path end with no groove that near (Figure 7c) */
+    GR_JUNCTION_CORNER = 3,          /* two path ends closer than the sum of
+                                        their widths */
+    GR_JUNCTION_SELF = 4             /* a groove crossing itself, at a point
+                                        from gr_self_intersections() */
+} gr_junction_kind_t;
+
+typedef struct gr_junction_t {
+    gr_junction_kind_t kind;
+    int groove;      /* the (first) groove; for ends, the ending groove */
+    int other;       /* crossing: the second groove; intersected end: the
+                        groove it ends in; corner: the other ending groove;
+                        otherwise -1 */
+    int end;         /* ends and corners: 0 at the path's first point, 1 at
+                        its last; otherwise -1 */
+    int other_end;   /* corner: the other groove's end (0 or 1); otherwise -1 */
+    double point[2]; /* UV, in the footprint's tile image: the path end, the
+                        self-intersection point, or for a crossing the
+                        meeting point of the two tangent lines at the paths'
+                        points nearest the footprint centre */
+} gr_junction_t;
+
+/* The result of gr_detect(): caller-owned, fixed size. */
+typedef struct gr_junctions_t {
+    int count;
+    int dropped;      /* junctions beyond GR_MAX_JUNCTIONS, not stored */
+    int grooves;      /* grooves that reach the enlarged box */
+    double box[4];    /* the enlarged search box u0, v0, u1, v1 (§5.1) */
+    gr_junction_t items[GR_MAX_JUNCTIONS];
+} gr_junctions_t;
+
+/* A self-intersection of one groove's path (§5: found before rendering). */
+typedef struct gr_self_hit_t {
+    int groove;
+    double point[2];  /* UV */
+    double param[2];  /* the path parameters t (as for perturbations, §3) of
+                         the two passes, param[0] < param[1] */
+} gr_self_hit_t;
+
+/* Every self-intersection of every path, computed once after the build.
+   Polylines exactly (pairs of non-adjacent segments that cross or touch);
+   Bézier pieces through a flattening into 32 chords each, so their points
+   are as accurate as that chord polygon.
+   Writes up to cap hits; *count receives how many there are. Errors:
+   GR_ERR_INVALID_ARG (NULL grid or count, cap < 0, out NULL with cap > 0),
+   GR_ERR_BUFFER_TOO_SMALL (more than cap: out holds the first cap). */
+GR_DEF gr_result_t gr_self_intersections(const gr_grid_t *grid, gr_self_hit_t *out, int cap, int *count);
+
+/* Detection (§5): which intersections and ends a footprint contains, so the
+   host (or the polygon path, when it lands) knows §4's isolated/parallel
+   answer from gr_query() is not the whole story. The footprint's box is
+   enlarged (§4.1 and §5.1) by the grid's w on all sides; by h tan θ_r
+   toward the viewer; by w'_E = d tan θ_r away from the viewer, where a
+   crossing groove can expose deep facets (Figure 8a); and by
+   w_L = (h + d) tan θ_i toward each light above the horizon (Figure 8b).
+   Grooves are gathered from the grid over that box, and a groove counts
+   when its path enters the box (Bézier paths through 32 chords per piece).
+   Among them:
+     - two grooves whose tangents differ by more than query->parallel_tol
+       (default 0.02 rad) cross (the paper's test: tangents T differ),
+       provided their tangent lines meet near the footprint and within the
+       sum of their widths of both paths;
+     - a path end inside the box is an intersected end when its distance to
+       another counted groove's path is below the sum of their widths w (the
+       paper's distance test), a corner when another end is that close, and
+       an isolated end otherwise; an end's pair is never also reported as
+       a crossing;
+     - a self-intersection from `self` (optional, from
+       gr_self_intersections()) inside the box is reported as such; the
+       polygon path then treats the groove as two grooves.
+   Uses the gr_query() scratch (gr_query_scratch_bytes()); const,
+   allocation-free, thread-safe. Errors as gr_query(); a view at or below
+   the horizon is not an error (no junctions, box of the footprint plus w). */
+GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
+                             int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out);
+
 /* ==== [end section: intersections] ==== */
 
 #ifdef __cplusplus
@@ -461,6 +550,12 @@ extern "C" {
 #define GR__CURVE_NEWTON 8
 /* Smallest step in the path parameter t for the perturbation's slope. */
 #define GR__PERTURB_STEP 1e-6
+/* Grazing directions: the projection's (E_b, E_w) is scaled to unit max
+   norm and E_w raised to at least this, i.e. |tan θ'| <= 1e150, so that
+   E_w x stays far above underflow; steeper views give their limit to
+   double precision (every height projects 1e150 times farther than any
+   footprint). */
+#define GR__GRAZING_MIN_W 1e-150
 /* Default query settings (documented in gr_query_t). */
 #define GR__DEFAULT_OVERSAMPLE_TOL 0.05
 #define GR__DEFAULT_MAX_OVERSAMPLE 8
@@ -1574,6 +1669,17 @@ static double gr__perturb(const gr__groove_t *rec, double t)
     return v > 0 ? v : 0; /* NaN and negatives count as 0 */
 }
 
+/* (E_b, E_w) of a direction above the surface, scaled to max norm 1 with
+   E_w >= GR__GRAZING_MIN_W: the same order of projected points (§4.2),
+   without underflow at grazing angles. */
+static void gr__grazing_scale(double *b, double *w)
+{
+    double m = fabs(*b) > *w ? fabs(*b) : *w;
+    *b /= m;
+    *w /= m;
+    if (*w < GR__GRAZING_MIN_W) *w = GR__GRAZING_MIN_W;
+}
+
 /* tan θ of a direction (eq. 1), for box enlargement; huge near grazing. */
 static double gr__tan(const double *dir) { return sqrt(dir[0] * dir[0] + dir[1] * dir[1]) / dir[2]; }
 
@@ -1620,7 +1726,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
                          const gr__scratch_t *s, gr_facet_list_t *list, int allow_split, double split_t[2])
 {
     const double *e = fp->view;
-    double f[2], box[4], ext_u, ext_v, radius, tanmax, bref[2], eb, sq0, sq1, pm, margin, maxhalf = 0;
+    double f[2], box[4], ext_u, ext_v, radius, tanmax, bref[2], eb, ew, sq0, sq1, pm, margin, maxhalf = 0;
     int n, k, ref = -1, np = 0, nf, npar = 0, i, point, nl = qs->light_count;
     gr__mfacet_t ground;
     f[0] = fp->center[0];
@@ -1788,10 +1894,12 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     /* projection with the signed tan θ' (§4.2), scaled by E_w so grazing
        views stay finite: q = E_w proj = E_w x - E_b w */
     eb = e[0] * bref[0] + e[1] * bref[1];
-    for (i = 0; i < np; i++) s->q[i] = e[2] * s->x[i] - eb * s->w[i];
+    ew = e[2];
+    gr__grazing_scale(&eb, &ew);
+    for (i = 0; i < np; i++) s->q[i] = ew * s->x[i] - eb * s->w[i];
     gr__sweep(s->q, np, eb > 0, s->lo, s->hi);     /* masking, eq. 4 */
-    sq0 = -pm * e[2];
-    sq1 = pm * e[2];
+    sq0 = -pm * ew;
+    sq1 = pm * ew;
     for (i = 0; i < nf; i++) {                      /* clipping, eq. 3 */
         double a = s->lo[i], b = s->hi[i];
         if (point) {
@@ -1808,19 +1916,20 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
        intersected with the visible part in the facet's own parameter */
     for (k = 0; k < nl; k++) {
         const double *l = qs->lights + 3 * k;
-        double lb = l[0] * bref[0] + l[1] * bref[1];
+        double lb = l[0] * bref[0] + l[1] * bref[1], lw = l[2];
         if (!(l[2] > 0)) { /* at or below the horizon */
             for (i = 0; i < nf; i++) s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0;
             continue;
         }
-        for (i = 0; i < np; i++) s->q[i] = l[2] * s->x[i] - lb * s->w[i];
+        gr__grazing_scale(&lb, &lw);
+        for (i = 0; i < np; i++) s->q[i] = lw * s->x[i] - lb * s->w[i];
         gr__sweep(s->q, np, lb > 0, s->lo, s->hi);
         for (i = 0; i < nf; i++) {
             double de, sa, sb, la, lbb, dl, ov, v;
             if (!(s->vb[i] > s->va[i]) && !(point && s->va[i] == 0)) continue;
-            de = (e[2] * s->x[i + 1] - eb * s->w[i + 1]) - (e[2] * s->x[i] - eb * s->w[i]);
-            sa = (s->va[i] - (e[2] * s->x[i] - eb * s->w[i])) / de;
-            sb = (s->vb[i] - (e[2] * s->x[i] - eb * s->w[i])) / de;
+            de = (ew * s->x[i + 1] - eb * s->w[i + 1]) - (ew * s->x[i] - eb * s->w[i]);
+            sa = (s->va[i] - (ew * s->x[i] - eb * s->w[i])) / de;
+            sb = (s->vb[i] - (ew * s->x[i] - eb * s->w[i])) / de;
             if (!(s->hi[i] > s->lo[i])) { s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0; continue; }
             dl = s->q[i + 1] - s->q[i];
             la = (s->lo[i] - s->q[i]) / dl;
@@ -2267,6 +2376,332 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
     if (area) *area = total;
     if (trap_count) *trap_count = ntrap;
     return over ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
+}
+
+/* ---- Intersections and ends: detection (§5, §5.1) ------------------------ */
+
+/* Chords per Bézier piece when looking for self-intersections: the chord
+   polygon is within (1/32)^2 / 8 of the piece's control-polygon size. */
+#define GR__SELF_FLATTEN 32
+
+static int gr__chord_count(const gr__groove_t *rec)
+{
+    return rec->kind == GR_PATH_POLYLINE ? rec->pieces : rec->pieces * GR__SELF_FLATTEN;
+}
+
+/* Chord k of a path: end points a, b and their path parameters (§3: arc
+   length for polylines, uniform per Bézier piece). */
+static void gr__chord(const gr_grid_t *grid, const gr__groove_t *rec, int k, double a[2], double b[2], double t[2])
+{
+    const double *pts = grid->points_ + 2 * rec->first_point;
+    if (rec->kind == GR_PATH_POLYLINE) {
+        double acc = 0;
+        int j;
+        for (j = 0; j < k; j++) acc += hypot(pts[2 * j + 2] - pts[2 * j], pts[2 * j + 3] - pts[2 * j + 1]);
+        a[0] = pts[2 * k]; a[1] = pts[2 * k + 1];
+        b[0] = pts[2 * k + 2]; b[1] = pts[2 * k + 3];
+        t[0] = acc / rec->length;
+        t[1] = (acc + hypot(b[0] - a[0], b[1] - a[1])) / rec->length;
+        return;
+    }
+#ifndef GR_NO_CURVES
+    {
+        int deg = gr__degree(rec->kind), piece = k / GR__SELF_FLATTEN, i = k % GR__SELF_FLATTEN;
+        double d1[2], d2[2], tau0 = (double)i / GR__SELF_FLATTEN, tau1 = (double)(i + 1) / GR__SELF_FLATTEN;
+        gr__bezier_eval(pts + 2 * deg * piece, deg, tau0, a, d1, d2);
+        gr__bezier_eval(pts + 2 * deg * piece, deg, tau1, b, d1, d2);
+        t[0] = (piece + tau0) / rec->pieces;
+        t[1] = (piece + tau1) / rec->pieces;
+    }
+#else
+    GR_ASSERT(0); /* the builder rejects curves */
+    a[0] = a[1] = b[0] = b[1] = t[0] = t[1] = 0;
+#endif
+}
+
+/* Where segments ab and cd cross: 1 with s on ab and u on cd, each in
+   [0, 1) (half-open, so a crossing at a shared vertex counts once), 0 when
+   they miss or overlap collinearly. Orientation signs decide, so the
+   answer does not depend on a tolerance. */
+static int gr__seg_cross(const double *a, const double *b, const double *c, const double *d, double *s, double *u)
+{
+    double d1 = gr__cross2(a, b, c), d2 = gr__cross2(a, b, d), d3 = gr__cross2(c, d, a), d4 = gr__cross2(c, d, b);
+    if ((d1 > 0 && d2 > 0) || (d1 < 0 && d2 < 0) || (d3 > 0 && d4 > 0) || (d3 < 0 && d4 < 0)) return 0;
+    if ((d1 == 0 && d2 == 0) || d3 == d4) return 0;
+    *s = d3 / (d3 - d4);
+    *u = d1 / (d1 - d2);
+    return *s < 1 && *u < 1;
+}
+
+GR_DEF gr_result_t gr_self_intersections(const gr_grid_t *grid, gr_self_hit_t *out, int cap, int *count)
+{
+    int g, n = 0;
+    if (count) *count = 0;
+    if (!grid || !count || cap < 0 || (!out && cap > 0)) return GR_ERR_INVALID_ARG;
+    for (g = 0; g < grid->groove_count; g++) {
+        const gr__groove_t *rec = &grid->grooves_[g];
+        int m = gr__chord_count(rec), k, l;
+        for (k = 0; k < m; k++)
+            for (l = k + 2; l < m; l++) {
+                double a[2], b[2], c[2], d[2], ta[2], tc[2], s, u;
+                if (rec->closed && k == 0 && l == m - 1) continue; /* neighbours across the closing point */
+                gr__chord(grid, rec, k, a, b, ta);
+                gr__chord(grid, rec, l, c, d, tc);
+                if (!gr__seg_cross(a, b, c, d, &s, &u)) continue;
+                if (n < cap) {
+                    out[n].groove = g;
+                    out[n].point[0] = a[0] + s * (b[0] - a[0]);
+                    out[n].point[1] = a[1] + s * (b[1] - a[1]);
+                    out[n].param[0] = ta[0] + s * (ta[1] - ta[0]);
+                    out[n].param[1] = tc[0] + u * (tc[1] - tc[0]);
+                }
+                n++;
+            }
+    }
+    *count = n;
+    return n > cap ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
+}
+
+/* The search box (§4.1, §5.1) about the footprint centre f: the
+   footprint's box grown by w; by h tan θ_r toward the viewer (peaks seen
+   beyond the groove, eq. 1); by w'_E = d tan θ_r away from the viewer
+   (deep facets seen through a crossing, Figure 8a); by w_L = (h + d) tan θ_i
+   toward each light above the horizon (peaks and cut blocking facets,
+   Figure 8b). Each shift is along the direction's UV projection. */
+static void gr__search_box(const gr_grid_t *grid, const gr_footprint_t *fp, const double f[2], const double *lights,
+                           int nl, double box[4])
+{
+    double ext_u = fabs(fp->axis1[0]) + fabs(fp->axis2[0]), ext_v = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
+    int k;
+    box[0] = f[0] - ext_u - grid->w;
+    box[2] = f[0] + ext_u + grid->w;
+    box[1] = f[1] - ext_v - grid->w;
+    box[3] = f[1] + ext_v + grid->w;
+    for (k = -2; k < nl; k++) {
+        const double *dir = k < 0 ? fp->view : lights + 3 * k;
+        double len = k == -2 ? grid->h : k == -1 ? -grid->d : grid->h + grid->d, su, sv;
+        if (!(dir[2] > 0) || len == 0) continue;
+        su = len * dir[0] / dir[2];
+        sv = len * dir[1] / dir[2];
+        if (su < 0) box[0] += su; else box[2] += su;
+        if (sv < 0) box[1] += sv; else box[3] += sv;
+    }
+}
+
+static void gr__junction_add(gr_junctions_t *out, gr_junction_kind_t kind, int g, int other, int end, int other_end,
+                             const double p[2])
+{
+    gr_junction_t *j;
+    if (out->count >= GR_MAX_JUNCTIONS) { out->dropped++; return; }
+    j = &out->items[out->count++];
+    j->kind = kind;
+    j->groove = g;
+    j->other = other;
+    j->end = end;
+    j->other_end = other_end;
+    j->point[0] = p[0];
+    j->point[1] = p[1];
+}
+
+/* Does segment ab meet the box? (Liang-Barsky: the parameter range left
+   after the four slabs is not empty.) */
+static int gr__seg_box(const double *a, const double *b, const double *box)
+{
+    double t0 = 0, t1 = 1, d[2];
+    int k;
+    d[0] = b[0] - a[0];
+    d[1] = b[1] - a[1];
+    for (k = 0; k < 2; k++) {
+        double lo = box[k] - a[k], hi = box[k + 2] - a[k];
+        if (d[k] == 0) {
+            if (lo > 0 || hi < 0) return 0;
+            continue;
+        }
+        lo /= d[k];
+        hi /= d[k];
+        if (lo > hi) { double t = lo; lo = hi; hi = t; }
+        if (lo > t0) t0 = lo;
+        if (hi < t1) t1 = hi;
+        if (t0 > t1) return 0;
+    }
+    return 1;
+}
+
+/* Does a groove's path (its chords; curves flattened as for
+   self-intersections) enter the box, in any periodic image? */
+static int gr__path_in_box(const gr_grid_t *grid, const gr__groove_t *rec, const double *box)
+{
+    double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
+    int k, i, m = gr__chord_count(rec);
+    for (i = 0; i < 9; i++) {
+        double sb[4], du = (i % 3 - 1) * wu, dv = (i / 3 - 1) * wv;
+        if (!grid->wrap && i != 4) continue;
+        sb[0] = box[0] - du; sb[2] = box[2] - du;
+        sb[1] = box[1] - dv; sb[3] = box[3] - dv;
+        if (sb[0] > rec->bbox[2] + rec->half_width || sb[2] < rec->bbox[0] - rec->half_width ||
+            sb[1] > rec->bbox[3] + rec->half_width || sb[3] < rec->bbox[1] - rec->half_width)
+            continue; /* control points bound the path */
+        for (k = 0; k < m; k++) {
+            double a[2], b[2], t[2];
+            gr__chord(grid, rec, k, a, b, t);
+            if (gr__seg_box(a, b, sb)) return 1;
+        }
+    }
+    return 0;
+}
+
+/* Is the pair (g, h) already joined by an end junction? Then it is not
+   also a crossing (§5: the end is the intersection). */
+static int gr__pair_joined(const gr_junctions_t *out, int g, int h)
+{
+    int k;
+    for (k = 0; k < out->count; k++) {
+        const gr_junction_t *j = &out->items[k];
+        if (j->kind != GR_JUNCTION_INTERSECTED_END && j->kind != GR_JUNCTION_CORNER) continue;
+        if ((j->groove == g && j->other == h) || (j->groove == h && j->other == g)) return 1;
+    }
+    return 0;
+}
+
+static int gr__in_box(const double *box, const double *p)
+{
+    return p[0] >= box[0] && p[0] <= box[2] && p[1] >= box[1] && p[1] <= box[3];
+}
+
+/* The periodic image of p nearest to f (p itself without wrap). */
+static void gr__image_near(const gr_grid_t *grid, const double *p, const double *f, double q[2])
+{
+    q[0] = p[0];
+    q[1] = p[1];
+    if (grid->wrap) {
+        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
+        q[0] += wu * floor((f[0] - p[0]) / wu + 0.5);
+        q[1] += wv * floor((f[1] - p[1]) / wv + 0.5);
+    }
+}
+
+/* §5 ends: each open path end of a counted groove inside the box becomes a
+   corner, an intersected end or an isolated end (the distance test).
+   endp (4 per counted groove: u0, v0, u1, v1) and state (2 per groove: 0
+   outside, 1 inside, 2 already in a corner) are scratch. */
+static void gr__detect_ends(const gr_grid_t *grid, const gr__cand_t *cand, int n, const double *box, const double *f,
+                            double *endp, double *state, gr_junctions_t *out)
+{
+    int i, e, k, e2;
+    for (i = 0; i < n; i++) {
+        const gr__groove_t *rec = &grid->grooves_[cand[i].groove];
+        const double *pts = grid->points_ + 2 * rec->first_point;
+        for (e = 0; e < 2; e++) {
+            gr__image_near(grid, pts + (e ? 2 * (rec->point_count - 1) : 0), f, endp + 4 * i + 2 * e);
+            state[2 * i + e] = !rec->closed && gr__in_box(box, endp + 4 * i + 2 * e);
+        }
+    }
+    for (i = 0; i < n; i++)
+        for (e = 0; e < 2; e++) {
+            const double *p = endp + 4 * i + 2 * e;
+            double wi = grid->grooves_[cand[i].groove].half_width, best = HUGE_VAL;
+            int other = -1;
+            if (state[2 * i + e] != 1) continue;
+            /* corners first: two ends closer than the sum of their widths */
+            for (k = i + 1; k < n && other < 0; k++)
+                for (e2 = 0; e2 < 2 && other < 0; e2++) {
+                    const double *q = endp + 4 * k + 2 * e2;
+                    double lim = wi + grid->grooves_[cand[k].groove].half_width;
+                    if (state[2 * k + e2] == 1 && hypot(p[0] - q[0], p[1] - q[1]) < lim) {
+                        gr__junction_add(out, GR_JUNCTION_CORNER, cand[i].groove, cand[k].groove, e, e2, p);
+                        state[2 * i + e] = state[2 * k + e2] = 2;
+                        other = k;
+                    }
+                }
+            if (other >= 0) continue;
+            /* the distance from the end to every other path (cf. eq. 2):
+               below the sum of the widths it is an intersected end */
+            for (k = 0; k < n; k++) {
+                gr__cand_t c;
+                double lim = wi + grid->grooves_[cand[k].groove].half_width;
+                if (k == i || !gr__locate(grid, cand[k].groove, p, lim, &c) || !(c.dist < best)) continue;
+                best = c.dist;
+                other = k;
+            }
+            if (other >= 0)
+                gr__junction_add(out, GR_JUNCTION_INTERSECTED_END, cand[i].groove, cand[other].groove, e, -1, p);
+            else
+                gr__junction_add(out, GR_JUNCTION_ISOLATED_END, cand[i].groove, -1, e, -1, p);
+        }
+}
+
+GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
+                             int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
+{
+    const gr_footprint_t *fp;
+    gr__scratch_t s;
+    double f[2], reach = 0, psin;
+    int k, i, j, n, m = 0;
+    if (!grid || !query || !scratch || !out || self_count < 0 || (self_count > 0 && !self)) return GR_ERR_INVALID_ARG;
+    memset(out, 0, sizeof *out);
+    if (query->light_count < 0 || query->light_count > GR_MAX_LIGHTS || (query->light_count > 0 && !query->lights))
+        return GR_ERR_INVALID_ARG;
+    if (scratch_bytes < gr_query_scratch_bytes(grid)) return GR_ERR_BUFFER_TOO_SMALL;
+    fp = &query->footprint;
+    if (!gr__finite_n(fp->center, 2) || !gr__finite_n(fp->axis1, 2) || !gr__finite_n(fp->axis2, 2) ||
+        !gr__finite_n(fp->view, 3) || !gr__finite(query->parallel_tol) || !gr__finite_n(query->lights, 3 * query->light_count))
+        return GR_ERR_NOT_FINITE;
+    for (k = 0; k < self_count; k++)
+        if (self[k].groove < 0 || self[k].groove >= grid->groove_count) return GR_ERR_INVALID_ARG;
+    gr__scratch_layout(grid, scratch, &s);
+    f[0] = fp->center[0];
+    f[1] = fp->center[1];
+    if (grid->wrap) { /* the centre's image in the tile, as gr_query() */
+        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
+        f[0] -= floor((f[0] - grid->domain[0]) / wu) * wu;
+        f[1] -= floor((f[1] - grid->domain[1]) / wv) * wv;
+    }
+    gr__search_box(grid, fp, f, query->lights, fp->view[2] > 0 ? query->light_count : 0, out->box);
+    if (!(fp->view[2] > 0)) return GR_OK;
+    /* a groove counts when its path enters the box (the box has its w
+       margin); its nearest point to f then lies within the disc about f
+       holding the box */
+    for (k = 0; k < 4; k++) {
+        double du = out->box[k & 1 ? 2 : 0] - f[0], dv = out->box[k & 2 ? 3 : 1] - f[1];
+        if (hypot(du, dv) > reach) reach = hypot(du, dv);
+    }
+    n = gr__gather(grid, out->box, s.seen, s.ids);
+    for (k = 0; k < n; k++)
+        if (gr__path_in_box(grid, &grid->grooves_[s.ids[k]], out->box) && gr__locate(grid, s.ids[k], f, 2 * reach, &s.cand[m]))
+            m++;
+    out->grooves = m;
+    gr__detect_ends(grid, s.cand, m, out->box, f, s.va, s.x, out);
+    /* crossings: tangents that differ by more than the parallel tolerance */
+    psin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
+    for (i = 0; i < m; i++)
+        for (j = i + 1; j < m; j++) {
+            const gr__cand_t *a = &s.cand[i], *b = &s.cand[j];
+            double cr = a->t[0] * b->t[1] - a->t[1] * b->t[0], pa[2], pb[2], sa, p[2], lim;
+            gr__cand_t c;
+            if (!(fabs(cr) > psin) || gr__pair_joined(out, a->groove, b->groove)) continue;
+            /* the tangent lines at the nearest points, in the footprint's image */
+            pa[0] = a->p[0] + f[0] - a->fc[0]; pa[1] = a->p[1] + f[1] - a->fc[1];
+            pb[0] = b->p[0] + f[0] - b->fc[0]; pb[1] = b->p[1] + f[1] - b->fc[1];
+            sa = ((pb[0] - pa[0]) * b->t[1] - (pb[1] - pa[1]) * b->t[0]) / cr;
+            p[0] = pa[0] + sa * a->t[0];
+            p[1] = pa[1] + sa * a->t[1];
+            /* the meeting point must be near the footprint and on (within
+               the widths of) both paths: a path that stops short of the
+               other is an isolated end and a normal groove, simulated
+               apart (§5) */
+            lim = grid->grooves_[a->groove].half_width + grid->grooves_[b->groove].half_width;
+            if (!(hypot(p[0] - f[0], p[1] - f[1]) <= reach + lim) || !gr__locate(grid, a->groove, p, lim, &c) ||
+                !gr__locate(grid, b->groove, p, lim, &c))
+                continue;
+            gr__junction_add(out, GR_JUNCTION_CROSSING, a->groove, b->groove, -1, -1, p);
+        }
+    /* self-intersections (§5): precomputed points inside the box */
+    for (k = 0; k < self_count; k++) {
+        double p[2];
+        gr__image_near(grid, self[k].point, f, p);
+        if (gr__in_box(out->box, p)) gr__junction_add(out, GR_JUNCTION_SELF, self[k].groove, -1, -1, -1, p);
+    }
+    return GR_OK;
 }
 
 /* ==== [end section: intersections] ==== */

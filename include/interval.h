@@ -259,7 +259,9 @@ static inline iv_t iv_add_d(iv_t x, double d) { return iv_add(x, iv_point(d)); }
 static inline iv_t iv_sub_d(iv_t x, double d) { return iv_add(x, iv_point(-d)); }
 /* Bounded inputs (the common case, one predictable branch) need no 0*inf
    repair and no empty test: NaN endpoints fail the comparisons. */
-static inline iv_t iv__mul_slow(iv_t a, iv_t b);
+/* Unbounded or empty inputs (out of line, so iv_mul stays small enough to
+   be inlined everywhere). */
+IV_DEF iv_t iv__mul_slow(iv_t a, iv_t b);
 static inline iv_t iv_mul(iv_t a, iv_t b)
 {
     double p1, p2, p3, p4;
@@ -270,17 +272,6 @@ static inline iv_t iv_mul(iv_t a, iv_t b)
     p4 = a.hi * b.hi;
     return iv__raw(iv__down(iv__min(iv__min(p1, p2), iv__min(p3, p4))),
                    iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4))));
-}
-/* Unbounded or empty inputs: 0 * inf is an exact zero times an unbounded
-   real, i.e. 0 (iv__mul0), and emptiness is restored by a select. */
-static inline iv_t iv__mul_slow(iv_t a, iv_t b)
-{
-    double p1 = iv__mul0(a.lo, b.lo), p2 = iv__mul0(a.lo, b.hi);
-    double p3 = iv__mul0(a.hi, b.lo), p4 = iv__mul0(a.hi, b.hi);
-    double lo = iv__down(iv__min(iv__min(p1, p2), iv__min(p3, p4)));
-    double hi = iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4)));
-    int empty = iv_is_empty(a) | iv_is_empty(b);
-    return iv__raw(empty ? NAN : lo, empty ? NAN : hi);
 }
 /* x * d for a scalar d (two products instead of four); empty for NaN or
    infinite d. */
@@ -634,6 +625,17 @@ IV_DEF const char *iv_result_string(iv_result_t r)
     return "unknown result";
 }
 
+/* Unbounded or empty inputs: 0 * inf is an exact zero times an unbounded
+   real, i.e. 0 (iv__mul0), and emptiness is restored by a select. */
+IV_DEF iv_t iv__mul_slow(iv_t a, iv_t b)
+{
+    double p1 = iv__mul0(a.lo, b.lo), p2 = iv__mul0(a.lo, b.hi);
+    double p3 = iv__mul0(a.hi, b.lo), p4 = iv__mul0(a.hi, b.hi);
+    double lo = iv__down(iv__min(iv__min(p1, p2), iv__min(p3, p4)));
+    double hi = iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4)));
+    int empty = iv_is_empty(a) | iv_is_empty(b);
+    return iv__raw(empty ? NAN : lo, empty ? NAN : hi);
+}
 /* a / (0, h] for h > 0: as the divisor tends to 0+ the quotient of a
    positive (negative) numerator runs to +inf (-inf); a zero numerator
    stays 0. */

@@ -129,7 +129,8 @@ typedef enum re_radius_policy_t {
 
 typedef enum re_bad_input_t {
     RE_BAD_INPUT_REJECT = 0, /* default: fail on the first bad triangle */
-    RE_BAD_INPUT_SKIP        /* skip it (its edges become boundary: sharp), report it */
+    RE_BAD_INPUT_SKIP        /* skip it (its edges become boundary: sharp), report
+                                it; an inconsistently wound edge stays sharp */
 } re_bad_input_t;
 
 /* What a report is about. Reports are informational (the build succeeded). */
@@ -158,7 +159,7 @@ typedef struct re_report_t {
     long long element;  /* triangle, vertex index, or for edges the first vertex */
     long long element2; /* second vertex of an edge, else -1 */
     double value;
-    const char *message; /* "object 0 edge 4-7 is concave: left sharp" (valid during the call) */
+    const char *message; /* "edge 4-7 is concave: left sharp" (valid during the call) */
 } re_report_t;
 
 typedef void (*re_report_fn)(void *user, const re_report_t *report);
@@ -241,8 +242,11 @@ typedef struct re_hit_t {
     re_hit_kind_t kind;
     double t;              /* in units of the caller's dir */
     double point[3];       /* o + t*dir */
-    double normal[3];      /* unit, outward: rounded-surface normal for
-                              RE_HIT_ROUNDED, else the face normal */
+    double normal[3];      /* unit, outward: the rounded surface's for
+                              RE_HIT_ROUNDED, the exit face's for
+                              RE_PASS_THROUGH, the hit face's for RE_UNCHANGED
+                              on a face of a rounded patch; zero otherwise
+                              (use the host's own normal) */
     re_feature_t feature;
     unsigned feature_index;
     unsigned object;

@@ -466,6 +466,36 @@ static void auto_method_choices_and_stats(void)
     model_free(&h);
 }
 
+static double unit_sphere_sdf(const double p[3], void *user)
+{
+    (void)user;
+    return sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 1.0;
+}
+
+/* A black box with only a point function: AUTO falls back to Lipschitz
+   stepping, sphere tracing works, normals fall back to differences. */
+static void black_box_callback_model(void)
+{
+    fr_builder_t b;
+    fr_callback_t cb;
+    model_t m;
+    double o[3] = {-4, 0.3, -0.2}, d[3] = {1, 0, 0};
+    double tr = sphere_entry(-4, sqrt(0.13), 1);
+    fr_hit_t a, s;
+    int k;
+    memset(&cb, 0, sizeof cb);
+    cb.point = unit_sphere_sdf;
+    fr_builder_init(&b, NULL);
+    model_finish(&m, &b, fr_from_sdf(&b, fr_callback(&b, fr_coords(&b), &cb), 1.0));
+    a = trace(&m, o, d, 0, 10, method(FR_METHOD_AUTO, 1e-10));
+    s = trace(&m, o, d, 0, 10, method(FR_METHOD_SPHERE, 1e-10));
+    T_INT_EQ(a.method, FR_METHOD_STEP);
+    T_INT_EQ(a.hit, 1); T_NEAR(a.t, tr, 1e-10);
+    T_INT_EQ(s.hit, 1); T_NEAR(s.t, tr, 1e-9);
+    for (k = 0; k < 3; k++) T_NEAR(a.normal[k], a.point[k], 1e-6); /* unit sphere: n = p */
+    model_free(&m);
+}
+
 static void invalid_arguments(void)
 {
     static const double c[3] = {0, 0, 0};
@@ -503,6 +533,7 @@ int main(int argc, char **argv)
         T_CASE(finite_difference_normals_match_ad),
         T_CASE(sphere_tracing_over_relaxation),
         T_CASE(auto_method_choices_and_stats),
+        T_CASE(black_box_callback_model),
         T_CASE(invalid_arguments),
     };
     return T_RUN(argc, argv, cases);

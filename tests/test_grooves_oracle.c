@@ -507,22 +507,15 @@ static void curved_and_perturbed_grooves(void)
    oracle needs n = 1024 here (B ≈ 4000 boundaries: sigma <= 1.4e-3). */
 static void thousands_of_grooves_under_one_footprint(void)
 {
-    static double paths[2000][4];
-    static const double sec[6] = {-0.00025, 0, 0, -0.0003, 0.00025, 0};
+    static double paths[2000][4], sec[6];
     int i, ng = (int)t_count(2000) < 200 ? 200 : 2000;
+    double a = 0.5 / ng; /* touching V-grooves, depth 1.2 a */
+    sec[0] = -a; sec[1] = 0; sec[2] = 0; sec[3] = -1.2 * a; sec[4] = a; sec[5] = 0;
     scene_begin();
     for (i = 0; i < ng; i++) {
         double u = (i + 0.5) / ng;
         paths[i][0] = u; paths[i][1] = 0; paths[i][2] = u; paths[i][3] = 1;
         scene_add(GR_PATH_POLYLINE, paths[i], 2, sec, 3);
-        S.desc[i].section = sec;
-    }
-    /* rescale the section to the spacing (touching grooves) */
-    {
-        static double s2[6];
-        double a = 0.5 / ng;
-        s2[0] = -a; s2[1] = 0; s2[2] = 0; s2[3] = -1.2 * a; s2[4] = a; s2[5] = 0;
-        for (i = 0; i < ng; i++) S.desc[i].section = s2;
     }
     if (!scene_build()) return;
     {

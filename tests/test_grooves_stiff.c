@@ -137,14 +137,19 @@ static void grazing_view_behind_a_ridge(void)
 {
     const double H = 0.01, sec[6] = {-A, 0, 0, H, A, 0};
     gr_grid_t *grid = one_groove(sec, 3);
-    double ew = 1e-3;
-    gr_query_t q = query(0.2, 0.5, 0.01, sqrt(1 - ew * ew), 0, ew);
+    const double ews[3] = {1e-3, 1e-200, 4.9e-324}; /* the last: the smallest subnormal, tan θ = inf */
+    gr_query_t q;
     gr_facet_list_t l;
+    int i;
     if (!grid) return;
     T_NEAR(grid->h, H, 0);
-    if (!run(grid, &q, &l)) return;
-    T_NEAR(ratio_of(&l, 0), 1, 1e-12);
-    T_INT_EQ(l.count, 1);
+    for (i = 0; i < 3; i++) {
+        q = query(0.2, 0.5, 0.01, 1, 0, 0);
+        q.footprint.view[2] = ews[i];
+        if (!run(grid, &q, &l)) return;
+        T_NEAR(ratio_of(&l, 0), 1, 1e-12);
+        T_INT_EQ(l.count, 1);
+    }
     /* and seen from above, the ridge is far: ground only */
     q = query(0.2, 0.5, 0.01, 0, 0, 1);
     if (!run(grid, &q, &l)) return;
@@ -182,7 +187,8 @@ static void grazing_light_behind_a_ridge(void)
    (L_w = 1e-12, toward +u): the ground, with nothing protruding, is lit
    wholly; the near slope faces away (unlit); the far slope is lit on
    u in [u*, 1] with u* = (D tan φ - a)/(a + D tan φ), so its lit fraction
-   2a/(a + D tan φ) < 2a/(D 1e12) = 1e-12. */
+   2a/(a + D tan φ) < 2a/(D 1e12) = 1e-12. The same at L_w = 4.9e-324,
+   where tan φ overflows. */
 static void light_at_and_below_horizon(void)
 {
     const double sec[6] = {-A, 0, 0, -DEP, A, 0};
@@ -202,8 +208,9 @@ static void light_at_and_below_horizon(void)
         for (k = 0; k < l.count; k++) T_NEAR(l.facets[k].lit[0], 0, 0);
         T_NEAR(ratio_sum(&l), 1, 1e-14);
     }
-    light[0] = 1; light[1] = 0; light[2] = 1e-12;
-    if (run(grid, &q, &l)) {
+    for (i = 0; i < 2; i++) { /* 1e-12, and the smallest subnormal */
+        light[0] = 1; light[1] = 0; light[2] = i == 0 ? 1e-12 : 4.9e-324;
+        if (!run(grid, &q, &l)) continue;
         T_NEAR(entry(&l, -1) ? entry(&l, -1)->lit[0] : -1, 1, 1e-15);
         T_NEAR(entry(&l, 0) ? entry(&l, 0)->lit[0] : -1, 0, 0);
         T_LE(entry(&l, 1) ? entry(&l, 1)->lit[0] : 1, 2 * A / (DEP * 1e12));
