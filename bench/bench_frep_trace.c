@@ -15,6 +15,7 @@
 #define FR_IMPLEMENTATION
 #include "frep.h"
 #include <pthread.h>
+#include <quadmath.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -172,6 +173,35 @@ static fr_trace_desc_t mk(fr_method_t m, double tol)
     return d;
 }
 
+/* The tangle cube in __float128: -(x^4 - 5x^2 + y^4 - 5y^2 + z^4 - 5z^2 + 11.8). */
+static __float128 tangle_q(const double *o, const double *d, __float128 t)
+{
+    __float128 s = 11.8Q;
+    int k;
+    for (k = 0; k < 3; k++) {
+        __float128 x = (__float128)o[k] + t * (__float128)d[k], x2 = x * x;
+        s += x2 * x2 - 5 * x2;
+    }
+    return -s;
+}
+
+/* Confirms reference hits of a polynomial model in quad: a sign change of
+   g within +-eps of t_ref. Returns the number confirmed; *n gets the hits. */
+static long quad_confirm(const double *o, const double *d, const double *tref, double eps, long *n)
+{
+    long ok = 0, i;
+    *n = 0;
+    for (i = 0; i < NR; i++) {
+        __float128 a, b;
+        if (!(tref[i] == tref[i])) continue;
+        (*n)++;
+        a = tangle_q(o + 3 * i, d + 3 * i, (__float128)tref[i] - eps);
+        b = tangle_q(o + 3 * i, d + 3 * i, (__float128)tref[i] + eps);
+        if ((a <= 0 && b >= 0) || (a >= 0 && b <= 0)) ok++;
+    }
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
     const char *dir = argc > 1 ? argv[1] : ".";
@@ -267,6 +297,10 @@ int main(int argc, char **argv)
         }
         printf("\n%s (%d x %d primary rays, reference interval bisection 1e-13%s)\n", names[mi], W, H,
                poly ? "; polynomial leaves: analytic available" : "");
+        if (!strcmp(names[mi], "tangle_cube")) {
+            long nh, ok = quad_confirm(o, d, tref, 1e-11, &nh);
+            printf("reference checked in __float128: %ld of %ld hits have a sign change of g within +-1e-11\n", ok, nh);
+        }
         printf("%-32s %11s %11s %10s %10s %7s %7s %s\n", "method", "rays/s 1c", "rays/s 2c", "mean|dt|", "max|dt|",
                "miss%", "false%", "pareto");
         for (r = 0; r < nrow; r++) {
