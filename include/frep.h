@@ -23,6 +23,16 @@
      See docs/conventions.md: results are fr_result_t codes with FR_OK = 0,
      zero-initialised config structs mean defaults, queries are const,
      allocation-free and thread-safe.
+   THE MODEL (docs/frep.md, "Model")
+     f >= 0 inside, 0 on the surface (paper section 3). Build a model with
+     fr_builder_* and the primitive/operation functions, or fr_parse() a
+     HyperFun subset; both give one fr_tape_t, which fr_eval, fr_eval_batch,
+     fr_eval_grad (exact, forward-mode AD), fr_eval_interval and
+     fr_eval_affine evaluate with caller scratch of fr_scratch_size() bytes,
+     and fr_prune / fr_prune_ex shorten for a box. Interval and affine
+     results enclose f over their inputs (rigorous with interval.h's default
+     rounding); a model whose black-box callback has no interval function
+     says so (FR_ERR_NO_INTERVAL) instead of guessing.
 
    LICENSE
      MIT, see the end of this file.
@@ -3263,6 +3273,7 @@ done:
 /* ==== [section: solvers] implementation: polynomial solvers ==== */
 
 #include <limits.h>
+#include <string.h>
 
 /* Unit roundoff of double, 2^-53. */
 #define FR__U 1.1102230246251565404e-16
@@ -3279,6 +3290,28 @@ done:
    spans at most FR__BAND_BITS bits, bisected geometrically. */
 #define FR__PLAIN_ITERS 120
 #define FR__POLISH_ITERS 80
+
+/* ilogb and ldexp without the library call for normal numbers (they were a
+   quarter of a quartic solve): the exponent field read and written directly. */
+static int fr__ilogb(double x)
+{
+    unsigned long long u;
+    int e;
+    memcpy(&u, &x, sizeof u);
+    e = (int)((u >> 52) & 0x7ff);
+    return e == 0 || e == 0x7ff ? ilogb(x) : e - 1023;
+}
+
+static double fr__ldexp(double x, int e)
+{
+    if (e >= -1022 && e <= 1023) {
+        unsigned long long u = (unsigned long long)(e + 1023) << 52;
+        double p;
+        memcpy(&p, &u, sizeof p);
+        return x * p; /* exact unless the result leaves the normal range */
+    }
+    return ldexp(x, e);
+}
 
 /* Plain Horner with derivative, for Newton steps. */
 static inline double fr__horner_deriv(const double *c, int n, double x, double *dp)
@@ -3506,6 +3539,68 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
     return cnt;
 }
 
+/* A fast path for quartics that is taken only when it can certify itself:
+   the signs of the discriminant and of Lazard's P and D, each computed with
+   a running error bound, give the number of distinct real roots (a^6 times
+   the product of squared root differences: < 0 two real roots, > 0 with
+   P < 0 and D < 0 four, otherwise none). Ferrari's estimates must then
+   supply exactly that many roots, each must converge under compensated
+   Newton to an ulp, and they must be distinct; otherwise -1 sends the
+   quartic to the derivative sequence. Near-multiple roots, where the
+   discriminant's sign is uncertain, always take the general path. */
+static int fr__quartic_fast(const double *q, double *out)
+{
+    double a = q[4], b = q[3], c = q[2], d = q[1], e = q[0], t[16], D = 0, S = 0, P, SP, L, SL;
+    double a2 = a * a, b2 = b * b, c2 = c * c, d2 = d * d, e2 = e * e;
+    int i, k, n, want;
+    t[0] = 256 * a2 * a * e2 * e;       t[1] = -192 * a2 * b * d * e2;
+    t[2] = -128 * a2 * c2 * e2;         t[3] = 144 * a2 * c * d2 * e;
+    t[4] = -27 * a2 * d2 * d2;          t[5] = 144 * a * b2 * c * e2;
+    t[6] = -6 * a * b2 * d2 * e;        t[7] = -80 * a * b * c2 * d * e;
+    t[8] = 18 * a * b * c * d2 * d;     t[9] = 16 * a * c2 * c2 * e;
+    t[10] = -4 * a * c2 * c * d2;       t[11] = -27 * b2 * b2 * e2;
+    t[12] = 18 * b2 * b * c * d * e;    t[13] = -4 * b2 * b * d2 * d;
+    t[14] = -4 * b2 * c2 * c * e;       t[15] = b2 * c2 * d2;
+    for (i = 0; i < 16; i++) { D += t[i]; S += fabs(t[i]); }
+    if (!(fabs(D) > 64.0 * FR__U * S)) return -1; /* each term has < 8 roundings, the sum 16 */
+    if (D < 0) want = 2;
+    else {
+        P = 8 * a * c - 3 * b2; SP = 8 * fabs(a * c) + 3 * b2;
+        L = 64 * a2 * a * e - 16 * a2 * c2 + 16 * a * b2 * c - 16 * a2 * b * d - 3 * b2 * b2;
+        SL = 64 * fabs(a2 * a * e) + 16 * a2 * c2 + 16 * fabs(a * b2 * c) + 16 * fabs(a2 * b * d) + 3 * b2 * b2;
+        if (!(fabs(P) > 16.0 * FR__U * SP) || !(fabs(L) > 32.0 * FR__U * SL)) return -1;
+        want = P < 0 && L < 0 ? 4 : 0;
+    }
+    if (want == 0) return 0;
+    n = fr__estimate_roots(q, 4, out);
+    if (n != want) return -1;
+    for (k = 0; k < n; k++) {
+        double x = out[k];
+        int it, ok = 0;
+        for (it = 0; it < 6; it++) {
+            double ab, v = fr__horner_comp(q, NULL, 4, x, &ab), df, dx;
+            if (v == 0) { ok = 1; break; }
+            fr__horner_deriv(q, 4, x, &df);
+            dx = v / df;
+            x -= dx;
+            if (fabs(dx) <= 2.0 * FR__U * fabs(x)) { ok = 1; break; }
+        }
+        if (!ok || !(x - x == 0)) return -1;
+        out[k] = x;
+    }
+    for (k = 1; k < n; k++) { /* sort, then demand distinct roots */
+        double v = out[k];
+        int j = k;
+        while (j > 0 && out[j - 1] > v) { out[j] = out[j - 1]; j--; }
+        out[j] = v;
+    }
+    for (k = 1; k < n; k++) {
+        double m = fabs(out[k]) > fabs(out[k - 1]) ? fabs(out[k]) : fabs(out[k - 1]);
+        if (!(out[k] - out[k - 1] > 64.0 * FR__U * m)) return -1;
+    }
+    return n;
+}
+
 /* Roots of c (degree n, c[0] != 0) with x in [xa, xb], a band inside
    |x| <= 2^K. The substitution x = 2^K y (exact) maps the band into [-1, 1],
    and the coefficients are normalised by a power of two. Each derivative
@@ -3516,14 +3611,19 @@ static int fr__solve_band(const double *c, int n, int K, int Elo, double xa, dou
 {
     double q[FR_POLY_MAX_DEGREE + 1], hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
     double bp[FR_POLY_MAX_DEGREE + 1], cur[FR_POLY_MAX_DEGREE + 1];
-    double ya = ldexp(xa, -K), yb = ldexp(xb, -K);
+    double ya = fr__ldexp(xa, -K), yb = fr__ldexp(xb, -K);
     int i, k, nbp = 0, ncur = 0, M = INT_MIN;
     if (ya < -1.0) ya = -1.0;
     if (yb > 1.0) yb = 1.0;
     if (!(ya <= yb)) return 0;
     for (i = 0; i <= n; i++)
-        if (c[i] != 0 && ilogb(c[i]) + K * i > M) M = ilogb(c[i]) + K * i;
-    for (i = 0; i <= n; i++) q[i] = c[i] != 0 ? ldexp(c[i], K * i - M) : 0.0;
+        if (c[i] != 0 && fr__ilogb(c[i]) + K * i > M) M = fr__ilogb(c[i]) + K * i;
+    for (i = 0; i <= n; i++) q[i] = c[i] != 0 ? fr__ldexp(c[i], K * i - M) : 0.0;
+    if (n == 4 && q[4] != 0 && (ncur = fr__quartic_fast(q, cur)) >= 0) {
+        for (i = k = 0; i < ncur; i++)
+            if (cur[i] >= ya && cur[i] <= yb) out[k++] = fr__ldexp(cur[i], K);
+        return k;
+    }
     for (k = n - 1; k >= 0; k--) {
         int m = n - k;
         double binom = 1.0; /* C(i + k, k), exact */
@@ -3532,11 +3632,11 @@ static int fr__solve_band(const double *c, int n, int K, int Elo, double xa, dou
             hi[i] = q[i + k] * binom;
             lo[i] = fma(q[i + k], binom, -hi[i]);
         }
-        ncur = fr__roots_between(hi, lo, m, ya, yb, bp, nbp, ldexp(1.0, Elo - K), cur);
+        ncur = fr__roots_between(hi, lo, m, ya, yb, bp, nbp, fr__ldexp(1.0, Elo - K), cur);
         for (i = 0; i < ncur; i++) bp[i] = cur[i];
         nbp = ncur;
     }
-    for (i = 0; i < ncur; i++) out[i] = ldexp(cur[i], K);
+    for (i = 0; i < ncur; i++) out[i] = fr__ldexp(cur[i], K);
     return ncur;
 }
 
@@ -3548,11 +3648,11 @@ static int fr__ceil_div(int a, int b) { return a >= 0 ? (a + b - 1) / b : -((-a)
    cannot overflow). rev reads the coefficients backwards, which bounds 1/|x|. */
 static int fr__root_exponent_bound(const double *c, int n, int rev)
 {
-    int i, E = INT_MIN, lead = ilogb(c[rev ? 0 : n]);
+    int i, E = INT_MIN, lead = fr__ilogb(c[rev ? 0 : n]);
     for (i = 0; i < n; i++) {
         double ci = c[rev ? n - i : i];
         if (ci != 0) {
-            int e = fr__ceil_div(ilogb(ci) - lead + 1, n - i) + 1;
+            int e = fr__ceil_div(fr__ilogb(ci) - lead + 1, n - i) + 1;
             if (e > E) E = e;
         }
     }
@@ -3589,7 +3689,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
     if (m == 0) {
         /* only the zero root */
     } else if (Ehi - Elo <= W) {
-        double B = ldexp(1.0, Ehi);
+        double B = fr__ldexp(1.0, Ehi);
         cnt = fr__solve_band(d, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
     } else {
         /* Roots spread over more than W bits: bands of at most W bits each,
@@ -3598,7 +3698,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
         for (side = -1; side <= 1; side += 2) {
             for (e = 0; e < Ehi - Elo; e += W) {
                 int e1 = side < 0 ? Ehi - e : Elo + e + W, e0 = e1 - W;
-                double lo = ldexp(1.0, e0 < Elo ? Elo : e0), hi = ldexp(1.0, e1 > Ehi ? Ehi : e1);
+                double lo = fr__ldexp(1.0, e0 < Elo ? Elo : e0), hi = fr__ldexp(1.0, e1 > Ehi ? Ehi : e1);
                 double xa = side < 0 ? -hi : lo, xb = side < 0 ? -lo : hi;
                 if (xa < t0) xa = t0;
                 if (xb > t1) xb = t1;
