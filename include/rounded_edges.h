@@ -1949,6 +1949,16 @@ static double re__dist2_segment(const double p[3], const double a[3], const doub
     return re__dot(q, q);
 }
 
+static double re__dist2_halfline(const double p[3], const double a[3], const double d[3])
+{
+    double ap[3], t, q[3];
+    re__sub(p, a, ap);
+    t = re__max(0.0, re__dot(ap, d) / re__dot(d, d));
+    re__madd(a, t, d, q);
+    re__sub(p, q, q);
+    return re__dot(q, q);
+}
+
 static int re__corner_has_plane(const re__object_t *o, const re__corner_t *K, unsigned f)
 {
     unsigned j;
@@ -2124,8 +2134,10 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
         re__nearest_feature(o, set, n, I, dir, &best);
         s_exit = re__exit(o, set, n, I, dir, &exit_plane);
         s = re__min(best.s, s_exit);
-        if (!(s < HUGE_VAL) || iter == RE__MAX_WALK) break;
-        re__madd(I, s, dir, P);
+        if (iter == RE__MAX_WALK) break;
+        /* nothing found yet (the ray runs along the edges, out of reach of
+           the set's faces): walk along the whole half-line */
+        re__madd(I, s < HUGE_VAL ? s : 0.0, dir, P);
         for (i = 0; i < n && n < RE__MAX_WALK; i++) {
             const re__corner_t *K = &o->corners[set[i]];
             for (j = 0; j < K->np; j++) {
@@ -2135,7 +2147,9 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within face_reach of its corner */
                 double g = o->corners[w].face_reach + o->corners[w].r;
-                if (re__dist2_segment(o->corners[w].v, I, P) <= g * g && re__add_corner(set, &n, w)) grown = 1;
+                double d2 = s < HUGE_VAL ? re__dist2_segment(o->corners[w].v, I, P)
+                                         : re__dist2_halfline(o->corners[w].v, I, dir);
+                if (d2 <= g * g && re__add_corner(set, &n, w)) grown = 1;
             }
         }
         if (!grown) break;

@@ -57,7 +57,8 @@ static int check_box_ray(const re_scene_t *s, const tm_mesh_t *m, const rbox_t *
             tol_t /= fmax(c, 1e-6);
         }
         if (!T_NEAR(h.t, t_ref, tol_t)) {
-            T_FAIL("kind %d t %.17g ref %.17g host %.17g", (int)h.kind, h.t, t_ref, t_host);
+            T_FAIL("kind %d t %.17g ref %.17g host %.17g tri %u I (%.6g %.6g %.6g)", (int)h.kind, h.t, t_ref, t_host, tri,
+                   o[0] + t_host * d[0], o[1] + t_host * d[1], o[2] + t_host * d[2]);
             return 1;
         }
         p[0] = o[0] + h.t * d[0], p[1] = o[1] + h.t * d[1], p[2] = o[2] + h.t * d[2];

@@ -228,6 +228,64 @@ static void rays_grazing_a_face(void)
     tm_free(&m);
 }
 
+/* A 10-long box whose long edges are split into 20 segments (k = 2 corners
+   all along them). Rays nearly parallel to a long edge run inside its
+   removed volume for several segments before they meet the cylinder: the
+   query must follow the adjacency graph from corner to corner (§3.1). */
+static void grazing_along_a_subdivided_edge(void)
+{
+    const int n = 20;
+    const double L = 10, h = 0.5, r = 0.05;
+    tm_mesh_t m = {0};
+    rbox_t b;
+    re_scene_t *s;
+    re_diag_t dg;
+    t_rng_t rng = {12};
+    unsigned rows[4], i;
+    long k, far = 0, n_round = 0, n_pass = 0;
+    int a, e;
+    /* the four long edges, counter-clockwise seen from +x: (y,z) corners */
+    static const double cy[4] = {-0.5, 0.5, 0.5, -0.5}, cz[4] = {-0.5, -0.5, 0.5, 0.5};
+    for (e = 0; e < 4; e++) {
+        rows[e] = m.nv;
+        for (i = 0; i <= (unsigned)n; i++) tm_vert(&m, L * i / n, cy[e] * 2 * h, cz[e] * 2 * h);
+    }
+    for (e = 0; e < 4; e++) /* long faces as strips between edge e and e+1 */
+        for (i = 0; i < (unsigned)n; i++) {
+            unsigned a0 = rows[e] + i, b0 = rows[(e + 1) % 4] + i;
+            tm_quad(&m, a0, a0 + 1, b0 + 1, b0);
+        }
+    tm_quad(&m, rows[0], rows[3], rows[2], rows[1]);                       /* x = 0 */
+    tm_quad(&m, rows[0] + n, rows[1] + n, rows[2] + n, rows[3] + n);       /* x = L */
+    tm_orient_outward(&m);
+    b.c[0] = L / 2, b.c[1] = 0, b.c[2] = 0, b.half[0] = L / 2, b.half[1] = h, b.half[2] = h, b.r = r;
+    s = build1(&m, r, &dg);
+    if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
+    for (k = 0; k < t_count(4000); k++) {
+        /* start just inside the corner tip of edge (y, z) = (h, h) in cross
+           section, drift toward the axis so the cylinder is met after dx */
+        double dx = t_rng_range(&rng, 0.3, 6), eps = t_rng_range(&rng, 0.0, 0.004), o[3], d[3], x0 = t_rng_range(&rng, -0.5, 2);
+        double gap = (r * sqrt(2.0) - r) - eps * sqrt(2.0), dl = gap / sqrt(2.0) / dx * t_rng_range(&rng, 0.5, 1.5);
+        double ys = t_rng_range(&rng, -1, 1) * 1e-3;
+        d[0] = 1, d[1] = -dl + ys * dl, d[2] = -dl - ys * dl;
+        o[0] = x0 - 1, o[1] = h - eps - d[1] * 1, o[2] = h - eps - d[2] * 1; /* at x0 the ray is eps inside the tip */
+        o[1] += 1e-4, o[2] += 1e-4; /* enter from outside the sharp box */
+        for (a = 0; a < 3; a++) o[a] -= 0.5 * d[a];
+        if (check_box_ray(s, &m, &b, o, d, 1e-9, L, &n_round, &n_pass)) {
+            double t_host;
+            unsigned tri;
+            re_hit_t hh;
+            tm_hit(&m, o, d, &t_host, &tri);
+            re_query(s, o, d, 0, tri, t_host, &hh);
+            if (hh.kind == RE_HIT_ROUNDED && hh.point[0] - (o[0] + t_host * d[0]) > 2 * L / n) far++;
+        }
+    }
+    T_GT(far, t_count(4000) / 10); /* many hits lie two or more segments beyond the entry */
+    T_GT(n_round, t_count(4000) / 4);
+    re_free(s);
+    tm_free(&m);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -242,6 +300,7 @@ int main(int argc, char **argv)
         T_CASE(coordinates_offset_1e6),
         T_CASE(rays_exactly_through_edges_and_vertices),
         T_CASE(rays_grazing_a_face),
+        T_CASE(grazing_along_a_subdivided_edge),
     };
     return T_RUN(argc, argv, cases);
 }
