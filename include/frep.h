@@ -1704,7 +1704,9 @@ FR_DEF void fr_eval_outputs(const fr_tape_t *t, const double p[3], void *scratch
    loop runs exactly FR_BATCH lanes so no scalar epilogue is needed (gcc's
    -O2 cost model vectorises only such loops). */
 #if defined(__clang__)
-#  define FR__IVDEP _Pragma("clang loop vectorize(assume_safety)")
+   /* clang vectorises these loops with a run-time overlap check at -O2; a
+      forced request would be reported (-Wpass-failed) where it cannot */
+#  define FR__IVDEP
 #elif defined(__GNUC__)
 #  define FR__IVDEP _Pragma("GCC ivdep")
 #else
@@ -1713,6 +1715,12 @@ FR_DEF void fr_eval_outputs(const fr_tape_t *t, const double p[3], void *scratch
 #define FR__LANES(expr)                                      \
     do {                                                     \
         FR__IVDEP                                            \
+        for (j = 0; j < FR_BATCH; j++) r[j] = (expr);        \
+    } while (0)
+/* lanes that call out (noise, callbacks, pow): no vectorisation request,
+   which clang would otherwise report as failed */
+#define FR__LANES_CALL(expr)                                 \
+    do {                                                     \
         for (j = 0; j < FR_BATCH; j++) r[j] = (expr);        \
     } while (0)
 
@@ -1753,12 +1761,12 @@ static void fr__run_batch(const fr_tape_t *t, const double *x, const double *y, 
         case FR_OP_SMIN: FR__LANES(fr__smin(A[j], B[j], k)); break;
         case FR_OP_NOISE: {
             const double *C = v + (size_t)in->c * FR_BATCH;
-            FR__LANES(fr__noise_at(t->params + in->aux, A[j], B[j], C[j], NULL));
+            FR__LANES_CALL(fr__noise_at(t->params + in->aux, A[j], B[j], C[j], NULL));
             break;
         }
         case FR_OP_CALL: {
             const double *C = v + (size_t)in->c * FR_BATCH;
-            FR__LANES(fr__call_point(t, in, A[j], B[j], C[j]));
+            FR__LANES_CALL(fr__call_point(t, in, A[j], B[j], C[j]));
             break;
         }
         default: FR__LANES(NAN); break;
@@ -1766,6 +1774,7 @@ static void fr__run_batch(const fr_tape_t *t, const double *x, const double *y, 
     }
 }
 #undef FR__LANES
+#undef FR__LANES_CALL
 #undef FR__IVDEP
 
 FR_DEF void fr_eval_batch(const fr_tape_t *t, size_t n, const double *x, const double *y, const double *z, double *out,
