@@ -1949,7 +1949,6 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         else r = s->vb[i] > s->va[i] ? (s->vb[i] - s->va[i]) / (sq1 - sq0) : 0;
         if (r > 0) gr__list_add(list, &s->mf[i], weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
     }
-    (void)ref;
     return 1;
 }
 
