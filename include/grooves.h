@@ -352,7 +352,8 @@ GR_DEF double gr_poly_area(const double *xy, int n);
    a non-convex subject can need more (the call then fails cleanly). A
    non-convex subject cut into pieces comes back as
    one ring joined by zero-width bridges along the clip edges: its area is
-   exact, but use gr_poly_boolean() for separate pieces. Errors:
+   exact, but use gr_poly_boolean() for separate pieces. out and work must
+   not overlap the subject or each other. Errors:
    GR_ERR_INVALID_ARG (NULL, a negative count, a clip with fewer than 3
    points or not convex), GR_ERR_NOT_FINITE, GR_ERR_BUFFER_TOO_SMALL (more
    than cap points needed; *nout is then 0). */
@@ -2165,6 +2166,31 @@ static int gr__cmp_pcross(const void *a, const void *b)
     return x->x < y->x ? -1 : x->x > y->x ? 1 : (x->edge > y->edge) - (x->edge < y->edge);
 }
 
+/* Sorting for the sweep: the lists are short (a few crossings per slab,
+   tens of slab heights at §5's sizes), where insertion sort beats qsort's
+   indirect compares several times over; qsort takes the long ones. */
+#define GR__SMALL_SORT 24
+static void gr__sort_doubles(double *a, int n)
+{
+    int i, j;
+    if (n > GR__SMALL_SORT) { qsort(a, (size_t)n, sizeof(double), gr__cmp_double); return; }
+    for (i = 1; i < n; i++) {
+        double x = a[i];
+        for (j = i; j > 0 && a[j - 1] > x; j--) a[j] = a[j - 1];
+        a[j] = x;
+    }
+}
+static void gr__sort_pcross(gr__pcross_t *a, int n)
+{
+    int i, j;
+    if (n > GR__SMALL_SORT) { qsort(a, (size_t)n, sizeof(gr__pcross_t), gr__cmp_pcross); return; }
+    for (i = 1; i < n; i++) {
+        gr__pcross_t x = a[i];
+        for (j = i; j > 0 && gr__cmp_pcross(&a[j - 1], &x) > 0; j--) a[j] = a[j - 1];
+        a[j] = x;
+    }
+}
+
 /* Scratch of gr_poly_boolean for E edges (= points). */
 typedef struct gr__pscratch_t {
     gr__pedge_t *edge;
@@ -2324,7 +2350,7 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
         s.ys[ny++] = s.edge[k].y1;
     }
     ny = gr__pedge_crossings(s.edge, ne, s.ys, ny);
-    qsort(s.ys, (size_t)ny, sizeof(double), gr__cmp_double);
+    gr__sort_doubles(s.ys, ny);
     for (nys = 0, k = 0; k < ny; k++)
         if (nys == 0 || s.ys[k] != s.ys[nys - 1]) s.ys[nys++] = s.ys[k];
     for (k = 0; k + 1 < nys; k++) {
@@ -2342,7 +2368,7 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
                 s.cross[nc++].edge = e;
             }
         if (nc == 0) continue;
-        qsort(s.cross, (size_t)nc, sizeof(gr__pcross_t), gr__cmp_pcross);
+        gr__sort_pcross(s.cross, nc);
         na = gr__pset_intervals(s.cross, nc, s.edge, 0, s.parity, s.ia);
         nb = gr__pset_intervals(s.cross, nc, s.edge, 1, s.parity, s.ib);
         /* merge the two interval lists; all boundaries at one x are applied
@@ -2382,6 +2408,9 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
 /* Chords per Bézier piece when looking for self-intersections: the chord
    polygon is within (1/32)^2 / 8 of the piece's control-polygon size. */
 #define GR__SELF_FLATTEN 32
+/* Path ends closer than this fraction of the tile diagonal, after moving
+   them to the same periodic image, join across the seam (no end). */
+#define GR__SEAM_JOIN_REL 1e-12
 
 static int gr__chord_count(const gr__groove_t *rec)
 {
@@ -2581,31 +2610,40 @@ static void gr__image_near(const gr_grid_t *grid, const double *p, const double 
 
 /* §5 ends: each open path end of a counted groove inside the box becomes a
    corner, an intersected end or an isolated end (the distance test).
-   endp (4 per counted groove: u0, v0, u1, v1) and state (2 per groove: 0
-   outside, 1 inside, 2 already in a corner) are scratch. */
+   state (2 per counted groove: 0 outside, 1 inside, 2 already in a
+   corner) is scratch. */
+static void gr__end_point(const gr_grid_t *grid, int g, int e, const double *f, double p[2])
+{
+    const gr__groove_t *rec = &grid->grooves_[g];
+    gr__image_near(grid, grid->points_ + 2 * (rec->first_point + (e ? rec->point_count - 1 : 0)), f, p);
+}
+
 static void gr__detect_ends(const gr_grid_t *grid, const gr__cand_t *cand, int n, const double *box, const double *f,
-                            double *endp, double *state, gr_junctions_t *out)
+                            double *state, gr_junctions_t *out)
 {
     int i, e, k, e2;
     for (i = 0; i < n; i++) {
-        const gr__groove_t *rec = &grid->grooves_[cand[i].groove];
-        const double *pts = grid->points_ + 2 * rec->first_point;
-        for (e = 0; e < 2; e++) {
-            gr__image_near(grid, pts + (e ? 2 * (rec->point_count - 1) : 0), f, endp + 4 * i + 2 * e);
-            state[2 * i + e] = !rec->closed && gr__in_box(box, endp + 4 * i + 2 * e);
-        }
+        double p[2][2];
+        int joined;
+        for (e = 0; e < 2; e++) gr__end_point(grid, cand[i].groove, e, f, p[e]);
+        /* a path whose ends meet across the seam of a repeating tile runs
+           on: no end (§4.1 wrap) */
+        joined = grid->wrap && hypot(p[0][0] - p[1][0], p[0][1] - p[1][1]) <=
+                                   GR__SEAM_JOIN_REL * hypot(grid->domain[2] - grid->domain[0], grid->domain[3] - grid->domain[1]);
+        for (e = 0; e < 2; e++)
+            state[2 * i + e] = !grid->grooves_[cand[i].groove].closed && !joined && gr__in_box(box, p[e]);
     }
     for (i = 0; i < n; i++)
         for (e = 0; e < 2; e++) {
-            const double *p = endp + 4 * i + 2 * e;
-            double wi = grid->grooves_[cand[i].groove].half_width, best = HUGE_VAL;
+            double p[2], wi = grid->grooves_[cand[i].groove].half_width, best = HUGE_VAL;
             int other = -1;
             if (state[2 * i + e] != 1) continue;
+            gr__end_point(grid, cand[i].groove, e, f, p);
             /* corners first: two ends closer than the sum of their widths */
             for (k = i + 1; k < n && other < 0; k++)
                 for (e2 = 0; e2 < 2 && other < 0; e2++) {
-                    const double *q = endp + 4 * k + 2 * e2;
-                    double lim = wi + grid->grooves_[cand[k].groove].half_width;
+                    double q[2], lim = wi + grid->grooves_[cand[k].groove].half_width;
+                    gr__end_point(grid, cand[k].groove, e2, f, q);
                     if (state[2 * k + e2] == 1 && hypot(p[0] - q[0], p[1] - q[1]) < lim) {
                         gr__junction_add(out, GR_JUNCTION_CORNER, cand[i].groove, cand[k].groove, e, e2, p);
                         state[2 * i + e] = state[2 * k + e2] = 2;
@@ -2669,7 +2707,7 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
         if (gr__path_in_box(grid, &grid->grooves_[s.ids[k]], out->box) && gr__locate(grid, s.ids[k], f, 2 * reach, &s.cand[m]))
             m++;
     out->grooves = m;
-    gr__detect_ends(grid, s.cand, m, out->box, f, s.va, s.x, out);
+    gr__detect_ends(grid, s.cand, m, out->box, f, s.x, out); /* s.x holds >= 2 per groove */
     /* crossings: tangents that differ by more than the parallel tolerance */
     psin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     for (i = 0; i < m; i++)

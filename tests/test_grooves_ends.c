@@ -290,6 +290,34 @@ static void search_box_enlargement(void)
     gr_grid_free(grid);
 }
 
+/* the texture seam: grooves running across a repeating tile (their ends
+   meet across the seam, so they are not ends) cross at u = 0.001, which
+   the footprint at u = 0.999 sees at u = 1.001 in its own image */
+static void detect_across_seam(void)
+{
+    const double h[] = {0, 0.5, 1, 0.5}, v[] = {0.001, 0, 0.001, 1};
+    gr_groove_desc_t g[2];
+    gr_grid_desc_t d;
+    gr_grid_t *grid = NULL;
+    gr_junctions_t j;
+    memset(&d, 0, sizeof d);
+    memset(g, 0, sizeof g);
+    g[0].points = h; g[0].point_count = 2; g[0].section = vsec; g[0].section_count = 3;
+    g[1].points = v; g[1].point_count = 2; g[1].section = vsec; g[1].section_count = 3;
+    d.grooves = g;
+    d.groove_count = 2;
+    T_INT_EQ(gr_grid_build(&d, &grid, NULL), GR_OK);
+    j = detect_at(grid, 0.999, 0.5, 0.003, NULL, NULL, 0);
+    T_INT_EQ(j.grooves, 2);
+    T_INT_EQ(j.count, 1);
+    T_INT_EQ(j.items[0].kind, GR_JUNCTION_CROSSING);
+    T_NEAR(j.items[0].point[0], 1.001, 1e-15);
+    T_NEAR(j.items[0].point[1], 0.5, 1e-15);
+    j = detect_at(grid, 0.5, 0.999, 0.003, NULL, NULL, 0); /* the seam in v: nothing */
+    T_INT_EQ(j.count, 0);
+    gr_grid_free(grid);
+}
+
 static void detect_bad_input(void)
 {
     static unsigned char scratch[1 << 16];
@@ -334,7 +362,7 @@ int main(int argc, char **argv)
 #ifndef GR_NO_CURVES
         T_CASE(self_intersection_cubic),
 #endif
-        T_CASE(search_box_enlargement), T_CASE(detect_bad_input),
+        T_CASE(search_box_enlargement), T_CASE(detect_across_seam), T_CASE(detect_bad_input),
     };
     return T_RUN(argc, argv, cases);
 }

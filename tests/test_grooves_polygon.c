@@ -247,6 +247,58 @@ static void boolean_trapezoids(void)
     }
 }
 
+/* Stiff: nearly coincident edges. The unit square against itself moved
+   by δ = 1e-13: the overlap is exactly 1 - δ (to rounding of the moved
+   coordinates, 2^-52 each), the xor 2δ. */
+static void stiff_near_coincident(void)
+{
+    const double sq[] = {0, 0, 1, 0, 1, 1, 0, 1}, dl = 1e-13;
+    const double mv[] = {dl, 0, 1 + dl, 0, 1 + dl, 1, dl, 1};
+    const double rot[] = {0, 0, 1, 1e-15, 1 - 1e-15, 1, 0, 1}; /* a sliver-thin tilt */
+    T_NEAR(bool_area(sq, 4, mv, 4, GR_POLY_INTERSECTION), 1 - dl, 4e-16);
+    T_NEAR(bool_area(sq, 4, mv, 4, GR_POLY_XOR), 2 * dl, 4e-16);
+    T_NEAR(clip_area(sq, 4, mv, 4), 1 - dl, 4e-16);
+    T_NEAR(bool_area(sq, 4, rot, 4, GR_POLY_DIFFERENCE), 1e-15, 4e-16);
+}
+
+/* Stiff: far from the origin. A unit square at 1e6 has coordinates with
+   ulp 1.2e-10; areas of unit size then carry errors of that order. */
+static void stiff_far_from_origin(void)
+{
+    const double o = 1e6;
+    const double a[] = {o, o, o + 1, o, o + 1, o + 1, o, o + 1};
+    const double b[] = {o + 0.5, o + 0.25, o + 1.5, o + 0.25, o + 1.5, o + 1.25, o + 0.5, o + 1.25};
+    T_NEAR(bool_area(a, 4, b, 4, GR_POLY_INTERSECTION), 0.375, 1e-9);
+    T_NEAR(bool_area(a, 4, b, 4, GR_POLY_UNION), 1.625, 1e-9);
+    T_NEAR(clip_area(a, 4, b, 4), 0.375, 1e-9);
+}
+
+/* several rings in one set unite: three overlapping squares as one set
+   against the same union built pairwise through the trapezoid output */
+static void boolean_multi_ring_sets(void)
+{
+    static unsigned char scratch[1 << 20];
+    static double t1[8 * 512];
+    const double three[] = {0, 0, 2, 0, 2, 2, 0, 2, 1, 1, 3, 1, 3, 3, 1, 3, 1.5, -1, 2.5, -1, 2.5, 4, 1.5, 4};
+    const int sizes[] = {4, 4, 4};
+    gr_polyset_t all = one_ring(three, 12), none = one_ring(NULL, 0), ab, c = one_ring(three + 16, 4), first2;
+    double area, area2;
+    int nt = 0;
+    all.ring_sizes = sizes;
+    all.ring_count = 3;
+    T_INT_EQ(gr_poly_boolean(&all, &none, GR_POLY_UNION, scratch, sizeof scratch, NULL, 0, NULL, &area), GR_OK);
+    first2 = one_ring(three, 4);
+    ab = one_ring(three + 8, 4);
+    T_INT_EQ(gr_poly_boolean(&first2, &ab, GR_POLY_UNION, scratch, sizeof scratch, t1, 512, &nt, NULL), GR_OK);
+    ab = one_ring(t1, 4 * nt);
+    ab.ring_count = nt;
+    T_INT_EQ(gr_poly_boolean(&ab, &c, GR_POLY_UNION, scratch, sizeof scratch, NULL, 0, NULL, &area2), GR_OK);
+    T_NEAR(area, area2, 1e-14);
+    /* C (x in [1.5, 2.5], v in [-1, 4], area 5) overlaps A ∪ B in x in
+       [1.5, 2] for v in [0, 3] and x in [2, 2.5] for v in [1, 3]: 1.5 + 1 */
+    T_NEAR(area, 7 + 5 - 2.5, 1e-14);
+}
+
 static void bad_input(void)
 {
     static unsigned char scratch[1 << 16];
@@ -285,7 +337,8 @@ int main(int argc, char **argv)
     static const t_case_t cases[] = {
         T_CASE(area_square_orientation), T_CASE(clip_convex_square_square), T_CASE(clip_against_itself),
         T_CASE(boolean_area_conservation), T_CASE(boolean_vs_raster), T_CASE(boolean_degenerate),
-        T_CASE(boolean_trapezoids), T_CASE(bad_input),
+        T_CASE(boolean_trapezoids), T_CASE(stiff_near_coincident), T_CASE(stiff_far_from_origin),
+        T_CASE(boolean_multi_ring_sets), T_CASE(bad_input),
     };
     return T_RUN(argc, argv, cases);
 }
