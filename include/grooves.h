@@ -278,7 +278,8 @@ typedef struct gr_query_t {
    are ratio-weighted), so parallel grooves with one cross-section give one
    entry per facet, whatever their number. The pieces of one facet of one
    groove from oversampled sub-footprints also make one entry, its normal
-   the ratio-weighted mean (they differ only with perturb_normals). */
+   the ratio-weighted mean (they differ along curved paths, whose frame
+   turns, and with perturb_normals). */
 typedef struct gr_facet_t {
     double normal[3];          /* unit, texture space (U, V, W), out of the material */
     double ratio;              /* r_i: visible fraction of the footprint (§4.4) */
