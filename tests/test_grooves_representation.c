@@ -562,6 +562,78 @@ static void many_threads_one_grid(void)
     gr_grid_free(grid);
 }
 
+
+/* Invariants on random input (no oracle needed): random sections (repeated
+   points, vertical walls, peaks and cuts), random paths of every kind,
+   random footprints (including zero axes), views and lights (including
+   below the horizon). Every list must have ratios in [0, 1] summing to 1
+   (to 1e-9: the sum of |S|-normalised clipped lengths), lit fractions in
+   [0, 1], unit normals, and no NaN. */
+static void random_scenes_keep_invariants(void)
+{
+    t_rng_t rng = {2026};
+    long scene, scenes = t_count(60);
+    double worst = 0;
+    for (scene = 0; scene < scenes; scene++) {
+        enum { NG = 12 };
+        gr_groove_desc_t g[NG];
+        double pts[NG][8], sec[NG][12];
+        gr_grid_t *grid;
+        int i, k, ns;
+        long qn, queries = t_count(300);
+        for (i = 0; i < NG; i++) {
+            double hw = t_rng_range(&rng, 0.001, 0.03);
+            ns = 2 + (int)(t_rng_unit(&rng) * 5);
+            sec[i][0] = -hw; sec[i][1] = 0;
+            for (k = 1; k < ns - 1; k++) {
+                double u = t_rng_unit(&rng);
+                sec[i][2 * k] = u < 0.2 ? sec[i][2 * k - 2] : sec[i][2 * k - 2] + t_rng_range(&rng, 0, 2 * hw / ns);
+                sec[i][2 * k + 1] = u < 0.1 ? sec[i][2 * k - 1] : t_rng_range(&rng, -hw, 0.5 * hw);
+            }
+            sec[i][2 * ns - 2] = hw; sec[i][2 * ns - 1] = 0;
+            for (k = 0; k < 8; k++) pts[i][k] = t_rng_unit(&rng);
+            g[i] = groove(pts[i], 2, sec[i], ns);
+#ifndef GR_NO_CURVES
+            if (i % 3 == 1) { g[i].kind = GR_PATH_QUADRATIC; g[i].point_count = 3; }
+            if (i % 3 == 2) { g[i].kind = GR_PATH_CUBIC; g[i].point_count = 4; }
+#endif
+            if (i % 4 == 0) { g[i].perturb = square; g[i].perturb_max = 1; }
+        }
+        grid = build(g, NG, (int)(t_rng_unit(&rng) * 20));
+        if (!grid) continue;
+        for (qn = 0; qn < queries; qn++) {
+            double th = t_rng_range(&rng, 0, 1.5707), az = t_rng_range(&rng, 0, 6.2832), r = t_rng_range(&rng, 0, 0.05);
+            double lights[6];
+            gr_query_t q = query(t_rng_range(&rng, -1, 2), t_rng_range(&rng, -1, 2), r, sin(th) * cos(az), sin(th) * sin(az), cos(th));
+            gr_facet_list_t l;
+            double sum = 0;
+            if (t_rng_unit(&rng) < 0.2) q.footprint.axis2[1] = 0;
+            if (t_rng_unit(&rng) < 0.1) q.footprint.axis1[0] = 0;
+            for (k = 0; k < 2; k++) {
+                double lt = t_rng_range(&rng, 0, 1.8), la = t_rng_range(&rng, 0, 6.2832);
+                lights[3 * k] = sin(lt) * cos(la); lights[3 * k + 1] = sin(lt) * sin(la); lights[3 * k + 2] = cos(lt);
+            }
+            q.lights = lights;
+            q.light_count = 2;
+            q.perturb_normals = (int)(qn & 1);
+            if (!run(grid, &q, &l)) break;
+            if (l.flags & GR_LIST_BELOW_HORIZON) continue;
+            for (i = 0; i < l.count; i++) {
+                const gr_facet_t *f = &l.facets[i];
+                double nn = sqrt(f->normal[0] * f->normal[0] + f->normal[1] * f->normal[1] + f->normal[2] * f->normal[2]);
+                sum += f->ratio;
+                if (!(f->ratio > 0 && f->ratio <= 1 + 1e-12) || !(fabs(nn - 1) < 1e-9) || !(f->lit[0] >= 0 && f->lit[0] <= 1) ||
+                    !(f->lit[1] >= 0 && f->lit[1] <= 1))
+                    T_FAIL("scene %ld query %ld entry %d: ratio %g |n| %g lit %g %g", scene, qn, i, f->ratio, nn, f->lit[0], f->lit[1]);
+            }
+            if (!(fabs(sum - 1) <= worst)) worst = fabs(sum - 1);
+            if (!(fabs(sum - 1) <= 1e-9)) T_FAIL("scene %ld query %ld: ratios sum to %.17g", scene, qn, sum);
+        }
+        gr_grid_free(grid);
+    }
+    T_LE(worst, 1e-9);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -578,6 +650,7 @@ int main(int argc, char **argv)
         T_CASE(nonparallel_groove_flagged),
         T_CASE(shade_with_brdf_callback),
         T_CASE(many_threads_one_grid),
+        T_CASE(random_scenes_keep_invariants),
     };
     return T_RUN(argc, argv, cases);
 }
