@@ -504,20 +504,19 @@ typedef struct re__plane_t {
     double c;    /* n.x = c on the face; n.x <= c inside */
 } re__plane_t;
 
-/* A rounding cylinder between two sphere centres. k[1] == RE__NONE marks an
-   extra (exact-corner) cylinder inside corner k[0]. */
+/* A rounding cylinder between two sphere centres; its corners are the
+   spheres' (sph_corner). Cylinders [0, n_edge_cyls) round mesh edges, the
+   rest are extra (exact-corner) cylinders inside one corner. */
 typedef struct re__cyl_t {
     unsigned s[2]; /* spheres at the axis ends */
     unsigned p[2]; /* the two offset planes it joins */
-    unsigned k[2]; /* corners at its ends */
 } re__cyl_t;
 
-/* A rounded mesh vertex. refs[first ...]: np planes (fan order), np edge
+/* A rounded mesh vertex. refs[first ...]: np edge
    cylinders (cylinder j joins planes j and j+1), ns spheres, nx extra cylinders. */
 typedef struct re__corner_t {
     double v[3];  /* the mesh vertex */
     double r;     /* rounding radius of its patch */
-    double reach;      /* the removed volume near v lies within this of v */
     double face_reach; /* on a face, the removed zone near v or along its edges
                           lies within this of v / of the edge */
     unsigned vertex, first;
@@ -533,7 +532,7 @@ typedef struct re__node_t {
 } re__node_t;
 
 typedef struct re__object_t {
-    unsigned n_tris, n_planes, n_spheres, n_cyls, n_corners, n_refs, n_nodes, n_leafrefs;
+    unsigned n_tris, n_planes, n_spheres, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leafrefs;
     double size; /* bounding-box diagonal: the object's length scale */
     double rmax;
     const unsigned *tri_plane; /* per triangle: plane id, RE__NONE if not rounded nearby */
@@ -1449,7 +1448,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         ns += an->c_ns[c];
         xbase[c] = ncyl;
         ncyl += an->c_nx[c];
-        nref += 2u * an->c_np[c] + an->c_ns[c] + an->c_nx[c];
+        nref += (unsigned)an->c_np[c] + an->c_ns[c] + an->c_nx[c];
         for (j = 0; j < an->c_np[c]; j++) {
             unsigned p = an->c_planes[an->c_pfirst[c] + j];
             if (pmap[p] == RE__NONE) pmap[p] = F->n_planes++;
@@ -1474,7 +1473,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     for (c = 0; c < an->nc; c++) {
         re__corner_t *K;
         const double *v;
-        double r, reach = 0, freach = 0;
+        double r, freach = 0;
         unsigned pf = an->c_pfirst[c];
         if (fc[c] == RE__NONE) continue;
         K = &F->corners[fc[c]];
@@ -1488,7 +1487,6 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         K->ns = an->c_ns[c];
         K->nx = an->c_nx[c];
         K->pad_ = 0;
-        for (j = 0; j < K->np; j++) F->refs[nref++] = pmap[an->c_planes[pf + j]];
         for (j = 0; j < K->np; j++) F->refs[nref++] = ecyl[an->c_edges[pf + j]];
         for (j = 0; j < K->ns; j++) {
             double *s = F->sph + 3 * (size_t)(sbase[c] + j), dd[3];
@@ -1496,7 +1494,6 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             F->sph_corner[sbase[c] + j] = fc[c];
             F->refs[nref++] = sbase[c] + j;
             re__sub(s, v, dd);
-            reach = re__max(reach, re__len(dd));
             /* on a face g through s, the corner zone is the hull of v and the
                eroded vertices seen from above: their tangential offsets */
             for (k = 0; k < K->np; k++) {
@@ -1520,10 +1517,8 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             dist = re__len(cr) / re__len(ed);
             freach = re__max(freach, sqrt(re__max(dist * dist - r * r, 0.0)));
         }
+        /* 1.5: margin over the bound (0.7 fails the exactness tests) */
         K->face_reach = 1.5 * freach;
-        /* removed points whose nearest eroded point is a corner feature y lie
-           within |v - y| of y (docs: "Detection"), so within 2 max|v - s| of v */
-        K->reach = 2.0 * reach;
         for (j = 0; j < K->nx; j++) {
             const unsigned *x = an->c_x + 4 * (size_t)(an->c_xfirst[c] + j);
             re__cyl_t *cy = &F->cyls[xbase[c] + j];
@@ -1531,8 +1526,6 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             cy->p[1] = pmap[an->c_planes[pf + x[1]]];
             cy->s[0] = sbase[c] + x[2];
             cy->s[1] = sbase[c] + x[3];
-            cy->k[0] = fc[c];
-            cy->k[1] = RE__NONE;
             F->refs[nref++] = xbase[c] + j;
         }
     }
@@ -1548,13 +1541,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         cy->s[1] = sbase[cb] + an->edge_end[2 * i + 1];
         cy->p[0] = pmap[an->tplane[e->he[0] / 3]];
         cy->p[1] = pmap[an->tplane[e->he[1] / 3]];
-        cy->k[0] = fc[ca];
-        cy->k[1] = fc[cb];
     }
     /* kd-tree over the edge cylinders' detection boxes */
     RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls);
     for (i = 0; i < F->n_edge_cyls; i++) {
-        const re__corner_t *A = &F->corners[F->cyls[i].k[0]], *B = &F->corners[F->cyls[i].k[1]];
+        const re__corner_t *A = &F->corners[F->sph_corner[F->cyls[i].s[0]]];
+        const re__corner_t *B = &F->corners[F->sph_corner[F->cyls[i].s[1]]];
         double g = re__max(A->face_reach, B->face_reach);
         unsigned a;
         for (a = 0; a < 3; a++) {
@@ -1609,6 +1601,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->n_planes = F->n_planes;
     o->n_spheres = F->n_spheres;
     o->n_cyls = F->n_cyls;
+    o->n_edge_cyls = F->n_edge_cyls;
     o->n_corners = F->n_corners;
     o->n_refs = F->n_refs;
     o->n_nodes = F->kd.n_nodes;
@@ -1959,11 +1952,18 @@ static double re__dist2_halfline(const double p[3], const double a[3], const dou
     return re__dot(q, q);
 }
 
+/* Plane slot j < 2*np of a corner: the planes its edge cylinders join (each
+   plane twice; storing them once more would cost memory, not time). */
+static unsigned re__corner_plane(const re__object_t *o, const re__corner_t *K, unsigned j)
+{
+    return o->cyls[o->refs[K->first + j / 2]].p[j & 1];
+}
+
 static int re__corner_has_plane(const re__object_t *o, const re__corner_t *K, unsigned f)
 {
     unsigned j;
     for (j = 0; j < K->np; j++)
-        if (o->refs[K->first + j] == f) return 1;
+        if (o->cyls[o->refs[K->first + j]].p[0] == f || o->cyls[o->refs[K->first + j]].p[1] == f) return 1;
     return 0;
 }
 
@@ -1989,9 +1989,10 @@ static int re__on_flat_part(const re__object_t *o, const unsigned *set, unsigned
         double q[3], mag;
         re__madd(I, -K->r, pf->n, q);
         mag = fabs(q[0]) + fabs(q[1]) + fabs(q[2]);
-        for (j = 0; j < K->np; j++) {
-            const re__plane_t *g = &o->planes[o->refs[K->first + j]];
-            if (o->refs[K->first + j] == f) continue;
+        for (j = 0; j < 2u * K->np; j++) {
+            unsigned gi = re__corner_plane(o, K, j);
+            const re__plane_t *g = &o->planes[gi];
+            if (gi == f) continue;
             if (re__dot(g->n, q) - (g->c - K->r) > RE__SIDE_ULPS * (fabs(g->c) + mag + K->r)) return 0;
         }
     }
@@ -2035,14 +2036,14 @@ static void re__nearest_feature(const re__object_t *o, const unsigned *set, unsi
         const re__corner_t *K = &o->corners[set[i]];
         const unsigned *ref = o->refs + K->first;
         for (j = 0; j < K->np; j++) {
-            unsigned c = ref[K->np + j];
+            unsigned c = ref[j];
             re__try_cyl(o, c, K->r, I, d, b);
             /* the far end sphere may belong to a corner not in the set */
             re__try_sphere(o, o->cyls[c].s[0], K->r, I, d, b);
             re__try_sphere(o, o->cyls[c].s[1], K->r, I, d, b);
         }
-        for (j = 0; j < K->ns; j++) re__try_sphere(o, ref[2 * K->np + j], K->r, I, d, b);
-        for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[2 * K->np + K->ns + j], K->r, I, d, b);
+        for (j = 0; j < K->ns; j++) re__try_sphere(o, ref[K->np + j], K->r, I, d, b);
+        for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[K->np + K->ns + j], K->r, I, d, b);
     }
 }
 
@@ -2056,12 +2057,13 @@ static double re__exit(const re__object_t *o, const unsigned *set, unsigned n, c
     *plane = RE__NONE;
     for (i = 0; i < n; i++) {
         const re__corner_t *K = &o->corners[set[i]];
-        for (j = 0; j < K->np; j++) {
-            const re__plane_t *g = &o->planes[o->refs[K->first + j]];
+        for (j = 0; j < 2u * K->np; j++) {
+            unsigned gi = re__corner_plane(o, K, j);
+            const re__plane_t *g = &o->planes[gi];
             double nd = re__dot(g->n, d), s;
             if (!(nd > 0)) continue;
             s = re__max(0.0, (g->c - re__dot(g->n, I)) / nd);
-            if (s < best) best = s, *plane = o->refs[K->first + j];
+            if (s < best) best = s, *plane = gi;
         }
     }
     return best;
@@ -2117,11 +2119,12 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     }
     for (i = 0; i < (o->nodes[node].info >> 2); i++) {
         const re__cyl_t *cy = &o->cyls[o->leafrefs[o->nodes[node].index + i]];
-        const re__corner_t *A = &o->corners[cy->k[0]], *B = &o->corners[cy->k[1]];
+        unsigned ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
+        const re__corner_t *A = &o->corners[ka], *B = &o->corners[kb];
         double g = re__max(A->face_reach, B->face_reach);
         if (re__dist2_segment(I, A->v, B->v) > g * g) continue;
-        if (re__corner_has_plane(o, A, f)) re__add_corner(set, &n, cy->k[0]);
-        if (re__corner_has_plane(o, B, f)) re__add_corner(set, &n, cy->k[1]);
+        if (re__corner_has_plane(o, A, f)) re__add_corner(set, &n, ka);
+        if (re__corner_has_plane(o, B, f)) re__add_corner(set, &n, kb);
     }
     if (!n || re__on_flat_part(o, set, n, f, I)) return RE_UNCHANGED;
     /* inside the removed volume: nearest capsule or the exit, walking the
@@ -2141,8 +2144,9 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
         for (i = 0; i < n && n < RE__MAX_WALK; i++) {
             const re__corner_t *K = &o->corners[set[i]];
             for (j = 0; j < K->np; j++) {
-                const re__cyl_t *cy = &o->cyls[o->refs[K->first + K->np + j]];
-                unsigned w = cy->k[0] == set[i] ? cy->k[1] : cy->k[0];
+                const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
+                unsigned ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
+                unsigned w = ka == set[i] ? kb : ka;
                 /* removed points lie within r of the removed zone on the faces
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within face_reach of its corner */
@@ -2188,8 +2192,9 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
         if (hit->feature == RE_FEATURE_SPHERE && hit->feature_index < o->n_spheres) {
             set[n++] = o->sph_corner[hit->feature_index];
         } else if (hit->feature == RE_FEATURE_CYLINDER && hit->feature_index < o->n_cyls) {
-            set[n++] = o->cyls[hit->feature_index].k[0];
-            if (o->cyls[hit->feature_index].k[1] != RE__NONE) set[n++] = o->cyls[hit->feature_index].k[1];
+            const re__cyl_t *cy = &o->cyls[hit->feature_index];
+            set[n++] = o->sph_corner[cy->s[0]];
+            if (o->sph_corner[cy->s[1]] != set[0]) set[n++] = o->sph_corner[cy->s[1]];
         }
         s = re__exit(o, set, n, hit->point, dir, &plane);
         if (s < HUGE_VAL) {
@@ -2236,11 +2241,11 @@ RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i,
         out->n0[a] = o->planes[cy->p[0]].n[a];
         out->n1[a] = o->planes[cy->p[1]].n[a];
     }
-    out->radius = o->corners[cy->k[0]].r;
+    out->radius = o->corners[o->sph_corner[cy->s[0]]].r;
     out->sa = cy->s[0];
     out->sb = cy->s[1];
-    out->edge_v0 = cy->k[1] == RE__NONE ? -1 : (long long)o->corners[cy->k[0]].vertex;
-    out->edge_v1 = cy->k[1] == RE__NONE ? -1 : (long long)o->corners[cy->k[1]].vertex;
+    out->edge_v0 = i >= o->n_edge_cyls ? -1 : (long long)o->corners[o->sph_corner[cy->s[0]]].vertex;
+    out->edge_v1 = i >= o->n_edge_cyls ? -1 : (long long)o->corners[o->sph_corner[cy->s[1]]].vertex;
     return 1;
 }
 
