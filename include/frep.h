@@ -3548,6 +3548,46 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
     return cnt;
 }
 
+/* Newton with compensated residuals from x until the step is an ulp;
+   returns 0 if it does not settle in a few steps (then the caller falls
+   back to the derivative sequence). */
+static int fr__polish_simple(const double *q, int n, double *x)
+{
+    int it;
+    for (it = 0; it < 6; it++) {
+        double ab, v = fr__horner_comp(q, NULL, n, *x, &ab), df, dx;
+        if (v == 0) return 1;
+        fr__horner_deriv(q, n, *x, &df);
+        dx = v / df;
+        *x -= dx;
+        if (fabs(dx) <= 2.0 * FR__U * fabs(*x)) return *x - *x == 0;
+    }
+    return 0;
+}
+
+/* Fast path for quadratics (every sphere, cylinder and cone on a ray): the
+   discriminant b^2 - 4ac is computed with its products split exactly by
+   fma (Kahan 2004), so its error is below 3u|D| + 2u^2 (b^2 + |4ac|) and
+   its sign is certain outside that band; the cancellation-free formula
+   q = -(b + sign(b) sqrt(D)) / 2, roots q/a and c/q, then a compensated
+   polish. -1 (near-double roots, no convergence) falls back. */
+static int fr__quadratic_fast(const double *q, double *out)
+{
+    double a = q[2], b = q[1], c = q[0], p = b * b, dp = fma(b, b, -p), f = 4.0 * a * c, df = fma(4.0 * a, c, -f);
+    double D = (p - f) + (dp - df), h;
+    if (!(fabs(D) > 8.0 * FR__U * FR__U * (p + fabs(f)))) return -1;
+    if (D < 0) return 0;
+    h = -0.5 * (b + (b < 0 ? -sqrt(D) : sqrt(D)));
+    if (h == 0) return -1;
+    out[0] = h / a;
+    out[1] = c / h;
+    if (out[0] > out[1]) { double t = out[0]; out[0] = out[1]; out[1] = t; }
+    if (!fr__polish_simple(q, 2, &out[0]) || !fr__polish_simple(q, 2, &out[1])) return -1;
+    if (!(out[1] - out[0] > 64.0 * FR__U * (fabs(out[0]) > fabs(out[1]) ? fabs(out[0]) : fabs(out[1]))))
+        return -1;
+    return 2;
+}
+
 /* A fast path for quartics that is taken only when it can certify itself:
    the signs of the discriminant and of Lazard's P and D, each computed with
    a running error bound, give the number of distinct real roots (a^6 times
@@ -3583,20 +3623,8 @@ static int fr__quartic_fast(const double *q, double *out)
     if (want == 0) return 0;
     n = fr__estimate_roots(q, 4, out);
     if (n != want) return -1;
-    for (k = 0; k < n; k++) {
-        double x = out[k];
-        int it, ok = 0;
-        for (it = 0; it < 6; it++) {
-            double ab, v = fr__horner_comp(q, NULL, 4, x, &ab), df, dx;
-            if (v == 0) { ok = 1; break; }
-            fr__horner_deriv(q, 4, x, &df);
-            dx = v / df;
-            x -= dx;
-            if (fabs(dx) <= 2.0 * FR__U * fabs(x)) { ok = 1; break; }
-        }
-        if (!ok || !(x - x == 0)) return -1;
-        out[k] = x;
-    }
+    for (k = 0; k < n; k++)
+        if (!fr__polish_simple(q, 4, &out[k])) return -1;
     for (k = 1; k < n; k++) { /* sort, then demand distinct roots */
         double v = out[k];
         int j = k;
@@ -3628,7 +3656,13 @@ static int fr__solve_band(const double *c, int n, int K, int Elo, double xa, dou
     for (i = 0; i <= n; i++)
         if (c[i] != 0 && fr__ilogb(c[i]) + K * i > M) M = fr__ilogb(c[i]) + K * i;
     for (i = 0; i <= n; i++) q[i] = c[i] != 0 ? fr__ldexp(c[i], K * i - M) : 0.0;
-    if (n == 4 && q[4] != 0 && (ncur = fr__quartic_fast(q, cur)) >= 0) {
+    if (n == 1 && q[1] != 0) { /* a correctly rounded root */
+        double y = -q[0] / q[1];
+        if (y >= ya && y <= yb) { out[0] = fr__ldexp(y, K); return 1; }
+        return 0;
+    }
+    if ((n == 2 && q[2] != 0 && (ncur = fr__quadratic_fast(q, cur)) >= 0) ||
+        (n == 4 && q[4] != 0 && (ncur = fr__quartic_fast(q, cur)) >= 0)) {
         for (i = k = 0; i < ncur; i++)
             if (cur[i] >= ya && cur[i] <= yb) out[k++] = fr__ldexp(cur[i], K);
         return k;
