@@ -495,6 +495,39 @@ GR_DEF gr_result_t gr_self_intersections(const gr_grid_t *grid, gr_self_hit_t *o
 GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
                              int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out);
 
+/* ---- The polygon path, first steps (§5.2) -------------------------------- */
+
+/* Footprint polygon shapes (§5.2). */
+typedef enum gr_fp_shape_t {
+    GR_FP_QUAD = 0,   /* the parallelogram F ± A1 ± A2 (the box-filter footprint) */
+    GR_FP_RHOMBUS = 1 /* F ± A1, F ± A2: the tips of the ellipse's axes */
+} gr_fp_shape_t;
+
+/* The footprint as a polygon (§5.2): 4 UV points, counter-clockwise. A
+   degenerate footprint (A1 x A2 = 0) gives a ring of zero area. */
+GR_DEF void gr_footprint_polygon(const gr_footprint_t *fp, gr_fp_shape_t shape, double out[8]);
+
+/* One facet of a locally straight groove, for gr_facet_clip(). */
+typedef struct gr_facet_geom_t {
+    double point[2];   /* P: the path point the groove space is built on, UV */
+    double tangent[2]; /* T: unit path tangent there; B = (-T_v, T_u) */
+    double c0[2], c1[2]; /* the facet's section points (b, w), scaled */
+} gr_facet_geom_t;
+
+/* §5.2, eqs. 7-8: a UV polygon (n points) projected along the view E onto
+   the facet's plane in groove space, then clipped to the facet's bounds.
+   Facet coordinates: x along T, y along the facet from C_0 toward C_1 (so
+   the facet is the strip 0 <= y <= |C_1 - C_0|). proj receives the n
+   projected points; clipped (with work, each `cap` points) the clipped
+   polygon, *nclipped its size; *area_f = A_F and *area_clip its area,
+   both >= 0, so r = area_clip / area_f before intersection and occlusion.
+   A facet seen edge-on (|N'.E'| <= 1e-12 |N'||E'|) or a zero-length facet gives zero
+   areas and *nclipped = 0. Errors: GR_ERR_INVALID_ARG (NULL, n < 3,
+   cap < n + 4), GR_ERR_NOT_FINITE. */
+GR_DEF gr_result_t gr_facet_clip(const double *poly, int n, const gr_facet_geom_t *facet, const double e[3],
+                                 double *proj, double *clipped, double *work, int cap, int *nclipped,
+                                 double *area_f, double *area_clip);
+
 /* ==== [end section: intersections] ==== */
 
 #ifdef __cplusplus
@@ -2741,6 +2774,86 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
         gr__image_near(grid, self[k].point, f, p);
         if (gr__in_box(out->box, p)) gr__junction_add(out, GR_JUNCTION_SELF, self[k].groove, -1, -1, -1, p);
     }
+    return GR_OK;
+}
+
+/* ---- The polygon path, first steps (§5.2) -------------------------------- */
+
+/* A facet whose plane makes an angle below this (radians, as a sine) with
+   the view is seen edge-on: eq. 8's denominator N'.E' vanishes and the
+   projected footprint has no area. */
+#define GR__EDGE_ON_REL 1e-12
+
+GR_DEF void gr_footprint_polygon(const gr_footprint_t *fp, gr_fp_shape_t shape, double out[8])
+{
+    const double *a = fp->axis1, *b = fp->axis2, *f = fp->center;
+    double sa[4], sb[4];
+    int k, flip = a[0] * b[1] - a[1] * b[0] < 0;
+    /* corners in the order that turns counter-clockwise for A1 x A2 > 0 */
+    if (shape == GR_FP_RHOMBUS) {
+        sa[0] = 1; sb[0] = 0; sa[1] = 0; sb[1] = 1; sa[2] = -1; sb[2] = 0; sa[3] = 0; sb[3] = -1;
+    } else {
+        sa[0] = 1; sb[0] = -1; sa[1] = 1; sb[1] = 1; sa[2] = -1; sb[2] = 1; sa[3] = -1; sb[3] = -1;
+    }
+    for (k = 0; k < 4; k++) {
+        int j = flip ? 3 - k : k;
+        out[2 * k] = f[0] + sa[j] * a[0] + sb[j] * b[0];
+        out[2 * k + 1] = f[1] + sa[j] * a[1] + sb[j] * b[1];
+    }
+}
+
+GR_DEF gr_result_t gr_facet_clip(const double *poly, int n, const gr_facet_geom_t *facet, const double e[3],
+                                 double *proj, double *clipped, double *work, int cap, int *nclipped,
+                                 double *area_f, double *area_clip)
+{
+    const double *t = facet ? facet->tangent : NULL;
+    double bn[2], db, dw, len, eg[3], ne, xmin = HUGE_VAL, xmax = -HUGE_VAL, strip[8], margin;
+    int k;
+    if (nclipped) *nclipped = 0;
+    if (area_f) *area_f = 0;
+    if (area_clip) *area_clip = 0;
+    if (!poly || !facet || !e || !proj || !clipped || !work || !nclipped || !area_f || !area_clip || n < 3 || cap < n + 4)
+        return GR_ERR_INVALID_ARG;
+    if (!gr__finite_n(poly, 2 * n) || !gr__finite_n(facet->point, 2) || !gr__finite_n(t, 2) ||
+        !gr__finite_n(facet->c0, 2) || !gr__finite_n(facet->c1, 2) || !gr__finite_n(e, 3))
+        return GR_ERR_NOT_FINITE;
+    bn[0] = -t[1];
+    bn[1] = t[0];
+    db = facet->c1[0] - facet->c0[0];
+    dw = facet->c1[1] - facet->c0[1];
+    len = sqrt(db * db + dw * dw);
+    /* E' in groove space (T, B, W); the facet plane has normal
+       N' = (0, -dw, db) through C' = (0, b0, w0) (§5.2) */
+    eg[0] = t[0] * e[0] + t[1] * e[1];
+    eg[1] = bn[0] * e[0] + bn[1] * e[1];
+    eg[2] = e[2];
+    ne = -dw * eg[1] + db * eg[2];
+    /* no facet, or one seen edge-on (within GR__EDGE_ON_REL of grazing):
+       its projection has no area */
+    if (!(len > 0) || !(fabs(ne) > GR__EDGE_ON_REL * len * sqrt(gr__dot3(eg, eg)))) return GR_OK;
+    for (k = 0; k < n; k++) {
+        double du = poly[2 * k] - facet->point[0], dv = poly[2 * k + 1] - facet->point[1];
+        double fx = t[0] * du + t[1] * dv, fb = bn[0] * du + bn[1] * dv; /* F'_i, F'_w = 0 */
+        /* eq. 8: t = N'.(C' - F') / N'.E', then eq. 7: F' + t E' */
+        double tt = (-dw * (facet->c0[0] - fb) + db * facet->c0[1]) / ne;
+        double px = fx + tt * eg[0], pb = fb + tt * eg[1], pw = tt * eg[2];
+        proj[2 * k] = px;
+        proj[2 * k + 1] = ((pb - facet->c0[0]) * db + (pw - facet->c0[1]) * dw) / len;
+        if (px < xmin) xmin = px;
+        if (px > xmax) xmax = px;
+    }
+    *area_f = fabs(gr_poly_area(proj, n));
+    /* the facet's bounds: two lines y = 0 and y = len (Figure 9, right),
+       closed into a rectangle wider than the projected polygon */
+    margin = xmax - xmin + len;
+    strip[0] = xmin - margin; strip[1] = 0;
+    strip[2] = xmax + margin; strip[3] = 0;
+    strip[4] = xmax + margin; strip[5] = len;
+    strip[6] = xmin - margin; strip[7] = len;
+    k = 0;
+    if (gr_poly_clip_convex(proj, n, strip, 4, clipped, work, cap, &k) != GR_OK) return GR_ERR_INVALID_ARG;
+    *nclipped = k;
+    *area_clip = fabs(gr_poly_area(clipped, k));
     return GR_OK;
 }
 
