@@ -111,11 +111,11 @@ demo: deps-demo
 # ---------------------------------------------------------------- benchmarks
 deps-bench:
 	@scripts/deps.sh bench
-$(B)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(EX_COMMON_OBJ)
+$(B)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h examples/*/*.h) $(EX_COMMON_OBJ)
 	@mkdir -p $(dir $@)
 	$(CC) -std=gnu11 $(CFLAGS_ALL) -Ibench -c $< -o $@.o
 	$(CXX) -o $@ $@.o $(EX_COMMON_OBJ) $(BENCH_LDLIBS)
-$(B)/bench/%: bench/%.cpp $(HEADERS) $(wildcard bench/*.h) $(EX_COMMON_OBJ)
+$(B)/bench/%: bench/%.cpp $(HEADERS) $(wildcard bench/*.h examples/*/*.h) $(EX_COMMON_OBJ)
 	@mkdir -p $(dir $@)
 	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -Ibench -o $@ $< $(EX_COMMON_OBJ) $(BENCH_LDLIBS)
 
