@@ -240,9 +240,10 @@ static int host_hit(const ex_mesh_t *m, ex_v3_t o, ex_v3_t d, double *t_out, uns
     return found;
 }
 
-/* rx_band.h: whenever the band test calls a hit flat, re_query agrees
-   (RE_UNCHANGED), over random rays at a box and at an icosahedron; and the
-   test does skip a real share of the queries (else it would be pointless). */
+/* rx_band.h and rx_flat_inside (rx_tess.h): whenever either test calls a
+   hit flat, re_query agrees (RE_UNCHANGED), over random rays at a box and at
+   an icosahedron; each test does skip a real share of the queries (else it
+   would be pointless), the polygon test more than the band. */
 static void band_test_never_skips_a_rounded_hit(void)
 {
     t_rng_t rng = {42};
@@ -251,13 +252,15 @@ static void band_test_never_skips_a_rounded_hit(void)
         ex_mesh_t m;
         re_scene_t *s;
         double band;
-        long n = t_count(40000), i, skipped = 0, hits = 0;
+        rx_flat_t flat;
+        long n = t_count(40000), i, skipped = 0, hits = 0, flat_skipped = 0;
         memset(&m, 0, sizeof m);
         if (shape == 0) box_mesh(&m, 1.0, 0.7, 0.5);
         else icosahedron_mesh(&m);
         s = build_one(&m, 0.08);
         if (!s) { mesh_free(&m); return; }
         band = rx_band(s, 0, &m);
+        T_INT_EQ(rx_flat_build(s, 0, &m, &flat), 0);
         T_GT(band, 0.08);
         T_LT(band, 1.0);
         for (i = 0; i < n; i++) {
@@ -269,9 +272,17 @@ static void band_test_never_skips_a_rounded_hit(void)
             re_hit_t h;
             if (ex_len(o) < 2.5 || !host_hit(&m, o, d, &t, &tri)) continue;
             hits++;
+            oo[0] = o.x; oo[1] = o.y; oo[2] = o.z; dd[0] = d.x; dd[1] = d.y; dd[2] = d.z;
+            if (rx_flat_inside(&flat, tri, ex_madd(o, d, t), 1e-9)) {
+                flat_skipped++;
+                if (re_query(s, oo, dd, 0, tri, t, &h) != RE_UNCHANGED) {
+                    T_FAIL("shape %d ray %ld: flat-polygon test skipped a query that says %d", shape, i, (int)h.kind);
+                    break;
+                }
+                T_CHECK(1);
+            }
             if (rx_near_boundary(&m, tri, ex_madd(o, d, t), band)) continue;
             skipped++;
-            oo[0] = o.x; oo[1] = o.y; oo[2] = o.z; dd[0] = d.x; dd[1] = d.y; dd[2] = d.z;
             if (re_query(s, oo, dd, 0, tri, t, &h) != RE_UNCHANGED) {
                 T_FAIL("shape %d ray %ld: band test skipped a query that says %d", shape, i, (int)h.kind);
                 break;
@@ -280,7 +291,10 @@ static void band_test_never_skips_a_rounded_hit(void)
         }
         T_GT(hits, n / 10);
         T_GT(skipped, hits / 5);
-        fprintf(stderr, "    shape %d: band %.4f, %ld of %ld host hits skip the query\n", shape, band, skipped, hits);
+        T_GT(flat_skipped, skipped);
+        fprintf(stderr, "    shape %d: band %.4f, %ld of %ld host hits skip the query by the band, %ld by the polygon\n",
+                shape, band, skipped, hits, flat_skipped);
+        rx_flat_free(&flat);
         re_free(s);
         mesh_free(&m);
     }

@@ -22,6 +22,7 @@
 #include "ex_shade.h"
 #include "rounded_edges.h"
 #include "rx_scene.h"
+#include "rx_tess.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -47,7 +48,8 @@ typedef struct rx_world_t {
     int *re_object;             /* scene object -> re object, -1 if not rounded */
     size_t *tess_first_round;   /* tess mode: first rounded-part triangle per object */
     double *band;               /* rounded mode: per object, no hit farther than this from
-                                   its triangle's edges can be on a rounding (rx__band) */
+                                   its triangle's edges can be on a rounding (rx_band) */
+    rx_flat_t *flat;            /* rounded mode: per object, its faces' flat parts (rx_tess.h) */
     ex_world_t shade;
     ex_camera_t cam;
     /* figures */
@@ -173,7 +175,12 @@ static int rx__build_round(rx_world_t *w)
     re_get_stats(w->round, &w->round_stats);
     w->round_bytes = w->round_stats.bytes;
     for (i = 0; i < s->nobj; i++)
-        if (w->re_object[i] >= 0) w->band[i] = rx_band(w->round, (unsigned)w->re_object[i], &s->obj[i].mesh);
+        if (w->re_object[i] >= 0) {
+            w->band[i] = rx_band(w->round, (unsigned)w->re_object[i], &s->obj[i].mesh);
+            if (w->mode.kind == RX_ROUNDED &&
+                rx_flat_build(w->round, (unsigned)w->re_object[i], &s->obj[i].mesh, &w->flat[i]) < 0)
+                return -1;
+        }
     return 0;
 }
 
@@ -187,7 +194,8 @@ int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, i
     w->re_object = (int *)malloc(sizeof(int) * (size_t)(s->nobj + 1));
     w->tess_first_round = (size_t *)calloc((size_t)s->nobj + 1, sizeof(size_t));
     w->band = (double *)calloc((size_t)s->nobj + 1, sizeof(double));
-    if (!w->re_object || !w->tess_first_round || !w->band) { fprintf(stderr, "out of memory\n"); rx_world_free(w); return -1; }
+    w->flat = (rx_flat_t *)calloc((size_t)s->nobj + 1, sizeof(rx_flat_t));
+    if (!w->re_object || !w->tess_first_round || !w->band || !w->flat) { fprintf(stderr, "out of memory\n"); rx_world_free(w); return -1; }
     if (!(w->dev = ex_embree_device())) { rx_world_free(w); return -1; }
     rtcSetDeviceMemoryMonitorFunction(w->dev, rx__memory_monitor, &w->embree_mem_live);
     w->rtc = rtcNewScene(w->dev);
@@ -240,11 +248,15 @@ int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, i
 
 void rx_world_free(rx_world_t *w)
 {
+    int i;
     if (w->round) re_free(w->round);
     ex_embree_release(w->dev, w->rtc);
     free(w->re_object);
     free(w->tess_first_round);
     free(w->band);
+    if (w->flat)
+        for (i = 0; i < (w->scene ? w->scene->nobj : 0); i++) rx_flat_free(&w->flat[i]);
+    free(w->flat);
     memset(w, 0, sizeof *w);
 }
 
@@ -254,6 +266,11 @@ void rx_world_free(rx_world_t *w)
    above Embree's single-precision self-intersection error at both small and
    large t, far below any feature of our scenes. */
 #define RX_STEP_REL 1e-5
+
+/* A hit counts as on a face's flat part only this far inside its polygon
+   (times the scene size): Embree's single-precision hit points wander about
+   1e-7 of it. */
+#define RX_FLAT_MARGIN_REL 1e-5
 
 static double rx__next_t(const rx_world_t *w, double t)
 {
@@ -414,7 +431,10 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, ex_surface
                 skip_t = back;
                 continue;
             }
-            if (!rx_near_boundary(&ob->mesh, h.prim_id, s->p, w->band[h.geom_id])) break; /* flat part */
+            /* on the flat part of a face the query would say RE_UNCHANGED */
+            if (rx_flat_inside(&w->flat[h.geom_id], h.prim_id, s->p, RX_FLAT_MARGIN_REL * sc->scale) ||
+                !rx_near_boundary(&ob->mesh, h.prim_id, s->p, w->band[h.geom_id]))
+                break;
             o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
             d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
             k = re_query(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, &q);

@@ -36,6 +36,33 @@ extern "C" {
 int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp, int level, ex_mesh_t *out,
                    size_t *first_round);
 
+/* The flat parts of a fully rounded object's faces, as convex polygons, for
+   a tight "is this hit on the flat part?" test: a hit strictly inside its
+   face's shrunk polygon is where re_query() says RE_UNCHANGED, so the host
+   may skip the call. */
+typedef struct rx_flat_t {
+    size_t ntris;        /* 0: no polygons (object not fully rounded): never claim flat */
+    unsigned *tri_face;  /* per triangle of the sharp mesh: its face polygon */
+    size_t *first;       /* per face, nfaces + 1 entries: its edges in `lines` */
+    double *lines;       /* 4 per polygon edge: inward in-plane unit normal m, offset m.a */
+} rx_flat_t;
+
+/* 0; 1 when some vertex has no sphere (f stays empty); -1 out of memory. */
+int rx_flat_build(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp, rx_flat_t *f);
+void rx_flat_free(rx_flat_t *f);
+/* 1 when p (on triangle tri) lies inside its face's flat part by more than `margin`. */
+static inline int rx_flat_inside(const rx_flat_t *f, unsigned tri, ex_v3_t p, double margin)
+{
+    size_t e, face;
+    if (tri >= f->ntris) return 0;
+    face = f->tri_face[tri];
+    for (e = f->first[face]; e < f->first[face + 1]; e++) {
+        const double *l = f->lines + 4 * e;
+        if (l[0] * p.x + l[1] * p.y + l[2] * p.z < l[3] + margin) return 0;
+    }
+    return f->first[face + 1] > f->first[face];
+}
+
 #ifdef __cplusplus
 }
 #endif
@@ -111,15 +138,36 @@ static double rx__angle(ex_v3_t a, ex_v3_t b) { return acos(ex_clamp(ex_dot(a, b
 
 typedef struct rx__plane_t { ex_v3_t n; double d; } rx__plane_t;
 
-/* Flat parts of the faces (see the top comment). */
-static int rx__tess_faces(rx__tb_t *b, const re_sphere_t *sp, unsigned nsp, const ex_mesh_t *sharp, double size)
+/* The shrunk faces (see the top comment): plane groups of the sharp mesh's
+   triangles, and per group the polygon of the sphere centres on its offset
+   plane pushed out by r, counter-clockwise around the group's normal. */
+typedef struct rx__faces_t {
+    size_t n;            /* groups */
+    ex_v3_t *normal;     /* per group */
+    size_t *first;       /* n + 1: corners of group g are pts[first[g] .. first[g+1]) (none: < 3 corners) */
+    ex_v3_t *pts;
+    unsigned *tri_face;  /* per triangle */
+} rx__faces_t;
+
+static void rx__faces_free(rx__faces_t *f)
 {
-    rx__plane_t *pl = (rx__plane_t *)malloc(sizeof *pl * (sharp->ntris + 1));
-    ex_v3_t *pts = (ex_v3_t *)malloc(sizeof *pts * (nsp + 1));
-    double *ang = (double *)malloc(sizeof *ang * (nsp + 1));
-    size_t npl = 0, t;
+    free(f->normal); free(f->first); free(f->pts); free(f->tri_face);
+    memset(f, 0, sizeof *f);
+}
+
+static int rx__faces_build(const re_sphere_t *sp, unsigned nsp, const ex_mesh_t *sharp, double size, rx__faces_t *f)
+{
+    double *pd = (double *)malloc(sizeof(double) * (sharp->ntris + 1));
+    double *ang = (double *)malloc(sizeof(double) * (nsp + 1));
+    size_t t, np_total = 0;
     unsigned i;
-    if (!pl || !pts || !ang) { free(pl); free(pts); free(ang); return -1; }
+    memset(f, 0, sizeof *f);
+    f->normal = (ex_v3_t *)malloc(sizeof(ex_v3_t) * (sharp->ntris + 1));
+    f->first = (size_t *)malloc(sizeof(size_t) * (sharp->ntris + 2));
+    f->tri_face = (unsigned *)malloc(sizeof(unsigned) * (sharp->ntris + 1));
+    if (!pd || !ang || !f->normal || !f->first || !f->tri_face) {
+        free(pd); free(ang); rx__faces_free(f); return -1;
+    }
     for (t = 0; t < sharp->ntris; t++) {
         const uint32_t *q = sharp->idx + 3 * t;
         ex_v3_t a = ex_v3(sharp->pos[3 * q[0]], sharp->pos[3 * q[0] + 1], sharp->pos[3 * q[0] + 2]);
@@ -128,23 +176,28 @@ static int rx__tess_faces(rx__tb_t *b, const re_sphere_t *sp, unsigned nsp, cons
         ex_v3_t n = ex_normalize(ex_cross(ex_sub(bb, a), ex_sub(c, a)));
         double d = ex_dot(n, a);
         size_t k;
-        for (k = 0; k < npl; k++)
-            if (ex_dot(pl[k].n, n) > 1 - 1e-6 && fabs(pl[k].d - d) < 1e-6 * size) break;
-        if (k == npl) { pl[npl].n = n; pl[npl].d = d; npl++; }
+        for (k = 0; k < f->n; k++)
+            if (ex_dot(f->normal[k], n) > 1 - 1e-6 && fabs(pd[k] - d) < 1e-6 * size) break;
+        if (k == f->n) { f->normal[k] = n; pd[k] = d; f->n++; }
+        f->tri_face[t] = (unsigned)k;
     }
-    for (t = 0; t < npl; t++) {
-        ex_v3_t n = pl[t].n, tt, bt, ctr = ex_v3(0, 0, 0);
+    /* a corner can lie on every plane: room for nsp corners per face */
+    f->pts = (ex_v3_t *)malloc(sizeof(ex_v3_t) * ((size_t)nsp * f->n + 1));
+    if (!f->pts) { free(pd); free(ang); rx__faces_free(f); return -1; }
+    for (t = 0; t < f->n; t++) {
+        ex_v3_t n = f->normal[t], tt, bt, ctr = ex_v3(0, 0, 0), *pts;
         size_t np = 0, k;
-        uint32_t first, prev;
+        f->first[t] = np_total;
+        pts = f->pts + np_total;
         for (i = 0; i < nsp; i++) {
-            ex_v3_t c = rx__v3(sp[i].center), p = ex_madd(c, n, sp[i].radius);
+            ex_v3_t p = ex_madd(ex_v3(sp[i].center[0], sp[i].center[1], sp[i].center[2]), n, sp[i].radius);
             int dup = 0;
-            if (fabs(ex_dot(n, p) - pl[t].d) > 1e-5 * size) continue;
+            if (fabs(ex_dot(n, p) - pd[t]) > 1e-5 * size) continue;
             for (k = 0; k < np; k++)
                 if (ex_len(ex_sub(pts[k], p)) < 1e-9 * size) dup = 1;
             if (!dup) pts[np++] = p;
         }
-        if (np < 3) continue;
+        if (np < 3) continue; /* a face consumed by its rounding */
         for (k = 0; k < np; k++) ctr = ex_add(ctr, pts[k]);
         ctr = ex_scale(ctr, 1.0 / (double)np);
         ex_onb(n, &tt, &bt);
@@ -152,8 +205,7 @@ static int rx__tess_faces(rx__tb_t *b, const re_sphere_t *sp, unsigned nsp, cons
             ex_v3_t r = ex_sub(pts[k], ctr);
             ang[k] = atan2(ex_dot(r, bt), ex_dot(r, tt));
         }
-        /* insertion sort by angle: a face has few corners */
-        for (k = 1; k < np; k++) {
+        for (k = 1; k < np; k++) { /* insertion sort by angle: counter-clockwise around n */
             size_t j = k;
             while (j > 0 && ang[j - 1] > ang[j]) {
                 double sa = ang[j]; ex_v3_t sv = pts[j];
@@ -162,16 +214,98 @@ static int rx__tess_faces(rx__tb_t *b, const re_sphere_t *sp, unsigned nsp, cons
                 j--;
             }
         }
-        first = rx__tb_vertex(b, pts[0]);
-        prev = rx__tb_vertex(b, pts[1]);
-        for (k = 2; k < np; k++) {
-            uint32_t cur = rx__tb_vertex(b, pts[k]);
-            rx__tb_tri(b, first, prev, cur, n);
+        np_total += np;
+    }
+    f->first[f->n] = np_total;
+    free(pd); free(ang);
+    return 0;
+}
+
+/* Every vertex of the sharp mesh has a sphere (the shrunk-face construction
+   needs every corner rounded). */
+static int rx__all_corners_rounded(const re_sphere_t *sp, unsigned ns, const ex_mesh_t *sharp)
+{
+    unsigned char *has = (unsigned char *)calloc(sharp->nverts + 1, 1);
+    size_t v;
+    unsigned i;
+    int all = 1;
+    if (!has) return -1;
+    for (i = 0; i < ns; i++)
+        if (sp[i].vertex < sharp->nverts) has[sp[i].vertex] = 1;
+    for (v = 0; v < sharp->nverts; v++)
+        if (!has[v]) all = 0;
+    free(has);
+    return all;
+}
+
+static double rx__mesh_size(const ex_mesh_t *m)
+{
+    double size = 0;
+    size_t v;
+    for (v = 0; v < 3 * m->nverts; v++) size = fmax(size, fabs(m->pos[v]));
+    return size > 0 ? size : 1;
+}
+
+static int rx__tess_faces(rx__tb_t *b, const re_sphere_t *sp, unsigned nsp, const ex_mesh_t *sharp, double size)
+{
+    rx__faces_t f;
+    size_t g, k;
+    if (rx__faces_build(sp, nsp, sharp, size, &f)) return -1;
+    for (g = 0; g < f.n; g++) {
+        uint32_t first, prev;
+        if (f.first[g + 1] - f.first[g] < 3) continue;
+        first = rx__tb_vertex(b, f.pts[f.first[g]]);
+        prev = rx__tb_vertex(b, f.pts[f.first[g] + 1]);
+        for (k = f.first[g] + 2; k < f.first[g + 1]; k++) {
+            uint32_t cur = rx__tb_vertex(b, f.pts[k]);
+            rx__tb_tri(b, first, prev, cur, f.normal[g]);
             prev = cur;
         }
     }
-    free(pl); free(pts); free(ang);
+    rx__faces_free(&f);
     return b->oom ? -1 : 0;
+}
+
+int rx_flat_build(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp, rx_flat_t *out)
+{
+    unsigned ns = re_sphere_count(rs, re_obj), i;
+    re_sphere_t *sp = (re_sphere_t *)malloc(sizeof *sp * (ns + 1));
+    rx__faces_t f;
+    size_t g, k, ne;
+    int all;
+    memset(out, 0, sizeof *out);
+    if (!sp) return -1;
+    for (i = 0; i < ns; i++) re_get_sphere(rs, re_obj, i, &sp[i]);
+    all = rx__all_corners_rounded(sp, ns, sharp);
+    if (all != 1) { free(sp); return all < 0 ? -1 : 1; }
+    if (rx__faces_build(sp, ns, sharp, rx__mesh_size(sharp), &f)) { free(sp); return -1; }
+    free(sp);
+    ne = f.first[f.n];
+    out->first = (size_t *)malloc(sizeof(size_t) * (f.n + 1));
+    out->lines = (double *)malloc(sizeof(double) * 4 * (ne + 1));
+    out->tri_face = f.tri_face;
+    f.tri_face = NULL;
+    if (!out->first || !out->lines) { rx__faces_free(&f); rx_flat_free(out); return -1; }
+    for (g = 0; g < f.n; g++) {
+        size_t a0 = f.first[g], cnt = f.first[g + 1] - a0;
+        out->first[g] = a0;
+        for (k = 0; k < cnt; k++) {
+            ex_v3_t a = f.pts[a0 + k], b = f.pts[a0 + (k + 1) % cnt];
+            ex_v3_t m = ex_normalize(ex_cross(f.normal[g], ex_sub(b, a))); /* inward for a CCW polygon */
+            double *l = out->lines + 4 * (a0 + k);
+            l[0] = m.x; l[1] = m.y; l[2] = m.z; l[3] = ex_dot(m, a);
+        }
+    }
+    out->first[f.n] = ne;
+    out->ntris = sharp->ntris;
+    rx__faces_free(&f);
+    return 0;
+}
+
+void rx_flat_free(rx_flat_t *f)
+{
+    free(f->tri_face); free(f->first); free(f->lines);
+    memset(f, 0, sizeof *f);
 }
 
 static void rx__tess_cylinder(rx__tb_t *b, const re_cylinder_t *c, int level)
@@ -284,8 +418,7 @@ int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp
     re_sphere_t *sp = (re_sphere_t *)malloc(sizeof *sp * (ns + 1));
     re_cylinder_t *cy = (re_cylinder_t *)malloc(sizeof *cy * (nc + 1));
     rx__tb_t b;
-    double size = 0;
-    size_t v;
+    double size;
     int rc = 0;
     memset(out, 0, sizeof *out);
     memset(&b, 0, sizeof b);
@@ -295,16 +428,10 @@ int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp
     for (i = 0; i < nc; i++) re_get_cylinder(rs, re_obj, i, &cy[i]);
     {
         /* every vertex needs a sphere, else fall back to the sharp mesh */
-        unsigned char *has = (unsigned char *)calloc(sharp->nverts + 1, 1);
-        int partial = 0;
-        if (!has) { free(sp); free(cy); return -1; }
-        for (i = 0; i < ns; i++)
-            if (sp[i].vertex < sharp->nverts) has[sp[i].vertex] = 1;
-        for (v = 0; v < sharp->nverts; v++)
-            if (!has[v]) partial = 1;
-        free(has);
-        if (partial) {
+        int all = rx__all_corners_rounded(sp, ns, sharp);
+        if (all != 1) {
             free(sp); free(cy);
+            if (all < 0) return -1;
             out->pos = (float *)malloc(3 * sizeof(float) * (sharp->nverts + 1));
             out->idx = (uint32_t *)malloc(3 * sizeof(uint32_t) * (sharp->ntris + 1));
             if (!out->pos || !out->idx) { free(out->pos); free(out->idx); memset(out, 0, sizeof *out); return -1; }
@@ -316,8 +443,8 @@ int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp
             return 1;
         }
     }
-    for (v = 0; v < 3 * sharp->nverts; v++) size = fmax(size, fabs(sharp->pos[v]));
-    if (rx__tess_faces(&b, sp, ns, sharp, size > 0 ? size : 1)) rc = -1;
+    size = rx__mesh_size(sharp);
+    if (rx__tess_faces(&b, sp, ns, sharp, size)) rc = -1;
     *first_round = out->ntris;
     for (i = 0; rc == 0 && i < nc; i++) rx__tess_cylinder(&b, &cy[i], level);
     for (i = 0; rc == 0 && i < ns; i++) rc = rx__tess_sphere(&b, &sp[i], i, cy, nc, level);
