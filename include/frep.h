@@ -110,7 +110,7 @@ FR_DEF const char *fr_result_string(fr_result_t r);
                                 max(a,b) when k == 1 (HyperFun's rule)
      RINT          a b          R-intersection a+b-sqrt(...); min when k == 1
      SMAX SMIN     a b          polynomial smooth max / min of width k > 0
-     NOISE         a b c        params[aux..aux+3] = amp, freq, ox, oy, oz:
+     NOISE         a b c        params[aux..aux+4] = amp, freq, ox, oy, oz:
                                 amp * gnoise(freq*(a,b,c) + (ox,oy,oz))
      CALL          a b c        callbacks[aux].point((a,b,c))
    Every evaluator walks the same array; a new evaluator needs only a switch
@@ -347,7 +347,8 @@ FR_DEF void fr_eval_batch(const fr_tape_t *t, size_t n, const double *x, const d
                           double *out, void *scratch);
 /* value and exact gradient (forward-mode AD). FR_ERR_NO_GRADIENT when a
    callback has no gradient function. At a kink (min/max/abs of equal
-   arguments) the gradient of one side is returned. */
+   arguments) the gradient of one side is returned; where the derivative
+   is infinite (sqrt at 0, POWC with exponent < 1 at 0) it is inf or NaN. */
 FR_DEF fr_result_t fr_eval_grad(const fr_tape_t *t, const double p[3], void *scratch, double *value,
                                 double grad[3]);
 
