@@ -53,6 +53,11 @@ tests/check_headers.sh > "$log/check_headers.log" 2>&1; status=$?
 grep -E '^FAIL' -A 15 "$log/check_headers.log" | head -n 40 >&2
 add_counts "check-headers" "$log/check_headers.log" $status
 
+echo "== README snippets" >&2
+tests/check_readme.sh > "$log/readme.log" 2>&1; status=$?
+grep -v 'passed, ' "$log/readme.log" | head -n 20 >&2
+add_counts "README snippets" "$log/readme.log" $status
+
 echo "== tests" >&2
 filters=("$@")
 run_pass "$build" normal "${filters[@]}"
