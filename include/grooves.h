@@ -528,6 +528,28 @@ GR_DEF gr_result_t gr_facet_clip(const double *poly, int n, const gr_facet_geom_
                                  double *proj, double *clipped, double *work, int cap, int *nclipped,
                                  double *area_f, double *area_clip);
 
+/* §5.3: the cross-section of a crossing groove (path point p2, unit
+   tangent t2, section sec2 of n2 (b, w) points, scaled) projected along
+   its direction T_2 onto the facet's plane, in gr_facet_clip()'s facet
+   coordinates: the part of the facet that groove carves away, to be
+   subtracted (gr_poly_boolean, GR_POLY_DIFFERENCE) from the clipped
+   footprint. Generally one ring of n2 points (the section closed by its
+   mouth at w = 0). A facet parallel to UV (the ground, or a flat groove
+   floor) is the special case where T_2 lies in the facet plane: the cut is
+   then a set of strips along T_2, one per interval where the section
+   spans the facet's height, each clipped to `bounds` (x0, y0, x1, y1 in
+   facet coordinates; pass the clipped footprint's box). The result goes to
+   `points` (cap points) as rings of `sizes` (ring_cap entries); *cut
+   receives the set (points, point_count, ring_sizes, ring_count). Grooves
+   parallel to the facet's (|B_1.T_2| <= 1e-12) do not cut it: an empty
+   set (§5.3 skips them). cap = 5 n2 + 8 points and ring_cap = n2 / 2 + 1
+   always suffice. Errors: GR_ERR_INVALID_ARG (NULL, n2 < 2, a degenerate
+   facet), GR_ERR_NOT_FINITE, GR_ERR_BUFFER_TOO_SMALL (below n2 + 8 points,
+   or too small for the strips found). */
+GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const double p2[2], const double t2[2],
+                                       const double *sec2, int n2, const double bounds[4], double *points, int cap,
+                                       int *sizes, int ring_cap, gr_polyset_t *cut);
+
 /* ==== [end section: intersections] ==== */
 
 #ifdef __cplusplus
@@ -2854,6 +2876,129 @@ GR_DEF gr_result_t gr_facet_clip(const double *poly, int n, const gr_facet_geom_
     if (gr_poly_clip_convex(proj, n, strip, 4, clipped, work, cap, &k) != GR_OK) return GR_ERR_INVALID_ARG;
     *nclipped = k;
     *area_clip = fabs(gr_poly_area(clipped, k));
+    return GR_OK;
+}
+
+/* A groove-space point (x along T, b along B, w) in facet coordinates
+   (x, y), y along the facet from C_0 (§5.2, Figure 9 right). */
+static void gr__facet_xy(const gr_facet_geom_t *fc, double x, double b, double w, double out[2])
+{
+    double db = fc->c1[0] - fc->c0[0], dw = fc->c1[1] - fc->c0[1];
+    out[0] = x;
+    out[1] = ((b - fc->c0[0]) * db + (w - fc->c0[1]) * dw) / sqrt(db * db + dw * dw);
+}
+
+/* UV offset from the facet's path point P in groove space: (T.d, B.d). */
+static void gr__groove_xb(const gr_facet_geom_t *fc, double du, double dv, double *x, double *b)
+{
+    *x = fc->tangent[0] * du + fc->tangent[1] * dv;
+    *b = -fc->tangent[1] * du + fc->tangent[0] * dv;
+}
+
+/* The strip k0 + kx x + ky y in [lo, hi] inside the rectangle `bounds`,
+   by Sutherland-Hodgman against the strip as a long parallelogram. */
+static int gr__strip_in_box(const double *bounds, double k0, double kx, double ky, double lo, double hi, double *out,
+                            double *work, int cap)
+{
+    double rect[8], par[8], c[2], g2 = kx * kx + ky * ky, d[2], q[4], len;
+    int k, n = 0;
+    rect[0] = bounds[0]; rect[1] = bounds[1]; rect[2] = bounds[2]; rect[3] = bounds[1];
+    rect[4] = bounds[2]; rect[5] = bounds[3]; rect[6] = bounds[0]; rect[7] = bounds[3];
+    c[0] = 0.5 * (bounds[0] + bounds[2]);
+    c[1] = 0.5 * (bounds[1] + bounds[3]);
+    d[0] = -ky / sqrt(g2);
+    d[1] = kx / sqrt(g2);
+    len = hypot(bounds[2] - bounds[0], bounds[3] - bounds[1]);
+    for (k = 0; k < 2; k++) { /* the point of each side line nearest c */
+        double s = ((k ? hi : lo) - (k0 + kx * c[0] + ky * c[1])) / g2;
+        q[2 * k] = c[0] + s * kx;
+        q[2 * k + 1] = c[1] + s * ky;
+        len += 2 * hypot(q[2 * k] - c[0], q[2 * k + 1] - c[1]);
+    }
+    par[0] = q[0] - len * d[0]; par[1] = q[1] - len * d[1];
+    par[2] = q[0] + len * d[0]; par[3] = q[1] + len * d[1];
+    par[4] = q[2] + len * d[0]; par[5] = q[3] + len * d[1];
+    par[6] = q[2] - len * d[0]; par[7] = q[3] - len * d[1];
+    if (gr_poly_clip_convex(rect, 4, par, 4, out, work, cap, &n) != GR_OK) return 0;
+    return n;
+}
+
+GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const double p2[2], const double t2[2],
+                                       const double *sec2, int n2, const double bounds[4], double *points, int cap,
+                                       int *sizes, int ring_cap, gr_polyset_t *cut)
+{
+    double db, dw, len, b1t2, n3[3], t3[3];
+    int k;
+    if (cut) memset(cut, 0, sizeof *cut);
+    if (!facet || !p2 || !t2 || !sec2 || !bounds || !points || !sizes || !cut || n2 < 2) return GR_ERR_INVALID_ARG;
+    if (!gr__finite_n(facet->point, 2) || !gr__finite_n(facet->tangent, 2) || !gr__finite_n(facet->c0, 2) ||
+        !gr__finite_n(facet->c1, 2) || !gr__finite_n(p2, 2) || !gr__finite_n(t2, 2) || !gr__finite_n(sec2, 2 * n2) ||
+        !gr__finite_n(bounds, 4))
+        return GR_ERR_NOT_FINITE;
+    if (cap < n2 + 8 || ring_cap < n2 / 2 + 1) return GR_ERR_BUFFER_TOO_SMALL;
+    cut->points = points;
+    cut->ring_sizes = sizes;
+    db = facet->c1[0] - facet->c0[0];
+    dw = facet->c1[1] - facet->c0[1];
+    len = sqrt(db * db + dw * dw);
+    if (!(len > 0)) return GR_ERR_INVALID_ARG;
+    b1t2 = -facet->tangent[1] * t2[0] + facet->tangent[0] * t2[1];
+    if (!(fabs(b1t2) > GR__EDGE_ON_REL)) return GR_OK; /* parallel grooves: no cut */
+    if (fabs(dw) > GR__EDGE_ON_REL * len) {
+        /* eqs. 7-8 with T_2 as the direction: each section point of the
+           crossing groove slides along T_2 onto the facet plane, whose
+           normal is N' = -dw B_1 + db W through C' = P_1 + b_0 B_1 + w_0 W */
+        n3[0] = dw * facet->tangent[1];
+        n3[1] = -dw * facet->tangent[0];
+        n3[2] = db;
+        t3[0] = t2[0]; t3[1] = t2[1]; t3[2] = 0;
+        for (k = 0; k < n2; k++) {
+            double x3[3], c3[3], s, x, b;
+            x3[0] = p2[0] - t2[1] * sec2[2 * k];
+            x3[1] = p2[1] + t2[0] * sec2[2 * k];
+            x3[2] = sec2[2 * k + 1];
+            c3[0] = facet->point[0] - facet->tangent[1] * facet->c0[0];
+            c3[1] = facet->point[1] + facet->tangent[0] * facet->c0[0];
+            c3[2] = facet->c0[1];
+            s = (n3[0] * (c3[0] - x3[0]) + n3[1] * (c3[1] - x3[1]) + n3[2] * (c3[2] - x3[2])) / gr__dot3(n3, t3);
+            gr__groove_xb(facet, x3[0] + s * t3[0] - facet->point[0], x3[1] + s * t3[1] - facet->point[1], &x, &b);
+            gr__facet_xy(facet, x, b, x3[2], points + 2 * k);
+        }
+        sizes[0] = n2;
+        cut->point_count = n2;
+        cut->ring_count = 1;
+        return GR_OK;
+    }
+    /* §5.3's special case: a facet parallel to UV at height w0. The cut is
+       where the section (closed by its mouth) spans w0: intervals of b_2
+       from the section's crossings with w = w0 (half-open, so a point at w0
+       counts once), each a strip along T_2 */
+    {
+        /* the crossings b_2 are kept at the end of `points`, the strips
+           are written from its start */
+        double w0 = facet->c0[1], *bs = points + 2 * cap - n2, k0, kx, ky, sgn = db > 0 ? 1 : -1, tmp[16], wk[16];
+        int nb = 0, used = 0, r = 0;
+        for (k = 0; k < n2; k++) {
+            const double *a = sec2 + 2 * k, *c = sec2 + 2 * ((k + 1) % n2);
+            if ((a[1] >= w0) != (c[1] >= w0)) bs[nb++] = a[0] + (w0 - a[1]) * (c[0] - a[0]) / (c[1] - a[1]);
+        }
+        gr__sort_doubles(bs, nb);
+        /* b_2 at facet point (x, y) is B_2 . (P_1 + x T_1 + (b_0 + sgn y) B_1 - P_2) */
+        kx = -t2[1] * facet->tangent[0] + t2[0] * facet->tangent[1]; /* B_2 . T_1 */
+        ky = t2[0] * facet->tangent[0] + t2[1] * facet->tangent[1];  /* B_2 . B_1 */
+        k0 = -t2[1] * (facet->point[0] - p2[0]) + t2[0] * (facet->point[1] - p2[1]) + facet->c0[0] * ky;
+        ky *= sgn;
+        for (k = 0; k + 1 < nb; k += 2) {
+            int m = gr__strip_in_box(bounds, k0, kx, ky, bs[k], bs[k + 1], tmp, wk, 8);
+            if (m == 0) continue;
+            if (2 * (used + m) > 2 * cap - n2 || r >= ring_cap) return GR_ERR_BUFFER_TOO_SMALL;
+            memcpy(points + 2 * used, tmp, sizeof(double) * 2 * (size_t)m);
+            sizes[r++] = m;
+            used += m;
+        }
+        cut->point_count = used;
+        cut->ring_count = r;
+    }
     return GR_OK;
 }
 
