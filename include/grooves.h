@@ -522,8 +522,10 @@ typedef struct gr_facet_geom_t {
    polygon, *nclipped its size; *area_f = A_F and *area_clip its area,
    both >= 0, so r = area_clip / area_f before intersection and occlusion.
    A facet seen edge-on (|N'.E'| <= 1e-12 |N'||E'|) or a zero-length facet gives zero
-   areas and *nclipped = 0. Errors: GR_ERR_INVALID_ARG (NULL, n < 3,
-   cap < n + 4), GR_ERR_NOT_FINITE. */
+   areas and *nclipped = 0. A back-facing facet (N'.E' < 0) is projected
+   all the same: §4.3's self-masking test is the caller's. Errors:
+   GR_ERR_INVALID_ARG (NULL, n < 3, cap < n + 4), GR_ERR_NOT_FINITE,
+   GR_ERR_BUFFER_TOO_SMALL (a non-convex polygon outgrowing cap). */
 GR_DEF gr_result_t gr_facet_clip(const double *poly, int n, const gr_facet_geom_t *facet, const double e[3],
                                  double *proj, double *clipped, double *work, int cap, int *nclipped,
                                  double *area_f, double *area_clip);
@@ -717,7 +719,10 @@ static gr_result_t gr__check_groove(const gr_groove_desc_t *g, long long idx, do
     if (!g->points) { gr__diag(diag, GR_ERR_INVALID_ARG, idx, "points is NULL"); return GR_ERR_INVALID_ARG; }
     pieces = gr__pieces((int)g->kind, g->point_count);
     if (!pieces) {
-        snprintf(msg, sizeof msg, "path has %d points, which does not fit its kind", g->point_count);
+        snprintf(msg, sizeof msg, "path has %d point%s; %s", g->point_count, g->point_count == 1 ? "" : "s",
+                 g->kind == GR_PATH_QUADRATIC ? "a quadratic chain needs 2k+1 (k >= 1)"
+                 : g->kind == GR_PATH_CUBIC   ? "a cubic chain needs 3k+1 (k >= 1)"
+                                              : "a polyline needs at least 2");
         gr__diag(diag, GR_ERR_PATH_POINTS, idx, msg);
         return GR_ERR_PATH_POINTS;
     }
@@ -2830,6 +2835,7 @@ GR_DEF gr_result_t gr_facet_clip(const double *poly, int n, const gr_facet_geom_
 {
     const double *t = facet ? facet->tangent : NULL;
     double bn[2], db, dw, len, eg[3], ne, xmin = HUGE_VAL, xmax = -HUGE_VAL, strip[8], margin;
+    gr_result_t r;
     int k;
     if (nclipped) *nclipped = 0;
     if (area_f) *area_f = 0;
@@ -2873,7 +2879,8 @@ GR_DEF gr_result_t gr_facet_clip(const double *poly, int n, const gr_facet_geom_
     strip[4] = xmax + margin; strip[5] = len;
     strip[6] = xmin - margin; strip[7] = len;
     k = 0;
-    if (gr_poly_clip_convex(proj, n, strip, 4, clipped, work, cap, &k) != GR_OK) return GR_ERR_INVALID_ARG;
+    r = gr_poly_clip_convex(proj, n, strip, 4, clipped, work, cap, &k);
+    if (r != GR_OK) return r; /* a non-convex polygon can outgrow cap */
     *nclipped = k;
     *area_clip = fabs(gr_poly_area(clipped, k));
     return GR_OK;
