@@ -119,14 +119,14 @@ static void wrong_point_count_for_kind(void)
     scene(&s);
     s.g[3].points = p;
     s.g[3].point_count = 1;
-    expect(&s, GR_ERR_PATH_POINTS, 3, "path has 1 points");
+    expect(&s, GR_ERR_PATH_POINTS, 3, "path has 1 point; a polyline needs at least 2");
 #ifndef GR_NO_CURVES
     s.g[3].kind = GR_PATH_QUADRATIC;
     s.g[3].point_count = 4;
-    expect(&s, GR_ERR_PATH_POINTS, 3, "path has 4 points");
+    expect(&s, GR_ERR_PATH_POINTS, 3, "path has 4 points; a quadratic chain needs 2k+1");
     s.g[3].kind = GR_PATH_CUBIC;
     s.g[3].point_count = 3;
-    expect(&s, GR_ERR_PATH_POINTS, 3, "path has 3 points");
+    expect(&s, GR_ERR_PATH_POINTS, 3, "path has 3 points; a cubic chain needs 3k+1");
 #endif
     s.g[3].kind = (gr_path_kind_t)9;
     s.g[3].point_count = 2;
