@@ -24,6 +24,7 @@
      GR_MALLOC(sz,ctx) / GR_FREE(p,ctx)   allocator hooks (default malloc/free)
      GR_MAX_LIGHTS      lights per query (default 4)
      GR_MAX_FACETS      entries in a gr_facet_list_t (default 32)
+     GR_MAX_JUNCTIONS   crossings/ends gr_detect() stores per footprint (default 16)
      GR_NO_CURVES       leave out Bézier paths (the builder then rejects them
                         with GR_ERR_UNSUPPORTED)
      GR_NO_OVERSAMPLE   leave out footprint oversampling (§4.2)

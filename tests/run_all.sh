@@ -67,11 +67,16 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:ha
   run_pass "$san" sanitize "${filters[@]}"
 
 echo "== example self-tests" >&2
-# examples whose --selftest prints the harness's `N passed, M failed` line
-for n in sharp_cube_icosphere; do
+# examples with a --selftest: it prints `N passed, M failed`, or one
+# `ok …` / `FAIL …` line per check (counted here)
+for n in sharp_cube_icosphere rounded_edges; do
   e=$build/../examples/$n
   [ -f "$e" ] || { total_fail=$((total_fail + 1)); echo "selftest $n: example not built" >&2; continue; }
   "$e" --selftest > "$log/selftest_$n.all" 2>&1; status=$?
+  if ! grep -qE '^[0-9]+ passed, [0-9]+ failed' "$log/selftest_$n.all"; then
+    echo "$(grep -c '^ok ' "$log/selftest_$n.all") passed, $(grep -c '^FAIL' "$log/selftest_$n.all") failed" >> "$log/selftest_$n.all"
+  fi
+  grep '^FAIL' "$log/selftest_$n.all" | head -n 10 >&2
   add_counts "selftest $n" "$log/selftest_$n.all" "$status"
 done
 
