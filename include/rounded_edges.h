@@ -145,8 +145,13 @@ typedef enum re_report_kind_t {
     RE_REPORT_RADIUS_CLAMPED,    /* value = new radius */
     RE_REPORT_RADIUS_MISMATCH,   /* unequal edge radii met at a corner; value = radius kept */
     RE_REPORT_SKIPPED_TRIANGLE,  /* RE_BAD_INPUT_SKIP dropped this triangle */
-    RE_REPORT_COMPLEX_CORNER     /* more than RE_MAX_CORNER_PLANES face planes
+    RE_REPORT_COMPLEX_CORNER,    /* more than RE_MAX_CORNER_PLANES face planes
                                     meet: the vertex stays sharp */
+    RE_REPORT_UNROUNDABLE_CORNER /* a corner within the plane limit whose fan
+                                    or eroded corner could not be built (a
+                                    face plane recurs around it, or plane
+                                    triples too ill-conditioned to resolve);
+                                    value = its plane count; stays sharp */
 } re_report_kind_t;
 
 /* Distinct face planes around one rounded corner, at most (the exact corner
@@ -476,9 +481,20 @@ static double re__min(double a, double b) { return a < b ? a : b; }
 /* Three face planes are treated as parallel when |det(n_i, n_j, n_l)| is
    below this (their offsets would meet at a point farther than 1e12 radii). */
 #define RE__PARALLEL_DET 1e-12
-/* Feasibility and merging of eroded-corner vertices, in units of r times
+/* Feasibility of eroded-corner vertices, in units of r times
    max(1, |u|) (u = vertex position relative to the corner, per unit radius). */
 #define RE__CORNER_EPS 1e-9
+/* Eroded-corner vertices closer than this, in the same units (r times
+   max(1, |u|)), are one vertex. Why larger than RE__CORNER_EPS: four or more
+   face planes through nearly one eroded point (the symmetric degree-5/6
+   corners of an icosphere, after float rounding or a rigid transform
+   perturbed them by ~1e-7 of the coordinates) give plane triples whose
+   points all pass the feasibility test, yet lie 1e-9..1e-8 apart; merged
+   only within RE__CORNER_EPS they outnumbered the k - 2 vertices a k-plane
+   corner can have, and the corner was left sharp. Merging moves the rounded
+   surface by at most this times r (1e-7 r), far below any visible or
+   tested error; the relative form scales with r and with |u|. */
+#define RE__CORNER_MERGE 1e-7
 /* A requested radius up to r_max * (1 + this) counts as valid (the largest
    valid radius is then used as is, with zero-length cylinders). */
 #define RE__RADIUS_SLACK 1e-9
@@ -969,6 +985,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     unsigned *xs = an->c_x + 4 * (size_t)an->c_xfirst[c];
     unsigned cap = k; /* a k-plane corner has at most k - 2 eroded vertices (k = 2: one) */
     unsigned long long mask[RE_MAX_CORNER_PLANES];
+    double viol[RE_MAX_CORNER_PLANES]; /* worst plane violation of each kept vertex */
     const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
 #define RE__N(s) (an->planes[pl[s]].n)
     if (k == 2) {
@@ -982,7 +999,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
         for (i = 0; i < k; i++)
             for (j = i + 1; j < k; j++)
                 for (l = j + 1; l < k; l++) {
-                    double a[3], b[3], cc[3], u[3], det, tol, un;
+                    double a[3], b[3], cc[3], u[3], det, tol, un, worst = -HUGE_VAL;
                     unsigned g, q;
                     unsigned long long mk = 0;
                     int ok = 1;
@@ -996,6 +1013,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
                     tol = RE__CORNER_EPS * re__max(1.0, un);
                     for (g = 0; g < k && ok; g++) {
                         double s = re__dot(RE__N(g), u) + 1.0;
+                        worst = re__max(worst, s);
                         if (s > tol) ok = 0;
                         else if (s > -tol) mk |= 1ull << g;
                     }
@@ -1003,14 +1021,16 @@ static int re__erode_corner(re__an_t *an, unsigned c)
                     for (q = 0; q < ns; q++) {
                         double dd[3];
                         re__sub(su + 3 * q, u, dd);
-                        if (re__len(dd) <= tol) break;
+                        if (re__len(dd) <= RE__CORNER_MERGE * re__max(1.0, un)) break;
                     }
-                    if (q < ns) {
+                    if (q < ns) { /* one vertex of a near-concurrent cluster: keep the most feasible point */
                         mask[q] |= mk;
+                        if (worst < viol[q]) su[3 * q] = u[0], su[3 * q + 1] = u[1], su[3 * q + 2] = u[2], viol[q] = worst;
                         continue;
                     }
                     if (ns == cap) return 0;
                     su[3 * ns] = u[0], su[3 * ns + 1] = u[1], su[3 * ns + 2] = u[2];
+                    viol[ns] = worst;
                     mask[ns++] = mk;
                 }
         if (!ns) return 0;
@@ -1123,7 +1143,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     {
         unsigned off = 0;
         for (v = 0; v < V; v++) {
-            unsigned c = an->vcorner[v], deg, m = 0, h, i0, k = 0, j, ok = 1;
+            unsigned c = an->vcorner[v], deg, m = 0, h, i0, k = 0, j, ok = 1, too_many = 0;
             if (c == RE__NONE) continue;
             deg = an->voff[v + 1] - an->voff[v];
             an->c_vertex[c] = v;
@@ -1160,7 +1180,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
                 int change = an->tplane[a] != an->tplane[b];
                 if (change != (an->edges[e].cls == RE__E_CONVEX)) ok = 0;
                 if (!change) continue;
-                if (k == RE_MAX_CORNER_PLANES) { ok = 0; break; }
+                if (k == RE_MAX_CORNER_PLANES) { ok = 0, too_many = 1; break; }
                 an->c_planes[an->c_pfirst[c] + k] = an->tplane[a];
                 an->c_edges[an->c_pfirst[c] + k] = e;
                 k++;
@@ -1169,11 +1189,22 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
                 for (j = i + 1; j < k; j++)
                     if (an->c_planes[an->c_pfirst[c] + i] == an->c_planes[an->c_pfirst[c] + j]) ok = 0;
             an->c_np[c] = (unsigned char)(k > 255 ? 255 : k);
-            if (!ok || k < 2 || !re__erode_corner(an, c)) {
+            if (too_many) {
                 an->vstate[v] = RE__V_SHARP;
-                snprintf(msg, sizeof msg, "vertex %u: corner too complex to round (%u face planes, limit %d): left sharp",
-                         v, k, RE_MAX_CORNER_PLANES);
+                snprintf(msg, sizeof msg, "vertex %u: corner too complex to round (more than %d face planes): left sharp", v,
+                         RE_MAX_CORNER_PLANES);
                 re__report(an, RE_REPORT_COMPLEX_CORNER, v, -1, (double)k, msg);
+            } else if (!ok || k < 2) {
+                an->vstate[v] = RE__V_SHARP;
+                snprintf(msg, sizeof msg,
+                         "vertex %u: its %u face planes do not form a simple convex fan: left sharp", v, k);
+                re__report(an, RE_REPORT_UNROUNDABLE_CORNER, v, -1, (double)k, msg);
+            } else if (!re__erode_corner(an, c)) {
+                an->vstate[v] = RE__V_SHARP;
+                snprintf(msg, sizeof msg,
+                         "vertex %u: eroded corner of its %u face planes could not be resolved numerically (ill-conditioned plane triples): "
+                         "left sharp", v, k);
+                re__report(an, RE_REPORT_UNROUNDABLE_CORNER, v, -1, (double)k, msg);
             }
         }
     }

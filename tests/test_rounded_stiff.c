@@ -7,6 +7,7 @@
 #include "test.h"
 #include "test_rounded_util.h"
 #include "test_rounded_rays.h"
+#include "../examples/common/ex_mesh.c" /* the examples' icosphere: libc/libm only */
 
 static const double BOX_LO[3] = {-0.5, -0.3, -0.2}, BOX_HI[3] = {0.5, 0.3, 0.2};
 
@@ -286,6 +287,97 @@ static void grazing_along_a_subdivided_edge(void)
     tm_free(&m);
 }
 
+/* The examples' float icosphere (level 1: 42 vertices, 80 triangles, 120
+   convex edges), scaled, rotated and moved, built from float positions.
+   Its degree-5 and degree-6 corners have four or more planes through nearly
+   one eroded point; float rounding of the moved vertices split those points
+   by 1e-9..1e-8 r, which once left the whole sphere sharp ("corner too
+   complex"). Asserts every edge rounded, no corner reported, and hits
+   against sphere tracing of the eroded polytope of the same float mesh. */
+static int ico_report_count;
+static void ico_on_report(void *user, const re_report_t *rep)
+{
+    (void)user;
+    if (rep->kind == RE_REPORT_COMPLEX_CORNER || rep->kind == RE_REPORT_UNROUNDABLE_CORNER ||
+        rep->kind == RE_REPORT_SHARP_PATCH_EDGE)
+        ico_report_count++;
+}
+static void float_icosphere_case(double sc, const double axis[3], double angle, const double t[3], double r, long nrays,
+                                 unsigned long long seed, const char *what)
+{
+    ex_mesh_t em = {0};
+    double a12[12];
+    ex_v3_t ax, tr;
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    re_diag_t dg;
+    re_stats_t st;
+    tm_mesh_t m = {0};
+    static tm_poly_t P;
+    size_t i;
+    ax.x = axis[0], ax.y = axis[1], ax.z = axis[2];
+    tr.x = t[0], tr.y = t[1], tr.z = t[2];
+    if (!T_CHECK(ex_mesh_icosphere(&em, 1) == 0)) return;
+    T_INT_EQ(em.nverts, 42);
+    T_INT_EQ(em.ntris, 80);
+    ex_affine_srt(a12, sc, ax, angle, tr);
+    ex_mesh_transform(&em, a12);
+    memset(&mesh, 0, sizeof mesh);
+    memset(&desc, 0, sizeof desc);
+    mesh.positions = em.pos;
+    mesh.position_type = RE_FLOAT32;
+    mesh.vertex_count = (unsigned)em.nverts;
+    mesh.indices = em.idx;
+    mesh.index_count = (unsigned)(3 * em.ntris);
+    mesh.radius = r;
+    desc.objects = &mesh;
+    desc.object_count = 1;
+    desc.report = ico_on_report;
+    ico_report_count = 0;
+    if (!T_CHECK(re_build(&desc, &s, &dg) == RE_OK)) { fprintf(stderr, "%s: %s\n", what, dg.message); ex_mesh_free(&em); return; }
+    re_get_stats(s, &st);
+    if (!T_INT_EQ(st.rounded_edges, 120)) fprintf(stderr, "%s: %llu of 120 edges rounded\n", what, (unsigned long long)st.rounded_edges);
+    T_INT_EQ(st.convex_edges, 120);
+    T_INT_EQ(ico_report_count, 0);
+    re_free(s);
+    /* the same float positions, exactly, for the oracle and the host */
+    for (i = 0; i < em.nverts; i++) tm_vert(&m, em.pos[3 * i], em.pos[3 * i + 1], em.pos[3 * i + 2]);
+    for (i = 0; i < em.ntris; i++) tm_tri(&m, em.idx[3 * i], em.idx[3 * i + 1], em.idx[3 * i + 2]);
+    tm_planes(&m, &P);
+    poly_rays(&m, &P, r, nrays, 1e-7, seed, what);
+    tm_free(&m);
+    ex_mesh_free(&em);
+}
+
+/* the example author's repro: rotation 0.3 about y, moved by (1.3, 1, 0.2) */
+static void float_icosphere_rotated_translated(void)
+{
+    static const double ax[3] = {0, 1, 0}, t[3] = {1.3, 1, 0.2};
+    float_icosphere_case(1, ax, 0.3, t, 0.06, t_count(4000), 41, "icosphere rot 0.3 y + (1.3, 1, 0.2)");
+}
+
+/* 60 random rigid motions and scales: offsets from 0.1 to 1e3 times the size */
+static void float_icosphere_random_motions(void)
+{
+    t_rng_t rng = {43};
+    int it;
+    for (it = 0; it < 60; it++) {
+        double ax[3], t[3], dir[3], sc = t_rng_range(&rng, 0.5, 2), off, angle = t_rng_range(&rng, 0, 2 * M_PI);
+        double u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+        char what[64];
+        int a;
+        ax[0] = w * cos(u), ax[1] = w * sin(u), ax[2] = v;
+        u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+        dir[0] = w * cos(u), dir[1] = w * sin(u), dir[2] = v;
+        off = 2 * sc * pow(10.0, t_rng_range(&rng, -1, 3)); /* size = 2 sc */
+        if (it == 59) off = 2e3 * sc;                        /* the far end, always */
+        for (a = 0; a < 3; a++) t[a] = off * dir[a];
+        snprintf(what, sizeof what, "icosphere motion %d (offset %.3g)", it, off);
+        float_icosphere_case(sc, ax, angle, t, 0.06 * sc, t_count(600), 100 + (unsigned long long)it, what);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -301,6 +393,8 @@ int main(int argc, char **argv)
         T_CASE(rays_exactly_through_edges_and_vertices),
         T_CASE(rays_grazing_a_face),
         T_CASE(grazing_along_a_subdivided_edge),
+        T_CASE(float_icosphere_rotated_translated),
+        T_CASE(float_icosphere_random_motions),
     };
     return T_RUN(argc, argv, cases);
 }
