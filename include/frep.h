@@ -2999,30 +2999,41 @@ static fr__val_t fr__expr(fr__parser_t *p)
 
 /* ---- statements */
 
-static void fr__array_decl(fr__parser_t *p)
+/* The head `NAME [ NUMBER` shared by array declarations and the model's
+   array parameters: a new name and a numeric length. The caller checks the
+   length's range (it differs) and then the closing ']'. Returns 0 after
+   reporting an error. */
+static int fr__array_head(fr__parser_t *p, const char *expected, const char *after_name,
+                          char name[FR__P_MAX_NAME], double *n)
 {
     char msg[120];
+    if (p->tok != FR__T_ID) {
+        fr__perr(p, FR_ERR_PARSE, expected);
+        return 0;
+    }
+    memcpy(name, p->id, FR__P_MAX_NAME);
+    if (fr__find_sym(p, name) >= 0) {
+        snprintf(msg, sizeof msg, "'%s' is already defined", name);
+        fr__perr(p, FR_ERR_PARSE, msg);
+        return 0;
+    }
+    fr__next(p);
+    if (!fr__expect(p, '[', after_name)) return 0;
+    if (p->tok != FR__T_NUM) {
+        fr__perr(p, FR_ERR_PARSE, "array length must be a number");
+        return 0;
+    }
+    *n = p->num;
+    return 1;
+}
+
+static void fr__array_decl(fr__parser_t *p)
+{
     fr__next(p); /* 'array' */
     for (;;) {
         char name[FR__P_MAX_NAME];
         double n;
-        if (p->tok != FR__T_ID) {
-            fr__perr(p, FR_ERR_PARSE, "expected an array name after 'array'");
-            return;
-        }
-        memcpy(name, p->id, sizeof name);
-        if (fr__find_sym(p, name) >= 0) {
-            snprintf(msg, sizeof msg, "'%s' is already defined", name);
-            fr__perr(p, FR_ERR_PARSE, msg);
-            return;
-        }
-        fr__next(p);
-        if (!fr__expect(p, '[', "after the array name")) return;
-        if (p->tok != FR__T_NUM) {
-            fr__perr(p, FR_ERR_PARSE, "array length must be a number");
-            return;
-        }
-        n = p->num;
+        if (!fr__array_head(p, "expected an array name after 'array'", "after the array name", name, &n)) return;
         if (n != floor(n) || n < 1 || n > FR__P_POOL) {
             fr__perr(p, FR_ERR_PARSE, "array length must be an integer from 1 to 16384");
             return;
@@ -3133,7 +3144,6 @@ static void fr__statement(fr__parser_t *p)
 static void fr__header(fr__parser_t *p)
 {
     int k = 0;
-    char msg[120];
     if (p->tok == FR__T_END) {
         if (p->err == FR_OK) fr__perr(p, FR_ERR_PARSE, "empty input: expected a model 'name(x[3], a[1]) { ... }'");
         return;
@@ -3149,23 +3159,8 @@ static void fr__header(fr__parser_t *p)
         char name[FR__P_MAX_NAME];
         double n;
         int si;
-        if (p->tok != FR__T_ID) {
-            fr__perr(p, FR_ERR_PARSE, "expected an array parameter like x[3]");
+        if (!fr__array_head(p, "expected an array parameter like x[3]", "after the parameter name", name, &n))
             return;
-        }
-        memcpy(name, p->id, sizeof name);
-        if (fr__find_sym(p, name) >= 0) {
-            snprintf(msg, sizeof msg, "'%s' is already defined", name);
-            fr__perr(p, FR_ERR_PARSE, msg);
-            return;
-        }
-        fr__next(p);
-        if (!fr__expect(p, '[', "after the parameter name")) return;
-        if (p->tok != FR__T_NUM) {
-            fr__perr(p, FR_ERR_PARSE, "array length must be a number");
-            return;
-        }
-        n = p->num;
         if (n != floor(n) || n < 1 || n > (k == 2 ? FR_MAX_OUTPUTS - 1 : 1024) || (k == 0 && n != 3)) {
             fr__perr(p, FR_ERR_PARSE, k == 0 ? "the coordinate array must be x[3]"
                                              : k == 2 ? "at most 7 attributes" : "bad parameter array length");
