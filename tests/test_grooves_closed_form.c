@@ -4,6 +4,7 @@
 #define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
+#include "grooves_test_util.h"
 
 /* One straight groove along +v at u = 0.5: T = (0,1), so B = (-T_v, T_u)
    = (-1, 0): section b > 0 lies toward -u. */
@@ -28,52 +29,6 @@ static gr_grid_t *one_groove(const double *sec, int nsec)
     return grid;
 }
 
-static gr_query_t square_query(double cu, double cv, double r, double ex, double ey, double ez)
-{
-    gr_query_t q;
-    double len = sqrt(ex * ex + ey * ey + ez * ez);
-    memset(&q, 0, sizeof q);
-    q.footprint.center[0] = cu;
-    q.footprint.center[1] = cv;
-    q.footprint.axis1[0] = r;
-    q.footprint.axis2[1] = r;
-    q.footprint.view[0] = ex / len;
-    q.footprint.view[1] = ey / len;
-    q.footprint.view[2] = ez / len;
-    return q;
-}
-
-static int run(const gr_grid_t *grid, const gr_query_t *q, gr_facet_list_t *list)
-{
-    static unsigned char scratch[1 << 16];
-    size_t need = gr_query_scratch_bytes(grid);
-    gr_result_t r;
-    if (need > sizeof scratch) { T_FAIL("scratch %zu too large", need); return 0; }
-    r = gr_query(grid, q, scratch, sizeof scratch, list);
-    T_INT_EQ(r, GR_OK);
-    return r == GR_OK;
-}
-
-/* ratio of the entry of (groove, facet) -- facet -1 for ground; 0 if absent */
-static const gr_facet_t *entry(const gr_facet_list_t *l, int facet)
-{
-    int i;
-    for (i = 0; i < l->count; i++)
-        if (l->facets[i].facet == facet) return &l->facets[i];
-    return NULL;
-}
-static double ratio_of(const gr_facet_list_t *l, int facet)
-{
-    const gr_facet_t *f = entry(l, facet);
-    return f ? f->ratio : 0.0;
-}
-static double ratio_sum(const gr_facet_list_t *l)
-{
-    double s = 0;
-    int i;
-    for (i = 0; i < l->count; i++) s += l->facets[i].ratio;
-    return s;
-}
 
 /* Symmetric V (half-width a, depth D) from straight above with a square
    footprint of half-size r > a centred on the path: each slope projects to
@@ -85,23 +40,23 @@ static void v_groove_from_above(void)
     const double a = 0.01, D = 0.02, r = 0.05;
     const double sec[6] = {-a, 0, 0, -D, a, 0};
     gr_grid_t *grid = one_groove(sec, 3);
-    gr_query_t q = square_query(0.5, 0.5, r, 0, 0, 1);
+    gr_query_t q = gt_query(0.5, 0.5, r, 0, 0, 1);
     gr_facet_list_t l;
     const gr_facet_t *f0;
     double len = sqrt(a * a + D * D);
-    if (!grid || !run(grid, &q, &l)) return;
+    if (!grid || !gt_run(grid, &q, &l)) return;
     T_INT_EQ(l.count, 3);
-    T_NEAR(ratio_of(&l, 0), a / (2 * r), 1e-14);
-    T_NEAR(ratio_of(&l, 1), a / (2 * r), 1e-14);
-    T_NEAR(ratio_of(&l, -1), 1 - a / r, 1e-14);
-    f0 = entry(&l, 0);
+    T_NEAR(gt_ratio_of(&l, 0), a / (2 * r), 1e-14);
+    T_NEAR(gt_ratio_of(&l, 1), a / (2 * r), 1e-14);
+    T_NEAR(gt_ratio_of(&l, -1), 1 - a / r, 1e-14);
+    f0 = gt_entry(&l, 0);
     if (T_CHECK(f0 != NULL)) {
         T_NEAR(f0->normal[0], -D / len, 1e-14);
         T_NEAR(f0->normal[1], 0, 1e-14);
         T_NEAR(f0->normal[2], a / len, 1e-14);
         T_INT_EQ(f0->reflectance, 7);
     }
-    T_INT_EQ(entry(&l, -1) ? entry(&l, -1)->reflectance : -99, 1);
+    T_INT_EQ(gt_entry(&l, -1) ? gt_entry(&l, -1)->reflectance : -99, 1);
     T_INT_EQ(l.flags, 0);
     gr_grid_free(grid);
 }
@@ -123,13 +78,13 @@ static void v_groove_masking_at_known_angles(void)
     if (!grid) return;
     for (i = 0; i < sizeof deg / sizeof deg[0]; i++) {
         double th = deg[i] * M_PI / 180, t = tan(th);
-        gr_query_t q = square_query(0.5, 0.5, r, sin(th), 0, cos(th));
+        gr_query_t q = gt_query(0.5, 0.5, r, sin(th), 0, cos(th));
         gr_facet_list_t l;
         double w0 = D * t < a ? a - D * t : 0, w1 = D * t < a ? a + D * t : 2 * a;
-        if (!run(grid, &q, &l)) continue;
-        T_NEAR(ratio_of(&l, 0), w0 / (2 * r), 1e-13);
-        T_NEAR(ratio_of(&l, 1), w1 / (2 * r), 1e-13);
-        T_NEAR(ratio_of(&l, -1), 1 - a / r, 1e-13);
+        if (!gt_run(grid, &q, &l)) continue;
+        T_NEAR(gt_ratio_of(&l, 0), w0 / (2 * r), 1e-13);
+        T_NEAR(gt_ratio_of(&l, 1), w1 / (2 * r), 1e-13);
+        T_NEAR(gt_ratio_of(&l, -1), 1 - a / r, 1e-13);
     }
     gr_grid_free(grid);
 }
@@ -151,25 +106,25 @@ static void v_groove_shadowing_at_known_angles(void)
     for (i = 0; i < sizeof deg / sizeof deg[0]; i++) {
         double ph = deg[i] * M_PI / 180, t = tan(ph);
         double light[3] = {sin(ph), 0, cos(ph)};
-        gr_query_t q = square_query(0.5, 0.5, r, 0, 0, 1);
+        gr_query_t q = gt_query(0.5, 0.5, r, 0, 0, 1);
         gr_facet_list_t l;
         double us = (D * t - a) / (a + D * t);
         const gr_facet_t *f0, *f1, *g;
         q.lights = light;
         q.light_count = 1;
-        if (!run(grid, &q, &l)) continue;
-        f0 = entry(&l, 0);
-        f1 = entry(&l, 1);
-        g = entry(&l, -1);
+        if (!gt_run(grid, &q, &l)) continue;
+        f0 = gt_entry(&l, 0);
+        f1 = gt_entry(&l, 1);
+        g = gt_entry(&l, -1);
         if (!T_CHECK(f0 && f1 && g)) continue;
         T_NEAR(f0->lit[0], t < a / D ? 1.0 : 0.0, 1e-13);
         T_NEAR(f1->lit[0], 1 - (us > 0 ? us : 0), 1e-13);
         T_NEAR(g->lit[0], 1.0, 1e-13);
         /* the mirror image: light toward -u swaps the roles of the slopes */
         light[0] = -sin(ph);
-        if (!run(grid, &q, &l)) continue;
-        f0 = entry(&l, 0);
-        f1 = entry(&l, 1);
+        if (!gt_run(grid, &q, &l)) continue;
+        f0 = gt_entry(&l, 0);
+        f1 = gt_entry(&l, 1);
         if (!T_CHECK(f0 && f1)) continue;
         T_NEAR(f1->lit[0], t < a / D ? 1.0 : 0.0, 1e-13);
         T_NEAR(f0->lit[0], 1 - (us > 0 ? us : 0), 1e-13);

@@ -6,6 +6,7 @@
 #define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
+#include "grooves_test_util.h"
 #include <pthread.h>
 
 static gr_grid_t *build(const gr_groove_desc_t *g, int n, int cells)
@@ -29,29 +30,6 @@ static gr_groove_desc_t groove(const double *pts, int np, const double *sec, int
     g.section = sec;
     g.section_count = ns;
     return g;
-}
-static gr_query_t query(double cu, double cv, double r, double ex, double ey, double ez)
-{
-    gr_query_t q;
-    double len = sqrt(ex * ex + ey * ey + ez * ez);
-    memset(&q, 0, sizeof q);
-    q.footprint.center[0] = cu;
-    q.footprint.center[1] = cv;
-    q.footprint.axis1[0] = r;
-    q.footprint.axis2[1] = r;
-    q.footprint.view[0] = ex / len;
-    q.footprint.view[1] = ey / len;
-    q.footprint.view[2] = ez / len;
-    return q;
-}
-static int run(const gr_grid_t *grid, const gr_query_t *q, gr_facet_list_t *list)
-{
-    size_t need = gr_query_scratch_bytes(grid);
-    void *scratch = malloc(need);
-    gr_result_t r = gr_query(grid, q, scratch, need, list);
-    free(scratch);
-    T_INT_EQ(r, GR_OK);
-    return r == GR_OK;
 }
 static const gr_facet_t *entry(const gr_facet_list_t *l, int groove, int facet)
 {
@@ -119,14 +97,14 @@ static void parallel_grooves_and_mirrored_path(void)
     gr_groove_desc_t g[2];
     gr_grid_t *grid;
     double th = 15 * M_PI / 180, t = tan(th);
-    gr_query_t q = query(0.5, 0.5, 0.05, sin(th), 0, cos(th));
+    gr_query_t q = gt_query(0.5, 0.5, 0.05, sin(th), 0, cos(th));
     gr_facet_list_t l;
     int i;
     double toward = 0, away = 0;
     g[0] = groove(p1, 2, sec, 3);
     g[1] = groove(p2, 2, sec, 3);
     grid = build(g, 2, 0);
-    if (!grid || !run(grid, &q, &l)) return;
+    if (!grid || !gt_run(grid, &q, &l)) return;
     T_INT_EQ(l.grooves, 2);
     T_INT_EQ(l.count, 3);
     for (i = 0; i < l.count; i++) {
@@ -151,10 +129,10 @@ static void asymmetric_section_backward_path(void)
     const double a = 0.01, D = 0.02, sec[6] = {-a, 0, 0, -D, 2 * a, 0};
     gr_groove_desc_t g = groove(VPATH_BACK, 2, sec, 3);
     gr_grid_t *grid = build(&g, 1, 0);
-    gr_query_t q = query(0.5, 0.5, 0.05, 0, 0, 1);
+    gr_query_t q = gt_query(0.5, 0.5, 0.05, 0, 0, 1);
     gr_facet_list_t l;
     double len = hypot(a, D);
-    if (!grid || !run(grid, &q, &l)) return;
+    if (!grid || !gt_run(grid, &q, &l)) return;
     T_NEAR(ratio_of(&l, 0, 0), a / 0.1, 1e-14);
     T_NEAR(ratio_of(&l, 0, 1), 2 * a / 0.1, 1e-14);
     if (T_CHECK(entry(&l, 0, 0) != NULL)) {
@@ -162,8 +140,8 @@ static void asymmetric_section_backward_path(void)
         T_NEAR(entry(&l, 0, 0)->normal[2], a / len, 1e-14);
     }
     /* a footprint at u = 0.5 - a/2 is on facet 0 (point sample) */
-    q = query(0.5 - a / 2, 0.5, 0, 0, 0, 1);
-    if (run(grid, &q, &l)) T_NEAR(ratio_of(&l, 0, 0), 1, 0);
+    q = gt_query(0.5 - a / 2, 0.5, 0, 0, 0, 1);
+    if (gt_run(grid, &q, &l)) T_NEAR(ratio_of(&l, 0, 0), 1, 0);
     gr_grid_free(grid);
 }
 
@@ -186,12 +164,12 @@ static void protruding_ridge_shadows_ground(void)
     for (i = 0; i < sizeof deg / sizeof deg[0]; i++) {
         double ph = deg[i] * M_PI / 180, t = tan(ph), light[3] = {sin(ph), 0, cos(ph)};
         double sh = H * t > a ? H * t : a;
-        gr_query_t q = query(0.5, 0.5, r, 0, 0, 1);
+        gr_query_t q = gt_query(0.5, 0.5, r, 0, 0, 1);
         gr_facet_list_t l;
         q.lights = light;
         q.light_count = 1;
         if (sh > r) sh = r;
-        if (!run(grid, &q, &l)) continue;
+        if (!gt_run(grid, &q, &l)) continue;
         if (!T_CHECK(entry(&l, 0, -1) && entry(&l, 0, 0) && entry(&l, 0, 1))) continue;
         T_NEAR(entry(&l, 0, -1)->lit[0], ((r - a) + (r - sh)) / (2 * (r - a)), 1e-13);
         T_NEAR(entry(&l, 0, 0)->lit[0], 1, 1e-13);
@@ -219,10 +197,10 @@ static void straight_beziers_match_segment(void)
     g[1].kind = GR_PATH_CUBIC;
     for (k = 0; k < 2; k++) {
         gr_grid_t *grid = build(&g[k], 1, 0);
-        gr_query_t q = query(0.5, 0.37, 0.05, sin(th), 0, cos(th));
+        gr_query_t q = gt_query(0.5, 0.37, 0.05, sin(th), 0, cos(th));
         gr_facet_list_t l;
         if (!grid) continue;
-        if (run(grid, &q, &l)) {
+        if (gt_run(grid, &q, &l)) {
             T_NEAR(ratio_of(&l, 0, 0), (a - D * t) / 0.1, 1e-12);
             T_NEAR(ratio_of(&l, 0, 1), (a + D * t) / 0.1, 1e-12);
             T_INT_EQ(l.subfootprints, 1);
@@ -246,14 +224,14 @@ static void curved_path_local_frame_and_oversampling(void)
     const double a = 0.01, sec[6] = {-a, 0, 0, -a, a, 0}, quad[6] = {0.3, 0.2, 0.5, 0.8, 0.7, 0.2};
     gr_groove_desc_t g = groove(quad, 3, sec, 3);
     gr_grid_t *grid;
-    gr_query_t q = query(0.5, 0.5 - a / 2, 0, 0, 0, 1);
+    gr_query_t q = gt_query(0.5, 0.5 - a / 2, 0, 0, 0, 1);
     gr_facet_list_t l;
     double sum = 0;
     int i;
     g.kind = GR_PATH_QUADRATIC;
     grid = build(&g, 1, 0);
     if (!grid) return;
-    if (run(grid, &q, &l)) {
+    if (gt_run(grid, &q, &l)) {
         T_NEAR(ratio_of(&l, 0, 0), 1, 0);
         if (entry(&l, 0, 0)) {
             /* (b,w)-normal of facet 0 is (a, a)/|.|: texture (0, 1, 1)/sqrt 2 */
@@ -261,16 +239,16 @@ static void curved_path_local_frame_and_oversampling(void)
             T_NEAR(entry(&l, 0, 0)->normal[1], M_SQRT1_2, 1e-9);
         }
     }
-    q = query(0.5, 0.5, 0.0, 0, 0, 1);
+    q = gt_query(0.5, 0.5, 0.0, 0, 0, 1);
     q.footprint.axis1[0] = 0.05; /* along the path */
     q.footprint.axis2[1] = 0.005;
-    if (run(grid, &q, &l)) {
+    if (gt_run(grid, &q, &l)) {
         T_INT_EQ(l.subfootprints, 5);
         for (i = 0; i < l.count; i++) sum += l.facets[i].ratio;
         T_NEAR(sum, 1, 1e-12);
     }
     q.oversample_tol = -1;
-    if (run(grid, &q, &l)) T_INT_EQ(l.subfootprints, 1);
+    if (gt_run(grid, &q, &l)) T_INT_EQ(l.subfootprints, 1);
     gr_grid_free(grid);
 #endif
 }
@@ -288,7 +266,7 @@ static void perturbation_and_oversampling_converge(void)
     gr_groove_desc_t g = groove(VPATH, 2, sec, 3);
     gr_grid_t *grid;
     gr_facet_list_t l;
-    gr_query_t q = query(0.5, t0, r, 0, 0, 1);
+    gr_query_t q = gt_query(0.5, t0, r, 0, 0, 1);
     const double tols[3] = {-1, 0.1, 0.01};
     double exact = a * (t0 * t0 + h * h / 3) / (2 * r), prev_err = HUGE_VAL;
     int i;
@@ -301,7 +279,7 @@ static void perturbation_and_oversampling_converge(void)
     for (i = 0; i < 3; i++) {
         double k, want, err;
         q.oversample_tol = tols[i];
-        if (!run(grid, &q, &l)) continue;
+        if (!gt_run(grid, &q, &l)) continue;
         k = l.subfootprints;
         want = a * (t0 * t0 + h * h / 3 * (1 - 1 / (k * k))) / (2 * r);
         T_NEAR(ratio_of(&l, 0, 0), want, 1e-13);
@@ -313,9 +291,9 @@ static void perturbation_and_oversampling_converge(void)
     }
     T_GE(l.subfootprints, 40);
     /* a constant scale 1/2 halves the section: a/2/2r per slope */
-    q = query(0.5, 0.25, r, 0, 0, 1);
+    q = gt_query(0.5, 0.25, r, 0, 0, 1);
     q.oversample_tol = -1;
-    if (run(grid, &q, &l)) T_NEAR(ratio_of(&l, 0, 0), a * 0.0625 / (2 * r), 1e-14);
+    if (gt_run(grid, &q, &l)) T_NEAR(ratio_of(&l, 0, 0), a * 0.0625 / (2 * r), 1e-14);
     gr_grid_free(grid);
 }
 
@@ -329,19 +307,19 @@ static void perturbation_tilts_normals(void)
     const double a = 0.01, D = 0.02, sec[6] = {-a, 0, 0, -D, a, 0};
     gr_groove_desc_t g = groove(VPATH, 2, sec, 3);
     gr_grid_t *grid;
-    gr_query_t q = query(0.5 + a / 2 * 0.6, 0.6, 0, 0, 0, 1);
+    gr_query_t q = gt_query(0.5 + a / 2 * 0.6, 0.6, 0, 0, 0, 1);
     gr_facet_list_t l;
     double n1 = sqrt(D * D + a * a * D * D + a * a), n0 = hypot(a, D);
     g.perturb = ramp;
     g.perturb_max = 1;
     grid = build(&g, 1, 0);
     if (!grid) return;
-    if (run(grid, &q, &l) && T_CHECK(entry(&l, 0, 0) != NULL)) {
+    if (gt_run(grid, &q, &l) && T_CHECK(entry(&l, 0, 0) != NULL)) {
         T_NEAR(entry(&l, 0, 0)->normal[0], -D / n0, 1e-14);
         T_NEAR(entry(&l, 0, 0)->normal[1], 0, 0);
     }
     q.perturb_normals = 1;
-    if (run(grid, &q, &l) && T_CHECK(entry(&l, 0, 0) != NULL)) {
+    if (gt_run(grid, &q, &l) && T_CHECK(entry(&l, 0, 0) != NULL)) {
         T_NEAR(entry(&l, 0, 0)->normal[0], -D / n1, 1e-9);
         T_NEAR(entry(&l, 0, 0)->normal[1], a * D / n1, 1e-9);
         T_NEAR(entry(&l, 0, 0)->normal[2], a / n1, 1e-9);
@@ -423,9 +401,9 @@ static void short_groove_inside_large_footprint(void)
     const double a = 0.001, sec[6] = {-a, 0, 0, -a, a, 0}, p[4] = {0.5, 0.5, 0.52, 0.5};
     gr_groove_desc_t g = groove(p, 2, sec, 3);
     gr_grid_t *grid = build(&g, 1, 16);
-    gr_query_t q = query(0.505, 0.5, 0.2, 0, 0, 1);
+    gr_query_t q = gt_query(0.505, 0.5, 0.2, 0, 0, 1);
     gr_facet_list_t l;
-    if (!grid || !run(grid, &q, &l)) return;
+    if (!grid || !gt_run(grid, &q, &l)) return;
     T_INT_EQ(l.grooves, 1);
     T_CHECK(l.flags & GR_LIST_PATH_END);
     gr_grid_free(grid);
@@ -439,12 +417,12 @@ static void nonparallel_groove_flagged(void)
     const double a = 0.01, sec[6] = {-a, 0, 0, -a, a, 0}, across[4] = {0, 0.53, 1, 0.53};
     gr_groove_desc_t g[2];
     gr_grid_t *grid;
-    gr_query_t q = query(0.5, 0.5, 0.05, 0, 0, 1);
+    gr_query_t q = gt_query(0.5, 0.5, 0.05, 0, 0, 1);
     gr_facet_list_t l;
     g[0] = groove(VPATH, 2, sec, 3);
     g[1] = groove(across, 2, sec, 3);
     grid = build(g, 2, 0);
-    if (!grid || !run(grid, &q, &l)) return;
+    if (!grid || !gt_run(grid, &q, &l)) return;
     T_CHECK(l.flags & GR_LIST_NONPARALLEL);
     T_INT_EQ(l.grooves, 1);
     T_NEAR(ratio_of(&l, 0, 0), a / 0.1, 1e-14);
@@ -465,7 +443,7 @@ static void shade_with_brdf_callback(void)
     const double a = 0.01, D = 0.02, r = 0.05, sec[6] = {-a, 0, 0, -D, a, 0}, light[3] = {0, 0, 1};
     gr_groove_desc_t g = groove(VPATH, 2, sec, 3);
     gr_grid_t *grid = build(&g, 1, 0);
-    gr_query_t q = query(0.5, 0.5, r, 0, 0, 1);
+    gr_query_t q = gt_query(0.5, 0.5, r, 0, 0, 1);
     size_t need;
     void *scratch;
     double rgb[3];
@@ -490,7 +468,7 @@ typedef struct job_t {
 static gr_query_t job_query(t_rng_t *rng)
 {
     double th = t_rng_range(rng, 0, 1.4), az = t_rng_range(rng, 0, 6.283);
-    return query(t_rng_unit(rng), t_rng_unit(rng), t_rng_range(rng, 0, 0.02), sin(th) * cos(az), sin(th) * sin(az), cos(th));
+    return gt_query(t_rng_unit(rng), t_rng_unit(rng), t_rng_range(rng, 0, 0.02), sin(th) * cos(az), sin(th) * sin(az), cos(th));
 }
 static void *job(void *arg)
 {
@@ -550,7 +528,7 @@ static void many_threads_one_grid(void)
             gr_facet_list_t l;
             double s = 0;
             int e;
-            if (!run(grid, &q, &l)) break;
+            if (!gt_run(grid, &q, &l)) break;
             for (e = 0; e < l.count; e++) {
                 s += l.facets[e].ratio;
                 if (l.facets[e].ratio < 0 || l.facets[e].ratio > 1 + 1e-12) T_FAIL("ratio %g", l.facets[e].ratio);
@@ -604,7 +582,7 @@ static void random_scenes_keep_invariants(void)
         for (qn = 0; qn < queries; qn++) {
             double th = t_rng_range(&rng, 0, 1.5707), az = t_rng_range(&rng, 0, 6.2832), r = t_rng_range(&rng, 0, 0.05);
             double lights[6];
-            gr_query_t q = query(t_rng_range(&rng, -1, 2), t_rng_range(&rng, -1, 2), r, sin(th) * cos(az), sin(th) * sin(az), cos(th));
+            gr_query_t q = gt_query(t_rng_range(&rng, -1, 2), t_rng_range(&rng, -1, 2), r, sin(th) * cos(az), sin(th) * sin(az), cos(th));
             gr_facet_list_t l;
             double sum = 0;
             if (t_rng_unit(&rng) < 0.2) q.footprint.axis2[1] = 0;
@@ -616,7 +594,7 @@ static void random_scenes_keep_invariants(void)
             q.lights = lights;
             q.light_count = 2;
             q.perturb_normals = (int)(qn & 1);
-            if (!run(grid, &q, &l)) break;
+            if (!gt_run(grid, &q, &l)) break;
             if (l.flags & GR_LIST_BELOW_HORIZON) continue;
             for (i = 0; i < l.count; i++) {
                 const gr_facet_t *f = &l.facets[i];

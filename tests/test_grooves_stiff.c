@@ -7,6 +7,7 @@
 #define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
+#include "grooves_test_util.h"
 
 static gr_grid_t *grooves_at(const double *us, int n, const double *sec, int nsec, int no_wrap)
 {
@@ -41,49 +42,6 @@ static gr_grid_t *one_groove(const double *sec, int nsec)
     return grooves_at(&u, 1, sec, nsec, 0);
 }
 
-static gr_query_t query(double cu, double cv, double r, double ex, double ey, double ez)
-{
-    gr_query_t q;
-    double len = sqrt(ex * ex + ey * ey + ez * ez);
-    memset(&q, 0, sizeof q);
-    q.footprint.center[0] = cu;
-    q.footprint.center[1] = cv;
-    q.footprint.axis1[0] = r;
-    q.footprint.axis2[1] = r;
-    q.footprint.view[0] = ex / len;
-    q.footprint.view[1] = ey / len;
-    q.footprint.view[2] = ez / len;
-    return q;
-}
-
-static int run(const gr_grid_t *grid, const gr_query_t *q, gr_facet_list_t *list)
-{
-    size_t need = gr_query_scratch_bytes(grid);
-    void *scratch = malloc(need);
-    gr_result_t r = gr_query(grid, q, scratch, need, list);
-    free(scratch);
-    T_INT_EQ(r, GR_OK);
-    return r == GR_OK;
-}
-static const gr_facet_t *entry(const gr_facet_list_t *l, int facet)
-{
-    int i;
-    for (i = 0; i < l->count; i++)
-        if (l->facets[i].facet == facet) return &l->facets[i];
-    return NULL;
-}
-static double ratio_of(const gr_facet_list_t *l, int facet)
-{
-    const gr_facet_t *f = entry(l, facet);
-    return f ? f->ratio : 0.0;
-}
-static double ratio_sum(const gr_facet_list_t *l)
-{
-    double s = 0;
-    int i;
-    for (i = 0; i < l->count; i++) s += l->facets[i].ratio;
-    return s;
-}
 
 static const double A = 0.01, DEP = 0.02, R = 0.05;
 
@@ -99,14 +57,14 @@ static void grazing_view_across_groove(void)
     unsigned i;
     if (!grid) return;
     for (i = 0; i < sizeof ew / sizeof ew[0]; i++) {
-        gr_query_t q = query(0.5, 0.5, R, sqrt(1 - ew[i] * ew[i]), 0, ew[i]);
+        gr_query_t q = gt_query(0.5, 0.5, R, sqrt(1 - ew[i] * ew[i]), 0, ew[i]);
         gr_facet_list_t l;
         q.footprint.view[2] = ew[i]; /* keep the tiny value exactly */
-        if (!run(grid, &q, &l)) continue;
-        T_NEAR(ratio_of(&l, 0), 0, 1e-12);
-        T_NEAR(ratio_of(&l, 1), A / R, 1e-12);
-        T_NEAR(ratio_of(&l, -1), 1 - A / R, 1e-12);
-        T_NEAR(ratio_sum(&l), 1, 1e-12);
+        if (!gt_run(grid, &q, &l)) continue;
+        T_NEAR(gt_ratio_of(&l, 0), 0, 1e-12);
+        T_NEAR(gt_ratio_of(&l, 1), A / R, 1e-12);
+        T_NEAR(gt_ratio_of(&l, -1), 1 - A / R, 1e-12);
+        T_NEAR(gt_ratio_sum(&l), 1, 1e-12);
     }
     gr_grid_free(grid);
 }
@@ -117,12 +75,12 @@ static void grazing_view_along_groove(void)
 {
     const double sec[6] = {-A, 0, 0, -DEP, A, 0};
     gr_grid_t *grid = one_groove(sec, 3);
-    gr_query_t q = query(0.5, 0.5, R, 0, 1, 1e-9);
+    gr_query_t q = gt_query(0.5, 0.5, R, 0, 1, 1e-9);
     gr_facet_list_t l;
-    if (!grid || !run(grid, &q, &l)) return;
-    T_NEAR(ratio_of(&l, 0), A / (2 * R), 1e-13);
-    T_NEAR(ratio_of(&l, 1), A / (2 * R), 1e-13);
-    T_NEAR(ratio_of(&l, -1), 1 - A / R, 1e-13);
+    if (!grid || !gt_run(grid, &q, &l)) return;
+    T_NEAR(gt_ratio_of(&l, 0), A / (2 * R), 1e-13);
+    T_NEAR(gt_ratio_of(&l, 1), A / (2 * R), 1e-13);
+    T_NEAR(gt_ratio_of(&l, -1), 1 - A / R, 1e-13);
     gr_grid_free(grid);
 }
 
@@ -144,16 +102,16 @@ static void grazing_view_behind_a_ridge(void)
     if (!grid) return;
     T_NEAR(grid->h, H, 0);
     for (i = 0; i < 3; i++) {
-        q = query(0.2, 0.5, 0.01, 1, 0, 0);
+        q = gt_query(0.2, 0.5, 0.01, 1, 0, 0);
         q.footprint.view[2] = ews[i];
-        if (!run(grid, &q, &l)) return;
-        T_NEAR(ratio_of(&l, 0), 1, 1e-12);
+        if (!gt_run(grid, &q, &l)) return;
+        T_NEAR(gt_ratio_of(&l, 0), 1, 1e-12);
         T_INT_EQ(l.count, 1);
     }
     /* and seen from above, the ridge is far: ground only */
-    q = query(0.2, 0.5, 0.01, 0, 0, 1);
-    if (!run(grid, &q, &l)) return;
-    T_NEAR(ratio_of(&l, -1), 1, 1e-15);
+    q = gt_query(0.2, 0.5, 0.01, 0, 0, 1);
+    if (!gt_run(grid, &q, &l)) return;
+    T_NEAR(gt_ratio_of(&l, -1), 1, 1e-15);
     gr_grid_free(grid);
 }
 
@@ -167,19 +125,19 @@ static void grazing_light_behind_a_ridge(void)
     const double H = 0.01, sec[6] = {-A, 0, 0, H, A, 0};
     gr_grid_t *grid = one_groove(sec, 3);
     double lw = 1e-3, light[3];
-    gr_query_t q = query(0.2, 0.5, 0.01, 0, 0, 1);
+    gr_query_t q = gt_query(0.2, 0.5, 0.01, 0, 0, 1);
     gr_facet_list_t l;
     if (!grid) return;
     light[0] = sqrt(1 - lw * lw); light[1] = 0; light[2] = lw;
     q.lights = light;
     q.light_count = 1;
-    if (run(grid, &q, &l)) {
-        T_NEAR(ratio_of(&l, -1), 1, 1e-15);
-        T_NEAR(entry(&l, -1) ? entry(&l, -1)->lit[0] : -1, 0, 1e-12);
+    if (gt_run(grid, &q, &l)) {
+        T_NEAR(gt_ratio_of(&l, -1), 1, 1e-15);
+        T_NEAR(gt_entry(&l, -1) ? gt_entry(&l, -1)->lit[0] : -1, 0, 1e-12);
         T_INT_EQ(l.grooves, 1);
     }
     light[0] = -light[0]; /* from the other side: nothing in the way */
-    if (run(grid, &q, &l)) T_NEAR(entry(&l, -1) ? entry(&l, -1)->lit[0] : -1, 1, 1e-12);
+    if (gt_run(grid, &q, &l)) T_NEAR(gt_entry(&l, -1) ? gt_entry(&l, -1)->lit[0] : -1, 1, 1e-12);
     gr_grid_free(grid);
 }
 
@@ -195,7 +153,7 @@ static void light_at_and_below_horizon(void)
     const double lw[] = {0.0, -0.2, -1.0};
     gr_grid_t *grid = one_groove(sec, 3);
     gr_facet_list_t l;
-    gr_query_t q = query(0.5, 0.5, R, 0, 0, 1);
+    gr_query_t q = gt_query(0.5, 0.5, R, 0, 0, 1);
     double light[3];
     unsigned i;
     int k;
@@ -204,16 +162,16 @@ static void light_at_and_below_horizon(void)
     q.light_count = 1;
     for (i = 0; i < sizeof lw / sizeof lw[0]; i++) {
         light[0] = sqrt(1 - lw[i] * lw[i]); light[1] = 0; light[2] = lw[i];
-        if (!run(grid, &q, &l)) continue;
+        if (!gt_run(grid, &q, &l)) continue;
         for (k = 0; k < l.count; k++) T_NEAR(l.facets[k].lit[0], 0, 0);
-        T_NEAR(ratio_sum(&l), 1, 1e-14);
+        T_NEAR(gt_ratio_sum(&l), 1, 1e-14);
     }
     for (i = 0; i < 2; i++) { /* 1e-12, and the smallest subnormal */
         light[0] = 1; light[1] = 0; light[2] = i == 0 ? 1e-12 : 4.9e-324;
-        if (!run(grid, &q, &l)) continue;
-        T_NEAR(entry(&l, -1) ? entry(&l, -1)->lit[0] : -1, 1, 1e-15);
-        T_NEAR(entry(&l, 0) ? entry(&l, 0)->lit[0] : -1, 0, 0);
-        T_LE(entry(&l, 1) ? entry(&l, 1)->lit[0] : 1, 2 * A / (DEP * 1e12));
+        if (!gt_run(grid, &q, &l)) continue;
+        T_NEAR(gt_entry(&l, -1) ? gt_entry(&l, -1)->lit[0] : -1, 1, 1e-15);
+        T_NEAR(gt_entry(&l, 0) ? gt_entry(&l, 0)->lit[0] : -1, 0, 0);
+        T_LE(gt_entry(&l, 1) ? gt_entry(&l, 1)->lit[0] : 1, 2 * A / (DEP * 1e12));
     }
     gr_grid_free(grid);
 }
@@ -233,16 +191,16 @@ static void vertical_facets(void)
     if (!grid) return;
     for (i = 0; i < sizeof deg / sizeof deg[0]; i++) {
         double th = deg[i] * M_PI / 180, t = tan(th);
-        gr_query_t q = query(0.5, 0.5, R, sin(th), 0, cos(th));
+        gr_query_t q = gt_query(0.5, 0.5, R, sin(th), 0, cos(th));
         gr_facet_list_t l;
         double bottom = 2 * A - DEP * t > 0 ? 2 * A - DEP * t : 0, far = DEP * t < 2 * A ? DEP * t : 2 * A;
-        if (!run(grid, &q, &l)) continue;
-        T_NEAR(ratio_of(&l, 0), 0, 1e-13);
-        T_NEAR(ratio_of(&l, 1), bottom / (2 * R), 1e-13);
-        T_NEAR(ratio_of(&l, 2), far / (2 * R), 1e-13);
-        if (entry(&l, 2)) {
-            T_NEAR(entry(&l, 2)->normal[0], 1, 1e-15);
-            T_NEAR(entry(&l, 2)->normal[2], 0, 1e-15);
+        if (!gt_run(grid, &q, &l)) continue;
+        T_NEAR(gt_ratio_of(&l, 0), 0, 1e-13);
+        T_NEAR(gt_ratio_of(&l, 1), bottom / (2 * R), 1e-13);
+        T_NEAR(gt_ratio_of(&l, 2), far / (2 * R), 1e-13);
+        if (gt_entry(&l, 2)) {
+            T_NEAR(gt_entry(&l, 2)->normal[0], 1, 1e-15);
+            T_NEAR(gt_entry(&l, 2)->normal[2], 0, 1e-15);
         }
     }
     gr_grid_free(grid);
@@ -255,14 +213,14 @@ static void zero_width_facets(void)
 {
     const double sec[10] = {-A, 0, -A, 0, 0, -DEP, 0, -DEP, A, 0};
     gr_grid_t *grid = one_groove(sec, 5);
-    gr_query_t q = query(0.5, 0.5, R, 0.3, 0, 1);
+    gr_query_t q = gt_query(0.5, 0.5, R, 0.3, 0, 1);
     gr_facet_list_t l;
     double t = 0.3;
-    if (!grid || !run(grid, &q, &l)) return;
-    T_CHECK(entry(&l, 0) == NULL);
-    T_CHECK(entry(&l, 2) == NULL);
-    T_NEAR(ratio_of(&l, 1), (A - DEP * t) / (2 * R), 1e-13);
-    T_NEAR(ratio_of(&l, 3), (A + DEP * t) / (2 * R), 1e-13);
+    if (!grid || !gt_run(grid, &q, &l)) return;
+    T_CHECK(gt_entry(&l, 0) == NULL);
+    T_CHECK(gt_entry(&l, 2) == NULL);
+    T_NEAR(gt_ratio_of(&l, 1), (A - DEP * t) / (2 * R), 1e-13);
+    T_NEAR(gt_ratio_of(&l, 3), (A + DEP * t) / (2 * R), 1e-13);
     gr_grid_free(grid);
 }
 
@@ -282,13 +240,13 @@ static void zero_area_footprint(void)
     gr_query_t q;
     if (!grid) return;
     for (i = 0; i < 3; i++) {
-        q = query(us[i], 0.5, 0, 0, 0, 1);
-        if (!run(grid, &q, &l)) continue;
+        q = gt_query(us[i], 0.5, 0, 0, 0, 1);
+        if (!gt_run(grid, &q, &l)) continue;
         T_INT_EQ(l.count, 1);
-        T_NEAR(ratio_of(&l, want[i]), 1, 0);
+        T_NEAR(gt_ratio_of(&l, want[i]), 1, 0);
     }
-    q = query(0.5, 0.5, 0, 0.3, 0, 1);
-    if (run(grid, &q, &l)) T_NEAR(ratio_of(&l, 1), 1, 0);
+    q = gt_query(0.5, 0.5, 0, 0.3, 0, 1);
+    if (gt_run(grid, &q, &l)) T_NEAR(gt_ratio_of(&l, 1), 1, 0);
     gr_grid_free(grid);
 }
 
@@ -300,18 +258,18 @@ static void line_footprints(void)
 {
     const double sec[6] = {-A, 0, 0, -DEP, A, 0};
     gr_grid_t *grid = one_groove(sec, 3);
-    gr_query_t q = query(0.5, 0.5, R, 0, 0, 1);
+    gr_query_t q = gt_query(0.5, 0.5, R, 0, 0, 1);
     gr_facet_list_t l;
     if (!grid) return;
     q.footprint.axis2[1] = 0;
-    if (run(grid, &q, &l)) {
-        T_NEAR(ratio_of(&l, 0), A / (2 * R), 1e-14);
-        T_NEAR(ratio_of(&l, 1), A / (2 * R), 1e-14);
+    if (gt_run(grid, &q, &l)) {
+        T_NEAR(gt_ratio_of(&l, 0), A / (2 * R), 1e-14);
+        T_NEAR(gt_ratio_of(&l, 1), A / (2 * R), 1e-14);
     }
-    q = query(0.5 + A / 2, 0.5, 0, 0, 0, 1);
+    q = gt_query(0.5 + A / 2, 0.5, 0, 0, 0, 1);
     q.footprint.axis1[1] = R;
-    if (run(grid, &q, &l)) {
-        T_NEAR(ratio_of(&l, 0), 1, 0);
+    if (gt_run(grid, &q, &l)) {
+        T_NEAR(gt_ratio_of(&l, 0), 1, 0);
         T_INT_EQ(l.count, 1);
     }
     gr_grid_free(grid);
@@ -343,20 +301,20 @@ static void micro_groove_limit(void)
     if (!grid) return;
     light[0] = sin(ph); light[1] = 0; light[2] = cos(ph);
     for (k = 0; k < trials; k++) {
-        gr_query_t q = query(0.5 + t_rng_range(&rng, -p, p), t_rng_unit(&rng), r, sin(th), 0, cos(th));
+        gr_query_t q = gt_query(0.5 + t_rng_range(&rng, -p, p), t_rng_unit(&rng), r, sin(th), 0, cos(th));
         gr_facet_list_t l;
         q.lights = light;
         q.light_count = 1;
-        if (!run(grid, &q, &l)) continue;
+        if (!gt_run(grid, &q, &l)) continue;
         T_INT_EQ(l.count, 3);
         T_LE(l.grooves, 1002);
         T_GE(l.grooves, 998);
-        T_NEAR(ratio_of(&l, 0), (a - D * t) / p, bound);
-        T_NEAR(ratio_of(&l, 1), (a + D * t) / p, bound);
-        T_NEAR(ratio_of(&l, -1), (p - 2 * a) / p, bound);
-        T_NEAR(ratio_sum(&l), 1, 1e-12);
-        if (entry(&l, 1)) T_NEAR(entry(&l, 1)->lit[0], 1 - (us_star > 0 ? us_star : 0), 0.02);
-        if (entry(&l, 0)) T_NEAR(entry(&l, 0)->lit[0], tl < a / D ? 1 : 0, 1e-12);
+        T_NEAR(gt_ratio_of(&l, 0), (a - D * t) / p, bound);
+        T_NEAR(gt_ratio_of(&l, 1), (a + D * t) / p, bound);
+        T_NEAR(gt_ratio_of(&l, -1), (p - 2 * a) / p, bound);
+        T_NEAR(gt_ratio_sum(&l), 1, 1e-12);
+        if (gt_entry(&l, 1)) T_NEAR(gt_entry(&l, 1)->lit[0], 1 - (us_star > 0 ? us_star : 0), 0.02);
+        if (gt_entry(&l, 0)) T_NEAR(gt_entry(&l, 0)->lit[0], tl < a / D ? 1 : 0, 1e-12);
     }
     gr_grid_free(grid);
 }
@@ -378,14 +336,14 @@ static void footprint_across_texture_seam(void)
     gr_query_t q;
     if (!grid || !flat) return;
     for (i = 0; i < sizeof shifts / sizeof shifts[0]; i++) {
-        q = query(0.998 + shifts[i], 0.3 + shifts[i], 0.005, 0, 0, 1);
-        if (!run(grid, &q, &l)) continue;
-        T_NEAR(ratio_of(&l, 0), 0.1, 1e-9);
-        T_NEAR(ratio_of(&l, 1), 0.2, 1e-9);
-        T_NEAR(ratio_of(&l, -1), 0.7, 1e-9);
+        q = gt_query(0.998 + shifts[i], 0.3 + shifts[i], 0.005, 0, 0, 1);
+        if (!gt_run(grid, &q, &l)) continue;
+        T_NEAR(gt_ratio_of(&l, 0), 0.1, 1e-9);
+        T_NEAR(gt_ratio_of(&l, 1), 0.2, 1e-9);
+        T_NEAR(gt_ratio_of(&l, -1), 0.7, 1e-9);
     }
-    q = query(0.998, 0.3, 0.005, 0, 0, 1);
-    if (run(flat, &q, &l)) T_NEAR(ratio_of(&l, -1), 1, 0);
+    q = gt_query(0.998, 0.3, 0.005, 0, 0, 1);
+    if (gt_run(flat, &q, &l)) T_NEAR(gt_ratio_of(&l, -1), 1, 0);
     gr_grid_free(grid);
     gr_grid_free(flat);
     /* the mirror image: groove at u = 0.998, footprint at 0.002 - 1 + ...:
@@ -397,10 +355,10 @@ static void footprint_across_texture_seam(void)
         gr_grid_t *m = grooves_at(&um, 1, sec, 3, 0);
         if (!m) return;
         for (i = 0; i < sizeof shifts / sizeof shifts[0]; i++) {
-            q = query(0.002 + shifts[i], 0.7, 0.005, 0, 0, 1);
-            if (!run(m, &q, &l)) continue;
-            T_NEAR(ratio_of(&l, 1), 0.1, 1e-9);
-            T_NEAR(ratio_of(&l, 0), 0.2, 1e-9);
+            q = gt_query(0.002 + shifts[i], 0.7, 0.005, 0, 0, 1);
+            if (!gt_run(m, &q, &l)) continue;
+            T_NEAR(gt_ratio_of(&l, 1), 0.1, 1e-9);
+            T_NEAR(gt_ratio_of(&l, 0), 0.2, 1e-9);
         }
         gr_grid_free(m);
     }
@@ -414,14 +372,14 @@ static void groove_wider_than_footprint(void)
 {
     const double a = 0.1, sec[6] = {-a, 0, 0, -a, a, 0};
     gr_grid_t *grid = one_groove(sec, 3);
-    gr_query_t q = query(0.55, 0.5, 0.001, 0, 0, 1);
+    gr_query_t q = gt_query(0.55, 0.5, 0.001, 0, 0, 1);
     gr_facet_list_t l;
     if (!grid) return;
-    if (run(grid, &q, &l)) { T_NEAR(ratio_of(&l, 0), 1, 1e-15); T_INT_EQ(l.count, 1); }
-    q = query(0.5005, 0.5, 0.001, 0, 0, 1);
-    if (run(grid, &q, &l)) {
-        T_NEAR(ratio_of(&l, 0), 0.75, 1e-12);
-        T_NEAR(ratio_of(&l, 1), 0.25, 1e-12);
+    if (gt_run(grid, &q, &l)) { T_NEAR(gt_ratio_of(&l, 0), 1, 1e-15); T_INT_EQ(l.count, 1); }
+    q = gt_query(0.5005, 0.5, 0.001, 0, 0, 1);
+    if (gt_run(grid, &q, &l)) {
+        T_NEAR(gt_ratio_of(&l, 0), 0.75, 1e-12);
+        T_NEAR(gt_ratio_of(&l, 1), 0.25, 1e-12);
     }
     gr_grid_free(grid);
 }
@@ -433,13 +391,13 @@ static void groove_much_narrower_than_footprint(void)
 {
     const double a = 1e-9, sec[6] = {-a, 0, 0, -a, a, 0};
     gr_grid_t *grid = one_groove(sec, 3);
-    gr_query_t q = query(0.5, 0.5, 0.01, 0.2, 0, 1);
+    gr_query_t q = gt_query(0.5, 0.5, 0.01, 0.2, 0, 1);
     gr_facet_list_t l;
     double t = 0.2;
-    if (!grid || !run(grid, &q, &l)) return;
-    T_REL(ratio_of(&l, 0), (a - a * t) / 0.02, 1e-6);
-    T_REL(ratio_of(&l, 1), (a + a * t) / 0.02, 1e-6);
-    T_NEAR(ratio_of(&l, -1), 1 - a / 0.01, 1e-15);
+    if (!grid || !gt_run(grid, &q, &l)) return;
+    T_REL(gt_ratio_of(&l, 0), (a - a * t) / 0.02, 1e-6);
+    T_REL(gt_ratio_of(&l, 1), (a + a * t) / 0.02, 1e-6);
+    T_NEAR(gt_ratio_of(&l, -1), 1 - a / 0.01, 1e-15);
     gr_grid_free(grid);
 }
 
@@ -448,13 +406,13 @@ static void viewer_below_surface(void)
 {
     const double sec[6] = {-A, 0, 0, -DEP, A, 0};
     gr_grid_t *grid = one_groove(sec, 3);
-    gr_query_t q = query(0.5, 0.5, R, 1, 0, 0);
+    gr_query_t q = gt_query(0.5, 0.5, R, 1, 0, 0);
     gr_facet_list_t l;
-    if (!grid || !run(grid, &q, &l)) return;
+    if (!grid || !gt_run(grid, &q, &l)) return;
     T_INT_EQ(l.count, 0);
     T_CHECK(l.flags & GR_LIST_BELOW_HORIZON);
     q.footprint.view[2] = -0.5;
-    if (run(grid, &q, &l)) T_INT_EQ(l.count, 0);
+    if (gt_run(grid, &q, &l)) T_INT_EQ(l.count, 0);
     gr_grid_free(grid);
 }
 

@@ -1,0 +1,57 @@
+/* Helpers shared by the grooves.h tests: a square footprint query, running
+   it with scratch of the size the grid asks for, and reading the facet list.
+   Include after test.h and grooves.h. */
+#ifndef FILIGREE_GROOVES_TEST_UTIL_H
+#define FILIGREE_GROOVES_TEST_UTIL_H
+
+/* A square footprint of half-size r centred on (cu, cv), seen from the
+   direction (ex, ey, ez) (texture space, normalised here). */
+static gr_query_t gt_query(double cu, double cv, double r, double ex, double ey, double ez)
+{
+    gr_query_t q;
+    double len = sqrt(ex * ex + ey * ey + ez * ez);
+    memset(&q, 0, sizeof q);
+    q.footprint.center[0] = cu;
+    q.footprint.center[1] = cv;
+    q.footprint.axis1[0] = r;
+    q.footprint.axis2[1] = r;
+    q.footprint.view[0] = ex / len;
+    q.footprint.view[1] = ey / len;
+    q.footprint.view[2] = ez / len;
+    return q;
+}
+
+/* gr_query with exactly gr_query_scratch_bytes() of scratch (so ASan sees
+   any overrun); one check that it succeeded. */
+static int gt_run(const gr_grid_t *grid, const gr_query_t *q, gr_facet_list_t *list)
+{
+    size_t need = gr_query_scratch_bytes(grid);
+    void *scratch = malloc(need);
+    gr_result_t r = gr_query(grid, q, scratch, need, list);
+    free(scratch);
+    T_INT_EQ(r, GR_OK);
+    return r == GR_OK;
+}
+
+/* The entry of facet index `facet` (-1: ground), NULL if absent. */
+static const gr_facet_t *gt_entry(const gr_facet_list_t *l, int facet)
+{
+    int i;
+    for (i = 0; i < l->count; i++)
+        if (l->facets[i].facet == facet) return &l->facets[i];
+    return NULL;
+}
+static double gt_ratio_of(const gr_facet_list_t *l, int facet)
+{
+    const gr_facet_t *f = gt_entry(l, facet);
+    return f ? f->ratio : 0.0;
+}
+static double gt_ratio_sum(const gr_facet_list_t *l)
+{
+    double s = 0;
+    int i;
+    for (i = 0; i < l->count; i++) s += l->facets[i].ratio;
+    return s;
+}
+
+#endif
