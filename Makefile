@@ -49,6 +49,8 @@ EX_COMMON_OBJ := $(patsubst examples/common/%,$(B)/examples/common/%.o,$(EX_COMM
 
 .PHONY: all test tests check-headers demo bench fuzz install clean deps-test deps-demo deps-bench examples
 .DELETE_ON_ERROR:
+# the examples/common objects are shared by every example and bench: keep them
+.SECONDARY: $(EX_COMMON_OBJ)
 
 all: tests examples
 
