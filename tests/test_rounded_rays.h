@@ -194,7 +194,10 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
         }
     }
     T_INT_EQ(bad, 0);
-    T_GT(n_round, nrays / 20);
+    /* not vacuous: some rays must reach the rounded surface. Random rays hit
+       it about 5% of the time on an icosphere with r = 0.06 size, so ask for
+       2% (a 1-in-20 guard sat at that rate and failed by seed) */
+    T_GT(n_round, nrays / 50);
     re_free(s);
 }
 
