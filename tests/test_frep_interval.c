@@ -141,9 +141,11 @@ static void interval_contains_samples_1e6_boxes(void)
     T_GT(total, 0);
 }
 
+/* Issue 4: 10^6 random boxes (even k) and 10^6 ray segments (odd k), split
+   over the models of the whole operation set; zero violations. */
 static void affine_contains_samples_boxes_and_rays(void)
 {
-    long per = t_count(400000) / N_MODELS + 1, viol = 0, ray_tighter = 0, rays = 0;
+    long per = t_count(2000000) / N_MODELS + 1, viol = 0, ray_tighter = 0, rays = 0;
     for (int m = 0; m < N_MODELS; m++) {
         fr_tape_t t = compile(models[m]);
         iv_affine_t *sa = malloc(fr_scratch_size(&t, FR_EVAL_AFFINE));
