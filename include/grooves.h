@@ -1784,6 +1784,21 @@ static int gr__oversample_need(const gr_grid_t *grid, const gr__cand_t *c, const
 
 #endif
 
+/* The footprint's bounding box around centre f, enlarged by the widest
+   cross-section w (§4.1). The view- and light-dependent enlargements differ
+   between the isolated case (§4.1, eq. 1) and intersections (§5.1), so the
+   callers add them. ext_u, ext_v: the footprint's half-extents. */
+static void gr__footprint_box(const gr_grid_t *grid, const gr_footprint_t *fp, const double f[2], double *ext_u,
+                              double *ext_v, double box[4])
+{
+    *ext_u = fabs(fp->axis1[0]) + fabs(fp->axis2[0]);
+    *ext_v = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
+    box[0] = f[0] - *ext_u - grid->w;
+    box[2] = f[0] + *ext_u + grid->w;
+    box[1] = f[1] - *ext_v - grid->w;
+    box[3] = f[1] + *ext_v + grid->w;
+}
+
 /* One footprint: gather, approximate, merge, project, clip, mask, shadow
    (§4.1-4.4), adding weight x ratios to the list. With allow_split it
    returns the oversampling count needed (> 1: nothing was added). */
@@ -1803,12 +1818,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     }
     /* §4.1: the footprint's box, enlarged by w, and by h tan θ toward the
        viewer and each light (eq. 1) when something protrudes */
-    ext_u = fabs(fp->axis1[0]) + fabs(fp->axis2[0]);
-    ext_v = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
-    box[0] = f[0] - ext_u - grid->w;
-    box[2] = f[0] + ext_u + grid->w;
-    box[1] = f[1] - ext_v - grid->w;
-    box[3] = f[1] + ext_v + grid->w;
+    gr__footprint_box(grid, fp, f, &ext_u, &ext_v, box);
     tanmax = gr__tan(e);
     if (grid->h > 0) {
         for (k = -1; k < nl; k++) {
@@ -2563,12 +2573,9 @@ GR_DEF gr_result_t gr_self_intersections(const gr_grid_t *grid, gr_self_hit_t *o
 static void gr__search_box(const gr_grid_t *grid, const gr_footprint_t *fp, const double f[2], const double *lights,
                            int nl, double box[4])
 {
-    double ext_u = fabs(fp->axis1[0]) + fabs(fp->axis2[0]), ext_v = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
+    double ext_u, ext_v;
     int k;
-    box[0] = f[0] - ext_u - grid->w;
-    box[2] = f[0] + ext_u + grid->w;
-    box[1] = f[1] - ext_v - grid->w;
-    box[3] = f[1] + ext_v + grid->w;
+    gr__footprint_box(grid, fp, f, &ext_u, &ext_v, box);
     for (k = -2; k < nl; k++) {
         const double *dir = k < 0 ? fp->view : lights + 3 * k;
         double len = k == -2 ? grid->h : k == -1 ? -grid->d : grid->h + grid->d, su, sv;
