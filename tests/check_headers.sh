@@ -23,6 +23,9 @@ for c in gcc clang; do command -v "$c" >/dev/null && compilers+=("$c"); done
 declare -A prefix=([interval.h]=IV [frep.h]=FR [rounded_edges.h]=RE [grooves.h]=GR)
 headers=()
 for h in interval.h frep.h rounded_edges.h grooves.h; do [ -f include/$h ] && headers+=("$h"); done
+# ONLY=grooves (a header's base name) checks that header alone and skips the
+# all-headers units: a quick check while working on one module.
+if [ -n "${ONLY:-}" ]; then headers=("$ONLY.h"); [ -f "include/$ONLY.h" ] || { echo "check-headers: no include/$ONLY.h"; exit 1; }; fi
 
 # Emit one translation unit: $1 = name, rest = lines.
 unit() { local name=$1; shift; printf '%s\n' "$@" > "$out/$name.c"; echo "$name"; }
@@ -49,11 +52,12 @@ for h in "${headers[@]}"; do
   done
 done
 all_decl=(); all_impl=()
-for h in "${headers[@]}"; do
+[ -n "${ONLY:-}" ] && headers_all=() || headers_all=("${headers[@]}")
+for h in "${headers_all[@]}"; do
   all_decl+=("#include \"$h\""); all_impl+=("#define ${prefix[$h]}_IMPLEMENTATION" "#include \"$h\"")
 done
-cases+=("$(unit all_decl "${all_decl[@]}" "int filigree_check_dummy(void);" "int filigree_check_dummy(void) { return 0; }")")
-cases+=("$(unit all_impl "${all_impl[@]}" "${all_decl[@]}")")
+[ -z "${ONLY:-}" ] && cases+=("$(unit all_decl "${all_decl[@]}" "int filigree_check_dummy(void);" "int filigree_check_dummy(void) { return 0; }")")
+[ -z "${ONLY:-}" ] && cases+=("$(unit all_impl "${all_impl[@]}" "${all_decl[@]}")")
 
 # Build the job list: case x compiler x standard.
 joblist=$out/jobs.txt; : > "$joblist"
