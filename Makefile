@@ -121,10 +121,17 @@ $(B)/bench/%: bench/%.cpp $(HEADERS) $(wildcard bench/*.h examples/*/*.h) $(EX_C
 	@mkdir -p $(dir $@)
 	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -Ibench -o $@ $< $(EX_COMMON_OBJ) $(BENCH_LDLIBS)
 
+# BENCH=rounded runs only the benchmarks whose name contains "rounded".
+# Each benchmark's output (stdout) goes to out/bench/<name>.txt, with its
+# wall time and the load average at its start.
+BENCH_RUN = $(if $(BENCH),$(filter %$(BENCH)%,$(BENCHES)),$(BENCHES))
 bench: deps-bench
-	@$(MAKE) --no-print-directory $(BENCHES)
+	@$(MAKE) --no-print-directory $(BENCH_RUN)
 	@mkdir -p out/bench docs/img
-	@set -e; for b in $(BENCHES); do echo "== $$b" >&2; $$b out/bench; done
+	@set -e; for b in $(BENCH_RUN); do n=$$(basename $$b); \
+	  echo "== $$n (load $$(cut -d' ' -f1 /proc/loadavg), $$(date -u '+%F %T') UTC)" >&2; \
+	  s=$$(date +%s); $$b out/bench > out/bench/$$n.txt; cat out/bench/$$n.txt; \
+	  echo "== $$n took $$(( $$(date +%s) - s )) s" >&2; done
 	@set -e; for g in $(wildcard bench/*.gp); do gnuplot -e "dir='out/bench'; img='docs/img'" $$g; done
 	@echo "tables in out/bench/*.csv, plots in docs/img/"
 
