@@ -122,8 +122,9 @@ $(B)/bench/%: bench/%.cpp $(HEADERS) $(wildcard bench/*.h examples/*/*.h) $(EX_C
 	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -Ibench -o $@ $< $(EX_COMMON_OBJ) $(BENCH_LDLIBS)
 
 # BENCH=rounded runs only the benchmarks whose name contains "rounded".
-# Each benchmark's output (stdout) goes to out/bench/<name>.txt, with its
-# wall time and the load average at its start.
+# Each benchmark's stdout goes to out/bench/<name>.txt; stderr shows its wall
+# time and the load average at its start. With BENCH set, a plot whose CSV was
+# not written by this run is skipped.
 BENCH_RUN = $(if $(BENCH),$(filter %$(BENCH)%,$(BENCHES)),$(BENCHES))
 bench: deps-bench
 	@$(MAKE) --no-print-directory $(BENCH_RUN)
@@ -132,7 +133,7 @@ bench: deps-bench
 	  echo "== $$n (load $$(cut -d' ' -f1 /proc/loadavg), $$(date -u '+%F %T') UTC)" >&2; \
 	  s=$$(date +%s); $$b out/bench > out/bench/$$n.txt; cat out/bench/$$n.txt; \
 	  echo "== $$n took $$(( $$(date +%s) - s )) s" >&2; done
-	@set -e; for g in $(wildcard bench/*.gp); do gnuplot -e "dir='out/bench'; img='docs/img'" $$g; done
+	@set -e; for g in $(wildcard bench/*.gp); do gnuplot -e "dir='out/bench'; img='docs/img'" $$g $(if $(BENCH),2>/dev/null || echo "skipped plot $$g" >&2); done
 	@echo "tables in out/bench/*.csv, plots in docs/img/"
 
 # ---------------------------------------------------------------- fuzzing
