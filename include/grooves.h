@@ -1799,6 +1799,36 @@ static void gr__footprint_box(const gr_grid_t *grid, const gr_footprint_t *fp, c
     box[3] = f[1] + *ext_v + grid->w;
 }
 
+/* The footprint's share on [q0, q0 + len] across the groove (the clipping
+   of eq. 3, weighted). For a groove locally straight over the footprint the
+   visibility only depends on the coordinate x = B . (X - F), so each
+   visible interval counts with the integral of the footprint's length
+   density along x. The parallelogram F + a A1 + b A2, |a|,|b| <= 1 (what a
+   box pixel filter covers) projects to x = a p1 + b p2, p_k = A_k . B: the
+   sum of two uniform variables, a trapezoid of half-width big + small
+   (big >= small the |p_k|) and plateau |x| <= big - small. In u = x / big,
+   beta = small / big, the density is 1/2 on the plateau and falls linearly
+   to 0 on the ramps, (1 + beta - |u|) / (4 beta); linear per piece, so each
+   piece integrates exactly as its length times the density at its middle.
+   beta = 0 is §4.2's segment S = [-big, big] with uniform weight (one axis
+   along the groove): the ramps are empty, no division by zero is reached.
+   The length is passed apart from q0 so a short interval far from the
+   centre keeps its relative precision (lit fractions of 1e-12 stay exact).
+   q0, len and big are in the same (E_w-scaled) units. */
+static double gr__xmass(double q0, double len, double big, double beta)
+{
+    double u0 = q0 / big, du = len / big, u1 = u0 + du, m = 0, e[4];
+    int k;
+    e[0] = -1 - beta; e[1] = beta - 1; e[2] = 1 - beta; e[3] = 1 + beta;
+    for (k = 0; k < 3; k++) {
+        double lo = u0 > e[k] ? u0 : e[k], hi = u1 < e[k + 1] ? u1 : e[k + 1], mid = 0.5 * (lo + hi);
+        if (!(hi > lo)) continue;
+        m += (lo == u0 && hi == u1 ? du : hi - lo) *
+             (k == 1 ? 0.5 : (k == 0 ? mid + 1 + beta : 1 + beta - mid) / (4 * beta));
+    }
+    return m;
+}
+
 /* One footprint: gather, approximate, merge, project, clip, mask, shadow
    (§4.1-4.4), adding weight x ratios to the list. With allow_split it
    returns the oversampling count needed (> 1: nothing was added). */
@@ -1806,7 +1836,8 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
                          const gr__scratch_t *s, gr_facet_list_t *list, int allow_split, double split_t[2])
 {
     const double *e = fp->view;
-    double f[2], box[4], ext_u, ext_v, radius, tanmax, bref[2], eb, ew, sq0, sq1, pm, margin, maxhalf = 0;
+    double f[2], box[4], ext_u, ext_v, radius, tanmax, bref[2], eb, ew, sq0, sq1, pm, pn, beta, half, margin;
+    double maxhalf = 0;
     int n, k, ref = -1, np = 0, nf, npar = 0, i, point, nl = qs->light_count;
     gr__mfacet_t ground;
     f[0] = fp->center[0];
@@ -1901,13 +1932,15 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     (void)allow_split;
     (void)split_t;
 #endif
-    /* the footprint segment S from the larger axis projection (§4.2) */
+    /* the footprint across the groove: §4.2's segment S = [-pm, pm] from the
+       larger axis projection, widened by the smaller one pn into the
+       parallelogram's trapezoid density (gr__xmass) on [-half, half] */
     pm = fabs(fp->axis1[0] * bref[0] + fp->axis1[1] * bref[1]);
-    {
-        double p2 = fabs(fp->axis2[0] * bref[0] + fp->axis2[1] * bref[1]);
-        if (p2 > pm) pm = p2;
-    }
+    pn = fabs(fp->axis2[0] * bref[0] + fp->axis2[1] * bref[1]);
+    if (pn > pm) { double t = pm; pm = pn; pn = t; }
+    half = pm + pn;
     point = pm <= GR__POINT_FOOTPRINT_REL * grid->w;
+    beta = point ? 0 : pn / pm;
     /* the merged cross-section (§4.2, Figure 5b): sections shifted by d_P,
        mirrored when their tangent is opposite, sorted, ground in between */
     for (k = 0; k < npar; k++) {
@@ -1921,11 +1954,11 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         s->key[k].groove = c->groove;
     }
     gr__sort_keys(s->key, npar);
-    margin = pm + maxhalf;
+    margin = half + maxhalf;
     if (!(margin > 0)) margin = 1;
     ground.n[0] = 0; ground.n[1] = 0; ground.n[2] = 1;
     ground.groove = -1; ground.facet = -1; ground.refl = grid->base_reflectance;
-    s->x[np] = (npar ? (s->key[0].x < -pm ? s->key[0].x : -pm) : -pm) - margin;
+    s->x[np] = (npar ? (s->key[0].x < -half ? s->key[0].x : -half) : -half) - margin;
     s->w[np++] = 0;
     for (k = 0; k < npar; k++) {
         const gr__cand_t *c = &s->cand[s->key[k].cand];
@@ -1962,7 +1995,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         }
     }
     s->mf[np - 1] = ground;
-    s->x[np] = (s->x[np - 1] > pm ? s->x[np - 1] : pm) + margin;
+    s->x[np] = (s->x[np - 1] > half ? s->x[np - 1] : half) + margin;
     s->w[np++] = 0;
     nf = np - 1;
     if (list->grooves < npar) list->grooves = npar;
@@ -1973,8 +2006,8 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     gr__grazing_scale(&eb, &ew);
     for (i = 0; i < np; i++) s->q[i] = ew * s->x[i] - eb * s->w[i];
     gr__sweep(s->q, np, eb > 0, s->lo, s->hi);     /* masking, eq. 4 */
-    sq0 = -pm * ew;
-    sq1 = pm * ew;
+    sq0 = -half * ew;
+    sq1 = half * ew;
     for (i = 0; i < nf; i++) {                      /* clipping, eq. 3 */
         double a = s->lo[i], b = s->hi[i];
         if (point) {
@@ -2011,8 +2044,14 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             lbb = (s->hi[i] - s->q[i]) / dl;
             if (point || !(sb > sa)) v = la <= sa && sa <= lbb;
             else {
-                ov = (sb < lbb ? sb : lbb) - (sa > la ? sa : la);
-                v = ov > 0 ? ov / (sb - sa) : 0;
+                /* the lit part of the visible interval, back in view
+                   projection, weighted by the footprint density */
+                double oa = sa > la ? sa : la, ob = sb < lbb ? sb : lbb, qv = ew * s->x[i] - eb * s->w[i];
+                double wv = gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta);
+                ov = ob - oa;
+                if (!(ov > 0)) v = 0;
+                else if (wv > 0) v = gr__xmass(qv + oa * de, ov * de, pm * ew, beta) / wv;
+                else v = ov / (sb - sa);
             }
             s->lit[(size_t)i * GR_MAX_LIGHTS + k] = v;
         }
@@ -2021,7 +2060,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     for (i = 0; i < nf; i++) {
         double r;
         if (point) r = s->va[i] == 0 ? 1 : 0;
-        else r = s->vb[i] > s->va[i] ? (s->vb[i] - s->va[i]) / (sq1 - sq0) : 0;
+        else r = s->vb[i] > s->va[i] ? gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta) : 0;
         if (r > 0) gr__list_add(list, &s->mf[i], weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
     }
     return 1;
