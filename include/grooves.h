@@ -266,11 +266,15 @@ typedef struct gr_query_t {
     double parallel_tol;   /* grooves whose tangent differs from the nearest
                               groove's by more than this angle (radians) are
                               not parallel (§4.2); default 0 means 0.02 */
-    int perturb_normals;   /* 0 (default): facet normals as §4.4, (0, N_b, N_w)
-                              in groove space. 1: also tilt them along T by the
-                              perturbation's slope, f'(s) (b dw - w db)/|(db, dw)|
-                              (the true normal of the swept, scaled section,
-                              with f' averaged across the footprint) */
+    int perturb_normals;   /* 0 (default) or positive: the true normal of the
+                              swept, scaled section where the view ray meets
+                              each facet: §4.4's (0, N_b, N_w) tilted along T
+                              by the perturbation's slope,
+                              f'(s) (b dw - w db)/|(db, dw)| (f' averaged
+                              across the footprint), with the groove frame
+                              turned as a curved path turns between P and
+                              that point. Negative: §4.4's normals in the
+                              frame at P, as the paper has them */
 } gr_query_t;
 
 /* One entry of the facet list: a texture-space facet orientation with its
@@ -280,7 +284,7 @@ typedef struct gr_query_t {
    entry per facet, whatever their number. The pieces of one facet of one
    groove from oversampled sub-footprints also make one entry, its normal
    the ratio-weighted mean (they differ along curved paths, whose frame
-   turns, and with perturb_normals). */
+   turns, and with perturbed normals). */
 typedef struct gr_facet_t {
     double normal[3];          /* unit, texture space (U, V, W), out of the material */
     double ratio;              /* r_i: visible fraction of the footprint (§4.4) */
@@ -623,6 +627,10 @@ extern "C" {
 #define GR__DEFAULT_MAX_OVERSAMPLE 8
 #define GR__LIMIT_MAX_OVERSAMPLE 64
 #define GR__DEFAULT_PARALLEL_TOL 0.02
+/* Largest turn (radians) of a facet normal along a curved path between the
+   footprint and where the view ray meets the facet (gr__hit_normal): past
+   it the straight approximation of the occlusion means little anyway. */
+#define GR__TURN_MAX 1.0
 /* Automatic grid resolution: about this many cells per groove and axis,
    capped, so a small footprint box meets few paths. */
 #define GR__AUTO_CELLS_PER_SQRT_GROOVE 2.0
@@ -1342,7 +1350,7 @@ typedef struct gr__cand_t {
     double d;       /* d_P = B . (F - P), B = (-T_v, T_u) (eq. 2) */
     double param;   /* path parameter at P, in [0,1] */
     double dtds;    /* d param / d arc length at P */
-    double kappa;   /* path curvature at P */
+    double kappa;   /* signed path curvature at P (> 0: T turns counter-clockwise) */
     double f;       /* perturbation scale f(param) */
     double dfds;    /* its slope per unit arc length, averaged across the footprint */
     double xmin;    /* leftmost point of its section in the merged profile */
@@ -1352,6 +1360,7 @@ typedef struct gr__cand_t {
 typedef struct gr__mfacet_t {
     double n[3];
     int groove, facet, refl;
+    int cand;    /* its candidate groove in the query's scratch, -1 for ground */
 } gr__mfacet_t;
 
 /* Sort key of a groove in the merged cross-section. */
@@ -1498,7 +1507,7 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
                 c->param = (k + bt) / rec->pieces;
                 c->dtds = 1 / (rec->pieces * sp);
                 cr = d1[0] * d2[1] - d1[1] * d2[0];
-                c->kappa = fabs(cr) / (sp * sp * sp);
+                c->kappa = cr / (sp * sp * sp);
                 c->end = 0;
                 if (!rec->closed && k == 0 && bt == 0 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] < 0) c->end = -1;
                 if (!rec->closed && k == rec->pieces - 1 && bt == 1 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] > 0) c->end = 1;
@@ -1755,6 +1764,71 @@ static double gr__extent(const gr_footprint_t *fp, const double v[2])
     return fabs(fp->axis1[0] * v[0] + fp->axis1[1] * v[1]) + fabs(fp->axis2[0] * v[0] + fp->axis2[1] * v[1]);
 }
 
+/* The perturbation's slope df/ds (per unit arc length) around path
+   parameter param: a central difference over the footprint's extent ext
+   along T (at least GR__PERTURB_STEP in the parameter), so the tilt it
+   gives the facets is the footprint's average. */
+static double gr__perturb_slope(const gr__groove_t *rec, const gr__cand_t *c, double param, double ext)
+{
+    double h = ext * c->dtds, ta, tb;
+    if (!(h > GR__PERTURB_STEP)) h = GR__PERTURB_STEP;
+    ta = param - h < 0 ? 0 : param - h;
+    tb = param + h > 1 ? 1 : param + h;
+    return tb > ta ? (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * c->dtds : 0;
+}
+
+/* Texture-space normal of facet R_j = [C_j, C_j+1] of candidate c (§4.4:
+   (0, N_b, N_w) in groove space), with the groove frame turned by phi about
+   W and tilted by the perturbation's slope dfds: beyond §4.4, with
+   X = P(s) + f(s)(b B + w W), dX/ds x dX/dtau adds f'(s)(b dw - w db) T. */
+static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, double phi, double dfds, double n[3])
+{
+    double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = sqrt(db * db + dw * dw);
+    double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nlen, t[2];
+    t[0] = c->t[0];
+    t[1] = c->t[1];
+    if (phi != 0) {
+        double cs = cos(phi), sn = sin(phi);
+        t[0] = cs * c->t[0] - sn * c->t[1];
+        t[1] = sn * c->t[0] + cs * c->t[1];
+    }
+    if (dfds != 0 && len > 0) nt = dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / len;
+    nlen = sqrt(nb * nb + nw * nw + nt * nt);
+    n[0] = (-t[1] * nb + t[0] * nt) / nlen;
+    n[1] = (t[0] * nb + t[1] * nt) / nlen;
+    n[2] = nw / nlen;
+}
+
+/* The normal where the view ray really meets a visible facet (i, of
+   candidate c). §4.2-4.3 keep the straight line at P for occlusion, but
+   the ray reaches the facet's visible part at its mean depth w_m, an arc
+   length ds = w_m (E . T) / E_w along the path from P (E_w >= the grazing
+   floor; ds is kept within one path length, |ds dt/ds| <= 1). There a curved path has
+   turned by kappa ds (at most GR__TURN_MAX) and the perturbation has its
+   own slope: on a tight bend, or a perturbation that changes within the
+   ray's way through the groove, these decide where a highlight falls. */
+static void gr__hit_normal(const gr_grid_t *grid, const gr__scratch_t *s, const gr_footprint_t *fp, int i, double ew,
+                           double eb, int point, gr__mfacet_t *m)
+{
+    const gr__cand_t *c = &s->cand[m->cand];
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    const double *e = fp->view;
+    double qa = ew * s->x[i] - eb * s->w[i], de = (ew * s->x[i + 1] - eb * s->w[i + 1]) - qa, mid, wm, ds, phi, dfds;
+    if (c->kappa == 0 && c->dfds == 0) return;
+    mid = point ? 0 : 0.5 * (s->va[i] + s->vb[i]);
+    mid = de != 0 ? (mid - qa) / de : 0.5;
+    if (!(mid >= 0)) mid = 0;
+    if (mid > 1) mid = 1;
+    wm = s->w[i] + mid * (s->w[i + 1] - s->w[i]);
+    ds = wm * (e[0] * c->t[0] + e[1] * c->t[1]) / e[2];
+    if (!(fabs(ds * c->dtds) <= 1)) ds = ds < 0 ? -1 / c->dtds : 1 / c->dtds;
+    phi = c->kappa * ds;
+    if (phi > GR__TURN_MAX) phi = GR__TURN_MAX;
+    if (phi < -GR__TURN_MAX) phi = -GR__TURN_MAX;
+    dfds = c->dfds != 0 ? gr__perturb_slope(rec, c, c->param + ds * c->dtds, gr__extent(fp, c->t)) : 0;
+    gr__section_normal(c, grid->section_ + 2 * rec->first_sec, m->facet, phi, dfds, m->n);
+}
+
 #ifndef GR_NO_OVERSAMPLE
 /* Oversampling count asked for by this groove (§4.2): the path's sagitta
    across the footprint, and the change of the perturbation, as fractions of
@@ -1765,8 +1839,8 @@ static int gr__oversample_need(const gr_grid_t *grid, const gr__cand_t *c, const
     double ext = gr__extent(fp, c->t), width = 2 * rec->half_width / rec->fmax * c->f;
     double need = 1;
     if (!(width > 0) || !(ext > 0)) return 1;
-    if (c->kappa > 0) {
-        double sag = 0.5 * c->kappa * ext * ext;
+    if (c->kappa != 0) {
+        double sag = 0.5 * fabs(c->kappa) * ext * ext;
         double k = ceil(sqrt(sag / (tol * width)));
         if (k > need) need = k;
     }
@@ -1888,16 +1962,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (to_end < gr__extent(fp, c->t)) list->flags |= GR_LIST_PATH_END;
         }
         c->f = gr__perturb(rec, c->param);
-        c->dfds = 0;
-        if (rec->perturb && qs->perturb_normals) {
-            /* slope of f across the footprint (a central difference over
-               its extent along T), which tilts the facets along the path */
-            double h = gr__extent(fp, c->t) * c->dtds, ta, tb;
-            if (!(h > GR__PERTURB_STEP)) h = GR__PERTURB_STEP;
-            ta = c->param - h < 0 ? 0 : c->param - h;
-            tb = c->param + h > 1 ? 1 : c->param + h;
-            if (tb > ta) c->dfds = (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * c->dtds;
-        }
+        c->dfds = rec->perturb && qs->perturb_normals ? gr__perturb_slope(rec, c, c->param, gr__extent(fp, c->t)) : 0;
         if (ref < 0 || fabs(c->d) < fabs(s->cand[ref].d)) ref = npar;
         npar++;
     }
@@ -1957,7 +2022,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     margin = half + maxhalf;
     if (!(margin > 0)) margin = 1;
     ground.n[0] = 0; ground.n[1] = 0; ground.n[2] = 1;
-    ground.groove = -1; ground.facet = -1; ground.refl = grid->base_reflectance;
+    ground.groove = -1; ground.facet = -1; ground.refl = grid->base_reflectance; ground.cand = -1;
     s->x[np] = (npar ? (s->key[0].x < -half ? s->key[0].x : -half) : -half) - margin;
     s->w[np++] = 0;
     for (k = 0; k < npar; k++) {
@@ -1965,9 +2030,6 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         const gr__groove_t *rec = &grid->grooves_[c->groove];
         const double *sec = grid->section_ + 2 * rec->first_sec;
         const int nsec = rec->sec_count;
-        double bg[2];
-        bg[0] = -c->t[1];
-        bg[1] = c->t[0];
         if (c->xmin < s->x[np - 1]) list->flags |= GR_LIST_OVERLAP;
         s->mf[np - 1] = ground; /* the ground facet leading to this groove */
         for (i = 0; i < nsec; i++) {
@@ -1977,19 +2039,12 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (i + 1 < nsec) {
                 /* facet R_j = [C_j, C_j+1] in the groove's own orientation */
                 int j = c->sigma > 0 ? i : nsec - 2 - i;
-                double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = sqrt(db * db + dw * dw);
                 gr__mfacet_t *m = &s->mf[np];
-                double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nlen;
-                /* beyond §4.4's (0, N_b, N_w): with X = P(s) + f(s)(b B + w W),
-                   dX/ds x dX/dtau adds f'(s)(b dw - w db) T to the normal */
-                if (c->dfds != 0 && len > 0) nt = c->dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / len;
-                nlen = sqrt(nb * nb + nw * nw + nt * nt);
-                m->n[0] = (bg[0] * nb + c->t[0] * nt) / nlen;
-                m->n[1] = (bg[1] * nb + c->t[1] * nt) / nlen;
-                m->n[2] = nw / nlen;
+                gr__section_normal(c, sec, j, 0, c->dfds, m->n);
                 m->groove = c->groove;
                 m->facet = j;
                 m->refl = grid->facet_refl_[rec->first_facet + j];
+                m->cand = s->key[k].cand;
             }
             np++;
         }
@@ -2061,7 +2116,11 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         double r;
         if (point) r = s->va[i] == 0 ? 1 : 0;
         else r = s->vb[i] > s->va[i] ? gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta) : 0;
-        if (r > 0) gr__list_add(list, &s->mf[i], weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
+        if (r > 0) {
+            gr__mfacet_t m = s->mf[i];
+            if (m.cand >= 0 && qs->perturb_normals) gr__hit_normal(grid, s, fp, i, ew, eb, point, &m);
+            gr__list_add(list, &m, weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
+        }
     }
     return 1;
 }
@@ -2093,7 +2152,7 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     qs.oversample_tol = query->oversample_tol == 0 ? GR__DEFAULT_OVERSAMPLE_TOL : query->oversample_tol;
     qs.max_oversample = query->max_oversample <= 0 ? GR__DEFAULT_MAX_OVERSAMPLE : query->max_oversample;
     if (qs.max_oversample > GR__LIMIT_MAX_OVERSAMPLE) qs.max_oversample = GR__LIMIT_MAX_OVERSAMPLE;
-    qs.perturb_normals = query->perturb_normals != 0;
+    qs.perturb_normals = query->perturb_normals >= 0;
     qs.parallel_sin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     el = sqrt(gr__dot3(fp->view, fp->view));
     if (!(fp->view[2] > 0) || !(el > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
