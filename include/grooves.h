@@ -627,6 +627,9 @@ extern "C" {
 #define GR__DEFAULT_MAX_OVERSAMPLE 8
 #define GR__LIMIT_MAX_OVERSAMPLE 64
 #define GR__DEFAULT_PARALLEL_TOL 0.02
+/* Path ends this close (relative to the tile diagonal) modulo the tile of
+   a repeating texture meet across the seam: the path is closed. */
+#define GR__SEAM_CLOSED_REL 1e-12
 /* Largest turn (radians) of a facet normal along a curved path between the
    footprint and where the view ray meets the facet (gr__hit_normal): past
    it the straight approximation of the occlusion means little anyway. */
@@ -668,7 +671,8 @@ typedef struct gr__groove_t {
     int sec_count;
     int first_facet;       /* into facet_refl_ and blocker_start_ */
     int pieces;            /* segments (polyline) or Bézier pieces */
-    int closed;            /* first point == last point: no path ends */
+    int closed;            /* first point == last point, or on a repeating
+                              tile the same point across the seam: no ends */
     double length;         /* polyline arc length (t = s / length) */
     double half_width;     /* max |b| of the section, times fmax */
     double up, down;       /* max w and max -w of the section, times fmax */
@@ -1088,6 +1092,15 @@ static void gr__store_groove(gr_grid_t *gr, const gr_groove_desc_t *gd, int g, i
         const double *p = gd->points;
         int last = gd->point_count - 1;
         rec->closed = p[0] == p[2 * last] && p[1] == p[2 * last + 1];
+        if (gr->wrap && !rec->closed) {
+            /* ends a whole number of tiles apart: the path runs on across
+               the seam (§4.1 wrap), as one closed path */
+            double wu = gr->domain[2] - gr->domain[0], wv = gr->domain[3] - gr->domain[1];
+            double du = p[2 * last] - p[0], dv = p[2 * last + 1] - p[1];
+            du -= floor(du / wu + 0.5) * wu;
+            dv -= floor(dv / wv + 0.5) * wv;
+            rec->closed = hypot(du, dv) <= GR__SEAM_CLOSED_REL * hypot(wu, wv);
+        }
         rec->length = 0;
         if (rec->kind == GR_PATH_POLYLINE)
             for (i = 0; i < last; i++) rec->length += hypot(p[2 * i + 2] - p[2 * i], p[2 * i + 3] - p[2 * i + 1]);
