@@ -1906,6 +1906,7 @@ static double gr__xmass(double q0, double len, double big, double beta)
 {
     double u0 = q0 / big, du = len / big, u1 = u0 + du, m = 0, e[4];
     int k;
+    if (u0 >= beta - 1 && u1 <= 1 - beta) return 0.5 * du; /* on the plateau (all of S when beta = 0) */
     e[0] = -1 - beta; e[1] = beta - 1; e[2] = 1 - beta; e[3] = 1 + beta;
     for (k = 0; k < 3; k++) {
         double lo = u0 > e[k] ? u0 : e[k], hi = u1 < e[k + 1] ? u1 : e[k + 1], mid = 0.5 * (lo + hi);
