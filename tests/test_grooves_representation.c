@@ -591,6 +591,12 @@ static void random_scenes_keep_invariants(void)
             double sum = 0;
             if (t_rng_unit(&rng) < 0.2) q.footprint.axis2[1] = 0;
             if (t_rng_unit(&rng) < 0.1) q.footprint.axis1[0] = 0;
+            if (t_rng_unit(&rng) < 0.5) { /* oblique axes: the trapezoid weighting */
+                double ang = t_rng_range(&rng, 0, 3.1416);
+                q.footprint.axis1[1] = q.footprint.axis1[0] * sin(ang);
+                q.footprint.axis1[0] *= cos(ang);
+                q.footprint.axis2[0] = -q.footprint.axis2[1] * sin(ang) * t_rng_range(&rng, 0, 2);
+            }
             for (k = 0; k < 2; k++) {
                 double lt = t_rng_range(&rng, 0, 1.8), la = t_rng_range(&rng, 0, 6.2832);
                 lights[3 * k] = sin(lt) * cos(la); lights[3 * k + 1] = sin(lt) * sin(la); lights[3 * k + 2] = cos(lt);
