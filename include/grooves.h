@@ -275,6 +275,10 @@ typedef struct gr_query_t {
                               turned as a curved path turns between P and
                               that point. Negative: §4.4's normals in the
                               frame at P, as the paper has them */
+    int ellipse;           /* 0 (default): the footprint is the parallelogram
+                              F + a A1 + b A2, |a|, |b| <= 1 (a box pixel, as
+                              gr_footprint_from_differentials gives it). 1: the
+                              ellipse a^2 + b^2 <= 1 (Gaussian-like filters) */
 } gr_query_t;
 
 /* One entry of the facet list: a texture-space facet orientation with its
@@ -634,6 +638,12 @@ extern "C" {
    footprint and where the view ray meets the facet (gr__hit_normal): past
    it the straight approximation of the occlusion means little anyway. */
 #define GR__TURN_MAX 1.0
+#define GR__PI 3.14159265358979323846
+/* Intervals shorter than this fraction of an elliptical footprint's radius
+   integrate its semicircle density by the midpoint rule (relative error
+   ~ 1e-9 away from the rim) rather than as a difference of its integral,
+   which would lose their relative precision (gr__xmass). */
+#define GR__DISC_MIDPOINT 1e-4
 /* Automatic grid resolution: about this many cells per groove and axis,
    capped, so a small footprint box meets few paths. */
 #define GR__AUTO_CELLS_PER_SQRT_GROOVE 2.0
@@ -1660,6 +1670,7 @@ typedef struct gr__qset_t {
     int max_oversample;
     double parallel_sin;
     int perturb_normals;
+    int ellipse;
 } gr__qset_t;
 
 /* Visible (or lit) interval per facet of a profile with projected points q
@@ -1901,11 +1912,25 @@ static void gr__footprint_box(const gr_grid_t *grid, const gr_footprint_t *fp, c
    along the groove): the ramps are empty, no division by zero is reached.
    The length is passed apart from q0 so a short interval far from the
    centre keeps its relative precision (lit fractions of 1e-12 stay exact).
+   beta < 0 asks for the ellipse a^2 + b^2 <= 1 instead: it projects to the
+   semicircle density 2 sqrt(1 - u^2) / pi, u = x / big, big = |(p1, p2)|,
+   whose integral is gr__disc_cdf (intervals shorter than
+   GR__DISC_MIDPOINT take the midpoint rule, for the same precision).
    q0, len and big are in the same (E_w-scaled) units. */
+static double gr__disc_cdf(double u)
+{
+    return u <= -1 ? 0 : u >= 1 ? 1 : 0.5 + (u * sqrt(1 - u * u) + asin(u)) / GR__PI;
+}
 static double gr__xmass(double q0, double len, double big, double beta)
 {
     double u0 = q0 / big, du = len / big, u1 = u0 + du, m = 0, e[4];
     int k;
+    if (beta < 0) {
+        double a = u0 > -1 ? u0 : -1, b = u1 < 1 ? u1 : 1, mid = 0.5 * (a + b);
+        if (!(b > a)) return 0;
+        if (a == u0 && b == u1 && du < GR__DISC_MIDPOINT) return du * 2 / GR__PI * sqrt(1 - mid * mid);
+        return gr__disc_cdf(b) - gr__disc_cdf(a);
+    }
     if (u0 >= beta - 1 && u1 <= 1 - beta) return 0.5 * du; /* on the plateau (all of S when beta = 0) */
     e[0] = -1 - beta; e[1] = beta - 1; e[2] = 1 - beta; e[3] = 1 + beta;
     for (k = 0; k < 3; k++) {
@@ -2020,6 +2045,10 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     half = pm + pn;
     point = pm <= GR__POINT_FOOTPRINT_REL * grid->w;
     beta = point ? 0 : pn / pm;
+    if (qs->ellipse) { /* the semicircle of radius |(p1, p2)| (gr__xmass) */
+        pm = half = sqrt(pm * pm + pn * pn);
+        if (!point) beta = -1;
+    }
     /* the merged cross-section (§4.2, Figure 5b): sections shifted by d_P,
        mirrored when their tangent is opposite, sorted, ground in between */
     for (k = 0; k < npar; k++) {
@@ -2167,6 +2196,7 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     qs.max_oversample = query->max_oversample <= 0 ? GR__DEFAULT_MAX_OVERSAMPLE : query->max_oversample;
     if (qs.max_oversample > GR__LIMIT_MAX_OVERSAMPLE) qs.max_oversample = GR__LIMIT_MAX_OVERSAMPLE;
     qs.perturb_normals = query->perturb_normals >= 0;
+    qs.ellipse = query->ellipse != 0;
     qs.parallel_sin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     el = sqrt(gr__dot3(fp->view, fp->view));
     if (!(fp->view[2] > 0) || !(el > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
@@ -2176,23 +2206,37 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
         /* §4.2 oversampling: split along the axis that runs most along the
            nearest groove; each part keeps its own straight approximation */
         gr_footprint_t sub = *fp;
+        gr__qset_t qsub = qs;
         double p1, p2;
-        const double *ax;
-        double *sa;
+        const double *ax, *other;
+        double *sa, *so;
         p1 = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
         p2 = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
         ax = p1 >= p2 ? fp->axis1 : fp->axis2;
+        other = p1 >= p2 ? fp->axis2 : fp->axis1;
         sa = p1 >= p2 ? sub.axis1 : sub.axis2;
+        so = p1 >= p2 ? sub.axis2 : sub.axis1;
         sa[0] = ax[0] / need;
         sa[1] = ax[1] / need;
         list->count = 0;
         list->flags = 0;
         list->grooves = 0;
+        /* an ellipse's slabs are taken as parallelograms of the slab's
+           area (weight) and mean chord (other axis); a parallelogram's
+           slabs are exact */
+        qsub.ellipse = 0;
         for (k = 0; k < need; k++) {
-            double o = (2.0 * k + 1) / need - 1;
+            double o = (2.0 * k + 1) / need - 1, wk = 1.0 / need;
+            if (qs.ellipse) {
+                double a0 = -1 + 2.0 * k / need, a1 = a0 + 2.0 / need, hbar;
+                wk = gr__disc_cdf(a1) - gr__disc_cdf(a0);
+                hbar = GR__PI * wk / (2 * (a1 - a0)); /* slab area / (2 width), unit disc */
+                so[0] = other[0] * hbar;
+                so[1] = other[1] * hbar;
+            }
             sub.center[0] = fp->center[0] + o * ax[0];
             sub.center[1] = fp->center[1] + o * ax[1];
-            gr__query_one(grid, &qs, &sub, 1.0 / need, &s, list, 0, t);
+            gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, t);
         }
         list->subfootprints = need;
     }

@@ -604,6 +604,7 @@ static void random_scenes_keep_invariants(void)
             q.lights = lights;
             q.light_count = 2;
             q.perturb_normals = (qn & 1) ? -1 : 0;
+            q.ellipse = qn % 3 == 0;
             if (!gt_run(grid, &q, &l)) break;
             if (l.flags & GR_LIST_BELOW_HORIZON) continue;
             for (i = 0; i < l.count; i++) {
