@@ -1826,11 +1826,11 @@ static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, do
 /* The normal where the view ray really meets a visible facet (i, of
    candidate c). §4.2-4.3 keep the straight line at P for occlusion, but
    the ray reaches the facet's visible part at its mean depth w_m, an arc
-   length ds = w_m (E . T) / E_w along the path from P (E_w >= the grazing
-   floor; ds is kept within one path length, |ds dt/ds| <= 1). There a curved path has
-   turned by kappa ds (at most GR__TURN_MAX) and the perturbation has its
-   own slope: on a tight bend, or a perturbation that changes within the
-   ray's way through the groove, these decide where a highlight falls. */
+   length ds = w_m (E . T) / E_w along the path from P (ds kept within one
+   path length, |ds dt/ds| <= 1, for grazing views). There a curved path
+   has turned by kappa ds (at most GR__TURN_MAX) and the perturbation has
+   its own slope: on a tight bend, or a perturbation that changes within
+   the ray's way through the groove, these decide where a highlight falls. */
 static void gr__hit_normal(const gr_grid_t *grid, const gr__scratch_t *s, const gr_footprint_t *fp, int i, double ew,
                            double eb, int point, gr__mfacet_t *m)
 {
