@@ -13,8 +13,10 @@
    "Equal error": the geometry time at ours' RMSE, interpolated log-log
    between the two spp levels that bracket it (extrapolated as time ∝
    error^-2 beyond 256 spp, and marked so). Ours runs twice: as §4.4 (facet
-   normals of the unperturbed section) and with perturb_normals (facets
-   tilted by the perturbation's slope), method "ours_tilt".
+   normals of the unperturbed section in the frame at the footprint,
+   perturb_normals = -1) and with grooves.h's default normals (tilted by the
+   perturbation's slope and turned along a curved path where the view ray
+   meets each facet), method "ours_tilt".
 
    build/bench/bench_grooves out/bench  → table on stdout, progress on stderr,
    out/bench/grooves_error_time.csv and out/bench/grooves_summary.csv */
@@ -164,7 +166,7 @@ int main(int argc, char **argv)
         }
         for (tilt = 0; tilt < 2; tilt++) {
             const char *m = tilt ? "ours_tilt" : "ours";
-            ours = run_ours(&s, tilt, ref, img);
+            ours = run_ours(&s, tilt ? 0 : -1, ref, img);
             printf("%-10s %-9s %5d %10.4f %10.5f %11.1f\n", s.name, m, 1, ours.seconds, ours.rmse, ours.bytes / 1024.0);
             fprintf(csv, "%s,%s,1,%.6f,%.6g,%lld\n", s.name, m, ours.seconds, ours.rmse, ours.bytes);
             teq = time_at_error(geo, 5, ours.rmse, &extra);

@@ -266,11 +266,19 @@ typedef struct gr_query_t {
     double parallel_tol;   /* grooves whose tangent differs from the nearest
                               groove's by more than this angle (radians) are
                               not parallel (§4.2); default 0 means 0.02 */
-    int perturb_normals;   /* 0 (default): facet normals as §4.4, (0, N_b, N_w)
-                              in groove space. 1: also tilt them along T by the
-                              perturbation's slope, f'(s) (b dw - w db)/|(db, dw)|
-                              (the true normal of the swept, scaled section,
-                              with f' averaged across the footprint) */
+    int perturb_normals;   /* 0 (default) or positive: the true normal of the
+                              swept, scaled section where the view ray meets
+                              each facet: §4.4's (0, N_b, N_w) tilted along T
+                              by the perturbation's slope,
+                              f'(s) (b dw - w db)/|(db, dw)| (f' averaged
+                              across the footprint), with the groove frame
+                              turned as a curved path turns between P and
+                              that point. Negative: §4.4's normals in the
+                              frame at P, as the paper has them */
+    int ellipse;           /* 0 (default): the footprint is the parallelogram
+                              F + a A1 + b A2, |a|, |b| <= 1 (a box pixel, as
+                              gr_footprint_from_differentials gives it). 1: the
+                              ellipse a^2 + b^2 <= 1 (Gaussian-like filters) */
 } gr_query_t;
 
 /* One entry of the facet list: a texture-space facet orientation with its
@@ -280,7 +288,7 @@ typedef struct gr_query_t {
    entry per facet, whatever their number. The pieces of one facet of one
    groove from oversampled sub-footprints also make one entry, its normal
    the ratio-weighted mean (they differ along curved paths, whose frame
-   turns, and with perturb_normals). */
+   turns, and with perturbed normals). */
 typedef struct gr_facet_t {
     double normal[3];          /* unit, texture space (U, V, W), out of the material */
     double ratio;              /* r_i: visible fraction of the footprint (§4.4) */
@@ -623,6 +631,19 @@ extern "C" {
 #define GR__DEFAULT_MAX_OVERSAMPLE 8
 #define GR__LIMIT_MAX_OVERSAMPLE 64
 #define GR__DEFAULT_PARALLEL_TOL 0.02
+/* Path ends this close (relative to the tile diagonal) modulo the tile of
+   a repeating texture meet across the seam: the path is closed. */
+#define GR__SEAM_CLOSED_REL 1e-12
+/* Largest turn (radians) of a facet normal along a curved path between the
+   footprint and where the view ray meets the facet (gr__hit_normal): past
+   it the straight approximation of the occlusion means little anyway. */
+#define GR__TURN_MAX 1.0
+#define GR__PI 3.14159265358979323846
+/* Intervals shorter than this fraction of an elliptical footprint's radius
+   integrate its semicircle density by the midpoint rule (relative error
+   ~ 1e-9 away from the rim) rather than as a difference of its integral,
+   which would lose their relative precision (gr__xmass). */
+#define GR__DISC_MIDPOINT 1e-4
 /* Automatic grid resolution: about this many cells per groove and axis,
    capped, so a small footprint box meets few paths. */
 #define GR__AUTO_CELLS_PER_SQRT_GROOVE 2.0
@@ -660,7 +681,8 @@ typedef struct gr__groove_t {
     int sec_count;
     int first_facet;       /* into facet_refl_ and blocker_start_ */
     int pieces;            /* segments (polyline) or Bézier pieces */
-    int closed;            /* first point == last point: no path ends */
+    int closed;            /* first point == last point, or on a repeating
+                              tile the same point across the seam: no ends */
     double length;         /* polyline arc length (t = s / length) */
     double half_width;     /* max |b| of the section, times fmax */
     double up, down;       /* max w and max -w of the section, times fmax */
@@ -1080,6 +1102,15 @@ static void gr__store_groove(gr_grid_t *gr, const gr_groove_desc_t *gd, int g, i
         const double *p = gd->points;
         int last = gd->point_count - 1;
         rec->closed = p[0] == p[2 * last] && p[1] == p[2 * last + 1];
+        if (gr->wrap && !rec->closed) {
+            /* ends a whole number of tiles apart: the path runs on across
+               the seam (§4.1 wrap), as one closed path */
+            double wu = gr->domain[2] - gr->domain[0], wv = gr->domain[3] - gr->domain[1];
+            double du = p[2 * last] - p[0], dv = p[2 * last + 1] - p[1];
+            du -= floor(du / wu + 0.5) * wu;
+            dv -= floor(dv / wv + 0.5) * wv;
+            rec->closed = hypot(du, dv) <= GR__SEAM_CLOSED_REL * hypot(wu, wv);
+        }
         rec->length = 0;
         if (rec->kind == GR_PATH_POLYLINE)
             for (i = 0; i < last; i++) rec->length += hypot(p[2 * i + 2] - p[2 * i], p[2 * i + 3] - p[2 * i + 1]);
@@ -1342,7 +1373,7 @@ typedef struct gr__cand_t {
     double d;       /* d_P = B . (F - P), B = (-T_v, T_u) (eq. 2) */
     double param;   /* path parameter at P, in [0,1] */
     double dtds;    /* d param / d arc length at P */
-    double kappa;   /* path curvature at P */
+    double kappa;   /* signed path curvature at P (> 0: T turns counter-clockwise) */
     double f;       /* perturbation scale f(param) */
     double dfds;    /* its slope per unit arc length, averaged across the footprint */
     double xmin;    /* leftmost point of its section in the merged profile */
@@ -1352,6 +1383,7 @@ typedef struct gr__cand_t {
 typedef struct gr__mfacet_t {
     double n[3];
     int groove, facet, refl;
+    int cand;    /* its candidate groove in the query's scratch, -1 for ground */
 } gr__mfacet_t;
 
 /* Sort key of a groove in the merged cross-section. */
@@ -1498,7 +1530,7 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
                 c->param = (k + bt) / rec->pieces;
                 c->dtds = 1 / (rec->pieces * sp);
                 cr = d1[0] * d2[1] - d1[1] * d2[0];
-                c->kappa = fabs(cr) / (sp * sp * sp);
+                c->kappa = cr / (sp * sp * sp);
                 c->end = 0;
                 if (!rec->closed && k == 0 && bt == 0 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] < 0) c->end = -1;
                 if (!rec->closed && k == rec->pieces - 1 && bt == 1 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] > 0) c->end = 1;
@@ -1638,6 +1670,7 @@ typedef struct gr__qset_t {
     int max_oversample;
     double parallel_sin;
     int perturb_normals;
+    int ellipse;
 } gr__qset_t;
 
 /* Visible (or lit) interval per facet of a profile with projected points q
@@ -1755,6 +1788,71 @@ static double gr__extent(const gr_footprint_t *fp, const double v[2])
     return fabs(fp->axis1[0] * v[0] + fp->axis1[1] * v[1]) + fabs(fp->axis2[0] * v[0] + fp->axis2[1] * v[1]);
 }
 
+/* The perturbation's slope df/ds (per unit arc length) around path
+   parameter param: a central difference over the footprint's extent ext
+   along T (at least GR__PERTURB_STEP in the parameter), so the tilt it
+   gives the facets is the footprint's average. */
+static double gr__perturb_slope(const gr__groove_t *rec, const gr__cand_t *c, double param, double ext)
+{
+    double h = ext * c->dtds, ta, tb;
+    if (!(h > GR__PERTURB_STEP)) h = GR__PERTURB_STEP;
+    ta = param - h < 0 ? 0 : param - h;
+    tb = param + h > 1 ? 1 : param + h;
+    return tb > ta ? (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * c->dtds : 0;
+}
+
+/* Texture-space normal of facet R_j = [C_j, C_j+1] of candidate c (§4.4:
+   (0, N_b, N_w) in groove space), with the groove frame turned by phi about
+   W and tilted by the perturbation's slope dfds: beyond §4.4, with
+   X = P(s) + f(s)(b B + w W), dX/ds x dX/dtau adds f'(s)(b dw - w db) T. */
+static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, double phi, double dfds, double n[3])
+{
+    double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = sqrt(db * db + dw * dw);
+    double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nlen, t[2];
+    t[0] = c->t[0];
+    t[1] = c->t[1];
+    if (phi != 0) {
+        double cs = cos(phi), sn = sin(phi);
+        t[0] = cs * c->t[0] - sn * c->t[1];
+        t[1] = sn * c->t[0] + cs * c->t[1];
+    }
+    if (dfds != 0 && len > 0) nt = dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / len;
+    nlen = sqrt(nb * nb + nw * nw + nt * nt);
+    n[0] = (-t[1] * nb + t[0] * nt) / nlen;
+    n[1] = (t[0] * nb + t[1] * nt) / nlen;
+    n[2] = nw / nlen;
+}
+
+/* The normal where the view ray really meets a visible facet (i, of
+   candidate c). §4.2-4.3 keep the straight line at P for occlusion, but
+   the ray reaches the facet's visible part at its mean depth w_m, an arc
+   length ds = w_m (E . T) / E_w along the path from P (ds kept within one
+   path length, |ds dt/ds| <= 1, for grazing views). There a curved path
+   has turned by kappa ds (at most GR__TURN_MAX) and the perturbation has
+   its own slope: on a tight bend, or a perturbation that changes within
+   the ray's way through the groove, these decide where a highlight falls. */
+static void gr__hit_normal(const gr_grid_t *grid, const gr__scratch_t *s, const gr_footprint_t *fp, int i, double ew,
+                           double eb, int point, gr__mfacet_t *m)
+{
+    const gr__cand_t *c = &s->cand[m->cand];
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    const double *e = fp->view;
+    double qa = ew * s->x[i] - eb * s->w[i], de = (ew * s->x[i + 1] - eb * s->w[i + 1]) - qa, mid, wm, ds, phi, dfds;
+    if (c->kappa == 0 && c->dfds == 0) return;
+    mid = point ? 0 : 0.5 * (s->va[i] + s->vb[i]);
+    mid = de != 0 ? (mid - qa) / de : 0.5;
+    if (!(mid >= 0)) mid = 0;
+    if (mid > 1) mid = 1;
+    wm = s->w[i] + mid * (s->w[i + 1] - s->w[i]);
+    ds = wm * (e[0] * c->t[0] + e[1] * c->t[1]) / e[2];
+    if (!(fabs(ds * c->dtds) <= 1)) ds = ds < 0 ? -1 / c->dtds : 1 / c->dtds;
+    phi = c->kappa * ds;
+    if (phi > GR__TURN_MAX) phi = GR__TURN_MAX;
+    if (phi < -GR__TURN_MAX) phi = -GR__TURN_MAX;
+    dfds = c->dfds != 0 ? gr__perturb_slope(rec, c, c->param + ds * c->dtds, gr__extent(fp, c->t)) : 0;
+    gr__section_normal(c, grid->section_ + 2 * rec->first_sec, m->facet, phi, dfds, m->n);
+}
+
 #ifndef GR_NO_OVERSAMPLE
 /* Oversampling count asked for by this groove (§4.2): the path's sagitta
    across the footprint, and the change of the perturbation, as fractions of
@@ -1765,8 +1863,8 @@ static int gr__oversample_need(const gr_grid_t *grid, const gr__cand_t *c, const
     double ext = gr__extent(fp, c->t), width = 2 * rec->half_width / rec->fmax * c->f;
     double need = 1;
     if (!(width > 0) || !(ext > 0)) return 1;
-    if (c->kappa > 0) {
-        double sag = 0.5 * c->kappa * ext * ext;
+    if (c->kappa != 0) {
+        double sag = 0.5 * fabs(c->kappa) * ext * ext;
         double k = ceil(sqrt(sag / (tol * width)));
         if (k > need) need = k;
     }
@@ -1799,6 +1897,51 @@ static void gr__footprint_box(const gr_grid_t *grid, const gr_footprint_t *fp, c
     box[3] = f[1] + *ext_v + grid->w;
 }
 
+/* The footprint's share on [q0, q0 + len] across the groove (the clipping
+   of eq. 3, weighted). For a groove locally straight over the footprint the
+   visibility only depends on the coordinate x = B . (X - F), so each
+   visible interval counts with the integral of the footprint's length
+   density along x. The parallelogram F + a A1 + b A2, |a|,|b| <= 1 (what a
+   box pixel filter covers) projects to x = a p1 + b p2, p_k = A_k . B: the
+   sum of two uniform variables, a trapezoid of half-width big + small
+   (big >= small the |p_k|) and plateau |x| <= big - small. In u = x / big,
+   beta = small / big, the density is 1/2 on the plateau and falls linearly
+   to 0 on the ramps, (1 + beta - |u|) / (4 beta); linear per piece, so each
+   piece integrates exactly as its length times the density at its middle.
+   beta = 0 is §4.2's segment S = [-big, big] with uniform weight (one axis
+   along the groove): the ramps are empty, no division by zero is reached.
+   The length is passed apart from q0 so a short interval far from the
+   centre keeps its relative precision (lit fractions of 1e-12 stay exact).
+   beta < 0 asks for the ellipse a^2 + b^2 <= 1 instead: it projects to the
+   semicircle density 2 sqrt(1 - u^2) / pi, u = x / big, big = |(p1, p2)|,
+   whose integral is gr__disc_cdf (intervals shorter than
+   GR__DISC_MIDPOINT take the midpoint rule, for the same precision).
+   q0, len and big are in the same (E_w-scaled) units. */
+static double gr__disc_cdf(double u)
+{
+    return u <= -1 ? 0 : u >= 1 ? 1 : 0.5 + (u * sqrt(1 - u * u) + asin(u)) / GR__PI;
+}
+static double gr__xmass(double q0, double len, double big, double beta)
+{
+    double u0 = q0 / big, du = len / big, u1 = u0 + du, m = 0, e[4];
+    int k;
+    if (beta < 0) {
+        double a = u0 > -1 ? u0 : -1, b = u1 < 1 ? u1 : 1, mid = 0.5 * (a + b);
+        if (!(b > a)) return 0;
+        if (a == u0 && b == u1 && du < GR__DISC_MIDPOINT) return du * 2 / GR__PI * sqrt(1 - mid * mid);
+        return gr__disc_cdf(b) - gr__disc_cdf(a);
+    }
+    if (u0 >= beta - 1 && u1 <= 1 - beta) return 0.5 * du; /* on the plateau (all of S when beta = 0) */
+    e[0] = -1 - beta; e[1] = beta - 1; e[2] = 1 - beta; e[3] = 1 + beta;
+    for (k = 0; k < 3; k++) {
+        double lo = u0 > e[k] ? u0 : e[k], hi = u1 < e[k + 1] ? u1 : e[k + 1], mid = 0.5 * (lo + hi);
+        if (!(hi > lo)) continue;
+        m += (lo == u0 && hi == u1 ? du : hi - lo) *
+             (k == 1 ? 0.5 : (k == 0 ? mid + 1 + beta : 1 + beta - mid) / (4 * beta));
+    }
+    return m;
+}
+
 /* One footprint: gather, approximate, merge, project, clip, mask, shadow
    (§4.1-4.4), adding weight x ratios to the list. With allow_split it
    returns the oversampling count needed (> 1: nothing was added). */
@@ -1806,7 +1949,8 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
                          const gr__scratch_t *s, gr_facet_list_t *list, int allow_split, double split_t[2])
 {
     const double *e = fp->view;
-    double f[2], box[4], ext_u, ext_v, radius, tanmax, bref[2], eb, ew, sq0, sq1, pm, margin, maxhalf = 0;
+    double f[2], box[4], ext_u, ext_v, radius, tanmax, bref[2], eb, ew, sq0, sq1, pm, pn, beta, half, margin;
+    double maxhalf = 0;
     int n, k, ref = -1, np = 0, nf, npar = 0, i, point, nl = qs->light_count;
     gr__mfacet_t ground;
     f[0] = fp->center[0];
@@ -1857,16 +2001,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (to_end < gr__extent(fp, c->t)) list->flags |= GR_LIST_PATH_END;
         }
         c->f = gr__perturb(rec, c->param);
-        c->dfds = 0;
-        if (rec->perturb && qs->perturb_normals) {
-            /* slope of f across the footprint (a central difference over
-               its extent along T), which tilts the facets along the path */
-            double h = gr__extent(fp, c->t) * c->dtds, ta, tb;
-            if (!(h > GR__PERTURB_STEP)) h = GR__PERTURB_STEP;
-            ta = c->param - h < 0 ? 0 : c->param - h;
-            tb = c->param + h > 1 ? 1 : c->param + h;
-            if (tb > ta) c->dfds = (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * c->dtds;
-        }
+        c->dfds = rec->perturb && qs->perturb_normals ? gr__perturb_slope(rec, c, c->param, gr__extent(fp, c->t)) : 0;
         if (ref < 0 || fabs(c->d) < fabs(s->cand[ref].d)) ref = npar;
         npar++;
     }
@@ -1901,13 +2036,19 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     (void)allow_split;
     (void)split_t;
 #endif
-    /* the footprint segment S from the larger axis projection (§4.2) */
+    /* the footprint across the groove: §4.2's segment S = [-pm, pm] from the
+       larger axis projection, widened by the smaller one pn into the
+       parallelogram's trapezoid density (gr__xmass) on [-half, half] */
     pm = fabs(fp->axis1[0] * bref[0] + fp->axis1[1] * bref[1]);
-    {
-        double p2 = fabs(fp->axis2[0] * bref[0] + fp->axis2[1] * bref[1]);
-        if (p2 > pm) pm = p2;
-    }
+    pn = fabs(fp->axis2[0] * bref[0] + fp->axis2[1] * bref[1]);
+    if (pn > pm) { double t = pm; pm = pn; pn = t; }
+    half = pm + pn;
     point = pm <= GR__POINT_FOOTPRINT_REL * grid->w;
+    beta = point ? 0 : pn / pm;
+    if (qs->ellipse) { /* the semicircle of radius |(p1, p2)| (gr__xmass) */
+        pm = half = sqrt(pm * pm + pn * pn);
+        if (!point) beta = -1;
+    }
     /* the merged cross-section (§4.2, Figure 5b): sections shifted by d_P,
        mirrored when their tangent is opposite, sorted, ground in between */
     for (k = 0; k < npar; k++) {
@@ -1921,20 +2062,17 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         s->key[k].groove = c->groove;
     }
     gr__sort_keys(s->key, npar);
-    margin = pm + maxhalf;
+    margin = half + maxhalf;
     if (!(margin > 0)) margin = 1;
     ground.n[0] = 0; ground.n[1] = 0; ground.n[2] = 1;
-    ground.groove = -1; ground.facet = -1; ground.refl = grid->base_reflectance;
-    s->x[np] = (npar ? (s->key[0].x < -pm ? s->key[0].x : -pm) : -pm) - margin;
+    ground.groove = -1; ground.facet = -1; ground.refl = grid->base_reflectance; ground.cand = -1;
+    s->x[np] = (npar ? (s->key[0].x < -half ? s->key[0].x : -half) : -half) - margin;
     s->w[np++] = 0;
     for (k = 0; k < npar; k++) {
         const gr__cand_t *c = &s->cand[s->key[k].cand];
         const gr__groove_t *rec = &grid->grooves_[c->groove];
         const double *sec = grid->section_ + 2 * rec->first_sec;
         const int nsec = rec->sec_count;
-        double bg[2];
-        bg[0] = -c->t[1];
-        bg[1] = c->t[0];
         if (c->xmin < s->x[np - 1]) list->flags |= GR_LIST_OVERLAP;
         s->mf[np - 1] = ground; /* the ground facet leading to this groove */
         for (i = 0; i < nsec; i++) {
@@ -1944,25 +2082,18 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (i + 1 < nsec) {
                 /* facet R_j = [C_j, C_j+1] in the groove's own orientation */
                 int j = c->sigma > 0 ? i : nsec - 2 - i;
-                double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = sqrt(db * db + dw * dw);
                 gr__mfacet_t *m = &s->mf[np];
-                double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nlen;
-                /* beyond §4.4's (0, N_b, N_w): with X = P(s) + f(s)(b B + w W),
-                   dX/ds x dX/dtau adds f'(s)(b dw - w db) T to the normal */
-                if (c->dfds != 0 && len > 0) nt = c->dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / len;
-                nlen = sqrt(nb * nb + nw * nw + nt * nt);
-                m->n[0] = (bg[0] * nb + c->t[0] * nt) / nlen;
-                m->n[1] = (bg[1] * nb + c->t[1] * nt) / nlen;
-                m->n[2] = nw / nlen;
+                gr__section_normal(c, sec, j, 0, c->dfds, m->n);
                 m->groove = c->groove;
                 m->facet = j;
                 m->refl = grid->facet_refl_[rec->first_facet + j];
+                m->cand = s->key[k].cand;
             }
             np++;
         }
     }
     s->mf[np - 1] = ground;
-    s->x[np] = (s->x[np - 1] > pm ? s->x[np - 1] : pm) + margin;
+    s->x[np] = (s->x[np - 1] > half ? s->x[np - 1] : half) + margin;
     s->w[np++] = 0;
     nf = np - 1;
     if (list->grooves < npar) list->grooves = npar;
@@ -1973,8 +2104,8 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     gr__grazing_scale(&eb, &ew);
     for (i = 0; i < np; i++) s->q[i] = ew * s->x[i] - eb * s->w[i];
     gr__sweep(s->q, np, eb > 0, s->lo, s->hi);     /* masking, eq. 4 */
-    sq0 = -pm * ew;
-    sq1 = pm * ew;
+    sq0 = -half * ew;
+    sq1 = half * ew;
     for (i = 0; i < nf; i++) {                      /* clipping, eq. 3 */
         double a = s->lo[i], b = s->hi[i];
         if (point) {
@@ -2011,8 +2142,14 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             lbb = (s->hi[i] - s->q[i]) / dl;
             if (point || !(sb > sa)) v = la <= sa && sa <= lbb;
             else {
-                ov = (sb < lbb ? sb : lbb) - (sa > la ? sa : la);
-                v = ov > 0 ? ov / (sb - sa) : 0;
+                /* the lit part of the visible interval, back in view
+                   projection, weighted by the footprint density */
+                double oa = sa > la ? sa : la, ob = sb < lbb ? sb : lbb, qv = ew * s->x[i] - eb * s->w[i];
+                double wv = gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta);
+                ov = ob - oa;
+                if (!(ov > 0)) v = 0;
+                else if (wv > 0) v = gr__xmass(qv + oa * de, ov * de, pm * ew, beta) / wv;
+                else v = ov / (sb - sa);
             }
             s->lit[(size_t)i * GR_MAX_LIGHTS + k] = v;
         }
@@ -2021,8 +2158,12 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     for (i = 0; i < nf; i++) {
         double r;
         if (point) r = s->va[i] == 0 ? 1 : 0;
-        else r = s->vb[i] > s->va[i] ? (s->vb[i] - s->va[i]) / (sq1 - sq0) : 0;
-        if (r > 0) gr__list_add(list, &s->mf[i], weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
+        else r = s->vb[i] > s->va[i] ? gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta) : 0;
+        if (r > 0) {
+            gr__mfacet_t m = s->mf[i];
+            if (m.cand >= 0 && qs->perturb_normals) gr__hit_normal(grid, s, fp, i, ew, eb, point, &m);
+            gr__list_add(list, &m, weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
+        }
     }
     return 1;
 }
@@ -2054,7 +2195,8 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     qs.oversample_tol = query->oversample_tol == 0 ? GR__DEFAULT_OVERSAMPLE_TOL : query->oversample_tol;
     qs.max_oversample = query->max_oversample <= 0 ? GR__DEFAULT_MAX_OVERSAMPLE : query->max_oversample;
     if (qs.max_oversample > GR__LIMIT_MAX_OVERSAMPLE) qs.max_oversample = GR__LIMIT_MAX_OVERSAMPLE;
-    qs.perturb_normals = query->perturb_normals != 0;
+    qs.perturb_normals = query->perturb_normals >= 0;
+    qs.ellipse = query->ellipse != 0;
     qs.parallel_sin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     el = sqrt(gr__dot3(fp->view, fp->view));
     if (!(fp->view[2] > 0) || !(el > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
@@ -2064,23 +2206,37 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
         /* §4.2 oversampling: split along the axis that runs most along the
            nearest groove; each part keeps its own straight approximation */
         gr_footprint_t sub = *fp;
+        gr__qset_t qsub = qs;
         double p1, p2;
-        const double *ax;
-        double *sa;
+        const double *ax, *other;
+        double *sa, *so;
         p1 = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
         p2 = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
         ax = p1 >= p2 ? fp->axis1 : fp->axis2;
+        other = p1 >= p2 ? fp->axis2 : fp->axis1;
         sa = p1 >= p2 ? sub.axis1 : sub.axis2;
+        so = p1 >= p2 ? sub.axis2 : sub.axis1;
         sa[0] = ax[0] / need;
         sa[1] = ax[1] / need;
         list->count = 0;
         list->flags = 0;
         list->grooves = 0;
+        /* an ellipse's slabs are taken as parallelograms of the slab's
+           area (weight) and mean chord (other axis); a parallelogram's
+           slabs are exact */
+        qsub.ellipse = 0;
         for (k = 0; k < need; k++) {
-            double o = (2.0 * k + 1) / need - 1;
+            double o = (2.0 * k + 1) / need - 1, wk = 1.0 / need;
+            if (qs.ellipse) {
+                double a0 = -1 + 2.0 * k / need, a1 = a0 + 2.0 / need, hbar;
+                wk = gr__disc_cdf(a1) - gr__disc_cdf(a0);
+                hbar = GR__PI * wk / (2 * (a1 - a0)); /* slab area / (2 width), unit disc */
+                so[0] = other[0] * hbar;
+                so[1] = other[1] * hbar;
+            }
             sub.center[0] = fp->center[0] + o * ax[0];
             sub.center[1] = fp->center[1] + o * ax[1];
-            gr__query_one(grid, &qs, &sub, 1.0 / need, &s, list, 0, t);
+            gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, t);
         }
         list->subfootprints = need;
     }

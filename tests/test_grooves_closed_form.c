@@ -132,12 +132,73 @@ static void v_groove_shadowing_at_known_angles(void)
     gr_grid_free(grid);
 }
 
+/* Oblique footprints over the same V (half-width a = 0.01) from above:
+   each slope covers a strip of width a beside the path, so its ratio is the
+   share of the footprint's area in that strip, from the parallelogram's
+   chord length L(x) across the groove (x = |u - 0.5|, the footprint's
+   projection onto B is |A1_u| + |A2_u|).
+   - A diamond, A1 = (c/2, c/2), A2 = (-c/2, c/2), c = 0.02: L(x) falls
+     linearly from its peak at x = 0 to 0 at x = c, so the strip [0, a]
+     holds (a c - a^2/2) / c^2 = 0.375 of it; the ground 1 - 2 (0.375).
+   - A1 = (0.012, 0.01), A2 = (-0.006, 0.03): L is constant L0 up to
+     x = 0.012 - 0.006 and falls to 0 at 0.018, total area L0 0.024; the
+     strip holds L0 (0.006 + ∫_0.006^0.01 (0.018 - x)/0.012 dx) = L0 0.00933..,
+     a share of 7/18. §4.2's uniform segment [-0.012, 0.012] would say 5/12. */
+static void check_slopes(const gr_grid_t *grid, const double *ax, int ellipse, double want)
+{
+    gr_query_t q = gt_query(0.5, 0.5, 0, 0, 0, 1);
+    gr_facet_list_t l;
+    q.footprint.axis1[0] = ax[0]; q.footprint.axis1[1] = ax[1];
+    q.footprint.axis2[0] = ax[2]; q.footprint.axis2[1] = ax[3];
+    q.ellipse = ellipse;
+    if (!gt_run(grid, &q, &l)) return;
+    T_NEAR(gt_ratio_of(&l, 0), want, 1e-14);
+    T_NEAR(gt_ratio_of(&l, 1), want, 1e-14);
+    T_NEAR(gt_ratio_of(&l, -1), 1 - 2 * want, 1e-14);
+}
+
+static void v_groove_oblique_footprints(void)
+{
+    const double a = 0.01, D = 0.02;
+    const double sec[6] = {-a, 0, 0, -D, a, 0};
+    const double ax[2][4] = {{0.01, 0.01, -0.01, 0.01}, {0.012, 0.01, -0.006, 0.03}};
+    const double want[2] = {0.375, 7.0 / 18};
+    gr_grid_t *grid = one_groove(sec, 3);
+    int i;
+    if (!grid) return;
+    for (i = 0; i < 2; i++) check_slopes(grid, ax[i], 0, want[i]);
+    gr_grid_free(grid);
+}
+
+/* The same V under elliptical footprints (query.ellipse = 1): the strip
+   0 <= x <= a of the disc of radius c holds the circular segment
+   ∫_0^a 2 sqrt(c^2 - x^2) dx = a sqrt(c^2 - a^2) + c^2 asin(a/c), a share
+   (u sqrt(1 - u^2) + asin u) / pi of its area, u = a/c. An ellipse
+   F + a A1 + b A2 (a^2 + b^2 <= 1) has the same chord profile across x
+   with c = |(A1_u, A2_u)|, its largest x. */
+static void v_groove_elliptical_footprints(void)
+{
+    const double a = 0.01, D = 0.02;
+    const double sec[6] = {-a, 0, 0, -D, a, 0};
+    const double ax[2][4] = {{0.02, 0, 0, 0.02}, {0.02, 0.01, -0.005, 0.03}};
+    gr_grid_t *grid = one_groove(sec, 3);
+    int i;
+    if (!grid) return;
+    for (i = 0; i < 2; i++) {
+        double u = a / hypot(ax[i][0], ax[i][2]);
+        check_slopes(grid, ax[i], 1, (u * sqrt(1 - u * u) + asin(u)) / M_PI);
+    }
+    gr_grid_free(grid);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(v_groove_from_above),
         T_CASE(v_groove_masking_at_known_angles),
         T_CASE(v_groove_shadowing_at_known_angles),
+        T_CASE(v_groove_oblique_footprints),
+        T_CASE(v_groove_elliptical_footprints),
     };
     return T_RUN(argc, argv, cases);
 }

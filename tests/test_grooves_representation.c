@@ -299,8 +299,8 @@ static void perturbation_and_oversampling_converge(void)
 
 /* perturb_normals: f(s) = s on the path along +v (s = v). Facet 0 of the V
    sweeps X(s, τ) = (0.5 + s a (1-τ), s, -s D τ); dX/ds x dX/dτ =
-   s (-D, a D, a): the unit normal (-D, aD, a)/|.|, at any s. Default
-   (perturb_normals = 0): §4.4's (-D, 0, a)/|.|. */
+   s (-D, a D, a): the unit normal (-D, aD, a)/|.|, at any s: the default
+   (perturb_normals = 0, or 1). Negative: §4.4's (-D, 0, a)/|.|. */
 static double ramp(double t, void *u) { (void)u; return t; }
 static void perturbation_tilts_normals(void)
 {
@@ -312,18 +312,22 @@ static void perturbation_tilts_normals(void)
     double n1 = sqrt(D * D + a * a * D * D + a * a), n0 = hypot(a, D);
     g.perturb = ramp;
     g.perturb_max = 1;
+    int k;
     grid = build(&g, 1, 0);
     if (!grid) return;
+    q.perturb_normals = -1;
     if (gt_run(grid, &q, &l) && T_CHECK(entry(&l, 0, 0) != NULL)) {
         T_NEAR(entry(&l, 0, 0)->normal[0], -D / n0, 1e-14);
         T_NEAR(entry(&l, 0, 0)->normal[1], 0, 0);
     }
-    q.perturb_normals = 1;
-    if (gt_run(grid, &q, &l) && T_CHECK(entry(&l, 0, 0) != NULL)) {
-        T_NEAR(entry(&l, 0, 0)->normal[0], -D / n1, 1e-9);
-        T_NEAR(entry(&l, 0, 0)->normal[1], a * D / n1, 1e-9);
-        T_NEAR(entry(&l, 0, 0)->normal[2], a / n1, 1e-9);
-        T_NEAR(entry(&l, 0, 0)->ratio, 1, 0);
+    for (k = 0; k < 2; k++) {
+        q.perturb_normals = k;
+        if (gt_run(grid, &q, &l) && T_CHECK(entry(&l, 0, 0) != NULL)) {
+            T_NEAR(entry(&l, 0, 0)->normal[0], -D / n1, 1e-9);
+            T_NEAR(entry(&l, 0, 0)->normal[1], a * D / n1, 1e-9);
+            T_NEAR(entry(&l, 0, 0)->normal[2], a / n1, 1e-9);
+            T_NEAR(entry(&l, 0, 0)->ratio, 1, 0);
+        }
     }
     gr_grid_free(grid);
 }
@@ -587,13 +591,20 @@ static void random_scenes_keep_invariants(void)
             double sum = 0;
             if (t_rng_unit(&rng) < 0.2) q.footprint.axis2[1] = 0;
             if (t_rng_unit(&rng) < 0.1) q.footprint.axis1[0] = 0;
+            if (t_rng_unit(&rng) < 0.5) { /* oblique axes: the trapezoid weighting */
+                double ang = t_rng_range(&rng, 0, 3.1416);
+                q.footprint.axis1[1] = q.footprint.axis1[0] * sin(ang);
+                q.footprint.axis1[0] *= cos(ang);
+                q.footprint.axis2[0] = -q.footprint.axis2[1] * sin(ang) * t_rng_range(&rng, 0, 2);
+            }
             for (k = 0; k < 2; k++) {
                 double lt = t_rng_range(&rng, 0, 1.8), la = t_rng_range(&rng, 0, 6.2832);
                 lights[3 * k] = sin(lt) * cos(la); lights[3 * k + 1] = sin(lt) * sin(la); lights[3 * k + 2] = cos(lt);
             }
             q.lights = lights;
             q.light_count = 2;
-            q.perturb_normals = (int)(qn & 1);
+            q.perturb_normals = (qn & 1) ? -1 : 0;
+            q.ellipse = qn % 3 == 0;
             if (!gt_run(grid, &q, &l)) break;
             if (l.flags & GR_LIST_BELOW_HORIZON) continue;
             for (i = 0; i < l.count; i++) {

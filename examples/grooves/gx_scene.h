@@ -7,8 +7,9 @@
    constant ambient term):
      ours      the plane is two triangles in Embree; at each hit the footprint
                comes from the camera's ray differentials and gr_query() returns
-               the visible facets, shaded by eq. 6 (1 sample per pixel); the
-               example turns on perturb_normals (facets tilted by f'(t));
+               the visible facets, shaded by eq. 6 (1 sample per pixel), with
+               grooves.h's default normals (tilted by f'(t), turned along
+               curved paths where the view ray meets each facet);
      geometry  the same grooves swept into a triangle mesh in Embree
                (tests/grooves_oracle.h) and ray traced at N jittered samples
                per pixel with one shadow ray per light. */
@@ -242,7 +243,7 @@ typedef struct gx_ours_t {
     gro_device_t dev;
     RTCScene plane;
     long long embree_bytes;       /* Embree's bytes once the plane is committed */
-    int perturb_normals;          /* gr_query_t.perturb_normals: tilt facets by f'(t) */
+    int perturb_normals;          /* gr_query_t.perturb_normals: 0 true normals, -1 §4.4's */
     ex_camera_t cam;
 } gx_ours_t;
 
