@@ -453,7 +453,7 @@ FR_DEF fr_result_t fr_parse(const char *text, size_t len, const fr_parse_desc_t 
    evaluated in twice the working precision. Coefficients are rescaled by
    powers of two only (exact), so scales from 1e-300 to 1e300 behave alike. */
 
-#define FR_POLY_MAX_DEGREE 16
+#define FR_POLY_MAX_DEGREE 16 /* at most 16: fr__ceil_div has a table per divisor */
 
 FR_DEF int fr_solve_quadratic(const double c[3], double r[2]);
 FR_DEF int fr_solve_cubic(const double c[4], double r[3]);
@@ -3456,11 +3456,56 @@ static double fr__root_in_piece(const double *hi, const double *lo, int n, doubl
     return x;
 }
 
+/* Estimate-grade elementary functions, without libm calls (acos, cos and
+   cbrt were half the time of a quartic's estimates). They only seed Newton
+   iterations that a compensated polish finishes, so ~1e-8 is plenty. */
+
+/* acos(x) to 2.2e-8 absolute (Abramowitz & Stegun 4.4.46 on [0, 1],
+   acos(-x) = pi - acos(x) below). */
+static double fr__acos_est(double x)
+{
+    double ax = fabs(x), p = -0.0012624911;
+    p = p * ax + 0.0066700901; p = p * ax - 0.0170881256; p = p * ax + 0.0308918810;
+    p = p * ax - 0.0501743046; p = p * ax + 0.0889789874; p = p * ax - 0.2145988016;
+    p = (p * ax + 1.5707963050) * sqrt(1.0 - (ax < 1.0 ? ax : 1.0));
+    return x < 0 ? 3.141592653589793 - p : p;
+}
+
+/* cos and sin of t in [0, pi/3] by Taylor series to t^12 (error < 3e-10). */
+static void fr__cos_sin_est(double t, double *c, double *s)
+{
+    double t2 = t * t;
+    *c = 1.0 + t2 * (-1.0 / 2 + t2 * (1.0 / 24 + t2 * (-1.0 / 720 + t2 * (1.0 / 40320 + t2 * (-1.0 / 3628800 +
+                                                                                             t2 / 479001600.0)))));
+    *s = t * (1.0 + t2 * (-1.0 / 6 + t2 * (1.0 / 120 + t2 * (-1.0 / 5040 + t2 * (1.0 / 362880 - t2 / 39916800.0)))));
+}
+
+/* cbrt(x) for x >= 0: the exponent divided by 3 in the bit pattern (about
+   6% off), then two Halley steps (cubic convergence, below 1e-14). Outside
+   the normal range the bit trick fails, so libm takes over. */
+static double fr__cbrt_est(double x)
+{
+    unsigned long long u;
+    double y;
+    int it;
+    if (!(x >= 1e-300 && x <= 1e300)) return cbrt(x);
+    memcpy(&u, &x, sizeof u);
+    u = u / 3u + 0x2A9F7893782DA1CEull;
+    memcpy(&y, &u, sizeof y);
+    for (it = 0; it < 2; it++) {
+        double y3 = y * y * y;
+        y *= (y3 + 2.0 * x) / (2.0 * y3 + x);
+    }
+    return y;
+}
+
 /* Closed-form estimates (Cardano; trigonometric form when three roots are
    real, Numerical Recipes 5.6) of the real roots of y^3 + a y^2 + b y + c.
-   With largest_only, only the largest real root is produced: Ferrari's
-   resolvent needs no other, and it saves two of the three cosines (libm
-   calls were a third of a quartic's estimate). */
+   In the trigonometric case, with psi = acos(-R / Q^(3/2)) / 3 in
+   [0, pi/3], the roots are 2 sqrt(Q) cos(psi) (the largest) and
+   -sqrt(Q) (cos(psi) +- sqrt(3) sin(psi)), shifted by -a/3: one cosine and
+   one sine instead of three cosines. With largest_only, only the largest
+   root is produced (Ferrari's resolvent needs no other). */
 static int fr__cubic_estimates(double a, double b, double c, double *est, int largest_only)
 {
     /* estimates only: constant divisions become products (a few ulps) */
@@ -3468,15 +3513,15 @@ static int fr__cubic_estimates(double a, double b, double c, double *est, int la
     double Q = (a * a - 3.0 * b) * (1.0 / 9.0), R = (2.0 * a * a * a - 9.0 * a * b + 27.0 * c) * (1.0 / 54.0);
     double Q3 = Q * Q * Q, shift = a * third;
     if (R * R < Q3) {
-        /* th in [0, pi]: the largest root takes the cosine of (th + 2 pi) / 3 */
-        double th = acos(R / sqrt(Q3)), sq = -2.0 * sqrt(Q);
-        est[0] = sq * cos((th + 6.283185307179586) * third) - shift;
+        double sQ = sqrt(Q), cs, sn;
+        fr__cos_sin_est(fr__acos_est(-R / (sQ * Q)) * third, &cs, &sn);
+        est[0] = 2.0 * sQ * cs - shift;
         if (largest_only) return 1;
-        est[1] = sq * cos(th * third) - shift;
-        est[2] = sq * cos((th - 6.283185307179586) * third) - shift;
+        est[1] = -sQ * (cs + 1.7320508075688772 * sn) - shift;
+        est[2] = -sQ * (cs - 1.7320508075688772 * sn) - shift;
         return 3;
     } else {
-        double A = -(R < 0 ? -1.0 : 1.0) * cbrt(fabs(R) + sqrt(R * R - Q3));
+        double A = -(R < 0 ? -1.0 : 1.0) * fr__cbrt_est(fabs(R) + sqrt(R * R - Q3));
         est[0] = A + (A != 0 ? Q / A : 0.0) - shift;
         return 1;
     }
@@ -3555,24 +3600,29 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
    of cubic and quartic roots: measured on random quartics, Ferrari's
    estimates are within 6e-7 relative, two quadratically convergent steps
    take that below plain evaluation's own error. */
-#define FR__FAST_PLAIN_STEPS 2
+#define FR__FAST_PLAIN_STEPS 0
 /* Most compensated Newton steps a fast path allows one root before it gives
    up and leaves the polynomial to the derivative sequence. */
 #define FR__FAST_POLISH_ITERS 6
 
-/* Newton polish of the k <= 4 estimates x[] of roots of q (degree n), all
-   in lockstep: `plain` steps in plain arithmetic (cheap, and enough to bring
-   a closed-form estimate to the accuracy plain evaluation allows), then
-   steps with compensated residuals until every step is at most 2 ulps.
-   The roots' iterations are independent, so interleaving them lets the CPU
-   overlap their dependency chains; one root after the other (the loop this
-   replaces) was latency-bound and mispredicted its exits. Returns 0 when a
-   root does not settle or is not finite (the caller then falls back). */
+/* Polish of the k <= 4 estimates x[] of roots of q (degree n), all in
+   lockstep: `plain` Newton steps in plain arithmetic, then steps of
+   Chebyshev's third-order method, x -= dx + A2 dx^2 with dx = p / p' and
+   A2 = p'' / (2 p'), whose residual p comes from compensated Horner
+   evaluation (as fr__horner_comp), so the last bits are those of twice the
+   working precision. A root is settled when its step was at most 2 ulps,
+   or when the method's asymptotic error (Traub 1964, sec. 5.3:
+   |2 A2^2 - A3| dx^3, A3 = p''' / (6 p')) puts the next step below a
+   quarter ulp: from a closed-form estimate good to ~1e-8 that usually takes
+   one evaluation per root, where Newton took a plain step and one or two
+   compensated ones. The roots' iterations are independent and run in four
+   lanes (structure of arrays, one AVX vector), so the CPU overlaps their
+   dependency chains. Returns 0 when a root does not settle or is not
+   finite (the caller then falls back). */
 static int fr__polish_all(const double *q, int n, double *x, int k, int plain)
 {
-    /* four lanes always (unused ones repeat root 0), structure of arrays,
-       so that each inner j loop is one 4-wide vector operation on AVX */
-    double X[4], S[4], E[4], D[4], H[4], DX[4];
+    /* unused lanes repeat root 0 */
+    double X[4], S[4], E[4], D[4], H[4], T[4], DX[4], ERR[4];
     int it, i, j, left;
     for (j = 0; j < 4; j++) X[j] = x[j < k ? j : 0];
     for (it = 0; it < plain; it++) {
@@ -3582,27 +3632,26 @@ static int fr__polish_all(const double *q, int n, double *x, int k, int plain)
         for (j = 0; j < 4; j++) X[j] -= D[j] != 0 ? S[j] / D[j] : 0.0;
     }
     for (it = 0; it < FR__FAST_POLISH_ITERS; it++) {
-        /* compensated Horner (as fr__horner_comp) with the derivative */
-        for (j = 0; j < 4; j++) { S[j] = q[n]; E[j] = 0.0; D[j] = 0.0; H[j] = 0.0; }
+        for (j = 0; j < 4; j++) { S[j] = q[n]; E[j] = 0.0; D[j] = 0.0; H[j] = 0.0; T[j] = 0.0; }
         for (i = n - 1; i >= 0; i--)
             for (j = 0; j < 4; j++) {
                 double p = S[j] * X[j], pe = fma(S[j], X[j], -p), t = p + q[i], z = t - p;
                 double te = (p - (t - z)) + (q[i] - z);
                 E[j] = E[j] * X[j] + (pe + te);
-                H[j] = H[j] * X[j] + D[j]; /* p'' / 2 */
-                D[j] = D[j] * X[j] + S[j];
+                T[j] = T[j] * X[j] + H[j]; /* third derivative / 6 */
+                H[j] = H[j] * X[j] + D[j]; /* second derivative / 2 */
+                D[j] = D[j] * X[j] + S[j]; /* first derivative */
                 S[j] = t;
             }
         for (j = 0; j < 4; j++) {
-            double v = S[j] + E[j];
+            double v = S[j] + E[j], a2 = H[j] / D[j], k3 = fabs(2.0 * a2 * a2 - T[j] / D[j]);
             DX[j] = v == 0 ? 0.0 : v / D[j];
-            X[j] -= DX[j];
+            ERR[j] = k3 * fabs(DX[j]) * DX[j] * DX[j];
+            X[j] -= DX[j] + (v == 0 ? 0.0 : a2 * DX[j] * DX[j]);
         }
-        /* settled: the step was at most 2 ulps, or quadratic convergence
-           (next error ~ |p''/(2p')| dx^2) makes the next one a quarter ulp */
         for (j = left = 0; j < k; j++)
             left += !(fabs(DX[j]) <= 2.0 * FR__U * fabs(X[j]) ||
-                      fabs(H[j]) * DX[j] * DX[j] <= 0.25 * FR__U * fabs(X[j] * D[j]));
+                      (fabs(DX[j]) <= 1e-4 * fabs(X[j]) && ERR[j] <= 0.25 * FR__U * fabs(X[j])));
         if (left == 0) break;
     }
     for (j = 0; j < k; j++) {
@@ -3755,14 +3804,19 @@ static int fr__solve_band(const double *c, int n, int K, int Elo, double xa, dou
     return ncur;
 }
 
-/* ceil(a / b) for b > 0 and |a| < 2^20, in floating point: integer division
-   was a tenth of a quartic solve, and the correctly rounded quotient of such
-   small integers cannot cross an integer (no libm ceil call either). */
+/* ceil(a / b) for b in [1, FR_POLY_MAX_DEGREE] and |a| < 2^20, without a
+   division (integer division was a tenth of a quartic solve): a + b - 1 is
+   moved to nonnegative values by an offset that every b divides (twice
+   lcm(1..16)), and x / b for x < 2^21 is exactly (x m_b) >> 32 with
+   m_b = floor((2^32 - 1) / b) + 1 (Granlund & Montgomery 1994; checked for
+   every such a and b). Modular unsigned arithmetic keeps the sum exact. */
 static int fr__ceil_div(int a, int b)
 {
-    double qt = (double)a / (double)b;
-    int e = (int)qt;
-    return (double)e < qt ? e + 1 : e;
+    static const unsigned long long m[17] = {0, 0x100000000ull, 0x80000000ull, 0x55555556ull, 0x40000000ull,
+        0x33333334ull, 0x2AAAAAABull, 0x24924925ull, 0x20000000ull, 0x1C71C71Dull, 0x1999999Aull, 0x1745D175ull,
+        0x15555556ull, 0x13B13B14ull, 0x12492493ull, 0x11111112ull, 0x10000000ull};
+    const unsigned long long off = 1441440;
+    return (int)(((unsigned long long)(a + b - 1) + off) * m[b] >> 32) - (int)(off * m[b] >> 32);
 }
 
 /* An exponent E with every root |x| < 2^E (Fujiwara's bound
