@@ -3690,19 +3690,30 @@ static int fr__quadratic_fast(const double *q, double *out)
     return fr__fast_finish(q, 2, out, 2);
 }
 
+/* Sum of t[0..7] and of their magnitudes, as a balanced tree: 3 additions
+   deep instead of 7, so sums of discriminant terms are not a chain of
+   dependent adds, and each term goes through at most 3 roundings. */
+static double fr__sum8(const double *t, double *abs_sum)
+{
+    *abs_sum = ((fabs(t[0]) + fabs(t[1])) + (fabs(t[2]) + fabs(t[3]))) +
+               ((fabs(t[4]) + fabs(t[5])) + (fabs(t[6]) + fabs(t[7])));
+    return ((t[0] + t[1]) + (t[2] + t[3])) + ((t[4] + t[5]) + (t[6] + t[7]));
+}
+
 /* The same certified fast path for cubics: the discriminant
    18abcd - 4b^3 d + b^2 c^2 - 4ac^3 - 27a^2 d^2 is > 0 for three distinct
    real roots and < 0 for one. Each term carries at most 5 roundings and
-   their sum 4 more, so 32 u sum|terms| bounds the error and outside it the
+   their (pairwise) sum 3 more, so 32 u sum|terms| bounds the error and outside it the
    sign is certain. Cardano's (or the trigonometric) estimates must give
    that many roots, and fr__fast_finish must certify them. */
 static int fr__cubic_fast(const double *q, double *out)
 {
-    double a = q[3], b = q[2], c = q[1], d = q[0], b2 = b * b, c2 = c * c, t[5], D = 0, S = 0;
-    int i, n, want;
+    double a = q[3], b = q[2], c = q[1], d = q[0], b2 = b * b, c2 = c * c, t[5], D, S;
+    int n, want;
     t[0] = 18.0 * a * b * c * d; t[1] = -4.0 * b2 * b * d; t[2] = b2 * c2;
     t[3] = -4.0 * a * c2 * c;    t[4] = -27.0 * a * a * d * d;
-    for (i = 0; i < 5; i++) { D += t[i]; S += fabs(t[i]); }
+    D = ((t[0] + t[1]) + (t[2] + t[3])) + t[4];
+    S = ((fabs(t[0]) + fabs(t[1])) + (fabs(t[2]) + fabs(t[3]))) + fabs(t[4]);
     if (!(fabs(D) > 32.0 * FR__U * S)) return -1;
     want = D > 0 ? 3 : 1;
     n = fr__estimate_roots(q, 3, out);
@@ -3721,9 +3732,9 @@ static int fr__cubic_fast(const double *q, double *out)
    discriminant's sign is uncertain, always take the general path. */
 static int fr__quartic_fast(const double *q, double *out)
 {
-    double a = q[4], b = q[3], c = q[2], d = q[1], e = q[0], t[16], D = 0, S = 0, P, SP, L, SL;
+    double a = q[4], b = q[3], c = q[2], d = q[1], e = q[0], t[16], D, S, P, SP, L, SL;
     double a2 = a * a, b2 = b * b, c2 = c * c, d2 = d * d, e2 = e * e;
-    int i, n, want;
+    int n, want;
     t[0] = 256 * a2 * a * e2 * e;       t[1] = -192 * a2 * b * d * e2;
     t[2] = -128 * a2 * c2 * e2;         t[3] = 144 * a2 * c * d2 * e;
     t[4] = -27 * a2 * d2 * d2;          t[5] = 144 * a * b2 * c * e2;
@@ -3732,8 +3743,12 @@ static int fr__quartic_fast(const double *q, double *out)
     t[10] = -4 * a * c2 * c * d2;       t[11] = -27 * b2 * b2 * e2;
     t[12] = 18 * b2 * b * c * d * e;    t[13] = -4 * b2 * b * d2 * d;
     t[14] = -4 * b2 * c2 * c * e;       t[15] = b2 * c2 * d2;
-    for (i = 0; i < 16; i++) { D += t[i]; S += fabs(t[i]); }
-    if (!(fabs(D) > 64.0 * FR__U * S)) return -1; /* each term has < 8 roundings, the sum 16 */
+    {
+        double S2;
+        D = fr__sum8(t, &S) + fr__sum8(t + 8, &S2);
+        S += S2;
+    }
+    if (!(fabs(D) > 64.0 * FR__U * S)) return -1; /* each term has < 8 roundings, the sum 4 */
     if (D < 0) want = 2;
     else {
         P = 8 * a * c - 3 * b2; SP = 8 * fabs(a * c) + 3 * b2;
@@ -3809,20 +3824,26 @@ static int fr__ceil_div(int a, int b)
     return (int)(((unsigned long long)(a + b - 1) + off) * m[b] >> 32) - (int)(off * m[b] >> 32);
 }
 
-/* An exponent E with every root |x| < 2^E (Fujiwara's bound
-   |x| <= 2 max |c_i / c_n|^(1/(n-i)), evaluated on exponents only so that it
-   cannot overflow). rev reads the coefficients backwards, which bounds 1/|x|. */
-static int fr__root_exponent_bound(const int *ex, int n, int rev)
+/* Exponents with 2^lo < |x| < 2^hi for every root x (Fujiwara's bound
+   |x| <= 2 max |c_i / c_n|^(1/(n-i)), and the same on the reversed
+   coefficients for 1/|x|), from the coefficients' exponents ex[] (INT_MIN
+   for a zero coefficient), so that it cannot overflow. Both in one pass:
+   they share every divisor. */
+static void fr__root_exponent_bounds(const int *ex, int n, int *lo, int *hi)
 {
-    int i, E = INT_MIN, lead = ex[rev ? 0 : n];
+    int i, H = INT_MIN, L = INT_MIN;
     for (i = 0; i < n; i++) {
-        int ei = ex[rev ? n - i : i];
-        if (ei != INT_MIN) {
-            int e = fr__ceil_div(ei - lead + 1, n - i) + 1;
-            if (e > E) E = e;
+        if (ex[i] != INT_MIN) {
+            int e = fr__ceil_div(ex[i] - ex[n] + 1, n - i) + 1;
+            if (e > H) H = e;
+        }
+        if (ex[n - i] != INT_MIN) {
+            int e = fr__ceil_div(ex[n - i] - ex[0] + 1, n - i) + 1;
+            if (e > L) L = e;
         }
     }
-    return E == INT_MIN ? 0 : E;
+    *hi = H == INT_MIN ? 0 : H;
+    *lo = L == INT_MIN ? 0 : -L;
 }
 
 FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, double *abs_bound)
@@ -3850,8 +3871,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
     d = c + z; /* zero roots split off: d has d[0] != 0 */
     m = n - z;
     for (i = 0; i <= m; i++) ex[i] = d[i] != 0 ? fr__ilogb(d[i]) : INT_MIN; /* once, for all below */
-    Ehi = fr__root_exponent_bound(ex, m, 0);
-    Elo = -fr__root_exponent_bound(ex, m, 1); /* every root has |x| > 2^Elo */
+    fr__root_exponent_bounds(ex, m, &Elo, &Ehi); /* every root has 2^Elo < |x| < 2^Ehi */
     W = FR__BAND_BITS / (m > 0 ? m : 1);
     if (m == 0) {
         /* only the zero root */
