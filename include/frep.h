@@ -3299,6 +3299,12 @@ done:
 #define FR__BAND_BITS 900
 /* Iteration caps: safeguarded Newton halves the bracket at worst, and a band
    spans at most FR__BAND_BITS bits, bisected geometrically. */
+/* Coefficient exponents within +-FR__DIRECT_EXP go to the degree 2..4 fast
+   paths unscaled: roots then lie within 2^+-121 (Fujiwara), so every term
+   c_i x^i of the polish, and the rounding error that TwoProd recovers from
+   it, stays above 2^-600, far from underflow; discriminant terms (products
+   of six coefficients) stay within 2^+-360. */
+#define FR__DIRECT_EXP 60
 #define FR__PLAIN_ITERS 120
 #define FR__POLISH_ITERS 80
 
@@ -3769,6 +3775,16 @@ static int fr__quartic_fast(const double *q, double *out)
     return fr__fast_finish(q, 4, out, n);
 }
 
+/* The certified fast path of degree n (2..4, q[n] != 0), or -1. */
+static int fr__solve_fast(const double *q, int n, double *out)
+{
+    if (q[n] == 0) return -1;
+    if (n == 2) return fr__quadratic_fast(q, out);
+    if (n == 3) return fr__cubic_fast(q, out);
+    if (n == 4) return fr__quartic_fast(q, out);
+    return -1;
+}
+
 /* Roots of c (degree n, c[0] != 0) with x in [xa, xb], a band inside
    |x| <= 2^K. The substitution x = 2^K y (exact) maps the band into [-1, 1],
    and the coefficients are normalised by a power of two. Each derivative
@@ -3792,9 +3808,7 @@ static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo,
         if (y >= ya && y <= yb) { out[0] = fr__ldexp(y, K); return 1; }
         return 0;
     }
-    if ((n == 2 && q[2] != 0 && (ncur = fr__quadratic_fast(q, cur)) >= 0) ||
-        (n == 3 && q[3] != 0 && (ncur = fr__cubic_fast(q, cur)) >= 0) ||
-        (n == 4 && q[4] != 0 && (ncur = fr__quartic_fast(q, cur)) >= 0)) {
+    if ((ncur = fr__solve_fast(q, n, cur)) >= 0) {
         for (i = k = 0; i < ncur; i++)
             if (cur[i] >= ya && cur[i] <= yb) out[k++] = fr__ldexp(cur[i], K);
         return k;
@@ -3865,7 +3879,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
 {
     double buf[FR_POLY_MAX_DEGREE + 1];
     const double *d;
-    int i, n, z, m, cnt = 0, Ehi, Elo, W, ex[FR_POLY_MAX_DEGREE + 1] = {0};
+    int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = 0, direct, ex[FR_POLY_MAX_DEGREE + 1] = {0};
     if (!c || !r || degree < 0 || degree > FR_POLY_MAX_DEGREE || !(t0 <= t1)) return -1;
     for (i = 0; i <= degree; i++)
         if (!(c[i] - c[i] == 0)) return -1; /* NaN or infinite */
@@ -3876,30 +3890,42 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
     if (n == 0) return 0;
     d = c + z; /* zero roots split off: d has d[0] != 0 */
     m = n - z;
-    for (i = 0; i <= m; i++) ex[i] = d[i] != 0 ? fr__ilogb(d[i]) : INT_MIN; /* once, for all below */
-    fr__root_exponent_bounds(ex, m, &Elo, &Ehi); /* every root has 2^Elo < |x| < 2^Ehi */
-    W = FR__BAND_BITS / (m > 0 ? m : 1);
-    if (m == 0) {
-        /* only the zero root */
-    } else if (Ehi - Elo <= W) {
-        double B = fr__ldexp(1.0, Ehi);
-        cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
+    for (i = 0; i <= m; i++) {
+        ex[i] = d[i] != 0 ? fr__ilogb(d[i]) : INT_MIN; /* once, for all below */
+        if (ex[i] != INT_MIN && (ex[i] > emax || -ex[i] > emax)) emax = ex[i] < 0 ? -ex[i] : ex[i];
+    }
+    /* Coefficients within 2^+-FR__DIRECT_EXP: the fast paths run on them as
+       they are. The band's power-of-two scaling is exact, so it would give
+       the same roots, and the bounds and scaling below cost a quarter of a
+       quartic solve. */
+    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, m, buf) : -1;
+    if (direct >= 0) {
+        cnt = direct; /* certified; filtered below */
     } else {
-        /* Roots spread over more than W bits: bands of at most W bits each,
-           negative side from the largest magnitude down, then positive. */
-        int e, side;
-        for (side = -1; side <= 1; side += 2) {
-            for (e = 0; e < Ehi - Elo; e += W) {
-                int e1 = side < 0 ? Ehi - e : Elo + e + W, e0 = e1 - W;
-                double lo = fr__ldexp(1.0, e0 < Elo ? Elo : e0), hi = fr__ldexp(1.0, e1 > Ehi ? Ehi : e1);
-                double xa = side < 0 ? -hi : lo, xb = side < 0 ? -lo : hi;
-                if (xa < t0) xa = t0;
-                if (xb > t1) xb = t1;
-                if (xa <= xb && cnt < m) {
-                    double band[FR_POLY_MAX_DEGREE + 1];
-                    int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, band);
-                    for (k = 0; k < nb && cnt < m; k++)
-                        if (cnt == 0 || band[k] > buf[cnt - 1]) buf[cnt++] = band[k];
+        fr__root_exponent_bounds(ex, m, &Elo, &Ehi); /* every root has 2^Elo < |x| < 2^Ehi */
+        W = FR__BAND_BITS / (m > 0 ? m : 1);
+        if (m == 0) {
+            /* only the zero root */
+        } else if (Ehi - Elo <= W) {
+            double B = fr__ldexp(1.0, Ehi);
+            cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
+        } else {
+            /* Roots spread over more than W bits: bands of at most W bits each,
+               negative side from the largest magnitude down, then positive. */
+            int e, side;
+            for (side = -1; side <= 1; side += 2) {
+                for (e = 0; e < Ehi - Elo; e += W) {
+                    int e1 = side < 0 ? Ehi - e : Elo + e + W, e0 = e1 - W;
+                    double lo = fr__ldexp(1.0, e0 < Elo ? Elo : e0), hi = fr__ldexp(1.0, e1 > Ehi ? Ehi : e1);
+                    double xa = side < 0 ? -hi : lo, xb = side < 0 ? -lo : hi;
+                    if (xa < t0) xa = t0;
+                    if (xb > t1) xb = t1;
+                    if (xa <= xb && cnt < m) {
+                        double band[FR_POLY_MAX_DEGREE + 1];
+                        int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, band);
+                        for (k = 0; k < nb && cnt < m; k++)
+                            if (cnt == 0 || band[k] > buf[cnt - 1]) buf[cnt++] = band[k];
+                    }
                 }
             }
         }
