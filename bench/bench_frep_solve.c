@@ -11,15 +11,22 @@
    no reference root (real, or complex with |Im|/|z| <= 1e-6) within 1e-6 is
    spurious.
    Sets: the 24 cases of Orellana & De Michele's published accuracy driver
-   (ACM TOMS Algorithm 1010, cases 1-24: Flocke's and Strobach's quartics),
+   (ACM TOMS Algorithm 1010, Table 1: Flocke's and Strobach's quartics and
+   theirs; tests/test_frep_solve_odm.h says why not 26),
    and 10^6 random quartics with roots uniform in [-1, 1] (real parts and
    imaginary parts), a third each with 4, 2 and 0 real roots.
-   Usage: bench_frep_solve OUTDIR  (CSV: OUTDIR/frep_solve_odm.csv, frep_solve_random.csv) */
+   Timing: ns per solve by class (random quartics by number of real roots,
+   the ODM cases, random cubics, fr_solve_poly for degrees 5..10 on the whole
+   line), all against GSL in the same process, thread CPU time, minimum of 5
+   repetitions with the solvers interleaved.
+   Usage: bench_frep_solve OUTDIR  (CSV: OUTDIR/frep_solve_odm.csv, frep_solve_random.csv,
+   frep_solve_time.csv) */
 #define IV_IMPLEMENTATION
 #include "interval.h"
 #define FR_IMPLEMENTATION
 #include "frep.h"
 #include "test_frep_solve_ref.h"
+#include "test_frep_solve_odm.h"
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_poly.h>
 #include <stdio.h>
@@ -33,7 +40,7 @@
 static double now_s(void)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts); /* CPU time: robust to a loaded machine */
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
@@ -98,6 +105,21 @@ static int gsl_quartic(const double *c, double *r)
 }
 
 static int frep_quartic(const double *c, double *r) { return fr_solve_quartic(c, r); }
+
+/* cubics and degree 5..10 (fr_solve_poly on the whole line) against GSL */
+static int g_deg;
+static gsl_poly_complex_workspace *gsl_wsd[11];
+static int frep_cubic(const double *c, double *r) { return fr_solve_cubic(c, r); }
+static int frep_poly(const double *c, double *r) { return fr_solve_poly(c, g_deg, -HUGE_VAL, HUGE_VAL, r); }
+static int gsl_poly(const double *c, double *r)
+{
+    double z[20];
+    int i, n = 0;
+    if (gsl_poly_complex_solve(c, (size_t)g_deg + 1, gsl_wsd[g_deg], z) != GSL_SUCCESS) return 0;
+    for (i = 0; i < g_deg; i++)
+        if (z[2 * i + 1] == 0) r[n++] = z[2 * i];
+    return n;
+}
 
 typedef int (*solver_fn)(const double *, double *);
 static const char *solver_names[3] = {"frep", "naive", "gsl"};
@@ -195,72 +217,62 @@ static void reference_newton(const double *c, const __float128 *kre, const __flo
     if (!ok) reference_aberth(c, ref);
 }
 
-/* ---------------------------------------------------------------- ODM cases */
+/* ---------------------------------------------------------------- timing */
 
-static int odm_case(int k, double *c, ref_t *known)
+/* ns per solve of f over count polynomials (stride doubles apart, starting
+   at first, every step-th), once. */
+static double time_once(solver_fn f, const double *coef, int stride, long first, long step, long count)
 {
-    /* roots (re, im) of cases 1-22 */
-    static const double R[22][4][2] = {
-        {{1e9, 0}, {1e6, 0}, {1e3, 0}, {1, 0}},
-        {{2.003, 0}, {2.002, 0}, {2.001, 0}, {2, 0}},
-        {{1e53, 0}, {1e50, 0}, {1e49, 0}, {1e47, 0}},
-        {{1e14, 0}, {2, 0}, {1, 0}, {-1, 0}},
-        {{-2e7, 0}, {1e7, 0}, {1, 0}, {-1, 0}},
-        {{1e7, 0}, {-1e6, 0}, {1, 1}, {1, -1}},
-        {{-7, 0}, {-4, 0}, {-1e6, 1e5}, {-1e6, -1e5}},
-        {{1e8, 0}, {11, 0}, {1e3, 1}, {1e3, -1}},
-        {{1e7, 1e6}, {1e7, -1e6}, {1, 2}, {1, -2}},
-        {{1e4, 3}, {1e4, -3}, {-7, 1e3}, {-7, -1e3}},
-        {{1.001, 4.998}, {1.001, -4.998}, {1.000, 5.001}, {1.000, -5.001}},
-        {{1e3, 3}, {1e3, -3}, {1e3, 1}, {1e3, -1}},
-        {{2, 1e4}, {2, -1e4}, {1, 1e3}, {1, -1e3}},
-        {{1000, 0}, {1000, 0}, {1000, 0}, {1000, 0}},
-        {{1000, 0}, {1000, 0}, {1000, 0}, {3.552713678800501e-15, 0}}, /* 2^-48 */
-        {{1e16, 1e7}, {1e16, -1e7}, {1, 0.1}, {1, -0.1}},
-        {{10000, 0}, {10001, 0}, {10010, 0}, {10100, 0}},
-        {{4e5, 3e2}, {4e5, -3e2}, {3e4, 7e3}, {3e4, -7e3}},
-        {{1e44, 0}, {1e30, 0}, {1e30, 0}, {1, 0}},
-        {{1e14, 0}, {1e7, 0}, {1e7, 0}, {1, 0}},
-        {{1e15, 0}, {1e7, 0}, {1e7, 0}, {1, 0}},
-        {{1e154, 0}, {1e152, 0}, {10, 0}, {1, 0}},
-    };
-    if (k <= 22) {
-        __float128 re[4], pairs[2][2];
-        int nr = 0, np = 0, i;
-        for (i = 0; i < 4; i++) {
-            if (R[k - 1][i][1] == 0) re[nr++] = R[k - 1][i][0];
-            else if (R[k - 1][i][1] > 0) { pairs[np][0] = R[k - 1][i][0]; pairs[np][1] = R[k - 1][i][1]; np++; }
-        }
-        ref_coeffs_from_roots(re, nr, (const __float128(*)[2])pairs, np, 1, c);
-        {
-            /* the doubles are the exact coefficients (as for (x-1000)^4, whose
-               quadruple root Aberth cannot resolve): the known roots are exact */
-            __float128 q[5] = {1, 0, 0, 0, 0};
-            int j, m = 0, exact = 1;
-            for (i = 0; i < 4; i++) {
-                __float128 z = R[k - 1][i][0];
-                if (R[k - 1][i][1] != 0) return 0;
-                for (j = m + 1; j > 0; j--) q[j] = q[j - 1] - z * q[j];
-                q[0] = -z * q[0];
-                m++;
-            }
-            for (i = 0; i < 5; i++) exact = exact && (__float128)c[i] == q[i];
-            if (!exact) return 0;
-            known->n = 4;
-            for (i = 0; i < 4; i++) { known->qre[i] = R[k - 1][i][0]; known->re[i] = R[k - 1][i][0]; known->im_rel[i] = 0; }
-            return 1;
-        }
-    } else if (k == 23) {
-        c[4] = 1; c[3] = 1; c[2] = 1; c[1] = 0.375; c[0] = 0.001;
-    } else {
-        __float128 S = 1e30Q;
-        c[4] = 1;
-        c[3] = (double)(-(1 + 1 / S));
-        c[2] = (double)(1 / S - S * S);
-        c[1] = (double)(S * S + S);
-        c[0] = (double)(-S);
+    double t0 = now_s(), sink = 0, r[16];
+    long i, m = 0;
+    for (i = first; m < count; i += step, m++) {
+        int n = f(coef + (size_t)stride * (size_t)i, r);
+        if (n > 0) sink += r[0];
     }
-    return 0;
+    t0 = (now_s() - t0) * 1e9 / (double)count;
+    return sink == 12345.678 ? t0 + 1 : t0;
+}
+
+/* Minimum over reps of ns per solve, the solvers interleaved within each
+   repetition so that a change in machine load hits them alike. */
+static void time_table(const char *label, solver_fn *fs, int nf, const double *coef, int stride, long first,
+                       long step, long count, int reps, FILE *csv)
+{
+    double best[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+    int rep, s;
+    for (rep = 0; rep < reps; rep++)
+        for (s = 0; s < nf; s++) {
+            double t = time_once(fs[s], coef, stride, first, step, count);
+            if (t < best[s]) best[s] = t;
+        }
+    printf("%-28s", label);
+    for (s = 0; s < nf; s++) printf(" %9.1f", best[s]);
+    printf("   gsl/frep %5.2f\n", best[nf - 1] / best[0]);
+    if (csv) {
+        fprintf(csv, "%s,%ld", label, count);
+        for (s = 0; s < 3; s++) fprintf(csv, ",%.1f", s < nf ? best[s] : -1.0);
+        fprintf(csv, ",%.2f\n", best[nf - 1] / best[0]);
+    }
+}
+
+/* A random polynomial of degree deg with roots in [-1, 1] (real ones) and
+   pairs with real and imaginary parts in [-1, 1] x (0, 1]: nreal real roots. */
+static void random_poly(unsigned long long *st, int deg, int nreal, double *c)
+{
+    __float128 re[10], pr[5][2];
+    int j, np = (deg - nreal) / 2;
+    for (j = 0; j < nreal + 2 * np; j++) {
+        unsigned long long z = (*st += 0x9E3779B97F4A7C15ull);
+        double u;
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        z ^= z >> 31;
+        u = 2.0 * ((double)(z >> 11) * (1.0 / 9007199254740992.0)) - 1.0;
+        if (j < nreal) re[j] = u;
+        else if ((j - nreal) % 2 == 0) pr[(j - nreal) / 2][0] = u;
+        else pr[(j - nreal) / 2][1] = fabs(u) + 1e-3;
+    }
+    ref_coeffs_from_roots(re, nreal, (const __float128(*)[2])pr, np, 1, c);
 }
 
 int main(int argc, char **argv)
@@ -284,12 +296,17 @@ int main(int argc, char **argv)
     printf("ODM 2020 accuracy cases: max relative forward error of real roots (misses/spurious)\n");
     printf("%5s %5s | %-20s | %-20s | %-20s\n", "case", "real", "frep", "naive Ferrari", "gsl complex_solve");
     memset(tot, 0, sizeof tot);
-    for (k = 1; k <= 24; k++) {
+    for (k = 1; k <= ODM_NCASES; k++) {
         double c[5], r[4];
         ref_t ref;
         score_t sc[3];
         int nreal = 0, j;
-        if (!odm_case(k, c, &ref)) reference_aberth(c, &ref);
+        __float128 ex[4];
+        if (odm_case(k, c, ex)) { /* exact coefficients: the known roots are exact */
+            ref.n = 4;
+            for (j = 0; j < 4; j++) { ref.qre[j] = ex[j]; ref.re[j] = (double)ex[j]; ref.im_rel[j] = 0; }
+        } else
+            reference_aberth(c, &ref);
         for (j = 0; j < 4; j++) nreal += ref.im_rel[j] <= 1e-20;
         memset(sc, 0, sizeof sc);
         for (s = 0; s < 3; s++) {
@@ -376,6 +393,54 @@ int main(int argc, char **argv)
         if (csv)
             fprintf(csv, "%s,%ld,%.3e,%ld,%ld,%.1f,%.2f\n", solver_names[s], N, tot[s].max_rel, tot[s].misses,
                     tot[s].spurious, ns[s], ns[s] / ns[0]);
+    }
+    if (csv) fclose(csv);
+
+    /* ---- ns per solve by class, solvers interleaved (min of 5) */
+    snprintf(path, sizeof path, "%s/frep_solve_time.csv", dir);
+    csv = fopen(path, "w");
+    if (csv) fprintf(csv, "class,n,frep_ns,naive_ns,gsl_ns,gsl_over_frep\n");
+    printf("\nns per solve by class (thread CPU time, min of 5, solvers interleaved)\n");
+    printf("%-28s %9s %9s %9s\n", "class", "frep", "naive", "gsl");
+    time_table("quartic random, all", solvers, 3, coef, 5, 0, 1, N, 5, csv);
+    time_table("quartic random, 4 real", solvers, 3, coef, 5, 0, 3, N / 3, 5, csv);
+    time_table("quartic random, 2 real", solvers, 3, coef, 5, 1, 3, N / 3, 5, csv);
+    time_table("quartic random, 0 real", solvers, 3, coef, 5, 2, 3, N / 3, 5, csv);
+    {
+        /* the ODM cases, each repeated */
+        long reps = N / 50 > 1 ? N / 50 : 1, m;
+        double *odm = (double *)malloc(sizeof(double) * 5 * (size_t)(ODM_NCASES * reps));
+        if (!odm) return 1;
+        for (m = 0; m < ODM_NCASES * reps; m++) {
+            __float128 ex[4];
+            odm_case((int)(m % ODM_NCASES) + 1, odm + 5 * m, ex);
+        }
+        time_table("quartic ODM cases 1-24", solvers, 3, odm, 5, 0, 1, ODM_NCASES * reps, 5, csv);
+        free(odm);
+    }
+    {
+        long M = N / 5 > 1000 ? N / 5 : 1000, m;
+        double *pc = (double *)malloc(sizeof(double) * 11 * (size_t)M);
+        unsigned long long st = 77;
+        solver_fn cub[2] = {frep_cubic, gsl_poly}, pol[2] = {frep_poly, gsl_poly};
+        int deg;
+        if (!pc) return 1;
+        for (deg = 3; deg <= 10; deg++) gsl_wsd[deg] = gsl_poly_complex_workspace_alloc((size_t)deg + 1);
+        g_deg = 3;
+        for (m = 0; m < M; m++) random_poly(&st, 3, m % 2 ? 1 : 3, pc + 11 * m);
+        printf("%-28s %9s %9s %9s\n", "", "frep", "gsl", "");
+        time_table("cubic random, 3 real", cub, 2, pc, 11, 0, 2, M / 2, 5, csv);
+        time_table("cubic random, 1 real", cub, 2, pc, 11, 1, 2, M / 2, 5, csv);
+        for (deg = 5; deg <= 10; deg++) {
+            char label[64];
+            long M2 = M / 10 > 100 ? M / 10 : 100;
+            g_deg = deg;
+            for (m = 0; m < M2; m++) random_poly(&st, deg, (int)(m % (unsigned)(deg / 2 + 1)) * 2 + deg % 2, pc + 11 * m);
+            snprintf(label, sizeof label, "poly degree %d (whole line)", deg);
+            time_table(label, pol, 2, pc, 11, 0, 1, M2, 5, csv);
+        }
+        for (deg = 3; deg <= 10; deg++) gsl_poly_complex_workspace_free(gsl_wsd[deg]);
+        free(pc);
     }
     if (csv) fclose(csv);
     gsl_poly_complex_workspace_free(gsl_ws);
