@@ -567,7 +567,9 @@ typedef struct re__object_t {
     const double *sph; /* 3 per sphere */
     const unsigned *sph_corner;
     const re__cyl_t *cyls;
-    const float *det;  /* per edge cylinder: detection radius around its axis */
+    const float *det;  /* 2 per edge cylinder: detection radius around the mesh
+                          edge's line, and the reach past its end spheres
+                          along the axis (query step 1) */
     const re__corner_t *corners;
     const double *radii; /* one per rounded patch */
     const unsigned *refs;
@@ -1407,7 +1409,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
 #define RE__KD_DEPTH 48
 #define RE__KD_BINS 16
 #define RE__KD_STEP 1.0   /* cost of one node step, in units of one candidate test */
-#define RE__KD_DUP 2u     /* leaf references at most this times the boxes (memory) */
+#define RE__KD_DUP 3u     /* leaf references at most this times the boxes (memory) */
 
 typedef struct re__kd_t {
     const double *box; /* 6 per primitive, relative to the origin: lo[3], hi[3] */
@@ -1575,7 +1577,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->sph, double, 3 * (size_t)ns);
     RE__TAKE(F->sph_corner, unsigned, ns);
     RE__TAKE(F->cyls, re__cyl_t, ncyl);
-    RE__TAKE(F->det, float, F->n_edge_cyls);
+    RE__TAKE(F->det, float, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->corners, re__corner_t, nco);
     RE__TAKE(F->radii, double, F->n_radii);
     RE__TAKE(F->refs, unsigned, nref);
@@ -1662,22 +1664,32 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         cy->p[0] = pmap[an->tplane[e->he[0] / 3]];
         cy->p[1] = pmap[an->tplane[e->he[1] / 3]];
     }
-    /* Detection (§3.1): the removed zone on a face lies within the larger
-       face reach of the mesh edge's two corners; measured from the rounding
-       axis (the end spheres) instead of the mesh edge, add the larger
-       distance between an end sphere and its vertex (a segment moves by at
-       most the larger move of its ends). Stored as a float rounded up. */
+    /* Detection (§3.1): the removed zone on a face lies within g, the larger
+       face reach of the edge's two corners, of the mesh edge. The query
+       tests the distance to the edge's line (from the two face planes, so
+       the vertices need not be stored) and the axial position along the
+       rounding axis, whose end spheres lie within m - g = the larger
+       |sphere - vertex| of the vertices. Both are floats rounded up. The
+       kd box holds that set: the axis extended by m at both ends, widened
+       by g + (m - g) (the edge line is that close to the axis). */
     RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls + 1);
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
     for (i = 0; i < F->n_edge_cyls; i++) {
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
         unsigned ka = F->sph_corner[F->cyls[i].s[0]], kb = F->sph_corner[F->cyls[i].s[1]], a;
-        double g;
-        F->det[i] = re__float_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
-        g = (double)F->det[i];
+        double g, m, u[3], L, e0[3], e1[3];
+        F->det[2 * i] = re__float_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6));
+        F->det[2 * i + 1] = re__float_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
+        g = (double)F->det[2 * i + 1];
+        m = g;
+        re__sub(s1, s0, u);
+        L = re__len(u);
+        if (L > 0) u[0] /= L, u[1] /= L, u[2] /= L;
+        re__madd(s0, -m, u, e0);
+        re__madd(s1, m, u, e1);
         for (a = 0; a < 3; a++) {
-            box[6 * i + a] = re__min(s0[a], s1[a]) - g - an->origin[a];
-            box[6 * i + 3 + a] = re__max(s0[a], s1[a]) + g - an->origin[a];
+            box[6 * i + a] = re__min(e0[a], e1[a]) - g - an->origin[a];
+            box[6 * i + 3 + a] = re__max(e0[a], e1[a]) + g - an->origin[a];
             lo[a] = re__min(lo[a], box[6 * i + a]);
             hi[a] = re__max(hi[a], box[6 * i + 3 + a]);
         }
@@ -1711,7 +1723,7 @@ static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
 {
     return RE__ALIGN(sizeof(unsigned) * an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
            RE__ALIGN(sizeof(double) * 3 * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_spheres) +
-           RE__ALIGN(sizeof(re__cyl_t) * F->n_cyls) + RE__ALIGN(sizeof(float) * F->n_edge_cyls) +
+           RE__ALIGN(sizeof(re__cyl_t) * F->n_cyls) + RE__ALIGN(sizeof(float) * 2 * F->n_edge_cyls) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
            RE__ALIGN(sizeof(unsigned) * F->n_refs) + RE__ALIGN(sizeof(re__node_t) * F->kd.n_nodes) +
            RE__ALIGN(sizeof(unsigned) * F->kd.n_leafrefs);
@@ -1746,7 +1758,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->sph = (const double *)re__put(&at, F->sph, sizeof(double) * 3 * F->n_spheres);
     o->sph_corner = (const unsigned *)re__put(&at, F->sph_corner, sizeof(unsigned) * F->n_spheres);
     o->cyls = (const re__cyl_t *)re__put(&at, F->cyls, sizeof(re__cyl_t) * F->n_cyls);
-    o->det = (const float *)re__put(&at, F->det, sizeof(float) * F->n_edge_cyls);
+    o->det = (const float *)re__put(&at, F->det, sizeof(float) * 2 * F->n_edge_cyls);
     o->corners = (const re__corner_t *)re__put(&at, F->corners, sizeof(re__corner_t) * F->n_corners);
     o->radii = (const double *)re__put(&at, F->radii, sizeof(double) * F->n_radii);
     o->refs = (const unsigned *)re__put(&at, F->refs, sizeof(unsigned) * F->n_refs);
@@ -2171,14 +2183,19 @@ static void re__nearest_feature(const re__object_t *o, const unsigned *set, unsi
         const re__corner_t *K = &o->corners[set[i]];
         const unsigned *ref = o->refs + K->first;
         double r = o->radii[K->rid];
-        for (j = 0; j < K->np; j++) {
-            unsigned c = ref[j];
-            re__try_cyl(o, c, r, I, d, b);
-            /* the far end sphere may belong to a corner not in the set */
-            re__try_sphere(o, o->cyls[c].s[0], r, I, d, b);
-            re__try_sphere(o, o->cyls[c].s[1], r, I, d, b);
-        }
         for (j = 0; j < K->ns; j++) re__try_sphere(o, K->sfirst + j, r, I, d, b);
+        for (j = 0; j < K->np; j++) {
+            unsigned c = ref[j], far = o->cyls[c].s[o->sph_corner[o->cyls[c].s[0]] == set[i] ? 1 : 0], q;
+            unsigned w = o->sph_corner[far];
+            /* each feature once: an edge between two corners of the set is
+               tried from the first of them, and the far end sphere only when
+               its corner is not in the set (else it is one of that
+               corner's own spheres) */
+            for (q = 0; q < n && set[q] != w; q++) {}
+            if (q < i) continue;
+            re__try_cyl(o, c, r, I, d, b);
+            if (q == n) re__try_sphere(o, far, r, I, d, b);
+        }
         for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[K->np + j], r, I, d, b);
     }
 }
@@ -2266,15 +2283,21 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             unsigned c = leaf[i];
             const re__cyl_t *cy = &o->cyls[c];
             const double *s0 = o->sph + 3 * (size_t)cy->s[0], *s1 = o->sph + 3 * (size_t)cy->s[1];
-            double g = (double)o->det[c], lo, hi;
-            unsigned a, ka, kb;
-            /* cheap rejection: outside the axis' box widened by g */
-            for (a = 0; a < 3; a++) {
-                lo = s0[a] < s1[a] ? s0[a] : s1[a];
-                hi = s0[a] < s1[a] ? s1[a] : s0[a];
-                if (I[a] < lo - g || I[a] > hi + g) break;
-            }
-            if (a < 3 || re__dist2_segment(I, s0, s1) > g * g) continue;
+            const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
+            double g = (double)o->det[2 * c], m = (double)o->det[2 * c + 1], u[3], w[3], L2, t, a0, a1, cs;
+            unsigned ka, kb;
+            /* along the axis: within m of the end spheres */
+            re__sub(s1, s0, u);
+            re__sub(I, s0, w);
+            L2 = re__dot(u, u);
+            t = re__dot(w, u);
+            if (t < -m * sqrt(L2) || t > L2 + m * sqrt(L2)) continue;
+            /* across: distance to the mesh edge's line, from the two face
+               planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1 cos) / sin^2 */
+            a0 = re__dot(P0->n, I) - P0->c;
+            a1 = re__dot(P1->n, I) - P1->c;
+            cs = re__dot(P0->n, P1->n);
+            if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) continue;
             ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
             if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
                 re__add_corner(set, &n, ka);
