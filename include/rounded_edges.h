@@ -1410,6 +1410,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
 #define RE__KD_BINS 16
 #define RE__KD_STEP 1.0   /* cost of one node step, in units of one candidate test */
 #define RE__KD_DUP 3u     /* leaf references at most this times the boxes (memory) */
+#define RE__KD_SAMPLE 256u
 
 typedef struct re__kd_t {
     const double *box; /* 6 per primitive, relative to the origin: lo[3], hi[3] */
@@ -1440,8 +1441,11 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
                              unsigned budget, int depth)
 {
     const unsigned *list = kd->tmp + list_at;
-    double lo[3], hi[3], len, best = (double)n, w;
+    double lo[3], hi[3], len, best = (double)n, w, scale;
     unsigned i, a, axis = 0, nl = 0, nr = 0, id, mark = kd->n_tmp, k, bk = 0;
+    /* the cost is estimated from at most ~RE__KD_SAMPLE boxes (the
+       partition itself is exact), so a level costs one pass over the boxes */
+    unsigned step = n > 2 * RE__KD_SAMPLE ? n / RE__KD_SAMPLE : 1u;
     unsigned cl[RE__KD_BINS], ch[RE__KD_BINS];
     float split;
     if (kd->n_nodes + 1 > kd->cap_nodes) return RE__NONE;
@@ -1449,7 +1453,7 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
         goto leaf;
     /* the cell shrunk to the boxes it holds */
     for (a = 0; a < 3; a++) lo[a] = HUGE_VAL, hi[a] = -HUGE_VAL;
-    for (i = 0; i < n; i++)
+    for (i = 0; i < n; i += step)
         for (a = 0; a < 3; a++) {
             lo[a] = re__min(lo[a], kd->box[6 * list[i] + a]);
             hi[a] = re__max(hi[a], kd->box[6 * list[i] + 3 + a]);
@@ -1463,34 +1467,37 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
     w = RE__KD_BINS / len;
     memset(cl, 0, sizeof cl);
     memset(ch, 0, sizeof ch);
-    for (i = 0; i < n; i++) {
+    for (i = 0; i < n; i += step) {
         double x0 = (kd->box[6 * list[i] + axis] - lo[axis]) * w, x1 = (kd->box[6 * list[i] + 3 + axis] - lo[axis]) * w;
         cl[x0 <= 0 ? 0u : x0 >= RE__KD_BINS - 1 ? RE__KD_BINS - 1u : (unsigned)x0]++;
         ch[x1 <= 0 ? 0u : x1 >= RE__KD_BINS - 1 ? RE__KD_BINS - 1u : (unsigned)x1]++;
     }
+    scale = (double)n / (double)((n + step - 1) / step);
     {
-        unsigned sl = 0, sh = 0;
+        unsigned sl = 0, sh = 0, ns = (n + step - 1) / step;
         for (k = 1; k < RE__KD_BINS; k++) {
             double c;
             sl += cl[k - 1]; /* boxes starting left of plane k: on the left */
             sh += ch[k - 1]; /* boxes ending left of plane k: not on the right */
-            c = RE__KD_STEP + ((double)k * sl + (double)(RE__KD_BINS - k) * (n - sh)) / RE__KD_BINS;
+            c = RE__KD_STEP + scale * ((double)k * sl + (double)(RE__KD_BINS - k) * (ns - sh)) / RE__KD_BINS;
             if (c < best) best = c, bk = k;
         }
     }
     if (!bk) goto leaf;
     split = (float)(lo[axis] + len * bk / RE__KD_BINS);
-    for (i = 0; i < n; i++)
-        if (kd->box[6 * list[i] + axis] <= (double)split) kd->tmp[kd->n_tmp + nl++] = list[i];
-    for (i = 0; i < n; i++)
-        if (kd->box[6 * list[i] + 3 + axis] >= (double)split) kd->tmp[kd->n_tmp + nl + nr++] = list[i];
+    /* one pass: the left list from n_tmp, the right one from n_tmp + n */
+    for (i = 0; i < n; i++) {
+        const double *bx = kd->box + 6 * list[i];
+        if (bx[axis] <= (double)split) kd->tmp[kd->n_tmp + nl++] = list[i];
+        if (bx[3 + axis] >= (double)split) kd->tmp[kd->n_tmp + n + nr++] = list[i];
+    }
     /* no progress, or over the memory budget for duplicates */
     if (nl == n || nr == n || nl + nr > budget) goto leaf;
     {
-        unsigned left_at = kd->n_tmp, right_at = kd->n_tmp + nl, r;
+        unsigned left_at = kd->n_tmp, right_at = kd->n_tmp + n, r;
         unsigned bl = nl + (unsigned)((double)(budget - nl - nr) * nl / (nl + nr));
         double clo[3], chi[3];
-        kd->n_tmp += nl + nr;
+        kd->n_tmp += n + nr;
         id = kd->n_nodes++;
         kd->nodes[id].info = axis;
         memcpy(&kd->nodes[id].data, &split, sizeof split);
