@@ -2298,7 +2298,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             re__sub(I, s0, w);
             L2 = re__dot(u, u);
             t = re__dot(w, u);
-            if (t < -m * sqrt(L2) || t > L2 + m * sqrt(L2)) continue;
+            if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) continue;
             /* across: distance to the mesh edge's line, from the two face
                planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1 cos) / sin^2 */
             a0 = re__dot(P0->n, I) - P0->c;
