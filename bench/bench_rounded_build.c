@@ -4,7 +4,11 @@
    Usage: build/bench/bench_rounded_build [out_dir]   (CSV: out_dir/rounded_build.csv)
    Table on stdout, progress on stderr. The build is exact (no accuracy is
    traded), so the table shows time and memory only; the paper's times are
-   the 'cylinders generated in' figures of its Fig. 8. */
+   the 'cylinders generated in' figures of its Fig. 8.
+   B/edge = re_stats_t.bytes (the whole scene block: header, per-triangle
+   plane ids, planes, spheres, cylinders, detection radii, corners, radii,
+   adjacency lists, kd nodes and leaf references) / rounded edges.
+   refs/leaf = kd leaf references / kd leaves (detection candidates per leaf). */
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 #include <math.h>
@@ -151,9 +155,9 @@ int main(int argc, char **argv)
     for (i = 0; i < 369; i++) block(&sc[3].m, (i % 24) * 3.6, (i / 24) * 2.0, 0);
     snprintf(path, sizeof path, "%s/rounded_build.csv", dir);
     csv = fopen(path, "w");
-    if (csv) fprintf(csv, "scene,triangles,rounded_edges,spheres,cylinders,extra_cylinders,build_ms,into_ms,paper_ms,speedup,bytes,bytes_per_rounded_edge,query_ns\n");
-    printf("%-20s %9s %8s %8s %9s %7s %9s %8s %8s %8s %10s %7s %8s\n", "scene", "triangles", "rounded", "spheres", "cylinders",
-           "extra", "build ms", "into ms", "paper ms", "speedup", "bytes", "B/edge", "query ns");
+    if (csv) fprintf(csv, "scene,triangles,rounded_edges,spheres,cylinders,extra_cylinders,build_ms,into_ms,paper_ms,speedup,bytes,bytes_per_rounded_edge,query_ns,kd_leaves,kd_refs_per_leaf\n");
+    printf("%-20s %9s %8s %8s %9s %7s %9s %8s %8s %8s %10s %7s %8s %8s %9s\n", "scene", "triangles", "rounded", "spheres", "cylinders",
+           "extra", "build ms", "into ms", "paper ms", "speedup", "bytes", "B/edge", "query ns", "leaves", "refs/leaf");
     for (k = 0; k < 4; k++) {
         re_mesh_t mesh;
         re_scene_desc_t desc;
@@ -213,14 +217,16 @@ int main(int argc, char **argv)
             sink += h.t;
         }
         tq = (now() - tq) / nq * 1e9;
-        printf("%-20s %9llu %8llu %8llu %9llu %7llu %9.1f %8.1f %8.0f %7.0fx %10zu %7.1f %8.0f\n", sc[k].name, st.triangles,
+        printf("%-20s %9llu %8llu %8llu %9llu %7llu %9.1f %8.1f %8.0f %7.0fx %10zu %7.1f %8.0f %8llu %9.1f\n", sc[k].name, st.triangles,
                st.rounded_edges, st.spheres, st.cylinders, st.extra_cylinders, best * 1e3, best_into * 1e3, sc[k].paper_s * 1e3,
-               sc[k].paper_s / best, st.bytes, (double)st.bytes / (double)st.rounded_edges, tq);
+               sc[k].paper_s / best, st.bytes, (double)st.bytes / (double)st.rounded_edges, tq, st.kd_leaves,
+               st.kd_leaves ? (double)st.kd_leaf_refs / (double)st.kd_leaves : 0.0);
         fflush(stdout);
         if (csv)
-            fprintf(csv, "%s,%llu,%llu,%llu,%llu,%llu,%.3f,%.3f,%.0f,%.1f,%zu,%.2f,%.1f\n", sc[k].name, st.triangles, st.rounded_edges,
+            fprintf(csv, "%s,%llu,%llu,%llu,%llu,%llu,%.3f,%.3f,%.0f,%.1f,%zu,%.2f,%.1f,%llu,%.2f\n", sc[k].name, st.triangles, st.rounded_edges,
                     st.spheres, st.cylinders, st.extra_cylinders, best * 1e3, best_into * 1e3, sc[k].paper_s * 1e3,
-                    sc[k].paper_s / best, st.bytes, (double)st.bytes / (double)st.rounded_edges, tq);
+                    sc[k].paper_s / best, st.bytes, (double)st.bytes / (double)st.rounded_edges, tq, st.kd_leaves,
+                    st.kd_leaves ? (double)st.kd_leaf_refs / (double)st.kd_leaves : 0.0);
         if (sink == 12345.678) printf(" ");
         re_free(s);
         free(sc[k].m.v), free(sc[k].m.idx);

@@ -205,7 +205,14 @@ typedef struct re_stats_t {
     unsigned long long extra_cylinders;    /* exact-corner cylinders (degree >= 4) */
     unsigned long long clamped;            /* patches whose radius was lowered */
     unsigned long long kd_nodes;
-    size_t bytes;                          /* whole scene, header included */
+    unsigned long long kd_leaves;          /* leaves of the detection kd-trees */
+    unsigned long long kd_leaf_refs;       /* edge references held by the leaves (an
+                                              edge whose detection box straddles a
+                                              split is held by both sides) */
+    size_t bytes;                          /* whole scene, header included: every
+                                              array a query reads (docs/rounded_edges.md,
+                                              "Memory"). Bytes per rounded edge =
+                                              bytes / rounded_edges */
 } re_stats_t;
 
 typedef struct re_scene_t re_scene_t; /* opaque; lives in one block */
@@ -528,35 +535,43 @@ typedef struct re__cyl_t {
     unsigned p[2]; /* the two offset planes it joins */
 } re__cyl_t;
 
-/* A rounded mesh vertex. refs[first ...]: np edge
-   cylinders (cylinder j joins planes j and j+1), ns spheres, nx extra cylinders. */
+/* A rounded mesh vertex, 24 bytes. refs[first ...]: np edge cylinders
+   (cylinder j joins planes j and j+1), then nx extra cylinders; its ns
+   spheres are sph[sfirst ...]. The mesh vertex itself is not stored: every
+   test that needs it uses the first sphere centre with a radius widened by
+   their distance (docs/rounded_edges.md, "Memory"). */
 typedef struct re__corner_t {
-    double v[3];  /* the mesh vertex */
-    double r;     /* rounding radius of its patch */
-    double face_reach; /* on a face, the removed zone near v or along its edges
-                          lies within this of v / of the edge */
-    unsigned vertex, first;
+    float walk;    /* adjacency walk (query step 4): a removed point near this
+                      corner lies within `walk` of sph[sfirst] (face reach + r +
+                      |sphere - vertex|, rounded up to float) */
+    unsigned rid;  /* radius of its patch: radii[rid] */
+    unsigned vertex, first, sfirst;
     unsigned char np, ns, nx, pad_;
 } re__corner_t;
 
-/* kd-tree node (§3.2): inner nodes split at `split` on axis info&3 (left
-   child follows the node, right child at `index`); leaves have info&3 == 3,
-   info>>2 references starting at leafrefs[index]. */
+/* kd-tree node (§3.2), 8 bytes. Inner node: info = axis | right child << 2
+   (the left child follows the node), data = the split as a float bit
+   pattern, relative to the object's origin. Leaf: info = 3 | first << 2,
+   data = count of references leafrefs[first ...]. */
 typedef struct re__node_t {
-    double split;
-    unsigned info, index;
+    unsigned info, data;
 } re__node_t;
 
 typedef struct re__object_t {
-    unsigned n_tris, n_planes, n_spheres, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leafrefs;
+    unsigned n_tris, n_planes, n_spheres, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leafrefs, n_radii;
     double size; /* bounding-box diagonal: the object's length scale */
     double rmax;
+    double origin[3]; /* kd splits are floats relative to this (bounding-box centre) */
     const unsigned *tri_plane; /* per triangle: plane id, RE__NONE if not rounded nearby */
     const re__plane_t *planes;
     const double *sph; /* 3 per sphere */
     const unsigned *sph_corner;
     const re__cyl_t *cyls;
+    const float *det;  /* 2 per edge cylinder: detection radius around the mesh
+                          edge's line, and the reach past its end spheres
+                          along the axis (query step 1) */
     const re__corner_t *corners;
+    const double *radii; /* one per rounded patch */
     const unsigned *refs;
     const re__node_t *nodes;
     const unsigned *leafrefs;
@@ -637,6 +652,7 @@ typedef struct re__an_t {
     unsigned *plane_used;
     re_stats_t st;
     double size;
+    double origin[3]; /* bounding-box centre */
 } re__an_t;
 
 static re_result_t re__fail(re__an_t *an, re_result_t r, long long element, const char *msg)
@@ -811,6 +827,7 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
         double dd[3];
         re__sub(hi, lo, dd);
         an->size = re__len(dd);
+        for (k = 0; k < 3; k++) an->origin[k] = 0.5 * (lo[k] + hi[k]);
     }
     return RE_OK;
 }
@@ -1371,70 +1388,127 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     return RE_OK;
 }
 
-/* ---- kd-tree over the rounded edges (paper §3.2: split the longest axis) ---- */
+/* ---- kd-tree over the rounded edges' detection boxes (paper §3.2) ----------
 
-#define RE__KD_LEAF 6
-#define RE__KD_DEPTH 40
+   A query knows its point I, so it reads exactly one leaf: the tree is a
+   point-location tree whose leaves list the detection boxes containing any
+   point of the leaf's cell. A box that straddles a split goes to both
+   sides. The paper splits the longest axis in the middle; with boxes of
+   very different sizes (long block edges, short knob edges) that stopped
+   splitting early and left ~70 boxes in the leaf an average query met. We
+   keep the longest axis of the cell but place the split by a binned
+   surface-area-style cost for point queries: a cell is reached in
+   proportion to its length along the axis, so a split at x costs
+   RE__KD_STEP + (len_left * n_left + len_right * n_right) / len, against
+   n for a leaf. Coordinates are relative to the object's origin, so float
+   splits (8-byte nodes) keep their resolution far from the world origin;
+   the partition and the query compare the same doubles with the same
+   float, so a point always finds every box that contains it. */
+
+#define RE__KD_LEAF 2     /* never split a cell with this many boxes or fewer */
+#define RE__KD_DEPTH 48
+#define RE__KD_BINS 16
+#define RE__KD_STEP 1.0   /* cost of one node step, in units of one candidate test */
+#define RE__KD_DUP 3u     /* leaf references at most this times the boxes (memory) */
+#define RE__KD_SAMPLE 256u
 
 typedef struct re__kd_t {
-    const double *box; /* 6 per primitive: lo[3], hi[3] */
+    const double *box; /* 6 per primitive, relative to the origin: lo[3], hi[3] */
     re__node_t *nodes;
     unsigned n_nodes, cap_nodes;
     unsigned *leafrefs;
     unsigned n_leafrefs, cap_leafrefs;
     unsigned *tmp;
     unsigned n_tmp, cap_tmp;
-    unsigned dup_left; /* leaf references still free for duplicates */
+    unsigned n_leaves;
 } re__kd_t;
 
 static unsigned re__kd_leaf(re__kd_t *kd, const unsigned *list, unsigned n)
 {
     unsigned id = kd->n_nodes++, i;
-    kd->nodes[id].split = 0;
-    kd->nodes[id].info = 3u | (n << 2);
-    kd->nodes[id].index = kd->n_leafrefs;
+    kd->nodes[id].info = 3u | (kd->n_leafrefs << 2);
+    kd->nodes[id].data = n;
     for (i = 0; i < n; i++) kd->leafrefs[kd->n_leafrefs++] = list[i];
+    kd->n_leaves++;
     return id;
 }
 
-/* `list` lives in kd->tmp; children's lists are pushed after it and popped. */
-static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, int depth)
+/* `list` lives in kd->tmp; children's lists are pushed after it and popped.
+   [lo, hi] is the node's cell; its leaves may hold at most `budget` >= n
+   references in all, shared between the children in proportion to their
+   sizes, so no subtree starves another of duplicates. */
+static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const double lo_in[3], const double hi_in[3],
+                             unsigned budget, int depth)
 {
     const unsigned *list = kd->tmp + list_at;
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, split;
-    unsigned i, a, axis = 0, nl = 0, nr = 0, id, mark = kd->n_tmp;
-    if (kd->n_nodes + 2 > kd->cap_nodes) return RE__NONE;
-    if (n <= RE__KD_LEAF || depth >= RE__KD_DEPTH || kd->n_tmp + 2 * n > kd->cap_tmp ||
-        kd->n_nodes + 3 > kd->cap_nodes)
+    double lo[3], hi[3], len, best = (double)n, w, scale;
+    unsigned i, a, axis = 0, nl = 0, nr = 0, id, mark = kd->n_tmp, k, bk = 0;
+    /* the cost is estimated from at most ~RE__KD_SAMPLE boxes (the
+       partition itself is exact), so a level costs one pass over the boxes */
+    unsigned step = n > 2 * RE__KD_SAMPLE ? n / RE__KD_SAMPLE : 1u;
+    unsigned cl[RE__KD_BINS], ch[RE__KD_BINS];
+    float split;
+    if (kd->n_nodes + 1 > kd->cap_nodes) return RE__NONE;
+    if (n <= RE__KD_LEAF || depth >= RE__KD_DEPTH || kd->n_tmp + 2 * n > kd->cap_tmp || kd->n_nodes + 3 > kd->cap_nodes)
         goto leaf;
-    /* bounds of the primitive centres; split the longest axis at their mean */
-    for (i = 0; i < n; i++)
+    /* the cell shrunk to the boxes it holds */
+    for (a = 0; a < 3; a++) lo[a] = HUGE_VAL, hi[a] = -HUGE_VAL;
+    for (i = 0; i < n; i += step)
         for (a = 0; a < 3; a++) {
-            double c = 0.5 * (kd->box[6 * list[i] + a] + kd->box[6 * list[i] + 3 + a]);
-            lo[a] = re__min(lo[a], c);
-            hi[a] = re__max(hi[a], c);
+            lo[a] = re__min(lo[a], kd->box[6 * list[i] + a]);
+            hi[a] = re__max(hi[a], kd->box[6 * list[i] + 3 + a]);
         }
+    for (a = 0; a < 3; a++) lo[a] = re__max(lo[a], lo_in[a]), hi[a] = re__min(hi[a], hi_in[a]);
     for (a = 1; a < 3; a++)
         if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
-    if (!(hi[axis] > lo[axis])) goto leaf;
-    split = 0.5 * (lo[axis] + hi[axis]);
-    for (i = 0; i < n; i++)
-        if (kd->box[6 * list[i] + axis] <= split) kd->tmp[kd->n_tmp + nl++] = list[i];
-    for (i = 0; i < n; i++)
-        if (kd->box[6 * list[i] + 3 + axis] >= split) kd->tmp[kd->n_tmp + nl + nr++] = list[i];
-    /* a split that duplicates most primitives does not pay */
-    if (nl == n || nr == n || nl + nr > n + n / 4 || nl + nr - n > kd->dup_left) goto leaf;
-    kd->dup_left -= nl + nr - n;
+    len = hi[axis] - lo[axis];
+    if (!(len > 0)) goto leaf;
+    /* binned cost: cl[b] boxes start in bin b, ch[b] end in it */
+    w = RE__KD_BINS / len;
+    memset(cl, 0, sizeof cl);
+    memset(ch, 0, sizeof ch);
+    for (i = 0; i < n; i += step) {
+        double x0 = (kd->box[6 * list[i] + axis] - lo[axis]) * w, x1 = (kd->box[6 * list[i] + 3 + axis] - lo[axis]) * w;
+        cl[x0 <= 0 ? 0u : x0 >= RE__KD_BINS - 1 ? RE__KD_BINS - 1u : (unsigned)x0]++;
+        ch[x1 <= 0 ? 0u : x1 >= RE__KD_BINS - 1 ? RE__KD_BINS - 1u : (unsigned)x1]++;
+    }
+    scale = (double)n / (double)((n + step - 1) / step);
     {
-        unsigned left_at = kd->n_tmp, right_at = kd->n_tmp + nl, r;
-        kd->n_tmp += nl + nr;
+        unsigned sl = 0, sh = 0, ns = (n + step - 1) / step;
+        for (k = 1; k < RE__KD_BINS; k++) {
+            double c;
+            sl += cl[k - 1]; /* boxes starting left of plane k: on the left */
+            sh += ch[k - 1]; /* boxes ending left of plane k: not on the right */
+            c = RE__KD_STEP + scale * ((double)k * sl + (double)(RE__KD_BINS - k) * (ns - sh)) / RE__KD_BINS;
+            if (c < best) best = c, bk = k;
+        }
+    }
+    if (!bk) goto leaf;
+    split = (float)(lo[axis] + len * bk / RE__KD_BINS);
+    /* one pass: the left list from n_tmp, the right one from n_tmp + n */
+    for (i = 0; i < n; i++) {
+        const double *bx = kd->box + 6 * list[i];
+        if (bx[axis] <= (double)split) kd->tmp[kd->n_tmp + nl++] = list[i];
+        if (bx[3 + axis] >= (double)split) kd->tmp[kd->n_tmp + n + nr++] = list[i];
+    }
+    /* no progress, or over the memory budget for duplicates */
+    if (nl == n || nr == n || nl + nr > budget) goto leaf;
+    {
+        unsigned left_at = kd->n_tmp, right_at = kd->n_tmp + n, r;
+        unsigned bl = nl + (unsigned)((double)(budget - nl - nr) * nl / (nl + nr));
+        double clo[3], chi[3];
+        kd->n_tmp += n + nr;
         id = kd->n_nodes++;
-        kd->nodes[id].split = split;
         kd->nodes[id].info = axis;
-        if (re__kd_build(kd, left_at, nl, depth + 1) == RE__NONE) return RE__NONE;
-        r = re__kd_build(kd, right_at, nr, depth + 1);
+        memcpy(&kd->nodes[id].data, &split, sizeof split);
+        for (a = 0; a < 3; a++) clo[a] = lo_in[a], chi[a] = hi_in[a];
+        chi[axis] = (double)split;
+        if (re__kd_build(kd, left_at, nl, clo, chi, bl, depth + 1) == RE__NONE) return RE__NONE;
+        chi[axis] = hi_in[axis];
+        clo[axis] = (double)split;
+        r = re__kd_build(kd, right_at, nr, clo, chi, budget - bl, depth + 1);
         if (r == RE__NONE) return RE__NONE;
-        kd->nodes[id].index = r;
+        kd->nodes[id].info = axis | (r << 2);
         kd->n_tmp = mark;
         return id;
     }
@@ -1446,32 +1520,46 @@ leaf:
 /* ---- Step 7: final arrays, packed into one block ------------------------------ */
 
 typedef struct re__final_t {
-    unsigned n_corners, n_spheres, n_cyls, n_edge_cyls, n_planes, n_refs;
+    unsigned n_corners, n_spheres, n_cyls, n_edge_cyls, n_planes, n_refs, n_radii;
     unsigned *tri_plane;
     re__plane_t *planes;
     double *sph;
     unsigned *sph_corner;
     re__cyl_t *cyls;
+    float *det;
     re__corner_t *corners;
+    double *radii;
     unsigned *refs;
     re__kd_t kd;
 } re__final_t;
 
+/* x rounded up to a float: the stored detection radii only ever err large */
+static float re__float_up(double x)
+{
+    float f = (float)x;
+    if ((double)f < x) f = nextafterf(f, HUGE_VALF);
+    return f;
+}
+
 static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
                               re__final_t *F)
 {
-    unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, ns = 0, ncyl = 0, nref = 0, nco = 0;
-    double *box;
+    unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, ns = 0, ncyl = 0, nref = 0, nco = 0;
+    double *box, *reach, *dmax, lo[3], hi[3];
     RE__TAKE(fc, unsigned, an->nc + 1);
     RE__TAKE(sbase, unsigned, an->nc + 1);
     RE__TAKE(xbase, unsigned, an->nc + 1);
+    RE__TAKE(rmap, unsigned, an->nc + 1);
     RE__TAKE(ecyl, unsigned, an->E + 1);
     RE__TAKE(pmap, unsigned, an->n_planes + 1);
     for (i = 0; i < an->n_planes; i++) pmap[i] = RE__NONE;
     for (i = 0; i < an->E; i++) ecyl[i] = an->edges[i].rounded ? ncyl++ : RE__NONE;
     F->n_edge_cyls = ncyl;
     F->n_planes = 0;
+    F->n_radii = 0;
+    for (c = 0; c < an->nc; c++) rmap[c] = RE__NONE;
     for (c = 0; c < an->nc; c++) {
+        unsigned p;
         fc[c] = RE__NONE;
         if (an->vstate[an->c_vertex[c]] != RE__V_CORNER) continue;
         fc[c] = nco++;
@@ -1479,10 +1567,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         ns += an->c_ns[c];
         xbase[c] = ncyl;
         ncyl += an->c_nx[c];
-        nref += (unsigned)an->c_np[c] + an->c_ns[c] + an->c_nx[c];
+        nref += (unsigned)an->c_np[c] + an->c_nx[c];
+        p = re__uf_find(uf, c);
+        if (rmap[p] == RE__NONE) rmap[p] = F->n_radii++;
         for (j = 0; j < an->c_np[c]; j++) {
-            unsigned p = an->c_planes[an->c_pfirst[c] + j];
-            if (pmap[p] == RE__NONE) pmap[p] = F->n_planes++;
+            unsigned q = an->c_planes[an->c_pfirst[c] + j];
+            if (pmap[q] == RE__NONE) pmap[q] = F->n_planes++;
         }
     }
     F->n_corners = nco;
@@ -1494,8 +1584,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->sph, double, 3 * (size_t)ns);
     RE__TAKE(F->sph_corner, unsigned, ns);
     RE__TAKE(F->cyls, re__cyl_t, ncyl);
+    RE__TAKE(F->det, float, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->corners, re__corner_t, nco);
+    RE__TAKE(F->radii, double, F->n_radii);
     RE__TAKE(F->refs, unsigned, nref);
+    RE__TAKE(reach, double, nco + 1);
+    RE__TAKE(dmax, double, nco + 1);
     for (i = 0; i < an->T; i++)
         F->tri_plane[i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
     for (i = 0; i < an->n_planes; i++)
@@ -1504,27 +1598,28 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     for (c = 0; c < an->nc; c++) {
         re__corner_t *K;
         const double *v;
-        double r, freach = 0;
+        double r, freach = 0, dm = 0;
         unsigned pf = an->c_pfirst[c];
         if (fc[c] == RE__NONE) continue;
         K = &F->corners[fc[c]];
         v = an->pos + 3 * (size_t)an->c_vertex[c];
         r = patch_r[re__uf_find(uf, c)];
-        K->v[0] = v[0], K->v[1] = v[1], K->v[2] = v[2];
-        K->r = r;
+        K->rid = rmap[re__uf_find(uf, c)];
+        F->radii[K->rid] = r;
         K->vertex = an->c_vertex[c];
         K->first = nref;
+        K->sfirst = sbase[c];
         K->np = an->c_np[c];
         K->ns = an->c_ns[c];
         K->nx = an->c_nx[c];
         K->pad_ = 0;
         for (j = 0; j < K->np; j++) F->refs[nref++] = ecyl[an->c_edges[pf + j]];
         for (j = 0; j < K->ns; j++) {
-            double *s = F->sph + 3 * (size_t)(sbase[c] + j), dd[3];
-            re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), s);
+            double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3];
+            re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
             F->sph_corner[sbase[c] + j] = fc[c];
-            F->refs[nref++] = sbase[c] + j;
-            re__sub(s, v, dd);
+            re__sub(sp, v, dd);
+            dm = re__max(dm, re__len(dd));
             /* on a face g through s, the corner zone is the hull of v and the
                eroded vertices seen from above: their tangential offsets */
             for (k = 0; k < K->np; k++) {
@@ -1539,17 +1634,20 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
            sqrt(d^2 - r^2) wide, d = distance from the axis to the edge */
         for (j = 0; j < K->np; j++) {
             const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
-            const double *s = F->sph + 3 * (size_t)(sbase[c] + an->c_start[pf + j]);
+            const double *sp = F->sph + 3 * (size_t)(sbase[c] + an->c_start[pf + j]);
             double dd[3], ed[3], cr[3], dist;
             unsigned o2 = e->v[0] == K->vertex ? e->v[1] : e->v[0];
-            re__sub(s, v, dd);
+            re__sub(sp, v, dd);
             re__sub(an->pos + 3 * (size_t)o2, v, ed);
             re__cross(dd, ed, cr);
             dist = re__len(cr) / re__len(ed);
             freach = re__max(freach, sqrt(re__max(dist * dist - r * r, 0.0)));
         }
         /* 1.5: margin over the bound (0.7 fails the exactness tests) */
-        K->face_reach = 1.5 * freach;
+        reach[fc[c]] = 1.5 * freach;
+        dmax[fc[c]] = dm;
+        /* the walk measures from the first sphere, not from v: widen by |s - v| */
+        K->walk = re__float_up((reach[fc[c]] + r + dm) * (1 + 1e-6));
         for (j = 0; j < K->nx; j++) {
             const unsigned *x = an->c_x + 4 * (size_t)(an->c_xfirst[c] + j);
             re__cyl_t *cy = &F->cyls[xbase[c] + j];
@@ -1573,36 +1671,56 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         cy->p[0] = pmap[an->tplane[e->he[0] / 3]];
         cy->p[1] = pmap[an->tplane[e->he[1] / 3]];
     }
-    /* kd-tree over the edge cylinders' detection boxes */
-    RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls);
+    /* Detection (§3.1): the removed zone on a face lies within g, the larger
+       face reach of the edge's two corners, of the mesh edge. The query
+       tests the distance to the edge's line (from the two face planes, so
+       the vertices need not be stored) and the axial position along the
+       rounding axis, whose end spheres lie within m - g = the larger
+       |sphere - vertex| of the vertices. Both are floats rounded up. The
+       kd box holds that set: the axis extended by m at both ends, widened
+       by g + (m - g) (the edge line is that close to the axis). */
+    RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls + 1);
+    for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
     for (i = 0; i < F->n_edge_cyls; i++) {
-        const re__corner_t *A = &F->corners[F->sph_corner[F->cyls[i].s[0]]];
-        const re__corner_t *B = &F->corners[F->sph_corner[F->cyls[i].s[1]]];
-        double g = re__max(A->face_reach, B->face_reach);
-        unsigned a;
+        const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
+        unsigned ka = F->sph_corner[F->cyls[i].s[0]], kb = F->sph_corner[F->cyls[i].s[1]], a;
+        double g, m, u[3], L, e0[3], e1[3];
+        F->det[2 * i] = re__float_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6));
+        F->det[2 * i + 1] = re__float_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
+        g = (double)F->det[2 * i + 1];
+        m = g;
+        re__sub(s1, s0, u);
+        L = re__len(u);
+        if (L > 0) u[0] /= L, u[1] /= L, u[2] /= L;
+        re__madd(s0, -m, u, e0);
+        re__madd(s1, m, u, e1);
         for (a = 0; a < 3; a++) {
-            box[6 * i + a] = re__min(A->v[a], B->v[a]) - g;
-            box[6 * i + 3 + a] = re__max(A->v[a], B->v[a]) + g;
+            box[6 * i + a] = re__min(e0[a], e1[a]) - g - an->origin[a];
+            box[6 * i + 3 + a] = re__max(e0[a], e1[a]) + g - an->origin[a];
+            lo[a] = re__min(lo[a], box[6 * i + a]);
+            hi[a] = re__max(hi[a], box[6 * i + 3 + a]);
         }
     }
     F->kd.box = box;
-    F->kd.cap_leafrefs = 4 * F->n_edge_cyls + 64;
+    F->kd.cap_leafrefs = RE__KD_DUP * F->n_edge_cyls + 64;
     F->kd.cap_nodes = 2 * F->kd.cap_leafrefs;
     F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
-    F->kd.n_nodes = F->kd.n_leafrefs = 0;
-    F->kd.dup_left = F->kd.cap_leafrefs - F->n_edge_cyls;
+    F->kd.n_nodes = F->kd.n_leafrefs = F->kd.n_leaves = 0;
+    if (F->kd.cap_nodes >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
     RE__TAKE(F->kd.nodes, re__node_t, F->kd.cap_nodes);
     RE__TAKE(F->kd.leafrefs, unsigned, F->kd.cap_leafrefs);
     RE__TAKE(F->kd.tmp, unsigned, F->kd.cap_tmp);
     for (i = 0; i < F->n_edge_cyls; i++) F->kd.tmp[i] = i;
     F->kd.n_tmp = F->n_edge_cyls;
-    if (re__kd_build(&F->kd, 0, F->n_edge_cyls, 0) == RE__NONE)
+    if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, RE__KD_DUP * F->n_edge_cyls, 0) == RE__NONE)
         return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "kd-tree scratch too small");
     an->st.rounded_corners += nco;
     an->st.spheres += ns;
     an->st.cylinders += ncyl;
     an->st.extra_cylinders += ncyl - F->n_edge_cyls;
     an->st.kd_nodes += F->kd.n_nodes;
+    an->st.kd_leaves += F->kd.n_leaves;
+    an->st.kd_leaf_refs += F->kd.n_leafrefs;
     return RE_OK;
 }
 
@@ -1612,7 +1730,8 @@ static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
 {
     return RE__ALIGN(sizeof(unsigned) * an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
            RE__ALIGN(sizeof(double) * 3 * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_spheres) +
-           RE__ALIGN(sizeof(re__cyl_t) * F->n_cyls) + RE__ALIGN(sizeof(re__corner_t) * F->n_corners) +
+           RE__ALIGN(sizeof(re__cyl_t) * F->n_cyls) + RE__ALIGN(sizeof(float) * 2 * F->n_edge_cyls) +
+           RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
            RE__ALIGN(sizeof(unsigned) * F->n_refs) + RE__ALIGN(sizeof(re__node_t) * F->kd.n_nodes) +
            RE__ALIGN(sizeof(unsigned) * F->kd.n_leafrefs);
 }
@@ -1628,6 +1747,7 @@ static void *re__put(unsigned char **at, const void *src, size_t bytes)
 static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *mem, re__object_t *o)
 {
     unsigned char *at = mem;
+    unsigned c;
     o->n_tris = an->T;
     o->n_planes = F->n_planes;
     o->n_spheres = F->n_spheres;
@@ -1637,21 +1757,22 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->n_refs = F->n_refs;
     o->n_nodes = F->kd.n_nodes;
     o->n_leafrefs = F->kd.n_leafrefs;
+    o->n_radii = F->n_radii;
     o->size = an->size;
+    for (c = 0; c < 3; c++) o->origin[c] = an->origin[c];
     o->tri_plane = (const unsigned *)re__put(&at, F->tri_plane, sizeof(unsigned) * an->T);
     o->planes = (const re__plane_t *)re__put(&at, F->planes, sizeof(re__plane_t) * F->n_planes);
     o->sph = (const double *)re__put(&at, F->sph, sizeof(double) * 3 * F->n_spheres);
     o->sph_corner = (const unsigned *)re__put(&at, F->sph_corner, sizeof(unsigned) * F->n_spheres);
     o->cyls = (const re__cyl_t *)re__put(&at, F->cyls, sizeof(re__cyl_t) * F->n_cyls);
+    o->det = (const float *)re__put(&at, F->det, sizeof(float) * 2 * F->n_edge_cyls);
     o->corners = (const re__corner_t *)re__put(&at, F->corners, sizeof(re__corner_t) * F->n_corners);
+    o->radii = (const double *)re__put(&at, F->radii, sizeof(double) * F->n_radii);
     o->refs = (const unsigned *)re__put(&at, F->refs, sizeof(unsigned) * F->n_refs);
     o->nodes = (const re__node_t *)re__put(&at, F->kd.nodes, sizeof(re__node_t) * F->kd.n_nodes);
     o->leafrefs = (const unsigned *)re__put(&at, F->kd.leafrefs, sizeof(unsigned) * F->kd.n_leafrefs);
-    {
-        unsigned c;
-        o->rmax = 0;
-        for (c = 0; c < F->n_corners; c++) o->rmax = re__max(o->rmax, F->corners[c].r);
-    }
+    o->rmax = 0;
+    for (c = 0; c < F->n_radii; c++) o->rmax = re__max(o->rmax, F->radii[c]);
 }
 
 /* ---- Per-object driver --------------------------------------------------------- */
@@ -1725,6 +1846,8 @@ static void re__add_stats(re_stats_t *a, const re_stats_t *b)
     a->extra_cylinders += b->extra_cylinders;
     a->clamped += b->clamped;
     a->kd_nodes += b->kd_nodes;
+    a->kd_leaves += b->kd_leaves;
+    a->kd_leaf_refs += b->kd_leaf_refs;
     a->bytes += b->bytes;
 }
 
@@ -2017,14 +2140,14 @@ static int re__on_flat_part(const re__object_t *o, const unsigned *set, unsigned
     unsigned i, j;
     for (i = 0; i < n; i++) {
         const re__corner_t *K = &o->corners[set[i]];
-        double q[3], mag;
-        re__madd(I, -K->r, pf->n, q);
+        double q[3], mag, r = o->radii[K->rid];
+        re__madd(I, -r, pf->n, q);
         mag = fabs(q[0]) + fabs(q[1]) + fabs(q[2]);
         for (j = 0; j < 2u * K->np; j++) {
             unsigned gi = re__corner_plane(o, K, j);
             const re__plane_t *g = &o->planes[gi];
             if (gi == f) continue;
-            if (re__dot(g->n, q) - (g->c - K->r) > RE__SIDE_ULPS * (fabs(g->c) + mag + K->r)) return 0;
+            if (re__dot(g->n, q) - (g->c - r) > RE__SIDE_ULPS * (fabs(g->c) + mag + r)) return 0;
         }
     }
     return 1;
@@ -2066,15 +2189,21 @@ static void re__nearest_feature(const re__object_t *o, const unsigned *set, unsi
     for (i = 0; i < n; i++) {
         const re__corner_t *K = &o->corners[set[i]];
         const unsigned *ref = o->refs + K->first;
+        double r = o->radii[K->rid];
+        for (j = 0; j < K->ns; j++) re__try_sphere(o, K->sfirst + j, r, I, d, b);
         for (j = 0; j < K->np; j++) {
-            unsigned c = ref[j];
-            re__try_cyl(o, c, K->r, I, d, b);
-            /* the far end sphere may belong to a corner not in the set */
-            re__try_sphere(o, o->cyls[c].s[0], K->r, I, d, b);
-            re__try_sphere(o, o->cyls[c].s[1], K->r, I, d, b);
+            unsigned c = ref[j], far = o->cyls[c].s[o->sph_corner[o->cyls[c].s[0]] == set[i] ? 1 : 0], q;
+            unsigned w = o->sph_corner[far];
+            /* each feature once: an edge between two corners of the set is
+               tried from the first of them, and the far end sphere only when
+               its corner is not in the set (else it is one of that
+               corner's own spheres) */
+            for (q = 0; q < n && set[q] != w; q++) {}
+            if (q < i) continue;
+            re__try_cyl(o, c, r, I, d, b);
+            if (q == n) re__try_sphere(o, far, r, I, d, b);
         }
-        for (j = 0; j < K->ns; j++) re__try_sphere(o, ref[K->np + j], K->r, I, d, b);
-        for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[K->np + K->ns + j], K->r, I, d, b);
+        for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[K->np + j], r, I, d, b);
     }
 }
 
@@ -2144,18 +2273,47 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     /* detection: the kd-tree leaf holding I, then the corners whose rounded
        zone can reach I (paper §3.1 detection cylinders, widened to cover the
        exact corners) */
-    for (node = 0; (o->nodes[node].info & 3u) != 3u;) {
-        const re__node_t *nd = &o->nodes[node];
-        node = I[nd->info & 3u] <= nd->split ? node + 1 : nd->index;
-    }
-    for (i = 0; i < (o->nodes[node].info >> 2); i++) {
-        const re__cyl_t *cy = &o->cyls[o->leafrefs[o->nodes[node].index + i]];
-        unsigned ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
-        const re__corner_t *A = &o->corners[ka], *B = &o->corners[kb];
-        double g = re__max(A->face_reach, B->face_reach);
-        if (re__dist2_segment(I, A->v, B->v) > g * g) continue;
-        if (re__corner_has_plane(o, A, f)) re__add_corner(set, &n, ka);
-        if (re__corner_has_plane(o, B, f)) re__add_corner(set, &n, kb);
+    {
+        const unsigned *leaf;
+        unsigned cnt;
+        double Ir[3];
+        re__sub(I, o->origin, Ir); /* the splits' frame (see re__kd_build) */
+        for (node = 0; (o->nodes[node].info & 3u) != 3u;) {
+            const re__node_t *nd = &o->nodes[node];
+            float sp;
+            memcpy(&sp, &nd->data, sizeof sp);
+            node = Ir[nd->info & 3u] <= (double)sp ? node + 1 : nd->info >> 2;
+        }
+        leaf = o->leafrefs + (o->nodes[node].info >> 2);
+        cnt = o->nodes[node].data;
+        for (i = 0; i < cnt; i++) {
+            unsigned c = leaf[i];
+            const re__cyl_t *cy = &o->cyls[c];
+            const double *s0 = o->sph + 3 * (size_t)cy->s[0], *s1 = o->sph + 3 * (size_t)cy->s[1];
+            const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
+            double g = (double)o->det[2 * c], m = (double)o->det[2 * c + 1], u[3], w[3], L2, t, a0, a1, cs;
+            unsigned ka, kb;
+            /* along the axis: within m of the end spheres */
+            re__sub(s1, s0, u);
+            re__sub(I, s0, w);
+            L2 = re__dot(u, u);
+            t = re__dot(w, u);
+            if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) continue;
+            /* across: distance to the mesh edge's line, from the two face
+               planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1 cos) / sin^2 */
+            a0 = re__dot(P0->n, I) - P0->c;
+            a1 = re__dot(P1->n, I) - P1->c;
+            cs = re__dot(P0->n, P1->n);
+            if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) continue;
+            ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
+            if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
+                re__add_corner(set, &n, ka);
+                re__add_corner(set, &n, kb);
+                continue;
+            }
+            if (re__corner_has_plane(o, &o->corners[ka], f)) re__add_corner(set, &n, ka);
+            if (re__corner_has_plane(o, &o->corners[kb], f)) re__add_corner(set, &n, kb);
+        }
     }
     if (!n || re__on_flat_part(o, set, n, f, I)) return RE_UNCHANGED;
     /* inside the removed volume: nearest capsule or the exit, walking the
@@ -2180,10 +2338,11 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
                 unsigned w = ka == set[i] ? kb : ka;
                 /* removed points lie within r of the removed zone on the faces
                    (below a flat point the ball of radius r is solid), and that
-                   zone lies within face_reach of its corner */
-                double g = o->corners[w].face_reach + o->corners[w].r;
-                double d2 = s < HUGE_VAL ? re__dist2_segment(o->corners[w].v, I, P)
-                                         : re__dist2_halfline(o->corners[w].v, I, dir);
+                   zone lies within the face reach of its corner: `walk` bounds both, from
+                   the corner's first sphere */
+                const double *wc = o->sph + 3 * (size_t)o->corners[w].sfirst;
+                double g = (double)o->corners[w].walk;
+                double d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, P) : re__dist2_halfline(wc, I, dir);
                 if (d2 <= g * g && re__add_corner(set, &n, w)) grown = 1;
             }
         }
@@ -2254,7 +2413,7 @@ RE_DEF int re_get_sphere(const re_scene_t *scene, unsigned object, unsigned i, r
     K = &o->corners[o->sph_corner[i]];
     out->center[0] = o->sph[3 * (size_t)i], out->center[1] = o->sph[3 * (size_t)i + 1],
     out->center[2] = o->sph[3 * (size_t)i + 2];
-    out->radius = K->r;
+    out->radius = o->radii[K->rid];
     out->vertex = K->vertex;
     return 1;
 }
@@ -2272,7 +2431,7 @@ RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i,
         out->n0[a] = o->planes[cy->p[0]].n[a];
         out->n1[a] = o->planes[cy->p[1]].n[a];
     }
-    out->radius = o->corners[o->sph_corner[cy->s[0]]].r;
+    out->radius = o->radii[o->corners[o->sph_corner[cy->s[0]]].rid];
     out->sa = cy->s[0];
     out->sb = cy->s[1];
     out->edge_v0 = i >= o->n_edge_cyls ? -1 : (long long)o->corners[o->sph_corner[cy->s[0]]].vertex;
