@@ -3832,6 +3832,7 @@ static size_t fr__align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
      [eval]   max of the point/grad/interval/affine/prune evaluator scratch
      [taylor] n * FR__TAYLOR_N doubles, then n ints (degree, -1 = not polynomial)
      [flags]  n bytes (analytic CSG: slot needed)
+     [list]   n unsigned ints (analytic CSG: the needed slots, ascending)
      [cand]   n * FR_POLY_MAX_DEGREE doubles (analytic CSG candidate roots)
      [prune]  FR__PRUNE_LEVELS * n instructions (interval: pruned tapes) */
 typedef struct fr__trace_mem_t {
@@ -3839,6 +3840,7 @@ typedef struct fr__trace_mem_t {
     double *taylor;
     int *deg;
     unsigned char *need;
+    unsigned int *list;
     double *cand;
     fr_instr_t *prune;
 } fr__trace_mem_t;
@@ -3865,6 +3867,8 @@ static size_t fr__trace_layout(const fr_tape_t *t, void *base, fr__trace_mem_t *
     off += fr__align8(n * sizeof(int));
     if (mem) mem->need = b + off;
     off += fr__align8(n);
+    if (mem) mem->list = (unsigned int *)(void *)(b + off);
+    off += fr__align8(n * sizeof(unsigned int));
     if (mem) mem->cand = (double *)(void *)(b + off);
     off += fr__align8(n * FR_POLY_MAX_DEGREE * sizeof(double));
     if (mem) mem->prune = (fr_instr_t *)(void *)(b + off);
@@ -4290,31 +4294,98 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
 
 /* ---------------------------------------------------------------- analytic */
 
-/* The paper's analytic method. A polynomial tape: the roots of g. Otherwise
-   the shape must be min/max/R-function/negation nodes over polynomial
-   leaves; the zero set of such a node lies in the union of its operands'
-   zero sets, so the hit is among the leaf roots: sorted, the first where f
-   changes sign (§3.1.1, "select the root ... placed on the surface of the
-   CSG solid"). */
-static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, int *found, double *t_hit,
-                                      double *t_err)
+/* Expand every slot of g in powers of (t - ts), ts the segment's point
+   nearest the coordinate origin, not about o: with o at 1e6 and the model
+   near 0, coefficients about o would carry 1e12-sized terms whose rounding
+   moves the roots by 1e-5, while o + t d itself is known to ulp(1e6) =
+   1e-10. Returns ts. */
+static double fr__analytic_expand(const fr__ray_t *R, const fr__trace_mem_t *mem)
 {
-    const fr_tape_t *t = R->tape;
-    unsigned int out = t->outputs[0], i, n = t->n_code;
-    int nc = 0, k;
-    double oscale, *cand = mem->cand, ts, ob[3], s0, s1;
-    /* Expand g about the segment's point nearest the coordinate origin, not
-       about o: with o at 1e6 and the model near 0, coefficients about o
-       would carry 1e12-sized terms whose rounding moves the roots by 1e-5,
-       while o + t d itself is known to ulp(1e6) = 1e-10. */
+    double ts, ob[3];
+    int k;
     ts = -(R->o[0] * R->d[0] + R->o[1] * R->d[1] + R->o[2] * R->d[2]) /
          (R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2]);
     if (!(ts >= R->t0)) ts = R->t0;
     if (!(ts <= R->t1)) ts = R->t1;
     if (!(ts - ts == 0)) ts = 0; /* unbounded segment */
     for (k = 0; k < 3; k++) ob[k] = R->o[k] + ts * R->d[k];
-    s0 = R->t0 - ts; s1 = R->t1 - ts;
-    fr__taylor_run(t, ob, R->d, mem->taylor, mem->deg);
+    fr__taylor_run(R->tape, ob, R->d, mem->taylor, mem->deg);
+    return ts;
+}
+
+/* Mark the slots the shape needs as a CSG tree: min/max/R-function/negation
+   nodes down to polynomial leaves (deg >= 0, from fr__analytic_expand).
+   mem->list receives them ascending; returns their count, or -1 when the
+   shape is not such a tree (some needed node is neither). */
+static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
+{
+    unsigned int i, n = t->n_code;
+    int cnt = 0;
+    for (i = 0; i < n; i++) mem->need[i] = 0;
+    mem->need[t->outputs[0]] = 1;
+    for (i = n; i-- > 0;) {
+        const fr_instr_t *in = &t->code[i];
+        if (!mem->need[i] || mem->deg[i] >= 0) continue;
+        switch ((fr_op_t)in->op) {
+        case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
+            mem->need[in->a] = 1; mem->need[in->b] = 1; break;
+        case FR_OP_NEG: mem->need[in->a] = 1; break;
+        default: return -1;
+        }
+    }
+    for (i = 0; i < n; i++)
+        if (mem->need[i]) mem->list[cnt++] = i;
+    return cnt;
+}
+
+/* g(t) from the CSG tree of fr__csg_mark: each polynomial leaf by Horner's
+   rule on its Taylor coefficients (a few flops instead of its whole
+   subtree, a dozen instructions for a quadric), each CSG node by its point
+   rule. v holds n doubles. */
+static double fr__csg_g(fr__ray_t *R, const fr__trace_mem_t *mem, int cnt, double ts, double t, double *v)
+{
+    const fr_tape_t *tp = R->tape;
+    double s = t - ts;
+    int j;
+    R->evals++;
+    for (j = 0; j < cnt; j++) {
+        unsigned int i = mem->list[j];
+        const fr_instr_t *in = &tp->code[i];
+        double a, c;
+        if (mem->deg[i] >= 0) {
+            const double *q = mem->taylor + (size_t)i * FR__TAYLOR_N;
+            int k = mem->deg[i];
+            double r = q[k];
+            while (k-- > 0) r = r * s + q[k];
+            v[i] = r;
+            continue;
+        }
+        a = v[in->a]; c = v[in->b];
+        switch ((fr_op_t)in->op) {
+        case FR_OP_NEG: v[i] = -a; break;
+        case FR_OP_MIN: v[i] = a < c ? a : c; break;
+        case FR_OP_MAX: v[i] = a > c ? a : c; break;
+        case FR_OP_RUNI: v[i] = fr__runi(a, c, in->k); break;
+        default: v[i] = fr__rint(a, c, in->k); break; /* RINT: the only other CSG node */
+        }
+    }
+    return v[tp->outputs[0]];
+}
+
+/* The paper's analytic method. A polynomial tape: the roots of g. Otherwise
+   the shape must be min/max/R-function/negation nodes over polynomial
+   leaves; the zero set of such a node lies in the union of its operands'
+   zero sets, so the hit is among the leaf roots: sorted, the first where f
+   changes sign (§3.1.1, "select the root ... placed on the surface of the
+   CSG solid"). ts: the expansion point of fr__analytic_expand, already run
+   on mem; cnt: fr__csg_mark's count if it ran, else -2. */
+static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, double ts, int cnt, int *found,
+                                      double *t_hit, double *t_err)
+{
+    const fr_tape_t *t = R->tape;
+    unsigned int out = t->outputs[0];
+    int nc = 0, k, j;
+    double oscale, *cand = mem->cand, s0 = R->t0 - ts, s1 = R->t1 - ts, *v = (double *)mem->eval;
     *found = 0;
     oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) /
              (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
@@ -4325,38 +4396,28 @@ static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, 
         if (nr > 0) { *found = 1; *t_hit = ts + r[0]; *t_err = 4.0 * FR__U * (fabs(*t_hit) + oscale); }
         return FR_OK;
     }
-    for (i = 0; i < n; i++) mem->need[i] = 0;
-    mem->need[out] = 1;
-    for (i = n; i-- > 0;) {
-        const fr_instr_t *in = &t->code[i];
-        if (!mem->need[i]) continue;
-        if (mem->deg[i] >= 0) { /* a polynomial leaf: collect its roots */
-            int nr;
-            if (mem->deg[i] == 0) continue;
-            nr = fr_solve_poly(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i], s0, s1, cand + nc);
-            R->iters++;
-            for (k = 0; k < nr; k++) cand[nc + k] += ts;
-            if (nr > 0) nc += nr;
-            continue;
-        }
-        switch ((fr_op_t)in->op) {
-        case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
-            mem->need[in->a] = 1; mem->need[in->b] = 1; break;
-        case FR_OP_NEG: mem->need[in->a] = 1; break;
-        default: return FR_ERR_NOT_POLYNOMIAL;
-        }
+    if (cnt == -2) cnt = fr__csg_mark(t, mem);
+    if (cnt < 0) return FR_ERR_NOT_POLYNOMIAL;
+    for (j = 0; j < cnt; j++) { /* the polynomial leaves: collect their roots */
+        unsigned int i = mem->list[j];
+        int nr;
+        if (mem->deg[i] <= 0) continue;
+        nr = fr_solve_poly(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i], s0, s1, cand + nc);
+        R->iters++;
+        for (k = 0; k < nr; k++) cand[nc + k] += ts;
+        if (nr > 0) nc += nr;
     }
     /* insertion sort: few candidates */
     for (k = 1; k < nc; k++) {
-        double v = cand[k];
-        int j = k;
-        while (j > 0 && cand[j - 1] > v) { cand[j] = cand[j - 1]; j--; }
-        cand[j] = v;
+        double x = cand[k];
+        j = k;
+        while (j > 0 && cand[j - 1] > x) { cand[j] = cand[j - 1]; j--; }
+        cand[j] = x;
     }
     for (k = 0; k < nc; k++) {
         double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
         double lo = tc - dt < R->t0 ? R->t0 : tc - dt, hi = tc + dt > R->t1 ? R->t1 : tc + dt;
-        double glo = fr__g(R, lo), ghi = fr__g(R, hi);
+        double glo = fr__csg_g(R, mem, cnt, ts, lo, v), ghi = fr__csg_g(R, mem, cnt, ts, hi, v);
         R->iters++;
         if (fr__opposite(glo, ghi) || (tc == R->t0 && glo == 0) ) {
             *found = 1; *t_hit = tc; *t_err = dt;
@@ -4398,8 +4459,8 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     fr__ray_t R;
     fr_method_t m;
     fr_result_t e = FR_OK;
-    double t_hit = 0, t_err = 0, L;
-    int found = 0, k;
+    double t_hit = 0, t_err = 0, L, ts = 0;
+    int found = 0, k, cnt = -2;
     if (!t || !o || !d || !scratch || !hit || t->n_code == 0) return FR_ERR_INVALID_ARG;
     if (desc_in) desc = *desc_in;
     else {
@@ -4424,29 +4485,18 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     if (!(R.tol > 0)) R.tol = FR__U;
     L = desc.lipschitz > 0 ? desc.lipschitz : t->lipschitz;
     m = desc.method;
+    if (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC) ts = fr__analytic_expand(&R, &mem);
     if (m == FR_METHOD_AUTO) {
-        fr__taylor_run(t, o, d, mem.taylor, mem.deg);
-        m = FR_METHOD_ANALYTIC;
-        {   /* analytic if every shape path ends in polynomial leaves */
-            unsigned int i;
-            for (i = 0; i < t->n_code; i++) mem.need[i] = 0;
-            mem.need[t->outputs[0]] = 1;
-            for (i = t->n_code; i-- > 0 && m == FR_METHOD_ANALYTIC;) {
-                const fr_instr_t *in = &t->code[i];
-                if (!mem.need[i] || mem.deg[i] >= 0) continue;
-                if (in->op == FR_OP_MIN || in->op == FR_OP_MAX || in->op == FR_OP_RUNI || in->op == FR_OP_RINT) {
-                    mem.need[in->a] = 1; mem.need[in->b] = 1;
-                } else if (in->op == FR_OP_NEG) mem.need[in->a] = 1;
-                else m = FR_METHOD_STEP;
-            }
-        }
+        /* analytic if every shape path ends in polynomial leaves */
+        cnt = mem.deg[t->outputs[0]] >= 0 ? -2 : fr__csg_mark(t, &mem);
+        m = cnt == -1 ? FR_METHOD_STEP : FR_METHOD_ANALYTIC;
 #ifndef FR_NO_INTERVAL
         if (m == FR_METHOD_STEP && !(t->flags & FR_TAPE_NO_INTERVAL) && t1 - t0 < HUGE_VAL) m = FR_METHOD_INTERVAL;
 #endif
     }
     switch (m) {
     case FR_METHOD_ANALYTIC:
-        e = fr__trace_analytic(&R, &mem, &found, &t_hit, &t_err);
+        e = fr__trace_analytic(&R, &mem, ts, cnt, &found, &t_hit, &t_err);
         break;
     case FR_METHOD_STEP:
         if (desc.refine == FR_REFINE_NEWTON && (t->flags & FR_TAPE_NO_GRADIENT)) return FR_ERR_NO_GRADIENT;
