@@ -540,6 +540,26 @@ typedef struct fr_trace_desc_t {
     unsigned int max_iters;   /* iteration cap of every loop; 0: 100000 */
     fr_normal_mode_t normal;  /* default AD */
     double fd_step;           /* FD normals: step relative to max(1, |p|); 0: 1e-6 */
+    /* Every method: NULL, or 6 doubles lo x, y, z then hi x, y, z of a box
+       that holds the whole solid {f >= 0} (fr_bound_box computes one). The
+       segment is clipped to it first, so rays that miss the box cost a slab
+       test. A box that does not hold the solid loses hits outside it. */
+    const double *bounds;
+    /* INTERVAL: the pixel footprint, a cone's half-width per unit t (for a
+       pinhole camera, about the pixel's angular size in radians). 0 (the
+       default): off. When > 0, bisection stops at segments [a, b] no wider
+       than tol + footprint |b|: with a sign change at the ends, Illinois
+       regula falsi then brings the root to tol with point evaluations;
+       without one, the segment is bisected FR__TOUCH_SCALE further as
+       usual. A feature is still never missed: only the resolution at which
+       interval bisection hands over to regula falsi changes. */
+    double footprint;
+    /* Shadow rays: 1 reports as soon as a root is proven somewhere in the
+       segment, not necessarily the first one, with no refinement: t is then
+       only within t_err of a root. INTERVAL stops at the first segment whose
+       ends have opposite signs (a sign change at t0 and t1 costs no
+       interval evaluation at all); STEP skips the refinement. Default 0. */
+    int any_hit;
 } fr_trace_desc_t;
 
 typedef struct fr_hit_t {
@@ -568,6 +588,22 @@ FR_DEF size_t fr_trace_scratch_size(const fr_tape_t *t, const fr_trace_desc_t *d
    FR_ERR_NO_LIPSCHITZ (SPHERE). A miss is FR_OK with hit->hit = 0. */
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc, void *scratch, fr_hit_t *hit);
+
+#ifndef FR_NO_INTERVAL
+/* A box holding the solid {f >= 0} inside the search box [lo, hi], by
+   interval subdivision (paper §4.1.3's interval test, applied to space):
+   octree cells whose interval enclosure of f lies below 0 hold no solid and
+   are dropped, cells inside the box found so far are skipped, and the
+   result is the bounding box of the cells that survive at depth `depth`
+   (cell size (hi - lo) / 2^depth; 0 means 6; at most 10). Conservative: the
+   part of the solid inside [lo, hi] lies inside [out_lo, out_hi]; no solid
+   there gives out_lo > out_hi. Scratch: fr_scratch_size(t,
+   FR_EVAL_INTERVAL) bytes. Use it for fr_trace_desc_t.bounds. Errors:
+   FR_ERR_INVALID_ARG (NULL, non-finite or inverted box),
+   FR_ERR_NO_INTERVAL. */
+FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
+                                double out_lo[3], double out_hi[3]);
+#endif
 
 /* The coefficients of g(t) = f(o + t d), lowest degree first, by evaluating
    the tape in truncated Taylor (polynomial) arithmetic: coef must hold
@@ -4020,6 +4056,8 @@ FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const doub
 typedef struct fr__ray_t {
     const fr_tape_t *tape;
     double o[3], d[3], t0, t1, tol;
+    double footprint; /* INTERVAL: desc->footprint */
+    int any_hit;      /* desc->any_hit */
     void *eval;
     unsigned long long evals, iters;
     unsigned int max_iters;
@@ -4152,6 +4190,7 @@ static int fr__trace_step(fr__ray_t *R, double step, fr_refine_t refine, double 
         gb = fr__g(R, tb);
         if (gb == 0) { *t_hit = tb; *t_err = 0; return 1; }
         if (fr__opposite(ga, gb)) { /* NaN never opposes: no root is claimed in a NaN region */
+            if (R->any_hit) { *t_hit = 0.5 * (ta + tb); *t_err = 0.5 * (tb - ta); return 1; }
             *t_hit = fr__refine(R, refine, ta, tb, ga, gb, t_err);
             return 1;
         }
@@ -4249,6 +4288,7 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         const fr_tape_t *tp;
         iv_t range;
         fr_result_t e;
+        double tl;
         R->iters++;
         if (prune && s.depth % FR__PRUNE_EVERY == 0 && s.depth > 0 && lvl < FR__PRUNE_LEVELS) {
             iv_t box[3];
@@ -4262,18 +4302,25 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         e = fr__g_range(R, tp, s.a, s.b, plain, &range);
         if (e != FR_OK) return e;
         if (iv_is_empty(range) || !iv_contains(range, 0.0)) continue;
-        if (s.b - s.a <= R->tol) {
+        /* tl: where bisection ends; tol, or the pixel footprint at s.b */
+        tl = R->tol + R->footprint * fabs(s.b);
+        if (s.b - s.a <= tl || R->any_hit) {
             /* A sign change at the ends proves a root inside. Without one the
                enclosure may just be loose (a near miss), so such a segment
-               is bisected FR__TOUCH_LEVELS levels further: a near miss is
-               then excluded, a feature thinner than tol shows its sign
-               change, and what survives is reported as a touch. */
+               is bisected FR__TOUCH_SCALE further: a near miss is then
+               excluded, a feature thinner than tl shows its sign change,
+               and what survives is reported as a touch. Every segment left
+               of this one is excluded (depth-first, left first), so a sign
+               change here brackets the first root, or with several roots
+               inside the segment one of them. */
             double ga = fr__g(R, s.a), gb = fr__g(R, s.b);
-            if (ga == 0 || gb == 0 || fr__opposite(ga, gb) || s.b - s.a <= R->tol * FR__TOUCH_SCALE ||
-                s.depth >= FR__TRACE_MAX_DEPTH) {
+            int change = ga == 0 || gb == 0 || fr__opposite(ga, gb);
+            if (change || (s.b - s.a <= tl && (s.b - s.a <= tl * FR__TOUCH_SCALE || s.depth >= FR__TRACE_MAX_DEPTH))) {
                 *found = 1;
                 *t_hit = ga == 0 ? s.a : gb == 0 && !fr__opposite(ga, gb) ? s.b : 0.5 * (s.a + s.b);
                 *t_err = 0.5 * (s.b - s.a);
+                if (change && !R->any_hit && ga != 0 && gb != 0 && s.b - s.a > 2.0 * R->tol) /* footprint leaf */
+                    *t_hit = fr__refine(R, FR_REFINE_ILLINOIS, s.a, s.b, ga, gb, t_err);
                 return FR_OK;
             }
         }
@@ -4286,6 +4333,63 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
             }
             stack[sp].a = m; stack[sp].b = s.b; stack[sp].depth = s.depth + 1; sp++;
             stack[sp].a = s.a; stack[sp].b = m; stack[sp].depth = s.depth + 1; sp++;
+        }
+    }
+    return FR_OK;
+}
+#endif
+
+#ifndef FR_NO_INTERVAL
+/* Octree depth of fr_bound_box: default and cap (the explicit stack holds
+   7 siblings per level). */
+#define FR__BOUND_DEPTH 6
+#define FR__BOUND_MAX_DEPTH 10
+FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
+                                double out_lo[3], double out_hi[3])
+{
+    struct { double lo[3], hi[3]; int depth; } stack[7 * FR__BOUND_MAX_DEPTH + 1];
+    int sp = 0, k;
+    if (!t || !lo || !hi || !scratch || !out_lo || !out_hi || t->n_code == 0 || depth < 0) return FR_ERR_INVALID_ARG;
+    if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+    for (k = 0; k < 3; k++) {
+        if (!(lo[k] - lo[k] == 0) || !(hi[k] - hi[k] == 0) || !(lo[k] <= hi[k])) return FR_ERR_INVALID_ARG;
+        stack[0].lo[k] = lo[k]; stack[0].hi[k] = hi[k];
+        out_lo[k] = HUGE_VAL; out_hi[k] = -HUGE_VAL;
+    }
+    if (depth == 0) depth = FR__BOUND_DEPTH;
+    if (depth > FR__BOUND_MAX_DEPTH) depth = FR__BOUND_MAX_DEPTH;
+    stack[0].depth = 0;
+    sp = 1;
+    while (sp > 0) {
+        iv_t box[3], r;
+        int inside = 1, c;
+        sp--;
+        for (k = 0; k < 3; k++) {
+            box[k] = iv_make(stack[sp].lo[k], stack[sp].hi[k]);
+            inside &= stack[sp].lo[k] >= out_lo[k] && stack[sp].hi[k] <= out_hi[k];
+        }
+        if (inside) continue; /* cannot grow the box */
+        if (fr_eval_interval(t, box, scratch, &r) != FR_OK) return FR_ERR_NO_INTERVAL;
+        if (iv_is_empty(r) || r.hi < 0) continue; /* no solid here (or f is NaN throughout) */
+        if (stack[sp].depth >= depth) {
+            for (k = 0; k < 3; k++) {
+                if (stack[sp].lo[k] < out_lo[k]) out_lo[k] = stack[sp].lo[k];
+                if (stack[sp].hi[k] > out_hi[k]) out_hi[k] = stack[sp].hi[k];
+            }
+            continue;
+        }
+        { /* replace the cell by its 8 children */
+            double l[3], m[3], h[3];
+            int d = stack[sp].depth + 1;
+            for (k = 0; k < 3; k++) {
+                l[k] = stack[sp].lo[k]; h[k] = stack[sp].hi[k]; m[k] = 0.5 * l[k] + 0.5 * h[k];
+            }
+            for (c = 0; c < 8; c++, sp++)
+                for (k = 0; k < 3; k++) {
+                    stack[sp].lo[k] = (c >> k) & 1 ? m[k] : l[k];
+                    stack[sp].hi[k] = (c >> k) & 1 ? h[k] : m[k];
+                    stack[sp].depth = d;
+                }
         }
     }
     return FR_OK;
@@ -4451,6 +4555,36 @@ static void fr__normal(fr__ray_t *R, const fr_trace_desc_t *desc, const double p
     for (k = 0; k < 3; k++) nrm[k] = len > 0 && len == len ? -g[k] / len : 0.0;
 }
 
+/* Clip [R->t0, R->t1] to the box b (lo x y z, hi x y z) by the slab test;
+   0 if nothing is left. The box is padded by 2^-20 of its size plus the
+   rounding of o and of the slab divisions, so a surface on the box's face
+   is never clipped away. */
+#define FR__BOX_PAD 9.5367431640625e-07 /* 2^-20 */
+static int fr__clip_box(fr__ray_t *R, const double *b)
+{
+    double a = R->t0, z = R->t1;
+    int k;
+    for (k = 0; k < 3; k++) {
+        double pad = FR__BOX_PAD * (b[k + 3] - b[k]) + 8.0 * FR__U * (fabs(R->o[k]) + fabs(b[k]) + fabs(b[k + 3]));
+        double lo = b[k] - pad, hi = b[k + 3] + pad, ta, tb;
+        if (!(lo <= hi)) return 0; /* empty or NaN box */
+        if (R->d[k] == 0) {
+            if (R->o[k] < lo || R->o[k] > hi) return 0;
+            continue;
+        }
+        ta = (lo - R->o[k]) / R->d[k];
+        tb = (hi - R->o[k]) / R->d[k];
+        if (ta > tb) { double x = ta; ta = tb; tb = x; }
+        ta -= 4.0 * FR__U * fabs(ta); /* the divisions' rounding, outward */
+        tb += 4.0 * FR__U * fabs(tb);
+        if (ta > a) a = ta;
+        if (tb < z) z = tb;
+    }
+    if (!(a <= z)) return 0;
+    R->t0 = a; R->t1 = z;
+    return 1;
+}
+
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
 {
@@ -4483,15 +4617,22 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     else if (desc.tol < 0) R.tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
     else R.tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + fabs(t0));
     if (!(R.tol > 0)) R.tol = FR__U;
+    R.footprint = desc.footprint > 0 && desc.footprint < HUGE_VAL ? desc.footprint : 0.0;
+    R.any_hit = desc.any_hit;
+    hit->hit = 0;
+    hit->method = m = desc.method;
+    hit->t = hit->t_err = 0.0;
+    for (k = 0; k < 3; k++) hit->point[k] = hit->normal[k] = 0.0;
+    hit->evals = hit->iterations = 0;
+    if (desc.bounds && !fr__clip_box(&R, desc.bounds)) return FR_OK; /* the ray misses the solid's box */
     L = desc.lipschitz > 0 ? desc.lipschitz : t->lipschitz;
-    m = desc.method;
     if (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC) ts = fr__analytic_expand(&R, &mem);
     if (m == FR_METHOD_AUTO) {
         /* analytic if every shape path ends in polynomial leaves */
         cnt = mem.deg[t->outputs[0]] >= 0 ? -2 : fr__csg_mark(t, &mem);
         m = cnt == -1 ? FR_METHOD_STEP : FR_METHOD_ANALYTIC;
 #ifndef FR_NO_INTERVAL
-        if (m == FR_METHOD_STEP && !(t->flags & FR_TAPE_NO_INTERVAL) && t1 - t0 < HUGE_VAL) m = FR_METHOD_INTERVAL;
+        if (m == FR_METHOD_STEP && !(t->flags & FR_TAPE_NO_INTERVAL) && R.t1 - R.t0 < HUGE_VAL) m = FR_METHOD_INTERVAL;
 #endif
     }
     switch (m) {
@@ -4501,15 +4642,15 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     case FR_METHOD_STEP:
         if (desc.refine == FR_REFINE_NEWTON && (t->flags & FR_TAPE_NO_GRADIENT)) return FR_ERR_NO_GRADIENT;
         if (desc.step <= 0 && !(L > 0 && L < HUGE_VAL)) {
-            if (!(t1 - t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
-            desc.step = (t1 - t0) / 256.0;
+            if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
+            desc.step = (R.t1 - R.t0) / 256.0;
         }
         found = fr__trace_step(&R, desc.step, desc.refine, L, &t_hit, &t_err);
         break;
     case FR_METHOD_INTERVAL:
 #ifndef FR_NO_INTERVAL
         if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
-        if (!(t1 - t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
+        if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
         e = fr__trace_interval(&R, desc.plain_intervals, !desc.no_prune, mem.prune, &found, &t_hit, &t_err);
         break;
 #else
