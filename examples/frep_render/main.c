@@ -282,8 +282,9 @@ static double render(scene_t *sc, const ex_args_t *a, int frames, int exact, con
     double t, secs;
     int f;
     c.sc = sc;
-    {   /* frame the solid's bounding sphere whole, seen from above front right */
-        double dist = 1.08 * sc->radius / sin(0.5 * FOV_DEG * M_PI / 180.0);
+    {   /* frame the solid whole, seen from above front right: 0.9 of the box's
+           bounding sphere, since no model fills its box's corners */
+        double dist = 0.9 * sc->radius / sin(0.5 * FOV_DEG * M_PI / 180.0);
         ex_v3_t eye = ex_madd(sc->centre, ex_normalize(ex_v3(3.6, -4.6, 2.9)), dist);
         ex_camera_init(&c.cam, eye, sc->centre, ex_v3(0, 0, 1), FOV_DEG, a->width, a->height);
         /* bisection hands over to regula falsi at the pixel's width
