@@ -601,7 +601,9 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
    octree cells whose interval enclosure of f lies below 0 hold no solid and
    are dropped, cells inside the box found so far are skipped, and the
    result is the bounding box of the cells that survive at depth `depth`
-   (cell size (hi - lo) / 2^depth; 0 means 6; at most 10). Conservative: the
+   (cell size (hi - lo) / 2^depth; 0 means 6; at most 10). Interval
+   overestimation may keep a few empty cells beside the solid (the tangle
+   cube's box at depth 6 is 2.66 for an extent of 2.27). Conservative: the
    part of the solid inside [lo, hi] lies inside [out_lo, out_hi]; no solid
    there gives out_lo > out_hi. Scratch: fr_scratch_size(t,
    FR_EVAL_INTERVAL) bytes. Use it for fr_trace_desc_t.bounds. Errors:
@@ -4280,7 +4282,14 @@ static double fr__gamma(double m) { return m * FR__U / (1.0 - m * FR__U); }
    q0 +- (sum |q_j| r^j), r the half-width; a Taylor model that converges
    quadratically as segments shrink, for the price of two O(n^2) shifts
    instead of a pass over the tape. Rigour: each coefficient is within
-   rho pm[k] of the exact one (fr_trace sets rho from the tape length),
+   rho pm[k] of the exact one, pm the magnitude run (fr__taylor_run).
+   fr_trace sets rho = 2 gamma_{160 n}, n the tape length: per slot a
+   coefficient is a sum of at most 17 products (gamma_18), POWI's binary
+   powering chains at most 8 of those (144), 16 more cover the rounding of
+   the expansion point o + ts d, and a path through the tape has at most n
+   slots; the factor 2 covers the rounding of pm itself. The bound is
+   loose by orders of magnitude, which only matters near a root (see
+   fr__g_range);
    and the shift and the sums add gamma_{2n+2} of the shifted magnitudes,
    so the radius gets (rho + 2 gamma_{2n+2}) Q_j r^j with Q the magnitudes
    shifted by |mu|, and s = t - ts is widened by its own rounding. */
@@ -4738,16 +4747,16 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
         if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
         if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
         if (!desc.plain_intervals && !desc.no_poly_range) { /* polynomial tape: the centred form of g */
-            double m = 160.0 * (double)t->n_code; /* roundings per coefficient, see fr__poly_range */
+            double nr = 160.0 * (double)t->n_code; /* roundings per coefficient, see fr__poly_range */
             unsigned int out = t->outputs[0];
-            if (m * FR__U < 1e-3) {
+            if (nr * FR__U < 1e-3) {
                 R.ts = fr__analytic_expand(&R, &mem, 1);
                 if (mem.deg[out] >= 0) {
                     R.pc = mem.taylor + (size_t)out * FR__TAYLOR_N;
                     R.pm = mem.taylor_mag + (size_t)out * FR__TAYLOR_N;
                     R.pdeg = mem.deg[out];
                     R.mdeg = mem.deg_mag[out];
-                    R.rho = 2.0 * fr__gamma(m);
+                    R.rho = 2.0 * fr__gamma(nr);
                     if (R.mdeg < R.pdeg) R.pc = NULL; /* cannot happen; stay safe */
                 }
             }
