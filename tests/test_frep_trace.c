@@ -359,6 +359,51 @@ static void tangle_interval_variants_agree(void)
     model_free(&m);
 }
 
+/* Interval Newton never loses a root the plain bisection finds: random rays
+   at the tangle cube and the quartic torus, grazing ones included, and the
+   thin slab; same hits, same t to the tolerance. */
+static void interval_newton_never_misses(void)
+{
+    model_t tc, to, slab;
+    fr_builder_t b;
+    fr_p3_t p;
+    t_rng_t g = {23};
+    long n = t_count(400), i, hits = 0;
+    unsigned long long ev_plain = 0, ev_newton = 0;
+    double os[3] = {-1, 0.1, 0.2}, ds[3] = {1, 0, 0}, w = 1e-5, xc = 0.3037;
+    fr_trace_desc_t pl = method(FR_METHOD_INTERVAL, 1e-10), nw = method(FR_METHOD_INTERVAL, 1e-10);
+    fr_hit_t a, h;
+    int k;
+    nw.interval_newton = 1;
+    make_tangle(&tc);
+    make_torus_poly(&to, 2, 0.5);
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    model_finish(&slab, &b, fr_sub(&b, fr_const(&b, w * w), fr_unary(&b, FR_OP_SQR, fr_sub(&b, p.x, fr_const(&b, xc)))));
+    for (i = 0; i < n; i++) {
+        model_t *m = i % 2 ? &to : &tc;
+        double o[3], d[3];
+        for (k = 0; k < 3; k++) { o[k] = t_rng_range(&g, -8, 8); d[k] = t_rng_range(&g, -2.5, 2.5) - o[k]; }
+        a = trace(m, o, d, 0, 2, pl);
+        h = trace(m, o, d, 0, 2, nw);
+        hits += a.hit;
+        ev_plain += a.evals;
+        ev_newton += h.evals;
+        T_INT_EQ(h.hit, a.hit);
+        if (a.hit && h.hit) T_NEAR(h.t, a.t, 2e-10);
+    }
+    T_GT(hits, n / 10);
+    /* Newton converges quadratically near simple roots: fewer segment
+       evaluations at tol 1e-10 (on camera rays 44 against 62 per ray) */
+    T_LT((double)ev_newton, (double)ev_plain);
+    h = trace(&slab, os, ds, 0, 2, nw);
+    T_INT_EQ(h.hit, 1);
+    T_NEAR(h.t, 1 + xc - w, 1e-10);
+    model_free(&tc);
+    model_free(&to);
+    model_free(&slab);
+}
+
 /* bounds: a ray that misses the box costs no evaluation and reports a miss */
 static void bounds_reject_without_evaluation(void)
 {
@@ -671,6 +716,7 @@ int main(int argc, char **argv)
         T_CASE(bound_box_holds_the_solid),
         T_CASE(tangle_interval_variants_agree),
         T_CASE(bounds_reject_without_evaluation),
+        T_CASE(interval_newton_never_misses),
     };
     return T_RUN(argc, argv, cases);
 }
