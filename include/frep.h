@@ -33,6 +33,11 @@
      results enclose f over their inputs (rigorous with interval.h's default
      rounding); a model whose black-box callback has no interval function
      says so (FR_ERR_NO_INTERVAL) instead of guessing.
+   RAYS (docs/frep.md, "Polynomial solvers and ray intersection")
+     fr_trace finds the first root of f(o + t d) by the analytic, stepping,
+     interval-bisection or sphere-tracing method; fr_bound_box gives a box
+     around the solid for fr_trace_desc_t.bounds, and the any_hit,
+     footprint and interval_newton options serve renderers.
 
    LICENSE
      MIT, see the end of this file.
