@@ -561,7 +561,8 @@ typedef struct fr_trace_desc_t {
     /* Every method: NULL, or 6 doubles lo x, y, z then hi x, y, z of a box
        that holds the whole solid {f >= 0} (fr_bound_box computes one). The
        segment is clipped to it first, so rays that miss the box cost a slab
-       test. A box that does not hold the solid loses hits outside it. */
+       test (and report a miss with hit->method = desc->method, unresolved).
+       A box that does not hold the solid loses hits outside it. */
     const double *bounds;
     /* INTERVAL: the pixel footprint, a cone's half-width per unit t (for a
        pinhole camera, about the pixel's angular size in radians). 0 (the
