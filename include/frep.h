@@ -33,6 +33,11 @@
      results enclose f over their inputs (rigorous with interval.h's default
      rounding); a model whose black-box callback has no interval function
      says so (FR_ERR_NO_INTERVAL) instead of guessing.
+   RAYS (docs/frep.md, "Polynomial solvers and ray intersection")
+     fr_trace finds the first root of f(o + t d) by the analytic, stepping,
+     interval-bisection or sphere-tracing method; fr_bound_box gives a box
+     around the solid for fr_trace_desc_t.bounds, and the any_hit,
+     footprint and interval_newton options serve renderers.
 
    LICENSE
      MIT, see the end of this file.
@@ -543,9 +548,43 @@ typedef struct fr_trace_desc_t {
     double over_relax;        /* SPHERE: Keinert's omega in [1, 2); 0: 1.6. 1 turns it off */
     int plain_intervals;      /* INTERVAL: 1 uses intervals, 0 (default) affine forms */
     int no_prune;             /* INTERVAL: 1 keeps the full tape on every segment */
+    /* INTERVAL: on a tape that is a polynomial in t (tangle cube, Barth's
+       sextic without its clip), segments are bounded by the centred form of
+       the ray polynomial, computed once per ray, instead of the tape in
+       affine forms: tighter and about 20x cheaper. 1 turns that off (affine
+       forms, as with a non-polynomial tape). plain_intervals also does. */
+    int no_poly_range;
+    /* INTERVAL on a polynomial tape (with the centred form above): 1 adds
+       an interval Newton step (Moore 1966) before each bisection: with an
+       enclosure G' of g' free of 0, the segment is narrowed to its meet
+       with m - g(m) / G', or dropped when they do not meet. Rigorous like
+       the bisection (no root is lost); ignored on other tapes (no interval
+       derivative there). Default 0. */
+    int interval_newton;
     unsigned int max_iters;   /* iteration cap of every loop; 0: 100000 */
     fr_normal_mode_t normal;  /* default AD */
     double fd_step;           /* FD normals: step relative to max(1, |p|); 0: 1e-6 */
+    /* Every method: NULL, or 6 doubles lo x, y, z then hi x, y, z of a box
+       that holds the whole solid {f >= 0} (fr_bound_box computes one). The
+       segment is clipped to it first, so rays that miss the box cost a slab
+       test (and report a miss with hit->method = desc->method, unresolved).
+       A box that does not hold the solid loses hits outside it. */
+    const double *bounds;
+    /* INTERVAL: the pixel footprint, a cone's half-width per unit t (for a
+       pinhole camera, about the pixel's angular size in radians). 0 (the
+       default): off. When > 0, bisection stops at segments [a, b] no wider
+       than tol + footprint |b|: with a sign change at the ends, Illinois
+       regula falsi then brings the root to tol with point evaluations;
+       without one, the segment is bisected FR__TOUCH_SCALE further as
+       usual. A feature is still never missed: only the resolution at which
+       interval bisection hands over to regula falsi changes. */
+    double footprint;
+    /* Shadow rays: 1 reports as soon as a root is proven somewhere in the
+       segment, not necessarily the first one, with no refinement: t is then
+       only within t_err of a root. INTERVAL stops at the first segment whose
+       ends have opposite signs (a sign change at t0 and t1 costs no
+       interval evaluation at all); STEP skips the refinement. Default 0. */
+    int any_hit;
 } fr_trace_desc_t;
 
 typedef struct fr_hit_t {
@@ -574,6 +613,24 @@ FR_DEF size_t fr_trace_scratch_size(const fr_tape_t *t, const fr_trace_desc_t *d
    FR_ERR_NO_LIPSCHITZ (SPHERE). A miss is FR_OK with hit->hit = 0. */
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc, void *scratch, fr_hit_t *hit);
+
+#ifndef FR_NO_INTERVAL
+/* A box holding the solid {f >= 0} inside the search box [lo, hi], by
+   interval subdivision (paper §4.1.3's interval test, applied to space):
+   octree cells whose interval enclosure of f lies below 0 hold no solid and
+   are dropped, cells inside the box found so far are skipped, and the
+   result is the bounding box of the cells that survive at depth `depth`
+   (cell size (hi - lo) / 2^depth; 0 means 6; at most 10). Interval
+   overestimation may keep a few empty cells beside the solid (the tangle
+   cube's box at depth 6 is 2.66 for an extent of 2.27). Conservative: the
+   part of the solid inside [lo, hi] lies inside [out_lo, out_hi]; no solid
+   there gives out_lo > out_hi. Scratch: fr_scratch_size(t,
+   FR_EVAL_INTERVAL) bytes. Use it for fr_trace_desc_t.bounds. Errors:
+   FR_ERR_INVALID_ARG (NULL, non-finite or inverted box),
+   FR_ERR_NO_INTERVAL. */
+FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
+                                double out_lo[3], double out_hi[3]);
+#endif
 
 /* The coefficients of g(t) = f(o + t d), lowest degree first, by evaluating
    the tape in truncated Taylor (polynomial) arithmetic: coef must hold
@@ -1978,6 +2035,31 @@ static iv_t fr__iv_noise(const double *q, iv_t x, iv_t y, iv_t z)
     return iv_make(v - r > -bound ? v - r : -bound, v + r < bound ? v + r : bound);
 }
 
+/* x^n for 2 <= n <= FR__POWI_FAST by outward-rounded products, which for
+   these n is as tight as iv_pow_n's double-double powering (the endpoints
+   move by at most n ulps) and many times cheaper; the tangle cube and
+   Barth's sextic spend most of their interval time here otherwise. Even n:
+   |x|^n from the non-negative interval |x| (products of non-negative
+   intervals are monotone, so exact up to rounding). Odd n: x^n is
+   increasing, so it is the enclosures of lo^n and hi^n. */
+#define FR__POWI_FAST 8
+static iv_t fr__iv_powi(iv_t a, int n)
+{
+    iv_t r, m;
+    int k;
+    if (n < 2 || n > FR__POWI_FAST || !(a.lo > -HUGE_VAL && a.hi < HUGE_VAL)) return iv_pow_n(a, n);
+    if (n % 2 == 0) {
+        m = iv_abs(a);
+        for (r = m, k = 1; k < n; k++) r = iv_mul(r, m);
+        return r;
+    }
+    {
+        iv_t lo = iv_point(a.lo), hi = iv_point(a.hi), pl = lo, ph = hi;
+        for (k = 1; k < n; k++) { pl = iv_mul(pl, lo); ph = iv_mul(ph, hi); }
+        return iv_make(pl.lo, ph.hi);
+    }
+}
+
 /* one instruction in interval arithmetic; box is the VAR inputs */
 static iv_t fr__iv_step(const fr_tape_t *t, const fr_instr_t *in, const iv_t *v, const iv_t box[3])
 {
@@ -1996,7 +2078,7 @@ static iv_t fr__iv_step(const fr_tape_t *t, const fr_instr_t *in, const iv_t *v,
     case FR_OP_SIN: return iv_sin(a);
     case FR_OP_COS: return iv_cos(a);
     case FR_OP_ATAN: return iv_atan(a);
-    case FR_OP_POWI: return iv_pow_n(a, (int)in->k);
+    case FR_OP_POWI: return fr__iv_powi(a, (int)in->k);
     case FR_OP_POWC: return iv_pow(a, iv_point(in->k));
     case FR_OP_ADD: return iv_add(a, c);
     case FR_OP_SUB: return iv_sub(a, c);
@@ -2108,7 +2190,14 @@ FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], vo
         case FR_OP_SIN: r = iv_affine_sin(a); break;
         case FR_OP_COS: r = iv_affine_cos(a); break;
         case FR_OP_ATAN: r = iv_affine_atan(a); break;
-        case FR_OP_POWI: r = iv_affine_pow_n(a, (int)in->k); break;
+        case FR_OP_POWI:
+            /* x^3 = x x^2, x^4 = (x^2)^2 in affine products: tighter than
+               the Taylor form of iv_affine_pow_n (its remainder takes the
+               worst f'' over the whole range) and far cheaper */
+            r = in->k == 4.0 ? iv_affine_sqr(iv_affine_sqr(a))
+              : in->k == 3.0 ? iv_affine_mul(a, iv_affine_sqr(a))
+                             : iv_affine_pow_n(a, (int)in->k);
+            break;
         case FR_OP_POWC: r = iv_affine_pow(a, iv_affine_const(in->k)); break;
         case FR_OP_ADD:
             /* a constant operand keeps the other form's error radius exact */
@@ -3979,14 +4068,17 @@ static size_t fr__align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
 /* Scratch layout, every part 8-aligned:
      [eval]   max of the point/grad/interval/affine/prune evaluator scratch
      [taylor] n * FR__TAYLOR_N doubles, then n ints (degree, -1 = not polynomial)
+     [mag]    the same again for the magnitude run (interval, polynomial tapes)
      [flags]  n bytes (analytic CSG: slot needed)
+     [list]   n unsigned ints (analytic CSG: the needed slots, ascending)
      [cand]   n * FR_POLY_MAX_DEGREE doubles (analytic CSG candidate roots)
      [prune]  FR__PRUNE_LEVELS * n instructions (interval: pruned tapes) */
 typedef struct fr__trace_mem_t {
     void *eval;
-    double *taylor;
-    int *deg;
+    double *taylor, *taylor_mag; /* plain and magnitude runs (fr__taylor_run) */
+    int *deg, *deg_mag;
     unsigned char *need;
+    unsigned int *list;
     double *cand;
     fr_instr_t *prune;
 } fr__trace_mem_t;
@@ -4011,8 +4103,14 @@ static size_t fr__trace_layout(const fr_tape_t *t, void *base, fr__trace_mem_t *
     off += fr__align8(n * FR__TAYLOR_N * sizeof(double));
     if (mem) mem->deg = (int *)(void *)(b + off);
     off += fr__align8(n * sizeof(int));
+    if (mem) mem->taylor_mag = (double *)(void *)(b + off);
+    off += fr__align8(n * FR__TAYLOR_N * sizeof(double));
+    if (mem) mem->deg_mag = (int *)(void *)(b + off);
+    off += fr__align8(n * sizeof(int));
     if (mem) mem->need = b + off;
     off += fr__align8(n);
+    if (mem) mem->list = (unsigned int *)(void *)(b + off);
+    off += fr__align8(n * sizeof(unsigned int));
     if (mem) mem->cand = (double *)(void *)(b + off);
     off += fr__align8(n * FR_POLY_MAX_DEGREE * sizeof(double));
     if (mem) mem->prune = (fr_instr_t *)(void *)(b + off);
@@ -4037,16 +4135,20 @@ FR_DEF size_t fr_ray_poly_scratch_size(const fr_tape_t *t)
 
 /* ---------------------------------------------------------------- Taylor arithmetic */
 
-/* c = a * b truncated; returns the degree or -1 if it would exceed the cap. */
+/* c = a * b truncated; returns the degree or -1 if it would exceed the cap.
+   c may be a or b (or both): coefficient k is written after every read of
+   a[i], b[j] with i, j <= k, from the top down, so no temporary is needed
+   (a copy per product was a tenth of the ray-polynomial time). */
 static int fr__tpoly_mul(const double *a, int da, const double *b, int db, double *c)
 {
-    int i, j, dc = da + db;
-    double tmp[FR__TAYLOR_N];
+    int i, k, dc = da + db;
     if (dc > FR_POLY_MAX_DEGREE) return -1;
-    for (i = 0; i <= dc; i++) tmp[i] = 0.0;
-    for (i = 0; i <= da; i++)
-        for (j = 0; j <= db; j++) tmp[i + j] += a[i] * b[j];
-    for (i = 0; i <= dc; i++) c[i] = tmp[i];
+    for (k = dc; k >= 0; k--) {
+        int lo = k - db > 0 ? k - db : 0, hi = k < da ? k : da;
+        double sum = 0.0;
+        for (i = lo; i <= hi; i++) sum += a[i] * b[k - i];
+        c[k] = sum;
+    }
     return dc;
 }
 
@@ -4077,29 +4179,36 @@ static int fr__tpoly_const_op(const fr_instr_t *in, double a, double b, double *
 
 /* Evaluate every slot of the tape as a polynomial in t (paper §3.1.1: turn
    f(X) = 0 into g(t) = 0). deg[i] = -1 marks a slot that is not a
-   polynomial of degree <= FR_POLY_MAX_DEGREE; such slots propagate. */
-static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d[3], double *P, int *deg)
+   polynomial of degree <= FR_POLY_MAX_DEGREE; such slots propagate.
+   With signed_P (the result of a plain run) it is the magnitude run
+   instead: every input and constant by its absolute value and every
+   subtraction an addition, so each coefficient is the sum of the absolute
+   values of the terms whose rounded sum the plain run computed; it scales
+   the plain coefficients' rounding error (fr__poly_range). */
+static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d[3], double *P, int *deg,
+                           const double *signed_P)
 {
     unsigned int i;
+    int mag = signed_P != NULL;
     for (i = 0; i < t->n_code; i++) {
         const fr_instr_t *in = &t->code[i];
         double *c = P + (size_t)i * FR__TAYLOR_N;
         const double *A = P + (size_t)in->a * FR__TAYLOR_N, *B = P + (size_t)in->b * FR__TAYLOR_N;
         int da = deg[in->a], db = deg[in->b], k, dc = -1;
         switch ((fr_op_t)in->op) {
-        case FR_OP_CONST: c[0] = in->k; dc = 0; break;
+        case FR_OP_CONST: c[0] = mag ? fabs(in->k) : in->k; dc = 0; break;
         case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: {
             int ax = (int)in->op - (int)FR_OP_VAR_X;
-            c[0] = o[ax]; c[1] = d[ax];
+            c[0] = mag ? fabs(o[ax]) : o[ax]; c[1] = mag ? fabs(d[ax]) : d[ax];
             dc = d[ax] != 0 ? 1 : 0;
             break;
         }
         case FR_OP_NEG:
-            if (da >= 0) { for (k = 0; k <= da; k++) c[k] = -A[k]; dc = da; }
+            if (da >= 0) { for (k = 0; k <= da; k++) c[k] = mag ? A[k] : -A[k]; dc = da; }
             break;
         case FR_OP_ADD: case FR_OP_SUB:
             if (da >= 0 && db >= 0) {
-                double sgn = in->op == FR_OP_ADD ? 1.0 : -1.0;
+                double sgn = in->op == FR_OP_ADD || mag ? 1.0 : -1.0;
                 dc = da > db ? da : db;
                 for (k = 0; k <= dc; k++) c[k] = (k <= da ? A[k] : 0.0) + sgn * (k <= db ? B[k] : 0.0);
                 dc = fr__tpoly_trim(c, dc);
@@ -4132,7 +4241,7 @@ static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d
             if (da == 0 && (db == 0 || in->op == FR_OP_SQRT || in->op == FR_OP_ABS || in->op == FR_OP_EXP ||
                             in->op == FR_OP_LOG || in->op == FR_OP_SIN || in->op == FR_OP_COS ||
                             in->op == FR_OP_ATAN || in->op == FR_OP_POWC) &&
-                fr__tpoly_const_op(in, A[0], B[0], c))
+                (mag ? (c[0] = fabs(signed_P[(size_t)i * FR__TAYLOR_N]), 1) : fr__tpoly_const_op(in, A[0], B[0], c)))
                 dc = 0;
             break;
         }
@@ -4150,7 +4259,7 @@ FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const doub
     if (!t || !o || !d || !scratch || !coef || !degree || t->n_code == 0) return FR_ERR_INVALID_ARG;
     P = (double *)scratch;
     deg = (int *)(void *)((unsigned char *)scratch + fr__align8((size_t)t->n_code * FR__TAYLOR_N * sizeof(double)));
-    fr__taylor_run(t, o, d, P, deg);
+    fr__taylor_run(t, o, d, P, deg, NULL);
     out = t->outputs[0];
     dg = deg[out];
     if (dg < 0) return FR_ERR_NOT_POLYNOMIAL;
@@ -4164,6 +4273,16 @@ FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const doub
 typedef struct fr__ray_t {
     const fr_tape_t *tape;
     double o[3], d[3], t0, t1, tol;
+    double footprint; /* INTERVAL: desc->footprint */
+    int any_hit;      /* desc->any_hit */
+    /* INTERVAL on a polynomial tape: g(ts + s) = sum pc[k] s^k, each
+       coefficient within rho pm[k] (fr__poly_range); pc NULL otherwise.
+       dc, dm, drho: the same for g' (interval Newton). */
+    const double *pc, *pm;
+    int pdeg, mdeg;
+    double ts, rho;
+    double dc[FR_POLY_MAX_DEGREE + 1], dm[FR_POLY_MAX_DEGREE + 1], drho;
+    int newton;       /* desc->interval_newton, and pc set */
     void *eval;
     unsigned long long evals, iters;
     unsigned int max_iters;
@@ -4296,6 +4415,7 @@ static int fr__trace_step(fr__ray_t *R, double step, fr_refine_t refine, double 
         gb = fr__g(R, tb);
         if (gb == 0) { *t_hit = tb; *t_err = 0; return 1; }
         if (fr__opposite(ga, gb)) { /* NaN never opposes: no root is claimed in a NaN region */
+            if (R->any_hit) { *t_hit = 0.5 * (ta + tb); *t_err = 0.5 * (tb - ta); return 1; }
             *t_hit = fr__refine(R, refine, ta, tb, ga, gb, t_err);
             return 1;
         }
@@ -4347,11 +4467,95 @@ static void fr__ray_box(const fr__ray_t *R, double a, double b, iv_t box[3])
     for (k = 0; k < 3; k++) box[k] = iv_add(iv_point(R->o[k]), iv_mul(iv_make(a, b), iv_point(R->d[k])));
 }
 
-/* An enclosure of g over [a, b]: affine forms in t (reduced affine
-   arithmetic, Knoll et al. 2009) or plain intervals of the ray's box. */
+/* The centred form hands over to affine evaluation when its rounding
+   bound is more than this share of its radius (fr__g_range). */
+#define FR__POLY_PAD_SHARE 0.25
+/* gamma_m = m u / (1 - m u), Higham's bound for m roundings in a row. */
+static double fr__gamma(double m) { return m * FR__U / (1.0 - m * FR__U); }
+
+/* The enclosure of g over [a, b] from the ray polynomial (a centred form):
+   shift the coefficients to the segment's midpoint mu, then g lies in
+   q0 +- (sum |q_j| r^j), r the half-width; a Taylor model that converges
+   quadratically as segments shrink, for the price of two O(n^2) shifts
+   instead of a pass over the tape. Rigour: each coefficient is within
+   rho pm[k] of the exact one, pm the magnitude run (fr__taylor_run).
+   fr_trace sets rho = 2 gamma_{160 n}, n the tape length: per slot a
+   coefficient is a sum of at most 17 products (gamma_18), POWI's binary
+   powering chains at most 8 of those (144), 16 more cover the rounding of
+   the expansion point o + ts d, and a path through the tape has at most n
+   slots; the factor 2 covers the rounding of pm itself. The bound is
+   loose by orders of magnitude, which only matters near a root (see
+   fr__g_range);
+   and the shift and the sums add gamma_{2n+2} of the shifted magnitudes,
+   so the radius gets (rho + 2 gamma_{2n+2}) Q_j r^j with Q the magnitudes
+   shifted by |mu|, and s = t - ts is widened by its own rounding. */
+static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double *pm, int pdeg, int mdeg, double rho,
+                              double a, double b, double *pad_share)
+{
+    double q[FR__TAYLOR_N], Q[FR__TAYLOR_N], sa, sb, mu, amu, r, rad = 0, pad = 0, rj = 1, g;
+    int n = mdeg, i, k;
+    sa = a - R->ts; sb = b - R->ts;
+    sa -= 2.0 * FR__U * (fabs(a) + fabs(R->ts));
+    sb += 2.0 * FR__U * (fabs(b) + fabs(R->ts));
+    mu = 0.5 * sa + 0.5 * sb;
+    r = (sb - mu > mu - sa ? sb - mu : mu - sa) * (1.0 + 4.0 * FR__U);
+    amu = fabs(mu);
+    if (n < 0) { *pad_share = 0; return iv_point(0.0); } /* the zero polynomial */
+    for (k = 0; k <= n; k++) { q[k] = k <= pdeg ? pc[k] : 0.0; Q[k] = pm[k]; }
+    for (i = 0; i < n; i++) /* Taylor shift by repeated synthetic division */
+        for (k = n - 1; k >= i; k--) { q[k] += mu * q[k + 1]; Q[k] += amu * Q[k + 1]; }
+    g = rho + 2.0 * fr__gamma(2.0 * n + 2.0);
+    for (k = 0; k <= n; k++) {
+        if (k > 0) rad += fabs(q[k]) * rj;
+        pad += Q[k] * rj;
+        rj *= r;
+    }
+    *pad_share = g * pad / (rad + g * pad + DBL_MIN);
+    rad = (rad + g * pad) * (1.0 + fr__gamma(2.0 * n + 2.0)) + 2.0 * FR__U * fabs(q[0]) + DBL_MIN;
+    if (!(rad < HUGE_VAL) || q[0] != q[0]) return iv_entire();
+    return iv_make(q[0] - rad, q[0] + rad);
+}
+static iv_t fr__poly_range(const fr__ray_t *R, double a, double b, double *pad_share)
+{
+    return fr__poly_range_of(R, R->pc, R->pm, R->pdeg, R->mdeg, R->rho, a, b, pad_share);
+}
+
+/* Interval Newton (Moore 1966; Hansen 1992) on [a, b] for a polynomial
+   tape: with G' an enclosure of g' over the segment that excludes 0, every
+   root lies in N = m - g(m) / G' (mean value theorem), m the midpoint and
+   g(m) enclosed by the centred form at the point m. Narrows [*a, *b] to
+   its intersection with N; returns 0 when that is empty (no root), 1
+   otherwise. A G' containing 0 leaves the segment unchanged. */
+static int fr__newton_narrow(fr__ray_t *R, double *a, double *b)
+{
+    double share, m = 0.5 * *a + 0.5 * *b;
+    iv_t dg = fr__poly_range_of(R, R->dc, R->dm, R->pdeg - 1, R->mdeg - 1, R->drho, *a, *b, &share), gm, nw;
+    R->evals++;
+    if (iv_contains(dg, 0.0) || iv_is_empty(dg)) return 1;
+    gm = fr__poly_range(R, m, m, &share);
+    nw = iv_sub(iv_point(m), iv_div(gm, dg));
+    if (iv_is_empty(nw) || nw.hi < *a || nw.lo > *b) return 0;
+    if (nw.lo > *a) *a = nw.lo;
+    if (nw.hi < *b) *b = nw.hi;
+    return 1;
+}
+
+/* An enclosure of g over [a, b]: the ray polynomial's centred form for
+   polynomial tapes, else affine forms in t (reduced affine arithmetic,
+   Knoll et al. 2009) or plain intervals of the ray's box. Near a root the
+   centred form's rounding bound (the coefficients carry the cancellation
+   of the expansion) can outweigh its width; then the affine enclosure of
+   the tape is taken too and both intersected, so tolerances down to
+   1e-13 stay reachable. */
 static fr_result_t fr__g_range(fr__ray_t *R, const fr_tape_t *tp, double a, double b, int plain, iv_t *out)
 {
+    iv_t pr = iv_entire();
     R->evals++;
+    if (R->pc) {
+        double share;
+        pr = fr__poly_range(R, a, b, &share);
+        if (!iv_contains(pr, 0.0) || share < FR__POLY_PAD_SHARE) { *out = pr; return FR_OK; }
+    }
 #ifndef IV_NO_AFFINE
     if (!plain) {
         iv_affine_t T = iv_affine_ray_param(a, b), P[3], res;
@@ -4359,7 +4563,10 @@ static fr_result_t fr__g_range(fr__ray_t *R, const fr_tape_t *tp, double a, doub
         int k;
         for (k = 0; k < 3; k++) P[k] = iv_affine_add_d(iv_affine_mul_d(T, R->d[k]), R->o[k]);
         e = fr_eval_affine(tp, P, R->eval, &res);
-        if (e == FR_OK) *out = iv_from_affine(res);
+        if (e == FR_OK) {
+            iv_t x = iv_intersect(iv_from_affine(res), pr); /* both enclose g */
+            *out = iv_is_empty(x) ? iv_from_affine(res) : x;
+        }
         return e;
     }
 #endif
@@ -4393,6 +4600,7 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         const fr_tape_t *tp;
         iv_t range;
         fr_result_t e;
+        double tl;
         R->iters++;
         if (prune && s.depth % FR__PRUNE_EVERY == 0 && s.depth > 0 && lvl < FR__PRUNE_LEVELS) {
             iv_t box[3];
@@ -4406,18 +4614,35 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         e = fr__g_range(R, tp, s.a, s.b, plain, &range);
         if (e != FR_OK) return e;
         if (iv_is_empty(range) || !iv_contains(range, 0.0)) continue;
-        if (s.b - s.a <= R->tol) {
+        /* tl: where bisection ends; tol, or the pixel footprint at s.b */
+        tl = R->tol + R->footprint * fabs(s.b);
+        if (R->newton && s.b - s.a > tl) {
+            /* interval Newton: drop the segment or narrow it; a segment
+               that shrank by half or more is tried again as it is */
+            double na = s.a, nb = s.b;
+            if (!fr__newton_narrow(R, &na, &nb)) continue;
+            if (nb - na <= 0.5 * (s.b - s.a) && s.depth < FR__TRACE_MAX_DEPTH) {
+                stack[sp].a = na; stack[sp].b = nb; stack[sp].depth = s.depth + 1; sp++;
+                continue;
+            }
+        }
+        if (s.b - s.a <= tl || R->any_hit) {
             /* A sign change at the ends proves a root inside. Without one the
                enclosure may just be loose (a near miss), so such a segment
-               is bisected FR__TOUCH_LEVELS levels further: a near miss is
-               then excluded, a feature thinner than tol shows its sign
-               change, and what survives is reported as a touch. */
+               is bisected FR__TOUCH_SCALE further: a near miss is then
+               excluded, a feature thinner than tl shows its sign change,
+               and what survives is reported as a touch. Every segment left
+               of this one is excluded (depth-first, left first), so a sign
+               change here brackets the first root, or with several roots
+               inside the segment one of them. */
             double ga = fr__g(R, s.a), gb = fr__g(R, s.b);
-            if (ga == 0 || gb == 0 || fr__opposite(ga, gb) || s.b - s.a <= R->tol * FR__TOUCH_SCALE ||
-                s.depth >= FR__TRACE_MAX_DEPTH) {
+            int change = ga == 0 || gb == 0 || fr__opposite(ga, gb);
+            if (change || (s.b - s.a <= tl && (s.b - s.a <= tl * FR__TOUCH_SCALE || s.depth >= FR__TRACE_MAX_DEPTH))) {
                 *found = 1;
                 *t_hit = ga == 0 ? s.a : gb == 0 && !fr__opposite(ga, gb) ? s.b : 0.5 * (s.a + s.b);
                 *t_err = 0.5 * (s.b - s.a);
+                if (change && !R->any_hit && ga != 0 && gb != 0 && s.b - s.a > 2.0 * R->tol) /* footprint leaf */
+                    *t_hit = fr__refine(R, FR_REFINE_ILLINOIS, s.a, s.b, ga, gb, t_err);
                 return FR_OK;
             }
         }
@@ -4436,33 +4661,159 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
 }
 #endif
 
+#ifndef FR_NO_INTERVAL
+/* Octree depth of fr_bound_box: default and cap (the explicit stack holds
+   7 siblings per level). */
+#define FR__BOUND_DEPTH 6
+#define FR__BOUND_MAX_DEPTH 10
+FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
+                                double out_lo[3], double out_hi[3])
+{
+    struct { double lo[3], hi[3]; int depth; } stack[7 * FR__BOUND_MAX_DEPTH + 1];
+    int sp = 0, k;
+    if (!t || !lo || !hi || !scratch || !out_lo || !out_hi || t->n_code == 0 || depth < 0) return FR_ERR_INVALID_ARG;
+    if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+    for (k = 0; k < 3; k++) {
+        if (!(lo[k] - lo[k] == 0) || !(hi[k] - hi[k] == 0) || !(lo[k] <= hi[k])) return FR_ERR_INVALID_ARG;
+        stack[0].lo[k] = lo[k]; stack[0].hi[k] = hi[k];
+        out_lo[k] = HUGE_VAL; out_hi[k] = -HUGE_VAL;
+    }
+    if (depth == 0) depth = FR__BOUND_DEPTH;
+    if (depth > FR__BOUND_MAX_DEPTH) depth = FR__BOUND_MAX_DEPTH;
+    stack[0].depth = 0;
+    sp = 1;
+    while (sp > 0) {
+        iv_t box[3], r;
+        int inside = 1, c;
+        sp--;
+        for (k = 0; k < 3; k++) {
+            box[k] = iv_make(stack[sp].lo[k], stack[sp].hi[k]);
+            inside &= stack[sp].lo[k] >= out_lo[k] && stack[sp].hi[k] <= out_hi[k];
+        }
+        if (inside) continue; /* cannot grow the box */
+        if (fr_eval_interval(t, box, scratch, &r) != FR_OK) return FR_ERR_NO_INTERVAL;
+        if (iv_is_empty(r) || r.hi < 0) continue; /* no solid here (or f is NaN throughout) */
+        if (stack[sp].depth >= depth) {
+            for (k = 0; k < 3; k++) {
+                if (stack[sp].lo[k] < out_lo[k]) out_lo[k] = stack[sp].lo[k];
+                if (stack[sp].hi[k] > out_hi[k]) out_hi[k] = stack[sp].hi[k];
+            }
+            continue;
+        }
+        { /* replace the cell by its 8 children */
+            double l[3], m[3], h[3];
+            int d = stack[sp].depth + 1;
+            for (k = 0; k < 3; k++) {
+                l[k] = stack[sp].lo[k]; h[k] = stack[sp].hi[k]; m[k] = 0.5 * l[k] + 0.5 * h[k];
+            }
+            for (c = 0; c < 8; c++, sp++)
+                for (k = 0; k < 3; k++) {
+                    stack[sp].lo[k] = (c >> k) & 1 ? m[k] : l[k];
+                    stack[sp].hi[k] = (c >> k) & 1 ? h[k] : m[k];
+                    stack[sp].depth = d;
+                }
+        }
+    }
+    return FR_OK;
+}
+#endif
+
 /* ---------------------------------------------------------------- analytic */
 
-/* The paper's analytic method. A polynomial tape: the roots of g. Otherwise
-   the shape must be min/max/R-function/negation nodes over polynomial
-   leaves; the zero set of such a node lies in the union of its operands'
-   zero sets, so the hit is among the leaf roots: sorted, the first where f
-   changes sign (§3.1.1, "select the root ... placed on the surface of the
-   CSG solid"). */
-static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, int *found, double *t_hit,
-                                      double *t_err)
+/* Expand every slot of g in powers of (t - ts), ts the segment's point
+   nearest the coordinate origin, not about o: with o at 1e6 and the model
+   near 0, coefficients about o would carry 1e12-sized terms whose rounding
+   moves the roots by 1e-5, while o + t d itself is known to ulp(1e6) =
+   1e-10. Returns ts. */
+static double fr__analytic_expand(const fr__ray_t *R, const fr__trace_mem_t *mem, int with_mag)
 {
-    const fr_tape_t *t = R->tape;
-    unsigned int out = t->outputs[0], i, n = t->n_code;
-    int nc = 0, k;
-    double oscale, *cand = mem->cand, ts, ob[3], s0, s1;
-    /* Expand g about the segment's point nearest the coordinate origin, not
-       about o: with o at 1e6 and the model near 0, coefficients about o
-       would carry 1e12-sized terms whose rounding moves the roots by 1e-5,
-       while o + t d itself is known to ulp(1e6) = 1e-10. */
+    double ts, ob[3];
+    int k;
     ts = -(R->o[0] * R->d[0] + R->o[1] * R->d[1] + R->o[2] * R->d[2]) /
          (R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2]);
     if (!(ts >= R->t0)) ts = R->t0;
     if (!(ts <= R->t1)) ts = R->t1;
     if (!(ts - ts == 0)) ts = 0; /* unbounded segment */
     for (k = 0; k < 3; k++) ob[k] = R->o[k] + ts * R->d[k];
-    s0 = R->t0 - ts; s1 = R->t1 - ts;
-    fr__taylor_run(t, ob, R->d, mem->taylor, mem->deg);
+    fr__taylor_run(R->tape, ob, R->d, mem->taylor, mem->deg, NULL);
+    if (with_mag && mem->deg[R->tape->outputs[0]] >= 0)
+        fr__taylor_run(R->tape, ob, R->d, mem->taylor_mag, mem->deg_mag, mem->taylor);
+    return ts;
+}
+
+/* Mark the slots the shape needs as a CSG tree: min/max/R-function/negation
+   nodes down to polynomial leaves (deg >= 0, from fr__analytic_expand).
+   mem->list receives them ascending; returns their count, or -1 when the
+   shape is not such a tree (some needed node is neither). */
+static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
+{
+    unsigned int i, n = t->n_code;
+    int cnt = 0;
+    for (i = 0; i < n; i++) mem->need[i] = 0;
+    mem->need[t->outputs[0]] = 1;
+    for (i = n; i-- > 0;) {
+        const fr_instr_t *in = &t->code[i];
+        if (!mem->need[i] || mem->deg[i] >= 0) continue;
+        switch ((fr_op_t)in->op) {
+        case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
+            mem->need[in->a] = 1; mem->need[in->b] = 1; break;
+        case FR_OP_NEG: mem->need[in->a] = 1; break;
+        default: return -1;
+        }
+    }
+    for (i = 0; i < n; i++)
+        if (mem->need[i]) mem->list[cnt++] = i;
+    return cnt;
+}
+
+/* g(t) from the CSG tree of fr__csg_mark: each polynomial leaf by Horner's
+   rule on its Taylor coefficients (a few flops instead of its whole
+   subtree, a dozen instructions for a quadric), each CSG node by its point
+   rule. v holds n doubles. */
+static double fr__csg_g(fr__ray_t *R, const fr__trace_mem_t *mem, int cnt, double ts, double t, double *v)
+{
+    const fr_tape_t *tp = R->tape;
+    double s = t - ts;
+    int j;
+    R->evals++;
+    for (j = 0; j < cnt; j++) {
+        unsigned int i = mem->list[j];
+        const fr_instr_t *in = &tp->code[i];
+        double a, c;
+        if (mem->deg[i] >= 0) {
+            const double *q = mem->taylor + (size_t)i * FR__TAYLOR_N;
+            int k = mem->deg[i];
+            double r = q[k];
+            while (k-- > 0) r = r * s + q[k];
+            v[i] = r;
+            continue;
+        }
+        a = v[in->a]; c = v[in->b];
+        switch ((fr_op_t)in->op) {
+        case FR_OP_NEG: v[i] = -a; break;
+        case FR_OP_MIN: v[i] = a < c ? a : c; break;
+        case FR_OP_MAX: v[i] = a > c ? a : c; break;
+        case FR_OP_RUNI: v[i] = fr__runi(a, c, in->k); break;
+        default: v[i] = fr__rint(a, c, in->k); break; /* RINT: the only other CSG node */
+        }
+    }
+    return v[tp->outputs[0]];
+}
+
+/* The paper's analytic method. A polynomial tape: the roots of g. Otherwise
+   the shape must be min/max/R-function/negation nodes over polynomial
+   leaves; the zero set of such a node lies in the union of its operands'
+   zero sets, so the hit is among the leaf roots: sorted, the first where f
+   changes sign (§3.1.1, "select the root ... placed on the surface of the
+   CSG solid"). ts: the expansion point of fr__analytic_expand, already run
+   on mem; cnt: fr__csg_mark's count if it ran, else -2. */
+static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, double ts, int cnt, int *found,
+                                      double *t_hit, double *t_err)
+{
+    const fr_tape_t *t = R->tape;
+    unsigned int out = t->outputs[0];
+    int nc = 0, k, j;
+    double oscale, *cand = mem->cand, s0 = R->t0 - ts, s1 = R->t1 - ts, *v = (double *)mem->eval;
     *found = 0;
     oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) /
              (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
@@ -4473,38 +4824,28 @@ static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, 
         if (nr > 0) { *found = 1; *t_hit = ts + r[0]; *t_err = 4.0 * FR__U * (fabs(*t_hit) + oscale); }
         return FR_OK;
     }
-    for (i = 0; i < n; i++) mem->need[i] = 0;
-    mem->need[out] = 1;
-    for (i = n; i-- > 0;) {
-        const fr_instr_t *in = &t->code[i];
-        if (!mem->need[i]) continue;
-        if (mem->deg[i] >= 0) { /* a polynomial leaf: collect its roots */
-            int nr;
-            if (mem->deg[i] == 0) continue;
-            nr = fr_solve_poly(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i], s0, s1, cand + nc);
-            R->iters++;
-            for (k = 0; k < nr; k++) cand[nc + k] += ts;
-            if (nr > 0) nc += nr;
-            continue;
-        }
-        switch ((fr_op_t)in->op) {
-        case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
-            mem->need[in->a] = 1; mem->need[in->b] = 1; break;
-        case FR_OP_NEG: mem->need[in->a] = 1; break;
-        default: return FR_ERR_NOT_POLYNOMIAL;
-        }
+    if (cnt == -2) cnt = fr__csg_mark(t, mem);
+    if (cnt < 0) return FR_ERR_NOT_POLYNOMIAL;
+    for (j = 0; j < cnt; j++) { /* the polynomial leaves: collect their roots */
+        unsigned int i = mem->list[j];
+        int nr;
+        if (mem->deg[i] <= 0) continue;
+        nr = fr_solve_poly(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i], s0, s1, cand + nc);
+        R->iters++;
+        for (k = 0; k < nr; k++) cand[nc + k] += ts;
+        if (nr > 0) nc += nr;
     }
     /* insertion sort: few candidates */
     for (k = 1; k < nc; k++) {
-        double v = cand[k];
-        int j = k;
-        while (j > 0 && cand[j - 1] > v) { cand[j] = cand[j - 1]; j--; }
-        cand[j] = v;
+        double x = cand[k];
+        j = k;
+        while (j > 0 && cand[j - 1] > x) { cand[j] = cand[j - 1]; j--; }
+        cand[j] = x;
     }
     for (k = 0; k < nc; k++) {
         double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
         double lo = tc - dt < R->t0 ? R->t0 : tc - dt, hi = tc + dt > R->t1 ? R->t1 : tc + dt;
-        double glo = fr__g(R, lo), ghi = fr__g(R, hi);
+        double glo = fr__csg_g(R, mem, cnt, ts, lo, v), ghi = fr__csg_g(R, mem, cnt, ts, hi, v);
         R->iters++;
         if (fr__opposite(glo, ghi) || (tc == R->t0 && glo == 0) ) {
             *found = 1; *t_hit = tc; *t_err = dt;
@@ -4538,6 +4879,36 @@ static void fr__normal(fr__ray_t *R, const fr_trace_desc_t *desc, const double p
     for (k = 0; k < 3; k++) nrm[k] = len > 0 && len == len ? -g[k] / len : 0.0;
 }
 
+/* Clip [R->t0, R->t1] to the box b (lo x y z, hi x y z) by the slab test;
+   0 if nothing is left. The box is padded by 2^-20 of its size plus the
+   rounding of o and of the slab divisions, so a surface on the box's face
+   is never clipped away. */
+#define FR__BOX_PAD 9.5367431640625e-07 /* 2^-20 */
+static int fr__clip_box(fr__ray_t *R, const double *b)
+{
+    double a = R->t0, z = R->t1;
+    int k;
+    for (k = 0; k < 3; k++) {
+        double pad = FR__BOX_PAD * (b[k + 3] - b[k]) + 8.0 * FR__U * (fabs(R->o[k]) + fabs(b[k]) + fabs(b[k + 3]));
+        double lo = b[k] - pad, hi = b[k + 3] + pad, ta, tb;
+        if (!(lo <= hi)) return 0; /* empty or NaN box */
+        if (R->d[k] == 0) {
+            if (R->o[k] < lo || R->o[k] > hi) return 0;
+            continue;
+        }
+        ta = (lo - R->o[k]) / R->d[k];
+        tb = (hi - R->o[k]) / R->d[k];
+        if (ta > tb) { double x = ta; ta = tb; tb = x; }
+        ta -= 4.0 * FR__U * fabs(ta); /* the divisions' rounding, outward */
+        tb += 4.0 * FR__U * fabs(tb);
+        if (ta > a) a = ta;
+        if (tb < z) z = tb;
+    }
+    if (!(a <= z)) return 0;
+    R->t0 = a; R->t1 = z;
+    return 1;
+}
+
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
 {
@@ -4546,8 +4917,8 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     fr__ray_t R;
     fr_method_t m;
     fr_result_t e = FR_OK;
-    double t_hit = 0, t_err = 0, L;
-    int found = 0, k;
+    double t_hit = 0, t_err = 0, L, ts = 0;
+    int found = 0, k, cnt = -2;
     if (!t || !o || !d || !scratch || !hit || t->n_code == 0) return FR_ERR_INVALID_ARG;
     if (desc_in) desc = *desc_in;
     else {
@@ -4570,45 +4941,69 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     else if (desc.tol < 0) R.tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
     else R.tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + fabs(t0));
     if (!(R.tol > 0)) R.tol = FR__U;
+    R.footprint = desc.footprint > 0 && desc.footprint < HUGE_VAL ? desc.footprint : 0.0;
+    R.pc = R.pm = NULL;
+    R.pdeg = R.mdeg = -1;
+    R.ts = R.rho = R.drho = 0.0;
+    R.newton = 0;
+    R.any_hit = desc.any_hit;
+    hit->hit = 0;
+    hit->method = m = desc.method;
+    hit->t = hit->t_err = 0.0;
+    for (k = 0; k < 3; k++) hit->point[k] = hit->normal[k] = 0.0;
+    hit->evals = hit->iterations = 0;
+    if (desc.bounds && !fr__clip_box(&R, desc.bounds)) return FR_OK; /* the ray misses the solid's box */
     L = desc.lipschitz > 0 ? desc.lipschitz : t->lipschitz;
-    m = desc.method;
+    if (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC) ts = fr__analytic_expand(&R, &mem, 0);
     if (m == FR_METHOD_AUTO) {
-        fr__taylor_run(t, o, d, mem.taylor, mem.deg);
-        m = FR_METHOD_ANALYTIC;
-        {   /* analytic if every shape path ends in polynomial leaves */
-            unsigned int i;
-            for (i = 0; i < t->n_code; i++) mem.need[i] = 0;
-            mem.need[t->outputs[0]] = 1;
-            for (i = t->n_code; i-- > 0 && m == FR_METHOD_ANALYTIC;) {
-                const fr_instr_t *in = &t->code[i];
-                if (!mem.need[i] || mem.deg[i] >= 0) continue;
-                if (in->op == FR_OP_MIN || in->op == FR_OP_MAX || in->op == FR_OP_RUNI || in->op == FR_OP_RINT) {
-                    mem.need[in->a] = 1; mem.need[in->b] = 1;
-                } else if (in->op == FR_OP_NEG) mem.need[in->a] = 1;
-                else m = FR_METHOD_STEP;
-            }
-        }
+        /* analytic if every shape path ends in polynomial leaves */
+        cnt = mem.deg[t->outputs[0]] >= 0 ? -2 : fr__csg_mark(t, &mem);
+        m = cnt == -1 ? FR_METHOD_STEP : FR_METHOD_ANALYTIC;
 #ifndef FR_NO_INTERVAL
-        if (m == FR_METHOD_STEP && !(t->flags & FR_TAPE_NO_INTERVAL) && t1 - t0 < HUGE_VAL) m = FR_METHOD_INTERVAL;
+        if (m == FR_METHOD_STEP && !(t->flags & FR_TAPE_NO_INTERVAL) && R.t1 - R.t0 < HUGE_VAL) m = FR_METHOD_INTERVAL;
 #endif
     }
     switch (m) {
     case FR_METHOD_ANALYTIC:
-        e = fr__trace_analytic(&R, &mem, &found, &t_hit, &t_err);
+        e = fr__trace_analytic(&R, &mem, ts, cnt, &found, &t_hit, &t_err);
         break;
     case FR_METHOD_STEP:
         if (desc.refine == FR_REFINE_NEWTON && (t->flags & FR_TAPE_NO_GRADIENT)) return FR_ERR_NO_GRADIENT;
         if (desc.step <= 0 && !(L > 0 && L < HUGE_VAL)) {
-            if (!(t1 - t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
-            desc.step = (t1 - t0) / 256.0;
+            if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
+            desc.step = (R.t1 - R.t0) / 256.0;
         }
         found = fr__trace_step(&R, desc.step, desc.refine, L, &t_hit, &t_err);
         break;
     case FR_METHOD_INTERVAL:
 #ifndef FR_NO_INTERVAL
         if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
-        if (!(t1 - t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
-        e = fr__trace_interval(&R, desc.plain_intervals, !desc.no_prune, mem.prune, &found, &t_hit, &t_err);
+        if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
+        if (!desc.plain_intervals && !desc.no_poly_range) { /* polynomial tape: the centred form of g */
+            double nr = 160.0 * (double)t->n_code; /* roundings per coefficient, see fr__poly_range */
+            unsigned int out = t->outputs[0];
+            if (nr * FR__U < 1e-3) {
+                R.ts = fr__analytic_expand(&R, &mem, 1);
+                if (mem.deg[out] >= 0) {
+                    R.pc = mem.taylor + (size_t)out * FR__TAYLOR_N;
+                    R.pm = mem.taylor_mag + (size_t)out * FR__TAYLOR_N;
+                    R.pdeg = mem.deg[out];
+                    R.mdeg = mem.deg_mag[out];
+                    R.rho = 2.0 * fr__gamma(nr);
+                    if (R.mdeg < R.pdeg) R.pc = NULL; /* cannot happen; stay safe */
+                    if (R.pc && desc.interval_newton && R.mdeg >= 1) {
+                        /* g' = sum (k+1) c_{k+1} s^k; the products by k+1 round once more */
+                        for (k = 0; k < R.mdeg; k++) {
+                            R.dc[k] = k + 1 <= R.pdeg ? (double)(k + 1) * R.pc[k + 1] : 0.0;
+                            R.dm[k] = (double)(k + 1) * R.pm[k + 1];
+                        }
+                        R.drho = R.rho + 4.0 * FR__U;
+                        R.newton = 1;
+                    }
+                }
+            }
+        }
+        e = fr__trace_interval(&R, desc.plain_intervals, !desc.no_prune && !R.pc, mem.prune, &found, &t_hit, &t_err);
         break;
 #else
         return FR_ERR_NO_INTERVAL;

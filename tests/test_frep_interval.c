@@ -6,6 +6,7 @@
 #define FR_IMPLEMENTATION
 #include "frep.h"
 #include "test.h"
+#include <float.h>
 
 static double sq(double x) { return x * x; }
 
@@ -378,13 +379,59 @@ static void pruning_shrinks_small_boxes_of_csg128(void)
     fr_tape_free(&t);
 }
 
+/* x^n, n = 2..8, in intervals and affine forms (frep.h's product fast path):
+   encloses the exact range, computed in __float128 from the endpoints, and
+   is no wider than it by more than 4n ulps of the magnitude; boxes straddle
+   0, lie on either side, or are points. */
+static void small_powers_enclose_tightly(void)
+{
+    t_rng_t g = {5};
+    long n = t_count(20000), i;
+    int e;
+    for (e = 2; e <= 8; e++) {
+        fr_builder_t b;
+        fr_tape_t t;
+        void *s;
+        fr_builder_init(&b, NULL);
+        if (fr_builder_finish(&b, fr_powi(&b, fr_coords(&b).x, e), NULL, 0, &t, NULL) != FR_OK) { T_FAIL("build"); return; }
+        fr_builder_free(&b);
+        s = malloc(fr_scratch_size(&t, FR_EVAL_AFFINE));
+        for (i = 0; i < n; i++) {
+            double lo = t_rng_range(&g, -3, 3), hi = i % 7 == 0 ? lo : lo + t_rng_range(&g, 0, 3);
+            __float128 ql = 1, qh = 1, mig, mag, xl, xh;
+            iv_t box[3], r;
+            iv_affine_t P[3], ra;
+            int k;
+            double slack;
+            if (e % 2 == 0) {
+                mig = lo > 0 ? lo : hi < 0 ? -hi : 0;
+                mag = -lo > hi ? -lo : hi;
+                xl = mig; xh = mag;
+            } else { xl = lo; xh = hi; }
+            for (k = 0; k < e; k++) { ql *= xl; qh *= xh; }
+            box[0] = iv_make(lo, hi); box[1] = box[2] = iv_point(0.0);
+            T_INT_EQ(fr_eval_interval(&t, box, s, &r), FR_OK);
+            slack = 4.0 * e * DBL_EPSILON * (fabs((double)ql) + fabs((double)qh)) + DBL_MIN;
+            T_LE(r.lo, (double)ql); T_GE(r.hi, (double)qh);
+            T_GE(r.lo, (double)ql - slack); T_LE(r.hi, (double)qh + slack);
+            /* affine: must enclose the range too */
+            for (k = 0; k < 3; k++) P[k] = iv_affine_from_iv(box[k]);
+            T_INT_EQ(fr_eval_affine(&t, P, s, &ra), FR_OK);
+            r = iv_from_affine(ra);
+            T_LE(r.lo, (double)ql); T_GE(r.hi, (double)qh);
+        }
+        free(s);
+        fr_tape_free(&t);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(interval_contains_samples_1e6_boxes), T_CASE(affine_contains_samples_boxes_and_rays),
         T_CASE(interval_tight_on_tiny_boxes),        T_CASE(noise_interval_is_rigorous_and_bounded),
         T_CASE(pruned_agrees_with_full_csg128),      T_CASE(pruned_agrees_on_every_operation),
-        T_CASE(pruning_shrinks_small_boxes_of_csg128),
+        T_CASE(pruning_shrinks_small_boxes_of_csg128), T_CASE(small_powers_enclose_tightly),
     };
     (void)sq;
     return T_RUN(argc, argv, cases);

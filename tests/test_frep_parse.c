@@ -251,7 +251,8 @@ static void example_models_parse(void)
     static const char *files[] = {"cup", "blended_cylinders", "tangle_cube", "barth_sextic", "noise_hole",
                                   "metamorphosis"};
     /* a point inside each solid and one outside */
-    static const double in[6][3] = {{0.95, 0, 0.5}, {0.9, 0, 0}, {1.6, 1.6, 0}, {0, 0, 0}, {0.7, 0, 0}, {0, 0, 0}};
+    /* Barth: inside the spike through the node at (1, 1, 1); the origin is outside */
+    static const double in[6][3] = {{0.95, 0, 0.5}, {0.9, 0, 0}, {1.6, 1.6, 0}, {1.5, 1.5, 1.5}, {0.7, 0, 0}, {0, 0, 0}};
     static const double out[6][3] = {{0, 0, 0.5}, {1, 1, 1}, {0, 0, 0}, {2, 0, 0}, {0, 0, 0}, {2, 0, 0}};
     for (int i = 0; i < 6; i++) {
         char path[128];

@@ -25,15 +25,22 @@
 
 #define MAX_DEPTH 3
 #define RAY_EPS 1e-4
-#define BOUND_R 2.6 /* every model fits in this sphere about the origin */
+/* fr_bound_box searches this box for the solid; models are about 2-7 across */
+#define SEARCH_R 5.0
+#define BOUND_DEPTH 7
+#define FOV_DEG 38.0
 
 typedef struct scene_t {
     const char *name;
     fr_tape_t tape;
-    fr_trace_desc_t desc;
+    fr_trace_desc_t desc;  /* primary, reflected and refracted rays */
+    fr_trace_desc_t shadow; /* shadow rays: any hit, no normal */
+    double box[6];         /* the solid's box (lo xyz, hi xyz): every ray is clipped to it */
     int glass;             /* refractive material */
     double floor_z;
     ex_v3_t light;         /* point light */
+    ex_v3_t centre;        /* of the box, and the camera's target */
+    double radius;         /* of the box's bounding sphere */
     unsigned long long rays;
 } scene_t;
 
@@ -110,16 +117,36 @@ static int load_scene(scene_t *sc, const char *name, const char *mode)
         }
         free(buf);
     }
+    {   /* the solid's box by interval subdivision, once per model: rays clip
+           to it inside fr_trace, so most shadow and floor rays cost a slab
+           test; black boxes without intervals get the fractal's unit cube */
+        static const double lo[3] = {-SEARCH_R, -SEARCH_R, -SEARCH_R}, hi[3] = {SEARCH_R, SEARCH_R, SEARCH_R};
+        void *scr = malloc(fr_scratch_size(&sc->tape, FR_EVAL_INTERVAL));
+        int k;
+        if (!scr || fr_bound_box(&sc->tape, lo, hi, BOUND_DEPTH, scr, sc->box, sc->box + 3) != FR_OK)
+            for (k = 0; k < 3; k++) { sc->box[k] = -1.2; sc->box[k + 3] = 1.2; }
+        free(scr);
+        if (!(sc->box[0] <= sc->box[3])) { fprintf(stderr, "frep_render: %s is empty\n", name); return -1; }
+        sc->centre = ex_v3(0.5 * (sc->box[0] + sc->box[3]), 0.5 * (sc->box[1] + sc->box[4]), 0.5 * (sc->box[2] + sc->box[5]));
+        sc->radius = 0.5 * ex_len(ex_v3(sc->box[3] - sc->box[0], sc->box[4] - sc->box[1], sc->box[5] - sc->box[2]));
+        /* the model stands on the floor; the light keeps its direction */
+        sc->floor_z = sc->box[2] - 1e-3 * sc->radius;
+        sc->light = ex_add(sc->centre, ex_scale(ex_v3(4, -3, 6), sc->radius / 1.6));
+    }
     memset(&sc->desc, 0, sizeof sc->desc);
     sc->desc.method = !strcmp(mode, "analytic") ? FR_METHOD_ANALYTIC
                     : !strcmp(mode, "step") ? FR_METHOD_STEP
                     : !strcmp(mode, "interval") ? FR_METHOD_INTERVAL
                     : !strcmp(mode, "sphere") ? FR_METHOD_SPHERE : FR_METHOD_AUTO;
     sc->desc.tol = 1e-6;
-    sc->desc.step = 2.0 * BOUND_R / 200.0;
+    sc->desc.step = 2.0 * sc->radius / 200.0;
+    sc->desc.bounds = sc->box;
     if (sc->desc.method == FR_METHOD_AUTO && (sc->tape.flags & FR_TAPE_NO_INTERVAL))
         sc->desc.method = sc->tape.lipschitz < HUGE_VAL ? FR_METHOD_SPHERE : FR_METHOD_STEP;
     if (sc->tape.flags & FR_TAPE_NO_GRADIENT) sc->desc.normal = FR_NORMAL_FD;
+    sc->shadow = sc->desc;
+    sc->shadow.any_hit = 1;
+    sc->shadow.normal = FR_NORMAL_NONE;
     sc->glass = !strcmp(name, "tangle_cube");
     return 0;
 }
@@ -140,26 +167,13 @@ static void *scratch_for(const scene_t *sc)
     return tls_scratch;
 }
 
-/* The segment of the ray inside the bounding sphere, from tmin. */
-static int clip(ex_v3_t o, ex_v3_t d, double tmin, double *t0, double *t1)
+/* desc clips the segment to the solid's box (fr_trace_desc_t.bounds) */
+static int trace_model(scene_t *sc, const fr_trace_desc_t *desc, ex_v3_t o, ex_v3_t d, double tmin, double tmax,
+                       fr_hit_t *h)
 {
-    double a = ex_dot(d, d), b = ex_dot(o, d), c = ex_dot(o, o) - BOUND_R * BOUND_R, disc = b * b - a * c, s;
-    if (disc <= 0) return 0;
-    s = sqrt(disc);
-    *t0 = (-b - s) / a;
-    *t1 = (-b + s) / a;
-    if (*t0 < tmin) *t0 = tmin;
-    return *t1 > *t0;
-}
-
-static int trace_model(scene_t *sc, ex_v3_t o, ex_v3_t d, double tmin, double tmax, fr_hit_t *h)
-{
-    double t0, t1, oo[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
+    double oo[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
     __atomic_fetch_add(&sc->rays, 1ull, __ATOMIC_RELAXED);
-    if (!clip(o, d, tmin, &t0, &t1)) return 0;
-    if (t1 > tmax) t1 = tmax;
-    if (!(t0 < t1)) return 0;
-    if (fr_trace(&sc->tape, oo, dd, t0, t1, &sc->desc, scratch_for(sc), h) != FR_OK) return 0;
+    if (fr_trace(&sc->tape, oo, dd, tmin, tmax, desc, scratch_for(sc), h) != FR_OK) return 0;
     return h->hit;
 }
 
@@ -194,7 +208,7 @@ static ex_v3_t blinn_phong(scene_t *sc, ex_v3_t p, ex_v3_t n, ex_v3_t d, ex_v3_t
     fr_hit_t sh;
     l = ex_scale(l, 1.0 / dist);
     ndl = ex_dot(n, l);
-    if (ndl > 0 && !trace_model(sc, ex_madd(p, n, RAY_EPS), l, 0, dist, &sh)) { /* shadow ray */
+    if (ndl > 0 && !trace_model(sc, &sc->shadow, ex_madd(p, n, RAY_EPS), l, 0, dist, &sh)) { /* shadow ray */
         h = ex_normalize(ex_sub(l, ex_normalize(d)));
         col = ex_add(col, ex_scale(base, 0.85 * ndl));
         col = ex_add(col, ex_scale(ex_v3(1, 1, 1), 0.35 * pow(fmax(0, ex_dot(n, h)), shininess)));
@@ -206,7 +220,7 @@ static ex_v3_t shade(scene_t *sc, ex_v3_t o, ex_v3_t d, int depth, int inside)
 {
     fr_hit_t h;
     double tfloor = d.z < 0 ? (sc->floor_z - o.z) / d.z : HUGE_VAL;
-    int hit = trace_model(sc, o, d, RAY_EPS, tfloor < HUGE_VAL ? tfloor : 1e30, &h);
+    int hit = trace_model(sc, &sc->desc, o, d, RAY_EPS, tfloor < HUGE_VAL ? tfloor : 1e30, &h);
     if (hit) {
         ex_v3_t p = ex_v3(h.point[0], h.point[1], h.point[2]), n = ex_v3(h.normal[0], h.normal[1], h.normal[2]);
         ex_v3_t col;
@@ -260,7 +274,7 @@ static void pixel(void *user, int x, int y, int sample, ex_rng_t *rng, float rgb
 }
 
 /* Renders `frames` timed frames after one warm-up; returns fps. */
-static double render(scene_t *sc, const ex_args_t *a, int frames, const char *out_path)
+static double render(scene_t *sc, const ex_args_t *a, int frames, int exact, const char *out_path)
 {
     ctx_t c;
     ex_render_desc_t rd;
@@ -268,7 +282,15 @@ static double render(scene_t *sc, const ex_args_t *a, int frames, const char *ou
     double t, secs;
     int f;
     c.sc = sc;
-    ex_camera_init(&c.cam, ex_v3(3.6, -4.6, 2.9), ex_v3(0, 0, -0.1), ex_v3(0, 0, 1), 38, a->width, a->height);
+    {   /* frame the solid whole, seen from above front right: 0.9 of the box's
+           bounding sphere, since no model fills its box's corners */
+        double dist = 0.9 * sc->radius / sin(0.5 * FOV_DEG * M_PI / 180.0);
+        ex_v3_t eye = ex_madd(sc->centre, ex_normalize(ex_v3(3.6, -4.6, 2.9)), dist);
+        ex_camera_init(&c.cam, eye, sc->centre, ex_v3(0, 0, 1), FOV_DEG, a->width, a->height);
+        /* bisection hands over to regula falsi at the pixel's width
+           (fr_trace_desc_t.footprint), unless --exact */
+        if (!exact) sc->desc.footprint = 2.0 * tan(0.5 * FOV_DEG * M_PI / 180.0) / a->height;
+    }
     memset(&rd, 0, sizeof rd);
     rd.width = a->width; rd.height = a->height; rd.spp = 1; rd.threads = a->threads; rd.quiet = 1;
     rd.label = sc->name;
@@ -289,15 +311,17 @@ int main(int argc, char **argv)
 {
     ex_args_t a;
     ex_args_spec_t spec;
-    int frames = 3;
-    ex_flag_t extra[1];
+    int frames = 3, exact = 0;
+    ex_flag_t extra[2];
     memset(&a, 0, sizeof a);
     memset(&spec, 0, sizeof spec);
     a.width = 256; a.height = 256; a.spp = 1;
     extra[0].name = "frames"; extra[0].kind = EX_FLAG_INT; extra[0].value = &frames;
     extra[0].help = "timed frames after the warm-up (default 3)";
+    extra[1].name = "exact"; extra[1].kind = EX_FLAG_BOOL; extra[1].value = &exact;
+    extra[1].help = "interval bisection to the tolerance, without the pixel-footprint hand-over";
     spec.summary = "a Whitted ray tracer for FRep models (fr_trace), printing fps and rays/s";
-    spec.scenes = scenes; spec.modes = modes; spec.extra = extra; spec.nextra = 1;
+    spec.scenes = scenes; spec.modes = modes; spec.extra = extra; spec.nextra = 2;
     ex_args_parse(argc, argv, &spec, &a);
     if (frames < 1) frames = 1;
     if (a.demo_dir) {
@@ -308,7 +332,7 @@ int main(int argc, char **argv)
             if (load_scene(&sc, scenes[k], "auto")) return 1;
             snprintf(name, sizeof name, "frep_%s.png", scenes[k]);
             ex_args_output(&a, name, path, sizeof path);
-            render(&sc, &a, 1, path);
+            render(&sc, &a, 1, 0, path);
             fr_tape_free(&sc.tape);
         }
         return 0;
@@ -317,7 +341,7 @@ int main(int argc, char **argv)
         scene_t sc;
         char path[4096];
         if (load_scene(&sc, a.scene ? a.scene : "cup", a.mode ? a.mode : "auto")) return 1;
-        render(&sc, &a, frames, a.out ? ex_args_output(&a, "frep_render.png", path, sizeof path) : NULL);
+        render(&sc, &a, frames, exact, a.out ? ex_args_output(&a, "frep_render.png", path, sizeof path) : NULL);
         fr_tape_free(&sc.tape);
     }
     return 0;
