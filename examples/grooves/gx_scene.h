@@ -187,6 +187,17 @@ static int gx_scene_scratches(gx_scene_t *s)
     return 0;
 }
 
+/* Two directional lights (elevation, azimuth in degrees, radiance), an
+   ambient term and the usual sky. */
+static void gx_two_lights(gx_scene_t *s, const double l0[5], const double l1[5], ex_v3_t ambient)
+{
+    s->nlights = 2;
+    gx_dir(l0[0], l0[1], s->light[0]); s->radiance[0] = ex_v3(l0[2], l0[3], l0[4]);
+    gx_dir(l1[0], l1[1], s->light[1]); s->radiance[1] = ex_v3(l1[2], l1[3], l1[4]);
+    s->ambient = ambient;
+    s->background = ex_v3(0.20, 0.24, 0.32);
+}
+
 /* Figures 15/16: a tiled floor, 12 x 12 tiles whose grout lines cross at
    every corner (gr_query takes the polygon path there, §5.2-5.5); the grout
    (reflectance 1) differs from the glazed tiles (0). */
@@ -213,11 +224,10 @@ static int gx_scene_tiles(gx_scene_t *s)
     }
     s->mats[0] = gx_material(0.55, 0.50, 0.42, 0.06, 0.06, 0.06, 0.15); /* glazed tile */
     s->mats[1] = gx_material(0.30, 0.29, 0.27, 0.02, 0.02, 0.02, 0.8);  /* grout */
-    s->nlights = 2;
-    gx_dir(25, 60, s->light[0]); s->radiance[0] = ex_v3(3.0, 2.9, 2.6);
-    gx_dir(60, 220, s->light[1]); s->radiance[1] = ex_v3(0.5, 0.55, 0.7);
-    s->ambient = ex_v3(0.08, 0.08, 0.09);
-    s->background = ex_v3(0.20, 0.24, 0.32);
+    {
+        static const double key[5] = {25, 60, 3.0, 2.9, 2.6}, fill[5] = {60, 220, 0.5, 0.55, 0.7};
+        gx_two_lights(s, key, fill, ex_v3(0.08, 0.08, 0.09));
+    }
     s->eye = ex_v3(0.5, -0.25, 0.3); s->at = ex_v3(0.5, 0.45, 0.0); s->fov = 50;
     s->bench_eye = ex_v3(0.5, 0.1, 0.12); s->bench_at = ex_v3(0.5, 0.4, 0.0); s->bench_fov = 20;
     return 0;
@@ -256,11 +266,10 @@ static int gx_scene_bricks(gx_scene_t *s)
     s->mats[0] = gx_material(0.45, 0.17, 0.10, 0.03, 0.03, 0.03, 0.7); /* brick */
     s->mats[1] = gx_material(0.55, 0.53, 0.48, 0.02, 0.02, 0.02, 0.9); /* mortar walls */
     s->mats[2] = gx_material(0.40, 0.39, 0.36, 0.02, 0.02, 0.02, 0.9); /* mortar bed */
-    s->nlights = 2;
-    gx_dir(30, 150, s->light[0]); s->radiance[0] = ex_v3(3.0, 2.8, 2.5);
-    gx_dir(65, 20, s->light[1]); s->radiance[1] = ex_v3(0.5, 0.55, 0.7);
-    s->ambient = ex_v3(0.08, 0.08, 0.09);
-    s->background = ex_v3(0.20, 0.24, 0.32);
+    {
+        static const double key[5] = {30, 150, 3.0, 2.8, 2.5}, fill[5] = {65, 20, 0.5, 0.55, 0.7};
+        gx_two_lights(s, key, fill, ex_v3(0.08, 0.08, 0.09));
+    }
     s->eye = ex_v3(0.5, -0.35, 0.5); s->at = ex_v3(0.5, 0.5, 0.0); s->fov = 50;
     s->bench_eye = ex_v3(0.5, 0.15, 0.2); s->bench_at = ex_v3(0.5, 0.45, 0.0); s->bench_fov = 20;
     return 0;
