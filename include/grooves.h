@@ -3054,7 +3054,7 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
    (flags GR_LIST_NONPARALLEL / GR_LIST_PATH_END as before). */
 #define GR__PP_MAX_GROOVES 8  /* grooves in the §5.1 search box */
 #define GR__PP_RING 80        /* points of one piece's clipped ring, or one cut */
-#define GR__PP_TRAPS 256      /* trapezoids of an intermediate region (before merging) */
+#define GR__PP_TRAPS 512      /* trapezoids of an intermediate region (before merging) */
 #define GR__PP_EDGES 400      /* edges of both operands of one boolean */
 #define GR__PP_MAX_PIECES 64  /* facets and end caps of those grooves */
 /* Coplanar pieces of two grooves (equal floors at a crossing): the lower
@@ -3093,7 +3093,7 @@ typedef struct gr__ppp_t {
 typedef struct gr__pps_t {
     gr__ppg_t *g;
     gr__ppp_t *p;
-    double *ra, *rb, *rc, *cut, *tmp, *tmp2; /* region ping-pong (traps), cuts, rings */
+    double *ra, *rb, *rc, *rv, *cut, *tmp, *tmp2; /* region ping-pong (traps), occluder, visible, cuts, rings */
     int *sizes;
     void *bool_scratch;
     size_t bool_bytes;
@@ -3112,6 +3112,7 @@ static size_t gr__pp_layout(void *base, gr__pps_t *s)
     GR__PPCARVE(ra, double, 8 * GR__PP_TRAPS)
     GR__PPCARVE(rb, double, 8 * GR__PP_TRAPS)
     GR__PPCARVE(rc, double, 8 * GR__PP_TRAPS)
+    GR__PPCARVE(rv, double, 8 * GR__PP_TRAPS)
     GR__PPCARVE(cut, double, 2 * GR__PP_RING * GR__PP_MAX_GROOVES)
     GR__PPCARVE(tmp, double, 2 * GR__PP_RING)
     GR__PPCARVE(tmp2, double, 2 * GR__PP_RING)
@@ -3252,43 +3253,85 @@ static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, doubl
    size): the slab sweep cuts a region at every vertex height of both
    operands, and without this a chain of operations fragments it. */
 #define GR__PP_MERGE_REL 1e-12
+typedef struct gr__trap_t { double v[8]; } gr__trap_t;
+static int gr__cmp_trap(const void *pa, const void *pb)
+{
+    const double *a = ((const gr__trap_t *)pa)->v, *b = ((const gr__trap_t *)pb)->v;
+    return a[1] < b[1] ? -1 : a[1] > b[1] ? 1 : a[0] < b[0] ? -1 : a[0] > b[0];
+}
 static int gr__pp_merge(double *t, int n)
 {
-    int i, j, merged = 1;
-    while (merged) {
-        merged = 0;
-        for (i = 0; i < n; i++)
-            for (j = 0; j < n; j++) {
-                double *a = t + 8 * i, *b = t + 8 * j, sz, cl, cr;
-                if (i == j) continue;
-                /* a below b: a's top (tr = a[4,5], tl = a[6,7]) is b's bottom (bl = b[0,1], br = b[2,3]) */
-                sz = fabs(a[2] - a[0]) + fabs(a[5] - a[1]) + fabs(b[2] - b[0]) + fabs(b[5] - b[1]);
-                if (a[5] != b[1] || fabs(a[6] - b[0]) > GR__PP_MERGE_REL * sz || fabs(a[4] - b[2]) > GR__PP_MERGE_REL * sz)
+    gr__trap_t *tr = (gr__trap_t *)(void *)t;
+    unsigned char gone[GR__PP_TRAPS];
+    int i, m = 0;
+    if (n < 2) return n;
+    /* by bottom height, then left end: a trapezoid's upper neighbour is
+       found by bisection on its top height */
+    qsort(tr, (size_t)n, sizeof *tr, gr__cmp_trap);
+    memset(gone, 0, (size_t)n);
+    for (i = 0; i < n; i++) {
+        double *a = tr[i].v;
+        int again = 1;
+        if (gone[i]) continue;
+        while (again) {
+            int lo = i + 1, hi = n, j;
+            again = 0;
+            while (lo < hi) { /* first index with bottom y >= a's top y */
+                int mid = (lo + hi) / 2;
+                if (tr[mid].v[1] < a[5]) lo = mid + 1; else hi = mid;
+            }
+            for (j = lo; j < n && tr[j].v[1] == a[5]; j++) {
+                const double *b = tr[j].v;
+                double sz = fabs(a[2] - a[0]) + fabs(a[5] - a[1]) + fabs(b[2] - b[0]) + fabs(b[5] - b[1]), cl, cr;
+                if (gone[j] || fabs(a[6] - b[0]) > GR__PP_MERGE_REL * sz || fabs(a[4] - b[2]) > GR__PP_MERGE_REL * sz)
                     continue;
                 cl = (a[6] - a[0]) * (b[7] - b[1]) - (a[7] - a[1]) * (b[6] - b[0]);
                 cr = (a[4] - a[2]) * (b[5] - b[3]) - (a[5] - a[3]) * (b[4] - b[2]);
                 if (fabs(cl) > GR__PP_MERGE_REL * sz * sz || fabs(cr) > GR__PP_MERGE_REL * sz * sz) continue;
                 a[4] = b[4]; a[5] = b[5]; a[6] = b[6]; a[7] = b[7];
-                memmove(b, b + 8, sizeof(double) * 8 * (size_t)(n - j - 1));
-                n--;
-                merged = 1;
-                if (j < i) i--;
-                j--;
+                gone[j] = 1;
+                again = 1;
+                break;
             }
+        }
     }
-    return n;
+    for (i = 0; i < n; i++)
+        if (!gone[i]) tr[m++] = tr[i];
+    return m;
 }
 
 /* a op b into out (GR__PP_TRAPS trapezoids); the count, or -1 when a
-   buffer is too small (the caller then leaves the footprint to §4). */
+   buffer is too small (the caller then leaves the footprint to §4). A
+   trapezoid set a too large for one sweep is taken in chunks: its
+   trapezoids are disjoint, so (a1 ∪ a2) op b = (a1 op b) ∪ (a2 op b) for
+   intersection and difference. */
 static int gr__pp_bool(const gr__pps_t *ps, const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op, double *out,
                        double *area)
 {
-    int n = 0;
-    if (a->point_count + b->point_count > GR__PP_EDGES) return -1;
-    if (gr_poly_boolean(a, b, op, ps->bool_scratch, ps->bool_bytes, out, out ? GR__PP_TRAPS : 0, &n, area) != GR_OK)
-        return -1;
-    return out ? gr__pp_merge(out, n) : n;
+    int n = 0, first, chunk, total = 0;
+    double part;
+    if (a->point_count + b->point_count <= GR__PP_EDGES) {
+        if (gr_poly_boolean(a, b, op, ps->bool_scratch, ps->bool_bytes, out, out ? GR__PP_TRAPS : 0, &n, area) != GR_OK)
+            return -1;
+        return out ? gr__pp_merge(out, n) : n;
+    }
+    chunk = (GR__PP_EDGES - b->point_count) / 4;
+    if (a->ring_sizes || a->ring_count < 2 || chunk < 1 || op == GR_POLY_UNION || op == GR_POLY_XOR) return -1;
+    *area = 0;
+    for (first = 0; first < a->ring_count; first += chunk) {
+        int m = a->ring_count - first < chunk ? a->ring_count - first : chunk;
+        gr_polyset_t sub;
+        sub.points = a->points + 8 * first;
+        sub.point_count = 4 * m;
+        sub.ring_sizes = NULL;
+        sub.ring_count = m;
+        if (gr_poly_boolean(&sub, b, op, ps->bool_scratch, ps->bool_bytes, out ? out + 8 * total : NULL,
+                            out ? GR__PP_TRAPS - total : 0, &n, &part) != GR_OK)
+            return -1;
+        *area += part;
+        total += n;
+    }
+    return out ? gr__pp_merge(out, total) : total;
 }
 
 static gr_polyset_t gr__pp_set(const double *pts, int npts, const int *sizes, int nrings)
@@ -3526,7 +3569,6 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
     gr__pps_t ps;
     gr__mfacet_t m;
     double e[3], el, fpoly[8], af, f[2], big, tie, lit[GR_MAX_LIGHTS], area, *vis, mouths[8 * GR__PP_MAX_GROOVES];
-    double visbuf[8 * GR__PP_TRAPS];
     int ng = jn->grooves, np, i, k, l, nl = q->light_count;
     gr_polyset_t a, b;
     if (ng < 1 || ng > GR__PP_MAX_GROOVES || jn->dropped || grid->h > 0) return 0;
@@ -3556,7 +3598,7 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
         ratio = area * ne / e[2] / af;
         if (!(ratio > 0)) continue;
         /* keep the visible trapezoids while each light's region is built */
-        memcpy(visbuf, vis, sizeof(double) * 8 * (size_t)nv);
+        memcpy(ps.rv, vis, sizeof(double) * 8 * (size_t)nv);
         for (l = 0; l < nl; l++) {
             const double *L0 = q->lights + 3 * l;
             double L[3], ll = sqrt(gr__dot3(L0, L0)), la, *lr;
@@ -3564,7 +3606,7 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
             if (!(ll > 0) || !(L0[2] > 0)) continue;
             for (k = 0; k < 3; k++) L[k] = L0[k] / ll;
             if (!(gr__dot3(pc->n, L) > GR__PP_EDGE_ON)) continue;
-            if (gr__pp_region(&ps, np, ng, i, L, NULL, visbuf, nv, big, tie, &lr, &la) < 0) return 0;
+            if (gr__pp_region(&ps, np, ng, i, L, NULL, ps.rv, nv, big, tie, &lr, &la) < 0) return 0;
             lit[l] = area > 0 ? la / area : 0;
         }
         m.n[0] = pc->n[0]; m.n[1] = pc->n[1]; m.n[2] = pc->n[2];

@@ -26,6 +26,7 @@ static struct {
     gro_groove_t geo[MAXG];
     int n;
     gr_grid_t *grid;
+    int wrap;
 } S;
 static double worst_ratio, worst_lit;
 
@@ -53,7 +54,7 @@ static int build(void)
     memset(&gd, 0, sizeof gd);
     gd.grooves = S.desc;
     gd.groove_count = S.n;
-    gd.no_wrap = 1;
+    gd.no_wrap = !S.wrap;
     gd.base_reflectance = 7;
     for (i = 0; i < S.n; i++) S.geo[i] = gro_from_gr(&S.desc[i]);
     if (gr_grid_build(&gd, &S.grid, &diag) != GR_OK) { T_FAIL("grid build: %s", diag.message); return 0; }
@@ -106,7 +107,7 @@ static void compare(double u, double v, double r, double theta, double phi)
     if (!gt_run(S.grid, &q, &list)) return;
     T_CHECK(list.flags & GR_LIST_POLYGON);
     memset(&oq, 0, sizeof oq);
-    oq.grooves = S.geo; oq.ngrooves = S.n;
+    oq.grooves = S.geo; oq.ngrooves = S.n; oq.wrap = S.wrap;
     oq.F[0] = u; oq.F[1] = v; oq.A1[0] = r; oq.A2[1] = r;
     memcpy(oq.E, E, sizeof E);
     oq.lights = L; oq.nlights = nl; oq.n = 256; oq.seed = 99;
@@ -141,7 +142,7 @@ static void compare(double u, double v, double r, double theta, double phi)
         }
         sum += e->ratio;
     }
-    T_NEAR(sum, 1, 1e-9);
+    T_NEAR(sum, 1, 1e-6); /* see random_junctions */
     for (g = 0; g < S.n; g++)
         for (k = 0; k < GRO_SLOTS; k++)
             if (!used[g][k] && gro_vis(&o, g, k) > TOL)
@@ -246,6 +247,125 @@ static void corner(void)
     done();
 }
 
+/* A crossing on the tile's seam (the texture repeats): groove 0 runs
+   along the seam u = 0, groove 1 across it. */
+static void crossing_on_the_seam(void)
+{
+    static const double a[4] = {0, 0, 0, 1}, b[4] = {0, 0.5, 1, 0.5};
+    S.wrap = 1;
+    add(a, VSEC, 3, NULL);
+    add(b, RSEC, 4, NULL);
+    if (!build()) return;
+    views(1.003, 0.5, 0.02);
+    views(-0.004, 1.497, 0.015);
+    report("crossing on the seam");
+    done();
+}
+
+/* Random junction scenes (2-4 straight grooves, V, U and asymmetric
+   sections, ends inside the box) and footprints: the list is a partition
+   (ratios sum to 1, each in [0, 1], lit in [0, 1], unit normals, finite);
+   every fourth one against the oracle. */
+static void random_junctions(void)
+{
+    static double paths[MAXG][4];
+    static const double ASEC[6] = {-0.012, 0, 0.004, -0.018, 0.008, 0};
+    static const double *secs[3] = {VSEC, RSEC, ASEC};
+    static const int nsecs[3] = {3, 4, 3};
+    uint64_t seed = 2024;
+    int trial, n = t_scale() < 1 ? 6 : 40;
+    for (trial = 0; trial < n; trial++) {
+        int g, ng = 2 + (int)(gro__unit(&seed) * 3), i;
+        double E[3], L[3];
+        gr_query_t q;
+        gr_facet_list_t list;
+        for (g = 0; g < ng; g++) {
+            double ang = M_PI * gro__unit(&seed), len0 = 0.3 * gro__unit(&seed), len1 = 0.3 * gro__unit(&seed);
+            double cu = 0.5 + 0.02 * (gro__unit(&seed) - 0.5), cv = 0.5 + 0.02 * (gro__unit(&seed) - 0.5);
+            int k = (int)(gro__unit(&seed) * 3);
+            paths[g][0] = cu - len0 * cos(ang); paths[g][1] = cv - len0 * sin(ang);
+            paths[g][2] = cu + (0.02 + len1) * cos(ang); paths[g][3] = cv + (0.02 + len1) * sin(ang);
+            add(paths[g], secs[k], nsecs[k], NULL);
+        }
+        if (!build()) return;
+        dir(70 * gro__unit(&seed), 360 * gro__unit(&seed), E);
+        dir(75 * gro__unit(&seed), 360 * gro__unit(&seed), L);
+        q = gt_query(0.5 + 0.02 * (gro__unit(&seed) - 0.5), 0.5 + 0.02 * (gro__unit(&seed) - 0.5),
+                     0.004 + 0.02 * gro__unit(&seed), E[0], E[1], E[2]);
+        q.lights = L;
+        q.light_count = 1;
+        if (gt_run(S.grid, &q, &list)) {
+            double sum = 0;
+            for (i = 0; i < list.count; i++) {
+                const gr_facet_t *f = &list.facets[i];
+                T_CHECK(f->ratio >= 0 && f->ratio <= 1 + 1e-12);
+                T_CHECK(f->lit[0] >= 0 && f->lit[0] <= 1);
+                T_NEAR(f->normal[0] * f->normal[0] + f->normal[1] * f->normal[1] + f->normal[2] * f->normal[2], 1, 1e-12);
+                sum += f->ratio;
+            }
+            /* each piece is measured on its own: the partition holds to
+               the rounding of the slab sweep's crossing heights */
+            if (!T_NEAR(sum, 1, 1e-6)) {
+                fprintf(stderr, "    trial %d: flags %u, grooves:", trial, list.flags);
+                for (g = 0; g < ng; g++)
+                    fprintf(stderr, " (%g %g)-(%g %g) sec %d", paths[g][0], paths[g][1], paths[g][2], paths[g][3],
+                            S.desc[g].section_count);
+                fprintf(stderr, "\n    F %.17g %.17g r %.17g E %.17g %.17g %.17g\n", q.footprint.center[0],
+                        q.footprint.center[1], q.footprint.axis1[0], E[0], E[1], E[2]);
+            }
+            if (trial % 4 == 0)
+                compare(q.footprint.center[0], q.footprint.center[1], q.footprint.axis1[0],
+                        acos(E[2]) * 180 / M_PI, atan2(E[1], E[0]) * 180 / M_PI);
+        }
+        done();
+    }
+    report("random junctions (every fourth vs oracle)");
+}
+
+/* Degenerate footprints at a crossing: a line (no area) is §4's, with
+   its flags; a footprint over more grooves than the polygon path takes
+   (GR__PP_MAX_GROOVES) likewise; both still partition. */
+static void degenerate_footprints_fall_back(void)
+{
+    static double paths[12][4];
+    gr_facet_list_t list;
+    gr_query_t q;
+    int i;
+    static const double a[4] = {0.2, 0.5, 0.8, 0.5}, b[4] = {0.5, 0.2, 0.5, 0.8};
+    add(a, VSEC, 3, NULL);
+    add(b, VSEC, 3, NULL);
+    if (!build()) return;
+    q = gt_query(0.5, 0.5, 0.01, 0.3, 0.1, 1);
+    q.footprint.axis2[1] = 0;
+    if (gt_run(S.grid, &q, &list)) {
+        T_CHECK(!(list.flags & GR_LIST_POLYGON));
+        T_NEAR(gt_ratio_sum(&list), 1, 1e-9);
+    }
+    done();
+    {
+        gr_groove_desc_t d[12];
+        gr_grid_desc_t gd;
+        gr_grid_t *grid;
+        memset(d, 0, sizeof d);
+        for (i = 0; i < 12; i++) { /* 6 x 6 grid lines 0.01 apart */
+            double c = 0.47 + 0.01 * (i % 6);
+            paths[i][0] = i < 6 ? c : 0.2; paths[i][1] = i < 6 ? 0.2 : c;
+            paths[i][2] = i < 6 ? c : 0.8; paths[i][3] = i < 6 ? 0.8 : c;
+            d[i].points = paths[i]; d[i].point_count = 2;
+            d[i].section = VSEC; d[i].section_count = 3;
+        }
+        memset(&gd, 0, sizeof gd);
+        gd.grooves = d; gd.groove_count = 12; gd.no_wrap = 1;
+        if (!T_INT_EQ(gr_grid_build(&gd, &grid, NULL), GR_OK)) return;
+        q = gt_query(0.5, 0.5, 0.03, 0, 0, 1);
+        if (gt_run(grid, &q, &list)) {
+            T_CHECK(!(list.flags & GR_LIST_POLYGON) && (list.flags & GR_LIST_NONPARALLEL));
+            T_NEAR(gt_ratio_sum(&list), 1, 1e-9);
+        }
+        gr_grid_free(grid);
+    }
+}
+
 /* The dispatch: a footprint without junctions is §4's; line_samples > 0
    is left to §4 until line samples exist. */
 static void dispatch(void)
@@ -275,6 +395,9 @@ int main(int argc, char **argv)
         T_CASE(t_intersected_end),
         T_CASE(isolated_end),
         T_CASE(corner),
+        T_CASE(crossing_on_the_seam),
+        T_CASE(random_junctions),
+        T_CASE(degenerate_footprints_fall_back),
         T_CASE(dispatch),
     };
     int rc;

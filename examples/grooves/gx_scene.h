@@ -30,7 +30,7 @@
 
 #define GX_MAX_MATS 4
 #define GX_MAX_LIGHTS 2
-#define GX_SCRATCH (1 << 20) /* per-pixel stack scratch for gr_query (the polygon path's boolean work) */
+#define GX_SCRATCH (1 << 21) /* per-pixel stack scratch for gr_query (the polygon path's boolean work) */
 
 typedef struct gx_scene_t {
     const char *name, *title;
