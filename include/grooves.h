@@ -28,6 +28,9 @@
      GR_NO_CURVES       leave out Bézier paths (the builder then rejects them
                         with GR_ERR_UNSUPPORTED)
      GR_NO_OVERSAMPLE   leave out footprint oversampling (§4.2)
+     GR_NO_INTERSECTIONS leave out §5-6 (the 2D polygon routines, gr_detect,
+                        the polygon path): footprints with crossings or
+                        ends then get §4's answer with its flags
    CONVENTIONS
      See docs/conventions.md: results are gr_result_t codes with GR_OK = 0,
      zero-initialised config structs mean defaults, queries are const,
@@ -347,6 +350,7 @@ GR_DEF gr_result_t gr_shade(const gr_grid_t *grid, const gr_query_t *query, void
                             size_t scratch_bytes, gr_brdf_fn brdf, void *user, double rgb[3]);
 
 /* ==== [section: intersections] declarations (issue 8: §5–6) ==== */
+#ifndef GR_NO_INTERSECTIONS
 
 /* ---- 2D polygons (§5.2-5.5) ---------------------------------------------- */
 /* At intersections and ends the footprint is a polygon (§5.2): it is clipped
@@ -565,6 +569,7 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
                                        const double *sec2, int n2, const double bounds[4], double *points, int cap,
                                        int *sizes, int ring_cap, gr_polyset_t *cut);
 
+#endif /* GR_NO_INTERSECTIONS */
 /* ==== [end section: intersections] ==== */
 
 #ifdef __cplusplus
@@ -1407,11 +1412,15 @@ static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *
     return off;
 }
 
+#ifndef GR_NO_INTERSECTIONS
 /* The polygon path (§5.2-5.5, [section: intersections]) uses the scratch
    after the §4 layout. */
 static size_t gr__pp_scratch_bytes(void);
 static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q, void *scratch, size_t bytes,
                            const gr__scratch_t *s, gr_facet_list_t *list);
+#else
+static size_t gr__pp_scratch_bytes(void) { return 0; }
+#endif
 
 GR_DEF size_t gr_query_scratch_bytes(const gr_grid_t *grid)
 {
@@ -2079,10 +2088,12 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     gr__scratch_layout(grid, scratch, &s);
     /* §5: crossings and path ends in the footprint take the polygon path
        (line samples, §5.6, plug in here for line_samples > 0) */
+#ifndef GR_NO_INTERSECTIONS
     if (query->line_samples == 0 && gr__pp_dispatch(grid, query, scratch, scratch_bytes, &s, list)) {
         gr__list_finish(list, qs.light_count);
         return GR_OK;
     }
+#endif
     need = gr__query_one(grid, &qs, fp, 1.0, &s, list, 1, t);
     if (need > 1) {
         /* §4.2 oversampling: split along the axis that runs most along the
@@ -2137,6 +2148,7 @@ GR_DEF gr_result_t gr_shade(const gr_grid_t *grid, const gr_query_t *query, void
 }
 
 /* ==== [section: intersections] implementation (issue 8: §5–6) ==== */
+#ifndef GR_NO_INTERSECTIONS
 
 /* ---- 2D polygons (§5.2-5.5) ---------------------------------------------- */
 
@@ -3653,6 +3665,7 @@ static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q, void *scr
 
 static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
 
+#endif /* GR_NO_INTERSECTIONS */
 /* ==== [end section: intersections] ==== */
 
 #ifdef __cplusplus
