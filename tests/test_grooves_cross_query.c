@@ -247,6 +247,27 @@ static void corner(void)
     done();
 }
 
+/* A window frame (Fig. 21d without the glass): protruding profiles of two
+   sizes crossing, each facet its own id. Protruding sections are still
+   §4's (docs/grooves.md, Limits): flagged, and still a partition. */
+static void protruding_crossings(void)
+{
+    static const double a[4] = {0.2, 0.5, 0.8, 0.5}, b[4] = {0.5, 0.2, 0.5, 0.8};
+    static const double big[8] = {-0.01, 0, -0.006, 0.012, 0.006, 0.012, 0.01, 0};
+    static const double small[8] = {-0.005, 0, -0.003, 0.006, 0.003, 0.006, 0.005, 0};
+    static const int ra[3] = {1, 2, 3}, rb[3] = {4, 5, 6};
+    gr_facet_list_t list;
+    gr_query_t q = gt_query(0.5, 0.5, 0.02, 0.3, 0.2, 1);
+    add(a, big, 4, ra);
+    add(b, small, 4, rb);
+    if (!build()) return;
+    if (gt_run(S.grid, &q, &list)) {
+        T_CHECK(!(list.flags & GR_LIST_POLYGON) && (list.flags & GR_LIST_NONPARALLEL));
+        T_NEAR(gt_ratio_sum(&list), 1, 1e-9);
+    }
+    done();
+}
+
 /* A crossing on the tile's seam (the texture repeats): groove 0 runs
    along the seam u = 0, groove 1 across it. */
 static void crossing_on_the_seam(void)
@@ -395,6 +416,7 @@ int main(int argc, char **argv)
         T_CASE(t_intersected_end),
         T_CASE(isolated_end),
         T_CASE(corner),
+        T_CASE(protruding_crossings),
         T_CASE(crossing_on_the_seam),
         T_CASE(random_junctions),
         T_CASE(degenerate_footprints_fall_back),
