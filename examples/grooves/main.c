@@ -3,7 +3,10 @@
 
    Scenes (--scene): parallel (250 V-grooves near to far, the paper's Fig. 14),
    curves (a curved and a straight groove with different perturbations,
-   Fig. 2), scratches (thin isolated grooves on polished metal).
+   Fig. 2), scratches (thin grooves on polished metal that cross and end:
+   the polygon path, §5), tiles (a tiled floor, crossing grout lines,
+   Figs. 15-16), bricks (mortar with T junctions and per-facet materials,
+   Fig. 21c).
    Modes (--mode): ours (grooves.h, 1 sample per pixel), geometry (Embree
    mesh of the swept cross-sections, --spp samples per pixel).
 
