@@ -3185,6 +3185,8 @@ typedef struct gr__lg_t {
     double p[2], t[2], bn[2]; /* path point, tangent T, binormal B */
     double f;                 /* perturbation scale: section points are f (b, w) */
     double reach;             /* f times the section's largest |b| */
+    double lo, hi;            /* the path's extent along T from p (arc
+                                 length; +-HUGE_VAL for closed paths) */
     const double *sec;
     int nsec, groove, first_facet;
 } gr__lg_t;
@@ -3194,6 +3196,7 @@ typedef struct gr__plane_t {
     double n[3], h;
     double c0[2], c1[2];      /* scaled section points (b, w) bounding it */
     int lg, facet, refl;      /* lg -1 for the ground */
+    int cap;                  /* 1: the flat wall closing a path end */
 } gr__plane_t;
 
 typedef struct gr__brk_t { double s, sin2; } gr__brk_t;
@@ -3279,6 +3282,13 @@ static int gr__in_section(const gr__lg_t *g, const double bw[2])
     return in;
 }
 
+/* Inside the path's extent along T (ends are flat walls across it). */
+static int gr__along_in(const gr__lg_t *g, const double *x)
+{
+    double a = g->t[0] * (x[0] - g->p[0]) + g->t[1] * (x[1] - g->p[1]);
+    return a >= g->lo && a <= g->hi;
+}
+
 /* The solid: the ground w <= 0 minus the grooves' cuts, plus their
    protrusions (§3: a section below w = 0 carves, above it adds). */
 static int gr__solid(const gr__lscene_t *sc, const double *x)
@@ -3289,7 +3299,7 @@ static int gr__solid(const gr__lscene_t *sc, const double *x)
         const gr__lg_t *lg = &sc->ls.lg[g];
         double bw[2];
         gr__to_groove(lg, x, bw);
-        if (fabs(bw[0]) > lg->reach) continue;
+        if (fabs(bw[0]) > lg->reach || !gr__along_in(lg, x)) continue;
         if (!gr__in_section(lg, bw)) continue;
         if (x[2] > 0) return 1;
         cut = 1;
@@ -3308,7 +3318,7 @@ static int gr__on_plane(const gr__lscene_t *sc, int i, const double *x)
 {
     const gr__plane_t *p = &sc->ls.pl[i];
     double bw[2], u;
-    if (p->lg < 0) return 1; /* the ground: its holes are the grooves' business */
+    if (p->lg < 0 || p->cap) return 1; /* the ground and end walls: their holes are the solid's business */
     gr__to_groove(&sc->ls.lg[p->lg], x, bw);
     u = gr__facet_param(p, bw);
     return u >= -GR__LINE_ON_FACET_REL && u <= 1 + GR__LINE_ON_FACET_REL;
@@ -3326,9 +3336,15 @@ static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d,
     for (i = 0; i < sc->npl; i++) {
         const gr__plane_t *p = &sc->ls.pl[i];
         double t;
-        if (p->lg < 0) {
-            if (d[2] == 0) continue;
-            t = -o[2] / d[2];
+        if (p->lg < 0 || p->cap) {
+            double nd = gr__dot3(p->n, d), xc[3], bw[2];
+            if (nd == 0) continue;
+            t = (p->h - gr__dot3(p->n, o)) / nd;
+            if (p->cap) { /* the wall is the section's shape */
+                for (j = 0; j < 3; j++) xc[j] = o[j] + t * d[j];
+                gr__to_groove(&sc->ls.lg[p->lg], xc, bw);
+                if (!gr__in_section(&sc->ls.lg[p->lg], bw)) continue;
+            }
         } else {
             const gr__lg_t *g = &sc->ls.lg[p->lg];
             double b0[2], bd = g->bn[0] * d[0] + g->bn[1] * d[1], db = p->c1[0] - p->c0[0], dw = p->c1[1] - p->c0[1];
@@ -3366,8 +3382,10 @@ static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d,
 static double gr__ray_tmax(const gr__lscene_t *sc, const double *o, const double *d, double seglen)
 {
     double cap = (GR__LINE_TRAVEL_REL * sc->scale + seglen) / sqrt(gr__dot3(d, d)), t = cap;
-    if (d[2] > 0) t = (sc->top - o[2]) / d[2];
-    else if (d[2] < 0) t = (sc->bottom - o[2]) / d[2];
+    /* one scene scale past the top and bottom, so the last piece of the
+       ray is tested clear of them */
+    if (d[2] > 0) t = (sc->top + sc->scale - o[2]) / d[2];
+    else if (d[2] < 0) t = (sc->bottom - sc->scale - o[2]) / d[2];
     return t < cap ? (t > 0 ? t : 0) : cap;
 }
 
@@ -3436,12 +3454,13 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         g.nsec = rec->sec_count;
         g.groove = s->ids[k];
         g.first_facet = rec->first_facet;
+        g.lo = rec->closed ? -HUGE_VAL : -cd.param / cd.dtds;
+        g.hi = rec->closed ? HUGE_VAL : (1 - cd.param) / cd.dtds;
         if (!(g.f > 0)) continue; /* scaled away here */
         bc = fabs(g.bn[0] * (c[0] - g.p[0]) + g.bn[1] * (c[1] - g.p[1]));
         if (bc > reach + g.reach) continue; /* its band misses the box */
-        if (cd.end || (!rec->closed && cd.param > 0 && cd.param < 1 &&
-                       (cd.param < 1 - cd.param ? cd.param : 1 - cd.param) / cd.dtds < reach))
-            sc->flags |= GR_LIST_PATH_END; /* ends continue straight (issue 8 polygons treat ends) */
+        if (-g.lo <= reach + g.reach || g.hi <= reach + g.reach)
+            sc->flags |= GR_LIST_PATH_END; /* an end near: closed by a wall (planes below) */
         /* keep the nearest GR_LINE_MAX_GROOVES */
         sq = cd.dist;
         if (sc->nlg == GR_LINE_MAX_GROOVES) {
@@ -3465,6 +3484,7 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
     sc->ls.pl[0].lg = -1;
     sc->ls.pl[0].facet = -1;
     sc->ls.pl[0].refl = grid->base_reflectance;
+    sc->ls.pl[0].cap = 0;
     sc->npl = 1;
     for (i = 0; i < sc->nlg; i++) {
         const gr__lg_t *g = &sc->ls.lg[i];
@@ -3490,6 +3510,30 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
             p->lg = i;
             p->facet = k;
             p->refl = sc->grid->facet_refl_[g->first_facet + k];
+            p->cap = 0;
+            sc->npl++;
+        }
+        /* path ends near the box: flat walls across the path (§5, Figure
+           7c, with the section's shape), facing into a cut groove (out of
+           a protrusion); facet index section_count - 1 (first end) or
+           section_count (last end) */
+        for (k = 0; k < 2; k++) {
+            double at = k ? g->hi : g->lo, sgn = k ? 1 : -1, wmin = 0, cb;
+            gr__plane_t *p = &sc->ls.pl[sc->npl];
+            int j;
+            if (!(fabs(at) <= reach + g->reach)) continue;
+            if (sc->npl == GR__LINE_MAX_PLANES) { sc->flags |= GR_LIST_LINE_APPROX; break; }
+            for (j = 0; j < g->nsec; j++)
+                if (g->sec[2 * j + 1] < wmin) wmin = g->sec[2 * j + 1];
+            cb = wmin < 0 ? -sgn : sgn;
+            memset(p, 0, sizeof *p);
+            p->n[0] = cb * g->t[0];
+            p->n[1] = cb * g->t[1];
+            p->h = p->n[0] * (g->p[0] + at * g->t[0]) + p->n[1] * (g->p[1] + at * g->t[1]);
+            p->lg = i;
+            p->facet = g->nsec - 1 + k;
+            p->refl = sc->grid->facet_refl_[g->first_facet];
+            p->cap = 1;
             sc->npl++;
         }
     }
@@ -3568,7 +3612,7 @@ static int gr__edge_get(const gr__lscene_t *sc, int idx, gr__edge_t *e)
         {
             const gr__plane_t *a = &sc->ls.pl[i], *b = &sc->ls.pl[j];
             double nj_d[3], d_ni[3], dd;
-            if (a->lg == b->lg) return 0;
+            if (a->lg == b->lg && !a->cap && !b->cap) return 0;
             gr__cross3(a->n, b->n, e->D);
             dd = gr__dot3(e->D, e->D);
             if (!(dd > 1e-24)) return 0;
