@@ -7,7 +7,23 @@
    w up. The ground w = 0 is an analytic plane with holes: a point of the
    plane belongs to the ground unless it lies inside a groove's mouth, which is
    tested against flat "mouth" quads built from the very same edge vertices as
-   the sweep, so ground and grooves meet without gaps or overlaps.
+   the sweep, so ground and grooves meet without gaps or overlaps. A path's
+   two ends are closed by caps: the section polygon (closed along w = 0),
+   facets GRO_CAP0 (t = 0) and GRO_CAP1 (t = 1).
+
+   Crossings (constructive solid geometry): the surface is the ground minus
+   the union of the grooves' cut volumes (section parts below w = 0), plus
+   their protruding volumes (parts above). Every groove instance is its own
+   mesh, so at a crossing a ray would stop on the higher floor, or on a wall
+   that the other groove has cut away. An Embree filter therefore drops any
+   facet hit that lies strictly inside another instance's volume (the
+   section polygon swept along that instance's sampled path, one prism per
+   chord; strictly: farther than `eps` from its boundary, so coincident
+   floors of equal depth stay), and traversal goes on to the next surface.
+   Primary and shadow rays use it alike. Limits: one instance is never
+   tested against itself (a self-crossing path is not carved), and at a
+   polyline corner the prisms miss the outer miter wedge (straight paths and
+   smooth curves are exact to the chord tolerance).
 
    gro_query() then supersamples a footprint with n×n stratified rays coming
    from the view direction E, classifies each first hit by (groove, facet) or
@@ -37,6 +53,10 @@
 
 #define GRO_MAX_FACETS 32
 #define GRO_MAX_LIGHTS 8
+/* Result slots per groove: its facets 0..GRO_MAX_FACETS-1, then the end caps. */
+#define GRO_CAP0 GRO_MAX_FACETS       /* the cap at t = 0 */
+#define GRO_CAP1 (GRO_MAX_FACETS + 1) /* the cap at t = 1 */
+#define GRO_SLOTS (GRO_MAX_FACETS + 2)
 
 enum { GRO_LINE = 0, GRO_POLYLINE = 1, GRO_QUADRATIC = 2, GRO_CUBIC = 3 };
 enum { GRO_HIT_NONE = 0, GRO_HIT_GROUND = 1, GRO_HIT_FACET = 2 };
@@ -63,11 +83,14 @@ typedef struct gro_build_t {
     double chord_tol;      /* max deviation of the sampled path from the curve, UV; 0 → 1e-4·width */
 } gro_build_t;
 
+struct gro__vol_t;
+
 typedef struct gro_scene_t {
     RTCDevice dev;
+    struct gro__vol_t *vol; /* the instances' volumes, for the crossing filter */
     RTCScene mesh;         /* swept cross-sections */
     RTCScene mouths;       /* flat quads at w = 0 covering each groove's mouth */
-    int *tri_groove, *tri_facet; /* per triangle of mesh: groove and facet */
+    int *tri_groove, *tri_facet; /* per triangle of mesh: groove and facet (or GRO_CAP0/1) */
     size_t ntris, nverts, nmouth_tris;
     double origin[2], ground[4];
     double eps;            /* shadow-ray offset, UV units */
@@ -214,6 +237,182 @@ static void gro__section_extent(const gro_groove_t *g, double *bmax, double *wma
     }
 }
 
+/* ------------------------------------------------------------ volumes (crossings) */
+
+/* One chord of an instance's sampled path (local coordinates: origin
+   subtracted), with the scale at its ends. A point belongs to the chord's
+   prism when its projection falls on the chord and its (b, w), divided by
+   the scale, is inside the section polygon. */
+typedef struct gro__seg_t {
+    double p0[2], p1[2], s0, s1, bmax; /* bmax: widest |b| times the larger scale */
+    int groove, inst;
+    int open0, open1;                  /* 1: that chord end is a path end (capped) */
+} gro__seg_t;
+
+typedef struct gro__vol_t {
+    gro__seg_t *segs; size_t nsegs, capsegs;
+    int *tri_inst;                     /* per mesh triangle: its instance */
+    double (*sec)[2 * (GRO_MAX_FACETS + 1)]; /* copies of the sections */
+    int *nsec;
+    double eps;                        /* boundary margin, UV */
+    double box[4]; int gn;             /* uniform grid over the chords' boxes */
+    int *cell_start, *cell_items;
+} gro__vol_t;
+
+/* Distance from (x, y) to the segment a-b. */
+static double gro__seg_dist(double x, double y, const double *a, const double *b)
+{
+    double dx = b[0] - a[0], dy = b[1] - a[1], l2 = dx * dx + dy * dy, t = 0;
+    if (l2 > 0) t = fmin(1, fmax(0, ((x - a[0]) * dx + (y - a[1]) * dy) / l2));
+    return hypot(x - a[0] - t * dx, y - a[1] - t * dy);
+}
+
+/* 1 when (b, w) lies inside the section polygon (closed along w = 0) by more
+   than m: even-odd rule plus a distance test to every edge. */
+static int gro__in_section(const double *sec, int n, double b, double w, double m)
+{
+    int k, in = 0;
+    for (k = 0; k < n; k++) {
+        const double *a = sec + 2 * k, *c = sec + 2 * ((k + 1) % n);
+        if ((a[1] > w) != (c[1] > w) && b < a[0] + (w - a[1]) * (c[0] - a[0]) / (c[1] - a[1])) in = !in;
+        if (gro__seg_dist(b, w, a, c) <= m) return 0;
+    }
+    return in;
+}
+
+/* 1 when the local point x lies strictly inside an instance other than `inst`. */
+static int gro__inside_other(const gro__vol_t *v, const double *x, int inst)
+{
+    int cu, cv, i;
+    if (!v->gn) return 0;
+    cu = (int)floor((x[0] - v->box[0]) / (v->box[2] - v->box[0]) * v->gn);
+    cv = (int)floor((x[1] - v->box[1]) / (v->box[3] - v->box[1]) * v->gn);
+    if (cu < 0 || cv < 0 || cu >= v->gn || cv >= v->gn) return 0;
+    for (i = v->cell_start[cv * v->gn + cu]; i < v->cell_start[cv * v->gn + cu + 1]; i++) {
+        const gro__seg_t *sg = &v->segs[v->cell_items[i]];
+        double d[2] = {sg->p1[0] - sg->p0[0], sg->p1[1] - sg->p0[1]}, len = hypot(d[0], d[1]), a, s, bb;
+        if (sg->inst == inst || len <= 0) continue;
+        a = ((x[0] - sg->p0[0]) * d[0] + (x[1] - sg->p0[1]) * d[1]) / len; /* along the chord, UV */
+        if (a < (sg->open0 ? v->eps : 0) || a > len - (sg->open1 ? v->eps : 0)) continue;
+        s = sg->s0 + (sg->s1 - sg->s0) * a / len;
+        if (!(s > 0)) continue;
+        bb = ((x[0] - sg->p0[0]) * -d[1] + (x[1] - sg->p0[1]) * d[0]) / len; /* along B = (-T_v, T_u) */
+        if (gro__in_section(v->sec[sg->groove], v->nsec[sg->groove], bb / s, x[2] / s, v->eps / s)) return 1;
+    }
+    return 0;
+}
+
+/* Embree filter (primary and shadow rays): a hit inside another groove's
+   volume is not on the true surface; reject it so traversal continues. */
+static void gro__filter(const struct RTCFilterFunctionNArguments *args)
+{
+    const gro__vol_t *v = (const gro__vol_t *)args->geometryUserPtr;
+    unsigned i;
+    for (i = 0; i < args->N; i++) {
+        double x[3];
+        /* RTCRayN / RTCHitN are SoA blocks of N lanes (rtcore_ray.h; its
+           accessors are C++ only): org x,y,z, tnear, dir x,y,z, time, tfar, ...;
+           Ng x,y,z, u, v, primID, ... */
+        const float *ray = (const float *)args->ray;
+        const unsigned *hit = (const unsigned *)args->hit, N = args->N;
+        int m;
+        if (args->valid[i] != -1) continue;
+        for (m = 0; m < 3; m++) x[m] = (double)ray[m * N + i] + (double)ray[8 * N + i] * (double)ray[(4 + m) * N + i];
+        if (gro__inside_other(v, x, v->tri_inst[hit[5 * N + i]])) args->valid[i] = 0;
+    }
+}
+
+/* Bins every chord's box (grown by its width) into a gn x gn grid. Returns -1 on OOM. */
+static int gro__vol_index(gro__vol_t *v)
+{
+    size_t i;
+    int pass, n = 0, *fill = NULL;
+    if (!v->nsegs) return 0;
+    v->box[0] = v->box[1] = INFINITY; v->box[2] = v->box[3] = -INFINITY;
+    for (i = 0; i < v->nsegs; i++) {
+        const gro__seg_t *sg = &v->segs[i];
+        v->box[0] = fmin(v->box[0], fmin(sg->p0[0], sg->p1[0]) - sg->bmax);
+        v->box[1] = fmin(v->box[1], fmin(sg->p0[1], sg->p1[1]) - sg->bmax);
+        v->box[2] = fmax(v->box[2], fmax(sg->p0[0], sg->p1[0]) + sg->bmax);
+        v->box[3] = fmax(v->box[3], fmax(sg->p0[1], sg->p1[1]) + sg->bmax);
+    }
+    v->gn = (int)fmin(256, fmax(1, ceil(sqrt((double)v->nsegs))));
+    v->cell_start = (int *)calloc((size_t)v->gn * v->gn + 1, sizeof(int));
+    if (!v->cell_start) return -1;
+    for (pass = 0; pass < 2; pass++) {
+        for (i = 0; i < v->nsegs; i++) {
+            const gro__seg_t *sg = &v->segs[i];
+            double su = v->gn / (v->box[2] - v->box[0]), sv = v->gn / (v->box[3] - v->box[1]);
+            int u0 = (int)((fmin(sg->p0[0], sg->p1[0]) - sg->bmax - v->box[0]) * su);
+            int u1 = (int)((fmax(sg->p0[0], sg->p1[0]) + sg->bmax - v->box[0]) * su);
+            int v0 = (int)((fmin(sg->p0[1], sg->p1[1]) - sg->bmax - v->box[1]) * sv);
+            int v1 = (int)((fmax(sg->p0[1], sg->p1[1]) + sg->bmax - v->box[1]) * sv), a, c;
+            for (c = v0 < 0 ? 0 : v0; c <= v1 && c < v->gn; c++)
+                for (a = u0 < 0 ? 0 : u0; a <= u1 && a < v->gn; a++) {
+                    if (pass == 0) v->cell_start[c * v->gn + a + 1]++;
+                    else v->cell_items[fill[c * v->gn + a]++] = (int)i;
+                }
+        }
+        if (pass == 0) {
+            int c;
+            for (c = 0; c < v->gn * v->gn; c++) v->cell_start[c + 1] += v->cell_start[c];
+            n = v->cell_start[v->gn * v->gn];
+            v->cell_items = (int *)malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+            fill = (int *)malloc(sizeof(int) * (size_t)v->gn * v->gn);
+            if (!v->cell_items || !fill) { free(fill); return -1; }
+            memcpy(fill, v->cell_start, sizeof(int) * (size_t)v->gn * v->gn);
+        }
+    }
+    free(fill);
+    return 0;
+}
+
+static void gro__vol_free(gro__vol_t *v)
+{
+    if (!v) return;
+    free(v->segs); free(v->tri_inst); free(v->sec); free(v->nsec); free(v->cell_start); free(v->cell_items);
+    free(v);
+}
+
+/* Ear clipping of the section polygon (closed along w = 0) into n - 2
+   triangles of section indices; returns the count written (0 if it fails,
+   e.g. a self-intersecting section). */
+static int gro__ear_clip(const double *sec, int n, uint32_t *tri)
+{
+    int idx[GRO_MAX_FACETS + 1], m = n, nt = 0, guard = 0, i;
+    double area = 0;
+    for (i = 0; i < n; i++) {
+        idx[i] = i;
+        area += sec[2 * i] * sec[2 * ((i + 1) % n) + 1] - sec[2 * ((i + 1) % n)] * sec[2 * i + 1];
+    }
+    while (m > 3 && guard++ < 4 * n * n) {
+        for (i = 0; i < m; i++) {
+            const double *a = sec + 2 * idx[(i + m - 1) % m], *b = sec + 2 * idx[i], *c = sec + 2 * idx[(i + 1) % m];
+            double cr = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+            int j, ok = cr * area > 0;
+            for (j = 0; ok && j < m; j++) {
+                const double *q = sec + 2 * idx[j];
+                double d1, d2, d3;
+                if (j == i || j == (i + 1) % m || j == (i + m - 1) % m) continue;
+                d1 = (b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0]);
+                d2 = (c[0] - b[0]) * (q[1] - b[1]) - (c[1] - b[1]) * (q[0] - b[0]);
+                d3 = (a[0] - c[0]) * (q[1] - c[1]) - (a[1] - c[1]) * (q[0] - c[0]);
+                if (d1 * area >= 0 && d2 * area >= 0 && d3 * area >= 0) ok = 0;
+            }
+            if (!ok) continue;
+            tri[3 * nt] = (uint32_t)idx[(i + m - 1) % m]; tri[3 * nt + 1] = (uint32_t)idx[i];
+            tri[3 * nt + 2] = (uint32_t)idx[(i + 1) % m];
+            nt++;
+            memmove(idx + i, idx + i + 1, sizeof(int) * (size_t)(m - i - 1));
+            m--;
+            break;
+        }
+    }
+    if (m != 3) return 0;
+    tri[3 * nt] = (uint32_t)idx[0]; tri[3 * nt + 1] = (uint32_t)idx[1]; tri[3 * nt + 2] = (uint32_t)idx[2];
+    return nt + 1;
+}
+
 /* ------------------------------------------------------------ sweep */
 
 typedef struct gro__buf_t {
@@ -222,6 +421,7 @@ typedef struct gro__buf_t {
     int *tg, *tf;                    /* per mesh triangle */
     float *mv; size_t nmv, capmv;    /* mouth vertices */
     uint32_t *mt; size_t nmt, capmt; /* mouth triangles */
+    gro__vol_t *vol;                 /* chords and per-triangle instance */
     int oom;
 } gro__buf_t;
 
@@ -299,8 +499,10 @@ static void gro__sample(const gro__ctx_t *c, double t0, double t1, int depth, gr
 }
 
 /* Sweeps the section along one run of samples: miter offsets at each sample. */
-static void gro__sweep_run(const gro__ctx_t *c, int gi, const gro__run_t *r, gro__buf_t *b, const double *origin)
+static void gro__sweep_run(const gro__ctx_t *c, int gi, int inst, const gro__run_t *r, gro__buf_t *b,
+                           const double *origin)
 {
+    size_t nt0 = b->nt;
     const gro_groove_t *g = c->g;
     int j, k, ns = g->nsec, n = r->n;
     size_t base = b->nv;
@@ -340,14 +542,18 @@ static void gro__sweep_run(const gro__ctx_t *c, int gi, const gro__run_t *r, gro
             m0[2] = m1[2] = 0.0f;
         }
     }
-    b->t = (uint32_t *)gro__grow(b->t, &b->capt, b->nt + (size_t)(n - 1) * (ns - 1) * 2, 3 * sizeof(uint32_t));
+    b->t = (uint32_t *)gro__grow(b->t, &b->capt, b->nt + (size_t)(n - 1) * (ns - 1) * 2 + 2 * (size_t)ns,
+                                 3 * sizeof(uint32_t));
     {
         size_t capg = b->capt;
         b->tg = (int *)realloc(b->tg, capg * sizeof(int));
         b->tf = (int *)realloc(b->tf, capg * sizeof(int));
+        b->vol->tri_inst = (int *)realloc(b->vol->tri_inst, capg * sizeof(int));
     }
+    b->vol->segs = (gro__seg_t *)gro__grow(b->vol->segs, &b->vol->capsegs, b->vol->nsegs + (size_t)n,
+                                            sizeof(gro__seg_t));
     b->mt = (uint32_t *)gro__grow(b->mt, &b->capmt, b->nmt + (size_t)(n - 1) * 2, 3 * sizeof(uint32_t));
-    if (!b->t || !b->tg || !b->tf || !b->mt) { b->oom = 1; return; }
+    if (!b->t || !b->tg || !b->tf || !b->mt || !b->vol->tri_inst || !b->vol->segs) { b->oom = 1; return; }
     for (j = 0; j + 1 < n; j++) {
         uint32_t a0 = (uint32_t)(base + (size_t)j * ns), a1 = a0 + (uint32_t)ns;
         uint32_t m0 = (uint32_t)(b->nmv - 2 * (size_t)n + 2 * (size_t)j), m1 = m0 + 2;
@@ -363,10 +569,41 @@ static void gro__sweep_run(const gro__ctx_t *c, int gi, const gro__run_t *r, gro
         mt[0] = m0; mt[1] = m0 + 1; mt[2] = m1 + 1;
         mt[3] = m0; mt[4] = m1 + 1; mt[5] = m1;
         b->nmt += 2;
+        { /* the chord's prism, for the crossing filter */
+            gro__seg_t *sg = &b->vol->segs[b->vol->nsegs++];
+            double q0[2], q1[2], bm, wm, tp;
+            gro__path_point(g, r->t[j], q0);
+            gro__path_point(g, r->t[j + 1], q1);
+            gro__section_extent(g, &bm, &wm, &tp);
+            sg->p0[0] = q0[0] + c->off[0] - origin[0]; sg->p0[1] = q0[1] + c->off[1] - origin[1];
+            sg->p1[0] = q1[0] + c->off[0] - origin[0]; sg->p1[1] = q1[1] + c->off[1] - origin[1];
+            sg->s0 = gro__scale(g, r->t[j]); sg->s1 = gro__scale(g, r->t[j + 1]);
+            sg->bmax = bm * fmax(sg->s0, sg->s1);
+            sg->groove = gi; sg->inst = inst;
+            sg->open0 = j == 0 && r->t[j] == 0.0;
+            sg->open1 = j + 2 == n && r->t[j + 1] == 1.0;
+        }
     }
+    for (j = 0; j < 2; j++) { /* caps at the path's ends (not where the ROI cut the run) */
+        uint32_t tri[3 * GRO_MAX_FACETS];
+        int m, nc;
+        size_t row = j == 0 ? base : base + (size_t)(n - 1) * ns;
+        if (r->t[j == 0 ? 0 : n - 1] != (j == 0 ? 0.0 : 1.0)) continue;
+        nc = gro__ear_clip(g->sec, ns, tri);
+        for (m = 0; m < nc; m++) {
+            uint32_t *t = b->t + 3 * b->nt;
+            t[0] = (uint32_t)row + tri[3 * m]; t[1] = (uint32_t)row + tri[3 * m + 1];
+            t[2] = (uint32_t)row + tri[3 * m + 2];
+            b->tg[b->nt] = gi;
+            b->tf[b->nt] = j == 0 ? GRO_CAP0 : GRO_CAP1;
+            b->nt++;
+        }
+    }
+    for (; nt0 < b->nt; nt0++) b->vol->tri_inst[nt0] = inst;
 }
 
-static RTCScene gro__commit_mesh(RTCDevice dev, const float *v, size_t nv, const uint32_t *t, size_t nt)
+static RTCScene gro__commit_mesh(RTCDevice dev, const float *v, size_t nv, const uint32_t *t, size_t nt,
+                                 gro__vol_t *vol)
 {
     RTCScene s = rtcNewScene(dev);
     rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
@@ -380,6 +617,11 @@ static RTCScene gro__commit_mesh(RTCDevice dev, const float *v, size_t nv, const
         if (gv && gt) {
             memcpy(gv, v, nv * 3 * sizeof(float));
             memcpy(gt, t, nt * 3 * sizeof(uint32_t));
+        }
+        if (vol) { /* the crossing filter (CSG) on primary and shadow rays */
+            rtcSetGeometryUserData(geo, vol);
+            rtcSetGeometryIntersectFilterFunction(geo, gro__filter);
+            rtcSetGeometryOccludedFilterFunction(geo, gro__filter);
         }
         rtcCommitGeometry(geo);
         rtcAttachGeometry(s, geo);
@@ -395,13 +637,19 @@ static int gro_scene_build(gro_scene_t *sc, RTCDevice dev, const gro_groove_t *g
 {
     gro__buf_t b;
     gro_build_t o;
-    int gi, du, dv, w = 0;
+    int gi, du, dv, w = 0, inst = 0;
     double per[2];
     double minwidth = INFINITY;
     memset(sc, 0, sizeof *sc);
     memset(&b, 0, sizeof b);
     memset(&o, 0, sizeof o);
     if (opt) o = *opt;
+    b.vol = (gro__vol_t *)calloc(1, sizeof(gro__vol_t));
+    if (b.vol && ng > 0) {
+        b.vol->sec = (double (*)[2 * (GRO_MAX_FACETS + 1)])calloc((size_t)ng, sizeof *b.vol->sec);
+        b.vol->nsec = (int *)calloc((size_t)ng, sizeof(int));
+    }
+    if (!b.vol || (ng > 0 && (!b.vol->sec || !b.vol->nsec))) { gro__vol_free(b.vol); return -1; }
     sc->dev = dev;
     sc->origin[0] = o.origin[0]; sc->origin[1] = o.origin[1];
     memcpy(sc->ground, o.ground, sizeof sc->ground);
@@ -413,7 +661,9 @@ static int gro_scene_build(gro_scene_t *sc, RTCDevice dev, const gro_groove_t *g
         double bmax, wmax, top, smax = 0, corners[64];
         int i, nc, nint;
         gro__ctx_t c;
-        if (g->nsec < 2 || g->nsec > GRO_MAX_FACETS + 1 || g->nctrl < 2) return -1;
+        if (g->nsec < 2 || g->nsec > GRO_MAX_FACETS + 1 || g->nctrl < 2) { gro__vol_free(b.vol); return -1; }
+        memcpy(b.vol->sec[gi], g->sec, sizeof(double) * 2 * (size_t)g->nsec);
+        b.vol->nsec[gi] = g->nsec;
         gro__section_extent(g, &bmax, &wmax, &top);
         for (i = 0; i <= 64; i++) smax = fmax(smax, fabs(gro__scale(g, i / 64.0)));
         sc->top = fmax(sc->top, top * smax);
@@ -441,13 +691,15 @@ static int gro_scene_build(gro_scene_t *sc, RTCDevice dev, const gro_groove_t *g
                                     &b.oom);
                 }
                 for (r = 0; r < nruns; r++) {
-                    if (!b.oom) gro__sweep_run(&c, gi, &runs[r], &b, sc->origin);
+                    if (!b.oom) gro__sweep_run(&c, gi, inst, &runs[r], &b, sc->origin);
                     free(runs[r].t);
                 }
+                inst++;
             }
     }
-    if (b.oom) {
+    if (b.oom || gro__vol_index(b.vol)) {
         free(b.v); free(b.t); free(b.tg); free(b.tf); free(b.mv); free(b.mt);
+        gro__vol_free(b.vol);
         return -1;
     }
     /* shadow-ray offset: above float noise of the coordinates (ulp 6e-8 of
@@ -458,8 +710,17 @@ static int gro_scene_build(gro_scene_t *sc, RTCDevice dev, const gro_groove_t *g
         for (i = 0; i < 3 * b.nv; i++) ext = fmax(ext, fabs((double)b.v[i]));
         sc->eps = fmax(1e-5 * (minwidth < INFINITY ? minwidth : 1.0), 1e-6 * ext);
     }
-    sc->mesh = gro__commit_mesh(dev, b.v, b.nv, b.t, b.nt);
-    sc->mouths = gro__commit_mesh(dev, b.mv, b.nmv, b.mt, b.nmt);
+    /* the filter's boundary margin: the shadow offset, so a shadow ray's
+       origin nudged off a floor shared by two grooves is not "inside" */
+    b.vol->eps = 2 * sc->eps;
+    sc->vol = b.vol;
+    { /* one instance near the ROI cannot cross another: no filter, no cost */
+        size_t i;
+        int several = 0;
+        for (i = 1; i < b.vol->nsegs; i++) several |= b.vol->segs[i].inst != b.vol->segs[0].inst;
+        sc->mesh = gro__commit_mesh(dev, b.v, b.nv, b.t, b.nt, several ? b.vol : NULL);
+    }
+    sc->mouths = gro__commit_mesh(dev, b.mv, b.nmv, b.mt, b.nmt, NULL);
     sc->tri_groove = b.tg; sc->tri_facet = b.tf;
     sc->ntris = b.nt; sc->nverts = b.nv; sc->nmouth_tris = b.nmt;
     free(b.v); free(b.t); free(b.mv); free(b.mt);
@@ -471,6 +732,7 @@ static void gro_scene_free(gro_scene_t *sc)
     if (sc->mesh) rtcReleaseScene(sc->mesh);
     if (sc->mouths) rtcReleaseScene(sc->mouths);
     free(sc->tri_groove); free(sc->tri_facet);
+    gro__vol_free(sc->vol);
     memset(sc, 0, sizeof *sc);
 }
 
@@ -584,17 +846,18 @@ typedef struct gro_query_t {
 typedef struct gro_result_t {
     int ngrooves;
     long long nsamples;
-    double *vis;                  /* [g*GRO_MAX_FACETS + k]: fraction of the footprint where facet k of groove g is seen */
-    double *lit;                  /* [(l*ngrooves + g)*GRO_MAX_FACETS + k]: ... seen and lit by light l */
-    double *nsum;                 /* [3*(g*GRO_MAX_FACETS + k)]: sum of the unit normals hit on that facet */
+    double *vis;                  /* [g*GRO_SLOTS + k]: fraction of the footprint where facet k of groove g
+                                     is seen (k = GRO_CAP0/GRO_CAP1: its end caps) */
+    double *lit;                  /* [(l*ngrooves + g)*GRO_SLOTS + k]: ... seen and lit by light l */
+    double *nsum;                 /* [3*(g*GRO_SLOTS + k)]: sum of the unit normals hit on that facet */
     double ground_vis, ground_lit[GRO_MAX_LIGHTS];
     double miss;                  /* rays that hit nothing (should be 0) */
 } gro_result_t;
 
-static double gro_vis(const gro_result_t *r, int g, int k) { return r->vis[g * GRO_MAX_FACETS + k]; }
+static double gro_vis(const gro_result_t *r, int g, int k) { return r->vis[g * GRO_SLOTS + k]; }
 static double gro_lit(const gro_result_t *r, int l, int g, int k)
 {
-    return r->lit[(l * r->ngrooves + g) * GRO_MAX_FACETS + k];
+    return r->lit[(l * r->ngrooves + g) * GRO_SLOTS + k];
 }
 /* Visible fraction of facet k summed over every groove (parallel identical grooves). */
 static double gro_vis_all(const gro_result_t *r, int k)
@@ -666,9 +929,9 @@ static int gro_query(const gro_query_t *q, RTCDevice dev, gro_result_t *res)
     b.origin[0] = q->F[0]; b.origin[1] = q->F[1];
     if (gro_scene_build(&sc, dev, q->grooves, q->ngrooves, &b)) { gro_scene_free(&sc); return -1; }
     res->ngrooves = q->ngrooves;
-    res->vis = (double *)calloc((size_t)q->ngrooves * GRO_MAX_FACETS + 1, sizeof(double));
-    res->lit = (double *)calloc((size_t)(nl > 0 ? nl : 1) * q->ngrooves * GRO_MAX_FACETS + 1, sizeof(double));
-    res->nsum = (double *)calloc((size_t)q->ngrooves * GRO_MAX_FACETS * 3 + 1, sizeof(double));
+    res->vis = (double *)calloc((size_t)q->ngrooves * GRO_SLOTS + 1, sizeof(double));
+    res->lit = (double *)calloc((size_t)(nl > 0 ? nl : 1) * q->ngrooves * GRO_SLOTS + 1, sizeof(double));
+    res->nsum = (double *)calloc((size_t)q->ngrooves * GRO_SLOTS * 3 + 1, sizeof(double));
     if (!res->vis || !res->lit || !res->nsum) { gro_scene_free(&sc); gro_result_free(res); return -1; }
     /* rays start above the highest protrusion, at a distance in UV scale */
     start = (sc.top + 1e3 * sc.eps) / fmax(q->E[2], 1e-9); /* just above the highest protrusion */
@@ -686,22 +949,22 @@ static int gro_query(const gro_query_t *q, RTCDevice dev, gro_result_t *res)
             if (h.kind == GRO_HIT_NONE) { res->miss += 1; continue; }
             if (h.kind == GRO_HIT_GROUND) res->ground_vis += 1;
             else {
-                double *ns = res->nsum + 3 * (h.groove * GRO_MAX_FACETS + h.facet);
-                res->vis[h.groove * GRO_MAX_FACETS + h.facet] += 1;
+                double *ns = res->nsum + 3 * (h.groove * GRO_SLOTS + h.facet);
+                res->vis[h.groove * GRO_SLOTS + h.facet] += 1;
                 ns[0] += h.n[0]; ns[1] += h.n[1]; ns[2] += h.n[2];
             }
             for (l = 0; l < nl; l++) {
                 if (!gro_scene_lit(&sc, &h, q->lights + 3 * l)) continue;
                 if (h.kind == GRO_HIT_GROUND) res->ground_lit[l] += 1;
-                else res->lit[(l * q->ngrooves + h.groove) * GRO_MAX_FACETS + h.facet] += 1;
+                else res->lit[(l * q->ngrooves + h.groove) * GRO_SLOTS + h.facet] += 1;
             }
         }
     res->nsamples = (long long)n * n;
     {
         double inv = 1.0 / (double)res->nsamples;
         size_t k;
-        for (k = 0; k < (size_t)q->ngrooves * GRO_MAX_FACETS; k++) res->vis[k] *= inv;
-        for (k = 0; k < (size_t)(nl > 0 ? nl : 1) * q->ngrooves * GRO_MAX_FACETS; k++) res->lit[k] *= inv;
+        for (k = 0; k < (size_t)q->ngrooves * GRO_SLOTS; k++) res->vis[k] *= inv;
+        for (k = 0; k < (size_t)(nl > 0 ? nl : 1) * q->ngrooves * GRO_SLOTS; k++) res->lit[k] *= inv;
         res->ground_vis *= inv;
         for (l = 0; l < nl; l++) res->ground_lit[l] *= inv;
         res->miss *= inv;

@@ -287,6 +287,105 @@ static void sample_error_within_stated_bound(void)
     T_LE(sqrt(sum2 / ns), 3 * bound);
 }
 
+/* Crossings (CSG): rectangular grooves of half width a, seen straight down,
+   one light drifting +u by lam per unit height. Groove A runs along u
+   (b -> v), B along v (b -> -u); facet 1 is each floor. The true surface is
+   the ground minus both volumes, so where they overlap the deeper floor is
+   seen; a ray must not stop on the shallower floor, nor a shadow ray on a
+   wall the other groove has cut away. */
+static gro_groove_t rect_groove(const double *path, const double *sec)
+{
+    gro_groove_t g;
+    memset(&g, 0, sizeof g);
+    g.kind = GRO_LINE; g.nctrl = 2; g.ctrl = path;
+    g.nsec = 4; g.sec = sec;
+    return g;
+}
+
+#define CR_A 0.01   /* half width of both grooves */
+#define CR_R 0.05   /* footprint half size, centred on the crossing (0.5, 0.5) */
+#define CR_LAM 0.25 /* the light's drift per unit height, toward +u */
+
+/* Groove A (path pa, depth dA) and B (along v through u = 0.5, depth dB),
+   seen straight down over the square footprint, lit by one light. */
+static gro_result_t crossing(const double *pa, double dA, double dB)
+{
+    const double a = CR_A, secA[8] = {-a, 0, -a, -dA, a, -dA, a, 0}, secB[8] = {-a, 0, -a, -dB, a, -dB, a, 0};
+    static const double pb[4] = {0.5, 0.2, 0.5, 0.8};
+    double L[3];
+    gro_groove_t g[2];
+    gro_query_t q;
+    gro_result_t r;
+    dir_uw(CR_LAM, L);
+    g[0] = rect_groove(pa, secA);
+    g[1] = rect_groove(pb, secB);
+    memset(&q, 0, sizeof q);
+    q.grooves = g; q.ngrooves = 2;
+    q.F[0] = 0.5; q.F[1] = 0.5; q.A1[0] = CR_R; q.A2[1] = CR_R;
+    q.E[2] = 1;
+    q.lights = L; q.nlights = 1;
+    q.n = 256; q.seed = 77;
+    if (gro_query(&q, dev.dev, &r)) T_FAIL("gro_query failed");
+    T_LE(r.miss, 0);
+    return r;
+}
+
+static void x_crossing_deeper_floor_wins(void)
+{
+    const double a = CR_A, dA = 0.01, dB = 0.02, R = CR_R, lam = CR_LAM, F = 4 * R * R;
+    static const double pa[4] = {0.2, 0.5, 0.8, 0.5};
+    gro_result_t r = crossing(pa, dA, dB);
+    T_NEAR(r.ground_vis, (F - 8 * a * R + 4 * a * a) / F, TOL);
+    T_NEAR(gro_vis(&r, 0, 1), (4 * a * R - 4 * a * a) / F, TOL); /* the old oracle: + 4a²/F */
+    T_NEAR(gro_vis(&r, 1, 1), 4 * a * R / F, TOL);
+    T_NEAR(r.ground_lit[0], r.ground_vis, TOL);
+    T_NEAR(gro_lit(&r, 0, 0, 1), gro_vis(&r, 0, 1), TOL);
+    /* B's floor: its +u wall stands up to w = 0, except inside A, where it is cut down to -dA */
+    T_NEAR(gro_lit(&r, 0, 1, 1), ((2 * R - 2 * a) * clamp(2 * a - lam * dB, 0, 2 * a) +
+                                  2 * a * clamp(2 * a - lam * (dB - dA), 0, 2 * a)) / F, TOL);
+    gro_result_free(&r);
+}
+
+static void t_crossing_end_cap_and_floor(void)
+{
+    const double a = CR_A, dA = 0.03, dB = 0.02, R = CR_R, lam = CR_LAM, F = 4 * R * R;
+    static const double pa[4] = {0.2, 0.5, 0.5, 0.5}; /* A is deeper and ends on B's centre line */
+    gro_result_t r = crossing(pa, dA, dB);
+    T_NEAR(r.ground_vis, (F - 4 * a * R - 2 * a * (R - a)) / F, TOL);
+    T_NEAR(gro_vis(&r, 0, 1), 2 * a * R / F, TOL);
+    T_NEAR(gro_vis(&r, 1, 1), (4 * a * R - 2 * a * a) / F, TOL);
+    T_NEAR(gro_vis(&r, 0, GRO_CAP1), 0, TOL);
+    /* A's floor: lit where the shadow ray clears A's cap above -dB and B's +u wall */
+    T_NEAR(gro_lit(&r, 0, 0, 1), 2 * a * clamp(fmin(-lam * (dA - dB), a - lam * dA) + R, 0, R) / F, TOL);
+    T_NEAR(gro_lit(&r, 0, 1, 1), ((2 * R - 2 * a) * clamp(2 * a - lam * dB, 0, 2 * a) +
+                                  2 * a * clamp(a - lam * dB, 0, a)) / F, TOL);
+    gro_result_free(&r);
+}
+
+/* An isolated end seen from the groove's side: its cap faces the viewer. A
+   rectangular groove along u ends at u = 0.5; the viewer leans toward -u
+   (rays drift +u by tau per unit depth), so the cap (depth d, width 2a) covers tau·d of the footprint's u
+   extent over the groove's width. */
+static void isolated_end_cap_is_seen(void)
+{
+    const double a = 0.01, d = 0.02, R = 0.05, tau = 0.5, F = 4 * R * R;
+    const double sec[8] = {-a, 0, -a, -d, a, -d, a, 0};
+    static const double pa[4] = {0.2, 0.5, 0.5, 0.5};
+    gro_groove_t g = rect_groove(pa, sec);
+    gro_query_t q;
+    gro_result_t r;
+    memset(&q, 0, sizeof q);
+    q.grooves = &g; q.ngrooves = 1;
+    q.F[0] = 0.5; q.F[1] = 0.5; q.A1[0] = R; q.A2[1] = R;
+    dir_uw(-tau, q.E);
+    q.n = 256; q.seed = 5;
+    if (gro_query(&q, dev.dev, &r)) T_FAIL("gro_query failed");
+    T_NEAR(gro_vis(&r, 0, GRO_CAP1), 2 * a * tau * d / F, TOL);
+    T_NEAR(gro_vis(&r, 0, 1), 2 * a * (R - tau * d) / F, TOL);
+    T_LE(r.miss, 0);
+    gro_result_free(&r);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -298,6 +397,9 @@ int main(int argc, char **argv)
         T_CASE(perturbation_and_parallel_grooves),
         T_CASE(bezier_groove_at_normal_incidence),
         T_CASE(sample_error_within_stated_bound),
+        T_CASE(x_crossing_deeper_floor_wins),
+        T_CASE(t_crossing_end_cap_and_floor),
+        T_CASE(isolated_end_cap_is_seen),
     };
     int rc;
     if (gro_device_init(&dev)) { printf("0 passed, 1 failed\n"); return 1; }
