@@ -3389,14 +3389,27 @@ static double gr__ray_tmax(const gr__lscene_t *sc, const double *o, const double
     return t < cap ? (t > 0 ? t : 0) : cap;
 }
 
-/* Lit: the facet faces the light and nothing solid lies toward it (§4.3). */
-static int gr__lit(const gr__lscene_t *sc, int plane, const double *x, const double *l, double seglen)
+/* The plane's normal turned to face rays along d: the side a ray meets
+   (the ground plane seen from below is the underside of a protrusion
+   over a groove's hole, which faces down). */
+static void gr__facing(const gr__lscene_t *sc, int plane, const double *d, double n[3])
 {
     const gr__plane_t *p = &sc->ls.pl[plane];
-    double o[3], th, off = GR__LINE_OFFSET_REL * sc->scale;
+    double sgn = gr__dot3(p->n, d) > 0 ? -1 : 1;
+    n[0] = sgn * p->n[0];
+    n[1] = sgn * p->n[1];
+    n[2] = sgn * p->n[2];
+}
+
+/* Lit: the facet's seen side faces the light and nothing solid lies
+   toward it (§4.3). */
+static int gr__lit(const gr__lscene_t *sc, int plane, const double *d, const double *x, const double *l, double seglen)
+{
+    double o[3], th, off = GR__LINE_OFFSET_REL * sc->scale, n[3];
     int k;
-    if (!(l[2] > 0) || !(gr__dot3(p->n, l) > 0)) return 0;
-    for (k = 0; k < 3; k++) o[k] = x[k] + off * p->n[k];
+    gr__facing(sc, plane, d, n);
+    if (!(l[2] > 0) || !(gr__dot3(n, l) > 0)) return 0;
+    for (k = 0; k < 3; k++) o[k] = x[k] + off * n[k];
     return gr__ray_hit(sc, o, l, gr__ray_tmax(sc, o, l, seglen), &th) == -1;
 }
 
@@ -3710,7 +3723,7 @@ static void gr__classify(const gr__lscene_t *sc, const gr__sheet_t *sh, gr__ivl_
     if (iv->plane < 0) return;
     for (k = 0; k < 3; k++) x[k] = o[k] + th * sh->d[k];
     for (k = 0; k < nl; k++)
-        if (gr__lit(sc, iv->plane, x, lights + 3 * k, seglen)) iv->lit |= 1u << k;
+        if (gr__lit(sc, iv->plane, sh->d, x, lights + 3 * k, seglen)) iv->lit |= 1u << k;
 }
 
 static int gr__cmp_ivl_len(const void *a, const void *b)
@@ -3952,7 +3965,7 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
     for (i = 0; i < m; i = j) {
         const gr__plane_t *p;
         const gr_specular_t *sp;
-        double frac, x0[3], x1[3], mid[3];
+        double frac, x0[3], x1[3], mid[3], nf[3];
         /* a run of intervals on one facet */
         for (j = i + 1; j < m && iv[j].plane == iv[i].plane; j++) {}
         frac = (iv[j - 1].s1 - iv[i].s0) / 2;
@@ -3963,23 +3976,24 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
             continue;
         }
         p = &sc->ls.pl[iv[i].plane];
+        gr__facing(sc, iv[i].plane, sh->d, nf);
         if (ind->brdf)
             for (l = i; l < j; l++)
                 for (k = 0; k < q->light_count; k++) {
                     double c[3] = {0, 0, 0}, fl = (iv[l].s1 - iv[l].s0) / 2;
                     int ch;
                     if (!(iv[l].lit & (1u << k))) continue;
-                    ind->brdf(ind->brdf_user, p->refl, p->n, e, q->lights + 3 * k, k, c);
+                    ind->brdf(ind->brdf_user, p->refl, nf, e, q->lights + 3 * k, k, c);
                     for (ch = 0; ch < 3; ch++) rgb[ch] += sh->thr[ch] * fl * c[ch];
                 }
         sp = gr__spec(ind, p->refl);
         if (sh->level >= ind->depth || !sp) continue;
         gr__sheet_point(sc, sh, iv[i].plane, iv[i].s0, x0);
         gr__sheet_point(sc, sh, iv[i].plane, iv[j - 1].s1, x1);
-        for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + off * p->n[k];
+        for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + off * nf[k];
         if (gr__nonzero3(sp->kr)) {
-            double dn = gr__dot3(sh->d, p->n), dr[3];
-            for (k = 0; k < 3; k++) dr[k] = sh->d[k] - 2 * dn * p->n[k];
+            double dn = gr__dot3(sh->d, nf), dr[3];
+            for (k = 0; k < 3; k++) dr[k] = sh->d[k] - 2 * dn * nf[k];
             if (*top < GR__LINE_STACK) {
                 gr__sheet_t *c = &stack[(*top)++];
                 for (k = 0; k < 3; k++) {
@@ -3999,13 +4013,13 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
             double eta = 1 / (sp->ior > 0 ? sp->ior : GR__DEFAULT_IOR), dl = sqrt(gr__dot3(sh->d, sh->d));
             double dd[3], ci, kk, dt[3], t3[3], in[3];
             for (k = 0; k < 3; k++) dd[k] = sh->d[k] / dl;
-            ci = -gr__dot3(dd, p->n);
+            ci = -gr__dot3(dd, nf);
             kk = 1 - eta * eta * (1 - ci * ci);
             if (kk >= 0 && ci > 0) {
                 for (k = 0; k < 3; k++) {
-                    dt[k] = eta * dd[k] + (eta * ci - sqrt(kk)) * p->n[k];
+                    dt[k] = eta * dd[k] + (eta * ci - sqrt(kk)) * nf[k];
                     t3[k] = sh->thr[k] * sp->kt[k];
-                    in[k] = mid[k] - 2 * off * p->n[k];
+                    in[k] = mid[k] - 2 * off * nf[k];
                 }
                 gr__to_host(ind, in, dt, sh->level + 1, 1, t3, frac, rgb);
             }

@@ -26,6 +26,7 @@
 #include "grooves.h"
 #include "test.h"
 #include "grooves_test_util.h"
+#include "grooves_oracle.h"
 
 #define LINE_ERR_2 0.33  /* worst |r_i - raster| with 2 line samples, measured 0.30 */
 #define LINE_ERR_8 0.20  /* with 8 line samples, measured 0.17 */
@@ -232,6 +233,111 @@ static void t_crossings_vs_raster(void)
 }
 
 /* r = Σ_j W_j r_j / Σ W_j; single segments from line_samples = 1 */
+/* lit fraction of (groove, facet) in a list, as a share of the footprint */
+static double lit_gf(const gr_facet_list_t *l, int g, int f, int k)
+{
+    double s = 0;
+    int i;
+    for (i = 0; i < l->count; i++)
+        if (l->facets[i].groove == g && l->facets[i].facet == f) s += l->facets[i].ratio * l->facets[i].lit[k];
+    return s;
+}
+
+/* Oblique views with a light at X, oblique and T crossings against the
+   Embree oracle (grooves_oracle.h: CSG at crossings, capped ends). One
+   segment (A2 = 0 for both) must agree to the oracle's sampling (384 x 384
+   rays on the segment: ORACLE_SEG_TOL); the 2- and 8-sample footprint
+   answers are printed against the oracle's area answer (bounded by
+   LINE_ERR_2 / LINE_ERR_8 as above). */
+#define ORACLE_SEG_TOL 1e-2
+static void t_oblique_crossings_vs_oracle(void)
+{
+    static const double views[3][3] = {{0.4, 0.3, 0.866}, {-0.6, 0.2, 0.775}, {0.2, -0.7, 0.686}};
+    static const double light[3] = {0.5, 0.4, 0.768};
+    static const char *names[3] = {"X", "oblique", "T"};
+    gro_device_t dev;
+    t_rng_t rng = {4242u};
+    int c, k, v, n = t_count(2);
+    double seg_worst = 0, area_worst[2] = {0, 0};
+    if (gro_device_init(&dev)) { T_FAIL("embree"); return; }
+    for (c = 0; c < 3; c++) {
+        scene_t s;
+        gro_groove_t og[2];
+        memset(&s, 0, sizeof s);
+        scene_add(&s, 0.2, 0.5, 0.8, 0.5, VSEC, 3);
+        if (c == 0) scene_add(&s, 0.5, 0.2, 0.5, 0.8, RSEC, 5);
+        if (c == 1) scene_add(&s, 0.5 - 0.3 * cos(1.047), 0.5 - 0.3 * sin(1.047), 0.5 + 0.3 * cos(1.047), 0.5 + 0.3 * sin(1.047), VSEC, 3);
+        if (c == 2) scene_add(&s, 0.5, 0.8, 0.5, 0.5, VSEC, 3);
+        if (!T_CHECK(scene_build(&s))) return;
+        og[0] = gro_from_gr(&s.g[0]);
+        og[1] = gro_from_gr(&s.g[1]);
+        for (v = 0; v < 3; v++)
+            for (k = 0; k < n; k++) {
+                double r = t_rng_range(&rng, 0.006, 0.02), rot = t_rng_range(&rng, 0, 3.14159);
+                gr_query_t q = gt_query(0.5 + t_rng_range(&rng, -0.012, 0.012), 0.5 + t_rng_range(&rng, -0.012, 0.012), 0,
+                                        views[v][0], views[v][1], views[v][2]);
+                gro_query_t oq;
+                gro_result_t res;
+                int pass, g, f;
+                q.lights = light;
+                q.light_count = 1;
+                q.line_exit_tol = -1;
+                q.footprint.axis1[0] = r * cos(rot);
+                q.footprint.axis1[1] = r * sin(rot);
+                for (pass = 0; pass < 2; pass++) {
+                    gr_facet_list_t l, l8;
+                    double e = 0, e8 = 0;
+                    if (pass == 1) {
+                        q.footprint.axis2[0] = -r * sin(rot);
+                        q.footprint.axis2[1] = r * cos(rot);
+                    }
+                    memset(&oq, 0, sizeof oq);
+                    oq.grooves = og;
+                    oq.ngrooves = 2;
+                    memcpy(oq.F, q.footprint.center, sizeof oq.F);
+                    memcpy(oq.A1, q.footprint.axis1, sizeof oq.A1);
+                    memcpy(oq.A2, q.footprint.axis2, sizeof oq.A2);
+                    memcpy(oq.E, q.footprint.view, sizeof oq.E);
+                    oq.lights = light;
+                    oq.nlights = 1;
+                    oq.n = pass ? 160 : 384;
+                    oq.seed = (uint64_t)(k + 1);
+                    if (gro_query(&oq, dev.dev, &res)) { T_FAIL("gro_query"); return; }
+                    q.line_samples = pass ? 2 : 1;
+                    if (!run_lines(s.grid, &q, &l, NULL)) return;
+                    q.line_samples = 8;
+                    if (!run_lines(s.grid, &q, &l8, NULL)) return;
+                    e = fabs(ratio_gf(&l, -1, -1) - res.ground_vis);
+                    e = fmax(e, fabs(lit_gf(&l, -1, -1, 0) - res.ground_lit[0]));
+                    e8 = fabs(ratio_gf(&l8, -1, -1) - res.ground_vis);
+                    for (g = 0; g < 2; g++)
+                        for (f = 0; f < s.g[g].section_count + 1; f++) {
+                            int slot = f < s.g[g].section_count - 1 ? f : f == s.g[g].section_count - 1 ? GRO_CAP0 : GRO_CAP1;
+                            e = fmax(e, fabs(ratio_gf(&l, g, f) - gro_vis(&res, g, slot)));
+                            e = fmax(e, fabs(lit_gf(&l, g, f, 0) - gro_lit(&res, 0, g, slot)));
+                            e8 = fmax(e8, fabs(ratio_gf(&l8, g, f) - gro_vis(&res, g, slot)));
+                        }
+                    if (pass == 0) {
+                        T_LE(e, ORACLE_SEG_TOL);
+                        seg_worst = fmax(seg_worst, e);
+                    } else {
+                        area_worst[0] = fmax(area_worst[0], e);
+                        area_worst[1] = fmax(area_worst[1], e8);
+                    }
+                    gro_result_free(&res);
+                }
+                q.footprint.axis2[0] = q.footprint.axis2[1] = 0;
+            }
+        printf("  %-8s oblique views + light: one segment vs oracle worst so far %.4f\n", names[c], seg_worst);
+        gr_grid_free(s.grid);
+    }
+    printf("  footprint vs oracle area (worst, ratios and lit shares): 2 samples %.3f, 8 samples %.3f\n", area_worst[0],
+           area_worst[1]);
+    T_LE(area_worst[0], LINE_ERR_2);
+    T_LE(area_worst[1], LINE_ERR_2);
+    gro_device_free(&dev);
+}
+
 static void t_weighting(void)
 {
     scene_t s;
@@ -351,7 +457,8 @@ static void t_bad_input(void)
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
-        T_CASE(t_isolated_equals_query), T_CASE(t_crossings_vs_raster), T_CASE(t_weighting),
+        T_CASE(t_isolated_equals_query), T_CASE(t_crossings_vs_raster), T_CASE(t_oblique_crossings_vs_oracle),
+        T_CASE(t_weighting),
         T_CASE(t_early_exit), T_CASE(t_bad_input),
     };
     return T_RUN(argc, argv, cases);
