@@ -119,6 +119,19 @@ static gr_grid_t *one_groove(const double *sec, int nsec, gr_groove_desc_t *g)
     return grid;
 }
 
+/* all-mirror materials (ids 0 and 1), the Embree device, and the
+   reference's rays across the footprint */
+static int mirror_setup(gr_specular_t *spec, gro_device_t *dev, int *n)
+{
+    int k;
+    *n = (int)(4000 * t_scale());
+    if (*n < 400) *n = 400;
+    memset(spec, 0, 2 * sizeof *spec);
+    for (k = 0; k < 3; k++) spec[0].kr[k] = spec[1].kr[k] = 1;
+    if (gro_device_init(dev)) { T_FAIL("embree"); return 0; }
+    return 1;
+}
+
 static void t_mirror_energy_vs_pathtraced(void)
 {
     static const double views[5][3] = {{0, 0, 1}, {0.5, 0, 0.866}, {-0.7, 0.2, 0.685}, {0.995, 0, 0.0998}, {0.3, 0.3, 0.905}};
@@ -128,12 +141,9 @@ static void t_mirror_energy_vs_pathtraced(void)
     static const char *sname[3] = {"V", "deep V", "ridge"};
     gr_specular_t spec[2];
     gro_device_t dev;
-    int s, v, k, n = (int)(4000 * t_scale());
+    int s, v, k, n;
     double worst = 0;
-    if (n < 400) n = 400;
-    memset(spec, 0, sizeof spec);
-    for (k = 0; k < 3; k++) spec[0].kr[k] = spec[1].kr[k] = 1;
-    if (gro_device_init(&dev)) { T_FAIL("embree"); return; }
+    if (!mirror_setup(spec, &dev, &n)) return;
     for (s = 0; s < 3; s++) {
         gr_groove_desc_t g;
         gr_grid_t *grid = one_groove(secs[s], nsecs[s], &g);
@@ -171,12 +181,9 @@ static void t_crossing_energy_vs_pathtraced(void)
     static const double views[3][3] = {{0, 0, 1}, {0.4, 0.3, 0.866}, {-0.6, 0.2, 0.775}};
     gr_specular_t spec[2];
     gro_device_t dev;
-    int c, v, k, n = (int)(4000 * t_scale());
+    int c, v, k, n;
     double worst = 0;
-    if (n < 400) n = 400;
-    memset(spec, 0, sizeof spec);
-    for (k = 0; k < 3; k++) spec[0].kr[k] = spec[1].kr[k] = 1;
-    if (gro_device_init(&dev)) { T_FAIL("embree"); return; }
+    if (!mirror_setup(spec, &dev, &n)) return;
     for (c = 0; c < 3; c++) {
         static const double P0[4] = {0.2, 0.5, 0.8, 0.5}, PX[4] = {0.5, 0.2, 0.5, 0.8}, PT[4] = {0.5, 0.8, 0.5, 0.5};
         double PO[4] = {0.5 - 0.3 * cos(1.047), 0.5 - 0.3 * sin(1.047), 0.5 + 0.3 * cos(1.047), 0.5 + 0.3 * sin(1.047)};

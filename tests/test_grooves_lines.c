@@ -66,6 +66,18 @@ static int scene_build(scene_t *s)
     return gr_grid_build(&d, &s->grid, NULL) == GR_OK;
 }
 
+/* crossing c: 0 X (second section xsec), 1 oblique at 60°, 2 T (the
+   second groove ends on the first's centre line) */
+static int crossing_scene(scene_t *s, int c, const double *xsec, int nxsec)
+{
+    memset(s, 0, sizeof *s);
+    scene_add(s, 0.2, 0.5, 0.8, 0.5, VSEC, 3);
+    if (c == 0) scene_add(s, 0.5, 0.2, 0.5, 0.8, xsec, nxsec);
+    if (c == 1) scene_add(s, 0.5 - 0.3 * cos(1.047), 0.5 - 0.3 * sin(1.047), 0.5 + 0.3 * cos(1.047), 0.5 + 0.3 * sin(1.047), VSEC, 3);
+    if (c == 2) scene_add(s, 0.5, 0.8, 0.5, 0.5, VSEC, 3);
+    return scene_build(s);
+}
+
 static int run_lines(const gr_grid_t *grid, const gr_query_t *q, gr_facet_list_t *l, gr_line_stats_t *st)
 {
     size_t need = gr_query_scratch_bytes(grid);
@@ -179,12 +191,7 @@ static void t_crossings_vs_raster(void)
     long n = t_count(24);
     for (c = 0; c < 3; c++) {
         scene_t s;
-        memset(&s, 0, sizeof s);
-        scene_add(&s, 0.2, 0.5, 0.8, 0.5, VSEC, 3);
-        if (c == 0) scene_add(&s, 0.5, 0.2, 0.5, 0.8, VSEC, 3);
-        if (c == 1) scene_add(&s, 0.5 - 0.3 * cos(1.047), 0.5 - 0.3 * sin(1.047), 0.5 + 0.3 * cos(1.047), 0.5 + 0.3 * sin(1.047), VSEC, 3);
-        if (c == 2) scene_add(&s, 0.5, 0.8, 0.5, 0.5, VSEC, 3);
-        if (!T_CHECK(scene_build(&s))) return;
+        if (!T_CHECK(crossing_scene(&s, c, VSEC, 3))) return;
         for (k = 0; k < n; k++) {
             double share[25], r = t_rng_range(&rng, 0.006, 0.02), rot = t_rng_range(&rng, 0, 3.14159);
             gr_query_t q = gt_query(0.5 + t_rng_range(&rng, -0.015, 0.015), 0.5 + t_rng_range(&rng, -0.015, 0.015), 0, 0, 0, 1);
@@ -263,12 +270,7 @@ static void t_oblique_crossings_vs_oracle(void)
     for (c = 0; c < 3; c++) {
         scene_t s;
         gro_groove_t og[2];
-        memset(&s, 0, sizeof s);
-        scene_add(&s, 0.2, 0.5, 0.8, 0.5, VSEC, 3);
-        if (c == 0) scene_add(&s, 0.5, 0.2, 0.5, 0.8, RSEC, 5);
-        if (c == 1) scene_add(&s, 0.5 - 0.3 * cos(1.047), 0.5 - 0.3 * sin(1.047), 0.5 + 0.3 * cos(1.047), 0.5 + 0.3 * sin(1.047), VSEC, 3);
-        if (c == 2) scene_add(&s, 0.5, 0.8, 0.5, 0.5, VSEC, 3);
-        if (!T_CHECK(scene_build(&s))) return;
+        if (!T_CHECK(crossing_scene(&s, c, RSEC, 5))) return;
         og[0] = gro_from_gr(&s.g[0]);
         og[1] = gro_from_gr(&s.g[1]);
         for (v = 0; v < 3; v++)
