@@ -3175,6 +3175,9 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 /* Rays (nearly) parallel to UV are followed at most this many scene
    scales plus the segment's length (the search box must stay finite). */
 #define GR__LINE_TRAVEL_REL 64.0
+/* Rays are followed this fraction of the scene scale past the highest
+   and lowest section points. */
+#define GR__LINE_CLEAR_REL 1e-6
 /* Default early-exit tolerance of §5.6 (gr_query_t.line_exit_tol). */
 #define GR__LINE_DEFAULT_EXIT 1e-3
 /* Depth of the explicit stack of pending bounce segments (§6.1). */
@@ -3382,10 +3385,11 @@ static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d,
 static double gr__ray_tmax(const gr__lscene_t *sc, const double *o, const double *d, double seglen)
 {
     double cap = (GR__LINE_TRAVEL_REL * sc->scale + seglen) / sqrt(gr__dot3(d, d)), t = cap;
-    /* one scene scale past the top and bottom, so the last piece of the
-       ray is tested clear of them */
-    if (d[2] > 0) t = (sc->top + sc->scale - o[2]) / d[2];
-    else if (d[2] < 0) t = (sc->bottom - sc->scale - o[2]) / d[2];
+    /* just past the top and bottom, so the last piece of the ray is
+       tested clear of them */
+    double clear = GR__LINE_CLEAR_REL * sc->scale;
+    if (d[2] > 0) t = (sc->top + clear - o[2]) / d[2];
+    else if (d[2] < 0) t = (sc->bottom - clear - o[2]) / d[2];
     return t < cap ? (t > 0 ? t : 0) : cap;
 }
 
@@ -3416,9 +3420,11 @@ static int gr__lit(const gr__lscene_t *sc, int plane, const double *d, const dou
 /* Gather the grooves that can meet rays from the segment (box: the
    segment and where its rays cross the top and bottom, enlarged by w,
    §4.1/§5.1) and build their facet planes, nearest GR_LINE_MAX_GROOVES. */
-static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh)
+static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh,
+                           int tight)
 {
     double box[4] = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, c[2], reach, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
+    double quad[8];
     int i, k, n, e;
     sc->grid = grid;
     sc->top = grid->h;
@@ -3439,6 +3445,13 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         }
     }
     for (k = 0; k < 4; k++) box[k] += k < 2 ? -grid->w : grid->w;
+    for (e = 0; e < 4; e++) { /* the swept quad's corners (UV), for pruning */
+        double o[3], tq;
+        for (k = 0; k < 3; k++) o[k] = sh->o[k] + (e & 1 ? 1 : -1) * sh->a[k];
+        tq = e & 2 ? gr__ray_tmax(sc, o, sh->d, seglen) : 0;
+        quad[2 * e] = o[0] + tq * sh->d[0];
+        quad[2 * e + 1] = o[1] + tq * sh->d[1];
+    }
     c[0] = 0.5 * (box[0] + box[2]);
     c[1] = 0.5 * (box[1] + box[3]);
     reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
@@ -3472,6 +3485,18 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         if (!(g.f > 0)) continue; /* scaled away here */
         bc = fabs(g.bn[0] * (c[0] - g.p[0]) + g.bn[1] * (c[1] - g.p[1]));
         if (bc > reach + g.reach) continue; /* its band misses the box */
+        if (tight) { /* ... or the region this segment's rays sweep */
+            double bl = HUGE_VAL, bh = -HUGE_VAL, al = HUGE_VAL, ah = -HUGE_VAL;
+            for (e = 0; e < 4; e++) {
+                double du = quad[2 * e] - c[0] + (c[0] - g.p[0]), dv = quad[2 * e + 1] - c[1] + (c[1] - g.p[1]);
+                double bb = g.bn[0] * du + g.bn[1] * dv, aa = g.t[0] * du + g.t[1] * dv;
+                if (bb < bl) bl = bb;
+                if (bb > bh) bh = bb;
+                if (aa < al) al = aa;
+                if (aa > ah) ah = aa;
+            }
+            if (bl > g.reach || bh < -g.reach || al > g.hi + g.reach || ah < g.lo - g.reach) continue;
+        }
         if (-g.lo <= reach + g.reach || g.hi <= reach + g.reach)
             sc->flags |= GR_LIST_PATH_END; /* an end near: closed by a wall (planes below) */
         /* keep the nearest GR_LINE_MAX_GROOVES */
@@ -3869,7 +3894,7 @@ GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query
                               fp->axis2[1] * fp->axis2[1]);
             all.a[0] = ext; /* a box covering all rotations: the footprint's circumscribed extent */
             all.a[1] = ext;
-            gr__line_scene(grid, &s, &sc, &all);
+            gr__line_scene(grid, &s, &sc, &all, 0); /* shared by all rotations: no tight pruning */
             memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
             built = 1;
         }
@@ -4063,7 +4088,7 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
             gr__sheet_t sh = stack[--top];
             double w, cl;
             int m;
-            gr__line_scene(grid, &s, &sc, &sh);
+            gr__line_scene(grid, &s, &sc, &sh, 1);
             /* the early exit (§5.6) would leave unclassified gaps, which
                here would read as light leaving: bounces classify all */
             m = gr__sheet_eval(&sc, &sh, query->lights, query->light_count, sh.level ? -1 : tol, &w, &cl, stats);
