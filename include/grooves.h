@@ -565,14 +565,19 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 
 /* ==== [section: line samples] declarations (issue 8: §5.6) ==== */
 #if !defined(GR_NO_LINE_SAMPLES) || !defined(GR_NO_INTERREFLECTION)
-/* Local grooves one line-sample evaluation keeps (the nearest), and the
-   breakpoints it can hold per segment; beyond either the result is
-   approximate and flagged GR_LIST_LINE_APPROX. */
+/* Local grooves one line-sample evaluation keeps (the nearest), facet
+   planes (the ground, facets and end walls of those grooves) and the
+   breakpoints it can hold per segment; beyond any of them the result is
+   approximate and flagged GR_LIST_LINE_APPROX. They size the scratch
+   (about 90 KB with these defaults). */
 #ifndef GR_LINE_MAX_GROOVES
 #  define GR_LINE_MAX_GROOVES 16
 #endif
+#ifndef GR_LINE_MAX_PLANES
+#  define GR_LINE_MAX_PLANES 192
+#endif
 #ifndef GR_LINE_MAX_BREAKS
-#  define GR_LINE_MAX_BREAKS 2048
+#  define GR_LINE_MAX_BREAKS 1024
 #endif
 /* Most line samples per footprint (gr_query_t.line_samples). */
 #define GR_LINE_MAX_SAMPLES 8
@@ -3202,7 +3207,7 @@ typedef struct gr__plane_t {
     int cap;                  /* 1: the flat wall closing a path end */
 } gr__plane_t;
 
-typedef struct gr__brk_t { double s, sin2; } gr__brk_t;
+typedef struct gr__brk_t { double s, sin2; int plane; } gr__brk_t; /* plane: a shadow's facet */
 
 /* One interval of a segment: plane hit (-1: escaped, -2: not classified). */
 typedef struct gr__ivl_t {
@@ -3218,11 +3223,11 @@ typedef struct gr__lscratch_t {
     gr__plane_t *pl;
     gr__xing_t *xs;
     gr__brk_t *brk;
-    gr__ivl_t *iv;
+    gr__ivl_t *iv, *iv2;      /* intervals; iv2: after the shadow split */
     double *acc;              /* per plane: ratio, then lit per light */
 } gr__lscratch_t;
 
-#define GR__LINE_MAX_PLANES (1 + GR_LINE_MAX_GROOVES * GR_MAX_FACETS)
+#define GR__LINE_MAX_PLANES GR_LINE_MAX_PLANES
 
 static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
 {
@@ -3237,6 +3242,7 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
     GR__LCARVE(xs, gr__xing_t, GR__LINE_MAX_PLANES)
     GR__LCARVE(brk, gr__brk_t, GR_LINE_MAX_BREAKS)
     GR__LCARVE(iv, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
+    GR__LCARVE(iv2, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
     GR__LCARVE(acc, double, 2 * GR__LINE_MAX_PLANES * (1 + GR_MAX_LIGHTS))
 #undef GR__LCARVE
     return off;
@@ -3609,12 +3615,13 @@ static int gr__sheet_two_planes(const gr__sheet_t *sh, const double *n1, double 
     return 1;
 }
 
-static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2)
+static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int plane)
 {
     if (!(s > -1 && s < 1)) return;
     if (*nb == GR_LINE_MAX_BREAKS) { sc->flags |= GR_LIST_LINE_APPROX; return; }
     sc->ls.brk[*nb].s = s;
     sc->ls.brk[*nb].sin2 = sin2;
+    sc->ls.brk[*nb].plane = plane;
     (*nb)++;
 }
 
@@ -3665,16 +3672,20 @@ static int gr__edge_get(const gr__lscene_t *sc, int idx, gr__edge_t *e)
     return -1; /* past the end */
 }
 
-/* Cut the segment at every place its first surface or lit state can
-   change (§5.6: the 1D version of §5.2-5.4), then sort. */
-static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl)
+/* Cut the segment where its first surface can change (seen = NULL: §5.6,
+   the 1D version of §5.2-5.3), or where a shadow boundary can fall on a
+   facet it sees (seen[m] != 0; §5.4: every edge's shadow along each
+   light on that facet); appended from brk[nb], returns the new count. */
+static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl,
+                            const unsigned char *seen, int nb)
 {
-    int nb = 0, idx, m, l, r;
+    int idx, m, l, r;
     gr__edge_t e;
     for (idx = 0; (r = gr__edge_get(sc, idx, &e)) >= 0; idx++) {
         double s, t, x[3], nD[3];
         if (r == 0) continue;
-        if (e.p1 < 0) {
+        if (seen) {
+        } else if (e.p1 < 0) {
             /* a section point's line: o + s a + t d = q + λ D (Cramer) */
             double m0[3], det, rhs[3];
             gr__cross3(sh->d, e.D, m0);
@@ -3685,16 +3696,16 @@ static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
                 s = -gr__dot3(rhs, m0) / det;
                 gr__cross3(rhs, e.D, c1);
                 t = -gr__dot3(sh->a, c1) / det;
-                if (t >= 0) gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D));
+                if (t >= 0) gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
             }
         } else if (gr__sheet_two_planes(sh, sc->ls.pl[e.p1].n, sc->ls.pl[e.p1].h, sc->ls.pl[e.p2].n,
                                         sc->ls.pl[e.p2].h, &s, &t) && t >= 0) {
             for (m = 0; m < 3; m++) x[m] = sh->o[m] + s * sh->a[m] + t * sh->d[m];
             if (gr__on_plane(sc, e.p1, x) && gr__on_plane(sc, e.p2, x))
-                gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D));
+                gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
         }
-        /* §5.4: the edge's shadow along each light on each facet */
-        for (l = 0; l < nl; l++) {
+        /* §5.4: the edge's shadow along each light on each seen facet */
+        for (l = 0; seen && l < nl; l++) {
             const double *L = lights + 3 * l;
             double hP;
             if (!(L[2] > 0)) continue;
@@ -3704,16 +3715,21 @@ static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
             for (m = 0; m < sc->npl; m++) {
                 double dir[3];
                 int k;
-                if (m == e.p1 || m == e.p2) continue;
+                if (!seen[m] || m == e.p1 || m == e.p2) continue;
                 if (!gr__sheet_two_planes(sh, nD, hP, sc->ls.pl[m].n, sc->ls.pl[m].h, &s, &t) || t < 0) continue;
                 for (k = 0; k < 3; k++) x[k] = sh->o[k] + s * sh->a[k] + t * sh->d[k];
                 if (!gr__on_plane(sc, m, x)) continue;
                 gr__cross3(nD, sc->ls.pl[m].n, dir);
-                gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, dir));
+                gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, dir), m);
             }
         }
     }
-    /* sort by s (insertion for short lists, qsort beyond) */
+    return nb;
+}
+
+/* Sort breakpoints by s (insertion for short lists, qsort beyond). */
+static void gr__brk_sort(gr__lscene_t *sc, int nb)
+{
     if (nb > GR__SMALL_SORT) qsort(sc->ls.brk, (size_t)nb, sizeof(gr__brk_t), gr__cmp_double);
     else {
         int i, j;
@@ -3723,7 +3739,6 @@ static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
             sc->ls.brk[j] = x;
         }
     }
-    return nb;
 }
 
 /* Point of the segment's ray at s on plane p. */
@@ -3737,18 +3752,66 @@ static void gr__sheet_point(const gr__lscene_t *sc, const gr__sheet_t *sh, int p
     for (k = 0; k < 3; k++) x[k] = o[k] + t * sh->d[k];
 }
 
-static void gr__classify(const gr__lscene_t *sc, const gr__sheet_t *sh, gr__ivl_t *iv, const double *lights, int nl)
+/* The facet an interval sees (one ray at its middle). */
+static void gr__classify(const gr__lscene_t *sc, const gr__sheet_t *sh, gr__ivl_t *iv)
 {
-    double o[3], x[3], th, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), sm = 0.5 * (iv->s0 + iv->s1);
+    double o[3], th, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), sm = 0.5 * (iv->s0 + iv->s1);
     int k;
     for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
     iv->plane = gr__ray_hit(sc, o, sh->d, gr__ray_tmax(sc, o, sh->d, seglen), &th);
     if (iv->plane == -2) iv->plane = -1; /* inside at the start: counted as leaving */
     iv->lit = 0;
-    if (iv->plane < 0) return;
-    for (k = 0; k < 3; k++) x[k] = o[k] + th * sh->d[k];
-    for (k = 0; k < nl; k++)
-        if (gr__lit(sc, iv->plane, sh->d, x, lights + 3 * k, seglen)) iv->lit |= 1u << k;
+}
+
+/* §5.4 on one segment: split the seen intervals at the shadow boundaries
+   on their facets, then one shadow ray per piece and light. */
+static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl, int n)
+{
+    gr__ivl_t *iv = sc->ls.iv, *out = sc->ls.iv2;
+    unsigned char seen[GR_LINE_MAX_PLANES];
+    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
+    int i, k, nb, b = 0, m = 0;
+    memset(seen, 0, (size_t)sc->npl);
+    for (i = 0; i < n; i++)
+        if (iv[i].plane >= 0) seen[iv[i].plane] = 1;
+    nb = gr__sheet_breaks(sc, sh, lights, nl, seen, 0);
+    gr__brk_sort(sc, nb);
+    for (i = 0; i < n; i++) {
+        double s0 = iv[i].s0, open = iv[i].sin2; /* open: the edge starting the piece */
+        while (b < nb && sc->ls.brk[b].s <= s0) b++;
+        for (;;) {
+            double s1 = iv[i].s1, next = 0;
+            int j;
+            if (iv[i].plane >= 0 && m + (n - i) < GR_LINE_MAX_BREAKS + 1) {
+                for (j = b; j < nb && sc->ls.brk[j].s < iv[i].s1; j++)
+                    if (sc->ls.brk[j].plane == iv[i].plane && sc->ls.brk[j].s - s0 > GR__LINE_SNAP &&
+                        iv[i].s1 - sc->ls.brk[j].s > GR__LINE_SNAP) {
+                        s1 = sc->ls.brk[j].s;
+                        next = sc->ls.brk[j].sin2;
+                        b = j + 1;
+                        break;
+                    }
+            } else if (iv[i].plane >= 0) {
+                sc->flags |= GR_LIST_LINE_APPROX; /* no room to split further */
+            }
+            out[m] = iv[i];
+            out[m].s0 = s0;
+            out[m].s1 = s1;
+            out[m].sin2 = open;
+            if (out[m].plane >= 0) {
+                double x[3];
+                gr__sheet_point(sc, sh, out[m].plane, 0.5 * (s0 + s1), x);
+                for (k = 0; k < nl; k++)
+                    if (gr__lit(sc, out[m].plane, sh->d, x, lights + 3 * k, seglen)) out[m].lit |= 1u << k;
+            }
+            m++;
+            if (s1 >= iv[i].s1) break;
+            s0 = s1;
+            open = next;
+        }
+    }
+    memcpy(iv, out, sizeof *iv * (size_t)m);
+    return m;
 }
 
 static int gr__cmp_ivl_len(const void *a, const void *b)
@@ -3771,8 +3834,9 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
                           double *weight, double *classified, gr_line_stats_t *st)
 {
     gr__ivl_t *iv = sc->ls.iv;
-    int nb = sc->nlg ? gr__sheet_breaks(sc, sh, lights, nl) : 0, n = 0, i;
+    int nb = sc->nlg ? gr__sheet_breaks(sc, sh, lights, nl, NULL, 0) : 0, n = 0, i;
     double last = -1, sin2 = 0, done = 0;
+    gr__brk_sort(sc, nb);
     for (i = 0; i <= nb; i++) {
         double s = i < nb ? sc->ls.brk[i].s : 1;
         if (s - last <= GR__LINE_SNAP) { /* coalesce: keep the steepest edge */
@@ -3791,16 +3855,17 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
     if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_len);
     for (i = 0; i < n; i++) {
         if (tol > 0 && done >= 2 * (1 - tol)) { if (st) st->early_exits++; break; }
-        gr__classify(sc, sh, &iv[i], lights, nl);
+        gr__classify(sc, sh, &iv[i]);
         done += iv[i].s1 - iv[i].s0;
         if (st) st->evaluated++;
     }
     if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_pos);
+    if (st) { st->segments++; st->intervals += n; } /* (view intervals; shadows split them below) */
+    if (nl > 0) n = gr__shadow_split(sc, sh, lights, nl, n);
     *weight = 0;
     for (i = 1; i < n; i++)
         if (iv[i].plane != iv[i - 1].plane || iv[i].lit != iv[i - 1].lit || iv[i].plane == -2) *weight += iv[i].sin2;
     *classified = done / 2;
-    if (st) { st->segments++; st->intervals += n; }
     return n;
 }
 
