@@ -569,7 +569,7 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
    planes (the ground, facets and end walls of those grooves) and the
    breakpoints it can hold per segment; beyond any of them the result is
    approximate and flagged GR_LIST_LINE_APPROX. They size the scratch
-   (about 90 KB with these defaults). */
+   (about 125 KB with these defaults). */
 #ifndef GR_LINE_MAX_GROOVES
 #  define GR_LINE_MAX_GROOVES 16
 #endif
@@ -594,6 +594,24 @@ typedef struct gr_line_stats_t {
     double weight[GR_LINE_MAX_SAMPLES]; /* Jones & Perry weight Σ sin²α of
                           each top-level segment */
 } gr_line_stats_t;
+
+/* §5.6's cache between neighbouring footprints, owned by the caller (one
+   per thread: queries stay pure). It keeps the grooves found around a
+   footprint, in their straight approximation, for a box GR_LINE_CACHE_GROW
+   times the footprint's search box; a later footprint whose box lies
+   inside reuses them and skips the grid search and the nearest-point
+   solves. Only straight grooves (2-point paths) are cached, so the answer
+   is the uncached one; a box with a curve or polyline, or more grooves
+   than GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use;
+   it refers to one grid (another grid refills it). */
+#define GR_LINE_CACHE_GROW 3.0
+typedef struct gr_line_cache_t {
+    const gr_grid_t *grid;  /* the grid it was filled from */
+    double box[4];          /* the UV box it covers */
+    int valid, count;
+    long long hits, misses; /* footprints served from it / that refilled it */
+    double store_[GR_LINE_MAX_GROOVES * 16]; /* private */
+} gr_line_cache_t;
 #endif
 
 #ifndef GR_NO_LINE_SAMPLES
@@ -624,6 +642,11 @@ typedef struct gr_line_stats_t {
    gr_query(), plus GR_ERR_INVALID_ARG for line_samples outside 0..8. */
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats);
+
+/* gr_query_lines() with a cache (NULL: none). Same result. */
+GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t *query, gr_line_cache_t *cache,
+                                         void *scratch, size_t scratch_bytes, gr_facet_list_t *list,
+                                         gr_line_stats_t *stats);
 #endif
 /* ==== [end section: line samples] ==== */
 
@@ -3426,12 +3449,102 @@ static int gr__lit(const gr__lscene_t *sc, int plane, const double *d, const dou
 /* Gather the grooves that can meet rays from the segment (box: the
    segment and where its rays cross the top and bottom, enlarged by w,
    §4.1/§5.1) and build their facet planes, nearest GR_LINE_MAX_GROOVES. */
+/* Groove id in its straight approximation at the point nearest c. */
+static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double reach, gr__lg_t *g)
+{
+    const gr__groove_t *rec = &grid->grooves_[id];
+    gr__cand_t cd;
+    memset(&cd, 0, sizeof cd);
+    if (!gr__locate(grid, id, c, reach + rec->half_width, &cd)) return 0;
+    g->p[0] = cd.p[0] + c[0] - cd.fc[0];
+    g->p[1] = cd.p[1] + c[1] - cd.fc[1];
+    g->t[0] = cd.t[0];
+    g->t[1] = cd.t[1];
+    g->bn[0] = -cd.t[1];
+    g->bn[1] = cd.t[0];
+    g->f = gr__perturb(rec, cd.param);
+    g->reach = rec->half_width / rec->fmax * g->f;
+    g->sec = grid->section_ + 2 * rec->first_sec;
+    g->nsec = rec->sec_count;
+    g->groove = id;
+    g->first_facet = rec->first_facet;
+    g->lo = rec->closed ? -HUGE_VAL : -cd.param / cd.dtds;
+    g->hi = rec->closed ? HUGE_VAL : (1 - cd.param) / cd.dtds;
+    return g->f > 0; /* scaled away here otherwise */
+}
+
+/* Keep g if its band reaches the box (centre c, radius reach) and, when
+   tight, the quad the segment's rays sweep; the nearest
+   GR_LINE_MAX_GROOVES stay. */
+static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, double reach, const double *quad)
+{
+    double bc = fabs(g->bn[0] * (c[0] - g->p[0]) + g->bn[1] * (c[1] - g->p[1]));
+    double a0 = g->t[0] * (c[0] - g->p[0]) + g->t[1] * (c[1] - g->p[1]);
+    int i, e;
+    if (bc > reach + g->reach) return; /* its band misses the box */
+    if (quad) { /* ... or the region this segment's rays sweep */
+        double bl = HUGE_VAL, bh = -HUGE_VAL, al = HUGE_VAL, ah = -HUGE_VAL;
+        for (e = 0; e < 4; e++) {
+            double du = quad[2 * e] - g->p[0], dv = quad[2 * e + 1] - g->p[1];
+            double bb = g->bn[0] * du + g->bn[1] * dv, aa = g->t[0] * du + g->t[1] * dv;
+            if (bb < bl) bl = bb;
+            if (bb > bh) bh = bb;
+            if (aa < al) al = aa;
+            if (aa > ah) ah = aa;
+        }
+        if (bl > g->reach || bh < -g->reach || al > g->hi + g->reach || ah < g->lo - g->reach) return;
+    }
+    if (a0 - g->lo <= reach + g->reach || g->hi - a0 <= reach + g->reach)
+        sc->flags |= GR_LIST_PATH_END; /* an end near: closed by a wall (planes below) */
+    if (sc->nlg == GR_LINE_MAX_GROOVES) {
+        int far = 0;
+        double fd = -1;
+        sc->flags |= GR_LIST_LINE_APPROX;
+        for (i = 0; i < sc->nlg; i++) {
+            const gr__lg_t *o = &sc->ls.lg[i];
+            double di = fabs(o->bn[0] * (c[0] - o->p[0]) + o->bn[1] * (c[1] - o->p[1]));
+            if (di > fd) { fd = di; far = i; }
+        }
+        if (!(bc < fd)) return;
+        sc->ls.lg[far] = *g;
+    } else {
+        sc->ls.lg[sc->nlg++] = *g;
+    }
+}
+
+/* The grid search (§4.1) around box, centre c: every groove in its
+   straight approximation, passed to gr__lg_keep, or stored in the cache
+   (returns 0 when the cache cannot hold them all, or one is not straight). */
+static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, double *box,
+                           const double *c, double reach, const double *quad, gr_line_cache_t *fill)
+{
+    int k, n;
+    if (grid->wrap) { /* gather around the centre's image in the tile */
+        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
+        double su = floor((c[0] - grid->domain[0]) / wu) * wu, sv = floor((c[1] - grid->domain[1]) / wv) * wv;
+        box[0] -= su; box[2] -= su; box[1] -= sv; box[3] -= sv;
+    }
+    n = gr__gather(grid, box, s->seen, s->ids);
+    for (k = 0; k < n; k++) {
+        gr__lg_t g;
+        if (!gr__lg_make(grid, s->ids[k], c, reach, &g)) continue;
+        if (!fill) { gr__lg_keep(sc, &g, c, reach, quad); continue; }
+        if (fill->count == GR_LINE_MAX_GROOVES || grid->grooves_[s->ids[k]].point_count != 2 ||
+            grid->grooves_[s->ids[k]].kind != GR_PATH_POLYLINE)
+            return 0;
+        memcpy(fill->store_ + 16 * fill->count++, &g, sizeof g);
+    }
+    return 1;
+}
+
+typedef char gr__lg_fits_cache[sizeof(gr__lg_t) <= 16 * sizeof(double) ? 1 : -1];
+
 static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh,
-                           int tight)
+                           int tight, gr_line_cache_t *cache)
 {
     double box[4] = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, c[2], reach, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
     double quad[8];
-    int i, k, n, e;
+    int i, k, e;
     sc->grid = grid;
     sc->top = grid->h;
     sc->bottom = -grid->d;
@@ -3461,66 +3574,35 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
     c[0] = 0.5 * (box[0] + box[2]);
     c[1] = 0.5 * (box[1] + box[3]);
     reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
-    if (grid->wrap) { /* gather around the centre's image in the tile */
-        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
-        double su = floor((c[0] - grid->domain[0]) / wu) * wu, sv = floor((c[1] - grid->domain[1]) / wv) * wv;
-        box[0] -= su; box[2] -= su; box[1] -= sv; box[3] -= sv;
-    }
-    n = gr__gather(grid, box, s->seen, s->ids);
-    for (k = 0; k < n; k++) {
-        const gr__groove_t *rec = &grid->grooves_[s->ids[k]];
-        gr__cand_t cd;
-        gr__lg_t g;
-        double sq, bc;
-        memset(&cd, 0, sizeof cd);
-        if (!gr__locate(grid, s->ids[k], c, reach + rec->half_width, &cd)) continue;
-        g.p[0] = cd.p[0] + c[0] - cd.fc[0];
-        g.p[1] = cd.p[1] + c[1] - cd.fc[1];
-        g.t[0] = cd.t[0];
-        g.t[1] = cd.t[1];
-        g.bn[0] = -cd.t[1];
-        g.bn[1] = cd.t[0];
-        g.f = gr__perturb(rec, cd.param);
-        g.reach = rec->half_width / rec->fmax * g.f;
-        g.sec = grid->section_ + 2 * rec->first_sec;
-        g.nsec = rec->sec_count;
-        g.groove = s->ids[k];
-        g.first_facet = rec->first_facet;
-        g.lo = rec->closed ? -HUGE_VAL : -cd.param / cd.dtds;
-        g.hi = rec->closed ? HUGE_VAL : (1 - cd.param) / cd.dtds;
-        if (!(g.f > 0)) continue; /* scaled away here */
-        bc = fabs(g.bn[0] * (c[0] - g.p[0]) + g.bn[1] * (c[1] - g.p[1]));
-        if (bc > reach + g.reach) continue; /* its band misses the box */
-        if (tight) { /* ... or the region this segment's rays sweep */
-            double bl = HUGE_VAL, bh = -HUGE_VAL, al = HUGE_VAL, ah = -HUGE_VAL;
-            for (e = 0; e < 4; e++) {
-                double du = quad[2 * e] - c[0] + (c[0] - g.p[0]), dv = quad[2 * e + 1] - c[1] + (c[1] - g.p[1]);
-                double bb = g.bn[0] * du + g.bn[1] * dv, aa = g.t[0] * du + g.t[1] * dv;
-                if (bb < bl) bl = bb;
-                if (bb > bh) bh = bb;
-                if (aa < al) al = aa;
-                if (aa > ah) ah = aa;
-            }
-            if (bl > g.reach || bh < -g.reach || al > g.hi + g.reach || ah < g.lo - g.reach) continue;
-        }
-        if (-g.lo <= reach + g.reach || g.hi <= reach + g.reach)
-            sc->flags |= GR_LIST_PATH_END; /* an end near: closed by a wall (planes below) */
-        /* keep the nearest GR_LINE_MAX_GROOVES */
-        sq = cd.dist;
-        if (sc->nlg == GR_LINE_MAX_GROOVES) {
-            int far = 0;
-            double fd = -1;
-            sc->flags |= GR_LIST_LINE_APPROX;
-            for (i = 0; i < sc->nlg; i++) {
-                const gr__lg_t *o = &sc->ls.lg[i];
-                double di = fabs(o->bn[0] * (c[0] - o->p[0]) + o->bn[1] * (c[1] - o->p[1]));
-                if (di > fd) { fd = di; far = i; }
-            }
-            if (!(sq < fd)) continue;
-            sc->ls.lg[far] = g;
+    if (cache) { /* §5.6: reuse the grooves found around a neighbour */
+        int hit = cache->valid && cache->grid == grid && box[0] >= cache->box[0] && box[1] >= cache->box[1] &&
+                  box[2] <= cache->box[2] && box[3] <= cache->box[3];
+        if (!hit) {
+            double big[4], bc[2], br, gu = 0.5 * (GR_LINE_CACHE_GROW - 1) * (box[2] - box[0]),
+                                      gv = 0.5 * (GR_LINE_CACHE_GROW - 1) * (box[3] - box[1]);
+            big[0] = box[0] - gu; big[2] = box[2] + gu;
+            big[1] = box[1] - gv; big[3] = box[3] + gv;
+            memcpy(cache->box, big, sizeof big);
+            bc[0] = c[0]; bc[1] = c[1];
+            br = GR_LINE_CACHE_GROW * reach;
+            cache->grid = grid;
+            cache->count = 0;
+            cache->valid = gr__line_gather(grid, s, sc, big, bc, br, NULL, cache);
+            cache->misses++;
         } else {
-            sc->ls.lg[sc->nlg++] = g;
+            cache->hits++;
         }
+        if (cache->valid) {
+            for (k = 0; k < cache->count; k++) {
+                gr__lg_t g;
+                memcpy(&g, cache->store_ + 16 * k, sizeof g);
+                gr__lg_keep(sc, &g, c, reach, tight ? quad : NULL);
+            }
+        } else {
+            gr__line_gather(grid, s, sc, box, c, reach, tight ? quad : NULL, NULL);
+        }
+    } else {
+        gr__line_gather(grid, s, sc, box, c, reach, tight ? quad : NULL, NULL);
     }
     /* planes: the ground, then every facet of every groove (§3) */
     memset(&sc->ls.pl[0], 0, sizeof sc->ls.pl[0]);
@@ -3565,7 +3647,7 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
             double at = k ? g->hi : g->lo, sgn = k ? 1 : -1, wmin = 0, cb;
             gr__plane_t *p = &sc->ls.pl[sc->npl];
             int j;
-            if (!(fabs(at) <= reach + g->reach)) continue;
+            if (!(fabs(at - (g->t[0] * (c[0] - g->p[0]) + g->t[1] * (c[1] - g->p[1]))) <= reach + g->reach)) continue;
             if (sc->npl == GR__LINE_MAX_PLANES) { sc->flags |= GR_LIST_LINE_APPROX; break; }
             for (j = 0; j < g->nsec; j++)
                 if (g->sec[2 * j + 1] < wmin) wmin = g->sec[2 * j + 1];
@@ -3923,6 +4005,13 @@ static void gr__line_layout(const gr_grid_t *grid, void *scratch, gr__scratch_t 
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats)
 {
+    return gr_query_lines_cached(grid, query, NULL, scratch, scratch_bytes, list, stats);
+}
+
+GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t *query, gr_line_cache_t *cache,
+                                         void *scratch, size_t scratch_bytes, gr_facet_list_t *list,
+                                         gr_line_stats_t *stats)
+{
     gr__scratch_t s;
     gr__lscene_t sc;
     gr__sheet_t sh;
@@ -3959,7 +4048,7 @@ GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query
                               fp->axis2[1] * fp->axis2[1]);
             all.a[0] = ext; /* a box covering all rotations: the footprint's circumscribed extent */
             all.a[1] = ext;
-            gr__line_scene(grid, &s, &sc, &all, 0); /* shared by all rotations: no tight pruning */
+            gr__line_scene(grid, &s, &sc, &all, 0, cache); /* shared by all rotations: no tight pruning */
             memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
             built = 1;
         }
@@ -4153,7 +4242,7 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
             gr__sheet_t sh = stack[--top];
             double w, cl;
             int m;
-            gr__line_scene(grid, &s, &sc, &sh, 1);
+            gr__line_scene(grid, &s, &sc, &sh, 1, NULL);
             /* the early exit (§5.6) would leave unclassified gaps, which
                here would read as light leaving: bounces classify all */
             m = gr__sheet_eval(&sc, &sh, query->lights, query->light_count, sh.level ? -1 : tol, &w, &cl, stats);

@@ -421,6 +421,61 @@ static void t_early_exit(void)
     gr_grid_free(s.grid);
 }
 
+/* §5.6's cache: a scanline of neighbouring footprints over the X and T
+   crossings gives the uncached answer (to rounding: the straight lines
+   are the same, anchored at other points) while most footprints are
+   served from the cache; a curved groove is never cached. */
+static void t_cache(void)
+{
+    static const double lights[3] = {0.5, 0.3, 0.81};
+    static const double curve[6] = {0.2, 0.45, 0.5, 0.6, 0.8, 0.45};
+    int c, k;
+    for (c = 0; c < 3; c++) {
+        scene_t s;
+        gr_line_cache_t cache;
+        size_t need;
+        void *scratch;
+        if (c < 2) {
+            if (!T_CHECK(crossing_scene(&s, c == 0 ? 0 : 2, VSEC, 3))) return;
+        } else {
+            memset(&s, 0, sizeof s);
+            scene_add(&s, 0.5, 0.2, 0.5, 0.8, VSEC, 3);
+            scene_add(&s, 0, 0, 0, 0, VSEC, 3);
+            s.g[1].kind = GR_PATH_QUADRATIC;
+            s.g[1].points = curve;
+            s.g[1].point_count = 3;
+            if (!T_CHECK(scene_build(&s))) return;
+        }
+        memset(&cache, 0, sizeof cache);
+        need = gr_query_scratch_bytes(s.grid);
+        scratch = malloc(need);
+        for (k = 0; k < 60; k++) {
+            gr_query_t q = gt_query(0.47 + 0.001 * k, 0.5 + 0.0003 * k, 0.004, 0.3, -0.2, 0.93);
+            gr_facet_list_t a, b;
+            int g, f;
+            q.lights = lights;
+            q.light_count = 1;
+            q.line_samples = 2;
+            T_INT_EQ(gr_query_lines(s.grid, &q, scratch, need, &a, NULL), GR_OK);
+            T_INT_EQ(gr_query_lines_cached(s.grid, &q, &cache, scratch, need, &b, NULL), GR_OK);
+            for (g = -1; g < 2; g++)
+                for (f = -1; f < 4; f++) {
+                    T_NEAR(ratio_gf(&b, g, f), ratio_gf(&a, g, f), 1e-9);
+                    T_NEAR(lit_gf(&b, g, f, 0), lit_gf(&a, g, f, 0), 1e-9);
+                }
+        }
+        if (c < 2) {
+            printf("  cache, %s crossing: %lld of 60 footprints served, %lld refills\n", c ? "T" : "X", cache.hits,
+                   cache.misses);
+            T_GT(cache.hits, 30);
+        } else {
+            T_INT_EQ(cache.valid, 0); /* a curve is never cached */
+        }
+        free(scratch);
+        gr_grid_free(s.grid);
+    }
+}
+
 static void t_bad_input(void)
 {
     scene_t s;
@@ -461,7 +516,7 @@ int main(int argc, char **argv)
     static const t_case_t cases[] = {
         T_CASE(t_isolated_equals_query), T_CASE(t_crossings_vs_raster), T_CASE(t_oblique_crossings_vs_oracle),
         T_CASE(t_weighting),
-        T_CASE(t_early_exit), T_CASE(t_bad_input),
+        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_bad_input),
     };
     return T_RUN(argc, argv, cases);
 }
