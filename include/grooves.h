@@ -3711,47 +3711,45 @@ static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int pl
    planes (p1, p2) it bounds (p2 = -1 for a section point's line). */
 typedef struct gr__edge_t { double q[3], D[3]; int p1, p2; } gr__edge_t;
 
-static int gr__edge_get(const gr__lscene_t *sc, int idx, gr__edge_t *e)
+/* Walks the edge lines: every section point's line, then the line of
+   each pair of planes i < j of different grooves (or with an end wall). */
+typedef struct gr__edge_it_t { int g, k, i, j; } gr__edge_it_t;
+
+static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *e)
 {
-    int g, k, i, j, n = 0;
-    for (g = 0; g < sc->nlg; g++) {
-        const gr__lg_t *lg = &sc->ls.lg[g];
-        if (idx < n + lg->nsec) { /* a section point swept along T */
-            double c[2];
-            k = idx - n;
-            gr__sec_pt(lg, k, c);
-            e->q[0] = lg->p[0] + c[0] * lg->bn[0];
-            e->q[1] = lg->p[1] + c[0] * lg->bn[1];
-            e->q[2] = c[1];
-            e->D[0] = lg->t[0];
-            e->D[1] = lg->t[1];
-            e->D[2] = 0;
-            e->p1 = e->p2 = -1;
-            return 1;
-        }
-        n += lg->nsec;
+    int m;
+    while (it->g < sc->nlg) { /* a section point swept along T */
+        const gr__lg_t *lg = &sc->ls.lg[it->g];
+        double c[2];
+        if (it->k >= lg->nsec) { it->g++; it->k = 0; continue; }
+        gr__sec_pt(lg, it->k++, c);
+        e->q[0] = lg->p[0] + c[0] * lg->bn[0];
+        e->q[1] = lg->p[1] + c[0] * lg->bn[1];
+        e->q[2] = c[1];
+        e->D[0] = lg->t[0];
+        e->D[1] = lg->t[1];
+        e->D[2] = 0;
+        e->p1 = e->p2 = -1;
+        return 1;
     }
-    idx -= n; /* the line of planes i < j of different grooves (§5.3) */
-    for (i = 0; i < sc->npl; i++) {
-        int rest = sc->npl - 1 - i;
-        if (idx >= rest) { idx -= rest; continue; }
-        j = i + 1 + idx;
-        {
-            const gr__plane_t *a = &sc->ls.pl[i], *b = &sc->ls.pl[j];
+    for (; it->i < sc->npl; it->i++, it->j = it->i + 1) {
+        if (it->j <= it->i) it->j = it->i + 1;
+        while (it->j < sc->npl) { /* the line of planes i < j (§5.3) */
+            const gr__plane_t *a = &sc->ls.pl[it->i], *b = &sc->ls.pl[it->j++];
             double nj_d[3], d_ni[3], dd;
-            if (a->lg == b->lg && !a->cap && !b->cap) return 0;
+            if (a->lg == b->lg && !a->cap && !b->cap) continue;
             gr__cross3(a->n, b->n, e->D);
             dd = gr__dot3(e->D, e->D);
-            if (!(dd > 1e-24)) return 0;
+            if (!(dd > 1e-24)) continue;
             gr__cross3(b->n, e->D, nj_d);
             gr__cross3(e->D, a->n, d_ni);
-            for (k = 0; k < 3; k++) e->q[k] = (a->h * nj_d[k] + b->h * d_ni[k]) / dd;
-            e->p1 = i;
-            e->p2 = j;
+            for (m = 0; m < 3; m++) e->q[m] = (a->h * nj_d[m] + b->h * d_ni[m]) / dd;
+            e->p1 = it->i;
+            e->p2 = it->j - 1;
             return 1;
         }
     }
-    return -1; /* past the end */
+    return 0;
 }
 
 /* Cut the segment where its first surface can change (seen = NULL: §5.6,
@@ -3761,11 +3759,12 @@ static int gr__edge_get(const gr__lscene_t *sc, int idx, gr__edge_t *e)
 static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl,
                             const unsigned char *seen, int nb)
 {
-    int idx, m, l, r;
+    int m, l;
     gr__edge_t e;
-    for (idx = 0; (r = gr__edge_get(sc, idx, &e)) >= 0; idx++) {
+    gr__edge_it_t it;
+    memset(&it, 0, sizeof it);
+    while (gr__edge_next(sc, &it, &e)) {
         double s, t, x[3], nD[3];
-        if (r == 0) continue;
         if (seen) {
         } else if (e.p1 < 0) {
             /* a section point's line: o + s a + t d = q + λ D (Cramer) */
