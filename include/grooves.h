@@ -3473,10 +3473,15 @@ static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double re
     return g->f > 0; /* scaled away here otherwise */
 }
 
+/* The UV points whose convex hull holds every ray a segment casts: its
+   ends, where their view rays leave the slab, and those points moved
+   along each light to the top (shadow rays, §5.4). */
+typedef struct gr__region_t { double p[2 * 4 * (1 + GR_MAX_LIGHTS)]; int n; } gr__region_t;
+
 /* Keep g if its band reaches the box (centre c, radius reach) and, when
-   tight, the quad the segment's rays sweep; the nearest
+   tight, the region the segment's rays sweep; the nearest
    GR_LINE_MAX_GROOVES stay. */
-static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, double reach, const double *quad)
+static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, double reach, const gr__region_t *quad)
 {
     double bc = fabs(g->bn[0] * (c[0] - g->p[0]) + g->bn[1] * (c[1] - g->p[1]));
     double a0 = g->t[0] * (c[0] - g->p[0]) + g->t[1] * (c[1] - g->p[1]);
@@ -3484,8 +3489,8 @@ static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, do
     if (bc > reach + g->reach) return; /* its band misses the box */
     if (quad) { /* ... or the region this segment's rays sweep */
         double bl = HUGE_VAL, bh = -HUGE_VAL, al = HUGE_VAL, ah = -HUGE_VAL;
-        for (e = 0; e < 4; e++) {
-            double du = quad[2 * e] - g->p[0], dv = quad[2 * e + 1] - g->p[1];
+        for (e = 0; e < quad->n; e++) {
+            double du = quad->p[2 * e] - g->p[0], dv = quad->p[2 * e + 1] - g->p[1];
             double bb = g->bn[0] * du + g->bn[1] * dv, aa = g->t[0] * du + g->t[1] * dv;
             if (bb < bl) bl = bb;
             if (bb > bh) bh = bb;
@@ -3516,7 +3521,7 @@ static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, do
    straight approximation, passed to gr__lg_keep, or stored in the cache
    (returns 0 when the cache cannot hold them all, or one is not straight). */
 static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, double *box,
-                           const double *c, double reach, const double *quad, gr_line_cache_t *fill)
+                           const double *c, double reach, const gr__region_t *quad, gr_line_cache_t *fill)
 {
     int k, n;
     if (grid->wrap) { /* gather around the centre's image in the tile */
@@ -3540,10 +3545,10 @@ static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
 typedef char gr__lg_fits_cache[sizeof(gr__lg_t) <= 16 * sizeof(double) ? 1 : -1];
 
 static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh,
-                           int tight, gr_line_cache_t *cache)
+                           int tight, gr_line_cache_t *cache, const double *lights, int nl)
 {
     double box[4] = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, c[2], reach, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
-    double quad[8];
+    gr__region_t quad;
     int i, k, e;
     sc->grid = grid;
     sc->top = grid->h;
@@ -3564,12 +3569,25 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         }
     }
     for (k = 0; k < 4; k++) box[k] += k < 2 ? -grid->w : grid->w;
-    for (e = 0; e < 4; e++) { /* the swept quad's corners (UV), for pruning */
-        double o[3], tq;
+    quad.n = 0;
+    for (e = 0; e < 4; e++) { /* the swept region's points (UV), for pruning */
+        double o[3], tq, x[3];
+        int l;
         for (k = 0; k < 3; k++) o[k] = sh->o[k] + (e & 1 ? 1 : -1) * sh->a[k];
         tq = e & 2 ? gr__ray_tmax(sc, o, sh->d, seglen) : 0;
-        quad[2 * e] = o[0] + tq * sh->d[0];
-        quad[2 * e + 1] = o[1] + tq * sh->d[1];
+        for (k = 0; k < 3; k++) x[k] = o[k] + tq * sh->d[k];
+        quad.p[2 * quad.n] = x[0];
+        quad.p[2 * quad.n + 1] = x[1];
+        quad.n++;
+        for (l = 0; l < nl; l++) {
+            const double *L = lights + 3 * l;
+            double tl;
+            if (!(L[2] > 0)) continue;
+            tl = x[2] < sc->top ? (sc->top - x[2]) / L[2] : 0;
+            quad.p[2 * quad.n] = x[0] + tl * L[0];
+            quad.p[2 * quad.n + 1] = x[1] + tl * L[1];
+            quad.n++;
+        }
     }
     c[0] = 0.5 * (box[0] + box[2]);
     c[1] = 0.5 * (box[1] + box[3]);
@@ -3596,13 +3614,13 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
             for (k = 0; k < cache->count; k++) {
                 gr__lg_t g;
                 memcpy(&g, cache->store_ + 16 * k, sizeof g);
-                gr__lg_keep(sc, &g, c, reach, tight ? quad : NULL);
+                gr__lg_keep(sc, &g, c, reach, tight ? &quad : NULL);
             }
         } else {
-            gr__line_gather(grid, s, sc, box, c, reach, tight ? quad : NULL, NULL);
+            gr__line_gather(grid, s, sc, box, c, reach, tight ? &quad : NULL, NULL);
         }
     } else {
-        gr__line_gather(grid, s, sc, box, c, reach, tight ? quad : NULL, NULL);
+        gr__line_gather(grid, s, sc, box, c, reach, tight ? &quad : NULL, NULL);
     }
     /* planes: the ground, then every facet of every groove (§3) */
     memset(&sc->ls.pl[0], 0, sizeof sc->ls.pl[0]);
@@ -4047,7 +4065,7 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
                               fp->axis2[1] * fp->axis2[1]);
             all.a[0] = ext; /* a box covering all rotations: the footprint's circumscribed extent */
             all.a[1] = ext;
-            gr__line_scene(grid, &s, &sc, &all, 0, cache); /* shared by all rotations: no tight pruning */
+            gr__line_scene(grid, &s, &sc, &all, 0, cache, NULL, 0); /* shared by all rotations: not tight */
             memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
             built = 1;
         }
@@ -4241,7 +4259,7 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
             gr__sheet_t sh = stack[--top];
             double w, cl;
             int m;
-            gr__line_scene(grid, &s, &sc, &sh, 1, NULL);
+            gr__line_scene(grid, &s, &sc, &sh, 1, NULL, query->lights, query->light_count);
             /* the early exit (§5.6) would leave unclassified gaps, which
                here would read as light leaving: bounces classify all */
             m = gr__sheet_eval(&sc, &sh, query->lights, query->light_count, sh.level ? -1 : tol, &w, &cl, stats);

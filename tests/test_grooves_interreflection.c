@@ -292,6 +292,40 @@ static void t_depth0_is_direct(void)
     gr_grid_free(grid);
 }
 
+/* a tall bar's shadow falling on ground far outside the view rays'
+   reach (the bar must not be pruned from the bounce scene: shadow rays
+   reach further than view rays) */
+static void t_shadow_from_outside_the_view(void)
+{
+    static const double bar[10] = {-0.018, 0, -0.016, 0.03, 0, 0.036, 0.016, 0.03, 0.018, 0};
+    static const double light[3] = {-0.8, 0, 0.6};
+    gr_groove_desc_t g;
+    gr_grid_t *grid = one_groove(bar, 5, &g);
+    gr_facet_list_t l;
+    gr_indirect_t ind;
+    size_t need;
+    void *scratch;
+    double rgb[3], want[3];
+    gr_query_t q = gt_query(0.53, 0.5, 0.004, 0.1, 0, 0.99);
+    if (!T_CHECK(grid)) return;
+    need = gr_query_scratch_bytes(grid);
+    scratch = malloc(need);
+    q.lights = light;
+    q.light_count = 1;
+    q.line_exit_tol = -1;
+    T_INT_EQ(gr_query_lines(grid, &q, scratch, need, &l, NULL), GR_OK);
+    T_INT_EQ(l.count, 1);
+    T_NEAR(l.facets[0].lit[0], 0, 1e-12); /* in the bar's shadow */
+    brdf_cb(NULL, l.facets[0].reflectance, l.facets[0].normal, q.footprint.view, light, 0, want);
+    memset(&ind, 0, sizeof ind);
+    ind.brdf = brdf_cb;
+    T_INT_EQ(gr_shade_indirect(grid, &q, &ind, scratch, need, rgb, NULL), GR_OK);
+    T_NEAR(rgb[0], 0, 1e-12);
+    T_GT(want[0], 0.1); /* it would be lit */
+    free(scratch);
+    gr_grid_free(grid);
+}
+
 /* a glass ground: k_t of it goes to the host, refracted by Snell's law */
 static void t_transmission_to_host(void)
 {
@@ -341,7 +375,7 @@ int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(t_mirror_energy_vs_pathtraced), T_CASE(t_crossing_energy_vs_pathtraced), T_CASE(t_direction_from_below), T_CASE(t_depth0_is_direct),
-        T_CASE(t_transmission_to_host),
+        T_CASE(t_shadow_from_outside_the_view), T_CASE(t_transmission_to_host),
     };
     return T_RUN(argc, argv, cases);
 }
