@@ -3589,6 +3589,12 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
             quad.n++;
         }
     }
+    for (e = 0; e < quad.n; e++) { /* §5.1's w_L: shadow casters toward the lights */
+        if (quad.p[2 * e] - grid->w < box[0]) box[0] = quad.p[2 * e] - grid->w;
+        if (quad.p[2 * e] + grid->w > box[2]) box[2] = quad.p[2 * e] + grid->w;
+        if (quad.p[2 * e + 1] - grid->w < box[1]) box[1] = quad.p[2 * e + 1] - grid->w;
+        if (quad.p[2 * e + 1] + grid->w > box[3]) box[3] = quad.p[2 * e + 1] + grid->w;
+    }
     c[0] = 0.5 * (box[0] + box[2]);
     c[1] = 0.5 * (box[1] + box[3]);
     reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
@@ -4065,7 +4071,7 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
                               fp->axis2[1] * fp->axis2[1]);
             all.a[0] = ext; /* a box covering all rotations: the footprint's circumscribed extent */
             all.a[1] = ext;
-            gr__line_scene(grid, &s, &sc, &all, 0, cache, NULL, 0); /* shared by all rotations: not tight */
+            gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl); /* all rotations: not tight */
             memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
             built = 1;
         }

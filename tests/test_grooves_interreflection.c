@@ -293,35 +293,40 @@ static void t_depth0_is_direct(void)
 }
 
 /* a tall bar's shadow falling on ground far outside the view rays'
-   reach (the bar must not be pruned from the bounce scene: shadow rays
-   reach further than view rays) */
+   reach, for gr_query_lines() and a bounce's scene alike (the bar must
+   not be pruned: shadow rays reach further than view rays, §5.1's w_L) */
 static void t_shadow_from_outside_the_view(void)
 {
     static const double bar[10] = {-0.018, 0, -0.016, 0.03, 0, 0.036, 0.016, 0.03, 0.018, 0};
-    static const double light[3] = {-0.8, 0, 0.6};
+    static const double lights[2][3] = {{-0.8, 0, 0.6}, {-0.9, 0, 0.436}};
+    static const double at[2] = {0.53, 0.565};
     gr_groove_desc_t g;
     gr_grid_t *grid = one_groove(bar, 5, &g);
-    gr_facet_list_t l;
-    gr_indirect_t ind;
     size_t need;
     void *scratch;
-    double rgb[3], want[3];
-    gr_query_t q = gt_query(0.53, 0.5, 0.004, 0.1, 0, 0.99);
+    int c;
     if (!T_CHECK(grid)) return;
     need = gr_query_scratch_bytes(grid);
     scratch = malloc(need);
-    q.lights = light;
-    q.light_count = 1;
-    q.line_exit_tol = -1;
-    T_INT_EQ(gr_query_lines(grid, &q, scratch, need, &l, NULL), GR_OK);
-    T_INT_EQ(l.count, 1);
-    T_NEAR(l.facets[0].lit[0], 0, 1e-12); /* in the bar's shadow */
-    brdf_cb(NULL, l.facets[0].reflectance, l.facets[0].normal, q.footprint.view, light, 0, want);
-    memset(&ind, 0, sizeof ind);
-    ind.brdf = brdf_cb;
-    T_INT_EQ(gr_shade_indirect(grid, &q, &ind, scratch, need, rgb, NULL), GR_OK);
-    T_NEAR(rgb[0], 0, 1e-12);
-    T_GT(want[0], 0.1); /* it would be lit */
+    for (c = 0; c < 2; c++) {
+        const double *light = lights[c];
+        gr_facet_list_t l;
+        gr_indirect_t ind;
+        double rgb[3], want[3];
+        gr_query_t q = gt_query(at[c], 0.5, 0.004, 0.1, 0, 0.99);
+        q.lights = light;
+        q.light_count = 1;
+        q.line_exit_tol = -1;
+        T_INT_EQ(gr_query_lines(grid, &q, scratch, need, &l, NULL), GR_OK);
+        T_INT_EQ(l.count, 1);
+        T_NEAR(l.facets[0].lit[0], 0, 1e-12); /* in the bar's shadow */
+        brdf_cb(NULL, l.facets[0].reflectance, l.facets[0].normal, q.footprint.view, light, 0, want);
+        memset(&ind, 0, sizeof ind);
+        ind.brdf = brdf_cb;
+        T_INT_EQ(gr_shade_indirect(grid, &q, &ind, scratch, need, rgb, NULL), GR_OK);
+        T_NEAR(rgb[0], 0, 1e-12);
+        T_GT(want[0], 0.1); /* it would be lit */
+    }
     free(scratch);
     gr_grid_free(grid);
 }
