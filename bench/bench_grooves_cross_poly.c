@@ -10,14 +10,165 @@
    Error: each operation is run on a square [-1,1]^2 against copies of
    itself turned by 45° (about the centre), whose intersection is the
    regular octagon of area 8(√2 - 1); the difference and union follow.
-   Each row is the median of 5 runs of N calls. */
+   Each row is the median of 5 runs of N calls.
+
+   Then error against run time at intersections (issue 8's benchmark):
+   footprints on an X crossing, a T junction and an isolated end, random
+   views, one light; the scalar each method estimates is the footprint's
+   Lambert radiance Σ r_i lit_i max(0, N_i.L). gr_query() (the polygon path)
+   against the same grooves as Embree geometry (tests/grooves_oracle.h,
+   built once) with n x n stratified primary rays plus one shadow ray each,
+   n = 2..32; the reference is that geometry at n = 384. CPU time per
+   footprint (process clock, one thread), RMS error over the footprints.
+   The line-sample columns (§5.6) stay empty until line samples exist.
+     → out/bench/grooves_cross_error_time.csv */
 #define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "ex_timer.h"
 
+#include "grooves_oracle.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+#define XE_FOOTPRINTS 32
+typedef struct xe_fp_t { double c[2], r, e[3]; } xe_fp_t;
+
+/* Lambert radiance of a footprint from the geometry: n x n stratified rays. */
+static double xe_geometry(const gro_scene_t *sc, const xe_fp_t *f, const double *L, int n, uint64_t *seed)
+{
+    double sum = 0;
+    int i, j, m;
+    for (i = 0; i < n; i++)
+        for (j = 0; j < n; j++) {
+            double x[3], o[3], d[3], a = -1 + 2 * (i + gro__unit(seed)) / n, c = -1 + 2 * (j + gro__unit(seed)) / n;
+            gro_hit_t h;
+            x[0] = f->c[0] + a * f->r; x[1] = f->c[1] + c * f->r; x[2] = 0;
+            for (m = 0; m < 3; m++) { o[m] = x[m] + 0.2 * f->e[m]; d[m] = -f->e[m]; }
+            h = gro_scene_intersect(sc, o, d, 0, INFINITY);
+            if (h.kind != GRO_HIT_NONE && gro_scene_lit(sc, &h, L))
+                sum += fmax(0, h.n[0] * L[0] + h.n[1] * L[1] + h.n[2] * L[2]);
+        }
+    return sum / ((double)n * n);
+}
+
+/* The same from gr_query(). */
+static double xe_ours(const gr_grid_t *grid, const xe_fp_t *f, const double *L, void *scratch, size_t bytes)
+{
+    gr_query_t q;
+    gr_facet_list_t list;
+    double sum = 0;
+    int i;
+    memset(&q, 0, sizeof q);
+    q.footprint.center[0] = f->c[0]; q.footprint.center[1] = f->c[1];
+    q.footprint.axis1[0] = f->r; q.footprint.axis2[1] = f->r;
+    memcpy(q.footprint.view, f->e, sizeof f->e);
+    q.lights = L; q.light_count = 1;
+    if (gr_query(grid, &q, scratch, bytes, &list) != GR_OK) return NAN;
+    for (i = 0; i < list.count; i++) {
+        const gr_facet_t *e = &list.facets[i];
+        sum += e->ratio * e->lit[0] * fmax(0, e->normal[0] * L[0] + e->normal[1] * L[1] + e->normal[2] * L[2]);
+    }
+    return sum;
+}
+
+static void error_against_time(const char *dir)
+{
+    static const double a[4] = {0.2, 0.5, 0.8, 0.5}, b[4] = {0.5, 0.2, 0.5, 0.8}, c[4] = {0.65, 0.5, 0.65, 0.7};
+    static const double e2[4] = {0.35, 0.3, 0.35, 0.45};
+    static const double V[6] = {-0.01, 0, 0, -0.02, 0.01, 0}, U[8] = {-0.01, 0, -0.01, -0.015, 0.01, -0.015, 0.01, 0};
+    static const int ns[6] = {2, 4, 8, 16, 32, 384};
+    gr_groove_desc_t g[4];
+    gro_groove_t geo[4];
+    gr_grid_desc_t gd;
+    gr_grid_t *grid = NULL;
+    gro_device_t dev;
+    gro_scene_t sc;
+    gro_build_t bo;
+    xe_fp_t fps[XE_FOOTPRINTS];
+    double ref[XE_FOOTPRINTS], L[3], t0, t_ours, err2, path_err2 = 0;
+    void *scratch;
+    size_t bytes;
+    uint64_t seed = 7;
+    char path[512];
+    FILE *csv;
+    int i, k, npoly = 0;
+    memset(g, 0, sizeof g);
+    for (i = 0; i < 4; i++) {
+        g[i].points = i == 0 ? a : i == 1 ? b : i == 2 ? c : e2;
+        g[i].point_count = 2;
+        g[i].section = i % 2 ? U : V;
+        g[i].section_count = i % 2 ? 4 : 3;
+    }
+    memset(&gd, 0, sizeof gd);
+    gd.grooves = g; gd.groove_count = 4; gd.no_wrap = 1;
+    if (gr_grid_build(&gd, &grid, NULL) != GR_OK || gro_device_init(&dev)) { fprintf(stderr, "setup failed\n"); return; }
+    for (i = 0; i < 4; i++) geo[i] = gro_from_gr(&g[i]);
+    memset(&bo, 0, sizeof bo);
+    if (gro_scene_build(&sc, dev.dev, geo, 4, &bo)) { fprintf(stderr, "geometry failed\n"); return; }
+    bytes = gr_query_scratch_bytes(grid);
+    scratch = malloc(bytes);
+    L[0] = 0.45; L[1] = 0.3; L[2] = sqrt(1 - 0.45 * 0.45 - 0.3 * 0.3);
+    /* footprints: the X crossing (0.5, 0.5), the T (0.65, 0.5) and the
+       isolated end (0.35, 0.45); half-size 0.005..0.03, views up to 65° */
+    for (i = 0; i < XE_FOOTPRINTS; i++) {
+        static const double site[3][2] = {{0.5, 0.5}, {0.65, 0.5}, {0.35, 0.45}};
+        double th = 65 * M_PI / 180 * sqrt(gro__unit(&seed)), ph = 2 * M_PI * gro__unit(&seed);
+        fps[i].c[0] = site[i % 3][0] + 0.01 * (gro__unit(&seed) - 0.5);
+        fps[i].c[1] = site[i % 3][1] + 0.01 * (gro__unit(&seed) - 0.5);
+        fps[i].r = 0.005 + 0.025 * gro__unit(&seed);
+        fps[i].e[0] = sin(th) * cos(ph); fps[i].e[1] = sin(th) * sin(ph); fps[i].e[2] = cos(th);
+        ref[i] = xe_geometry(&sc, &fps[i], L, ns[5], &seed);
+    }
+    snprintf(path, sizeof path, "%s/grooves_cross_error_time.csv", dir);
+    csv = fopen(path, "w");
+    if (csv) fprintf(csv, "method,samples,us_per_footprint,rms_error\n");
+    printf("\nerror against time at intersections (%d footprints, reference: geometry at %d^2 rays)\n",
+           XE_FOOTPRINTS, ns[5]);
+    printf("%-28s %14s %12s\n", "method", "us/footprint", "rms error");
+    /* polygons: repeat for a stable time */
+    t0 = cpu_now();
+    for (k = 0; k < 20; k++)
+        for (i = 0; i < XE_FOOTPRINTS; i++) (void)xe_ours(grid, &fps[i], L, scratch, bytes);
+    t_ours = (cpu_now() - t0) / (20.0 * XE_FOOTPRINTS) * 1e6;
+    for (i = 0; i < XE_FOOTPRINTS; i++) {
+        double v = xe_ours(grid, &fps[i], L, scratch, bytes);
+        path_err2 += (v - ref[i]) * (v - ref[i]);
+        npoly++;
+    }
+    printf("%-28s %14.1f %12.2e\n", "polygons (gr_query)", t_ours, sqrt(path_err2 / npoly));
+    if (csv) fprintf(csv, "polygons,0,%.2f,%.3e\n", t_ours, sqrt(path_err2 / npoly));
+    for (k = 0; k < 3; k++) { /* §5.6, for the line-sample helper to fill */
+        printf("%-28s %14s %12s\n", k == 0 ? "line samples x2" : k == 1 ? "line samples x4" : "line samples x8", "-", "-");
+        if (csv) fprintf(csv, "line_samples,%d,,\n", 2 << k);
+    }
+    for (k = 0; k < 5; k++) {
+        double t;
+        err2 = 0;
+        t0 = cpu_now();
+        for (i = 0; i < XE_FOOTPRINTS; i++) {
+            double v = xe_geometry(&sc, &fps[i], L, ns[k], &seed);
+            err2 += (v - ref[i]) * (v - ref[i]);
+        }
+        t = (cpu_now() - t0) / XE_FOOTPRINTS * 1e6;
+        printf("geometry %3d^2 rays          %14.1f %12.2e\n", ns[k], t, sqrt(err2 / XE_FOOTPRINTS));
+        if (csv) fprintf(csv, "geometry,%d,%.2f,%.3e\n", ns[k] * ns[k], t, sqrt(err2 / XE_FOOTPRINTS));
+    }
+    if (csv) fclose(csv);
+    free(scratch);
+    gro_scene_free(&sc);
+    gro_device_free(&dev);
+    gr_grid_free(grid);
+}
 
 static int cmp(const void *a, const void *b)
 {
@@ -126,5 +277,6 @@ int main(int argc, char **argv)
     }
     fclose(csv);
     (void)sink;
+    error_against_time(dir);
     return 0;
 }

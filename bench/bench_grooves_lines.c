@@ -11,10 +11,9 @@
    mean error against supersampled geometry (Embree on the explicit mesh
    of tests/grooves_oracle.h, 64 x 64 rays per footprint): the total
    variation ½ Σ_i |r_i - r_i,ref| of the visible ratios, (groove, facet)
-   by (groove, facet). Methods: the §4 query (not valid at intersections:
-   its cost is the floor), 1/2/4/8 line samples, and geometry with 4x4,
-   8x8, 16x16 rays (shadow rays included). The polygon path (§5.2-5.5) is
-   not in this branch: its column is added when it lands.
+   by (groove, facet). Methods: gr_query() with line_samples = 0, which
+   sends these footprints to the polygon path (§5.2-5.5), 1/2/4/8 line
+   samples, and geometry with 4x4, 8x8, 16x16 rays (shadow rays included).
    Then gr_shade_indirect() with every facet a 50% mirror at depth 0..3. */
 #define GR_IMPLEMENTATION
 #include "grooves.h"
@@ -105,7 +104,7 @@ int main(int argc, char **argv)
     size_t need;
     void *scratch;
     int i, k, m;
-    static const char *names[8] = {"§4 query (floor)", "1 line sample", "2 line samples", "4 line samples",
+    static const char *names[8] = {"polygons (gr_query)", "1 line sample", "2 line samples", "4 line samples",
                                    "8 line samples", "geometry 4x4", "geometry 8x8", "geometry 16x16"};
     memset(g, 0, sizeof g);
     for (i = 0; i < 2 * NG; i++) {

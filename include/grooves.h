@@ -28,8 +28,13 @@
      GR_NO_CURVES       leave out Bézier paths (the builder then rejects them
                         with GR_ERR_UNSUPPORTED)
      GR_NO_OVERSAMPLE   leave out footprint oversampling (§4.2)
-     GR_NO_LINE_SAMPLES leave out gr_query_lines() (§5.6 line samples)
-     GR_NO_INTERREFLECTION leave out gr_shade_indirect() (§6)
+     GR_NO_INTERSECTIONS leave out §5-6 (the 2D polygon routines, gr_detect,
+                        the polygon path): footprints with crossings or
+                        ends then get §4's answer with its flags
+     GR_NO_LINE_SAMPLES leave out gr_query_lines() (§5.6 line samples;
+                        implied by GR_NO_INTERSECTIONS)
+     GR_NO_INTERREFLECTION leave out gr_shade_indirect() (§6; implied by
+                        GR_NO_INTERSECTIONS)
    CONVENTIONS
      See docs/conventions.md: results are gr_result_t codes with GR_OK = 0,
      zero-initialised config structs mean defaults, queries are const,
@@ -268,14 +273,20 @@ typedef struct gr_query_t {
     double parallel_tol;   /* grooves whose tangent differs from the nearest
                               groove's by more than this angle (radians) are
                               not parallel (§4.2); default 0 means 0.02 */
+    int line_samples;      /* intersections and ends (§5, issue 8): 0 (default)
+                              answers footprints that gr_detect() finds
+                              crossings or path ends in with the exact
+                              polygon path (§5.2-5.5); n = 1..8 asks for n
+                              line samples (§5.6, gr_query_lines()) for
+                              footprints whose §4 answer flags
+                              GR_LIST_NONPARALLEL or GR_LIST_PATH_END
+                              (without GR_NO_LINE_SAMPLES; with it they
+                              keep §4's answer and its flags) */
     int perturb_normals;   /* 0 (default): facet normals as §4.4, (0, N_b, N_w)
                               in groove space. 1: also tilt them along T by the
                               perturbation's slope, f'(s) (b dw - w db)/|(db, dw)|
                               (the true normal of the swept, scaled section,
                               with f' averaged across the footprint) */
-    int line_samples;      /* §5.6: 0 (default) = polygons at intersections
-                              and ends (§5.2-5.5); 1..8 = that many line
-                              samples (gr_query_lines(); 2, 4, 8 usual) */
     double line_exit_tol;  /* §5.6 early exit of line samples: stop when
                               Σ r_i >= 1 - tol; default 0 means 1e-3;
                               negative disables */
@@ -311,6 +322,11 @@ typedef struct gr_facet_t {
                                      passes the end */
 #define GR_LIST_OVERLAP      16u  /* parallel cross-sections overlap in UV:
                                      joined in path order, approximate */
+#define GR_LIST_POLYGON      32u  /* answered by the polygon path (§5.2-5.5):
+                                     crossings and path ends are exact; end
+                                     caps are listed with facet index
+                                     section_count-1 (first end) or
+                                     section_count (last end) */
 
 /* The query result: caller-owned, fixed maximum size. The ratios sum to 1
    (to rounding) unless GR_LIST_BELOW_HORIZON is set. */
@@ -343,6 +359,7 @@ GR_DEF gr_result_t gr_shade(const gr_grid_t *grid, const gr_query_t *query, void
                             size_t scratch_bytes, gr_brdf_fn brdf, void *user, double rgb[3]);
 
 /* ==== [section: intersections] declarations (issue 8: §5–6) ==== */
+#ifndef GR_NO_INTERSECTIONS
 
 /* ---- 2D polygons (§5.2-5.5) ---------------------------------------------- */
 /* At intersections and ends the footprint is a polygon (§5.2): it is clipped
@@ -561,9 +578,18 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
                                        const double *sec2, int n2, const double bounds[4], double *points, int cap,
                                        int *sizes, int ring_cap, gr_polyset_t *cut);
 
+#endif /* GR_NO_INTERSECTIONS */
 /* ==== [end section: intersections] ==== */
 
 /* ==== [section: line samples] declarations (issue 8: §5.6) ==== */
+#ifdef GR_NO_INTERSECTIONS /* §5-6 left out: line samples and §6 with them */
+#  ifndef GR_NO_LINE_SAMPLES
+#    define GR_NO_LINE_SAMPLES
+#  endif
+#  ifndef GR_NO_INTERREFLECTION
+#    define GR_NO_INTERREFLECTION
+#  endif
+#endif
 #if !defined(GR_NO_LINE_SAMPLES) || !defined(GR_NO_INTERREFLECTION)
 /* Local grooves one line-sample evaluation keeps (the nearest), facet
    planes (the ground, facets and end walls of those grooves) and the
@@ -1552,7 +1578,17 @@ static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *
     return off;
 }
 
-/* [section: line samples] its scratch follows the query's */
+#ifndef GR_NO_INTERSECTIONS
+/* The polygon path (§5.2-5.5, [section: intersections]) uses the scratch
+   after the §4 layout. */
+static size_t gr__pp_scratch_bytes(void);
+static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q, void *scratch, size_t bytes,
+                           const gr__scratch_t *s, gr_facet_list_t *list);
+#else
+static size_t gr__pp_scratch_bytes(void) { return 0; }
+#endif
+/* [section: line samples] its scratch also follows the query's (the two
+   paths never run at once) */
 #if !defined(GR_NO_LINE_SAMPLES) || !defined(GR_NO_INTERREFLECTION)
 struct gr__lscratch_t;
 static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls);
@@ -1563,7 +1599,8 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls);
 
 GR_DEF size_t gr_query_scratch_bytes(const gr_grid_t *grid)
 {
-    return grid ? gr__scratch_layout(grid, NULL, NULL) + GR__LINE_SCRATCH_BYTES : 0;
+    size_t pp = gr__pp_scratch_bytes(), ls = GR__LINE_SCRATCH_BYTES;
+    return grid ? gr__align8(gr__scratch_layout(grid, NULL, NULL)) + (pp > ls ? pp : ls) : 0;
 }
 
 #ifndef GR_NO_CURVES
@@ -2225,6 +2262,14 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     el = sqrt(gr__dot3(fp->view, fp->view));
     if (!(fp->view[2] > 0) || !(el > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
     gr__scratch_layout(grid, scratch, &s);
+    /* §5: crossings and path ends in the footprint take the polygon path
+       (line samples, §5.6, for line_samples > 0: see the end) */
+#ifndef GR_NO_INTERSECTIONS
+    if (query->line_samples == 0 && gr__pp_dispatch(grid, query, scratch, scratch_bytes, &s, list)) {
+        gr__list_finish(list, qs.light_count);
+        return GR_OK;
+    }
+#endif
     need = gr__query_one(grid, &qs, fp, 1.0, &s, list, 1, t);
     if (need > 1) {
         /* §4.2 oversampling: split along the axis that runs most along the
@@ -2250,6 +2295,12 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
         }
         list->subfootprints = need;
     }
+#ifndef GR_NO_LINE_SAMPLES
+    /* §5.6 ([section: line samples]): crossings and ends, as §4's answer
+       flags them, take query->line_samples line samples */
+    if (query->line_samples > 0 && (list->flags & (GR_LIST_NONPARALLEL | GR_LIST_PATH_END)))
+        return gr_query_lines(grid, query, scratch, scratch_bytes, list, NULL);
+#endif
     gr__list_finish(list, qs.light_count);
     return GR_OK;
 }
@@ -2279,6 +2330,7 @@ GR_DEF gr_result_t gr_shade(const gr_grid_t *grid, const gr_query_t *query, void
 }
 
 /* ==== [section: intersections] implementation (issue 8: §5–6) ==== */
+#ifndef GR_NO_INTERSECTIONS
 
 /* ---- 2D polygons (§5.2-5.5) ---------------------------------------------- */
 
@@ -2904,6 +2956,19 @@ static void gr__detect_ends(const gr_grid_t *grid, const gr__cand_t *cand, int n
         }
 }
 
+/* The footprint centre's image in the tile (as gr_query()), where
+   gr_detect() and the polygon path place the grooves' nearest points. */
+static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
+{
+    f[0] = c[0];
+    f[1] = c[1];
+    if (grid->wrap) {
+        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
+        f[0] -= floor((f[0] - grid->domain[0]) / wu) * wu;
+        f[1] -= floor((f[1] - grid->domain[1]) / wv) * wv;
+    }
+}
+
 GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
                              int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
 {
@@ -2923,13 +2988,7 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
     for (k = 0; k < self_count; k++)
         if (self[k].groove < 0 || self[k].groove >= grid->groove_count) return GR_ERR_INVALID_ARG;
     gr__scratch_layout(grid, scratch, &s);
-    f[0] = fp->center[0];
-    f[1] = fp->center[1];
-    if (grid->wrap) { /* the centre's image in the tile, as gr_query() */
-        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
-        f[0] -= floor((f[0] - grid->domain[0]) / wu) * wu;
-        f[1] -= floor((f[1] - grid->domain[1]) / wv) * wv;
-    }
+    gr__tile_image(grid, fp->center, f);
     gr__search_box(grid, fp, f, query->lights, fp->view[2] > 0 ? query->light_count : 0, out->box);
     if (!(fp->view[2] > 0)) return GR_OK;
     /* a groove counts when its path enters the box (the box has its w
@@ -3183,6 +3242,612 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
     return GR_OK;
 }
 
+/* ---- The polygon path: visibility at intersections and ends (§5.2-5.5) --- */
+
+/* Limits of the polygon path; a footprint beyond them is answered by §4
+   (flags GR_LIST_NONPARALLEL / GR_LIST_PATH_END as before). */
+#define GR__PP_MAX_GROOVES 8  /* grooves in the §5.1 search box */
+#define GR__PP_RING 80        /* points of one piece's clipped ring, or one cut */
+#define GR__PP_TRAPS 512      /* trapezoids of an intermediate region (before merging) */
+#define GR__PP_EDGES 400      /* edges of both operands of one boolean */
+#define GR__PP_MAX_PIECES 64  /* facets and end caps of those grooves */
+/* Coplanar pieces of two grooves (equal floors at a crossing): the lower
+   groove index keeps the overlap; the cut plane is moved by this fraction
+   of the grid's largest section size to decide it. */
+#define GR__PP_TIE_REL 1e-9
+/* A plane is seen edge-on along D when |N.D| falls below this (unit vectors):
+   its projection has no area (as GR__EDGE_ON_REL for eq. 8). */
+#define GR__PP_EDGE_ON 1e-9
+
+/* One locally straight groove near the footprint, in coordinates relative
+   to the footprint centre's tile image f (§4.2's straight approximation). */
+typedef struct gr__ppg_t {
+    double p[2], t[2];  /* nearest path point and unit tangent (direction of travel) */
+    double x0, x1;      /* the groove exists for x = T.(q - P) in [x0, x1] (path ends, §5) */
+    int end[2];         /* 1 when that path end (0: first point, 1: last) lies in the box */
+    const double *sec;  /* section (b, w) pairs, unscaled */
+    int nsec;
+    double s;           /* perturbation scale f at P */
+    int groove;
+} gr__ppg_t;
+
+/* A planar piece of the true surface: a facet strip of one groove, or an
+   end cap (the section at a path end). 2D coordinates (a, c) map to
+   o + a X + c Y; n is the unit normal out of the material. */
+typedef struct gr__ppp_t {
+    double o[3], x[3], y[3], n[3];
+    int g;              /* index into the ppg array */
+    int facet;          /* facet index; nsec-1 + end for caps */
+    int refl;
+    int nring;
+    double ring[2 * (GR_MAX_FACETS + 2)];
+} gr__ppp_t;
+
+/* Scratch of the polygon path, after the §4 layout. */
+typedef struct gr__pps_t {
+    gr__ppg_t *g;
+    gr__ppp_t *p;
+    double *ra, *rb, *rc, *rv, *cut, *tmp, *tmp2; /* region ping-pong (traps), occluder, visible, cuts, rings */
+    int *sizes;
+    void *bool_scratch;
+    size_t bool_bytes;
+} gr__pps_t;
+
+static size_t gr__pp_layout(void *base, gr__pps_t *s)
+{
+    size_t off = 0;
+    char *b = (char *)base;
+    gr__pps_t tmp;
+    if (!s) s = &tmp;
+#define GR__PPCARVE(field, type, count) \
+    s->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (count));
+    GR__PPCARVE(g, gr__ppg_t, GR__PP_MAX_GROOVES)
+    GR__PPCARVE(p, gr__ppp_t, GR__PP_MAX_PIECES)
+    GR__PPCARVE(ra, double, 8 * GR__PP_TRAPS)
+    GR__PPCARVE(rb, double, 8 * GR__PP_TRAPS)
+    GR__PPCARVE(rc, double, 8 * GR__PP_TRAPS)
+    GR__PPCARVE(rv, double, 8 * GR__PP_TRAPS)
+    GR__PPCARVE(cut, double, 2 * GR__PP_RING * GR__PP_MAX_GROOVES)
+    GR__PPCARVE(tmp, double, 2 * GR__PP_RING)
+    GR__PPCARVE(tmp2, double, 2 * GR__PP_RING)
+    GR__PPCARVE(sizes, int, 4 * GR__PP_MAX_GROOVES + 4)
+#undef GR__PPCARVE
+    s->bool_bytes = gr_poly_boolean_scratch_bytes(GR__PP_EDGES);
+    s->bool_scratch = b ? b + off : NULL;
+    return off + s->bool_bytes;
+}
+
+static void gr__pp_point(const gr__ppp_t *pc, double a, double c, double q[3])
+{
+    int k;
+    for (k = 0; k < 3; k++) q[k] = pc->o[k] + a * pc->x[k] + c * pc->y[k];
+}
+
+/* q slid along D onto the piece's plane, in its 2D coordinates (eqs. 7-8
+   for any plane); D must not lie in the plane. */
+static void gr__pp_onto(const gr__ppp_t *pc, const double q[3], const double *d, double out[2])
+{
+    double r[3], s = ((q[0] - pc->o[0]) * pc->n[0] + (q[1] - pc->o[1]) * pc->n[1] + (q[2] - pc->o[2]) * pc->n[2]) /
+                     gr__dot3(pc->n, d);
+    int k;
+    for (k = 0; k < 3; k++) r[k] = q[k] - s * d[k] - pc->o[k];
+    out[0] = gr__dot3(r, pc->x);
+    out[1] = gr__dot3(r, pc->y);
+}
+
+/* Sutherland-Hodgman against one half-plane ka a + kc c + k0 >= 0. */
+static int gr__pp_halfplane(const double *in, int n, double ka, double kc, double k0, double *out)
+{
+    int i, m = 0;
+    for (i = 0; i < n; i++) {
+        const double *a = in + 2 * i, *b = in + 2 * ((i + 1) % n);
+        double da = ka * a[0] + kc * a[1] + k0, db = ka * b[0] + kc * b[1] + k0;
+        if (da >= 0) { out[2 * m] = a[0]; out[2 * m + 1] = a[1]; m++; }
+        if ((da >= 0) != (db >= 0)) {
+            double t = da / (da - db);
+            out[2 * m] = a[0] + t * (b[0] - a[0]);
+            out[2 * m + 1] = a[1] + t * (b[1] - a[1]);
+            m++;
+        }
+    }
+    return m;
+}
+
+/* The groove coordinates (x along T, b along B, w) of the piece's point
+   (a, c) are affine: q = k + a ga + c gc. */
+static void gr__pp_groove_affine(const gr__ppp_t *pc, const gr__ppg_t *g, double k[3], double ga[3], double gc[3])
+{
+    double o[3] = {pc->o[0] - g->p[0], pc->o[1] - g->p[1], pc->o[2]};
+    double t3[3] = {g->t[0], g->t[1], 0}, b3[3] = {-g->t[1], g->t[0], 0};
+    k[0] = gr__dot3(o, t3); k[1] = gr__dot3(o, b3); k[2] = o[2];
+    ga[0] = gr__dot3(pc->x, t3); ga[1] = gr__dot3(pc->x, b3); ga[2] = pc->x[2];
+    gc[0] = gr__dot3(pc->y, t3); gc[1] = gr__dot3(pc->y, b3); gc[2] = pc->y[2];
+}
+
+/* §5.3: the part of the piece's plane inside groove g's volume (its
+   section swept along T over [x0, x1]), as rings in the piece's 2D
+   coordinates appended to out (*npts points, sizes[*nrings++]). The
+   general case maps the section back onto the plane; a plane holding T
+   (the ground, floors, or a cap across a perpendicular groove) meets the
+   volume in strips along T where the plane's trace crosses the section.
+   Returns 0, or -1 when out is full. */
+static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, double shift, double *out, int cap,
+                      int *npts, int *sizes, int *nrings, double *tmp, double *tmp2)
+{
+    double k[3], ga[3], gc[3], det, s = g->s;
+    int i, n = 0;
+    gr__pp_groove_affine(pc, g, k, ga, gc);
+    /* a plane on the volume's boundary (equal floors of crossing grooves)
+       is moved by `shift` along its normal, so exactly one of the two
+       coplanar pieces keeps the overlap */
+    k[0] += shift * (pc->n[0] * g->t[0] + pc->n[1] * g->t[1]);
+    k[1] += shift * (-pc->n[0] * g->t[1] + pc->n[1] * g->t[0]);
+    k[2] += shift * pc->n[2];
+    det = ga[1] * gc[2] - ga[2] * gc[1];
+    if (fabs(det) > GR__PP_EDGE_ON * (fabs(ga[1]) + fabs(ga[2])) * (fabs(gc[1]) + fabs(gc[2]))) {
+        for (i = 0; i < g->nsec; i++) { /* (b, w) -> (a, c) by the inverse 2x2 map */
+            double db = s * g->sec[2 * i] - k[1], dw = s * g->sec[2 * i + 1] - k[2];
+            tmp[2 * i] = (db * gc[2] - dw * gc[1]) / det;
+            tmp[2 * i + 1] = (ga[1] * dw - ga[2] * db) / det;
+        }
+        n = g->nsec;
+        /* x in [x0, x1]: two half-planes */
+        n = gr__pp_halfplane(tmp, n, ga[0], gc[0], k[0] - g->x0, tmp2);
+        n = gr__pp_halfplane(tmp2, n, -ga[0], -gc[0], g->x1 - k[0], tmp);
+        if (n < 3) return 0;
+        if (*npts + n > cap || *nrings >= 4 * GR__PP_MAX_GROOVES) return -1;
+        memcpy(out + 2 * *npts, tmp, sizeof(double) * 2 * (size_t)n);
+        *npts += n;
+        sizes[(*nrings)++] = n;
+        return 0;
+    }
+    {
+        /* T in the plane: along the unit direction u (in 2D) across T the
+           plane's trace runs through the section; intervals where it is
+           inside become strips u-interval x [x0, x1] along T */
+        double tl = hypot(ga[0], gc[0]), ua, uc, bs[2 * (GR_MAX_FACETS + 2)], db, dw, ta, tc;
+        int nb = 0;
+        if (!(tl > 0)) return 0;
+        ta = ga[0] / tl; tc = gc[0] / tl; /* 2D direction of T */
+        ua = -tc; uc = ta;
+        db = ua * ga[1] + uc * gc[1];
+        dw = ua * ga[2] + uc * gc[2];
+        for (i = 0; i < g->nsec; i++) { /* crossings of the trace (b, w) = k + u (db, dw) with the closed section */
+            const double *p0 = g->sec + 2 * i, *p1 = g->sec + 2 * ((i + 1) % g->nsec);
+            double e0[2] = {s * p0[0] - k[1], s * p0[1] - k[2]}, e1[2] = {s * p1[0] - k[1], s * p1[1] - k[2]};
+            double c0 = db * e0[1] - dw * e0[0], c1 = db * e1[1] - dw * e1[0]; /* side of the trace */
+            if ((c0 >= 0) != (c1 >= 0)) {
+                double t = c0 / (c0 - c1), q[2] = {e0[0] + t * (e1[0] - e0[0]), e0[1] + t * (e1[1] - e0[1])};
+                bs[nb++] = (q[0] * db + q[1] * dw) / (db * db + dw * dw);
+            }
+        }
+        gr__sort_doubles(bs, nb);
+        for (i = 0; i + 1 < nb; i += 2) {
+            /* x along T at 2D point (a, c): k0 + a ga0 + c gc0; the strip's
+               ends x0, x1 (or +-big) */
+            double xa = fmax(g->x0, k[0] - big), xb = fmin(g->x1, k[0] + big), m;
+            int j;
+            if (!(xb > xa)) continue;
+            if (*npts + 4 > cap || *nrings >= 4 * GR__PP_MAX_GROOVES) return -1;
+            for (j = 0; j < 4; j++) {
+                double u = j == 0 || j == 3 ? bs[i] : bs[i + 1], x = j < 2 ? xa : xb;
+                m = (x - k[0]) / tl; /* along T from the point u ua, u uc, where x = k0 (T is across u) */
+                out[2 * (*npts + j)] = u * ua + m * ta;
+                out[2 * (*npts + j) + 1] = u * uc + m * tc;
+            }
+            *npts += 4;
+            sizes[(*nrings)++] = 4;
+        }
+    }
+    return 0;
+}
+
+/* Joins trapezoids stacked in consecutive slabs whose shared edge matches
+   and whose sides continue straight (within GR__PP_MERGE_REL of their
+   size): the slab sweep cuts a region at every vertex height of both
+   operands, and without this a chain of operations fragments it. */
+#define GR__PP_MERGE_REL 1e-12
+typedef struct gr__trap_t { double v[8]; } gr__trap_t;
+static int gr__cmp_trap(const void *pa, const void *pb)
+{
+    const double *a = ((const gr__trap_t *)pa)->v, *b = ((const gr__trap_t *)pb)->v;
+    return a[1] < b[1] ? -1 : a[1] > b[1] ? 1 : a[0] < b[0] ? -1 : a[0] > b[0];
+}
+static int gr__pp_merge(double *t, int n)
+{
+    gr__trap_t *tr = (gr__trap_t *)(void *)t;
+    unsigned char gone[GR__PP_TRAPS];
+    int i, m = 0;
+    if (n < 2) return n;
+    /* by bottom height, then left end: a trapezoid's upper neighbour is
+       found by bisection on its top height */
+    qsort(tr, (size_t)n, sizeof *tr, gr__cmp_trap);
+    memset(gone, 0, (size_t)n);
+    for (i = 0; i < n; i++) {
+        double *a = tr[i].v;
+        int again = 1;
+        if (gone[i]) continue;
+        while (again) {
+            int lo = i + 1, hi = n, j;
+            again = 0;
+            while (lo < hi) { /* first index with bottom y >= a's top y */
+                int mid = (lo + hi) / 2;
+                if (tr[mid].v[1] < a[5]) lo = mid + 1; else hi = mid;
+            }
+            for (j = lo; j < n && tr[j].v[1] == a[5]; j++) {
+                const double *b = tr[j].v;
+                double sz = fabs(a[2] - a[0]) + fabs(a[5] - a[1]) + fabs(b[2] - b[0]) + fabs(b[5] - b[1]), cl, cr;
+                if (gone[j] || fabs(a[6] - b[0]) > GR__PP_MERGE_REL * sz || fabs(a[4] - b[2]) > GR__PP_MERGE_REL * sz)
+                    continue;
+                cl = (a[6] - a[0]) * (b[7] - b[1]) - (a[7] - a[1]) * (b[6] - b[0]);
+                cr = (a[4] - a[2]) * (b[5] - b[3]) - (a[5] - a[3]) * (b[4] - b[2]);
+                if (fabs(cl) > GR__PP_MERGE_REL * sz * sz || fabs(cr) > GR__PP_MERGE_REL * sz * sz) continue;
+                a[4] = b[4]; a[5] = b[5]; a[6] = b[6]; a[7] = b[7];
+                gone[j] = 1;
+                again = 1;
+                break;
+            }
+        }
+    }
+    for (i = 0; i < n; i++)
+        if (!gone[i]) tr[m++] = tr[i];
+    return m;
+}
+
+/* a op b into out (GR__PP_TRAPS trapezoids); the count, or -1 when a
+   buffer is too small (the caller then leaves the footprint to §4). A
+   trapezoid set a too large for one sweep is taken in chunks: its
+   trapezoids are disjoint, so (a1 ∪ a2) op b = (a1 op b) ∪ (a2 op b) for
+   intersection and difference. */
+static int gr__pp_bool(const gr__pps_t *ps, const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op, double *out,
+                       double *area)
+{
+    int n = 0, first, chunk, total = 0;
+    double part;
+    if (a->point_count + b->point_count <= GR__PP_EDGES) {
+        if (gr_poly_boolean(a, b, op, ps->bool_scratch, ps->bool_bytes, out, out ? GR__PP_TRAPS : 0, &n, area) != GR_OK)
+            return -1;
+        return out ? gr__pp_merge(out, n) : n;
+    }
+    chunk = (GR__PP_EDGES - b->point_count) / 4;
+    if (a->ring_sizes || a->ring_count < 2 || chunk < 1 || op == GR_POLY_UNION || op == GR_POLY_XOR) return -1;
+    *area = 0;
+    for (first = 0; first < a->ring_count; first += chunk) {
+        int m = a->ring_count - first < chunk ? a->ring_count - first : chunk;
+        gr_polyset_t sub;
+        sub.points = a->points + 8 * first;
+        sub.point_count = 4 * m;
+        sub.ring_sizes = NULL;
+        sub.ring_count = m;
+        if (gr_poly_boolean(&sub, b, op, ps->bool_scratch, ps->bool_bytes, out ? out + 8 * total : NULL,
+                            out ? GR__PP_TRAPS - total : 0, &n, &part) != GR_OK)
+            return -1;
+        *area += part;
+        total += n;
+    }
+    return out ? gr__pp_merge(out, total) : total;
+}
+
+static gr_polyset_t gr__pp_set(const double *pts, int npts, const int *sizes, int nrings)
+{
+    gr_polyset_t p;
+    p.points = pts;
+    p.point_count = npts;
+    p.ring_sizes = sizes;
+    p.ring_count = nrings;
+    return p;
+}
+
+/* Traps as a set (4 points per ring). */
+static gr_polyset_t gr__pp_traps(const double *t, int n) { return gr__pp_set(t, 4 * n, NULL, n); }
+
+/* The mouth of groove g (its section's span at w = 0 over [x0, x1], kept
+   within `big` of P) as 4 local UV points at w = 0, in 3D. */
+static void gr__pp_mouth(const gr__ppg_t *g, double big, double q[12])
+{
+    double xa = fmax(g->x0, -big), xb = fmin(g->x1, big), b0 = g->s * g->sec[0], b1 = g->s * g->sec[2 * g->nsec - 2];
+    int k;
+    for (k = 0; k < 4; k++) {
+        double x = k == 0 || k == 3 ? xa : xb, b = k < 2 ? b0 : b1;
+        q[3 * k] = g->p[0] + x * g->t[0] - b * g->t[1];
+        q[3 * k + 1] = g->p[1] + x * g->t[1] + b * g->t[0];
+        q[3 * k + 2] = 0;
+    }
+}
+
+/* Cuts of piece pc by every groove but its own (§5.3), in its 2D
+   coordinates, into ps->cut / ps->sizes. Returns the ring count, -1 if full. */
+static int gr__pp_cuts(const gr__pps_t *ps, const gr__ppp_t *pc, int ng, double big, double tie, int *npts)
+{
+    int h, nr = 0;
+    *npts = 0;
+    for (h = 0; h < ng; h++) {
+        if (h == pc->g) continue;
+        if (gr__pp_cut(pc, &ps->g[h], big, h < pc->g ? tie : -tie, ps->cut, GR__PP_RING * GR__PP_MAX_GROOVES, npts,
+                       ps->sizes, &nr, ps->tmp, ps->tmp2))
+            return -1;
+    }
+    return nr;
+}
+
+/* The part of piece i seen along d (§5.2-5.4): the piece clipped to the
+   footprint's pre-image (fpoly, local UV; or the trapezoids `start`
+   instead), minus the crossing grooves' cuts (§5.3), within the pre-image
+   of the grooves' mouths (rays leaving through the ground are blocked),
+   minus every other piece in front of it along d, itself minus its cuts
+   (blocking facets and their prolongations into the crossing groove,
+   §5.4). The result (trapezoids in ps->ra or ps->rb) is returned in *res;
+   the count, or -1 when a buffer overflows. */
+static int gr__pp_region(const gr__pps_t *ps, int np, int ng, int i, const double *d, const double *fpoly,
+                         const double *start, int nstart, double big, double tie, double **res, double *area)
+{
+    const gr__ppp_t *pc = &ps->p[i];
+    double *cur = ps->ra, *nxt = ps->rb, q[12], *sw;
+    gr_polyset_t a, b;
+    int n, k, j, nr, npts, ncur;
+    *area = 0;
+    *res = cur;
+    if (start) {
+        a = gr__pp_traps(start, nstart);
+    } else {
+        double pre[8];
+        for (k = 0; k < 4; k++) {
+            double p3[3] = {fpoly[2 * k], fpoly[2 * k + 1], 0};
+            gr__pp_onto(pc, p3, d, pre + 2 * k);
+        }
+        n = 0;
+        /* into rc, which is free until the occluders: the cuts use tmp */
+        if (gr_poly_clip_convex(pc->ring, pc->nring, pre, 4, ps->rc, ps->tmp2, GR__PP_RING, &n) != GR_OK) return -1;
+        if (n < 3) return 0;
+        a = gr__pp_set(ps->rc, n, NULL, 1);
+    }
+    /* §5.3: what the crossing grooves carve away */
+    nr = gr__pp_cuts(ps, pc, ng, big, tie, &npts);
+    if (nr < 0) return -1;
+    if (nr > 0) {
+        b = gr__pp_set(ps->cut, npts, ps->sizes, nr);
+        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, cur, area);
+    } else {
+        b = gr__pp_set(NULL, 0, NULL, 0);
+        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_UNION, cur, area);
+    }
+    if (ncur <= 0) return ncur;
+    /* rays must reach w = 0 inside some groove's mouth */
+    for (k = 0; k < ng; k++) {
+        int m;
+        gr__pp_mouth(&ps->g[k], big, q);
+        for (m = 0; m < 4; m++) gr__pp_onto(pc, q + 3 * m, d, ps->cut + 8 * k + 2 * m);
+    }
+    a = gr__pp_traps(cur, ncur);
+    b = gr__pp_set(ps->cut, 4 * ng, NULL, ng);
+    ncur = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, nxt, area);
+    sw = cur; cur = nxt; nxt = sw;
+    /* §5.4: occlusion by every other piece in front along d */
+    for (j = 0; j < np && ncur > 0; j++) {
+        const gr__ppp_t *oc = &ps->p[j];
+        double sg = gr__dot3(pc->n, d) > 0 ? 1 : -1, dd[3], occ_area;
+        int nf, m, nocc;
+        if (j == i || fabs(gr__dot3(oc->n, d)) <= GR__PP_EDGE_ON) continue;
+        for (m = 0; m < 3; m++) dd[m] = oc->o[m] - pc->o[m];
+        /* its cuts, carried onto this plane (the map is affine on its plane) */
+        nr = gr__pp_cuts(ps, oc, ng, big, tie, &npts);
+        if (nr < 0) return -1;
+        for (m = 0; m < npts; m++) {
+            double p3[3];
+            gr__pp_point(oc, ps->cut[2 * m], ps->cut[2 * m + 1], p3);
+            gr__pp_onto(pc, p3, d, ps->cut + 2 * m);
+        }
+        /* its part on the viewer's side of this plane */
+        nf = gr__pp_halfplane(oc->ring, oc->nring, sg * gr__dot3(pc->n, oc->x), sg * gr__dot3(pc->n, oc->y),
+                              sg * gr__dot3(pc->n, dd), ps->tmp);
+        if (nf < 3) continue;
+        for (m = 0; m < nf; m++) {
+            double p3[3];
+            gr__pp_point(oc, ps->tmp[2 * m], ps->tmp[2 * m + 1], p3);
+            gr__pp_onto(pc, p3, d, ps->tmp2 + 2 * m);
+        }
+        a = gr__pp_set(ps->tmp2, nf, NULL, 1);
+        b = gr__pp_set(ps->cut, npts, ps->sizes, nr);
+        nocc = gr__pp_bool(ps, &a, &b, nr > 0 ? GR_POLY_DIFFERENCE : GR_POLY_UNION, ps->rc, &occ_area);
+        if (nocc < 0) return -1;
+        if (nocc == 0 || !(occ_area > 0)) continue;
+        a = gr__pp_traps(cur, ncur);
+        b = gr__pp_traps(ps->rc, nocc);
+        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, nxt, area);
+        sw = cur; cur = nxt; nxt = sw;
+    }
+    *res = cur;
+    if (ncur <= 0) *area = 0;
+    return ncur;
+}
+
+/* Builds the grooves and pieces of a footprint from gr_detect()'s
+   candidates and junctions. Returns the piece count, or -1 (not handled). */
+static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_junctions_t *jn, const double *f,
+                        double big, gr__pps_t *ps)
+{
+    int ng = jn->grooves, i, k, e, np = 0;
+    for (i = 0; i < ng; i++) {
+        const gr__cand_t *c = &s->cand[i];
+        const gr__groove_t *rec = &grid->grooves_[c->groove];
+        gr__ppg_t *g = &ps->g[i];
+        if (rec->sec_count > GR_MAX_FACETS + 1) return -1;
+        g->p[0] = c->p[0] - c->fc[0];
+        g->p[1] = c->p[1] - c->fc[1];
+        g->t[0] = c->t[0];
+        g->t[1] = c->t[1];
+        g->s = gr__perturb(rec, c->param); /* §3: the scale at P, constant across the footprint */
+        g->sec = grid->section_ + 2 * rec->first_sec;
+        g->nsec = rec->sec_count;
+        g->groove = c->groove;
+        g->x0 = -HUGE_VAL;
+        g->x1 = HUGE_VAL;
+        g->end[0] = g->end[1] = 0;
+    }
+    /* path ends (§5: intersected, isolated, corners): the groove stops at
+       the end's position along its tangent, x0 for the first point */
+    for (k = 0; k < jn->count; k++) {
+        const gr_junction_t *j = &jn->items[k];
+        for (e = 0; e < 2; e++) {
+            int gid = e == 0 ? j->groove : j->other, end = e == 0 ? j->end : j->other_end;
+            double p[2], x;
+            if (j->kind == GR_JUNCTION_CROSSING || j->kind == GR_JUNCTION_SELF || end < 0 || gid < 0) continue;
+            if (e == 1 && j->kind != GR_JUNCTION_CORNER) continue;
+            for (i = 0; i < ng && ps->g[i].groove != gid; i++) {}
+            if (i == ng) continue;
+            gr__end_point(grid, gid, end, f, p);
+            x = (p[0] - f[0] - ps->g[i].p[0]) * ps->g[i].t[0] + (p[1] - f[1] - ps->g[i].p[1]) * ps->g[i].t[1];
+            if (end == 0) ps->g[i].x0 = x; else ps->g[i].x1 = x;
+            ps->g[i].end[end] = 1;
+        }
+    }
+    for (i = 0; i < ng; i++) {
+        const gr__ppg_t *g = &ps->g[i];
+        const gr__groove_t *rec = &grid->grooves_[g->groove];
+        double bx = -g->t[1], by = g->t[0], xa = fmax(g->x0, -big), xb = fmin(g->x1, big);
+        if (!(xb > xa)) continue;
+        if (np + g->nsec + 1 > GR__PP_MAX_PIECES) return -1;
+        for (k = 0; k + 1 < g->nsec; k++) {
+            gr__ppp_t *pc = &ps->p[np];
+            double b0 = g->s * g->sec[2 * k], w0 = g->s * g->sec[2 * k + 1];
+            double db = g->s * (g->sec[2 * k + 2] - g->sec[2 * k]), dw = g->s * (g->sec[2 * k + 3] - g->sec[2 * k + 1]);
+            double len = sqrt(db * db + dw * dw);
+            if (!(len > 0)) continue;
+            /* facet k in groove space (§5.2): through C_k, along T and C_k C_k+1 */
+            pc->o[0] = g->p[0] + b0 * bx; pc->o[1] = g->p[1] + b0 * by; pc->o[2] = w0;
+            pc->x[0] = g->t[0]; pc->x[1] = g->t[1]; pc->x[2] = 0;
+            pc->y[0] = bx * db / len; pc->y[1] = by * db / len; pc->y[2] = dw / len;
+            pc->n[0] = -bx * dw / len; pc->n[1] = -by * dw / len; pc->n[2] = db / len;
+            pc->ring[0] = xa; pc->ring[1] = 0; pc->ring[2] = xb; pc->ring[3] = 0;
+            pc->ring[4] = xb; pc->ring[5] = len; pc->ring[6] = xa; pc->ring[7] = len;
+            pc->nring = 4;
+            pc->g = i;
+            pc->facet = k;
+            pc->refl = grid->facet_refl_[rec->first_facet + k];
+            np++;
+        }
+        for (e = 0; e < 2; e++) {
+            /* the end cap: the section standing across the path at its end,
+               facing along the groove into it */
+            gr__ppp_t *pc = &ps->p[np];
+            double x = e == 0 ? g->x0 : g->x1, sg = e == 0 ? 1 : -1;
+            if (!g->end[e] || fabs(x) > big) continue;
+            pc->o[0] = g->p[0] + x * g->t[0]; pc->o[1] = g->p[1] + x * g->t[1]; pc->o[2] = 0;
+            pc->x[0] = bx; pc->x[1] = by; pc->x[2] = 0;
+            pc->y[0] = 0; pc->y[1] = 0; pc->y[2] = 1;
+            pc->n[0] = sg * g->t[0]; pc->n[1] = sg * g->t[1]; pc->n[2] = 0;
+            for (k = 0; k < g->nsec; k++) {
+                pc->ring[2 * k] = g->s * g->sec[2 * k];
+                pc->ring[2 * k + 1] = g->s * g->sec[2 * k + 1];
+            }
+            pc->nring = g->nsec;
+            pc->g = i;
+            pc->facet = g->nsec - 1 + e;
+            pc->refl = grid->facet_refl_[rec->first_facet];
+            np++;
+        }
+    }
+    return np;
+}
+
+/* The polygon path (§5.2-5.5) for a footprint with intersections or ends:
+   r_i = A_R / A_F for every piece, measured in UV (the projection along E
+   scales a plane's areas by |N.E| / E_w), lit fractions the same way along
+   each light. Returns 1 when it filled the list, 0 to leave it to §4:
+   protruding sections, too many grooves or junctions, a footprint without
+   area, or a region outgrowing its buffers. */
+static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__scratch_t *s, const gr_junctions_t *jn,
+                        void *base, gr_facet_list_t *list)
+{
+    const gr_footprint_t *fp = &q->footprint;
+    gr__pps_t ps;
+    gr__mfacet_t m;
+    double e[3], el, fpoly[8], af, f[2], big, tie, lit[GR_MAX_LIGHTS], area, *vis, mouths[8 * GR__PP_MAX_GROOVES];
+    int ng = jn->grooves, np, i, k, l, nl = q->light_count;
+    gr_polyset_t a, b;
+    if (ng < 1 || ng > GR__PP_MAX_GROOVES || jn->dropped || grid->h > 0) return 0;
+    gr_footprint_polygon(fp, GR_FP_QUAD, fpoly);
+    for (k = 0; k < 4; k++) { fpoly[2 * k] -= fp->center[0]; fpoly[2 * k + 1] -= fp->center[1]; }
+    af = fabs(gr_poly_area(fpoly, 4));
+    if (!(af > 0)) return 0;
+    el = sqrt(gr__dot3(fp->view, fp->view));
+    for (k = 0; k < 3; k++) e[k] = fp->view[k] / el;
+    gr__tile_image(grid, fp->center, f);
+    /* pieces reach beyond the search box by its size: far enough that no
+       ray from the footprint toward the viewer or a light meets their ends */
+    big = 2 * (jn->box[2] - jn->box[0] + jn->box[3] - jn->box[1]) + grid->w + grid->d;
+    tie = GR__PP_TIE_REL * (grid->w + grid->d + grid->h);
+    gr__pp_layout(base, &ps);
+    np = gr__pp_build(grid, s, jn, f, big, &ps);
+    if (np < 0) return 0;
+    list->count = 0;
+    list->flags = 0;
+    for (i = 0; i < np; i++) {
+        const gr__ppp_t *pc = &ps.p[i];
+        double ne = gr__dot3(pc->n, e), ratio;
+        int nv;
+        if (!(ne > GR__PP_EDGE_ON)) continue; /* back-facing or edge-on (§4.3) */
+        nv = gr__pp_region(&ps, np, ng, i, e, fpoly, NULL, 0, big, tie, &vis, &area);
+        if (nv < 0) return 0;
+        ratio = area * ne / e[2] / af;
+        if (!(ratio > 0)) continue;
+        /* keep the visible trapezoids while each light's region is built */
+        memcpy(ps.rv, vis, sizeof(double) * 8 * (size_t)nv);
+        for (l = 0; l < nl; l++) {
+            const double *L0 = q->lights + 3 * l;
+            double L[3], ll = sqrt(gr__dot3(L0, L0)), la, *lr;
+            lit[l] = 0;
+            if (!(ll > 0) || !(L0[2] > 0)) continue;
+            for (k = 0; k < 3; k++) L[k] = L0[k] / ll;
+            if (!(gr__dot3(pc->n, L) > GR__PP_EDGE_ON)) continue;
+            if (gr__pp_region(&ps, np, ng, i, L, NULL, ps.rv, nv, big, tie, &lr, &la) < 0) return 0;
+            lit[l] = area > 0 ? la / area : 0;
+        }
+        m.n[0] = pc->n[0]; m.n[1] = pc->n[1]; m.n[2] = pc->n[2];
+        m.groove = ps.g[pc->g].groove;
+        m.facet = pc->facet;
+        m.refl = pc->refl;
+        gr__list_add(list, &m, ratio, lit, nl);
+    }
+    /* the ground: the footprint outside every mouth, lit by any light above
+       the horizon (nothing protrudes here) */
+    for (k = 0; k < ng; k++) {
+        double q3[12];
+        int c;
+        gr__pp_mouth(&ps.g[k], big, q3);
+        for (c = 0; c < 4; c++) { mouths[8 * k + 2 * c] = q3[3 * c]; mouths[8 * k + 2 * c + 1] = q3[3 * c + 1]; }
+    }
+    a = gr__pp_set(fpoly, 4, NULL, 1);
+    b = gr__pp_set(mouths, 4 * ng, NULL, ng);
+    if (gr__pp_bool(&ps, &a, &b, GR_POLY_DIFFERENCE, NULL, &area) < 0) return 0;
+    if (area > 0) {
+        for (l = 0; l < nl; l++) lit[l] = q->lights[3 * l + 2] > 0 ? 1 : 0;
+        m.n[0] = 0; m.n[1] = 0; m.n[2] = 1;
+        m.groove = -1;
+        m.facet = -1;
+        m.refl = grid->base_reflectance;
+        gr__list_add(list, &m, area / af, lit, nl);
+    }
+    list->grooves = ng;
+    list->subfootprints = 1;
+    list->flags |= GR_LIST_POLYGON;
+    return 1;
+}
+
+/* gr_query()'s entry to the polygon path: 1 when it answered. Its scratch
+   follows the §4 layout. */
+static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q, void *scratch, size_t bytes,
+                           const gr__scratch_t *s, gr_facet_list_t *list)
+{
+    gr_junctions_t jn;
+    size_t base = gr__align8(gr__scratch_layout(grid, NULL, NULL));
+    if (gr_detect(grid, q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
+    return gr__pp_query(grid, q, s, &jn, (char *)scratch + base, list);
+}
+
+static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
+
+#endif /* GR_NO_INTERSECTIONS */
 /* ==== [end section: intersections] ==== */
 
 /* ==== [section: line samples] implementation (issue 8: §5.6) ==== */
@@ -3832,10 +4497,17 @@ static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
     return nb;
 }
 
+#define GR__LINE_SMALL_SORT 24 /* insertion sort below, qsort above */
+static int gr__cmp_brk(const void *a, const void *b)
+{
+    double x = ((const gr__brk_t *)a)->s, y = ((const gr__brk_t *)b)->s;
+    return (x > y) - (x < y);
+}
+
 /* Sort breakpoints by s (insertion for short lists, qsort beyond). */
 static void gr__brk_sort(gr__lscene_t *sc, int nb)
 {
-    if (nb > GR__SMALL_SORT) qsort(sc->ls.brk, (size_t)nb, sizeof(gr__brk_t), gr__cmp_double);
+    if (nb > GR__LINE_SMALL_SORT) qsort(sc->ls.brk, (size_t)nb, sizeof(gr__brk_t), gr__cmp_brk);
     else {
         int i, j;
         for (i = 1; i < nb; i++) {
@@ -4018,7 +4690,7 @@ static double gr__exit_tol(const gr_query_t *q)
 /* Scratch views: the query's part, then ours. */
 static void gr__line_layout(const gr_grid_t *grid, void *scratch, gr__scratch_t *s, gr__lscene_t *sc)
 {
-    size_t off = gr__scratch_layout(grid, scratch, s);
+    size_t off = gr__align8(gr__scratch_layout(grid, scratch, s));
     gr__line_scratch((char *)scratch + off, &sc->ls);
 }
 

@@ -36,7 +36,7 @@ static gr_grid_t *build(const double *const *paths, const int *counts, int n, co
 static gr_junctions_t detect_at(const gr_grid_t *grid, double u, double v, double half, const double *view,
                                 const gr_self_hit_t *self, int nself)
 {
-    static unsigned char scratch[1 << 16];
+    static unsigned char scratch[1 << 20];
     gr_query_t q;
     gr_junctions_t out;
     memset(&q, 0, sizeof q);
@@ -79,7 +79,7 @@ static void detect_oblique_and_parallel(void)
     double h[] = {0.1, 0.5, 0.9, 0.5}, o[4], p[4], a = M_PI / 6, e = 0.01;
     const double *paths[] = {h, o};
     const int counts[] = {2, 2};
-    static unsigned char scratch[1 << 16];
+    static unsigned char scratch[1 << 20];
     gr_grid_t *grid;
     gr_junctions_t j;
     gr_query_t q;
@@ -257,7 +257,7 @@ static void self_intersection_cubic(void)
 static void search_box_enlargement(void)
 {
     static const double sec[] = {-0.01, 0, -0.005, 0.01, 0, -0.03, 0.01, 0}; /* w 0.01, h 0.01, d 0.03 */
-    static unsigned char scratch[1 << 16];
+    static unsigned char scratch[1 << 20];
     const double v[] = {0.248, 0.1, 0.248, 0.9};
     const double *paths[] = {v};
     const int counts[] = {2};
@@ -320,7 +320,7 @@ static void detect_across_seam(void)
 
 static void detect_bad_input(void)
 {
-    static unsigned char scratch[1 << 16];
+    static unsigned char scratch[1 << 20];
     const double h[] = {0.1, 0.5, 0.9, 0.5};
     const double *paths[] = {h};
     const int counts[] = {2};

@@ -476,6 +476,33 @@ static void t_cache(void)
     }
 }
 
+/* gr_query() with line_samples > 0 sends crossings and ends to
+   gr_query_lines() and keeps §4 elsewhere */
+static void t_dispatch(void)
+{
+    scene_t s;
+    int c, k;
+    if (!T_CHECK(crossing_scene(&s, 0, VSEC, 3))) return;
+    for (c = 0; c < 2; c++) {
+        gr_query_t q = gt_query(c ? 0.3 : 0.505, 0.503, 0.008, 0.2, 0.1, 0.97);
+        gr_facet_list_t a, b;
+        q.line_samples = 2;
+        if (!gt_run(s.grid, &q, &a) || !run_lines(s.grid, &q, &b, NULL)) return;
+        if (c == 0) {
+            T_INT_EQ(a.count, b.count);
+            for (k = 0; k < a.count && k < b.count; k++) T_NEAR(a.facets[k].ratio, b.facets[k].ratio, 1e-15);
+        } else { /* isolated groove: §4's answer */
+            gr_facet_list_t d;
+            q.line_samples = 0;
+            if (!gt_run(s.grid, &q, &d)) return;
+            T_CHECK(!(a.flags & GR_LIST_NONPARALLEL));
+            T_INT_EQ(a.count, d.count);
+            for (k = 0; k < a.count && k < d.count; k++) T_NEAR(a.facets[k].ratio, d.facets[k].ratio, 1e-15);
+        }
+    }
+    gr_grid_free(s.grid);
+}
+
 static void t_bad_input(void)
 {
     scene_t s;
@@ -516,7 +543,7 @@ int main(int argc, char **argv)
     static const t_case_t cases[] = {
         T_CASE(t_isolated_equals_query), T_CASE(t_crossings_vs_raster), T_CASE(t_oblique_crossings_vs_oracle),
         T_CASE(t_weighting),
-        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_bad_input),
+        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_bad_input),
     };
     return T_RUN(argc, argv, cases);
 }

@@ -99,7 +99,7 @@ static void vertical_view_matches_query(void)
 {
     static const double sec[] = {-0.01, 0, 0, -0.02, 0.01, 0};
     static const double path[] = {0.5, 0, 0.5, 1};
-    static unsigned char scratch[1 << 16];
+    static unsigned char scratch[1 << 20];
     gr_groove_desc_t gd;
     gr_grid_desc_t d;
     gr_grid_t *grid = NULL;

@@ -30,7 +30,7 @@
 
 #define GX_MAX_MATS 4
 #define GX_MAX_LIGHTS 2
-#define GX_SCRATCH (1 << 18) /* per-pixel stack scratch for gr_query */
+#define GX_SCRATCH (1 << 21) /* per-pixel stack scratch for gr_query (the polygon path's boolean work) */
 
 typedef struct gx_scene_t {
     const char *name, *title;
@@ -279,10 +279,99 @@ static int gx_scene_interreflect(gx_scene_t *s)
     return 0;
 }
 
+/* Two directional lights (elevation, azimuth in degrees, radiance), an
+   ambient term and the usual sky. */
+static void gx_two_lights(gx_scene_t *s, const double l0[5], const double l1[5], ex_v3_t ambient)
+{
+    s->nlights = 2;
+    gx_dir(l0[0], l0[1], s->light[0]); s->radiance[0] = ex_v3(l0[2], l0[3], l0[4]);
+    gx_dir(l1[0], l1[1], s->light[1]); s->radiance[1] = ex_v3(l1[2], l1[3], l1[4]);
+    s->ambient = ambient;
+    s->background = ex_v3(0.20, 0.24, 0.32);
+}
+
+/* Figures 15/16: a tiled floor, 12 x 12 tiles whose grout lines cross at
+   every corner (gr_query takes the polygon path there, §5.2-5.5); the grout
+   (reflectance 1) differs from the glazed tiles (0). */
+static int gx_scene_tiles(gx_scene_t *s)
+{
+    int i, n = 13;
+    double *sec, *pts, a = 0.006;
+    memset(s, 0, sizeof *s);
+    s->name = "tiles"; s->title = "tiled floor: crossing grout lines (Figs. 15-16)";
+    if (gx_alloc(s, 2 * n, 8 + 8 * (size_t)n)) return -1;
+    sec = s->store; pts = s->store + 8;
+    sec[0] = -a; sec[1] = 0; sec[2] = -0.6 * a; sec[3] = -0.6 * a; sec[4] = 0.6 * a; sec[5] = -0.6 * a;
+    sec[6] = a; sec[7] = 0;
+    for (i = 0; i < n; i++) {
+        double c = (i + 0.5) / n;
+        double *p = pts + 8 * i;
+        p[0] = c; p[1] = 0; p[2] = c; p[3] = 1;  /* along v */
+        p[4] = 0; p[5] = c; p[6] = 1; p[7] = c;  /* along u */
+        s->desc[2 * i].points = p; s->desc[2 * i + 1].points = p + 4;
+        s->desc[2 * i].point_count = s->desc[2 * i + 1].point_count = 2;
+        s->desc[2 * i].section = s->desc[2 * i + 1].section = sec;
+        s->desc[2 * i].section_count = s->desc[2 * i + 1].section_count = 4;
+        s->desc[2 * i].reflectance = s->desc[2 * i + 1].reflectance = 1;
+    }
+    s->mats[0] = gx_material(0.55, 0.50, 0.42, 0.06, 0.06, 0.06, 0.15); /* glazed tile */
+    s->mats[1] = gx_material(0.30, 0.29, 0.27, 0.02, 0.02, 0.02, 0.8);  /* grout */
+    {
+        static const double key[5] = {25, 60, 3.0, 2.9, 2.6}, fill[5] = {60, 220, 0.5, 0.55, 0.7};
+        gx_two_lights(s, key, fill, ex_v3(0.08, 0.08, 0.09));
+    }
+    s->eye = ex_v3(0.5, -0.25, 0.3); s->at = ex_v3(0.5, 0.45, 0.0); s->fov = 50;
+    s->bench_eye = ex_v3(0.5, 0.1, 0.12); s->bench_at = ex_v3(0.5, 0.4, 0.0); s->bench_fov = 20;
+    return 0;
+}
+
+/* Figure 21c: bricks in running bond. Bed joints run the whole width; each
+   head joint ends on the bed joints above and below it (intersected ends,
+   T junctions). The mortar's walls (1) and its floor (2) differ from the
+   brick (0): per-facet reflectance ids. */
+static int gx_scene_bricks(gx_scene_t *s)
+{
+    static const int mortar[3] = {1, 2, 1};
+    int i, j, rows = 16, cols = 8, n = (rows + 1) + rows * cols, g = 0;
+    double *sec, *pts, a = 0.005, h = 1.0 / rows;
+    memset(s, 0, sizeof *s);
+    s->name = "bricks"; s->title = "bricks with mortar: T junctions, per-facet materials (Fig. 21c)";
+    if (gx_alloc(s, n, 8 + 4 * (size_t)n)) return -1;
+    sec = s->store; pts = s->store + 8;
+    sec[0] = -a; sec[1] = 0; sec[2] = -a; sec[3] = -0.6 * a; sec[4] = a; sec[5] = -0.6 * a; sec[6] = a; sec[7] = 0;
+    for (i = 0; i <= rows; i++, g++) { /* bed joints */
+        double *p = pts + 4 * g;
+        p[0] = 0; p[1] = i * h; p[2] = 1; p[3] = i * h;
+        s->desc[g].points = p;
+    }
+    for (i = 0; i < rows; i++)
+        for (j = 0; j < cols; j++, g++) { /* head joints, staggered by half a brick */
+            double *p = pts + 4 * g, u = (j + 0.5 * (i % 2) + 0.25) / cols;
+            p[0] = u; p[1] = i * h; p[2] = u; p[3] = (i + 1) * h;
+            s->desc[g].points = p;
+        }
+    for (g = 0; g < n; g++) {
+        s->desc[g].point_count = 2;
+        s->desc[g].section = sec; s->desc[g].section_count = 4;
+        s->desc[g].facet_reflectance = mortar;
+    }
+    s->mats[0] = gx_material(0.45, 0.17, 0.10, 0.03, 0.03, 0.03, 0.7); /* brick */
+    s->mats[1] = gx_material(0.55, 0.53, 0.48, 0.02, 0.02, 0.02, 0.9); /* mortar walls */
+    s->mats[2] = gx_material(0.40, 0.39, 0.36, 0.02, 0.02, 0.02, 0.9); /* mortar bed */
+    {
+        static const double key[5] = {30, 150, 3.0, 2.8, 2.5}, fill[5] = {65, 20, 0.5, 0.55, 0.7};
+        gx_two_lights(s, key, fill, ex_v3(0.08, 0.08, 0.09));
+    }
+    s->eye = ex_v3(0.5, -0.35, 0.5); s->at = ex_v3(0.5, 0.5, 0.0); s->fov = 50;
+    s->bench_eye = ex_v3(0.5, 0.15, 0.2); s->bench_at = ex_v3(0.5, 0.45, 0.0); s->bench_fov = 20;
+    return 0;
+}
+
 typedef int (*gx_scene_fn)(gx_scene_t *);
-static const char *const gx_scene_names[] = {"parallel", "curves", "scratches", "frame", "interreflect", NULL};
-static const gx_scene_fn gx_scene_makers[] = {gx_scene_parallel, gx_scene_curves, gx_scene_scratches, gx_scene_frame,
-                                              gx_scene_interreflect};
+static const char *const gx_scene_names[] = {"parallel", "curves", "scratches", "tiles", "bricks", "frame", "interreflect",
+                                             NULL};
+static const gx_scene_fn gx_scene_makers[] = {gx_scene_parallel, gx_scene_curves, gx_scene_scratches, gx_scene_tiles,
+                                              gx_scene_bricks,   gx_scene_frame,  gx_scene_interreflect};
 
 /* Switches the scene to its benchmark view. */
 static void gx_scene_bench_view(gx_scene_t *s)
