@@ -31,6 +31,10 @@
      GR_NO_INTERSECTIONS leave out §5-6 (the 2D polygon routines, gr_detect,
                         the polygon path): footprints with crossings or
                         ends then get §4's answer with its flags
+     GR_NO_LINE_SAMPLES leave out gr_query_lines() (§5.6 line samples;
+                        implied by GR_NO_INTERSECTIONS)
+     GR_NO_INTERREFLECTION leave out gr_shade_indirect() (§6; implied by
+                        GR_NO_INTERSECTIONS)
    CONVENTIONS
      See docs/conventions.md: results are gr_result_t codes with GR_OK = 0,
      zero-initialised config structs mean defaults, queries are const,
@@ -272,10 +276,12 @@ typedef struct gr_query_t {
     int line_samples;      /* intersections and ends (§5, issue 8): 0 (default)
                               answers footprints that gr_detect() finds
                               crossings or path ends in with the exact
-                              polygon path (§5.2-5.5); n > 0 asks for n line
-                              samples (§5.6) instead, which this version does
-                              not have yet: such footprints then get §4's
-                              answer with GR_LIST_NONPARALLEL/PATH_END set */
+                              polygon path (§5.2-5.5); n = 1..8 asks for n
+                              line samples (§5.6, gr_query_lines()) for
+                              footprints whose §4 answer flags
+                              GR_LIST_NONPARALLEL or GR_LIST_PATH_END
+                              (without GR_NO_LINE_SAMPLES; with it they
+                              keep §4's answer and its flags) */
     int perturb_normals;   /* 0 (default) or positive: the true normal of the
                               swept, scaled section where the view ray meets
                               each facet: §4.4's (0, N_b, N_w) tilted along T
@@ -289,6 +295,9 @@ typedef struct gr_query_t {
                               F + a A1 + b A2, |a|, |b| <= 1 (a box pixel, as
                               gr_footprint_from_differentials gives it). 1: the
                               ellipse a^2 + b^2 <= 1 (Gaussian-like filters) */
+    double line_exit_tol;  /* §5.6 early exit of line samples: stop when
+                              Σ r_i >= 1 - tol; default 0 means 1e-3;
+                              negative disables */
 } gr_query_t;
 
 /* One entry of the facet list: a texture-space facet orientation with its
@@ -579,6 +588,163 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 
 #endif /* GR_NO_INTERSECTIONS */
 /* ==== [end section: intersections] ==== */
+
+/* ==== [section: line samples] declarations (issue 8: §5.6) ==== */
+#ifdef GR_NO_INTERSECTIONS /* §5-6 left out: line samples and §6 with them */
+#  ifndef GR_NO_LINE_SAMPLES
+#    define GR_NO_LINE_SAMPLES
+#  endif
+#  ifndef GR_NO_INTERREFLECTION
+#    define GR_NO_INTERREFLECTION
+#  endif
+#endif
+#if !defined(GR_NO_LINE_SAMPLES) || !defined(GR_NO_INTERREFLECTION)
+/* Local grooves one line-sample evaluation keeps (the nearest), facet
+   planes (the ground, facets and end walls of those grooves) and the
+   breakpoints it can hold per segment; beyond any of them the result is
+   approximate and flagged GR_LIST_LINE_APPROX. They size the scratch
+   (about 125 KB with these defaults). */
+#ifndef GR_LINE_MAX_GROOVES
+#  define GR_LINE_MAX_GROOVES 16
+#endif
+#ifndef GR_LINE_MAX_PLANES
+#  define GR_LINE_MAX_PLANES 192
+#endif
+#ifndef GR_LINE_MAX_BREAKS
+#  define GR_LINE_MAX_BREAKS 1024
+#endif
+/* Most line samples per footprint (gr_query_t.line_samples). */
+#define GR_LINE_MAX_SAMPLES 8
+/* gr_facet_list_t.flags: line samples dropped grooves or breakpoints. */
+#define GR_LIST_LINE_APPROX 32u
+
+/* Optional counters from gr_query_lines() (and gr_shade_indirect()). */
+typedef struct gr_line_stats_t {
+    int segments;      /* segments evaluated (line samples and bounces) */
+    int intervals;     /* 1D intervals the segments were cut into */
+    int evaluated;     /* intervals whose facet was found (the rest were
+                          skipped by the §5.6 early exit) */
+    int early_exits;   /* segments that stopped at Σ r_i >= 1 - tol */
+    double weight[GR_LINE_MAX_SAMPLES]; /* Jones & Perry weight Σ sin²α of
+                          each top-level segment */
+} gr_line_stats_t;
+
+/* §5.6's cache between neighbouring footprints, owned by the caller (one
+   per thread: queries stay pure). It keeps the grooves found around a
+   footprint, in their straight approximation, for a box GR_LINE_CACHE_GROW
+   times the footprint's search box; a later footprint whose box lies
+   inside reuses them and skips the grid search and the nearest-point
+   solves. Only straight grooves (2-point paths) are cached, so the answer
+   is the uncached one; a box with a curve or polyline, or more grooves
+   than GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use;
+   it refers to one grid (another grid refills it). */
+#define GR_LINE_CACHE_GROW 3.0
+typedef struct gr_line_cache_t {
+    const gr_grid_t *grid;  /* the grid it was filled from */
+    double box[4];          /* the UV box it covers */
+    int valid, count;
+    long long hits, misses; /* footprints served from it / that refilled it */
+    double store_[GR_LINE_MAX_GROOVES * 16]; /* private */
+} gr_line_cache_t;
+#endif
+
+#ifndef GR_NO_LINE_SAMPLES
+/* §5.6 line samples. The footprint F + a A1 + b A2 is sampled by
+   n = query->line_samples segments through F (0 means 2), evenly rotated:
+   segment j runs along cos(πj/n) A1 + sin(πj/n) A2, so 2 samples are the
+   footprint axes A1 and A2 as in the paper. Each segment is processed as a
+   1D version of §5.2-5.4: the rays from the viewer through the segment form
+   a plane; every groove near the footprint, in its local straight
+   approximation (§4.2) scaled by its perturbation, cuts that plane along
+   its facets, and the segment is cut into intervals at every point where
+   the first surface changes (projected section points, the crossing lines
+   of two grooves' facets, §5.3's intersection profiles) or where a shadow
+   boundary falls (§5.4: section points and crossing lines projected along
+   each light onto a facet). Inside one interval the visible facet and its
+   lit state are constant, so one ray per interval classifies it: the solid
+   is the ground w <= 0 minus every groove's cut (the part of its section
+   below w = 0) plus every protrusion. r_i is facet i's length share. The
+   segments are combined with Jones & Perry 2000's weights: segment j
+   weighs Σ sin²α over the edges it crosses (α between the segment and the
+   edge's image in UV), so a segment running along the edges counts little;
+   when no segment crosses an edge they are averaged. Early exit (§5.6):
+   intervals are classified longest first and a segment stops once
+   Σ r_i >= 1 - query->line_exit_tol; the unclassified rest (< tol) is
+   shared in proportion (each r_i moves by at most tol).
+   Path ends are treated as continuing (GR_LIST_PATH_END), as in gr_query().
+   Uses gr_query_scratch_bytes() of scratch; stats is optional. Errors as
+   gr_query(), plus GR_ERR_INVALID_ARG for line_samples outside 0..8. */
+GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
+                                  size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats);
+
+/* gr_query_lines() with a cache (NULL: none). Same result. */
+GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t *query, gr_line_cache_t *cache,
+                                         void *scratch, size_t scratch_bytes, gr_facet_list_t *list,
+                                         gr_line_stats_t *stats);
+#endif
+/* ==== [end section: line samples] ==== */
+
+/* ==== [section: interreflection] declarations (issue 8: §6) ==== */
+#ifndef GR_NO_INTERREFLECTION
+/* Deepest recursion gr_shade_indirect() accepts. */
+#define GR_MAX_DEPTH 8
+
+/* Specular behaviour of one reflectance id (the per-facet ids of
+   gr_groove_desc_t.facet_reflectance and the grid's base_reflectance). */
+typedef struct gr_specular_t {
+    double kr[3];  /* specular reflectance k_r per channel (0: no bounce) */
+    double kt[3];  /* specular transmittance k_t per channel (0: none) */
+    double ior;    /* index of refraction for transmission; 0 means 1.5 */
+} gr_specular_t;
+
+/* Host ray-trace callback (§6.2): the radiance arriving along dir (unit,
+   texture space, pointing away from the surface) at origin (texture space
+   u, v, w: the centre of the segment piece the rays leave from). inside = 0:
+   a ray that left the grooved surface (Σ r_i < 1 at that bounce); inside = 1:
+   a ray refracted into the material through a transmitting facet (the host
+   owns what lies below the surface, e.g. the glass pane behind a frame).
+   depth: the bounce it leaves at (1 = after the first reflection). weight:
+   the mean throughput it carries (informative, e.g. for Russian roulette;
+   the library applies it). */
+typedef void (*gr_trace_fn)(void *user, const double origin[3], const double dir[3], int depth, int inside,
+                            double weight, double rgb[3]);
+
+/* Indirect illumination settings (§6). Zero means default. */
+typedef struct gr_indirect_t {
+    int depth;                      /* specular bounces, 0..GR_MAX_DEPTH; 0 = direct only */
+    const gr_specular_t *specular;  /* indexed by reflectance id; ids outside
+                                       [0, specular_count) neither reflect nor transmit */
+    int specular_count;
+    gr_brdf_fn brdf;                /* direct term at every bounce (optional) */
+    void *brdf_user;
+    gr_trace_fn trace;              /* §6.2 (optional: without it escaping light is 0) */
+    void *trace_user;
+} gr_indirect_t;
+
+/* §6: specular inter-reflection and transmission inside and between
+   grooves, on gr_query_lines()'s segments (query->line_samples of them,
+   combined with the same Jones & Perry weights). On each segment, each
+   interval's facet gets its direct term Σ_k lit_k brdf(...) (eq. 6); if
+   depth allows and its id reflects, the facet's visible piece becomes the
+   next footprint (§6.1: the piece of the facet the segment sees, a 3D
+   segment on the facet; projecting it back to UV along E_r, as the paper
+   does, gives the same rays) seen along the mirror direction E_r, with
+   throughput r_i k_r. Rays of a bounce may leave from below the texture
+   plane and point up or down (E_w < 0 in the paper's terms): the 1D ray
+   classification is the same for any direction, which is §6.1's inverted
+   masking order. Where a bounce's rays find no facet (Σ r_i < 1) the rest
+   goes to trace() with weight 1 - Σ r_i (§6.2); light refracted by a
+   transmitting facet goes to trace() with inside = 1. Recursion runs on an
+   explicit stack (GR_MAX_DEPTH levels); pieces beyond its capacity go to
+   trace() along their mirror direction (GR_LIST_LINE_APPROX in stats is
+   not reported; stats->segments counts the work). Uses
+   gr_query_scratch_bytes() of scratch. Errors as gr_query_lines(), plus
+   GR_ERR_INVALID_ARG for a NULL indirect or rgb, depth outside
+   0..GR_MAX_DEPTH, specular_count < 0 or specular NULL with a count. */
+GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *query, const gr_indirect_t *indirect,
+                                     void *scratch, size_t scratch_bytes, double rgb[3], gr_line_stats_t *stats);
+#endif
+/* ==== [end section: interreflection] ==== */
 
 #ifdef __cplusplus
 }
@@ -1453,10 +1619,20 @@ static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q, void *scr
 #else
 static size_t gr__pp_scratch_bytes(void) { return 0; }
 #endif
+/* [section: line samples] its scratch also follows the query's (the two
+   paths never run at once) */
+#if !defined(GR_NO_LINE_SAMPLES) || !defined(GR_NO_INTERREFLECTION)
+struct gr__lscratch_t;
+static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls);
+#  define GR__LINE_SCRATCH_BYTES gr__line_scratch(NULL, NULL)
+#else
+#  define GR__LINE_SCRATCH_BYTES 0
+#endif
 
 GR_DEF size_t gr_query_scratch_bytes(const gr_grid_t *grid)
 {
-    return grid ? gr__align8(gr__scratch_layout(grid, NULL, NULL)) + gr__pp_scratch_bytes() : 0;
+    size_t pp = gr__pp_scratch_bytes(), ls = GR__LINE_SCRATCH_BYTES;
+    return grid ? gr__align8(gr__scratch_layout(grid, NULL, NULL)) + (pp > ls ? pp : ls) : 0;
 }
 
 #ifndef GR_NO_CURVES
@@ -2229,7 +2405,7 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     if (!(fp->view[2] > 0) || !(el > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
     gr__scratch_layout(grid, scratch, &s);
     /* §5: crossings and path ends in the footprint take the polygon path
-       (line samples, §5.6, plug in here for line_samples > 0) */
+       (line samples, §5.6, for line_samples > 0: see the end) */
 #ifndef GR_NO_INTERSECTIONS
     if (query->line_samples == 0 && gr__pp_dispatch(grid, query, scratch, scratch_bytes, &s, list)) {
         gr__list_finish(list, qs.light_count);
@@ -2275,6 +2451,12 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
         }
         list->subfootprints = need;
     }
+#ifndef GR_NO_LINE_SAMPLES
+    /* §5.6 ([section: line samples]): crossings and ends, as §4's answer
+       flags them, take query->line_samples line samples */
+    if (query->line_samples > 0 && (list->flags & (GR_LIST_NONPARALLEL | GR_LIST_PATH_END)))
+        return gr_query_lines(grid, query, scratch, scratch_bytes, list, NULL);
+#endif
     gr__list_finish(list, qs.light_count);
     return GR_OK;
 }
@@ -3858,6 +4040,1117 @@ static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
 
 #endif /* GR_NO_INTERSECTIONS */
 /* ==== [end section: intersections] ==== */
+
+/* ==== [section: line samples] implementation (issue 8: §5.6) ==== */
+#if !defined(GR_NO_LINE_SAMPLES) || !defined(GR_NO_INTERREFLECTION)
+
+/* A point lies on a facet when its parameter along the facet is within
+   this fraction of the facet's length of [0, 1] (crossing lines found at a
+   facet's very end must not be lost to rounding; extra breakpoints only
+   cut an interval in two). */
+#define GR__LINE_ON_FACET_REL 1e-9
+/* Breakpoints closer than this (in the segment parameter s in [-1, 1])
+   coalesce: intervals that short carry no measurable ratio. */
+#define GR__LINE_SNAP 1e-12
+/* Shadow and bounce rays start this fraction of the scene scale
+   (w + h + d of the grid) off their facet, along its normal, so the facet
+   they leave is not found again through rounding. */
+#define GR__LINE_OFFSET_REL 1e-9
+/* Rays (nearly) parallel to UV are followed at most this many scene
+   scales plus the segment's length (the search box must stay finite). */
+#define GR__LINE_TRAVEL_REL 64.0
+/* Rays are followed this fraction of the scene scale past the highest
+   and lowest section points. */
+#define GR__LINE_CLEAR_REL 1e-6
+/* Default early-exit tolerance of §5.6 (gr_query_t.line_exit_tol). */
+#define GR__LINE_DEFAULT_EXIT 1e-3
+/* Depth of the explicit stack of pending bounce segments (§6.1). */
+#define GR__LINE_STACK 64
+
+/* A groove near the segment, locally straight (§4.2), in this frame's UV. */
+typedef struct gr__lg_t {
+    double p[2], t[2], bn[2]; /* path point, tangent T, binormal B */
+    double f;                 /* perturbation scale: section points are f (b, w) */
+    double reach;             /* f times the section's largest |b| */
+    double lo, hi;            /* the path's extent along T from p (arc
+                                 length; +-HUGE_VAL for closed paths) */
+    const double *sec;
+    int nsec, groove, first_facet;
+} gr__lg_t;
+
+/* A facet plane n.x = h (texture space); plane 0 is the ground w = 0. */
+typedef struct gr__plane_t {
+    double n[3], h;
+    double c0[2], c1[2];      /* scaled section points (b, w) bounding it */
+    int lg, facet, refl;      /* lg -1 for the ground */
+    int cap;                  /* 1: the flat wall closing a path end */
+} gr__plane_t;
+
+typedef struct gr__brk_t { double s, sin2; int plane; } gr__brk_t; /* plane: a shadow's facet */
+
+/* One interval of a segment: plane hit (-1: escaped, -2: not classified). */
+typedef struct gr__ivl_t {
+    double s0, s1, sin2;      /* sin2: the edge at s0 (Jones & Perry) */
+    int plane;
+    unsigned lit;
+} gr__ivl_t;
+
+typedef struct gr__xing_t { double t; int plane; } gr__xing_t;
+
+typedef struct gr__lscratch_t {
+    gr__lg_t *lg;
+    gr__plane_t *pl;
+    gr__xing_t *xs;
+    gr__brk_t *brk;
+    gr__ivl_t *iv, *iv2;      /* intervals; iv2: after the shadow split */
+    double *acc;              /* per plane: ratio, then lit per light */
+} gr__lscratch_t;
+
+#define GR__LINE_MAX_PLANES GR_LINE_MAX_PLANES
+
+static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
+{
+    size_t off = 0;
+    char *b = (char *)base;
+    gr__lscratch_t tmp;
+    if (!ls) ls = &tmp;
+#define GR__LCARVE(field, type, count) \
+    ls->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (size_t)(count));
+    GR__LCARVE(lg, gr__lg_t, GR_LINE_MAX_GROOVES)
+    GR__LCARVE(pl, gr__plane_t, GR__LINE_MAX_PLANES)
+    GR__LCARVE(xs, gr__xing_t, GR__LINE_MAX_PLANES)
+    GR__LCARVE(brk, gr__brk_t, GR_LINE_MAX_BREAKS)
+    GR__LCARVE(iv, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
+    GR__LCARVE(iv2, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
+    GR__LCARVE(acc, double, 2 * GR__LINE_MAX_PLANES * (1 + GR_MAX_LIGHTS))
+#undef GR__LCARVE
+    return off;
+}
+
+/* The local scene of one evaluation: grooves, planes, and scales. */
+typedef struct gr__lscene_t {
+    const gr_grid_t *grid;
+    gr__lscratch_t ls;
+    int nlg, npl;
+    double top, bottom, scale; /* highest w, lowest w, w + h + d */
+    unsigned flags;
+} gr__lscene_t;
+
+/* A segment of rays o + s a + t d, s in [-1, 1], t >= 0 (§5.6; §6.1 for
+   bounces), with the throughput it carries. */
+typedef struct gr__sheet_t {
+    double o[3], a[3], d[3], thr[3];
+    int level;
+} gr__sheet_t;
+
+static void gr__sec_pt(const gr__lg_t *g, int k, double c[2])
+{
+    c[0] = g->f * g->sec[2 * k];
+    c[1] = g->f * g->sec[2 * k + 1];
+}
+
+/* Groove coordinates (b, w) of a texture-space point. */
+static void gr__to_groove(const gr__lg_t *g, const double *x, double bw[2])
+{
+    bw[0] = g->bn[0] * (x[0] - g->p[0]) + g->bn[1] * (x[1] - g->p[1]);
+    bw[1] = x[2];
+}
+
+/* Even-odd test against the section closed by its mouth (w = 0). */
+static int gr__in_section(const gr__lg_t *g, const double bw[2])
+{
+    int i, j, in = 0;
+    double ci[2], cj[2];
+    for (i = 0, j = g->nsec - 1; i < g->nsec; j = i++) {
+        gr__sec_pt(g, i, ci);
+        gr__sec_pt(g, j, cj);
+        if ((ci[1] > bw[1]) != (cj[1] > bw[1]) && bw[0] < (cj[0] - ci[0]) * (bw[1] - ci[1]) / (cj[1] - ci[1]) + ci[0])
+            in = !in;
+    }
+    return in;
+}
+
+/* Inside the path's extent along T (ends are flat walls across it). */
+static int gr__along_in(const gr__lg_t *g, const double *x)
+{
+    double a = g->t[0] * (x[0] - g->p[0]) + g->t[1] * (x[1] - g->p[1]);
+    return a >= g->lo && a <= g->hi;
+}
+
+/* The solid: the ground w <= 0 minus the grooves' cuts, plus their
+   protrusions (§3: a section below w = 0 carves, above it adds). */
+static int gr__solid(const gr__lscene_t *sc, const double *x)
+{
+    int g, cut = 0;
+    if (x[2] > sc->top) return 0;
+    for (g = 0; g < sc->nlg; g++) {
+        const gr__lg_t *lg = &sc->ls.lg[g];
+        double bw[2];
+        gr__to_groove(lg, x, bw);
+        if (fabs(bw[0]) > lg->reach || !gr__along_in(lg, x)) continue;
+        if (!gr__in_section(lg, bw)) continue;
+        if (x[2] > 0) return 1;
+        cut = 1;
+    }
+    return x[2] <= 0 && !cut;
+}
+
+/* Parameter u of groove point bw along facet [c0, c1]. */
+static double gr__facet_param(const gr__plane_t *p, const double bw[2])
+{
+    double db = p->c1[0] - p->c0[0], dw = p->c1[1] - p->c0[1];
+    return ((bw[0] - p->c0[0]) * db + (bw[1] - p->c0[1]) * dw) / (db * db + dw * dw);
+}
+
+static int gr__on_plane(const gr__lscene_t *sc, int i, const double *x)
+{
+    const gr__plane_t *p = &sc->ls.pl[i];
+    double bw[2], u;
+    if (p->lg < 0 || p->cap) return 1; /* the ground and end walls: their holes are the solid's business */
+    gr__to_groove(&sc->ls.lg[p->lg], x, bw);
+    u = gr__facet_param(p, bw);
+    return u >= -GR__LINE_ON_FACET_REL && u <= 1 + GR__LINE_ON_FACET_REL;
+}
+
+/* The first entry into the solid along o + t d, t in (0, tmax]: the plane
+   entered (its index) and *thit, or -1 when the ray leaves (§6.2). The ray
+   is cut at every crossing of a facet or the ground; the solid's state is
+   constant between crossings, so one point per piece decides. */
+static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d, double tmax, double *thit)
+{
+    gr__xing_t *xs = sc->ls.xs;
+    int i, j, m = 0;
+    double prev = 0, x[3];
+    for (i = 0; i < sc->npl; i++) {
+        const gr__plane_t *p = &sc->ls.pl[i];
+        double t;
+        if (p->lg < 0 || p->cap) {
+            double nd = gr__dot3(p->n, d), xc[3], bw[2];
+            if (nd == 0) continue;
+            t = (p->h - gr__dot3(p->n, o)) / nd;
+            if (p->cap) { /* the wall is the section's shape */
+                for (j = 0; j < 3; j++) xc[j] = o[j] + t * d[j];
+                gr__to_groove(&sc->ls.lg[p->lg], xc, bw);
+                if (!gr__in_section(&sc->ls.lg[p->lg], bw)) continue;
+            }
+        } else {
+            const gr__lg_t *g = &sc->ls.lg[p->lg];
+            double b0[2], bd = g->bn[0] * d[0] + g->bn[1] * d[1], db = p->c1[0] - p->c0[0], dw = p->c1[1] - p->c0[1];
+            double det = -bd * dw + db * d[2], rb, rw, u;
+            if (det == 0) continue;
+            gr__to_groove(g, o, b0);
+            rb = p->c0[0] - b0[0];
+            rw = p->c0[1] - b0[1];
+            t = (-rb * dw + db * rw) / det;
+            u = (bd * rw - d[2] * rb) / det;
+            if (u < -GR__LINE_ON_FACET_REL || u > 1 + GR__LINE_ON_FACET_REL) continue;
+        }
+        if (!(t > 0) || !(t <= tmax)) continue;
+        for (j = m; j > 0 && xs[j - 1].t > t; j--) xs[j] = xs[j - 1];
+        xs[j].t = t;
+        xs[j].plane = i;
+        m++;
+    }
+    for (i = 0; i <= m; i++) {
+        double next = i < m ? xs[i].t : tmax, mid = 0.5 * (prev + next);
+        if (i == m && !(tmax < HUGE_VAL)) mid = prev + sc->scale / sqrt(gr__dot3(d, d));
+        for (j = 0; j < 3; j++) x[j] = o[j] + mid * d[j];
+        if (gr__solid(sc, x)) {
+            if (i == 0) { *thit = 0; return -2; } /* started inside: rounding at a touching facet */
+            *thit = prev;
+            return xs[i - 1].plane;
+        }
+        prev = next;
+    }
+    return -1;
+}
+
+/* Ray length beyond which nothing can be met (above the top, below the
+   bottom), capped for rays along UV. */
+static double gr__ray_tmax(const gr__lscene_t *sc, const double *o, const double *d, double seglen)
+{
+    double cap = (GR__LINE_TRAVEL_REL * sc->scale + seglen) / sqrt(gr__dot3(d, d)), t = cap;
+    /* just past the top and bottom, so the last piece of the ray is
+       tested clear of them */
+    double clear = GR__LINE_CLEAR_REL * sc->scale;
+    if (d[2] > 0) t = (sc->top + clear - o[2]) / d[2];
+    else if (d[2] < 0) t = (sc->bottom - clear - o[2]) / d[2];
+    return t < cap ? (t > 0 ? t : 0) : cap;
+}
+
+/* The plane's normal turned to face rays along d: the side a ray meets
+   (the ground plane seen from below is the underside of a protrusion
+   over a groove's hole, which faces down). */
+static void gr__facing(const gr__lscene_t *sc, int plane, const double *d, double n[3])
+{
+    const gr__plane_t *p = &sc->ls.pl[plane];
+    double sgn = gr__dot3(p->n, d) > 0 ? -1 : 1;
+    n[0] = sgn * p->n[0];
+    n[1] = sgn * p->n[1];
+    n[2] = sgn * p->n[2];
+}
+
+/* Lit: the facet's seen side faces the light and nothing solid lies
+   toward it (§4.3). */
+static int gr__lit(const gr__lscene_t *sc, int plane, const double *d, const double *x, const double *l, double seglen)
+{
+    double o[3], th, off = GR__LINE_OFFSET_REL * sc->scale, n[3];
+    int k;
+    gr__facing(sc, plane, d, n);
+    if (!(l[2] > 0) || !(gr__dot3(n, l) > 0)) return 0;
+    for (k = 0; k < 3; k++) o[k] = x[k] + off * n[k];
+    return gr__ray_hit(sc, o, l, gr__ray_tmax(sc, o, l, seglen), &th) == -1;
+}
+
+/* Gather the grooves that can meet rays from the segment (box: the
+   segment and where its rays cross the top and bottom, enlarged by w,
+   §4.1/§5.1) and build their facet planes, nearest GR_LINE_MAX_GROOVES. */
+/* Groove id in its straight approximation at the point nearest c. */
+static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double reach, gr__lg_t *g)
+{
+    const gr__groove_t *rec = &grid->grooves_[id];
+    gr__cand_t cd;
+    memset(&cd, 0, sizeof cd);
+    if (!gr__locate(grid, id, c, reach + rec->half_width, &cd)) return 0;
+    g->p[0] = cd.p[0] + c[0] - cd.fc[0];
+    g->p[1] = cd.p[1] + c[1] - cd.fc[1];
+    g->t[0] = cd.t[0];
+    g->t[1] = cd.t[1];
+    g->bn[0] = -cd.t[1];
+    g->bn[1] = cd.t[0];
+    g->f = gr__perturb(rec, cd.param);
+    g->reach = rec->half_width / rec->fmax * g->f;
+    g->sec = grid->section_ + 2 * rec->first_sec;
+    g->nsec = rec->sec_count;
+    g->groove = id;
+    g->first_facet = rec->first_facet;
+    g->lo = rec->closed ? -HUGE_VAL : -cd.param / cd.dtds;
+    g->hi = rec->closed ? HUGE_VAL : (1 - cd.param) / cd.dtds;
+    return g->f > 0; /* scaled away here otherwise */
+}
+
+/* The UV points whose convex hull holds every ray a segment casts: its
+   ends, where their view rays leave the slab, and those points moved
+   along each light to the top (shadow rays, §5.4). */
+typedef struct gr__region_t { double p[2 * 4 * (1 + GR_MAX_LIGHTS)]; int n; } gr__region_t;
+
+/* Keep g if its band reaches the box (centre c, radius reach) and, when
+   tight, the region the segment's rays sweep; the nearest
+   GR_LINE_MAX_GROOVES stay. */
+static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, double reach, const gr__region_t *quad)
+{
+    double bc = fabs(g->bn[0] * (c[0] - g->p[0]) + g->bn[1] * (c[1] - g->p[1]));
+    double a0 = g->t[0] * (c[0] - g->p[0]) + g->t[1] * (c[1] - g->p[1]);
+    int i, e;
+    if (bc > reach + g->reach) return; /* its band misses the box */
+    if (quad) { /* ... or the region this segment's rays sweep */
+        double bl = HUGE_VAL, bh = -HUGE_VAL, al = HUGE_VAL, ah = -HUGE_VAL;
+        for (e = 0; e < quad->n; e++) {
+            double du = quad->p[2 * e] - g->p[0], dv = quad->p[2 * e + 1] - g->p[1];
+            double bb = g->bn[0] * du + g->bn[1] * dv, aa = g->t[0] * du + g->t[1] * dv;
+            if (bb < bl) bl = bb;
+            if (bb > bh) bh = bb;
+            if (aa < al) al = aa;
+            if (aa > ah) ah = aa;
+        }
+        if (bl > g->reach || bh < -g->reach || al > g->hi + g->reach || ah < g->lo - g->reach) return;
+    }
+    if (a0 - g->lo <= reach + g->reach || g->hi - a0 <= reach + g->reach)
+        sc->flags |= GR_LIST_PATH_END; /* an end near: closed by a wall (planes below) */
+    if (sc->nlg == GR_LINE_MAX_GROOVES) {
+        int far = 0;
+        double fd = -1;
+        sc->flags |= GR_LIST_LINE_APPROX;
+        for (i = 0; i < sc->nlg; i++) {
+            const gr__lg_t *o = &sc->ls.lg[i];
+            double di = fabs(o->bn[0] * (c[0] - o->p[0]) + o->bn[1] * (c[1] - o->p[1]));
+            if (di > fd) { fd = di; far = i; }
+        }
+        if (!(bc < fd)) return;
+        sc->ls.lg[far] = *g;
+    } else {
+        sc->ls.lg[sc->nlg++] = *g;
+    }
+}
+
+/* The grid search (§4.1) around box, centre c: every groove in its
+   straight approximation, passed to gr__lg_keep, or stored in the cache
+   (returns 0 when the cache cannot hold them all, or one is not straight). */
+static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, double *box,
+                           const double *c, double reach, const gr__region_t *quad, gr_line_cache_t *fill)
+{
+    int k, n;
+    if (grid->wrap) { /* gather around the centre's image in the tile */
+        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
+        double su = floor((c[0] - grid->domain[0]) / wu) * wu, sv = floor((c[1] - grid->domain[1]) / wv) * wv;
+        box[0] -= su; box[2] -= su; box[1] -= sv; box[3] -= sv;
+    }
+    n = gr__gather(grid, box, s->seen, s->ids);
+    for (k = 0; k < n; k++) {
+        gr__lg_t g;
+        if (!gr__lg_make(grid, s->ids[k], c, reach, &g)) continue;
+        if (!fill) { gr__lg_keep(sc, &g, c, reach, quad); continue; }
+        if (fill->count == GR_LINE_MAX_GROOVES || grid->grooves_[s->ids[k]].point_count != 2 ||
+            grid->grooves_[s->ids[k]].kind != GR_PATH_POLYLINE)
+            return 0;
+        memcpy(fill->store_ + 16 * fill->count++, &g, sizeof g);
+    }
+    return 1;
+}
+
+typedef char gr__lg_fits_cache[sizeof(gr__lg_t) <= 16 * sizeof(double) ? 1 : -1];
+
+static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh,
+                           int tight, gr_line_cache_t *cache, const double *lights, int nl)
+{
+    double box[4] = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, c[2], reach, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
+    gr__region_t quad;
+    int i, k, e;
+    sc->grid = grid;
+    sc->top = grid->h;
+    sc->bottom = -grid->d;
+    sc->scale = grid->w + grid->h + grid->d;
+    sc->nlg = 0;
+    sc->flags = 0;
+    for (e = -1; e <= 1; e += 2) {
+        double o[3], tmax;
+        for (k = 0; k < 3; k++) o[k] = sh->o[k] + e * sh->a[k];
+        tmax = gr__ray_tmax(sc, o, sh->d, seglen);
+        for (i = 0; i < 2; i++) {
+            double t = i ? tmax : 0, u = o[0] + t * sh->d[0], v = o[1] + t * sh->d[1];
+            if (u < box[0]) box[0] = u;
+            if (u > box[2]) box[2] = u;
+            if (v < box[1]) box[1] = v;
+            if (v > box[3]) box[3] = v;
+        }
+    }
+    for (k = 0; k < 4; k++) box[k] += k < 2 ? -grid->w : grid->w;
+    quad.n = 0;
+    for (e = 0; e < 4; e++) { /* the swept region's points (UV), for pruning */
+        double o[3], tq, x[3];
+        int l;
+        for (k = 0; k < 3; k++) o[k] = sh->o[k] + (e & 1 ? 1 : -1) * sh->a[k];
+        tq = e & 2 ? gr__ray_tmax(sc, o, sh->d, seglen) : 0;
+        for (k = 0; k < 3; k++) x[k] = o[k] + tq * sh->d[k];
+        quad.p[2 * quad.n] = x[0];
+        quad.p[2 * quad.n + 1] = x[1];
+        quad.n++;
+        for (l = 0; l < nl; l++) {
+            const double *L = lights + 3 * l;
+            double tl;
+            if (!(L[2] > 0)) continue;
+            tl = x[2] < sc->top ? (sc->top - x[2]) / L[2] : 0;
+            quad.p[2 * quad.n] = x[0] + tl * L[0];
+            quad.p[2 * quad.n + 1] = x[1] + tl * L[1];
+            quad.n++;
+        }
+    }
+    for (e = 0; e < quad.n; e++) { /* §5.1's w_L: shadow casters toward the lights */
+        if (quad.p[2 * e] - grid->w < box[0]) box[0] = quad.p[2 * e] - grid->w;
+        if (quad.p[2 * e] + grid->w > box[2]) box[2] = quad.p[2 * e] + grid->w;
+        if (quad.p[2 * e + 1] - grid->w < box[1]) box[1] = quad.p[2 * e + 1] - grid->w;
+        if (quad.p[2 * e + 1] + grid->w > box[3]) box[3] = quad.p[2 * e + 1] + grid->w;
+    }
+    c[0] = 0.5 * (box[0] + box[2]);
+    c[1] = 0.5 * (box[1] + box[3]);
+    reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
+    if (cache) { /* §5.6: reuse the grooves found around a neighbour */
+        int hit = cache->valid && cache->grid == grid && box[0] >= cache->box[0] && box[1] >= cache->box[1] &&
+                  box[2] <= cache->box[2] && box[3] <= cache->box[3];
+        if (!hit) {
+            double big[4], bc[2], br, gu = 0.5 * (GR_LINE_CACHE_GROW - 1) * (box[2] - box[0]),
+                                      gv = 0.5 * (GR_LINE_CACHE_GROW - 1) * (box[3] - box[1]);
+            big[0] = box[0] - gu; big[2] = box[2] + gu;
+            big[1] = box[1] - gv; big[3] = box[3] + gv;
+            memcpy(cache->box, big, sizeof big);
+            bc[0] = c[0]; bc[1] = c[1];
+            br = GR_LINE_CACHE_GROW * reach;
+            cache->grid = grid;
+            cache->count = 0;
+            cache->valid = gr__line_gather(grid, s, sc, big, bc, br, NULL, cache);
+            cache->misses++;
+        } else {
+            cache->hits++;
+        }
+        if (cache->valid) {
+            for (k = 0; k < cache->count; k++) {
+                gr__lg_t g;
+                memcpy(&g, cache->store_ + 16 * k, sizeof g);
+                gr__lg_keep(sc, &g, c, reach, tight ? &quad : NULL);
+            }
+        } else {
+            gr__line_gather(grid, s, sc, box, c, reach, tight ? &quad : NULL, NULL);
+        }
+    } else {
+        gr__line_gather(grid, s, sc, box, c, reach, tight ? &quad : NULL, NULL);
+    }
+    /* planes: the ground, then every facet of every groove (§3) */
+    memset(&sc->ls.pl[0], 0, sizeof sc->ls.pl[0]);
+    sc->ls.pl[0].n[2] = 1;
+    sc->ls.pl[0].lg = -1;
+    sc->ls.pl[0].facet = -1;
+    sc->ls.pl[0].refl = grid->base_reflectance;
+    sc->ls.pl[0].cap = 0;
+    sc->npl = 1;
+    for (i = 0; i < sc->nlg; i++) {
+        const gr__lg_t *g = &sc->ls.lg[i];
+        for (k = 0; k + 1 < g->nsec; k++) {
+            gr__plane_t *p = &sc->ls.pl[sc->npl];
+            double db, dw, len, nb, nw, q[3];
+            gr__sec_pt(g, k, p->c0);
+            gr__sec_pt(g, k + 1, p->c1);
+            db = p->c1[0] - p->c0[0];
+            dw = p->c1[1] - p->c0[1];
+            len = sqrt(db * db + dw * dw);
+            if (!(len > 0)) continue;
+            if (sc->npl == GR__LINE_MAX_PLANES) { sc->flags |= GR_LIST_LINE_APPROX; break; }
+            nb = -dw / len; /* (-Δw, Δb)/|.|: out of the material (§3) */
+            nw = db / len;
+            p->n[0] = nb * g->bn[0];
+            p->n[1] = nb * g->bn[1];
+            p->n[2] = nw;
+            q[0] = g->p[0] + p->c0[0] * g->bn[0];
+            q[1] = g->p[1] + p->c0[0] * g->bn[1];
+            q[2] = p->c0[1];
+            p->h = gr__dot3(p->n, q);
+            p->lg = i;
+            p->facet = k;
+            p->refl = sc->grid->facet_refl_[g->first_facet + k];
+            p->cap = 0;
+            sc->npl++;
+        }
+        /* path ends near the box: flat walls across the path (§5, Figure
+           7c, with the section's shape), facing into a cut groove (out of
+           a protrusion); facet index section_count - 1 (first end) or
+           section_count (last end) */
+        for (k = 0; k < 2; k++) {
+            double at = k ? g->hi : g->lo, sgn = k ? 1 : -1, wmin = 0, cb;
+            gr__plane_t *p = &sc->ls.pl[sc->npl];
+            int j;
+            if (!(fabs(at - (g->t[0] * (c[0] - g->p[0]) + g->t[1] * (c[1] - g->p[1]))) <= reach + g->reach)) continue;
+            if (sc->npl == GR__LINE_MAX_PLANES) { sc->flags |= GR_LIST_LINE_APPROX; break; }
+            for (j = 0; j < g->nsec; j++)
+                if (g->sec[2 * j + 1] < wmin) wmin = g->sec[2 * j + 1];
+            cb = wmin < 0 ? -sgn : sgn;
+            memset(p, 0, sizeof *p);
+            p->n[0] = cb * g->t[0];
+            p->n[1] = cb * g->t[1];
+            p->h = p->n[0] * (g->p[0] + at * g->t[0]) + p->n[1] * (g->p[1] + at * g->t[1]);
+            p->lg = i;
+            p->facet = g->nsec - 1 + k;
+            p->refl = sc->grid->facet_refl_[g->first_facet];
+            p->cap = 1;
+            sc->npl++;
+        }
+    }
+}
+
+/* sin²α between the segment (UV part of a) and a 3D edge direction D seen
+   along the rays d, i.e. D's image on the plane w = 0 (Jones & Perry's α,
+   in texture space as §5.6 does). */
+static double gr__edge_sin2(const double *a, const double *dir, const double *D)
+{
+    double e[2], cr, aa, ee;
+    e[0] = D[0];
+    e[1] = D[1];
+    if (dir[2] != 0) {
+        e[0] -= D[2] / dir[2] * dir[0];
+        e[1] -= D[2] / dir[2] * dir[1];
+    }
+    cr = a[0] * e[1] - a[1] * e[0];
+    aa = a[0] * a[0] + a[1] * a[1];
+    ee = e[0] * e[0] + e[1] * e[1];
+    return aa > 0 && ee > 0 ? cr * cr / (aa * ee) : 0;
+}
+
+/* The segment parameter where the rays meet both planes n1.x = h1 and
+   n2.x = h2 (a line of the two planes, §5.3): 2x2 in (s, t). */
+static int gr__sheet_two_planes(const gr__sheet_t *sh, const double *n1, double h1, const double *n2, double h2,
+                                double *s, double *t)
+{
+    double a11 = gr__dot3(n1, sh->a), a12 = gr__dot3(n1, sh->d), a21 = gr__dot3(n2, sh->a), a22 = gr__dot3(n2, sh->d);
+    double r1 = h1 - gr__dot3(n1, sh->o), r2 = h2 - gr__dot3(n2, sh->o), det = a11 * a22 - a12 * a21;
+    double sc = sqrt(gr__dot3(n1, n1) * gr__dot3(n2, n2) * gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d));
+    if (!(fabs(det) > 1e-14 * sc)) return 0;
+    *s = (r1 * a22 - a12 * r2) / det;
+    *t = (a11 * r2 - r1 * a21) / det;
+    return 1;
+}
+
+static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int plane)
+{
+    if (!(s > -1 && s < 1)) return;
+    if (*nb == GR_LINE_MAX_BREAKS) { sc->flags |= GR_LIST_LINE_APPROX; return; }
+    sc->ls.brk[*nb].s = s;
+    sc->ls.brk[*nb].sin2 = sin2;
+    sc->ls.brk[*nb].plane = plane;
+    (*nb)++;
+}
+
+/* An edge line of the scene: a point q and direction D, valid on the
+   planes (p1, p2) it bounds (p2 = -1 for a section point's line). */
+typedef struct gr__edge_t { double q[3], D[3]; int p1, p2; } gr__edge_t;
+
+/* Walks the edge lines: every section point's line, then the line of
+   each pair of planes i < j of different grooves (or with an end wall). */
+typedef struct gr__edge_it_t { int g, k, i, j; } gr__edge_it_t;
+
+static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *e)
+{
+    int m;
+    while (it->g < sc->nlg) { /* a section point swept along T */
+        const gr__lg_t *lg = &sc->ls.lg[it->g];
+        double c[2];
+        if (it->k >= lg->nsec) { it->g++; it->k = 0; continue; }
+        gr__sec_pt(lg, it->k++, c);
+        e->q[0] = lg->p[0] + c[0] * lg->bn[0];
+        e->q[1] = lg->p[1] + c[0] * lg->bn[1];
+        e->q[2] = c[1];
+        e->D[0] = lg->t[0];
+        e->D[1] = lg->t[1];
+        e->D[2] = 0;
+        e->p1 = e->p2 = -1;
+        return 1;
+    }
+    for (; it->i < sc->npl; it->i++, it->j = it->i + 1) {
+        if (it->j <= it->i) it->j = it->i + 1;
+        while (it->j < sc->npl) { /* the line of planes i < j (§5.3) */
+            const gr__plane_t *a = &sc->ls.pl[it->i], *b = &sc->ls.pl[it->j++];
+            double nj_d[3], d_ni[3], dd;
+            if (a->lg == b->lg && !a->cap && !b->cap) continue;
+            gr__cross3(a->n, b->n, e->D);
+            dd = gr__dot3(e->D, e->D);
+            if (!(dd > 1e-24)) continue;
+            gr__cross3(b->n, e->D, nj_d);
+            gr__cross3(e->D, a->n, d_ni);
+            for (m = 0; m < 3; m++) e->q[m] = (a->h * nj_d[m] + b->h * d_ni[m]) / dd;
+            e->p1 = it->i;
+            e->p2 = it->j - 1;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Cut the segment where its first surface can change (seen = NULL: §5.6,
+   the 1D version of §5.2-5.3), or where a shadow boundary can fall on a
+   facet it sees (seen[m] != 0; §5.4: every edge's shadow along each
+   light on that facet); appended from brk[nb], returns the new count. */
+static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl,
+                            const unsigned char *seen, int nb)
+{
+    int m, l;
+    gr__edge_t e;
+    gr__edge_it_t it;
+    memset(&it, 0, sizeof it);
+    while (gr__edge_next(sc, &it, &e)) {
+        double s, t, x[3], nD[3];
+        if (seen) {
+        } else if (e.p1 < 0) {
+            /* a section point's line: o + s a + t d = q + λ D (Cramer) */
+            double m0[3], det, rhs[3];
+            gr__cross3(sh->d, e.D, m0);
+            det = -gr__dot3(sh->a, m0);
+            for (m = 0; m < 3; m++) rhs[m] = e.q[m] - sh->o[m];
+            if (fabs(det) > 1e-14 * sqrt(gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d) * gr__dot3(e.D, e.D))) {
+                double c1[3];
+                s = -gr__dot3(rhs, m0) / det;
+                gr__cross3(rhs, e.D, c1);
+                t = -gr__dot3(sh->a, c1) / det;
+                if (t >= 0) gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
+            }
+        } else if (gr__sheet_two_planes(sh, sc->ls.pl[e.p1].n, sc->ls.pl[e.p1].h, sc->ls.pl[e.p2].n,
+                                        sc->ls.pl[e.p2].h, &s, &t) && t >= 0) {
+            for (m = 0; m < 3; m++) x[m] = sh->o[m] + s * sh->a[m] + t * sh->d[m];
+            if (gr__on_plane(sc, e.p1, x) && gr__on_plane(sc, e.p2, x))
+                gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
+        }
+        /* §5.4: the edge's shadow along each light on each seen facet */
+        for (l = 0; seen && l < nl; l++) {
+            const double *L = lights + 3 * l;
+            double hP;
+            if (!(L[2] > 0)) continue;
+            gr__cross3(e.D, L, nD);
+            if (!(gr__dot3(nD, nD) > 1e-24 * gr__dot3(e.D, e.D))) continue;
+            hP = gr__dot3(nD, e.q);
+            for (m = 0; m < sc->npl; m++) {
+                double dir[3];
+                int k;
+                if (!seen[m] || m == e.p1 || m == e.p2) continue;
+                if (!gr__sheet_two_planes(sh, nD, hP, sc->ls.pl[m].n, sc->ls.pl[m].h, &s, &t) || t < 0) continue;
+                for (k = 0; k < 3; k++) x[k] = sh->o[k] + s * sh->a[k] + t * sh->d[k];
+                if (!gr__on_plane(sc, m, x)) continue;
+                gr__cross3(nD, sc->ls.pl[m].n, dir);
+                gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, dir), m);
+            }
+        }
+    }
+    return nb;
+}
+
+#define GR__LINE_SMALL_SORT 24 /* insertion sort below, qsort above */
+static int gr__cmp_brk(const void *a, const void *b)
+{
+    double x = ((const gr__brk_t *)a)->s, y = ((const gr__brk_t *)b)->s;
+    return (x > y) - (x < y);
+}
+
+/* Sort breakpoints by s (insertion for short lists, qsort beyond). */
+static void gr__brk_sort(gr__lscene_t *sc, int nb)
+{
+    if (nb > GR__LINE_SMALL_SORT) qsort(sc->ls.brk, (size_t)nb, sizeof(gr__brk_t), gr__cmp_brk);
+    else {
+        int i, j;
+        for (i = 1; i < nb; i++) {
+            gr__brk_t x = sc->ls.brk[i];
+            for (j = i; j > 0 && sc->ls.brk[j - 1].s > x.s; j--) sc->ls.brk[j] = sc->ls.brk[j - 1];
+            sc->ls.brk[j] = x;
+        }
+    }
+}
+
+/* Point of the segment's ray at s on plane p. */
+static void gr__sheet_point(const gr__lscene_t *sc, const gr__sheet_t *sh, int p, double s, double x[3])
+{
+    const gr__plane_t *pl = &sc->ls.pl[p];
+    double o[3], t, nd = gr__dot3(pl->n, sh->d);
+    int k;
+    for (k = 0; k < 3; k++) o[k] = sh->o[k] + s * sh->a[k];
+    t = nd != 0 ? (pl->h - gr__dot3(pl->n, o)) / nd : 0;
+    for (k = 0; k < 3; k++) x[k] = o[k] + t * sh->d[k];
+}
+
+/* The facet an interval sees (one ray at its middle). */
+static void gr__classify(const gr__lscene_t *sc, const gr__sheet_t *sh, gr__ivl_t *iv)
+{
+    double o[3], th, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), sm = 0.5 * (iv->s0 + iv->s1);
+    int k;
+    for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
+    iv->plane = gr__ray_hit(sc, o, sh->d, gr__ray_tmax(sc, o, sh->d, seglen), &th);
+    if (iv->plane == -2) iv->plane = -1; /* inside at the start: counted as leaving */
+    iv->lit = 0;
+}
+
+/* §5.4 on one segment: split the seen intervals at the shadow boundaries
+   on their facets, then one shadow ray per piece and light. */
+static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl, int n)
+{
+    gr__ivl_t *iv = sc->ls.iv, *out = sc->ls.iv2;
+    unsigned char seen[GR_LINE_MAX_PLANES];
+    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
+    int i, k, nb, b = 0, m = 0;
+    memset(seen, 0, (size_t)sc->npl);
+    for (i = 0; i < n; i++)
+        if (iv[i].plane >= 0) seen[iv[i].plane] = 1;
+    nb = gr__sheet_breaks(sc, sh, lights, nl, seen, 0);
+    gr__brk_sort(sc, nb);
+    for (i = 0; i < n; i++) {
+        double s0 = iv[i].s0, open = iv[i].sin2; /* open: the edge starting the piece */
+        while (b < nb && sc->ls.brk[b].s <= s0) b++;
+        for (;;) {
+            double s1 = iv[i].s1, next = 0;
+            int j;
+            if (iv[i].plane >= 0 && m + (n - i) < GR_LINE_MAX_BREAKS + 1) {
+                for (j = b; j < nb && sc->ls.brk[j].s < iv[i].s1; j++)
+                    if (sc->ls.brk[j].plane == iv[i].plane && sc->ls.brk[j].s - s0 > GR__LINE_SNAP &&
+                        iv[i].s1 - sc->ls.brk[j].s > GR__LINE_SNAP) {
+                        s1 = sc->ls.brk[j].s;
+                        next = sc->ls.brk[j].sin2;
+                        b = j + 1;
+                        break;
+                    }
+            } else if (iv[i].plane >= 0) {
+                sc->flags |= GR_LIST_LINE_APPROX; /* no room to split further */
+            }
+            out[m] = iv[i];
+            out[m].s0 = s0;
+            out[m].s1 = s1;
+            out[m].sin2 = open;
+            if (out[m].plane >= 0) {
+                double x[3];
+                gr__sheet_point(sc, sh, out[m].plane, 0.5 * (s0 + s1), x);
+                for (k = 0; k < nl; k++)
+                    if (gr__lit(sc, out[m].plane, sh->d, x, lights + 3 * k, seglen)) out[m].lit |= 1u << k;
+            }
+            m++;
+            if (s1 >= iv[i].s1) break;
+            s0 = s1;
+            open = next;
+        }
+    }
+    memcpy(iv, out, sizeof *iv * (size_t)m);
+    return m;
+}
+
+static int gr__cmp_ivl_len(const void *a, const void *b)
+{
+    const gr__ivl_t *x = (const gr__ivl_t *)a, *y = (const gr__ivl_t *)b;
+    double lx = x->s1 - x->s0, ly = y->s1 - y->s0;
+    return (lx < ly) - (lx > ly);
+}
+static int gr__cmp_ivl_pos(const void *a, const void *b)
+{
+    const gr__ivl_t *x = (const gr__ivl_t *)a, *y = (const gr__ivl_t *)b;
+    return (x->s0 > y->s0) - (x->s0 < y->s0);
+}
+
+/* One segment: cut into intervals, classify (longest first, stopping at
+   Σ r_i >= 1 - tol, §5.6), back in position order. Returns the interval
+   count; *weight receives Σ sin²α over the edges where the class changes
+   (Jones & Perry 2000); *classified the length fraction classified. */
+static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl, double tol,
+                          double *weight, double *classified, gr_line_stats_t *st)
+{
+    gr__ivl_t *iv = sc->ls.iv;
+    int nb = sc->nlg ? gr__sheet_breaks(sc, sh, lights, nl, NULL, 0) : 0, n = 0, i;
+    double last = -1, sin2 = 0, done = 0;
+    gr__brk_sort(sc, nb);
+    for (i = 0; i <= nb; i++) {
+        double s = i < nb ? sc->ls.brk[i].s : 1;
+        if (s - last <= GR__LINE_SNAP) { /* coalesce: keep the steepest edge */
+            if (i < nb && sc->ls.brk[i].sin2 > sin2) sin2 = sc->ls.brk[i].sin2;
+            continue;
+        }
+        iv[n].s0 = last;
+        iv[n].s1 = s;
+        iv[n].sin2 = n ? sin2 : 0;
+        iv[n].plane = -2;
+        iv[n].lit = 0;
+        n++;
+        last = s;
+        sin2 = i < nb ? sc->ls.brk[i].sin2 : 0;
+    }
+    if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_len);
+    for (i = 0; i < n; i++) {
+        if (tol > 0 && done >= 2 * (1 - tol)) { if (st) st->early_exits++; break; }
+        gr__classify(sc, sh, &iv[i]);
+        done += iv[i].s1 - iv[i].s0;
+        if (st) st->evaluated++;
+    }
+    if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_pos);
+    if (st) { st->segments++; st->intervals += n; } /* (view intervals; shadows split them below) */
+    if (nl > 0) n = gr__shadow_split(sc, sh, lights, nl, n);
+    *weight = 0;
+    for (i = 1; i < n; i++)
+        if (iv[i].plane != iv[i - 1].plane || iv[i].lit != iv[i - 1].lit || iv[i].plane == -2) *weight += iv[i].sin2;
+    *classified = done / 2;
+    return n;
+}
+
+/* The n line samples of a footprint (§5.6), rays coming down along -E
+   from above everything. */
+static void gr__top_sheet(const gr_grid_t *grid, const gr_footprint_t *fp, int j, int n, gr__sheet_t *sh)
+{
+    double ang = 3.14159265358979323846 * j / n, c = cos(ang), s = sin(ang), ew = fp->view[2], lift;
+    int k;
+    if (ew < GR__GRAZING_MIN_W) ew = GR__GRAZING_MIN_W;
+    lift = (grid->h + grid->w + grid->d) / ew; /* start above every protrusion */
+    sh->o[0] = fp->center[0] + lift * fp->view[0];
+    sh->o[1] = fp->center[1] + lift * fp->view[1];
+    sh->o[2] = lift * fp->view[2];
+    sh->a[0] = c * fp->axis1[0] + s * fp->axis2[0];
+    sh->a[1] = c * fp->axis1[1] + s * fp->axis2[1];
+    sh->a[2] = 0;
+    for (k = 0; k < 3; k++) sh->d[k] = -fp->view[k];
+    sh->thr[0] = sh->thr[1] = sh->thr[2] = 1;
+    sh->level = 0;
+}
+
+/* Shared argument checks of gr_query_lines / gr_shade_indirect. */
+static gr_result_t gr__line_check(const gr_grid_t *grid, const gr_query_t *q, void *scratch, size_t bytes)
+{
+    int k;
+    if (!grid || !q || !scratch) return GR_ERR_INVALID_ARG;
+    if (q->light_count < 0 || q->light_count > GR_MAX_LIGHTS || (q->light_count > 0 && !q->lights) ||
+        q->line_samples < 0 || q->line_samples > GR_LINE_MAX_SAMPLES)
+        return GR_ERR_INVALID_ARG;
+    if (bytes < gr_query_scratch_bytes(grid)) return GR_ERR_BUFFER_TOO_SMALL;
+    if (!gr__finite_n(q->footprint.center, 2) || !gr__finite_n(q->footprint.axis1, 2) ||
+        !gr__finite_n(q->footprint.axis2, 2) || !gr__finite_n(q->footprint.view, 3) || !gr__finite(q->line_exit_tol))
+        return GR_ERR_NOT_FINITE;
+    for (k = 0; k < 3 * q->light_count; k++)
+        if (!gr__finite(q->lights[k])) return GR_ERR_NOT_FINITE;
+    return GR_OK;
+}
+
+static double gr__exit_tol(const gr_query_t *q)
+{
+    return q->line_exit_tol == 0 ? GR__LINE_DEFAULT_EXIT : q->line_exit_tol;
+}
+
+/* Scratch views: the query's part, then ours. */
+static void gr__line_layout(const gr_grid_t *grid, void *scratch, gr__scratch_t *s, gr__lscene_t *sc)
+{
+    size_t off = gr__align8(gr__scratch_layout(grid, scratch, s));
+    gr__line_scratch((char *)scratch + off, &sc->ls);
+}
+
+#endif /* line-sample engine */
+
+#ifndef GR_NO_LINE_SAMPLES
+GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
+                                  size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats)
+{
+    return gr_query_lines_cached(grid, query, NULL, scratch, scratch_bytes, list, stats);
+}
+
+GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t *query, gr_line_cache_t *cache,
+                                         void *scratch, size_t scratch_bytes, gr_facet_list_t *list,
+                                         gr_line_stats_t *stats)
+{
+    gr__scratch_t s;
+    gr__lscene_t sc;
+    gr__sheet_t sh;
+    const gr_footprint_t *fp;
+    double wsum = 0, tol, *acc;
+    int n, j, i, k, nl, stride, built = 0;
+    gr_result_t r;
+    if (!list) return GR_ERR_INVALID_ARG;
+    list->count = 0;
+    list->flags = 0;
+    list->grooves = 0;
+    list->subfootprints = 1;
+    if (stats) memset(stats, 0, sizeof *stats);
+    r = gr__line_check(grid, query, scratch, scratch_bytes);
+    if (r != GR_OK) return r;
+    fp = &query->footprint;
+    if (!(fp->view[2] > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
+    n = query->line_samples ? query->line_samples : 2;
+    nl = query->light_count;
+    tol = gr__exit_tol(query);
+    stride = 1 + nl;
+    gr__line_layout(grid, scratch, &s, &sc);
+    acc = sc.ls.acc;
+    /* two passes: Jones & Perry weights, then (if no segment crossed an
+       edge) plain averages; acc holds weighted sums in [0, npl), plain
+       ones after them */
+    for (j = 0; j < n; j++) {
+        double wj, cl;
+        int m;
+        gr__top_sheet(grid, fp, j, n, &sh);
+        if (!built) { /* every top-level segment shares the footprint's scene */
+            gr__sheet_t all = sh;
+            double ext = sqrt(fp->axis1[0] * fp->axis1[0] + fp->axis1[1] * fp->axis1[1] + fp->axis2[0] * fp->axis2[0] +
+                              fp->axis2[1] * fp->axis2[1]);
+            all.a[0] = ext; /* a box covering all rotations: the footprint's circumscribed extent */
+            all.a[1] = ext;
+            gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl); /* all rotations: not tight */
+            memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
+            built = 1;
+        }
+        m = gr__sheet_eval(&sc, &sh, query->lights, nl, tol, &wj, &cl, stats);
+        if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = wj;
+        wsum += wj;
+        for (i = 0; i < m; i++) {
+            const gr__ivl_t *v = &sc.ls.iv[i];
+            double len;
+            int base;
+            if (v->plane < 0 || !(cl > 0)) continue;
+            len = (v->s1 - v->s0) / (2 * cl); /* the unclassified rest shared in proportion */
+            for (k = 0; k < 2; k++) {
+                double *a;
+                int q;
+                base = (k * sc.npl + v->plane) * stride;
+                a = acc + base;
+                a[0] += (k ? 1.0 : wj) * len;
+                for (q = 0; q < nl; q++)
+                    if (v->lit & (1u << q)) a[1 + q] += (k ? 1.0 : wj) * len;
+            }
+        }
+    }
+    {
+        int half = wsum > 0 ? 0 : 1;
+        double norm = wsum > 0 ? wsum : n;
+        for (i = 0; i < sc.npl; i++) {
+            int base = (half * sc.npl + i) * stride;
+            const gr__plane_t *p = &sc.ls.pl[i];
+            gr__mfacet_t mf;
+            double lit[GR_MAX_LIGHTS], ratio;
+            ratio = acc[base] / norm;
+            if (!(ratio > 0)) continue;
+            for (k = 0; k < nl; k++) lit[k] = acc[base + 1 + k] / acc[base];
+            for (k = 0; k < 3; k++) mf.n[k] = p->n[k];
+            mf.groove = p->lg < 0 ? -1 : sc.ls.lg[p->lg].groove;
+            mf.facet = p->facet;
+            mf.refl = p->refl;
+            gr__list_add(list, &mf, ratio, lit, nl);
+        }
+    }
+    for (i = 0; i < sc.nlg; i++)
+        for (k = 0; k < i; k++) {
+            const gr__lg_t *a = &sc.ls.lg[i], *b = &sc.ls.lg[k];
+            if (fabs(a->t[0] * b->t[1] - a->t[1] * b->t[0]) > sin(GR__DEFAULT_PARALLEL_TOL)) list->flags |= GR_LIST_NONPARALLEL;
+        }
+    list->flags |= sc.flags;
+    list->grooves = sc.nlg;
+    gr__list_finish(list, nl);
+    return GR_OK;
+}
+#endif
+/* ==== [end section: line samples] ==== */
+
+/* ==== [section: interreflection] implementation (issue 8: §6) ==== */
+#ifndef GR_NO_INTERREFLECTION
+/* Default index of refraction of a transmitting facet. */
+#define GR__DEFAULT_IOR 1.5
+
+static const gr_specular_t *gr__spec(const gr_indirect_t *ind, int refl)
+{
+    return refl >= 0 && refl < ind->specular_count ? &ind->specular[refl] : NULL;
+}
+
+static int gr__nonzero3(const double *v) { return v[0] > 0 || v[1] > 0 || v[2] > 0; }
+
+/* Hand light leaving a bounce to the host (§6.2), times throughput. */
+static void gr__to_host(const gr_indirect_t *ind, const double *origin, const double *dir, int depth, int inside,
+                        const double *thr, double frac, double *rgb)
+{
+    double c[3] = {0, 0, 0}, u[3], len = sqrt(gr__dot3(dir, dir)), w = frac * (thr[0] + thr[1] + thr[2]) / 3;
+    int k;
+    if (!ind->trace || !(frac > 0) || !(len > 0)) return;
+    for (k = 0; k < 3; k++) u[k] = dir[k] / len;
+    ind->trace(ind->trace_user, origin, u, depth, inside, w, c);
+    for (k = 0; k < 3; k++) rgb[k] += thr[k] * frac * c[k];
+}
+
+/* One evaluated segment: direct terms, then the pieces that bounce
+   (§6.1: each facet run's visible piece, seen along E_r, becomes the next
+   footprint) pushed on the stack, and what leaves to the host (§6.2). */
+static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, const gr_query_t *q,
+                       const gr_indirect_t *ind, gr__sheet_t *stack, int *top, double *rgb)
+{
+    const gr__ivl_t *iv = sc->ls.iv;
+    double e[3], esc = 0, esc_s = 0, off = GR__LINE_OFFSET_REL * sc->scale;
+    int i, j, k, l;
+    for (k = 0; k < 3; k++) e[k] = -sh->d[k];
+    {
+        double len = sqrt(gr__dot3(e, e));
+        for (k = 0; k < 3; k++) e[k] /= len;
+    }
+    for (i = 0; i < m; i = j) {
+        const gr__plane_t *p;
+        const gr_specular_t *sp;
+        double frac, x0[3], x1[3], mid[3], nf[3];
+        /* a run of intervals on one facet */
+        for (j = i + 1; j < m && iv[j].plane == iv[i].plane; j++) {}
+        frac = (iv[j - 1].s1 - iv[i].s0) / 2;
+        if (iv[i].plane == -2) continue; /* skipped by the early exit */
+        if (iv[i].plane < 0) { /* nothing met: the rays leave */
+            esc += frac;
+            esc_s += frac * 0.5 * (iv[i].s0 + iv[j - 1].s1);
+            continue;
+        }
+        p = &sc->ls.pl[iv[i].plane];
+        gr__facing(sc, iv[i].plane, sh->d, nf);
+        if (ind->brdf)
+            for (l = i; l < j; l++)
+                for (k = 0; k < q->light_count; k++) {
+                    double c[3] = {0, 0, 0}, fl = (iv[l].s1 - iv[l].s0) / 2;
+                    int ch;
+                    if (!(iv[l].lit & (1u << k))) continue;
+                    ind->brdf(ind->brdf_user, p->refl, nf, e, q->lights + 3 * k, k, c);
+                    for (ch = 0; ch < 3; ch++) rgb[ch] += sh->thr[ch] * fl * c[ch];
+                }
+        sp = gr__spec(ind, p->refl);
+        if (sh->level >= ind->depth || !sp) continue;
+        gr__sheet_point(sc, sh, iv[i].plane, iv[i].s0, x0);
+        gr__sheet_point(sc, sh, iv[i].plane, iv[j - 1].s1, x1);
+        for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + off * nf[k];
+        if (gr__nonzero3(sp->kr)) {
+            double dn = gr__dot3(sh->d, nf), dr[3];
+            for (k = 0; k < 3; k++) dr[k] = sh->d[k] - 2 * dn * nf[k];
+            if (*top < GR__LINE_STACK) {
+                gr__sheet_t *c = &stack[(*top)++];
+                for (k = 0; k < 3; k++) {
+                    c->o[k] = mid[k];
+                    c->a[k] = 0.5 * (x1[k] - x0[k]);
+                    c->d[k] = dr[k];
+                    c->thr[k] = sh->thr[k] * sp->kr[k] * frac;
+                }
+                c->level = sh->level + 1;
+            } else { /* stack full: the piece leaves along E_r unexamined */
+                double t3[3];
+                for (k = 0; k < 3; k++) t3[k] = sh->thr[k] * sp->kr[k];
+                gr__to_host(ind, mid, dr, sh->level + 1, 0, t3, frac, rgb);
+            }
+        }
+        if (gr__nonzero3(sp->kt)) { /* refraction into the material (Snell), to the host */
+            double eta = 1 / (sp->ior > 0 ? sp->ior : GR__DEFAULT_IOR), dl = sqrt(gr__dot3(sh->d, sh->d));
+            double dd[3], ci, kk, dt[3], t3[3], in[3];
+            for (k = 0; k < 3; k++) dd[k] = sh->d[k] / dl;
+            ci = -gr__dot3(dd, nf);
+            kk = 1 - eta * eta * (1 - ci * ci);
+            if (kk >= 0 && ci > 0) {
+                for (k = 0; k < 3; k++) {
+                    dt[k] = eta * dd[k] + (eta * ci - sqrt(kk)) * nf[k];
+                    t3[k] = sh->thr[k] * sp->kt[k];
+                    in[k] = mid[k] - 2 * off * nf[k];
+                }
+                gr__to_host(ind, in, dt, sh->level + 1, 1, t3, frac, rgb);
+            }
+        }
+    }
+    if (esc > 0) {
+        double o[3], sm = esc_s / esc;
+        for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
+        gr__to_host(ind, o, sh->d, sh->level, 0, sh->thr, esc, rgb);
+    }
+}
+
+GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *query, const gr_indirect_t *indirect,
+                                     void *scratch, size_t scratch_bytes, double rgb[3], gr_line_stats_t *stats)
+{
+    gr__scratch_t s;
+    gr__lscene_t sc;
+    gr__sheet_t stack[GR__LINE_STACK];
+    const gr_footprint_t *fp;
+    double wsum = 0, plain[3] = {0, 0, 0}, tol;
+    int n, j, k;
+    gr_result_t r;
+    if (!indirect || !rgb) return GR_ERR_INVALID_ARG;
+    rgb[0] = rgb[1] = rgb[2] = 0;
+    if (stats) memset(stats, 0, sizeof *stats);
+    if (indirect->depth < 0 || indirect->depth > GR_MAX_DEPTH || indirect->specular_count < 0 ||
+        (indirect->specular_count > 0 && !indirect->specular))
+        return GR_ERR_INVALID_ARG;
+    r = gr__line_check(grid, query, scratch, scratch_bytes);
+    if (r != GR_OK) return r;
+    fp = &query->footprint;
+    if (!(fp->view[2] > 0)) return GR_OK;
+    n = query->line_samples ? query->line_samples : 2;
+    tol = gr__exit_tol(query);
+    gr__line_layout(grid, scratch, &s, &sc);
+    for (j = 0; j < n; j++) {
+        double cj[3] = {0, 0, 0}, wj = 0;
+        int top = 1;
+        gr__top_sheet(grid, fp, j, n, &stack[0]);
+        while (top > 0) {
+            gr__sheet_t sh = stack[--top];
+            double w, cl;
+            int m;
+            gr__line_scene(grid, &s, &sc, &sh, 1, NULL, query->lights, query->light_count);
+            /* the early exit (§5.6) would leave unclassified gaps, which
+               here would read as light leaving: bounces classify all */
+            m = gr__sheet_eval(&sc, &sh, query->lights, query->light_count, sh.level ? -1 : tol, &w, &cl, stats);
+            if (sh.level == 0) {
+                wj = w;
+                if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = w;
+                if (cl > 0 && cl < 1) /* share the unclassified rest in proportion */
+                    for (k = 0; k < 3; k++) sh.thr[k] /= cl;
+            }
+            gr__bounce(&sc, &sh, m, query, indirect, stack, &top, cj);
+        }
+        wsum += wj;
+        for (k = 0; k < 3; k++) {
+            rgb[k] += wj * cj[k];
+            plain[k] += cj[k];
+        }
+    }
+    for (k = 0; k < 3; k++) rgb[k] = wsum > 0 ? rgb[k] / wsum : plain[k] / n;
+    return GR_OK;
+}
+#endif
+/* ==== [end section: interreflection] ==== */
 
 #ifdef __cplusplus
 }

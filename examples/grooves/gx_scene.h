@@ -49,6 +49,12 @@ typedef struct gx_scene_t {
     ex_v3_t bench_eye, bench_at;  /* a closer view that sees only the tile (no plane edge, */
     double bench_fov;             /* no sky): bench_grooves measures grooves, not silhouettes */
     double exposure;              /* stops, for the PNG */
+    /* [inter-reflection scenes, §6] depth > 0: specular bounces, both
+       renderers; spec by reflectance id; below: radiance of what lies
+       behind a transmitting facet (the room behind the glass) */
+    int depth;
+    gr_specular_t spec[GX_MAX_MATS];
+    ex_v3_t below;
 } gx_scene_t;
 
 static ex_material_t gx_material(double r, double g, double b, double f0r, double f0g, double f0b, double rough)
@@ -188,6 +194,92 @@ static int gx_scene_scratches(gx_scene_t *s)
     return 0;
 }
 
+/* [inter-reflection scenes, §6] */
+static void gx_spec(gr_specular_t *sp, double kr, double kt, double ior)
+{
+    sp->kr[0] = sp->kr[1] = sp->kr[2] = kr;
+    sp->kt[0] = sp->kt[1] = sp->kt[2] = kt;
+    sp->ior = ior;
+}
+
+/* Groove i: the straight path (u0, v0)-(u1, v1), stored at pts + 4 i. */
+static void gx_line_groove(gx_scene_t *s, int i, double *pts, double u0, double v0, double u1, double v1,
+                           const double *sec, int nsec, int refl)
+{
+    double *p = pts + 4 * i;
+    p[0] = u0; p[1] = v0; p[2] = u1; p[3] = v1;
+    s->desc[i].points = p; s->desc[i].point_count = 2;
+    s->desc[i].section = sec; s->desc[i].section_count = nsec; s->desc[i].reflectance = refl;
+}
+
+/* Start a scene of n straight grooves: its points array, or NULL. */
+static double *gx_begin(gx_scene_t *s, const char *name, const char *title, int n)
+{
+    memset(s, 0, sizeof *s);
+    s->name = name; s->title = title;
+    return gx_alloc(s, n, 4 * (size_t)n) ? NULL : s->store;
+}
+
+/* One sun, sky colour, and the camera (the bench view is the same place
+   looking narrower). */
+static void gx_sun_view(gx_scene_t *s, double elev, double azim, ex_v3_t rad, ex_v3_t sky, ex_v3_t eye, ex_v3_t at)
+{
+    s->nlights = 1;
+    gx_dir(elev, azim, s->light[0]); s->radiance[0] = rad;
+    s->background = sky;
+    s->eye = eye; s->at = at; s->fov = 45;
+    s->bench_eye = eye; s->bench_at = at; s->bench_fov = 20;
+}
+
+/* Figure 21d: a window frame protruding over glass, with inter-reflection:
+   three mullions each way (raised bars crossing at right angles) over a
+   glass pane that reflects 8 % and lets 90 % through to the room behind
+   (the host's callback); the frame is glossy paint reflecting 25 %. */
+static int gx_scene_frame(gx_scene_t *s)
+{
+    static const double bar[10] = {-0.018, 0, -0.016, 0.03, 0, 0.036, 0.016, 0.03, 0.018, 0};
+    int i;
+    double *pts = gx_begin(s, "frame", "window frame protruding over glass, inter-reflection depth 2 (Fig. 21d)", 6);
+    if (!pts) return -1;
+    for (i = 0; i < 6; i++) {
+        double c = 0.2 + 0.3 * (i % 3);
+        if (i < 3) gx_line_groove(s, i, pts, 0.05, c, 0.95, c, bar, 5, 1);
+        else gx_line_groove(s, i, pts, c, 0.05, c, 0.95, bar, 5, 1);
+    }
+    s->mats[0] = gx_material(0.0, 0.0, 0.0, 0.04, 0.04, 0.04, 0.05);     /* glass (its reflection is k_r) */
+    s->mats[1] = gx_material(0.55, 0.52, 0.46, 0.04, 0.04, 0.04, 0.35);  /* painted frame */
+    gx_spec(&s->spec[0], 0.08, 0.9, 1.5);
+    gx_spec(&s->spec[1], 0.25, 0, 0);
+    s->depth = 2;
+    s->below = ex_v3(0.9, 0.7, 0.45);                                    /* a warm room */
+    gx_sun_view(s, 35, 60, ex_v3(3.0, 2.9, 2.7), ex_v3(0.35, 0.45, 0.65), ex_v3(0.35, -0.25, 0.35), ex_v3(0.5, 0.45, 0.0));
+    return 0;
+}
+
+/* Figure 17: inter-reflections inside grooves: polished gold V-grooves of
+   three opening angles, one crossing them, rendered with 3 bounces (the
+   deep ones light up from their walls' mirror images). */
+static int gx_scene_interreflect(gx_scene_t *s)
+{
+    static const double v1[6] = {-0.03, 0, 0, -0.03, 0.03, 0}, v2[6] = {-0.02, 0, 0, -0.05, 0.02, 0};
+    static const double v3[6] = {-0.04, 0, 0, -0.015, 0.04, 0};
+    static const double *secs[4] = {v1, v2, v3, v1};
+    int i;
+    double *pts = gx_begin(s, "interreflect", "inter-reflections in gold V-grooves, depth 3 (Fig. 17)", 4);
+    if (!pts) return -1;
+    for (i = 0; i < 4; i++) {
+        double c = 0.25 + 0.25 * i;
+        if (i < 3) gx_line_groove(s, i, pts, c, 0.05, c, 0.95, secs[i], 3, 1);
+        else gx_line_groove(s, i, pts, 0.05, 0.6, 0.95, 0.6, secs[i], 3, 1);
+    }
+    s->mats[0] = gx_material(0.35, 0.33, 0.3, 0.04, 0.04, 0.04, 0.5);    /* matte stone */
+    s->mats[1] = gx_material(0.02, 0.015, 0.005, 0.9, 0.7, 0.3, 0.15);   /* polished gold */
+    gx_spec(&s->spec[1], 0.8, 0, 0);
+    s->depth = 3;
+    gx_sun_view(s, 50, 100, ex_v3(3.2, 3.0, 2.8), ex_v3(0.3, 0.38, 0.55), ex_v3(0.5, -0.35, 0.5), ex_v3(0.5, 0.5, 0.0));
+    return 0;
+}
+
 /* Two directional lights (elevation, azimuth in degrees, radiance), an
    ambient term and the usual sky. */
 static void gx_two_lights(gx_scene_t *s, const double l0[5], const double l1[5], ex_v3_t ambient)
@@ -277,9 +369,10 @@ static int gx_scene_bricks(gx_scene_t *s)
 }
 
 typedef int (*gx_scene_fn)(gx_scene_t *);
-static const char *const gx_scene_names[] = {"parallel", "curves", "scratches", "tiles", "bricks", NULL};
+static const char *const gx_scene_names[] = {"parallel", "curves", "scratches", "tiles", "bricks", "frame", "interreflect",
+                                             NULL};
 static const gx_scene_fn gx_scene_makers[] = {gx_scene_parallel, gx_scene_curves, gx_scene_scratches, gx_scene_tiles,
-                                              gx_scene_bricks};
+                                              gx_scene_bricks,   gx_scene_frame,  gx_scene_interreflect};
 
 /* Switches the scene to its benchmark view. */
 static void gx_scene_bench_view(gx_scene_t *s)
@@ -377,6 +470,46 @@ static void gx_ours_free(gx_ours_t *o)
    scratch, gr_query_scratch_bytes per thread, lives on the stack). */
 static long long gx_ours_bytes(const gx_ours_t *o) { return (long long)o->grid_bytes + o->embree_bytes; }
 
+/* [inter-reflection scenes, §6] the direct term per light, and the host's
+   ray tracer: the sky above, the room behind transmitting facets. The
+   grooved plane is z = 0 in world = texture space (the frame is the
+   identity), so directions need no transform. */
+static void gx_brdf_cb(void *user, int refl, const double n[3], const double e[3], const double l[3], int light,
+                       double rgb[3])
+{
+    const gx_scene_t *s = (const gx_scene_t *)user;
+    const ex_material_t *m = &s->mats[refl >= 0 && refl < GX_MAX_MATS ? refl : 0];
+    ex_v3_t f = ex_bsdf_eval(m, ex_v3(n[0], n[1], n[2]), ex_v3(e[0], e[1], e[2]), ex_v3(l[0], l[1], l[2]), NULL);
+    f = ex_mul(f, s->radiance[light]);
+    rgb[0] = f.x; rgb[1] = f.y; rgb[2] = f.z;
+}
+
+static void gx_trace_cb(void *user, const double origin[3], const double dir[3], int depth, int inside, double weight,
+                        double rgb[3])
+{
+    const gx_scene_t *s = (const gx_scene_t *)user;
+    ex_v3_t c = inside ? s->below : s->background;
+    (void)origin; (void)dir; (void)depth; (void)weight;
+    rgb[0] = c.x; rgb[1] = c.y; rgb[2] = c.z;
+}
+
+static ex_v3_t gx_ours_indirect(const gx_ours_t *o, gr_query_t *q, const gr_frame_t *frame, void *scratch, size_t bytes)
+{
+    const gx_scene_t *s = o->s;
+    gr_indirect_t ind;
+    double rgb[3];
+    (void)frame;
+    memset(&ind, 0, sizeof ind);
+    ind.depth = s->depth;
+    ind.specular = s->spec;
+    ind.specular_count = GX_MAX_MATS;
+    ind.brdf = gx_brdf_cb; ind.brdf_user = (void *)s;
+    ind.trace = gx_trace_cb; ind.trace_user = (void *)s;
+    q->line_samples = 2;
+    if (gr_shade_indirect(o->grid, q, &ind, scratch, bytes, rgb, NULL) != GR_OK) return s->background;
+    return ex_v3(rgb[0], rgb[1], rgb[2]);
+}
+
 /* Radiance through continuous pixel position (px, py). */
 static ex_v3_t gx_ours_radiance(const gx_ours_t *o, double px, double py)
 {
@@ -407,6 +540,7 @@ static ex_v3_t gx_ours_radiance(const gx_ours_t *o, double px, double py)
     if (gr_footprint_from_differentials(&rd, &q.footprint, &frame) != GR_OK) return s->background;
     for (k = 0; k < s->nlights; k++) gr_frame_to_texture(&frame, s->light[k], L + 3 * k);
     q.lights = L; q.light_count = s->nlights;
+    if (s->depth > 0) return gx_ours_indirect(o, &q, &frame, scratch, sizeof scratch);
     if (gr_query(o->grid, &q, scratch, sizeof scratch, &list) != GR_OK) return s->background;
     for (i = 0; i < list.count; i++) {
         const gr_facet_t *f = &list.facets[i];
@@ -459,21 +593,41 @@ static long long gx_geo_bytes(const gx_geo_t *g)
 static ex_v3_t gx_geo_radiance(const gx_geo_t *g, double px, double py)
 {
     const gx_scene_t *s = g->s;
-    ex_v3_t d = ex_camera_dir(&g->cam, px, py);
+    ex_v3_t d = ex_camera_dir(&g->cam, px, py), c = ex_v3(0, 0, 0), thr = ex_v3(1, 1, 1);
     double o[3] = {g->cam.eye.x, g->cam.eye.y, g->cam.eye.z}, dd[3] = {d.x, d.y, d.z}, e[3];
-    gro_hit_t h = gro_scene_intersect(&g->sc, o, dd, 0, INFINITY);
-    unsigned mask = 0;
-    int k, refl;
-    if (h.kind == GRO_HIT_NONE) return s->background;
-    for (k = 0; k < s->nlights; k++)
-        if (gro_scene_lit(&g->sc, &h, s->light[k])) mask |= 1u << k;
-    refl = 0;
-    if (h.kind == GRO_HIT_FACET) {
-        const gr_groove_desc_t *gd = &s->desc[h.groove];
-        refl = gd->facet_reflectance ? gd->facet_reflectance[h.facet] : gd->reflectance;
+    int level;
+    /* [inter-reflection scenes, §6] mirror bounces up to s->depth; k_t of a
+       transmitting facet sees s->below */
+    for (level = 0; level <= s->depth; level++) {
+        gro_hit_t h = gro_scene_intersect(&g->sc, o, dd, 0, INFINITY);
+        const gr_specular_t *sp;
+        unsigned mask = 0;
+        double dn;
+        int k, refl;
+        if (h.kind == GRO_HIT_NONE) return ex_add(c, ex_mul(thr, s->background));
+        for (k = 0; k < s->nlights; k++)
+            if (gro_scene_lit(&g->sc, &h, s->light[k])) mask |= 1u << k;
+        refl = 0;
+        if (h.kind == GRO_HIT_FACET && h.facet < GRO_MAX_FACETS) {
+            const gr_groove_desc_t *gd = &s->desc[h.groove];
+            refl = gd->facet_reflectance ? gd->facet_reflectance[h.facet] : gd->reflectance;
+        } else if (h.kind == GRO_HIT_FACET) {
+            refl = s->desc[h.groove].reflectance; /* end caps */
+        }
+        e[0] = -dd[0]; e[1] = -dd[1]; e[2] = -dd[2];
+        c = ex_add(c, ex_mul(thr, gx_shade(s, refl, h.n, e, &mask, NULL)));
+        if (level == s->depth || refl < 0 || refl >= GX_MAX_MATS) break;
+        sp = &s->spec[refl];
+        c = ex_add(c, ex_mul(thr, ex_mul(ex_v3(sp->kt[0], sp->kt[1], sp->kt[2]), s->below)));
+        thr = ex_mul(thr, ex_v3(sp->kr[0], sp->kr[1], sp->kr[2]));
+        if (!(thr.x > 0 || thr.y > 0 || thr.z > 0)) break;
+        dn = dd[0] * h.n[0] + dd[1] * h.n[1] + dd[2] * h.n[2];
+        for (k = 0; k < 3; k++) {
+            dd[k] -= 2 * dn * h.n[k];
+            o[k] = h.p[k] + g->sc.eps * h.n[k];
+        }
     }
-    e[0] = -d.x; e[1] = -d.y; e[2] = -d.z;
-    return gx_shade(s, refl, h.n, e, &mask, NULL);
+    return c;
 }
 
 /* ex_render callbacks */

@@ -6,7 +6,11 @@
    Fig. 2), scratches (thin grooves on polished metal that cross and end:
    the polygon path, §5), tiles (a tiled floor, crossing grout lines,
    Figs. 15-16), bricks (mortar with T junctions and per-facet materials,
-   Fig. 21c).
+   Fig. 21c), frame (a window frame protruding over glass with
+   inter-reflection, Fig. 21d), interreflect (inter-reflections in gold
+   V-grooves, Fig. 17): these two use gr_shade_indirect() with 2 line
+   samples, and the geometry renderer bounces its rays off the same mirror
+   fractions.
    Modes (--mode): ours (grooves.h, 1 sample per pixel), geometry (Embree
    mesh of the swept cross-sections, --spp samples per pixel).
 
