@@ -15,6 +15,8 @@
      IV_ASSERT(c)       internal-invariant check (default assert)
      IV_MALLOC(sz,ctx) / IV_FREE(p,ctx)   allocator hooks (default malloc/free)
      IV_NO_AFFINE        leave out affine arithmetic
+     IV_NO_SIMD          keep + - * on the portable scalar path even where
+                         the SSE4.1 + FMA pair path would be used
      IV_FAST             round-to-nearest endpoints: faster, NOT rigorous
      IV_LIBM_ULPS        the error bound (in ulps) trusted for the libm
                          functions exp log sin cos tan atan pow; default 1
@@ -61,6 +63,12 @@
 #include <string.h>
 #include <stdint.h>
 #include <math.h>
+/* The pair path: both endpoints in one SSE register (x86 with FMA, e.g.
+   -march=haswell or later / -march=native); else portable scalar code. */
+#if !defined(IV_NO_SIMD) && defined(__FMA__) && defined(__SSE4_1__) && defined(__GNUC__)
+#  define IV__PAIR 1
+#  include <immintrin.h>
+#endif
 #ifndef IV_DEF
 #  ifdef IV_STATIC
 #    if defined(__GNUC__) || defined(__clang__)
@@ -172,6 +180,80 @@ static inline double iv__mul0(double a, double b)
     return p == p ? p : 0.0;
 }
 
+#ifdef IV__PAIR
+/* The pair path. An interval is held as the pair [-lo, hi] (Lambov 2008,
+   "Interval arithmetic using SSE-2"): round-to-nearest is symmetric, so
+   -RN(s) = RN(-s) and the negated lower end needs the same upward step as
+   the upper end; both ends then round together with one vector operation. */
+static inline __m128d iv__pair_sign(void) { return _mm_set_pd(0.0, -0.0); }
+/* [lo, hi] <-> [-lo, hi]. clang folds the flip ending one operation with
+   the one starting the next; gcc 12 does not (one cycle). */
+static inline __m128d iv__flip(__m128d v) { return _mm_xor_pd(v, iv__pair_sign()); }
+/* [lo, hi] as a vector and back, through a union: iv_t is two doubles
+   without padding on every x86 ABI (checked by the array size below). gcc
+   keeps a union in one register, where memcpy or two scalar moves made it
+   go through the stack or shuffle it twice (measured: +40% latency). */
+typedef char iv__pair_layout_check[sizeof(iv_t) == sizeof(__m128d) ? 1 : -1];
+typedef union iv__pun_t { __m128d v; iv_t x; } iv__pun_t;
+static inline __m128d iv__vec(iv_t x)
+{
+    iv__pun_t u;
+    u.x = x;
+    return u.v;
+}
+static inline __m128d iv__to_pair(iv_t x) { return iv__flip(iv__vec(x)); }
+static inline iv_t iv__from_pair(__m128d v)
+{
+    iv__pun_t u;
+    u.v = iv__flip(v);
+    return u.x;
+}
+/* The next double above each lane: the mirror image of iv__next_down_fma,
+   max(v + 2^-1074, fma(phi, |v|, v)), exact for every double (the fma is
+   the answer for normal v, v + 2^-1074 for subnormal v and zeros). -inf
+   is clamped to -DBL_MAX before the second term, off the critical path;
+   for v = -inf the fma gives NaN and maxpd returns its second operand; a
+   NaN lane (empty interval) stays NaN, +inf stays +inf. */
+#ifdef IV_FAST
+static inline __m128d iv__pair_up(__m128d v) { return v; }
+#else
+static inline __m128d iv__pair_up(__m128d v)
+{
+    __m128d a = _mm_add_pd(_mm_max_pd(_mm_set1_pd(-1.7976931348623157e308), v), _mm_set1_pd(IV__ETA));
+    __m128d b = _mm_fmadd_pd(_mm_set1_pd(IV__PHI), _mm_andnot_pd(_mm_set1_pd(-0.0), v), v);
+    return _mm_max_pd(b, a);
+}
+#endif
+IV_DEF iv_t iv__mul_slow(iv_t a, iv_t b);
+/* Kept out of line with vector arguments, so that the rare call does not
+   force the operands of the fast path out of registers. */
+static __attribute__((noinline, unused)) __m128d iv__mul_slow_pair(__m128d a, __m128d b)
+{
+    iv__pun_t x, y;
+    x.v = a;
+    y.v = b;
+    return iv__to_pair(iv__mul_slow(x.x, y.x));
+}
+/* a * b without min/max chains: for a fixed factor x, x*y over
+   [b.lo, b.hi] is smallest at b.lo when x >= 0 and at b.hi otherwise (the
+   reverse for the largest), so each end of a picks its partners from b by
+   its own sign bit (blendv; -0 may pick either, its products are zeros).
+   That leaves two candidates per end, [-a.lo*f, a.lo*g] and the same for
+   a.hi, and one max gives [-lo, hi]. */
+static inline iv_t iv__mul2(iv_t a, iv_t b)
+{
+    __m128d av = iv__vec(a), bv = iv__vec(b), bs = _mm_shuffle_pd(bv, bv, 1);
+    __m128d al = _mm_unpacklo_pd(av, av), ah = _mm_unpackhi_pd(av, av);
+    __m128d p = _mm_mul_pd(_mm_xor_pd(al, iv__pair_sign()), _mm_blendv_pd(bv, bs, al));
+    __m128d q = _mm_mul_pd(_mm_xor_pd(ah, iv__pair_sign()), _mm_blendv_pd(bv, bs, ah));
+    /* Infinite endpoints are fine here (each chosen product is still the
+       extreme over its segment) unless a chosen product is 0 * inf = NaN,
+       which also catches empty (NaN) inputs: one test on both vectors. */
+    p = _mm_movemask_pd(_mm_cmpunord_pd(p, q)) ? iv__mul_slow_pair(av, bv) : iv__pair_up(_mm_max_pd(p, q));
+    return iv__from_pair(p);
+}
+#endif
+
 /* ------------------------------------------------------------------------ */
 /* Construction and queries                                                 */
 /* ------------------------------------------------------------------------ */
@@ -246,14 +328,35 @@ static inline iv_t iv_neg(iv_t x) { return iv__raw(-x.hi, -x.lo); }
 /* The upper end is computed negated, -(a.hi + b.hi) = (-a.hi) - b.hi
    exactly (round-to-nearest is symmetric), so both ends take the same
    downward step: the compiler then packs them into one vector operation. */
-static inline iv_t iv_add(iv_t a, iv_t b)
+/* Each operation has a portable scalar form (iv__add1, ...) and, where
+   IV__PAIR is on, a pair form (iv__add2, ...) giving identical results;
+   the tests compare the two bit for bit. */
+static inline iv_t iv__add1(iv_t a, iv_t b)
 {
     return iv__raw(iv__down(a.lo + b.lo), -iv__down(-a.hi - b.hi));
 }
-static inline iv_t iv_sub(iv_t a, iv_t b)
+static inline iv_t iv__sub1(iv_t a, iv_t b)
 {
     return iv__raw(iv__down(a.lo - b.hi), -iv__down(b.lo - a.hi));
 }
+#ifdef IV__PAIR
+/* [-lo, hi] + [-lo', hi'] = [-(lo + lo'), hi + hi'] in one vector add
+   (-RN(s) = RN(-s)); a - b adds [hi', -lo'], b's lanes swapped. */
+static inline iv_t iv__add2(iv_t a, iv_t b)
+{
+    return iv__from_pair(iv__pair_up(_mm_add_pd(iv__to_pair(a), iv__to_pair(b))));
+}
+static inline iv_t iv__sub2(iv_t a, iv_t b)
+{
+    __m128d bv = iv__to_pair(b);
+    return iv__from_pair(iv__pair_up(_mm_add_pd(iv__to_pair(a), _mm_shuffle_pd(bv, bv, 1))));
+}
+static inline iv_t iv_add(iv_t a, iv_t b) { return iv__add2(a, b); }
+static inline iv_t iv_sub(iv_t a, iv_t b) { return iv__sub2(a, b); }
+#else
+static inline iv_t iv_add(iv_t a, iv_t b) { return iv__add1(a, b); }
+static inline iv_t iv_sub(iv_t a, iv_t b) { return iv__sub1(a, b); }
+#endif
 /* x + d for a scalar d; empty for NaN or infinite d. */
 static inline iv_t iv_add_d(iv_t x, double d) { return iv_add(x, iv_point(d)); }
 static inline iv_t iv_sub_d(iv_t x, double d) { return iv_add(x, iv_point(-d)); }
@@ -262,7 +365,7 @@ static inline iv_t iv_sub_d(iv_t x, double d) { return iv_add(x, iv_point(-d)); 
 /* Unbounded or empty inputs (out of line, so iv_mul stays small enough to
    be inlined everywhere). */
 IV_DEF iv_t iv__mul_slow(iv_t a, iv_t b);
-static inline iv_t iv_mul(iv_t a, iv_t b)
+static inline iv_t iv__mul1(iv_t a, iv_t b)
 {
     double p1, p2, p3, p4;
     if (!(a.lo > -HUGE_VAL && a.hi < HUGE_VAL && b.lo > -HUGE_VAL && b.hi < HUGE_VAL)) return iv__mul_slow(a, b);
@@ -273,9 +376,14 @@ static inline iv_t iv_mul(iv_t a, iv_t b)
     return iv__raw(iv__down(iv__min(iv__min(p1, p2), iv__min(p3, p4))),
                    iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4))));
 }
+#ifdef IV__PAIR
+static inline iv_t iv_mul(iv_t a, iv_t b) { return iv__mul2(a, b); }
+#else
+static inline iv_t iv_mul(iv_t a, iv_t b) { return iv__mul1(a, b); }
+#endif
 /* x * d for a scalar d (two products instead of four); empty for NaN or
    infinite d. */
-static inline iv_t iv_mul_d(iv_t x, double d)
+static inline iv_t iv__mul_d1(iv_t x, double d)
 {
     double p, q;
     if (iv_is_empty(x) || !(d - d == 0)) return iv_empty();
@@ -283,6 +391,22 @@ static inline iv_t iv_mul_d(iv_t x, double d)
     q = iv__mul0(x.hi, d);
     return d >= 0 ? iv__raw(iv__down(p), iv__up(q)) : iv__raw(iv__down(q), iv__up(p));
 }
+#ifdef IV__PAIR
+/* [-lo, hi] = [x.lo, x.hi] * [-d, d], the lanes of x swapped when d's sign
+   bit is set; a 0 * inf lane (NaN) is the exact zero it stands for. */
+static inline iv_t iv__mul_d2(iv_t x, double d)
+{
+    __m128d v, xv;
+    if (iv_is_empty(x) || !(d - d == 0)) return iv_empty();
+    xv = iv__vec(x);
+    v = _mm_mul_pd(_mm_blendv_pd(xv, _mm_shuffle_pd(xv, xv, 1), _mm_set1_pd(d)),
+                   _mm_xor_pd(_mm_set1_pd(d), iv__pair_sign()));
+    return iv__from_pair(iv__pair_up(_mm_and_pd(v, _mm_cmpord_pd(v, v))));
+}
+static inline iv_t iv_mul_d(iv_t x, double d) { return iv__mul_d2(x, d); }
+#else
+static inline iv_t iv_mul_d(iv_t x, double d) { return iv__mul_d1(x, d); }
+#endif
 /* x^2 >= 0 (tighter than x*x when x straddles 0: no dependency): the
    squares of the smallest and largest |x|, branch-free. */
 static inline iv_t iv_sqr(iv_t x)
