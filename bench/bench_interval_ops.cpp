@@ -33,6 +33,21 @@
 #define IV_OK F_IV_OK
 #define IV_RESULT_COUNT_ F_IV_RESULT_COUNT_
 #define iv__aff F_iv__aff
+#define IV__LIN_MINRANGE F_IV__LIN_MINRANGE
+#define IV__LIN_CHEBYSHEV F_IV__LIN_CHEBYSHEV
+#define IV__LIN_TAYLOR F_IV__LIN_TAYLOR
+#define IV__F_ATAN F_IV__F_ATAN
+#define IV__F_POWN F_IV__F_POWN
+#define IV__F_RECIP F_IV__F_RECIP
+#define IV__F_SQRT F_IV__F_SQRT
+#define IV__F_LOG F_IV__F_LOG
+#define IV__F_EXP F_IV__F_EXP
+#define iv__aff_unary F_iv__aff_unary
+#define iv__aff_taylor_fn F_iv__aff_taylor_fn
+#define iv__aff_linearise F_iv__aff_linearise
+#define iv__aff_tangent_point F_iv__aff_tangent_point
+#define iv__aff_curvature F_iv__aff_curvature
+#define iv__aff_fn F_iv__aff_fn
 #define iv__aff_add_iv F_iv__aff_add_iv
 #define iv__aff_domain F_iv__aff_domain
 #define iv__aff_empty F_iv__aff_empty
@@ -164,6 +179,21 @@
 #undef IV_OK
 #undef IV_RESULT_COUNT_
 #undef iv__aff
+#undef IV__LIN_MINRANGE
+#undef IV__LIN_CHEBYSHEV
+#undef IV__LIN_TAYLOR
+#undef IV__F_ATAN
+#undef IV__F_POWN
+#undef IV__F_RECIP
+#undef IV__F_SQRT
+#undef IV__F_LOG
+#undef IV__F_EXP
+#undef iv__aff_unary
+#undef iv__aff_taylor_fn
+#undef iv__aff_linearise
+#undef iv__aff_tangent_point
+#undef iv__aff_curvature
+#undef iv__aff_fn
 #undef iv__aff_add_iv
 #undef iv__aff_domain
 #undef iv__aff_empty

@@ -1166,66 +1166,171 @@ static int iv__aff_domain(iv_affine_t x, double lo, double hi, iv_t *dom, double
     return 1;
 }
 
-IV_DEF iv_affine_t iv_affine_exp(iv_affine_t x)
+/* Linearisations of convex or concave f (Stolfi & de Figueiredo 1997,
+   "Self-validated numerical methods and applications", section 3.4 on
+   non-affine operations; Chebyshev and min-range approximations).
+   f(x) = alpha x + g(x) with g = f - alpha x; g's range over dom = [a, b]
+   goes into the error term. For every double alpha this is sound when g
+   is enclosed rigorously, so alpha and the tangent point u need no
+   rigour. With s g convex (s = +1 for convex f, -1 for concave):
+     the far side of g is at an end of dom:  s g <= max(s g(a), s g(b));
+     the near side is bounded by the tangent at any u in dom:
+                      s g(x) >= s (g(u) + g'(u)(x - u)),
+   each evaluated in interval arithmetic. Chebyshev: alpha the secant slope
+   (f(b) - f(a))/(b - a) and u where f'(u) = alpha, which minimises the new
+   error term (the best linear approximation in the max norm). Min-range:
+   alpha = f' at the end of dom where |f'| is smaller, u that end, which
+   makes the result's range that of f itself. */
+enum { IV__F_EXP, IV__F_LOG, IV__F_SQRT, IV__F_RECIP, IV__F_POWN, IV__F_ATAN };
+enum { IV__LIN_TAYLOR, IV__LIN_CHEBYSHEV, IV__LIN_MINRANGE, IV__LIN_AUTO };
+/* IV__LIN_AUTO (the default): Chebyshev, unless its result's range is more
+   than IV__LIN_RANGE_RATIO times the width of f's image, then min-range.
+   Chebyshev keeps the most correlation for later cancellation, min-range
+   the narrowest range; measured on single operations and on f(t) - k t
+   over ray segments (bench_interval_surfaces, docs/interval.md), 1.5 keeps
+   Chebyshev wherever it paid and switches where strong curvature (exp on
+   [-3,3], 1/t on [0.1,1]) made its range several times too wide. A ratio
+   of widths: independent of scale. */
+#define IV__LIN_RANGE_RATIO 1.5
+
+/* f (deriv = 0) or f' (deriv = 1) over x, rigorously. */
+static iv_t iv__aff_fn(int f, int n, iv_t x, int deriv)
 {
-    iv_t dom, fc;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    fc = iv_exp(iv__raw(c, c));
-    return iv__aff_taylor(x, dom, c, fc, fc, iv_exp(dom), iv_exp(dom));
+    switch (f) {
+    case IV__F_EXP: return iv_exp(x);
+    case IV__F_LOG: return deriv ? iv_recip(x) : iv_log(x);
+    case IV__F_SQRT: return deriv ? iv_recip(iv_mul_d(iv_sqrt(x), 2.0)) : iv_sqrt(x);
+    case IV__F_RECIP: return deriv ? iv_neg(iv_recip(iv_sqr(x))) : iv_recip(x);
+    case IV__F_POWN: return deriv ? iv_mul_d(iv_pow_n(x, n - 1), (double)n) : iv_pow_n(x, n);
+    default: return deriv ? iv_recip(iv_add_d(iv_sqr(x), 1.0)) : iv_atan(x);
+    }
 }
 
-IV_DEF iv_affine_t iv_affine_log(iv_affine_t x)
+/* +1 when f is convex on dom, -1 when concave, 0 when neither is known. */
+static int iv__aff_curvature(int f, int n, iv_t dom)
 {
-    iv_t dom, cc;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, 0.0, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    if (c == 0) return iv_affine_from_iv(iv_log(dom));
-    cc = iv__raw(c, c);
-    return iv__aff_taylor(x, dom, c, iv_log(cc), iv_recip(cc), iv_neg(iv_recip(iv_sqr(dom))), iv_log(dom));
+    int side = dom.lo >= 0 ? 1 : dom.hi <= 0 ? -1 : 0;
+    switch (f) {
+    case IV__F_EXP: return 1;
+    case IV__F_LOG: case IV__F_SQRT: return -1;
+    case IV__F_RECIP: return side;
+    /* f'' = n (n - 1) x^(n-2) with n (n - 1) > 0 for n other than 0, 1 */
+    case IV__F_POWN: return n % 2 == 0 ? 1 : side;
+    default: return -side; /* atan'' = -2x / (1 + x^2)^2 */
+    }
 }
 
-IV_DEF iv_affine_t iv_affine_sqrt(iv_affine_t x)
+/* A double u in dom with f'(u) close to alpha (the Chebyshev tangent). */
+static double iv__aff_tangent_point(int f, int n, double alpha, iv_t dom)
 {
-    iv_t dom, cc, sc;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, 0.0, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    if (c == 0) return iv_affine_from_iv(iv_sqrt(dom));
-    cc = iv__raw(c, c);
-    sc = iv_sqrt(cc);
-    /* f' = 1/(2 sqrt c), f'' = -1/(4 x sqrt x) */
-    return iv__aff_taylor(x, dom, c, sc, iv_recip(iv_mul_d(sc, 2.0)),
-                          iv_neg(iv_recip(iv_mul_d(iv_mul(dom, iv_sqrt(dom)), 4.0))), iv_sqrt(dom));
+    double side = dom.lo >= 0 ? 1.0 : -1.0, u;
+    switch (f) {
+    case IV__F_EXP: u = log(alpha); break;
+    case IV__F_LOG: u = 1.0 / alpha; break;
+    case IV__F_SQRT: u = 0.25 / (alpha * alpha); break;
+    case IV__F_RECIP: u = side * sqrt(-1.0 / alpha); break;
+    case IV__F_POWN: u = side * pow(fabs(alpha / (double)n), 1.0 / (double)(n - 1)); break;
+    default: u = side * sqrt(1.0 / alpha - 1.0); break;
+    }
+    if (!(u == u)) u = iv_mid(dom);
+    return iv__min(iv__max(u, dom.lo), dom.hi);
 }
 
-IV_DEF iv_affine_t iv_affine_recip(iv_affine_t x)
+/* The linearisation above by the given method; the empty form when it
+   does not apply (unknown curvature, unbounded dom or values), so that the
+   caller falls back to the Taylor form. */
+static iv_affine_t iv__aff_linearise(iv_affine_t x, iv_t dom, int f, int n, int method)
 {
-    iv_t dom, cc, rc;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    if (dom.lo <= 0 && dom.hi >= 0) return iv_affine_from_iv(iv_recip(dom));
-    cc = iv__raw(c, c);
-    rc = iv_recip(cc);
-    /* f' = -1/c^2, f'' = 2/x^3 */
-    return iv__aff_taylor(x, dom, c, rc, iv_neg(iv_sqr(rc)), iv_mul_d(iv_pow_n(dom, -3), 2.0), iv_recip(dom));
+    int s = iv__aff_curvature(f, n, dom);
+    iv_t fa, fb, pa, pb, pu, ga, gb, t, g;
+    double alpha, u, da, db;
+    if (method == IV__LIN_TAYLOR || s == 0 || !(dom.lo > -HUGE_VAL && dom.hi < HUGE_VAL)) return iv__aff_empty();
+    pa = iv__raw(dom.lo, dom.lo);
+    pb = iv__raw(dom.hi, dom.hi);
+    fa = iv__aff_fn(f, n, pa, 0);
+    fb = iv__aff_fn(f, n, pb, 0);
+    if (method == IV__LIN_CHEBYSHEV && dom.hi > dom.lo) {
+        alpha = (iv_mid(fb) - iv_mid(fa)) / (dom.hi - dom.lo);
+        u = iv__aff_tangent_point(f, n, alpha, dom);
+    } else {
+        da = iv_mid(iv__aff_fn(f, n, pa, 1));
+        db = iv_mid(iv__aff_fn(f, n, pb, 1));
+        alpha = fabs(da) <= fabs(db) ? da : db;
+        u = fabs(da) <= fabs(db) ? dom.lo : dom.hi;
+    }
+    if (!(alpha - alpha == 0)) return iv__aff_empty();
+    pu = iv__raw(u, u);
+    /* g = f - alpha x at both ends, and its tangent at u over dom */
+    ga = iv_sub(fa, iv_mul_d(pa, alpha));
+    gb = iv_sub(fb, iv_mul_d(pb, alpha));
+    t = iv_add(iv_sub(iv__aff_fn(f, n, pu, 0), iv_mul_d(pu, alpha)),
+               iv_mul(iv_sub_d(iv__aff_fn(f, n, pu, 1), alpha), iv_sub_d(dom, u)));
+    g = s > 0 ? iv__raw(t.lo, iv__max(ga.hi, gb.hi)) : iv__raw(iv__min(ga.lo, gb.lo), t.hi);
+    /* an error term as wide as f's image makes the linear part useless */
+    if (!(g.lo <= g.hi) || !(g.lo > -HUGE_VAL && g.hi < HUGE_VAL) || !(iv_width(g) < iv_width(iv_hull(fa, fb))))
+        return iv__aff_empty();
+    return iv__aff_add_iv(iv_affine_mul_d(x, alpha), g);
 }
+
+/* The Taylor form for each f (f'' enclosed over dom). */
+static iv_affine_t iv__aff_taylor_fn(iv_affine_t x, iv_t dom, double c, int f, int n)
+{
+    iv_t cc = iv__raw(c, c), d2;
+    switch (f) {
+    case IV__F_EXP: d2 = iv_exp(dom); break;
+    case IV__F_LOG: d2 = iv_neg(iv_recip(iv_sqr(dom))); break;
+    /* -1/(4 x sqrt x) */
+    case IV__F_SQRT: d2 = iv_neg(iv_recip(iv_mul_d(iv_mul(dom, iv_sqrt(dom)), 4.0))); break;
+    case IV__F_RECIP: d2 = iv_mul_d(iv_pow_n(dom, -3), 2.0); break;
+    case IV__F_POWN: d2 = iv_mul_d(iv_pow_n(dom, n - 2), (double)n * (double)(n - 1)); break;
+    /* -2x / (1 + x^2)^2 */
+    default: d2 = iv_div(iv_mul_d(dom, -2.0), iv_sqr(iv_add_d(iv_sqr(dom), 1.0))); break;
+    }
+    return iv__aff_taylor(x, dom, c, iv__aff_fn(f, n, cc, 0), iv__aff_fn(f, n, cc, 1), d2, iv__aff_fn(f, n, dom, 0));
+}
+
+/* The non-affine operation f on x by a given method (the tests and the
+   bench compare methods through this; the public functions use
+   IV__LIN_DEFAULT). dom = range(x) ∩ dom(f). A range that holds a pole
+   gives the interval image; a range touching 0 for log and sqrt (f'
+   unbounded there: no tangent) takes the Taylor form, and so does any case
+   the linearisation leaves out; that form falls back to the interval image
+   when its error term would be wider. */
+#define IV__LIN_DEFAULT IV__LIN_AUTO
+static iv_affine_t iv__aff_unary(iv_affine_t x, int f, int n, int method)
+{
+    iv_t dom;
+    double c;
+    iv_affine_t z;
+    int root = f == IV__F_LOG || f == IV__F_SQRT;
+    if (iv_affine_is_empty(x) || !iv__aff_domain(x, root ? 0.0 : -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    if (root && c == 0) return iv_affine_from_iv(iv__aff_fn(f, n, dom, 0));
+    if ((f == IV__F_RECIP || (f == IV__F_POWN && n < 0)) && dom.lo <= 0 && dom.hi >= 0)
+        return iv_affine_from_iv(iv__aff_fn(f, n, dom, 0));
+    if (root && dom.lo == 0) method = IV__LIN_TAYLOR;
+    z = iv__aff_linearise(x, dom, f, n, method == IV__LIN_AUTO ? IV__LIN_CHEBYSHEV : method);
+    if (method == IV__LIN_AUTO && !iv_affine_is_empty(z) &&
+        !(iv_width(iv_from_affine(z)) <= IV__LIN_RANGE_RATIO * iv_width(iv__aff_fn(f, n, dom, 0))))
+        z = iv__aff_linearise(x, dom, f, n, IV__LIN_MINRANGE);
+    return iv_affine_is_empty(z) ? iv__aff_taylor_fn(x, dom, c, f, n) : z;
+}
+
+IV_DEF iv_affine_t iv_affine_exp(iv_affine_t x) { return iv__aff_unary(x, IV__F_EXP, 0, IV__LIN_DEFAULT); }
+IV_DEF iv_affine_t iv_affine_log(iv_affine_t x) { return iv__aff_unary(x, IV__F_LOG, 0, IV__LIN_DEFAULT); }
+IV_DEF iv_affine_t iv_affine_sqrt(iv_affine_t x) { return iv__aff_unary(x, IV__F_SQRT, 0, IV__LIN_DEFAULT); }
+IV_DEF iv_affine_t iv_affine_recip(iv_affine_t x) { return iv__aff_unary(x, IV__F_RECIP, -1, IV__LIN_DEFAULT); }
+IV_DEF iv_affine_t iv_affine_atan(iv_affine_t x) { return iv__aff_unary(x, IV__F_ATAN, 0, IV__LIN_DEFAULT); }
 
 IV_DEF iv_affine_t iv_affine_div(iv_affine_t x, iv_affine_t y) { return iv_affine_mul(x, iv_affine_recip(y)); }
 
 IV_DEF iv_affine_t iv_affine_pow_n(iv_affine_t x, int n)
 {
-    iv_t dom, cc;
-    double c;
     if (iv_affine_is_empty(x)) return iv__aff_empty();
     if (n == 0) return iv_affine_const(1.0);
     if (n == 1) return x;
-    if (n == 2) return iv_affine_sqr(x);
-    if (!iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    if (n < 0 && dom.lo <= 0 && dom.hi >= 0) return iv_affine_from_iv(iv_pow_n(dom, n));
-    cc = iv__raw(c, c);
-    /* f' = n c^(n-1), f'' = n (n-1) x^(n-2) */
-    return iv__aff_taylor(x, dom, c, iv_pow_n(cc, n), iv_mul_d(iv_pow_n(cc, n - 1), (double)n),
-                          iv_mul_d(iv_pow_n(dom, n - 2), (double)n * (double)(n - 1)), iv_pow_n(dom, n));
+    if (n == 2) return iv_affine_sqr(x); /* already the Chebyshev form of x^2 */
+    if (n == -1) return iv_affine_recip(x);
+    return iv__aff_unary(x, IV__F_POWN, n, IV__LIN_DEFAULT);
 }
 
 IV_DEF iv_affine_t iv_affine_sin(iv_affine_t x)
@@ -1257,18 +1362,6 @@ IV_DEF iv_affine_t iv_affine_tan(iv_affine_t x)
     /* f' = 1 + tan^2, f'' = 2 tan (1 + tan^2) */
     return iv__aff_taylor(x, dom, c, tc, iv_add_d(iv_sqr(tc), 1.0),
                           iv_mul_d(iv_mul(td, iv_add_d(iv_sqr(td), 1.0)), 2.0), td);
-}
-
-IV_DEF iv_affine_t iv_affine_atan(iv_affine_t x)
-{
-    iv_t dom, cc, q;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    cc = iv__raw(c, c);
-    q = iv_add_d(iv_sqr(dom), 1.0);
-    /* f' = 1/(1 + c^2), f'' = -2x/(1 + x^2)^2 */
-    return iv__aff_taylor(x, dom, c, iv_atan(cc), iv_recip(iv_add_d(iv_sqr(cc), 1.0)),
-                          iv_div(iv_mul_d(dom, -2.0), iv_sqr(q)), iv_atan(dom));
 }
 
 IV_DEF iv_affine_t iv_affine_abs(iv_affine_t x)
