@@ -33,6 +33,7 @@
 #define IV_OK F_IV_OK
 #define IV_RESULT_COUNT_ F_IV_RESULT_COUNT_
 #define iv__aff F_iv__aff
+#define IV__LIN_AUTO F_IV__LIN_AUTO
 #define IV__LIN_MINRANGE F_IV__LIN_MINRANGE
 #define IV__LIN_CHEBYSHEV F_IV__LIN_CHEBYSHEV
 #define IV__LIN_TAYLOR F_IV__LIN_TAYLOR
@@ -179,6 +180,7 @@
 #undef IV_OK
 #undef IV_RESULT_COUNT_
 #undef iv__aff
+#undef IV__LIN_AUTO
 #undef IV__LIN_MINRANGE
 #undef IV__LIN_CHEBYSHEV
 #undef IV__LIN_TAYLOR

@@ -1183,15 +1183,17 @@ static int iv__aff_domain(iv_affine_t x, double lo, double hi, iv_t *dom, double
    makes the result's range that of f itself. */
 enum { IV__F_EXP, IV__F_LOG, IV__F_SQRT, IV__F_RECIP, IV__F_POWN, IV__F_ATAN };
 enum { IV__LIN_TAYLOR, IV__LIN_CHEBYSHEV, IV__LIN_MINRANGE, IV__LIN_AUTO };
-/* IV__LIN_AUTO (the default): Chebyshev, unless its result's range is more
-   than IV__LIN_RANGE_RATIO times the width of f's image, then min-range.
-   Chebyshev keeps the most correlation for later cancellation, min-range
-   the narrowest range; measured on single operations and on f(t) - k t
-   over ray segments (bench_interval_surfaces, docs/interval.md), 1.5 keeps
-   Chebyshev wherever it paid and switches where strong curvature (exp on
-   [-3,3], 1/t on [0.1,1]) made its range several times too wide. A ratio
+/* IV__LIN_AUTO (the default): the slope closest to Chebyshev's, among
+   Chebyshev, halfway to min-range and min-range, whose result's range is
+   at most IV__LIN_RANGE_RATIO times the width of f's image. Chebyshev
+   keeps the most correlation for later cancellation (f(t) - k t), min-range
+   the narrowest range (an operation whose own range matters, as in a
+   distance sqrt(x^2+y^2+z^2) - r). Measured on both kinds
+   (bench_interval_surfaces, docs/interval.md), 1.1 is tighter than the
+   Taylor form almost everywhere and never far behind the better of the two
+   pure methods; 1.5 and above lost up to 30% on the blob surface. A ratio
    of widths: independent of scale. */
-#define IV__LIN_RANGE_RATIO 1.5
+#define IV__LIN_RANGE_RATIO 1.1
 
 /* f (deriv = 0) or f' (deriv = 1) over x, rigorously. */
 static iv_t iv__aff_fn(int f, int n, iv_t x, int deriv)
@@ -1236,27 +1238,29 @@ static double iv__aff_tangent_point(int f, int n, double alpha, iv_t dom)
     return iv__min(iv__max(u, dom.lo), dom.hi);
 }
 
-/* The linearisation above by the given method; the empty form when it
-   does not apply (unknown curvature, unbounded dom or values), so that the
-   caller falls back to the Taylor form. */
-static iv_affine_t iv__aff_linearise(iv_affine_t x, iv_t dom, int f, int n, int method)
+/* The linearisation above with the slope w of the way from min-range's
+   (w = 0) to Chebyshev's (w = 1); the empty form when it does not apply
+   (unknown curvature, unbounded dom or values), so that the caller falls
+   back to the Taylor form. */
+static iv_affine_t iv__aff_linearise(iv_affine_t x, iv_t dom, int f, int n, double w)
 {
     int s = iv__aff_curvature(f, n, dom);
     iv_t fa, fb, pa, pb, pu, ga, gb, t, g;
     double alpha, u, da, db;
-    if (method == IV__LIN_TAYLOR || s == 0 || !(dom.lo > -HUGE_VAL && dom.hi < HUGE_VAL)) return iv__aff_empty();
+    if (s == 0 || !(dom.lo > -HUGE_VAL && dom.hi < HUGE_VAL)) return iv__aff_empty();
     pa = iv__raw(dom.lo, dom.lo);
     pb = iv__raw(dom.hi, dom.hi);
     fa = iv__aff_fn(f, n, pa, 0);
     fb = iv__aff_fn(f, n, pb, 0);
-    if (method == IV__LIN_CHEBYSHEV && dom.hi > dom.lo) {
-        alpha = (iv_mid(fb) - iv_mid(fa)) / (dom.hi - dom.lo);
+    da = iv_mid(iv__aff_fn(f, n, pa, 1));
+    db = iv_mid(iv__aff_fn(f, n, pb, 1));
+    /* min-range slope and end */
+    alpha = fabs(da) <= fabs(db) ? da : db;
+    u = fabs(da) <= fabs(db) ? dom.lo : dom.hi;
+    if (w > 0 && dom.hi > dom.lo) {
+        /* toward the Chebyshev (secant) slope by the weight w */
+        alpha += w * ((iv_mid(fb) - iv_mid(fa)) / (dom.hi - dom.lo) - alpha);
         u = iv__aff_tangent_point(f, n, alpha, dom);
-    } else {
-        da = iv_mid(iv__aff_fn(f, n, pa, 1));
-        db = iv_mid(iv__aff_fn(f, n, pb, 1));
-        alpha = fabs(da) <= fabs(db) ? da : db;
-        u = fabs(da) <= fabs(db) ? dom.lo : dom.hi;
     }
     if (!(alpha - alpha == 0)) return iv__aff_empty();
     pu = iv__raw(u, u);
@@ -1308,10 +1312,17 @@ static iv_affine_t iv__aff_unary(iv_affine_t x, int f, int n, int method)
     if ((f == IV__F_RECIP || (f == IV__F_POWN && n < 0)) && dom.lo <= 0 && dom.hi >= 0)
         return iv_affine_from_iv(iv__aff_fn(f, n, dom, 0));
     if (root && dom.lo == 0) method = IV__LIN_TAYLOR;
-    z = iv__aff_linearise(x, dom, f, n, method == IV__LIN_AUTO ? IV__LIN_CHEBYSHEV : method);
-    if (method == IV__LIN_AUTO && !iv_affine_is_empty(z) &&
-        !(iv_width(iv_from_affine(z)) <= IV__LIN_RANGE_RATIO * iv_width(iv__aff_fn(f, n, dom, 0))))
-        z = iv__aff_linearise(x, dom, f, n, IV__LIN_MINRANGE);
+    if (method == IV__LIN_TAYLOR) z = iv__aff_empty();
+    else if (method != IV__LIN_AUTO) z = iv__aff_linearise(x, dom, f, n, method == IV__LIN_CHEBYSHEV ? 1.0 : 0.0);
+    else {
+        /* the slope closest to Chebyshev's whose range stays within
+           IV__LIN_RANGE_RATIO of f's image: Chebyshev, halfway, min-range */
+        double lim = IV__LIN_RANGE_RATIO * iv_width(iv__aff_fn(f, n, dom, 0)), w;
+        for (w = 1.0, z = iv__aff_empty(); w >= 0; w -= 0.5) {
+            z = iv__aff_linearise(x, dom, f, n, w);
+            if (iv_affine_is_empty(z) || iv_width(iv_from_affine(z)) <= lim) break;
+        }
+    }
     return iv_affine_is_empty(z) ? iv__aff_taylor_fn(x, dom, c, f, n) : z;
 }
 
