@@ -39,9 +39,14 @@
      rounding mode and no compiler contraction can change it. Hence each
      endpoint of + - * / sqrt sqr pow_n is either the correctly rounded
      outward endpoint or one ulp outside it (pow_n uses an error-bounded
-     double-double evaluation, see iv_pow_n). The libm functions are trusted
-     to IV_LIBM_ULPS ulps and stepped 2*IV_LIBM_ULPS doubles outward, which
-     is enough whatever side the libm error falls on (docs/interval.md).
+     double-double evaluation, see iv_pow_n). On x86 with FMA (SSE4.1 and
+     __FMA__, e.g. -march=haswell or -march=native) + - * and mul_d hold an
+     interval as the pair [-lo, hi] in one SSE register, so both endpoints
+     take the same upward step in one vector operation; the results are
+     identical to the scalar code's (IV_NO_SIMD selects that). The libm
+     functions are trusted to IV_LIBM_ULPS ulps and stepped 2*IV_LIBM_ULPS
+     doubles outward, which is enough whatever side the libm error falls on
+     (docs/interval.md).
 
    CONVENTIONS
      See docs/conventions.md: results are iv_result_t codes with IV_OK = 0,
@@ -547,11 +552,16 @@ typedef struct iv_affine_t {
                                  shared symbol (t*t'/2 into the centre), the
                                  standard affine treatment of eps_t^2 */
 IV_DEF iv_affine_t iv_affine_div(iv_affine_t x, iv_affine_t y);
-/* The non-affine operations below use a first-order Taylor form with an
-   interval Lagrange remainder: f(c) + f'(c)(x - c) + [0, r^2] f''(X)/2.
-   For convex or concave f the remainder has one sign, so its error is
-   M r^2 / 4, the Chebyshev (best) linear approximation's error for a
-   quadratic. When that error would exceed the plain interval image, the
+/* Non-affine operations. exp log sqrt recip atan pow_n (and div through
+   recip), on a range where f is convex or concave: a linear approximation
+   alpha x + g with g = f - alpha x enclosed rigorously (end values and a
+   tangent bound); the slope is the one nearest the Chebyshev (minimax)
+   slope, among Chebyshev, halfway and min-range (Stolfi & de Figueiredo),
+   whose range stays within 1.1x f's image (see the implementation and
+   docs/interval.md). Elsewhere (sin cos tan, atan across 0, odd pow_n
+   across 0, log and sqrt of ranges touching 0): a first-order Taylor form
+   with an interval Lagrange remainder, f(c) + f'(c)(x - c) + [0, r^2]
+   f''(X)/2. When the error term would exceed the plain interval image, the
    result is iv_affine_from_iv(interval image) instead. */
 IV_DEF iv_affine_t iv_affine_recip(iv_affine_t x);
 IV_DEF iv_affine_t iv_affine_sqrt(iv_affine_t x);
