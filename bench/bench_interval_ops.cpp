@@ -75,6 +75,8 @@
 #define iv__mul_d2 F_iv__mul_d2
 #define iv__pair_sign F_iv__pair_sign
 #define iv__vec F_iv__vec
+#define iv__sqr2 F_iv__sqr2
+#define iv__sqr1 F_iv__sqr1
 #define iv__mul_slow_pair F_iv__mul_slow_pair
 #define iv__pun_t F_iv__pun_t
 #define iv__flip F_iv__flip
@@ -222,6 +224,8 @@
 #undef iv__mul_d2
 #undef iv__pair_sign
 #undef iv__vec
+#undef iv__sqr2
+#undef iv__sqr1
 #undef iv__mul_slow_pair
 #undef iv__pun_t
 #undef iv__flip

@@ -15,7 +15,7 @@
      IV_ASSERT(c)       internal-invariant check (default assert)
      IV_MALLOC(sz,ctx) / IV_FREE(p,ctx)   allocator hooks (default malloc/free)
      IV_NO_AFFINE        leave out affine arithmetic
-     IV_NO_SIMD          keep + - * on the portable scalar path even where
+     IV_NO_SIMD          keep + - * sqr on the portable scalar path even where
                          the SSE4.1 + FMA pair path would be used
      IV_FAST             round-to-nearest endpoints: faster, NOT rigorous
      IV_LIBM_ULPS        the error bound (in ulps) trusted for the libm
@@ -40,7 +40,7 @@
      endpoint of + - * / sqrt sqr pow_n is either the correctly rounded
      outward endpoint or one ulp outside it (pow_n uses an error-bounded
      double-double evaluation, see iv_pow_n). On x86 with FMA (SSE4.1 and
-     __FMA__, e.g. -march=haswell or -march=native) + - * and mul_d hold an
+     __FMA__, e.g. -march=haswell or -march=native) + - * mul_d sqr hold an
      interval as the pair [-lo, hi] in one SSE register, so both endpoints
      take the same upward step in one vector operation; the results are
      identical to the scalar code's (IV_NO_SIMD selects that). The libm
@@ -414,13 +414,32 @@ static inline iv_t iv_mul_d(iv_t x, double d) { return iv__mul_d1(x, d); }
 #endif
 /* x^2 >= 0 (tighter than x*x when x straddles 0: no dependency): the
    squares of the smallest and largest |x|, branch-free. */
-static inline iv_t iv_sqr(iv_t x)
+static inline iv_t iv__sqr1(iv_t x)
 {
     /* NaN (empty) endpoints propagate: every max keeps its first argument
        when the comparison fails */
     double mig = iv__max(iv__max(x.lo, -x.hi), 0.0), mag = iv__max(-x.lo, x.hi);
     return iv__raw(iv__max(iv__down(mig * mig), 0.0), iv__up(mag * mag));
 }
+#ifdef IV__PAIR
+/* The same in the pair form: n = [-lo, hi] and its swap give mag =
+   max(-lo, hi) and mig = max(0, -min(-lo, hi)) in both lanes; [mig, mag]
+   times [-mig, mag] is [-mig^2, mag^2], stepped up; the lower end is then
+   kept >= 0 (lane 0 <= -0). maxpd/minpd return their second operand when
+   one is NaN, which is where the NaN of an empty input sits. */
+static inline iv_t iv__sqr2(iv_t x)
+{
+    __m128d n = iv__to_pair(x), sw = _mm_shuffle_pd(n, n, 1);
+    __m128d mag = _mm_max_pd(n, sw);
+    __m128d mig = _mm_max_pd(_mm_setzero_pd(), _mm_xor_pd(_mm_min_pd(n, sw), _mm_set1_pd(-0.0)));
+    __m128d m = _mm_blend_pd(mig, mag, 2);
+    __m128d r = iv__pair_up(_mm_mul_pd(iv__flip(m), m));
+    return iv__from_pair(_mm_min_pd(_mm_set_pd(HUGE_VAL, -0.0), r));
+}
+static inline iv_t iv_sqr(iv_t x) { return iv__sqr2(x); }
+#else
+static inline iv_t iv_sqr(iv_t x) { return iv__sqr1(x); }
+#endif
 /* a / b for b > 0 strictly (b.hi may be +inf): no 0/0 or inf/inf occurs. */
 static inline iv_t iv__div_pos(iv_t a, iv_t b)
 {

@@ -257,10 +257,12 @@ static void pair_path_matches_scalar(void)
             d = ig_value(&r);
         }
         if (!same_iv(iv__add2(a, b), iv__add1(a, b)) || !same_iv(iv__sub2(a, b), iv__sub1(a, b)) ||
-            !same_iv(iv__mul2(a, b), iv__mul1(a, b)) || !same_iv(iv__mul_d2(a, d), iv__mul_d1(a, d))) {
-            if (bad++ < 5) T_FAIL("[%a,%a] [%a,%a] d=%a: pair %a %a %a %a / scalar %a %a %a %a", a.lo, a.hi, b.lo, b.hi, d,
-                                  iv__mul2(a, b).lo, iv__mul2(a, b).hi, iv__mul_d2(a, d).lo, iv__mul_d2(a, d).hi,
-                                  iv__mul1(a, b).lo, iv__mul1(a, b).hi, iv__mul_d1(a, d).lo, iv__mul_d1(a, d).hi);
+            !same_iv(iv__mul2(a, b), iv__mul1(a, b)) || !same_iv(iv__mul_d2(a, d), iv__mul_d1(a, d)) ||
+            !same_iv(iv__sqr2(a), iv__sqr1(a))) {
+            if (bad++ < 5) T_FAIL("[%a,%a] [%a,%a] d=%a: pair %a %a %a %a %a %a / scalar %a %a %a %a %a %a", a.lo, a.hi, b.lo,
+                                  b.hi, d, iv__mul2(a, b).lo, iv__mul2(a, b).hi, iv__mul_d2(a, d).lo, iv__mul_d2(a, d).hi,
+                                  iv__sqr2(a).lo, iv__sqr2(a).hi, iv__mul1(a, b).lo, iv__mul1(a, b).hi,
+                                  iv__mul_d1(a, d).lo, iv__mul_d1(a, d).hi, iv__sqr1(a).lo, iv__sqr1(a).hi);
         }
     }
     T_INT_EQ(bad, 0);
