@@ -197,7 +197,10 @@ static inline __m128d iv__flip(__m128d v) { return _mm_xor_pd(v, iv__pair_sign()
 /* [lo, hi] as a vector and back, through a union: iv_t is two doubles
    without padding on every x86 ABI (checked by the array size below). gcc
    keeps a union in one register, where memcpy or two scalar moves made it
-   go through the stack or shuffle it twice (measured: +40% latency). */
+   go through the stack or shuffle it twice (measured: +40% latency).
+   Reading the other member of a union is defined in C99 and, as a
+   documented extension, by gcc and clang in C++ (the pair path requires a
+   gcc-compatible compiler). */
 typedef char iv__pair_layout_check[sizeof(iv_t) == sizeof(__m128d) ? 1 : -1];
 typedef union iv__pun_t { __m128d v; iv_t x; } iv__pun_t;
 static inline __m128d iv__vec(iv_t x)
