@@ -15,6 +15,8 @@
      IV_ASSERT(c)       internal-invariant check (default assert)
      IV_MALLOC(sz,ctx) / IV_FREE(p,ctx)   allocator hooks (default malloc/free)
      IV_NO_AFFINE        leave out affine arithmetic
+     IV_NO_SIMD          keep + - * sqr on the portable scalar path even where
+                         the SSE4.1 + FMA pair path would be used
      IV_FAST             round-to-nearest endpoints: faster, NOT rigorous
      IV_LIBM_ULPS        the error bound (in ulps) trusted for the libm
                          functions exp log sin cos tan atan pow; default 1
@@ -37,9 +39,14 @@
      rounding mode and no compiler contraction can change it. Hence each
      endpoint of + - * / sqrt sqr pow_n is either the correctly rounded
      outward endpoint or one ulp outside it (pow_n uses an error-bounded
-     double-double evaluation, see iv_pow_n). The libm functions are trusted
-     to IV_LIBM_ULPS ulps and stepped 2*IV_LIBM_ULPS doubles outward, which
-     is enough whatever side the libm error falls on (docs/interval.md).
+     double-double evaluation, see iv_pow_n). On x86 with FMA (SSE4.1 and
+     __FMA__, e.g. -march=haswell or -march=native) + - * mul_d sqr hold an
+     interval as the pair [-lo, hi] in one SSE register, so both endpoints
+     take the same upward step in one vector operation; the results are
+     identical to the scalar code's (IV_NO_SIMD selects that). The libm
+     functions are trusted to IV_LIBM_ULPS ulps and stepped 2*IV_LIBM_ULPS
+     doubles outward, which is enough whatever side the libm error falls on
+     (docs/interval.md).
 
    CONVENTIONS
      See docs/conventions.md: results are iv_result_t codes with IV_OK = 0,
@@ -61,6 +68,12 @@
 #include <string.h>
 #include <stdint.h>
 #include <math.h>
+/* The pair path: both endpoints in one SSE register (x86 with FMA, e.g.
+   -march=haswell or later / -march=native); else portable scalar code. */
+#if !defined(IV_NO_SIMD) && defined(__FMA__) && defined(__SSE4_1__) && defined(__GNUC__)
+#  define IV__PAIR 1
+#  include <immintrin.h>
+#endif
 #ifndef IV_DEF
 #  ifdef IV_STATIC
 #    if defined(__GNUC__) || defined(__clang__)
@@ -172,6 +185,83 @@ static inline double iv__mul0(double a, double b)
     return p == p ? p : 0.0;
 }
 
+#ifdef IV__PAIR
+/* The pair path. An interval is held as the pair [-lo, hi] (Lambov 2008,
+   "Interval arithmetic using SSE-2"): round-to-nearest is symmetric, so
+   -RN(s) = RN(-s) and the negated lower end needs the same upward step as
+   the upper end; both ends then round together with one vector operation. */
+static inline __m128d iv__pair_sign(void) { return _mm_set_pd(0.0, -0.0); }
+/* [lo, hi] <-> [-lo, hi]. clang folds the flip ending one operation with
+   the one starting the next; gcc 12 does not (one cycle). */
+static inline __m128d iv__flip(__m128d v) { return _mm_xor_pd(v, iv__pair_sign()); }
+/* [lo, hi] as a vector and back, through a union: iv_t is two doubles
+   without padding on every x86 ABI (checked by the array size below). gcc
+   keeps a union in one register, where memcpy or two scalar moves made it
+   go through the stack or shuffle it twice (measured: +40% latency).
+   Reading the other member of a union is defined in C99 and, as a
+   documented extension, by gcc and clang in C++ (the pair path requires a
+   gcc-compatible compiler). */
+typedef char iv__pair_layout_check[sizeof(iv_t) == sizeof(__m128d) ? 1 : -1];
+typedef union iv__pun_t { __m128d v; iv_t x; } iv__pun_t;
+static inline __m128d iv__vec(iv_t x)
+{
+    iv__pun_t u;
+    u.x = x;
+    return u.v;
+}
+static inline __m128d iv__to_pair(iv_t x) { return iv__flip(iv__vec(x)); }
+static inline iv_t iv__from_pair(__m128d v)
+{
+    iv__pun_t u;
+    u.v = iv__flip(v);
+    return u.x;
+}
+/* The next double above each lane: the mirror image of iv__next_down_fma,
+   max(v + 2^-1074, fma(phi, |v|, v)), exact for every double (the fma is
+   the answer for normal v, v + 2^-1074 for subnormal v and zeros). -inf
+   is clamped to -DBL_MAX before the second term, off the critical path;
+   for v = -inf the fma gives NaN and maxpd returns its second operand; a
+   NaN lane (empty interval) stays NaN, +inf stays +inf. */
+#ifdef IV_FAST
+static inline __m128d iv__pair_up(__m128d v) { return v; }
+#else
+static inline __m128d iv__pair_up(__m128d v)
+{
+    __m128d a = _mm_add_pd(_mm_max_pd(_mm_set1_pd(-1.7976931348623157e308), v), _mm_set1_pd(IV__ETA));
+    __m128d b = _mm_fmadd_pd(_mm_set1_pd(IV__PHI), _mm_andnot_pd(_mm_set1_pd(-0.0), v), v);
+    return _mm_max_pd(b, a);
+}
+#endif
+IV_DEF iv_t iv__mul_slow(iv_t a, iv_t b);
+/* Kept out of line with vector arguments, so that the rare call does not
+   force the operands of the fast path out of registers. */
+static __attribute__((noinline, unused)) __m128d iv__mul_slow_pair(__m128d a, __m128d b)
+{
+    iv__pun_t x, y;
+    x.v = a;
+    y.v = b;
+    return iv__to_pair(iv__mul_slow(x.x, y.x));
+}
+/* a * b without min/max chains: for a fixed factor x, x*y over
+   [b.lo, b.hi] is smallest at b.lo when x >= 0 and at b.hi otherwise (the
+   reverse for the largest), so each end of a picks its partners from b by
+   its own sign bit (blendv; -0 may pick either, its products are zeros).
+   That leaves two candidates per end, [-a.lo*f, a.lo*g] and the same for
+   a.hi, and one max gives [-lo, hi]. */
+static inline iv_t iv__mul2(iv_t a, iv_t b)
+{
+    __m128d av = iv__vec(a), bv = iv__vec(b), bs = _mm_shuffle_pd(bv, bv, 1);
+    __m128d al = _mm_unpacklo_pd(av, av), ah = _mm_unpackhi_pd(av, av);
+    __m128d p = _mm_mul_pd(_mm_xor_pd(al, iv__pair_sign()), _mm_blendv_pd(bv, bs, al));
+    __m128d q = _mm_mul_pd(_mm_xor_pd(ah, iv__pair_sign()), _mm_blendv_pd(bv, bs, ah));
+    /* Infinite endpoints are fine here (each chosen product is still the
+       extreme over its segment) unless a chosen product is 0 * inf = NaN,
+       which also catches empty (NaN) inputs: one test on both vectors. */
+    p = _mm_movemask_pd(_mm_cmpunord_pd(p, q)) ? iv__mul_slow_pair(av, bv) : iv__pair_up(_mm_max_pd(p, q));
+    return iv__from_pair(p);
+}
+#endif
+
 /* ------------------------------------------------------------------------ */
 /* Construction and queries                                                 */
 /* ------------------------------------------------------------------------ */
@@ -246,14 +336,35 @@ static inline iv_t iv_neg(iv_t x) { return iv__raw(-x.hi, -x.lo); }
 /* The upper end is computed negated, -(a.hi + b.hi) = (-a.hi) - b.hi
    exactly (round-to-nearest is symmetric), so both ends take the same
    downward step: the compiler then packs them into one vector operation. */
-static inline iv_t iv_add(iv_t a, iv_t b)
+/* Each operation has a portable scalar form (iv__add1, ...) and, where
+   IV__PAIR is on, a pair form (iv__add2, ...) giving identical results;
+   the tests compare the two bit for bit. */
+static inline iv_t iv__add1(iv_t a, iv_t b)
 {
     return iv__raw(iv__down(a.lo + b.lo), -iv__down(-a.hi - b.hi));
 }
-static inline iv_t iv_sub(iv_t a, iv_t b)
+static inline iv_t iv__sub1(iv_t a, iv_t b)
 {
     return iv__raw(iv__down(a.lo - b.hi), -iv__down(b.lo - a.hi));
 }
+#ifdef IV__PAIR
+/* [-lo, hi] + [-lo', hi'] = [-(lo + lo'), hi + hi'] in one vector add
+   (-RN(s) = RN(-s)); a - b adds [hi', -lo'], b's lanes swapped. */
+static inline iv_t iv__add2(iv_t a, iv_t b)
+{
+    return iv__from_pair(iv__pair_up(_mm_add_pd(iv__to_pair(a), iv__to_pair(b))));
+}
+static inline iv_t iv__sub2(iv_t a, iv_t b)
+{
+    __m128d bv = iv__to_pair(b);
+    return iv__from_pair(iv__pair_up(_mm_add_pd(iv__to_pair(a), _mm_shuffle_pd(bv, bv, 1))));
+}
+static inline iv_t iv_add(iv_t a, iv_t b) { return iv__add2(a, b); }
+static inline iv_t iv_sub(iv_t a, iv_t b) { return iv__sub2(a, b); }
+#else
+static inline iv_t iv_add(iv_t a, iv_t b) { return iv__add1(a, b); }
+static inline iv_t iv_sub(iv_t a, iv_t b) { return iv__sub1(a, b); }
+#endif
 /* x + d for a scalar d; empty for NaN or infinite d. */
 static inline iv_t iv_add_d(iv_t x, double d) { return iv_add(x, iv_point(d)); }
 static inline iv_t iv_sub_d(iv_t x, double d) { return iv_add(x, iv_point(-d)); }
@@ -262,7 +373,7 @@ static inline iv_t iv_sub_d(iv_t x, double d) { return iv_add(x, iv_point(-d)); 
 /* Unbounded or empty inputs (out of line, so iv_mul stays small enough to
    be inlined everywhere). */
 IV_DEF iv_t iv__mul_slow(iv_t a, iv_t b);
-static inline iv_t iv_mul(iv_t a, iv_t b)
+static inline iv_t iv__mul1(iv_t a, iv_t b)
 {
     double p1, p2, p3, p4;
     if (!(a.lo > -HUGE_VAL && a.hi < HUGE_VAL && b.lo > -HUGE_VAL && b.hi < HUGE_VAL)) return iv__mul_slow(a, b);
@@ -273,9 +384,14 @@ static inline iv_t iv_mul(iv_t a, iv_t b)
     return iv__raw(iv__down(iv__min(iv__min(p1, p2), iv__min(p3, p4))),
                    iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4))));
 }
+#ifdef IV__PAIR
+static inline iv_t iv_mul(iv_t a, iv_t b) { return iv__mul2(a, b); }
+#else
+static inline iv_t iv_mul(iv_t a, iv_t b) { return iv__mul1(a, b); }
+#endif
 /* x * d for a scalar d (two products instead of four); empty for NaN or
    infinite d. */
-static inline iv_t iv_mul_d(iv_t x, double d)
+static inline iv_t iv__mul_d1(iv_t x, double d)
 {
     double p, q;
     if (iv_is_empty(x) || !(d - d == 0)) return iv_empty();
@@ -283,15 +399,50 @@ static inline iv_t iv_mul_d(iv_t x, double d)
     q = iv__mul0(x.hi, d);
     return d >= 0 ? iv__raw(iv__down(p), iv__up(q)) : iv__raw(iv__down(q), iv__up(p));
 }
+#ifdef IV__PAIR
+/* [-lo, hi] = [x.lo, x.hi] * [-d, d], the lanes of x swapped when d's sign
+   bit is set; a 0 * inf lane (NaN) is the exact zero it stands for. */
+static inline iv_t iv__mul_d2(iv_t x, double d)
+{
+    __m128d v, xv;
+    if (iv_is_empty(x) || !(d - d == 0)) return iv_empty();
+    xv = iv__vec(x);
+    v = _mm_mul_pd(_mm_blendv_pd(xv, _mm_shuffle_pd(xv, xv, 1), _mm_set1_pd(d)),
+                   _mm_xor_pd(_mm_set1_pd(d), iv__pair_sign()));
+    return iv__from_pair(iv__pair_up(_mm_and_pd(v, _mm_cmpord_pd(v, v))));
+}
+static inline iv_t iv_mul_d(iv_t x, double d) { return iv__mul_d2(x, d); }
+#else
+static inline iv_t iv_mul_d(iv_t x, double d) { return iv__mul_d1(x, d); }
+#endif
 /* x^2 >= 0 (tighter than x*x when x straddles 0: no dependency): the
    squares of the smallest and largest |x|, branch-free. */
-static inline iv_t iv_sqr(iv_t x)
+static inline iv_t iv__sqr1(iv_t x)
 {
     /* NaN (empty) endpoints propagate: every max keeps its first argument
        when the comparison fails */
     double mig = iv__max(iv__max(x.lo, -x.hi), 0.0), mag = iv__max(-x.lo, x.hi);
     return iv__raw(iv__max(iv__down(mig * mig), 0.0), iv__up(mag * mag));
 }
+#ifdef IV__PAIR
+/* The same in the pair form: n = [-lo, hi] and its swap give mag =
+   max(-lo, hi) and mig = max(0, -min(-lo, hi)) in both lanes; [mig, mag]
+   times [-mig, mag] is [-mig^2, mag^2], stepped up; the lower end is then
+   kept >= 0 (lane 0 <= -0). maxpd/minpd return their second operand when
+   one is NaN, which is where the NaN of an empty input sits. */
+static inline iv_t iv__sqr2(iv_t x)
+{
+    __m128d n = iv__to_pair(x), sw = _mm_shuffle_pd(n, n, 1);
+    __m128d mag = _mm_max_pd(n, sw);
+    __m128d mig = _mm_max_pd(_mm_setzero_pd(), _mm_xor_pd(_mm_min_pd(n, sw), _mm_set1_pd(-0.0)));
+    __m128d m = _mm_blend_pd(mig, mag, 2);
+    __m128d r = iv__pair_up(_mm_mul_pd(iv__flip(m), m));
+    return iv__from_pair(_mm_min_pd(_mm_set_pd(HUGE_VAL, -0.0), r));
+}
+static inline iv_t iv_sqr(iv_t x) { return iv__sqr2(x); }
+#else
+static inline iv_t iv_sqr(iv_t x) { return iv__sqr1(x); }
+#endif
 /* a / b for b > 0 strictly (b.hi may be +inf): no 0/0 or inf/inf occurs. */
 static inline iv_t iv__div_pos(iv_t a, iv_t b)
 {
@@ -423,11 +574,16 @@ typedef struct iv_affine_t {
                                  shared symbol (t*t'/2 into the centre), the
                                  standard affine treatment of eps_t^2 */
 IV_DEF iv_affine_t iv_affine_div(iv_affine_t x, iv_affine_t y);
-/* The non-affine operations below use a first-order Taylor form with an
-   interval Lagrange remainder: f(c) + f'(c)(x - c) + [0, r^2] f''(X)/2.
-   For convex or concave f the remainder has one sign, so its error is
-   M r^2 / 4, the Chebyshev (best) linear approximation's error for a
-   quadratic. When that error would exceed the plain interval image, the
+/* Non-affine operations. exp log sqrt recip atan pow_n (and div through
+   recip), on a range where f is convex or concave: a linear approximation
+   alpha x + g with g = f - alpha x enclosed rigorously (end values and a
+   tangent bound); the slope is the one nearest the Chebyshev (minimax)
+   slope, among Chebyshev, halfway and min-range (Stolfi & de Figueiredo),
+   whose range stays within 1.1x f's image (see the implementation and
+   docs/interval.md). Elsewhere (sin cos tan, atan across 0, odd pow_n
+   across 0, log and sqrt of ranges touching 0): a first-order Taylor form
+   with an interval Lagrange remainder, f(c) + f'(c)(x - c) + [0, r^2]
+   f''(X)/2. When the error term would exceed the plain interval image, the
    result is iv_affine_from_iv(interval image) instead. */
 IV_DEF iv_affine_t iv_affine_recip(iv_affine_t x);
 IV_DEF iv_affine_t iv_affine_sqrt(iv_affine_t x);
@@ -1042,66 +1198,182 @@ static int iv__aff_domain(iv_affine_t x, double lo, double hi, iv_t *dom, double
     return 1;
 }
 
-IV_DEF iv_affine_t iv_affine_exp(iv_affine_t x)
+/* Linearisations of convex or concave f (Stolfi & de Figueiredo 1997,
+   "Self-validated numerical methods and applications", section 3.4 on
+   non-affine operations; Chebyshev and min-range approximations).
+   f(x) = alpha x + g(x) with g = f - alpha x; g's range over dom = [a, b]
+   goes into the error term. For every double alpha this is sound when g
+   is enclosed rigorously, so alpha and the tangent point u need no
+   rigour. With s g convex (s = +1 for convex f, -1 for concave):
+     the far side of g is at an end of dom:  s g <= max(s g(a), s g(b));
+     the near side is bounded by the tangent at any u in dom:
+                      s g(x) >= s (g(u) + g'(u)(x - u)),
+   each evaluated in interval arithmetic. Chebyshev: alpha the secant slope
+   (f(b) - f(a))/(b - a) and u where f'(u) = alpha, which minimises the new
+   error term (the best linear approximation in the max norm). Min-range:
+   alpha = f' at the end of dom where |f'| is smaller, u that end, which
+   makes the result's range that of f itself. */
+enum { IV__F_EXP, IV__F_LOG, IV__F_SQRT, IV__F_RECIP, IV__F_POWN, IV__F_ATAN };
+enum { IV__LIN_TAYLOR, IV__LIN_CHEBYSHEV, IV__LIN_MINRANGE, IV__LIN_AUTO };
+/* IV__LIN_AUTO (the default): the slope closest to Chebyshev's, among
+   Chebyshev, halfway to min-range and min-range, whose result's range is
+   at most IV__LIN_RANGE_RATIO times the width of f's image. Chebyshev
+   keeps the most correlation for later cancellation (f(t) - k t), min-range
+   the narrowest range (an operation whose own range matters, as in a
+   distance sqrt(x^2+y^2+z^2) - r). Measured on both kinds
+   (bench_interval_surfaces, docs/interval.md), 1.1 is tighter than the
+   Taylor form almost everywhere and never far behind the better of the two
+   pure methods; 1.5 and above lost up to 30% on the blob surface. A ratio
+   of widths: independent of scale. */
+#define IV__LIN_RANGE_RATIO 1.1
+
+/* f (deriv = 0) or f' (deriv = 1) over x, rigorously. */
+static iv_t iv__aff_fn(int f, int n, iv_t x, int deriv)
 {
-    iv_t dom, fc;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    fc = iv_exp(iv__raw(c, c));
-    return iv__aff_taylor(x, dom, c, fc, fc, iv_exp(dom), iv_exp(dom));
+    switch (f) {
+    case IV__F_EXP: return iv_exp(x);
+    case IV__F_LOG: return deriv ? iv_recip(x) : iv_log(x);
+    case IV__F_SQRT: return deriv ? iv_recip(iv_mul_d(iv_sqrt(x), 2.0)) : iv_sqrt(x);
+    case IV__F_RECIP: return deriv ? iv_neg(iv_recip(iv_sqr(x))) : iv_recip(x);
+    case IV__F_POWN: return deriv ? iv_mul_d(iv_pow_n(x, n - 1), (double)n) : iv_pow_n(x, n);
+    default: return deriv ? iv_recip(iv_add_d(iv_sqr(x), 1.0)) : iv_atan(x);
+    }
 }
 
-IV_DEF iv_affine_t iv_affine_log(iv_affine_t x)
+/* +1 when f is convex on dom, -1 when concave, 0 when neither is known. */
+static int iv__aff_curvature(int f, int n, iv_t dom)
 {
-    iv_t dom, cc;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, 0.0, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    if (c == 0) return iv_affine_from_iv(iv_log(dom));
-    cc = iv__raw(c, c);
-    return iv__aff_taylor(x, dom, c, iv_log(cc), iv_recip(cc), iv_neg(iv_recip(iv_sqr(dom))), iv_log(dom));
+    int side = dom.lo >= 0 ? 1 : dom.hi <= 0 ? -1 : 0;
+    switch (f) {
+    case IV__F_EXP: return 1;
+    case IV__F_LOG: case IV__F_SQRT: return -1;
+    case IV__F_RECIP: return side;
+    /* f'' = n (n - 1) x^(n-2) with n (n - 1) > 0 for n other than 0, 1 */
+    case IV__F_POWN: return n % 2 == 0 ? 1 : side;
+    default: return -side; /* atan'' = -2x / (1 + x^2)^2 */
+    }
 }
 
-IV_DEF iv_affine_t iv_affine_sqrt(iv_affine_t x)
+/* A double u in dom with f'(u) close to alpha (the Chebyshev tangent). */
+static double iv__aff_tangent_point(int f, int n, double alpha, iv_t dom)
 {
-    iv_t dom, cc, sc;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, 0.0, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    if (c == 0) return iv_affine_from_iv(iv_sqrt(dom));
-    cc = iv__raw(c, c);
-    sc = iv_sqrt(cc);
-    /* f' = 1/(2 sqrt c), f'' = -1/(4 x sqrt x) */
-    return iv__aff_taylor(x, dom, c, sc, iv_recip(iv_mul_d(sc, 2.0)),
-                          iv_neg(iv_recip(iv_mul_d(iv_mul(dom, iv_sqrt(dom)), 4.0))), iv_sqrt(dom));
+    double side = dom.lo >= 0 ? 1.0 : -1.0, u;
+    switch (f) {
+    case IV__F_EXP: u = log(alpha); break;
+    case IV__F_LOG: u = 1.0 / alpha; break;
+    case IV__F_SQRT: u = 0.25 / (alpha * alpha); break;
+    case IV__F_RECIP: u = side * sqrt(-1.0 / alpha); break;
+    case IV__F_POWN: u = side * pow(fabs(alpha / (double)n), 1.0 / (double)(n - 1)); break;
+    default: u = side * sqrt(1.0 / alpha - 1.0); break;
+    }
+    if (!(u == u)) u = iv_mid(dom);
+    return iv__min(iv__max(u, dom.lo), dom.hi);
 }
 
-IV_DEF iv_affine_t iv_affine_recip(iv_affine_t x)
+/* The linearisation above with the slope w of the way from min-range's
+   (w = 0) to Chebyshev's (w = 1); the empty form when it does not apply
+   (unknown curvature, unbounded dom or values), so that the caller falls
+   back to the Taylor form. */
+static iv_affine_t iv__aff_linearise(iv_affine_t x, iv_t dom, int f, int n, double w)
 {
-    iv_t dom, cc, rc;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    if (dom.lo <= 0 && dom.hi >= 0) return iv_affine_from_iv(iv_recip(dom));
-    cc = iv__raw(c, c);
-    rc = iv_recip(cc);
-    /* f' = -1/c^2, f'' = 2/x^3 */
-    return iv__aff_taylor(x, dom, c, rc, iv_neg(iv_sqr(rc)), iv_mul_d(iv_pow_n(dom, -3), 2.0), iv_recip(dom));
+    int s = iv__aff_curvature(f, n, dom);
+    iv_t fa, fb, pa, pb, pu, ga, gb, t, g;
+    double alpha, u, da, db;
+    if (s == 0 || !(dom.lo > -HUGE_VAL && dom.hi < HUGE_VAL)) return iv__aff_empty();
+    pa = iv__raw(dom.lo, dom.lo);
+    pb = iv__raw(dom.hi, dom.hi);
+    fa = iv__aff_fn(f, n, pa, 0);
+    fb = iv__aff_fn(f, n, pb, 0);
+    da = iv_mid(iv__aff_fn(f, n, pa, 1));
+    db = iv_mid(iv__aff_fn(f, n, pb, 1));
+    /* min-range slope and end */
+    alpha = fabs(da) <= fabs(db) ? da : db;
+    u = fabs(da) <= fabs(db) ? dom.lo : dom.hi;
+    if (w > 0 && dom.hi > dom.lo) {
+        /* toward the Chebyshev (secant) slope by the weight w */
+        alpha += w * ((iv_mid(fb) - iv_mid(fa)) / (dom.hi - dom.lo) - alpha);
+        u = iv__aff_tangent_point(f, n, alpha, dom);
+    }
+    if (!(alpha - alpha == 0)) return iv__aff_empty();
+    pu = iv__raw(u, u);
+    /* g = f - alpha x at both ends, and its tangent at u over dom */
+    ga = iv_sub(fa, iv_mul_d(pa, alpha));
+    gb = iv_sub(fb, iv_mul_d(pb, alpha));
+    t = iv_add(iv_sub(iv__aff_fn(f, n, pu, 0), iv_mul_d(pu, alpha)),
+               iv_mul(iv_sub_d(iv__aff_fn(f, n, pu, 1), alpha), iv_sub_d(dom, u)));
+    g = s > 0 ? iv__raw(t.lo, iv__max(ga.hi, gb.hi)) : iv__raw(iv__min(ga.lo, gb.lo), t.hi);
+    /* an error term as wide as f's image makes the linear part useless */
+    if (!(g.lo <= g.hi) || !(g.lo > -HUGE_VAL && g.hi < HUGE_VAL) || !(iv_width(g) < iv_width(iv_hull(fa, fb))))
+        return iv__aff_empty();
+    return iv__aff_add_iv(iv_affine_mul_d(x, alpha), g);
 }
+
+/* The Taylor form for each f (f'' enclosed over dom). */
+static iv_affine_t iv__aff_taylor_fn(iv_affine_t x, iv_t dom, double c, int f, int n)
+{
+    iv_t cc = iv__raw(c, c), d2;
+    switch (f) {
+    case IV__F_EXP: d2 = iv_exp(dom); break;
+    case IV__F_LOG: d2 = iv_neg(iv_recip(iv_sqr(dom))); break;
+    /* -1/(4 x sqrt x) */
+    case IV__F_SQRT: d2 = iv_neg(iv_recip(iv_mul_d(iv_mul(dom, iv_sqrt(dom)), 4.0))); break;
+    case IV__F_RECIP: d2 = iv_mul_d(iv_pow_n(dom, -3), 2.0); break;
+    case IV__F_POWN: d2 = iv_mul_d(iv_pow_n(dom, n - 2), (double)n * (double)(n - 1)); break;
+    /* -2x / (1 + x^2)^2 */
+    default: d2 = iv_div(iv_mul_d(dom, -2.0), iv_sqr(iv_add_d(iv_sqr(dom), 1.0))); break;
+    }
+    return iv__aff_taylor(x, dom, c, iv__aff_fn(f, n, cc, 0), iv__aff_fn(f, n, cc, 1), d2, iv__aff_fn(f, n, dom, 0));
+}
+
+/* The non-affine operation f on x by a given method (the tests and the
+   bench compare methods through this; the public functions use
+   IV__LIN_DEFAULT). dom = range(x) ∩ dom(f). A range that holds a pole
+   gives the interval image; a range touching 0 for log and sqrt (f'
+   unbounded there: no tangent) takes the Taylor form, and so does any case
+   the linearisation leaves out; that form falls back to the interval image
+   when its error term would be wider. */
+#define IV__LIN_DEFAULT IV__LIN_AUTO
+static iv_affine_t iv__aff_unary(iv_affine_t x, int f, int n, int method)
+{
+    iv_t dom;
+    double c;
+    iv_affine_t z;
+    int root = f == IV__F_LOG || f == IV__F_SQRT;
+    if (iv_affine_is_empty(x) || !iv__aff_domain(x, root ? 0.0 : -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
+    if (root && c == 0) return iv_affine_from_iv(iv__aff_fn(f, n, dom, 0));
+    if ((f == IV__F_RECIP || (f == IV__F_POWN && n < 0)) && dom.lo <= 0 && dom.hi >= 0)
+        return iv_affine_from_iv(iv__aff_fn(f, n, dom, 0));
+    if (root && dom.lo == 0) method = IV__LIN_TAYLOR;
+    if (method == IV__LIN_TAYLOR) z = iv__aff_empty();
+    else if (method != IV__LIN_AUTO) z = iv__aff_linearise(x, dom, f, n, method == IV__LIN_CHEBYSHEV ? 1.0 : 0.0);
+    else {
+        /* the slope closest to Chebyshev's whose range stays within
+           IV__LIN_RANGE_RATIO of f's image: Chebyshev, halfway, min-range */
+        double lim = IV__LIN_RANGE_RATIO * iv_width(iv__aff_fn(f, n, dom, 0)), w;
+        for (w = 1.0, z = iv__aff_empty(); w >= 0; w -= 0.5) {
+            z = iv__aff_linearise(x, dom, f, n, w);
+            if (iv_affine_is_empty(z) || iv_width(iv_from_affine(z)) <= lim) break;
+        }
+    }
+    return iv_affine_is_empty(z) ? iv__aff_taylor_fn(x, dom, c, f, n) : z;
+}
+
+IV_DEF iv_affine_t iv_affine_exp(iv_affine_t x) { return iv__aff_unary(x, IV__F_EXP, 0, IV__LIN_DEFAULT); }
+IV_DEF iv_affine_t iv_affine_log(iv_affine_t x) { return iv__aff_unary(x, IV__F_LOG, 0, IV__LIN_DEFAULT); }
+IV_DEF iv_affine_t iv_affine_sqrt(iv_affine_t x) { return iv__aff_unary(x, IV__F_SQRT, 0, IV__LIN_DEFAULT); }
+IV_DEF iv_affine_t iv_affine_recip(iv_affine_t x) { return iv__aff_unary(x, IV__F_RECIP, -1, IV__LIN_DEFAULT); }
+IV_DEF iv_affine_t iv_affine_atan(iv_affine_t x) { return iv__aff_unary(x, IV__F_ATAN, 0, IV__LIN_DEFAULT); }
 
 IV_DEF iv_affine_t iv_affine_div(iv_affine_t x, iv_affine_t y) { return iv_affine_mul(x, iv_affine_recip(y)); }
 
 IV_DEF iv_affine_t iv_affine_pow_n(iv_affine_t x, int n)
 {
-    iv_t dom, cc;
-    double c;
     if (iv_affine_is_empty(x)) return iv__aff_empty();
     if (n == 0) return iv_affine_const(1.0);
     if (n == 1) return x;
-    if (n == 2) return iv_affine_sqr(x);
-    if (!iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    if (n < 0 && dom.lo <= 0 && dom.hi >= 0) return iv_affine_from_iv(iv_pow_n(dom, n));
-    cc = iv__raw(c, c);
-    /* f' = n c^(n-1), f'' = n (n-1) x^(n-2) */
-    return iv__aff_taylor(x, dom, c, iv_pow_n(cc, n), iv_mul_d(iv_pow_n(cc, n - 1), (double)n),
-                          iv_mul_d(iv_pow_n(dom, n - 2), (double)n * (double)(n - 1)), iv_pow_n(dom, n));
+    if (n == 2) return iv_affine_sqr(x); /* already the Chebyshev form of x^2 */
+    if (n == -1) return iv_affine_recip(x);
+    return iv__aff_unary(x, IV__F_POWN, n, IV__LIN_DEFAULT);
 }
 
 IV_DEF iv_affine_t iv_affine_sin(iv_affine_t x)
@@ -1133,18 +1405,6 @@ IV_DEF iv_affine_t iv_affine_tan(iv_affine_t x)
     /* f' = 1 + tan^2, f'' = 2 tan (1 + tan^2) */
     return iv__aff_taylor(x, dom, c, tc, iv_add_d(iv_sqr(tc), 1.0),
                           iv_mul_d(iv_mul(td, iv_add_d(iv_sqr(td), 1.0)), 2.0), td);
-}
-
-IV_DEF iv_affine_t iv_affine_atan(iv_affine_t x)
-{
-    iv_t dom, cc, q;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    cc = iv__raw(c, c);
-    q = iv_add_d(iv_sqr(dom), 1.0);
-    /* f' = 1/(1 + c^2), f'' = -2x/(1 + x^2)^2 */
-    return iv__aff_taylor(x, dom, c, iv_atan(cc), iv_recip(iv_add_d(iv_sqr(cc), 1.0)),
-                          iv_div(iv_mul_d(dom, -2.0), iv_sqr(q)), iv_atan(dom));
 }
 
 IV_DEF iv_affine_t iv_affine_abs(iv_affine_t x)

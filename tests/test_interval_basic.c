@@ -125,6 +125,25 @@ static void outward_step_both_paths(void)
         }
     }
     T_INT_EQ(bad, 0);
+#ifdef IV__PAIR
+    /* the pair step (both lanes upward) against nextafter on the same values */
+    for (i = 0, bad = 0; i < (long)(sizeof special / sizeof special[0]); i++) {
+        double x = special[i], y = -special[(i + 5) % (sizeof special / sizeof special[0])], got[2];
+        double wx = x == HUGE_VAL ? x : x == 0 ? 4.9406564584124654e-324 : nextafter(x, HUGE_VAL);
+        double wy = y == HUGE_VAL ? y : y == 0 ? 4.9406564584124654e-324 : nextafter(y, HUGE_VAL);
+        _mm_storeu_pd(got, iv__pair_up(_mm_set_pd(y, x)));
+        if (got[0] != wx || got[1] != wy) {
+            if (bad++ < 5) T_FAIL("pair step at (%a, %a): (%a, %a) want (%a, %a)", x, y, got[0], got[1], wx, wy);
+        }
+    }
+    T_INT_EQ(bad, 0);
+    {
+        double got[2];
+        _mm_storeu_pd(got, iv__pair_up(_mm_set_pd(NAN, -HUGE_VAL)));
+        T_EQ(got[0], -1.7976931348623157e308);
+        T_CHECK(got[1] != got[1]);
+    }
+#endif
     T_CHECK(iv__next_down_bits(NAN) != iv__next_down_bits(NAN));
     T_CHECK(iv__next_down_fma(NAN) != iv__next_down_fma(NAN));
     /* a product that underflows must still be enclosed */
@@ -207,6 +226,114 @@ static void tightness_basic_ops(void)
     fprintf(stderr, "    tightness: %ld cases, worst endpoint %lld ulp outside the correctly rounded one\n", n, worst);
 }
 
+/* The pair path (SSE + FMA, the default where available) and the scalar
+   path give the same intervals, on random inputs of every class and on
+   special ones; the scalar path is what IV_NO_SIMD and other targets use.
+   Without the pair path this checks nothing and says so. */
+static int same_iv(iv_t a, iv_t b)
+{
+    return (a.lo == b.lo || (a.lo != a.lo && b.lo != b.lo)) && (a.hi == b.hi || (a.hi != a.hi && b.hi != b.hi));
+}
+static void pair_path_matches_scalar(void)
+{
+#ifdef IV__PAIR
+    static const double sp[] = {0.0, -0.0, 4.9406564584124654e-324, -1e-310, 2.2250738585072014e-308,
+        -2.2250738585072014e-308, 1.0, -2.0, 0.5, 1.7976931348623157e308, -1.7976931348623157e308, HUGE_VAL, -HUGE_VAL};
+    enum { NS = sizeof sp / sizeof sp[0] };
+    t_rng_t r = {99};
+    long n = t_count(1000000), i, bad = 0;
+    for (i = 0; i < n + NS * NS * NS * NS; i++) {
+        iv_t a, b;
+        double d;
+        if (i < NS * NS * NS * NS) {
+            a = iv_make(sp[i % NS], sp[i / NS % NS]);
+            b = iv_make(sp[i / (NS * NS) % NS], sp[i / (NS * NS * NS)]);
+            if (iv_is_empty(a)) a = iv_empty();
+            if (iv_is_empty(b)) b = iv_empty();
+            d = sp[i % NS];
+        } else {
+            a = ig_interval(&r);
+            b = ig_interval(&r);
+            d = ig_value(&r);
+        }
+        if (!same_iv(iv__add2(a, b), iv__add1(a, b)) || !same_iv(iv__sub2(a, b), iv__sub1(a, b)) ||
+            !same_iv(iv__mul2(a, b), iv__mul1(a, b)) || !same_iv(iv__mul_d2(a, d), iv__mul_d1(a, d)) ||
+            !same_iv(iv__sqr2(a), iv__sqr1(a))) {
+            if (bad++ < 5) T_FAIL("[%a,%a] [%a,%a] d=%a: pair %a %a %a %a %a %a / scalar %a %a %a %a %a %a", a.lo, a.hi, b.lo,
+                                  b.hi, d, iv__mul2(a, b).lo, iv__mul2(a, b).hi, iv__mul_d2(a, d).lo, iv__mul_d2(a, d).hi,
+                                  iv__sqr2(a).lo, iv__sqr2(a).hi, iv__mul1(a, b).lo, iv__mul1(a, b).hi,
+                                  iv__mul_d1(a, d).lo, iv__mul_d1(a, d).hi, iv__sqr1(a).lo, iv__sqr1(a).hi);
+        }
+    }
+    T_INT_EQ(bad, 0);
+    fprintf(stderr, "    pair path: %ld cases identical to the scalar path\n", n + NS * NS * NS * NS);
+#else
+    fprintf(stderr, "    SKIPPED: no pair path in this build (no SSE4.1 + FMA, or IV_NO_SIMD)\n");
+#endif
+}
+
+/* Named edge cases of the outward step in + - * (both paths): each end
+   is on the right side of the exact result and at most one double beyond
+   its correctly rounded value; exact results stay within one step. */
+static void check_exact(const char *what, iv_t z, q_t lo, q_t hi)
+{
+    double rd = ig_rd(lo), ru = ig_ru(hi);
+    if (!((q_t)z.lo <= lo && hi <= (q_t)z.hi) || ig_ulps(z.lo, rd) > 1 || ig_ulps(ru, z.hi) > 1)
+        T_FAIL("%s: [%a,%a] for exact [%a,%a]", what, z.lo, z.hi, (double)lo, (double)hi);
+}
+static void step_edge_cases(void)
+{
+    const double tiny = 4.9406564584124654e-324, minn = 2.2250738585072014e-308, big = 1.7976931348623157e308;
+    iv_t z;
+    /* denormals: sums are exact, the step moves one denormal */
+    z = iv_add(iv_point(tiny), iv_point(tiny));
+    check_exact("denormal sum", z, 2 * (q_t)tiny, 2 * (q_t)tiny);
+    T_EQ(z.lo, tiny); T_EQ(z.hi, 3 * tiny);
+    z = iv_sub(iv_point(minn), iv_point(tiny)); /* the largest denormal */
+    check_exact("smallest normal - denormal", z, (q_t)minn - tiny, (q_t)minn - tiny);
+    T_EQ(z.hi, minn);
+    /* the smallest normal: the spacing is 2^-1074 on both sides */
+    z = iv_mul(iv_point(minn), iv_point(1.0));
+    T_EQ(z.lo, minn - tiny); T_EQ(z.hi, minn + tiny);
+    z = iv_mul(iv_point(-minn), iv_make(1.0, 1.0));
+    T_EQ(z.lo, -minn - tiny); T_EQ(z.hi, -minn + tiny);
+    /* powers of two: the spacing below is half the spacing above */
+    z = iv_add(iv_point(1.0), iv_point(1.0));
+    T_EQ(z.lo, nextafter(2.0, 0)); T_EQ(z.hi, nextafter(2.0, 4));
+    z = iv_mul(iv_point(-0.5), iv_point(4.0));
+    T_EQ(z.lo, nextafter(-2.0, -4)); T_EQ(z.hi, nextafter(-2.0, 0));
+    /* underflow to zero: the enclosure keeps the sign of the product */
+    z = iv_mul(iv_point(1e-200), iv_point(-1e-200));
+    T_EQ(z.lo, -tiny); T_EQ(z.hi, 0.0 + tiny);
+    /* +-huge: overflow gives DBL_MAX on the inner side and inf outside */
+    z = iv_add(iv_point(big), iv_point(big));
+    T_EQ(z.lo, big); T_EQ(z.hi, HUGE_VAL);
+    z = iv_mul(iv_point(-big), iv_point(2.0));
+    T_EQ(z.lo, -HUGE_VAL); T_EQ(z.hi, -big);
+    z = iv_mul_d(iv_point(big), -2.0);
+    T_EQ(z.lo, -HUGE_VAL); T_EQ(z.hi, -big);
+    z = iv_sub(iv_point(big), iv_point(-big));
+    T_EQ(z.lo, big); T_EQ(z.hi, HUGE_VAL);
+    /* infinities */
+    z = iv_add(iv_make(-HUGE_VAL, 1), iv_make(2, HUGE_VAL));
+    T_EQ(z.lo, -HUGE_VAL); T_EQ(z.hi, HUGE_VAL);
+    z = iv_mul(iv_make(-HUGE_VAL, -1), iv_make(2, 3));
+    T_EQ(z.lo, -HUGE_VAL); T_GE(z.hi, -2.0); T_LE(z.hi, nextafter(-2.0, 0));
+    z = iv_mul(iv_make(0, HUGE_VAL), iv_make(0, 1)); /* 0 * inf is 0 */
+    T_LE(z.lo, 0); T_GE(z.lo, -tiny); T_EQ(z.hi, HUGE_VAL);
+    z = iv_mul(iv_make(-1, 2), iv_make(-3, 5));
+    check_exact("straddling product", z, -6, 10);
+    z = iv_mul_d(iv_make(0, HUGE_VAL), 0.0);
+    T_LE(z.lo, 0); T_GE(z.hi, 0); T_LE(z.hi, tiny);
+    /* exact results are enclosed within one step on each side */
+    z = iv_add(iv_point(0.25), iv_point(0.5));
+    check_exact("exact sum", z, 0.75, 0.75);
+    z = iv_mul(iv_make(3, 5), iv_make(-7, -2));
+    check_exact("exact product", z, -35, -6);
+    z = iv_sub(iv_point(1e300), iv_point(1e300));
+    T_EQ(z.lo, -tiny); T_EQ(z.hi, tiny);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -219,6 +346,8 @@ int main(int argc, char **argv)
         T_CASE(mul_zero_times_unbounded),
         T_CASE(tightness_basic_ops),
         T_CASE(outward_step_both_paths),
+        T_CASE(pair_path_matches_scalar),
+        T_CASE(step_edge_cases),
     };
     return T_RUN(argc, argv, cases);
 }

@@ -282,6 +282,62 @@ static void affine_cancels_dependency(void)
         T_LE(2 * (iv_width(ia) - range), iv_width(ii) - range);
     }
 }
+
+/* Overestimation (width - exact range from quad samples) of f(t) - k t
+   for t over [a, b], with the linearisation method m. */
+static double lin_excess(int f, int n, double a, double b, double k, int m, q_t (*fq)(q_t))
+{
+    iv_affine_t t = iv_affine_ray_param(a, b);
+    iv_t z = iv_from_affine(iv_affine_sub(iv__aff_unary(t, f, n, m), iv_affine_mul_d(t, k)));
+    q_t lo = 1e300, hi = -1e300;
+    int i;
+    for (i = 0; i <= 2048; i++) {
+        q_t x = (q_t)a + ((q_t)b - a) * i / 2048, v = fq(x) - (q_t)k * x;
+        T_CHECK(ig_in(z, v));
+        lo = v < lo ? v : lo;
+        hi = v > hi ? v : hi;
+    }
+    return iv_width(z) - (double)(hi - lo);
+}
+static q_t q_recip(q_t x) { return 1 / x; }
+
+/* Chebyshev and min-range linearisations (issue 3): each method contains
+   f; the default per-range choice beats the old Taylor form where the
+   linear part is cancelled later (f(t) - k t), min-range gives f's own
+   image, and the default falls back to min-range on strongly curved
+   ranges. Figures: bench_interval_surfaces. */
+static void affine_linearisations(void)
+{
+    int m;
+    /* sqrt(t) - t/2 on [0.5, 2]: Taylor 0.19, Chebyshev 0.016 */
+    T_LE(10 * lin_excess(IV__F_SQRT, 0, 0.5, 2, 0.5, IV__LIN_DEFAULT, sqrtq),
+         lin_excess(IV__F_SQRT, 0, 0.5, 2, 0.5, IV__LIN_TAYLOR, sqrtq));
+    /* 1/t + t/4 on [1, 3]: Taylor 0.92, default 0.085 */
+    T_LE(10 * lin_excess(IV__F_RECIP, -1, 1, 3, -0.25, IV__LIN_DEFAULT, q_recip),
+         lin_excess(IV__F_RECIP, -1, 1, 3, -0.25, IV__LIN_TAYLOR, q_recip));
+    /* log(t) - t/2 on [1, 3]: Chebyshev 0.054 against Taylor 0.31 */
+    T_LE(5 * lin_excess(IV__F_LOG, 0, 1, 3, 0.5, IV__LIN_CHEBYSHEV, logq),
+         lin_excess(IV__F_LOG, 0, 1, 3, 0.5, IV__LIN_TAYLOR, logq));
+    /* min-range: the range of f itself, up to rounding */
+    T_LE(lin_excess(IV__F_EXP, 0, 0, 1, 0, IV__LIN_MINRANGE, expq), 1e-12);
+    T_LE(lin_excess(IV__F_ATAN, 0, 0.5, 2, 0, IV__LIN_MINRANGE, atanq), 1e-12);
+    /* exp on [-3, 3]: Chebyshev's range is 1.5x the image; the default
+       takes min-range there */
+    T_GE(lin_excess(IV__F_EXP, 0, -3, 3, 0, IV__LIN_CHEBYSHEV, expq), 10);
+    T_LE(lin_excess(IV__F_EXP, 0, -3, 3, 0, IV__LIN_DEFAULT, expq), 1e-10);
+    /* no curvature sign (atan across 0), and log touching 0: Taylor or the
+       interval image, still enclosing */
+    for (m = 0; m < 4; m++) {
+        T_LE(lin_excess(IV__F_ATAN, 0, -1, 2, 0, m, atanq), 1.0);
+        T_LE(lin_excess(IV__F_LOG, 0, 1e-300, 1, 0, m, logq), HUGE_VAL);
+    }
+    /* a point range: the form is the point's enclosure */
+    {
+        iv_t z = iv_from_affine(iv__aff_unary(iv_affine_const(2.0), IV__F_SQRT, 0, IV__LIN_CHEBYSHEV));
+        T_CHECK(ig_in(z, sqrtq(2)));
+        T_LE(iv_width(z), 1e-14);
+    }
+}
 #endif
 
 int main(int argc, char **argv)
@@ -302,6 +358,7 @@ int main(int argc, char **argv)
 #ifndef IV_NO_AFFINE
         T_CASE(affine_bad_input),
         T_CASE(affine_cancels_dependency),
+        T_CASE(affine_linearisations),
 #endif
     };
     return T_RUN(argc, argv, cases);

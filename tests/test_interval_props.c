@@ -174,8 +174,21 @@ static iv_affine_t rand_form(t_rng_t *r)
     return f;
 }
 
-static iv_affine_t eval_aff(int op, iv_affine_t a, iv_affine_t b, double d, int n)
+/* method: which linearisation the non-affine operations use (Taylor,
+   Chebyshev, min-range or the default per-range choice), so that every
+   one of them is checked; the public functions use the default. */
+static iv_affine_t eval_aff(int op, iv_affine_t a, iv_affine_t b, double d, int n, int method)
 {
+    switch (op) {
+    case OP_EXP: return iv__aff_unary(a, IV__F_EXP, 0, method);
+    case OP_LOG: return iv__aff_unary(a, IV__F_LOG, 0, method);
+    case OP_SQRT: return iv__aff_unary(a, IV__F_SQRT, 0, method);
+    case OP_RECIP: return iv__aff_unary(a, IV__F_RECIP, -1, method);
+    case OP_ATAN: return iv__aff_unary(a, IV__F_ATAN, 0, method);
+    case OP_POW_N: if (n != 1 && n != 2 && n != 0 && n != -1) return iv__aff_unary(a, IV__F_POWN, n, method); break;
+    default: break;
+    }
+    if (method != IV__LIN_DEFAULT) return eval_aff(op, a, b, d, n, IV__LIN_DEFAULT);
     switch (op) {
     case OP_ADD: return iv_affine_add(a, b);
     case OP_SUB: return iv_affine_sub(a, b);
@@ -223,7 +236,7 @@ static void *affine_worker(void *arg)
         iv_t zi;
         if ((op == OP_LOG || op == OP_SQRT || op == OP_POW) && a.c < 0 && t_rng_u64(&r) % 2) a.c = -a.c;
         if (op == OP_EXP && fabs(a.c) > 700) a.c = fmod(a.c, 700.0);
-        z = eval_aff(op, a, b, d, pn);
+        z = eval_aff(op, a, b, d, pn, (int)(t_rng_u64(&r) % 4));
         zi = iv_from_affine(z);
         for (k = 0; k < 2; k++) {
             q_t et = (q_t)(k == 0 ? (t_rng_u64(&r) % 2 ? 1.0 : -1.0) : t_rng_range(&r, -1, 1));
