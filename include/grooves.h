@@ -2856,10 +2856,6 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
 /* Chords per Bézier piece when looking for self-intersections: the chord
    polygon is within (1/32)^2 / 8 of the piece's control-polygon size. */
 #define GR__SELF_FLATTEN 32
-/* Path ends closer than this fraction of the tile diagonal, after moving
-   them to the same periodic image, join across the seam (no end). */
-#define GR__SEAM_JOIN_REL 1e-12
-
 static int gr__chord_count(const gr__groove_t *rec)
 {
     return rec->kind == GR_PATH_POLYLINE ? rec->pieces : rec->pieces * GR__SELF_FLATTEN;
@@ -3069,14 +3065,11 @@ static void gr__detect_ends(const gr_grid_t *grid, const gr__cand_t *cand, int n
     int i, e, k, e2;
     for (i = 0; i < n; i++) {
         double p[2][2];
-        int joined;
+        /* closed covers a path whose ends meet across the seam of a
+           repeating tile (gr__store_groove): it runs on, no end (§4.1) */
         for (e = 0; e < 2; e++) gr__end_point(grid, cand[i].groove, e, f, p[e]);
-        /* a path whose ends meet across the seam of a repeating tile runs
-           on: no end (§4.1 wrap) */
-        joined = grid->wrap && hypot(p[0][0] - p[1][0], p[0][1] - p[1][1]) <=
-                                   GR__SEAM_JOIN_REL * hypot(grid->domain[2] - grid->domain[0], grid->domain[3] - grid->domain[1]);
         for (e = 0; e < 2; e++)
-            state[2 * i + e] = !grid->grooves_[cand[i].groove].closed && !joined && gr__in_box(box, p[e]);
+            state[2 * i + e] = !grid->grooves_[cand[i].groove].closed && gr__in_box(box, p[e]);
     }
     for (i = 0; i < n; i++)
         for (e = 0; e < 2; e++) {

@@ -456,6 +456,9 @@ typedef struct gro__ctx_t {
     const double *roi;    /* NULL: no restriction */
     double margin;        /* groove half-width times max scale, plus slack */
     double m2, tol, width;
+    int joined;           /* 1: on a repeating texture the path's ends are a
+                             whole number of tiles apart, so it runs on across
+                             the seam: no end caps */
 } gro__ctx_t;
 
 static int gro__near_roi(const gro__ctx_t *c, const double *p0, const double *p1, double dev)
@@ -580,15 +583,15 @@ static void gro__sweep_run(const gro__ctx_t *c, int gi, int inst, const gro__run
             sg->s0 = gro__scale(g, r->t[j]); sg->s1 = gro__scale(g, r->t[j + 1]);
             sg->bmax = bm * fmax(sg->s0, sg->s1);
             sg->groove = gi; sg->inst = inst;
-            sg->open0 = j == 0 && r->t[j] == 0.0;
-            sg->open1 = j + 2 == n && r->t[j + 1] == 1.0;
+            sg->open0 = !c->joined && j == 0 && r->t[j] == 0.0;
+            sg->open1 = !c->joined && j + 2 == n && r->t[j + 1] == 1.0;
         }
     }
     for (j = 0; j < 2; j++) { /* caps at the path's ends (not where the ROI cut the run) */
         uint32_t tri[3 * GRO_MAX_FACETS];
         int m, nc;
         size_t row = j == 0 ? base : base + (size_t)(n - 1) * ns;
-        if (r->t[j == 0 ? 0 : n - 1] != (j == 0 ? 0.0 : 1.0)) continue;
+        if (c->joined || r->t[j == 0 ? 0 : n - 1] != (j == 0 ? 0.0 : 1.0)) continue;
         nc = gro__ear_clip(g->sec, ns, tri);
         for (m = 0; m < nc; m++) {
             uint32_t *t = b->t + 3 * b->nt;
@@ -675,6 +678,15 @@ static int gro_scene_build(gro_scene_t *sc, RTCDevice dev, const gro_groove_t *g
         c.m2 = gro__second_derivative_bound(g);
         c.width = bmax * smax;
         c.tol = o.chord_tol > 0 ? o.chord_tol : 1e-4 * fmax(bmax, wmax) * fmax(smax, 1e-12);
+        if (w) {
+            double e0[2], e1[2], du0, dv0;
+            gro__path_point(g, 0.0, e0);
+            gro__path_point(g, 1.0, e1);
+            du0 = e1[0] - e0[0]; dv0 = e1[1] - e0[1];
+            du0 -= floor(du0 / per[0] + 0.5) * per[0];
+            dv0 -= floor(dv0 / per[1] + 0.5) * per[1];
+            c.joined = hypot(du0, dv0) <= 1e-12 * hypot(per[0], per[1]);
+        }
         nc = gro__corners(g, corners, 64);
         nint = nc + 1;
         for (du = -w; du <= w; du++)
