@@ -2344,14 +2344,21 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             for (j = 0; j < K->np; j++) {
                 const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
                 unsigned ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
-                unsigned w = ka == set[i] ? kb : ka;
+                unsigned w = ka == set[i] ? kb : ka, q;
+                const double *wc;
+                double g, d2;
+                /* a corner already in the set is skipped before its record and
+                   sphere are loaded (cache misses were most of the walk's cost
+                   in the render profile; the set is small) */
+                for (q = 0; q < n && set[q] != w; q++) {}
+                if (q < n) continue;
                 /* removed points lie within r of the removed zone on the faces
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within the face reach of its corner: `walk` bounds both, from
                    the corner's first sphere */
-                const double *wc = o->sph + 3 * (size_t)o->corners[w].sfirst;
-                double g = (double)o->corners[w].walk;
-                double d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
+                wc = o->sph + 3 * (size_t)o->corners[w].sfirst;
+                g = (double)o->corners[w].walk;
+                d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
                 if (d2 <= g * g && re__add_corner(set, &n, w)) grown = 1;
             }
         }
