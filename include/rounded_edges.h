@@ -2050,20 +2050,23 @@ static double re__sphere_entry(const double I[3], const double d[3], const doubl
 }
 
 /* Entry into the side of the finite cylinder of radius r around a -> b;
-   *h gets the axial position of the entry point. */
+   *h gets the axial position of the entry point as a fraction of |b - a|.
+   The axis is left unnormalised (projections divide by |b - a|^2 once):
+   this runs for every candidate capsule of every query, and a square root
+   and three divisions per call showed in the render profile. */
 static double re__cyl_entry(const double I[3], const double d[3], const double a[3], const double b[3],
                             double r, double smin, double *h)
 {
-    double u[3], w[3], dp[3], wp[3], L, du, wu, A, B, C, disc, q, s0, s1, hh;
+    double u[3], w[3], dp[3], wp[3], L2, inv, du, wu, A, B, C, disc, q, s0, s1, hh;
     re__sub(b, a, u);
-    L = re__len(u);
-    if (!(L > 0)) return HUGE_VAL;
-    u[0] /= L, u[1] /= L, u[2] /= L;
+    L2 = re__dot(u, u);
+    if (!(L2 > 0)) return HUGE_VAL;
+    inv = 1 / L2;
     re__sub(I, a, w);
     du = re__dot(d, u);
     wu = re__dot(w, u);
-    re__madd(d, -du, u, dp);
-    re__madd(w, -wu, u, wp);
+    re__madd(d, -du * inv, u, dp);
+    re__madd(w, -wu * inv, u, wp);
     A = re__dot(dp, dp);
     if (!(A > 0)) return HUGE_VAL; /* parallel to the axis: only the spheres matter */
     B = re__dot(dp, wp);
@@ -2078,18 +2081,19 @@ static double re__cyl_entry(const double I[3], const double d[3], const double a
     if (s1 < smin) return HUGE_VAL;
     s0 = re__max(s0, smin);
     hh = wu + s0 * du;
-    if (hh < 0 || hh > L) return HUGE_VAL; /* beyond the span: a sphere cap */
-    *h = hh;
+    if (hh < 0 || hh > L2) return HUGE_VAL; /* beyond the span: a sphere cap */
+    *h = hh * inv;
     return s0;
 }
 
-static double re__dist2_segment(const double p[3], const double a[3], const double b[3])
+/* Squared distance from p to the segment a -> a + ab, with inv_l2 = 1 / |ab|^2
+   (0 for a point): the walk tests many corners against one segment, so the
+   division is hoisted out (it was the hottest instruction of re_query). */
+static double re__dist2_segment(const double p[3], const double a[3], const double ab[3], double inv_l2)
 {
-    double ab[3], ap[3], t, l2, q[3];
-    re__sub(b, a, ab);
+    double ap[3], t, q[3];
     re__sub(p, a, ap);
-    l2 = re__dot(ab, ab);
-    t = l2 > 0 ? re__dot(ap, ab) / l2 : 0;
+    t = re__dot(ap, ab) * inv_l2;
     t = t < 0 ? 0 : t > 1 ? 1 : t;
     re__madd(a, t, ab, q);
     re__sub(p, q, q);
@@ -2158,7 +2162,7 @@ typedef struct re__best_t {
     double smin; /* earliest entry accepted (<= 0): the host's t may be late */
     re_feature_t kind;
     unsigned index;
-    double h; /* axial position for cylinders */
+    double h; /* axial position for cylinders, as a fraction of the axis */
 } re__best_t;
 
 static void re__try_sphere(const re__object_t *o, unsigned s, double r, const double I[3], const double d[3], re__best_t *b)
@@ -2239,8 +2243,7 @@ static void re__feature_normal(const re__object_t *o, const re__best_t *b, const
         const double *a = o->sph + 3 * (size_t)cy->s[0];
         double u[3];
         re__sub(o->sph + 3 * (size_t)cy->s[1], a, u);
-        len = re__len(u);
-        re__madd(a, b->h / len, u, c);
+        re__madd(a, b->h, u, c);
         re__sub(P, c, nrm);
     }
     len = re__len(nrm);
@@ -2293,18 +2296,22 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
             double g = (double)o->det[2 * c], m = (double)o->det[2 * c + 1], u[3], w[3], L2, t, a0, a1, cs;
             unsigned ka, kb;
+            /* across first: distance to the mesh edge's line, from the two
+               face planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1
+               cos) / sin^2. It rejects most of a leaf's edges, and the face
+               planes are shared by many edges (warm in cache) where the end
+               spheres are not: the render profile showed the loop waiting
+               on the sphere loads. */
+            a0 = re__dot(P0->n, I) - P0->c;
+            a1 = re__dot(P1->n, I) - P1->c;
+            cs = re__dot(P0->n, P1->n);
+            if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) continue;
             /* along the axis: within m of the end spheres */
             re__sub(s1, s0, u);
             re__sub(I, s0, w);
             L2 = re__dot(u, u);
             t = re__dot(w, u);
             if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) continue;
-            /* across: distance to the mesh edge's line, from the two face
-               planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1 cos) / sin^2 */
-            a0 = re__dot(P0->n, I) - P0->c;
-            a1 = re__dot(P1->n, I) - P1->c;
-            cs = re__dot(P0->n, P1->n);
-            if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) continue;
             ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
             if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
                 re__add_corner(set, &n, ka);
@@ -2320,7 +2327,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
        adjacency graph (cylinder -> corner) while the ray runs toward corners
        not yet in the set (grazing rays, §3.1) */
     for (iter = 0;; iter++) {
-        double P[3], s;
+        double P[3], IP[3], inv_l2, s;
         int grown = 0;
         best.smin = -RE__HOST_T_SLACK * fabs(t_host);
         re__nearest_feature(o, set, n, I, dir, &best);
@@ -2330,19 +2337,28 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
         /* nothing found yet (the ray runs along the edges, out of reach of
            the set's faces): walk along the whole half-line */
         re__madd(I, s < HUGE_VAL ? s : 0.0, dir, P);
+        re__sub(P, I, IP);
+        inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
         for (i = 0; i < n && n < RE__MAX_WALK; i++) {
             const re__corner_t *K = &o->corners[set[i]];
             for (j = 0; j < K->np; j++) {
                 const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
                 unsigned ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
-                unsigned w = ka == set[i] ? kb : ka;
+                unsigned w = ka == set[i] ? kb : ka, q;
+                const double *wc;
+                double g, d2;
+                /* a corner already in the set is skipped before its record and
+                   sphere are loaded (cache misses were most of the walk's cost
+                   in the render profile; the set is small) */
+                for (q = 0; q < n && set[q] != w; q++) {}
+                if (q < n) continue;
                 /* removed points lie within r of the removed zone on the faces
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within the face reach of its corner: `walk` bounds both, from
                    the corner's first sphere */
-                const double *wc = o->sph + 3 * (size_t)o->corners[w].sfirst;
-                double g = (double)o->corners[w].walk;
-                double d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, P) : re__dist2_halfline(wc, I, dir);
+                wc = o->sph + 3 * (size_t)o->corners[w].sfirst;
+                g = (double)o->corners[w].walk;
+                d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
                 if (d2 <= g * g && re__add_corner(set, &n, w)) grown = 1;
             }
         }

@@ -42,8 +42,10 @@ int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp
    may skip the call. */
 typedef struct rx_flat_t {
     size_t ntris;        /* 0: no polygons (object not fully rounded): never claim flat */
-    unsigned *tri_face;  /* per triangle of the sharp mesh: its face polygon */
-    size_t *first;       /* per face, nfaces + 1 entries: its edges in `lines` */
+    size_t *tri_lines;   /* 2 per triangle of the sharp mesh: its face polygon's edges
+                            are lines[4*tri_lines[2t] .. 4*tri_lines[2t+1]) (one load per
+                            hit instead of triangle -> face -> range: the renderer calls
+                            this on every hit of a rounded object) */
     double *lines;       /* 4 per polygon edge: inward in-plane unit normal m, offset m.a */
 } rx_flat_t;
 
@@ -53,14 +55,15 @@ void rx_flat_free(rx_flat_t *f);
 /* 1 when p (on triangle tri) lies inside its face's flat part by more than `margin`. */
 static inline int rx_flat_inside(const rx_flat_t *f, unsigned tri, ex_v3_t p, double margin)
 {
-    size_t e, face;
+    size_t e, e0, e1;
     if (tri >= f->ntris) return 0;
-    face = f->tri_face[tri];
-    for (e = f->first[face]; e < f->first[face + 1]; e++) {
+    e0 = f->tri_lines[2 * (size_t)tri];
+    e1 = f->tri_lines[2 * (size_t)tri + 1];
+    for (e = e0; e < e1; e++) {
         const double *l = f->lines + 4 * e;
         if (l[0] * p.x + l[1] * p.y + l[2] * p.z < l[3] + margin) return 0;
     }
-    return f->first[face + 1] > f->first[face];
+    return e1 > e0;
 }
 
 #ifdef __cplusplus
@@ -281,14 +284,15 @@ int rx_flat_build(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp,
     if (rx__faces_build(sp, ns, sharp, rx__mesh_size(sharp), &f)) { free(sp); return -1; }
     free(sp);
     ne = f.first[f.n];
-    out->first = (size_t *)malloc(sizeof(size_t) * (f.n + 1));
+    out->tri_lines = (size_t *)malloc(sizeof(size_t) * 2 * (sharp->ntris + 1));
     out->lines = (double *)malloc(sizeof(double) * 4 * (ne + 1));
-    out->tri_face = f.tri_face;
-    f.tri_face = NULL;
-    if (!out->first || !out->lines) { rx__faces_free(&f); rx_flat_free(out); return -1; }
+    if (!out->tri_lines || !out->lines) { rx__faces_free(&f); rx_flat_free(out); return -1; }
+    for (k = 0; k < sharp->ntris; k++) {
+        out->tri_lines[2 * k] = f.first[f.tri_face[k]];
+        out->tri_lines[2 * k + 1] = f.first[f.tri_face[k] + 1];
+    }
     for (g = 0; g < f.n; g++) {
         size_t a0 = f.first[g], cnt = f.first[g + 1] - a0;
-        out->first[g] = a0;
         for (k = 0; k < cnt; k++) {
             ex_v3_t a = f.pts[a0 + k], b = f.pts[a0 + (k + 1) % cnt];
             ex_v3_t m = ex_normalize(ex_cross(f.normal[g], ex_sub(b, a))); /* inward for a CCW polygon */
@@ -296,7 +300,6 @@ int rx_flat_build(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp,
             l[0] = m.x; l[1] = m.y; l[2] = m.z; l[3] = ex_dot(m, a);
         }
     }
-    out->first[f.n] = ne;
     out->ntris = sharp->ntris;
     rx__faces_free(&f);
     return 0;
@@ -304,7 +307,7 @@ int rx_flat_build(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp,
 
 void rx_flat_free(rx_flat_t *f)
 {
-    free(f->tri_face); free(f->first); free(f->lines);
+    free(f->tri_lines); free(f->lines);
     memset(f, 0, sizeof *f);
 }
 
