@@ -4143,6 +4143,21 @@ static int fr__tpoly_mul(const double *a, int da, const double *b, int db, doubl
 {
     int i, k, dc = da + db;
     if (dc > FR_POLY_MAX_DEGREE) return -1;
+    if (da <= 2 && db <= 2) {
+        /* Products of linear and quadratic factors (o + t d, quadrics, the
+           squares inside x^4) are most of a quadric or quartic tape: the
+           operands are read into registers first (so c may alias them) and
+           the sums are the general loop's, unrolled (a third of the
+           ray-polynomial time went to the loop's bounds). */
+        double a0 = a[0], a1 = da >= 1 ? a[1] : 0.0, a2 = da >= 2 ? a[2] : 0.0;
+        double b0 = b[0], b1 = db >= 1 ? b[1] : 0.0, b2 = db >= 2 ? b[2] : 0.0;
+        c[0] = a0 * b0;
+        if (dc >= 1) c[1] = a0 * b1 + a1 * b0;
+        if (dc >= 2) c[2] = (a0 * b2 + a1 * b1) + a2 * b0;
+        if (dc >= 3) c[3] = a1 * b2 + a2 * b1;
+        if (dc >= 4) c[4] = a2 * b2;
+        return dc;
+    }
     for (k = dc; k >= 0; k--) {
         int lo = k - db > 0 ? k - db : 0, hi = k < da ? k : da;
         double sum = 0.0;
@@ -4766,38 +4781,43 @@ static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
     return cnt;
 }
 
-/* g(t) from the CSG tree of fr__csg_mark: each polynomial leaf by Horner's
+/* g at the two ends of a candidate's sign-test bracket, t - ts = s[0] and
+   s[1], from the CSG tree of fr__csg_mark: each polynomial leaf by Horner's
    rule on its Taylor coefficients (a few flops instead of its whole
    subtree, a dozen instructions for a quadric), each CSG node by its point
-   rule. v holds n doubles. */
-static double fr__csg_g(fr__ray_t *R, const fr__trace_mem_t *mem, int cnt, double ts, double t, double *v)
+   rule. Both ends share one pass over the tree (the walk and the loads cost
+   more than the arithmetic). v holds 2n doubles (the grad evaluator's
+   scratch has 4n); g receives the two values. */
+static void fr__csg_g2(fr__ray_t *R, const fr__trace_mem_t *mem, int cnt, const double s[2], double *v, double g[2])
 {
     const fr_tape_t *tp = R->tape;
-    double s = t - ts;
-    int j;
-    R->evals++;
+    int j, e;
+    unsigned int out = tp->outputs[0];
+    R->evals += 2;
     for (j = 0; j < cnt; j++) {
         unsigned int i = mem->list[j];
         const fr_instr_t *in = &tp->code[i];
-        double a, c;
         if (mem->deg[i] >= 0) {
             const double *q = mem->taylor + (size_t)i * FR__TAYLOR_N;
             int k = mem->deg[i];
-            double r = q[k];
-            while (k-- > 0) r = r * s + q[k];
-            v[i] = r;
+            double r0 = q[k], r1 = q[k];
+            while (k-- > 0) { r0 = r0 * s[0] + q[k]; r1 = r1 * s[1] + q[k]; }
+            v[2 * i] = r0; v[2 * i + 1] = r1;
             continue;
         }
-        a = v[in->a]; c = v[in->b];
-        switch ((fr_op_t)in->op) {
-        case FR_OP_NEG: v[i] = -a; break;
-        case FR_OP_MIN: v[i] = a < c ? a : c; break;
-        case FR_OP_MAX: v[i] = a > c ? a : c; break;
-        case FR_OP_RUNI: v[i] = fr__runi(a, c, in->k); break;
-        default: v[i] = fr__rint(a, c, in->k); break; /* RINT: the only other CSG node */
+        for (e = 0; e < 2; e++) {
+            double a = v[2 * in->a + (unsigned int)e], c = v[2 * in->b + (unsigned int)e], r;
+            switch ((fr_op_t)in->op) {
+            case FR_OP_NEG: r = -a; break;
+            case FR_OP_MIN: r = a < c ? a : c; break;
+            case FR_OP_MAX: r = a > c ? a : c; break;
+            case FR_OP_RUNI: r = fr__runi(a, c, in->k); break;
+            default: r = fr__rint(a, c, in->k); break; /* RINT: the only other CSG node */
+            }
+            v[2 * i + (unsigned int)e] = r;
         }
     }
-    return v[tp->outputs[0]];
+    g[0] = v[2 * out]; g[1] = v[2 * out + 1];
 }
 
 /* The paper's analytic method. A polynomial tape: the roots of g. Otherwise
@@ -4845,7 +4865,10 @@ static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, 
     for (k = 0; k < nc; k++) {
         double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
         double lo = tc - dt < R->t0 ? R->t0 : tc - dt, hi = tc + dt > R->t1 ? R->t1 : tc + dt;
-        double glo = fr__csg_g(R, mem, cnt, ts, lo, v), ghi = fr__csg_g(R, mem, cnt, ts, hi, v);
+        double sb[2], gb[2], glo, ghi;
+        sb[0] = lo - ts; sb[1] = hi - ts;
+        fr__csg_g2(R, mem, cnt, sb, v, gb);
+        glo = gb[0]; ghi = gb[1];
         R->iters++;
         if (fr__opposite(glo, ghi) || (tc == R->t0 && glo == 0) ) {
             *found = 1; *t_hit = tc; *t_err = dt;
