@@ -3990,6 +3990,12 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
     direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, m, buf) : -1;
     if (direct >= 0) {
         cnt = direct; /* certified; filtered below */
+    } else if (z == 0 && m == 1 && emax <= FR__DIRECT_EXP) {
+        /* a plane's leaf in analytic CSG: the band below would scale by
+           powers of two and divide, the same correctly rounded quotient
+           (no underflow or overflow within 2^+-FR__DIRECT_EXP) */
+        buf[0] = -d[0] / d[1];
+        cnt = 1;
     } else {
         fr__root_exponent_bounds(ex, m, &Elo, &Ehi); /* every root has 2^Elo < |x| < 2^Ehi */
         W = FR__BAND_BITS / (m > 0 ? m : 1);
