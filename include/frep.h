@@ -4819,8 +4819,8 @@ static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
 /* g at the two ends of a candidate's sign-test bracket, t - ts = s[0] and
    s[1], from the CSG tree of fr__csg_mark: each polynomial leaf by Horner's
    rule on its Taylor coefficients (a few flops instead of its whole
-   subtree, a dozen instructions for a quadric), each CSG node by its point
-   rule. Both ends share one pass over the tree (the walk and the loads cost
+   subtree, a dozen instructions for a quadric), each CSG node by min or
+   max (below). Both ends share one pass over the tree (the walk and the loads cost
    more than the arithmetic). v holds 2n doubles (the grad evaluator's
    scratch has 4n); g receives the two values. */
 static void fr__csg_g2(fr__ray_t *R, const fr__trace_mem_t *mem, int cnt, const double s[2], double *v, double g[2])
@@ -4843,11 +4843,16 @@ static void fr__csg_g2(fr__ray_t *R, const fr__trace_mem_t *mem, int cnt, const 
         for (e = 0; e < 2; e++) {
             double a = v[2 * in->a + (unsigned int)e], c = v[2 * in->b + (unsigned int)e], r;
             switch ((fr_op_t)in->op) {
+            /* Only g's sign is tested, and an R-function (alpha in [0, 1],
+               which the builder enforces) has the sign of max (union) or
+               min (intersection) of its operands: that is what makes it an
+               R-function (Rvachev; paper §2, "Rvachev's R-functions";
+               FR_PRUNE_SIGN relies on it too). So no square root per node
+               (they were the sign tests' cost), and the sign is the exact
+               one where a + b - sqrt(...) would round to 0. */
             case FR_OP_NEG: r = -a; break;
-            case FR_OP_MIN: r = a < c ? a : c; break;
-            case FR_OP_MAX: r = a > c ? a : c; break;
-            case FR_OP_RUNI: r = fr__runi(a, c, in->k); break;
-            default: r = fr__rint(a, c, in->k); break; /* RINT: the only other CSG node */
+            case FR_OP_MIN: case FR_OP_RINT: r = a < c ? a : c; break;
+            default: r = a > c ? a : c; break; /* MAX, RUNI: the only other CSG nodes */
             }
             v[2 * i + (unsigned int)e] = r;
         }
