@@ -4245,14 +4245,17 @@ static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d
             if (da >= 0 && in->k >= 0 && in->k == floor(in->k) && in->k * da <= FR_POLY_MAX_DEGREE) {
                 double base[FR__TAYLOR_N];
                 int n = (int)in->k, db2 = da;
+                if (n >= 2 && (n & (n - 1)) == 0) {
+                    /* x^2, x^4, x^8 (the tangle cube's powers): squarings in
+                       place, no copy of the base and no product with 1 */
+                    dc = fr__tpoly_mul(A, da, A, da, c);
+                    for (n >>= 1; n > 1 && dc >= 0; n >>= 1) dc = fr__tpoly_mul(c, dc, c, dc, c);
+                    break;
+                }
                 for (k = 0; k <= da; k++) base[k] = A[k];
-                int first = 1; /* the first factor is copied, not multiplied into 1 */
                 c[0] = 1.0; dc = 0;
                 while (n > 0 && dc >= 0) { /* binary powering */
-                    if ((n & 1) && first) {
-                        for (k = 0; k <= db2; k++) c[k] = base[k];
-                        dc = db2; first = 0;
-                    } else if (n & 1) dc = fr__tpoly_mul(c, dc, base, db2, c);
+                    if (n & 1) dc = fr__tpoly_mul(c, dc, base, db2, c);
                     n >>= 1;
                     if (n > 0) db2 = fr__tpoly_mul(base, db2, base, db2, base);
                     if (db2 < 0) { dc = -1; break; }
