@@ -4515,6 +4515,15 @@ static void fr__ray_box(const fr__ray_t *R, double a, double b, iv_t box[3])
 /* gamma_m = m u / (1 - m u), Higham's bound for m roundings in a row. */
 static double fr__gamma(double m) { return m * FR__U / (1.0 - m * FR__U); }
 
+/* Taylor shift q(s) -> q(s + mu), degree n, by repeated synthetic division
+   (the order fr__poly_range_of's rounding bound counts). */
+static inline void fr__taylor_shift(double *q, int n, double mu)
+{
+    int i, k;
+    for (i = 0; i < n; i++)
+        for (k = n - 1; k >= i; k--) q[k] += mu * q[k + 1];
+}
+
 /* The enclosure of g over [a, b] from the ray polynomial (a centred form):
    shift the coefficients to the segment's midpoint mu, then g lies in
    q0 +- (sum |q_j| r^j), r the half-width; a Taylor model that converges
@@ -4535,7 +4544,7 @@ static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double
                               double a, double b, double *pad_share)
 {
     double q[FR__TAYLOR_N], sa, sb, mu, amu, r, rad = 0, pad = 0, rj = 1, g;
-    int n = mdeg, i, k;
+    int n = mdeg, k;
     sa = a - R->ts; sb = b - R->ts;
     sa -= 2.0 * FR__U * (fabs(a) + fabs(R->ts));
     sb += 2.0 * FR__U * (fabs(b) + fabs(R->ts));
@@ -4544,8 +4553,8 @@ static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double
     amu = fabs(mu);
     if (n < 0) { *pad_share = 0; return iv_point(0.0); } /* the zero polynomial */
     for (k = 0; k <= n; k++) q[k] = k <= pdeg ? pc[k] : 0.0;
-    for (i = 0; i < n; i++) /* Taylor shift by repeated synthetic division */
-        for (k = n - 1; k >= i; k--) q[k] += mu * q[k + 1];
+    if (n == 4) fr__taylor_shift(q, 4, mu); /* quartics (tangle cube, tori): unrolled by the compiler */
+    else fr__taylor_shift(q, n, mu);
     g = rho + 2.0 * fr__gamma(2.0 * n + 2.0);
     for (k = 1; k <= n; k++) {
         rj *= r;
