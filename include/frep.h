@@ -3990,6 +3990,12 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
     direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, m, buf) : -1;
     if (direct >= 0) {
         cnt = direct; /* certified; filtered below */
+    } else if (z == 0 && m == 1 && emax <= FR__DIRECT_EXP) {
+        /* a plane's leaf in analytic CSG: the band below would scale by
+           powers of two and divide, the same correctly rounded quotient
+           (no underflow or overflow within 2^+-FR__DIRECT_EXP) */
+        buf[0] = -d[0] / d[1];
+        cnt = 1;
     } else {
         fr__root_exponent_bounds(ex, m, &Elo, &Ehi); /* every root has 2^Elo < |x| < 2^Ehi */
         W = FR__BAND_BITS / (m > 0 ? m : 1);
@@ -4143,6 +4149,21 @@ static int fr__tpoly_mul(const double *a, int da, const double *b, int db, doubl
 {
     int i, k, dc = da + db;
     if (dc > FR_POLY_MAX_DEGREE) return -1;
+    if (da <= 2 && db <= 2) {
+        /* Products of linear and quadratic factors (o + t d, quadrics, the
+           squares inside x^4) are most of a quadric or quartic tape: the
+           operands are read into registers first (so c may alias them) and
+           the sums are the general loop's, unrolled (a third of the
+           ray-polynomial time went to the loop's bounds). */
+        double a0 = a[0], a1 = da >= 1 ? a[1] : 0.0, a2 = da >= 2 ? a[2] : 0.0;
+        double b0 = b[0], b1 = db >= 1 ? b[1] : 0.0, b2 = db >= 2 ? b[2] : 0.0;
+        c[0] = a0 * b0;
+        if (dc >= 1) c[1] = a0 * b1 + a1 * b0;
+        if (dc >= 2) c[2] = (a0 * b2 + a1 * b1) + a2 * b0;
+        if (dc >= 3) c[3] = a1 * b2 + a2 * b1;
+        if (dc >= 4) c[4] = a2 * b2;
+        return dc;
+    }
     for (k = dc; k >= 0; k--) {
         int lo = k - db > 0 ? k - db : 0, hi = k < da ? k : da;
         double sum = 0.0;
@@ -4224,6 +4245,13 @@ static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d
             if (da >= 0 && in->k >= 0 && in->k == floor(in->k) && in->k * da <= FR_POLY_MAX_DEGREE) {
                 double base[FR__TAYLOR_N];
                 int n = (int)in->k, db2 = da;
+                if (n >= 2 && (n & (n - 1)) == 0) {
+                    /* x^2, x^4, x^8 (the tangle cube's powers): squarings in
+                       place, no copy of the base and no product with 1 */
+                    dc = fr__tpoly_mul(A, da, A, da, c);
+                    for (n >>= 1; n > 1 && dc >= 0; n >>= 1) dc = fr__tpoly_mul(c, dc, c, dc, c);
+                    break;
+                }
                 for (k = 0; k <= da; k++) base[k] = A[k];
                 c[0] = 1.0; dc = 0;
                 while (n > 0 && dc >= 0) { /* binary powering */
@@ -4288,9 +4316,23 @@ typedef struct fr__ray_t {
     unsigned int max_iters;
 } fr__ray_t;
 
+/* g(t). With the ray polynomial at hand (R->pc: INTERVAL on a polynomial
+   tape) by Horner's rule on its coefficients about ts, a few flops instead
+   of a pass over the tape (the end-point sign tests and the regula falsi of
+   footprint leaves were a sixth of the tangle cube's time). Both are plain
+   floating-point values of the same g; a sign change they show is what
+   ANALYTIC accepts too, and the never-miss guarantee rests on the
+   enclosures, not on these values. */
 static double fr__g(fr__ray_t *R, double t)
 {
     double p[3];
+    if (R->pc) {
+        double s = t - R->ts, r = R->pc[R->pdeg];
+        int k = R->pdeg;
+        while (k-- > 0) r = r * s + R->pc[k];
+        R->evals++;
+        return r;
+    }
     p[0] = R->o[0] + t * R->d[0];
     p[1] = R->o[1] + t * R->d[1];
     p[2] = R->o[2] + t * R->d[2];
@@ -4473,6 +4515,15 @@ static void fr__ray_box(const fr__ray_t *R, double a, double b, iv_t box[3])
 /* gamma_m = m u / (1 - m u), Higham's bound for m roundings in a row. */
 static double fr__gamma(double m) { return m * FR__U / (1.0 - m * FR__U); }
 
+/* Taylor shift q(s) -> q(s + mu), degree n, by repeated synthetic division
+   (the order fr__poly_range_of's rounding bound counts). */
+static inline void fr__taylor_shift(double *q, int n, double mu)
+{
+    int i, k;
+    for (i = 0; i < n; i++)
+        for (k = n - 1; k >= i; k--) q[k] += mu * q[k + 1];
+}
+
 /* The enclosure of g over [a, b] from the ray polynomial (a centred form):
    shift the coefficients to the segment's midpoint mu, then g lies in
    q0 +- (sum |q_j| r^j), r the half-width; a Taylor model that converges
@@ -4492,8 +4543,8 @@ static double fr__gamma(double m) { return m * FR__U / (1.0 - m * FR__U); }
 static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double *pm, int pdeg, int mdeg, double rho,
                               double a, double b, double *pad_share)
 {
-    double q[FR__TAYLOR_N], Q[FR__TAYLOR_N], sa, sb, mu, amu, r, rad = 0, pad = 0, rj = 1, g;
-    int n = mdeg, i, k;
+    double q[FR__TAYLOR_N], sa, sb, mu, amu, r, rad = 0, pad = 0, rj = 1, g;
+    int n = mdeg, k;
     sa = a - R->ts; sb = b - R->ts;
     sa -= 2.0 * FR__U * (fabs(a) + fabs(R->ts));
     sb += 2.0 * FR__U * (fabs(b) + fabs(R->ts));
@@ -4501,15 +4552,26 @@ static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double
     r = (sb - mu > mu - sa ? sb - mu : mu - sa) * (1.0 + 4.0 * FR__U);
     amu = fabs(mu);
     if (n < 0) { *pad_share = 0; return iv_point(0.0); } /* the zero polynomial */
-    for (k = 0; k <= n; k++) { q[k] = k <= pdeg ? pc[k] : 0.0; Q[k] = pm[k]; }
-    for (i = 0; i < n; i++) /* Taylor shift by repeated synthetic division */
-        for (k = n - 1; k >= i; k--) { q[k] += mu * q[k + 1]; Q[k] += amu * Q[k + 1]; }
+    for (k = 0; k <= n; k++) q[k] = k <= pdeg ? pc[k] : 0.0;
+    if (n == 4) fr__taylor_shift(q, 4, mu); /* quartics (tangle cube, tori): unrolled by the compiler */
+    else fr__taylor_shift(q, n, mu);
     g = rho + 2.0 * fr__gamma(2.0 * n + 2.0);
-    for (k = 0; k <= n; k++) {
-        if (k > 0) rad += fabs(q[k]) * rj;
-        pad += Q[k] * rj;
+    for (k = 1; k <= n; k++) {
         rj *= r;
+        rad += fabs(q[k]) * rj;
     }
+    /* sum_j Q_j r^j, Q = pm shifted by |mu|, is pm(|mu| + r) exactly (a
+       shift then an evaluation at r is an evaluation at |mu| + r): one
+       Horner pass of nonnegative terms instead of a second O(n^2) shift
+       (a third of this function's time). Its rounding, relative and below
+       gamma_{2n} with |mu| + r rounded up, is covered by one more factor
+       1 + gamma_{2n+2}. */
+    {
+        double x = (amu + r) * (1.0 + 2.0 * FR__U); /* |mu| + r rounded up */
+        pad = pm[n];
+        for (k = n; k-- > 0;) pad = pad * x + pm[k];
+    }
+    pad *= 1.0 + fr__gamma(2.0 * n + 2.0);
     *pad_share = g * pad / (rad + g * pad + DBL_MIN);
     rad = (rad + g * pad) * (1.0 + fr__gamma(2.0 * n + 2.0)) + 2.0 * FR__U * fabs(q[0]) + DBL_MIN;
     if (!(rad < HUGE_VAL) || q[0] != q[0]) return iv_entire();
@@ -4747,13 +4809,18 @@ static double fr__analytic_expand(const fr__ray_t *R, const fr__trace_mem_t *mem
    shape is not such a tree (some needed node is neither). */
 static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
 {
-    unsigned int i, n = t->n_code;
-    int cnt = 0;
-    for (i = 0; i < n; i++) mem->need[i] = 0;
-    mem->need[t->outputs[0]] = 1;
-    for (i = n; i-- > 0;) {
+    /* one backward pass from the output (operands precede their users),
+       listing needed slots descending, then the list reversed: it runs per
+       ray, and a third pass over the tape was a third of its cost */
+    unsigned int i, out = t->outputs[0];
+    int cnt = 0, j;
+    for (i = 0; i < out; i++) mem->need[i] = 0;
+    mem->need[out] = 1;
+    for (i = out + 1; i-- > 0;) {
         const fr_instr_t *in = &t->code[i];
-        if (!mem->need[i] || mem->deg[i] >= 0) continue;
+        if (!mem->need[i]) continue;
+        mem->list[cnt++] = i;
+        if (mem->deg[i] >= 0) continue;
         switch ((fr_op_t)in->op) {
         case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
             mem->need[in->a] = 1; mem->need[in->b] = 1; break;
@@ -4761,43 +4828,56 @@ static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
         default: return -1;
         }
     }
-    for (i = 0; i < n; i++)
-        if (mem->need[i]) mem->list[cnt++] = i;
+    for (j = 0; j < cnt / 2; j++) {
+        unsigned int x = mem->list[j];
+        mem->list[j] = mem->list[cnt - 1 - j];
+        mem->list[cnt - 1 - j] = x;
+    }
     return cnt;
 }
 
-/* g(t) from the CSG tree of fr__csg_mark: each polynomial leaf by Horner's
+/* g at the two ends of a candidate's sign-test bracket, t - ts = s[0] and
+   s[1], from the CSG tree of fr__csg_mark: each polynomial leaf by Horner's
    rule on its Taylor coefficients (a few flops instead of its whole
-   subtree, a dozen instructions for a quadric), each CSG node by its point
-   rule. v holds n doubles. */
-static double fr__csg_g(fr__ray_t *R, const fr__trace_mem_t *mem, int cnt, double ts, double t, double *v)
+   subtree, a dozen instructions for a quadric), each CSG node by min or
+   max (below). Both ends share one pass over the tree (the walk and the loads cost
+   more than the arithmetic). v holds 2n doubles (the grad evaluator's
+   scratch has 4n); g receives the two values. */
+static void fr__csg_g2(fr__ray_t *R, const fr__trace_mem_t *mem, int cnt, const double s[2], double *v, double g[2])
 {
     const fr_tape_t *tp = R->tape;
-    double s = t - ts;
-    int j;
-    R->evals++;
+    int j, e;
+    unsigned int out = tp->outputs[0];
+    R->evals += 2;
     for (j = 0; j < cnt; j++) {
         unsigned int i = mem->list[j];
         const fr_instr_t *in = &tp->code[i];
-        double a, c;
         if (mem->deg[i] >= 0) {
             const double *q = mem->taylor + (size_t)i * FR__TAYLOR_N;
             int k = mem->deg[i];
-            double r = q[k];
-            while (k-- > 0) r = r * s + q[k];
-            v[i] = r;
+            double r0 = q[k], r1 = q[k];
+            while (k-- > 0) { r0 = r0 * s[0] + q[k]; r1 = r1 * s[1] + q[k]; }
+            v[2 * i] = r0; v[2 * i + 1] = r1;
             continue;
         }
-        a = v[in->a]; c = v[in->b];
-        switch ((fr_op_t)in->op) {
-        case FR_OP_NEG: v[i] = -a; break;
-        case FR_OP_MIN: v[i] = a < c ? a : c; break;
-        case FR_OP_MAX: v[i] = a > c ? a : c; break;
-        case FR_OP_RUNI: v[i] = fr__runi(a, c, in->k); break;
-        default: v[i] = fr__rint(a, c, in->k); break; /* RINT: the only other CSG node */
+        for (e = 0; e < 2; e++) {
+            double a = v[2 * in->a + (unsigned int)e], c = v[2 * in->b + (unsigned int)e], r;
+            switch ((fr_op_t)in->op) {
+            /* Only g's sign is tested, and an R-function (alpha in [0, 1],
+               which the builder enforces) has the sign of max (union) or
+               min (intersection) of its operands: that is what makes it an
+               R-function (Rvachev; paper §2, "Rvachev's R-functions";
+               FR_PRUNE_SIGN relies on it too). So no square root per node
+               (they were the sign tests' cost), and the sign is the exact
+               one where a + b - sqrt(...) would round to 0. */
+            case FR_OP_NEG: r = -a; break;
+            case FR_OP_MIN: case FR_OP_RINT: r = a < c ? a : c; break;
+            default: r = a > c ? a : c; break; /* MAX, RUNI: the only other CSG nodes */
+            }
+            v[2 * i + (unsigned int)e] = r;
         }
     }
-    return v[tp->outputs[0]];
+    g[0] = v[2 * out]; g[1] = v[2 * out + 1];
 }
 
 /* The paper's analytic method. A polynomial tape: the roots of g. Otherwise
@@ -4845,7 +4925,10 @@ static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, 
     for (k = 0; k < nc; k++) {
         double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
         double lo = tc - dt < R->t0 ? R->t0 : tc - dt, hi = tc + dt > R->t1 ? R->t1 : tc + dt;
-        double glo = fr__csg_g(R, mem, cnt, ts, lo, v), ghi = fr__csg_g(R, mem, cnt, ts, hi, v);
+        double sb[2], gb[2], glo, ghi;
+        sb[0] = lo - ts; sb[1] = hi - ts;
+        fr__csg_g2(R, mem, cnt, sb, v, gb);
+        glo = gb[0]; ghi = gb[1];
         R->iters++;
         if (fr__opposite(glo, ghi) || (tc == R->t0 && glo == 0) ) {
             *found = 1; *t_hit = tc; *t_err = dt;
