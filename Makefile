@@ -125,8 +125,9 @@ $(B)/bench/%: bench/%.cpp $(HEADERS) $(wildcard bench/*.h examples/*/*.h) $(EX_C
 # Each benchmark's stdout goes to out/bench/<name>.txt; stderr shows its wall
 # time and the load average at its start. With BENCH set, a plot whose CSV was
 # not written by this run is skipped.
-BENCH_RUN = $(if $(BENCH),$(filter %$(BENCH)%,$(BENCHES)),$(BENCHES))
+BENCH_RUN = $(strip $(if $(BENCH),$(foreach b,$(BENCHES),$(if $(findstring $(BENCH),$(notdir $(b))),$(b))),$(BENCHES)))
 bench: deps-bench
+	@$(if $(BENCH_RUN),,echo "no benchmark matches BENCH=$(BENCH)" >&2; exit 1)
 	@$(MAKE) --no-print-directory $(BENCH_RUN)
 	@mkdir -p out/bench docs/img
 	@set -e; for b in $(BENCH_RUN); do n=$$(basename $$b); \
