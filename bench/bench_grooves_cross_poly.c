@@ -20,7 +20,7 @@
    built once) with n x n stratified primary rays plus one shadow ray each,
    n = 2..32; the reference is that geometry at n = 384. CPU time per
    footprint (process clock, one thread), RMS error over the footprints.
-   The line-sample columns (§5.6) stay empty until line samples exist.
+   Line samples (§5.6) at 2, 4 and 8 segments on the same footprints.
      → out/bench/grooves_cross_error_time.csv */
 #define GR_IMPLEMENTATION
 #include "grooves.h"
@@ -62,7 +62,9 @@ static double xe_geometry(const gro_scene_t *sc, const xe_fp_t *f, const double 
 }
 
 /* The same from gr_query(). */
-static double xe_ours(const gr_grid_t *grid, const xe_fp_t *f, const double *L, void *scratch, size_t bytes)
+/* Radiance of one footprint by gr_query(): the polygon path (lines = 0) or
+   `lines` line samples (§5.6). */
+static double xe_ours(const gr_grid_t *grid, const xe_fp_t *f, const double *L, int lines, void *scratch, size_t bytes)
 {
     gr_query_t q;
     gr_facet_list_t list;
@@ -73,6 +75,7 @@ static double xe_ours(const gr_grid_t *grid, const xe_fp_t *f, const double *L, 
     q.footprint.axis1[0] = f->r; q.footprint.axis2[1] = f->r;
     memcpy(q.footprint.view, f->e, sizeof f->e);
     q.lights = L; q.light_count = 1;
+    q.line_samples = lines;
     if (gr_query(grid, &q, scratch, bytes, &list) != GR_OK) return NAN;
     for (i = 0; i < list.count; i++) {
         const gr_facet_t *e = &list.facets[i];
@@ -95,13 +98,13 @@ static void error_against_time(const char *dir)
     gro_scene_t sc;
     gro_build_t bo;
     xe_fp_t fps[XE_FOOTPRINTS];
-    double ref[XE_FOOTPRINTS], L[3], t0, t_ours, err2, path_err2 = 0;
+    double ref[XE_FOOTPRINTS], L[3], t0, t_ours, err2;
     void *scratch;
     size_t bytes;
     uint64_t seed = 7;
     char path[512];
     FILE *csv;
-    int i, k, npoly = 0;
+    int i, k, m;
     memset(g, 0, sizeof g);
     for (i = 0; i < 4; i++) {
         g[i].points = i == 0 ? a : i == 1 ? b : i == 2 ? c : e2;
@@ -135,21 +138,24 @@ static void error_against_time(const char *dir)
     printf("\nerror against time at intersections (%d footprints, reference: geometry at %d^2 rays)\n",
            XE_FOOTPRINTS, ns[5]);
     printf("%-28s %14s %12s\n", "method", "us/footprint", "rms error");
-    /* polygons: repeat for a stable time */
-    t0 = cpu_now();
-    for (k = 0; k < 20; k++)
-        for (i = 0; i < XE_FOOTPRINTS; i++) (void)xe_ours(grid, &fps[i], L, scratch, bytes);
-    t_ours = (cpu_now() - t0) / (20.0 * XE_FOOTPRINTS) * 1e6;
-    for (i = 0; i < XE_FOOTPRINTS; i++) {
-        double v = xe_ours(grid, &fps[i], L, scratch, bytes);
-        path_err2 += (v - ref[i]) * (v - ref[i]);
-        npoly++;
-    }
-    printf("%-28s %14.1f %12.2e\n", "polygons (gr_query)", t_ours, sqrt(path_err2 / npoly));
-    if (csv) fprintf(csv, "polygons,0,%.2f,%.3e\n", t_ours, sqrt(path_err2 / npoly));
-    for (k = 0; k < 3; k++) { /* §5.6, for the line-sample helper to fill */
-        printf("%-28s %14s %12s\n", k == 0 ? "line samples x2" : k == 1 ? "line samples x4" : "line samples x8", "-", "-");
-        if (csv) fprintf(csv, "line_samples,%d,,\n", 2 << k);
+    /* polygons, then 2, 4 and 8 line samples: repeat for a stable time */
+    for (m = 0; m < 4; m++) {
+        int lines = m == 0 ? 0 : 1 << m;
+        char name[32];
+        err2 = 0;
+        t0 = cpu_now();
+        for (k = 0; k < 20; k++)
+            for (i = 0; i < XE_FOOTPRINTS; i++) (void)xe_ours(grid, &fps[i], L, lines, scratch, bytes);
+        t_ours = (cpu_now() - t0) / (20.0 * XE_FOOTPRINTS) * 1e6;
+        for (i = 0; i < XE_FOOTPRINTS; i++) {
+            double v = xe_ours(grid, &fps[i], L, lines, scratch, bytes);
+            err2 += (v - ref[i]) * (v - ref[i]);
+        }
+        if (lines) snprintf(name, sizeof name, "line samples x%d", lines);
+        else snprintf(name, sizeof name, "polygons (gr_query)");
+        printf("%-28s %14.1f %12.2e\n", name, t_ours, sqrt(err2 / XE_FOOTPRINTS));
+        if (csv) fprintf(csv, "%s,%d,%.2f,%.3e\n", lines ? "line_samples" : "polygons", lines, t_ours,
+                         sqrt(err2 / XE_FOOTPRINTS));
     }
     for (k = 0; k < 5; k++) {
         double t;
