@@ -2602,12 +2602,6 @@ static double gr__pedge_x(const gr__pedge_t *e, double y)
     return e->x0 + t * (e->x1 - e->x0);
 }
 
-static int gr__cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static int gr__cmp_pcross(const void *a, const void *b)
 {
     const gr__pcross_t *x = (const gr__pcross_t *)a, *y = (const gr__pcross_t *)b;
@@ -2618,14 +2612,20 @@ static int gr__cmp_pcross(const void *a, const void *b)
    tens of slab heights at §5's sizes), where insertion sort beats qsort's
    indirect compares several times over; qsort takes the long ones. */
 #define GR__SMALL_SORT 24
+/* Doubles: Shell sort with Ciura's gaps (the last gap, 1, is insertion
+   sort). The slab heights number up to E + E(E-1)/2 for E edges; inlined
+   compares beat qsort's indirect ones at those sizes. */
 static void gr__sort_doubles(double *a, int n)
 {
-    int i, j;
-    if (n > GR__SMALL_SORT) { qsort(a, (size_t)n, sizeof(double), gr__cmp_double); return; }
-    for (i = 1; i < n; i++) {
-        double x = a[i];
-        for (j = i; j > 0 && a[j - 1] > x; j--) a[j] = a[j - 1];
-        a[j] = x;
+    static const int gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
+    int g, i, j;
+    for (g = 0; g < 8; g++) {
+        int h = gaps[g];
+        for (i = h; i < n; i++) {
+            double x = a[i];
+            for (j = i; j >= h && a[j - h] > x; j -= h) a[j] = a[j - h];
+            a[j] = x;
+        }
     }
 }
 static void gr__sort_pcross(gr__pcross_t *a, int n)
@@ -2639,11 +2639,30 @@ static void gr__sort_pcross(gr__pcross_t *a, int n)
     }
 }
 
+/* Edges by their lower end (the sweep's insertion order); insertion sort,
+   as the edge lists are short, with qsort for the long ones. */
+static int gr__cmp_pedge_y0(const void *a, const void *b)
+{
+    const gr__pedge_t *x = (const gr__pedge_t *)a, *y = (const gr__pedge_t *)b;
+    return (x->y0 > y->y0) - (x->y0 < y->y0);
+}
+static void gr__sort_pedges_by_y0(gr__pedge_t *a, int n)
+{
+    int i, j;
+    if (n > GR__SMALL_SORT) { qsort(a, (size_t)n, sizeof *a, gr__cmp_pedge_y0); return; }
+    for (i = 1; i < n; i++) {
+        gr__pedge_t x = a[i];
+        for (j = i; j > 0 && a[j - 1].y0 > x.y0; j--) a[j] = a[j - 1];
+        a[j] = x;
+    }
+}
+
 /* Scratch of gr_poly_boolean for E edges (= points). */
 typedef struct gr__pscratch_t {
     gr__pedge_t *edge;
     double *ys;
     gr__pcross_t *cross, *ia, *ib;
+    int *active; /* edges spanning the current slab (the sweep's active list) */
     unsigned char *parity;
 } gr__pscratch_t;
 
@@ -2658,6 +2677,7 @@ static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
     GR__PCARVE(cross, gr__pcross_t, ne)
     GR__PCARVE(ia, gr__pcross_t, ne)
     GR__PCARVE(ib, gr__pcross_t, ne)
+    GR__PCARVE(active, int, ne)
     GR__PCARVE(parity, unsigned char, ne)
 #undef GR__PCARVE
     return off;
@@ -2720,14 +2740,16 @@ static int gr__pset_edges(const gr_polyset_t *p, int set, int *ring, gr__pedge_t
 }
 
 /* Heights where two edges cross properly (strictly inside both): the slab
-   boundaries besides the vertex heights. */
+   boundaries besides the vertex heights. The edges come sorted by their
+   lower end, so the partners of edge i that share some height with it are
+   the run after it that starts below its top. */
 static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny)
 {
     int i, j;
     for (i = 0; i < ne; i++)
-        for (j = i + 1; j < ne; j++) {
+        for (j = i + 1; j < ne && e[j].y0 < e[i].y1; j++) {
             const gr__pedge_t *p = &e[i], *q = &e[j];
-            double lo = p->y0 > q->y0 ? p->y0 : q->y0, hi = p->y1 < q->y1 ? p->y1 : q->y1;
+            double lo = q->y0, hi = p->y1 < q->y1 ? p->y1 : q->y1;
             double a0, a1, b0, b1, d0, d1;
             if (!(hi > lo)) continue;
             /* signed horizontal gap at both ends of the shared height range */
@@ -2781,7 +2803,7 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
     gr__pscratch_t s;
     gr_result_t r;
     double total = 0;
-    int ne, ny, nys, k, ntrap = 0, over = 0, rings = 0;
+    int ne, ny, nys, k, ntrap = 0, over = 0, rings = 0, next, nact;
     if (area) *area = 0;
     if (trap_count) *trap_count = 0;
     if (!a || !b || !scratch || (traps && trap_cap < 0) || (int)op < 0 || (int)op > 3) return GR_ERR_INVALID_ARG;
@@ -2797,24 +2819,33 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
         s.ys[ny++] = s.edge[k].y0;
         s.ys[ny++] = s.edge[k].y1;
     }
+    gr__sort_pedges_by_y0(s.edge, ne);
     ny = gr__pedge_crossings(s.edge, ne, s.ys, ny);
     gr__sort_doubles(s.ys, ny);
     for (nys = 0, k = 0; k < ny; k++)
         if (nys == 0 || s.ys[k] != s.ys[nys - 1]) s.ys[nys++] = s.ys[k];
-    for (k = 0; k + 1 < nys; k++) {
+    /* the slabs' mid lines rise, so an edge joins the active list once
+       (edges sorted by their lower end) and leaves it for good: each slab
+       visits only the edges that span it, not all of them */
+    for (k = 0, next = 0, nact = 0; k + 1 < nys; k++) {
         double y0 = s.ys[k], y1 = s.ys[k + 1], ym = 0.5 * (y0 + y1);
-        int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, e;
+        int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, e, m, kept;
         gr__pcross_t left;
         left.x = 0;
         left.edge = -1;
         /* two adjacent doubles: the mid line would fall on a vertex height,
            where the strict crossing test loses a pass-through vertex */
         if (!(y0 < ym && ym < y1)) continue;
-        for (e = 0; e < ne; e++)
-            if (s.edge[e].y0 < ym && ym < s.edge[e].y1) {
-                s.cross[nc].x = gr__pedge_x(&s.edge[e], ym);
-                s.cross[nc++].edge = e;
-            }
+        for (m = 0, kept = 0; m < nact; m++)
+            if (s.edge[s.active[m]].y1 > ym) s.active[kept++] = s.active[m];
+        nact = kept;
+        for (; next < ne && s.edge[next].y0 < ym; next++)
+            if (s.edge[next].y1 > ym) s.active[nact++] = next;
+        for (m = 0; m < nact; m++) {
+            e = s.active[m];
+            s.cross[nc].x = gr__pedge_x(&s.edge[e], ym);
+            s.cross[nc++].edge = e;
+        }
         if (nc == 0) continue;
         gr__sort_pcross(s.cross, nc);
         na = gr__pset_intervals(s.cross, nc, s.edge, 0, s.parity, s.ia);
