@@ -2892,17 +2892,20 @@ static int gr__chord_count(const gr__groove_t *rec)
     return rec->kind == GR_PATH_POLYLINE ? rec->pieces : rec->pieces * GR__SELF_FLATTEN;
 }
 
-/* Chord k of a path: end points a, b and their path parameters (§3: arc
-   length for polylines, uniform per Bézier piece). */
+/* Chord k of a path: end points a, b and, when t is not NULL, their path
+   parameters (§3: arc length for polylines, uniform per Bézier piece; a
+   polyline's costs a sum over the chords before k, which the per-query
+   box test does not need). */
 static void gr__chord(const gr_grid_t *grid, const gr__groove_t *rec, int k, double a[2], double b[2], double t[2])
 {
     const double *pts = grid->points_ + 2 * rec->first_point;
     if (rec->kind == GR_PATH_POLYLINE) {
         double acc = 0;
         int j;
-        for (j = 0; j < k; j++) acc += hypot(pts[2 * j + 2] - pts[2 * j], pts[2 * j + 3] - pts[2 * j + 1]);
         a[0] = pts[2 * k]; a[1] = pts[2 * k + 1];
         b[0] = pts[2 * k + 2]; b[1] = pts[2 * k + 3];
+        if (!t) return;
+        for (j = 0; j < k; j++) acc += hypot(pts[2 * j + 2] - pts[2 * j], pts[2 * j + 3] - pts[2 * j + 1]);
         t[0] = acc / rec->length;
         t[1] = (acc + hypot(b[0] - a[0], b[1] - a[1])) / rec->length;
         return;
@@ -2913,12 +2916,15 @@ static void gr__chord(const gr_grid_t *grid, const gr__groove_t *rec, int k, dou
         double d1[2], d2[2], tau0 = (double)i / GR__SELF_FLATTEN, tau1 = (double)(i + 1) / GR__SELF_FLATTEN;
         gr__bezier_eval(pts + 2 * deg * piece, deg, tau0, a, d1, d2);
         gr__bezier_eval(pts + 2 * deg * piece, deg, tau1, b, d1, d2);
-        t[0] = (piece + tau0) / rec->pieces;
-        t[1] = (piece + tau1) / rec->pieces;
+        if (t) {
+            t[0] = (piece + tau0) / rec->pieces;
+            t[1] = (piece + tau1) / rec->pieces;
+        }
     }
 #else
     GR_ASSERT(0); /* the builder rejects curves */
-    a[0] = a[1] = b[0] = b[1] = t[0] = t[1] = 0;
+    a[0] = a[1] = b[0] = b[1] = 0;
+    if (t) t[0] = t[1] = 0;
 #endif
 }
 
@@ -3042,8 +3048,8 @@ static int gr__path_in_box(const gr_grid_t *grid, const gr__groove_t *rec, const
             sb[1] > rec->bbox[3] + rec->half_width || sb[3] < rec->bbox[1] - rec->half_width)
             continue; /* control points bound the path */
         for (k = 0; k < m; k++) {
-            double a[2], b[2], t[2];
-            gr__chord(grid, rec, k, a, b, t);
+            double a[2], b[2];
+            gr__chord(grid, rec, k, a, b, NULL);
             if (gr__seg_box(a, b, sb)) return 1;
         }
     }
