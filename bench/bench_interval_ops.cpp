@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <assert.h>
 #include <stdio.h>
-#include <chrono>
+#include <time.h>
 #include <vector>
 #include <quadmath.h>
 #include <boost/numeric/interval.hpp>
@@ -32,58 +32,57 @@
 #define IV_ERR_OUT_OF_MEMORY F_IV_ERR_OUT_OF_MEMORY
 #define IV_OK F_IV_OK
 #define IV_RESULT_COUNT_ F_IV_RESULT_COUNT_
-#define iv__aff F_iv__aff
-#define IV__LIN_AUTO F_IV__LIN_AUTO
-#define IV__LIN_MINRANGE F_IV__LIN_MINRANGE
-#define IV__LIN_CHEBYSHEV F_IV__LIN_CHEBYSHEV
-#define IV__LIN_TAYLOR F_IV__LIN_TAYLOR
 #define IV__F_ATAN F_IV__F_ATAN
+#define IV__F_EXP F_IV__F_EXP
+#define IV__F_LOG F_IV__F_LOG
 #define IV__F_POWN F_IV__F_POWN
 #define IV__F_RECIP F_IV__F_RECIP
 #define IV__F_SQRT F_IV__F_SQRT
-#define IV__F_LOG F_IV__F_LOG
-#define IV__F_EXP F_IV__F_EXP
-#define iv__aff_unary F_iv__aff_unary
-#define iv__aff_taylor_fn F_iv__aff_taylor_fn
-#define iv__aff_linearise F_iv__aff_linearise
-#define iv__aff_tangent_point F_iv__aff_tangent_point
-#define iv__aff_curvature F_iv__aff_curvature
-#define iv__aff_fn F_iv__aff_fn
+#define IV__LIN_AUTO F_IV__LIN_AUTO
+#define IV__LIN_CHEBYSHEV F_IV__LIN_CHEBYSHEV
+#define IV__LIN_MINRANGE F_IV__LIN_MINRANGE
+#define IV__LIN_TAYLOR F_IV__LIN_TAYLOR
+#define IV__SLOW_ADD F_IV__SLOW_ADD
+#define IV__SLOW_DIV_POS F_IV__SLOW_DIV_POS
+#define IV__SLOW_MUL F_IV__SLOW_MUL
+#define IV__SLOW_MUL_D F_IV__SLOW_MUL_D
+#define IV__SLOW_SQR F_IV__SLOW_SQR
+#define IV__SLOW_SQRT F_IV__SLOW_SQRT
+#define IV__SLOW_SUB F_IV__SLOW_SUB
+#define iv__abs2 F_iv__abs2
+#define iv__abs_max F_iv__abs_max
+#define iv__add1 F_iv__add1
+#define iv__add2 F_iv__add2
+#define iv__aff F_iv__aff
 #define iv__aff_add_iv F_iv__aff_add_iv
+#define iv__aff_curvature F_iv__aff_curvature
 #define iv__aff_domain F_iv__aff_domain
 #define iv__aff_empty F_iv__aff_empty
 #define iv__aff_entire F_iv__aff_entire
 #define iv__aff_finish F_iv__aff_finish
+#define iv__aff_fn F_iv__aff_fn
+#define iv__aff_linearise F_iv__aff_linearise
 #define iv__aff_radius F_iv__aff_radius
 #define iv__aff_rnd F_iv__aff_rnd
+#define iv__aff_tangent_point F_iv__aff_tangent_point
 #define iv__aff_taylor F_iv__aff_taylor
+#define iv__aff_taylor_fn F_iv__aff_taylor_fn
+#define iv__aff_unary F_iv__aff_unary
+#define iv__any_nan F_iv__any_nan
+#define iv__blendv F_iv__blendv
 #define iv__clamp_unit F_iv__clamp_unit
 #define iv__cos_narrow F_iv__cos_narrow
 #define iv__cos_point F_iv__cos_point
 #define iv__dd_mul F_iv__dd_mul
 #define iv__dd_renorm F_iv__dd_renorm
 #define iv__div_pos F_iv__div_pos
+#define iv__div_pos1 F_iv__div_pos1
+#define iv__div_pos2 F_iv__div_pos2
+#define iv__div_slow F_iv__div_slow
 #define iv__div_zero_pos F_iv__div_zero_pos
 #define iv__down F_iv__down
-#define iv__add1 F_iv__add1
-#define iv__add2 F_iv__add2
-#define iv__sub1 F_iv__sub1
-#define iv__sub2 F_iv__sub2
-#define iv__mul1 F_iv__mul1
-#define iv__mul2 F_iv__mul2
-#define iv__mul_d1 F_iv__mul_d1
-#define iv__mul_d2 F_iv__mul_d2
-#define iv__pair_sign F_iv__pair_sign
-#define iv__vec F_iv__vec
-#define iv__sqr2 F_iv__sqr2
-#define iv__sqr1 F_iv__sqr1
-#define iv__mul_slow_pair F_iv__mul_slow_pair
-#define iv__pun_t F_iv__pun_t
-#define iv__flip F_iv__flip
-#define iv__to_pair F_iv__to_pair
-#define iv__from_pair F_iv__from_pair
-#define iv__pair_up F_iv__pair_up
-#define iv__pair_layout_check F_iv__pair_layout_check
+#define iv__down_sum F_iv__down_sum
+#define iv__floor_normal F_iv__floor_normal
 #define iv__hypot_point F_iv__hypot_point
 #define iv__libm_down F_iv__libm_down
 #define iv__libm_hull F_iv__libm_hull
@@ -91,22 +90,43 @@
 #define iv__max F_iv__max
 #define iv__min F_iv__min
 #define iv__mul0 F_iv__mul0
+#define iv__mul1 F_iv__mul1
+#define iv__mul2 F_iv__mul2
+#define iv__mul_d1 F_iv__mul_d1
+#define iv__mul_d2 F_iv__mul_d2
 #define iv__mul_slow F_iv__mul_slow
 #define iv__next_down F_iv__next_down
 #define iv__next_down_bits F_iv__next_down_bits
 #define iv__next_down_fma F_iv__next_down_fma
 #define iv__next_up F_iv__next_up
 #define iv__ordered F_iv__ordered
+#define iv__out F_iv__out
+#define iv__out_exact F_iv__out_exact
+#define iv__out_pair F_iv__out_pair
+#define iv__pair_layout_check F_iv__pair_layout_check
 #define iv__periodic F_iv__periodic
 #define iv__pow_point F_iv__pow_point
 #define iv__pown_bounds F_iv__pown_bounds
 #define iv__pown_mag F_iv__pown_mag
+#define iv__pun_t F_iv__pun_t
+#define iv__q F_iv__q
 #define iv__raw F_iv__raw
 #define iv__scale_down F_iv__scale_down
 #define iv__scale_up F_iv__scale_up
+#define iv__sign_lo F_iv__sign_lo
 #define iv__sin_narrow F_iv__sin_narrow
 #define iv__sin_point F_iv__sin_point
+#define iv__slow2 F_iv__slow2
+#define iv__sqr1 F_iv__sqr1
+#define iv__sqr2 F_iv__sqr2
+#define iv__sqrt1 F_iv__sqrt1
+#define iv__sqrt2 F_iv__sqrt2
+#define iv__sub1 F_iv__sub1
+#define iv__sub2 F_iv__sub2
+#define iv__swap F_iv__swap
+#define iv__unvec F_iv__unvec
 #define iv__up F_iv__up
+#define iv__vec F_iv__vec
 #define iv_abs F_iv_abs
 #define iv_add F_iv_add
 #define iv_add_d F_iv_add_d
@@ -181,58 +201,57 @@
 #undef IV_ERR_OUT_OF_MEMORY
 #undef IV_OK
 #undef IV_RESULT_COUNT_
-#undef iv__aff
-#undef IV__LIN_AUTO
-#undef IV__LIN_MINRANGE
-#undef IV__LIN_CHEBYSHEV
-#undef IV__LIN_TAYLOR
 #undef IV__F_ATAN
+#undef IV__F_EXP
+#undef IV__F_LOG
 #undef IV__F_POWN
 #undef IV__F_RECIP
 #undef IV__F_SQRT
-#undef IV__F_LOG
-#undef IV__F_EXP
-#undef iv__aff_unary
-#undef iv__aff_taylor_fn
-#undef iv__aff_linearise
-#undef iv__aff_tangent_point
-#undef iv__aff_curvature
-#undef iv__aff_fn
+#undef IV__LIN_AUTO
+#undef IV__LIN_CHEBYSHEV
+#undef IV__LIN_MINRANGE
+#undef IV__LIN_TAYLOR
+#undef IV__SLOW_ADD
+#undef IV__SLOW_DIV_POS
+#undef IV__SLOW_MUL
+#undef IV__SLOW_MUL_D
+#undef IV__SLOW_SQR
+#undef IV__SLOW_SQRT
+#undef IV__SLOW_SUB
+#undef iv__abs2
+#undef iv__abs_max
+#undef iv__add1
+#undef iv__add2
+#undef iv__aff
 #undef iv__aff_add_iv
+#undef iv__aff_curvature
 #undef iv__aff_domain
 #undef iv__aff_empty
 #undef iv__aff_entire
 #undef iv__aff_finish
+#undef iv__aff_fn
+#undef iv__aff_linearise
 #undef iv__aff_radius
 #undef iv__aff_rnd
+#undef iv__aff_tangent_point
 #undef iv__aff_taylor
+#undef iv__aff_taylor_fn
+#undef iv__aff_unary
+#undef iv__any_nan
+#undef iv__blendv
 #undef iv__clamp_unit
 #undef iv__cos_narrow
 #undef iv__cos_point
 #undef iv__dd_mul
 #undef iv__dd_renorm
 #undef iv__div_pos
+#undef iv__div_pos1
+#undef iv__div_pos2
+#undef iv__div_slow
 #undef iv__div_zero_pos
 #undef iv__down
-#undef iv__add1
-#undef iv__add2
-#undef iv__sub1
-#undef iv__sub2
-#undef iv__mul1
-#undef iv__mul2
-#undef iv__mul_d1
-#undef iv__mul_d2
-#undef iv__pair_sign
-#undef iv__vec
-#undef iv__sqr2
-#undef iv__sqr1
-#undef iv__mul_slow_pair
-#undef iv__pun_t
-#undef iv__flip
-#undef iv__to_pair
-#undef iv__from_pair
-#undef iv__pair_up
-#undef iv__pair_layout_check
+#undef iv__down_sum
+#undef iv__floor_normal
 #undef iv__hypot_point
 #undef iv__libm_down
 #undef iv__libm_hull
@@ -240,22 +259,43 @@
 #undef iv__max
 #undef iv__min
 #undef iv__mul0
+#undef iv__mul1
+#undef iv__mul2
+#undef iv__mul_d1
+#undef iv__mul_d2
 #undef iv__mul_slow
 #undef iv__next_down
 #undef iv__next_down_bits
 #undef iv__next_down_fma
 #undef iv__next_up
 #undef iv__ordered
+#undef iv__out
+#undef iv__out_exact
+#undef iv__out_pair
+#undef iv__pair_layout_check
 #undef iv__periodic
 #undef iv__pow_point
 #undef iv__pown_bounds
 #undef iv__pown_mag
+#undef iv__pun_t
+#undef iv__q
 #undef iv__raw
 #undef iv__scale_down
 #undef iv__scale_up
+#undef iv__sign_lo
 #undef iv__sin_narrow
 #undef iv__sin_point
+#undef iv__slow2
+#undef iv__sqr1
+#undef iv__sqr2
+#undef iv__sqrt1
+#undef iv__sqrt2
+#undef iv__sub1
+#undef iv__sub2
+#undef iv__swap
+#undef iv__unvec
 #undef iv__up
+#undef iv__vec
 #undef iv_abs
 #undef iv_add
 #undef iv_add_d
@@ -326,9 +366,15 @@
 #undef iv_width
 
 typedef boost::numeric::interval<double> biv_t;
-typedef std::chrono::steady_clock clk;
 
-static double now_ns(void) { return (double)std::chrono::duration_cast<std::chrono::nanoseconds>(clk::now().time_since_epoch()).count(); }
+/* the thread's CPU time: on a shared machine, time spent descheduled does
+   not count (the loops do no I/O, so nothing else is excluded) */
+static double now_ns(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return (double)t.tv_sec * 1e9 + (double)t.tv_nsec;
+}
 
 enum { N = 4096 };
 static double xs[N], ys[N];       /* lower ends */

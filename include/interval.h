@@ -39,14 +39,43 @@
      rounding mode and no compiler contraction can change it. Hence each
      endpoint of + - * / sqrt sqr pow_n is either the correctly rounded
      outward endpoint or one ulp outside it (pow_n uses an error-bounded
-     double-double evaluation, see iv_pow_n). On x86 with FMA (SSE4.1 and
-     __FMA__, e.g. -march=haswell or -march=native) + - * mul_d sqr hold an
-     interval as the pair [-lo, hi] in one SSE register, so both endpoints
-     take the same upward step in one vector operation; the results are
-     identical to the scalar code's (IV_NO_SIMD selects that). The libm
+     double-double evaluation, see iv_pow_n). One exception makes + and -
+     tighter: a sum that rounds below 2^-1022 (or to 0) is exact, since both
+     terms are multiples of 2^-1074 and so is their sum, and every such
+     multiple below 2^-1022 is a double; it is not stepped. The libm
      functions are trusted to IV_LIBM_ULPS ulps and stepped 2*IV_LIBM_ULPS
      doubles outward, which is enough whatever side the libm error falls on
      (docs/interval.md).
+
+   THE PAIR PATH AND ITS STEP
+     On x86 with FMA (SSE4.1 and __FMA__, e.g. -march=haswell or
+     -march=native) + - * / sqrt sqr mul_d hold an interval as one SSE
+     register [lo, hi] and step both ends with one instruction,
+         fma([-phi, +phi], X, v),   phi = 2^-53 + 2^-105,
+     where X is |v| for + - sqrt and |v| raised to at least 2^-1022 for
+     * / sqr (one integer max on the high words). Proof that this is the
+     next double outward, for the upper end (the lower is its mirror
+     image): let v > 0 lie in [2^e, 2^(e+1)) with spacing u = 2^(e-52) and
+     X in [2^e, 2^(e+1)) (X = |v| or the floor). Then phi X lies in
+     (u/2, u (1 + 2^-52)), strictly between half and one and a half
+     spacings, so the single rounding of v + phi X is v + u. For v < 0 the
+     spacing toward zero is u as well, except at v = -2^e (e > -1022),
+     where it is u/2 and phi X = (u/2)(1 + 2^-52) lies in (u/4, 3u/4): the
+     result is v + u/2. For subnormal v (and zero) the spacing is 2^-1074
+     on both sides; with the floor X in [2^-1022, 2^-1021), phi X lies in
+     (2^-1075, 1.5 * 2^-1074), so the result is v + 2^-1074; with X = |v|,
+     phi X is below 2^-1075 and v stays (exact sums and square roots,
+     which are never subnormal: sqrt(2^-1074) = 2^-537). v = +inf stays;
+     v = -inf (the upper end of an overflowed negative result) gives
+     inf - inf = NaN. Products pick their two candidates per end by sign
+     (blendv) in the negated form [-lo, hi] (Lambov 2008), take one max,
+     and fmaddsub steps both ends and negates lane 0 back in the same
+     instruction. Any NaN lane (empty input, 0 * inf, an overflowed end)
+     sends the operation to the scalar code: a branch that is predicted,
+     so not on the dependency chain (add, abs, fma: 8 cycles on Zen 4, the
+     latency bound is derived in docs/interval.md). The pair path gives the
+     scalar code's results exactly (tested); IV_NO_SIMD selects the
+     scalar code.
 
    CONVENTIONS
      See docs/conventions.md: results are iv_result_t codes with IV_OK = 0,
@@ -185,81 +214,101 @@ static inline double iv__mul0(double a, double b)
     return p == p ? p : 0.0;
 }
 
+/* For + and -: a sum (or difference) of two doubles that rounds into the
+   subnormal range, or to 0, is exact: both terms are integer multiples of
+   2^-1074, so the exact sum is one too, and below 2^-1022 every such
+   multiple is a double (gradual underflow; RN is monotone and 2^-1022 is a
+   double, so a rounded sum below it had an exact sum below it). Such an
+   endpoint needs no step; every other one takes the usual one. */
+static inline double iv__down_sum(double s) { return fabs(s) < 2.2250738585072014e-308 ? s : iv__down(s); }
+
 #ifdef IV__PAIR
-/* The pair path. An interval is held as the pair [-lo, hi] (Lambov 2008,
-   "Interval arithmetic using SSE-2"): round-to-nearest is symmetric, so
-   -RN(s) = RN(-s) and the negated lower end needs the same upward step as
-   the upper end; both ends then round together with one vector operation. */
-static inline __m128d iv__pair_sign(void) { return _mm_set_pd(0.0, -0.0); }
-/* [lo, hi] <-> [-lo, hi]. clang folds the flip ending one operation with
-   the one starting the next; gcc 12 does not (one cycle). */
-static inline __m128d iv__flip(__m128d v) { return _mm_xor_pd(v, iv__pair_sign()); }
-/* [lo, hi] as a vector and back, through a union: iv_t is two doubles
-   without padding on every x86 ABI (checked by the array size below). gcc
-   keeps a union in one register, where memcpy or two scalar moves made it
-   go through the stack or shuffle it twice (measured: +40% latency).
-   Reading the other member of a union is defined in C99 and, as a
-   documented extension, by gcc and clang in C++ (the pair path requires a
-   gcc-compatible compiler). */
+/* The pair path: an interval is one SSE register [lo, hi] (lane 0 = lo).
+   Both ends are stepped outward by one fused multiply-add with the factor
+   [-phi, +phi]: fma(Q, X, v) = [v0 - phi X0, v1 + phi X1], where X is
+   |v| (for + - and sqrt, whose subnormal results are exact) or |v| raised
+   to at least 2^-1022 (for * / sqr, whose subnormal results may be
+   rounded): see iv__floor_normal. Products pick their candidates in the
+   form [-lo, hi] (Lambov 2008, "Interval arithmetic using SSE-2"), where
+   one max serves both ends, and fmaddsub steps and un-negates lane 0 in
+   the same instruction. A result lane that is NaN (empty input, 0 * inf,
+   an end that overflowed to the wrong infinity) sends the operation to
+   the scalar code, kept out of line; that test is not on the dependency
+   chain (a predicted branch). Results are identical to the scalar code's
+   (tests: pair_path_matches_scalar). */
+/* [lo, hi] to a vector with _mm_set_pd and back through a union (iv_t is
+   two doubles without padding on every x86 ABI, checked by the array size
+   below; reading the other member of a union is defined in C99 and, as a
+   documented extension, by gcc and clang in C++, and the pair path needs a
+   gcc-compatible compiler). Measured with gcc 12 (clang does well with
+   any form): the union both ways keeps a tape's values in vector loads
+   and stores, but where gcc splits a loop-carried iv_t into two scalars
+   (a field is read after the loop) it writes them as two 8-byte stores and
+   reloads 16 bytes, a failed store-to-load forwarding that made a
+   dependent chain of adds 4.5x slower; _mm_set_pd joins such scalars in a
+   register (one unpcklpd) and still compiles to one 16-byte load from
+   memory. */
 typedef char iv__pair_layout_check[sizeof(iv_t) == sizeof(__m128d) ? 1 : -1];
 typedef union iv__pun_t { __m128d v; iv_t x; } iv__pun_t;
-static inline __m128d iv__vec(iv_t x)
+static inline __m128d iv__vec(iv_t x) { return _mm_set_pd(x.hi, x.lo); }
+static inline iv_t iv__unvec(__m128d v)
 {
     iv__pun_t u;
-    u.x = x;
-    return u.v;
-}
-static inline __m128d iv__to_pair(iv_t x) { return iv__flip(iv__vec(x)); }
-static inline iv_t iv__from_pair(__m128d v)
-{
-    iv__pun_t u;
-    u.v = iv__flip(v);
+    u.v = v;
     return u.x;
 }
-/* The next double above each lane: the mirror image of iv__next_down_fma,
-   max(v + 2^-1074, fma(phi, |v|, v)), exact for every double (the fma is
-   the answer for normal v, v + 2^-1074 for subnormal v and zeros). -inf
-   is clamped to -DBL_MAX before the second term, off the critical path;
-   for v = -inf the fma gives NaN and maxpd returns its second operand; a
-   NaN lane (empty interval) stays NaN, +inf stays +inf. */
-#ifdef IV_FAST
-static inline __m128d iv__pair_up(__m128d v) { return v; }
+static inline __m128d iv__swap(__m128d v) { return _mm_shuffle_pd(v, v, 1); }
+/* xor with this negates lane 0: [lo, hi] <-> [-lo, hi] */
+static inline __m128d iv__sign_lo(void) { return _mm_set_pd(0.0, -0.0); }
+static inline __m128d iv__abs2(__m128d v) { return _mm_andnot_pd(_mm_set1_pd(-0.0), v); }
+static inline int iv__any_nan(__m128d a, __m128d b) { return _mm_movemask_pd(_mm_cmpunord_pd(a, b)); }
+/* blendv on the sign bits of m. gcc with AVX-512VL rewrites it as a
+   compare into a mask register plus a masked permute, 3 cycles longer on
+   the dependency chain (measured on Zen 4); the asm keeps the blend. */
+#if defined(__AVX512VL__) && !defined(__clang__)
+static inline __m128d iv__blendv(__m128d a, __m128d b, __m128d m)
+{
+    __m128d r;
+    __asm__("vblendvpd %3, %2, %1, %0" : "=x"(r) : "x"(a), "x"(b), "x"(m));
+    return r;
+}
 #else
-static inline __m128d iv__pair_up(__m128d v)
-{
-    __m128d a = _mm_add_pd(_mm_max_pd(_mm_set1_pd(-1.7976931348623157e308), v), _mm_set1_pd(IV__ETA));
-    __m128d b = _mm_fmadd_pd(_mm_set1_pd(IV__PHI), _mm_andnot_pd(_mm_set1_pd(-0.0), v), v);
-    return _mm_max_pd(b, a);
-}
+static inline __m128d iv__blendv(__m128d a, __m128d b, __m128d m) { return _mm_blendv_pd(a, b, m); }
 #endif
-IV_DEF iv_t iv__mul_slow(iv_t a, iv_t b);
-/* Kept out of line with vector arguments, so that the rare call does not
-   force the operands of the fast path out of registers. */
-static __attribute__((noinline, unused)) __m128d iv__mul_slow_pair(__m128d a, __m128d b)
+/* m = |v| (sign bits clear) raised to at least 2^-1022 by a signed max on
+   the high 32 bits of each lane (the low 32 bits are kept: the constant
+   there is INT32_MIN). Normal |v| and NaN stay as they are; a subnormal or
+   zero |v| becomes a value in [2^-1022, 2^-1021). */
+static inline __m128d iv__floor_normal(__m128d m)
 {
-    iv__pun_t x, y;
-    x.v = a;
-    y.v = b;
-    return iv__to_pair(iv__mul_slow(x.x, y.x));
+    return _mm_castsi128_pd(_mm_max_epi32(_mm_castpd_si128(m), _mm_set_epi32(0x00100000, INT32_MIN, 0x00100000, INT32_MIN)));
 }
-/* a * b without min/max chains: for a fixed factor x, x*y over
-   [b.lo, b.hi] is smallest at b.lo when x >= 0 and at b.hi otherwise (the
-   reverse for the largest), so each end of a picks its partners from b by
-   its own sign bit (blendv; -0 may pick either, its products are zeros).
-   That leaves two candidates per end, [-a.lo*f, a.lo*g] and the same for
-   a.hi, and one max gives [-lo, hi]. */
-static inline iv_t iv__mul2(iv_t a, iv_t b)
-{
-    __m128d av = iv__vec(a), bv = iv__vec(b), bs = _mm_shuffle_pd(bv, bv, 1);
-    __m128d al = _mm_unpacklo_pd(av, av), ah = _mm_unpackhi_pd(av, av);
-    __m128d p = _mm_mul_pd(_mm_xor_pd(al, iv__pair_sign()), _mm_blendv_pd(bv, bs, al));
-    __m128d q = _mm_mul_pd(_mm_xor_pd(ah, iv__pair_sign()), _mm_blendv_pd(bv, bs, ah));
-    /* Infinite endpoints are fine here (each chosen product is still the
-       extreme over its segment) unless a chosen product is 0 * inf = NaN,
-       which also catches empty (NaN) inputs: one test on both vectors. */
-    p = _mm_movemask_pd(_mm_cmpunord_pd(p, q)) ? iv__mul_slow_pair(av, bv) : iv__pair_up(_mm_max_pd(p, q));
-    return iv__from_pair(p);
-}
+/* The step, exact for every double v (proof in the top comment):
+   lane 0 goes to the next double below, lane 1 to the next above. With X
+   in the binade of |v| (the floor for subnormal v), phi X lies strictly
+   between half and one and a half spacings of the doubles at v on the
+   outward side (a quarter and three quarters at a power of two stepped
+   toward zero), so the single rounding of the fma lands on the neighbour.
+   v = +-inf on the outward side stays; on the inward side it gives NaN
+   (overflow: the caller's scalar path clamps it to +-DBL_MAX). */
+#ifdef IV_FAST
+static inline __m128d iv__out_exact(__m128d v) { return v; }
+static inline __m128d iv__out(__m128d v) { return v; }
+static inline __m128d iv__out_pair(__m128d v, __m128d m) { (void)m; return _mm_xor_pd(v, iv__sign_lo()); }
+#else
+static inline __m128d iv__q(void) { return _mm_set_pd(IV__PHI, -IV__PHI); }
+/* for results whose subnormals are exact (+ - sqrt): X = |v| */
+static inline __m128d iv__out_exact(__m128d v) { return _mm_fmadd_pd(iv__q(), iv__abs2(v), v); }
+/* for any correctly rounded result (* / sqr) */
+static inline __m128d iv__out(__m128d v) { return _mm_fmadd_pd(iv__q(), iv__floor_normal(iv__abs2(v)), v); }
+/* from the pair v = [-lo, hi] (m = |v|) to [lo, hi], both stepped outward:
+   fmaddsub gives [-phi X0 - v0, phi X1 + v1] = [-(v0 + phi X0), v1 + phi X1] */
+static inline __m128d iv__out_pair(__m128d v, __m128d m) { return _mm_fmaddsub_pd(iv__q(), iv__floor_normal(m), v); }
+#endif
+/* The rare cases, out of line with vector arguments, so that the call does
+   not force the fast path's operands out of registers. */
+enum { IV__SLOW_ADD, IV__SLOW_SUB, IV__SLOW_MUL, IV__SLOW_MUL_D, IV__SLOW_SQR, IV__SLOW_DIV_POS, IV__SLOW_SQRT };
+static __attribute__((noinline, unused)) __m128d iv__slow2(int op, __m128d a, __m128d b);
 #endif
 
 /* ------------------------------------------------------------------------ */
@@ -330,34 +379,37 @@ static inline void iv_split(iv_t x, iv_t *left, iv_t *right)
 /* ------------------------------------------------------------------------ */
 
 static inline iv_t iv_neg(iv_t x) { return iv__raw(-x.hi, -x.lo); }
-/* + and -: an empty input (NaN endpoints) propagates through the
-   arithmetic, and valid endpoints never give inf - inf, so no test is
-   needed (keeps these branch-free). */
-/* The upper end is computed negated, -(a.hi + b.hi) = (-a.hi) - b.hi
-   exactly (round-to-nearest is symmetric), so both ends take the same
-   downward step: the compiler then packs them into one vector operation. */
 /* Each operation has a portable scalar form (iv__add1, ...) and, where
    IV__PAIR is on, a pair form (iv__add2, ...) giving identical results;
-   the tests compare the two bit for bit. */
+   the tests compare the two on every class of input. */
+/* + and -: an empty input (NaN endpoints) propagates through the
+   arithmetic, and valid endpoints never give inf - inf, so no test is
+   needed. The upper end is computed negated, -(a.hi + b.hi) = (-a.hi) -
+   b.hi exactly (round-to-nearest is symmetric), so both ends take the same
+   downward step. Sums in the subnormal range are exact (iv__down_sum). */
 static inline iv_t iv__add1(iv_t a, iv_t b)
 {
-    return iv__raw(iv__down(a.lo + b.lo), -iv__down(-a.hi - b.hi));
+    return iv__raw(iv__down_sum(a.lo + b.lo), -iv__down_sum(-a.hi - b.hi));
 }
 static inline iv_t iv__sub1(iv_t a, iv_t b)
 {
-    return iv__raw(iv__down(a.lo - b.hi), -iv__down(b.lo - a.hi));
+    return iv__raw(iv__down_sum(a.lo - b.hi), -iv__down_sum(b.lo - a.hi));
 }
 #ifdef IV__PAIR
-/* [-lo, hi] + [-lo', hi'] = [-(lo + lo'), hi + hi'] in one vector add
-   (-RN(s) = RN(-s)); a - b adds [hi', -lo'], b's lanes swapped. */
+/* [lo, hi] + [lo', hi'] in one vector add, a - b subtracts b's lanes
+   swapped; then one fma steps both ends (iv__out_exact: add, abs, fma is
+   the whole dependency chain). */
 static inline iv_t iv__add2(iv_t a, iv_t b)
 {
-    return iv__from_pair(iv__pair_up(_mm_add_pd(iv__to_pair(a), iv__to_pair(b))));
+    __m128d av = iv__vec(a), bv = iv__vec(b), r = iv__out_exact(_mm_add_pd(av, bv));
+    if (iv__any_nan(r, r)) r = iv__slow2(IV__SLOW_ADD, av, bv);
+    return iv__unvec(r);
 }
 static inline iv_t iv__sub2(iv_t a, iv_t b)
 {
-    __m128d bv = iv__to_pair(b);
-    return iv__from_pair(iv__pair_up(_mm_add_pd(iv__to_pair(a), _mm_shuffle_pd(bv, bv, 1))));
+    __m128d av = iv__vec(a), bv = iv__vec(b), r = iv__out_exact(_mm_sub_pd(av, iv__swap(bv)));
+    if (iv__any_nan(r, r)) r = iv__slow2(IV__SLOW_SUB, av, bv);
+    return iv__unvec(r);
 }
 static inline iv_t iv_add(iv_t a, iv_t b) { return iv__add2(a, b); }
 static inline iv_t iv_sub(iv_t a, iv_t b) { return iv__sub2(a, b); }
@@ -368,11 +420,11 @@ static inline iv_t iv_sub(iv_t a, iv_t b) { return iv__sub1(a, b); }
 /* x + d for a scalar d; empty for NaN or infinite d. */
 static inline iv_t iv_add_d(iv_t x, double d) { return iv_add(x, iv_point(d)); }
 static inline iv_t iv_sub_d(iv_t x, double d) { return iv_add(x, iv_point(-d)); }
-/* Bounded inputs (the common case, one predictable branch) need no 0*inf
-   repair and no empty test: NaN endpoints fail the comparisons. */
 /* Unbounded or empty inputs (out of line, so iv_mul stays small enough to
    be inlined everywhere). */
 IV_DEF iv_t iv__mul_slow(iv_t a, iv_t b);
+/* Bounded inputs (the common case, one predictable branch) need no 0*inf
+   repair and no empty test: NaN endpoints fail the comparisons. */
 static inline iv_t iv__mul1(iv_t a, iv_t b)
 {
     double p1, p2, p3, p4;
@@ -385,6 +437,35 @@ static inline iv_t iv__mul1(iv_t a, iv_t b)
                    iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4))));
 }
 #ifdef IV__PAIR
+/* |max(p, q)|: one instruction with AVX-512DQ/VL (vrangepd, max with the
+   sign cleared), else abs of the max (the compiler shares the max). */
+#if defined(__AVX512DQ__) && defined(__AVX512VL__)
+static inline __m128d iv__abs_max(__m128d p, __m128d q) { return _mm_range_pd(p, q, 9); }
+#else
+static inline __m128d iv__abs_max(__m128d p, __m128d q) { return iv__abs2(_mm_max_pd(p, q)); }
+#endif
+/* a * b without min/max chains: for a fixed factor x, x*y over
+   [b.lo, b.hi] is smallest at b.lo when x >= 0 and at b.hi otherwise (the
+   reverse for the largest), so each end of a picks its partners from b by
+   its own sign bit (blendv; -0 may pick either, its products are zeros).
+   That leaves two candidates per end, p = [-a.lo*f, a.lo*g] and q the same
+   for a.hi, and one max gives [-lo, hi], which iv__out_pair steps and
+   turns into [lo, hi]. Infinite endpoints are fine (each chosen product is
+   still the extreme over its segment) unless a chosen product is
+   0 * inf = NaN, which also marks empty inputs. maxpd returns its second
+   operand when either is NaN, so a NaN in q reaches the result, and the
+   test of p and the result catches every NaN (and the overflows that
+   iv__out_pair turns into NaN); those go to the scalar code. */
+static inline iv_t iv__mul2(iv_t a, iv_t b)
+{
+    __m128d av = iv__vec(a), bv = iv__vec(b), bs = iv__swap(bv), sg = iv__sign_lo();
+    __m128d al = _mm_unpacklo_pd(av, av), ah = _mm_unpackhi_pd(av, av);
+    __m128d p = _mm_mul_pd(_mm_xor_pd(al, sg), iv__blendv(bv, bs, al));
+    __m128d q = _mm_mul_pd(_mm_xor_pd(ah, sg), iv__blendv(bv, bs, ah));
+    __m128d r = iv__out_pair(_mm_max_pd(p, q), iv__abs_max(p, q));
+    if (iv__any_nan(p, r)) r = iv__slow2(IV__SLOW_MUL, av, bv);
+    return iv__unvec(r);
+}
 static inline iv_t iv_mul(iv_t a, iv_t b) { return iv__mul2(a, b); }
 #else
 static inline iv_t iv_mul(iv_t a, iv_t b) { return iv__mul1(a, b); }
@@ -400,16 +481,17 @@ static inline iv_t iv__mul_d1(iv_t x, double d)
     return d >= 0 ? iv__raw(iv__down(p), iv__up(q)) : iv__raw(iv__down(q), iv__up(p));
 }
 #ifdef IV__PAIR
-/* [-lo, hi] = [x.lo, x.hi] * [-d, d], the lanes of x swapped when d's sign
-   bit is set; a 0 * inf lane (NaN) is the exact zero it stands for. */
+/* [x.lo, x.hi] * d, the lanes of x swapped when d's sign bit is set; a
+   0 * inf lane (NaN) or an overflow goes to the scalar code. */
 static inline iv_t iv__mul_d2(iv_t x, double d)
 {
-    __m128d v, xv;
+    __m128d xv, dv, r;
     if (iv_is_empty(x) || !(d - d == 0)) return iv_empty();
     xv = iv__vec(x);
-    v = _mm_mul_pd(_mm_blendv_pd(xv, _mm_shuffle_pd(xv, xv, 1), _mm_set1_pd(d)),
-                   _mm_xor_pd(_mm_set1_pd(d), iv__pair_sign()));
-    return iv__from_pair(iv__pair_up(_mm_and_pd(v, _mm_cmpord_pd(v, v))));
+    dv = _mm_set1_pd(d);
+    r = iv__out(_mm_mul_pd(iv__blendv(xv, iv__swap(xv), dv), dv));
+    if (iv__any_nan(r, r)) r = iv__slow2(IV__SLOW_MUL_D, xv, dv);
+    return iv__unvec(r);
 }
 static inline iv_t iv_mul_d(iv_t x, double d) { return iv__mul_d2(x, d); }
 #else
@@ -425,26 +507,25 @@ static inline iv_t iv__sqr1(iv_t x)
     return iv__raw(iv__max(iv__down(mig * mig), 0.0), iv__up(mag * mag));
 }
 #ifdef IV__PAIR
-/* The same in the pair form: n = [-lo, hi] and its swap give mag =
-   max(-lo, hi) and mig = max(0, -min(-lo, hi)) in both lanes; [mig, mag]
-   times [-mig, mag] is [-mig^2, mag^2], stepped up; the lower end is then
-   kept >= 0 (lane 0 <= -0). maxpd/minpd return their second operand when
-   one is NaN, which is where the NaN of an empty input sits. */
+/* The same on vectors: n = [-lo, hi] and its swap give mag = max(-lo, hi)
+   and mig = max(0, -min(-lo, hi)) in both lanes; [mig, mag]^2 is stepped
+   outward and its lower end kept >= 0. */
 static inline iv_t iv__sqr2(iv_t x)
 {
-    __m128d n = iv__to_pair(x), sw = _mm_shuffle_pd(n, n, 1);
+    __m128d xv = iv__vec(x), n = _mm_xor_pd(xv, iv__sign_lo()), sw = iv__swap(n);
     __m128d mag = _mm_max_pd(n, sw);
     __m128d mig = _mm_max_pd(_mm_setzero_pd(), _mm_xor_pd(_mm_min_pd(n, sw), _mm_set1_pd(-0.0)));
     __m128d m = _mm_blend_pd(mig, mag, 2);
-    __m128d r = iv__pair_up(_mm_mul_pd(iv__flip(m), m));
-    return iv__from_pair(_mm_min_pd(_mm_set_pd(HUGE_VAL, -0.0), r));
+    __m128d r = iv__out(_mm_mul_pd(m, m));
+    if (iv__any_nan(r, r)) return iv__unvec(iv__slow2(IV__SLOW_SQR, xv, xv));
+    return iv__unvec(_mm_max_pd(_mm_set_pd(-HUGE_VAL, 0.0), r));
 }
 static inline iv_t iv_sqr(iv_t x) { return iv__sqr2(x); }
 #else
 static inline iv_t iv_sqr(iv_t x) { return iv__sqr1(x); }
 #endif
 /* a / b for b > 0 strictly (b.hi may be +inf): no 0/0 or inf/inf occurs. */
-static inline iv_t iv__div_pos(iv_t a, iv_t b)
+static inline iv_t iv__div_pos1(iv_t a, iv_t b)
 {
     /* A nonnegative numerator endpoint gives a nonnegative quotient, so a
        lower bound below 0 (from stepping an underflowed or exact 0) is
@@ -453,35 +534,89 @@ static inline iv_t iv__div_pos(iv_t a, iv_t b)
     double hi = a.hi <= 0 ? iv__min(0.0, iv__up(a.hi / b.hi)) : iv__up(a.hi / b.lo);
     return iv__raw(lo, hi);
 }
+#ifdef IV__PAIR
+/* The same with one vector division: each numerator end picks its divisor
+   by its sign bit (-0 may pick either: its quotients are zeros), lane 0
+   divides by the negated divisor so the quotient comes out as the pair
+   [-lo, hi], which steps upward in both lanes; the clamps above are then
+   min(., 0) in both lanes of the pair (masks from a, off the chain). */
+static inline iv_t iv__div_pos2(iv_t a, iv_t b)
+{
+    __m128d av = iv__vec(a), bv = iv__vec(b), sg = iv__sign_lo();
+    __m128d d = iv__blendv(_mm_xor_pd(iv__swap(bv), sg), _mm_xor_pd(bv, sg), av);
+    __m128d w = _mm_div_pd(av, d), r;
+    /* [a.lo >= 0, a.hi <= 0] as all-ones lanes: those ends are clamped */
+    __m128d keep = _mm_cmpge_pd(_mm_xor_pd(av, _mm_set_pd(-0.0, 0.0)), _mm_setzero_pd());
+#ifdef IV_FAST
+    r = w;
+#else
+    r = _mm_fmadd_pd(_mm_set1_pd(IV__PHI), iv__floor_normal(iv__abs2(w)), w);
+#endif
+    if (iv__any_nan(r, r)) return iv__unvec(iv__slow2(IV__SLOW_DIV_POS, av, bv));
+    r = _mm_min_pd(r, _mm_andnot_pd(keep, _mm_set1_pd(HUGE_VAL)));
+    return iv__unvec(_mm_xor_pd(r, sg));
+}
+static inline iv_t iv__div_pos(iv_t a, iv_t b) { return iv__div_pos2(a, b); }
+#else
+static inline iv_t iv__div_pos(iv_t a, iv_t b) { return iv__div_pos1(a, b); }
+#endif
 /* Tightest enclosure of a / b over b's nonzero points. Returns the number of
    pieces written to out[0..1] (sorted, disjoint): 0 when the quotient is
    empty (a empty, b empty or b = [0,0]), 1 normally, 2 when 0 is interior to
    b and not in a, e.g. [1,2]/[-1,1] = [-inf,-1] and [1,inf]. */
 IV_DEF int iv_div_ext(iv_t a, iv_t b, iv_t out[2]);
+/* Divisors holding 0, and empty inputs (out of line). */
+IV_DEF iv_t iv__div_slow(iv_t a, iv_t b);
 /* a / b: the hull of iv_div_ext (entire when 0 is interior to b and a is
-   not [0,0]); empty when b = [0,0]. */
+   not [0,0]); empty when b = [0,0]. A NaN divisor fails both tests; an
+   empty numerator gives NaN quotients, which stay NaN. */
 static inline iv_t iv_div(iv_t a, iv_t b)
 {
-    iv_t piece[2];
-    int n;
-    if (iv_is_empty(a) || iv_is_empty(b)) return iv_empty();
     if (b.lo > 0) return iv__div_pos(a, b);
     if (b.hi < 0) return iv__div_pos(iv_neg(a), iv_neg(b));
-    n = iv_div_ext(a, b, piece);
-    if (n == 0) return iv_empty();
-    return n == 1 ? piece[0] : iv_hull(piece[0], piece[1]);
+    return iv__div_slow(a, b);
 }
 static inline iv_t iv_div_d(iv_t x, double d) { return iv_div(x, iv_point(d)); }
 /* 1 / x (see iv_div for x containing 0). */
 static inline iv_t iv_recip(iv_t x) { return iv_div(iv__raw(1.0, 1.0), x); }
 /* sqrt over x ∩ [0, inf]: iv_sqrt([-1,4]) = [0,2]; empty when x < 0. */
-static inline iv_t iv_sqrt(iv_t x)
+static inline iv_t iv__sqrt1(iv_t x)
 {
     double lo;
     if (iv_is_empty(x) || x.hi < 0) return iv_empty();
     lo = x.lo > 0 ? iv__down(sqrt(x.lo)) : 0.0;
     return iv__raw(iv__max(lo, 0.0), x.hi == 0 ? 0.0 : iv__up(sqrt(x.hi)));
 }
+#ifdef IV__PAIR
+/* One vector sqrt of [max(lo, 0), hi]: a square root is never subnormal
+   (sqrt(2^-1074) = 2^-537) and sqrt(0) = 0 is exact, so the step needs no
+   floor; hi < 0 or NaN gives a NaN lane and the scalar code (empty). */
+static inline iv_t iv__sqrt2(iv_t x)
+{
+    __m128d xv = iv__vec(x), r = iv__out_exact(_mm_sqrt_pd(_mm_max_pd(xv, _mm_set_pd(-HUGE_VAL, 0.0))));
+    if (iv__any_nan(r, r)) r = iv__slow2(IV__SLOW_SQRT, xv, xv);
+    return iv__unvec(r);
+}
+static inline iv_t iv_sqrt(iv_t x) { return iv__sqrt2(x); }
+#else
+static inline iv_t iv_sqrt(iv_t x) { return iv__sqrt1(x); }
+#endif
+#ifdef IV__PAIR
+static __attribute__((noinline, unused)) __m128d iv__slow2(int op, __m128d a, __m128d b)
+{
+    iv_t x = iv__unvec(a), y = iv__unvec(b), r;
+    switch (op) {
+    case IV__SLOW_ADD: r = iv__add1(x, y); break;
+    case IV__SLOW_SUB: r = iv__sub1(x, y); break;
+    case IV__SLOW_MUL: r = iv__mul1(x, y); break;
+    case IV__SLOW_MUL_D: r = iv__mul_d1(x, y.lo); break;
+    case IV__SLOW_SQR: r = iv__sqr1(x); break;
+    case IV__SLOW_DIV_POS: r = iv__div_pos1(x, y); break;
+    default: r = iv__sqrt1(x); break;
+    }
+    return iv__vec(r);
+}
+#endif
 /* |x| (exact). */
 static inline iv_t iv_abs(iv_t x)
 {
@@ -800,6 +935,16 @@ static iv_t iv__div_zero_pos(iv_t a, double h)
     double lo = a.lo >= 0 ? iv__max(0.0, iv__down(a.lo / h)) : -HUGE_VAL;
     double hi = a.hi <= 0 ? iv__min(0.0, iv__up(a.hi / h)) : HUGE_VAL;
     return iv__raw(lo, hi);
+}
+
+IV_DEF iv_t iv__div_slow(iv_t a, iv_t b)
+{
+    iv_t piece[2];
+    int n;
+    if (iv_is_empty(a) || iv_is_empty(b)) return iv_empty();
+    n = iv_div_ext(a, b, piece);
+    if (n == 0) return iv_empty();
+    return n == 1 ? piece[0] : iv_hull(piece[0], piece[1]);
 }
 
 IV_DEF int iv_div_ext(iv_t a, iv_t b, iv_t out[2])

@@ -102,6 +102,9 @@ static void mul_zero_times_unbounded(void)
 
 }
 
+/* equal, or both NaN */
+static int same_double(double a, double b) { return a == b || (a != a && b != b); }
+
 /* Both implementations of the outward step (bit pattern and fused
    multiply-add; the header picks one per target) are exactly nextafter
    toward -inf, on special values and on random doubles and bit patterns. */
@@ -126,23 +129,38 @@ static void outward_step_both_paths(void)
     }
     T_INT_EQ(bad, 0);
 #ifdef IV__PAIR
-    /* the pair step (both lanes upward) against nextafter on the same values */
-    for (i = 0, bad = 0; i < (long)(sizeof special / sizeof special[0]); i++) {
-        double x = special[i], y = -special[(i + 5) % (sizeof special / sizeof special[0])], got[2];
-        double wx = x == HUGE_VAL ? x : x == 0 ? 4.9406564584124654e-324 : nextafter(x, HUGE_VAL);
-        double wy = y == HUGE_VAL ? y : y == 0 ? 4.9406564584124654e-324 : nextafter(y, HUGE_VAL);
-        _mm_storeu_pd(got, iv__pair_up(_mm_set_pd(y, x)));
-        if (got[0] != wx || got[1] != wy) {
-            if (bad++ < 5) T_FAIL("pair step at (%a, %a): (%a, %a) want (%a, %a)", x, y, got[0], got[1], wx, wy);
+    /* the vector steps against nextafter on the same values: iv__out
+       (lane 0 down, lane 1 up), iv__out_exact (the same for normal values;
+       subnormals and zeros stay, as sums there are exact) and iv__out_pair
+       (from [-lo, hi]: both ends outward, lane 0 negated back) */
+    for (i = 0, bad = 0; i < (long)(sizeof special / sizeof special[0]) + n; i++) {
+        double x, y, got[2], gex[2], gpr[2], wx, wy, ex, ey;
+        if (i < (long)(sizeof special / sizeof special[0])) {
+            x = special[i];
+            y = -special[(i + 5) % (sizeof special / sizeof special[0])];
+        } else {
+            x = ig_value(&r);
+            y = ig_value(&r);
+        }
+        wx = x == -HUGE_VAL ? x : x == 0 ? -4.9406564584124654e-324 : nextafter(x, -HUGE_VAL);
+        wy = y == HUGE_VAL ? y : y == 0 ? 4.9406564584124654e-324 : nextafter(y, HUGE_VAL);
+        ex = fabs(x) < DBL_MIN ? x : wx;
+        ey = fabs(y) < DBL_MIN ? y : wy;
+        _mm_storeu_pd(got, iv__out(_mm_set_pd(y, x)));
+        _mm_storeu_pd(gex, iv__out_exact(_mm_set_pd(y, x)));
+        _mm_storeu_pd(gpr, iv__out_pair(_mm_set_pd(y, -x), iv__abs2(_mm_set_pd(y, -x))));
+        /* an inward infinity (overflow) gives NaN, which sends the
+           operation to the scalar code */
+        if (x == HUGE_VAL) wx = ex = NAN;
+        if (y == -HUGE_VAL) wy = ey = NAN;
+        if (!same_double(got[0], wx) || !same_double(got[1], wy) || !same_double(gex[0], ex) ||
+            !same_double(gex[1], ey) || !same_double(gpr[0], wx) || !same_double(gpr[1], wy)) {
+            if (bad++ < 5)
+                T_FAIL("vector step at (%a, %a): out (%a, %a) exact (%a, %a) pair (%a, %a); want (%a, %a) / (%a, %a)", x, y,
+                       got[0], got[1], gex[0], gex[1], gpr[0], gpr[1], wx, wy, ex, ey);
         }
     }
     T_INT_EQ(bad, 0);
-    {
-        double got[2];
-        _mm_storeu_pd(got, iv__pair_up(_mm_set_pd(NAN, -HUGE_VAL)));
-        T_EQ(got[0], -1.7976931348623157e308);
-        T_CHECK(got[1] != got[1]);
-    }
 #endif
     T_CHECK(iv__next_down_bits(NAN) != iv__next_down_bits(NAN));
     T_CHECK(iv__next_down_fma(NAN) != iv__next_down_fma(NAN));
@@ -226,51 +244,9 @@ static void tightness_basic_ops(void)
     fprintf(stderr, "    tightness: %ld cases, worst endpoint %lld ulp outside the correctly rounded one\n", n, worst);
 }
 
-/* The pair path (SSE + FMA, the default where available) and the scalar
-   path give the same intervals, on random inputs of every class and on
-   special ones; the scalar path is what IV_NO_SIMD and other targets use.
-   Without the pair path this checks nothing and says so. */
-static int same_iv(iv_t a, iv_t b)
-{
-    return (a.lo == b.lo || (a.lo != a.lo && b.lo != b.lo)) && (a.hi == b.hi || (a.hi != a.hi && b.hi != b.hi));
-}
-static void pair_path_matches_scalar(void)
-{
-#ifdef IV__PAIR
-    static const double sp[] = {0.0, -0.0, 4.9406564584124654e-324, -1e-310, 2.2250738585072014e-308,
-        -2.2250738585072014e-308, 1.0, -2.0, 0.5, 1.7976931348623157e308, -1.7976931348623157e308, HUGE_VAL, -HUGE_VAL};
-    enum { NS = sizeof sp / sizeof sp[0] };
-    t_rng_t r = {99};
-    long n = t_count(1000000), i, bad = 0;
-    for (i = 0; i < n + NS * NS * NS * NS; i++) {
-        iv_t a, b;
-        double d;
-        if (i < NS * NS * NS * NS) {
-            a = iv_make(sp[i % NS], sp[i / NS % NS]);
-            b = iv_make(sp[i / (NS * NS) % NS], sp[i / (NS * NS * NS)]);
-            if (iv_is_empty(a)) a = iv_empty();
-            if (iv_is_empty(b)) b = iv_empty();
-            d = sp[i % NS];
-        } else {
-            a = ig_interval(&r);
-            b = ig_interval(&r);
-            d = ig_value(&r);
-        }
-        if (!same_iv(iv__add2(a, b), iv__add1(a, b)) || !same_iv(iv__sub2(a, b), iv__sub1(a, b)) ||
-            !same_iv(iv__mul2(a, b), iv__mul1(a, b)) || !same_iv(iv__mul_d2(a, d), iv__mul_d1(a, d)) ||
-            !same_iv(iv__sqr2(a), iv__sqr1(a))) {
-            if (bad++ < 5) T_FAIL("[%a,%a] [%a,%a] d=%a: pair %a %a %a %a %a %a / scalar %a %a %a %a %a %a", a.lo, a.hi, b.lo,
-                                  b.hi, d, iv__mul2(a, b).lo, iv__mul2(a, b).hi, iv__mul_d2(a, d).lo, iv__mul_d2(a, d).hi,
-                                  iv__sqr2(a).lo, iv__sqr2(a).hi, iv__mul1(a, b).lo, iv__mul1(a, b).hi,
-                                  iv__mul_d1(a, d).lo, iv__mul_d1(a, d).hi, iv__sqr1(a).lo, iv__sqr1(a).hi);
-        }
-    }
-    T_INT_EQ(bad, 0);
-    fprintf(stderr, "    pair path: %ld cases identical to the scalar path\n", n + NS * NS * NS * NS);
-#else
-    fprintf(stderr, "    SKIPPED: no pair path in this build (no SSE4.1 + FMA, or IV_NO_SIMD)\n");
-#endif
-}
+/* The pair path and the scalar path give the same intervals
+   (test_interval_gen.h; IV_FAST builds run it too). */
+static void pair_path_matches_scalar(void) { ig_pair_matches_scalar(); }
 
 /* Named edge cases of the outward step in + - * (both paths): each end
    is on the right side of the exact result and at most one double beyond
@@ -285,13 +261,32 @@ static void step_edge_cases(void)
 {
     const double tiny = 4.9406564584124654e-324, minn = 2.2250738585072014e-308, big = 1.7976931348623157e308;
     iv_t z;
-    /* denormals: sums are exact, the step moves one denormal */
+    /* denormals: sums that round below 2^-1022 are exact and not stepped
+       (iv__down_sum); products there are rounded and are stepped */
     z = iv_add(iv_point(tiny), iv_point(tiny));
     check_exact("denormal sum", z, 2 * (q_t)tiny, 2 * (q_t)tiny);
-    T_EQ(z.lo, tiny); T_EQ(z.hi, 3 * tiny);
+    T_EQ(z.lo, 2 * tiny); T_EQ(z.hi, 2 * tiny);
     z = iv_sub(iv_point(minn), iv_point(tiny)); /* the largest denormal */
     check_exact("smallest normal - denormal", z, (q_t)minn - tiny, (q_t)minn - tiny);
-    T_EQ(z.hi, minn);
+    T_EQ(z.lo, minn - tiny); T_EQ(z.hi, minn - tiny);
+    z = iv_add(iv_point(minn - tiny), iv_point(tiny)); /* reaches 2^-1022: normal, stepped */
+    T_EQ(z.lo, minn - tiny); T_EQ(z.hi, minn + tiny);
+    z = iv_add(iv_make(-1e-310, 3e-310), iv_make(1e-310, 2e-310));
+    T_EQ(z.lo, 0); T_EQ(z.hi, 5e-310);
+    z = iv_mul(iv_point(0.5), iv_point(3 * tiny)); /* 1.5 tiny rounds to 2 tiny */
+    check_exact("denormal product", z, 1.5 * (q_t)tiny, 1.5 * (q_t)tiny);
+    T_EQ(z.lo, tiny); T_EQ(z.hi, 3 * tiny);
+    z = iv_div(iv_point(3 * tiny), iv_point(2.0));
+    check_exact("denormal quotient", z, 1.5 * (q_t)tiny, 1.5 * (q_t)tiny);
+    T_EQ(z.lo, tiny); T_EQ(z.hi, 3 * tiny);
+    z = iv_sqrt(iv_point(tiny)); /* never subnormal: a normal step */
+    T_EQ(z.lo, nextafter(sqrt(tiny), 0)); T_EQ(z.hi, nextafter(sqrt(tiny), 1));
+    z = iv_div(iv_make(0, 1), iv_make(1, 2)); /* a nonnegative numerator keeps lo >= 0 */
+    T_EQ(z.lo, 0); T_EQ(z.hi, nextafter(1.0, 2));
+    z = iv_div(iv_make(-1, -0.0), iv_make(1, 2));
+    T_EQ(z.hi, 0); T_EQ(z.lo, nextafter(-1.0, -2));
+    z = iv_div(iv_point(1e-300), iv_point(1e300)); /* underflow to 0: [0, tiny] */
+    T_EQ(z.lo, 0); T_EQ(z.hi, tiny);
     /* the smallest normal: the spacing is 2^-1074 on both sides */
     z = iv_mul(iv_point(minn), iv_point(1.0));
     T_EQ(z.lo, minn - tiny); T_EQ(z.hi, minn + tiny);
@@ -330,8 +325,21 @@ static void step_edge_cases(void)
     check_exact("exact sum", z, 0.75, 0.75);
     z = iv_mul(iv_make(3, 5), iv_make(-7, -2));
     check_exact("exact product", z, -35, -6);
-    z = iv_sub(iv_point(1e300), iv_point(1e300));
-    T_EQ(z.lo, -tiny); T_EQ(z.hi, tiny);
+    z = iv_sub(iv_point(1e300), iv_point(1e300)); /* exact 0: not stepped */
+    T_EQ(z.lo, 0); T_EQ(z.hi, 0);
+    /* overflow in the other operations: the inner end is DBL_MAX */
+    z = iv_sqr(iv_make(1e200, 1e300));
+    T_EQ(z.lo, big); T_EQ(z.hi, HUGE_VAL);
+    z = iv_div(iv_point(1e300), iv_point(1e-300));
+    T_EQ(z.lo, big); T_EQ(z.hi, HUGE_VAL);
+    z = iv_div(iv_point(-1e300), iv_point(1e-300));
+    T_EQ(z.lo, -HUGE_VAL); T_EQ(z.hi, -big);
+    z = iv_div(iv_point(1e300), iv_point(-1e-300));
+    T_EQ(z.lo, -HUGE_VAL); T_EQ(z.hi, -big);
+    z = iv_sqrt(iv_make(4, HUGE_VAL));
+    T_EQ(z.lo, nextafter(2.0, 0)); T_EQ(z.hi, HUGE_VAL);
+    z = iv_mul_d(iv_make(1e300, 2e300), 1e10);
+    T_EQ(z.lo, big); T_EQ(z.hi, HUGE_VAL);
 }
 
 int main(int argc, char **argv)

@@ -4,6 +4,10 @@
    of test_interval_gen.h. Zero violations allowed. */
 #define IV_IMPLEMENTATION
 #include "test_interval_gen.h"
+/* cases per property (test_interval_props_nosimd.c runs fewer) */
+#ifndef IV_PROPS_CASES
+#define IV_PROPS_CASES 10000000
+#endif
 #include <pthread.h>
 
 /* Each property test runs in two threads over disjoint seeds (the tests
@@ -150,7 +154,7 @@ static void *interval_worker(void *arg)
 static void containment_intervals(void)
 {
     job_t t;
-    long n = t_count(10000000), i;
+    long n = t_count(IV_PROPS_CASES), i;
     run_jobs(interval_worker, n, 12345, &t);
     T_INT_EQ(t.bad, 0);
     T_GT(t.checked, n / 2);
@@ -266,7 +270,7 @@ static void *affine_worker(void *arg)
 static void containment_affine(void)
 {
     job_t t;
-    long n = t_count(10000000);
+    long n = t_count(IV_PROPS_CASES);
     run_jobs(affine_worker, n, 777, &t);
     T_INT_EQ(t.bad, 0);
     T_GT(t.checked, n / 2);
