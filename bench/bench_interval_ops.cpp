@@ -24,7 +24,8 @@
 
 /* The same header a second time in IV_FAST mode. Its C-linkage names
    would collide with the first copy, so every public and private name is
-   renamed to F_... for this inclusion (list generated from the header). */
+   renamed to F_... for this inclusion (the list is generated from the
+   header by scripts/interval_fast_names.py). */
 #undef FILIGREE_IV_H
 #undef FILIGREE_IV_IMPLEMENTATION_DONE
 #define IV_FAST
@@ -95,6 +96,7 @@
 #define iv__mul_d1 F_iv__mul_d1
 #define iv__mul_d2 F_iv__mul_d2
 #define iv__mul_slow F_iv__mul_slow
+#define iv__mul_v F_iv__mul_v
 #define iv__next_down F_iv__next_down
 #define iv__next_down_bits F_iv__next_down_bits
 #define iv__next_down_fma F_iv__next_down_fma
@@ -264,6 +266,7 @@
 #undef iv__mul_d1
 #undef iv__mul_d2
 #undef iv__mul_slow
+#undef iv__mul_v
 #undef iv__next_down
 #undef iv__next_down_bits
 #undef iv__next_down_fma

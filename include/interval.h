@@ -261,7 +261,14 @@ static inline __m128d iv__swap(__m128d v) { return _mm_shuffle_pd(v, v, 1); }
 /* xor with this negates lane 0: [lo, hi] <-> [-lo, hi] */
 static inline __m128d iv__sign_lo(void) { return _mm_set_pd(0.0, -0.0); }
 static inline __m128d iv__abs2(__m128d v) { return _mm_andnot_pd(_mm_set1_pd(-0.0), v); }
+/* any NaN lane in a or b; with AVX-512VL a compare into a mask register
+   (no move to an integer register: measured 0.4 cycles less per product
+   in a dependent chain on Zen 4, where the test competes for ports) */
+#if defined(__AVX512VL__)
+static inline int iv__any_nan(__m128d a, __m128d b) { return _mm_cmp_pd_mask(a, b, _CMP_UNORD_Q) != 0; }
+#else
 static inline int iv__any_nan(__m128d a, __m128d b) { return _mm_movemask_pd(_mm_cmpunord_pd(a, b)); }
+#endif
 /* blendv on the sign bits of m. gcc with AVX-512VL rewrites it as a
    compare into a mask register plus a masked permute, 3 cycles longer on
    the dependency chain (measured on Zen 4); the asm keeps the blend. */
@@ -456,13 +463,18 @@ static inline __m128d iv__abs_max(__m128d p, __m128d q) { return iv__abs2(_mm_ma
    operand when either is NaN, so a NaN in q reaches the result, and the
    test of p and the result catches every NaN (and the overflows that
    iv__out_pair turns into NaN); those go to the scalar code. */
+/* The product as a vector, *p one set of candidates (for the NaN test). */
+static inline __m128d iv__mul_v(__m128d av, __m128d bv, __m128d *p)
+{
+    __m128d bs = iv__swap(bv), sg = iv__sign_lo();
+    __m128d al = _mm_unpacklo_pd(av, av), ah = _mm_unpackhi_pd(av, av);
+    __m128d q = _mm_mul_pd(_mm_xor_pd(ah, sg), iv__blendv(bv, bs, ah));
+    *p = _mm_mul_pd(_mm_xor_pd(al, sg), iv__blendv(bv, bs, al));
+    return iv__out_pair(_mm_max_pd(*p, q), iv__abs_max(*p, q));
+}
 static inline iv_t iv__mul2(iv_t a, iv_t b)
 {
-    __m128d av = iv__vec(a), bv = iv__vec(b), bs = iv__swap(bv), sg = iv__sign_lo();
-    __m128d al = _mm_unpacklo_pd(av, av), ah = _mm_unpackhi_pd(av, av);
-    __m128d p = _mm_mul_pd(_mm_xor_pd(al, sg), iv__blendv(bv, bs, al));
-    __m128d q = _mm_mul_pd(_mm_xor_pd(ah, sg), iv__blendv(bv, bs, ah));
-    __m128d r = iv__out_pair(_mm_max_pd(p, q), iv__abs_max(p, q));
+    __m128d av = iv__vec(a), bv = iv__vec(b), p, r = iv__mul_v(av, bv, &p);
     if (iv__any_nan(p, r)) r = iv__slow2(IV__SLOW_MUL, av, bv);
     return iv__unvec(r);
 }
@@ -507,17 +519,17 @@ static inline iv_t iv__sqr1(iv_t x)
     return iv__raw(iv__max(iv__down(mig * mig), 0.0), iv__up(mag * mag));
 }
 #ifdef IV__PAIR
-/* The same on vectors: n = [-lo, hi] and its swap give mag = max(-lo, hi)
-   and mig = max(0, -min(-lo, hi)) in both lanes; [mig, mag]^2 is stepped
-   outward and its lower end kept >= 0. */
+/* The same as the product x * x with its lower end raised to 0: its
+   candidates for the lower end are lo^2, hi^2 and lo*hi, and lo*hi is
+   either between the squares (x on one side of 0) or negative (x straddles
+   0, where the lower end is 0); its upper end is the larger square. Each
+   rounded candidate is stepped as in the scalar code, so the results are
+   the same, and the chain is the product's plus one max (14 cycles on
+   Zen 4, against 19 for the squares of mig and mag). */
 static inline iv_t iv__sqr2(iv_t x)
 {
-    __m128d xv = iv__vec(x), n = _mm_xor_pd(xv, iv__sign_lo()), sw = iv__swap(n);
-    __m128d mag = _mm_max_pd(n, sw);
-    __m128d mig = _mm_max_pd(_mm_setzero_pd(), _mm_xor_pd(_mm_min_pd(n, sw), _mm_set1_pd(-0.0)));
-    __m128d m = _mm_blend_pd(mig, mag, 2);
-    __m128d r = iv__out(_mm_mul_pd(m, m));
-    if (iv__any_nan(r, r)) return iv__unvec(iv__slow2(IV__SLOW_SQR, xv, xv));
+    __m128d xv = iv__vec(x), p, r = iv__mul_v(xv, xv, &p);
+    if (iv__any_nan(p, r)) return iv__unvec(iv__slow2(IV__SLOW_SQR, xv, xv));
     return iv__unvec(_mm_max_pd(_mm_set_pd(-HUGE_VAL, 0.0), r));
 }
 static inline iv_t iv_sqr(iv_t x) { return iv__sqr2(x); }

@@ -113,6 +113,30 @@ static void log_zero_one(void)
     T_EQ(z.lo, 0); T_EQ(z.hi, HUGE_VAL);
 }
 
+/* sqr and even pow_n never go below 0 (issue 3): over random intervals of
+   every input class, subnormal and underflowing squares included, the
+   lower end is >= 0 and at most one double below the correctly rounded
+   square of the smallest magnitude. */
+static void sqr_and_even_pow_n_not_negative(void)
+{
+    static const int ns[] = {2, 4, 6, 10, -2, -4};
+    t_rng_t r = {17};
+    long i, n = t_count(400000), bad = 0;
+    for (i = 0; i < n; i++) {
+        iv_t x = ig_interval(&r), s = iv_sqr(x), p = iv_pow_n(x, ns[i % 6]);
+        q_t mig = x.lo > 0 ? (q_t)x.lo : x.hi < 0 ? -(q_t)x.hi : 0;
+        /* a negative power of [0, 0] is empty (no real value) */
+        int p_ok = p.lo >= 0 || (iv_is_empty(p) && ns[i % 6] < 0 && x.lo == 0 && x.hi == 0);
+        if (!(s.lo >= 0) || !p_ok || gap(s.lo, ig_rd(mig * mig)) > 1) {
+            if (bad++ < 5) T_FAIL("[%a, %a]: sqr [%a, %a], pow_n(%d) [%a, %a]", x.lo, x.hi, s.lo, s.hi, ns[i % 6], p.lo, p.hi);
+        }
+    }
+    T_INT_EQ(bad, 0);
+    T_EQ(iv_sqr(iv_point(1e-200)).lo, 0);
+    T_EQ(iv_sqr(iv_make(-1e-300, 1e-310)).lo, 0);
+    T_EQ(iv_pow_n(iv_point(-1e-200), 4).lo, 0);
+}
+
 static void pow_n_negative_intervals(void)
 {
     iv_t x = iv_make(-3, -2), s = iv_make(-3, 2);
@@ -349,6 +373,7 @@ int main(int argc, char **argv)
         T_CASE(huge_arguments),
         T_CASE(exp_overflows_upper_only),
         T_CASE(log_zero_one),
+        T_CASE(sqr_and_even_pow_n_not_negative),
         T_CASE(pow_n_negative_intervals),
         T_CASE(pow_n_tightness),
         T_CASE(libm_functions_ulp_bound),
