@@ -1605,6 +1605,7 @@ typedef struct gr__scratch_t {
        unscaled section (b, w); the view's projection */
     int *pc;
     double *bs, *ws, *qe;
+    int *visited; /* cell lists the last §4 footprint read (gr__gather) */
 } gr__scratch_t;
 
 static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *s)
@@ -1632,6 +1633,7 @@ static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *
     GR__CARVE(bs, double, np)
     GR__CARVE(ws, double, np)
     GR__CARVE(qe, double, np)
+    GR__CARVE(visited, int, 1)
 #undef GR__CARVE
     return off;
 }
@@ -1873,11 +1875,13 @@ static int gr__append_new(const int *list, int count, unsigned char *seen, int *
 /* Grooves whose paths cross the boundary cells of box (2m + 2(n-2) cells,
    §4.1), plus those anchored inside it (paths wholly inside the box, which
    the boundary cells would miss). Returns the count of unique ids, in the
-   order found; `seen` (one bit per groove) is scratch. */
-static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char *seen, int *ids)
+   order found; `seen` (one bit per groove) is scratch. *visited, when
+   given, receives the number of cell lists read (tests check §4.1's
+   count). */
+static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char *seen, int *ids, int *visited)
 {
     gr__cells_t c = gr__grid_cells(grid);
-    int fu, mu, fv, mv, i, j, n = 0;
+    int fu, mu, fv, mv, i, j, n = 0, nv = 0;
     memset(seen, 0, (size_t)grid->groove_count / 8 + 1);
     gr__cell_range(gr__cell_coord(box[0], c.u0, c.cu), gr__cell_coord(box[2], c.u0, c.cu), c.nu, c.wrap, &fu, &mu);
     gr__cell_range(gr__cell_coord(box[1], c.v0, c.cv), gr__cell_coord(box[3], c.v0, c.cv), c.nv, c.wrap, &fv, &mv);
@@ -1887,6 +1891,7 @@ static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char 
         for (i = 0; i < mu; i += edge_row || mu == 1 ? 1 : mu - 1) {
             int cell = row * c.nu + (fu + i) % c.nu;
             n = gr__append_new(grid->cell_items_ + grid->cell_start_[cell], grid->cell_count_[cell], seen, ids, n);
+            nv++;
             if (!edge_row && mu == 1) break;
         }
     }
@@ -1905,9 +1910,11 @@ static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char 
                 int cell = row * c.nu + i;
                 n = gr__append_new(grid->anchor_items_ + grid->anchor_start_[cell],
                                    grid->anchor_start_[cell + 1] - grid->anchor_start_[cell], seen, ids, n);
+                nv++;
             }
         }
     }
+    if (visited) *visited = nv;
     return n;
 }
 
@@ -2369,7 +2376,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (sv < 0) box[1] += sv; else box[3] += sv;
         }
     }
-    n = gr__gather(grid, box, s->seen, s->ids);
+    n = gr__gather(grid, box, s->seen, s->ids, s->visited);
     radius = sqrt(ext_u * ext_u + ext_v * ext_v);
     /* §4.2: each groove's nearest point, tangent and distance; keep those
        that can reach the footprint */
@@ -3410,7 +3417,7 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
         double du = out->box[k & 1 ? 2 : 0] - f[0], dv = out->box[k & 2 ? 3 : 1] - f[1];
         if (hypot(du, dv) > reach) reach = hypot(du, dv);
     }
-    n = gr__gather(grid, out->box, s.seen, s.ids);
+    n = gr__gather(grid, out->box, s.seen, s.ids, NULL);
     for (k = 0; k < n; k++)
         if (gr__path_in_box(grid, &grid->grooves_[s.ids[k]], out->box) && gr__locate(grid, s.ids[k], f, 2 * reach, &s.cand[m]))
             m++;
@@ -4641,7 +4648,7 @@ static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         double su = floor((c[0] - grid->domain[0]) / wu) * wu, sv = floor((c[1] - grid->domain[1]) / wv) * wv;
         box[0] -= su; box[2] -= su; box[1] -= sv; box[3] -= sv;
     }
-    n = gr__gather(grid, box, s->seen, s->ids);
+    n = gr__gather(grid, box, s->seen, s->ids, NULL);
     for (k = 0; k < n; k++) {
         gr__lg_t g;
         if (!gr__lg_make(grid, s->ids[k], c, reach, &g)) continue;
