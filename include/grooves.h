@@ -2157,24 +2157,52 @@ static double gr__bend_drift(double kappa, double dkds, double b, double run)
     return (kappa > 0 ? 1 : -1) * r2 / (rho + sqrt(rho * rho - r2));
 }
 
-/* The merged points projected along direction dir (above the surface):
-   q_i = dw x_i - db w_i, (db, dw) its grazing-scaled (dir . B_ref, dir_w)
-   (§4.2's signed tan θ' times dw). With the ray profile each groove point
-   is taken where the ray along dir that reaches it meets the groove
-   (gr__ray_point, gr__bend_drift), the rays entering the mouth across
-   the footprint, so masking and shadowing see the depth change and the
-   bend per direction; ground points stay. (A light's rays toward the seen
-   facets enter the mouth farther along the path than the footprint; that
-   shift is not taken: re-anchoring the light's profile at its mean entry
-   was tried and did not lower the lit errors on a tight bend.) */
-static void gr__project(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int np, const double *dir,
-                        double db, double dw, double *q)
+/* Candidate c re-anchored an arc length ds along its path: parameter,
+   scale and, on a Bézier path, the frame there. Its offset d is kept: a
+   light's sweep compares points of one footprint with each other, so only
+   their relative positions matter. */
+static void gr__cand_shift(const gr_grid_t *grid, const gr__cand_t *c, double ds, gr__cand_t *out)
 {
-    int i;
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    double param = gr__param_at(c, ds);
+    *out = *c;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    out->param = param;
+    if (rec->perturb) out->f = gr__perturb(rec, param);
+#ifndef GR_NO_CURVES
+    if (c->kappa != 0 || c->dkds != 0) {
+        int deg = gr__degree(rec->kind), k = (int)(param * rec->pieces);
+        const double *a;
+        double b[2], d1[2], d2[2];
+        if (k >= rec->pieces) k = rec->pieces - 1;
+        a = grid->points_ + 2 * (rec->first_point + k * deg);
+        gr__bezier_eval(a, deg, param * rec->pieces - k, b, d1, d2);
+        if (d1[0] * d1[0] + d1[1] * d1[1] > 0) gr__bezier_frame(a, deg, rec->pieces, b, d1, d2, out);
+    }
+#else
+    (void)grid;
+#endif
+}
+
+/* The merged points projected along direction dir (above the surface):
+   q_i = dw x_i - db w_i, (db, dw) its (dir . B_ref, dir_w) scaled by
+   inv_m (gr__grazing_scale; §4.2's signed tan θ' times dw). With the ray
+   profile each groove point is taken where the ray along dir that reaches
+   it meets the groove (gr__ray_point, gr__bend_drift), the rays entering
+   the mouth an arc length `anchor` along the path from the footprint: 0
+   for the view; for a light, where its rays toward the seen facets enter
+   (gr__light_anchor), the groove then taken in its own frame there (on a
+   bend the light sees it turned). Ground points stay. */
+static void gr__project(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int np, const double *dir,
+                        double db, double dw, double inv_m, double anchor, double *q)
+{
+    gr__cand_t cs;
+    int i, last = -1;
+    double dbi = db;
     for (i = 0; i < np; i++) {
         const gr__cand_t *c;
         double tau, fh, run, x, w;
-        if (!qs->ray_profile || s->pc[i] < 0 || s->ws[i] == 0) {
+        if (!qs->ray_profile || s->pc[i] < 0 || (s->ws[i] == 0 && anchor == 0)) {
             q[i] = dw * s->x[i] - db * s->w[i];
             continue;
         }
@@ -2183,12 +2211,55 @@ static void gr__project(const gr_grid_t *grid, const gr__qset_t *qs, const gr__s
             q[i] = dw * s->x[i] - db * s->w[i];
             continue;
         }
+        if (anchor != 0) {
+            if (s->pc[i] != last) {
+                gr__cand_shift(grid, c, anchor, &cs);
+                /* the direction across the groove there, in the same scale */
+                dbi = c->sigma * (-dir[0] * cs.t[1] + dir[1] * cs.t[0]) * inv_m;
+            }
+            last = s->pc[i];
+            c = &cs;
+        } else
+            dbi = db;
         tau = (dir[0] * c->t[0] + dir[1] * c->t[1]) / dir[2];
         run = gr__ray_point(&grid->grooves_[c->groove], c, s->bs[i], s->ws[i], tau, &fh);
         x = c->sigma * (fh * s->bs[i] - c->d + gr__bend_drift(c->kappa, c->dkds, fh * s->bs[i], run));
         w = fh * s->ws[i];
-        q[i] = dw * x - db * w;
+        q[i] = dw * x - dbi * w;
     }
+}
+
+/* Where the rays of light l toward the seen facets enter the mouth, as an
+   arc length along the path from the footprint: the view ray runs run_E
+   to a facet's seen middle, the light ray from there up runs back run_L,
+   so it entered at run_E - run_L. Weighted by the facets' seen lengths
+   (one anchor per light and footprint); 0 without the ray profile or
+   where nothing curved or perturbed is seen. */
+static double gr__light_anchor(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int nf,
+                               const double *e, const double *l)
+{
+    double sum = 0, wsum = 0;
+    int i;
+    if (!qs->ray_profile) return 0;
+    for (i = 0; i < nf; i++) {
+        const gr__cand_t *c;
+        const gr__groove_t *rec;
+        double de, mid, bs, ws, fh, len;
+        if (s->pc[i] < 0 || s->pc[i] != s->pc[i + 1] || !(s->vb[i] > s->va[i])) continue;
+        c = &s->cand[s->pc[i]];
+        rec = &grid->grooves_[c->groove];
+        if (c->kappa == 0 && c->dkds == 0 && !rec->perturb) continue;
+        de = s->qe[i + 1] - s->qe[i];
+        mid = de != 0 ? (0.5 * (s->va[i] + s->vb[i]) - s->qe[i]) / de : 0.5;
+        mid = mid < 0 ? 0 : mid > 1 ? 1 : mid;
+        bs = s->bs[i] + mid * (s->bs[i + 1] - s->bs[i]);
+        ws = s->ws[i] + mid * (s->ws[i + 1] - s->ws[i]);
+        len = s->vb[i] - s->va[i];
+        sum += len * (gr__ray_point(rec, c, bs, ws, (e[0] * c->t[0] + e[1] * c->t[1]) / e[2], &fh) -
+                      gr__ray_point(rec, c, bs, ws, (l[0] * c->t[0] + l[1] * c->t[1]) / l[2], &fh));
+        wsum += len;
+    }
+    return wsum > 0 ? sum / wsum : 0;
 }
 
 #ifndef GR_NO_CURVES
@@ -2508,7 +2579,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     eb = e[0] * bref[0] + e[1] * bref[1];
     ew = e[2];
     gr__grazing_scale(&eb, &ew);
-    gr__project(grid, qs, s, np, e, eb, ew, s->qe);
+    gr__project(grid, qs, s, np, e, eb, ew, 1, 0, s->qe);
     gr__sweep(s->qe, np, eb > 0, s->lo, s->hi);    /* masking, eq. 4 */
     sq0 = -half * ew;
     sq1 = half * ew;
@@ -2528,13 +2599,13 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
        intersected with the visible part in the facet's own parameter */
     for (k = 0; k < nl; k++) {
         const double *l = qs->lights + 3 * k;
-        double lb = l[0] * bref[0] + l[1] * bref[1], lw = l[2];
+        double lb = l[0] * bref[0] + l[1] * bref[1], lw = l[2], inv_m = 1 / (fabs(lb) > lw ? fabs(lb) : lw);
         if (!(l[2] > 0)) { /* at or below the horizon */
             for (i = 0; i < nf; i++) s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0;
             continue;
         }
         gr__grazing_scale(&lb, &lw);
-        gr__project(grid, qs, s, np, l, lb, lw, s->q);
+        gr__project(grid, qs, s, np, l, lb, lw, inv_m, gr__light_anchor(grid, qs, s, nf, e, l), s->q);
         gr__sweep(s->q, np, lb > 0, s->lo, s->hi);
         for (i = 0; i < nf; i++) {
             double de, sa, sb, la, lbb, dl, ov, v;
