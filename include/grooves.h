@@ -837,6 +837,9 @@ extern "C" {
    is used): both only guard the local model past its range. */
 #define GR__STRETCH_MIN 0.25
 #define GR__RAY_SECANT_MIN 0.5
+/* gr__ray_point takes its second secant step only when the first moved
+   the scale by more than this fraction of f. */
+#define GR__RAY_SECOND_STEP 1e-3
 #define GR__PI 3.14159265358979323846
 /* Intervals shorter than this fraction of an elliptical footprint's radius
    integrate its semicircle density by the midpoint rule (relative error
@@ -2107,7 +2110,8 @@ static double gr__param_at(const gr__cand_t *c, double ds)
    reaching depth w has run w tau along the path, where the section is
    scaled by f(s + w tau), w = fh ws: fh solves h(x) = f(s + x ws tau) - x
    = 0, by two secant steps from x = f (two calls of the perturbation; the
-   first step is exact for a linear f). The run is kept within one path
+   first step is exact for a linear f, the second is skipped when the first
+   barely moved f). The run is kept within one path
    length (grazing directions); steps that would leave [0, perturb_max]
    stop at the last good estimate. */
 static double gr__ray_point(const gr__groove_t *rec, const gr__cand_t *c, double bs, double ws, double tau, double *fh)
@@ -2124,7 +2128,9 @@ static double gr__ray_point(const gr__groove_t *rec, const gr__cand_t *c, double
             double den = 1 - h0 / d0 * ws * tau, x1 = den >= GR__RAY_SECANT_MIN ? f / den : fb;
             if (x1 > rec->fmax) x1 = rec->fmax;
             *fh = x1;
-            if (x1 != f && fabs(x1 * ws * tau) <= lim) {
+            /* the second step only where the first moved f noticeably
+               (its own error is second order in that move) */
+            if (fabs(x1 - f) > GR__RAY_SECOND_STEP * f && fabs(x1 * ws * tau) <= lim) {
                 double h1 = gr__perturb(rec, gr__param_at(c, x1 * ws * tau * a)) - x1, x2;
                 x2 = h1 != h0 ? x1 - h1 * (x1 - f) / (h1 - h0) : x1;
                 if (x2 >= 0 && x2 <= rec->fmax) *fh = x2;
@@ -2285,8 +2291,9 @@ static double gr__turn_to(const gr_grid_t *grid, const gr__groove_t *rec, double
 /* The normal where the view ray really meets a visible facet (i, of
    candidate c). The ray reaches the facet's visible part at its middle,
    the point (bs, ws) of the unscaled section, after running `run` along
-   T (gr__ray_point), i.e. run / (1 - kappa f b) along the path. There a
-   curved path has turned (the path's own tangent there; at most
+   T (gr__ray_point), i.e. run / (1 - kappa f b) along the path (reached
+   through d param / ds and its slope). There a curved path has turned (the
+   path's own tangent there; at most
    GR__TURN_MAX), and the perturbation has its own slope (a central
    difference across the footprint's extent along T): on a tight bend, or
    a perturbation that changes within the ray's way through the groove,
@@ -2309,14 +2316,9 @@ static void gr__hit_normal(const gr_grid_t *grid, const gr__scratch_t *s, const 
     alpha = gr__stretch(c, fh * bs);
     phi = 0;
     dtds = c->dtds;
-    th = c->param + run * dtds / alpha;
+    th = gr__param_at(c, run / alpha);
 #ifndef GR_NO_CURVES
-    if (c->kappa != 0) {
-        /* the parameter there by the trapezoid rule in d param / ds */
-        gr__turn_to(grid, rec, th, c->t, &dtds);
-        th = c->param + run * 0.5 * (c->dtds + dtds) / alpha;
-        phi = gr__turn_to(grid, rec, th, c->t, &dtds);
-    }
+    if (c->kappa != 0) phi = gr__turn_to(grid, rec, th, c->t, &dtds);
 #endif
     if (phi > GR__TURN_MAX) phi = GR__TURN_MAX;
     if (phi < -GR__TURN_MAX) phi = -GR__TURN_MAX;

@@ -692,7 +692,7 @@ static void perturbed_normals_follow_the_slope(void)
    U-section 0.06 wide, seen 50° from the normal looking along the path.
    grooves.h turns each facet's normal to where the ray meets it
    (gr__hit_normal, the path's own tangent there); the oracle's mean hit
-   normal per facet must agree within 5e-3 rad (measured 1.6e-3), where the
+   normal per facet must agree within 5e-3 rad (measured 6e-4), where the
    normal at the footprint centre is off by up to 0.087 rad. */
 static void curved_normals_where_the_ray_meets(void)
 {
@@ -803,7 +803,7 @@ static void tight_bend_occlusion(void)
    a circle of its curvature and slope, which on this bend's changing
    curvature overshoots the true sagitta by ~5e-4), and the listed normal
    of every facet seen over a fifth of the footprint within
-   BEND_NORMAL_TOL of the oracle's mean hit normal (measured 0.014 rad;
+   BEND_NORMAL_TOL of the oracle's mean hit normal (measured 0.012 rad;
    §4.4's normal at P is off by 0.38 rad, asserted above 0.05). */
 static void bend_with_steep_perturbation(void)
 {
