@@ -2190,6 +2190,43 @@ static void gr__cand_shift(const gr_grid_t *grid, const gr__cand_t *c, double ds
 #endif
 }
 
+#ifndef GR_NO_CURVES
+/* The mouth coordinate B . (M - P) (candidate c's frame at P) of the ray
+   along dir that reaches the section point (bs, ws) of a Bézier groove,
+   refined on the path itself: the local model (scale fh, run) puts the hit
+   at arc run / (1 - kappa f b) from P; there the true point H = P(s) +
+   f(s) (bs B(s) + ws W) has its mouth point M = H - (f(s) ws / dir_w)
+   dir_uv, whose offset v = T . (M - P) along the path is the model's
+   residual; the ray entering on P's cross line (v = 0) enters at
+   B . (M - P) - v tan(turn) (one Newton step along the groove, which runs
+   at that turn there). Exact where the model is, second order in its
+   residual elsewhere (the bend's changing curvature). */
+static double gr__mouth_on_path(const gr_grid_t *grid, const gr__cand_t *c, double bs, double ws, const double *dir,
+                                double fh, double run)
+{
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    int deg = gr__degree(rec->kind), k;
+    double param = gr__param_at(c, run / gr__stretch(c, fh * bs)), b[2], d1[2], d2[2], sp, th[2], f, w, m[2], u, v, ct;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    k = (int)(param * rec->pieces);
+    if (k >= rec->pieces) k = rec->pieces - 1;
+    gr__bezier_eval(grid->points_ + 2 * (rec->first_point + k * deg), deg, param * rec->pieces - k, b, d1, d2);
+    sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]);
+    if (!(sp > 0)) return fh * bs + gr__bend_drift(c->kappa, c->dkds, fh * bs, run) - fh * ws * (dir[0] * -c->t[1] + dir[1] * c->t[0]) / dir[2];
+    th[0] = d1[0] / sp;
+    th[1] = d1[1] / sp;
+    f = rec->perturb ? gr__perturb(rec, param) : c->f;
+    w = f * ws;
+    m[0] = b[0] - f * bs * th[1] - w * dir[0] / dir[2] - c->p[0];
+    m[1] = b[1] + f * bs * th[0] - w * dir[1] / dir[2] - c->p[1];
+    u = -c->t[1] * m[0] + c->t[0] * m[1];
+    v = c->t[0] * m[0] + c->t[1] * m[1];
+    ct = c->t[0] * th[0] + c->t[1] * th[1];
+    if (ct < GR__STRETCH_MIN) ct = GR__STRETCH_MIN;
+    return u - v * (-c->t[1] * th[0] + c->t[0] * th[1]) / ct;
+}
+#endif
+
 /* The merged points projected along direction dir (above the surface):
    q_i = dw x_i - db w_i, (db, dw) its (dir . B_ref, dir_w) scaled by
    inv_m (gr__grazing_scale; §4.2's signed tan θ' times dw). With the ray
@@ -2229,6 +2266,12 @@ static void gr__project(const gr_grid_t *grid, const gr__qset_t *qs, const gr__s
             dbi = db;
         tau = (dir[0] * c->t[0] + dir[1] * c->t[1]) / dir[2];
         run = gr__ray_point(&grid->grooves_[c->groove], c, s->bs[i], s->ws[i], tau, &fh);
+#ifndef GR_NO_CURVES
+        if (c->kappa != 0 || c->dkds != 0) { /* on the path itself: q = dw times the mouth coordinate */
+            q[i] = dw * c->sigma * (gr__mouth_on_path(grid, c, s->bs[i], s->ws[i], dir, fh, run) - c->d);
+            continue;
+        }
+#endif
         x = c->sigma * (fh * s->bs[i] - c->d + gr__bend_drift(c->kappa, c->dkds, fh * s->bs[i], run));
         w = fh * s->ws[i];
         q[i] = dw * x - dbi * w;
