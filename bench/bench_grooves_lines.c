@@ -26,12 +26,41 @@
 
 #define NG 7
 #define NFP 300
-#define NREF 64
+#define NREF 256
 #define SLOTS (2 * NG * GRO_SLOTS + 1)
 
 static const double VSEC[6] = {-0.01, 0, 0, -0.02, 0.01, 0};
 
 static double cpu(void) { return (double)clock() / CLOCKS_PER_SEC; }
+
+/* the rows of the error-against-time table: line samples (0 = polygons
+   through gr_query) or supersampled geometry (rays per side) */
+typedef struct method_t { const char *name; int lines, rays; } method_t;
+static const method_t methods[] = {
+    {"polygons (gr_query)", 0, 0}, {"1 line sample", 1, 0},   {"2 line samples", 2, 0}, {"4 line samples", 4, 0},
+    {"8 line samples", 8, 0},      {"16 line samples", 16, 0}, {"32 line samples", 32, 0}, {"geometry 4x4", 0, 4},
+    {"geometry 8x8", 0, 8},        {"geometry 16x16", 0, 16},  {"geometry 32x32", 0, 32},
+};
+#define NMETHODS (int)(sizeof methods / sizeof methods[0])
+static double us[NMETHODS], mean_err[NMETHODS];
+
+/* Geometry's time at a given error: log-log interpolation between its
+   rows (error falls as rays grow), extrapolated along the end slopes. */
+static double geometry_at(double err, int *extrap)
+{
+    int m, first = -1, last = -1;
+    for (m = 0; m < NMETHODS; m++)
+        if (methods[m].rays) { if (first < 0) first = m; last = m; }
+    *extrap = err < mean_err[last] || err > mean_err[first];
+    for (m = first; m < last; m++) {
+        double e0 = log(mean_err[m]), e1 = log(mean_err[m + 1]), f;
+        if (m + 1 < last && err < mean_err[m + 1]) continue;
+        if (m > first && err > mean_err[m]) continue;
+        f = (log(err) - e0) / (e1 - e0);
+        return exp(log(us[m]) + f * (log(us[m + 1]) - log(us[m])));
+    }
+    return us[first];
+}
 
 static unsigned long long rng_s = 88172645463325252ull;
 static double urand(void)
@@ -104,8 +133,6 @@ int main(int argc, char **argv)
     size_t need;
     void *scratch;
     int i, k, m;
-    static const char *names[8] = {"polygons (gr_query)", "1 line sample", "2 line samples", "4 line samples",
-                                   "8 line samples", "geometry 4x4", "geometry 8x8", "geometry 16x16"};
     memset(g, 0, sizeof g);
     for (i = 0; i < 2 * NG; i++) {
         double c = 0.2 + 0.6 * (i % NG) / (NG - 1);
@@ -134,38 +161,49 @@ int main(int argc, char **argv)
         q->footprint.view[0] = s * cos(ph); q->footprint.view[1] = s * sin(ph); q->footprint.view[2] = ew;
         q->lights = light; q->light_count = 1;
         geometry(&sc, q, NREF, ref[i]);
+        if (i % 50 == 49) fprintf(stderr, "bench_grooves_lines: reference %d/%d\r", i + 1, NFP);
     }
+    fprintf(stderr, "\n");
     snprintf(path, sizeof path, "%s/grooves_lines.csv", dir);
     csv = fopen(path, "w");
     if (!csv) { fprintf(stderr, "bench_grooves_lines: cannot write %s\n", path); return 1; }
-    fprintf(csv, "method,us_per_footprint,mean_tv_error\n");
-    printf("%-20s %14s %12s\n", "method", "us/footprint", "mean error");
-    for (m = 0; m < 8; m++) {
-        double t0, t, err = 0;
-        int rep, reps = m >= 5 ? 1 : 3;
+    fprintf(csv, "method,us_per_footprint,mean_tv_error,geometry_us_at_equal_error\n");
+    for (m = 0; m < NMETHODS; m++) {
+        double t0, err = 0;
+        int rep, reps = methods[m].rays ? 1 : 3;
         t0 = cpu();
         for (rep = 0; rep < reps; rep++)
             for (i = 0; i < NFP; i++) {
                 gr_facet_list_t l;
                 gr_query_t q = qs[i];
-                if (m == 0) gr_query(grid, &q, scratch, need, &l);
-                else if (m <= 4) {
-                    q.line_samples = m == 1 ? 1 : 1 << (m - 1);
-                    gr_query_lines(grid, &q, scratch, need, &l, NULL);
-                } else {
-                    geometry(&sc, &q, 4 << (m - 5), share);
+                if (methods[m].rays) {
+                    geometry(&sc, &q, methods[m].rays, share);
                     if (rep == 0) err += tv(share, ref[i]) / NFP;
                     continue;
+                }
+                if (methods[m].lines == 0) gr_query(grid, &q, scratch, need, &l);
+                else {
+                    q.line_samples = methods[m].lines;
+                    gr_query_lines(grid, &q, scratch, need, &l, NULL);
                 }
                 if (rep == 0) {
                     list_share(&l, grid, share);
                     err += tv(share, ref[i]) / NFP;
                 }
             }
-        t = (cpu() - t0) / (reps * NFP) * 1e6;
-        printf("%-20s %14.1f %12.4f\n", names[m], t, err);
-        fprintf(csv, "%s,%.2f,%.5f\n", names[m], t, err);
+        us[m] = (cpu() - t0) / (reps * NFP) * 1e6;
+        mean_err[m] = err;
     }
+    printf("%-20s %12s %11s %18s %12s\n", "method", "us/footprint", "mean error", "geometry us at", "vs polygons");
+    printf("%-20s %12s %11s %18s %12s\n", "", "", "", "equal error (ratio)", "(speed-up)");
+    for (m = 0; m < NMETHODS; m++) {
+        int extrap = 0;
+        double g = methods[m].rays ? us[m] : geometry_at(mean_err[m], &extrap);
+        printf("%-20s %12.1f %11.4f %11.1f%s (%4.1fx) %9.2fx\n", methods[m].name, us[m], mean_err[m], g,
+               extrap ? "*" : " ", g / us[m], us[0] / us[m]);
+        fprintf(csv, "%s,%.2f,%.5f,%.2f\n", methods[m].name, us[m], mean_err[m], g);
+    }
+    printf("(* extrapolated beyond the finest geometry row along its last slope; reference %dx%d rays)\n", NREF, NREF);
     { /* §5.6's cache on a scanline of neighbouring footprints (pixel steps
          of 0.001 across the floor at v = 0.4 + a little, E fixed) */
         gr_line_cache_t cache;

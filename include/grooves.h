@@ -613,8 +613,11 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 #ifndef GR_LINE_MAX_BREAKS
 #  define GR_LINE_MAX_BREAKS 1024
 #endif
+#ifndef GR_LINE_MAX_EDGES /* edge lines kept per scene; beyond, found per segment (slower, same answer) */
+#  define GR_LINE_MAX_EDGES 2048
+#endif
 /* Most line samples per footprint (gr_query_t.line_samples). */
-#define GR_LINE_MAX_SAMPLES 8
+#define GR_LINE_MAX_SAMPLES 32
 /* gr_facet_list_t.flags: line samples dropped grooves or breakpoints. */
 #define GR_LIST_LINE_APPROX 32u
 
@@ -4127,12 +4130,18 @@ typedef struct gr__ivl_t {
 
 typedef struct gr__xing_t { double t; int plane; } gr__xing_t;
 
+/* An edge line of the scene: points q + λ D, λ in [l0, l1] (where it lies
+   on the facets it bounds), between planes p1 and p2 (both -1 for a
+   section point's line). */
+typedef struct gr__edge_t { double q[3], D[3], l0, l1; int p1, p2; } gr__edge_t;
+
 typedef struct gr__lscratch_t {
     gr__lg_t *lg;
     gr__plane_t *pl;
     gr__xing_t *xs;
     gr__brk_t *brk;
     gr__ivl_t *iv, *iv2;      /* intervals; iv2: after the shadow split */
+    gr__edge_t *ed;           /* the scene's edges, found once per scene */
     double *acc;              /* per plane: ratio, then lit per light */
 } gr__lscratch_t;
 
@@ -4152,6 +4161,7 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
     GR__LCARVE(brk, gr__brk_t, GR_LINE_MAX_BREAKS)
     GR__LCARVE(iv, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
     GR__LCARVE(iv2, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
+    GR__LCARVE(ed, gr__edge_t, GR_LINE_MAX_EDGES)
     GR__LCARVE(acc, double, 2 * GR__LINE_MAX_PLANES * (1 + GR_MAX_LIGHTS))
 #undef GR__LCARVE
     return off;
@@ -4161,8 +4171,9 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
 typedef struct gr__lscene_t {
     const gr_grid_t *grid;
     gr__lscratch_t ls;
-    int nlg, npl;
+    int nlg, npl, ned;         /* ned -1: more than GR_LINE_MAX_EDGES, found per segment */
     double top, bottom, scale; /* highest w, lowest w, w + h + d */
+    double box[4];             /* UV box holding every ray of the scene's segments */
     unsigned flags;
 } gr__lscene_t;
 
@@ -4430,6 +4441,8 @@ static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
 
 typedef char gr__lg_fits_cache[sizeof(gr__lg_t) <= 16 * sizeof(double) ? 1 : -1];
 
+static void gr__edge_list(gr__lscene_t *sc);
+
 static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh,
                            int tight, gr_line_cache_t *cache, const double *lights, int nl)
 {
@@ -4481,6 +4494,7 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         if (quad.p[2 * e + 1] - grid->w < box[1]) box[1] = quad.p[2 * e + 1] - grid->w;
         if (quad.p[2 * e + 1] + grid->w > box[3]) box[3] = quad.p[2 * e + 1] + grid->w;
     }
+    memcpy(sc->box, box, sizeof box);
     c[0] = 0.5 * (box[0] + box[2]);
     c[1] = 0.5 * (box[1] + box[3]);
     reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
@@ -4573,6 +4587,7 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
             sc->npl++;
         }
     }
+    gr__edge_list(sc);
 }
 
 /* sin²α between the segment (UV part of a) and a 3D edge direction D seen
@@ -4617,17 +4632,16 @@ static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int pl
     (*nb)++;
 }
 
-/* An edge line of the scene: a point q and direction D, valid on the
-   planes (p1, p2) it bounds (p2 = -1 for a section point's line). */
-typedef struct gr__edge_t { double q[3], D[3]; int p1, p2; } gr__edge_t;
 
 /* Walks the edge lines: every section point's line, then the line of
    each pair of planes i < j of different grooves (or with an end wall). */
-typedef struct gr__edge_it_t { int g, k, i, j; } gr__edge_it_t;
+typedef struct gr__edge_it_t { int g, k, i, j, n; gr__edge_t e; } gr__edge_it_t;
 
 static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *e)
 {
     int m;
+    e->l0 = -HUGE_VAL;
+    e->l1 = HUGE_VAL;
     while (it->g < sc->nlg) { /* a section point swept along T */
         const gr__lg_t *lg = &sc->ls.lg[it->g];
         double c[2];
@@ -4662,6 +4676,83 @@ static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *
     return 0;
 }
 
+/* Narrow e's λ range to where it lies on plane i's facet (its section
+   segment, padded by GR__LINE_ON_FACET_REL, as gr__on_plane); the ground
+   and end walls leave it (their holes are the solid's business). 0 when
+   the range is empty. */
+static int gr__edge_on_facet(const gr__lscene_t *sc, int i, gr__edge_t *e)
+{
+    const gr__plane_t *p;
+    const gr__lg_t *g;
+    double bw[2], db, dw, l2, u0, u1, lo, hi, eps = GR__LINE_ON_FACET_REL;
+    if (i < 0) return 1;
+    p = &sc->ls.pl[i];
+    if (p->lg < 0 || p->cap) return 1;
+    g = &sc->ls.lg[p->lg];
+    gr__to_groove(g, e->q, bw);
+    u0 = gr__facet_param(p, bw);
+    db = p->c1[0] - p->c0[0];
+    dw = p->c1[1] - p->c0[1];
+    l2 = db * db + dw * dw;
+    u1 = ((g->bn[0] * e->D[0] + g->bn[1] * e->D[1]) * db + e->D[2] * dw) / l2;
+    if (u1 == 0) return u0 >= -eps && u0 <= 1 + eps;
+    lo = (-eps - u0) / u1;
+    hi = (1 + eps - u0) / u1;
+    if (lo > hi) { double t = lo; lo = hi; hi = t; }
+    if (lo > e->l0) e->l0 = lo;
+    if (hi < e->l1) e->l1 = hi;
+    return e->l0 <= e->l1;
+}
+
+/* Narrow e's λ range to the scene's box (no ray of its segments meets an
+   edge, or passes one toward a light, outside it). 0 when empty. */
+static int gr__edge_in_box(const gr__lscene_t *sc, gr__edge_t *e)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        double lo, hi;
+        if (e->D[k] == 0) {
+            if (e->q[k] < sc->box[k] || e->q[k] > sc->box[k + 2]) return 0;
+            continue;
+        }
+        lo = (sc->box[k] - e->q[k]) / e->D[k];
+        hi = (sc->box[k + 2] - e->q[k]) / e->D[k];
+        if (lo > hi) { double t = lo; lo = hi; hi = t; }
+        if (lo > e->l0) e->l0 = lo;
+        if (hi < e->l1) e->l1 = hi;
+    }
+    return e->l0 <= e->l1;
+}
+
+/* The next edge that exists (lies on both its facets somewhere in the
+   scene's box): from the scene's list, or found afresh (into it->e) when
+   the list overflowed. NULL at the end. */
+static const gr__edge_t *gr__edge_fetch(const gr__lscene_t *sc, gr__edge_it_t *it)
+{
+    if (sc->ned >= 0) return it->n < sc->ned ? &sc->ls.ed[it->n++] : NULL;
+    while (gr__edge_next(sc, it, &it->e))
+        if (gr__edge_on_facet(sc, it->e.p1, &it->e) && gr__edge_on_facet(sc, it->e.p2, &it->e) &&
+            gr__edge_in_box(sc, &it->e))
+            return &it->e;
+    return NULL;
+}
+
+/* The scene's edge list (once per scene: every segment of a footprint
+   and both its passes reuse it). */
+static void gr__edge_list(gr__lscene_t *sc)
+{
+    gr__edge_it_t it;
+    const gr__edge_t *e;
+    int n = 0;
+    memset(&it, 0, sizeof it);
+    sc->ned = -1; /* fetch afresh while filling */
+    while ((e = gr__edge_fetch(sc, &it)) != NULL) {
+        if (n == GR_LINE_MAX_EDGES) return; /* overflow: stays -1 */
+        sc->ls.ed[n++] = *e;
+    }
+    sc->ned = n;
+}
+
 /* Cut the segment where its first surface can change (seen = NULL: §5.6,
    the 1D version of §5.2-5.3), or where a shadow boundary can fall on a
    facet it sees (seen[m] != 0; §5.4: every edge's shadow along each
@@ -4669,47 +4760,74 @@ static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *
 static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl,
                             const unsigned char *seen, int nb)
 {
-    int m, l;
-    gr__edge_t e;
+    int m, l, v;
+    const gr__edge_t *ep;
     gr__edge_it_t it;
+    double nS[3], ns2, pad = GR__LINE_ON_FACET_REL * sc->scale;
+    /* the seen planes, with their dot products against the segment's
+       a, d and o (for gr__sheet_two_planes' 2x2 system, per plane once) */
+    int vis[GR_LINE_MAX_PLANES], nvis = 0;
+    double pv[GR_LINE_MAX_PLANES][4], aadd = gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d);
+    gr__cross3(sh->a, sh->d, nS); /* the normal of the segment's plane of rays */
+    ns2 = gr__dot3(nS, nS);
+    for (m = 0; seen && m < sc->npl; m++)
+        if (seen[m]) {
+            const gr__plane_t *p = &sc->ls.pl[m];
+            pv[nvis][0] = gr__dot3(p->n, sh->a);
+            pv[nvis][1] = gr__dot3(p->n, sh->d);
+            pv[nvis][2] = p->h - gr__dot3(p->n, sh->o);
+            pv[nvis][3] = gr__dot3(p->n, p->n) * aadd;
+            vis[nvis++] = m;
+        }
     memset(&it, 0, sizeof it);
-    while (gr__edge_next(sc, &it, &e)) {
-        double s, t, x[3], nD[3];
-        if (seen) {
-        } else if (e.p1 < 0) {
-            /* a section point's line: o + s a + t d = q + λ D (Cramer) */
-            double m0[3], det, rhs[3];
-            gr__cross3(sh->d, e.D, m0);
-            det = -gr__dot3(sh->a, m0);
-            for (m = 0; m < 3; m++) rhs[m] = e.q[m] - sh->o[m];
-            if (fabs(det) > 1e-14 * sqrt(gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d) * gr__dot3(e.D, e.D))) {
-                double c1[3];
-                s = -gr__dot3(rhs, m0) / det;
-                gr__cross3(rhs, e.D, c1);
-                t = -gr__dot3(sh->a, c1) / det;
+    while ((ep = gr__edge_fetch(sc, &it)) != NULL) {
+        const gr__edge_t e = *ep;
+        double s, t, x[3], r[3], c[3], nD[3], dd = gr__dot3(e.D, e.D), den = gr__dot3(nS, e.D);
+        if (!seen && fabs(den) > 1e-14 * sqrt(ns2 * dd)) {
+            /* where the edge pierces the plane of rays: x = q + λ D = o + s a + t d */
+            double lam;
+            for (m = 0; m < 3; m++) r[m] = sh->o[m] - e.q[m];
+            lam = gr__dot3(nS, r) / den;
+            if (lam >= e.l0 && lam <= e.l1) {
+                for (m = 0; m < 3; m++) r[m] = e.q[m] + lam * e.D[m] - sh->o[m];
+                gr__cross3(r, sh->d, c);
+                s = gr__dot3(c, nS) / ns2;
+                gr__cross3(sh->a, r, c);
+                t = gr__dot3(c, nS) / ns2;
                 if (t >= 0) gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
             }
-        } else if (gr__sheet_two_planes(sh, sc->ls.pl[e.p1].n, sc->ls.pl[e.p1].h, sc->ls.pl[e.p2].n,
-                                        sc->ls.pl[e.p2].h, &s, &t) && t >= 0) {
-            for (m = 0; m < 3; m++) x[m] = sh->o[m] + s * sh->a[m] + t * sh->d[m];
-            if (gr__on_plane(sc, e.p1, x) && gr__on_plane(sc, e.p2, x))
-                gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
         }
         /* §5.4: the edge's shadow along each light on each seen facet */
         for (l = 0; seen && l < nl; l++) {
             const double *L = lights + 3 * l;
-            double hP;
+            double nd2, lpad = pad / sqrt(dd), a11, a12, r1;
             if (!(L[2] > 0)) continue;
-            gr__cross3(e.D, L, nD);
-            if (!(gr__dot3(nD, nD) > 1e-24 * gr__dot3(e.D, e.D))) continue;
-            hP = gr__dot3(nD, e.q);
-            for (m = 0; m < sc->npl; m++) {
-                double dir[3];
+            gr__cross3(e.D, L, nD); /* the plane through the edge along L */
+            nd2 = gr__dot3(nD, nD);
+            if (!(nd2 > 1e-24 * dd)) continue;
+            a11 = gr__dot3(nD, sh->a);
+            a12 = gr__dot3(nD, sh->d);
+            r1 = gr__dot3(nD, e.q) - gr__dot3(nD, sh->o);
+            for (v = 0; v < nvis; v++) {
+                double dir[3], lam, mu, det = a11 * pv[v][1] - a12 * pv[v][0];
                 int k;
-                if (!seen[m] || m == e.p1 || m == e.p2) continue;
-                if (!gr__sheet_two_planes(sh, nD, hP, sc->ls.pl[m].n, sc->ls.pl[m].h, &s, &t) || t < 0) continue;
+                m = vis[v];
+                if (m == e.p1 || m == e.p2) continue;
+                /* the rays meeting this plane and facet m (gr__sheet_two_planes) */
+                if (!(fabs(det) > 1e-14 * sqrt(nd2 * pv[v][3]))) continue;
+                s = (r1 * pv[v][1] - a12 * pv[v][2]) / det;
+                t = (a11 * pv[v][2] - r1 * pv[v][0]) / det;
+                if (t < 0 || !(s > -1 && s < 1)) continue;
                 for (k = 0; k < 3; k++) x[k] = sh->o[k] + s * sh->a[k] + t * sh->d[k];
                 if (!gr__on_plane(sc, m, x)) continue;
+                /* x = q + λ D + μ L: cast by the edge's existing part
+                   (λ in range), which lies toward the light (μ <= 0) */
+                for (k = 0; k < 3; k++) r[k] = x[k] - e.q[k];
+                gr__cross3(r, L, c);
+                lam = gr__dot3(c, nD) / nd2;
+                gr__cross3(e.D, r, c);
+                mu = gr__dot3(c, nD) / nd2;
+                if (lam < e.l0 - lpad || lam > e.l1 + lpad || mu > pad) continue;
                 gr__cross3(nD, sc->ls.pl[m].n, dir);
                 gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, dir), m);
             }
@@ -4812,6 +4930,25 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
     return m;
 }
 
+/* Intervals sorted by length, longest first (by_len), or by position:
+   insertion sort for short lists, qsort beyond. */
+static int gr__cmp_ivl_len(const void *a, const void *b);
+static int gr__cmp_ivl_pos(const void *a, const void *b);
+static void gr__ivl_sort(gr__ivl_t *iv, int n, int by_len)
+{
+    int i, j;
+    if (n > GR__LINE_SMALL_SORT) {
+        qsort(iv, (size_t)n, sizeof *iv, by_len ? gr__cmp_ivl_len : gr__cmp_ivl_pos);
+        return;
+    }
+    for (i = 1; i < n; i++) {
+        gr__ivl_t x = iv[i];
+        double kx = by_len ? x.s0 - x.s1 : x.s0;
+        for (j = i; j > 0 && (by_len ? iv[j - 1].s0 - iv[j - 1].s1 : iv[j - 1].s0) > kx; j--) iv[j] = iv[j - 1];
+        iv[j] = x;
+    }
+}
+
 static int gr__cmp_ivl_len(const void *a, const void *b)
 {
     const gr__ivl_t *x = (const gr__ivl_t *)a, *y = (const gr__ivl_t *)b;
@@ -4850,14 +4987,14 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
         last = s;
         sin2 = i < nb ? sc->ls.brk[i].sin2 : 0;
     }
-    if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_len);
+    if (tol > 0) gr__ivl_sort(iv, n, 1); /* longest first, for the early exit */
     for (i = 0; i < n; i++) {
         if (tol > 0 && done >= 2 * (1 - tol)) { if (st) st->early_exits++; break; }
         gr__classify(sc, sh, &iv[i]);
         done += iv[i].s1 - iv[i].s0;
         if (st) st->evaluated++;
     }
-    if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_pos);
+    if (tol > 0) gr__ivl_sort(iv, n, 0);
     if (st) { st->segments++; st->intervals += n; } /* (view intervals; shadows split them below) */
     if (nl > 0) n = gr__shadow_split(sc, sh, lights, nl, n);
     *weight = 0;
@@ -4867,23 +5004,60 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
     return n;
 }
 
-/* The n line samples of a footprint (§5.6), rays coming down along -E
-   from above everything. */
-static void gr__top_sheet(const gr_grid_t *grid, const gr_footprint_t *fp, int j, int n, gr__sheet_t *sh)
+/* Line j of the n line samples of a footprint (§5.6), rays coming down
+   along -E from above everything. The lines come in two families: the
+   first ceil(n/2) run along A1, the other floor(n/2) along A2, each
+   family spread across the footprint as parallel chords at the midpoints
+   of equal strata of the other axis (offset c_i = -1 + (2i + 1)/count).
+   n = 2 is the paper's pair of axes through F; with more lines each
+   family is a stratified quadrature of the footprint's area: a chord
+   gives the exact length shares at its offset, and the family's answer is
+   the area-weighted mean of its chords, so its error falls with the
+   number of chords (lines through F at rotated angles would converge to a
+   density peaked at F instead). The chord spans the footprint: the full
+   side for the parallelogram, |a| <= sqrt(1 - c^2) for the ellipse
+   (query.ellipse), whose strata weigh their exact area (the semicircle
+   law). Returns the chord's weight within its family (the weights of a
+   family sum to 1); *family gets 0 or 1. */
+static double gr__top_sheet(const gr_grid_t *grid, const gr_query_t *q, int j, int n, gr__sheet_t *sh, int *family)
 {
-    double ang = 3.14159265358979323846 * j / n, c = cos(ang), s = sin(ang), ew = fp->view[2], lift;
-    int k;
+    const gr_footprint_t *fp = &q->footprint;
+    int n0 = (n + 1) / 2, fam = j < n0 ? 0 : 1, count = fam ? n - n0 : n0, i = fam ? j - n0 : j, k;
+    const double *along = fam ? fp->axis2 : fp->axis1, *across = fam ? fp->axis1 : fp->axis2;
+    double lo = -1 + 2.0 * i / count, hi = -1 + 2.0 * (i + 1) / count, c = 0.5 * (lo + hi), half = 1, weight;
+    double ew = fp->view[2], lift, f[2];
+    if (q->ellipse) {
+        half = sqrt(1 - c * c);
+        weight = gr__disc_cdf(hi) - gr__disc_cdf(lo);
+    } else {
+        weight = 1.0 / count;
+    }
     if (ew < GR__GRAZING_MIN_W) ew = GR__GRAZING_MIN_W;
     lift = (grid->h + grid->w + grid->d) / ew; /* start above every protrusion */
-    sh->o[0] = fp->center[0] + lift * fp->view[0];
-    sh->o[1] = fp->center[1] + lift * fp->view[1];
+    f[0] = fp->center[0] + c * across[0];
+    f[1] = fp->center[1] + c * across[1];
+    sh->o[0] = f[0] + lift * fp->view[0];
+    sh->o[1] = f[1] + lift * fp->view[1];
     sh->o[2] = lift * fp->view[2];
-    sh->a[0] = c * fp->axis1[0] + s * fp->axis2[0];
-    sh->a[1] = c * fp->axis1[1] + s * fp->axis2[1];
+    sh->a[0] = half * along[0];
+    sh->a[1] = half * along[1];
     sh->a[2] = 0;
     for (k = 0; k < 3; k++) sh->d[k] = -fp->view[k];
     sh->thr[0] = sh->thr[1] = sh->thr[2] = 1;
     sh->level = 0;
+    *family = fam;
+    return weight;
+}
+
+/* The sheet whose scene (gr__line_scene, not tight) holds every top-level
+   line's rays: centred on F, spanning the footprint's UV box. */
+static void gr__footprint_sheet(const gr_grid_t *grid, const gr_query_t *q, gr__sheet_t *all)
+{
+    const gr_footprint_t *fp = &q->footprint;
+    int fam;
+    (void)gr__top_sheet(grid, q, 0, 1, all, &fam);
+    all->a[0] = fabs(fp->axis1[0]) + fabs(fp->axis2[0]);
+    all->a[1] = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
 }
 
 /* Shared argument checks of gr_query_lines / gr_shade_indirect. */
@@ -4932,8 +5106,8 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     gr__lscene_t sc;
     gr__sheet_t sh;
     const gr_footprint_t *fp;
-    double wsum = 0, tol, *acc;
-    int n, j, i, k, nl, stride, built = 0;
+    double wfam[2] = {0, 0}, tol, *acc;
+    int n, j, i, k, nl, stride;
     gr_result_t r;
     if (!list) return GR_ERR_INVALID_ARG;
     list->count = 0;
@@ -4951,54 +5125,56 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     stride = 1 + nl;
     gr__line_layout(grid, scratch, &s, &sc);
     acc = sc.ls.acc;
-    /* two passes: Jones & Perry weights, then (if no segment crossed an
-       edge) plain averages; acc holds weighted sums in [0, npl), plain
-       ones after them */
+    {
+        gr__sheet_t all;
+        gr__footprint_sheet(grid, query, &all); /* every line shares the footprint's scene */
+        gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl);
+    }
+    /* acc holds each family's area-weighted sums (family f at
+       [f npl, (f + 1) npl)); the families combine by their mean Jones &
+       Perry weights, or plainly when neither crosses an edge */
+    memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
     for (j = 0; j < n; j++) {
-        double wj, cl;
-        int m;
-        gr__top_sheet(grid, fp, j, n, &sh);
-        if (!built) { /* every top-level segment shares the footprint's scene */
-            gr__sheet_t all = sh;
-            double ext = sqrt(fp->axis1[0] * fp->axis1[0] + fp->axis1[1] * fp->axis1[1] + fp->axis2[0] * fp->axis2[0] +
-                              fp->axis2[1] * fp->axis2[1]);
-            all.a[0] = ext; /* a box covering all rotations: the footprint's circumscribed extent */
-            all.a[1] = ext;
-            gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl); /* all rotations: not tight */
-            memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
-            built = 1;
-        }
+        double wj, cl, wa;
+        int m, fam;
+        wa = gr__top_sheet(grid, query, j, n, &sh, &fam);
         m = gr__sheet_eval(&sc, &sh, query->lights, nl, tol, &wj, &cl, stats);
         if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = wj;
-        wsum += wj;
+        wfam[fam] += wa * wj;
         for (i = 0; i < m; i++) {
             const gr__ivl_t *v = &sc.ls.iv[i];
-            double len;
-            int base;
+            double len, *a;
+            int q;
             if (v->plane < 0 || !(cl > 0)) continue;
-            len = (v->s1 - v->s0) / (2 * cl); /* the unclassified rest shared in proportion */
-            for (k = 0; k < 2; k++) {
-                double *a;
-                int q;
-                base = (k * sc.npl + v->plane) * stride;
-                a = acc + base;
-                a[0] += (k ? 1.0 : wj) * len;
-                for (q = 0; q < nl; q++)
-                    if (v->lit & (1u << q)) a[1 + q] += (k ? 1.0 : wj) * len;
-            }
+            len = wa * (v->s1 - v->s0) / (2 * cl); /* the unclassified rest shared in proportion */
+            a = acc + (fam * sc.npl + v->plane) * stride;
+            a[0] += len;
+            for (q = 0; q < nl; q++)
+                if (v->lit & (1u << q)) a[1 + q] += len;
         }
     }
     {
-        int half = wsum > 0 ? 0 : 1;
-        double norm = wsum > 0 ? wsum : n;
+        int nfam = n > 1 ? 2 : 1, f;
+        double wf[2], wsum = wfam[0] + wfam[1];
+        for (f = 0; f < 2; f++) wf[f] = f >= nfam ? 0 : wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
+#ifdef GR__FAMMODE
+        if (GR__FAMMODE == 1) { wf[0] = wf[1] = 0.5; }
+        if (GR__FAMMODE == 2 && wsum > 0) { double q0 = wfam[0]*wfam[0], q1 = wfam[1]*wfam[1]; wf[0] = q0/(q0+q1); wf[1] = q1/(q0+q1); }
+        if (GR__FAMMODE == 3) { wf[0] = 1; wf[1] = 0; }
+        if (GR__FAMMODE == 4) { wf[0] = 0; wf[1] = 1; }
+#endif
         for (i = 0; i < sc.npl; i++) {
-            int base = (half * sc.npl + i) * stride;
             const gr__plane_t *p = &sc.ls.pl[i];
             gr__mfacet_t mf;
-            double lit[GR_MAX_LIGHTS], ratio;
-            ratio = acc[base] / norm;
+            double lit[GR_MAX_LIGHTS], ratio = 0;
+            for (k = 0; k < nl; k++) lit[k] = 0;
+            for (f = 0; f < nfam; f++) {
+                const double *a = acc + (f * sc.npl + i) * stride;
+                ratio += wf[f] * a[0];
+                for (k = 0; k < nl; k++) lit[k] += wf[f] * a[1 + k];
+            }
             if (!(ratio > 0)) continue;
-            for (k = 0; k < nl; k++) lit[k] = acc[base + 1 + k] / acc[base];
+            for (k = 0; k < nl; k++) lit[k] /= ratio;
             for (k = 0; k < 3; k++) mf.n[k] = p->n[k];
             mf.groove = p->lg < 0 ? -1 : sc.ls.lg[p->lg].groove;
             mf.facet = p->facet;
@@ -5134,7 +5310,7 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
     gr__lscene_t sc;
     gr__sheet_t stack[GR__LINE_STACK];
     const gr_footprint_t *fp;
-    double wsum = 0, plain[3] = {0, 0, 0}, tol;
+    double wfam[2] = {0, 0}, cfam[2][3] = {{0, 0, 0}, {0, 0, 0}}, tol;
     int n, j, k;
     gr_result_t r;
     if (!indirect || !rgb) return GR_ERR_INVALID_ARG;
@@ -5151,9 +5327,9 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
     tol = gr__exit_tol(query);
     gr__line_layout(grid, scratch, &s, &sc);
     for (j = 0; j < n; j++) {
-        double cj[3] = {0, 0, 0}, wj = 0;
-        int top = 1;
-        gr__top_sheet(grid, fp, j, n, &stack[0]);
+        double cj[3] = {0, 0, 0}, wj = 0, wa;
+        int top = 1, fam;
+        wa = gr__top_sheet(grid, query, j, n, &stack[0], &fam);
         while (top > 0) {
             gr__sheet_t sh = stack[--top];
             double w, cl;
@@ -5170,13 +5346,17 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
             }
             gr__bounce(&sc, &sh, m, query, indirect, stack, &top, cj);
         }
-        wsum += wj;
-        for (k = 0; k < 3; k++) {
-            rgb[k] += wj * cj[k];
-            plain[k] += cj[k];
+        wfam[fam] += wa * wj; /* families combined as in gr_query_lines() */
+        for (k = 0; k < 3; k++) cfam[fam][k] += wa * cj[k];
+    }
+    {
+        int nfam = n > 1 ? 2 : 1, f;
+        double wsum = wfam[0] + wfam[1];
+        for (f = 0; f < nfam; f++) {
+            double wf = wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
+            for (k = 0; k < 3; k++) rgb[k] += wf * cfam[f][k];
         }
     }
-    for (k = 0; k < 3; k++) rgb[k] = wsum > 0 ? rgb[k] / wsum : plain[k] / n;
     return GR_OK;
 }
 #endif
