@@ -85,6 +85,9 @@ typedef enum gr_result_t {
     GR_ERR_SECTION_ORDER,    /* a cross-section whose last b is not above its first b */
     GR_ERR_PERTURBATION,     /* a perturbation without a valid perturb_max */
     GR_ERR_UNSUPPORTED,      /* a feature left out at compile time (GR_NO_...) */
+    GR_ERR_STACK_FULL,       /* gr_shade_indirect(): the bounces needed more than
+                                GR_INDIRECT_STACK pending segments; the colour is
+                                filled but approximate (see there) */
     GR_RESULT_COUNT_
 } gr_result_t;
 
@@ -621,8 +624,16 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 /* gr_facet_list_t.flags: line samples dropped grooves or breakpoints. */
 #define GR_LIST_LINE_APPROX 32u
 
+/* gr_line_stats_t.flags */
+#define GR_STATS_LINE_APPROX 1u /* a segment's scene dropped grooves, planes or
+                                   breakpoints (GR_LIST_LINE_APPROX) */
+#define GR_STATS_STACK_FULL  2u /* gr_shade_indirect(): more pending bounce
+                                   segments than GR_INDIRECT_STACK (it then
+                                   returns GR_ERR_STACK_FULL) */
+
 /* Optional counters from gr_query_lines() (and gr_shade_indirect()). */
 typedef struct gr_line_stats_t {
+    unsigned flags;    /* GR_STATS_... */
     int segments;      /* segments evaluated (line samples and bounces) */
     int intervals;     /* 1D intervals the segments were cut into */
     int evaluated;     /* intervals whose facet was found (the rest were
@@ -691,22 +702,46 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
 #ifndef GR_NO_INTERREFLECTION
 /* Deepest recursion gr_shade_indirect() accepts. */
 #define GR_MAX_DEPTH 8
+/* Pending bounce segments gr_shade_indirect() can hold (in the query
+   scratch, about 110 bytes each); a footprint that needs more gets
+   GR_ERR_STACK_FULL. Each segment of a bounce pushes up to two per facet
+   it sees (reflected and transmitted), so the need grows with the depth
+   and the facets per segment. */
+#ifndef GR_INDIRECT_STACK
+#  define GR_INDIRECT_STACK 512
+#endif
 
 /* Specular behaviour of one reflectance id (the per-facet ids of
    gr_groove_desc_t.facet_reflectance and the grid's base_reflectance). */
 typedef struct gr_specular_t {
     double kr[3];  /* specular reflectance k_r per channel (0: no bounce) */
     double kt[3];  /* specular transmittance k_t per channel (0: none) */
-    double ior;    /* index of refraction for transmission; 0 means 1.5 */
+    double ior;    /* index of refraction of the material behind the facet
+                      (the solid's side); 0 means 1.5 */
+    int fresnel;   /* 0 (default): k_r and k_t are the bounce weights, as the
+                      paper's constants (under total internal reflection
+                      k_t is reflected too). 1: a dielectric: reflection
+                      k_r F, transmission k_t (1 - F), F the unpolarised
+                      Fresnel reflectance for the ior at the angle of
+                      incidence (1 under total internal reflection) */
+    int thin;      /* 0 (default): transmitted light refracts (Snell, ior)
+                      and is followed inside the solid, where it may leave
+                      through another facet or be reflected back from
+                      inside (§6.1's rays from below); what reaches the bulk
+                      below the grooves goes to trace() with inside = 1.
+                      1: a thin pane (window glass, Figure 21d): transmitted
+                      light keeps its direction and goes straight to trace()
+                      with inside = 1; with fresnel, the pane's two faces
+                      sum to R' = 2F/(1 + F), T' = (1 - F)/(1 + F) */
 } gr_specular_t;
 
 /* Host ray-trace callback (§6.2): the radiance arriving along dir (unit,
-   texture space, pointing away from the surface) at origin (texture space
-   u, v, w: the centre of the segment piece the rays leave from). inside = 0:
-   a ray that left the grooved surface (Σ r_i < 1 at that bounce); inside = 1:
-   a ray refracted into the material through a transmitting facet (the host
-   owns what lies below the surface, e.g. the glass pane behind a frame).
-   depth: the bounce it leaves at (1 = after the first reflection). weight:
+   texture space) at origin (texture space u, v, w: the centre of the
+   segment piece the rays leave from). inside = 0: rays that left the
+   grooved surface upward (Σ r_i < 1 at that bounce); inside = 1: rays in
+   the material that reached the bulk below the grooves, or passed a thin
+   pane (the host owns what lies there, e.g. the room behind a window).
+   depth: the bounce it leaves at (0 = the footprint's own rays). weight:
    the mean throughput it carries (informative, e.g. for Russian roulette;
    the library applies it). */
 typedef void (*gr_trace_fn)(void *user, const double origin[3], const double dir[3], int depth, int inside,
@@ -728,21 +763,30 @@ typedef struct gr_indirect_t {
    grooves, on gr_query_lines()'s segments (query->line_samples of them,
    combined with the same Jones & Perry weights). On each segment, each
    interval's facet gets its direct term Σ_k lit_k brdf(...) (eq. 6); if
-   depth allows and its id reflects, the facet's visible piece becomes the
-   next footprint (§6.1: the piece of the facet the segment sees, a 3D
-   segment on the facet; projecting it back to UV along E_r, as the paper
-   does, gives the same rays) seen along the mirror direction E_r, with
-   throughput r_i k_r. Rays of a bounce may leave from below the texture
-   plane and point up or down (E_w < 0 in the paper's terms): the 1D ray
-   classification is the same for any direction, which is §6.1's inverted
-   masking order. Where a bounce's rays find no facet (Σ r_i < 1) the rest
-   goes to trace() with weight 1 - Σ r_i (§6.2); light refracted by a
-   transmitting facet goes to trace() with inside = 1. Recursion runs on an
-   explicit stack (GR_MAX_DEPTH levels); pieces beyond its capacity go to
-   trace() along their mirror direction (GR_LIST_LINE_APPROX in stats is
-   not reported; stats->segments counts the work). Uses
-   gr_query_scratch_bytes() of scratch. Errors as gr_query_lines(), plus
-   GR_ERR_INVALID_ARG for a NULL indirect or rgb, depth outside
+   depth allows and its id reflects or transmits (gr_specular_t), the
+   facet's visible piece becomes the next footprint (§6.1: the piece of the
+   facet the segment sees, a 3D segment on the facet; projecting it back to
+   UV along E_r, as the paper does, gives the same rays), seen along the
+   mirror direction E_r with throughput r_i k_r, and along the refracted
+   direction E_t (Snell with the id's ior) with r_i k_t; with fresnel set,
+   k_r F and k_t (1 - F). Refracted rays run inside the solid: they leave
+   it through another facet (refracted again, or reflected back inside,
+   totally when past the critical angle), or reach the bulk below the
+   grooves. Rays of a bounce may leave from below the texture plane and
+   point up or down (E_w < 0 in the paper's terms): the 1D ray
+   classification is the same for any direction and either medium, which
+   is §6.1's inverted masking order. What a bounce's rays do not meet
+   (Σ r_i < 1) goes to trace() with weight 1 - Σ r_i (§6.2): inside = 0 for
+   rays leaving up into the scene, inside = 1 for rays reaching the bulk
+   (or passing a thin pane). Rays inside the material are followed 64
+   scene scales (w + h + d) along the surface; beyond, they count as bulk
+   light. Direct light (brdf) is added on the outside only. Recursion runs
+   on an explicit stack of GR_INDIRECT_STACK segments in the scratch: when
+   a footprint needs more, the pieces that do not fit leave along their
+   direction to trace() unexamined, stats->flags gets GR_STATS_STACK_FULL
+   and the call returns GR_ERR_STACK_FULL with rgb filled (approximate).
+   Uses gr_query_scratch_bytes() of scratch. Errors as gr_query_lines(),
+   plus GR_ERR_INVALID_ARG for a NULL indirect or rgb, depth outside
    0..GR_MAX_DEPTH, specular_count < 0 or specular NULL with a count. */
 GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *query, const gr_indirect_t *indirect,
                                      void *scratch, size_t scratch_bytes, double rgb[3], gr_line_stats_t *stats);
@@ -852,6 +896,7 @@ GR_DEF const char *gr_result_string(gr_result_t r)
     case GR_ERR_SECTION_ORDER: return "cross-section does not run from low to high b";
     case GR_ERR_PERTURBATION: return "perturbation without a valid perturb_max";
     case GR_ERR_UNSUPPORTED: return "feature left out at compile time";
+    case GR_ERR_STACK_FULL: return "indirect light: recursion stack full (result approximate)";
     case GR_RESULT_COUNT_: break;
     }
     return "unknown result";
@@ -4097,8 +4142,6 @@ static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
 #define GR__LINE_CLEAR_REL 1e-6
 /* Default early-exit tolerance of §5.6 (gr_query_t.line_exit_tol). */
 #define GR__LINE_DEFAULT_EXIT 1e-3
-/* Depth of the explicit stack of pending bounce segments (§6.1). */
-#define GR__LINE_STACK 64
 
 /* A groove near the segment, locally straight (§4.2), in this frame's UV. */
 typedef struct gr__lg_t {
@@ -4135,6 +4178,14 @@ typedef struct gr__xing_t { double t; int plane; } gr__xing_t;
    section point's line). */
 typedef struct gr__edge_t { double q[3], D[3], l0, l1; int p1, p2; } gr__edge_t;
 
+/* A segment of rays o + s a + t d, s in [-1, 1], t >= 0 (§5.6; §6.1 for
+   bounces), with the throughput it carries; inside: the rays run in the
+   material (refracted into it by a transmitting facet). */
+typedef struct gr__sheet_t {
+    double o[3], a[3], d[3], thr[3];
+    int level, inside;
+} gr__sheet_t;
+
 typedef struct gr__lscratch_t {
     gr__lg_t *lg;
     gr__plane_t *pl;
@@ -4143,6 +4194,7 @@ typedef struct gr__lscratch_t {
     gr__ivl_t *iv, *iv2;      /* intervals; iv2: after the shadow split */
     gr__edge_t *ed;           /* the scene's edges, found once per scene */
     double *acc;              /* per plane: ratio, then lit per light */
+    gr__sheet_t *stack;       /* gr_shade_indirect's pending segments */
 } gr__lscratch_t;
 
 #define GR__LINE_MAX_PLANES GR_LINE_MAX_PLANES
@@ -4163,6 +4215,11 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
     GR__LCARVE(iv2, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
     GR__LCARVE(ed, gr__edge_t, GR_LINE_MAX_EDGES)
     GR__LCARVE(acc, double, 2 * GR__LINE_MAX_PLANES * (1 + GR_MAX_LIGHTS))
+#ifndef GR_NO_INTERREFLECTION
+    GR__LCARVE(stack, gr__sheet_t, GR_INDIRECT_STACK)
+#else
+    ls->stack = NULL;
+#endif
 #undef GR__LCARVE
     return off;
 }
@@ -4177,12 +4234,6 @@ typedef struct gr__lscene_t {
     unsigned flags;
 } gr__lscene_t;
 
-/* A segment of rays o + s a + t d, s in [-1, 1], t >= 0 (§5.6; §6.1 for
-   bounces), with the throughput it carries. */
-typedef struct gr__sheet_t {
-    double o[3], a[3], d[3], thr[3];
-    int level;
-} gr__sheet_t;
 
 static void gr__sec_pt(const gr__lg_t *g, int k, double c[2])
 {
@@ -4253,11 +4304,15 @@ static int gr__on_plane(const gr__lscene_t *sc, int i, const double *x)
     return u >= -GR__LINE_ON_FACET_REL && u <= 1 + GR__LINE_ON_FACET_REL;
 }
 
-/* The first entry into the solid along o + t d, t in (0, tmax]: the plane
-   entered (its index) and *thit, or -1 when the ray leaves (§6.2). The ray
-   is cut at every crossing of a facet or the ground; the solid's state is
+/* The first change of medium along o + t d, t in (0, tmax]: for a ray in
+   the air (inside = 0) the first entry into the solid, for a ray inside
+   the material (inside = 1, refracted by a transmitting facet, §6.1) the
+   first exit from it; the plane crossed there (its index) and *thit, or
+   -1 when the ray leaves the groove layer unchanged (§6.2: upward into the
+   scene from the air, downward into the bulk from inside). The ray is cut
+   at every crossing of a facet or the ground; the solid's state is
    constant between crossings, so one point per piece decides. */
-static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d, double tmax, double *thit)
+static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d, double tmax, int inside, double *thit)
 {
     gr__xing_t *xs = sc->ls.xs;
     int i, j, m = 0;
@@ -4296,8 +4351,8 @@ static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d,
         double next = i < m ? xs[i].t : tmax, mid = 0.5 * (prev + next);
         if (i == m && !(tmax < HUGE_VAL)) mid = prev + sc->scale / sqrt(gr__dot3(d, d));
         for (j = 0; j < 3; j++) x[j] = o[j] + mid * d[j];
-        if (gr__solid(sc, x)) {
-            if (i == 0) { *thit = 0; return -2; } /* started inside: rounding at a touching facet */
+        if (gr__solid(sc, x) != inside) {
+            if (i == 0) { *thit = 0; return -2; } /* started in the other medium: rounding at a touching facet */
             *thit = prev;
             return xs[i - 1].plane;
         }
@@ -4340,7 +4395,7 @@ static int gr__lit(const gr__lscene_t *sc, int plane, const double *d, const dou
     gr__facing(sc, plane, d, n);
     if (!(l[2] > 0) || !(gr__dot3(n, l) > 0)) return 0;
     for (k = 0; k < 3; k++) o[k] = x[k] + off * n[k];
-    return gr__ray_hit(sc, o, l, gr__ray_tmax(sc, o, l, seglen), &th) == -1;
+    return gr__ray_hit(sc, o, l, gr__ray_tmax(sc, o, l, seglen), 0, &th) == -1;
 }
 
 /* Gather the grooves that can meet rays from the segment (box: the
@@ -4874,7 +4929,7 @@ static void gr__classify(const gr__lscene_t *sc, const gr__sheet_t *sh, gr__ivl_
     double o[3], th, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), sm = 0.5 * (iv->s0 + iv->s1);
     int k;
     for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
-    iv->plane = gr__ray_hit(sc, o, sh->d, gr__ray_tmax(sc, o, sh->d, seglen), &th);
+    iv->plane = gr__ray_hit(sc, o, sh->d, gr__ray_tmax(sc, o, sh->d, seglen), sh->inside, &th);
     if (iv->plane == -2) iv->plane = -1; /* inside at the start: counted as leaving */
     iv->lit = 0;
 }
@@ -5045,6 +5100,7 @@ static double gr__top_sheet(const gr_grid_t *grid, const gr_query_t *q, int j, i
     for (k = 0; k < 3; k++) sh->d[k] = -fp->view[k];
     sh->thr[0] = sh->thr[1] = sh->thr[2] = 1;
     sh->level = 0;
+    sh->inside = 0;
     *family = fam;
     return weight;
 }
@@ -5189,6 +5245,7 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
         }
     list->flags |= sc.flags;
     list->grooves = sc.nlg;
+    if (stats && (sc.flags & GR_LIST_LINE_APPROX)) stats->flags |= GR_STATS_LINE_APPROX;
     gr__list_finish(list, nl);
     return GR_OK;
 }
@@ -5219,24 +5276,72 @@ static void gr__to_host(const gr_indirect_t *ind, const double *origin, const do
     for (k = 0; k < 3; k++) rgb[k] += thr[k] * frac * c[k];
 }
 
+/* Unpolarised Fresnel reflectance at an interface met at cos ci > 0, eta
+   = n_from / n_to; 1 under total internal reflection. *ct: the
+   transmitted cosine (0 under total internal reflection). */
+static double gr__fresnel(double ci, double eta, double *ct)
+{
+    double st2 = eta * eta * (1 - ci * ci), rs, rp;
+    if (st2 >= 1) { *ct = 0; return 1; }
+    *ct = sqrt(1 - st2);
+    rs = (eta * ci - *ct) / (eta * ci + *ct);
+    rp = (ci - eta * *ct) / (ci + eta * *ct);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+/* The pending-segment stack of gr_shade_indirect() (§6.1's recursion). */
+typedef struct gr__stack_t { gr__sheet_t *s; int top, full; } gr__stack_t;
+
+/* Push the piece [x0, x1] (3D, on the facet) as the next footprint, seen
+   along dir in the given medium, carrying thr; when the stack is full the
+   piece leaves along dir unexamined (§6.2's host) and the stack says so. */
+static void gr__push_piece(const gr_indirect_t *ind, gr__stack_t *st, const double *x0, const double *x1,
+                           const double *side, const double *dir, const double *thr, int level, int inside,
+                           double *rgb)
+{
+    double mid[3];
+    int k;
+    for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + side[k];
+    if (st->top == GR_INDIRECT_STACK) {
+        st->full = 1;
+        gr__to_host(ind, mid, dir, level, inside, thr, 1, rgb);
+        return;
+    }
+    {
+        gr__sheet_t *c = &st->s[st->top++];
+        for (k = 0; k < 3; k++) {
+            c->o[k] = mid[k];
+            c->a[k] = 0.5 * (x1[k] - x0[k]);
+            c->d[k] = dir[k];
+            c->thr[k] = thr[k];
+        }
+        c->level = level;
+        c->inside = inside;
+    }
+}
+
 /* One evaluated segment: direct terms, then the pieces that bounce
-   (§6.1: each facet run's visible piece, seen along E_r, becomes the next
-   footprint) pushed on the stack, and what leaves to the host (§6.2). */
+   (§6.1: each facet run's visible piece becomes the next footprint, seen
+   along the mirror direction E_r and, for a transmitting facet, along the
+   refracted one E_t), and what leaves to the host (§6.2). */
 static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, const gr_query_t *q,
-                       const gr_indirect_t *ind, gr__sheet_t *stack, int *top, double *rgb)
+                       const gr_indirect_t *ind, gr__stack_t *stack, double *rgb)
 {
     const gr__ivl_t *iv = sc->ls.iv;
-    double e[3], esc = 0, esc_s = 0, off = GR__LINE_OFFSET_REL * sc->scale;
+    double e[3], dd[3], esc = 0, esc_s = 0, off = GR__LINE_OFFSET_REL * sc->scale;
     int i, j, k, l;
-    for (k = 0; k < 3; k++) e[k] = -sh->d[k];
     {
-        double len = sqrt(gr__dot3(e, e));
-        for (k = 0; k < 3; k++) e[k] /= len;
+        double len = sqrt(gr__dot3(sh->d, sh->d));
+        for (k = 0; k < 3; k++) {
+            dd[k] = sh->d[k] / len;
+            e[k] = -dd[k];
+        }
     }
     for (i = 0; i < m; i = j) {
         const gr__plane_t *p;
         const gr_specular_t *sp;
-        double frac, x0[3], x1[3], mid[3], nf[3];
+        double frac, x0[3], x1[3], nf[3], wr[3], wt[3], dr[3], dt[3], up[3], down[3], ci, ct, eta, F;
+        int tir, thin;
         /* a run of intervals on one facet */
         for (j = i + 1; j < m && iv[j].plane == iv[i].plane; j++) {}
         frac = (iv[j - 1].s1 - iv[i].s0) / 2;
@@ -5247,8 +5352,8 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
             continue;
         }
         p = &sc->ls.pl[iv[i].plane];
-        gr__facing(sc, iv[i].plane, sh->d, nf);
-        if (ind->brdf)
+        gr__facing(sc, iv[i].plane, sh->d, nf); /* toward the side the rays come from */
+        if (ind->brdf && !sh->inside) /* direct light: on the outside only */
             for (l = i; l < j; l++)
                 for (k = 0; k < q->light_count; k++) {
                     double c[3] = {0, 0, 0}, fl = (iv[l].s1 - iv[l].s0) / 2;
@@ -5259,47 +5364,46 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
                 }
         sp = gr__spec(ind, p->refl);
         if (sh->level >= ind->depth || !sp) continue;
+        /* the bounce weights: Fresnel or the constants, thin or solid */
+        ci = -gr__dot3(dd, nf);
+        eta = sp->ior > 0 ? sp->ior : GR__DEFAULT_IOR;
+        eta = sh->inside ? eta : 1 / eta;
+        thin = sp->thin != 0;
+        F = gr__fresnel(ci, eta, &ct);
+        tir = !thin && ct == 0;
+        for (k = 0; k < 3; k++) {
+            if (sp->fresnel) {
+                double R = thin ? 2 * F / (1 + F) : F;
+                wr[k] = sp->kr[k] * R;
+                wt[k] = tir ? 0 : sp->kt[k] * (1 - R);
+            } else {
+                wr[k] = sp->kr[k] + (tir ? sp->kt[k] : 0);
+                wt[k] = tir ? 0 : sp->kt[k];
+            }
+            wr[k] *= sh->thr[k] * frac;
+            wt[k] *= sh->thr[k] * frac;
+            dr[k] = dd[k] + 2 * ci * nf[k];
+            dt[k] = thin ? dd[k] : eta * dd[k] + (eta * ci - ct) * nf[k];
+            up[k] = off * nf[k];
+            down[k] = -off * nf[k];
+        }
         gr__sheet_point(sc, sh, iv[i].plane, iv[i].s0, x0);
         gr__sheet_point(sc, sh, iv[i].plane, iv[j - 1].s1, x1);
-        for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + off * nf[k];
-        if (gr__nonzero3(sp->kr)) {
-            double dn = gr__dot3(sh->d, nf), dr[3];
-            for (k = 0; k < 3; k++) dr[k] = sh->d[k] - 2 * dn * nf[k];
-            if (*top < GR__LINE_STACK) {
-                gr__sheet_t *c = &stack[(*top)++];
-                for (k = 0; k < 3; k++) {
-                    c->o[k] = mid[k];
-                    c->a[k] = 0.5 * (x1[k] - x0[k]);
-                    c->d[k] = dr[k];
-                    c->thr[k] = sh->thr[k] * sp->kr[k] * frac;
-                }
-                c->level = sh->level + 1;
-            } else { /* stack full: the piece leaves along E_r unexamined */
-                double t3[3];
-                for (k = 0; k < 3; k++) t3[k] = sh->thr[k] * sp->kr[k];
-                gr__to_host(ind, mid, dr, sh->level + 1, 0, t3, frac, rgb);
-            }
-        }
-        if (gr__nonzero3(sp->kt)) { /* refraction into the material (Snell), to the host */
-            double eta = 1 / (sp->ior > 0 ? sp->ior : GR__DEFAULT_IOR), dl = sqrt(gr__dot3(sh->d, sh->d));
-            double dd[3], ci, kk, dt[3], t3[3], in[3];
-            for (k = 0; k < 3; k++) dd[k] = sh->d[k] / dl;
-            ci = -gr__dot3(dd, nf);
-            kk = 1 - eta * eta * (1 - ci * ci);
-            if (kk >= 0 && ci > 0) {
-                for (k = 0; k < 3; k++) {
-                    dt[k] = eta * dd[k] + (eta * ci - sqrt(kk)) * nf[k];
-                    t3[k] = sh->thr[k] * sp->kt[k];
-                    in[k] = mid[k] - 2 * off * nf[k];
-                }
-                gr__to_host(ind, in, dt, sh->level + 1, 1, t3, frac, rgb);
+        if (gr__nonzero3(wr)) gr__push_piece(ind, stack, x0, x1, up, dr, wr, sh->level + 1, sh->inside, rgb);
+        if (gr__nonzero3(wt)) {
+            if (thin) { /* through the pane, to the host behind it */
+                double mid[3];
+                for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + down[k];
+                gr__to_host(ind, mid, dt, sh->level + 1, !sh->inside, wt, 1, rgb);
+            } else {
+                gr__push_piece(ind, stack, x0, x1, down, dt, wt, sh->level + 1, !sh->inside, rgb);
             }
         }
     }
-    if (esc > 0) {
+    if (esc > 0) { /* §6.2: 1 - Σ r_i leaves: up into the scene, or into the bulk */
         double o[3], sm = esc_s / esc;
         for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
-        gr__to_host(ind, o, sh->d, sh->level, 0, sh->thr, esc, rgb);
+        gr__to_host(ind, o, sh->d, sh->level, sh->inside, sh->thr, esc, rgb);
     }
 }
 
@@ -5308,10 +5412,11 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
 {
     gr__scratch_t s;
     gr__lscene_t sc;
-    gr__sheet_t stack[GR__LINE_STACK];
+    gr__stack_t stack;
     const gr_footprint_t *fp;
     double wfam[2] = {0, 0}, cfam[2][3] = {{0, 0, 0}, {0, 0, 0}}, tol;
-    int n, j, k;
+    int n, j, k, full = 0;
+    unsigned approx = 0;
     gr_result_t r;
     if (!indirect || !rgb) return GR_ERR_INVALID_ARG;
     rgb[0] = rgb[1] = rgb[2] = 0;
@@ -5326,26 +5431,31 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
     n = query->line_samples ? query->line_samples : 2;
     tol = gr__exit_tol(query);
     gr__line_layout(grid, scratch, &s, &sc);
+    stack.s = sc.ls.stack;
     for (j = 0; j < n; j++) {
         double cj[3] = {0, 0, 0}, wj = 0, wa;
-        int top = 1, fam;
-        wa = gr__top_sheet(grid, query, j, n, &stack[0], &fam);
-        while (top > 0) {
-            gr__sheet_t sh = stack[--top];
+        int fam;
+        stack.top = 1;
+        stack.full = 0;
+        wa = gr__top_sheet(grid, query, j, n, &stack.s[0], &fam);
+        while (stack.top > 0) {
+            gr__sheet_t sh = stack.s[--stack.top];
             double w, cl;
-            int m;
-            gr__line_scene(grid, &s, &sc, &sh, 1, NULL, query->lights, query->light_count);
+            int m, nl = sh.inside ? 0 : query->light_count; /* no direct light inside the material */
+            gr__line_scene(grid, &s, &sc, &sh, 1, NULL, query->lights, nl);
             /* the early exit (§5.6) would leave unclassified gaps, which
                here would read as light leaving: bounces classify all */
-            m = gr__sheet_eval(&sc, &sh, query->lights, query->light_count, sh.level ? -1 : tol, &w, &cl, stats);
+            m = gr__sheet_eval(&sc, &sh, query->lights, nl, sh.level ? -1 : tol, &w, &cl, stats);
+            approx |= sc.flags & GR_LIST_LINE_APPROX;
             if (sh.level == 0) {
                 wj = w;
                 if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = w;
                 if (cl > 0 && cl < 1) /* share the unclassified rest in proportion */
                     for (k = 0; k < 3; k++) sh.thr[k] /= cl;
             }
-            gr__bounce(&sc, &sh, m, query, indirect, stack, &top, cj);
+            gr__bounce(&sc, &sh, m, query, indirect, &stack, cj);
         }
+        full |= stack.full;
         wfam[fam] += wa * wj; /* families combined as in gr_query_lines() */
         for (k = 0; k < 3; k++) cfam[fam][k] += wa * cj[k];
     }
@@ -5357,7 +5467,8 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
             for (k = 0; k < 3; k++) rgb[k] += wf * cfam[f][k];
         }
     }
-    return GR_OK;
+    if (stats) stats->flags = (approx ? GR_STATS_LINE_APPROX : 0u) | (full ? GR_STATS_STACK_FULL : 0u);
+    return full ? GR_ERR_STACK_FULL : GR_OK;
 }
 #endif
 /* ==== [end section: interreflection] ==== */
