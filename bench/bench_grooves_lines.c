@@ -9,12 +9,15 @@
    (half-axes 0.004-0.03, turned at random), view with E_w >= 0.3, one
    light. Per method: CPU time per footprint (clock(), one thread) and the
    mean error against supersampled geometry (Embree on the explicit mesh
-   of tests/grooves_oracle.h, 64 x 64 rays per footprint): the total
+   of tests/grooves_oracle.h, 256 x 256 rays per footprint): the total
    variation ½ Σ_i |r_i - r_i,ref| of the visible ratios, (groove, facet)
    by (groove, facet). Methods: gr_query() with line_samples = 0, which
-   sends these footprints to the polygon path (§5.2-5.5), 1/2/4/8 line
-   samples, and geometry with 4x4, 8x8, 16x16 rays (shadow rays included).
-   Then gr_shade_indirect() with every facet a 50% mirror at depth 0..3. */
+   sends these footprints to the polygon path (§5.2-5.5), 1/2/4/8/16/32
+   line samples, and geometry with 4x4 ... 32x32 rays (shadow rays included); the
+   geometry time at each method's error, interpolated log-log between the
+   geometry rows. Then §5.6's cache on a scanline, and gr_shade_indirect()
+   at depth 0..3 (and 8, the converged answer the others are compared
+   with), every facet a 50 % mirror, then clear Fresnel glass. */
 #define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "grooves_oracle.h"
@@ -110,10 +113,11 @@ static double tv(const double *a, const double *b)
     return 0.5 * s;
 }
 
+/* the host: a sky brightest at the zenith, a uniform 0.5 in the bulk */
 static void sky(void *user, const double origin[3], const double dir[3], int depth, int inside, double weight, double rgb[3])
 {
-    (void)user; (void)origin; (void)depth; (void)inside; (void)weight;
-    rgb[0] = rgb[1] = rgb[2] = dir[2] > 0 ? dir[2] : 0;
+    (void)user; (void)origin; (void)depth; (void)weight;
+    rgb[0] = rgb[1] = rgb[2] = inside ? 0.5 : dir[2] > 0 ? dir[2] : 0;
 }
 
 int main(int argc, char **argv)
@@ -132,7 +136,7 @@ int main(int argc, char **argv)
     double (*ref)[SLOTS], share[SLOTS];
     size_t need;
     void *scratch;
-    int i, k, m;
+    int i, m;
     memset(g, 0, sizeof g);
     for (i = 0; i < 2 * NG; i++) {
         double c = 0.2 + 0.6 * (i % NG) / (NG - 1);
@@ -230,24 +234,45 @@ int main(int argc, char **argv)
                "2 lines, cached", tt[1], cache.hits, cache.misses);
         fprintf(csv, "2 line samples scanline,%.2f,\n2 line samples scanline cached,%.2f,\n", tt[0], tt[1]);
     }
-    printf("\n%-20s %14s\n", "inter-reflection", "us/footprint");
-    for (k = 0; k <= 3; k++) {
+    /* §6: cost of the recursion at depths 0..3, and what the truncation
+       leaves out: the mean |rgb_k - rgb_8| against depth 8 (GR_MAX_DEPTH);
+       the floor as 50 % mirrors, then as clear glass (Fresnel, ior 1.5:
+       every hit splits into a reflected and a refracted segment) */
+    printf("\n%-24s %12s %12s %16s\n", "inter-reflection", "us/footprint", "segments", "|rgb - depth 8|");
+    for (m = 0; m < 2; m++) {
+        static const int depths[5] = {8, 0, 1, 2, 3};
+        static double conv[NFP];
         gr_specular_t spec[2];
         gr_indirect_t ind;
-        double t0, t, rgb[3];
+        int di, c;
         memset(spec, 0, sizeof spec);
-        for (m = 0; m < 3; m++) spec[0].kr[m] = spec[1].kr[m] = 0.5;
-        memset(&ind, 0, sizeof ind);
-        ind.depth = k; ind.specular = spec; ind.specular_count = 2; ind.trace = sky;
-        t0 = cpu();
-        for (i = 0; i < NFP; i++) {
-            gr_query_t q = qs[i];
-            q.line_samples = 2;
-            gr_shade_indirect(grid, &q, &ind, scratch, need, rgb, NULL);
+        for (c = 0; c < 3; c++) {
+            spec[0].kr[c] = spec[1].kr[c] = m ? 1 : 0.5;
+            spec[0].kt[c] = spec[1].kt[c] = m ? 1 : 0;
         }
-        t = (cpu() - t0) / NFP * 1e6;
-        printf("depth %-14d %14.1f\n", k, t);
-        fprintf(csv, "indirect depth %d (2 line samples),%.2f,\n", k, t);
+        spec[0].fresnel = spec[1].fresnel = m;
+        memset(&ind, 0, sizeof ind);
+        ind.specular = spec; ind.specular_count = 2; ind.trace = sky;
+        for (di = 0; di < 5; di++) {
+            double t0, t, err = 0, rgb[3];
+            long long segs = 0;
+            ind.depth = depths[di];
+            t0 = cpu();
+            for (i = 0; i < NFP; i++) {
+                gr_query_t q = qs[i];
+                gr_line_stats_t st;
+                q.line_samples = 2;
+                gr_shade_indirect(grid, &q, &ind, scratch, need, rgb, &st);
+                segs += st.segments;
+                if (di == 0) conv[i] = rgb[0];
+                else err += fabs(rgb[0] - conv[i]) / NFP;
+            }
+            t = (cpu() - t0) / NFP * 1e6;
+            printf("%-6s depth %-11d %12.1f %12.1f %16.4f\n", m ? "glass" : "mirror", depths[di], t, (double)segs / NFP,
+                   err);
+            fprintf(csv, "indirect %s depth %d (2 line samples),%.2f,%.5f\n", m ? "glass" : "mirror 50%", depths[di], t,
+                    err);
+        }
     }
     fclose(csv);
     printf("wrote %s\n", path);

@@ -4401,6 +4401,14 @@ static int gr__lit(const gr__lscene_t *sc, int plane, const double *d, const dou
 /* Gather the grooves that can meet rays from the segment (box: the
    segment and where its rays cross the top and bottom, enlarged by w,
    §4.1/§5.1) and build their facet planes, nearest GR_LINE_MAX_GROOVES. */
+/* A straight, unperturbed segment: its straight approximation is
+   the groove itself, the same from every footprint (§5.6's cache keeps
+   only these). */
+static int gr__line_cacheable(const gr__groove_t *rec)
+{
+    return rec->kind == GR_PATH_POLYLINE && rec->point_count == 2 && !rec->perturb;
+}
+
 /* Groove id in its straight approximation at the point nearest c. */
 static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double reach, gr__lg_t *g)
 {
@@ -4422,6 +4430,15 @@ static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double re
     g->first_facet = rec->first_facet;
     g->lo = rec->closed ? -HUGE_VAL : -cd.param / cd.dtds;
     g->hi = rec->closed ? HUGE_VAL : (1 - cd.param) / cd.dtds;
+    if (gr__line_cacheable(rec)) { /* anchored at its first point: the same record from any footprint */
+        const double *a = grid->points_ + 2 * rec->first_point;
+        g->p[0] = a[0] + (c[0] - cd.fc[0]); /* the image shift: a whole number of tiles, 0 without wrap */
+        g->p[1] = a[1] + (c[1] - cd.fc[1]);
+        if (!rec->closed) {
+            g->lo = 0;
+            g->hi = rec->length;
+        }
+    }
     return g->f > 0; /* scaled away here otherwise */
 }
 
@@ -4486,9 +4503,7 @@ static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         gr__lg_t g;
         if (!gr__lg_make(grid, s->ids[k], c, reach, &g)) continue;
         if (!fill) { gr__lg_keep(sc, &g, c, reach, quad); continue; }
-        if (fill->count == GR_LINE_MAX_GROOVES || grid->grooves_[s->ids[k]].point_count != 2 ||
-            grid->grooves_[s->ids[k]].kind != GR_PATH_POLYLINE)
-            return 0;
+        if (fill->count == GR_LINE_MAX_GROOVES || !gr__line_cacheable(&grid->grooves_[s->ids[k]])) return 0;
         memcpy(fill->store_ + 16 * fill->count++, &g, sizeof g);
     }
     return 1;
@@ -4583,6 +4598,11 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
     } else {
         gr__line_gather(grid, s, sc, box, c, reach, tight ? &quad : NULL, NULL);
     }
+    for (i = 1; i < sc->nlg; i++) { /* in groove order, however they were found (cache or grid) */
+        gr__lg_t x = sc->ls.lg[i];
+        for (k = i; k > 0 && sc->ls.lg[k - 1].groove > x.groove; k--) sc->ls.lg[k] = sc->ls.lg[k - 1];
+        sc->ls.lg[k] = x;
+    }
     /* planes: the ground, then every facet of every groove (§3) */
     memset(&sc->ls.pl[0], 0, sizeof sc->ls.pl[0]);
     sc->ls.pl[0].n[2] = 1;
@@ -4661,20 +4681,6 @@ static double gr__edge_sin2(const double *a, const double *dir, const double *D)
     aa = a[0] * a[0] + a[1] * a[1];
     ee = e[0] * e[0] + e[1] * e[1];
     return aa > 0 && ee > 0 ? cr * cr / (aa * ee) : 0;
-}
-
-/* The segment parameter where the rays meet both planes n1.x = h1 and
-   n2.x = h2 (a line of the two planes, §5.3): 2x2 in (s, t). */
-static int gr__sheet_two_planes(const gr__sheet_t *sh, const double *n1, double h1, const double *n2, double h2,
-                                double *s, double *t)
-{
-    double a11 = gr__dot3(n1, sh->a), a12 = gr__dot3(n1, sh->d), a21 = gr__dot3(n2, sh->a), a22 = gr__dot3(n2, sh->d);
-    double r1 = h1 - gr__dot3(n1, sh->o), r2 = h2 - gr__dot3(n2, sh->o), det = a11 * a22 - a12 * a21;
-    double sc = sqrt(gr__dot3(n1, n1) * gr__dot3(n2, n2) * gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d));
-    if (!(fabs(det) > 1e-14 * sc)) return 0;
-    *s = (r1 * a22 - a12 * r2) / det;
-    *t = (a11 * r2 - r1 * a21) / det;
-    return 1;
 }
 
 static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int plane)
@@ -4820,7 +4826,7 @@ static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
     gr__edge_it_t it;
     double nS[3], ns2, pad = GR__LINE_ON_FACET_REL * sc->scale;
     /* the seen planes, with their dot products against the segment's
-       a, d and o (for gr__sheet_two_planes' 2x2 system, per plane once) */
+       a, d and o, for the 2x2 system of a ray meeting two planes, per plane once) */
     int vis[GR_LINE_MAX_PLANES], nvis = 0;
     double pv[GR_LINE_MAX_PLANES][4], aadd = gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d);
     gr__cross3(sh->a, sh->d, nS); /* the normal of the segment's plane of rays */
@@ -4868,7 +4874,7 @@ static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
                 int k;
                 m = vis[v];
                 if (m == e.p1 || m == e.p2) continue;
-                /* the rays meeting this plane and facet m (gr__sheet_two_planes) */
+                /* the ray (s, t) meeting this plane and facet m: Cramer on n.(o + s a + t d) = h */
                 if (!(fabs(det) > 1e-14 * sqrt(nd2 * pv[v][3]))) continue;
                 s = (r1 * pv[v][1] - a12 * pv[v][2]) / det;
                 t = (a11 * pv[v][2] - r1 * pv[v][0]) / det;
@@ -5105,16 +5111,6 @@ static double gr__top_sheet(const gr_grid_t *grid, const gr_query_t *q, int j, i
     return weight;
 }
 
-/* The sheet whose scene (gr__line_scene, not tight) holds every top-level
-   line's rays: centred on F, spanning the footprint's UV box. */
-static void gr__footprint_sheet(const gr_grid_t *grid, const gr_query_t *q, gr__sheet_t *all)
-{
-    const gr_footprint_t *fp = &q->footprint;
-    int fam;
-    (void)gr__top_sheet(grid, q, 0, 1, all, &fam);
-    all->a[0] = fabs(fp->axis1[0]) + fabs(fp->axis2[0]);
-    all->a[1] = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
-}
 
 /* Shared argument checks of gr_query_lines / gr_shade_indirect. */
 static gr_result_t gr__line_check(const gr_grid_t *grid, const gr_query_t *q, void *scratch, size_t bytes)
@@ -5148,6 +5144,17 @@ static void gr__line_layout(const gr_grid_t *grid, void *scratch, gr__scratch_t 
 #endif /* line-sample engine */
 
 #ifndef GR_NO_LINE_SAMPLES
+/* The sheet whose scene (gr__line_scene, not tight) holds every top-level
+   line's rays: centred on F, spanning the footprint's UV box. */
+static void gr__footprint_sheet(const gr_grid_t *grid, const gr_query_t *q, gr__sheet_t *all)
+{
+    const gr_footprint_t *fp = &q->footprint;
+    int fam;
+    (void)gr__top_sheet(grid, q, 0, 1, all, &fam);
+    all->a[0] = fabs(fp->axis1[0]) + fabs(fp->axis2[0]);
+    all->a[1] = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
+}
+
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats)
 {
