@@ -279,7 +279,7 @@ typedef struct gr_query_t {
     int line_samples;      /* intersections and ends (§5, issue 8): 0 (default)
                               answers footprints that gr_detect() finds
                               crossings or path ends in with the exact
-                              polygon path (§5.2-5.5); n = 1..8 asks for n
+                              polygon path (§5.2-5.5); n = 1..32 asks for n
                               line samples (§5.6, gr_query_lines()) for
                               footprints whose §4 answer flags
                               GR_LIST_NONPARALLEL or GR_LIST_PATH_END
@@ -606,7 +606,8 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
    planes (the ground, facets and end walls of those grooves) and the
    breakpoints it can hold per segment; beyond any of them the result is
    approximate and flagged GR_LIST_LINE_APPROX. They size the scratch
-   (about 125 KB with these defaults). */
+   (with GR_LINE_MAX_EDGES and GR_INDIRECT_STACK about 320 KB with these
+   defaults, within the polygon path's share of gr_query_scratch_bytes()). */
 #ifndef GR_LINE_MAX_GROOVES
 #  define GR_LINE_MAX_GROOVES 16
 #endif
@@ -619,7 +620,8 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 #ifndef GR_LINE_MAX_EDGES /* edge lines kept per scene; beyond, found per segment (slower, same answer) */
 #  define GR_LINE_MAX_EDGES 2048
 #endif
-/* Most line samples per footprint (gr_query_t.line_samples). */
+/* Most line samples per footprint (gr_query_t.line_samples): 16 chords
+   along each axis. */
 #define GR_LINE_MAX_SAMPLES 32
 /* gr_facet_list_t.flags: line samples dropped grooves or breakpoints. */
 #define GR_LIST_LINE_APPROX 32u
@@ -648,10 +650,12 @@ typedef struct gr_line_stats_t {
    footprint, in their straight approximation, for a box GR_LINE_CACHE_GROW
    times the footprint's search box; a later footprint whose box lies
    inside reuses them and skips the grid search and the nearest-point
-   solves. Only straight grooves (2-point paths) are cached, so the answer
-   is the uncached one; a box with a curve or polyline, or more grooves
-   than GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use;
-   it refers to one grid (another grid refills it). */
+   solves. Only straight, unperturbed grooves (2-point paths) are cached:
+   their straight approximation is the groove itself, the same from every
+   footprint, so the answer is bit for bit the uncached one; a box with a
+   curve, a polyline, a perturbed groove, or more grooves than
+   GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use; it
+   refers to one grid (another grid refills it). */
 #define GR_LINE_CACHE_GROW 3.0
 typedef struct gr_line_cache_t {
     const gr_grid_t *grid;  /* the grid it was filled from */
@@ -664,30 +668,35 @@ typedef struct gr_line_cache_t {
 
 #ifndef GR_NO_LINE_SAMPLES
 /* §5.6 line samples. The footprint F + a A1 + b A2 is sampled by
-   n = query->line_samples segments through F (0 means 2), evenly rotated:
-   segment j runs along cos(πj/n) A1 + sin(πj/n) A2, so 2 samples are the
-   footprint axes A1 and A2 as in the paper. Each segment is processed as a
-   1D version of §5.2-5.4: the rays from the viewer through the segment form
-   a plane; every groove near the footprint, in its local straight
-   approximation (§4.2) scaled by its perturbation, cuts that plane along
-   its facets, and the segment is cut into intervals at every point where
-   the first surface changes (projected section points, the crossing lines
-   of two grooves' facets, §5.3's intersection profiles) or where a shadow
-   boundary falls (§5.4: section points and crossing lines projected along
-   each light onto a facet). Inside one interval the visible facet and its
-   lit state are constant, so one ray per interval classifies it: the solid
-   is the ground w <= 0 minus every groove's cut (the part of its section
-   below w = 0) plus every protrusion. r_i is facet i's length share. The
-   segments are combined with Jones & Perry 2000's weights: segment j
-   weighs Σ sin²α over the edges it crosses (α between the segment and the
-   edge's image in UV), so a segment running along the edges counts little;
-   when no segment crosses an edge they are averaged. Early exit (§5.6):
-   intervals are classified longest first and a segment stops once
-   Σ r_i >= 1 - query->line_exit_tol; the unclassified rest (< tol) is
-   shared in proportion (each r_i moves by at most tol).
-   Path ends are treated as continuing (GR_LIST_PATH_END), as in gr_query().
-   Uses gr_query_scratch_bytes() of scratch; stats is optional. Errors as
-   gr_query(), plus GR_ERR_INVALID_ARG for line_samples outside 0..8. */
+   n = query->line_samples line segments (0 means 2) in two families: the
+   first ceil(n/2) run along A1, the other floor(n/2) along A2, each family
+   a set of parallel chords across the whole footprint at the midpoints of
+   equal strata of the other axis, so n = 2 is the paper's pair of axes
+   through F and more lines are a stratified quadrature of the footprint's
+   area (its error falls with n). Each chord is processed as a 1D version
+   of §5.2-5.4: the rays from the viewer through it form a plane; every
+   groove near the footprint, in its local straight approximation (§4.2)
+   scaled by its perturbation, cuts that plane along its facets, and the
+   chord is cut into intervals wherever an edge of the scene pierces the
+   plane (section points swept along T, the crossing lines of two grooves'
+   facets: §5.3's intersection profiles) or an edge's shadow along a light
+   falls on a facet the chord sees (§5.4). Inside one interval the visible
+   facet and its lit state are constant, so one ray per interval
+   classifies it: the solid is the ground w <= 0 minus every groove's cut
+   (the part of its section below w = 0) plus every protrusion, path ends
+   closed by flat walls of the section's shape (listed with facet index
+   section_count - 1 at the first end, section_count at the last). r_i is
+   facet i's length share; a family's share is the area-weighted mean of
+   its chords'. The families are combined with Jones & Perry 2000's
+   weights: a chord weighs Σ sin²α over the edges it crosses (α between
+   the chord and the edge's image in UV), a family the mean of its chords,
+   so a family running along the edges counts little; when neither crosses
+   an edge they are averaged. Early exit (§5.6): intervals are classified
+   longest first and a chord stops once Σ r_i >= 1 - query->line_exit_tol;
+   the unclassified rest (< tol) is shared in proportion (each r_i of a
+   chord moves by at most tol). Uses gr_query_scratch_bytes() of scratch;
+   stats is optional. Errors as gr_query(), plus GR_ERR_INVALID_ARG for
+   line_samples outside 0..GR_LINE_MAX_SAMPLES. */
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats);
 
