@@ -59,6 +59,18 @@ static void trace_cb(void *user, const double origin[3], const double dir[3], in
     if (depth == c->want) rgb[0] = rgb[1] = rgb[2] = 1;
 }
 
+/* the reference's primary ray (i, j) of n x 8 over the footprint's
+   parallelogram, from above everything along -E */
+static void primary_ray(const gr_footprint_t *fp, int n, int i, int j, double o[3], double d[3])
+{
+    double a = -1 + (2 * i + 1.0) / n, c = -1 + (2 * j + 1.0) / 8;
+    int k;
+    o[0] = fp->center[0] + a * fp->axis1[0] + c * fp->axis2[0] + 0.2 * fp->view[0] / fp->view[2];
+    o[1] = fp->center[1] + a * fp->axis1[1] + c * fp->axis2[1] + 0.2 * fp->view[1] / fp->view[2];
+    o[2] = 0.2;
+    for (k = 0; k < 3; k++) d[k] = -fp->view[k];
+}
+
 /* reference: energy reaching the sky after exactly k bounces, k = 0..MAXD */
 static void reference(const gro_scene_t *sc, const gr_footprint_t *fp, int n, double *ek)
 {
@@ -66,11 +78,8 @@ static void reference(const gro_scene_t *sc, const gr_footprint_t *fp, int n, do
     for (k = 0; k <= MAXD; k++) ek[k] = 0;
     for (j = 0; j < 8; j++)
         for (i = 0; i < n; i++) {
-            double a = -1 + (2 * i + 1.0) / n, c = -1 + (2 * j + 1.0) / 8, o[3], d[3];
-            o[0] = fp->center[0] + a * fp->axis1[0] + c * fp->axis2[0] + 0.2 * fp->view[0] / fp->view[2];
-            o[1] = fp->center[1] + a * fp->axis1[1] + c * fp->axis2[1] + 0.2 * fp->view[1] / fp->view[2];
-            o[2] = 0.2;
-            for (k = 0; k < 3; k++) d[k] = -fp->view[k];
+            double o[3], d[3];
+            primary_ray(fp, n, i, j, o, d);
             for (k = 0; k <= MAXD + 1; k++) {
                 gro_hit_t h = gro_scene_intersect(sc, o, d, 0, INFINITY);
                 double dn;
@@ -486,11 +495,8 @@ static void reference_split(const gro_scene_t *sc, const gr_footprint_t *fp, int
     for (k = 0; k <= MAXD; k++) eout[k] = ein[k] = 0;
     for (j = 0; j < 8; j++)
         for (i = 0; i < n; i++) {
-            double a = -1 + (2 * i + 1.0) / n, c = -1 + (2 * j + 1.0) / 8, o[3], d[3];
-            o[0] = fp->center[0] + a * fp->axis1[0] + c * fp->axis2[0] + 0.2 * fp->view[0] / fp->view[2];
-            o[1] = fp->center[1] + a * fp->axis1[1] + c * fp->axis2[1] + 0.2 * fp->view[1] / fp->view[2];
-            o[2] = 0.2;
-            for (k = 0; k < 3; k++) d[k] = -fp->view[k];
+            double o[3], d[3];
+            primary_ray(fp, n, i, j, o, d);
             pt_split(sc, mats, o, d, 0, 1.0 / (8.0 * n), 0, eout, ein);
         }
 }

@@ -9,8 +9,8 @@
    Fig. 21c), frame (a window frame protruding over glass with
    inter-reflection, Fig. 21d), interreflect (inter-reflections in gold
    V-grooves, Fig. 17): these two use gr_shade_indirect() with 2 line
-   samples, and the geometry renderer bounces its rays off the same mirror
-   fractions.
+   samples, and the geometry renderer bounces its rays off the same
+   weights (mirror fractions, the thin pane's Fresnel terms).
    Modes (--mode): ours (grooves.h, 1 sample per pixel), geometry (Embree
    mesh of the swept cross-sections, --spp samples per pixel).
 
