@@ -829,6 +829,7 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
 #endif
 #include <stdio.h>  /* snprintf for diagnostics */
 #include <stdlib.h> /* qsort */
+#include <float.h>  /* DBL_EPSILON */
 #include <string.h>
 
 #ifdef __cplusplus
@@ -4137,8 +4138,14 @@ static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
    cut an interval in two). */
 #define GR__LINE_ON_FACET_REL 1e-9
 /* Breakpoints closer than this (in the segment parameter s in [-1, 1])
-   coalesce: intervals that short carry no measurable ratio. */
+   coalesce: intervals that short carry no measurable ratio. To it adds
+   the rounding of the breakpoints' positions, GR__LINE_SNAP_ULPS units
+   of the largest texture coordinate along the rays, in units of the
+   segment (gr__sheet_snap): a footprint far smaller than its coordinates
+   would otherwise keep slivers whose class is rounding noise, and Jones &
+   Perry would count their edges. */
 #define GR__LINE_SNAP 1e-12
+#define GR__LINE_SNAP_ULPS 16.0
 /* Shadow and bounce rays start this fraction of the scene scale
    (w + h + d of the grid) off their facet, along its normal, so the facet
    they leave is not found again through rounding. */
@@ -4949,13 +4956,23 @@ static void gr__classify(const gr__lscene_t *sc, const gr__sheet_t *sh, gr__ivl_
     iv->lit = 0;
 }
 
+/* The coalescing distance of a segment's breakpoints (GR__LINE_SNAP). */
+static double gr__sheet_snap(const gr__lscene_t *sc, const gr__sheet_t *sh)
+{
+    double mag = fabs(sh->o[0]), al = sqrt(gr__dot3(sh->a, sh->a));
+    if (fabs(sh->o[1]) > mag) mag = fabs(sh->o[1]);
+    if (fabs(sh->o[2]) > mag) mag = fabs(sh->o[2]);
+    mag += GR__LINE_TRAVEL_REL * sc->scale;
+    return al > 0 ? GR__LINE_SNAP + GR__LINE_SNAP_ULPS * DBL_EPSILON * mag / al : GR__LINE_SNAP;
+}
+
 /* §5.4 on one segment: split the seen intervals at the shadow boundaries
    on their facets, then one shadow ray per piece and light. */
 static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl, int n)
 {
     gr__ivl_t *iv = sc->ls.iv, *out = sc->ls.iv2;
     unsigned char seen[GR_LINE_MAX_PLANES];
-    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
+    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), snap = gr__sheet_snap(sc, sh);
     int i, k, nb, b = 0, m = 0;
     memset(seen, 0, (size_t)sc->npl);
     for (i = 0; i < n; i++)
@@ -4970,8 +4987,8 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
             int j;
             if (iv[i].plane >= 0 && m + (n - i) < GR_LINE_MAX_BREAKS + 1) {
                 for (j = b; j < nb && sc->ls.brk[j].s < iv[i].s1; j++)
-                    if (sc->ls.brk[j].plane == iv[i].plane && sc->ls.brk[j].s - s0 > GR__LINE_SNAP &&
-                        iv[i].s1 - sc->ls.brk[j].s > GR__LINE_SNAP) {
+                    if (sc->ls.brk[j].plane == iv[i].plane && sc->ls.brk[j].s - s0 > snap &&
+                        iv[i].s1 - sc->ls.brk[j].s > snap) {
                         s1 = sc->ls.brk[j].s;
                         next = sc->ls.brk[j].sin2;
                         b = j + 1;
@@ -5040,11 +5057,11 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
 {
     gr__ivl_t *iv = sc->ls.iv;
     int nb = sc->nlg ? gr__sheet_breaks(sc, sh, lights, nl, NULL, 0) : 0, n = 0, i;
-    double last = -1, sin2 = 0, done = 0;
+    double last = -1, sin2 = 0, done = 0, snap = gr__sheet_snap(sc, sh);
     gr__brk_sort(sc, nb);
     for (i = 0; i <= nb; i++) {
         double s = i < nb ? sc->ls.brk[i].s : 1;
-        if (s - last <= GR__LINE_SNAP) { /* coalesce: keep the steepest edge */
+        if (s - last <= snap) { /* coalesce: keep the steepest edge */
             if (i < nb && sc->ls.brk[i].sin2 > sin2) sin2 = sc->ls.brk[i].sin2;
             continue;
         }
@@ -5095,7 +5112,7 @@ static double gr__top_sheet(const gr_grid_t *grid, const gr_query_t *q, int j, i
     int n0 = (n + 1) / 2, fam = j < n0 ? 0 : 1, count = fam ? n - n0 : n0, i = fam ? j - n0 : j, k;
     const double *along = fam ? fp->axis2 : fp->axis1, *across = fam ? fp->axis1 : fp->axis2;
     double lo = -1 + 2.0 * i / count, hi = -1 + 2.0 * (i + 1) / count, c = 0.5 * (lo + hi), half = 1, weight;
-    double ew = fp->view[2], lift, f[2];
+    double ew = fp->view[2], lift, f[2], scale = grid->h + grid->w + grid->d;
     if (q->ellipse) {
         half = sqrt(1 - c * c);
         weight = gr__disc_cdf(hi) - gr__disc_cdf(lo);
@@ -5103,7 +5120,12 @@ static double gr__top_sheet(const gr_grid_t *grid, const gr_query_t *q, int j, i
         weight = 1.0 / count;
     }
     if (ew < GR__GRAZING_MIN_W) ew = GR__GRAZING_MIN_W;
-    lift = (grid->h + grid->w + grid->d) / ew; /* start above every protrusion */
+    /* start just above every protrusion (GR__LINE_CLEAR_REL over the top),
+       but no farther from F than half the rays' reach (GR__LINE_TRAVEL_REL
+       scene scales), so grazing views keep their rays near the footprint
+       (a protrusion farther along the view is not seen then) */
+    lift = (grid->h + GR__LINE_CLEAR_REL * scale) / ew;
+    if (lift > 0.5 * GR__LINE_TRAVEL_REL * scale) lift = 0.5 * GR__LINE_TRAVEL_REL * scale;
     f[0] = fp->center[0] + c * across[0];
     f[1] = fp->center[1] + c * across[1];
     sh->o[0] = f[0] + lift * fp->view[0];

@@ -542,6 +542,161 @@ static void t_dispatch(void)
     gr_grid_free(s.grid);
 }
 
+/* Named stiff cases of line samples. */
+
+/* a scene scaled about (0.5, 0.5) by k: paths and sections */
+static int scaled_crossing(scene_t *s, double k, double *sec)
+{
+    int i;
+    for (i = 0; i < 6; i++) sec[i] = k * VSEC[i];
+    memset(s, 0, sizeof *s);
+    scene_add(s, 0.5 - 0.3 * k, 0.5, 0.5 + 0.3 * k, 0.5, sec, 3);
+    scene_add(s, 0.5, 0.5 - 0.3 * k, 0.5, 0.5 + 0.3 * k, sec, 3);
+    return scene_build(s);
+}
+
+/* Scale: the X crossing at 1e-5 and 1e3 times its size (footprint and
+   sections scaled with it, the tile around it) gives the size-1 answer
+   (the tolerances are relative to the scene scale w + h + d). */
+static void t_stiff_scale(void)
+{
+    static const double scales[2] = {1e-5, 1e3};
+    static const double lights[3] = {0.5, 0.3, 0.81};
+    double sec0[6];
+    scene_t s0;
+    int c, k, g, f;
+    if (!T_CHECK(scaled_crossing(&s0, 1, sec0))) return;
+    for (c = 0; c < 2; c++) {
+        double sec[6], worst = 0;
+        scene_t s;
+        if (!T_CHECK(scaled_crossing(&s, scales[c], sec))) return;
+        for (k = 0; k < 6; k++) {
+            double du = 0.004 * k - 0.01, dv = 0.003 - 0.002 * k, r = 0.006 + 0.002 * k;
+            gr_query_t q0 = gt_query(0.5 + du, 0.5 + dv, r, 0.3, -0.2, 0.93), q = q0;
+            gr_facet_list_t l0, l;
+            q0.lights = q.lights = lights;
+            q0.light_count = q.light_count = 1;
+            q0.line_samples = q.line_samples = 8;
+            q.footprint.center[0] = 0.5 + scales[c] * du;
+            q.footprint.center[1] = 0.5 + scales[c] * dv;
+            q.footprint.axis1[0] = scales[c] * r;
+            q.footprint.axis2[1] = scales[c] * r;
+            if (!run_lines(s0.grid, &q0, &l0, NULL) || !run_lines(s.grid, &q, &l, NULL)) return;
+            for (g = -1; g < 2; g++)
+                for (f = g < 0 ? -1 : 0; f < (g < 0 ? 0 : 2); f++) {
+                    worst = fmax(worst, fabs(ratio_gf(&l, g, f) - ratio_gf(&l0, g, f)));
+                    worst = fmax(worst, fabs(lit_gf(&l, g, f, 0) - lit_gf(&l0, g, f, 0)));
+                }
+        }
+        printf("  scale %g: worst |r - r(scale 1)| = %.1e\n", scales[c], worst);
+        T_LE(worst, 1e-6);
+        gr_grid_free(s.grid);
+    }
+    gr_grid_free(s0.grid);
+}
+
+/* Grazing views at an X crossing (E_w down to 1e-3 and 1e-12) along and
+   across the grooves: the ratios stay finite, in [0, 1] and sum to 1;
+   at E_w = 1e-3, 32 line samples agree with the polygon path within the
+   8-sample bound. */
+static void t_stiff_grazing(void)
+{
+    static const double ews[3] = {1e-1, 1e-3, 1e-12};
+    scene_t s;
+    int e, az, i;
+    if (!T_CHECK(crossing_scene(&s, 0, VSEC, 3))) return;
+    for (e = 0; e < 3; e++)
+        for (az = 0; az < 3; az++) {
+            double ang = 0.3 + 0.6 * az, ew = ews[e], sh = sqrt(1 - ew * ew);
+            gr_query_t q = gt_query(0.503, 0.497, 0.012, sh * cos(ang), sh * sin(ang), ew);
+            gr_facet_list_t l, lp;
+            q.line_samples = 32;
+            if (!run_lines(s.grid, &q, &l, NULL)) return;
+            T_NEAR(gt_ratio_sum(&l), 1, 1e-9);
+            for (i = 0; i < l.count; i++) T_CHECK(l.facets[i].ratio >= 0 && l.facets[i].ratio <= 1 + 1e-12);
+            if (e == 1) {
+                double worst = 0;
+                int g, f;
+                q.line_samples = 0;
+                if (!gt_run(s.grid, &q, &lp)) return;
+                for (g = -1; g < 2; g++)
+                    for (f = g < 0 ? -1 : 0; f < (g < 0 ? 0 : 2); f++)
+                        worst = fmax(worst, fabs(ratio_gf(&l, g, f) - ratio_gf(&lp, g, f)));
+                T_LE(worst, LINE_ERR_8);
+            }
+        }
+    gr_grid_free(s.grid);
+}
+
+/* A footprint that is a line (A2 = 0): every chord of both families lies
+   on it or is a point, so 8 samples give the one-chord answer; a point
+   footprint gives the facet under F with ratio 1. */
+static void t_stiff_degenerate_footprint(void)
+{
+    scene_t s;
+    int k, g, f;
+    if (!T_CHECK(crossing_scene(&s, 0, VSEC, 3))) return;
+    for (k = 0; k < 5; k++) {
+        gr_query_t q = gt_query(0.497 + 0.002 * k, 0.5 - 0.001 * k, 0.015, 0.2, 0.3, 0.93);
+        gr_facet_list_t l1, l8;
+        q.footprint.axis1[0] = 0.015 * cos(0.4 * k);
+        q.footprint.axis1[1] = 0.015 * sin(0.4 * k);
+        q.footprint.axis2[0] = q.footprint.axis2[1] = 0;
+        q.line_samples = 1;
+        if (!run_lines(s.grid, &q, &l1, NULL)) return;
+        q.line_samples = 8;
+        if (!run_lines(s.grid, &q, &l8, NULL)) return;
+        for (g = -1; g < 2; g++)
+            for (f = g < 0 ? -1 : 0; f < (g < 0 ? 0 : 2); f++) T_NEAR(ratio_gf(&l8, g, f), ratio_gf(&l1, g, f), 1e-12);
+    }
+    gr_grid_free(s.grid);
+}
+
+/* More grooves under the footprint than GR_LINE_MAX_GROOVES (40 parallel
+   V grooves crossed by one): the nearest are kept, the list and the stats
+   say so, and the ratios still sum to 1. */
+static void t_stiff_many_grooves(void)
+{
+    static double pts[41][4];
+    gr_groove_desc_t g[41];
+    gr_grid_desc_t d;
+    gr_grid_t *grid = NULL;
+    gr_facet_list_t l;
+    gr_line_stats_t st;
+    gr_query_t q = gt_query(0.5, 0.5, 0.2, 0.1, 0.2, 0.97);
+    int i;
+    memset(g, 0, sizeof g);
+    memset(&d, 0, sizeof d);
+    for (i = 0; i < 41; i++) {
+        double c = 0.3 + 0.01 * i;
+        pts[i][0] = i < 40 ? c : 0.1;
+        pts[i][1] = i < 40 ? 0.1 : 0.5;
+        pts[i][2] = i < 40 ? c : 0.9;
+        pts[i][3] = i < 40 ? 0.9 : 0.5;
+        g[i].points = pts[i];
+        g[i].point_count = 2;
+        g[i].section = VSEC;
+        g[i].section_count = 3;
+        g[i].reflectance = 1;
+    }
+    d.grooves = g;
+    d.groove_count = 41;
+    d.no_wrap = 1;
+    if (!T_CHECK(gr_grid_build(&d, &grid, NULL) == GR_OK)) return;
+    q.line_samples = 4;
+    {
+        size_t need = gr_query_scratch_bytes(grid);
+        void *scratch = malloc(need);
+        T_INT_EQ(gr_query_lines(grid, &q, scratch, need, &l, &st), GR_OK);
+        free(scratch);
+    }
+    T_CHECK(l.flags & GR_LIST_LINE_APPROX);
+    T_CHECK(st.flags & GR_STATS_LINE_APPROX);
+    T_INT_EQ(l.grooves, GR_LINE_MAX_GROOVES);
+    T_NEAR(gt_ratio_sum(&l), 1, 1e-9);
+    gr_grid_free(grid);
+}
+
 static void t_bad_input(void)
 {
     scene_t s;
@@ -582,7 +737,8 @@ int main(int argc, char **argv)
     static const t_case_t cases[] = {
         T_CASE(t_isolated_equals_query), T_CASE(t_crossings_vs_raster), T_CASE(t_oblique_crossings_vs_oracle),
         T_CASE(t_weighting),
-        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_bad_input),
+        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_stiff_scale), T_CASE(t_stiff_grazing),
+        T_CASE(t_stiff_degenerate_footprint), T_CASE(t_stiff_many_grooves), T_CASE(t_bad_input),
     };
     return T_RUN(argc, argv, cases);
 }
