@@ -430,6 +430,8 @@ typedef struct gx_ours_t {
     RTCScene plane;
     long long embree_bytes;       /* Embree's bytes once the plane is committed */
     int perturb_normals;          /* gr_query_t.perturb_normals: 0 true normals, -1 §4.4's */
+    int line_samples;             /* gr_query_t.line_samples: 0 polygons at crossings and ends,
+                                     n > 0 n line samples (§5.6); the §6 scenes take 2 for 0 */
     ex_camera_t cam;
 } gx_ours_t;
 
@@ -510,7 +512,7 @@ static ex_v3_t gx_ours_indirect(const gx_ours_t *o, gr_query_t *q, const gr_fram
     ind.specular_count = GX_MAX_MATS;
     ind.brdf = gx_brdf_cb; ind.brdf_user = (void *)s;
     ind.trace = gx_trace_cb; ind.trace_user = (void *)s;
-    q->line_samples = 2;
+    if (q->line_samples == 0) q->line_samples = 2;
     r = gr_shade_indirect(o->grid, q, &ind, scratch, bytes, rgb, NULL);
     if (r != GR_OK && r != GR_ERR_STACK_FULL) return s->background; /* a full stack still gives a colour */
     return ex_v3(rgb[0], rgb[1], rgb[2]);
@@ -543,6 +545,7 @@ static ex_v3_t gx_ours_radiance(const gx_ours_t *o, double px, double py)
     rd.ry_dir[0] = ray.ry_d.x; rd.ry_dir[1] = ray.ry_d.y; rd.ry_dir[2] = ray.ry_d.z;
     memset(&q, 0, sizeof q);
     q.perturb_normals = o->perturb_normals;
+    q.line_samples = o->line_samples;
     if (gr_footprint_from_differentials(&rd, &q.footprint, &frame) != GR_OK) return s->background;
     for (k = 0; k < s->nlights; k++) gr_frame_to_texture(&frame, s->light[k], L + 3 * k);
     q.lights = L; q.light_count = s->nlights;
