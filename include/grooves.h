@@ -5251,12 +5251,6 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
         int nfam = n > 1 ? 2 : 1, f;
         double wf[2], wsum = wfam[0] + wfam[1];
         for (f = 0; f < 2; f++) wf[f] = f >= nfam ? 0 : wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
-#ifdef GR__FAMMODE
-        if (GR__FAMMODE == 1) { wf[0] = wf[1] = 0.5; }
-        if (GR__FAMMODE == 2 && wsum > 0) { double q0 = wfam[0]*wfam[0], q1 = wfam[1]*wfam[1]; wf[0] = q0/(q0+q1); wf[1] = q1/(q0+q1); }
-        if (GR__FAMMODE == 3) { wf[0] = 1; wf[1] = 0; }
-        if (GR__FAMMODE == 4) { wf[0] = 0; wf[1] = 1; }
-#endif
         for (i = 0; i < sc.npl; i++) {
             const gr__plane_t *p = &sc.ls.pl[i];
             gr__mfacet_t mf;
