@@ -97,26 +97,44 @@ static void reference(const gro_scene_t *sc, const gr_footprint_t *fp, int n, do
         }
 }
 
+/* host callback: 1 for light leaving at one (depth, medium) */
+typedef struct want_t { int depth, inside, calls; } want_t;
+static void want_cb(void *user, const double origin[3], const double dir[3], int depth, int inside, double weight,
+                    double rgb[3])
+{
+    want_t *w = (want_t *)user;
+    (void)origin; (void)dir; (void)weight;
+    w->calls++;
+    rgb[0] = rgb[1] = rgb[2] = depth == w->depth && inside == w->inside ? 1 : 0;
+}
+
+/* Our energy leaving at bounce k into medium in (0 up, 1 the bulk), the
+   recursion MAXD deep. */
+static double shade_split(const gr_grid_t *grid, const gr_query_t *q, const gr_specular_t *spec, int k, int in,
+                          void *scratch, size_t need)
+{
+    gr_indirect_t ind;
+    want_t w;
+    double rgb[3];
+    memset(&ind, 0, sizeof ind);
+    w.depth = k;
+    w.inside = in;
+    w.calls = 0;
+    ind.depth = MAXD;
+    ind.specular = spec;
+    ind.specular_count = 2;
+    ind.trace = want_cb;
+    ind.trace_user = &w;
+    T_INT_EQ(gr_shade_indirect(grid, q, &ind, scratch, need, rgb, NULL), GR_OK);
+    return rgb[0];
+}
+
 static void shade_depths(const gr_grid_t *grid, const gr_query_t *q, const gr_specular_t *spec, double *ek)
 {
     size_t need = gr_query_scratch_bytes(grid);
     void *scratch = malloc(need);
     int k;
-    for (k = 0; k <= MAXD; k++) {
-        gr_indirect_t ind;
-        cb_t cb;
-        double rgb[3];
-        memset(&ind, 0, sizeof ind);
-        memset(&cb, 0, sizeof cb);
-        cb.want = k;
-        ind.depth = MAXD;
-        ind.specular = spec;
-        ind.specular_count = 2;
-        ind.trace = trace_cb;
-        ind.trace_user = &cb;
-        T_INT_EQ(gr_shade_indirect(grid, q, &ind, scratch, need, rgb, NULL), GR_OK);
-        ek[k] = rgb[0];
-    }
+    for (k = 0; k <= MAXD; k++) ek[k] = shade_split(grid, q, spec, k, 0, scratch, need); /* mirrors: all up */
     free(scratch);
 }
 
@@ -501,15 +519,25 @@ static void reference_split(const gro_scene_t *sc, const gr_footprint_t *fp, int
         }
 }
 
-/* host callback: 1 for light leaving at one (depth, medium) */
-typedef struct want_t { int depth, inside, calls; } want_t;
-static void want_cb(void *user, const double origin[3], const double dir[3], int depth, int inside, double weight,
-                    double rgb[3])
+
+
+/* Ours against the path tracer's (eo, ei) at every (bounce, medium):
+   printed, asserted within the reference's bound; returns the sum of ours
+   and raises *worst. */
+static double compare_split(const gr_grid_t *grid, const gr_query_t *q, const gr_specular_t *spec, const double *eo,
+                            const double *ei, int n, void *scratch, size_t need, double *worst)
 {
-    want_t *w = (want_t *)user;
-    (void)origin; (void)dir; (void)weight;
-    w->calls++;
-    rgb[0] = rgb[1] = rgb[2] = depth == w->depth && inside == w->inside ? 1 : 0;
+    double sum = 0;
+    int k, in;
+    for (k = 0; k <= MAXD; k++)
+        for (in = 0; in < 2; in++) {
+            double ours = shade_split(grid, q, spec, k, in, scratch, need), want = in ? ei[k] : eo[k];
+            printf(" %.4f|%.4f", want, ours);
+            T_NEAR(ours, want, REF_TOL * 4000 / n);
+            *worst = fmax(*worst, fabs(ours - want));
+            sum += ours;
+        }
+    return sum;
 }
 
 static void t_transmission_vs_pathtraced(void)
@@ -527,7 +555,7 @@ static void t_transmission_vs_pathtraced(void)
     };
     static const char *sname[4] = {"glass V", "glass ridge", "frame/pane", "constants"};
     gro_device_t dev;
-    int sc_i, v, k, in, n = (int)(4000 * t_scale());
+    int sc_i, v, k, n = (int)(4000 * t_scale());
     double worst = 0, tir_seen = 0;
     if (n < 400) n = 400;
     if (gro_device_init(&dev)) { T_FAIL("embree"); return; }
@@ -562,27 +590,8 @@ static void t_transmission_vs_pathtraced(void)
             reference_split(&sc, &q.footprint, n, mats[sc_i], eo, ei);
             if (sc_i < 2) tir_seen += pt_tir;
             printf("  %-11s %-7s E_k out/in path-traced | ours:", sname[sc_i], vname[v]);
-            for (k = 0; k <= MAXD; k++)
-                for (in = 0; in < 2; in++) {
-                    gr_indirect_t ind;
-                    want_t w;
-                    double rgb[3], want = in ? ei[k] : eo[k];
-                    memset(&ind, 0, sizeof ind);
-                    w.depth = k;
-                    w.inside = in;
-                    w.calls = 0;
-                    ind.depth = MAXD;
-                    ind.specular = spec;
-                    ind.specular_count = 2;
-                    ind.trace = want_cb;
-                    ind.trace_user = &w;
-                    T_INT_EQ(gr_shade_indirect(grid, &q, &ind, scratch, need, rgb, NULL), GR_OK);
-                    printf(" %.4f|%.4f", want, rgb[0]);
-                    T_NEAR(rgb[0], want, REF_TOL * 4000 / n);
-                    worst = fmax(worst, fabs(rgb[0] - want));
-                    sum_ref += want;
-                    sum_ours += rgb[0];
-                }
+            sum_ours = compare_split(grid, &q, spec, eo, ei, n, scratch, need, &worst);
+            for (k = 0; k <= MAXD; k++) sum_ref += eo[k] + ei[k];
             printf("  (sum %.4f|%.4f, TIR %.4f)\n", sum_ref, sum_ours, pt_tir);
         }
         free(scratch);
@@ -629,20 +638,7 @@ static void t_transmission_vs_pathtraced(void)
             q.line_samples = 1;
             reference_split(&sc, &q.footprint, n, mats[0], eo, ei);
             printf("  glass X crossing view %d E_k out/in path-traced | ours:", v);
-            for (k = 0; k <= MAXD; k++)
-                for (in = 0; in < 2; in++) {
-                    gr_indirect_t ind;
-                    want_t w;
-                    double rgb[3], want = in ? ei[k] : eo[k];
-                    memset(&ind, 0, sizeof ind);
-                    w.depth = k; w.inside = in; w.calls = 0;
-                    ind.depth = MAXD; ind.specular = spec; ind.specular_count = 2;
-                    ind.trace = want_cb; ind.trace_user = &w;
-                    T_INT_EQ(gr_shade_indirect(grid, &q, &ind, scratch, need, rgb, NULL), GR_OK);
-                    printf(" %.4f|%.4f", want, rgb[0]);
-                    T_NEAR(rgb[0], want, REF_TOL * 4000 / n);
-                    worst = fmax(worst, fabs(rgb[0] - want));
-                }
+            (void)compare_split(grid, &q, spec, eo, ei, n, scratch, need, &worst);
             printf("\n");
         }
         free(scratch);
@@ -775,16 +771,9 @@ static void t_stiff_indirect_scale_grazing(void)
         q.line_samples = 2;
         for (k = 0; k <= MAXD; k++)
             for (in = 0; in < 2; in++) {
-                gr_indirect_t ind;
-                want_t w;
-                double rgb[3];
-                memset(&ind, 0, sizeof ind);
-                w.depth = k; w.inside = in; w.calls = 0;
-                ind.depth = MAXD; ind.specular = spec; ind.specular_count = 2;
-                ind.trace = want_cb; ind.trace_user = &w;
-                T_INT_EQ(gr_shade_indirect(grid, &q, &ind, scratch, need, rgb, NULL), GR_OK);
-                if (c == 0) base[2 * k + in] = rgb[0];
-                else worst = fmax(worst, fabs(rgb[0] - base[2 * k + in]));
+                double e = shade_split(grid, &q, spec, k, in, scratch, need);
+                if (c == 0) base[2 * k + in] = e;
+                else worst = fmax(worst, fabs(e - base[2 * k + in]));
             }
         if (c == 0) { /* grazing, lossless, host = 1 */
             gr_indirect_t ind;
