@@ -743,6 +743,26 @@ static const double BEND_U[10] = {-0.03, 0, -0.024, -0.02, 0, -0.028, 0.024, -0.
 #define BEND_NORMAL_TOL 0.02
 static double bend_wave(double t, void *u) { (void)u; return 1.0 + 0.45 * sin(6 * M_PI * t); }
 
+/* The bend cases' scene: the cubic with the U section, optionally with the
+   curves scene's perturbation; entries matched to the oracle by id. */
+static int bend_scene(int perturbed)
+{
+    scene_begin();
+    scene_add(GR_PATH_CUBIC, BEND, 4, BEND_U, 5);
+    if (perturbed) { S.desc[0].perturb = bend_wave; S.desc[0].perturb_max = 1.45; }
+    S.no_wrap = 1;
+    q_match_ids = 1;
+    return scene_build();
+}
+
+/* After a bend case: default matching and counters, the scene freed. */
+static void bend_case_end(void)
+{
+    q_match_ids = 0;
+    worst_ratio = worst_lit = 0;
+    scene_end();
+}
+
 /* Footprint k of the bend cases: down the bend (t = 0.70 ... 0.84), across
    the groove at b = -0.02, 0, 0.02, seen 50° from the normal looking along
    the path one way or the other, a light at 40° along it. */
@@ -774,11 +794,7 @@ static void tight_bend_occlusion(void)
 {
     double worst = 0, worst_lit_d = 0, worst_straight = 0, worst_straight_lit = 0;
     int k;
-    scene_begin();
-    scene_add(GR_PATH_CUBIC, BEND, 4, BEND_U, 5);
-    S.no_wrap = 1;
-    if (!scene_build()) return;
-    q_match_ids = 1;
+    if (!bend_scene(0)) return;
     for (k = 0; k < 16; k++) {
         double L[3];
         gr_footprint_t f = bend_footprint(k, L);
@@ -791,12 +807,10 @@ static void tight_bend_occlusion(void)
         worst_straight_lit = fmax(worst_straight_lit, worst_lit);
         q_straight = 0;
     }
-    q_match_ids = 0;
     T_GT(worst_straight, 0.1);
     fprintf(stderr, "    tight bend: max |r_i - oracle| = %.3f, lit %.3f where rays meet the groove; %.3f, %.3f straight (§4.3)\n",
             worst, worst_lit_d, worst_straight, worst_straight_lit);
-    worst_ratio = worst_lit = 0;
-    scene_end();
+    bend_case_end();
 }
 
 /* The same bend with the curves scene's perturbation f = 1 + 0.45 sin 6 pi t
@@ -813,12 +827,7 @@ static void bend_with_steep_perturbation(void)
     static unsigned char scratch[1 << 20];
     double worst_n = 0, worst_p = 0;
     int k;
-    scene_begin();
-    scene_add(GR_PATH_CUBIC, BEND, 4, BEND_U, 5);
-    S.desc[0].perturb = bend_wave; S.desc[0].perturb_max = 1.45;
-    S.no_wrap = 1;
-    if (!scene_build()) return;
-    q_match_ids = 1;
+    if (!bend_scene(1)) return;
     for (k = 0; k < 16; k++) {
         double L[3];
         gr_query_t q;
@@ -845,12 +854,10 @@ static void bend_with_steep_perturbation(void)
         }
         gro_result_free(&o);
     }
-    q_match_ids = 0;
     T_GT(worst_p, 0.05);
     fprintf(stderr, "    bend + perturbation: max |r_i - oracle| = %.1e, lit %.1e; normals %.1e rad (§4.4: %.3f)\n",
             worst_ratio, worst_lit, worst_n, worst_p);
-    worst_ratio = worst_lit = 0;
-    scene_end();
+    bend_case_end();
 }
 
 /* §4.2's oversampling (issue 7 item 5) converges toward the geometry as
@@ -868,11 +875,7 @@ static void oversampling_converges_on_bend(void)
     gr_footprint_t f;
     double err[4], L[3] = {0, 0, 1};
     int i;
-    scene_begin();
-    scene_add(GR_PATH_CUBIC, BEND, 4, BEND_U, 5);
-    S.desc[0].perturb = bend_wave; S.desc[0].perturb_max = 1.45;
-    S.no_wrap = 1;
-    if (!scene_build()) return;
+    if (!bend_scene(1)) return;
     memset(&f, 0, sizeof f);
     f.center[0] = 0.75414; f.center[1] = 0.41482;
     f.axis1[0] = 4 * 0.00322; f.axis1[1] = 0;
@@ -880,7 +883,6 @@ static void oversampling_converges_on_bend(void)
     f.view[0] = -0.217; f.view[1] = -0.738; f.view[2] = 0.640;
     for (i = 0; i < 3; i++) f.view[i] /= sqrt(0.217 * 0.217 + 0.738 * 0.738 + 0.64 * 0.64);
     q_max_oversample = 64;
-    q_match_ids = 1;
     for (i = 0; i < 4; i++) {
         q_oversample_tol = tols[i];
         err[i] = compare_tol(&f, L, 1, 512, 0.05);
@@ -888,13 +890,11 @@ static void oversampling_converges_on_bend(void)
     }
     q_max_oversample = 0;
     q_oversample_tol = 0;
-    q_match_ids = 0;
     T_LE(err[3], 2e-3);
     T_LT(err[3], err[0] / 4);
     fprintf(stderr, "    oversampling on the bend: max |r_i - oracle| %.1e (none), %.1e, %.1e, %.1e (tol 0.05, 0.02, 0.01)\n",
             err[0], err[1], err[2], err[3]);
-    worst_ratio = worst_lit = 0;
-    scene_end();
+    bend_case_end();
 }
 
 /* Oblique footprints (neither axis along the groove). The parallelogram
