@@ -2440,6 +2440,14 @@ static int gr__oversample_need(const gr_grid_t *grid, const gr__cand_t *c, const
     if (c->kappa != 0) {
         double sag = 0.5 * fabs(c->kappa) * ext * ext;
         double k = ceil(sqrt(sag / (tol * width)));
+        /* the seen boundaries tilt across the footprint as the groove turns
+           under it: a view ray running `run` along the path at the deepest
+           point shifts by about kappa ext run from one end of the
+           footprint to the other (run kept within one path length) */
+        double run = rec->down / rec->fmax * c->f * fabs(fp->view[0] * c->t[0] + fp->view[1] * c->t[1]);
+        run = run < fp->view[2] / c->dtds ? run / fp->view[2] : 1 / c->dtds;
+        if (k > need) need = k;
+        k = ceil(fabs(c->kappa) * ext * run / (tol * width));
         if (k > need) need = k;
     }
     if (rec->perturb) {
