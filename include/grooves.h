@@ -2325,7 +2325,7 @@ static void gr__project(const gr_grid_t *grid, const gr__qset_t *qs, const gr__s
         tau = (dir[0] * c->t[0] + dir[1] * c->t[1]) / dir[2];
         run = gr__ray_point(&grid->grooves_[c->groove], c, s->bs[i], s->ws[i], tau, &fh);
 #ifndef GR_NO_CURVES
-        if (c->kappa != 0 || c->dkds != 0) { /* on the path itself: q = dw times the mouth coordinate */
+        if ((c->kappa != 0 || c->dkds != 0) && run != 0) { /* on the path itself: q = dw times the mouth coordinate */
             q[i] = dw * c->sigma * (gr__mouth_on_path(grid, c, s->bs[i], s->ws[i], dir, fh, run) - c->d);
             continue;
         }
