@@ -85,6 +85,9 @@ typedef enum gr_result_t {
     GR_ERR_SECTION_ORDER,    /* a cross-section whose last b is not above its first b */
     GR_ERR_PERTURBATION,     /* a perturbation without a valid perturb_max */
     GR_ERR_UNSUPPORTED,      /* a feature left out at compile time (GR_NO_...) */
+    GR_ERR_STACK_FULL,       /* gr_shade_indirect(): the bounces needed more than
+                                GR_INDIRECT_STACK pending segments; the colour is
+                                filled but approximate (see there) */
     GR_RESULT_COUNT_
 } gr_result_t;
 
@@ -276,7 +279,7 @@ typedef struct gr_query_t {
     int line_samples;      /* intersections and ends (§5, issue 8): 0 (default)
                               answers footprints that gr_detect() finds
                               crossings or path ends in with the exact
-                              polygon path (§5.2-5.5); n = 1..8 asks for n
+                              polygon path (§5.2-5.5); n = 1..32 asks for n
                               line samples (§5.6, gr_query_lines()) for
                               footprints whose §4 answer flags
                               GR_LIST_NONPARALLEL or GR_LIST_PATH_END
@@ -298,6 +301,16 @@ typedef struct gr_query_t {
     double line_exit_tol;  /* §5.6 early exit of line samples: stop when
                               Σ r_i >= 1 - tol; default 0 means 1e-3;
                               negative disables */
+    int straight_occlusion; /* 0 (default): §4.3's masking and shadowing
+                              with each cross-section point taken where
+                              the ray that reaches it meets the groove: the
+                              section scaled by f there (the depth change
+                              along the ray's way, exact for a linear f)
+                              and, on a curved path, moved by the bend's
+                              drift under a ray running along it (exact
+                              for a circular arc). Nonzero: the straight
+                              groove with the constant profile at P, as
+                              the paper has it (§4.2-4.3) */
 } gr_query_t;
 
 /* One entry of the facet list: a texture-space facet orientation with its
@@ -603,7 +616,8 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
    planes (the ground, facets and end walls of those grooves) and the
    breakpoints it can hold per segment; beyond any of them the result is
    approximate and flagged GR_LIST_LINE_APPROX. They size the scratch
-   (about 125 KB with these defaults). */
+   (with GR_LINE_MAX_EDGES and GR_INDIRECT_STACK about 320 KB with these
+   defaults, within the polygon path's share of gr_query_scratch_bytes()). */
 #ifndef GR_LINE_MAX_GROOVES
 #  define GR_LINE_MAX_GROOVES 16
 #endif
@@ -613,13 +627,25 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 #ifndef GR_LINE_MAX_BREAKS
 #  define GR_LINE_MAX_BREAKS 1024
 #endif
-/* Most line samples per footprint (gr_query_t.line_samples). */
-#define GR_LINE_MAX_SAMPLES 8
+#ifndef GR_LINE_MAX_EDGES /* edge lines kept per scene; beyond, found per segment (slower, same answer) */
+#  define GR_LINE_MAX_EDGES 2048
+#endif
+/* Most line samples per footprint (gr_query_t.line_samples): 16 chords
+   along each axis. */
+#define GR_LINE_MAX_SAMPLES 32
 /* gr_facet_list_t.flags: line samples dropped grooves or breakpoints. */
 #define GR_LIST_LINE_APPROX 32u
 
+/* gr_line_stats_t.flags */
+#define GR_STATS_LINE_APPROX 1u /* a segment's scene dropped grooves, planes or
+                                   breakpoints (GR_LIST_LINE_APPROX) */
+#define GR_STATS_STACK_FULL  2u /* gr_shade_indirect(): more pending bounce
+                                   segments than GR_INDIRECT_STACK (it then
+                                   returns GR_ERR_STACK_FULL) */
+
 /* Optional counters from gr_query_lines() (and gr_shade_indirect()). */
 typedef struct gr_line_stats_t {
+    unsigned flags;    /* GR_STATS_... */
     int segments;      /* segments evaluated (line samples and bounces) */
     int intervals;     /* 1D intervals the segments were cut into */
     int evaluated;     /* intervals whose facet was found (the rest were
@@ -634,10 +660,12 @@ typedef struct gr_line_stats_t {
    footprint, in their straight approximation, for a box GR_LINE_CACHE_GROW
    times the footprint's search box; a later footprint whose box lies
    inside reuses them and skips the grid search and the nearest-point
-   solves. Only straight grooves (2-point paths) are cached, so the answer
-   is the uncached one; a box with a curve or polyline, or more grooves
-   than GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use;
-   it refers to one grid (another grid refills it). */
+   solves. Only straight, unperturbed grooves (2-point paths) are cached:
+   their straight approximation is the groove itself, the same from every
+   footprint, so the answer is bit for bit the uncached one; a box with a
+   curve, a polyline, a perturbed groove, or more grooves than
+   GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use; it
+   refers to one grid (another grid refills it). */
 #define GR_LINE_CACHE_GROW 3.0
 typedef struct gr_line_cache_t {
     const gr_grid_t *grid;  /* the grid it was filled from */
@@ -650,30 +678,35 @@ typedef struct gr_line_cache_t {
 
 #ifndef GR_NO_LINE_SAMPLES
 /* §5.6 line samples. The footprint F + a A1 + b A2 is sampled by
-   n = query->line_samples segments through F (0 means 2), evenly rotated:
-   segment j runs along cos(πj/n) A1 + sin(πj/n) A2, so 2 samples are the
-   footprint axes A1 and A2 as in the paper. Each segment is processed as a
-   1D version of §5.2-5.4: the rays from the viewer through the segment form
-   a plane; every groove near the footprint, in its local straight
-   approximation (§4.2) scaled by its perturbation, cuts that plane along
-   its facets, and the segment is cut into intervals at every point where
-   the first surface changes (projected section points, the crossing lines
-   of two grooves' facets, §5.3's intersection profiles) or where a shadow
-   boundary falls (§5.4: section points and crossing lines projected along
-   each light onto a facet). Inside one interval the visible facet and its
-   lit state are constant, so one ray per interval classifies it: the solid
-   is the ground w <= 0 minus every groove's cut (the part of its section
-   below w = 0) plus every protrusion. r_i is facet i's length share. The
-   segments are combined with Jones & Perry 2000's weights: segment j
-   weighs Σ sin²α over the edges it crosses (α between the segment and the
-   edge's image in UV), so a segment running along the edges counts little;
-   when no segment crosses an edge they are averaged. Early exit (§5.6):
-   intervals are classified longest first and a segment stops once
-   Σ r_i >= 1 - query->line_exit_tol; the unclassified rest (< tol) is
-   shared in proportion (each r_i moves by at most tol).
-   Path ends are treated as continuing (GR_LIST_PATH_END), as in gr_query().
-   Uses gr_query_scratch_bytes() of scratch; stats is optional. Errors as
-   gr_query(), plus GR_ERR_INVALID_ARG for line_samples outside 0..8. */
+   n = query->line_samples line segments (0 means 2) in two families: the
+   first ceil(n/2) run along A1, the other floor(n/2) along A2, each family
+   a set of parallel chords across the whole footprint at the midpoints of
+   equal strata of the other axis, so n = 2 is the paper's pair of axes
+   through F and more lines are a stratified quadrature of the footprint's
+   area (its error falls with n). Each chord is processed as a 1D version
+   of §5.2-5.4: the rays from the viewer through it form a plane; every
+   groove near the footprint, in its local straight approximation (§4.2)
+   scaled by its perturbation, cuts that plane along its facets, and the
+   chord is cut into intervals wherever an edge of the scene pierces the
+   plane (section points swept along T, the crossing lines of two grooves'
+   facets: §5.3's intersection profiles) or an edge's shadow along a light
+   falls on a facet the chord sees (§5.4). Inside one interval the visible
+   facet and its lit state are constant, so one ray per interval
+   classifies it: the solid is the ground w <= 0 minus every groove's cut
+   (the part of its section below w = 0) plus every protrusion, path ends
+   closed by flat walls of the section's shape (listed with facet index
+   section_count - 1 at the first end, section_count at the last). r_i is
+   facet i's length share; a family's share is the area-weighted mean of
+   its chords'. The families are combined with Jones & Perry 2000's
+   weights: a chord weighs Σ sin²α over the edges it crosses (α between
+   the chord and the edge's image in UV), a family the mean of its chords,
+   so a family running along the edges counts little; when neither crosses
+   an edge they are averaged. Early exit (§5.6): intervals are classified
+   longest first and a chord stops once Σ r_i >= 1 - query->line_exit_tol;
+   the unclassified rest (< tol) is shared in proportion (each r_i of a
+   chord moves by at most tol). Uses gr_query_scratch_bytes() of scratch;
+   stats is optional. Errors as gr_query(), plus GR_ERR_INVALID_ARG for
+   line_samples outside 0..GR_LINE_MAX_SAMPLES. */
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats);
 
@@ -688,22 +721,46 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
 #ifndef GR_NO_INTERREFLECTION
 /* Deepest recursion gr_shade_indirect() accepts. */
 #define GR_MAX_DEPTH 8
+/* Pending bounce segments gr_shade_indirect() can hold (in the query
+   scratch, about 110 bytes each); a footprint that needs more gets
+   GR_ERR_STACK_FULL. Each segment of a bounce pushes up to two per facet
+   it sees (reflected and transmitted), so the need grows with the depth
+   and the facets per segment. */
+#ifndef GR_INDIRECT_STACK
+#  define GR_INDIRECT_STACK 512
+#endif
 
 /* Specular behaviour of one reflectance id (the per-facet ids of
    gr_groove_desc_t.facet_reflectance and the grid's base_reflectance). */
 typedef struct gr_specular_t {
     double kr[3];  /* specular reflectance k_r per channel (0: no bounce) */
     double kt[3];  /* specular transmittance k_t per channel (0: none) */
-    double ior;    /* index of refraction for transmission; 0 means 1.5 */
+    double ior;    /* index of refraction of the material behind the facet
+                      (the solid's side); 0 means 1.5 */
+    int fresnel;   /* 0 (default): k_r and k_t are the bounce weights, as the
+                      paper's constants (under total internal reflection
+                      k_t is reflected too). 1: a dielectric: reflection
+                      k_r F, transmission k_t (1 - F), F the unpolarised
+                      Fresnel reflectance for the ior at the angle of
+                      incidence (1 under total internal reflection) */
+    int thin;      /* 0 (default): transmitted light refracts (Snell, ior)
+                      and is followed inside the solid, where it may leave
+                      through another facet or be reflected back from
+                      inside (§6.1's rays from below); what reaches the bulk
+                      below the grooves goes to trace() with inside = 1.
+                      1: a thin pane (window glass, Figure 21d): transmitted
+                      light keeps its direction and goes straight to trace()
+                      with inside = 1; with fresnel, the pane's two faces
+                      sum to R' = 2F/(1 + F), T' = (1 - F)/(1 + F) */
 } gr_specular_t;
 
 /* Host ray-trace callback (§6.2): the radiance arriving along dir (unit,
-   texture space, pointing away from the surface) at origin (texture space
-   u, v, w: the centre of the segment piece the rays leave from). inside = 0:
-   a ray that left the grooved surface (Σ r_i < 1 at that bounce); inside = 1:
-   a ray refracted into the material through a transmitting facet (the host
-   owns what lies below the surface, e.g. the glass pane behind a frame).
-   depth: the bounce it leaves at (1 = after the first reflection). weight:
+   texture space) at origin (texture space u, v, w: the centre of the
+   segment piece the rays leave from). inside = 0: rays that left the
+   grooved surface upward (Σ r_i < 1 at that bounce); inside = 1: rays in
+   the material that reached the bulk below the grooves, or passed a thin
+   pane (the host owns what lies there, e.g. the room behind a window).
+   depth: the bounce it leaves at (0 = the footprint's own rays). weight:
    the mean throughput it carries (informative, e.g. for Russian roulette;
    the library applies it). */
 typedef void (*gr_trace_fn)(void *user, const double origin[3], const double dir[3], int depth, int inside,
@@ -725,21 +782,30 @@ typedef struct gr_indirect_t {
    grooves, on gr_query_lines()'s segments (query->line_samples of them,
    combined with the same Jones & Perry weights). On each segment, each
    interval's facet gets its direct term Σ_k lit_k brdf(...) (eq. 6); if
-   depth allows and its id reflects, the facet's visible piece becomes the
-   next footprint (§6.1: the piece of the facet the segment sees, a 3D
-   segment on the facet; projecting it back to UV along E_r, as the paper
-   does, gives the same rays) seen along the mirror direction E_r, with
-   throughput r_i k_r. Rays of a bounce may leave from below the texture
-   plane and point up or down (E_w < 0 in the paper's terms): the 1D ray
-   classification is the same for any direction, which is §6.1's inverted
-   masking order. Where a bounce's rays find no facet (Σ r_i < 1) the rest
-   goes to trace() with weight 1 - Σ r_i (§6.2); light refracted by a
-   transmitting facet goes to trace() with inside = 1. Recursion runs on an
-   explicit stack (GR_MAX_DEPTH levels); pieces beyond its capacity go to
-   trace() along their mirror direction (GR_LIST_LINE_APPROX in stats is
-   not reported; stats->segments counts the work). Uses
-   gr_query_scratch_bytes() of scratch. Errors as gr_query_lines(), plus
-   GR_ERR_INVALID_ARG for a NULL indirect or rgb, depth outside
+   depth allows and its id reflects or transmits (gr_specular_t), the
+   facet's visible piece becomes the next footprint (§6.1: the piece of the
+   facet the segment sees, a 3D segment on the facet; projecting it back to
+   UV along E_r, as the paper does, gives the same rays), seen along the
+   mirror direction E_r with throughput r_i k_r, and along the refracted
+   direction E_t (Snell with the id's ior) with r_i k_t; with fresnel set,
+   k_r F and k_t (1 - F). Refracted rays run inside the solid: they leave
+   it through another facet (refracted again, or reflected back inside,
+   totally when past the critical angle), or reach the bulk below the
+   grooves. Rays of a bounce may leave from below the texture plane and
+   point up or down (E_w < 0 in the paper's terms): the 1D ray
+   classification is the same for any direction and either medium, which
+   is §6.1's inverted masking order. What a bounce's rays do not meet
+   (Σ r_i < 1) goes to trace() with weight 1 - Σ r_i (§6.2): inside = 0 for
+   rays leaving up into the scene, inside = 1 for rays reaching the bulk
+   (or passing a thin pane). Rays inside the material are followed 64
+   scene scales (w + h + d) along the surface; beyond, they count as bulk
+   light. Direct light (brdf) is added on the outside only. Recursion runs
+   on an explicit stack of GR_INDIRECT_STACK segments in the scratch: when
+   a footprint needs more, the pieces that do not fit leave along their
+   direction to trace() unexamined, stats->flags gets GR_STATS_STACK_FULL
+   and the call returns GR_ERR_STACK_FULL with rgb filled (approximate).
+   Uses gr_query_scratch_bytes() of scratch. Errors as gr_query_lines(),
+   plus GR_ERR_INVALID_ARG for a NULL indirect or rgb, depth outside
    0..GR_MAX_DEPTH, specular_count < 0 or specular NULL with a count. */
 GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *query, const gr_indirect_t *indirect,
                                      void *scratch, size_t scratch_bytes, double rgb[3], gr_line_stats_t *stats);
@@ -773,6 +839,7 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
 #endif
 #include <stdio.h>  /* snprintf for diagnostics */
 #include <stdlib.h> /* qsort */
+#include <float.h>  /* DBL_EPSILON */
 #include <string.h>
 
 #ifdef __cplusplus
@@ -821,6 +888,15 @@ extern "C" {
    footprint and where the view ray meets the facet (gr__hit_normal): past
    it the straight approximation of the occlusion means little anyway. */
 #define GR__TURN_MAX 1.0
+/* Smallest stretch 1 - kappa f b of a curved sweep taken (gr__stretch),
+   and smallest denominator of the secant solve for the scale where a ray
+   meets a perturbed groove (gr__ray_point; below it the secant's own end
+   is used): both only guard the local model past its range. */
+#define GR__STRETCH_MIN 0.25
+#define GR__RAY_SECANT_MIN 0.5
+/* gr__ray_point takes its second secant step only when the first moved
+   the scale by more than this fraction of f. */
+#define GR__RAY_SECOND_STEP 1e-3
 #define GR__PI 3.14159265358979323846
 /* Intervals shorter than this fraction of an elliptical footprint's radius
    integrate its semicircle density by the midpoint rule (relative error
@@ -849,6 +925,7 @@ GR_DEF const char *gr_result_string(gr_result_t r)
     case GR_ERR_SECTION_ORDER: return "cross-section does not run from low to high b";
     case GR_ERR_PERTURBATION: return "perturbation without a valid perturb_max";
     case GR_ERR_UNSUPPORTED: return "feature left out at compile time";
+    case GR_ERR_STACK_FULL: return "indirect light: recursion stack full (result approximate)";
     case GR_RESULT_COUNT_: break;
     }
     return "unknown result";
@@ -1556,7 +1633,9 @@ typedef struct gr__cand_t {
     double d;       /* d_P = B . (F - P), B = (-T_v, T_u) (eq. 2) */
     double param;   /* path parameter at P, in [0,1] */
     double dtds;    /* d param / d arc length at P */
+    double dtds2;   /* its derivative per unit arc length (Bézier speed changes) */
     double kappa;   /* signed path curvature at P (> 0: T turns counter-clockwise) */
+    double dkds;    /* its derivative per unit arc length */
     double f;       /* perturbation scale f(param) */
     double dfds;    /* its slope per unit arc length, averaged across the footprint */
     double xmin;    /* leftmost point of its section in the merged profile */
@@ -1583,6 +1662,11 @@ typedef struct gr__scratch_t {
     gr__key_t *key;
     double *x, *w, *q, *lo, *hi, *va, *vb, *lit;
     gr__mfacet_t *mf;
+    /* per merged point: its candidate (-1 for ground) and its point of the
+       unscaled section (b, w); the view's projection */
+    int *pc;
+    double *bs, *ws, *qe;
+    int *visited; /* cell lists the last §4 footprint read (gr__gather) */
 } gr__scratch_t;
 
 static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *s)
@@ -1606,6 +1690,11 @@ static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *
     GR__CARVE(vb, double, np)
     GR__CARVE(lit, double, np * GR_MAX_LIGHTS)
     GR__CARVE(mf, gr__mfacet_t, np)
+    GR__CARVE(pc, int, np)
+    GR__CARVE(bs, double, np)
+    GR__CARVE(ws, double, np)
+    GR__CARVE(qe, double, np)
+    GR__CARVE(visited, int, 1)
 #undef GR__CARVE
     return off;
 }
@@ -1654,6 +1743,28 @@ static void gr__bezier_eval(const double *p, int n, double tau, double b[2], dou
     }
 }
 
+/* The local frame of a candidate at a point of Bézier piece a (degree deg,
+   one of `pieces`) with position b and derivatives d1, d2 there (|d1| > 0):
+   P, unit T, d param / ds and its slope, signed curvature and its slope
+   (from the third derivative, constant per piece: 6 (p3 - 3 p2 + 3 p1 -
+   p0) for a cubic, 0 for a quadratic). */
+static void gr__bezier_frame(const double *a, int deg, int pieces, const double b[2], const double d1[2],
+                             const double d2[2], gr__cand_t *c)
+{
+    double sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]), cr = d1[0] * d2[1] - d1[1] * d2[0], d3[2] = {0, 0}, dcr;
+    double s2 = sp * sp;
+    if (deg == 3) {
+        d3[0] = 6 * (a[6] - 3 * a[4] + 3 * a[2] - a[0]);
+        d3[1] = 6 * (a[7] - 3 * a[5] + 3 * a[3] - a[1]);
+    }
+    dcr = d1[0] * d3[1] - d1[1] * d3[0];
+    c->p[0] = b[0]; c->p[1] = b[1];
+    c->t[0] = d1[0] / sp; c->t[1] = d1[1] / sp;
+    c->dtds = 1 / (pieces * sp);
+    c->dtds2 = -(d1[0] * d2[0] + d1[1] * d2[1]) / (pieces * s2 * s2);
+    c->kappa = cr / (s2 * sp);
+    c->dkds = (dcr * s2 - 3 * cr * (d1[0] * d2[0] + d1[1] * d2[1])) / (s2 * s2 * s2);
+}
 #endif
 
 /* Distance from x to the interval [lo, hi]. */
@@ -1686,7 +1797,9 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
                 c->t[0] = ex / len; c->t[1] = ey / len;
                 c->param = (acc + s * len) / rec->length;
                 c->dtds = 1 / rec->length;
+                c->dtds2 = 0;
                 c->kappa = 0;
+                c->dkds = 0;
                 c->end = rec->closed ? 0 : (k == 0 && raw < 0) ? -1 : (k == rec->pieces - 1 && raw > 1) ? 1 : 0;
             }
             acc += len;
@@ -1697,7 +1810,7 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
         int deg = gr__degree(rec->kind);
         for (k = 0; k < rec->pieces; k++) {
             const double *a = pts + 2 * k * deg;
-            double box[4], dx, dy, bt = 0, bd = HUGE_VAL, b[2], d1[2], d2[2], sp, cr;
+            double box[4], dx, dy, bt = 0, bd = HUGE_VAL, b[2], d1[2], d2[2], sp;
             int s, it;
             /* the control polygon bounds the piece: skip it when farther */
             gr__bounds(a, deg + 1, box);
@@ -1728,12 +1841,8 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
             if (bd < best && sp > 0) {
                 best = bd;
                 found = 1;
-                c->p[0] = b[0]; c->p[1] = b[1];
-                c->t[0] = d1[0] / sp; c->t[1] = d1[1] / sp;
+                gr__bezier_frame(a, deg, rec->pieces, b, d1, d2, c);
                 c->param = (k + bt) / rec->pieces;
-                c->dtds = 1 / (rec->pieces * sp);
-                cr = d1[0] * d2[1] - d1[1] * d2[0];
-                c->kappa = cr / (sp * sp * sp);
                 c->end = 0;
                 if (!rec->closed && k == 0 && bt == 0 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] < 0) c->end = -1;
                 if (!rec->closed && k == rec->pieces - 1 && bt == 1 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] > 0) c->end = 1;
@@ -1827,11 +1936,13 @@ static int gr__append_new(const int *list, int count, unsigned char *seen, int *
 /* Grooves whose paths cross the boundary cells of box (2m + 2(n-2) cells,
    §4.1), plus those anchored inside it (paths wholly inside the box, which
    the boundary cells would miss). Returns the count of unique ids, in the
-   order found; `seen` (one bit per groove) is scratch. */
-static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char *seen, int *ids)
+   order found; `seen` (one bit per groove) is scratch. *visited, when
+   given, receives the number of cell lists read (tests check §4.1's
+   count). */
+static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char *seen, int *ids, int *visited)
 {
     gr__cells_t c = gr__grid_cells(grid);
-    int fu, mu, fv, mv, i, j, n = 0;
+    int fu, mu, fv, mv, i, j, n = 0, nv = 0;
     memset(seen, 0, (size_t)grid->groove_count / 8 + 1);
     gr__cell_range(gr__cell_coord(box[0], c.u0, c.cu), gr__cell_coord(box[2], c.u0, c.cu), c.nu, c.wrap, &fu, &mu);
     gr__cell_range(gr__cell_coord(box[1], c.v0, c.cv), gr__cell_coord(box[3], c.v0, c.cv), c.nv, c.wrap, &fv, &mv);
@@ -1841,6 +1952,7 @@ static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char 
         for (i = 0; i < mu; i += edge_row || mu == 1 ? 1 : mu - 1) {
             int cell = row * c.nu + (fu + i) % c.nu;
             n = gr__append_new(grid->cell_items_ + grid->cell_start_[cell], grid->cell_count_[cell], seen, ids, n);
+            nv++;
             if (!edge_row && mu == 1) break;
         }
     }
@@ -1859,9 +1971,11 @@ static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char 
                 int cell = row * c.nu + i;
                 n = gr__append_new(grid->anchor_items_ + grid->anchor_start_[cell],
                                    grid->anchor_start_[cell + 1] - grid->anchor_start_[cell], seen, ids, n);
+                nv++;
             }
         }
     }
+    if (visited) *visited = nv;
     return n;
 }
 
@@ -1874,6 +1988,7 @@ typedef struct gr__qset_t {
     double parallel_sin;
     int perturb_normals;
     int ellipse;
+    int ray_profile; /* !straight_occlusion */
 } gr__qset_t;
 
 /* Visible (or lit) interval per facet of a profile with projected points q
@@ -1995,20 +2110,24 @@ static double gr__extent(const gr_footprint_t *fp, const double v[2])
    parameter param: a central difference over the footprint's extent ext
    along T (at least GR__PERTURB_STEP in the parameter), so the tilt it
    gives the facets is the footprint's average. */
-static double gr__perturb_slope(const gr__groove_t *rec, const gr__cand_t *c, double param, double ext)
+static double gr__perturb_slope(const gr__groove_t *rec, double dtds, double param, double ext)
 {
-    double h = ext * c->dtds, ta, tb;
+    double h = ext * dtds, ta, tb;
     if (!(h > GR__PERTURB_STEP)) h = GR__PERTURB_STEP;
     ta = param - h < 0 ? 0 : param - h;
     tb = param + h > 1 ? 1 : param + h;
-    return tb > ta ? (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * c->dtds : 0;
+    return tb > ta ? (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * dtds : 0;
 }
 
 /* Texture-space normal of facet R_j = [C_j, C_j+1] of candidate c (§4.4:
    (0, N_b, N_w) in groove space), with the groove frame turned by phi about
    W and tilted by the perturbation's slope dfds: beyond §4.4, with
-   X = P(s) + f(s)(b B + w W), dX/ds x dX/dtau adds f'(s)(b dw - w db) T. */
-static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, double phi, double dfds, double n[3])
+   X = P(s) + f(s)(b B + w W) and dB/ds = -kappa T,
+   dX/ds x dX/dtau is parallel to (f'(s)(b dw - w db)/alpha, -dw, db) in
+   (T, B, W), alpha = 1 - kappa f b at the point (1 on a straight path: the
+   bend stretches the outer side of the sweep, which flattens its tilt). */
+static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, double phi, double dfds, double alpha,
+                               double n[3])
 {
     double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = sqrt(db * db + dw * dw);
     double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nlen, t[2];
@@ -2019,41 +2138,293 @@ static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, do
         t[0] = cs * c->t[0] - sn * c->t[1];
         t[1] = sn * c->t[0] + cs * c->t[1];
     }
-    if (dfds != 0 && len > 0) nt = dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / len;
+    if (dfds != 0 && len > 0) nt = dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / (len * alpha);
     nlen = sqrt(nb * nb + nw * nw + nt * nt);
     n[0] = (-t[1] * nb + t[0] * nt) / nlen;
     n[1] = (t[0] * nb + t[1] * nt) / nlen;
     n[2] = nw / nlen;
 }
 
+/* 1 - kappa f b (the sweep's stretch along T at distance f b from a path
+   of curvature kappa), kept at or above GR__STRETCH_MIN: past the centre
+   of curvature the sweep folds and the local model means nothing. */
+static double gr__stretch(const gr__cand_t *c, double fb)
+{
+    double a = 1 - c->kappa * fb;
+    return a >= GR__STRETCH_MIN ? a : GR__STRETCH_MIN;
+}
+
+/* The path parameter an arc length ds from P (second order: a Bézier's
+   speed changes along it). */
+static double gr__param_at(const gr__cand_t *c, double ds)
+{
+    return c->param + ds * (c->dtds + 0.5 * c->dtds2 * ds);
+}
+
+/* Where the ray along a direction D (tau = (D . T) / D_w) that reaches the
+   point (bs, ws) of candidate c's unscaled section meets the groove:
+   returns the distance it has run along T from the mouth, and the scale
+   *fh of the section there. §4.2-4.3 take the section at P (f(s)); a ray
+   reaching depth w has run w tau along the path, where the section is
+   scaled by f(s + w tau), w = fh ws: fh solves h(x) = f(s + x ws tau) - x
+   = 0, by two secant steps from x = f (two calls of the perturbation; the
+   first step is exact for a linear f, the second is skipped when the first
+   barely moved f). The run is kept within one path
+   length (grazing directions); steps that would leave [0, perturb_max]
+   stop at the last good estimate. */
+static double gr__ray_point(const gr__groove_t *rec, const gr__cand_t *c, double bs, double ws, double tau, double *fh)
+{
+    double f = c->f, lim = 1 / c->dtds, run, d0;
+    *fh = f;
+    if (ws == 0 || tau == 0) return 0;
+    if (rec->perturb && f > 0) {
+        double a = 1 / gr__stretch(c, f * bs); /* path arc per unit run */
+        d0 = f * ws * tau;
+        if (!(fabs(d0) <= lim)) d0 = d0 < 0 ? -lim : lim;
+        if (d0 != 0) {
+            double fb = gr__perturb(rec, gr__param_at(c, d0 * a)), h0 = fb - f;
+            double den = 1 - h0 / d0 * ws * tau, x1 = den >= GR__RAY_SECANT_MIN ? f / den : fb;
+            if (x1 > rec->fmax) x1 = rec->fmax;
+            *fh = x1;
+            /* the second step only where the first moved f noticeably
+               (its own error is second order in that move) */
+            if (fabs(x1 - f) > GR__RAY_SECOND_STEP * f && fabs(x1 * ws * tau) <= lim) {
+                double h1 = gr__perturb(rec, gr__param_at(c, x1 * ws * tau * a)) - x1, x2;
+                x2 = h1 != h0 ? x1 - h1 * (x1 - f) / (h1 - h0) : x1;
+                if (x2 >= 0 && x2 <= rec->fmax) *fh = x2;
+            }
+        }
+    }
+    run = *fh * ws * tau;
+    if (!(fabs(run) <= lim)) run = run < 0 ? -lim : lim;
+    return run;
+}
+
+/* The bend's drift: a ray that has run `run` along T from the mouth of a
+   groove whose path curves (signed kappa) ends that much farther from the
+   centre of curvature than the straight line puts it, so the mouth point
+   of the ray reaching b lies at b - D_b + drift (eq. 2's frame), with
+   drift = sgn(kappa) (rho - sqrt(rho^2 - run^2)) and rho = 1/|kappa| -
+   sgn(kappa) b the point's distance from the centre: exact for a circular
+   arc. A curvature that changes along the path (dkds) enters as the
+   circle whose sagitta over the run matches the path's to third order,
+   kappa + dkds run / 3 (the path leaves its tangent by
+   kappa run^2/2 + dkds run^3/6). */
+static double gr__bend_drift(double kappa, double dkds, double b, double run)
+{
+    double rho, r2;
+    kappa += dkds * run / 3;
+    if (kappa == 0 || run == 0) return 0;
+    rho = 1 / fabs(kappa) - (kappa > 0 ? b : -b);
+    if (!(rho > 0)) return 0;
+    r2 = run * run < rho * rho ? run * run : rho * rho;
+    return (kappa > 0 ? 1 : -1) * r2 / (rho + sqrt(rho * rho - r2));
+}
+
+/* Candidate c re-anchored an arc length ds along its path: parameter,
+   scale and, on a Bézier path, the frame there. Its offset d is kept: a
+   light's sweep compares points of one footprint with each other, so only
+   their relative positions matter. */
+static void gr__cand_shift(const gr_grid_t *grid, const gr__cand_t *c, double ds, gr__cand_t *out)
+{
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    double param = gr__param_at(c, ds);
+    *out = *c;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    out->param = param;
+    if (rec->perturb) out->f = gr__perturb(rec, param);
+#ifndef GR_NO_CURVES
+    if (c->kappa != 0 || c->dkds != 0) {
+        int deg = gr__degree(rec->kind), k = (int)(param * rec->pieces);
+        const double *a;
+        double b[2], d1[2], d2[2];
+        if (k >= rec->pieces) k = rec->pieces - 1;
+        a = grid->points_ + 2 * (rec->first_point + k * deg);
+        gr__bezier_eval(a, deg, param * rec->pieces - k, b, d1, d2);
+        if (d1[0] * d1[0] + d1[1] * d1[1] > 0) gr__bezier_frame(a, deg, rec->pieces, b, d1, d2, out);
+    }
+#else
+    (void)grid;
+#endif
+}
+
+#ifndef GR_NO_CURVES
+/* The mouth coordinate B . (M - P) (candidate c's frame at P) of the ray
+   along dir that reaches the section point (bs, ws) of a Bézier groove,
+   refined on the path itself: the local model (scale fh, run) puts the hit
+   at arc run / (1 - kappa f b) from P; there the true point H = P(s) +
+   f(s) (bs B(s) + ws W) has its mouth point M = H - (f(s) ws / dir_w)
+   dir_uv, whose offset v = T . (M - P) along the path is the model's
+   residual; the ray entering on P's cross line (v = 0) enters at
+   B . (M - P) - v tan(turn) (one Newton step along the groove, which runs
+   at that turn there). Exact where the model is, second order in its
+   residual elsewhere (the bend's changing curvature). */
+static double gr__mouth_on_path(const gr_grid_t *grid, const gr__cand_t *c, double bs, double ws, const double *dir,
+                                double fh, double run)
+{
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    int deg = gr__degree(rec->kind), k;
+    double param = gr__param_at(c, run / gr__stretch(c, fh * bs)), b[2], d1[2], d2[2], sp, th[2], f, w, m[2], u, v, ct;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    k = (int)(param * rec->pieces);
+    if (k >= rec->pieces) k = rec->pieces - 1;
+    gr__bezier_eval(grid->points_ + 2 * (rec->first_point + k * deg), deg, param * rec->pieces - k, b, d1, d2);
+    sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]);
+    if (!(sp > 0)) return fh * bs + gr__bend_drift(c->kappa, c->dkds, fh * bs, run) - fh * ws * (dir[0] * -c->t[1] + dir[1] * c->t[0]) / dir[2];
+    th[0] = d1[0] / sp;
+    th[1] = d1[1] / sp;
+    f = rec->perturb ? gr__perturb(rec, param) : c->f;
+    w = f * ws;
+    m[0] = b[0] - f * bs * th[1] - w * dir[0] / dir[2] - c->p[0];
+    m[1] = b[1] + f * bs * th[0] - w * dir[1] / dir[2] - c->p[1];
+    u = -c->t[1] * m[0] + c->t[0] * m[1];
+    v = c->t[0] * m[0] + c->t[1] * m[1];
+    ct = c->t[0] * th[0] + c->t[1] * th[1];
+    if (ct < GR__STRETCH_MIN) ct = GR__STRETCH_MIN;
+    return u - v * (-c->t[1] * th[0] + c->t[0] * th[1]) / ct;
+}
+#endif
+
+/* The merged points projected along direction dir (above the surface):
+   q_i = dw x_i - db w_i, (db, dw) its (dir . B_ref, dir_w) scaled by
+   inv_m (gr__grazing_scale; §4.2's signed tan θ' times dw). With the ray
+   profile each groove point is taken where the ray along dir that reaches
+   it meets the groove (gr__ray_point, gr__bend_drift), the rays entering
+   the mouth an arc length `anchor` along the path from the footprint: 0
+   for the view; for a light, where its rays toward the seen facets enter
+   (gr__light_anchor), the groove then taken in its own frame there (on a
+   bend the light sees it turned). Ground points stay. */
+static void gr__project(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int np, const double *dir,
+                        double db, double dw, double inv_m, double anchor, double *q)
+{
+    gr__cand_t cs;
+    int i, last = -1;
+    double dbi = db;
+    for (i = 0; i < np; i++) {
+        const gr__cand_t *c;
+        double tau, fh, run, x, w;
+        if (!qs->ray_profile || s->pc[i] < 0 || (s->ws[i] == 0 && anchor == 0)) {
+            q[i] = dw * s->x[i] - db * s->w[i];
+            continue;
+        }
+        c = &s->cand[s->pc[i]];
+        if (c->kappa == 0 && c->dkds == 0 && !grid->grooves_[c->groove].perturb) {
+            q[i] = dw * s->x[i] - db * s->w[i];
+            continue;
+        }
+        if (anchor != 0) {
+            if (s->pc[i] != last) {
+                gr__cand_shift(grid, c, anchor, &cs);
+                /* the direction across the groove there, in the same scale */
+                dbi = c->sigma * (-dir[0] * cs.t[1] + dir[1] * cs.t[0]) * inv_m;
+            }
+            last = s->pc[i];
+            c = &cs;
+        } else
+            dbi = db;
+        tau = (dir[0] * c->t[0] + dir[1] * c->t[1]) / dir[2];
+        run = gr__ray_point(&grid->grooves_[c->groove], c, s->bs[i], s->ws[i], tau, &fh);
+#ifndef GR_NO_CURVES
+        if ((c->kappa != 0 || c->dkds != 0) && run != 0) { /* on the path itself: q = dw times the mouth coordinate */
+            q[i] = dw * c->sigma * (gr__mouth_on_path(grid, c, s->bs[i], s->ws[i], dir, fh, run) - c->d);
+            continue;
+        }
+#endif
+        x = c->sigma * (fh * s->bs[i] - c->d + gr__bend_drift(c->kappa, c->dkds, fh * s->bs[i], run));
+        w = fh * s->ws[i];
+        q[i] = dw * x - dbi * w;
+    }
+}
+
+/* Where the rays of light l toward the seen facets enter the mouth, as an
+   arc length along the path from the footprint: the view ray runs run_E
+   to a facet's seen middle, the light ray from there up runs back run_L,
+   so it entered at run_E - run_L. Weighted by the facets' seen lengths
+   (one anchor per light and footprint); 0 without the ray profile or
+   where nothing curved or perturbed is seen. */
+static double gr__light_anchor(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int nf,
+                               const double *e, const double *l)
+{
+    double sum = 0, wsum = 0;
+    int i;
+    if (!qs->ray_profile) return 0;
+    for (i = 0; i < nf; i++) {
+        const gr__cand_t *c;
+        const gr__groove_t *rec;
+        double de, mid, bs, ws, fh, len;
+        if (s->pc[i] < 0 || s->pc[i] != s->pc[i + 1] || !(s->vb[i] > s->va[i])) continue;
+        c = &s->cand[s->pc[i]];
+        rec = &grid->grooves_[c->groove];
+        if (c->kappa == 0 && c->dkds == 0 && !rec->perturb) continue;
+        de = s->qe[i + 1] - s->qe[i];
+        mid = de != 0 ? (0.5 * (s->va[i] + s->vb[i]) - s->qe[i]) / de : 0.5;
+        mid = mid < 0 ? 0 : mid > 1 ? 1 : mid;
+        bs = s->bs[i] + mid * (s->bs[i + 1] - s->bs[i]);
+        ws = s->ws[i] + mid * (s->ws[i + 1] - s->ws[i]);
+        len = s->vb[i] - s->va[i];
+        sum += len * (gr__ray_point(rec, c, bs, ws, (e[0] * c->t[0] + e[1] * c->t[1]) / e[2], &fh) -
+                      gr__ray_point(rec, c, bs, ws, (l[0] * c->t[0] + l[1] * c->t[1]) / l[2], &fh));
+        wsum += len;
+    }
+    return wsum > 0 ? sum / wsum : 0;
+}
+
+#ifndef GR_NO_CURVES
+/* A Bézier path at parameter param (piece k of n covers [k/n, (k+1)/n],
+   uniformly): the angle (radians, counter-clockwise) from the unit tangent
+   t0 to its tangent there, and d param / d arc length there. */
+static double gr__turn_to(const gr_grid_t *grid, const gr__groove_t *rec, double param, const double t0[2],
+                          double *dtds)
+{
+    int deg = gr__degree(rec->kind), k;
+    double tau, b[2], d1[2], d2[2], sp;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    k = (int)(param * rec->pieces);
+    if (k >= rec->pieces) k = rec->pieces - 1;
+    tau = param * rec->pieces - k;
+    gr__bezier_eval(grid->points_ + 2 * (rec->first_point + k * deg), deg, tau, b, d1, d2);
+    sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]);
+    if (sp > 0) *dtds = 1 / (rec->pieces * sp);
+    return atan2(t0[0] * d1[1] - t0[1] * d1[0], t0[0] * d1[0] + t0[1] * d1[1]);
+}
+#endif
+
 /* The normal where the view ray really meets a visible facet (i, of
-   candidate c). §4.2-4.3 keep the straight line at P for occlusion, but
-   the ray reaches the facet's visible part at its mean depth w_m, an arc
-   length ds = w_m (E . T) / E_w along the path from P (ds kept within one
-   path length, |ds dt/ds| <= 1, for grazing views). There a curved path
-   has turned by kappa ds (at most GR__TURN_MAX) and the perturbation has
-   its own slope: on a tight bend, or a perturbation that changes within
-   the ray's way through the groove, these decide where a highlight falls. */
-static void gr__hit_normal(const gr_grid_t *grid, const gr__scratch_t *s, const gr_footprint_t *fp, int i, double ew,
-                           double eb, int point, gr__mfacet_t *m)
+   candidate c). The ray reaches the facet's visible part at its middle,
+   the point (bs, ws) of the unscaled section, after running `run` along
+   T (gr__ray_point), i.e. run / (1 - kappa f b) along the path (reached
+   through d param / ds and its slope). There a curved path has turned (the
+   path's own tangent there; at most
+   GR__TURN_MAX), and the perturbation has its own slope (a central
+   difference across the footprint's extent along T): on a tight bend, or
+   a perturbation that changes within the ray's way through the groove,
+   these decide where a highlight falls. */
+static void gr__hit_normal(const gr_grid_t *grid, const gr__scratch_t *s, const gr_footprint_t *fp, int i, int point,
+                           gr__mfacet_t *m)
 {
     const gr__cand_t *c = &s->cand[m->cand];
     const gr__groove_t *rec = &grid->grooves_[c->groove];
     const double *e = fp->view;
-    double qa = ew * s->x[i] - eb * s->w[i], de = (ew * s->x[i + 1] - eb * s->w[i + 1]) - qa, mid, wm, ds, phi, dfds;
+    double de = s->qe[i + 1] - s->qe[i], mid, bs, ws, fh, run, phi, dfds, alpha, th, dtds;
     if (c->kappa == 0 && c->dfds == 0) return;
     mid = point ? 0 : 0.5 * (s->va[i] + s->vb[i]);
-    mid = de != 0 ? (mid - qa) / de : 0.5;
+    mid = de != 0 ? (mid - s->qe[i]) / de : 0.5;
     if (!(mid >= 0)) mid = 0;
     if (mid > 1) mid = 1;
-    wm = s->w[i] + mid * (s->w[i + 1] - s->w[i]);
-    ds = wm * (e[0] * c->t[0] + e[1] * c->t[1]) / e[2];
-    if (!(fabs(ds * c->dtds) <= 1)) ds = ds < 0 ? -1 / c->dtds : 1 / c->dtds;
-    phi = c->kappa * ds;
+    bs = s->bs[i] + mid * (s->bs[i + 1] - s->bs[i]);
+    ws = s->ws[i] + mid * (s->ws[i + 1] - s->ws[i]);
+    run = gr__ray_point(rec, c, bs, ws, (e[0] * c->t[0] + e[1] * c->t[1]) / e[2], &fh);
+    alpha = gr__stretch(c, fh * bs);
+    phi = 0;
+    dtds = c->dtds;
+    th = gr__param_at(c, run / alpha);
+#ifndef GR_NO_CURVES
+    if (c->kappa != 0) phi = gr__turn_to(grid, rec, th, c->t, &dtds);
+#endif
     if (phi > GR__TURN_MAX) phi = GR__TURN_MAX;
     if (phi < -GR__TURN_MAX) phi = -GR__TURN_MAX;
-    dfds = c->dfds != 0 ? gr__perturb_slope(rec, c, c->param + ds * c->dtds, gr__extent(fp, c->t)) : 0;
-    gr__section_normal(c, grid->section_ + 2 * rec->first_sec, m->facet, phi, dfds, m->n);
+    dfds = c->dfds != 0 ? gr__perturb_slope(rec, dtds, th, gr__extent(fp, c->t)) : 0;
+    gr__section_normal(c, grid->section_ + 2 * rec->first_sec, m->facet, phi, dfds, alpha, m->n);
 }
 
 #ifndef GR_NO_OVERSAMPLE
@@ -2069,6 +2440,14 @@ static int gr__oversample_need(const gr_grid_t *grid, const gr__cand_t *c, const
     if (c->kappa != 0) {
         double sag = 0.5 * fabs(c->kappa) * ext * ext;
         double k = ceil(sqrt(sag / (tol * width)));
+        /* the seen boundaries tilt across the footprint as the groove turns
+           under it: a view ray running `run` along the path at the deepest
+           point shifts by about kappa ext run from one end of the
+           footprint to the other (run kept within one path length) */
+        double run = rec->down / rec->fmax * c->f * fabs(fp->view[0] * c->t[0] + fp->view[1] * c->t[1]);
+        run = run < fp->view[2] / c->dtds ? run / fp->view[2] : 1 / c->dtds;
+        if (k > need) need = k;
+        k = ceil(fabs(c->kappa) * ext * run / (tol * width));
         if (k > need) need = k;
     }
     if (rec->perturb) {
@@ -2179,7 +2558,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (sv < 0) box[1] += sv; else box[3] += sv;
         }
     }
-    n = gr__gather(grid, box, s->seen, s->ids);
+    n = gr__gather(grid, box, s->seen, s->ids, s->visited);
     radius = sqrt(ext_u * ext_u + ext_v * ext_v);
     /* §4.2: each groove's nearest point, tangent and distance; keep those
        that can reach the footprint */
@@ -2204,7 +2583,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (to_end < gr__extent(fp, c->t)) list->flags |= GR_LIST_PATH_END;
         }
         c->f = gr__perturb(rec, c->param);
-        c->dfds = rec->perturb && qs->perturb_normals ? gr__perturb_slope(rec, c, c->param, gr__extent(fp, c->t)) : 0;
+        c->dfds = rec->perturb && qs->perturb_normals ? gr__perturb_slope(rec, c->dtds, c->param, gr__extent(fp, c->t)) : 0;
         if (ref < 0 || fabs(c->d) < fabs(s->cand[ref].d)) ref = npar;
         npar++;
     }
@@ -2233,7 +2612,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             int nk = gr__oversample_need(grid, &s->cand[k], fp, qs->oversample_tol);
             if (nk > need) { need = nk; split_t[0] = s->cand[k].t[0]; split_t[1] = s->cand[k].t[1]; }
         }
-        if (need > 1) return need > qs->max_oversample ? qs->max_oversample : need;
+        if (need > 1) return need > GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE ? GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE : need;
     }
 #else
     (void)allow_split;
@@ -2270,6 +2649,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     ground.n[0] = 0; ground.n[1] = 0; ground.n[2] = 1;
     ground.groove = -1; ground.facet = -1; ground.refl = grid->base_reflectance; ground.cand = -1;
     s->x[np] = (npar ? (s->key[0].x < -half ? s->key[0].x : -half) : -half) - margin;
+    s->pc[np] = -1;
     s->w[np++] = 0;
     for (k = 0; k < npar; k++) {
         const gr__cand_t *c = &s->cand[s->key[k].cand];
@@ -2282,11 +2662,14 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             int src = c->sigma > 0 ? i : nsec - 1 - i;
             s->x[np] = c->sigma * (c->f * sec[2 * src] - c->d);
             s->w[np] = c->f * sec[2 * src + 1];
+            s->pc[np] = s->key[k].cand;
+            s->bs[np] = sec[2 * src];
+            s->ws[np] = sec[2 * src + 1];
             if (i + 1 < nsec) {
                 /* facet R_j = [C_j, C_j+1] in the groove's own orientation */
                 int j = c->sigma > 0 ? i : nsec - 2 - i;
                 gr__mfacet_t *m = &s->mf[np];
-                gr__section_normal(c, sec, j, 0, c->dfds, m->n);
+                gr__section_normal(c, sec, j, 0, c->dfds, 1, m->n);
                 m->groove = c->groove;
                 m->facet = j;
                 m->refl = grid->facet_refl_[rec->first_facet + j];
@@ -2297,16 +2680,18 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     }
     s->mf[np - 1] = ground;
     s->x[np] = (s->x[np - 1] > half ? s->x[np - 1] : half) + margin;
+    s->pc[np] = -1;
     s->w[np++] = 0;
     nf = np - 1;
     if (list->grooves < npar) list->grooves = npar;
     /* projection with the signed tan θ' (§4.2), scaled by E_w so grazing
-       views stay finite: q = E_w proj = E_w x - E_b w */
+       views stay finite: q = E_w proj = E_w x - E_b w (each groove point
+       where the view ray reaching it meets the groove, gr__project) */
     eb = e[0] * bref[0] + e[1] * bref[1];
     ew = e[2];
     gr__grazing_scale(&eb, &ew);
-    for (i = 0; i < np; i++) s->q[i] = ew * s->x[i] - eb * s->w[i];
-    gr__sweep(s->q, np, eb > 0, s->lo, s->hi);     /* masking, eq. 4 */
+    gr__project(grid, qs, s, np, e, eb, ew, 1, 0, s->qe);
+    gr__sweep(s->qe, np, eb > 0, s->lo, s->hi);    /* masking, eq. 4 */
     sq0 = -half * ew;
     sq1 = half * ew;
     for (i = 0; i < nf; i++) {                      /* clipping, eq. 3 */
@@ -2325,20 +2710,20 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
        intersected with the visible part in the facet's own parameter */
     for (k = 0; k < nl; k++) {
         const double *l = qs->lights + 3 * k;
-        double lb = l[0] * bref[0] + l[1] * bref[1], lw = l[2];
+        double lb = l[0] * bref[0] + l[1] * bref[1], lw = l[2], inv_m = 1 / (fabs(lb) > lw ? fabs(lb) : lw);
         if (!(l[2] > 0)) { /* at or below the horizon */
             for (i = 0; i < nf; i++) s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0;
             continue;
         }
         gr__grazing_scale(&lb, &lw);
-        for (i = 0; i < np; i++) s->q[i] = lw * s->x[i] - lb * s->w[i];
+        gr__project(grid, qs, s, np, l, lb, lw, inv_m, gr__light_anchor(grid, qs, s, nf, e, l), s->q);
         gr__sweep(s->q, np, lb > 0, s->lo, s->hi);
         for (i = 0; i < nf; i++) {
             double de, sa, sb, la, lbb, dl, ov, v;
             if (!(s->vb[i] > s->va[i]) && !(point && s->va[i] == 0)) continue;
-            de = (ew * s->x[i + 1] - eb * s->w[i + 1]) - (ew * s->x[i] - eb * s->w[i]);
-            sa = (s->va[i] - (ew * s->x[i] - eb * s->w[i])) / de;
-            sb = (s->vb[i] - (ew * s->x[i] - eb * s->w[i])) / de;
+            de = s->qe[i + 1] - s->qe[i];
+            sa = (s->va[i] - s->qe[i]) / de;
+            sb = (s->vb[i] - s->qe[i]) / de;
             if (!(s->hi[i] > s->lo[i])) { s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0; continue; }
             dl = s->q[i + 1] - s->q[i];
             la = (s->lo[i] - s->q[i]) / dl;
@@ -2347,7 +2732,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             else {
                 /* the lit part of the visible interval, back in view
                    projection, weighted by the footprint density */
-                double oa = sa > la ? sa : la, ob = sb < lbb ? sb : lbb, qv = ew * s->x[i] - eb * s->w[i];
+                double oa = sa > la ? sa : la, ob = sb < lbb ? sb : lbb, qv = s->qe[i];
                 double wv = gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta);
                 ov = ob - oa;
                 if (!(ov > 0)) v = 0;
@@ -2364,7 +2749,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         else r = s->vb[i] > s->va[i] ? gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta) : 0;
         if (r > 0) {
             gr__mfacet_t m = s->mf[i];
-            if (m.cand >= 0 && qs->perturb_normals) gr__hit_normal(grid, s, fp, i, ew, eb, point, &m);
+            if (m.cand >= 0 && qs->perturb_normals) gr__hit_normal(grid, s, fp, i, point, &m);
             gr__list_add(list, &m, weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
         }
     }
@@ -2399,6 +2784,7 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     qs.max_oversample = query->max_oversample <= 0 ? GR__DEFAULT_MAX_OVERSAMPLE : query->max_oversample;
     if (qs.max_oversample > GR__LIMIT_MAX_OVERSAMPLE) qs.max_oversample = GR__LIMIT_MAX_OVERSAMPLE;
     qs.perturb_normals = query->perturb_normals >= 0;
+    qs.ray_profile = query->straight_occlusion == 0;
     qs.ellipse = query->ellipse != 0;
     qs.parallel_sin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     el = sqrt(gr__dot3(fp->view, fp->view));
@@ -2414,42 +2800,71 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
 #endif
     need = gr__query_one(grid, &qs, fp, 1.0, &s, list, 1, t);
     if (need > 1) {
-        /* §4.2 oversampling: split along the axis that runs most along the
-           nearest groove; each part keeps its own straight approximation */
+        /* §4.2 oversampling: the footprint's extent along the groove is cut
+           `need` times, each part with its own straight approximation */
         gr_footprint_t sub = *fp;
         gr__qset_t qsub = qs;
-        double p1, p2;
-        const double *ax, *other;
-        double *sa, *so;
-        p1 = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
-        p2 = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
-        ax = p1 >= p2 ? fp->axis1 : fp->axis2;
-        other = p1 >= p2 ? fp->axis2 : fp->axis1;
-        sa = p1 >= p2 ? sub.axis1 : sub.axis2;
-        so = p1 >= p2 ? sub.axis2 : sub.axis1;
-        sa[0] = ax[0] / need;
-        sa[1] = ax[1] / need;
+        double p[2];
+        int n[2], j1, j2;
+        p[0] = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
+        p[1] = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
         list->count = 0;
         list->flags = 0;
         list->grooves = 0;
-        /* an ellipse's slabs are taken as parallelograms of the slab's
-           area (weight) and mean chord (other axis); a parallelogram's
-           slabs are exact */
         qsub.ellipse = 0;
-        for (k = 0; k < need; k++) {
-            double o = (2.0 * k + 1) / need - 1, wk = 1.0 / need;
-            if (qs.ellipse) {
-                double a0 = -1 + 2.0 * k / need, a1 = a0 + 2.0 / need, hbar;
+        if (qs.ellipse) {
+            /* an ellipse's slabs across its axis most along the groove,
+               taken as parallelograms of the slab's area (weight) and mean
+               chord (the other axis): an approximation */
+            int a = p[0] >= p[1] ? 0 : 1;
+            if (need > qs.max_oversample) need = qs.max_oversample;
+            const double *ax = a ? fp->axis2 : fp->axis1, *other = a ? fp->axis1 : fp->axis2;
+            double *sa = a ? sub.axis2 : sub.axis1, *so = a ? sub.axis1 : sub.axis2;
+            sa[0] = ax[0] / need;
+            sa[1] = ax[1] / need;
+            for (k = 0; k < need; k++) {
+                double o = (2.0 * k + 1) / need - 1, a0 = -1 + 2.0 * k / need, a1 = a0 + 2.0 / need, wk, hbar;
                 wk = gr__disc_cdf(a1) - gr__disc_cdf(a0);
                 hbar = GR__PI * wk / (2 * (a1 - a0)); /* slab area / (2 width), unit disc */
                 so[0] = other[0] * hbar;
                 so[1] = other[1] * hbar;
+                sub.center[0] = fp->center[0] + o * ax[0];
+                sub.center[1] = fp->center[1] + o * ax[1];
+                gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, t);
             }
-            sub.center[0] = fp->center[0] + o * ax[0];
-            sub.center[1] = fp->center[1] + o * ax[1];
-            gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, t);
+            list->subfootprints = need;
+        } else {
+            /* a parallelogram into n1 x n2 parallelograms (exact weights),
+               each axis cut in proportion to its own extent along the
+               groove, so every part spans 1/need of the extent: an axis
+               oblique to the groove runs along it too, and cutting only
+               the other would leave that part of the extent whole (the
+               answer would not converge as the tolerance shrinks). Past
+               max_oversample parts, the split that makes the parts'
+               extent p1/n1 + p2/n2 least with n1 n2 <= max_oversample */
+            for (k = 0; k < 2; k++) {
+                n[k] = (int)ceil(need * p[k] / (p[0] + p[1]) - 1e-9);
+                if (n[k] < 1) n[k] = 1;
+            }
+            if (n[0] * n[1] > qs.max_oversample) {
+                int m = qs.max_oversample;
+                n[0] = p[1] > 0 ? (int)floor(sqrt(m * p[0] / p[1]) + 0.5) : m;
+                n[0] = n[0] < 1 ? 1 : n[0] > m ? m : n[0];
+                n[1] = m / n[0];
+            }
+            sub.axis1[0] = fp->axis1[0] / n[0];
+            sub.axis1[1] = fp->axis1[1] / n[0];
+            sub.axis2[0] = fp->axis2[0] / n[1];
+            sub.axis2[1] = fp->axis2[1] / n[1];
+            for (j1 = 0; j1 < n[0]; j1++)
+                for (j2 = 0; j2 < n[1]; j2++) {
+                    double o1 = (2.0 * j1 + 1) / n[0] - 1, o2 = (2.0 * j2 + 1) / n[1] - 1;
+                    sub.center[0] = fp->center[0] + o1 * fp->axis1[0] + o2 * fp->axis2[0];
+                    sub.center[1] = fp->center[1] + o1 * fp->axis1[1] + o2 * fp->axis2[1];
+                    gr__query_one(grid, &qsub, &sub, 1.0 / (n[0] * n[1]), &s, list, 0, t);
+                }
+            list->subfootprints = n[0] * n[1];
         }
-        list->subfootprints = need;
     }
 #ifndef GR_NO_LINE_SAMPLES
     /* §5.6 ([section: line samples]): crossings and ends, as §4's answer
@@ -3184,7 +3599,7 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
         double du = out->box[k & 1 ? 2 : 0] - f[0], dv = out->box[k & 2 ? 3 : 1] - f[1];
         if (hypot(du, dv) > reach) reach = hypot(du, dv);
     }
-    n = gr__gather(grid, out->box, s.seen, s.ids);
+    n = gr__gather(grid, out->box, s.seen, s.ids, NULL);
     for (k = 0; k < n; k++)
         if (gr__path_in_box(grid, &grid->grooves_[s.ids[k]], out->box) && gr__locate(grid, s.ids[k], f, 2 * reach, &s.cand[m]))
             m++;
@@ -4080,8 +4495,14 @@ static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
    cut an interval in two). */
 #define GR__LINE_ON_FACET_REL 1e-9
 /* Breakpoints closer than this (in the segment parameter s in [-1, 1])
-   coalesce: intervals that short carry no measurable ratio. */
+   coalesce: intervals that short carry no measurable ratio. To it adds
+   the rounding of the breakpoints' positions, GR__LINE_SNAP_ULPS units
+   of the largest texture coordinate along the rays, in units of the
+   segment (gr__sheet_snap): a footprint far smaller than its coordinates
+   would otherwise keep slivers whose class is rounding noise, and Jones &
+   Perry would count their edges. */
 #define GR__LINE_SNAP 1e-12
+#define GR__LINE_SNAP_ULPS 16.0
 /* Shadow and bounce rays start this fraction of the scene scale
    (w + h + d of the grid) off their facet, along its normal, so the facet
    they leave is not found again through rounding. */
@@ -4094,8 +4515,6 @@ static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
 #define GR__LINE_CLEAR_REL 1e-6
 /* Default early-exit tolerance of §5.6 (gr_query_t.line_exit_tol). */
 #define GR__LINE_DEFAULT_EXIT 1e-3
-/* Depth of the explicit stack of pending bounce segments (§6.1). */
-#define GR__LINE_STACK 64
 
 /* A groove near the segment, locally straight (§4.2), in this frame's UV. */
 typedef struct gr__lg_t {
@@ -4127,13 +4546,28 @@ typedef struct gr__ivl_t {
 
 typedef struct gr__xing_t { double t; int plane; } gr__xing_t;
 
+/* An edge line of the scene: points q + λ D, λ in [l0, l1] (where it lies
+   on the facets it bounds), between planes p1 and p2 (both -1 for a
+   section point's line). */
+typedef struct gr__edge_t { double q[3], D[3], l0, l1; int p1, p2; } gr__edge_t;
+
+/* A segment of rays o + s a + t d, s in [-1, 1], t >= 0 (§5.6; §6.1 for
+   bounces), with the throughput it carries; inside: the rays run in the
+   material (refracted into it by a transmitting facet). */
+typedef struct gr__sheet_t {
+    double o[3], a[3], d[3], thr[3];
+    int level, inside;
+} gr__sheet_t;
+
 typedef struct gr__lscratch_t {
     gr__lg_t *lg;
     gr__plane_t *pl;
     gr__xing_t *xs;
     gr__brk_t *brk;
     gr__ivl_t *iv, *iv2;      /* intervals; iv2: after the shadow split */
+    gr__edge_t *ed;           /* the scene's edges, found once per scene */
     double *acc;              /* per plane: ratio, then lit per light */
+    gr__sheet_t *stack;       /* gr_shade_indirect's pending segments */
 } gr__lscratch_t;
 
 #define GR__LINE_MAX_PLANES GR_LINE_MAX_PLANES
@@ -4152,7 +4586,13 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
     GR__LCARVE(brk, gr__brk_t, GR_LINE_MAX_BREAKS)
     GR__LCARVE(iv, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
     GR__LCARVE(iv2, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
+    GR__LCARVE(ed, gr__edge_t, GR_LINE_MAX_EDGES)
     GR__LCARVE(acc, double, 2 * GR__LINE_MAX_PLANES * (1 + GR_MAX_LIGHTS))
+#ifndef GR_NO_INTERREFLECTION
+    GR__LCARVE(stack, gr__sheet_t, GR_INDIRECT_STACK)
+#else
+    ls->stack = NULL;
+#endif
 #undef GR__LCARVE
     return off;
 }
@@ -4161,17 +4601,12 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
 typedef struct gr__lscene_t {
     const gr_grid_t *grid;
     gr__lscratch_t ls;
-    int nlg, npl;
+    int nlg, npl, ned;         /* ned -1: more than GR_LINE_MAX_EDGES, found per segment */
     double top, bottom, scale; /* highest w, lowest w, w + h + d */
+    double box[4];             /* UV box holding every ray of the scene's segments */
     unsigned flags;
 } gr__lscene_t;
 
-/* A segment of rays o + s a + t d, s in [-1, 1], t >= 0 (§5.6; §6.1 for
-   bounces), with the throughput it carries. */
-typedef struct gr__sheet_t {
-    double o[3], a[3], d[3], thr[3];
-    int level;
-} gr__sheet_t;
 
 static void gr__sec_pt(const gr__lg_t *g, int k, double c[2])
 {
@@ -4242,11 +4677,15 @@ static int gr__on_plane(const gr__lscene_t *sc, int i, const double *x)
     return u >= -GR__LINE_ON_FACET_REL && u <= 1 + GR__LINE_ON_FACET_REL;
 }
 
-/* The first entry into the solid along o + t d, t in (0, tmax]: the plane
-   entered (its index) and *thit, or -1 when the ray leaves (§6.2). The ray
-   is cut at every crossing of a facet or the ground; the solid's state is
+/* The first change of medium along o + t d, t in (0, tmax]: for a ray in
+   the air (inside = 0) the first entry into the solid, for a ray inside
+   the material (inside = 1, refracted by a transmitting facet, §6.1) the
+   first exit from it; the plane crossed there (its index) and *thit, or
+   -1 when the ray leaves the groove layer unchanged (§6.2: upward into the
+   scene from the air, downward into the bulk from inside). The ray is cut
+   at every crossing of a facet or the ground; the solid's state is
    constant between crossings, so one point per piece decides. */
-static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d, double tmax, double *thit)
+static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d, double tmax, int inside, double *thit)
 {
     gr__xing_t *xs = sc->ls.xs;
     int i, j, m = 0;
@@ -4285,8 +4724,8 @@ static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d,
         double next = i < m ? xs[i].t : tmax, mid = 0.5 * (prev + next);
         if (i == m && !(tmax < HUGE_VAL)) mid = prev + sc->scale / sqrt(gr__dot3(d, d));
         for (j = 0; j < 3; j++) x[j] = o[j] + mid * d[j];
-        if (gr__solid(sc, x)) {
-            if (i == 0) { *thit = 0; return -2; } /* started inside: rounding at a touching facet */
+        if (gr__solid(sc, x) != inside) {
+            if (i == 0) { *thit = 0; return -2; } /* started in the other medium: rounding at a touching facet */
             *thit = prev;
             return xs[i - 1].plane;
         }
@@ -4329,12 +4768,20 @@ static int gr__lit(const gr__lscene_t *sc, int plane, const double *d, const dou
     gr__facing(sc, plane, d, n);
     if (!(l[2] > 0) || !(gr__dot3(n, l) > 0)) return 0;
     for (k = 0; k < 3; k++) o[k] = x[k] + off * n[k];
-    return gr__ray_hit(sc, o, l, gr__ray_tmax(sc, o, l, seglen), &th) == -1;
+    return gr__ray_hit(sc, o, l, gr__ray_tmax(sc, o, l, seglen), 0, &th) == -1;
 }
 
 /* Gather the grooves that can meet rays from the segment (box: the
    segment and where its rays cross the top and bottom, enlarged by w,
    §4.1/§5.1) and build their facet planes, nearest GR_LINE_MAX_GROOVES. */
+/* A straight, unperturbed segment: its straight approximation is
+   the groove itself, the same from every footprint (§5.6's cache keeps
+   only these). */
+static int gr__line_cacheable(const gr__groove_t *rec)
+{
+    return rec->kind == GR_PATH_POLYLINE && rec->point_count == 2 && !rec->perturb;
+}
+
 /* Groove id in its straight approximation at the point nearest c. */
 static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double reach, gr__lg_t *g)
 {
@@ -4356,6 +4803,15 @@ static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double re
     g->first_facet = rec->first_facet;
     g->lo = rec->closed ? -HUGE_VAL : -cd.param / cd.dtds;
     g->hi = rec->closed ? HUGE_VAL : (1 - cd.param) / cd.dtds;
+    if (gr__line_cacheable(rec)) { /* anchored at its first point: the same record from any footprint */
+        const double *a = grid->points_ + 2 * rec->first_point;
+        g->p[0] = a[0] + (c[0] - cd.fc[0]); /* the image shift: a whole number of tiles, 0 without wrap */
+        g->p[1] = a[1] + (c[1] - cd.fc[1]);
+        if (!rec->closed) {
+            g->lo = 0;
+            g->hi = rec->length;
+        }
+    }
     return g->f > 0; /* scaled away here otherwise */
 }
 
@@ -4415,20 +4871,20 @@ static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         double su = floor((c[0] - grid->domain[0]) / wu) * wu, sv = floor((c[1] - grid->domain[1]) / wv) * wv;
         box[0] -= su; box[2] -= su; box[1] -= sv; box[3] -= sv;
     }
-    n = gr__gather(grid, box, s->seen, s->ids);
+    n = gr__gather(grid, box, s->seen, s->ids, NULL);
     for (k = 0; k < n; k++) {
         gr__lg_t g;
         if (!gr__lg_make(grid, s->ids[k], c, reach, &g)) continue;
         if (!fill) { gr__lg_keep(sc, &g, c, reach, quad); continue; }
-        if (fill->count == GR_LINE_MAX_GROOVES || grid->grooves_[s->ids[k]].point_count != 2 ||
-            grid->grooves_[s->ids[k]].kind != GR_PATH_POLYLINE)
-            return 0;
+        if (fill->count == GR_LINE_MAX_GROOVES || !gr__line_cacheable(&grid->grooves_[s->ids[k]])) return 0;
         memcpy(fill->store_ + 16 * fill->count++, &g, sizeof g);
     }
     return 1;
 }
 
 typedef char gr__lg_fits_cache[sizeof(gr__lg_t) <= 16 * sizeof(double) ? 1 : -1];
+
+static void gr__edge_list(gr__lscene_t *sc);
 
 static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh,
                            int tight, gr_line_cache_t *cache, const double *lights, int nl)
@@ -4481,6 +4937,7 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         if (quad.p[2 * e + 1] - grid->w < box[1]) box[1] = quad.p[2 * e + 1] - grid->w;
         if (quad.p[2 * e + 1] + grid->w > box[3]) box[3] = quad.p[2 * e + 1] + grid->w;
     }
+    memcpy(sc->box, box, sizeof box);
     c[0] = 0.5 * (box[0] + box[2]);
     c[1] = 0.5 * (box[1] + box[3]);
     reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
@@ -4513,6 +4970,11 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         }
     } else {
         gr__line_gather(grid, s, sc, box, c, reach, tight ? &quad : NULL, NULL);
+    }
+    for (i = 1; i < sc->nlg; i++) { /* in groove order, however they were found (cache or grid) */
+        gr__lg_t x = sc->ls.lg[i];
+        for (k = i; k > 0 && sc->ls.lg[k - 1].groove > x.groove; k--) sc->ls.lg[k] = sc->ls.lg[k - 1];
+        sc->ls.lg[k] = x;
     }
     /* planes: the ground, then every facet of every groove (§3) */
     memset(&sc->ls.pl[0], 0, sizeof sc->ls.pl[0]);
@@ -4573,6 +5035,7 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
             sc->npl++;
         }
     }
+    gr__edge_list(sc);
 }
 
 /* sin²α between the segment (UV part of a) and a 3D edge direction D seen
@@ -4593,20 +5056,6 @@ static double gr__edge_sin2(const double *a, const double *dir, const double *D)
     return aa > 0 && ee > 0 ? cr * cr / (aa * ee) : 0;
 }
 
-/* The segment parameter where the rays meet both planes n1.x = h1 and
-   n2.x = h2 (a line of the two planes, §5.3): 2x2 in (s, t). */
-static int gr__sheet_two_planes(const gr__sheet_t *sh, const double *n1, double h1, const double *n2, double h2,
-                                double *s, double *t)
-{
-    double a11 = gr__dot3(n1, sh->a), a12 = gr__dot3(n1, sh->d), a21 = gr__dot3(n2, sh->a), a22 = gr__dot3(n2, sh->d);
-    double r1 = h1 - gr__dot3(n1, sh->o), r2 = h2 - gr__dot3(n2, sh->o), det = a11 * a22 - a12 * a21;
-    double sc = sqrt(gr__dot3(n1, n1) * gr__dot3(n2, n2) * gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d));
-    if (!(fabs(det) > 1e-14 * sc)) return 0;
-    *s = (r1 * a22 - a12 * r2) / det;
-    *t = (a11 * r2 - r1 * a21) / det;
-    return 1;
-}
-
 static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int plane)
 {
     if (!(s > -1 && s < 1)) return;
@@ -4617,17 +5066,16 @@ static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int pl
     (*nb)++;
 }
 
-/* An edge line of the scene: a point q and direction D, valid on the
-   planes (p1, p2) it bounds (p2 = -1 for a section point's line). */
-typedef struct gr__edge_t { double q[3], D[3]; int p1, p2; } gr__edge_t;
 
 /* Walks the edge lines: every section point's line, then the line of
    each pair of planes i < j of different grooves (or with an end wall). */
-typedef struct gr__edge_it_t { int g, k, i, j; } gr__edge_it_t;
+typedef struct gr__edge_it_t { int g, k, i, j, n; gr__edge_t e; } gr__edge_it_t;
 
 static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *e)
 {
     int m;
+    e->l0 = -HUGE_VAL;
+    e->l1 = HUGE_VAL;
     while (it->g < sc->nlg) { /* a section point swept along T */
         const gr__lg_t *lg = &sc->ls.lg[it->g];
         double c[2];
@@ -4662,6 +5110,83 @@ static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *
     return 0;
 }
 
+/* Narrow e's λ range to where it lies on plane i's facet (its section
+   segment, padded by GR__LINE_ON_FACET_REL, as gr__on_plane); the ground
+   and end walls leave it (their holes are the solid's business). 0 when
+   the range is empty. */
+static int gr__edge_on_facet(const gr__lscene_t *sc, int i, gr__edge_t *e)
+{
+    const gr__plane_t *p;
+    const gr__lg_t *g;
+    double bw[2], db, dw, l2, u0, u1, lo, hi, eps = GR__LINE_ON_FACET_REL;
+    if (i < 0) return 1;
+    p = &sc->ls.pl[i];
+    if (p->lg < 0 || p->cap) return 1;
+    g = &sc->ls.lg[p->lg];
+    gr__to_groove(g, e->q, bw);
+    u0 = gr__facet_param(p, bw);
+    db = p->c1[0] - p->c0[0];
+    dw = p->c1[1] - p->c0[1];
+    l2 = db * db + dw * dw;
+    u1 = ((g->bn[0] * e->D[0] + g->bn[1] * e->D[1]) * db + e->D[2] * dw) / l2;
+    if (u1 == 0) return u0 >= -eps && u0 <= 1 + eps;
+    lo = (-eps - u0) / u1;
+    hi = (1 + eps - u0) / u1;
+    if (lo > hi) { double t = lo; lo = hi; hi = t; }
+    if (lo > e->l0) e->l0 = lo;
+    if (hi < e->l1) e->l1 = hi;
+    return e->l0 <= e->l1;
+}
+
+/* Narrow e's λ range to the scene's box (no ray of its segments meets an
+   edge, or passes one toward a light, outside it). 0 when empty. */
+static int gr__edge_in_box(const gr__lscene_t *sc, gr__edge_t *e)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        double lo, hi;
+        if (e->D[k] == 0) {
+            if (e->q[k] < sc->box[k] || e->q[k] > sc->box[k + 2]) return 0;
+            continue;
+        }
+        lo = (sc->box[k] - e->q[k]) / e->D[k];
+        hi = (sc->box[k + 2] - e->q[k]) / e->D[k];
+        if (lo > hi) { double t = lo; lo = hi; hi = t; }
+        if (lo > e->l0) e->l0 = lo;
+        if (hi < e->l1) e->l1 = hi;
+    }
+    return e->l0 <= e->l1;
+}
+
+/* The next edge that exists (lies on both its facets somewhere in the
+   scene's box): from the scene's list, or found afresh (into it->e) when
+   the list overflowed. NULL at the end. */
+static const gr__edge_t *gr__edge_fetch(const gr__lscene_t *sc, gr__edge_it_t *it)
+{
+    if (sc->ned >= 0) return it->n < sc->ned ? &sc->ls.ed[it->n++] : NULL;
+    while (gr__edge_next(sc, it, &it->e))
+        if (gr__edge_on_facet(sc, it->e.p1, &it->e) && gr__edge_on_facet(sc, it->e.p2, &it->e) &&
+            gr__edge_in_box(sc, &it->e))
+            return &it->e;
+    return NULL;
+}
+
+/* The scene's edge list (once per scene: every segment of a footprint
+   and both its passes reuse it). */
+static void gr__edge_list(gr__lscene_t *sc)
+{
+    gr__edge_it_t it;
+    const gr__edge_t *e;
+    int n = 0;
+    memset(&it, 0, sizeof it);
+    sc->ned = -1; /* fetch afresh while filling */
+    while ((e = gr__edge_fetch(sc, &it)) != NULL) {
+        if (n == GR_LINE_MAX_EDGES) return; /* overflow: stays -1 */
+        sc->ls.ed[n++] = *e;
+    }
+    sc->ned = n;
+}
+
 /* Cut the segment where its first surface can change (seen = NULL: §5.6,
    the 1D version of §5.2-5.3), or where a shadow boundary can fall on a
    facet it sees (seen[m] != 0; §5.4: every edge's shadow along each
@@ -4669,47 +5194,74 @@ static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *
 static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl,
                             const unsigned char *seen, int nb)
 {
-    int m, l;
-    gr__edge_t e;
+    int m, l, v;
+    const gr__edge_t *ep;
     gr__edge_it_t it;
+    double nS[3], ns2, pad = GR__LINE_ON_FACET_REL * sc->scale;
+    /* the seen planes, with their dot products against the segment's
+       a, d and o, for the 2x2 system of a ray meeting two planes, per plane once) */
+    int vis[GR_LINE_MAX_PLANES], nvis = 0;
+    double pv[GR_LINE_MAX_PLANES][4], aadd = gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d);
+    gr__cross3(sh->a, sh->d, nS); /* the normal of the segment's plane of rays */
+    ns2 = gr__dot3(nS, nS);
+    for (m = 0; seen && m < sc->npl; m++)
+        if (seen[m]) {
+            const gr__plane_t *p = &sc->ls.pl[m];
+            pv[nvis][0] = gr__dot3(p->n, sh->a);
+            pv[nvis][1] = gr__dot3(p->n, sh->d);
+            pv[nvis][2] = p->h - gr__dot3(p->n, sh->o);
+            pv[nvis][3] = gr__dot3(p->n, p->n) * aadd;
+            vis[nvis++] = m;
+        }
     memset(&it, 0, sizeof it);
-    while (gr__edge_next(sc, &it, &e)) {
-        double s, t, x[3], nD[3];
-        if (seen) {
-        } else if (e.p1 < 0) {
-            /* a section point's line: o + s a + t d = q + λ D (Cramer) */
-            double m0[3], det, rhs[3];
-            gr__cross3(sh->d, e.D, m0);
-            det = -gr__dot3(sh->a, m0);
-            for (m = 0; m < 3; m++) rhs[m] = e.q[m] - sh->o[m];
-            if (fabs(det) > 1e-14 * sqrt(gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d) * gr__dot3(e.D, e.D))) {
-                double c1[3];
-                s = -gr__dot3(rhs, m0) / det;
-                gr__cross3(rhs, e.D, c1);
-                t = -gr__dot3(sh->a, c1) / det;
+    while ((ep = gr__edge_fetch(sc, &it)) != NULL) {
+        const gr__edge_t e = *ep;
+        double s, t, x[3], r[3], c[3], nD[3], dd = gr__dot3(e.D, e.D), den = gr__dot3(nS, e.D);
+        if (!seen && fabs(den) > 1e-14 * sqrt(ns2 * dd)) {
+            /* where the edge pierces the plane of rays: x = q + λ D = o + s a + t d */
+            double lam;
+            for (m = 0; m < 3; m++) r[m] = sh->o[m] - e.q[m];
+            lam = gr__dot3(nS, r) / den;
+            if (lam >= e.l0 && lam <= e.l1) {
+                for (m = 0; m < 3; m++) r[m] = e.q[m] + lam * e.D[m] - sh->o[m];
+                gr__cross3(r, sh->d, c);
+                s = gr__dot3(c, nS) / ns2;
+                gr__cross3(sh->a, r, c);
+                t = gr__dot3(c, nS) / ns2;
                 if (t >= 0) gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
             }
-        } else if (gr__sheet_two_planes(sh, sc->ls.pl[e.p1].n, sc->ls.pl[e.p1].h, sc->ls.pl[e.p2].n,
-                                        sc->ls.pl[e.p2].h, &s, &t) && t >= 0) {
-            for (m = 0; m < 3; m++) x[m] = sh->o[m] + s * sh->a[m] + t * sh->d[m];
-            if (gr__on_plane(sc, e.p1, x) && gr__on_plane(sc, e.p2, x))
-                gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
         }
         /* §5.4: the edge's shadow along each light on each seen facet */
         for (l = 0; seen && l < nl; l++) {
             const double *L = lights + 3 * l;
-            double hP;
+            double nd2, lpad = pad / sqrt(dd), a11, a12, r1;
             if (!(L[2] > 0)) continue;
-            gr__cross3(e.D, L, nD);
-            if (!(gr__dot3(nD, nD) > 1e-24 * gr__dot3(e.D, e.D))) continue;
-            hP = gr__dot3(nD, e.q);
-            for (m = 0; m < sc->npl; m++) {
-                double dir[3];
+            gr__cross3(e.D, L, nD); /* the plane through the edge along L */
+            nd2 = gr__dot3(nD, nD);
+            if (!(nd2 > 1e-24 * dd)) continue;
+            a11 = gr__dot3(nD, sh->a);
+            a12 = gr__dot3(nD, sh->d);
+            r1 = gr__dot3(nD, e.q) - gr__dot3(nD, sh->o);
+            for (v = 0; v < nvis; v++) {
+                double dir[3], lam, mu, det = a11 * pv[v][1] - a12 * pv[v][0];
                 int k;
-                if (!seen[m] || m == e.p1 || m == e.p2) continue;
-                if (!gr__sheet_two_planes(sh, nD, hP, sc->ls.pl[m].n, sc->ls.pl[m].h, &s, &t) || t < 0) continue;
+                m = vis[v];
+                if (m == e.p1 || m == e.p2) continue;
+                /* the ray (s, t) meeting this plane and facet m: Cramer on n.(o + s a + t d) = h */
+                if (!(fabs(det) > 1e-14 * sqrt(nd2 * pv[v][3]))) continue;
+                s = (r1 * pv[v][1] - a12 * pv[v][2]) / det;
+                t = (a11 * pv[v][2] - r1 * pv[v][0]) / det;
+                if (t < 0 || !(s > -1 && s < 1)) continue;
                 for (k = 0; k < 3; k++) x[k] = sh->o[k] + s * sh->a[k] + t * sh->d[k];
                 if (!gr__on_plane(sc, m, x)) continue;
+                /* x = q + λ D + μ L: cast by the edge's existing part
+                   (λ in range), which lies toward the light (μ <= 0) */
+                for (k = 0; k < 3; k++) r[k] = x[k] - e.q[k];
+                gr__cross3(r, L, c);
+                lam = gr__dot3(c, nD) / nd2;
+                gr__cross3(e.D, r, c);
+                mu = gr__dot3(c, nD) / nd2;
+                if (lam < e.l0 - lpad || lam > e.l1 + lpad || mu > pad) continue;
                 gr__cross3(nD, sc->ls.pl[m].n, dir);
                 gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, dir), m);
             }
@@ -4756,9 +5308,19 @@ static void gr__classify(const gr__lscene_t *sc, const gr__sheet_t *sh, gr__ivl_
     double o[3], th, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), sm = 0.5 * (iv->s0 + iv->s1);
     int k;
     for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
-    iv->plane = gr__ray_hit(sc, o, sh->d, gr__ray_tmax(sc, o, sh->d, seglen), &th);
+    iv->plane = gr__ray_hit(sc, o, sh->d, gr__ray_tmax(sc, o, sh->d, seglen), sh->inside, &th);
     if (iv->plane == -2) iv->plane = -1; /* inside at the start: counted as leaving */
     iv->lit = 0;
+}
+
+/* The coalescing distance of a segment's breakpoints (GR__LINE_SNAP). */
+static double gr__sheet_snap(const gr__lscene_t *sc, const gr__sheet_t *sh)
+{
+    double mag = fabs(sh->o[0]), al = sqrt(gr__dot3(sh->a, sh->a));
+    if (fabs(sh->o[1]) > mag) mag = fabs(sh->o[1]);
+    if (fabs(sh->o[2]) > mag) mag = fabs(sh->o[2]);
+    mag += GR__LINE_TRAVEL_REL * sc->scale;
+    return al > 0 ? GR__LINE_SNAP + GR__LINE_SNAP_ULPS * DBL_EPSILON * mag / al : GR__LINE_SNAP;
 }
 
 /* §5.4 on one segment: split the seen intervals at the shadow boundaries
@@ -4767,7 +5329,7 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
 {
     gr__ivl_t *iv = sc->ls.iv, *out = sc->ls.iv2;
     unsigned char seen[GR_LINE_MAX_PLANES];
-    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
+    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), snap = gr__sheet_snap(sc, sh);
     int i, k, nb, b = 0, m = 0;
     memset(seen, 0, (size_t)sc->npl);
     for (i = 0; i < n; i++)
@@ -4782,8 +5344,8 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
             int j;
             if (iv[i].plane >= 0 && m + (n - i) < GR_LINE_MAX_BREAKS + 1) {
                 for (j = b; j < nb && sc->ls.brk[j].s < iv[i].s1; j++)
-                    if (sc->ls.brk[j].plane == iv[i].plane && sc->ls.brk[j].s - s0 > GR__LINE_SNAP &&
-                        iv[i].s1 - sc->ls.brk[j].s > GR__LINE_SNAP) {
+                    if (sc->ls.brk[j].plane == iv[i].plane && sc->ls.brk[j].s - s0 > snap &&
+                        iv[i].s1 - sc->ls.brk[j].s > snap) {
                         s1 = sc->ls.brk[j].s;
                         next = sc->ls.brk[j].sin2;
                         b = j + 1;
@@ -4812,6 +5374,25 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
     return m;
 }
 
+/* Intervals sorted by length, longest first (by_len), or by position:
+   insertion sort for short lists, qsort beyond. */
+static int gr__cmp_ivl_len(const void *a, const void *b);
+static int gr__cmp_ivl_pos(const void *a, const void *b);
+static void gr__ivl_sort(gr__ivl_t *iv, int n, int by_len)
+{
+    int i, j;
+    if (n > GR__LINE_SMALL_SORT) {
+        qsort(iv, (size_t)n, sizeof *iv, by_len ? gr__cmp_ivl_len : gr__cmp_ivl_pos);
+        return;
+    }
+    for (i = 1; i < n; i++) {
+        gr__ivl_t x = iv[i];
+        double kx = by_len ? x.s0 - x.s1 : x.s0;
+        for (j = i; j > 0 && (by_len ? iv[j - 1].s0 - iv[j - 1].s1 : iv[j - 1].s0) > kx; j--) iv[j] = iv[j - 1];
+        iv[j] = x;
+    }
+}
+
 static int gr__cmp_ivl_len(const void *a, const void *b)
 {
     const gr__ivl_t *x = (const gr__ivl_t *)a, *y = (const gr__ivl_t *)b;
@@ -4833,11 +5414,11 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
 {
     gr__ivl_t *iv = sc->ls.iv;
     int nb = sc->nlg ? gr__sheet_breaks(sc, sh, lights, nl, NULL, 0) : 0, n = 0, i;
-    double last = -1, sin2 = 0, done = 0;
+    double last = -1, sin2 = 0, done = 0, snap = gr__sheet_snap(sc, sh);
     gr__brk_sort(sc, nb);
     for (i = 0; i <= nb; i++) {
         double s = i < nb ? sc->ls.brk[i].s : 1;
-        if (s - last <= GR__LINE_SNAP) { /* coalesce: keep the steepest edge */
+        if (s - last <= snap) { /* coalesce: keep the steepest edge */
             if (i < nb && sc->ls.brk[i].sin2 > sin2) sin2 = sc->ls.brk[i].sin2;
             continue;
         }
@@ -4850,14 +5431,14 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
         last = s;
         sin2 = i < nb ? sc->ls.brk[i].sin2 : 0;
     }
-    if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_len);
+    if (tol > 0) gr__ivl_sort(iv, n, 1); /* longest first, for the early exit */
     for (i = 0; i < n; i++) {
         if (tol > 0 && done >= 2 * (1 - tol)) { if (st) st->early_exits++; break; }
         gr__classify(sc, sh, &iv[i]);
         done += iv[i].s1 - iv[i].s0;
         if (st) st->evaluated++;
     }
-    if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_pos);
+    if (tol > 0) gr__ivl_sort(iv, n, 0);
     if (st) { st->segments++; st->intervals += n; } /* (view intervals; shadows split them below) */
     if (nl > 0) n = gr__shadow_split(sc, sh, lights, nl, n);
     *weight = 0;
@@ -4867,24 +5448,57 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
     return n;
 }
 
-/* The n line samples of a footprint (§5.6), rays coming down along -E
-   from above everything. */
-static void gr__top_sheet(const gr_grid_t *grid, const gr_footprint_t *fp, int j, int n, gr__sheet_t *sh)
+/* Line j of the n line samples of a footprint (§5.6), rays coming down
+   along -E from above everything. The lines come in two families: the
+   first ceil(n/2) run along A1, the other floor(n/2) along A2, each
+   family spread across the footprint as parallel chords at the midpoints
+   of equal strata of the other axis (offset c_i = -1 + (2i + 1)/count).
+   n = 2 is the paper's pair of axes through F; with more lines each
+   family is a stratified quadrature of the footprint's area: a chord
+   gives the exact length shares at its offset, and the family's answer is
+   the area-weighted mean of its chords, so its error falls with the
+   number of chords (lines through F at rotated angles would converge to a
+   density peaked at F instead). The chord spans the footprint: the full
+   side for the parallelogram, |a| <= sqrt(1 - c^2) for the ellipse
+   (query.ellipse), whose strata weigh their exact area (the semicircle
+   law). Returns the chord's weight within its family (the weights of a
+   family sum to 1); *family gets 0 or 1. */
+static double gr__top_sheet(const gr_grid_t *grid, const gr_query_t *q, int j, int n, gr__sheet_t *sh, int *family)
 {
-    double ang = 3.14159265358979323846 * j / n, c = cos(ang), s = sin(ang), ew = fp->view[2], lift;
-    int k;
+    const gr_footprint_t *fp = &q->footprint;
+    int n0 = (n + 1) / 2, fam = j < n0 ? 0 : 1, count = fam ? n - n0 : n0, i = fam ? j - n0 : j, k;
+    const double *along = fam ? fp->axis2 : fp->axis1, *across = fam ? fp->axis1 : fp->axis2;
+    double lo = -1 + 2.0 * i / count, hi = -1 + 2.0 * (i + 1) / count, c = 0.5 * (lo + hi), half = 1, weight;
+    double ew = fp->view[2], lift, f[2], scale = grid->h + grid->w + grid->d;
+    if (q->ellipse) {
+        half = sqrt(1 - c * c);
+        weight = gr__disc_cdf(hi) - gr__disc_cdf(lo);
+    } else {
+        weight = 1.0 / count;
+    }
     if (ew < GR__GRAZING_MIN_W) ew = GR__GRAZING_MIN_W;
-    lift = (grid->h + grid->w + grid->d) / ew; /* start above every protrusion */
-    sh->o[0] = fp->center[0] + lift * fp->view[0];
-    sh->o[1] = fp->center[1] + lift * fp->view[1];
+    /* start just above every protrusion (GR__LINE_CLEAR_REL over the top),
+       but no farther from F than half the rays' reach (GR__LINE_TRAVEL_REL
+       scene scales), so grazing views keep their rays near the footprint
+       (a protrusion farther along the view is not seen then) */
+    lift = (grid->h + GR__LINE_CLEAR_REL * scale) / ew;
+    if (lift > 0.5 * GR__LINE_TRAVEL_REL * scale) lift = 0.5 * GR__LINE_TRAVEL_REL * scale;
+    f[0] = fp->center[0] + c * across[0];
+    f[1] = fp->center[1] + c * across[1];
+    sh->o[0] = f[0] + lift * fp->view[0];
+    sh->o[1] = f[1] + lift * fp->view[1];
     sh->o[2] = lift * fp->view[2];
-    sh->a[0] = c * fp->axis1[0] + s * fp->axis2[0];
-    sh->a[1] = c * fp->axis1[1] + s * fp->axis2[1];
+    sh->a[0] = half * along[0];
+    sh->a[1] = half * along[1];
     sh->a[2] = 0;
     for (k = 0; k < 3; k++) sh->d[k] = -fp->view[k];
     sh->thr[0] = sh->thr[1] = sh->thr[2] = 1;
     sh->level = 0;
+    sh->inside = 0;
+    *family = fam;
+    return weight;
 }
+
 
 /* Shared argument checks of gr_query_lines / gr_shade_indirect. */
 static gr_result_t gr__line_check(const gr_grid_t *grid, const gr_query_t *q, void *scratch, size_t bytes)
@@ -4918,6 +5532,17 @@ static void gr__line_layout(const gr_grid_t *grid, void *scratch, gr__scratch_t 
 #endif /* line-sample engine */
 
 #ifndef GR_NO_LINE_SAMPLES
+/* The sheet whose scene (gr__line_scene, not tight) holds every top-level
+   line's rays: centred on F, spanning the footprint's UV box. */
+static void gr__footprint_sheet(const gr_grid_t *grid, const gr_query_t *q, gr__sheet_t *all)
+{
+    const gr_footprint_t *fp = &q->footprint;
+    int fam;
+    (void)gr__top_sheet(grid, q, 0, 1, all, &fam);
+    all->a[0] = fabs(fp->axis1[0]) + fabs(fp->axis2[0]);
+    all->a[1] = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
+}
+
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats)
 {
@@ -4932,8 +5557,8 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     gr__lscene_t sc;
     gr__sheet_t sh;
     const gr_footprint_t *fp;
-    double wsum = 0, tol, *acc;
-    int n, j, i, k, nl, stride, built = 0;
+    double wfam[2] = {0, 0}, tol, *acc;
+    int n, j, i, k, nl, stride;
     gr_result_t r;
     if (!list) return GR_ERR_INVALID_ARG;
     list->count = 0;
@@ -4951,54 +5576,50 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     stride = 1 + nl;
     gr__line_layout(grid, scratch, &s, &sc);
     acc = sc.ls.acc;
-    /* two passes: Jones & Perry weights, then (if no segment crossed an
-       edge) plain averages; acc holds weighted sums in [0, npl), plain
-       ones after them */
+    {
+        gr__sheet_t all;
+        gr__footprint_sheet(grid, query, &all); /* every line shares the footprint's scene */
+        gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl);
+    }
+    /* acc holds each family's area-weighted sums (family f at
+       [f npl, (f + 1) npl)); the families combine by their mean Jones &
+       Perry weights, or plainly when neither crosses an edge */
+    memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
     for (j = 0; j < n; j++) {
-        double wj, cl;
-        int m;
-        gr__top_sheet(grid, fp, j, n, &sh);
-        if (!built) { /* every top-level segment shares the footprint's scene */
-            gr__sheet_t all = sh;
-            double ext = sqrt(fp->axis1[0] * fp->axis1[0] + fp->axis1[1] * fp->axis1[1] + fp->axis2[0] * fp->axis2[0] +
-                              fp->axis2[1] * fp->axis2[1]);
-            all.a[0] = ext; /* a box covering all rotations: the footprint's circumscribed extent */
-            all.a[1] = ext;
-            gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl); /* all rotations: not tight */
-            memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
-            built = 1;
-        }
+        double wj, cl, wa;
+        int m, fam;
+        wa = gr__top_sheet(grid, query, j, n, &sh, &fam);
         m = gr__sheet_eval(&sc, &sh, query->lights, nl, tol, &wj, &cl, stats);
         if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = wj;
-        wsum += wj;
+        wfam[fam] += wa * wj;
         for (i = 0; i < m; i++) {
             const gr__ivl_t *v = &sc.ls.iv[i];
-            double len;
-            int base;
+            double len, *a;
+            int q;
             if (v->plane < 0 || !(cl > 0)) continue;
-            len = (v->s1 - v->s0) / (2 * cl); /* the unclassified rest shared in proportion */
-            for (k = 0; k < 2; k++) {
-                double *a;
-                int q;
-                base = (k * sc.npl + v->plane) * stride;
-                a = acc + base;
-                a[0] += (k ? 1.0 : wj) * len;
-                for (q = 0; q < nl; q++)
-                    if (v->lit & (1u << q)) a[1 + q] += (k ? 1.0 : wj) * len;
-            }
+            len = wa * (v->s1 - v->s0) / (2 * cl); /* the unclassified rest shared in proportion */
+            a = acc + (fam * sc.npl + v->plane) * stride;
+            a[0] += len;
+            for (q = 0; q < nl; q++)
+                if (v->lit & (1u << q)) a[1 + q] += len;
         }
     }
     {
-        int half = wsum > 0 ? 0 : 1;
-        double norm = wsum > 0 ? wsum : n;
+        int nfam = n > 1 ? 2 : 1, f;
+        double wf[2], wsum = wfam[0] + wfam[1];
+        for (f = 0; f < 2; f++) wf[f] = f >= nfam ? 0 : wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
         for (i = 0; i < sc.npl; i++) {
-            int base = (half * sc.npl + i) * stride;
             const gr__plane_t *p = &sc.ls.pl[i];
             gr__mfacet_t mf;
-            double lit[GR_MAX_LIGHTS], ratio;
-            ratio = acc[base] / norm;
+            double lit[GR_MAX_LIGHTS], ratio = 0;
+            for (k = 0; k < nl; k++) lit[k] = 0;
+            for (f = 0; f < nfam; f++) {
+                const double *a = acc + (f * sc.npl + i) * stride;
+                ratio += wf[f] * a[0];
+                for (k = 0; k < nl; k++) lit[k] += wf[f] * a[1 + k];
+            }
             if (!(ratio > 0)) continue;
-            for (k = 0; k < nl; k++) lit[k] = acc[base + 1 + k] / acc[base];
+            for (k = 0; k < nl; k++) lit[k] /= ratio;
             for (k = 0; k < 3; k++) mf.n[k] = p->n[k];
             mf.groove = p->lg < 0 ? -1 : sc.ls.lg[p->lg].groove;
             mf.facet = p->facet;
@@ -5013,6 +5634,7 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
         }
     list->flags |= sc.flags;
     list->grooves = sc.nlg;
+    if (stats && (sc.flags & GR_LIST_LINE_APPROX)) stats->flags |= GR_STATS_LINE_APPROX;
     gr__list_finish(list, nl);
     return GR_OK;
 }
@@ -5043,24 +5665,72 @@ static void gr__to_host(const gr_indirect_t *ind, const double *origin, const do
     for (k = 0; k < 3; k++) rgb[k] += thr[k] * frac * c[k];
 }
 
+/* Unpolarised Fresnel reflectance at an interface met at cos ci > 0, eta
+   = n_from / n_to; 1 under total internal reflection. *ct: the
+   transmitted cosine (0 under total internal reflection). */
+static double gr__fresnel(double ci, double eta, double *ct)
+{
+    double st2 = eta * eta * (1 - ci * ci), rs, rp;
+    if (st2 >= 1) { *ct = 0; return 1; }
+    *ct = sqrt(1 - st2);
+    rs = (eta * ci - *ct) / (eta * ci + *ct);
+    rp = (ci - eta * *ct) / (ci + eta * *ct);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+/* The pending-segment stack of gr_shade_indirect() (§6.1's recursion). */
+typedef struct gr__stack_t { gr__sheet_t *s; int top, full; } gr__stack_t;
+
+/* Push the piece [x0, x1] (3D, on the facet) as the next footprint, seen
+   along dir in the given medium, carrying thr; when the stack is full the
+   piece leaves along dir unexamined (§6.2's host) and the stack says so. */
+static void gr__push_piece(const gr_indirect_t *ind, gr__stack_t *st, const double *x0, const double *x1,
+                           const double *side, const double *dir, const double *thr, int level, int inside,
+                           double *rgb)
+{
+    double mid[3];
+    int k;
+    for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + side[k];
+    if (st->top == GR_INDIRECT_STACK) {
+        st->full = 1;
+        gr__to_host(ind, mid, dir, level, inside, thr, 1, rgb);
+        return;
+    }
+    {
+        gr__sheet_t *c = &st->s[st->top++];
+        for (k = 0; k < 3; k++) {
+            c->o[k] = mid[k];
+            c->a[k] = 0.5 * (x1[k] - x0[k]);
+            c->d[k] = dir[k];
+            c->thr[k] = thr[k];
+        }
+        c->level = level;
+        c->inside = inside;
+    }
+}
+
 /* One evaluated segment: direct terms, then the pieces that bounce
-   (§6.1: each facet run's visible piece, seen along E_r, becomes the next
-   footprint) pushed on the stack, and what leaves to the host (§6.2). */
+   (§6.1: each facet run's visible piece becomes the next footprint, seen
+   along the mirror direction E_r and, for a transmitting facet, along the
+   refracted one E_t), and what leaves to the host (§6.2). */
 static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, const gr_query_t *q,
-                       const gr_indirect_t *ind, gr__sheet_t *stack, int *top, double *rgb)
+                       const gr_indirect_t *ind, gr__stack_t *stack, double *rgb)
 {
     const gr__ivl_t *iv = sc->ls.iv;
-    double e[3], esc = 0, esc_s = 0, off = GR__LINE_OFFSET_REL * sc->scale;
+    double e[3], dd[3], esc = 0, esc_s = 0, off = GR__LINE_OFFSET_REL * sc->scale;
     int i, j, k, l;
-    for (k = 0; k < 3; k++) e[k] = -sh->d[k];
     {
-        double len = sqrt(gr__dot3(e, e));
-        for (k = 0; k < 3; k++) e[k] /= len;
+        double len = sqrt(gr__dot3(sh->d, sh->d));
+        for (k = 0; k < 3; k++) {
+            dd[k] = sh->d[k] / len;
+            e[k] = -dd[k];
+        }
     }
     for (i = 0; i < m; i = j) {
         const gr__plane_t *p;
         const gr_specular_t *sp;
-        double frac, x0[3], x1[3], mid[3], nf[3];
+        double frac, x0[3], x1[3], nf[3], wr[3], wt[3], dr[3], dt[3], up[3], down[3], ci, ct, eta, F;
+        int tir, thin;
         /* a run of intervals on one facet */
         for (j = i + 1; j < m && iv[j].plane == iv[i].plane; j++) {}
         frac = (iv[j - 1].s1 - iv[i].s0) / 2;
@@ -5071,8 +5741,8 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
             continue;
         }
         p = &sc->ls.pl[iv[i].plane];
-        gr__facing(sc, iv[i].plane, sh->d, nf);
-        if (ind->brdf)
+        gr__facing(sc, iv[i].plane, sh->d, nf); /* toward the side the rays come from */
+        if (ind->brdf && !sh->inside) /* direct light: on the outside only */
             for (l = i; l < j; l++)
                 for (k = 0; k < q->light_count; k++) {
                     double c[3] = {0, 0, 0}, fl = (iv[l].s1 - iv[l].s0) / 2;
@@ -5083,47 +5753,46 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
                 }
         sp = gr__spec(ind, p->refl);
         if (sh->level >= ind->depth || !sp) continue;
+        /* the bounce weights: Fresnel or the constants, thin or solid */
+        ci = -gr__dot3(dd, nf);
+        eta = sp->ior > 0 ? sp->ior : GR__DEFAULT_IOR;
+        eta = sh->inside ? eta : 1 / eta;
+        thin = sp->thin != 0;
+        F = gr__fresnel(ci, eta, &ct);
+        tir = !thin && ct == 0;
+        for (k = 0; k < 3; k++) {
+            if (sp->fresnel) {
+                double R = thin ? 2 * F / (1 + F) : F;
+                wr[k] = sp->kr[k] * R;
+                wt[k] = tir ? 0 : sp->kt[k] * (1 - R);
+            } else {
+                wr[k] = sp->kr[k] + (tir ? sp->kt[k] : 0);
+                wt[k] = tir ? 0 : sp->kt[k];
+            }
+            wr[k] *= sh->thr[k] * frac;
+            wt[k] *= sh->thr[k] * frac;
+            dr[k] = dd[k] + 2 * ci * nf[k];
+            dt[k] = thin ? dd[k] : eta * dd[k] + (eta * ci - ct) * nf[k];
+            up[k] = off * nf[k];
+            down[k] = -off * nf[k];
+        }
         gr__sheet_point(sc, sh, iv[i].plane, iv[i].s0, x0);
         gr__sheet_point(sc, sh, iv[i].plane, iv[j - 1].s1, x1);
-        for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + off * nf[k];
-        if (gr__nonzero3(sp->kr)) {
-            double dn = gr__dot3(sh->d, nf), dr[3];
-            for (k = 0; k < 3; k++) dr[k] = sh->d[k] - 2 * dn * nf[k];
-            if (*top < GR__LINE_STACK) {
-                gr__sheet_t *c = &stack[(*top)++];
-                for (k = 0; k < 3; k++) {
-                    c->o[k] = mid[k];
-                    c->a[k] = 0.5 * (x1[k] - x0[k]);
-                    c->d[k] = dr[k];
-                    c->thr[k] = sh->thr[k] * sp->kr[k] * frac;
-                }
-                c->level = sh->level + 1;
-            } else { /* stack full: the piece leaves along E_r unexamined */
-                double t3[3];
-                for (k = 0; k < 3; k++) t3[k] = sh->thr[k] * sp->kr[k];
-                gr__to_host(ind, mid, dr, sh->level + 1, 0, t3, frac, rgb);
-            }
-        }
-        if (gr__nonzero3(sp->kt)) { /* refraction into the material (Snell), to the host */
-            double eta = 1 / (sp->ior > 0 ? sp->ior : GR__DEFAULT_IOR), dl = sqrt(gr__dot3(sh->d, sh->d));
-            double dd[3], ci, kk, dt[3], t3[3], in[3];
-            for (k = 0; k < 3; k++) dd[k] = sh->d[k] / dl;
-            ci = -gr__dot3(dd, nf);
-            kk = 1 - eta * eta * (1 - ci * ci);
-            if (kk >= 0 && ci > 0) {
-                for (k = 0; k < 3; k++) {
-                    dt[k] = eta * dd[k] + (eta * ci - sqrt(kk)) * nf[k];
-                    t3[k] = sh->thr[k] * sp->kt[k];
-                    in[k] = mid[k] - 2 * off * nf[k];
-                }
-                gr__to_host(ind, in, dt, sh->level + 1, 1, t3, frac, rgb);
+        if (gr__nonzero3(wr)) gr__push_piece(ind, stack, x0, x1, up, dr, wr, sh->level + 1, sh->inside, rgb);
+        if (gr__nonzero3(wt)) {
+            if (thin) { /* through the pane, to the host behind it */
+                double mid[3];
+                for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + down[k];
+                gr__to_host(ind, mid, dt, sh->level + 1, !sh->inside, wt, 1, rgb);
+            } else {
+                gr__push_piece(ind, stack, x0, x1, down, dt, wt, sh->level + 1, !sh->inside, rgb);
             }
         }
     }
-    if (esc > 0) {
+    if (esc > 0) { /* §6.2: 1 - Σ r_i leaves: up into the scene, or into the bulk */
         double o[3], sm = esc_s / esc;
         for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
-        gr__to_host(ind, o, sh->d, sh->level, 0, sh->thr, esc, rgb);
+        gr__to_host(ind, o, sh->d, sh->level, sh->inside, sh->thr, esc, rgb);
     }
 }
 
@@ -5132,10 +5801,11 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
 {
     gr__scratch_t s;
     gr__lscene_t sc;
-    gr__sheet_t stack[GR__LINE_STACK];
+    gr__stack_t stack;
     const gr_footprint_t *fp;
-    double wsum = 0, plain[3] = {0, 0, 0}, tol;
-    int n, j, k;
+    double wfam[2] = {0, 0}, cfam[2][3] = {{0, 0, 0}, {0, 0, 0}}, tol;
+    int n, j, k, full = 0;
+    unsigned approx = 0;
     gr_result_t r;
     if (!indirect || !rgb) return GR_ERR_INVALID_ARG;
     rgb[0] = rgb[1] = rgb[2] = 0;
@@ -5150,34 +5820,44 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
     n = query->line_samples ? query->line_samples : 2;
     tol = gr__exit_tol(query);
     gr__line_layout(grid, scratch, &s, &sc);
+    stack.s = sc.ls.stack;
     for (j = 0; j < n; j++) {
-        double cj[3] = {0, 0, 0}, wj = 0;
-        int top = 1;
-        gr__top_sheet(grid, fp, j, n, &stack[0]);
-        while (top > 0) {
-            gr__sheet_t sh = stack[--top];
+        double cj[3] = {0, 0, 0}, wj = 0, wa;
+        int fam;
+        stack.top = 1;
+        stack.full = 0;
+        wa = gr__top_sheet(grid, query, j, n, &stack.s[0], &fam);
+        while (stack.top > 0) {
+            gr__sheet_t sh = stack.s[--stack.top];
             double w, cl;
-            int m;
-            gr__line_scene(grid, &s, &sc, &sh, 1, NULL, query->lights, query->light_count);
+            int m, nl = sh.inside ? 0 : query->light_count; /* no direct light inside the material */
+            gr__line_scene(grid, &s, &sc, &sh, 1, NULL, query->lights, nl);
             /* the early exit (§5.6) would leave unclassified gaps, which
                here would read as light leaving: bounces classify all */
-            m = gr__sheet_eval(&sc, &sh, query->lights, query->light_count, sh.level ? -1 : tol, &w, &cl, stats);
+            m = gr__sheet_eval(&sc, &sh, query->lights, nl, sh.level ? -1 : tol, &w, &cl, stats);
+            approx |= sc.flags & GR_LIST_LINE_APPROX;
             if (sh.level == 0) {
                 wj = w;
                 if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = w;
                 if (cl > 0 && cl < 1) /* share the unclassified rest in proportion */
                     for (k = 0; k < 3; k++) sh.thr[k] /= cl;
             }
-            gr__bounce(&sc, &sh, m, query, indirect, stack, &top, cj);
+            gr__bounce(&sc, &sh, m, query, indirect, &stack, cj);
         }
-        wsum += wj;
-        for (k = 0; k < 3; k++) {
-            rgb[k] += wj * cj[k];
-            plain[k] += cj[k];
+        full |= stack.full;
+        wfam[fam] += wa * wj; /* families combined as in gr_query_lines() */
+        for (k = 0; k < 3; k++) cfam[fam][k] += wa * cj[k];
+    }
+    {
+        int nfam = n > 1 ? 2 : 1, f;
+        double wsum = wfam[0] + wfam[1];
+        for (f = 0; f < nfam; f++) {
+            double wf = wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
+            for (k = 0; k < 3; k++) rgb[k] += wf * cfam[f][k];
         }
     }
-    for (k = 0; k < 3; k++) rgb[k] = wsum > 0 ? rgb[k] / wsum : plain[k] / n;
-    return GR_OK;
+    if (stats) stats->flags = (approx ? GR_STATS_LINE_APPROX : 0u) | (full ? GR_STATS_STACK_FULL : 0u);
+    return full ? GR_ERR_STACK_FULL : GR_OK;
 }
 #endif
 /* ==== [end section: interreflection] ==== */
