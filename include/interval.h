@@ -85,7 +85,8 @@
      NaN endpoints (iv_empty()); every operation returns the empty interval
      when an input is empty. Bad input (a NaN endpoint, lo > hi, lo = +inf or
      hi = -inf) is turned into the empty interval by iv_make, never into a
-     silently wrong enclosure.
+     silently wrong enclosure. Operations assume valid intervals: + - * /
+     sqrt sqr mul_d do not re-check a struct literal with lo > hi.
 
    LICENSE
      MIT, see the end of this file.
