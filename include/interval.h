@@ -15,8 +15,8 @@
      IV_ASSERT(c)       internal-invariant check (default assert)
      IV_MALLOC(sz,ctx) / IV_FREE(p,ctx)   allocator hooks (default malloc/free)
      IV_NO_AFFINE        leave out affine arithmetic
-     IV_NO_SIMD          keep + - * sqr on the portable scalar path even where
-                         the SSE4.1 + FMA pair path would be used
+     IV_NO_SIMD          keep + - * / sqrt sqr mul_d on the portable scalar
+                         path where the SSE4.1 + FMA pair path would be used
      IV_FAST             round-to-nearest endpoints: faster, NOT rigorous
      IV_LIBM_ULPS        the error bound (in ulps) trusted for the libm
                          functions exp log sin cos tan atan pow; default 1
