@@ -472,7 +472,9 @@ typedef struct gr_junction_t {
     double point[2]; /* UV, in the footprint's tile image: the path end, the
                         self-intersection point, or for a crossing the
                         meeting point of the two tangent lines at the paths'
-                        points nearest the footprint centre */
+                        points nearest the footprint centre (when that lies
+                        far away, the point nearest the centre where the
+                        two grooves' strips overlap) */
 } gr_junction_t;
 
 /* The result of gr_detect(): caller-owned, fixed size. */
@@ -514,7 +516,10 @@ GR_DEF gr_result_t gr_self_intersections(const gr_grid_t *grid, gr_self_hit_t *o
      - two grooves whose tangents differ by more than query->parallel_tol
        (default 0.02 rad) cross (the paper's test: tangents T differ),
        provided their tangent lines meet near the footprint and within the
-       sum of their widths of both paths;
+       sum of their widths of both paths, or (nearly parallel grooves that
+       meet far away) their strips of half width w overlap near the
+       footprint: the point is then the overlap's point nearest the
+       footprint centre;
      - a path end inside the box is an intersected end when its distance to
        another counted groove's path is below the sum of their widths w (the
        paper's distance test), a corner when another end is that close, and
@@ -3144,6 +3149,35 @@ static void gr__detect_ends(const gr_grid_t *grid, const gr__cand_t *cand, int n
 
 /* The footprint centre's image in the tile (as gr_query()), where
    gr_detect() and the polygon path place the grooves' nearest points. */
+/* The point nearest f of the overlap of two strips, |B_a.(x - pa)| <= wa
+   and |B_b.(x - pb)| <= wb about crossing lines (cr = T_a x T_b != 0):
+   the rhombus with corners p ± (wb / s) T_a ± (wa / s) T_b, p the lines'
+   meeting point, s = |cr|. f itself when it lies inside. */
+static void gr__overlap_nearest(const double *pa, const double *ta, double wa, const double *pb, const double *tb,
+                                double wb, double cr, const double *f, double q[2])
+{
+    double s = fabs(cr), m = ((pb[0] - pa[0]) * tb[1] - (pb[1] - pa[1]) * tb[0]) / cr, c[8], best = HUGE_VAL;
+    double p[2] = {pa[0] + m * ta[0], pa[1] + m * ta[1]}, da = wb / s, db = wa / s;
+    int k, inside = 1;
+    for (k = 0; k < 4; k++) { /* counter-clockwise or clockwise: the side test below takes either */
+        double sa = k == 0 || k == 3 ? 1 : -1, sb = k < 2 ? 1 : -1;
+        c[2 * k] = p[0] + sa * da * ta[0] + sb * db * tb[0];
+        c[2 * k + 1] = p[1] + sa * da * ta[1] + sb * db * tb[1];
+    }
+    for (k = 0; k < 4; k++) {
+        const double *u = c + 2 * k, *v = c + 2 * ((k + 1) % 4);
+        double ex = v[0] - u[0], ey = v[1] - u[1], l2 = ex * ex + ey * ey;
+        double t = l2 > 0 ? ((f[0] - u[0]) * ex + (f[1] - u[1]) * ey) / l2 : 0, x, y, d;
+        if (gr__cross2(u, v, f) * gr__cross2(u, v, c + 2 * ((k + 2) % 4)) < 0) inside = 0;
+        t = t < 0 ? 0 : t > 1 ? 1 : t;
+        x = u[0] + t * ex;
+        y = u[1] + t * ey;
+        d = hypot(f[0] - x, f[1] - y);
+        if (d < best) { best = d; q[0] = x; q[1] = y; }
+    }
+    if (inside) { q[0] = f[0]; q[1] = f[1]; }
+}
+
 static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
 {
     f[0] = c[0];
@@ -3209,9 +3243,15 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
                other is an isolated end and a normal groove, simulated
                apart (§5) */
             lim = grid->grooves_[a->groove].half_width + grid->grooves_[b->groove].half_width;
-            if (!(hypot(p[0] - f[0], p[1] - f[1]) <= reach + lim) || !gr__locate(grid, a->groove, p, lim, &c) ||
-                !gr__locate(grid, b->groove, p, lim, &c))
-                continue;
+            if (!(hypot(p[0] - f[0], p[1] - f[1]) <= reach + lim)) {
+                /* nearly parallel grooves meet far away, but their strips
+                   can overlap near the footprint all the same: then the
+                   overlap's point nearest the footprint stands for p */
+                gr__overlap_nearest(pa, a->t, grid->grooves_[a->groove].half_width, pb, b->t,
+                                    grid->grooves_[b->groove].half_width, cr, f, p);
+                if (!(hypot(p[0] - f[0], p[1] - f[1]) <= reach)) continue;
+            }
+            if (!gr__locate(grid, a->groove, p, lim, &c) || !gr__locate(grid, b->groove, p, lim, &c)) continue;
             gr__junction_add(out, GR_JUNCTION_CROSSING, a->groove, b->groove, -1, -1, p);
         }
     /* self-intersections (§5): precomputed points inside the box */
@@ -3444,6 +3484,9 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 /* A plane is seen edge-on along D when |N.D| falls below this (unit vectors):
    its projection has no area (as GR__EDGE_ON_REL for eq. 8). */
 #define GR__PP_EDGE_ON 1e-9
+/* A footprint whose area 4 |A1 x A2| is below this fraction of 4 |A1| |A2|
+   has no area for the polygon path (its axes are parallel to rounding). */
+#define GR__PP_FLAT_REL 1e-12
 
 /* One locally straight groove near the footprint, in coordinates relative
    to the footprint centre's tile image f (§4.2's straight approximation). */
@@ -3564,25 +3607,41 @@ static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, doubl
                       int *npts, int *sizes, int *nrings, double *tmp, double *tmp2)
 {
     double k[3], ga[3], gc[3], det, s = g->s;
+    /* a plane on the volume's boundary (equal floors of crossing grooves,
+       the ground at every mouth, a wall where a groove ends) decides as if
+       moved by `shift` along its normal, so exactly one of two coplanar
+       pieces keeps the overlap. Only the decision moves, not the geometry:
+       |shift| is the tolerance within which a point counts as on the
+       boundary, and the strips' edges stay where the unmoved plane has
+       them (moving the plane itself would move every cut by |shift| / the
+       section's slope, a partition error of that order) */
+    double tn = pc->n[0] * g->t[0] + pc->n[1] * g->t[1];
     int i, n = 0;
     gr__pp_groove_affine(pc, g, k, ga, gc);
-    /* a plane on the volume's boundary (equal floors of crossing grooves)
-       is moved by `shift` along its normal, so exactly one of the two
-       coplanar pieces keeps the overlap */
-    k[0] += shift * (pc->n[0] * g->t[0] + pc->n[1] * g->t[1]);
-    k[1] += shift * (-pc->n[0] * g->t[1] + pc->n[1] * g->t[0]);
-    k[2] += shift * pc->n[2];
+    /* the plane holds T when its (b, w) map is singular; X and Y are unit
+       vectors, so |det| is the sine of the angle between the plane and T
+       (a bound relative to the (b, w) parts alone would call the rounding
+       of a plane holding T, ~1e-17 under fused multiply-adds, regular) */
     det = ga[1] * gc[2] - ga[2] * gc[1];
-    if (fabs(det) > GR__PP_EDGE_ON * (fabs(ga[1]) + fabs(ga[2])) * (fabs(gc[1]) + fabs(gc[2]))) {
+    if (fabs(det) > GR__PP_EDGE_ON) {
         for (i = 0; i < g->nsec; i++) { /* (b, w) -> (a, c) by the inverse 2x2 map */
             double db = s * g->sec[2 * i] - k[1], dw = s * g->sec[2 * i + 1] - k[2];
             tmp[2 * i] = (db * gc[2] - dw * gc[1]) / det;
             tmp[2 * i + 1] = (ga[1] * dw - ga[2] * db) / det;
         }
         n = g->nsec;
-        /* x in [x0, x1]: two half-planes */
-        n = gr__pp_halfplane(tmp, n, ga[0], gc[0], k[0] - g->x0, tmp2);
-        n = gr__pp_halfplane(tmp2, n, -ga[0], -gc[0], g->x1 - k[0], tmp);
+        /* x in [x0, x1]: two half-planes. A plane across T (x constant on
+           it) lying on an end x0 or x1 decides by the shifted x */
+        if (fabs(ga[0]) + fabs(gc[0]) <= GR__PP_EDGE_ON) {
+            double x = k[0], xs = k[0] + shift * tn;
+            if (fabs(x - g->x0) <= fabs(shift)) x = xs;
+            if (fabs(x - g->x1) <= fabs(shift)) x = xs;
+            if (!(x >= g->x0 && x <= g->x1)) return 0;
+            memcpy(tmp2, tmp, sizeof(double) * 2 * (size_t)n);
+        } else {
+            n = gr__pp_halfplane(tmp, n, ga[0], gc[0], k[0] - g->x0, tmp2);
+            n = gr__pp_halfplane(tmp2, n, -ga[0], -gc[0], g->x1 - k[0], tmp);
+        }
         if (n < 3) return 0;
         if (*npts + n > cap || *nrings >= 4 * GR__PP_MAX_GROOVES) return -1;
         memcpy(out + 2 * *npts, tmp, sizeof(double) * 2 * (size_t)n);
@@ -3594,18 +3653,27 @@ static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, doubl
         /* T in the plane: along the unit direction u (in 2D) across T the
            plane's trace runs through the section; intervals where it is
            inside become strips u-interval x [x0, x1] along T */
-        double tl = hypot(ga[0], gc[0]), ua, uc, bs[2 * (GR_MAX_FACETS + 2)], db, dw, ta, tc;
-        int nb = 0;
+        double tl = hypot(ga[0], gc[0]), ua, uc, bs[2 * (GR_MAX_FACETS + 2)], db, dw, ta, tc, tol = fabs(shift);
+        double nb_ = -pc->n[0] * g->t[1] + pc->n[1] * g->t[0];
+        int nb = 0, on_pos;
         if (!(tl > 0)) return 0;
         ta = ga[0] / tl; tc = gc[0] / tl; /* 2D direction of T */
         ua = -tc; uc = ta;
         db = ua * ga[1] + uc * gc[1];
         dw = ua * ga[2] + uc * gc[2];
+        /* a section point on the trace (within tol) takes the side the
+           moved plane would leave it on: c - shift (db n_w - dw n_b) */
+        on_pos = -shift * (db * pc->n[2] - dw * nb_) > 0;
         for (i = 0; i < g->nsec; i++) { /* crossings of the trace (b, w) = k + u (db, dw) with the closed section */
             const double *p0 = g->sec + 2 * i, *p1 = g->sec + 2 * ((i + 1) % g->nsec);
             double e0[2] = {s * p0[0] - k[1], s * p0[1] - k[2]}, e1[2] = {s * p1[0] - k[1], s * p1[1] - k[2]};
             double c0 = db * e0[1] - dw * e0[0], c1 = db * e1[1] - dw * e1[0]; /* side of the trace */
-            if ((c0 >= 0) != (c1 >= 0)) {
+            int s0, s1;
+            if (fabs(c0) <= tol) c0 = 0;
+            if (fabs(c1) <= tol) c1 = 0;
+            s0 = c0 == 0 ? on_pos : c0 > 0;
+            s1 = c1 == 0 ? on_pos : c1 > 0;
+            if (s0 != s1) {
                 double t = c0 / (c0 - c1), q[2] = {e0[0] + t * (e1[0] - e0[0]), e0[1] + t * (e1[1] - e0[1])};
                 bs[nb++] = (q[0] * db + q[1] * dw) / (db * db + dw * dw);
             }
@@ -3847,11 +3915,17 @@ static int gr__pp_region(const gr__pps_t *ps, int np, int ng, int i, const doubl
             gr__pp_point(oc, ps->cut[2 * m], ps->cut[2 * m + 1], p3);
             gr__pp_onto(pc, p3, d, ps->cut + 2 * m);
         }
-        /* its part on the viewer's side of this plane */
-        /* strictly in front (by the tie margin): coplanar pieces do not
-           hide each other (their overlap is settled by the cuts) */
-        nf = gr__pp_halfplane(oc->ring, oc->nring, sg * gr__dot3(pc->n, oc->x), sg * gr__dot3(pc->n, oc->y),
-                              sg * gr__dot3(pc->n, dd) - tie, ps->tmp);
+        /* its part on the viewer's side of this plane; a coplanar piece
+           (every corner within the tie margin) hides nothing, its overlap
+           is settled by the cuts */
+        {
+            double ka = sg * gr__dot3(pc->n, oc->x), kc = sg * gr__dot3(pc->n, oc->y), k0 = sg * gr__dot3(pc->n, dd);
+            int flat = 1;
+            for (m = 0; m < oc->nring && flat; m++)
+                flat = fabs(ka * oc->ring[2 * m] + kc * oc->ring[2 * m + 1] + k0) <= tie;
+            if (flat) continue;
+            nf = gr__pp_halfplane(oc->ring, oc->nring, ka, kc, k0, ps->tmp);
+        }
         if (nf < 3) continue;
         for (m = 0; m < nf; m++) {
             double p3[3];
@@ -3974,9 +4048,11 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
 /* The polygon path (§5.2-5.5) for a footprint with intersections or ends:
    r_i = A_R / A_F for every piece, measured in UV (the projection along E
    scales a plane's areas by |N.E| / E_w), lit fractions the same way along
-   each light. Returns 1 when it filled the list, 0 to leave it to §4:
-   protruding sections, too many grooves or junctions, a footprint without
-   area, or a region outgrowing its buffers. */
+   each light. Protruding sections (w > 0) take the same path: their
+   facets are pieces like any other, in front of what they hide (§5.4's
+   prolongations are the pieces' own extent along T). Returns 1 when it
+   filled the list, 0 to leave it to §4: too many grooves or junctions, a
+   footprint without area, or a region outgrowing its buffers. */
 static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__scratch_t *s, const gr_junctions_t *jn,
                         void *base, gr_facet_list_t *list)
 {
@@ -3986,15 +4062,15 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
     double e[3], el, fpoly[8], af, f[2], big, tie, lit[GR_MAX_LIGHTS], area, *vis;
     int ng = jn->grooves, np, i, k, l, nl = q->light_count, npts;
     gr__ppp_t *gp;
-    /* protruding sections are left to §4 for now: the pieces, caps (split
-       at w = 0) and the opening test above w = 0 are in and match the
-       oracle on crossing ridges, but random scenes mixing ridges, cuts and
-       curved paths still break the partition by up to 50 % */
-    if (ng < 1 || ng > GR__PP_MAX_GROOVES || jn->dropped || grid->h > 0) return 0;
+    if (ng < 1 || ng > GR__PP_MAX_GROOVES || jn->dropped) return 0;
     gr_footprint_polygon(fp, GR_FP_QUAD, fpoly);
     for (k = 0; k < 4; k++) { fpoly[2 * k] -= fp->center[0]; fpoly[2 * k + 1] -= fp->center[1]; }
-    af = fabs(gr_poly_area(fpoly, 4));
-    if (!(af > 0)) return 0;
+    /* A_F = 4 |A1 x A2| from the axes (the shoelace sum of a flat quad's
+       corners is not exactly 0 under fused multiply-adds); a footprint
+       without area (a line or a point) is §4's, as A_R / A_F would divide
+       rounding by rounding */
+    af = 4 * fabs(fp->axis1[0] * fp->axis2[1] - fp->axis1[1] * fp->axis2[0]);
+    if (!(af > GR__PP_FLAT_REL * 4 * hypot(fp->axis1[0], fp->axis1[1]) * hypot(fp->axis2[0], fp->axis2[1]))) return 0;
     el = sqrt(gr__dot3(fp->view, fp->view));
     for (k = 0; k < 3; k++) e[k] = fp->view[k] / el;
     gr__tile_image(grid, fp->center, f);
@@ -4063,7 +4139,12 @@ static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q, void *scr
     gr_junctions_t jn;
     size_t base = gr__align8(gr__scratch_layout(grid, NULL, NULL));
     if (gr_detect(grid, q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
-    return gr__pp_query(grid, q, s, &jn, (char *)scratch + base, list);
+    if (gr__pp_query(grid, q, s, &jn, (char *)scratch + base, list)) return 1;
+    /* declined part way (a buffer outgrown): §4 starts from an empty list */
+    list->count = 0;
+    list->flags = 0;
+    list->grooves = 0;
+    return 0;
 }
 
 static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
