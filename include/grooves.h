@@ -186,6 +186,11 @@ typedef struct gr_grid_t {
     int *anchor_items_;
     int *row_anchor_sum_;    /* per row, prefix counts of anchors */
     int total_points_, total_section_, total_facets_, item_capacity_;
+    /* §5 self-intersections, found by the builder: the hits, and each
+       self-crossing groove cut into pieces (records after the grooves,
+       listed in no cell) that the polygon path takes as separate grooves */
+    struct gr_self_hit_t *self_;
+    int self_count_, split_records_;
 } gr_grid_t;
 
 /* Size query for gr_grid_build_into(): *bytes receives the buffer size. It
@@ -878,6 +883,12 @@ typedef struct gr__groove_t {
     double bbox[4];        /* control-point bounds of the path */
     gr_perturb_fn perturb;
     void *perturb_user;
+    /* self-crossing grooves (§5): a groove's pieces are records
+       first_split .. first_split + split_count - 1; a piece covers the
+       parameters [t0, t1] of its groove `parent` (itself for a groove),
+       and its ends with join[e] set continue into the next piece */
+    int parent, first_split, split_count, join[2];
+    double t0, t1;
 } gr__groove_t;
 
 static void gr__diag(gr_diag_t *diag, gr_result_t r, long long element, const char *msg)
@@ -1078,14 +1089,23 @@ static void gr__bezier_sub(const double *p, int n, double t0, double t1, double 
 
 /* ---- Grid build (§3 bounds and blockers, §4.1 uniform grid) ------------- */
 
+#ifndef GR_NO_INTERSECTIONS
+/* [section: intersections] the builder's part of §5: a path's
+   self-intersections, and the cut of a self-crossing groove into pieces */
+static int gr__path_self_hits(const double *pts, int kind, int n, int closed, int g, struct gr_self_hit_t *out, int cap);
+static void gr__split_groove(gr_grid_t *gr, int g, struct gr_self_hit_t *hits, int nh, int *next, int *pt);
+static int gr__path_closed(const double *p, int n, int wrap, const double dom[4]);
+#endif
+
 /* Everything the size query and the builder agree on. */
 typedef struct gr__plan_t {
     double dom[4];
     gr__cells_t cells;
     int groove_count, total_points, total_section, total_facets, total_blockers;
+    int self_hits, split_records, split_points; /* §5: upper bounds for the pieces */
     long long item_capacity;
     size_t off_grooves, off_points, off_section, off_refl, off_bstart, off_blockers,
-        off_cstart, off_ccount, off_items, off_astart, off_aitems, off_rowsum, bytes;
+        off_cstart, off_ccount, off_items, off_astart, off_aitems, off_rowsum, off_self, bytes;
 } gr__plan_t;
 
 static size_t gr__align8(size_t x) { return (x + 7u) & ~(size_t)7u; }
@@ -1204,6 +1224,24 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
     pl->cells.cu = (pl->dom[2] - pl->dom[0]) / pl->cells.nu;
     pl->cells.cv = (pl->dom[3] - pl->dom[1]) / pl->cells.nv;
     pl->cells.wrap = !desc->no_wrap;
+#ifndef GR_NO_INTERSECTIONS
+    /* §5: self-intersections, and room for the pieces they cut a groove
+       into (at most three cuts per hit, gr__split_groove) */
+    for (g = 0; g < desc->groove_count; g++) {
+        const gr_groove_desc_t *gd = &desc->grooves[g];
+        int nh = gr__path_self_hits(gd->points, (int)gd->kind, gd->point_count,
+                                    gr__path_closed(gd->points, gd->point_count, pl->cells.wrap, pl->dom), g, NULL, 0);
+        if (nh > 100000000 - pl->self_hits) {
+            gr__diag(diag, GR_ERR_INVALID_ARG, g, "too many self-intersections in total (> 1e8)");
+            return GR_ERR_INVALID_ARG;
+        }
+        pl->self_hits += nh;
+        if (nh > 0) {
+            pl->split_records += 3 * nh + 1;
+            pl->split_points += gd->point_count + 4 * (3 * nh + 1);
+        }
+    }
+#endif
     for (g = 0; g < desc->groove_count; g++) {
         const gr_groove_desc_t *gd = &desc->grooves[g];
         pl->item_capacity += gr__path_boxes(&pl->cells, gd->points, (int)gd->kind, gd->point_count, g, NULL, NULL, NULL, NULL);
@@ -1215,8 +1253,10 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
     {
         size_t nc = (size_t)pl->cells.nu * (size_t)pl->cells.nv;
         off = gr__align8(sizeof(gr_grid_t));
-        pl->off_grooves = off; off = gr__align8(off + sizeof(gr__groove_t) * (size_t)pl->groove_count);
-        pl->off_points = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_points);
+        pl->off_grooves = off;
+        off = gr__align8(off + sizeof(gr__groove_t) * ((size_t)pl->groove_count + (size_t)pl->split_records));
+        pl->off_points = off;
+        off = gr__align8(off + sizeof(double) * 2 * ((size_t)pl->total_points + (size_t)pl->split_points));
         pl->off_section = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_section);
         pl->off_refl = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_facets);
         pl->off_bstart = off; off = gr__align8(off + sizeof(int) * ((size_t)pl->total_section + 1));
@@ -1227,6 +1267,9 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
         pl->off_astart = off; off = gr__align8(off + sizeof(int) * (nc + 1));
         pl->off_aitems = off; off = gr__align8(off + sizeof(int) * (size_t)pl->groove_count);
         pl->off_rowsum = off; off = gr__align8(off + sizeof(int) * (size_t)pl->cells.nv * ((size_t)pl->cells.nu + 1));
+#ifndef GR_NO_INTERSECTIONS
+        pl->off_self = off; off = gr__align8(off + sizeof(gr_self_hit_t) * (size_t)pl->self_hits);
+#endif
         pl->bytes = off;
     }
     return GR_OK;
@@ -1240,6 +1283,20 @@ GR_DEF gr_result_t gr_grid_size(const gr_grid_desc_t *desc, size_t *bytes, gr_di
     r = gr__plan(desc, &pl, diag);
     *bytes = r == GR_OK ? pl.bytes : 0;
     return r;
+}
+
+/* A path with no ends: its first point is its last or, on a repeating
+   tile, the same point across the seam (ends a whole number of tiles
+   apart: the path runs on across it, §4.1 wrap, as one closed path). */
+static int gr__path_closed(const double *p, int n, int wrap, const double dom[4])
+{
+    int last = n - 1;
+    double wu = dom[2] - dom[0], wv = dom[3] - dom[1], du = p[2 * last] - p[0], dv = p[2 * last + 1] - p[1];
+    if (p[0] == p[2 * last] && p[1] == p[2 * last + 1]) return 1;
+    if (!wrap) return 0;
+    du -= floor(du / wu + 0.5) * wu;
+    dv -= floor(dv / wv + 0.5) * wv;
+    return hypot(du, dv) <= GR__SEAM_CLOSED_REL * hypot(wu, wv);
 }
 
 /* Copy one groove into the flat arrays and fill its record (§3 bounds).
@@ -1286,19 +1343,12 @@ static void gr__store_groove(gr_grid_t *gr, const gr_groove_desc_t *gd, int g, i
     rec->up = maxw * rec->fmax;
     rec->down = -minw * rec->fmax;
     gr__bounds(gd->points, gd->point_count, rec->bbox);
+    rec->parent = g;
+    rec->t1 = 1;
     {
         const double *p = gd->points;
         int last = gd->point_count - 1;
-        rec->closed = p[0] == p[2 * last] && p[1] == p[2 * last + 1];
-        if (gr->wrap && !rec->closed) {
-            /* ends a whole number of tiles apart: the path runs on across
-               the seam (§4.1 wrap), as one closed path */
-            double wu = gr->domain[2] - gr->domain[0], wv = gr->domain[3] - gr->domain[1];
-            double du = p[2 * last] - p[0], dv = p[2 * last + 1] - p[1];
-            du -= floor(du / wu + 0.5) * wu;
-            dv -= floor(dv / wv + 0.5) * wv;
-            rec->closed = hypot(du, dv) <= GR__SEAM_CLOSED_REL * hypot(wu, wv);
-        }
+        rec->closed = gr__path_closed(p, gd->point_count, gr->wrap, gr->domain);
         rec->length = 0;
         if (rec->kind == GR_PATH_POLYLINE)
             for (i = 0; i < last; i++) rec->length += hypot(p[2 * i + 2] - p[2 * i], p[2 * i + 3] - p[2 * i + 1]);
@@ -1372,6 +1422,23 @@ GR_DEF gr_result_t gr_grid_build_into(const gr_grid_desc_t *desc, void *buffer, 
         if (rec->up > gr->h) gr->h = rec->up;
         if (rec->down > gr->d) gr->d = rec->down;
     }
+#ifndef GR_NO_INTERSECTIONS
+    /* §5: self-intersections found once, each self-crossing groove cut into
+       pieces after the grooves (the grid's cells list the grooves only) */
+    gr->self_ = (gr_self_hit_t *)(void *)(base + pl.off_self);
+    {
+        int next = pl.groove_count, h0;
+        for (g = 0; g < pl.groove_count; g++) {
+            const gr__groove_t *rec = &gr->grooves_[g];
+            h0 = gr->self_count_;
+            gr->self_count_ += gr__path_self_hits(gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count,
+                                                  rec->closed, g, gr->self_ + h0, pl.self_hits - h0);
+            if (gr->self_count_ > h0) gr__split_groove(gr, g, gr->self_ + h0, gr->self_count_ - h0, &next, &pt);
+        }
+        GR_ASSERT(gr->self_count_ == pl.self_hits && next <= pl.groove_count + pl.split_records);
+        gr->split_records_ = next - pl.groove_count;
+    }
+#endif
     /* cell lists: count (upper bound), prefix sum, fill without repeats */
     nc = pl.cells.nu * pl.cells.nv;
     memset(gr->cell_start_, 0, sizeof(int) * ((size_t)nc + 1));
@@ -1592,7 +1659,10 @@ typedef struct gr__scratch_t {
 
 static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *s)
 {
-    size_t off = 0, np = (size_t)g->total_facets_ + (size_t)g->groove_count + 2, nid = (size_t)g->groove_count;
+    /* a self-crossing groove's pieces (§5) are candidates of their own in
+       gr_detect(): room for them, and for two end states each */
+    size_t off = 0, np = (size_t)g->total_facets_ + (size_t)g->groove_count + 2 + 2 * (size_t)g->split_records_;
+    size_t nid = (size_t)g->groove_count;
     char *b = (char *)base;
     gr__scratch_t tmp;
     if (!s) s = &tmp;
@@ -1600,7 +1670,7 @@ static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *
     s->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (count));
     GR__CARVE(seen, unsigned char, nid / 8 + 1)
     GR__CARVE(ids, int, nid)
-    GR__CARVE(cand, gr__cand_t, (size_t)g->groove_count)
+    GR__CARVE(cand, gr__cand_t, (size_t)g->groove_count + (size_t)g->split_records_)
     GR__CARVE(key, gr__key_t, (size_t)g->groove_count)
     GR__CARVE(x, double, np)
     GR__CARVE(w, double, np)
@@ -2947,33 +3017,217 @@ static int gr__seg_cross(const double *a, const double *b, const double *c, cons
     return *s < 1 && *u < 1;
 }
 
+/* Chord k of a path given by its points (gr__chord without a record);
+   a polyline's chords are its segments, whose parameters the caller sums. */
+static void gr__chord_pts(const double *pts, int kind, int pieces, int k, double a[2], double b[2], double t[2])
+{
+    if (kind == GR_PATH_POLYLINE) {
+        a[0] = pts[2 * k]; a[1] = pts[2 * k + 1];
+        b[0] = pts[2 * k + 2]; b[1] = pts[2 * k + 3];
+        return;
+    }
+#ifndef GR_NO_CURVES
+    {
+        int deg = gr__degree(kind), piece = k / GR__SELF_FLATTEN, i = k % GR__SELF_FLATTEN;
+        double d1[2], d2[2], tau0 = (double)i / GR__SELF_FLATTEN, tau1 = (double)(i + 1) / GR__SELF_FLATTEN;
+        gr__bezier_eval(pts + 2 * deg * piece, deg, tau0, a, d1, d2);
+        gr__bezier_eval(pts + 2 * deg * piece, deg, tau1, b, d1, d2);
+        t[0] = (piece + tau0) / pieces;
+        t[1] = (piece + tau1) / pieces;
+    }
+#else
+    (void)pieces;
+    GR_ASSERT(0); /* the builder rejects curves */
+    a[0] = a[1] = b[0] = b[1] = t[0] = t[1] = 0;
+#endif
+}
+
+/* Every crossing of two non-adjacent chords of one path (§5: found before
+   rendering): polyline segments exactly, Bézier pieces through
+   GR__SELF_FLATTEN chords each. Writes up to cap hits (out may be NULL),
+   returns how many there are. A chord pair's boxes are compared first. */
+static int gr__path_self_hits(const double *pts, int kind, int n, int closed, int g, gr_self_hit_t *out, int cap)
+{
+    int pieces = gr__pieces(kind, n), m = kind == GR_PATH_POLYLINE ? pieces : pieces * GR__SELF_FLATTEN, k, l, nh = 0;
+    double len = 0, acc_k = 0;
+    if (kind == GR_PATH_POLYLINE)
+        for (k = 0; k < pieces; k++) len += hypot(pts[2 * k + 2] - pts[2 * k], pts[2 * k + 3] - pts[2 * k + 1]);
+    for (k = 0; k < m; k++) {
+        double a[2], b[2], ta[2] = {0, 0}, acc_l, lk = 0;
+        gr__chord_pts(pts, kind, pieces, k, a, b, ta);
+        if (kind == GR_PATH_POLYLINE) {
+            lk = hypot(b[0] - a[0], b[1] - a[1]);
+            ta[0] = acc_k / len;
+            ta[1] = (acc_k + lk) / len;
+        }
+        acc_l = acc_k + lk;
+        for (l = k + 1; l < m; l++) {
+            double c[2], d[2], tc[2] = {0, 0}, sv, u, ll = 0;
+            gr__chord_pts(pts, kind, pieces, l, c, d, tc);
+            if (kind == GR_PATH_POLYLINE) {
+                ll = hypot(d[0] - c[0], d[1] - c[1]);
+                tc[0] = acc_l / len;
+                tc[1] = (acc_l + ll) / len;
+                acc_l += ll;
+            }
+            if (l == k + 1) continue;                         /* neighbours share a point */
+            if (closed && k == 0 && l == m - 1) continue;     /* neighbours across the closing point */
+            if (fmax(c[0], d[0]) < fmin(a[0], b[0]) || fmin(c[0], d[0]) > fmax(a[0], b[0]) ||
+                fmax(c[1], d[1]) < fmin(a[1], b[1]) || fmin(c[1], d[1]) > fmax(a[1], b[1]))
+                continue;
+            if (!gr__seg_cross(a, b, c, d, &sv, &u)) continue;
+            if (out && nh < cap) {
+                out[nh].groove = g;
+                out[nh].point[0] = a[0] + sv * (b[0] - a[0]);
+                out[nh].point[1] = a[1] + sv * (b[1] - a[1]);
+                out[nh].param[0] = ta[0] + sv * (ta[1] - ta[0]);
+                out[nh].param[1] = tc[0] + u * (tc[1] - tc[0]);
+            }
+            nh++;
+        }
+        acc_k += lk;
+    }
+    return nh;
+}
+
+static int gr__cmp_hit_t2(const void *pa, const void *pb)
+{
+    double a = ((const gr_self_hit_t *)pa)->param[1], b = ((const gr_self_hit_t *)pb)->param[1];
+    return (a > b) - (a < b);
+}
+static int gr__cmp_rec_t0(const void *pa, const void *pb)
+{
+    double a = ((const gr__groove_t *)pa)->t0, b = ((const gr__groove_t *)pb)->t0;
+    return (a > b) - (a < b);
+}
+
+/* Point of a polyline at arc-length parameter t (t in [0, 1], len its length). */
+static void gr__polyline_at(const double *pts, int n, double len, double t, double q[2])
+{
+    double want = t * len, acc = 0;
+    int k;
+    for (k = 0; k + 1 < n; k++) {
+        double l = hypot(pts[2 * k + 2] - pts[2 * k], pts[2 * k + 3] - pts[2 * k + 1]);
+        if (acc + l >= want || k + 2 == n) {
+            double s = l > 0 ? (want - acc) / l : 0;
+            s = s < 0 ? 0 : s > 1 ? 1 : s;
+            q[0] = pts[2 * k] + s * (pts[2 * k + 2] - pts[2 * k]);
+            q[1] = pts[2 * k + 1] + s * (pts[2 * k + 3] - pts[2 * k + 1]);
+            return;
+        }
+        acc += l;
+    }
+    q[0] = pts[0];
+    q[1] = pts[1];
+}
+
+/* §5: "the groove should be simply treated as two independent grooves".
+   The hits of groove g (sorted here by their second parameter) are
+   intervals (t1, t2) of its path parameter; a cut inside each separates
+   the two passes of its crossing. Greedy interval stabbing gives the
+   fewest cuts, each in the middle of the parameters it serves (far from
+   the crossings, where the pieces meet end to end). A Bézier chain is cut
+   at a joint where one serves, or else inside a piece and also at that
+   piece's two joints, so every piece is whole Bézier pieces or part of
+   one: its uniform parameter maps affinely onto the groove's. The pieces
+   go to records *next, ... with their own points from *pt on. */
+static void gr__split_groove(gr_grid_t *gr, int g, gr_self_hit_t *hits, int nh, int *next, int *pt)
+{
+    gr__groove_t *par = &gr->grooves_[g], *rec = gr->grooves_ + *next;
+    const double *pts = gr->points_ + 2 * par->first_point;
+    int k, nb = 0, n = par->pieces, deg = gr__degree(par->kind), bez = par->kind != GR_PATH_POLYLINE, i;
+    (void)deg; /* Bézier pieces only, left out with GR_NO_CURVES */
+    double lo = 0, hi = -1;
+    qsort(hits, (size_t)nh, sizeof *hits, gr__cmp_hit_t2);
+    /* cut parameters, in piece units for a chain (joints are integers),
+       kept in the records' t0 until the records are made */
+    for (k = 0; k <= nh; k++) {
+        if (k < nh && hi > lo && hits[k].param[0] < hi) { /* overlaps the group: narrow it */
+            if (hits[k].param[0] > lo) lo = hits[k].param[0];
+            continue;
+        }
+        if (hi > lo) { /* the group's cut */
+            double mid = 0.5 * (lo + hi);
+            if (!bez) rec[nb++].t0 = mid;
+            else {
+                double u = mid * n, j = floor(u + 0.5);
+                if (j > lo * n && j < hi * n && j > 0 && j < n) rec[nb++].t0 = j;
+                else {
+                    rec[nb++].t0 = u;
+                    if (floor(u) > 0) rec[nb++].t0 = floor(u);
+                    if (floor(u) + 1 < n) rec[nb++].t0 = floor(u) + 1;
+                }
+            }
+        }
+        if (k < nh) { lo = hits[k].param[0]; hi = hits[k].param[1]; }
+    }
+    qsort(rec, (size_t)nb, sizeof *rec, gr__cmp_rec_t0);
+    for (i = 0, k = 0; k < nb; k++) /* unique, strictly inside */
+        if (rec[k].t0 > 0 && rec[k].t0 < (bez ? n : 1) && (i == 0 || rec[k].t0 > rec[i - 1].t0)) rec[i++].t0 = rec[k].t0;
+    nb = i;
+    par->first_split = *next;
+    par->split_count = nb + 1;
+    /* piece i covers [b_(i-1), b_i]: made from the last down, so each reads
+       its upper bound (its own t0 slot) before writing over it */
+    for (i = nb; i >= 0; i--) {
+        double ua = i > 0 ? rec[i - 1].t0 : 0, ub = i < nb ? rec[i].t0 : (bez ? n : 1);
+        gr__groove_t *r = &rec[i];
+        double *q = gr->points_ + 2 * *pt;
+        int np = 0;
+        if (!bez) {
+            double acc = 0;
+            gr__polyline_at(pts, par->point_count, par->length, ua, q);
+            np = 1;
+            for (k = 1; k + 1 < par->point_count; k++) { /* the vertices strictly inside */
+                double t;
+                acc += hypot(pts[2 * k] - pts[2 * k - 2], pts[2 * k + 1] - pts[2 * k - 1]);
+                t = acc / par->length;
+                if (t > ua && t < ub) { q[2 * np] = pts[2 * k]; q[2 * np + 1] = pts[2 * k + 1]; np++; }
+            }
+            gr__polyline_at(pts, par->point_count, par->length, ub, q + 2 * np);
+            np++;
+        }
+#ifndef GR_NO_CURVES
+        else if (ua == floor(ua) && ub == floor(ub)) { /* whole pieces */
+            np = deg * (int)(ub - ua) + 1;
+            memcpy(q, pts + 2 * deg * (int)ua, sizeof(double) * 2 * (size_t)np);
+        } else { /* part of one piece */
+            int j = (int)floor(ua);
+            GR_ASSERT(ub <= j + 1);
+            gr__bezier_sub(pts + 2 * deg * j, deg, ua - j, ub - j, q);
+            np = deg + 1;
+        }
+#endif
+        *r = *par;
+        r->first_point = *pt;
+        r->point_count = np;
+        r->pieces = gr__pieces(r->kind, np);
+        r->closed = 0;
+        r->parent = g;
+        r->first_split = r->split_count = 0;
+        r->t0 = bez ? ua / n : ua;
+        r->t1 = bez ? ub / n : ub;
+        /* an end of a piece is the groove's own only at t = 0 or 1 of an open path */
+        r->join[0] = ua > 0 || par->closed;
+        r->join[1] = ub < (bez ? n : 1) || par->closed;
+        gr__bounds(q, np, r->bbox);
+        r->length = 0;
+        if (!bez)
+            for (k = 0; k + 1 < np; k++) r->length += hypot(q[2 * k + 2] - q[2 * k], q[2 * k + 3] - q[2 * k + 1]);
+        *pt += np;
+    }
+    *next += nb + 1;
+}
+
+/* The hits were found by the builder (gr__path_self_hits), each groove's
+   sorted by its second parameter. */
 GR_DEF gr_result_t gr_self_intersections(const gr_grid_t *grid, gr_self_hit_t *out, int cap, int *count)
 {
-    int g, n = 0;
     if (count) *count = 0;
     if (!grid || !count || cap < 0 || (!out && cap > 0)) return GR_ERR_INVALID_ARG;
-    for (g = 0; g < grid->groove_count; g++) {
-        const gr__groove_t *rec = &grid->grooves_[g];
-        int m = gr__chord_count(rec), k, l;
-        for (k = 0; k < m; k++)
-            for (l = k + 2; l < m; l++) {
-                double a[2], b[2], c[2], d[2], ta[2], tc[2], s, u;
-                if (rec->closed && k == 0 && l == m - 1) continue; /* neighbours across the closing point */
-                gr__chord(grid, rec, k, a, b, ta);
-                gr__chord(grid, rec, l, c, d, tc);
-                if (!gr__seg_cross(a, b, c, d, &s, &u)) continue;
-                if (n < cap) {
-                    out[n].groove = g;
-                    out[n].point[0] = a[0] + s * (b[0] - a[0]);
-                    out[n].point[1] = a[1] + s * (b[1] - a[1]);
-                    out[n].param[0] = ta[0] + s * (ta[1] - ta[0]);
-                    out[n].param[1] = tc[0] + u * (tc[1] - tc[0]);
-                }
-                n++;
-            }
-    }
-    *count = n;
-    return n > cap ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
+    *count = grid->self_count_;
+    if (cap > 0) memcpy(out, grid->self_, sizeof *out * (size_t)(grid->self_count_ < cap ? grid->self_count_ : cap));
+    return grid->self_count_ > cap ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
 }
 
 /* The search box (§4.1, §5.1) about the footprint centre f: the
@@ -3110,8 +3364,9 @@ static void gr__detect_ends(const gr_grid_t *grid, const gr__cand_t *cand, int n
         /* closed covers a path whose ends meet across the seam of a
            repeating tile (gr__store_groove): it runs on, no end (§4.1) */
         for (e = 0; e < 2; e++) gr__end_point(grid, cand[i].groove, e, f, p[e]);
-        for (e = 0; e < 2; e++)
-            state[2 * i + e] = !grid->grooves_[cand[i].groove].closed && gr__in_box(box, p[e]);
+        for (e = 0; e < 2; e++) /* a piece's cut end (§5, self-crossing) runs on too */
+            state[2 * i + e] = !grid->grooves_[cand[i].groove].closed && !grid->grooves_[cand[i].groove].join[e] &&
+                               gr__in_box(box, p[e]);
     }
     for (i = 0; i < n; i++)
         for (e = 0; e < 2; e++) {
@@ -3189,8 +3444,48 @@ static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
     }
 }
 
-GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
-                             int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
+/* A self-crossing groove's candidate replaced by one per piece (§5: "two
+   independent grooves with different directions"), when one of its
+   crossings lies in the box. A piece whose nearest point to f is one of
+   its cut ends, with f beyond that end, is the neighbouring piece's
+   approach and is dropped; so is a piece that does not enter the box.
+   Parameters and their rates are the groove's. Returns the new count. */
+static int gr__split_candidates(const gr_grid_t *grid, gr__cand_t *cand, int m, int cap, const double *box,
+                                const double *f, double reach)
+{
+    int i, n = m, h, k;
+    for (i = 0; i < m; i++) {
+        const gr__groove_t *rec = &grid->grooves_[cand[i].groove];
+        int hit = 0, first = n;
+        if (rec->split_count == 0 || n + rec->split_count > cap) continue;
+        for (h = 0; h < grid->self_count_ && !hit; h++) {
+            double p[2];
+            if (grid->self_[h].groove != cand[i].groove) continue;
+            gr__image_near(grid, grid->self_[h].point, f, p);
+            hit = gr__in_box(box, p);
+        }
+        if (!hit) continue;
+        for (k = 0; k < rec->split_count; k++) {
+            int id = rec->first_split + k;
+            const gr__groove_t *pc = &grid->grooves_[id];
+            gr__cand_t *c = &cand[n];
+            if (!gr__path_in_box(grid, pc, box) || !gr__locate(grid, id, f, 2 * reach, c)) continue;
+            if ((c->end < 0 && pc->join[0]) || (c->end > 0 && pc->join[1])) continue;
+            c->param = pc->t0 + (pc->t1 - pc->t0) * c->param;
+            c->dtds *= pc->t1 - pc->t0;
+            n++;
+        }
+        if (n == first) continue; /* no piece near after all: keep the groove */
+        cand[i] = cand[--n];      /* the last piece takes the groove's place */
+    }
+    return n;
+}
+
+/* gr_detect() with the grooves named as the polygon path needs them: a
+   self-crossing groove's pieces by their records (indices from
+   groove_count on). */
+static gr_result_t gr__detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
+                              int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
 {
     const gr_footprint_t *fp;
     gr__scratch_t s;
@@ -3222,8 +3517,10 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
     for (k = 0; k < n; k++)
         if (gr__path_in_box(grid, &grid->grooves_[s.ids[k]], out->box) && gr__locate(grid, s.ids[k], f, 2 * reach, &s.cand[m]))
             m++;
+    if (grid->split_records_ > 0)
+        m = gr__split_candidates(grid, s.cand, m, grid->groove_count + grid->split_records_, out->box, f, reach);
     out->grooves = m;
-    gr__detect_ends(grid, s.cand, m, out->box, f, s.x, out); /* s.x holds >= 2 per groove */
+    gr__detect_ends(grid, s.cand, m, out->box, f, s.x, out); /* s.x holds >= 2 per candidate */
     /* crossings: tangents that differ by more than the parallel tolerance */
     psin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     for (i = 0; i < m; i++)
@@ -3254,13 +3551,32 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
             if (!gr__locate(grid, a->groove, p, lim, &c) || !gr__locate(grid, b->groove, p, lim, &c)) continue;
             gr__junction_add(out, GR_JUNCTION_CROSSING, a->groove, b->groove, -1, -1, p);
         }
-    /* self-intersections (§5): precomputed points inside the box */
+    /* self-intersections (§5): precomputed points inside the box, the
+       builder's unless the caller passes its own */
+    if (!self) {
+        self = grid->self_;
+        self_count = grid->self_count_;
+    }
     for (k = 0; k < self_count; k++) {
         double p[2];
         gr__image_near(grid, self[k].point, f, p);
         if (gr__in_box(out->box, p)) gr__junction_add(out, GR_JUNCTION_SELF, self[k].groove, -1, -1, -1, p);
     }
     return GR_OK;
+}
+
+GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
+                             int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
+{
+    gr_result_t r = gr__detect(grid, query, self, self_count, scratch, scratch_bytes, out);
+    int k;
+    /* pieces of a self-crossing groove are named by their groove */
+    for (k = 0; r == GR_OK && k < out->count; k++) {
+        gr_junction_t *j = &out->items[k];
+        if (j->groove >= 0) j->groove = grid->grooves_[j->groove].parent;
+        if (j->other >= 0) j->other = grid->grooves_[j->other].parent;
+    }
+    return r;
 }
 
 /* ---- The polygon path, first steps (§5.2) -------------------------------- */
@@ -4120,11 +4436,15 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
             lit[l] = area > 0 ? la / area : 0;
         }
         m.n[0] = pc->n[0]; m.n[1] = pc->n[1]; m.n[2] = pc->n[2];
-        m.groove = pc->g >= 0 ? ps.g[pc->g].groove : -1;
+        m.groove = pc->g >= 0 ? ps.g[pc->g].groove : -1; /* a piece's record until the list is done */
         m.facet = pc->facet;
         m.refl = pc->refl;
         gr__list_add(list, &m, ratio, lit, nl);
     }
+    /* pieces of a self-crossing groove (§5) run in two directions: they
+       were kept apart above, and are named by their groove now */
+    for (i = 0; i < list->count; i++)
+        if (list->facets[i].groove >= 0) list->facets[i].groove = grid->grooves_[list->facets[i].groove].parent;
     list->grooves = ng;
     list->subfootprints = 1;
     list->flags |= GR_LIST_POLYGON;
@@ -4138,7 +4458,7 @@ static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q, void *scr
 {
     gr_junctions_t jn;
     size_t base = gr__align8(gr__scratch_layout(grid, NULL, NULL));
-    if (gr_detect(grid, q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
+    if (gr__detect(grid, q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
     if (gr__pp_query(grid, q, s, &jn, (char *)scratch + base, list)) return 1;
     /* declined part way (a buffer outgrown): §4 starts from an empty list */
     list->count = 0;

@@ -236,12 +236,26 @@ static void self_intersection_polyline(void)
     T_NEAR(hit[0].param[1], (1.5 * l0 + 0.6) / len, 1e-15);
     T_INT_EQ(gr_self_intersections(grid, hit, 0, &n), GR_ERR_BUFFER_TOO_SMALL);
     T_INT_EQ(n, 1);
+    /* the builder cut the groove between the two passes (§5): they meet
+       as a crossing of the groove with itself, beside the point itself */
     j = detect_at(grid, 0.5, 0.5, 0.004, NULL, hit, 1);
-    T_INT_EQ(j.count, 1);
-    T_INT_EQ(j.items[0].kind, GR_JUNCTION_SELF);
-    /* on the path, 0.28 from the point and 0.14 from the first end: nothing */
+    T_INT_EQ(j.count, 2);
+    T_INT_EQ(j.grooves, 2);
+    T_INT_EQ(j.items[0].kind, GR_JUNCTION_CROSSING);
+    T_INT_EQ(j.items[0].groove, 0);
+    T_INT_EQ(j.items[0].other, 0);
+    T_NEAR(j.items[0].point[0], 0.5, 1e-15);
+    T_NEAR(j.items[0].point[1], 0.5, 1e-15);
+    T_INT_EQ(j.items[1].kind, GR_JUNCTION_SELF);
+    /* without the caller's list, the builder's */
+    j = detect_at(grid, 0.5, 0.5, 0.004, NULL, NULL, 0);
+    T_INT_EQ(j.count, 2);
+    T_INT_EQ(j.items[1].kind, GR_JUNCTION_SELF);
+    /* on the path, 0.28 from the point and 0.14 from the first end: nothing
+       (one groove: its pieces are taken only about a crossing) */
     j = detect_at(grid, 0.3, 0.3, 0.004, NULL, hit, 1);
     T_INT_EQ(j.count, 0);
+    T_INT_EQ(j.grooves, 1);
     gr_grid_free(grid);
 }
 
