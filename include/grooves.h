@@ -2738,12 +2738,17 @@ typedef struct gr__pscratch_t {
     double *ys;
     gr__pcross_t *cross, *ia, *ib;
     int *active; /* edges spanning the current slab (the sweep's active list) */
+    int *run;    /* the previous and this slab's trapezoids: (left edge, right edge, index) */
     unsigned char *parity;
 } gr__pscratch_t;
 
-static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
+/* Crossing heights gr_poly_boolean() has room for with E edges: every
+   pair may cross (as ys holds crossings only, E (E - 1) / 2). */
+static size_t gr__pcross_cap(int e) { size_t ne = e > 0 ? (size_t)e : 1; return ne * (ne - 1) / 2 + 1; }
+
+static size_t gr__pscratch_layout(int e, size_t max_cross, void *base, gr__pscratch_t *s)
 {
-    size_t off = 0, ne = e > 0 ? (size_t)e : 1, ny = 2 * ne + ne * (ne - 1) / 2;
+    size_t off = 0, ne = e > 0 ? (size_t)e : 1, ny = max_cross;
     char *b = (char *)base;
 #define GR__PCARVE(field, type, count) \
     s->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (count));
@@ -2753,6 +2758,7 @@ static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
     GR__PCARVE(ia, gr__pcross_t, ne)
     GR__PCARVE(ib, gr__pcross_t, ne)
     GR__PCARVE(active, int, ne)
+    GR__PCARVE(run, int, 6 * ne + 6)
     GR__PCARVE(parity, unsigned char, ne)
 #undef GR__PCARVE
     return off;
@@ -2761,7 +2767,7 @@ static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
 GR_DEF size_t gr_poly_boolean_scratch_bytes(int total_points)
 {
     gr__pscratch_t s;
-    return total_points < 0 ? 0 : gr__pscratch_layout(total_points, NULL, &s);
+    return total_points < 0 ? 0 : gr__pscratch_layout(total_points, gr__pcross_cap(total_points), NULL, &s);
 }
 
 /* Ring sizes of a set: the r-th ring's size, or -1 when they do not add up. */
@@ -2818,7 +2824,7 @@ static int gr__pset_edges(const gr_polyset_t *p, int set, int *ring, gr__pedge_t
    boundaries besides the vertex heights. The edges come sorted by their
    lower end, so the partners of edge i that share some height with it are
    the run after it that starts below its top. */
-static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny)
+static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny, size_t cap)
 {
     int i, j;
     for (i = 0; i < ne; i++)
@@ -2834,7 +2840,9 @@ static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny)
             d1 = a1 - b1;
             if ((d0 < 0 && d1 > 0) || (d0 > 0 && d1 < 0)) {
                 double y = lo + (hi - lo) * (d0 / (d0 - d1));
-                if (y > lo && y < hi) ys[ny++] = y;
+                if (!(y > lo && y < hi)) continue;
+                if ((size_t)ny >= cap) return -1;
+                ys[ny++] = y;
             }
         }
     return ny;
@@ -2871,57 +2879,67 @@ static int gr__pop_in(gr_poly_op_t op, int in_a, int in_b)
     }
 }
 
-GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op,
-                                   void *scratch, size_t scratch_bytes,
-                                   double *traps, int trap_cap, int *trap_count, double *area)
+/* gr_poly_boolean() on valid sets, with room for max_cross crossing
+   heights in its scratch (GR_ERR_BUFFER_TOO_SMALL when more): the polygon
+   path's sets have a few, and its scratch need not hold every pair. */
+static gr_result_t gr__poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op, void *scratch,
+                                    size_t max_cross, double *traps, int trap_cap, int *trap_count, double *area)
 {
     gr__pscratch_t s;
-    gr_result_t r;
-    double total = 0;
-    int ne, ny, nys, k, ntrap = 0, over = 0, rings = 0, next, nact;
+    double total = 0, run_top = 0, y0;
+    int ne, nx, ci, ntrap = 0, over = 0, rings = 0, next, nact, nprev = 0, *prev, *now_run;
     if (area) *area = 0;
     if (trap_count) *trap_count = 0;
-    if (!a || !b || !scratch || (traps && trap_cap < 0) || (int)op < 0 || (int)op > 3) return GR_ERR_INVALID_ARG;
-    if ((r = gr__pset_check(a)) != GR_OK || (r = gr__pset_check(b)) != GR_OK) return r;
-    if (scratch_bytes < gr_poly_boolean_scratch_bytes(a->point_count + b->point_count)) return GR_ERR_BUFFER_TOO_SMALL;
-    gr__pscratch_layout(a->point_count + b->point_count, scratch, &s);
+    gr__pscratch_layout(a->point_count + b->point_count, max_cross, scratch, &s);
+    prev = s.run;
+    now_run = s.run + 3 * (a->point_count + b->point_count + 1);
     ne = gr__pset_edges(a, 0, &rings, s.edge, 0);
     ne = gr__pset_edges(b, 1, &rings, s.edge, ne);
     memset(s.parity, 0, (size_t)rings);
-    /* slab boundaries: every vertex height and every edge crossing */
-    ny = 0;
-    for (k = 0; k < ne; k++) {
-        s.ys[ny++] = s.edge[k].y0;
-        s.ys[ny++] = s.edge[k].y1;
-    }
+    /* slab boundaries: every vertex height and every edge crossing. The
+       sweep rises from event to event: the next is the lowest of the next
+       edge's lower end (edges sorted by it), the active edges' upper ends
+       and the next crossing height (sorted), so an edge joins the active
+       list once and leaves it for good, and each slab visits only the
+       edges that span it, with no sort of all the heights */
     gr__sort_pedges_by_y0(s.edge, ne);
-    ny = gr__pedge_crossings(s.edge, ne, s.ys, ny);
-    gr__sort_doubles(s.ys, ny);
-    for (nys = 0, k = 0; k < ny; k++)
-        if (nys == 0 || s.ys[k] != s.ys[nys - 1]) s.ys[nys++] = s.ys[k];
-    /* the slabs' mid lines rise, so an edge joins the active list once
-       (edges sorted by their lower end) and leaves it for good: each slab
-       visits only the edges that span it, not all of them */
-    for (k = 0, next = 0, nact = 0; k + 1 < nys; k++) {
-        double y0 = s.ys[k], y1 = s.ys[k + 1], ym = 0.5 * (y0 + y1);
-        int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, e, m, kept;
+    nx = gr__pedge_crossings(s.edge, ne, s.ys, 0, max_cross);
+    if (nx < 0) return GR_ERR_BUFFER_TOO_SMALL;
+    gr__sort_doubles(s.ys, nx);
+    /* a trapezoid whose two edges go on into the next slab is extended
+       there instead of starting another (its sides are those edges, so
+       the union is exact): regions do not fragment at every height */
+    y0 = ne > 0 ? s.edge[0].y0 : 0;
+    for (next = 0, nact = 0, ci = 0; ne > 0;) {
+        double y1 = HUGE_VAL, ym;
+        int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, e, m, kept, nnow = 0, *sw;
         gr__pcross_t left;
+        for (m = 0, kept = 0; m < nact; m++) /* edges ending at y0 leave */
+            if (s.edge[s.active[m]].y1 > y0) {
+                s.active[kept++] = s.active[m];
+                if (s.edge[s.active[m]].y1 < y1) y1 = s.edge[s.active[m]].y1;
+            }
+        nact = kept;
+        for (; next < ne && s.edge[next].y0 <= y0; next++) /* edges starting at y0 join */
+            if (s.edge[next].y1 > y0) {
+                s.active[nact++] = next;
+                if (s.edge[next].y1 < y1) y1 = s.edge[next].y1;
+            }
+        if (next < ne && s.edge[next].y0 < y1) y1 = s.edge[next].y0;
+        while (ci < nx && s.ys[ci] <= y0) ci++;
+        if (ci < nx && s.ys[ci] < y1) y1 = s.ys[ci];
+        if (y1 == HUGE_VAL) break; /* above every edge */
+        ym = 0.5 * (y0 + y1);
         left.x = 0;
         left.edge = -1;
         /* two adjacent doubles: the mid line would fall on a vertex height,
            where the strict crossing test loses a pass-through vertex */
-        if (!(y0 < ym && ym < y1)) continue;
-        for (m = 0, kept = 0; m < nact; m++)
-            if (s.edge[s.active[m]].y1 > ym) s.active[kept++] = s.active[m];
-        nact = kept;
-        for (; next < ne && s.edge[next].y0 < ym; next++)
-            if (s.edge[next].y1 > ym) s.active[nact++] = next;
+        if (!(y0 < ym && ym < y1) || nact == 0) { y0 = y1; continue; }
         for (m = 0; m < nact; m++) {
             e = s.active[m];
             s.cross[nc].x = gr__pedge_x(&s.edge[e], ym);
             s.cross[nc++].edge = e;
         }
-        if (nc == 0) continue;
         gr__sort_pcross(s.cross, nc);
         na = gr__pset_intervals(s.cross, nc, s.edge, 0, s.parity, s.ia);
         nb = gr__pset_intervals(s.cross, nc, s.edge, 1, s.parity, s.ib);
@@ -2939,22 +2957,56 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
                 /* a trapezoid; its mid-line width times the slab height is
                    its exact area (the sides are straight in the slab) */
                 const gr__pedge_t *el = &s.edge[left.edge], *er = &s.edge[edge];
+                int p, id = -1;
                 total += (x - left.x) * (y1 - y0);
-                if (traps && ntrap < trap_cap) {
-                    double *t = traps + 8 * ntrap;
-                    t[0] = gr__pedge_x(el, y0); t[1] = y0;
-                    t[2] = gr__pedge_x(er, y0); t[3] = y0;
-                    t[4] = gr__pedge_x(er, y1); t[5] = y1;
-                    t[6] = gr__pedge_x(el, y1); t[7] = y1;
-                } else if (traps) over = 1;
-                ntrap++;
+                if (run_top == y0)
+                    for (p = 0; p < nprev && id < 0; p++)
+                        if (prev[3 * p] == left.edge && prev[3 * p + 1] == edge) id = prev[3 * p + 2];
+                if (id >= 0) { /* the trapezoid below goes on */
+                    if (traps && id < trap_cap) {
+                        double *t = traps + 8 * id;
+                        t[4] = gr__pedge_x(er, y1); t[5] = y1;
+                        t[6] = gr__pedge_x(el, y1); t[7] = y1;
+                    }
+                } else {
+                    id = ntrap++;
+                    if (traps && id < trap_cap) {
+                        double *t = traps + 8 * id;
+                        t[0] = gr__pedge_x(el, y0); t[1] = y0;
+                        t[2] = gr__pedge_x(er, y0); t[3] = y0;
+                        t[4] = gr__pedge_x(er, y1); t[5] = y1;
+                        t[6] = gr__pedge_x(el, y1); t[7] = y1;
+                    } else if (traps) over = 1;
+                }
+                now_run[3 * nnow] = left.edge;
+                now_run[3 * nnow + 1] = edge;
+                now_run[3 * nnow + 2] = id;
+                nnow++;
             }
             was = now;
         }
+        sw = prev; prev = now_run; now_run = sw;
+        nprev = nnow;
+        run_top = y1;
+        y0 = y1;
     }
     if (area) *area = total;
     if (trap_count) *trap_count = ntrap;
     return over ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
+}
+
+GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op,
+                                   void *scratch, size_t scratch_bytes,
+                                   double *traps, int trap_cap, int *trap_count, double *area)
+{
+    gr_result_t r;
+    if (area) *area = 0;
+    if (trap_count) *trap_count = 0;
+    if (!a || !b || !scratch || (traps && trap_cap < 0) || (int)op < 0 || (int)op > 3) return GR_ERR_INVALID_ARG;
+    if ((r = gr__pset_check(a)) != GR_OK || (r = gr__pset_check(b)) != GR_OK) return r;
+    if (scratch_bytes < gr_poly_boolean_scratch_bytes(a->point_count + b->point_count)) return GR_ERR_BUFFER_TOO_SMALL;
+    return gr__poly_boolean(a, b, op, scratch, gr__pcross_cap(a->point_count + b->point_count), traps, trap_cap,
+                            trap_count, area);
 }
 
 /* ---- Intersections and ends: detection (§5, §5.1) ------------------------ */
@@ -3017,76 +3069,96 @@ static int gr__seg_cross(const double *a, const double *b, const double *c, cons
     return *s < 1 && *u < 1;
 }
 
-/* Chord k of a path given by its points (gr__chord without a record);
-   a polyline's chords are its segments, whose parameters the caller sums. */
-static void gr__chord_pts(const double *pts, int kind, int pieces, int k, double a[2], double b[2], double t[2])
+/* A crossing of chords kk (a b, parameters ta) and ll (c d, tc), kk < ll,
+   of one path with m chords, appended to out (up to cap); 1 if there is one. */
+static int gr__chord_pair_hit(const double *a, const double *b, const double *ta, const double *c, const double *d,
+                              const double *tc, int kk, int ll, int m, int closed, int g, gr_self_hit_t *out, int cap,
+                              int nh)
 {
-    if (kind == GR_PATH_POLYLINE) {
-        a[0] = pts[2 * k]; a[1] = pts[2 * k + 1];
-        b[0] = pts[2 * k + 2]; b[1] = pts[2 * k + 3];
-        return;
+    double sv, u;
+    if (ll == kk + 1) return 0;                     /* neighbours share a point */
+    if (closed && kk == 0 && ll == m - 1) return 0; /* neighbours across the closing point */
+    if ((c[0] < a[0] && c[0] < b[0] && d[0] < a[0] && d[0] < b[0]) ||
+        (c[0] > a[0] && c[0] > b[0] && d[0] > a[0] && d[0] > b[0]) ||
+        (c[1] < a[1] && c[1] < b[1] && d[1] < a[1] && d[1] < b[1]) ||
+        (c[1] > a[1] && c[1] > b[1] && d[1] > a[1] && d[1] > b[1]))
+        return 0; /* boxes apart */
+    if (!gr__seg_cross(a, b, c, d, &sv, &u)) return 0;
+    if (out && nh < cap) {
+        out[nh].groove = g;
+        out[nh].point[0] = a[0] + sv * (b[0] - a[0]);
+        out[nh].point[1] = a[1] + sv * (b[1] - a[1]);
+        out[nh].param[0] = ta[0] + sv * (ta[1] - ta[0]);
+        out[nh].param[1] = tc[0] + u * (tc[1] - tc[0]);
     }
-#ifndef GR_NO_CURVES
-    {
-        int deg = gr__degree(kind), piece = k / GR__SELF_FLATTEN, i = k % GR__SELF_FLATTEN;
-        double d1[2], d2[2], tau0 = (double)i / GR__SELF_FLATTEN, tau1 = (double)(i + 1) / GR__SELF_FLATTEN;
-        gr__bezier_eval(pts + 2 * deg * piece, deg, tau0, a, d1, d2);
-        gr__bezier_eval(pts + 2 * deg * piece, deg, tau1, b, d1, d2);
-        t[0] = (piece + tau0) / pieces;
-        t[1] = (piece + tau1) / pieces;
-    }
-#else
-    (void)pieces;
-    GR_ASSERT(0); /* the builder rejects curves */
-    a[0] = a[1] = b[0] = b[1] = t[0] = t[1] = 0;
-#endif
+    return 1;
 }
 
 /* Every crossing of two non-adjacent chords of one path (§5: found before
    rendering): polyline segments exactly, Bézier pieces through
-   GR__SELF_FLATTEN chords each. Writes up to cap hits (out may be NULL),
-   returns how many there are. A chord pair's boxes are compared first. */
+   GR__SELF_FLATTEN chords each (two pieces whose control points' boxes
+   are apart cannot cross; each piece's chord ends are evaluated once per
+   pair of pieces). Writes up to cap hits (out may be NULL), returns how
+   many there are. */
 static int gr__path_self_hits(const double *pts, int kind, int n, int closed, int g, gr_self_hit_t *out, int cap)
 {
-    int pieces = gr__pieces(kind, n), m = kind == GR_PATH_POLYLINE ? pieces : pieces * GR__SELF_FLATTEN, k, l, nh = 0;
-    double len = 0, acc_k = 0;
-    if (kind == GR_PATH_POLYLINE)
+    int pieces = gr__pieces(kind, n), k, l, nh = 0;
+    if (kind == GR_PATH_POLYLINE) {
+        double len = 0, acc_k = 0;
         for (k = 0; k < pieces; k++) len += hypot(pts[2 * k + 2] - pts[2 * k], pts[2 * k + 3] - pts[2 * k + 1]);
-    for (k = 0; k < m; k++) {
-        double a[2], b[2], ta[2] = {0, 0}, acc_l, lk = 0;
-        gr__chord_pts(pts, kind, pieces, k, a, b, ta);
-        if (kind == GR_PATH_POLYLINE) {
-            lk = hypot(b[0] - a[0], b[1] - a[1]);
+        for (k = 0; k < pieces; k++) {
+            const double *a = pts + 2 * k, *b = a + 2;
+            double lk = hypot(b[0] - a[0], b[1] - a[1]), acc_l = acc_k + lk, ta[2];
             ta[0] = acc_k / len;
             ta[1] = (acc_k + lk) / len;
-        }
-        acc_l = acc_k + lk;
-        for (l = k + 1; l < m; l++) {
-            double c[2], d[2], tc[2] = {0, 0}, sv, u, ll = 0;
-            gr__chord_pts(pts, kind, pieces, l, c, d, tc);
-            if (kind == GR_PATH_POLYLINE) {
-                ll = hypot(d[0] - c[0], d[1] - c[1]);
+            for (l = k + 1; l < pieces; l++) {
+                const double *c = pts + 2 * l, *d = c + 2;
+                double ll = hypot(d[0] - c[0], d[1] - c[1]), tc[2];
                 tc[0] = acc_l / len;
                 tc[1] = (acc_l + ll) / len;
                 acc_l += ll;
+                nh += gr__chord_pair_hit(a, b, ta, c, d, tc, k, l, pieces, closed, g, out, cap, nh);
             }
-            if (l == k + 1) continue;                         /* neighbours share a point */
-            if (closed && k == 0 && l == m - 1) continue;     /* neighbours across the closing point */
-            if (fmax(c[0], d[0]) < fmin(a[0], b[0]) || fmin(c[0], d[0]) > fmax(a[0], b[0]) ||
-                fmax(c[1], d[1]) < fmin(a[1], b[1]) || fmin(c[1], d[1]) > fmax(a[1], b[1]))
-                continue;
-            if (!gr__seg_cross(a, b, c, d, &sv, &u)) continue;
-            if (out && nh < cap) {
-                out[nh].groove = g;
-                out[nh].point[0] = a[0] + sv * (b[0] - a[0]);
-                out[nh].point[1] = a[1] + sv * (b[1] - a[1]);
-                out[nh].param[0] = ta[0] + sv * (ta[1] - ta[0]);
-                out[nh].param[1] = tc[0] + u * (tc[1] - tc[0]);
-            }
-            nh++;
+            acc_k += lk;
         }
-        acc_k += lk;
+        return nh;
     }
+#ifndef GR_NO_CURVES
+    {
+        int deg = gr__degree(kind), m = pieces * GR__SELF_FLATTEN, P, Q, i;
+        double pa[2 * (GR__SELF_FLATTEN + 1)], pb[2 * (GR__SELF_FLATTEN + 1)], d1[2], d2[2];
+        for (P = 0; P < pieces; P++) {
+            double ba[4];
+            gr__bounds(pts + 2 * deg * P, deg + 1, ba);
+            for (i = 0; i <= GR__SELF_FLATTEN; i++)
+                gr__bezier_eval(pts + 2 * deg * P, deg, (double)i / GR__SELF_FLATTEN, pa + 2 * i, d1, d2);
+            for (Q = P; Q < pieces; Q++) {
+                double bb[4];
+                const double *qb = pa;
+                gr__bounds(pts + 2 * deg * Q, deg + 1, bb);
+                if (Q > P && (bb[0] > ba[2] || bb[2] < ba[0] || bb[1] > ba[3] || bb[3] < ba[1])) continue;
+                if (Q > P) {
+                    for (i = 0; i <= GR__SELF_FLATTEN; i++)
+                        gr__bezier_eval(pts + 2 * deg * Q, deg, (double)i / GR__SELF_FLATTEN, pb + 2 * i, d1, d2);
+                    qb = pb;
+                }
+                for (k = 0; k < GR__SELF_FLATTEN; k++)
+                    for (l = Q > P ? 0 : k + 1; l < GR__SELF_FLATTEN; l++) {
+                        double ta[2], tc[2];
+                        ta[0] = (P + (double)k / GR__SELF_FLATTEN) / pieces;
+                        ta[1] = (P + (double)(k + 1) / GR__SELF_FLATTEN) / pieces;
+                        tc[0] = (Q + (double)l / GR__SELF_FLATTEN) / pieces;
+                        tc[1] = (Q + (double)(l + 1) / GR__SELF_FLATTEN) / pieces;
+                        nh += gr__chord_pair_hit(pa + 2 * k, pa + 2 * k + 2, ta, qb + 2 * l, qb + 2 * l + 2, tc,
+                                                 P * GR__SELF_FLATTEN + k, Q * GR__SELF_FLATTEN + l, m, closed, g, out,
+                                                 cap, nh);
+                    }
+            }
+        }
+    }
+#else
+    (void)l;
+#endif
     return nh;
 }
 
@@ -3306,11 +3378,33 @@ static int gr__path_in_box(const gr_grid_t *grid, const gr__groove_t *rec, const
         if (sb[0] > rec->bbox[2] + rec->half_width || sb[2] < rec->bbox[0] - rec->half_width ||
             sb[1] > rec->bbox[3] + rec->half_width || sb[3] < rec->bbox[1] - rec->half_width)
             continue; /* control points bound the path */
-        for (k = 0; k < m; k++) {
-            double a[2], b[2];
-            gr__chord(grid, rec, k, a, b, NULL);
-            if (gr__seg_box(a, b, sb)) return 1;
+        if (rec->kind == GR_PATH_POLYLINE) {
+            for (k = 0; k < m; k++) {
+                double a[2], b[2];
+                gr__chord(grid, rec, k, a, b, NULL);
+                if (gr__seg_box(a, b, sb)) return 1;
+            }
+            continue;
         }
+#ifndef GR_NO_CURVES
+        { /* a Bézier piece whose control points lie off the box is skipped
+             (they bound it); each chord end is evaluated once */
+            int deg = gr__degree(rec->kind), piece, c;
+            const double *pts = grid->points_ + 2 * rec->first_point;
+            for (piece = 0; piece < rec->pieces; piece++) {
+                const double *q = pts + 2 * deg * piece;
+                double cb[4], a[2], b[2], d1[2], d2[2];
+                gr__bounds(q, deg + 1, cb);
+                if (cb[0] > sb[2] || cb[2] < sb[0] || cb[1] > sb[3] || cb[3] < sb[1]) continue;
+                a[0] = q[0]; a[1] = q[1];
+                for (c = 1; c <= GR__SELF_FLATTEN; c++) {
+                    gr__bezier_eval(q, deg, (double)c / GR__SELF_FLATTEN, b, d1, d2);
+                    if (gr__seg_box(a, b, sb)) return 1;
+                    a[0] = b[0]; a[1] = b[1];
+                }
+            }
+        }
+#endif
     }
     return 0;
 }
@@ -3792,7 +3886,11 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 #define GR__PP_RING 80        /* points of one piece's clipped ring, or one cut */
 #define GR__PP_TRAPS 512      /* trapezoids of an intermediate region (before merging) */
 #define GR__PP_EDGES 400      /* edges of both operands of one boolean */
+#define GR__PP_CROSS 4096     /* crossing heights of one boolean (the random tests' largest: ~1000) */
 #define GR__PP_MAX_PIECES 64  /* facets and end caps of those grooves */
+#define GR__PP_SURF_TRAPS 1024 /* trapezoids of all pieces' surfaces together (the random tests' largest: ~300) */
+#define GR__PP_OCC_POINTS 200 /* points of the occluder rings subtracted in one boolean */
+#define GR__PP_OCC_RINGS 64
 /* Coplanar pieces of two grooves (equal floors at a crossing): the lower
    groove index keeps the overlap; the cut plane is moved by this fraction
    of the grid's largest section size to decide it. */
@@ -3836,6 +3934,11 @@ typedef struct gr__pps_t {
     double *mouth;      /* the grooves' openings at w = 0 (UV strips, 4 points each) */
     int nmouth;
     int *sizes;
+    double *surf;       /* every piece's surface: trapezoids, surf_count[j] from surf_first[j] */
+    double *surf_box;   /* and its box, 4 per piece */
+    int *surf_first, *surf_count;
+    double *occ;        /* occluder rings gathered for one boolean */
+    int *occ_sizes;
     void *bool_scratch;
     size_t bool_bytes;
 } gr__pps_t;
@@ -3859,8 +3962,17 @@ static size_t gr__pp_layout(void *base, gr__pps_t *s)
     GR__PPCARVE(mouth, double, 2 * GR__PP_RING * GR__PP_MAX_GROOVES)
     GR__PPCARVE(tmp2, double, 2 * GR__PP_RING)
     GR__PPCARVE(sizes, int, 4 * GR__PP_MAX_GROOVES + 4)
+    GR__PPCARVE(surf, double, 8 * GR__PP_SURF_TRAPS)
+    GR__PPCARVE(surf_box, double, 4 * (GR__PP_MAX_PIECES + 1))
+    GR__PPCARVE(surf_first, int, GR__PP_MAX_PIECES + 1)
+    GR__PPCARVE(surf_count, int, GR__PP_MAX_PIECES + 1)
+    GR__PPCARVE(occ, double, 2 * GR__PP_OCC_POINTS)
+    GR__PPCARVE(occ_sizes, int, GR__PP_OCC_RINGS)
 #undef GR__PPCARVE
-    s->bool_bytes = gr_poly_boolean_scratch_bytes(GR__PP_EDGES);
+    {
+        gr__pscratch_t ptmp;
+        s->bool_bytes = gr__pscratch_layout(GR__PP_EDGES, GR__PP_CROSS, NULL, &ptmp);
+    }
     s->bool_scratch = b ? b + off : NULL;
     return off + s->bool_bytes;
 }
@@ -4078,7 +4190,7 @@ static int gr__pp_bool(const gr__pps_t *ps, const gr_polyset_t *a, const gr_poly
     int n = 0, first, chunk, total = 0;
     double part;
     if (a->point_count + b->point_count <= GR__PP_EDGES) {
-        if (gr_poly_boolean(a, b, op, ps->bool_scratch, ps->bool_bytes, out, out ? GR__PP_TRAPS : 0, &n, area) != GR_OK)
+        if (gr__poly_boolean(a, b, op, ps->bool_scratch, GR__PP_CROSS, out, out ? GR__PP_TRAPS : 0, &n, area) != GR_OK)
             return -1;
         return out ? gr__pp_merge(out, n) : n;
     }
@@ -4092,8 +4204,8 @@ static int gr__pp_bool(const gr__pps_t *ps, const gr_polyset_t *a, const gr_poly
         sub.point_count = 4 * m;
         sub.ring_sizes = NULL;
         sub.ring_count = m;
-        if (gr_poly_boolean(&sub, b, op, ps->bool_scratch, ps->bool_bytes, out ? out + 8 * total : NULL,
-                            out ? GR__PP_TRAPS - total : 0, &n, &part) != GR_OK)
+        if (gr__poly_boolean(&sub, b, op, ps->bool_scratch, GR__PP_CROSS, out ? out + 8 * total : NULL,
+                             out ? GR__PP_TRAPS - total : 0, &n, &part) != GR_OK)
             return -1;
         *area += part;
         total += n;
@@ -4129,134 +4241,166 @@ static int gr__pp_cuts(const gr__pps_t *ps, const gr__ppp_t *pc, int ng, double 
     return nr;
 }
 
-/* The part of piece i seen along d (§5.2-5.4): the piece clipped to the
-   footprint's pre-image (fpoly, local UV; or the trapezoids `start`
-   instead), minus the crossing grooves' cuts (§5.3), within the pre-image
-   of the grooves' mouths (rays leaving through the ground are blocked),
-   minus every other piece in front of it along d, itself minus its cuts
+/* Bounding box (x0, y0, x1, y1) of n points. */
+static void gr__box_of(const double *p, int n, double box[4])
+{
+    int k;
+    box[0] = box[1] = HUGE_VAL;
+    box[2] = box[3] = -HUGE_VAL;
+    for (k = 0; k < n; k++) {
+        if (p[2 * k] < box[0]) box[0] = p[2 * k];
+        if (p[2 * k] > box[2]) box[2] = p[2 * k];
+        if (p[2 * k + 1] < box[1]) box[1] = p[2 * k + 1];
+        if (p[2 * k + 1] > box[3]) box[3] = p[2 * k + 1];
+    }
+}
+
+/* The surface of every piece (§5.3): its strip (or cap, or the ground)
+   minus what the other grooves carve away, as trapezoids in its own
+   coordinates, into the pool ps->surf. A piece's surface does not depend
+   on the direction it is seen or lit from, so it is made once per
+   footprint and serves both as the piece's own start and as an occluder
+   of the others (§5.4: blocking facets and their prolongations, cut where
+   a crossing groove removes them). Returns 0, or -1 when a buffer is full. */
+static int gr__pp_surfaces(gr__pps_t *ps, int np, int ng, const double *box, double big, double tie)
+{
+    int j, used = 0;
+    for (j = 0; j < np; j++) {
+        const gr__ppp_t *pc = &ps->p[j];
+        gr_polyset_t a, b;
+        double area, *r0 = ps->tmp, *r1 = ps->tmp2;
+        int nr, npts, n, side;
+        /* only its part over the §5.1 search box matters: every ray from
+           the footprint toward the viewer or a light stays over the box
+           (that is how the box was grown), and so does every point of the
+           surface such a ray meets. The box's four sides pulled back onto
+           the plane (u(a, c) = o_u + a X_u + c Y_u is affine on it) */
+        memcpy(r0, pc->ring, sizeof(double) * 2 * (size_t)pc->nring);
+        n = pc->nring;
+        for (side = 0; side < 4 && n >= 3; side++) {
+            int ax = side & 1, hi = side >> 1;
+            double sg = hi ? -1 : 1, *t = r0;
+            n = gr__pp_halfplane(r0, n, sg * pc->x[ax], sg * pc->y[ax], sg * (pc->o[ax] - box[ax + 2 * hi]), r1);
+            r0 = r1; r1 = t;
+        }
+        ps->surf_first[j] = used;
+        ps->surf_count[j] = 0;
+        if (n < 3) continue;
+        memcpy(ps->rc, r0, sizeof(double) * 2 * (size_t)n);
+        a = gr__pp_set(ps->rc, n, NULL, 1);
+        nr = gr__pp_cuts(ps, pc, ng, big, tie, &npts);
+        if (nr < 0) return -1;
+        b = gr__pp_set(nr > 0 ? ps->cut : NULL, nr > 0 ? npts : 0, nr > 0 ? ps->sizes : NULL, nr);
+        n = gr__pp_bool(ps, &a, &b, nr > 0 ? GR_POLY_DIFFERENCE : GR_POLY_UNION, ps->ra, &area);
+        if (n < 0 || used + n > GR__PP_SURF_TRAPS) return -1;
+        memcpy(ps->surf + 8 * used, ps->ra, sizeof(double) * 8 * (size_t)n);
+        ps->surf_first[j] = used;
+        ps->surf_count[j] = n;
+        gr__box_of(ps->ra, 4 * n, ps->surf_box + 4 * j);
+        used += n;
+    }
+    return 0;
+}
+
+/* cur minus the occluder rings gathered in ps->occ (one boolean: the rings
+   of a set unite); the new count in *ncur, swapping cur and nxt. -1 when
+   a buffer is too small. */
+static int gr__pp_occlude(const gr__pps_t *ps, double **cur, double **nxt, int *ncur, int npts, int nrings, double *area)
+{
+    gr_polyset_t a = gr__pp_traps(*cur, *ncur), b = gr__pp_set(ps->occ, npts, ps->occ_sizes, nrings);
+    double *sw;
+    int n;
+    if (nrings == 0) return 0;
+    n = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, *nxt, area);
+    if (n < 0) return -1;
+    sw = *cur; *cur = *nxt; *nxt = sw;
+    *ncur = n;
+    return 0;
+}
+
+/* The part of piece i seen along d (§5.2-5.4): the piece's surface
+   clipped to the footprint's pre-image (fpoly, local UV; or the
+   trapezoids `start` instead, already on the surface), minus every other
+   piece's surface in front of it along d
    (blocking facets and their prolongations into the crossing groove,
-   §5.4). The result (trapezoids in ps->ra or ps->rb) is returned in *res;
-   the count, or -1 when a buffer overflows. */
-static int gr__pp_region(const gr__pps_t *ps, int np, int ng, int i, const double *d, const double *fpoly,
-                         const double *start, int nstart, double big, double tie, double **res, double *area)
+   §5.4), all of them in one boolean; pieces 0 .. np - 1 and the ground
+   (piece np). The result (trapezoids in ps->ra or
+   ps->rb) is returned in *res; the count, or -1 when a buffer overflows. */
+static int gr__pp_region(const gr__pps_t *ps, int np, int i, const double *d, const double *fpoly,
+                         const double *start, int nstart, double tie, double **res, double *area)
 {
     const gr__ppp_t *pc = &ps->p[i];
-    double *cur = ps->ra, *nxt = ps->rb, *sw, occ_unused;
+    double *cur = ps->ra, *nxt = ps->rb, cb[4];
     gr_polyset_t a, b;
-    int n, k, j, nr, npts, ncur;
+    int k, j, ncur;
     *area = 0;
     *res = cur;
     if (start) {
-        a = gr__pp_traps(start, nstart);
+        if (nstart > GR__PP_TRAPS) return -1;
+        memcpy(cur, start, sizeof(double) * 8 * (size_t)nstart);
+        ncur = nstart;
+        for (k = 0; k < ncur; k++) *area += fabs(gr_poly_area(cur + 8 * k, 4));
     } else {
         double pre[8];
         for (k = 0; k < 4; k++) {
             double p3[3] = {fpoly[2 * k], fpoly[2 * k + 1], 0};
             gr__pp_onto(pc, p3, d, pre + 2 * k);
         }
-        n = 0;
-        /* into rc, which is free until the occluders: the cuts use tmp */
-        if (gr_poly_clip_convex(pc->ring, pc->nring, pre, 4, ps->rc, ps->tmp2, GR__PP_RING, &n) != GR_OK) return -1;
-        if (n < 3) return 0;
-        a = gr__pp_set(ps->rc, n, NULL, 1);
-    }
-    /* §5.3: what the crossing grooves carve away */
-    nr = gr__pp_cuts(ps, pc, ng, big, tie, &npts);
-    if (nr < 0) return -1;
-    if (nr > 0) {
-        b = gr__pp_set(ps->cut, npts, ps->sizes, nr);
-        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, cur, area);
-    } else {
-        b = gr__pp_set(NULL, 0, NULL, 0);
-        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_UNION, cur, area);
+        if (ps->surf_count[i] == 0) return 0;
+        gr__box_of(pre, 4, cb);
+        if (cb[0] >= ps->surf_box[4 * i + 2] || cb[2] <= ps->surf_box[4 * i] || cb[1] >= ps->surf_box[4 * i + 3] ||
+            cb[3] <= ps->surf_box[4 * i + 1])
+            return 0; /* the footprint misses the piece */
+        a = gr__pp_traps(ps->surf + 8 * ps->surf_first[i], ps->surf_count[i]);
+        b = gr__pp_set(pre, 4, NULL, 1);
+        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, cur, area);
     }
     if (ncur <= 0) return ncur;
-    /* a ray from below w = 0 must reach it inside a groove's opening (the
-       ground blocks it elsewhere); the piece's part at or above w = 0
-       (protruding facets) skips this test */
+    if (ncur <= 0) { *res = cur; *area = 0; return ncur; }
+    /* §5.4: occlusion by every other piece's surface in front along d; only
+       the parts whose box meets the region's are kept. The ground (piece
+       np, the plane minus the grooves' mouths) is one of them: a ray from
+       below w = 0 must leave through a mouth, and one from above never
+       meets it (its part in front of this plane, slid along d, lies below
+       w = 0, off any piece above) */
+    gr__box_of(cur, 4 * ncur, cb);
     {
-        double wlo = HUGE_VAL, whi = -HUGE_VAL, box[4] = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, quad[8], half[16];
-        int m, nh, na = 0;
-        for (m = 0; m < pc->nring; m++) {
-            double w = pc->o[2] + pc->ring[2 * m] * pc->x[2] + pc->ring[2 * m + 1] * pc->y[2];
-            wlo = fmin(wlo, w);
-            whi = fmax(whi, w);
-            box[0] = fmin(box[0], pc->ring[2 * m]); box[2] = fmax(box[2], pc->ring[2 * m]);
-            box[1] = fmin(box[1], pc->ring[2 * m + 1]); box[3] = fmax(box[3], pc->ring[2 * m + 1]);
-        }
-        if (wlo < -tie) {
-            if (whi > tie) { /* both sides: keep the part above aside (in rc) */
-                quad[0] = box[0] - 1; quad[1] = box[1] - 1; quad[2] = box[2] + 1; quad[3] = box[1] - 1;
-                quad[4] = box[2] + 1; quad[5] = box[3] + 1; quad[6] = box[0] - 1; quad[7] = box[3] + 1;
-                nh = gr__pp_halfplane(quad, 4, pc->x[2], pc->y[2], pc->o[2], half);
-                a = gr__pp_traps(cur, ncur);
-                b = gr__pp_set(half, nh, NULL, 1);
-                na = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, ps->rc, &occ_unused);
-                nh = gr__pp_halfplane(quad, 4, -pc->x[2], -pc->y[2], -pc->o[2], half);
-                b = gr__pp_set(half, nh, NULL, 1);
-                ncur = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, nxt, area);
-                if (na < 0 || ncur < 0) return -1;
-                sw = cur; cur = nxt; nxt = sw;
-            }
-            for (k = 0; k < 4 * ps->nmouth; k++) {
-                double p3[3] = {ps->mouth[2 * k], ps->mouth[2 * k + 1], 0};
-                gr__pp_onto(pc, p3, d, ps->cut + 2 * k);
-            }
-            a = gr__pp_traps(cur, ncur);
-            b = gr__pp_set(ps->cut, 4 * ps->nmouth, NULL, ps->nmouth);
-            ncur = ps->nmouth > 0 ? gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, nxt, area) : 0;
-            if (ncur < 0) return -1;
-            sw = cur; cur = nxt; nxt = sw;
-            if (na > 0) {
-                if (ncur + na > GR__PP_TRAPS) return -1;
-                memcpy(cur + 8 * ncur, ps->rc, sizeof(double) * 8 * (size_t)na);
-                ncur = gr__pp_merge(cur, ncur + na);
-            }
-            *area = 0;
-            for (m = 0; m < ncur; m++) *area += fabs(gr_poly_area(cur + 8 * m, 4));
-        }
-    }
-    /* §5.4: occlusion by every other piece in front along d */
-    for (j = 0; j < np && ncur > 0; j++) {
-        const gr__ppp_t *oc = &ps->p[j];
-        double sg = gr__dot3(pc->n, d) > 0 ? 1 : -1, dd[3], occ_area;
-        int nf, m, nocc;
-        if (j == i || fabs(gr__dot3(oc->n, d)) <= GR__PP_EDGE_ON) continue;
-        for (m = 0; m < 3; m++) dd[m] = oc->o[m] - pc->o[m];
-        /* its cuts, carried onto this plane (the map is affine on its plane) */
-        nr = gr__pp_cuts(ps, oc, ng, big, tie, &npts);
-        if (nr < 0) return -1;
-        for (m = 0; m < npts; m++) {
-            double p3[3];
-            gr__pp_point(oc, ps->cut[2 * m], ps->cut[2 * m + 1], p3);
-            gr__pp_onto(pc, p3, d, ps->cut + 2 * m);
-        }
-        /* its part on the viewer's side of this plane; a coplanar piece
-           (every corner within the tie margin) hides nothing, its overlap
-           is settled by the cuts */
-        {
-            double ka = sg * gr__dot3(pc->n, oc->x), kc = sg * gr__dot3(pc->n, oc->y), k0 = sg * gr__dot3(pc->n, dd);
-            int flat = 1;
-            for (m = 0; m < oc->nring && flat; m++)
-                flat = fabs(ka * oc->ring[2 * m] + kc * oc->ring[2 * m + 1] + k0) <= tie;
+        double sg = gr__dot3(pc->n, d) > 0 ? 1 : -1;
+        int npts = 0, nrings = 0;
+        for (j = 0; j <= np && ncur > 0; j++) {
+            const gr__ppp_t *oc = &ps->p[j];
+            const double *st = ps->surf + 8 * ps->surf_first[j];
+            double dd[3], ka, kc, k0;
+            int m, t, flat = 1;
+            if (j == i || ps->surf_count[j] == 0 || fabs(gr__dot3(oc->n, d)) <= GR__PP_EDGE_ON) continue;
+            for (m = 0; m < 3; m++) dd[m] = oc->o[m] - pc->o[m];
+            /* its part on the viewer's side of this plane; a coplanar piece
+               (every corner within the tie margin) hides nothing, its
+               overlap is settled by the cuts */
+            ka = sg * gr__dot3(pc->n, oc->x); kc = sg * gr__dot3(pc->n, oc->y); k0 = sg * gr__dot3(pc->n, dd);
+            for (m = 0; m < oc->nring && flat; m++) flat = fabs(ka * oc->ring[2 * m] + kc * oc->ring[2 * m + 1] + k0) <= tie;
             if (flat) continue;
-            nf = gr__pp_halfplane(oc->ring, oc->nring, ka, kc, k0, ps->tmp);
+            for (t = 0; t < ps->surf_count[j]; t++) {
+                double *q = ps->occ + 2 * npts, bx[4];
+                int nf = gr__pp_halfplane(st + 8 * t, 4, ka, kc, k0, ps->tmp);
+                if (nf < 3) continue;
+                for (m = 0; m < nf; m++) {
+                    double p3[3];
+                    gr__pp_point(oc, ps->tmp[2 * m], ps->tmp[2 * m + 1], p3);
+                    gr__pp_onto(pc, p3, d, q + 2 * m);
+                }
+                gr__box_of(q, nf, bx);
+                if (bx[0] >= cb[2] || bx[2] <= cb[0] || bx[1] >= cb[3] || bx[3] <= cb[1]) continue;
+                ps->occ_sizes[nrings++] = nf;
+                npts += nf;
+                if (npts + 5 > GR__PP_OCC_POINTS || nrings == GR__PP_OCC_RINGS) { /* full: subtract what is gathered */
+                    if (gr__pp_occlude(ps, &cur, &nxt, &ncur, npts, nrings, area) < 0) return -1;
+                    npts = nrings = 0;
+                    if (ncur == 0) break;
+                }
+            }
         }
-        if (nf < 3) continue;
-        for (m = 0; m < nf; m++) {
-            double p3[3];
-            gr__pp_point(oc, ps->tmp[2 * m], ps->tmp[2 * m + 1], p3);
-            gr__pp_onto(pc, p3, d, ps->tmp2 + 2 * m);
-        }
-        a = gr__pp_set(ps->tmp2, nf, NULL, 1);
-        b = gr__pp_set(ps->cut, npts, ps->sizes, nr);
-        nocc = gr__pp_bool(ps, &a, &b, nr > 0 ? GR_POLY_DIFFERENCE : GR_POLY_UNION, ps->rc, &occ_area);
-        if (nocc < 0) return -1;
-        if (nocc == 0 || !(occ_area > 0)) continue;
-        a = gr__pp_traps(cur, ncur);
-        b = gr__pp_traps(ps->rc, nocc);
-        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, nxt, area);
-        sw = cur; cur = nxt; nxt = sw;
+        if (ncur > 0 && gr__pp_occlude(ps, &cur, &nxt, &ncur, npts, nrings, area) < 0) return -1;
     }
     *res = cur;
     if (ncur <= 0) *area = 0;
@@ -4412,6 +4556,13 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
     ps.nmouth = gr__pp_cuts(&ps, gp, ng, big, tie, &npts);
     if (ps.nmouth < 0 || npts != 4 * ps.nmouth) return 0;
     memcpy(ps.mouth, ps.cut, sizeof(double) * 2 * (size_t)npts);
+    {
+        /* the search box about f, a little larger (it bounds what matters) */
+        double bx[4], mg = 1e-6 * (jn->box[2] - jn->box[0] + jn->box[3] - jn->box[1]);
+        bx[0] = jn->box[0] - f[0] - mg; bx[1] = jn->box[1] - f[1] - mg;
+        bx[2] = jn->box[2] - f[0] + mg; bx[3] = jn->box[3] - f[1] + mg;
+        if (gr__pp_surfaces(&ps, np + 1, ng, bx, big, tie) < 0) return 0;
+    }
     list->count = 0;
     list->flags = 0;
     for (i = 0; i <= np; i++) {
@@ -4419,7 +4570,7 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
         double ne = gr__dot3(pc->n, e), ratio;
         int nv;
         if (!(ne > GR__PP_EDGE_ON)) continue; /* back-facing or edge-on (§4.3) */
-        nv = gr__pp_region(&ps, np, ng, i, e, fpoly, NULL, 0, big, tie, &vis, &area);
+        nv = gr__pp_region(&ps, np, i, e, fpoly, NULL, 0, tie, &vis, &area);
         if (nv < 0) return 0;
         ratio = fmin(area * ne / e[2] / af, 1); /* a whole footprint, to rounding */
         if (!(ratio > 0)) continue;
@@ -4432,7 +4583,7 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
             if (!(ll > 0) || !(L0[2] > 0)) continue;
             for (k = 0; k < 3; k++) L[k] = L0[k] / ll;
             if (!(gr__dot3(pc->n, L) > GR__PP_EDGE_ON)) continue;
-            if (gr__pp_region(&ps, np, ng, i, L, NULL, ps.rv, nv, big, tie, &lr, &la) < 0) return 0;
+            if (gr__pp_region(&ps, np, i, L, NULL, ps.rv, nv, tie, &lr, &la) < 0) return 0;
             lit[l] = area > 0 ? la / area : 0;
         }
         m.n[0] = pc->n[0]; m.n[1] = pc->n[1]; m.n[2] = pc->n[2];
