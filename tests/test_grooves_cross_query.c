@@ -407,6 +407,63 @@ static void self_crossing_loops(void)
     done();
 }
 
+/* An elliptical footprint (query.ellipse) at an X crossing of V grooves,
+   seen from straight above, where the visible facet at a point is the
+   deepest groove wall there (or the ground): against that raster over the
+   ellipse F + a A1 + c A2, a^2 + c^2 <= 1 (the oracle samples
+   parallelograms only). The polygon path takes a 32-gon of the ellipse's
+   area; the paper's rhombus would miss a third of it. */
+static void elliptical_footprint_at_crossing(void)
+{
+    static const double a[4] = {0.2, 0.5, 0.8, 0.5}, b[4] = {0.5, 0.2, 0.5, 0.8};
+    static const double fps[3][5] = {{0.5, 0.5, 0.02, 0.0, 0.012}, {0.503, 0.496, 0.014, 0.6, 0.01}, {0.49, 0.5, 0.008, 1.1, 0.016}};
+    int k, n = t_scale() < 1 ? 200 : 1000;
+    double worst = 0;
+    add(a, VSEC, 3, NULL);
+    add(b, VSEC, 3, NULL);
+    if (!build()) return;
+    for (k = 0; k < 3; k++) {
+        const double *F = fps[k];
+        double A1[2] = {F[2] * cos(F[3]), F[2] * sin(F[3])}, A2[2] = {-F[4] * sin(F[3]), F[4] * cos(F[3])};
+        double ref[2][2], ground = 0, total = 0;
+        gr_query_t q = gt_query(F[0], F[1], 1, 0, 0, 1);
+        gr_facet_list_t list;
+        int i, j, g;
+        memset(ref, 0, sizeof ref);
+        q.footprint.axis1[0] = A1[0]; q.footprint.axis1[1] = A1[1];
+        q.footprint.axis2[0] = A2[0]; q.footprint.axis2[1] = A2[1];
+        q.ellipse = 1;
+        for (i = 0; i < n; i++)
+            for (j = 0; j < n; j++) {
+                double s = -1 + (2 * i + 1.0) / n, c = -1 + (2 * j + 1.0) / n, u, v, bb[2], wmin = 0;
+                int best = -1;
+                if (s * s + c * c > 1) continue;
+                u = F[0] + s * A1[0] + c * A2[0];
+                v = F[1] + s * A1[1] + c * A2[1];
+                bb[0] = v - 0.5;    /* groove 0 along +u: B = (0, 1) */
+                bb[1] = -(u - 0.5); /* groove 1 along +v: B = (-1, 0) */
+                for (g = 0; g < 2; g++) {
+                    double w = fabs(bb[g]) < 0.01 ? -0.02 * (1 - fabs(bb[g]) / 0.01) : 0;
+                    if (w < wmin) { wmin = w; best = g; }
+                }
+                total += 1;
+                if (best < 0) ground += 1;
+                else ref[best][bb[best] > 0] += 1;
+            }
+        if (!gt_run(S.grid, &q, &list)) continue;
+        T_CHECK(list.flags & GR_LIST_POLYGON);
+        T_NEAR(gt_ratio_sum(&list), 1, 1e-9);
+        for (i = 0; i < list.count; i++) {
+            const gr_facet_t *e = &list.facets[i];
+            double want = e->groove < 0 ? ground / total : ref[e->groove][e->facet] / total;
+            T_NEAR(e->ratio, want, TOL);
+            worst = fmax(worst, fabs(e->ratio - want));
+        }
+    }
+    fprintf(stderr, "    elliptical footprint at an X crossing: max |r_i - raster| = %.2e\n", worst);
+    done();
+}
+
 /* A crossing on the tile's seam (the texture repeats): groove 0 runs
    along the seam u = 0, groove 1 across it. */
 static void crossing_on_the_seam(void)
@@ -579,6 +636,7 @@ int main(int argc, char **argv)
         T_CASE(protruding_corner_and_oblique),
         T_CASE(protruding_over_cuts),
         T_CASE(self_crossing_loops),
+        T_CASE(elliptical_footprint_at_crossing),
         T_CASE(crossing_on_the_seam),
         T_CASE(random_junctions),
         T_CASE(random_protruding_junctions),
