@@ -434,7 +434,9 @@ GR_DEF size_t gr_poly_boolean_scratch_bytes(int total_points);
    and the result is a set of trapezoids, exact up to the rounding of the
    crossing heights. *area (optional) receives the result's area. traps
    (optional, NULL for the area only) receives up to trap_cap trapezoids, 8
-   doubles each: 4 counter-clockwise (x, y) corners, bottom edge first;
+   doubles each: 4 counter-clockwise (x, y) corners, bottom edge first (a
+   trapezoid runs on through the slabs while its two sides are the same
+   edges, so a region is not cut at every vertex height);
    *trap_count (optional) receives how many the result has. The trapezoids
    do not overlap and their union is the result. Errors: GR_ERR_INVALID_ARG
    (NULL sets or scratch, negative counts, ring sizes that do not add up),
@@ -2688,8 +2690,9 @@ static int gr__cmp_pcross(const void *a, const void *b)
    indirect compares several times over; qsort takes the long ones. */
 #define GR__SMALL_SORT 24
 /* Doubles: Shell sort with Ciura's gaps (the last gap, 1, is insertion
-   sort). The slab heights number up to E + E(E-1)/2 for E edges; inlined
-   compares beat qsort's indirect ones at those sizes. */
+   sort): the crossing heights of a sweep (up to E (E - 1) / 2 for E
+   edges) and a trace's section crossings; inlined compares beat qsort's
+   indirect ones at those sizes. */
 static void gr__sort_doubles(double *a, int n)
 {
     static const int gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};

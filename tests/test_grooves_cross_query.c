@@ -297,6 +297,22 @@ static void protruding_t_and_end(void)
     done();
 }
 
+/* A scratch with ploughed-up lips ending in the open: its end cap is the
+   section closed along w = 0, which touches w = 0 between the lips and the
+   cut (the polygon path splits the cap at w = 0; the oracle clips it in
+   runs between those points). */
+static void lipped_scratch_end(void)
+{
+    static const double LIPS[14] = {-0.012, 0, -0.01, 0.004, -0.008, 0, 0, -0.015, 0.008, 0, 0.01, 0.004, 0.012, 0};
+    static const double a[4] = {0.2, 0.45, 0.5, 0.5};
+    add(a, LIPS, 7, NULL);
+    if (!build()) return;
+    views(0.5, 0.5, 0.012);
+    views(0.505, 0.497, 0.02);
+    report("isolated end of a lipped scratch");
+    done();
+}
+
 /* A corner of the frame (two ridges ending on each other, an L) and a 60
    degree crossing of ridges. */
 static void protruding_corner_and_oblique(void)
@@ -633,6 +649,7 @@ int main(int argc, char **argv)
         T_CASE(corner),
         T_CASE(protruding_x_crossing),
         T_CASE(protruding_t_and_end),
+        T_CASE(lipped_scratch_end),
         T_CASE(protruding_corner_and_oblique),
         T_CASE(protruding_over_cuts),
         T_CASE(self_crossing_loops),

@@ -293,8 +293,9 @@ static void gx_two_lights(gx_scene_t *s, const double l0[5], const double l1[5],
 }
 
 /* Figures 15/16: a tiled floor, 12 x 12 tiles whose grout lines cross at
-   every corner (gr_query takes the polygon path there, §5.2-5.5); the grout
-   (reflectance 1) differs from the glazed tiles (0). */
+   every corner (gr_query takes the polygon path there, §5.2-5.5, or 2 line
+   samples in the demo's second panel); the grout (reflectance 1) differs
+   from the glazed tiles (0). */
 static int gx_scene_tiles(gx_scene_t *s)
 {
     int i, n = 13;
@@ -324,6 +325,7 @@ static int gx_scene_tiles(gx_scene_t *s)
     }
     s->eye = ex_v3(0.5, -0.25, 0.3); s->at = ex_v3(0.5, 0.45, 0.0); s->fov = 50;
     s->bench_eye = ex_v3(0.5, 0.1, 0.12); s->bench_at = ex_v3(0.5, 0.4, 0.0); s->bench_fov = 20;
+    s->lines_panel = 1; /* Fig. 16: polygons, 2 line samples, geometry */
     return 0;
 }
 
@@ -411,9 +413,9 @@ static int gx_scene_scratchfield(gx_scene_t *s)
         s->desc[i].section_count = ns;
         s->desc[i].reflectance = 0;
     }
-    s->mats[0] = gx_material(0.03, 0.03, 0.03, 0.91, 0.92, 0.93, 0.2); /* brushed aluminium */
+    s->mats[0] = gx_material(0.10, 0.10, 0.11, 0.91, 0.92, 0.93, 0.2); /* brushed aluminium */
     {
-        static const double key[5] = {18, 75, 4.0, 3.9, 3.6}, fill[5] = {55, 235, 0.8, 0.85, 1.0};
+        static const double key[5] = {20, -35, 4.0, 3.9, 3.6}, fill[5] = {50, 215, 0.8, 0.85, 1.0};
         gx_two_lights(s, key, fill, ex_v3(0.12, 0.13, 0.15));
     }
     s->eye = ex_v3(0.5, -0.12, 0.32); s->at = ex_v3(0.5, 0.5, 0.0); s->fov = 45;

@@ -20,7 +20,7 @@
 
    build/examples/grooves --scene curves --mode geometry --spp 16 --out c.png
    build/examples/grooves --demo out   → out/grooves_<scene>.png: ours at 1 spp |
-                                         (2 line samples at 1 spp, scratchfield) |
+                                         (2 line samples at 1 spp: tiles, scratchfield) |
                                          geometry at 1 spp | geometry at 64 spp,
                                          plus each panel on its own */
 #define GR_IMPLEMENTATION
