@@ -9,8 +9,8 @@
    Fig. 21c), frame (a window frame protruding over glass with
    inter-reflection, Fig. 21d), interreflect (inter-reflections in gold
    V-grooves, Fig. 17): these two use gr_shade_indirect() with 2 line
-   samples, and the geometry renderer bounces its rays off the same mirror
-   fractions.
+   samples, and the geometry renderer bounces its rays off the same
+   weights (mirror fractions, the thin pane's Fresnel terms);
    scratchfield (140 scratches that cross and end, half with ploughed-up
    lips: the polygon path's cost in a render, with a 2-line-sample panel).
    Modes (--mode): ours (grooves.h, 1 sample per pixel: polygons at
@@ -100,6 +100,9 @@ static float *side_by_side(gx_image_t *p, int n, int *W)
     return out;
 }
 
+/* The gallery: per scene ours | geometry 1 spp | geometry 64 spp; scenes
+   with lines_panel (the tiled floor, issue 8's Figures 15-16, and the
+   scratch field) also with 2 line samples, second. */
 static void demo(const ex_args_t *a)
 {
     int si, i, W;
