@@ -2721,6 +2721,7 @@ typedef struct gr__pedge_t {
     double x0, y0, x1, y1;
     int set;  /* 0: a, 1: b */
     int ring; /* global ring index (a's rings first) */
+    int id;   /* its place among the edges as made (the sort's tie-break) */
 } gr__pedge_t;
 
 /* A crossing of an edge with a slab's mid line. */
@@ -2737,17 +2738,10 @@ static double gr__pedge_x(const gr__pedge_t *e, double y)
     return e->x0 + t * (e->x1 - e->x0);
 }
 
-static int gr__cmp_pcross(const void *a, const void *b)
-{
-    const gr__pcross_t *x = (const gr__pcross_t *)a, *y = (const gr__pcross_t *)b;
-    return x->x < y->x ? -1 : x->x > y->x ? 1 : (x->edge > y->edge) - (x->edge < y->edge);
-}
-
 /* Sorting for the sweep: the lists are short (a few crossings per slab,
-   tens of slab heights at §5's sizes), where insertion sort beats qsort's
-   indirect compares several times over; qsort takes the long ones. */
-#define GR__SMALL_SORT 24
-/* Doubles: Shell sort with Ciura's gaps (the last gap, 1, is insertion
+   tens of edges at §5's sizes) to a few hundred, where Shell sort with
+   inlined compares beats qsort's indirect ones several times over.
+   Doubles: Shell sort with Ciura's gaps (the last gap, 1, is insertion
    sort): the crossing heights of a sweep (up to E (E - 1) / 2 for E
    edges) and a trace's section crossings; inlined compares beat qsort's
    indirect ones at those sizes. */
@@ -2764,32 +2758,32 @@ static void gr__sort_doubles(double *a, int n)
         }
     }
 }
-static void gr__sort_pcross(gr__pcross_t *a, int n)
+/* Crossings of a slab's mid line by (x, edge), a total order, so the same
+   as any sort; by insertion, as the list comes nearly sorted. */
+static void gr__sort_pcross_nearly(gr__pcross_t *a, int n)
 {
     int i, j;
-    if (n > GR__SMALL_SORT) { qsort(a, (size_t)n, sizeof(gr__pcross_t), gr__cmp_pcross); return; }
     for (i = 1; i < n; i++) {
         gr__pcross_t x = a[i];
-        for (j = i; j > 0 && gr__cmp_pcross(&a[j - 1], &x) > 0; j--) a[j] = a[j - 1];
+        for (j = i; j > 0 && (a[j - 1].x > x.x || (a[j - 1].x == x.x && a[j - 1].edge > x.edge)); j--) a[j] = a[j - 1];
         a[j] = x;
     }
 }
 
-/* Edges by their lower end (the sweep's insertion order); insertion sort,
-   as the edge lists are short, with qsort for the long ones. */
-static int gr__cmp_pedge_y0(const void *a, const void *b)
-{
-    const gr__pedge_t *x = (const gr__pedge_t *)a, *y = (const gr__pedge_t *)b;
-    return (x->y0 > y->y0) - (x->y0 < y->y0);
-}
+/* Edges by their lower end (the sweep's insertion order), ties in the
+   order they were made: Shell sort by (y0, id), a total order. */
 static void gr__sort_pedges_by_y0(gr__pedge_t *a, int n)
 {
-    int i, j;
-    if (n > GR__SMALL_SORT) { qsort(a, (size_t)n, sizeof *a, gr__cmp_pedge_y0); return; }
-    for (i = 1; i < n; i++) {
-        gr__pedge_t x = a[i];
-        for (j = i; j > 0 && a[j - 1].y0 > x.y0; j--) a[j] = a[j - 1];
-        a[j] = x;
+    static const int gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
+    int g, i, j;
+    for (g = 0; g < 8; g++) {
+        int h = gaps[g];
+        for (i = h; i < n; i++) {
+            gr__pedge_t x = a[i];
+            for (j = i; j >= h && (a[j - h].y0 > x.y0 || (a[j - h].y0 == x.y0 && a[j - h].id > x.id)); j -= h)
+                a[j] = a[j - h];
+            a[j] = x;
+        }
     }
 }
 
@@ -2875,6 +2869,7 @@ static int gr__pset_edges(const gr_polyset_t *p, int set, int *ring, gr__pedge_t
             else { d->x0 = v[0]; d->y0 = v[1]; d->x1 = u[0]; d->y1 = u[1]; }
             d->set = set;
             d->ring = id;
+            d->id = ne - 1;
         }
         first += n;
     }
@@ -3001,7 +2996,11 @@ static gr_result_t gr__poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b
             s.cross[nc].x = gr__pedge_x(&s.edge[e], ym);
             s.cross[nc++].edge = e;
         }
-        gr__sort_pcross(s.cross, nc);
+        /* the active list is kept in the last slab's x order, so the
+           crossings come nearly sorted (only new edges and the swaps at
+           crossing heights move): insertion sort, linear in practice */
+        gr__sort_pcross_nearly(s.cross, nc);
+        for (m = 0; m < nc; m++) s.active[m] = s.cross[m].edge;
         na = gr__pset_intervals(s.cross, nc, s.edge, 0, s.parity, s.ia);
         nb = gr__pset_intervals(s.cross, nc, s.edge, 1, s.parity, s.ib);
         /* merge the two interval lists; all boundaries at one x are applied
