@@ -2,7 +2,9 @@
 
    Grooves as UV paths with polyline cross-sections, shaded exactly per pixel
    footprint with clipping, masking and shadowing (Bosch et al. 2006, §3–4:
-   isolated and parallel grooves).
+   isolated and parallel grooves; §5: crossings, ends and corners by
+   polygon footprints, protruding and self-crossing grooves too, or by line
+   samples; §6: specular inter-reflection and transmission).
 
    The host renderer builds a grid once from a list of grooves, then for each
    shading point turns its ray differentials into a footprint and asks for the
@@ -2738,26 +2740,32 @@ static double gr__pedge_x(const gr__pedge_t *e, double y)
     return e->x0 + t * (e->x1 - e->x0);
 }
 
-/* Sorting for the sweep: the lists are short (a few crossings per slab,
-   tens of edges at §5's sizes) to a few hundred, where Shell sort with
-   inlined compares beats qsort's indirect ones several times over.
-   Doubles: Shell sort with Ciura's gaps (the last gap, 1, is insertion
-   sort): the crossing heights of a sweep (up to E (E - 1) / 2 for E
-   edges) and a trace's section crossings; inlined compares beat qsort's
-   indirect ones at those sizes. */
-static void gr__sort_doubles(double *a, int n)
-{
-    static const int gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
-    int g, i, j;
-    for (g = 0; g < 8; g++) {
-        int h = gaps[g];
-        for (i = h; i < n; i++) {
-            double x = a[i];
-            for (j = i; j >= h && a[j - h] > x; j -= h) a[j] = a[j - h];
-            a[j] = x;
-        }
-    }
-}
+/* Sorting for the sweep: the lists run from a few entries to a few
+   hundred, where Shell sort (Ciura's gaps; the last, 1, is insertion sort)
+   with inlined compares beats qsort's indirect ones several times over.
+   GR__SHELL_SORT(T, a, n, AFTER) sorts a[0..n) of type T, AFTER(p, x)
+   being true when element p goes after x. */
+#define GR__SHELL_SORT(T, a, n, AFTER)                                              \
+    do {                                                                            \
+        static const int gr__gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};            \
+        int gr__g, gr__i, gr__j;                                                    \
+        for (gr__g = 0; gr__g < 8; gr__g++) {                                       \
+            int gr__h = gr__gaps[gr__g];                                            \
+            for (gr__i = gr__h; gr__i < (n); gr__i++) {                             \
+                T gr__x = (a)[gr__i];                                               \
+                for (gr__j = gr__i; gr__j >= gr__h && AFTER((a)[gr__j - gr__h], gr__x); gr__j -= gr__h) \
+                    (a)[gr__j] = (a)[gr__j - gr__h];                                \
+                (a)[gr__j] = gr__x;                                                 \
+            }                                                                       \
+        }                                                                           \
+    } while (0)
+#define GR__AFTER_DOUBLE(p, x) ((p) > (x))
+#define GR__AFTER_EDGE(p, x) ((p).y0 > (x).y0 || ((p).y0 == (x).y0 && (p).id > (x).id))
+
+/* Doubles: the crossing heights of a sweep (up to E (E - 1) / 2 for E
+   edges) and a trace's section crossings. */
+static void gr__sort_doubles(double *a, int n) { GR__SHELL_SORT(double, a, n, GR__AFTER_DOUBLE); }
+
 /* Crossings of a slab's mid line by (x, edge), a total order, so the same
    as any sort; by insertion, as the list comes nearly sorted. */
 static void gr__sort_pcross_nearly(gr__pcross_t *a, int n)
@@ -2771,21 +2779,11 @@ static void gr__sort_pcross_nearly(gr__pcross_t *a, int n)
 }
 
 /* Edges by their lower end (the sweep's insertion order), ties in the
-   order they were made: Shell sort by (y0, id), a total order. */
-static void gr__sort_pedges_by_y0(gr__pedge_t *a, int n)
-{
-    static const int gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
-    int g, i, j;
-    for (g = 0; g < 8; g++) {
-        int h = gaps[g];
-        for (i = h; i < n; i++) {
-            gr__pedge_t x = a[i];
-            for (j = i; j >= h && (a[j - h].y0 > x.y0 || (a[j - h].y0 == x.y0 && a[j - h].id > x.id)); j -= h)
-                a[j] = a[j - h];
-            a[j] = x;
-        }
-    }
-}
+   order they were made: by (y0, id), a total order. */
+static void gr__sort_pedges_by_y0(gr__pedge_t *a, int n) { GR__SHELL_SORT(gr__pedge_t, a, n, GR__AFTER_EDGE); }
+#undef GR__AFTER_EDGE
+#undef GR__AFTER_DOUBLE
+#undef GR__SHELL_SORT
 
 /* Scratch of gr_poly_boolean for E edges (= points). */
 typedef struct gr__pscratch_t {
