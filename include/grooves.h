@@ -3940,7 +3940,7 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 
 /* Limits of the polygon path; a footprint beyond them is answered by §4
    (flags GR_LIST_NONPARALLEL / GR_LIST_PATH_END as before). */
-#define GR__PP_MAX_GROOVES 8  /* grooves in the §5.1 search box */
+#define GR__PP_MAX_GROOVES 16 /* grooves in the §5.1 search box */
 #define GR__PP_RING 80        /* points of one piece's clipped ring, or one cut */
 #define GR__PP_TRAPS 512      /* trapezoids of an intermediate region (before merging) */
 #define GR__PP_EDGES 400      /* edges of both operands of one boolean */
@@ -3949,8 +3949,8 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
    of the ellipse's area, its boundary within 0.33 % of the radius
    (vertices at 1.0032, edge middles at 0.9984) */
 #define GR__PP_ELLIPSE_SIDES 32
-#define GR__PP_MAX_PIECES 64  /* facets and end caps of those grooves */
-#define GR__PP_SURF_TRAPS 1024 /* trapezoids of all pieces' surfaces together (the random tests' largest: ~300) */
+#define GR__PP_MAX_PIECES 128 /* facets and end caps of those grooves */
+#define GR__PP_SURF_TRAPS 2048 /* trapezoids of all pieces' surfaces together (the random tests' largest: ~300) */
 #define GR__PP_OCC_POINTS 200 /* points of the occluder rings subtracted in one boolean */
 #define GR__PP_OCC_RINGS 64
 /* Coplanar pieces of two grooves (equal floors at a crossing): the lower
@@ -4129,7 +4129,10 @@ static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, doubl
             if (!(x >= g->x0 && x <= g->x1)) return 0;
             memcpy(tmp2, tmp, sizeof(double) * 2 * (size_t)n);
         } else {
+            /* a half-plane at most doubles a ring's points (a non-convex
+               section crosses the line at most once per edge) */
             n = gr__pp_halfplane(tmp, n, ga[0], gc[0], k[0] - g->x0, tmp2);
+            if (2 * n > GR__PP_RING) return -1;
             n = gr__pp_halfplane(tmp2, n, -ga[0], -gc[0], g->x1 - k[0], tmp);
         }
         if (n < 3) return 0;
@@ -4342,6 +4345,7 @@ static int gr__pp_surfaces(gr__pps_t *ps, int np, int ng, const double *box, dou
         for (side = 0; side < 4 && n >= 3; side++) {
             int ax = side & 1, hi = side >> 1;
             double sg = hi ? -1 : 1, *t = r0;
+            if (2 * n > GR__PP_RING) return -1; /* a half-plane at most doubles it */
             n = gr__pp_halfplane(r0, n, sg * pc->x[ax], sg * pc->y[ax], sg * (pc->o[ax] - box[ax + 2 * hi]), r1);
             r0 = r1; r1 = t;
         }
@@ -4455,7 +4459,11 @@ static int gr__pp_region(const gr__pps_t *ps, int np, int i, const double *d, co
                 if (bx[0] >= cb[2] || bx[2] <= cb[0] || bx[1] >= cb[3] || bx[3] <= cb[1]) continue;
                 ps->occ_sizes[nrings++] = nf;
                 npts += nf;
-                if (npts + 5 > GR__PP_OCC_POINTS || nrings == GR__PP_OCC_RINGS) { /* full: subtract what is gathered */
+                /* full: subtract what is gathered. A trapezoid cut by one
+                   half-plane has 5 corners, but a degenerate one (its
+                   sides collinear to rounding) can classify its corners
+                   in and out alternately: 2 per side, 8 at most */
+                if (npts + 8 > GR__PP_OCC_POINTS || nrings == GR__PP_OCC_RINGS) {
                     if (gr__pp_occlude(ps, &cur, &nxt, &ncur, npts, nrings, area) < 0) return -1;
                     npts = nrings = 0;
                     if (ncur == 0) break;
@@ -4542,6 +4550,7 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
                the groove; its part above closes a protrusion and faces out
                of it, away from the groove */
             double x = e == 0 ? g->x0 : g->x1, sg = e == 0 ? 1 : -1, sec[2 * (GR_MAX_FACETS + 1)];
+            double half[4 * (GR_MAX_FACETS + 1)];
             int side;
             if (!g->end[e] || fabs(x) > big) continue;
             for (k = 0; k < g->nsec; k++) {
@@ -4551,7 +4560,13 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
             for (side = 0; side < 2; side++) {
                 gr__ppp_t *pc = &ps->p[np];
                 double su = side ? -sg : sg;
-                pc->nring = gr__pp_halfplane(sec, g->nsec, 0, side ? 1 : -1, 0, pc->ring);
+                /* the section's part on one side of w = 0: up to twice its
+                   points for a section crossing w = 0 on every facet,
+                   beyond a piece's ring for long sections (then declined) */
+                int nh = gr__pp_halfplane(sec, g->nsec, 0, side ? 1 : -1, 0, half);
+                if (nh > GR_MAX_FACETS + 2) return -1;
+                memcpy(pc->ring, half, sizeof(double) * 2 * (size_t)nh);
+                pc->nring = nh;
                 if (pc->nring < 3 || !(fabs(gr_poly_area(pc->ring, pc->nring)) > 0)) continue;
                 pc->o[0] = g->p[0] + x * g->t[0]; pc->o[1] = g->p[1] + x * g->t[1]; pc->o[2] = 0;
                 pc->x[0] = bx; pc->x[1] = by; pc->x[2] = 0;
@@ -4584,7 +4599,13 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
     double e[3], el, fpoly[2 * GR__PP_ELLIPSE_SIDES], af, cr, f[2], big, tie, lit[GR_MAX_LIGHTS], area, *vis;
     int ng = jn->grooves, np, i, k, l, nl = q->light_count, npts, nfp = 4;
     gr__ppp_t *gp;
-    if (ng < 1 || ng > GR__PP_MAX_GROOVES || jn->dropped) return 0;
+    /* the path needs every path end (its grooves' extents), not every
+       crossing: detection lists the ends first, so a full list whose last
+       entry is a crossing or a self-intersection dropped none of them */
+    if (ng < 1 || ng > GR__PP_MAX_GROOVES) return 0;
+    if (jn->dropped && jn->items[jn->count - 1].kind != GR_JUNCTION_CROSSING &&
+        jn->items[jn->count - 1].kind != GR_JUNCTION_SELF)
+        return 0;
     /* the footprint (§5.2): the parallelogram F ± A1 ± A2 (local UV about
        F), or for query.ellipse the GR__PP_ELLIPSE_SIDES-gon inscribed in
        F + A1 cos a + A2 sin a and scaled to the ellipse's area, pi |A1 x
