@@ -27,6 +27,8 @@
      GR_MAX_LIGHTS      lights per query (default 4)
      GR_MAX_FACETS      entries in a gr_facet_list_t (default 32)
      GR_MAX_JUNCTIONS   crossings/ends gr_detect() stores per footprint (default 16)
+     GR_POLY_MAX_GROOVES grooves the polygon path takes in one footprint's
+                        search box (default 16; more are §4's)
      GR_NO_CURVES       leave out Bézier paths (the builder then rejects them
                         with GR_ERR_UNSUPPORTED)
      GR_NO_OVERSAMPLE   leave out footprint oversampling (§4.2)
@@ -457,6 +459,14 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
 /* Entries in a gr_junctions_t (default 16). */
 #ifndef GR_MAX_JUNCTIONS
 #  define GR_MAX_JUNCTIONS 16
+#endif
+/* Grooves the polygon path takes in a footprint's §5.1 box (default 16);
+   beyond, §4 answers with its flags. Its scratch grows with it (about
+   16 KiB a groove): 8 cuts the cost of the densest footprints several
+   times and leaves them to §4's approximation (docs/grooves.md, What is
+   left). */
+#ifndef GR_POLY_MAX_GROOVES
+#  define GR_POLY_MAX_GROOVES 16
 #endif
 
 /* What a footprint meets besides isolated or parallel grooves (§5, Figure 7). */
@@ -3940,7 +3950,7 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 
 /* Limits of the polygon path; a footprint beyond them is answered by §4
    (flags GR_LIST_NONPARALLEL / GR_LIST_PATH_END as before). */
-#define GR__PP_MAX_GROOVES 16 /* grooves in the §5.1 search box */
+#define GR__PP_MAX_GROOVES GR_POLY_MAX_GROOVES /* grooves in the §5.1 search box */
 #define GR__PP_RING 80        /* points of one piece's clipped ring, or one cut */
 #define GR__PP_TRAPS 512      /* trapezoids of an intermediate region (before merging) */
 #define GR__PP_EDGES 400      /* edges of both operands of one boolean */
@@ -3949,8 +3959,8 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
    of the ellipse's area, its boundary within 0.33 % of the radius
    (vertices at 1.0032, edge middles at 0.9984) */
 #define GR__PP_ELLIPSE_SIDES 32
-#define GR__PP_MAX_PIECES 128 /* facets and end caps of those grooves */
-#define GR__PP_SURF_TRAPS 2048 /* trapezoids of all pieces' surfaces together (the random tests' largest: ~300) */
+#define GR__PP_MAX_PIECES (8 * GR_POLY_MAX_GROOVES)   /* facets and end caps of those grooves */
+#define GR__PP_SURF_TRAPS (128 * GR_POLY_MAX_GROOVES) /* trapezoids of all pieces' surfaces (the random tests' largest: ~300) */
 #define GR__PP_OCC_POINTS 200 /* points of the occluder rings subtracted in one boolean */
 #define GR__PP_OCC_RINGS 64
 /* Coplanar pieces of two grooves (equal floors at a crossing): the lower
