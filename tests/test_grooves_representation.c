@@ -630,7 +630,7 @@ static void random_scenes_keep_invariants(void)
         gr_grid_free(grid);
     }
     T_LE(worst, 1e-9);
-    /* the polygon path took its share (about 45 % of these footprints
+    /* the polygon path took its share (about half of these footprints
        meet a crossing or an end), so the bound above covers it */
 #ifndef GR_NO_INTERSECTIONS
     if (answered >= 1000) T_CHECK(polygon > answered / 4);
