@@ -531,6 +531,8 @@ typedef enum fr_normal_mode_t {
     FR_NORMAL_NONE    /* skip the normal */
 } fr_normal_mode_t;
 
+struct fr_prepared_t; /* fr_prepare, below */
+
 /* Method and parameters; zero means the documented default. */
 typedef struct fr_trace_desc_t {
     fr_method_t method;
@@ -585,6 +587,11 @@ typedef struct fr_trace_desc_t {
        ends have opposite signs (a sign change at t0 and t1 costs no
        interval evaluation at all); STEP skips the refinement. Default 0. */
     int any_hit;
+    /* NULL (default), or a prepared model of this very tape (fr_prepare):
+       fr_trace then clips the segment to its box as well and uses its
+       precomputed structures (see fr_prepare). One made for another tape
+       is ignored. */
+    const struct fr_prepared_t *prepared;
 } fr_trace_desc_t;
 
 typedef struct fr_hit_t {
@@ -642,6 +649,69 @@ FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const do
 FR_DEF size_t fr_ray_poly_scratch_size(const fr_tape_t *t);
 FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const double d[3], void *scratch,
                                double *coef, int *degree);
+
+/* PREPARED MODELS: what every ray of fr_trace recomputes from the tape,
+   worked out once per model (paper §3.1.1's analytic method, for renderers
+   that trace millions of rays through one model). fr_prepare analyses the
+   tape and the box `bounds` (6 doubles, lo x y z then hi x y z, holding
+   the whole solid, as fr_bound_box gives; NULL: no box) and fills *out:
+
+   FR_PREPARED_POLY  the shape is a polynomial in x, y, z (tangle cube,
+       Barth's sextic without its clip): the tape's polynomial slots as a
+       straight-line Taylor program of fixed degrees, run once per ray for
+       ANALYTIC and, with its magnitude run fused into the same pass, for
+       INTERVAL's centred form. Same operations in the same order as
+       fr_ray_poly, so the same coefficients (ulps apart at most where a
+       zero component of d lowers a degree).
+   FR_PREPARED_CSG   the shape is min/max/R-function/negation nodes over
+       polynomial leaves (cup, Barth's sextic with its clip): the CSG tree
+       as a boolean structure over the leaves' signs, and per leaf of
+       degree <= 2 (spheres, cylinders, cones, planes, any quadric) its 10
+       monomial coefficients about the centre of the box holding its zero
+       set (by interval subdivision of `bounds`), so a ray's leaf
+       polynomial is a few dozen flops and its roots come from the
+       quadratic formula with Kahan's fma discriminant (roots within a few
+       ulps of those of the ray polynomial's double coefficients; extreme
+       scales go to fr_solve_poly). Higher-degree leaves keep the Taylor
+       program. A ray that misses a leaf's box costs that leaf one value
+       (its sign); the sorted roots are classified by flipping the sign of
+       their leaf and re-evaluating the boolean tree, not the tape; the
+       normal is the leaf's exact gradient (what AD through the CSG nodes
+       gives, up to a positive factor), oriented by the crossing.
+       ANALYTIC and AUTO use it; other methods trace as without it.
+   FR_PREPARED_NONE  nothing to precompute (other tapes); fr_trace traces as
+       without it.
+
+   Hits agree with the unprepared fr_trace to rounding (tests/
+   test_frep_trace.c, prepared_*), except that a root exactly at t0 is
+   never a hit of the prepared CSG path (the unprepared one reports one
+   where f(t0) is exactly 0). The prepared model refers to the tape and
+   must not outlive it; it is read-only, so threads share it. Memory comes
+   from FR_MALLOC with the tape's alloc_ctx; free it with
+   fr_prepared_free. Without a box, CSG leaves keep the Taylor program.
+   Errors: FR_ERR_INVALID_ARG (NULL, empty tape, non-finite or inverted
+   box), FR_ERR_OUT_OF_MEMORY. */
+typedef enum fr_prepared_kind_t {
+    FR_PREPARED_NONE = 0,
+    FR_PREPARED_POLY,
+    FR_PREPARED_CSG
+} fr_prepared_kind_t;
+
+typedef struct fr_prepared_t {
+    const fr_tape_t *tape;       /* the tape it serves */
+    fr_prepared_kind_t kind;
+    int has_box;                 /* box holds the bounds given to fr_prepare */
+    double box[6];
+    unsigned int n_prog;         /* instructions of the Taylor program */
+    unsigned int n_leaves;       /* CSG leaves, of which n_quadrics in monomial form */
+    unsigned int n_quadrics;
+    unsigned int n_nodes;        /* CSG nodes */
+    void *mem;                   /* one block: program, leaves, nodes */
+    void *alloc_ctx;
+} fr_prepared_t;
+
+FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepared_t *out);
+FR_DEF void fr_prepared_free(fr_prepared_t *p);
 
 /* ==== [end section: trace] ==== */
 
@@ -1720,27 +1790,33 @@ static void fr__run_point(const fr_tape_t *t, const double p[3], double *v)
     }
 }
 
-FR_DEF size_t fr_scratch_size(const fr_tape_t *t, fr_eval_kind_t kind)
+/* Scratch bytes per instruction of each evaluation kind. */
+static inline size_t fr__scratch_per_instr(fr_eval_kind_t kind)
 {
-    size_t n = t ? (size_t)t->n_code : 0;
-    if (n == 0) n = 1;
     switch (kind) {
-    case FR_EVAL_POINT: return n * sizeof(double);
-    case FR_EVAL_BATCH: return n * FR_BATCH * sizeof(double);
-    case FR_EVAL_GRAD: return n * 4 * sizeof(double);
+    case FR_EVAL_POINT: return sizeof(double);
+    case FR_EVAL_BATCH: return FR_BATCH * sizeof(double);
+    case FR_EVAL_GRAD: return 4 * sizeof(double);
 #ifndef FR_NO_INTERVAL
-    case FR_EVAL_INTERVAL: return n * sizeof(iv_t);
+    case FR_EVAL_INTERVAL: return sizeof(iv_t);
 #ifndef IV_NO_AFFINE
-    case FR_EVAL_AFFINE: return n * (sizeof(iv_affine_t) + sizeof(iv_t));
+    case FR_EVAL_AFFINE: return sizeof(iv_affine_t) + sizeof(iv_t);
 #else
     case FR_EVAL_AFFINE: return 0;
 #endif
-    case FR_EVAL_PRUNE: return n * (sizeof(iv_t) + 3 * sizeof(unsigned int) + 2);
+    case FR_EVAL_PRUNE: return sizeof(iv_t) + 3 * sizeof(unsigned int) + 2;
 #else
     case FR_EVAL_INTERVAL: case FR_EVAL_AFFINE: case FR_EVAL_PRUNE: return 0;
 #endif
     }
     return 0;
+}
+
+FR_DEF size_t fr_scratch_size(const fr_tape_t *t, fr_eval_kind_t kind)
+{
+    size_t n = t ? (size_t)t->n_code : 0;
+    if (n == 0) n = 1;
+    return n * fr__scratch_per_instr(kind);
 }
 
 FR_DEF double fr_eval(const fr_tape_t *t, const double p[3], void *scratch)
@@ -4078,6 +4154,8 @@ static size_t fr__align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
      [flags]  n bytes (analytic CSG: slot needed)
      [list]   n unsigned ints (analytic CSG: the needed slots, ascending)
      [cand]   n * FR_POLY_MAX_DEGREE doubles (analytic CSG candidate roots)
+     [cleaf]  n * FR_POLY_MAX_DEGREE unsigned ints (prepared CSG: each candidate's leaf)
+     [sgn]    2n signed chars (prepared CSG: leaf and node signs either side of a candidate)
      [prune]  FR__PRUNE_LEVELS * n instructions (interval: pruned tapes) */
 typedef struct fr__trace_mem_t {
     void *eval;
@@ -4086,17 +4164,20 @@ typedef struct fr__trace_mem_t {
     unsigned char *need;
     unsigned int *list;
     double *cand;
+    unsigned int *cleaf;
+    signed char *sgn;
     fr_instr_t *prune;
 } fr__trace_mem_t;
 
 static size_t fr__eval_scratch_max(const fr_tape_t *t)
 {
-    size_t m = fr_scratch_size(t, FR_EVAL_POINT), s;
-    s = fr_scratch_size(t, FR_EVAL_GRAD); if (s > m) m = s;
-    s = fr_scratch_size(t, FR_EVAL_INTERVAL); if (s > m) m = s;
-    s = fr_scratch_size(t, FR_EVAL_AFFINE); if (s > m) m = s;
-    s = fr_scratch_size(t, FR_EVAL_PRUNE); if (s > m) m = s;
-    return fr__align8(m);
+    /* every kind's scratch is n times its bytes per instruction (fr_trace
+       runs this per ray: the constant maximum, multiplied out once) */
+    size_t m = fr__scratch_per_instr(FR_EVAL_GRAD), s, n = t->n_code ? (size_t)t->n_code : 1;
+    s = fr__scratch_per_instr(FR_EVAL_INTERVAL); if (s > m) m = s;
+    s = fr__scratch_per_instr(FR_EVAL_AFFINE); if (s > m) m = s;
+    s = fr__scratch_per_instr(FR_EVAL_PRUNE); if (s > m) m = s;
+    return fr__align8(n * m);
 }
 
 static size_t fr__trace_layout(const fr_tape_t *t, void *base, fr__trace_mem_t *mem)
@@ -4119,6 +4200,10 @@ static size_t fr__trace_layout(const fr_tape_t *t, void *base, fr__trace_mem_t *
     off += fr__align8(n * sizeof(unsigned int));
     if (mem) mem->cand = (double *)(void *)(b + off);
     off += fr__align8(n * FR_POLY_MAX_DEGREE * sizeof(double));
+    if (mem) mem->cleaf = (unsigned int *)(void *)(b + off);
+    off += fr__align8(n * FR_POLY_MAX_DEGREE * sizeof(unsigned int));
+    if (mem) mem->sgn = (signed char *)(void *)(b + off);
+    off += fr__align8(2 * n);
     if (mem) mem->prune = (fr_instr_t *)(void *)(b + off);
 #ifndef FR_NO_INTERVAL
     off += fr__align8((size_t)FR__PRUNE_LEVELS * n * sizeof(fr_instr_t));
@@ -4198,82 +4283,121 @@ static int fr__tpoly_const_op(const fr_instr_t *in, double a, double b, double *
     }
 }
 
+/* c = a^n truncated (n >= 0), c distinct from a; returns the degree or -1. */
+static int fr__tpoly_powi(const double *a, int da, int n, double *c)
+{
+    double base[FR__TAYLOR_N];
+    int k, db = da, dc;
+    if (n >= 2 && (n & (n - 1)) == 0) {
+        /* x^2, x^4, x^8 (the tangle cube's powers): squarings in place, no
+           copy of the base and no product with 1 */
+        dc = fr__tpoly_mul(a, da, a, da, c);
+        for (n >>= 1; n > 1 && dc >= 0; n >>= 1) dc = fr__tpoly_mul(c, dc, c, dc, c);
+        return dc;
+    }
+    for (k = 0; k <= da; k++) base[k] = a[k];
+    c[0] = a[0] - a[0] + 1.0; /* 1, or NaN for a non-finite base */
+    dc = 0;
+    while (n > 0 && dc >= 0) { /* binary powering */
+        if (n & 1) dc = fr__tpoly_mul(c, dc, base, db, c);
+        n >>= 1;
+        if (n > 0) db = fr__tpoly_mul(base, db, base, db, base);
+        if (db < 0) return -1;
+    }
+    return dc;
+}
+
+/* The degree of slot `in` as a polynomial in t from its operands' degrees
+   da, db (-1: not a polynomial), var_deg the degree of a coordinate (1, or
+   0 where the ray's direction has no such component); -1 when the result
+   is not a polynomial of degree <= FR_POLY_MAX_DEGREE. */
+static int fr__tpoly_degree(const fr_instr_t *in, int da, int db, int var_deg)
+{
+    switch ((fr_op_t)in->op) {
+    case FR_OP_CONST: return 0;
+    case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: return var_deg;
+    case FR_OP_NEG: return da;
+    case FR_OP_ADD: case FR_OP_SUB: return da >= 0 && db >= 0 ? (da > db ? da : db) : -1;
+    case FR_OP_MUL: return da >= 0 && db >= 0 && da + db <= FR_POLY_MAX_DEGREE ? da + db : -1;
+    case FR_OP_SQR: return da >= 0 && 2 * da <= FR_POLY_MAX_DEGREE ? 2 * da : -1;
+    case FR_OP_POWI:
+        return da >= 0 && in->k >= 0 && in->k == floor(in->k) && in->k * da <= FR_POLY_MAX_DEGREE ? (int)in->k * da
+                                                                                                  : -1;
+    case FR_OP_DIV: return da >= 0 && db == 0 ? da : -1;
+    case FR_OP_MIN: case FR_OP_MAX: return da == 0 && db == 0 ? 0 : -1;
+    case FR_OP_SQRT: case FR_OP_ABS: case FR_OP_EXP: case FR_OP_LOG: case FR_OP_SIN: case FR_OP_COS:
+    case FR_OP_ATAN: case FR_OP_POWC: return da == 0 ? 0 : -1;
+    default: return -1;
+    }
+}
+
+/* One slot of a Taylor run: c from its operands A (degree da) and B (db),
+   dc the result's degree (fr__tpoly_degree). With plain != NULL (the slot's
+   plain coefficients) it is the magnitude run instead: every input and
+   constant by its absolute value and every subtraction an addition, so each
+   coefficient is the sum of the absolute values of the terms whose rounded
+   sum the plain run computed; it scales the plain coefficients' rounding
+   error (fr__poly_range). An invalid operand of a constant op (a division
+   by 0, a non-finite argument) gives NaN, which every later op keeps. */
+static inline void fr__tpoly_step(const fr_instr_t *in, const double *A, int da, const double *B, int db, int dc,
+                                  const double o[3], const double d[3], double *c, const double *plain)
+{
+    int k, mag = plain != NULL;
+    switch ((fr_op_t)in->op) {
+    case FR_OP_CONST: c[0] = mag ? fabs(in->k) : in->k; break;
+    case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: {
+        int ax = (int)in->op - (int)FR_OP_VAR_X;
+        c[0] = mag ? fabs(o[ax]) : o[ax]; c[1] = mag ? fabs(d[ax]) : d[ax];
+        break;
+    }
+    case FR_OP_NEG: for (k = 0; k <= da; k++) c[k] = mag ? A[k] : -A[k]; break;
+    case FR_OP_ADD: case FR_OP_SUB: {
+        double sgn = in->op == FR_OP_ADD || mag ? 1.0 : -1.0;
+        int lo = da < db ? da : db;
+        for (k = 0; k <= lo; k++) c[k] = A[k] + sgn * B[k];
+        for (; k <= da; k++) c[k] = A[k];
+        for (; k <= db; k++) c[k] = sgn * B[k];
+        break;
+    }
+    case FR_OP_MUL: fr__tpoly_mul(A, da, B, db, c); break;
+    case FR_OP_SQR: fr__tpoly_mul(A, da, A, da, c); break;
+    case FR_OP_POWI: fr__tpoly_powi(A, da, (int)in->k, c); break;
+    case FR_OP_DIV: {
+        double q = B[0] != 0 ? B[0] : NAN;
+        for (k = 0; k <= da; k++) c[k] = A[k] / q;
+        break;
+    }
+    default: /* an op on constants */
+        if (mag) c[0] = fabs(plain[0]);
+        else if (!(A[0] - A[0] == 0) || ((in->op == FR_OP_MIN || in->op == FR_OP_MAX) && !(B[0] - B[0] == 0)) ||
+                 !fr__tpoly_const_op(in, A[0], B[0], c))
+            c[0] = NAN;
+        break;
+    }
+    (void)dc;
+}
+
 /* Evaluate every slot of the tape as a polynomial in t (paper §3.1.1: turn
    f(X) = 0 into g(t) = 0). deg[i] = -1 marks a slot that is not a
    polynomial of degree <= FR_POLY_MAX_DEGREE; such slots propagate.
    With signed_P (the result of a plain run) it is the magnitude run
-   instead: every input and constant by its absolute value and every
-   subtraction an addition, so each coefficient is the sum of the absolute
-   values of the terms whose rounded sum the plain run computed; it scales
-   the plain coefficients' rounding error (fr__poly_range). */
+   (fr__tpoly_step). Sums are trimmed of trailing zero coefficients. */
 static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d[3], double *P, int *deg,
                            const double *signed_P)
 {
     unsigned int i;
-    int mag = signed_P != NULL;
     for (i = 0; i < t->n_code; i++) {
         const fr_instr_t *in = &t->code[i];
         double *c = P + (size_t)i * FR__TAYLOR_N;
         const double *A = P + (size_t)in->a * FR__TAYLOR_N, *B = P + (size_t)in->b * FR__TAYLOR_N;
-        int da = deg[in->a], db = deg[in->b], k, dc = -1;
-        switch ((fr_op_t)in->op) {
-        case FR_OP_CONST: c[0] = mag ? fabs(in->k) : in->k; dc = 0; break;
-        case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: {
-            int ax = (int)in->op - (int)FR_OP_VAR_X;
-            c[0] = mag ? fabs(o[ax]) : o[ax]; c[1] = mag ? fabs(d[ax]) : d[ax];
-            dc = d[ax] != 0 ? 1 : 0;
-            break;
+        int da = i > 0 ? deg[in->a] : -1, db = i > 0 ? deg[in->b] : -1, k, dc;
+        int vd = in->op >= FR_OP_VAR_X && in->op <= FR_OP_VAR_Z ? d[in->op - FR_OP_VAR_X] != 0 : 1;
+        dc = fr__tpoly_degree(in, da, db, vd);
+        if (dc >= 0) {
+            fr__tpoly_step(in, A, da, B, db, dc, o, d, c, signed_P ? signed_P + (size_t)i * FR__TAYLOR_N : NULL);
+            if (in->op == FR_OP_ADD || in->op == FR_OP_SUB) dc = fr__tpoly_trim(c, dc);
+            for (k = 0; k <= dc; k++) if (!(c[k] - c[k] == 0)) dc = -1; /* inf/NaN */
         }
-        case FR_OP_NEG:
-            if (da >= 0) { for (k = 0; k <= da; k++) c[k] = mag ? A[k] : -A[k]; dc = da; }
-            break;
-        case FR_OP_ADD: case FR_OP_SUB:
-            if (da >= 0 && db >= 0) {
-                double sgn = in->op == FR_OP_ADD || mag ? 1.0 : -1.0;
-                dc = da > db ? da : db;
-                for (k = 0; k <= dc; k++) c[k] = (k <= da ? A[k] : 0.0) + sgn * (k <= db ? B[k] : 0.0);
-                dc = fr__tpoly_trim(c, dc);
-            }
-            break;
-        case FR_OP_MUL:
-            if (da >= 0 && db >= 0) dc = fr__tpoly_mul(A, da, B, db, c);
-            break;
-        case FR_OP_SQR:
-            if (da >= 0) dc = fr__tpoly_mul(A, da, A, da, c);
-            break;
-        case FR_OP_POWI:
-            if (da >= 0 && in->k >= 0 && in->k == floor(in->k) && in->k * da <= FR_POLY_MAX_DEGREE) {
-                double base[FR__TAYLOR_N];
-                int n = (int)in->k, db2 = da;
-                if (n >= 2 && (n & (n - 1)) == 0) {
-                    /* x^2, x^4, x^8 (the tangle cube's powers): squarings in
-                       place, no copy of the base and no product with 1 */
-                    dc = fr__tpoly_mul(A, da, A, da, c);
-                    for (n >>= 1; n > 1 && dc >= 0; n >>= 1) dc = fr__tpoly_mul(c, dc, c, dc, c);
-                    break;
-                }
-                for (k = 0; k <= da; k++) base[k] = A[k];
-                c[0] = 1.0; dc = 0;
-                while (n > 0 && dc >= 0) { /* binary powering */
-                    if (n & 1) dc = fr__tpoly_mul(c, dc, base, db2, c);
-                    n >>= 1;
-                    if (n > 0) db2 = fr__tpoly_mul(base, db2, base, db2, base);
-                    if (db2 < 0) { dc = -1; break; }
-                }
-            }
-            break;
-        case FR_OP_DIV:
-            if (da >= 0 && db == 0 && B[0] != 0) { for (k = 0; k <= da; k++) c[k] = A[k] / B[0]; dc = da; }
-            break;
-        default:
-            if (da == 0 && (db == 0 || in->op == FR_OP_SQRT || in->op == FR_OP_ABS || in->op == FR_OP_EXP ||
-                            in->op == FR_OP_LOG || in->op == FR_OP_SIN || in->op == FR_OP_COS ||
-                            in->op == FR_OP_ATAN || in->op == FR_OP_POWC) &&
-                (mag ? (c[0] = fabs(signed_P[(size_t)i * FR__TAYLOR_N]), 1) : fr__tpoly_const_op(in, A[0], B[0], c)))
-                dc = 0;
-            break;
-        }
-        if (dc >= 0) for (k = 0; k <= dc; k++) if (!(c[k] - c[k] == 0)) dc = -1; /* inf/NaN */
         deg[i] = dc;
     }
 }
@@ -4296,6 +4420,80 @@ FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const doub
     return FR_OK;
 }
 
+/* ---------------------------------------------------------------- prepared models: the parts */
+
+/* One instruction of a prepared Taylor program: tape slot `slot` with the
+   degrees fr__tpoly_degree gives for a direction without zero components,
+   an upper bound for every ray (a zero component, or a cancellation, only
+   leaves exact zeros on top, which fr__prog_degree trims). */
+typedef struct fr__tp_t {
+    unsigned int slot;
+    unsigned char da, db, dc, pad;
+} fr__tp_t;
+
+/* A CSG leaf of a prepared model. For a quadric (degree <= 2, `quadric`)
+   its monomial form about e: f(e + q) = k + b.q + q^T A q with q[0] = k,
+   q[1..3] = b, q[4..6] = A's diagonal, q[7..9] = A's xy, xz, yz entries
+   (half the monomial coefficients). `box` holds the leaf's zero set inside
+   the prepared box when `boxed`. */
+typedef struct fr__leaf_t {
+    unsigned int slot;
+    int degree, quadric, boxed;
+    int shape; /* quadrics: FR__LEAF_LINEAR (A = 0), FR__LEAF_DIAGONAL, FR__LEAF_FULL */
+    double e[3], q[10], box[6];
+} fr__leaf_t;
+#define FR__LEAF_LINEAR 1
+#define FR__LEAF_DIAGONAL 2
+#define FR__LEAF_FULL 3
+
+/* A CSG node over signs; a and b index leaves [0, n_leaves), then nodes. */
+typedef struct fr__csg_node_t {
+    unsigned int op, a, b; /* FR__CSG_NEG, FR__CSG_MIN (intersections), FR__CSG_MAX (unions) */
+} fr__csg_node_t;
+#define FR__CSG_NEG 0u
+#define FR__CSG_MIN 1u
+#define FR__CSG_MAX 2u
+
+/* The block of fr_prepared_t.mem: leaves, nodes, program. */
+static size_t fr__prep_layout(unsigned int nl, unsigned int nn, unsigned int np, fr__leaf_t **L, fr__csg_node_t **N,
+                              fr__tp_t **P, void *mem)
+{
+    size_t off = 0;
+    unsigned char *b = (unsigned char *)mem;
+    if (L) *L = (fr__leaf_t *)(void *)b;
+    off += fr__align8((size_t)nl * sizeof(fr__leaf_t));
+    if (N) *N = (fr__csg_node_t *)(void *)(b + off);
+    off += fr__align8((size_t)nn * sizeof(fr__csg_node_t));
+    if (P) *P = (fr__tp_t *)(void *)(b + off);
+    off += fr__align8((size_t)np * sizeof(fr__tp_t));
+    return off;
+}
+
+/* Run a prepared Taylor program on the ray o + s d: the plain run into P
+   and, if M is not NULL, the magnitude run into M in the same pass (the
+   two runs of fr__taylor_run, per slot side by side). */
+static void fr__prog_run(const fr_tape_t *t, const fr__tp_t *prog, unsigned int np, const double o[3], const double d[3],
+                         double *P, double *M)
+{
+    unsigned int j;
+    for (j = 0; j < np; j++) {
+        const fr__tp_t *pi = &prog[j];
+        const fr_instr_t *in = &t->code[pi->slot];
+        size_t i = (size_t)pi->slot * FR__TAYLOR_N, a = (size_t)in->a * FR__TAYLOR_N, b = (size_t)in->b * FR__TAYLOR_N;
+        fr__tpoly_step(in, P + a, pi->da, P + b, pi->db, pi->dc, o, d, P + i, NULL);
+        if (M) fr__tpoly_step(in, M + a, pi->da, M + b, pi->db, pi->dc, o, d, M + i, P + i);
+    }
+}
+
+/* The degree of coefficients c of a slot of prepared degree dg, trailing
+   zeros trimmed; -1 if any is not finite (an overflow on this ray). */
+static int fr__prog_degree(const double *c, int dg)
+{
+    int k;
+    for (k = 0; k <= dg; k++) if (!(c[k] - c[k] == 0)) return -1;
+    return fr__tpoly_trim(c, dg);
+}
+
 /* ---------------------------------------------------------------- shared helpers */
 
 typedef struct fr__ray_t {
@@ -4311,6 +4509,9 @@ typedef struct fr__ray_t {
     double ts, rho;
     double dc[FR_POLY_MAX_DEGREE + 1], dm[FR_POLY_MAX_DEGREE + 1], drho;
     int newton;       /* desc->interval_newton, and pc set */
+    int mono;         /* pc set and g' available: monotone segments hand over (fr__trace_interval) */
+    double gam, dgam; /* gamma_{2n+2} for g's and g''s degrees n (fr__poly_range_of) */
+    const fr_prepared_t *prep; /* desc->prepared, if made for this tape */
     void *eval;
     unsigned long long evals, iters;
     unsigned int max_iters;
@@ -4728,20 +4929,22 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
    7 siblings per level). */
 #define FR__BOUND_DEPTH 6
 #define FR__BOUND_MAX_DEPTH 10
-FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
-                                double out_lo[3], double out_hi[3])
+/* An enclosure of a function over a cell (fr__box_search). */
+typedef fr_result_t (*fr__cell_fn)(const void *ctx, const iv_t box[3], iv_t *r);
+
+/* The bounding box of the octree cells of [lo, hi] at depth `depth` whose
+   enclosure may hold the solid (keep_zero 0: r.hi >= 0) or the surface
+   (keep_zero 1: r.lo <= 0 <= r.hi); cells inside the box found so far are
+   skipped. Nothing kept gives out_lo > out_hi. */
+static fr_result_t fr__box_search(fr__cell_fn fn, const void *ctx, int keep_zero, const double lo[3], const double hi[3],
+                                  int depth, double out_lo[3], double out_hi[3])
 {
     struct { double lo[3], hi[3]; int depth; } stack[7 * FR__BOUND_MAX_DEPTH + 1];
-    int sp = 0, k;
-    if (!t || !lo || !hi || !scratch || !out_lo || !out_hi || t->n_code == 0 || depth < 0) return FR_ERR_INVALID_ARG;
-    if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+    int sp, k;
     for (k = 0; k < 3; k++) {
-        if (!(lo[k] - lo[k] == 0) || !(hi[k] - hi[k] == 0) || !(lo[k] <= hi[k])) return FR_ERR_INVALID_ARG;
         stack[0].lo[k] = lo[k]; stack[0].hi[k] = hi[k];
         out_lo[k] = HUGE_VAL; out_hi[k] = -HUGE_VAL;
     }
-    if (depth == 0) depth = FR__BOUND_DEPTH;
-    if (depth > FR__BOUND_MAX_DEPTH) depth = FR__BOUND_MAX_DEPTH;
     stack[0].depth = 0;
     sp = 1;
     while (sp > 0) {
@@ -4753,8 +4956,8 @@ FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const do
             inside &= stack[sp].lo[k] >= out_lo[k] && stack[sp].hi[k] <= out_hi[k];
         }
         if (inside) continue; /* cannot grow the box */
-        if (fr_eval_interval(t, box, scratch, &r) != FR_OK) return FR_ERR_NO_INTERVAL;
-        if (iv_is_empty(r) || r.hi < 0) continue; /* no solid here (or f is NaN throughout) */
+        if (fn(ctx, box, &r) != FR_OK) return FR_ERR_NO_INTERVAL;
+        if (iv_is_empty(r) || r.hi < 0 || (keep_zero && r.lo > 0)) continue; /* nothing here (or f is NaN throughout) */
         if (stack[sp].depth >= depth) {
             for (k = 0; k < 3; k++) {
                 if (stack[sp].lo[k] < out_lo[k]) out_lo[k] = stack[sp].lo[k];
@@ -4778,6 +4981,32 @@ FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const do
     }
     return FR_OK;
 }
+
+typedef struct fr__tape_cell_t {
+    const fr_tape_t *tape;
+    void *scratch;
+} fr__tape_cell_t;
+static fr_result_t fr__tape_cell(const void *ctx, const iv_t box[3], iv_t *r)
+{
+    const fr__tape_cell_t *c = (const fr__tape_cell_t *)ctx;
+    return fr_eval_interval(c->tape, box, c->scratch, r);
+}
+
+FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
+                                double out_lo[3], double out_hi[3])
+{
+    fr__tape_cell_t c;
+    int k;
+    if (!t || !lo || !hi || !scratch || !out_lo || !out_hi || t->n_code == 0 || depth < 0) return FR_ERR_INVALID_ARG;
+    if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+    for (k = 0; k < 3; k++)
+        if (!(lo[k] - lo[k] == 0) || !(hi[k] - hi[k] == 0) || !(lo[k] <= hi[k])) return FR_ERR_INVALID_ARG;
+    if (depth == 0) depth = FR__BOUND_DEPTH;
+    if (depth > FR__BOUND_MAX_DEPTH) depth = FR__BOUND_MAX_DEPTH;
+    c.tape = t;
+    c.scratch = scratch;
+    return fr__box_search(fr__tape_cell, &c, 0, lo, hi, depth, out_lo, out_hi);
+}
 #endif
 
 /* ---------------------------------------------------------------- analytic */
@@ -4791,12 +5020,26 @@ static double fr__analytic_expand(const fr__ray_t *R, const fr__trace_mem_t *mem
 {
     double ts, ob[3];
     int k;
+    const fr_prepared_t *P = R->prep && R->prep->kind == FR_PREPARED_POLY ? R->prep : NULL;
     ts = -(R->o[0] * R->d[0] + R->o[1] * R->d[1] + R->o[2] * R->d[2]) /
          (R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2]);
     if (!(ts >= R->t0)) ts = R->t0;
     if (!(ts <= R->t1)) ts = R->t1;
     if (!(ts - ts == 0)) ts = 0; /* unbounded segment */
     for (k = 0; k < 3; k++) ob[k] = R->o[k] + ts * R->d[k];
+    if (P) {
+        /* the prepared program: only the shape's slots, fixed degrees, both
+           runs in one pass; an overflow on this ray takes the full runs */
+        fr__tp_t *prog;
+        unsigned int out = R->tape->outputs[0];
+        int dg;
+        fr__prep_layout(P->n_leaves, P->n_nodes, P->n_prog, NULL, NULL, &prog, P->mem);
+        dg = prog[P->n_prog - 1].dc;
+        fr__prog_run(R->tape, prog, P->n_prog, ob, R->d, mem->taylor, with_mag ? mem->taylor_mag : NULL);
+        mem->deg[out] = fr__prog_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, dg);
+        if (with_mag) mem->deg_mag[out] = fr__prog_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, dg);
+        if (mem->deg[out] >= 0 && (!with_mag || mem->deg_mag[out] >= 0)) return ts;
+    }
     fr__taylor_run(R->tape, ob, R->d, mem->taylor, mem->deg, NULL);
     if (with_mag && mem->deg[R->tape->outputs[0]] >= 0)
         fr__taylor_run(R->tape, ob, R->d, mem->taylor_mag, mem->deg_mag, mem->taylor);
@@ -4973,16 +5216,17 @@ static int fr__clip_box(fr__ray_t *R, const double *b)
     int k;
     for (k = 0; k < 3; k++) {
         double pad = FR__BOX_PAD * (b[k + 3] - b[k]) + 8.0 * FR__U * (fabs(R->o[k]) + fabs(b[k]) + fabs(b[k + 3]));
-        double lo = b[k] - pad, hi = b[k + 3] + pad, ta, tb;
+        double lo = b[k] - pad, hi = b[k + 3] + pad, ta, tb, inv;
         if (!(lo <= hi)) return 0; /* empty or NaN box */
         if (R->d[k] == 0) {
             if (R->o[k] < lo || R->o[k] > hi) return 0;
             continue;
         }
-        ta = (lo - R->o[k]) / R->d[k];
-        tb = (hi - R->o[k]) / R->d[k];
+        inv = 1.0 / R->d[k];
+        ta = (lo - R->o[k]) * inv;
+        tb = (hi - R->o[k]) * inv;
         if (ta > tb) { double x = ta; ta = tb; tb = x; }
-        ta -= 4.0 * FR__U * fabs(ta); /* the divisions' rounding, outward */
+        ta -= 4.0 * FR__U * fabs(ta); /* the reciprocal's and products' rounding, outward */
         tb += 4.0 * FR__U * fabs(tb);
         if (ta > a) a = ta;
         if (tb < z) z = tb;
@@ -4992,51 +5236,673 @@ static int fr__clip_box(fr__ray_t *R, const double *b)
     return 1;
 }
 
+/* ---------------------------------------------------------------- prepared models */
+
+/* Leaf zero-set boxes: octree depth, and the padding of the search box
+   beyond the prepared box (twice fr__clip_box's, so the clipped segments
+   of every ray lie inside it). */
+#define FR__LEAF_BOX_DEPTH 6
+#define FR__LEAF_CULL_SHARE 0.25
+/* Quadric leaves use the quadratic formula while their largest coefficient
+   on the ray lies in [2^-300, 2^300] (no overflow or underflow in Kahan's
+   discriminant), else fr_solve_poly. */
+#define FR__QUAD_BIG 2.037035976334486e90     /* 2^300 */
+#define FR__QUAD_SMALL 4.9090934652977266e-91 /* 2^-300 */
+
+static int fr__sgn(double x) { return x > 0 ? 1 : x < 0 ? -1 : 0; }
+
+/* The quadric (degree <= 2) monomial forms of slots 0..last in powers of
+   q = p - e: W holds 10 doubles per slot, [1, X, Y, Z, XX, XY, XZ, YY, YZ,
+   ZZ]; slots of generic degree outside [0, 2] get NaN. Returns 1 if slot
+   `last` came out finite. */
+static int fr__quadric_forms(const fr_tape_t *t, const int *gdeg, unsigned int last, const double e[3], double *W)
+{
+    unsigned int i;
+    int k;
+    for (i = 0; i <= last; i++) {
+        const fr_instr_t *in = &t->code[i];
+        double *c = W + 10 * (size_t)i, r[10];
+        const double *a = W + 10 * (size_t)in->a, *b = W + 10 * (size_t)in->b;
+        for (k = 0; k < 10; k++) r[k] = 0.0;
+        if (gdeg[i] < 0 || gdeg[i] > 2) r[0] = NAN;
+        else switch ((fr_op_t)in->op) {
+        case FR_OP_CONST: r[0] = in->k; break;
+        case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: {
+            int ax = (int)in->op - (int)FR_OP_VAR_X;
+            r[0] = e[ax]; r[1 + ax] = 1.0;
+            break;
+        }
+        case FR_OP_NEG: for (k = 0; k < 10; k++) r[k] = -a[k]; break;
+        case FR_OP_ADD: for (k = 0; k < 10; k++) r[k] = a[k] + b[k]; break;
+        case FR_OP_SUB: for (k = 0; k < 10; k++) r[k] = a[k] - b[k]; break;
+        case FR_OP_SQR: case FR_OP_MUL: case FR_OP_POWI: {
+            /* products of total degree <= 2 (gdeg says so): constant times
+               anything, or linear times linear */
+            const double *y = in->op == FR_OP_MUL ? b : a;
+            int n = in->op == FR_OP_POWI ? (int)in->k : 2;
+            if (n == 0) { r[0] = 1.0; break; }
+            if (n == 1) { for (k = 0; k < 10; k++) r[k] = a[k]; break; }
+            if (in->op == FR_OP_POWI && gdeg[in->a] == 0) { r[0] = fr__powi(a[0], n); break; }
+            if (n != 2) { r[0] = NAN; break; }
+            r[0] = a[0] * y[0];
+            for (k = 1; k < 10; k++) r[k] = a[0] * y[k] + a[k] * y[0];
+            r[4] += a[1] * y[1]; r[5] += a[1] * y[2] + a[2] * y[1]; r[6] += a[1] * y[3] + a[3] * y[1];
+            r[7] += a[2] * y[2]; r[8] += a[2] * y[3] + a[3] * y[2]; r[9] += a[3] * y[3];
+            break;
+        }
+        case FR_OP_DIV: for (k = 0; k < 10; k++) r[k] = b[0] != 0 ? a[k] / b[0] : NAN; break;
+        default:
+            if (!fr__tpoly_const_op(in, a[0], b[0], &r[0])) r[0] = NAN;
+            break;
+        }
+        for (k = 0; k < 10; k++) c[k] = r[k];
+    }
+    for (k = 0; k < 10; k++) if (!(W[10 * (size_t)last + (size_t)k] - W[10 * (size_t)last + (size_t)k] == 0)) return 0;
+    return 1;
+}
+
+/* The leaf's form from W's slot: k, b, A's diagonal, A's off-diagonal. */
+static void fr__quadric_store(fr__leaf_t *L, const double *w)
+{
+    L->q[0] = w[0]; L->q[1] = w[1]; L->q[2] = w[2]; L->q[3] = w[3];
+    L->q[4] = w[4]; L->q[5] = w[7]; L->q[6] = w[9];
+    L->q[7] = 0.5 * w[5]; L->q[8] = 0.5 * w[6]; L->q[9] = 0.5 * w[8];
+    /* planes and axis-aligned quadrics (the library's spheres, cylinders,
+       cones, ellipsoids) skip the products by zeros */
+    L->shape = L->q[7] != 0 || L->q[8] != 0 || L->q[9] != 0 ? FR__LEAF_FULL
+             : L->q[4] != 0 || L->q[5] != 0 || L->q[6] != 0 ? FR__LEAF_DIAGONAL : FR__LEAF_LINEAR;
+}
+
+#ifndef FR_NO_INTERVAL
+/* A quadric leaf's form over a cell, in intervals (rigorous for the form). */
+static fr_result_t fr__quadric_cell(const void *ctx, const iv_t box[3], iv_t *r)
+{
+    const fr__leaf_t *L = (const fr__leaf_t *)ctx;
+    iv_t X[3], f = iv_point(L->q[0]);
+    int k;
+    for (k = 0; k < 3; k++) X[k] = iv_sub(box[k], iv_point(L->e[k]));
+    for (k = 0; k < 3; k++) {
+        f = iv_add(f, iv_mul_d(X[k], L->q[1 + k]));
+        f = iv_add(f, iv_mul_d(iv_sqr(X[k]), L->q[4 + k]));
+    }
+    f = iv_add(f, iv_mul_d(iv_mul(X[0], X[1]), 2.0 * L->q[7]));
+    f = iv_add(f, iv_mul_d(iv_mul(X[0], X[2]), 2.0 * L->q[8]));
+    f = iv_add(f, iv_mul_d(iv_mul(X[1], X[2]), 2.0 * L->q[9]));
+    *r = f;
+    return FR_OK;
+}
+#endif
+
+/* The search box of leaf zero sets: the prepared box, padded. */
+static void fr__leaf_search_box(const double *box, double lo[3], double hi[3])
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        double pad = 2.0 * (FR__BOX_PAD * (box[k + 3] - box[k]) + 8.0 * FR__U * (fabs(box[k]) + fabs(box[k + 3])));
+        lo[k] = box[k] - pad;
+        hi[k] = box[k + 3] + pad;
+    }
+}
+
+/* A leaf's zero-set box, padded as fr__clip_box pads (fr__slab_meets adds
+   the ray's own rounding); an empty box stays empty. */
+static void fr__leaf_box_set(fr__leaf_t *lf, const double lo[3], const double hi[3], const double *model)
+{
+    double v = 1.0, vm = 1.0;
+    int k;
+    for (k = 0; k < 3; k++) {
+        double pad = lo[k] <= hi[k] ? FR__BOX_PAD * (hi[k] - lo[k]) + 8.0 * FR__U * (fabs(lo[k]) + fabs(hi[k])) : 0.0;
+        lf->box[k] = lo[k] - pad;
+        lf->box[k + 3] = hi[k] + pad;
+        v *= lo[k] <= hi[k] ? hi[k] - lo[k] : 0.0;
+        vm *= model[k + 3] - model[k];
+    }
+    /* A slab test costs about half a quadric leaf, and a plane less than
+       the test: quadric leaves are culled only when their box is at most
+       FR__LEAF_CULL_SHARE of the model's (rays through the model then miss
+       it often), other leaves always. */
+    lf->boxed = !lf->quadric || (lf->shape != FR__LEAF_LINEAR && v <= FR__LEAF_CULL_SHARE * vm);
+}
+
+/* The leaves' forms and boxes. Quadrics: the form about the search box's
+   centre gives a first zero-set box, then the form about that box's
+   centre (the leaf's own middle: no cancellation of far-off terms) and
+   the final box from it. Other leaves: the box of their sub-tape's zero
+   set (compacted with the work area). */
+static fr_result_t fr__prepare_leaves(const fr_tape_t *t, const int *gdeg, const double *box, fr__leaf_t *L,
+                                      unsigned int nl, unsigned char *work)
+{
+    size_t n = t->n_code;
+    double *W = (double *)(void *)work;
+    double lo[3], hi[3], c[3];
+    unsigned int j;
+    int k;
+    fr__leaf_search_box(box, lo, hi);
+    for (k = 0; k < 3; k++) c[k] = 0.5 * lo[k] + 0.5 * hi[k];
+    for (j = 0; j < nl; j++) {
+        fr__leaf_t *lf = &L[j];
+        lf->boxed = 0;
+        if (lf->degree <= 2 && fr__quadric_forms(t, gdeg, lf->slot, c, W)) {
+            lf->quadric = 1;
+            for (k = 0; k < 3; k++) lf->e[k] = c[k];
+            fr__quadric_store(lf, W + 10 * (size_t)lf->slot);
+#ifndef FR_NO_INTERVAL
+            {
+                double blo[3], bhi[3], e2[3];
+                if (fr__box_search(fr__quadric_cell, lf, 1, lo, hi, FR__LEAF_BOX_DEPTH, blo, bhi) != FR_OK) continue;
+                if (blo[0] <= bhi[0]) {
+                    for (k = 0; k < 3; k++) e2[k] = 0.5 * blo[k] + 0.5 * bhi[k];
+                    if (!fr__quadric_forms(t, gdeg, lf->slot, e2, W)) continue;
+                    for (k = 0; k < 3; k++) lf->e[k] = e2[k];
+                    fr__quadric_store(lf, W + 10 * (size_t)lf->slot);
+                    if (fr__box_search(fr__quadric_cell, lf, 1, lo, hi, FR__LEAF_BOX_DEPTH, blo, bhi) != FR_OK) continue;
+                }
+                fr__leaf_box_set(lf, blo, bhi, box);
+            }
+#endif
+            continue;
+        }
+        lf->quadric = 0;
+#ifndef FR_NO_INTERVAL
+        if (!(t->flags & FR_TAPE_NO_INTERVAL)) {
+            /* the leaf's sub-tape, compacted: live, newidx, rep, code, then interval scratch */
+            unsigned char *live = work;
+            unsigned int *newidx = (unsigned int *)(void *)(work + fr__align8(n)), *rep = newidx + n, m, i;
+            fr_instr_t *code = (fr_instr_t *)(void *)(work + fr__align8(n) + fr__align8(2 * n * sizeof(unsigned int)));
+            void *scr = (unsigned char *)code + fr__align8(n * sizeof(fr_instr_t));
+            fr_tape_t sub = *t;
+            fr__tape_cell_t cell;
+            double blo[3], bhi[3];
+            for (i = 0; i < n; i++) rep[i] = i;
+            m = fr__compact(t->code, (unsigned int)n, rep, &lf->slot, 1, live, newidx, code, &sub.outputs[0]);
+            sub.code = code;
+            sub.n_code = m;
+            sub.n_outputs = 1;
+            cell.tape = &sub;
+            cell.scratch = scr;
+            if (fr__box_search(fr__tape_cell, &cell, 1, lo, hi, FR__LEAF_BOX_DEPTH, blo, bhi) == FR_OK)
+                fr__leaf_box_set(lf, blo, bhi, box);
+        }
+#endif
+    }
+    return FR_OK;
+}
+
+FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepared_t *out)
+{
+    size_t n, work_bytes;
+    unsigned char *work, *need;
+    int *gdeg;
+    unsigned int *idx, i, outs, nl = 0, nn = 0, np = 0, j;
+    fr__leaf_t *L;
+    fr__csg_node_t *N;
+    fr__tp_t *P;
+    int k;
+    if (!t || !out || t->n_code == 0) return FR_ERR_INVALID_ARG;
+    memset(out, 0, sizeof *out);
+    out->tape = t;
+    out->alloc_ctx = t->alloc_ctx;
+    if (bounds) {
+        for (k = 0; k < 3; k++)
+            if (!(bounds[k] - bounds[k] == 0) || !(bounds[k + 3] - bounds[k + 3] == 0) || !(bounds[k] <= bounds[k + 3]))
+                return FR_ERR_INVALID_ARG;
+        for (k = 0; k < 6; k++) out->box[k] = bounds[k];
+        out->has_box = 1;
+    }
+    n = t->n_code;
+    /* work: generic degrees, marks, indices; then 10 doubles per slot for
+       quadric forms, or a compacted sub-tape with its interval scratch */
+    work_bytes = fr__align8(n * sizeof(int)) + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int));
+    {
+        size_t a = 10 * n * sizeof(double), b = fr__align8(n) + fr__align8(2 * n * sizeof(unsigned int)) +
+                                                 fr__align8(n * sizeof(fr_instr_t)) + fr__eval_scratch_max(t);
+        work_bytes += a > b ? a : b;
+    }
+    work = (unsigned char *)FR_MALLOC(work_bytes, t->alloc_ctx);
+    if (!work) return FR_ERR_OUT_OF_MEMORY;
+    gdeg = (int *)(void *)work;
+    need = work + fr__align8(n * sizeof(int));
+    idx = (unsigned int *)(void *)(need + 2 * fr__align8(n));
+    for (i = 0; i < n; i++) {
+        const fr_instr_t *in = &t->code[i];
+        gdeg[i] = fr__tpoly_degree(in, i > 0 ? gdeg[in->a] : -1, i > 0 ? gdeg[in->b] : -1, 1);
+    }
+    outs = t->outputs[0];
+    /* need: 1 shape slot the analysis reaches, 2 in the Taylor program too */
+    memset(need, 0, n);
+    need[outs] = 1;
+    out->kind = gdeg[outs] >= 0 ? FR_PREPARED_POLY : FR_PREPARED_CSG;
+    for (i = outs + 1; i-- > 0 && out->kind != FR_PREPARED_NONE;) {
+        const fr_instr_t *in = &t->code[i];
+        if (!need[i]) continue;
+        if (gdeg[i] >= 0) { /* a polynomial slot: in the program, with its operands */
+            int ar = fr__arity(in->op);
+            if (out->kind == FR_PREPARED_POLY || need[i] == 2) {
+                need[i] = 2;
+                if (ar >= 1) need[in->a] = 2;
+                if (ar >= 2) need[in->b] = 2;
+            }
+            continue;
+        }
+        switch ((fr_op_t)in->op) { /* a CSG node */
+        case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
+            if (!need[in->b]) need[in->b] = 1;
+            /* fallthrough */
+        case FR_OP_NEG:
+            if (!need[in->a]) need[in->a] = 1;
+            break;
+        default: out->kind = FR_PREPARED_NONE; break;
+        }
+    }
+    if (out->kind == FR_PREPARED_NONE) { FR_FREE(work, t->alloc_ctx); return FR_OK; }
+    /* leaves and nodes of the CSG tree; leaves that are not quadrics, or all
+       of them without a box, join the program (second pass below) */
+    if (out->kind == FR_PREPARED_CSG)
+        for (i = 0; i <= outs; i++) {
+            if (!need[i]) continue;
+            if (gdeg[i] >= 0) idx[i] = nl++;
+            else nn++;
+        }
+    for (i = 0; i <= outs; i++) if (need[i] == 2) np++;
+    {
+        size_t bytes = fr__prep_layout(nl, nn, np + (unsigned int)n, NULL, NULL, NULL, NULL);
+        out->mem = FR_MALLOC(bytes, t->alloc_ctx);
+        if (!out->mem) { FR_FREE(work, t->alloc_ctx); memset(out, 0, sizeof *out); return FR_ERR_OUT_OF_MEMORY; }
+    }
+    fr__prep_layout(nl, nn, np + (unsigned int)n, &L, &N, &P, out->mem);
+    if (out->kind == FR_PREPARED_CSG) {
+        unsigned int jl = 0, jn = 0;
+        for (i = 0; i <= outs; i++) {
+            const fr_instr_t *in = &t->code[i];
+            if (!need[i]) continue;
+            if (gdeg[i] >= 0) {
+                memset(&L[jl], 0, sizeof L[jl]);
+                L[jl].slot = i;
+                L[jl].degree = gdeg[i];
+                jl++;
+                continue;
+            }
+            N[jn].op = in->op == FR_OP_NEG ? FR__CSG_NEG : in->op == FR_OP_MIN || in->op == FR_OP_RINT ? FR__CSG_MIN
+                                                                                                     : FR__CSG_MAX;
+            N[jn].a = idx[in->a];
+            N[jn].b = in->op == FR_OP_NEG ? 0 : idx[in->b];
+            idx[i] = nl + jn;
+            jn++;
+        }
+        out->n_leaves = nl;
+        out->n_nodes = nn;
+        if (out->has_box) {
+            fr__prepare_leaves(t, gdeg, out->box, L, nl, need + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int)));
+        }
+        /* non-quadric leaves: their subtrees make the program */
+        for (j = 0; j < nl; j++) {
+            if (L[j].quadric) { out->n_quadrics++; continue; }
+            need[L[j].slot] = 2;
+        }
+        for (i = outs + 1; i-- > 0;) {
+            const fr_instr_t *in = &t->code[i];
+            int ar;
+            if (need[i] != 2) continue;
+            ar = fr__arity(in->op);
+            if (ar >= 1) need[in->a] = 2;
+            if (ar >= 2) need[in->b] = 2;
+        }
+    }
+    np = 0;
+    for (i = 0; i <= outs; i++) {
+        const fr_instr_t *in = &t->code[i];
+        if (need[i] != 2) continue;
+        P[np].slot = i;
+        P[np].dc = (unsigned char)gdeg[i];
+        P[np].da = (unsigned char)(fr__arity(in->op) >= 1 && gdeg[in->a] > 0 ? gdeg[in->a] : 0);
+        P[np].db = (unsigned char)(fr__arity(in->op) >= 2 && gdeg[in->b] > 0 ? gdeg[in->b] : 0);
+        P[np].pad = 0;
+        np++;
+    }
+    out->n_prog = np;
+    FR_FREE(work, t->alloc_ctx);
+    return FR_OK;
+}
+
+FR_DEF void fr_prepared_free(fr_prepared_t *p)
+{
+    if (!p) return;
+    if (p->mem) FR_FREE(p->mem, p->alloc_ctx);
+    memset(p, 0, sizeof *p);
+}
+
+/* A ray set up for many slab tests against leaf boxes (padded at
+   fr_prepare as fr__clip_box pads): reciprocal directions, and the
+   rounding of o's subtraction as one pad in t. */
+typedef struct fr__slab_t {
+    double o[3], inv[3], opad[3], tpad;
+    int flat[3]; /* d[k] == 0 */
+} fr__slab_t;
+static void fr__slab_init(fr__slab_t *S, const double o[3], const double d[3])
+{
+    int k;
+    S->tpad = 0.0;
+    for (k = 0; k < 3; k++) {
+        S->o[k] = o[k];
+        S->flat[k] = d[k] == 0;
+        S->inv[k] = d[k] != 0 ? 1.0 / d[k] : 0.0;
+        S->opad[k] = 8.0 * FR__U * fabs(o[k]);
+        if (S->opad[k] * fabs(S->inv[k]) > S->tpad) S->tpad = S->opad[k] * fabs(S->inv[k]);
+    }
+}
+/* Does o + t d, t in [a, z], meet the (padded) box b? The slab test of
+   fr__clip_box; the products' rounding (4u relative, monotone in t) is
+   applied once to the final bounds. */
+static int fr__slab_meets(const fr__slab_t *S, const double *b, double a, double z)
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        double lo = b[k] - S->o[k], hi = b[k + 3] - S->o[k], ta, tb;
+        if (S->flat[k]) {
+            if (!(lo <= S->opad[k] && hi >= -S->opad[k])) return 0;
+            continue;
+        }
+        ta = lo * S->inv[k];
+        tb = hi * S->inv[k];
+        if (ta > tb) { double x = ta; ta = tb; tb = x; }
+        if (ta > a) a = ta;
+        if (tb < z) z = tb;
+    }
+    return a - 4.0 * FR__U * fabs(a) - S->tpad <= z + 4.0 * FR__U * fabs(z) + S->tpad;
+}
+
+/* A leaf's crossing roots, general degree: fr_solve_poly on [s0, s1] (s = t
+   - ts), each root a crossing where the leaf's sign differs in the gaps
+   either side (Horner at the gaps' midpoints, so a double root is a touch);
+   roots at s0 belong to the part before the segment. cand receives ts + s
+   of the crossings, *sg the sign just after s0. -1: invalid coefficients. */
+static int fr__poly_leaf(const double *c, int deg, double s0, double s1, double ts, int culled, double *cand, int *sg)
+{
+    double r[FR_POLY_MAX_DEGREE], x, y;
+    int nr, j, m = 0, prev, first = 0, k;
+    if (culled || deg <= 0) {
+        x = 0.5 * s0 + 0.5 * s1;
+        for (y = c[deg > 0 ? deg : 0], k = deg; k-- > 0;) y = y * x + c[k];
+        *sg = fr__sgn(y);
+        return 0;
+    }
+    nr = fr_solve_poly(c, deg, s0, s1, r);
+    if (nr < 0) return -1;
+    while (first < nr && r[first] <= s0) first++;
+    prev = 0;
+    for (j = first - 1; j < nr; j++) {
+        double a = j < first ? s0 : r[j], b = j + 1 < nr ? r[j + 1] : s1;
+        int g;
+        x = 0.5 * a + 0.5 * b;
+        for (y = c[deg], k = deg; k-- > 0;) y = y * x + c[k];
+        g = fr__sgn(y);
+        if (j < first) *sg = prev = g;
+        else {
+            if (g != 0 && prev != 0 && g != prev) cand[m++] = ts + r[j];
+            if (g != 0) prev = g;
+        }
+    }
+    return m;
+}
+
+/* A quadric leaf on the ray: g(ts + s) = c0 + c1 s + c2 s^2 with ts the
+   ray's point nearest the leaf's centre e, from the leaf's monomial form
+   (a few dozen flops instead of a Taylor run over its subtree). Its roots
+   by the quadratic formula, the discriminant by Kahan's fma scheme (exact
+   up to the final roundings, so the roots are within a few ulps of those of
+   the double coefficients, the cancelling one taken as c0 / h); D <= 0 is
+   no crossing (a double root only touches). Returns the crossings in (t0,
+   t1] into cand and the sign just after t0 into *sg, as fr__poly_leaf. A
+   leaf whose box the segment misses only needs its sign. */
+static int fr__quadric_leaf(const fr__leaf_t *L, const fr__ray_t *R, double inv_dd, int culled, double *cand, int *sg)
+{
+    const double *q = L->q, *d = R->d;
+    double oe[3], q0[3], u[3], v[3], c[3], r[2], ts, s0, s1, m, lead;
+    int k, n, after = 0, cnt = 0;
+    for (k = 0; k < 3; k++) oe[k] = R->o[k] - L->e[k];
+    if (L->shape == FR__LEAF_LINEAR) {
+        /* a plane: g(t) = c0 + c1 t about t = 0, its root t = -c0 / c1 as
+           well conditioned as o + t d itself */
+        c[0] = q[0] + (q[1] * oe[0] + q[2] * oe[1] + q[3] * oe[2]);
+        c[1] = q[1] * d[0] + q[2] * d[1] + q[3] * d[2];
+        if (culled || c[1] == 0) { *sg = fr__sgn(c[0] + c[1] * R->t0); return 0; }
+        r[0] = -c[0] / c[1];
+        if (!(r[0] - r[0] == 0)) return -1;
+        *sg = r[0] > R->t0 ? -fr__sgn(c[1]) : fr__sgn(c[1]);
+        if (r[0] > R->t0 && r[0] <= R->t1) { cand[0] = r[0]; return 1; }
+        return 0;
+    }
+    ts = -(oe[0] * d[0] + oe[1] * d[1] + oe[2] * d[2]) * inv_dd;
+    if (!(ts >= R->t0)) ts = R->t0;
+    if (!(ts <= R->t1)) ts = R->t1;
+    for (k = 0; k < 3; k++) q0[k] = oe[k] + ts * d[k];
+    if (L->shape == FR__LEAF_DIAGONAL) {
+        for (k = 0; k < 3; k++) { v[k] = q[4 + k] * q0[k]; u[k] = q[4 + k] * d[k]; }
+    } else {
+        v[0] = q[4] * q0[0] + q[7] * q0[1] + q[8] * q0[2];
+        v[1] = q[7] * q0[0] + q[5] * q0[1] + q[9] * q0[2];
+        v[2] = q[8] * q0[0] + q[9] * q0[1] + q[6] * q0[2];
+        u[0] = q[4] * d[0] + q[7] * d[1] + q[8] * d[2];
+        u[1] = q[7] * d[0] + q[5] * d[1] + q[9] * d[2];
+        u[2] = q[8] * d[0] + q[9] * d[1] + q[6] * d[2];
+    }
+    c[0] = q[0] + (q0[0] * (q[1] + v[0]) + q0[1] * (q[2] + v[1]) + q0[2] * (q[3] + v[2]));
+    if (culled) { *sg = fr__sgn(c[0]); return 0; }
+    c[2] = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+    c[1] = (q[1] * d[0] + q[2] * d[1] + q[3] * d[2]) + 2.0 * (q0[0] * u[0] + q0[1] * u[1] + q0[2] * u[2]);
+    s0 = R->t0 - ts;
+    s1 = R->t1 - ts;
+    m = fabs(c[0]) > fabs(c[1]) ? fabs(c[0]) : fabs(c[1]);
+    if (fabs(c[2]) > m) m = fabs(c[2]);
+    if (!(m - m == 0)) return -1;
+    if (m == 0) { *sg = 0; return 0; }
+    if (!(m < FR__QUAD_BIG && m > FR__QUAD_SMALL)) return fr__poly_leaf(c, fr__tpoly_trim(c, 2), s0, s1, ts, 0, cand, sg);
+    if (c[2] == 0) {
+        if (c[1] == 0) { *sg = fr__sgn(c[0]); return 0; }
+        r[0] = -c[0] / c[1];
+        n = 1;
+        lead = c[1];
+    } else {
+        double p = c[1] * c[1], dp = fma(c[1], c[1], -p), c4 = 4.0 * c[2], qq = c4 * c[0], dq = fma(c4, c[0], -qq);
+        double D = (p - qq) + (dp - dq), h;
+        lead = c[2];
+        if (!(D > 0)) { *sg = fr__sgn(lead); return 0; }
+        h = -0.5 * (c[1] + copysign(sqrt(D), c[1]));
+        r[0] = h / c[2];
+        r[1] = c[0] / h;
+        if (r[0] > r[1]) { double x = r[0]; r[0] = r[1]; r[1] = x; }
+        n = 2;
+    }
+    for (k = 0; k < n; k++) after += r[k] > s0;
+    *sg = (after & 1) ? -fr__sgn(lead) : fr__sgn(lead);
+    for (k = 0; k < n; k++)
+        if (r[k] > s0 && r[k] <= s1) cand[cnt++] = ts + r[k];
+    return cnt;
+}
+
+/* The sign of the shape from the leaves' signs v[0, nl): min, max and
+   negation over signs, as over values (an R-function has the sign of min or
+   max of its operands); node values go to v[nl...]. */
+static int fr__csg_sign(const fr__csg_node_t *nd, unsigned int nn, unsigned int nl, signed char *v)
+{
+    signed char *w = v + nl;
+    unsigned int j;
+    for (j = 0; j < nn; j++) {
+        int a = v[nd[j].a], b = v[nd[j].b], mn = a < b ? a : b, mx = a < b ? b : a;
+        w[j] = (signed char)(nd[j].op == FR__CSG_MAX ? mx : nd[j].op == FR__CSG_MIN ? mn : -a);
+    }
+    return nn ? w[nn - 1] : v[0];
+}
+
+/* ANALYTIC on a prepared CSG model (paper §3.1.1): every leaf's crossings
+   of the segment, sorted; a candidate is the hit where the shape's sign
+   differs between just before and just after it -- within the same
+   FR__CSG_SIGN_ULPS bracket as fr__trace_analytic -- found by flipping the
+   sign of each crossing's leaf (v_lo: crossings before the bracket, v_hi:
+   up to its end) and evaluating the boolean tree. *leaf and *orient give
+   the normal: the hit leaf's gradient, times -1 where the shape's sign
+   rises with the leaf's, +1 where it falls (0: unknown, use AD). Returns
+   FR_ERR_NOT_POLYNOMIAL when a leaf overflows on this ray (the caller then
+   traces without the prepared model). */
+static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *mem, int *found, double *t_hit,
+                                          double *t_err, unsigned int *leaf, int *orient)
+{
+    const fr_prepared_t *Pp = R->prep;
+    const fr_tape_t *t = R->tape;
+    fr__leaf_t *L;
+    fr__csg_node_t *N;
+    fr__tp_t *prog;
+    unsigned int nl = Pp->n_leaves, nn = Pp->n_nodes, j;
+    double *cand = mem->cand, dd, inv_dd, oscale, ts = 0;
+    unsigned int *cl = mem->cleaf;
+    signed char *vlo = mem->sgn, *vhi = mem->sgn + nl + nn;
+    int nc = 0, k, plo = 0, phi = 0, glo = 0, ghi = 0;
+    fr__slab_t S;
+    int slab = 0;
+    fr__prep_layout(nl, nn, Pp->n_prog, &L, &N, &prog, Pp->mem);
+    *found = 0;
+    *orient = 0;
+    dd = R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2];
+    inv_dd = 1.0 / dd;
+    if (Pp->n_prog) { /* the Taylor program of the leaves that are not quadrics */
+        double ob[3];
+        ts = -(R->o[0] * R->d[0] + R->o[1] * R->d[1] + R->o[2] * R->d[2]) * inv_dd;
+        if (!(ts >= R->t0)) ts = R->t0;
+        if (!(ts <= R->t1)) ts = R->t1;
+        for (k = 0; k < 3; k++) ob[k] = R->o[k] + ts * R->d[k];
+        fr__prog_run(t, prog, Pp->n_prog, ob, R->d, mem->taylor, NULL);
+    }
+    for (j = 0; j < nl; j++) {
+        const fr__leaf_t *lf = &L[j];
+        int culled = 0, sg = 0, m;
+        if (lf->boxed) {
+            if (!slab) { fr__slab_init(&S, R->o, R->d); slab = 1; }
+            culled = !fr__slab_meets(&S, lf->box, R->t0, R->t1);
+        }
+        if (lf->quadric) m = fr__quadric_leaf(lf, R, inv_dd, culled, cand + nc, &sg);
+        else {
+            const double *c = mem->taylor + (size_t)lf->slot * FR__TAYLOR_N;
+            int dg = fr__prog_degree(c, lf->degree);
+            m = dg < 0 ? -1 : fr__poly_leaf(c, dg, R->t0 - ts, R->t1 - ts, ts, culled, cand + nc, &sg);
+        }
+        if (m < 0) return FR_ERR_NOT_POLYNOMIAL;
+        if (!culled) R->iters++;
+        for (k = 0; k < m; k++) cl[nc + k] = j;
+        nc += m;
+        vlo[j] = vhi[j] = (signed char)sg;
+    }
+    R->evals += nl;
+    for (k = 1; k < nc; k++) { /* insertion sort: few candidates */
+        double x = cand[k];
+        unsigned int y = cl[k];
+        int i = k;
+        while (i > 0 && cand[i - 1] > x) { cand[i] = cand[i - 1]; cl[i] = cl[i - 1]; i--; }
+        cand[i] = x;
+        cl[i] = y;
+    }
+    if (nc == 0) return FR_OK;
+    glo = ghi = fr__csg_sign(N, nn, nl, vlo);
+    oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) / (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
+    for (k = 0; k < nc; k++) {
+        double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
+        int mlo = plo, mhi = phi;
+        while (phi < nc && cand[phi] <= tc + dt) { vhi[cl[phi]] = (signed char)-vhi[cl[phi]]; phi++; }
+        while (plo < nc && cand[plo] < tc - dt) { vlo[cl[plo]] = (signed char)-vlo[cl[plo]]; plo++; }
+        /* the tree again only where its leaves changed */
+        if (plo != mlo) glo = fr__csg_sign(N, nn, nl, vlo);
+        if (phi != mhi) ghi = fr__csg_sign(N, nn, nl, vhi);
+        R->iters++;
+        if (glo * ghi < 0) {
+            unsigned int lf = cl[k];
+            *found = 1;
+            *t_hit = tc;
+            *t_err = dt;
+            *leaf = lf;
+            if (L[lf].quadric && vlo[lf] * vhi[lf] < 0) *orient = (vhi[lf] > vlo[lf]) == (ghi > glo) ? -1 : 1;
+            return FR_OK;
+        }
+    }
+    return FR_OK;
+}
+
+/* The normal of a prepared quadric leaf at p: orient times its gradient
+   b + 2 A (p - e), unit; 0 if it vanishes. */
+static int fr__quadric_normal(const fr__leaf_t *L, int orient, const double p[3], double nrm[3])
+{
+    const double *q = L->q;
+    double x = p[0] - L->e[0], y = p[1] - L->e[1], z = p[2] - L->e[2], g[3], len;
+    int k;
+    g[0] = q[1] + 2.0 * (q[4] * x + q[7] * y + q[8] * z);
+    g[1] = q[2] + 2.0 * (q[7] * x + q[5] * y + q[9] * z);
+    g[2] = q[3] + 2.0 * (q[8] * x + q[9] * y + q[6] * z);
+    len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    if (!(len > 0 && len < HUGE_VAL)) return 0;
+    for (k = 0; k < 3; k++) nrm[k] = orient * g[k] / len;
+    return 1;
+}
+
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
 {
-    fr_trace_desc_t desc;
+    fr_trace_desc_t zero_desc;
+    const fr_trace_desc_t *desc = desc_in;
     fr__trace_mem_t mem;
     fr__ray_t R;
     fr_method_t m;
     fr_result_t e = FR_OK;
-    double t_hit = 0, t_err = 0, L, ts = 0;
-    int found = 0, k, cnt = -2;
+    double t_hit = 0, t_err = 0, L, ts = 0, step;
+    int found = 0, k, cnt = -2, orient = 0;
+    unsigned int leaf = 0;
     if (!t || !o || !d || !scratch || !hit || t->n_code == 0) return FR_ERR_INVALID_ARG;
-    if (desc_in) desc = *desc_in;
-    else {
-        unsigned char *z = (unsigned char *)&desc;
+    if (!desc) {
+        unsigned char *z = (unsigned char *)&zero_desc;
         size_t zi;
-        for (zi = 0; zi < sizeof desc; zi++) z[zi] = 0;
+        for (zi = 0; zi < sizeof zero_desc; zi++) z[zi] = 0;
+        desc = &zero_desc;
     }
     for (k = 0; k < 3; k++)
         if (!(o[k] - o[k] == 0) || !(d[k] - d[k] == 0)) return FR_ERR_INVALID_ARG;
-    if (!(t0 <= t1) || t0 != t0 || (d[0] == 0 && d[1] == 0 && d[2] == 0) || (int)desc.method < 0 || (int)desc.method >= (int)FR_METHOD_COUNT_)
+    if (!(t0 <= t1) || t0 != t0 || (d[0] == 0 && d[1] == 0 && d[2] == 0) || (int)desc->method < 0 || (int)desc->method >= (int)FR_METHOD_COUNT_)
         return FR_ERR_INVALID_ARG;
-    fr__trace_layout(t, scratch, &mem);
-    R.tape = t;
-    for (k = 0; k < 3; k++) { R.o[k] = o[k]; R.d[k] = d[k]; }
-    R.t0 = t0; R.t1 = t1;
-    R.eval = mem.eval;
-    R.evals = R.iters = 0;
-    R.max_iters = desc.max_iters ? desc.max_iters : FR__TRACE_MAX_ITERS;
-    if (desc.tol > 0) R.tol = desc.tol;
-    else if (desc.tol < 0) R.tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
-    else R.tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + fabs(t0));
-    if (!(R.tol > 0)) R.tol = FR__U;
-    R.footprint = desc.footprint > 0 && desc.footprint < HUGE_VAL ? desc.footprint : 0.0;
-    R.pc = R.pm = NULL;
-    R.pdeg = R.mdeg = -1;
-    R.ts = R.rho = R.drho = 0.0;
-    R.newton = 0;
-    R.any_hit = desc.any_hit;
     hit->hit = 0;
-    hit->method = m = desc.method;
+    hit->method = m = desc->method;
     hit->t = hit->t_err = 0.0;
     for (k = 0; k < 3; k++) hit->point[k] = hit->normal[k] = 0.0;
     hit->evals = hit->iterations = 0;
-    if (desc.bounds && !fr__clip_box(&R, desc.bounds)) return FR_OK; /* the ray misses the solid's box */
-    L = desc.lipschitz > 0 ? desc.lipschitz : t->lipschitz;
+    for (k = 0; k < 3; k++) { R.o[k] = o[k]; R.d[k] = d[k]; }
+    R.t0 = t0; R.t1 = t1;
+    /* clip first: rays that miss the solid's box cost only this (a prepared
+       model's box clips too when desc->bounds does not) */
+    R.prep = desc->prepared && desc->prepared->tape == t && desc->prepared->kind != FR_PREPARED_NONE ? desc->prepared : NULL;
+    if (desc->bounds && !fr__clip_box(&R, desc->bounds)) return FR_OK; /* the ray misses the solid's box */
+    if (!desc->bounds && R.prep && R.prep->has_box && !fr__clip_box(&R, R.prep->box)) return FR_OK;
+    fr__trace_layout(t, scratch, &mem);
+    R.tape = t;
+    R.eval = mem.eval;
+    R.evals = R.iters = 0;
+    R.max_iters = desc->max_iters ? desc->max_iters : FR__TRACE_MAX_ITERS;
+    if (desc->tol > 0) R.tol = desc->tol;
+    else if (desc->tol < 0) R.tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
+    else R.tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + fabs(t0));
+    if (!(R.tol > 0)) R.tol = FR__U;
+    R.footprint = desc->footprint > 0 && desc->footprint < HUGE_VAL ? desc->footprint : 0.0;
+    R.pc = R.pm = NULL;
+    R.pdeg = R.mdeg = -1;
+    R.ts = R.rho = R.drho = 0.0;
+    R.newton = R.mono = 0;
+    R.gam = R.dgam = 0.0;
+    R.any_hit = desc->any_hit;
+    step = desc->step;
+    L = desc->lipschitz > 0 ? desc->lipschitz : t->lipschitz;
+    if (R.prep && R.prep->kind == FR_PREPARED_CSG && (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC)) {
+        e = fr__trace_prepared_csg(&R, &mem, &found, &t_hit, &t_err, &leaf, &orient);
+        if (e == FR_OK) { m = FR_METHOD_ANALYTIC; goto done; }
+        /* a leaf overflowed on this ray: trace it without the prepared model */
+        e = FR_OK;
+        found = 0;
+        orient = 0;
+    }
+    R.prep = R.prep && R.prep->kind == FR_PREPARED_POLY ? R.prep : NULL;
     if (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC) ts = fr__analytic_expand(&R, &mem, 0);
     if (m == FR_METHOD_AUTO) {
         /* analytic if every shape path ends in polynomial leaves */
@@ -5051,18 +5917,18 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
         e = fr__trace_analytic(&R, &mem, ts, cnt, &found, &t_hit, &t_err);
         break;
     case FR_METHOD_STEP:
-        if (desc.refine == FR_REFINE_NEWTON && (t->flags & FR_TAPE_NO_GRADIENT)) return FR_ERR_NO_GRADIENT;
-        if (desc.step <= 0 && !(L > 0 && L < HUGE_VAL)) {
+        if (desc->refine == FR_REFINE_NEWTON && (t->flags & FR_TAPE_NO_GRADIENT)) return FR_ERR_NO_GRADIENT;
+        if (step <= 0 && !(L > 0 && L < HUGE_VAL)) {
             if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
-            desc.step = (R.t1 - R.t0) / 256.0;
+            step = (R.t1 - R.t0) / 256.0;
         }
-        found = fr__trace_step(&R, desc.step, desc.refine, L, &t_hit, &t_err);
+        found = fr__trace_step(&R, step, desc->refine, L, &t_hit, &t_err);
         break;
     case FR_METHOD_INTERVAL:
 #ifndef FR_NO_INTERVAL
         if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
         if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
-        if (!desc.plain_intervals && !desc.no_poly_range) { /* polynomial tape: the centred form of g */
+        if (!desc->plain_intervals && !desc->no_poly_range) { /* polynomial tape: the centred form of g */
             double nr = 160.0 * (double)t->n_code; /* roundings per coefficient, see fr__poly_range */
             unsigned int out = t->outputs[0];
             if (nr * FR__U < 1e-3) {
@@ -5074,7 +5940,7 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
                     R.mdeg = mem.deg_mag[out];
                     R.rho = 2.0 * fr__gamma(nr);
                     if (R.mdeg < R.pdeg) R.pc = NULL; /* cannot happen; stay safe */
-                    if (R.pc && desc.interval_newton && R.mdeg >= 1) {
+                    if (R.pc && desc->interval_newton && R.mdeg >= 1) {
                         /* g' = sum (k+1) c_{k+1} s^k; the products by k+1 round once more */
                         for (k = 0; k < R.mdeg; k++) {
                             R.dc[k] = k + 1 <= R.pdeg ? (double)(k + 1) * R.pc[k + 1] : 0.0;
@@ -5086,25 +5952,33 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
                 }
             }
         }
-        e = fr__trace_interval(&R, desc.plain_intervals, !desc.no_prune && !R.pc, mem.prune, &found, &t_hit, &t_err);
+        e = fr__trace_interval(&R, desc->plain_intervals, !desc->no_prune && !R.pc, mem.prune, &found, &t_hit, &t_err);
         break;
 #else
         return FR_ERR_NO_INTERVAL;
 #endif
     case FR_METHOD_SPHERE:
         if (!(L > 0 && L < HUGE_VAL)) return FR_ERR_NO_LIPSCHITZ;
-        found = fr__trace_sphere(&R, L, desc.over_relax > 0 ? desc.over_relax : FR__SPHERE_OMEGA, &t_hit, &t_err);
+        found = fr__trace_sphere(&R, L, desc->over_relax > 0 ? desc->over_relax : FR__SPHERE_OMEGA, &t_hit, &t_err);
         break;
     default:
         return FR_ERR_INVALID_ARG;
     }
+done:
     if (e != FR_OK) return e;
     hit->hit = found;
     hit->method = m;
     hit->t = found ? t_hit : 0.0;
     hit->t_err = found ? t_err : 0.0;
     for (k = 0; k < 3; k++) { hit->point[k] = found ? o[k] + t_hit * d[k] : 0.0; hit->normal[k] = 0.0; }
-    if (found) fr__normal(&R, &desc, hit->point, hit->normal);
+    if (found) {
+        fr__leaf_t *lv = NULL;
+        if (orient) fr__prep_layout(R.prep->n_leaves, R.prep->n_nodes, R.prep->n_prog, &lv, NULL, NULL, R.prep->mem);
+        if (!(orient && desc->normal == FR_NORMAL_AD && fr__quadric_normal(&lv[leaf], orient, hit->point, hit->normal)))
+            fr__normal(&R, desc, hit->point, hit->normal);
+        else
+            R.evals++;
+    }
     hit->evals = R.evals;
     hit->iterations = R.iters;
     return FR_OK;

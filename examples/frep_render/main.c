@@ -36,6 +36,7 @@ typedef struct scene_t {
     fr_trace_desc_t desc;  /* primary, reflected and refracted rays */
     fr_trace_desc_t shadow; /* shadow rays: any hit, no normal */
     double box[6];         /* the solid's box (lo xyz, hi xyz): every ray is clipped to it */
+    fr_prepared_t prep;    /* fr_prepare: what every ray would recompute from the tape */
     int glass;             /* refractive material */
     double floor_z;
     ex_v3_t light;         /* point light */
@@ -70,7 +71,7 @@ static double menger_point(const double p[3], void *user)
     return -d;
 }
 
-static int load_scene(scene_t *sc, const char *name, const char *mode)
+static int load_scene(scene_t *sc, const char *name, const char *mode, int prepare)
 {
     memset(sc, 0, sizeof *sc);
     sc->name = name;
@@ -141,6 +142,7 @@ static int load_scene(scene_t *sc, const char *name, const char *mode)
     sc->desc.tol = 1e-6;
     sc->desc.step = 2.0 * sc->radius / 200.0;
     sc->desc.bounds = sc->box;
+    if (prepare && fr_prepare(&sc->tape, sc->box, &sc->prep) == FR_OK) sc->desc.prepared = &sc->prep;
     if (sc->desc.method == FR_METHOD_AUTO && (sc->tape.flags & FR_TAPE_NO_INTERVAL))
         sc->desc.method = sc->tape.lipschitz < HUGE_VAL ? FR_METHOD_SPHERE : FR_METHOD_STEP;
     if (sc->tape.flags & FR_TAPE_NO_GRADIENT) sc->desc.normal = FR_NORMAL_FD;
@@ -311,8 +313,8 @@ int main(int argc, char **argv)
 {
     ex_args_t a;
     ex_args_spec_t spec;
-    int frames = 3, exact = 0;
-    ex_flag_t extra[2];
+    int frames = 3, exact = 0, unprepared = 0;
+    ex_flag_t extra[3];
     memset(&a, 0, sizeof a);
     memset(&spec, 0, sizeof spec);
     a.width = 256; a.height = 256; a.spp = 1;
@@ -320,8 +322,10 @@ int main(int argc, char **argv)
     extra[0].help = "timed frames after the warm-up (default 3)";
     extra[1].name = "exact"; extra[1].kind = EX_FLAG_BOOL; extra[1].value = &exact;
     extra[1].help = "interval bisection to the tolerance, without the pixel-footprint hand-over";
+    extra[2].name = "unprepared"; extra[2].kind = EX_FLAG_BOOL; extra[2].value = &unprepared;
+    extra[2].help = "trace the tape without fr_prepare's prepared model (for comparison)";
     spec.summary = "a Whitted ray tracer for FRep models (fr_trace), printing fps and rays/s";
-    spec.scenes = scenes; spec.modes = modes; spec.extra = extra; spec.nextra = 2;
+    spec.scenes = scenes; spec.modes = modes; spec.extra = extra; spec.nextra = 3;
     ex_args_parse(argc, argv, &spec, &a);
     if (frames < 1) frames = 1;
     if (a.demo_dir) {
@@ -329,10 +333,11 @@ int main(int argc, char **argv)
         for (k = 0; scenes[k]; k++) {
             scene_t sc;
             char name[128], path[4096];
-            if (load_scene(&sc, scenes[k], "auto")) return 1;
+            if (load_scene(&sc, scenes[k], "auto", 1)) return 1;
             snprintf(name, sizeof name, "frep_%s.png", scenes[k]);
             ex_args_output(&a, name, path, sizeof path);
             render(&sc, &a, 1, 0, path);
+            fr_prepared_free(&sc.prep);
             fr_tape_free(&sc.tape);
         }
         return 0;
@@ -340,8 +345,9 @@ int main(int argc, char **argv)
     {
         scene_t sc;
         char path[4096];
-        if (load_scene(&sc, a.scene ? a.scene : "cup", a.mode ? a.mode : "auto")) return 1;
+        if (load_scene(&sc, a.scene ? a.scene : "cup", a.mode ? a.mode : "auto", !unprepared)) return 1;
         render(&sc, &a, frames, exact, a.out ? ex_args_output(&a, "frep_render.png", path, sizeof path) : NULL);
+        fr_prepared_free(&sc.prep);
         fr_tape_free(&sc.tape);
     }
     return 0;
