@@ -4155,7 +4155,7 @@ static size_t fr__align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
      [list]   n unsigned ints (analytic CSG: the needed slots, ascending)
      [cand]   n * FR_POLY_MAX_DEGREE doubles (analytic CSG candidate roots)
      [cleaf]  n * FR_POLY_MAX_DEGREE unsigned ints (prepared CSG: each candidate's leaf)
-     [sgn]    2n signed chars (prepared CSG: leaf and node signs either side of a candidate)
+     [sgn]    4n signed chars (prepared CSG: leaf and node signs either side of a candidate, culled nodes, live slots)
      [prune]  FR__PRUNE_LEVELS * n instructions (interval: pruned tapes) */
 typedef struct fr__trace_mem_t {
     void *eval;
@@ -4182,28 +4182,31 @@ static size_t fr__eval_scratch_max(const fr_tape_t *t)
 
 static size_t fr__trace_layout(const fr_tape_t *t, void *base, fr__trace_mem_t *mem)
 {
-    size_t n = t->n_code ? (size_t)t->n_code : 1, off = 0;
+    /* n rounded up to a multiple of 8 keeps every part 8-aligned with no
+       per-part rounding (fr_trace lays this out per ray) */
+    size_t n = ((t->n_code ? (size_t)t->n_code : 1) + 7u) & ~(size_t)7u, off;
     unsigned char *b = (unsigned char *)base;
-    if (mem) mem->eval = b;
-    off += fr__eval_scratch_max(t);
-    if (mem) mem->taylor = (double *)(void *)(b + off);
-    off += fr__align8(n * FR__TAYLOR_N * sizeof(double));
-    if (mem) mem->deg = (int *)(void *)(b + off);
-    off += fr__align8(n * sizeof(int));
-    if (mem) mem->taylor_mag = (double *)(void *)(b + off);
-    off += fr__align8(n * FR__TAYLOR_N * sizeof(double));
-    if (mem) mem->deg_mag = (int *)(void *)(b + off);
-    off += fr__align8(n * sizeof(int));
-    if (mem) mem->need = b + off;
-    off += fr__align8(n);
-    if (mem) mem->list = (unsigned int *)(void *)(b + off);
-    off += fr__align8(n * sizeof(unsigned int));
-    if (mem) mem->cand = (double *)(void *)(b + off);
-    off += fr__align8(n * FR_POLY_MAX_DEGREE * sizeof(double));
-    if (mem) mem->cleaf = (unsigned int *)(void *)(b + off);
-    off += fr__align8(n * FR_POLY_MAX_DEGREE * sizeof(unsigned int));
+    off = fr__eval_scratch_max(t);
+    if (mem) {
+        mem->eval = b;
+        mem->taylor = (double *)(void *)(b + off);
+        mem->deg = (int *)(void *)(b + off + n * FR__TAYLOR_N * sizeof(double));
+    }
+    off += n * (FR__TAYLOR_N * sizeof(double) + sizeof(int));
+    if (mem) {
+        mem->taylor_mag = (double *)(void *)(b + off);
+        mem->deg_mag = (int *)(void *)(b + off + n * FR__TAYLOR_N * sizeof(double));
+    }
+    off += n * (FR__TAYLOR_N * sizeof(double) + sizeof(int));
+    if (mem) {
+        mem->need = b + off;
+        mem->list = (unsigned int *)(void *)(b + off + n);
+        mem->cand = (double *)(void *)(b + off + n + n * sizeof(unsigned int));
+        mem->cleaf = (unsigned int *)(void *)(b + off + n + n * sizeof(unsigned int) + n * FR_POLY_MAX_DEGREE * sizeof(double));
+    }
+    off += n + n * sizeof(unsigned int) + n * FR_POLY_MAX_DEGREE * (sizeof(double) + sizeof(unsigned int));
     if (mem) mem->sgn = (signed char *)(void *)(b + off);
-    off += fr__align8(2 * n);
+    off += 4 * n;
     if (mem) mem->prune = (fr_instr_t *)(void *)(b + off);
 #ifndef FR_NO_INTERVAL
     off += fr__align8((size_t)FR__PRUNE_LEVELS * n * sizeof(fr_instr_t));
@@ -4449,18 +4452,29 @@ typedef struct fr__leaf_t {
 /* A CSG node over signs; a and b index leaves [0, n_leaves), then nodes. */
 typedef struct fr__csg_node_t {
     unsigned int op, a, b; /* FR__CSG_NEG, FR__CSG_MIN (intersections), FR__CSG_MAX (unions) */
+    unsigned int slot;
+    int boxed;             /* box holds the node's solid {f >= 0} */
+    double box[6];
 } fr__csg_node_t;
+
+/* The head of fr_prepared_t.mem: the box, padded once as fr__clip_box
+   pads it per ray. */
+typedef struct fr__prep_head_t {
+    double box[6];
+    unsigned int n_boxed_nodes;
+} fr__prep_head_t;
+
 #define FR__CSG_NEG 0u
 #define FR__CSG_MIN 1u
 #define FR__CSG_MAX 2u
 
-/* The block of fr_prepared_t.mem: leaves, nodes, program. */
+/* The block of fr_prepared_t.mem: head, leaves, nodes, program. */
 static size_t fr__prep_layout(unsigned int nl, unsigned int nn, unsigned int np, fr__leaf_t **L, fr__csg_node_t **N,
                               fr__tp_t **P, void *mem)
 {
-    size_t off = 0;
+    size_t off = fr__align8(sizeof(fr__prep_head_t));
     unsigned char *b = (unsigned char *)mem;
-    if (L) *L = (fr__leaf_t *)(void *)b;
+    if (L) *L = (fr__leaf_t *)(void *)(b + off);
     off += fr__align8((size_t)nl * sizeof(fr__leaf_t));
     if (N) *N = (fr__csg_node_t *)(void *)(b + off);
     off += fr__align8((size_t)nn * sizeof(fr__csg_node_t));
@@ -5238,6 +5252,36 @@ static int fr__clip_box(fr__ray_t *R, const double *b)
 
 /* ---------------------------------------------------------------- prepared models */
 
+/* fr__clip_box with a box padded beforehand (fr__box_pad_set): only the
+   ray's own rounding is added, to the box's bounds in t. */
+static int fr__clip_padded(fr__ray_t *R, const double *b)
+{
+    double A = -HUGE_VAL, Z = HUGE_VAL, tp = 0.0;
+    int k;
+    for (k = 0; k < 3; k++) {
+        double op = 8.0 * FR__U * fabs(R->o[k]), inv, ta, tb;
+        if (R->d[k] == 0) {
+            if (!(R->o[k] >= b[k] - op && R->o[k] <= b[k + 3] + op)) return 0;
+            continue;
+        }
+        inv = 1.0 / R->d[k];
+        ta = (b[k] - R->o[k]) * inv;
+        tb = (b[k + 3] - R->o[k]) * inv;
+        if (ta > tb) { double x = ta; ta = tb; tb = x; }
+        if (ta > A) A = ta;
+        if (tb < Z) Z = tb;
+        if (op * fabs(inv) > tp) tp = op * fabs(inv);
+    }
+    A -= 4.0 * FR__U * fabs(A) + tp;
+    Z += 4.0 * FR__U * fabs(Z) + tp;
+    if (A < R->t0) A = R->t0;
+    if (Z > R->t1) Z = R->t1;
+    if (!(A <= Z)) return 0;
+    R->t0 = A;
+    R->t1 = Z;
+    return 1;
+}
+
 /* Leaf zero-set boxes: octree depth, and the padding of the search box
    beyond the prepared box (twice fr__clip_box's, so the clipped segments
    of every ray lie inside it). */
@@ -5346,23 +5390,58 @@ static void fr__leaf_search_box(const double *box, double lo[3], double hi[3])
 
 /* A leaf's zero-set box, padded as fr__clip_box pads (fr__slab_meets adds
    the ray's own rounding); an empty box stays empty. */
-static void fr__leaf_box_set(fr__leaf_t *lf, const double lo[3], const double hi[3], const double *model)
+/* out = [lo, hi] padded as fr__clip_box pads a box (fr__slab_meets and
+   fr__clip_padded add the ray's own rounding); an empty box stays empty.
+   Returns its volume's share of the model box's. */
+static double fr__box_pad_set(const double lo[3], const double hi[3], const double *model, double *out)
 {
     double v = 1.0, vm = 1.0;
     int k;
     for (k = 0; k < 3; k++) {
         double pad = lo[k] <= hi[k] ? FR__BOX_PAD * (hi[k] - lo[k]) + 8.0 * FR__U * (fabs(lo[k]) + fabs(hi[k])) : 0.0;
-        lf->box[k] = lo[k] - pad;
-        lf->box[k + 3] = hi[k] + pad;
+        out[k] = lo[k] - pad;
+        out[k + 3] = hi[k] + pad;
         v *= lo[k] <= hi[k] ? hi[k] - lo[k] : 0.0;
         vm *= model[k + 3] - model[k];
     }
-    /* A slab test costs about half a quadric leaf, and a plane less than
-       the test: quadric leaves are culled only when their box is at most
-       FR__LEAF_CULL_SHARE of the model's (rays through the model then miss
-       it often), other leaves always. */
-    lf->boxed = !lf->quadric || (lf->shape != FR__LEAF_LINEAR && v <= FR__LEAF_CULL_SHARE * vm);
+    return vm > 0 ? v / vm : 1.0;
 }
+
+/* A slab test costs about half a quadric leaf, and a plane less than the
+   test: quadric leaves and CSG nodes are culled only when their box is at
+   most FR__LEAF_CULL_SHARE of the model's (rays through the model then
+   miss it often), other leaves always. */
+static void fr__leaf_box_set(fr__leaf_t *lf, const double lo[3], const double hi[3], const double *model)
+{
+    double share = fr__box_pad_set(lo, hi, model, lf->box);
+    lf->boxed = !lf->quadric || (lf->shape != FR__LEAF_LINEAR && share <= FR__LEAF_CULL_SHARE);
+}
+
+#ifndef FR_NO_INTERVAL
+/* The box of slot `slot`'s zero set (keep_zero 1) or solid (0) inside [lo,
+   hi], by fr__box_search on its sub-tape compacted into work (live, newidx,
+   rep, code, then interval scratch; fr_prepare sizes it). 0 if the tape has
+   no interval evaluation. */
+static int fr__subtape_box(const fr_tape_t *t, unsigned int slot, int keep_zero, const double lo[3], const double hi[3],
+                           unsigned char *work, double out_lo[3], double out_hi[3])
+{
+    size_t n = t->n_code;
+    unsigned char *live = work;
+    unsigned int *newidx = (unsigned int *)(void *)(work + fr__align8(n)), *rep = newidx + n, m, i;
+    fr_instr_t *code = (fr_instr_t *)(void *)(work + fr__align8(n) + fr__align8(2 * n * sizeof(unsigned int)));
+    fr_tape_t sub = *t;
+    fr__tape_cell_t cell;
+    if (t->flags & FR_TAPE_NO_INTERVAL) return 0;
+    for (i = 0; i < n; i++) rep[i] = i;
+    m = fr__compact(t->code, (unsigned int)n, rep, &slot, 1, live, newidx, code, &sub.outputs[0]);
+    sub.code = code;
+    sub.n_code = m;
+    sub.n_outputs = 1;
+    cell.tape = &sub;
+    cell.scratch = (unsigned char *)code + fr__align8(n * sizeof(fr_instr_t));
+    return fr__box_search(fr__tape_cell, &cell, keep_zero, lo, hi, FR__LEAF_BOX_DEPTH, out_lo, out_hi) == FR_OK;
+}
+#endif
 
 /* The leaves' forms and boxes. Quadrics: the form about the search box's
    centre gives a first zero-set box, then the form about that box's
@@ -5404,29 +5483,32 @@ static fr_result_t fr__prepare_leaves(const fr_tape_t *t, const int *gdeg, const
         }
         lf->quadric = 0;
 #ifndef FR_NO_INTERVAL
-        if (!(t->flags & FR_TAPE_NO_INTERVAL)) {
-            /* the leaf's sub-tape, compacted: live, newidx, rep, code, then interval scratch */
-            unsigned char *live = work;
-            unsigned int *newidx = (unsigned int *)(void *)(work + fr__align8(n)), *rep = newidx + n, m, i;
-            fr_instr_t *code = (fr_instr_t *)(void *)(work + fr__align8(n) + fr__align8(2 * n * sizeof(unsigned int)));
-            void *scr = (unsigned char *)code + fr__align8(n * sizeof(fr_instr_t));
-            fr_tape_t sub = *t;
-            fr__tape_cell_t cell;
+        {
             double blo[3], bhi[3];
-            for (i = 0; i < n; i++) rep[i] = i;
-            m = fr__compact(t->code, (unsigned int)n, rep, &lf->slot, 1, live, newidx, code, &sub.outputs[0]);
-            sub.code = code;
-            sub.n_code = m;
-            sub.n_outputs = 1;
-            cell.tape = &sub;
-            cell.scratch = scr;
-            if (fr__box_search(fr__tape_cell, &cell, 1, lo, hi, FR__LEAF_BOX_DEPTH, blo, bhi) == FR_OK)
-                fr__leaf_box_set(lf, blo, bhi, box);
+            if (fr__subtape_box(t, lf->slot, 1, lo, hi, work, blo, bhi)) fr__leaf_box_set(lf, blo, bhi, box);
         }
 #endif
     }
+    (void)n;
     return FR_OK;
 }
+
+#ifndef FR_NO_INTERVAL
+/* The nodes' solid boxes, for nodes small enough to cull (fr__leaf_box_set). */
+static void fr__prepare_nodes(const fr_tape_t *t, const double *box, fr__csg_node_t *N, unsigned int nn,
+                              unsigned char *work)
+{
+    double lo[3], hi[3];
+    unsigned int j;
+    fr__leaf_search_box(box, lo, hi);
+    for (j = 0; j < nn; j++) {
+        double blo[3], bhi[3];
+        N[j].boxed = 0;
+        if (N[j].op == FR__CSG_NEG || !fr__subtape_box(t, N[j].slot, 0, lo, hi, work, blo, bhi)) continue;
+        N[j].boxed = fr__box_pad_set(blo, bhi, box, N[j].box) <= FR__LEAF_CULL_SHARE;
+    }
+}
+#endif
 
 FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepared_t *out)
 {
@@ -5508,8 +5590,13 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
         size_t bytes = fr__prep_layout(nl, nn, np + (unsigned int)n, NULL, NULL, NULL, NULL);
         out->mem = FR_MALLOC(bytes, t->alloc_ctx);
         if (!out->mem) { FR_FREE(work, t->alloc_ctx); memset(out, 0, sizeof *out); return FR_ERR_OUT_OF_MEMORY; }
+        memset(out->mem, 0, sizeof(fr__prep_head_t));
     }
     fr__prep_layout(nl, nn, np + (unsigned int)n, &L, &N, &P, out->mem);
+    if (out->has_box) {
+        fr__prep_head_t *h = (fr__prep_head_t *)out->mem;
+        fr__box_pad_set(out->box, out->box + 3, out->box, h->box);
+    }
     if (out->kind == FR_PREPARED_CSG) {
         unsigned int jl = 0, jn = 0;
         for (i = 0; i <= outs; i++) {
@@ -5526,13 +5613,20 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
                                                                                                      : FR__CSG_MAX;
             N[jn].a = idx[in->a];
             N[jn].b = in->op == FR_OP_NEG ? 0 : idx[in->b];
+            N[jn].slot = i;
+            N[jn].boxed = 0;
             idx[i] = nl + jn;
             jn++;
         }
         out->n_leaves = nl;
         out->n_nodes = nn;
         if (out->has_box) {
-            fr__prepare_leaves(t, gdeg, out->box, L, nl, need + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int)));
+            unsigned char *w = need + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int));
+            fr__prepare_leaves(t, gdeg, out->box, L, nl, w);
+#ifndef FR_NO_INTERVAL
+            fr__prepare_nodes(t, out->box, N, nn, w);
+            for (j = 0; j < nn; j++) ((fr__prep_head_t *)out->mem)->n_boxed_nodes += (unsigned int)N[j].boxed;
+#endif
         }
         /* non-quadric leaves: their subtrees make the program */
         for (j = 0; j < nl; j++) {
@@ -5652,8 +5746,12 @@ static int fr__poly_leaf(const double *c, int deg, double s0, double s1, double 
    up to the final roundings, so the roots are within a few ulps of those of
    the double coefficients, the cancelling one taken as c0 / h); D <= 0 is
    no crossing (a double root only touches). Returns the crossings in (t0,
-   t1] into cand and the sign just after t0 into *sg, as fr__poly_leaf. A
-   leaf whose box the segment misses only needs its sign. */
+   t1] into cand and the sign just after t0 into *sg (from the roots and the
+   leading coefficient, so it agrees with them), as fr__poly_leaf; -1 on
+   overflow. A leaf whose box the segment misses only needs its sign.
+   Coefficients beyond [2^-300, 2^300] go to fr__poly_leaf. (Four leaves
+   side by side in a vector were slower: libm's sqrt keeps gcc from
+   vectorising, and node culling leaves about half the cup's leaves.) */
 static int fr__quadric_leaf(const fr__leaf_t *L, const fr__ray_t *R, double inv_dd, int culled, double *cand, int *sg)
 {
     const double *q = L->q, *d = R->d;
@@ -5723,13 +5821,15 @@ static int fr__quadric_leaf(const fr__leaf_t *L, const fr__ray_t *R, double inv_
 /* The sign of the shape from the leaves' signs v[0, nl): min, max and
    negation over signs, as over values (an R-function has the sign of min or
    max of its operands); node values go to v[nl...]. */
-static int fr__csg_sign(const fr__csg_node_t *nd, unsigned int nn, unsigned int nl, signed char *v)
+static int fr__csg_sign(const fr__csg_node_t *nd, unsigned int nn, unsigned int nl, signed char *v,
+                        const signed char *force)
 {
     signed char *w = v + nl;
     unsigned int j;
     for (j = 0; j < nn; j++) {
         int a = v[nd[j].a], b = v[nd[j].b], mn = a < b ? a : b, mx = a < b ? b : a;
         w[j] = (signed char)(nd[j].op == FR__CSG_MAX ? mx : nd[j].op == FR__CSG_MIN ? mn : -a);
+        if (force && force[j]) w[j] = force[j];
     }
     return nn ? w[nn - 1] : v[0];
 }
@@ -5759,11 +5859,31 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
     int nc = 0, k, plo = 0, phi = 0, glo = 0, ghi = 0;
     fr__slab_t S;
     int slab = 0;
+    signed char *force = NULL, *live = NULL;
     fr__prep_layout(nl, nn, Pp->n_prog, &L, &N, &prog, Pp->mem);
     *found = 0;
     *orient = 0;
     dd = R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2];
     inv_dd = 1.0 / dd;
+    if (((const fr__prep_head_t *)Pp->mem)->n_boxed_nodes) {
+        /* nodes whose solid box the segment misses are outside (-1)
+           throughout: their subtrees' leaves need no roots, unless another
+           live node uses them (top-down from the shape) */
+        unsigned int i;
+        force = vhi + nl + nn;
+        live = force + nn;
+        for (i = 0; i < nn; i++) force[i] = 0;
+        for (i = 0; i + 1 < nl + nn; i++) live[i] = 0;
+        live[nl + nn - 1] = 1;
+        fr__slab_init(&S, R->o, R->d);
+        slab = 1;
+        for (i = nn; i-- > 0;) {
+            if (!live[nl + i]) continue;
+            if (N[i].boxed && !fr__slab_meets(&S, N[i].box, R->t0, R->t1)) { force[i] = -1; continue; }
+            live[N[i].a] = 1;
+            if (N[i].op != FR__CSG_NEG) live[N[i].b] = 1;
+        }
+    }
     if (Pp->n_prog) { /* the Taylor program of the leaves that are not quadrics */
         double ob[3];
         ts = -(R->o[0] * R->d[0] + R->o[1] * R->d[1] + R->o[2] * R->d[2]) * inv_dd;
@@ -5775,6 +5895,7 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
     for (j = 0; j < nl; j++) {
         const fr__leaf_t *lf = &L[j];
         int culled = 0, sg = 0, m;
+        if (live && !live[j]) { vlo[j] = vhi[j] = 0; continue; } /* only culled nodes use it */
         if (lf->boxed) {
             if (!slab) { fr__slab_init(&S, R->o, R->d); slab = 1; }
             culled = !fr__slab_meets(&S, lf->box, R->t0, R->t1);
@@ -5801,7 +5922,7 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         cl[i] = y;
     }
     if (nc == 0) return FR_OK;
-    glo = ghi = fr__csg_sign(N, nn, nl, vlo);
+    glo = ghi = fr__csg_sign(N, nn, nl, vlo, force);
     oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) / (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
     for (k = 0; k < nc; k++) {
         double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
@@ -5809,8 +5930,8 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         while (phi < nc && cand[phi] <= tc + dt) { vhi[cl[phi]] = (signed char)-vhi[cl[phi]]; phi++; }
         while (plo < nc && cand[plo] < tc - dt) { vlo[cl[plo]] = (signed char)-vlo[cl[plo]]; plo++; }
         /* the tree again only where its leaves changed */
-        if (plo != mlo) glo = fr__csg_sign(N, nn, nl, vlo);
-        if (phi != mhi) ghi = fr__csg_sign(N, nn, nl, vhi);
+        if (plo != mlo) glo = fr__csg_sign(N, nn, nl, vlo, force);
+        if (phi != mhi) ghi = fr__csg_sign(N, nn, nl, vhi, force);
         R->iters++;
         if (glo * ghi < 0) {
             unsigned int lf = cl[k];
@@ -5874,8 +5995,15 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     /* clip first: rays that miss the solid's box cost only this (a prepared
        model's box clips too when desc->bounds does not) */
     R.prep = desc->prepared && desc->prepared->tape == t && desc->prepared->kind != FR_PREPARED_NONE ? desc->prepared : NULL;
-    if (desc->bounds && !fr__clip_box(&R, desc->bounds)) return FR_OK; /* the ray misses the solid's box */
-    if (!desc->bounds && R.prep && R.prep->has_box && !fr__clip_box(&R, R.prep->box)) return FR_OK;
+    if (R.prep && R.prep->has_box &&
+        (!desc->bounds || (desc->bounds[0] == R.prep->box[0] && desc->bounds[1] == R.prep->box[1] &&
+                           desc->bounds[2] == R.prep->box[2] && desc->bounds[3] == R.prep->box[3] &&
+                           desc->bounds[4] == R.prep->box[4] && desc->bounds[5] == R.prep->box[5]))) {
+        if (!fr__clip_padded(&R, ((const fr__prep_head_t *)R.prep->mem)->box)) return FR_OK;
+    } else {
+        if (desc->bounds && !fr__clip_box(&R, desc->bounds)) return FR_OK; /* the ray misses the solid's box */
+        if (R.prep && R.prep->has_box && !fr__clip_box(&R, R.prep->box)) return FR_OK;
+    }
     fr__trace_layout(t, scratch, &mem);
     R.tape = t;
     R.eval = mem.eval;
