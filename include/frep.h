@@ -4286,8 +4286,14 @@ static int fr__tpoly_const_op(const fr_instr_t *in, double a, double b, double *
     }
 }
 
+#if defined(__GNUC__) || defined(__clang__)
+#define FR__HOT_INLINE __attribute__((always_inline)) inline /* per-slot steps of hot loops */
+#else
+#define FR__HOT_INLINE inline
+#endif
+
 /* c = a^n truncated (n >= 0), c distinct from a; returns the degree or -1. */
-static int fr__tpoly_powi(const double *a, int da, int n, double *c)
+static FR__HOT_INLINE int fr__tpoly_powi(const double *a, int da, int n, double *c)
 {
     double base[FR__TAYLOR_N];
     int k, db = da, dc;
@@ -4314,7 +4320,7 @@ static int fr__tpoly_powi(const double *a, int da, int n, double *c)
    da, db (-1: not a polynomial), var_deg the degree of a coordinate (1, or
    0 where the ray's direction has no such component); -1 when the result
    is not a polynomial of degree <= FR_POLY_MAX_DEGREE. */
-static int fr__tpoly_degree(const fr_instr_t *in, int da, int db, int var_deg)
+static FR__HOT_INLINE int fr__tpoly_degree(const fr_instr_t *in, int da, int db, int var_deg)
 {
     switch ((fr_op_t)in->op) {
     case FR_OP_CONST: return 0;
@@ -4342,7 +4348,7 @@ static int fr__tpoly_degree(const fr_instr_t *in, int da, int db, int var_deg)
    sum the plain run computed; it scales the plain coefficients' rounding
    error (fr__poly_range). An invalid operand of a constant op (a division
    by 0, a non-finite argument) gives NaN, which every later op keeps. */
-static inline void fr__tpoly_step(const fr_instr_t *in, const double *A, int da, const double *B, int db, int dc,
+static FR__HOT_INLINE void fr__tpoly_step(const fr_instr_t *in, const double *A, int da, const double *B, int db, int dc,
                                   const double o[3], const double d[3], double *c, const double *plain)
 {
     int k, mag = plain != NULL;
@@ -4380,11 +4386,24 @@ static inline void fr__tpoly_step(const fr_instr_t *in, const double *A, int da,
     (void)dc;
 }
 
+/* The degree of a slot's coefficients c of degree dg (-1: none), trailing
+   zeros trimmed; -1 if any is not finite (an overflow on this ray). */
+static int fr__checked_degree(const double *c, int dg)
+{
+    int k;
+    for (k = 0; k <= dg; k++) if (!(c[k] - c[k] == 0)) return -1;
+    return dg >= 0 ? fr__tpoly_trim(c, dg) : -1;
+}
+
 /* Evaluate every slot of the tape as a polynomial in t (paper §3.1.1: turn
    f(X) = 0 into g(t) = 0). deg[i] = -1 marks a slot that is not a
    polynomial of degree <= FR_POLY_MAX_DEGREE; such slots propagate.
    With signed_P (the result of a plain run) it is the magnitude run
-   (fr__tpoly_step). Sums are trimmed of trailing zero coefficients. */
+   (fr__tpoly_step). Sums are trimmed of trailing zero coefficients. An
+   overflow is not checked per slot: inf and NaN propagate through every
+   op (fr__tpoly_step turns invalid constant ops into NaN), so the slots
+   that are used -- the output, CSG leaves -- are checked where they are
+   read (fr__checked_degree); a check per slot was a quarter of the run. */
 static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d[3], double *P, int *deg,
                            const double *signed_P)
 {
@@ -4393,13 +4412,12 @@ static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d
         const fr_instr_t *in = &t->code[i];
         double *c = P + (size_t)i * FR__TAYLOR_N;
         const double *A = P + (size_t)in->a * FR__TAYLOR_N, *B = P + (size_t)in->b * FR__TAYLOR_N;
-        int da = i > 0 ? deg[in->a] : -1, db = i > 0 ? deg[in->b] : -1, k, dc;
+        int da = i > 0 ? deg[in->a] : -1, db = i > 0 ? deg[in->b] : -1, dc;
         int vd = in->op >= FR_OP_VAR_X && in->op <= FR_OP_VAR_Z ? d[in->op - FR_OP_VAR_X] != 0 : 1;
         dc = fr__tpoly_degree(in, da, db, vd);
         if (dc >= 0) {
             fr__tpoly_step(in, A, da, B, db, dc, o, d, c, signed_P ? signed_P + (size_t)i * FR__TAYLOR_N : NULL);
             if (in->op == FR_OP_ADD || in->op == FR_OP_SUB) dc = fr__tpoly_trim(c, dc);
-            for (k = 0; k <= dc; k++) if (!(c[k] - c[k] == 0)) dc = -1; /* inf/NaN */
         }
         deg[i] = dc;
     }
@@ -4416,7 +4434,7 @@ FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const doub
     deg = (int *)(void *)((unsigned char *)scratch + fr__align8((size_t)t->n_code * FR__TAYLOR_N * sizeof(double)));
     fr__taylor_run(t, o, d, P, deg, NULL);
     out = t->outputs[0];
-    dg = deg[out];
+    dg = fr__checked_degree(P + (size_t)out * FR__TAYLOR_N, deg[out]);
     if (dg < 0) return FR_ERR_NOT_POLYNOMIAL;
     for (k = 0; k <= FR_POLY_MAX_DEGREE; k++) coef[k] = k <= dg ? P[(size_t)out * FR__TAYLOR_N + (size_t)k] : 0.0;
     *degree = dg;
@@ -4499,14 +4517,6 @@ static void fr__prog_run(const fr_tape_t *t, const fr__tp_t *prog, unsigned int 
     }
 }
 
-/* The degree of coefficients c of a slot of prepared degree dg, trailing
-   zeros trimmed; -1 if any is not finite (an overflow on this ray). */
-static int fr__prog_degree(const double *c, int dg)
-{
-    int k;
-    for (k = 0; k <= dg; k++) if (!(c[k] - c[k] == 0)) return -1;
-    return fr__tpoly_trim(c, dg);
-}
 
 /* ---------------------------------------------------------------- shared helpers */
 
@@ -4756,7 +4766,7 @@ static inline void fr__taylor_shift(double *q, int n, double mu)
    so the radius gets (rho + 2 gamma_{2n+2}) Q_j r^j with Q the magnitudes
    shifted by |mu|, and s = t - ts is widened by its own rounding. */
 static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double *pm, int pdeg, int mdeg, double rho,
-                              double a, double b, double *pad_share)
+                              double gam, double a, double b, double *pad_share)
 {
     double q[FR__TAYLOR_N], sa, sb, mu, amu, r, rad = 0, pad = 0, rj = 1, g;
     int n = mdeg, k;
@@ -4770,7 +4780,7 @@ static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double
     for (k = 0; k <= n; k++) q[k] = k <= pdeg ? pc[k] : 0.0;
     if (n == 4) fr__taylor_shift(q, 4, mu); /* quartics (tangle cube, tori): unrolled by the compiler */
     else fr__taylor_shift(q, n, mu);
-    g = rho + 2.0 * fr__gamma(2.0 * n + 2.0);
+    g = rho + 2.0 * gam; /* gam = gamma_{2n+2}, once per ray */
     for (k = 1; k <= n; k++) {
         rj *= r;
         rad += fabs(q[k]) * rj;
@@ -4786,28 +4796,28 @@ static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double
         pad = pm[n];
         for (k = n; k-- > 0;) pad = pad * x + pm[k];
     }
-    pad *= 1.0 + fr__gamma(2.0 * n + 2.0);
+    pad *= 1.0 + gam;
     *pad_share = g * pad / (rad + g * pad + DBL_MIN);
-    rad = (rad + g * pad) * (1.0 + fr__gamma(2.0 * n + 2.0)) + 2.0 * FR__U * fabs(q[0]) + DBL_MIN;
+    rad = (rad + g * pad) * (1.0 + gam) + 2.0 * FR__U * fabs(q[0]) + DBL_MIN;
     if (!(rad < HUGE_VAL) || q[0] != q[0]) return iv_entire();
     return iv_make(q[0] - rad, q[0] + rad);
 }
 static iv_t fr__poly_range(const fr__ray_t *R, double a, double b, double *pad_share)
 {
-    return fr__poly_range_of(R, R->pc, R->pm, R->pdeg, R->mdeg, R->rho, a, b, pad_share);
+    return fr__poly_range_of(R, R->pc, R->pm, R->pdeg, R->mdeg, R->rho, R->gam, a, b, pad_share);
 }
 
 /* Interval Newton (Moore 1966; Hansen 1992) on [a, b] for a polynomial
    tape: with G' an enclosure of g' over the segment that excludes 0, every
    root lies in N = m - g(m) / G' (mean value theorem), m the midpoint and
-   g(m) enclosed by the centred form at the point m. Narrows [*a, *b] to
+   g(m) enclosed by the centred form at the point m; dg is G' (the
+   caller's, fr__trace_interval). Narrows [*a, *b] to
    its intersection with N; returns 0 when that is empty (no root), 1
    otherwise. A G' containing 0 leaves the segment unchanged. */
-static int fr__newton_narrow(fr__ray_t *R, double *a, double *b)
+static int fr__newton_narrow(fr__ray_t *R, iv_t dg, double *a, double *b)
 {
     double share, m = 0.5 * *a + 0.5 * *b;
-    iv_t dg = fr__poly_range_of(R, R->dc, R->dm, R->pdeg - 1, R->mdeg - 1, R->drho, *a, *b, &share), gm, nw;
-    R->evals++;
+    iv_t gm, nw;
     if (iv_contains(dg, 0.0) || iv_is_empty(dg)) return 1;
     gm = fr__poly_range(R, m, m, &share);
     nw = iv_sub(iv_point(m), iv_div(gm, dg));
@@ -4875,7 +4885,7 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         fr__seg_t s = stack[--sp];
         int lvl = s.depth / FR__PRUNE_EVERY;
         const fr_tape_t *tp;
-        iv_t range;
+        iv_t range, dg;
         fr_result_t e;
         double tl;
         R->iters++;
@@ -4893,11 +4903,42 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         if (iv_is_empty(range) || !iv_contains(range, 0.0)) continue;
         /* tl: where bisection ends; tol, or the pixel footprint at s.b */
         tl = R->tol + R->footprint * fabs(s.b);
+        dg = iv_entire();
+        if (R->mono && s.b - s.a > tl) {
+            /* A polynomial tape: where the centred form of g' excludes 0, g
+               is strictly monotone on the segment, so it holds at most one
+               root, and the first one, as every segment left of it is
+               excluded (depth-first, left first). A sign change at the ends
+               then goes straight to regula falsi (to tol, bracketed); no
+               sign change, with the ends' enclosures of one strict sign,
+               proves there is none. Either saves the bisection levels down
+               to tl. */
+            double share;
+            dg = fr__poly_range_of(R, R->dc, R->dm, R->pdeg - 1, R->mdeg - 1, R->drho, R->dgam, s.a, s.b, &share);
+            R->evals++;
+            if (!iv_is_empty(dg) && !iv_contains(dg, 0.0)) {
+                double ga = fr__g(R, s.a), gb = fr__g(R, s.b);
+                if (ga == 0 || gb == 0 || fr__opposite(ga, gb)) {
+                    *found = 1;
+                    *t_err = 0.5 * R->tol;
+                    if (ga == 0) *t_hit = s.a;
+                    else if (gb == 0) *t_hit = s.b;
+                    else if (R->any_hit) { *t_hit = 0.5 * (s.a + s.b); *t_err = 0.5 * (s.b - s.a); }
+                    else *t_hit = fr__refine(R, FR_REFINE_ILLINOIS, s.a, s.b, ga, gb, t_err);
+                    return FR_OK;
+                }
+                {
+                    iv_t ea = fr__poly_range(R, s.a, s.a, &share), eb = fr__poly_range(R, s.b, s.b, &share);
+                    R->evals += 2;
+                    if ((ea.lo > 0 && eb.lo > 0) || (ea.hi < 0 && eb.hi < 0)) continue;
+                }
+            }
+        }
         if (R->newton && s.b - s.a > tl) {
             /* interval Newton: drop the segment or narrow it; a segment
                that shrank by half or more is tried again as it is */
             double na = s.a, nb = s.b;
-            if (!fr__newton_narrow(R, &na, &nb)) continue;
+            if (!fr__newton_narrow(R, dg, &na, &nb)) continue;
             if (nb - na <= 0.5 * (s.b - s.a) && s.depth < FR__TRACE_MAX_DEPTH) {
                 stack[sp].a = na; stack[sp].b = nb; stack[sp].depth = s.depth + 1; sp++;
                 continue;
@@ -5050,13 +5091,20 @@ static double fr__analytic_expand(const fr__ray_t *R, const fr__trace_mem_t *mem
         fr__prep_layout(P->n_leaves, P->n_nodes, P->n_prog, NULL, NULL, &prog, P->mem);
         dg = prog[P->n_prog - 1].dc;
         fr__prog_run(R->tape, prog, P->n_prog, ob, R->d, mem->taylor, with_mag ? mem->taylor_mag : NULL);
-        mem->deg[out] = fr__prog_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, dg);
-        if (with_mag) mem->deg_mag[out] = fr__prog_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, dg);
+        mem->deg[out] = fr__checked_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, dg);
+        if (with_mag) mem->deg_mag[out] = fr__checked_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, dg);
         if (mem->deg[out] >= 0 && (!with_mag || mem->deg_mag[out] >= 0)) return ts;
     }
     fr__taylor_run(R->tape, ob, R->d, mem->taylor, mem->deg, NULL);
-    if (with_mag && mem->deg[R->tape->outputs[0]] >= 0)
-        fr__taylor_run(R->tape, ob, R->d, mem->taylor_mag, mem->deg_mag, mem->taylor);
+    {
+        unsigned int out = R->tape->outputs[0];
+        mem->deg[out] = fr__checked_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, mem->deg[out]);
+        if (with_mag && mem->deg[out] >= 0) {
+            fr__taylor_run(R->tape, ob, R->d, mem->taylor_mag, mem->deg_mag, mem->taylor);
+            mem->deg_mag[out] = fr__checked_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, mem->deg_mag[out]);
+            if (mem->deg_mag[out] < 0) mem->deg[out] = -1;
+        }
+    }
     return ts;
 }
 
@@ -5077,7 +5125,10 @@ static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
         const fr_instr_t *in = &t->code[i];
         if (!mem->need[i]) continue;
         mem->list[cnt++] = i;
-        if (mem->deg[i] >= 0) continue;
+        if (mem->deg[i] >= 0) { /* a leaf: it must not have overflowed on this ray */
+            if (fr__checked_degree(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i]) < 0) return -1;
+            continue;
+        }
         switch ((fr_op_t)in->op) {
         case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
             mem->need[in->a] = 1; mem->need[in->b] = 1; break;
@@ -5903,7 +5954,7 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         if (lf->quadric) m = fr__quadric_leaf(lf, R, inv_dd, culled, cand + nc, &sg);
         else {
             const double *c = mem->taylor + (size_t)lf->slot * FR__TAYLOR_N;
-            int dg = fr__prog_degree(c, lf->degree);
+            int dg = fr__checked_degree(c, lf->degree);
             m = dg < 0 ? -1 : fr__poly_leaf(c, dg, R->t0 - ts, R->t1 - ts, ts, culled, cand + nc, &sg);
         }
         if (m < 0) return FR_ERR_NOT_POLYNOMIAL;
@@ -6068,14 +6119,17 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
                     R.mdeg = mem.deg_mag[out];
                     R.rho = 2.0 * fr__gamma(nr);
                     if (R.mdeg < R.pdeg) R.pc = NULL; /* cannot happen; stay safe */
-                    if (R.pc && desc->interval_newton && R.mdeg >= 1) {
+                    if (R.pc) R.gam = fr__gamma(2.0 * R.mdeg + 2.0);
+                    if (R.pc && R.mdeg >= 1) {
                         /* g' = sum (k+1) c_{k+1} s^k; the products by k+1 round once more */
                         for (k = 0; k < R.mdeg; k++) {
                             R.dc[k] = k + 1 <= R.pdeg ? (double)(k + 1) * R.pc[k + 1] : 0.0;
                             R.dm[k] = (double)(k + 1) * R.pm[k + 1];
                         }
                         R.drho = R.rho + 4.0 * FR__U;
-                        R.newton = 1;
+                        R.dgam = fr__gamma(2.0 * (R.mdeg - 1) + 2.0);
+                        R.newton = desc->interval_newton;
+                        R.mono = 1;
                     }
                 }
             }
