@@ -4448,9 +4448,53 @@ FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const doub
    an upper bound for every ray (a zero component, or a cancellation, only
    leaves exact zeros on top, which fr__prog_degree trims). */
 typedef struct fr__tp_t {
-    unsigned int slot;
-    unsigned char da, db, dc, pad;
+    unsigned int slot, a, b;           /* the tape's slot and its operands (0 if unused), */
+    unsigned int oc, oa, ob;           /* and their offsets in a Taylor array (slot * FR__TAYLOR_N) */
+    unsigned char da, db, dc, kernel; /* kernel: FR__K_*, chosen by fr__prog_kernel */
 } fr__tp_t;
+
+/* Kernels of fr__prog_run, plain and magnitude run side by side: products
+   by a constant, squares of linear and quadratic factors and fourth powers
+   of linear ones (a quadric or quartic tape is mostly these) written out;
+   the rest through fr__tpoly_step. A doubled product 2 a_i a_j is rounded
+   once where fr__tpoly_mul rounds a_i a_j + a_j a_i twice, within the same
+   bound (fr__poly_range_of). */
+#define FR__K_STEP 0
+#define FR__K_MULK 1 /* b of degree 0 */
+#define FR__K_KMUL 2 /* a of degree 0 */
+#define FR__K_SQR1 3 /* a^2, a linear */
+#define FR__K_SQR2 4 /* a^2, a quadratic */
+#define FR__K_POW4 5 /* a^4, a linear */
+#define FR__K_ADD 6
+#define FR__K_SUB 7
+#define FR__K_CONST 8
+#define FR__K_VAR 9
+#define FR__K_NEG 10
+static unsigned char fr__prog_kernel(const fr_instr_t *in, int da, int db)
+{
+    int sq = in->op == FR_OP_SQR || (in->op == FR_OP_POWI && in->k == 2);
+    if (in->op == FR_OP_CONST) return FR__K_CONST;
+    if (in->op >= FR_OP_VAR_X && in->op <= FR_OP_VAR_Z) return FR__K_VAR;
+    if (in->op == FR_OP_NEG) return FR__K_NEG;
+    if (in->op == FR_OP_MUL && db == 0) return FR__K_MULK;
+    if (in->op == FR_OP_MUL && da == 0) return FR__K_KMUL;
+    if (sq && da == 1) return FR__K_SQR1;
+    if (sq && da == 2) return FR__K_SQR2;
+    if (in->op == FR_OP_POWI && in->k == 4 && da == 1) return FR__K_POW4;
+    if (in->op == FR_OP_ADD) return FR__K_ADD;
+    if (in->op == FR_OP_SUB) return FR__K_SUB;
+    return FR__K_STEP;
+}
+
+/* c = a^2, a of degree 2 (5 coefficients), c may alias nothing. */
+static FR__HOT_INLINE void fr__sqr2(double a0, double a1, double a2, double *c)
+{
+    c[0] = a0 * a0;
+    c[1] = 2.0 * (a0 * a1);
+    c[2] = a1 * a1 + 2.0 * (a0 * a2);
+    c[3] = 2.0 * (a1 * a2);
+    c[4] = a2 * a2;
+}
 
 /* A CSG leaf of a prepared model. For a quadric (degree <= 2, `quadric`)
    its monomial form about e: f(e + q) = k + b.q + q^T A q with q[0] = k,
@@ -4504,17 +4548,82 @@ static size_t fr__prep_layout(unsigned int nl, unsigned int nn, unsigned int np,
 /* Run a prepared Taylor program on the ray o + s d: the plain run into P
    and, if M is not NULL, the magnitude run into M in the same pass (the
    two runs of fr__taylor_run, per slot side by side). */
+/* One pass of fr__prog_run, mag constant so each caller gets its own copy. */
+static FR__HOT_INLINE void fr__prog_pass(const fr_tape_t *t, const fr__tp_t *prog, unsigned int np, const double o[3],
+                                         const double d[3], double *P, double *M, int mag)
+{
+    unsigned int j;
+    int k;
+    for (j = 0; j < np; j++) {
+        const fr__tp_t *pi = &prog[j];
+        const double *A = P + pi->oa, *B = P + pi->ob, *MA = M + pi->oa, *MB = M + pi->ob;
+        double *c = P + pi->oc, *mc = M + pi->oc;
+        int da = pi->da, db = pi->db;
+        switch (pi->kernel) {
+        case FR__K_CONST: {
+            double v = t->code[pi->slot].k;
+            c[0] = v;
+            if (mag) mc[0] = fabs(v);
+            break;
+        }
+        case FR__K_VAR: {
+            int ax = (int)t->code[pi->slot].op - (int)FR_OP_VAR_X;
+            c[0] = o[ax]; c[1] = d[ax];
+            if (mag) { mc[0] = fabs(o[ax]); mc[1] = fabs(d[ax]); }
+            break;
+        }
+        case FR__K_NEG:
+            for (k = 0; k <= da; k++) c[k] = -A[k];
+            if (mag) for (k = 0; k <= da; k++) mc[k] = MA[k];
+            break;
+        case FR__K_MULK:
+            for (k = 0; k <= da; k++) c[k] = A[k] * B[0];
+            if (mag) for (k = 0; k <= da; k++) mc[k] = MA[k] * MB[0];
+            break;
+        case FR__K_KMUL:
+            for (k = 0; k <= db; k++) c[k] = A[0] * B[k];
+            if (mag) for (k = 0; k <= db; k++) mc[k] = MA[0] * MB[k];
+            break;
+        case FR__K_SQR1:
+            c[0] = A[0] * A[0]; c[1] = 2.0 * (A[0] * A[1]); c[2] = A[1] * A[1];
+            if (mag) { mc[0] = MA[0] * MA[0]; mc[1] = 2.0 * (MA[0] * MA[1]); mc[2] = MA[1] * MA[1]; }
+            break;
+        case FR__K_SQR2:
+            fr__sqr2(A[0], A[1], A[2], c);
+            if (mag) fr__sqr2(MA[0], MA[1], MA[2], mc);
+            break;
+        case FR__K_POW4:
+            fr__sqr2(A[0] * A[0], 2.0 * (A[0] * A[1]), A[1] * A[1], c);
+            if (mag) fr__sqr2(MA[0] * MA[0], 2.0 * (MA[0] * MA[1]), MA[1] * MA[1], mc);
+            break;
+        case FR__K_ADD: case FR__K_SUB: {
+            double sg = pi->kernel == FR__K_ADD ? 1.0 : -1.0;
+            int lo = da < db ? da : db;
+            for (k = 0; k <= lo; k++) c[k] = A[k] + sg * B[k];
+            for (; k <= da; k++) c[k] = A[k];
+            for (; k <= db; k++) c[k] = sg * B[k];
+            if (mag) {
+                for (k = 0; k <= lo; k++) mc[k] = MA[k] + MB[k];
+                for (; k <= da; k++) mc[k] = MA[k];
+                for (; k <= db; k++) mc[k] = MB[k];
+            }
+            break;
+        }
+        default: {
+            const fr_instr_t *in = &t->code[pi->slot];
+            fr__tpoly_step(in, A, da, B, db, pi->dc, o, d, c, NULL);
+            if (mag) fr__tpoly_step(in, MA, da, MB, db, pi->dc, o, d, mc, c);
+            break;
+        }
+        }
+    }
+}
+
 static void fr__prog_run(const fr_tape_t *t, const fr__tp_t *prog, unsigned int np, const double o[3], const double d[3],
                          double *P, double *M)
 {
-    unsigned int j;
-    for (j = 0; j < np; j++) {
-        const fr__tp_t *pi = &prog[j];
-        const fr_instr_t *in = &t->code[pi->slot];
-        size_t i = (size_t)pi->slot * FR__TAYLOR_N, a = (size_t)in->a * FR__TAYLOR_N, b = (size_t)in->b * FR__TAYLOR_N;
-        fr__tpoly_step(in, P + a, pi->da, P + b, pi->db, pi->dc, o, d, P + i, NULL);
-        if (M) fr__tpoly_step(in, M + a, pi->da, M + b, pi->db, pi->dc, o, d, M + i, P + i);
-    }
+    if (M) fr__prog_pass(t, prog, np, o, d, P, M, 1);
+    else fr__prog_pass(t, prog, np, o, d, P, P, 0);
 }
 
 
@@ -4742,11 +4851,39 @@ static double fr__gamma(double m) { return m * FR__U / (1.0 - m * FR__U); }
 
 /* Taylor shift q(s) -> q(s + mu), degree n, by repeated synthetic division
    (the order fr__poly_range_of's rounding bound counts). */
-static inline void fr__taylor_shift(double *q, int n, double mu)
+static FR__HOT_INLINE void fr__taylor_shift(double *q, int n, double mu)
 {
     int i, k;
     for (i = 0; i < n; i++)
         for (k = n - 1; k >= i; k--) q[k] += mu * q[k + 1];
+}
+
+/* fr__poly_range_of's three sums for degree 3 and 4 (a quartic's g' and
+   the quartic: tangle cube, tori), written out (the loops' bookkeeping was
+   half the cost): q = pc shifted by mu (the order of fr__taylor_shift),
+   rad = sum_{j >= 1} |q_j| r^j, pad = pm(x) by Horner. */
+static void fr__shift_sum3(const double *pc, const double *pm, double mu, double r, double x, double *q, double *rad,
+                           double *pad)
+{
+    double q0 = pc[0], q1 = pc[1], q2 = pc[2], q3 = pc[3], r2 = r * r;
+    q2 += mu * q3; q1 += mu * q2; q0 += mu * q1;
+    q2 += mu * q3; q1 += mu * q2;
+    q2 += mu * q3;
+    q[0] = q0;
+    *rad = (fabs(q1) * r + fabs(q2) * r2) + fabs(q3) * (r2 * r);
+    *pad = ((pm[3] * x + pm[2]) * x + pm[1]) * x + pm[0];
+}
+static void fr__shift_sum4(const double *pc, const double *pm, double mu, double r, double x, double *q, double *rad,
+                           double *pad)
+{
+    double q0 = pc[0], q1 = pc[1], q2 = pc[2], q3 = pc[3], q4 = pc[4], r2 = r * r;
+    q3 += mu * q4; q2 += mu * q3; q1 += mu * q2; q0 += mu * q1;
+    q3 += mu * q4; q2 += mu * q3; q1 += mu * q2;
+    q3 += mu * q4; q2 += mu * q3;
+    q3 += mu * q4;
+    q[0] = q0;
+    *rad = (fabs(q1) * r + fabs(q2) * r2) + (fabs(q3) * r + fabs(q4) * r2) * r2;
+    *pad = (((pm[4] * x + pm[3]) * x + pm[2]) * x + pm[1]) * x + pm[0];
 }
 
 /* The enclosure of g over [a, b] from the ray polynomial (a centred form):
@@ -4765,10 +4902,12 @@ static inline void fr__taylor_shift(double *q, int n, double mu)
    and the shift and the sums add gamma_{2n+2} of the shifted magnitudes,
    so the radius gets (rho + 2 gamma_{2n+2}) Q_j r^j with Q the magnitudes
    shifted by |mu|, and s = t - ts is widened by its own rounding. */
+/* *pad_share: 1 when the rounding pad is FR__POLY_PAD_SHARE of the radius
+   or more (fr__g_range then asks the affine forms too), else 0. */
 static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double *pm, int pdeg, int mdeg, double rho,
                               double gam, double a, double b, double *pad_share)
 {
-    double q[FR__TAYLOR_N], sa, sb, mu, amu, r, rad = 0, pad = 0, rj = 1, g;
+    double q[FR__TAYLOR_N], sa, sb, mu, amu, r, rad = 0, pad = 0, rj = 1, g, x;
     int n = mdeg, k;
     sa = a - R->ts; sb = b - R->ts;
     sa -= 2.0 * FR__U * (fabs(a) + fabs(R->ts));
@@ -4777,27 +4916,29 @@ static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double
     r = (sb - mu > mu - sa ? sb - mu : mu - sa) * (1.0 + 4.0 * FR__U);
     amu = fabs(mu);
     if (n < 0) { *pad_share = 0; return iv_point(0.0); } /* the zero polynomial */
-    for (k = 0; k <= n; k++) q[k] = k <= pdeg ? pc[k] : 0.0;
-    if (n == 4) fr__taylor_shift(q, 4, mu); /* quartics (tangle cube, tori): unrolled by the compiler */
-    else fr__taylor_shift(q, n, mu);
     g = rho + 2.0 * gam; /* gam = gamma_{2n+2}, once per ray */
-    for (k = 1; k <= n; k++) {
-        rj *= r;
-        rad += fabs(q[k]) * rj;
-    }
     /* sum_j Q_j r^j, Q = pm shifted by |mu|, is pm(|mu| + r) exactly (a
        shift then an evaluation at r is an evaluation at |mu| + r): one
        Horner pass of nonnegative terms instead of a second O(n^2) shift
        (a third of this function's time). Its rounding, relative and below
        gamma_{2n} with |mu| + r rounded up, is covered by one more factor
        1 + gamma_{2n+2}. */
-    {
-        double x = (amu + r) * (1.0 + 2.0 * FR__U); /* |mu| + r rounded up */
+    x = (amu + r) * (1.0 + 2.0 * FR__U); /* |mu| + r rounded up */
+    if (pdeg == n && n == 4) fr__shift_sum4(pc, pm, mu, r, x, q, &rad, &pad);
+    else if (pdeg == n && n == 3) fr__shift_sum3(pc, pm, mu, r, x, q, &rad, &pad);
+    else {
+        for (k = 0; k <= n; k++) q[k] = k <= pdeg ? pc[k] : 0.0;
+        fr__taylor_shift(q, n, mu);
+        for (k = 1; k <= n; k++) {
+            rj *= r;
+            rad += fabs(q[k]) * rj;
+        }
         pad = pm[n];
         for (k = n; k-- > 0;) pad = pad * x + pm[k];
     }
     pad *= 1.0 + gam;
-    *pad_share = g * pad / (rad + g * pad + DBL_MIN);
+    /* the rounding pad's share of the radius, compared without a division */
+    *pad_share = g * pad >= FR__POLY_PAD_SHARE * (rad + g * pad) ? 1.0 : 0.0;
     rad = (rad + g * pad) * (1.0 + gam) + 2.0 * FR__U * fabs(q[0]) + DBL_MIN;
     if (!(rad < HUGE_VAL) || q[0] != q[0]) return iv_entire();
     return iv_make(q[0] - rad, q[0] + rad);
@@ -4841,7 +4982,7 @@ static fr_result_t fr__g_range(fr__ray_t *R, const fr_tape_t *tp, double a, doub
     if (R->pc) {
         double share;
         pr = fr__poly_range(R, a, b, &share);
-        if (!iv_contains(pr, 0.0) || share < FR__POLY_PAD_SHARE) { *out = pr; return FR_OK; }
+        if (!iv_contains(pr, 0.0) || share == 0) { *out = pr; return FR_OK; }
     }
 #ifndef IV_NO_AFFINE
     if (!plain) {
@@ -5701,7 +5842,12 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
         P[np].dc = (unsigned char)gdeg[i];
         P[np].da = (unsigned char)(fr__arity(in->op) >= 1 && gdeg[in->a] > 0 ? gdeg[in->a] : 0);
         P[np].db = (unsigned char)(fr__arity(in->op) >= 2 && gdeg[in->b] > 0 ? gdeg[in->b] : 0);
-        P[np].pad = 0;
+        P[np].kernel = fr__prog_kernel(in, P[np].da, P[np].db);
+        P[np].a = fr__arity(in->op) >= 1 ? in->a : 0;
+        P[np].b = fr__arity(in->op) >= 2 ? in->b : 0;
+        P[np].oc = i * FR__TAYLOR_N;
+        P[np].oa = P[np].a * FR__TAYLOR_N;
+        P[np].ob = P[np].b * FR__TAYLOR_N;
         np++;
     }
     out->n_prog = np;
