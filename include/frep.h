@@ -5992,6 +5992,23 @@ static int fr__quadric_leaf(const fr__leaf_t *L, const fr__ray_t *R, double inv_
     if (!(m - m == 0)) return -1;
     if (m == 0) { *sg = 0; return 0; }
     if (!(m < FR__QUAD_BIG && m > FR__QUAD_SMALL)) return fr__poly_leaf(c, fr__tpoly_trim(c, 2), s0, s1, ts, 0, cand, sg);
+    {
+        /* Most leaves have no root in the segment. That is certain, with no
+           square root or division, when g(s0) and g(s1) share a sign by
+           more than 8x their Horner error and either g' keeps its sign
+           over the segment (no vertex inside) or the ends' sign is the
+           opposite of c2's (the vertex, where g has the sign of -c2 if
+           there are two roots, is then beyond both roots' reach). Roots
+           computed below are within ulps of the true ones, so they would
+           lie outside the segment as well. */
+        double g0 = c[0] + s0 * (c[1] + s0 * c[2]), g1 = c[0] + s1 * (c[1] + s1 * c[2]);
+        double e0 = 8.0 * 4.0 * FR__U * (fabs(c[0]) + fabs(s0) * (fabs(c[1]) + fabs(s0) * fabs(c[2])));
+        double e1 = 8.0 * 4.0 * FR__U * (fabs(c[0]) + fabs(s1) * (fabs(c[1]) + fabs(s1) * fabs(c[2])));
+        if ((g0 > e0 && g1 > e1) || (g0 < -e0 && g1 < -e1)) {
+            double p0 = c[1] + 2.0 * c[2] * s0, p1 = c[1] + 2.0 * c[2] * s1;
+            if ((p0 > 0 && p1 > 0) || (p0 < 0 && p1 < 0) || (g0 > 0) != (c[2] > 0)) { *sg = fr__sgn(g0); return 0; }
+        }
+    }
     if (c[2] == 0) {
         if (c[1] == 0) { *sg = fr__sgn(c[0]); return 0; }
         r[0] = -c[0] / c[1];
