@@ -5285,48 +5285,134 @@ static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
     return cnt;
 }
 
-/* g at the two ends of a candidate's sign-test bracket, t - ts = s[0] and
-   s[1], from the CSG tree of fr__csg_mark: each polynomial leaf by Horner's
-   rule on its Taylor coefficients (a few flops instead of its whole
-   subtree, a dozen instructions for a quadric), each CSG node by min or
-   max (below). Both ends share one pass over the tree (the walk and the loads cost
-   more than the arithmetic). v holds 2n doubles (the grad evaluator's
-   scratch has 4n); g receives the two values. */
-static void fr__csg_g2(fr__ray_t *R, const fr__trace_mem_t *mem, int cnt, const double s[2], double *v, double g[2])
+
+/* Analytic CSG classification (paper §3.1.1, "select the root ... placed
+   on the surface of the CSG solid"), shared by the prepared and the plain
+   path: leaves' signs, crossings, and a walk over the sorted crossings. */
+
+static int fr__sgn(double x) { return x > 0 ? 1 : x < 0 ? -1 : 0; }
+
+/* A leaf's crossing roots, general degree: fr_solve_poly on [s0, s1] (s = t
+   - ts), each root a crossing where the leaf's sign differs in the gaps
+   either side (Horner at the gaps' midpoints, so a double root is a touch);
+   roots at s0 belong to the part before the segment. cand receives ts + s
+   of the crossings, *sg the sign just after s0. -1: invalid coefficients. */
+static int fr__poly_leaf(const double *c, int deg, double s0, double s1, double ts, int culled, double *cand, int *sg)
 {
-    const fr_tape_t *tp = R->tape;
-    int j, e;
-    unsigned int out = tp->outputs[0];
-    R->evals += 2;
-    for (j = 0; j < cnt; j++) {
-        unsigned int i = mem->list[j];
-        const fr_instr_t *in = &tp->code[i];
-        if (mem->deg[i] >= 0) {
-            const double *q = mem->taylor + (size_t)i * FR__TAYLOR_N;
-            int k = mem->deg[i];
-            double r0 = q[k], r1 = q[k];
-            while (k-- > 0) { r0 = r0 * s[0] + q[k]; r1 = r1 * s[1] + q[k]; }
-            v[2 * i] = r0; v[2 * i + 1] = r1;
-            continue;
-        }
-        for (e = 0; e < 2; e++) {
-            double a = v[2 * in->a + (unsigned int)e], c = v[2 * in->b + (unsigned int)e], r;
-            switch ((fr_op_t)in->op) {
-            /* Only g's sign is tested, and an R-function (alpha in [0, 1],
-               which the builder enforces) has the sign of max (union) or
-               min (intersection) of its operands: that is what makes it an
-               R-function (Rvachev; paper §2, "Rvachev's R-functions";
-               FR_PRUNE_SIGN relies on it too). So no square root per node
-               (they were the sign tests' cost), and the sign is the exact
-               one where a + b - sqrt(...) would round to 0. */
-            case FR_OP_NEG: r = -a; break;
-            case FR_OP_MIN: case FR_OP_RINT: r = a < c ? a : c; break;
-            default: r = a > c ? a : c; break; /* MAX, RUNI: the only other CSG nodes */
-            }
-            v[2 * i + (unsigned int)e] = r;
+    double r[FR_POLY_MAX_DEGREE], x, y;
+    int nr, j, m = 0, prev, first = 0, k;
+    if (culled || deg <= 0) {
+        x = 0.5 * s0 + 0.5 * s1;
+        for (y = c[deg > 0 ? deg : 0], k = deg; k-- > 0;) y = y * x + c[k];
+        *sg = fr__sgn(y);
+        return 0;
+    }
+    nr = fr_solve_poly(c, deg, s0, s1, r);
+    if (nr < 0) return -1;
+    while (first < nr && r[first] <= s0) first++;
+    prev = 0;
+    for (j = first - 1; j < nr; j++) {
+        double a = j < first ? s0 : r[j], b = j + 1 < nr ? r[j + 1] : s1;
+        int g;
+        x = 0.5 * a + 0.5 * b;
+        for (y = c[deg], k = deg; k-- > 0;) y = y * x + c[k];
+        g = fr__sgn(y);
+        if (j < first) *sg = prev = g;
+        else {
+            if (g != 0 && prev != 0 && g != prev) cand[m++] = ts + r[j];
+            if (g != 0) prev = g;
         }
     }
-    g[0] = v[2 * out]; g[1] = v[2 * out + 1];
+    return m;
+}
+
+/* The sign of the shape from the leaves' signs v[0, nl): min, max and
+   negation over signs, as over values (an R-function has the sign of min or
+   max of its operands); node values go to v[nl...]. */
+static int fr__csg_sign(const fr__csg_node_t *nd, unsigned int nn, unsigned int nl, signed char *v,
+                        const signed char *force)
+{
+    signed char *w = v + nl;
+    unsigned int j;
+    for (j = 0; j < nn; j++) {
+        int a = v[nd[j].a], b = v[nd[j].b], mn = a < b ? a : b, mx = a < b ? b : a;
+        w[j] = (signed char)(nd[j].op == FR__CSG_MAX ? mx : nd[j].op == FR__CSG_MIN ? mn : -a);
+        if (force && force[j]) w[j] = force[j];
+    }
+    return nn ? w[nn - 1] : v[0];
+}
+
+/* The same over the tape's own slots (fr__csg_mark's list, ascending):
+   leaves (deg >= 0) hold their signs in v[slot]. */
+static int fr__csg_sign_tape(const fr_tape_t *t, const unsigned int *list, int cnt, const int *deg, signed char *v)
+{
+    int j;
+    for (j = 0; j < cnt; j++) {
+        unsigned int i = list[j];
+        const fr_instr_t *in = &t->code[i];
+        int a, b;
+        if (deg[i] >= 0) continue;
+        a = v[in->a];
+        b = in->op == FR_OP_NEG ? 0 : v[in->b];
+        v[i] = (signed char)(in->op == FR_OP_NEG ? -a : in->op == FR_OP_MIN || in->op == FR_OP_RINT ? (a < b ? a : b)
+                                                                                                  : (a < b ? b : a));
+    }
+    return v[t->outputs[0]];
+}
+
+/* The tree a walk evaluates: a prepared model's nodes, or the tape's slots. */
+typedef struct fr__csg_walk_t {
+    const fr__csg_node_t *nodes; /* prepared: nn nodes over nl leaves, force as fr__csg_sign */
+    unsigned int nn, nl;
+    const signed char *force;
+    const fr_tape_t *tape;       /* plain: fr__csg_mark's list of cnt slots, with the Taylor degrees */
+    const unsigned int *list;
+    int cnt;
+    const int *deg;
+} fr__csg_walk_t;
+
+static int fr__walk_sign(const fr__csg_walk_t *W, signed char *v)
+{
+    return W->nodes ? fr__csg_sign(W->nodes, W->nn, W->nl, v, W->force) : fr__csg_sign_tape(W->tape, W->list, W->cnt, W->deg, v);
+}
+
+/* Sort the nc crossings cand (t) with their leaves cl, then find the first
+   where the shape's sign differs between just before and just after it,
+   within FR__CSG_SIGN_ULPS of the point's scale (near-coincident surfaces
+   count together): vlo and vhi start as the leaves' signs after t0; a
+   crossing flips its leaf's sign in vhi once it is within the bracket's
+   end and in vlo once it is before the bracket's start, and the tree is
+   re-evaluated only where a leaf changed -- no evaluation of g near a
+   root, where rounding could hide a grazing ray's sign change. Returns the
+   crossing's index or -1, with the shape's signs before (glo) and after
+   (ghi) and the bracket's half-width. */
+static int fr__csg_walk(fr__ray_t *R, const fr__csg_walk_t *W, double *cand, unsigned int *cl, int nc, signed char *vlo,
+                        signed char *vhi, int *glo, int *ghi, double *dt_out)
+{
+    int k, plo = 0, phi = 0;
+    double oscale;
+    for (k = 1; k < nc; k++) { /* insertion sort: few candidates */
+        double x = cand[k];
+        unsigned int y = cl[k];
+        int i = k;
+        while (i > 0 && cand[i - 1] > x) { cand[i] = cand[i - 1]; cl[i] = cl[i - 1]; i--; }
+        cand[i] = x;
+        cl[i] = y;
+    }
+    if (nc == 0) return -1;
+    *glo = *ghi = fr__walk_sign(W, vlo);
+    oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) / (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
+    for (k = 0; k < nc; k++) {
+        double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
+        int mlo = plo, mhi = phi;
+        while (phi < nc && cand[phi] <= tc + dt) { vhi[cl[phi]] = (signed char)-vhi[cl[phi]]; phi++; }
+        while (plo < nc && cand[plo] < tc - dt) { vlo[cl[plo]] = (signed char)-vlo[cl[plo]]; plo++; }
+        if (plo != mlo) *glo = fr__walk_sign(W, vlo);
+        if (phi != mhi) *ghi = fr__walk_sign(W, vhi);
+        R->iters++;
+        if (*glo * *ghi < 0) { *dt_out = dt; return k; }
+    }
+    return -1;
 }
 
 /* The paper's analytic method. A polynomial tape: the roots of g. Otherwise
@@ -5342,7 +5428,7 @@ static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, 
     const fr_tape_t *t = R->tape;
     unsigned int out = t->outputs[0];
     int nc = 0, k, j;
-    double oscale, *cand = mem->cand, s0 = R->t0 - ts, s1 = R->t1 - ts, *v = (double *)mem->eval;
+    double oscale, *cand = mem->cand, s0 = R->t0 - ts, s1 = R->t1 - ts;
     *found = 0;
     oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) /
              (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
@@ -5355,34 +5441,27 @@ static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, 
     }
     if (cnt == -2) cnt = fr__csg_mark(t, mem);
     if (cnt < 0) return FR_ERR_NOT_POLYNOMIAL;
-    for (j = 0; j < cnt; j++) { /* the polynomial leaves: collect their roots */
-        unsigned int i = mem->list[j];
-        int nr;
-        if (mem->deg[i] <= 0) continue;
-        nr = fr_solve_poly(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i], s0, s1, cand + nc);
-        R->iters++;
-        for (k = 0; k < nr; k++) cand[nc + k] += ts;
-        if (nr > 0) nc += nr;
-    }
-    /* insertion sort: few candidates */
-    for (k = 1; k < nc; k++) {
-        double x = cand[k];
-        j = k;
-        while (j > 0 && cand[j - 1] > x) { cand[j] = cand[j - 1]; j--; }
-        cand[j] = x;
-    }
-    for (k = 0; k < nc; k++) {
-        double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
-        double lo = tc - dt < R->t0 ? R->t0 : tc - dt, hi = tc + dt > R->t1 ? R->t1 : tc + dt;
-        double sb[2], gb[2], glo, ghi;
-        sb[0] = lo - ts; sb[1] = hi - ts;
-        fr__csg_g2(R, mem, cnt, sb, v, gb);
-        glo = gb[0]; ghi = gb[1];
-        R->iters++;
-        if (fr__opposite(glo, ghi) || (tc == R->t0 && glo == 0) ) {
-            *found = 1; *t_hit = tc; *t_err = dt;
-            return FR_OK;
+    {
+        signed char *vlo = mem->sgn, *vhi = mem->sgn + t->n_code;
+        fr__csg_walk_t W;
+        int glo, ghi, kh;
+        double dt;
+        for (j = 0; j < cnt; j++) { /* the polynomial leaves: their crossings and signs */
+            unsigned int i = mem->list[j];
+            int m, sg = 0;
+            if (mem->deg[i] < 0) continue;
+            m = fr__poly_leaf(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i], s0, s1, ts, 0, cand + nc, &sg);
+            R->iters++;
+            if (m < 0) return FR_ERR_NOT_POLYNOMIAL;
+            for (k = 0; k < m; k++) mem->cleaf[nc + k] = i;
+            nc += m;
+            vlo[i] = vhi[i] = (signed char)sg;
         }
+        memset(&W, 0, sizeof W);
+        W.tape = t; W.list = mem->list; W.cnt = cnt; W.deg = mem->deg;
+        kh = fr__csg_walk(R, &W, cand, mem->cleaf, nc, vlo, vhi, &glo, &ghi, &dt);
+        if (kh >= 0) { *found = 1; *t_hit = cand[kh]; *t_err = dt; }
+        R->evals += (unsigned long long)cnt;
     }
     return FR_OK;
 }
@@ -5485,7 +5564,6 @@ static int fr__clip_padded(fr__ray_t *R, const double *b)
 #define FR__QUAD_BIG 2.037035976334486e90     /* 2^300 */
 #define FR__QUAD_SMALL 4.9090934652977266e-91 /* 2^-300 */
 
-static int fr__sgn(double x) { return x > 0 ? 1 : x < 0 ? -1 : 0; }
 
 /* The quadric (degree <= 2) monomial forms of slots 0..last in powers of
    q = p - e: W holds 10 doubles per slot, [1, X, Y, Z, XX, XY, XZ, YY, YZ,
@@ -5500,8 +5578,10 @@ static int fr__quadric_forms(const fr_tape_t *t, const int *gdeg, unsigned int l
         double *c = W + 10 * (size_t)i, r[10];
         const double *a = W + 10 * (size_t)in->a, *b = W + 10 * (size_t)in->b;
         for (k = 0; k < 10; k++) r[k] = 0.0;
-        if (gdeg[i] < 0 || gdeg[i] > 2) r[0] = NAN;
-        else switch ((fr_op_t)in->op) {
+        if (gdeg[i] < 0 || gdeg[i] > 2) {
+            r[0] = NAN;
+        } else {
+            switch ((fr_op_t)in->op) {
         case FR_OP_CONST: r[0] = in->k; break;
         case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: {
             int ax = (int)in->op - (int)FR_OP_VAR_X;
@@ -5530,6 +5610,7 @@ static int fr__quadric_forms(const fr_tape_t *t, const int *gdeg, unsigned int l
         default:
             if (!fr__tpoly_const_op(in, a[0], b[0], &r[0])) r[0] = NAN;
             break;
+            }
         }
         for (k = 0; k < 10; k++) c[k] = r[k];
     }
@@ -5603,11 +5684,13 @@ static double fr__box_pad_set(const double lo[3], const double hi[3], const doub
    test: quadric leaves and CSG nodes are culled only when their box is at
    most FR__LEAF_CULL_SHARE of the model's (rays through the model then
    miss it often), other leaves always. */
+#ifndef FR_NO_INTERVAL
 static void fr__leaf_box_set(fr__leaf_t *lf, const double lo[3], const double hi[3], const double *model)
 {
     double share = fr__box_pad_set(lo, hi, model, lf->box);
     lf->boxed = !lf->quadric || (lf->shape != FR__LEAF_LINEAR && share <= FR__LEAF_CULL_SHARE);
 }
+#endif
 
 #ifndef FR_NO_INTERVAL
 /* The box of slot `slot`'s zero set (keep_zero 1) or solid (0) inside [lo,
@@ -5902,39 +5985,6 @@ static int fr__slab_meets(const fr__slab_t *S, const double *b, double a, double
     return a - 4.0 * FR__U * fabs(a) - S->tpad <= z + 4.0 * FR__U * fabs(z) + S->tpad;
 }
 
-/* A leaf's crossing roots, general degree: fr_solve_poly on [s0, s1] (s = t
-   - ts), each root a crossing where the leaf's sign differs in the gaps
-   either side (Horner at the gaps' midpoints, so a double root is a touch);
-   roots at s0 belong to the part before the segment. cand receives ts + s
-   of the crossings, *sg the sign just after s0. -1: invalid coefficients. */
-static int fr__poly_leaf(const double *c, int deg, double s0, double s1, double ts, int culled, double *cand, int *sg)
-{
-    double r[FR_POLY_MAX_DEGREE], x, y;
-    int nr, j, m = 0, prev, first = 0, k;
-    if (culled || deg <= 0) {
-        x = 0.5 * s0 + 0.5 * s1;
-        for (y = c[deg > 0 ? deg : 0], k = deg; k-- > 0;) y = y * x + c[k];
-        *sg = fr__sgn(y);
-        return 0;
-    }
-    nr = fr_solve_poly(c, deg, s0, s1, r);
-    if (nr < 0) return -1;
-    while (first < nr && r[first] <= s0) first++;
-    prev = 0;
-    for (j = first - 1; j < nr; j++) {
-        double a = j < first ? s0 : r[j], b = j + 1 < nr ? r[j + 1] : s1;
-        int g;
-        x = 0.5 * a + 0.5 * b;
-        for (y = c[deg], k = deg; k-- > 0;) y = y * x + c[k];
-        g = fr__sgn(y);
-        if (j < first) *sg = prev = g;
-        else {
-            if (g != 0 && prev != 0 && g != prev) cand[m++] = ts + r[j];
-            if (g != 0) prev = g;
-        }
-    }
-    return m;
-}
 
 /* A quadric leaf on the ray: g(ts + s) = c0 + c1 s + c2 s^2 with ts the
    ray's point nearest the leaf's centre e, from the leaf's monomial form
@@ -6032,21 +6082,6 @@ static int fr__quadric_leaf(const fr__leaf_t *L, const fr__ray_t *R, double inv_
     return cnt;
 }
 
-/* The sign of the shape from the leaves' signs v[0, nl): min, max and
-   negation over signs, as over values (an R-function has the sign of min or
-   max of its operands); node values go to v[nl...]. */
-static int fr__csg_sign(const fr__csg_node_t *nd, unsigned int nn, unsigned int nl, signed char *v,
-                        const signed char *force)
-{
-    signed char *w = v + nl;
-    unsigned int j;
-    for (j = 0; j < nn; j++) {
-        int a = v[nd[j].a], b = v[nd[j].b], mn = a < b ? a : b, mx = a < b ? b : a;
-        w[j] = (signed char)(nd[j].op == FR__CSG_MAX ? mx : nd[j].op == FR__CSG_MIN ? mn : -a);
-        if (force && force[j]) w[j] = force[j];
-    }
-    return nn ? w[nn - 1] : v[0];
-}
 
 /* ANALYTIC on a prepared CSG model (paper §3.1.1): every leaf's crossings
    of the segment, sorted; a candidate is the hit where the shape's sign
@@ -6067,10 +6102,10 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
     fr__csg_node_t *N;
     fr__tp_t *prog;
     unsigned int nl = Pp->n_leaves, nn = Pp->n_nodes, j;
-    double *cand = mem->cand, dd, inv_dd, oscale, ts = 0;
+    double *cand = mem->cand, dd, inv_dd, ts = 0;
     unsigned int *cl = mem->cleaf;
     signed char *vlo = mem->sgn, *vhi = mem->sgn + nl + nn;
-    int nc = 0, k, plo = 0, phi = 0, glo = 0, ghi = 0;
+    int nc = 0, k;
     fr__slab_t S;
     int slab = 0;
     signed char *force = NULL, *live = NULL;
@@ -6127,34 +6162,20 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         vlo[j] = vhi[j] = (signed char)sg;
     }
     R->evals += nl;
-    for (k = 1; k < nc; k++) { /* insertion sort: few candidates */
-        double x = cand[k];
-        unsigned int y = cl[k];
-        int i = k;
-        while (i > 0 && cand[i - 1] > x) { cand[i] = cand[i - 1]; cl[i] = cl[i - 1]; i--; }
-        cand[i] = x;
-        cl[i] = y;
-    }
-    if (nc == 0) return FR_OK;
-    glo = ghi = fr__csg_sign(N, nn, nl, vlo, force);
-    oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) / (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
-    for (k = 0; k < nc; k++) {
-        double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
-        int mlo = plo, mhi = phi;
-        while (phi < nc && cand[phi] <= tc + dt) { vhi[cl[phi]] = (signed char)-vhi[cl[phi]]; phi++; }
-        while (plo < nc && cand[plo] < tc - dt) { vlo[cl[plo]] = (signed char)-vlo[cl[plo]]; plo++; }
-        /* the tree again only where its leaves changed */
-        if (plo != mlo) glo = fr__csg_sign(N, nn, nl, vlo, force);
-        if (phi != mhi) ghi = fr__csg_sign(N, nn, nl, vhi, force);
-        R->iters++;
-        if (glo * ghi < 0) {
-            unsigned int lf = cl[k];
+    {
+        fr__csg_walk_t W;
+        int glo, ghi, kh;
+        double dt;
+        memset(&W, 0, sizeof W);
+        W.nodes = N; W.nn = nn; W.nl = nl; W.force = force;
+        kh = fr__csg_walk(R, &W, cand, cl, nc, vlo, vhi, &glo, &ghi, &dt);
+        if (kh >= 0) {
+            unsigned int lf = cl[kh];
             *found = 1;
-            *t_hit = tc;
+            *t_hit = cand[kh];
             *t_err = dt;
             *leaf = lf;
             if (L[lf].quadric && vlo[lf] * vhi[lf] < 0) *orient = (vhi[lf] > vlo[lf]) == (ghi > glo) ? -1 : 1;
-            return FR_OK;
         }
     }
     return FR_OK;
