@@ -36,8 +36,11 @@
    RAYS (docs/frep.md, "Polynomial solvers and ray intersection")
      fr_trace finds the first root of f(o + t d) by the analytic, stepping,
      interval-bisection or sphere-tracing method; fr_bound_box gives a box
-     around the solid for fr_trace_desc_t.bounds, and the any_hit,
-     footprint and interval_newton options serve renderers.
+     around the solid for fr_trace_desc_t.bounds, fr_prepare a prepared
+     model for fr_trace_desc_t.prepared (per-model work done once: quadric
+     CSG leaves in monomial form, the CSG sign tree, leaf and node boxes,
+     fixed-degree Taylor programs), and the any_hit, footprint and
+     interval_newton options serve renderers.
 
    LICENSE
      MIT, see the end of this file.
@@ -492,7 +495,10 @@ FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, do
        polynomial in t, its coefficients (fr_ray_poly) go to fr_solve_poly;
        otherwise every polynomial leaf under min/max/R-function nodes is
        solved, the leaf roots are sorted, and the first one where f changes
-       sign is the hit (CSG of polynomial primitives).
+       sign is the hit (CSG of polynomial primitives). The sign change is
+       found without evaluating f near the root: each leaf's crossings
+       (roots where its sign changes, from the signs between its roots) flip
+       that leaf's sign in the CSG tree, so grazing rays keep their entry.
    FR_METHOD_STEP      §3.1.3 / §4.1.1: march to the first sign change with a
        fixed step, or with steps |g| / (L |d|) from the Lipschitz bound L;
        then Illinois regula falsi (default), Newton or Brent, each with a
@@ -502,7 +508,10 @@ FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, do
        2009) or plain intervals, and the tape pruned per segment. Never
        misses a root: the hit is the leftmost segment of width <= tol whose
        enclosure contains 0 (a near miss closer than the enclosure width may
-       be reported as a touch).
+       be reported as a touch). On a polynomial tape a segment where the
+       enclosure of g' excludes 0 holds at most one root: with a sign change
+       it goes to regula falsi (to tol, bracketed), without one it is
+       dropped once its ends' enclosures share a strict sign.
    FR_METHOD_SPHERE    sphere tracing for distance bounds (Hart 1996) with
        Keinert et al. 2014's over-relaxation as an option. Needs a finite
        Lipschitz bound (tape->lipschitz or desc->lipschitz).
