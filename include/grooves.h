@@ -85,6 +85,9 @@ typedef enum gr_result_t {
     GR_ERR_SECTION_ORDER,    /* a cross-section whose last b is not above its first b */
     GR_ERR_PERTURBATION,     /* a perturbation without a valid perturb_max */
     GR_ERR_UNSUPPORTED,      /* a feature left out at compile time (GR_NO_...) */
+    GR_ERR_STACK_FULL,       /* gr_shade_indirect(): the bounces needed more than
+                                GR_INDIRECT_STACK pending segments; the colour is
+                                filled but approximate (see there) */
     GR_RESULT_COUNT_
 } gr_result_t;
 
@@ -276,7 +279,7 @@ typedef struct gr_query_t {
     int line_samples;      /* intersections and ends (§5, issue 8): 0 (default)
                               answers footprints that gr_detect() finds
                               crossings or path ends in with the exact
-                              polygon path (§5.2-5.5); n = 1..8 asks for n
+                              polygon path (§5.2-5.5); n = 1..32 asks for n
                               line samples (§5.6, gr_query_lines()) for
                               footprints whose §4 answer flags
                               GR_LIST_NONPARALLEL or GR_LIST_PATH_END
@@ -603,7 +606,8 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
    planes (the ground, facets and end walls of those grooves) and the
    breakpoints it can hold per segment; beyond any of them the result is
    approximate and flagged GR_LIST_LINE_APPROX. They size the scratch
-   (about 125 KB with these defaults). */
+   (with GR_LINE_MAX_EDGES and GR_INDIRECT_STACK about 320 KB with these
+   defaults, within the polygon path's share of gr_query_scratch_bytes()). */
 #ifndef GR_LINE_MAX_GROOVES
 #  define GR_LINE_MAX_GROOVES 16
 #endif
@@ -613,13 +617,25 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 #ifndef GR_LINE_MAX_BREAKS
 #  define GR_LINE_MAX_BREAKS 1024
 #endif
-/* Most line samples per footprint (gr_query_t.line_samples). */
-#define GR_LINE_MAX_SAMPLES 8
+#ifndef GR_LINE_MAX_EDGES /* edge lines kept per scene; beyond, found per segment (slower, same answer) */
+#  define GR_LINE_MAX_EDGES 2048
+#endif
+/* Most line samples per footprint (gr_query_t.line_samples): 16 chords
+   along each axis. */
+#define GR_LINE_MAX_SAMPLES 32
 /* gr_facet_list_t.flags: line samples dropped grooves or breakpoints. */
 #define GR_LIST_LINE_APPROX 32u
 
+/* gr_line_stats_t.flags */
+#define GR_STATS_LINE_APPROX 1u /* a segment's scene dropped grooves, planes or
+                                   breakpoints (GR_LIST_LINE_APPROX) */
+#define GR_STATS_STACK_FULL  2u /* gr_shade_indirect(): more pending bounce
+                                   segments than GR_INDIRECT_STACK (it then
+                                   returns GR_ERR_STACK_FULL) */
+
 /* Optional counters from gr_query_lines() (and gr_shade_indirect()). */
 typedef struct gr_line_stats_t {
+    unsigned flags;    /* GR_STATS_... */
     int segments;      /* segments evaluated (line samples and bounces) */
     int intervals;     /* 1D intervals the segments were cut into */
     int evaluated;     /* intervals whose facet was found (the rest were
@@ -634,10 +650,12 @@ typedef struct gr_line_stats_t {
    footprint, in their straight approximation, for a box GR_LINE_CACHE_GROW
    times the footprint's search box; a later footprint whose box lies
    inside reuses them and skips the grid search and the nearest-point
-   solves. Only straight grooves (2-point paths) are cached, so the answer
-   is the uncached one; a box with a curve or polyline, or more grooves
-   than GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use;
-   it refers to one grid (another grid refills it). */
+   solves. Only straight, unperturbed grooves (2-point paths) are cached:
+   their straight approximation is the groove itself, the same from every
+   footprint, so the answer is bit for bit the uncached one; a box with a
+   curve, a polyline, a perturbed groove, or more grooves than
+   GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use; it
+   refers to one grid (another grid refills it). */
 #define GR_LINE_CACHE_GROW 3.0
 typedef struct gr_line_cache_t {
     const gr_grid_t *grid;  /* the grid it was filled from */
@@ -650,30 +668,35 @@ typedef struct gr_line_cache_t {
 
 #ifndef GR_NO_LINE_SAMPLES
 /* §5.6 line samples. The footprint F + a A1 + b A2 is sampled by
-   n = query->line_samples segments through F (0 means 2), evenly rotated:
-   segment j runs along cos(πj/n) A1 + sin(πj/n) A2, so 2 samples are the
-   footprint axes A1 and A2 as in the paper. Each segment is processed as a
-   1D version of §5.2-5.4: the rays from the viewer through the segment form
-   a plane; every groove near the footprint, in its local straight
-   approximation (§4.2) scaled by its perturbation, cuts that plane along
-   its facets, and the segment is cut into intervals at every point where
-   the first surface changes (projected section points, the crossing lines
-   of two grooves' facets, §5.3's intersection profiles) or where a shadow
-   boundary falls (§5.4: section points and crossing lines projected along
-   each light onto a facet). Inside one interval the visible facet and its
-   lit state are constant, so one ray per interval classifies it: the solid
-   is the ground w <= 0 minus every groove's cut (the part of its section
-   below w = 0) plus every protrusion. r_i is facet i's length share. The
-   segments are combined with Jones & Perry 2000's weights: segment j
-   weighs Σ sin²α over the edges it crosses (α between the segment and the
-   edge's image in UV), so a segment running along the edges counts little;
-   when no segment crosses an edge they are averaged. Early exit (§5.6):
-   intervals are classified longest first and a segment stops once
-   Σ r_i >= 1 - query->line_exit_tol; the unclassified rest (< tol) is
-   shared in proportion (each r_i moves by at most tol).
-   Path ends are treated as continuing (GR_LIST_PATH_END), as in gr_query().
-   Uses gr_query_scratch_bytes() of scratch; stats is optional. Errors as
-   gr_query(), plus GR_ERR_INVALID_ARG for line_samples outside 0..8. */
+   n = query->line_samples line segments (0 means 2) in two families: the
+   first ceil(n/2) run along A1, the other floor(n/2) along A2, each family
+   a set of parallel chords across the whole footprint at the midpoints of
+   equal strata of the other axis, so n = 2 is the paper's pair of axes
+   through F and more lines are a stratified quadrature of the footprint's
+   area (its error falls with n). Each chord is processed as a 1D version
+   of §5.2-5.4: the rays from the viewer through it form a plane; every
+   groove near the footprint, in its local straight approximation (§4.2)
+   scaled by its perturbation, cuts that plane along its facets, and the
+   chord is cut into intervals wherever an edge of the scene pierces the
+   plane (section points swept along T, the crossing lines of two grooves'
+   facets: §5.3's intersection profiles) or an edge's shadow along a light
+   falls on a facet the chord sees (§5.4). Inside one interval the visible
+   facet and its lit state are constant, so one ray per interval
+   classifies it: the solid is the ground w <= 0 minus every groove's cut
+   (the part of its section below w = 0) plus every protrusion, path ends
+   closed by flat walls of the section's shape (listed with facet index
+   section_count - 1 at the first end, section_count at the last). r_i is
+   facet i's length share; a family's share is the area-weighted mean of
+   its chords'. The families are combined with Jones & Perry 2000's
+   weights: a chord weighs Σ sin²α over the edges it crosses (α between
+   the chord and the edge's image in UV), a family the mean of its chords,
+   so a family running along the edges counts little; when neither crosses
+   an edge they are averaged. Early exit (§5.6): intervals are classified
+   longest first and a chord stops once Σ r_i >= 1 - query->line_exit_tol;
+   the unclassified rest (< tol) is shared in proportion (each r_i of a
+   chord moves by at most tol). Uses gr_query_scratch_bytes() of scratch;
+   stats is optional. Errors as gr_query(), plus GR_ERR_INVALID_ARG for
+   line_samples outside 0..GR_LINE_MAX_SAMPLES. */
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats);
 
@@ -688,22 +711,46 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
 #ifndef GR_NO_INTERREFLECTION
 /* Deepest recursion gr_shade_indirect() accepts. */
 #define GR_MAX_DEPTH 8
+/* Pending bounce segments gr_shade_indirect() can hold (in the query
+   scratch, about 110 bytes each); a footprint that needs more gets
+   GR_ERR_STACK_FULL. Each segment of a bounce pushes up to two per facet
+   it sees (reflected and transmitted), so the need grows with the depth
+   and the facets per segment. */
+#ifndef GR_INDIRECT_STACK
+#  define GR_INDIRECT_STACK 512
+#endif
 
 /* Specular behaviour of one reflectance id (the per-facet ids of
    gr_groove_desc_t.facet_reflectance and the grid's base_reflectance). */
 typedef struct gr_specular_t {
     double kr[3];  /* specular reflectance k_r per channel (0: no bounce) */
     double kt[3];  /* specular transmittance k_t per channel (0: none) */
-    double ior;    /* index of refraction for transmission; 0 means 1.5 */
+    double ior;    /* index of refraction of the material behind the facet
+                      (the solid's side); 0 means 1.5 */
+    int fresnel;   /* 0 (default): k_r and k_t are the bounce weights, as the
+                      paper's constants (under total internal reflection
+                      k_t is reflected too). 1: a dielectric: reflection
+                      k_r F, transmission k_t (1 - F), F the unpolarised
+                      Fresnel reflectance for the ior at the angle of
+                      incidence (1 under total internal reflection) */
+    int thin;      /* 0 (default): transmitted light refracts (Snell, ior)
+                      and is followed inside the solid, where it may leave
+                      through another facet or be reflected back from
+                      inside (§6.1's rays from below); what reaches the bulk
+                      below the grooves goes to trace() with inside = 1.
+                      1: a thin pane (window glass, Figure 21d): transmitted
+                      light keeps its direction and goes straight to trace()
+                      with inside = 1; with fresnel, the pane's two faces
+                      sum to R' = 2F/(1 + F), T' = (1 - F)/(1 + F) */
 } gr_specular_t;
 
 /* Host ray-trace callback (§6.2): the radiance arriving along dir (unit,
-   texture space, pointing away from the surface) at origin (texture space
-   u, v, w: the centre of the segment piece the rays leave from). inside = 0:
-   a ray that left the grooved surface (Σ r_i < 1 at that bounce); inside = 1:
-   a ray refracted into the material through a transmitting facet (the host
-   owns what lies below the surface, e.g. the glass pane behind a frame).
-   depth: the bounce it leaves at (1 = after the first reflection). weight:
+   texture space) at origin (texture space u, v, w: the centre of the
+   segment piece the rays leave from). inside = 0: rays that left the
+   grooved surface upward (Σ r_i < 1 at that bounce); inside = 1: rays in
+   the material that reached the bulk below the grooves, or passed a thin
+   pane (the host owns what lies there, e.g. the room behind a window).
+   depth: the bounce it leaves at (0 = the footprint's own rays). weight:
    the mean throughput it carries (informative, e.g. for Russian roulette;
    the library applies it). */
 typedef void (*gr_trace_fn)(void *user, const double origin[3], const double dir[3], int depth, int inside,
@@ -725,21 +772,30 @@ typedef struct gr_indirect_t {
    grooves, on gr_query_lines()'s segments (query->line_samples of them,
    combined with the same Jones & Perry weights). On each segment, each
    interval's facet gets its direct term Σ_k lit_k brdf(...) (eq. 6); if
-   depth allows and its id reflects, the facet's visible piece becomes the
-   next footprint (§6.1: the piece of the facet the segment sees, a 3D
-   segment on the facet; projecting it back to UV along E_r, as the paper
-   does, gives the same rays) seen along the mirror direction E_r, with
-   throughput r_i k_r. Rays of a bounce may leave from below the texture
-   plane and point up or down (E_w < 0 in the paper's terms): the 1D ray
-   classification is the same for any direction, which is §6.1's inverted
-   masking order. Where a bounce's rays find no facet (Σ r_i < 1) the rest
-   goes to trace() with weight 1 - Σ r_i (§6.2); light refracted by a
-   transmitting facet goes to trace() with inside = 1. Recursion runs on an
-   explicit stack (GR_MAX_DEPTH levels); pieces beyond its capacity go to
-   trace() along their mirror direction (GR_LIST_LINE_APPROX in stats is
-   not reported; stats->segments counts the work). Uses
-   gr_query_scratch_bytes() of scratch. Errors as gr_query_lines(), plus
-   GR_ERR_INVALID_ARG for a NULL indirect or rgb, depth outside
+   depth allows and its id reflects or transmits (gr_specular_t), the
+   facet's visible piece becomes the next footprint (§6.1: the piece of the
+   facet the segment sees, a 3D segment on the facet; projecting it back to
+   UV along E_r, as the paper does, gives the same rays), seen along the
+   mirror direction E_r with throughput r_i k_r, and along the refracted
+   direction E_t (Snell with the id's ior) with r_i k_t; with fresnel set,
+   k_r F and k_t (1 - F). Refracted rays run inside the solid: they leave
+   it through another facet (refracted again, or reflected back inside,
+   totally when past the critical angle), or reach the bulk below the
+   grooves. Rays of a bounce may leave from below the texture plane and
+   point up or down (E_w < 0 in the paper's terms): the 1D ray
+   classification is the same for any direction and either medium, which
+   is §6.1's inverted masking order. What a bounce's rays do not meet
+   (Σ r_i < 1) goes to trace() with weight 1 - Σ r_i (§6.2): inside = 0 for
+   rays leaving up into the scene, inside = 1 for rays reaching the bulk
+   (or passing a thin pane). Rays inside the material are followed 64
+   scene scales (w + h + d) along the surface; beyond, they count as bulk
+   light. Direct light (brdf) is added on the outside only. Recursion runs
+   on an explicit stack of GR_INDIRECT_STACK segments in the scratch: when
+   a footprint needs more, the pieces that do not fit leave along their
+   direction to trace() unexamined, stats->flags gets GR_STATS_STACK_FULL
+   and the call returns GR_ERR_STACK_FULL with rgb filled (approximate).
+   Uses gr_query_scratch_bytes() of scratch. Errors as gr_query_lines(),
+   plus GR_ERR_INVALID_ARG for a NULL indirect or rgb, depth outside
    0..GR_MAX_DEPTH, specular_count < 0 or specular NULL with a count. */
 GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *query, const gr_indirect_t *indirect,
                                      void *scratch, size_t scratch_bytes, double rgb[3], gr_line_stats_t *stats);
@@ -773,6 +829,7 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
 #endif
 #include <stdio.h>  /* snprintf for diagnostics */
 #include <stdlib.h> /* qsort */
+#include <float.h>  /* DBL_EPSILON */
 #include <string.h>
 
 #ifdef __cplusplus
@@ -849,6 +906,7 @@ GR_DEF const char *gr_result_string(gr_result_t r)
     case GR_ERR_SECTION_ORDER: return "cross-section does not run from low to high b";
     case GR_ERR_PERTURBATION: return "perturbation without a valid perturb_max";
     case GR_ERR_UNSUPPORTED: return "feature left out at compile time";
+    case GR_ERR_STACK_FULL: return "indirect light: recursion stack full (result approximate)";
     case GR_RESULT_COUNT_: break;
     }
     return "unknown result";
@@ -4080,8 +4138,14 @@ static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
    cut an interval in two). */
 #define GR__LINE_ON_FACET_REL 1e-9
 /* Breakpoints closer than this (in the segment parameter s in [-1, 1])
-   coalesce: intervals that short carry no measurable ratio. */
+   coalesce: intervals that short carry no measurable ratio. To it adds
+   the rounding of the breakpoints' positions, GR__LINE_SNAP_ULPS units
+   of the largest texture coordinate along the rays, in units of the
+   segment (gr__sheet_snap): a footprint far smaller than its coordinates
+   would otherwise keep slivers whose class is rounding noise, and Jones &
+   Perry would count their edges. */
 #define GR__LINE_SNAP 1e-12
+#define GR__LINE_SNAP_ULPS 16.0
 /* Shadow and bounce rays start this fraction of the scene scale
    (w + h + d of the grid) off their facet, along its normal, so the facet
    they leave is not found again through rounding. */
@@ -4094,8 +4158,6 @@ static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
 #define GR__LINE_CLEAR_REL 1e-6
 /* Default early-exit tolerance of §5.6 (gr_query_t.line_exit_tol). */
 #define GR__LINE_DEFAULT_EXIT 1e-3
-/* Depth of the explicit stack of pending bounce segments (§6.1). */
-#define GR__LINE_STACK 64
 
 /* A groove near the segment, locally straight (§4.2), in this frame's UV. */
 typedef struct gr__lg_t {
@@ -4127,13 +4189,28 @@ typedef struct gr__ivl_t {
 
 typedef struct gr__xing_t { double t; int plane; } gr__xing_t;
 
+/* An edge line of the scene: points q + λ D, λ in [l0, l1] (where it lies
+   on the facets it bounds), between planes p1 and p2 (both -1 for a
+   section point's line). */
+typedef struct gr__edge_t { double q[3], D[3], l0, l1; int p1, p2; } gr__edge_t;
+
+/* A segment of rays o + s a + t d, s in [-1, 1], t >= 0 (§5.6; §6.1 for
+   bounces), with the throughput it carries; inside: the rays run in the
+   material (refracted into it by a transmitting facet). */
+typedef struct gr__sheet_t {
+    double o[3], a[3], d[3], thr[3];
+    int level, inside;
+} gr__sheet_t;
+
 typedef struct gr__lscratch_t {
     gr__lg_t *lg;
     gr__plane_t *pl;
     gr__xing_t *xs;
     gr__brk_t *brk;
     gr__ivl_t *iv, *iv2;      /* intervals; iv2: after the shadow split */
+    gr__edge_t *ed;           /* the scene's edges, found once per scene */
     double *acc;              /* per plane: ratio, then lit per light */
+    gr__sheet_t *stack;       /* gr_shade_indirect's pending segments */
 } gr__lscratch_t;
 
 #define GR__LINE_MAX_PLANES GR_LINE_MAX_PLANES
@@ -4152,7 +4229,13 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
     GR__LCARVE(brk, gr__brk_t, GR_LINE_MAX_BREAKS)
     GR__LCARVE(iv, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
     GR__LCARVE(iv2, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
+    GR__LCARVE(ed, gr__edge_t, GR_LINE_MAX_EDGES)
     GR__LCARVE(acc, double, 2 * GR__LINE_MAX_PLANES * (1 + GR_MAX_LIGHTS))
+#ifndef GR_NO_INTERREFLECTION
+    GR__LCARVE(stack, gr__sheet_t, GR_INDIRECT_STACK)
+#else
+    ls->stack = NULL;
+#endif
 #undef GR__LCARVE
     return off;
 }
@@ -4161,17 +4244,12 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
 typedef struct gr__lscene_t {
     const gr_grid_t *grid;
     gr__lscratch_t ls;
-    int nlg, npl;
+    int nlg, npl, ned;         /* ned -1: more than GR_LINE_MAX_EDGES, found per segment */
     double top, bottom, scale; /* highest w, lowest w, w + h + d */
+    double box[4];             /* UV box holding every ray of the scene's segments */
     unsigned flags;
 } gr__lscene_t;
 
-/* A segment of rays o + s a + t d, s in [-1, 1], t >= 0 (§5.6; §6.1 for
-   bounces), with the throughput it carries. */
-typedef struct gr__sheet_t {
-    double o[3], a[3], d[3], thr[3];
-    int level;
-} gr__sheet_t;
 
 static void gr__sec_pt(const gr__lg_t *g, int k, double c[2])
 {
@@ -4242,11 +4320,15 @@ static int gr__on_plane(const gr__lscene_t *sc, int i, const double *x)
     return u >= -GR__LINE_ON_FACET_REL && u <= 1 + GR__LINE_ON_FACET_REL;
 }
 
-/* The first entry into the solid along o + t d, t in (0, tmax]: the plane
-   entered (its index) and *thit, or -1 when the ray leaves (§6.2). The ray
-   is cut at every crossing of a facet or the ground; the solid's state is
+/* The first change of medium along o + t d, t in (0, tmax]: for a ray in
+   the air (inside = 0) the first entry into the solid, for a ray inside
+   the material (inside = 1, refracted by a transmitting facet, §6.1) the
+   first exit from it; the plane crossed there (its index) and *thit, or
+   -1 when the ray leaves the groove layer unchanged (§6.2: upward into the
+   scene from the air, downward into the bulk from inside). The ray is cut
+   at every crossing of a facet or the ground; the solid's state is
    constant between crossings, so one point per piece decides. */
-static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d, double tmax, double *thit)
+static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d, double tmax, int inside, double *thit)
 {
     gr__xing_t *xs = sc->ls.xs;
     int i, j, m = 0;
@@ -4285,8 +4367,8 @@ static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d,
         double next = i < m ? xs[i].t : tmax, mid = 0.5 * (prev + next);
         if (i == m && !(tmax < HUGE_VAL)) mid = prev + sc->scale / sqrt(gr__dot3(d, d));
         for (j = 0; j < 3; j++) x[j] = o[j] + mid * d[j];
-        if (gr__solid(sc, x)) {
-            if (i == 0) { *thit = 0; return -2; } /* started inside: rounding at a touching facet */
+        if (gr__solid(sc, x) != inside) {
+            if (i == 0) { *thit = 0; return -2; } /* started in the other medium: rounding at a touching facet */
             *thit = prev;
             return xs[i - 1].plane;
         }
@@ -4329,12 +4411,20 @@ static int gr__lit(const gr__lscene_t *sc, int plane, const double *d, const dou
     gr__facing(sc, plane, d, n);
     if (!(l[2] > 0) || !(gr__dot3(n, l) > 0)) return 0;
     for (k = 0; k < 3; k++) o[k] = x[k] + off * n[k];
-    return gr__ray_hit(sc, o, l, gr__ray_tmax(sc, o, l, seglen), &th) == -1;
+    return gr__ray_hit(sc, o, l, gr__ray_tmax(sc, o, l, seglen), 0, &th) == -1;
 }
 
 /* Gather the grooves that can meet rays from the segment (box: the
    segment and where its rays cross the top and bottom, enlarged by w,
    §4.1/§5.1) and build their facet planes, nearest GR_LINE_MAX_GROOVES. */
+/* A straight, unperturbed segment: its straight approximation is
+   the groove itself, the same from every footprint (§5.6's cache keeps
+   only these). */
+static int gr__line_cacheable(const gr__groove_t *rec)
+{
+    return rec->kind == GR_PATH_POLYLINE && rec->point_count == 2 && !rec->perturb;
+}
+
 /* Groove id in its straight approximation at the point nearest c. */
 static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double reach, gr__lg_t *g)
 {
@@ -4356,6 +4446,15 @@ static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double re
     g->first_facet = rec->first_facet;
     g->lo = rec->closed ? -HUGE_VAL : -cd.param / cd.dtds;
     g->hi = rec->closed ? HUGE_VAL : (1 - cd.param) / cd.dtds;
+    if (gr__line_cacheable(rec)) { /* anchored at its first point: the same record from any footprint */
+        const double *a = grid->points_ + 2 * rec->first_point;
+        g->p[0] = a[0] + (c[0] - cd.fc[0]); /* the image shift: a whole number of tiles, 0 without wrap */
+        g->p[1] = a[1] + (c[1] - cd.fc[1]);
+        if (!rec->closed) {
+            g->lo = 0;
+            g->hi = rec->length;
+        }
+    }
     return g->f > 0; /* scaled away here otherwise */
 }
 
@@ -4420,15 +4519,15 @@ static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         gr__lg_t g;
         if (!gr__lg_make(grid, s->ids[k], c, reach, &g)) continue;
         if (!fill) { gr__lg_keep(sc, &g, c, reach, quad); continue; }
-        if (fill->count == GR_LINE_MAX_GROOVES || grid->grooves_[s->ids[k]].point_count != 2 ||
-            grid->grooves_[s->ids[k]].kind != GR_PATH_POLYLINE)
-            return 0;
+        if (fill->count == GR_LINE_MAX_GROOVES || !gr__line_cacheable(&grid->grooves_[s->ids[k]])) return 0;
         memcpy(fill->store_ + 16 * fill->count++, &g, sizeof g);
     }
     return 1;
 }
 
 typedef char gr__lg_fits_cache[sizeof(gr__lg_t) <= 16 * sizeof(double) ? 1 : -1];
+
+static void gr__edge_list(gr__lscene_t *sc);
 
 static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh,
                            int tight, gr_line_cache_t *cache, const double *lights, int nl)
@@ -4481,6 +4580,7 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         if (quad.p[2 * e + 1] - grid->w < box[1]) box[1] = quad.p[2 * e + 1] - grid->w;
         if (quad.p[2 * e + 1] + grid->w > box[3]) box[3] = quad.p[2 * e + 1] + grid->w;
     }
+    memcpy(sc->box, box, sizeof box);
     c[0] = 0.5 * (box[0] + box[2]);
     c[1] = 0.5 * (box[1] + box[3]);
     reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
@@ -4513,6 +4613,11 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         }
     } else {
         gr__line_gather(grid, s, sc, box, c, reach, tight ? &quad : NULL, NULL);
+    }
+    for (i = 1; i < sc->nlg; i++) { /* in groove order, however they were found (cache or grid) */
+        gr__lg_t x = sc->ls.lg[i];
+        for (k = i; k > 0 && sc->ls.lg[k - 1].groove > x.groove; k--) sc->ls.lg[k] = sc->ls.lg[k - 1];
+        sc->ls.lg[k] = x;
     }
     /* planes: the ground, then every facet of every groove (§3) */
     memset(&sc->ls.pl[0], 0, sizeof sc->ls.pl[0]);
@@ -4573,6 +4678,7 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
             sc->npl++;
         }
     }
+    gr__edge_list(sc);
 }
 
 /* sin²α between the segment (UV part of a) and a 3D edge direction D seen
@@ -4593,20 +4699,6 @@ static double gr__edge_sin2(const double *a, const double *dir, const double *D)
     return aa > 0 && ee > 0 ? cr * cr / (aa * ee) : 0;
 }
 
-/* The segment parameter where the rays meet both planes n1.x = h1 and
-   n2.x = h2 (a line of the two planes, §5.3): 2x2 in (s, t). */
-static int gr__sheet_two_planes(const gr__sheet_t *sh, const double *n1, double h1, const double *n2, double h2,
-                                double *s, double *t)
-{
-    double a11 = gr__dot3(n1, sh->a), a12 = gr__dot3(n1, sh->d), a21 = gr__dot3(n2, sh->a), a22 = gr__dot3(n2, sh->d);
-    double r1 = h1 - gr__dot3(n1, sh->o), r2 = h2 - gr__dot3(n2, sh->o), det = a11 * a22 - a12 * a21;
-    double sc = sqrt(gr__dot3(n1, n1) * gr__dot3(n2, n2) * gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d));
-    if (!(fabs(det) > 1e-14 * sc)) return 0;
-    *s = (r1 * a22 - a12 * r2) / det;
-    *t = (a11 * r2 - r1 * a21) / det;
-    return 1;
-}
-
 static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int plane)
 {
     if (!(s > -1 && s < 1)) return;
@@ -4617,17 +4709,16 @@ static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int pl
     (*nb)++;
 }
 
-/* An edge line of the scene: a point q and direction D, valid on the
-   planes (p1, p2) it bounds (p2 = -1 for a section point's line). */
-typedef struct gr__edge_t { double q[3], D[3]; int p1, p2; } gr__edge_t;
 
 /* Walks the edge lines: every section point's line, then the line of
    each pair of planes i < j of different grooves (or with an end wall). */
-typedef struct gr__edge_it_t { int g, k, i, j; } gr__edge_it_t;
+typedef struct gr__edge_it_t { int g, k, i, j, n; gr__edge_t e; } gr__edge_it_t;
 
 static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *e)
 {
     int m;
+    e->l0 = -HUGE_VAL;
+    e->l1 = HUGE_VAL;
     while (it->g < sc->nlg) { /* a section point swept along T */
         const gr__lg_t *lg = &sc->ls.lg[it->g];
         double c[2];
@@ -4662,6 +4753,83 @@ static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *
     return 0;
 }
 
+/* Narrow e's λ range to where it lies on plane i's facet (its section
+   segment, padded by GR__LINE_ON_FACET_REL, as gr__on_plane); the ground
+   and end walls leave it (their holes are the solid's business). 0 when
+   the range is empty. */
+static int gr__edge_on_facet(const gr__lscene_t *sc, int i, gr__edge_t *e)
+{
+    const gr__plane_t *p;
+    const gr__lg_t *g;
+    double bw[2], db, dw, l2, u0, u1, lo, hi, eps = GR__LINE_ON_FACET_REL;
+    if (i < 0) return 1;
+    p = &sc->ls.pl[i];
+    if (p->lg < 0 || p->cap) return 1;
+    g = &sc->ls.lg[p->lg];
+    gr__to_groove(g, e->q, bw);
+    u0 = gr__facet_param(p, bw);
+    db = p->c1[0] - p->c0[0];
+    dw = p->c1[1] - p->c0[1];
+    l2 = db * db + dw * dw;
+    u1 = ((g->bn[0] * e->D[0] + g->bn[1] * e->D[1]) * db + e->D[2] * dw) / l2;
+    if (u1 == 0) return u0 >= -eps && u0 <= 1 + eps;
+    lo = (-eps - u0) / u1;
+    hi = (1 + eps - u0) / u1;
+    if (lo > hi) { double t = lo; lo = hi; hi = t; }
+    if (lo > e->l0) e->l0 = lo;
+    if (hi < e->l1) e->l1 = hi;
+    return e->l0 <= e->l1;
+}
+
+/* Narrow e's λ range to the scene's box (no ray of its segments meets an
+   edge, or passes one toward a light, outside it). 0 when empty. */
+static int gr__edge_in_box(const gr__lscene_t *sc, gr__edge_t *e)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        double lo, hi;
+        if (e->D[k] == 0) {
+            if (e->q[k] < sc->box[k] || e->q[k] > sc->box[k + 2]) return 0;
+            continue;
+        }
+        lo = (sc->box[k] - e->q[k]) / e->D[k];
+        hi = (sc->box[k + 2] - e->q[k]) / e->D[k];
+        if (lo > hi) { double t = lo; lo = hi; hi = t; }
+        if (lo > e->l0) e->l0 = lo;
+        if (hi < e->l1) e->l1 = hi;
+    }
+    return e->l0 <= e->l1;
+}
+
+/* The next edge that exists (lies on both its facets somewhere in the
+   scene's box): from the scene's list, or found afresh (into it->e) when
+   the list overflowed. NULL at the end. */
+static const gr__edge_t *gr__edge_fetch(const gr__lscene_t *sc, gr__edge_it_t *it)
+{
+    if (sc->ned >= 0) return it->n < sc->ned ? &sc->ls.ed[it->n++] : NULL;
+    while (gr__edge_next(sc, it, &it->e))
+        if (gr__edge_on_facet(sc, it->e.p1, &it->e) && gr__edge_on_facet(sc, it->e.p2, &it->e) &&
+            gr__edge_in_box(sc, &it->e))
+            return &it->e;
+    return NULL;
+}
+
+/* The scene's edge list (once per scene: every segment of a footprint
+   and both its passes reuse it). */
+static void gr__edge_list(gr__lscene_t *sc)
+{
+    gr__edge_it_t it;
+    const gr__edge_t *e;
+    int n = 0;
+    memset(&it, 0, sizeof it);
+    sc->ned = -1; /* fetch afresh while filling */
+    while ((e = gr__edge_fetch(sc, &it)) != NULL) {
+        if (n == GR_LINE_MAX_EDGES) return; /* overflow: stays -1 */
+        sc->ls.ed[n++] = *e;
+    }
+    sc->ned = n;
+}
+
 /* Cut the segment where its first surface can change (seen = NULL: §5.6,
    the 1D version of §5.2-5.3), or where a shadow boundary can fall on a
    facet it sees (seen[m] != 0; §5.4: every edge's shadow along each
@@ -4669,47 +4837,74 @@ static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *
 static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl,
                             const unsigned char *seen, int nb)
 {
-    int m, l;
-    gr__edge_t e;
+    int m, l, v;
+    const gr__edge_t *ep;
     gr__edge_it_t it;
+    double nS[3], ns2, pad = GR__LINE_ON_FACET_REL * sc->scale;
+    /* the seen planes, with their dot products against the segment's
+       a, d and o, for the 2x2 system of a ray meeting two planes, per plane once) */
+    int vis[GR_LINE_MAX_PLANES], nvis = 0;
+    double pv[GR_LINE_MAX_PLANES][4], aadd = gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d);
+    gr__cross3(sh->a, sh->d, nS); /* the normal of the segment's plane of rays */
+    ns2 = gr__dot3(nS, nS);
+    for (m = 0; seen && m < sc->npl; m++)
+        if (seen[m]) {
+            const gr__plane_t *p = &sc->ls.pl[m];
+            pv[nvis][0] = gr__dot3(p->n, sh->a);
+            pv[nvis][1] = gr__dot3(p->n, sh->d);
+            pv[nvis][2] = p->h - gr__dot3(p->n, sh->o);
+            pv[nvis][3] = gr__dot3(p->n, p->n) * aadd;
+            vis[nvis++] = m;
+        }
     memset(&it, 0, sizeof it);
-    while (gr__edge_next(sc, &it, &e)) {
-        double s, t, x[3], nD[3];
-        if (seen) {
-        } else if (e.p1 < 0) {
-            /* a section point's line: o + s a + t d = q + λ D (Cramer) */
-            double m0[3], det, rhs[3];
-            gr__cross3(sh->d, e.D, m0);
-            det = -gr__dot3(sh->a, m0);
-            for (m = 0; m < 3; m++) rhs[m] = e.q[m] - sh->o[m];
-            if (fabs(det) > 1e-14 * sqrt(gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d) * gr__dot3(e.D, e.D))) {
-                double c1[3];
-                s = -gr__dot3(rhs, m0) / det;
-                gr__cross3(rhs, e.D, c1);
-                t = -gr__dot3(sh->a, c1) / det;
+    while ((ep = gr__edge_fetch(sc, &it)) != NULL) {
+        const gr__edge_t e = *ep;
+        double s, t, x[3], r[3], c[3], nD[3], dd = gr__dot3(e.D, e.D), den = gr__dot3(nS, e.D);
+        if (!seen && fabs(den) > 1e-14 * sqrt(ns2 * dd)) {
+            /* where the edge pierces the plane of rays: x = q + λ D = o + s a + t d */
+            double lam;
+            for (m = 0; m < 3; m++) r[m] = sh->o[m] - e.q[m];
+            lam = gr__dot3(nS, r) / den;
+            if (lam >= e.l0 && lam <= e.l1) {
+                for (m = 0; m < 3; m++) r[m] = e.q[m] + lam * e.D[m] - sh->o[m];
+                gr__cross3(r, sh->d, c);
+                s = gr__dot3(c, nS) / ns2;
+                gr__cross3(sh->a, r, c);
+                t = gr__dot3(c, nS) / ns2;
                 if (t >= 0) gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
             }
-        } else if (gr__sheet_two_planes(sh, sc->ls.pl[e.p1].n, sc->ls.pl[e.p1].h, sc->ls.pl[e.p2].n,
-                                        sc->ls.pl[e.p2].h, &s, &t) && t >= 0) {
-            for (m = 0; m < 3; m++) x[m] = sh->o[m] + s * sh->a[m] + t * sh->d[m];
-            if (gr__on_plane(sc, e.p1, x) && gr__on_plane(sc, e.p2, x))
-                gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
         }
         /* §5.4: the edge's shadow along each light on each seen facet */
         for (l = 0; seen && l < nl; l++) {
             const double *L = lights + 3 * l;
-            double hP;
+            double nd2, lpad = pad / sqrt(dd), a11, a12, r1;
             if (!(L[2] > 0)) continue;
-            gr__cross3(e.D, L, nD);
-            if (!(gr__dot3(nD, nD) > 1e-24 * gr__dot3(e.D, e.D))) continue;
-            hP = gr__dot3(nD, e.q);
-            for (m = 0; m < sc->npl; m++) {
-                double dir[3];
+            gr__cross3(e.D, L, nD); /* the plane through the edge along L */
+            nd2 = gr__dot3(nD, nD);
+            if (!(nd2 > 1e-24 * dd)) continue;
+            a11 = gr__dot3(nD, sh->a);
+            a12 = gr__dot3(nD, sh->d);
+            r1 = gr__dot3(nD, e.q) - gr__dot3(nD, sh->o);
+            for (v = 0; v < nvis; v++) {
+                double dir[3], lam, mu, det = a11 * pv[v][1] - a12 * pv[v][0];
                 int k;
-                if (!seen[m] || m == e.p1 || m == e.p2) continue;
-                if (!gr__sheet_two_planes(sh, nD, hP, sc->ls.pl[m].n, sc->ls.pl[m].h, &s, &t) || t < 0) continue;
+                m = vis[v];
+                if (m == e.p1 || m == e.p2) continue;
+                /* the ray (s, t) meeting this plane and facet m: Cramer on n.(o + s a + t d) = h */
+                if (!(fabs(det) > 1e-14 * sqrt(nd2 * pv[v][3]))) continue;
+                s = (r1 * pv[v][1] - a12 * pv[v][2]) / det;
+                t = (a11 * pv[v][2] - r1 * pv[v][0]) / det;
+                if (t < 0 || !(s > -1 && s < 1)) continue;
                 for (k = 0; k < 3; k++) x[k] = sh->o[k] + s * sh->a[k] + t * sh->d[k];
                 if (!gr__on_plane(sc, m, x)) continue;
+                /* x = q + λ D + μ L: cast by the edge's existing part
+                   (λ in range), which lies toward the light (μ <= 0) */
+                for (k = 0; k < 3; k++) r[k] = x[k] - e.q[k];
+                gr__cross3(r, L, c);
+                lam = gr__dot3(c, nD) / nd2;
+                gr__cross3(e.D, r, c);
+                mu = gr__dot3(c, nD) / nd2;
+                if (lam < e.l0 - lpad || lam > e.l1 + lpad || mu > pad) continue;
                 gr__cross3(nD, sc->ls.pl[m].n, dir);
                 gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, dir), m);
             }
@@ -4756,9 +4951,19 @@ static void gr__classify(const gr__lscene_t *sc, const gr__sheet_t *sh, gr__ivl_
     double o[3], th, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), sm = 0.5 * (iv->s0 + iv->s1);
     int k;
     for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
-    iv->plane = gr__ray_hit(sc, o, sh->d, gr__ray_tmax(sc, o, sh->d, seglen), &th);
+    iv->plane = gr__ray_hit(sc, o, sh->d, gr__ray_tmax(sc, o, sh->d, seglen), sh->inside, &th);
     if (iv->plane == -2) iv->plane = -1; /* inside at the start: counted as leaving */
     iv->lit = 0;
+}
+
+/* The coalescing distance of a segment's breakpoints (GR__LINE_SNAP). */
+static double gr__sheet_snap(const gr__lscene_t *sc, const gr__sheet_t *sh)
+{
+    double mag = fabs(sh->o[0]), al = sqrt(gr__dot3(sh->a, sh->a));
+    if (fabs(sh->o[1]) > mag) mag = fabs(sh->o[1]);
+    if (fabs(sh->o[2]) > mag) mag = fabs(sh->o[2]);
+    mag += GR__LINE_TRAVEL_REL * sc->scale;
+    return al > 0 ? GR__LINE_SNAP + GR__LINE_SNAP_ULPS * DBL_EPSILON * mag / al : GR__LINE_SNAP;
 }
 
 /* §5.4 on one segment: split the seen intervals at the shadow boundaries
@@ -4767,7 +4972,7 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
 {
     gr__ivl_t *iv = sc->ls.iv, *out = sc->ls.iv2;
     unsigned char seen[GR_LINE_MAX_PLANES];
-    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
+    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), snap = gr__sheet_snap(sc, sh);
     int i, k, nb, b = 0, m = 0;
     memset(seen, 0, (size_t)sc->npl);
     for (i = 0; i < n; i++)
@@ -4782,8 +4987,8 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
             int j;
             if (iv[i].plane >= 0 && m + (n - i) < GR_LINE_MAX_BREAKS + 1) {
                 for (j = b; j < nb && sc->ls.brk[j].s < iv[i].s1; j++)
-                    if (sc->ls.brk[j].plane == iv[i].plane && sc->ls.brk[j].s - s0 > GR__LINE_SNAP &&
-                        iv[i].s1 - sc->ls.brk[j].s > GR__LINE_SNAP) {
+                    if (sc->ls.brk[j].plane == iv[i].plane && sc->ls.brk[j].s - s0 > snap &&
+                        iv[i].s1 - sc->ls.brk[j].s > snap) {
                         s1 = sc->ls.brk[j].s;
                         next = sc->ls.brk[j].sin2;
                         b = j + 1;
@@ -4812,6 +5017,25 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
     return m;
 }
 
+/* Intervals sorted by length, longest first (by_len), or by position:
+   insertion sort for short lists, qsort beyond. */
+static int gr__cmp_ivl_len(const void *a, const void *b);
+static int gr__cmp_ivl_pos(const void *a, const void *b);
+static void gr__ivl_sort(gr__ivl_t *iv, int n, int by_len)
+{
+    int i, j;
+    if (n > GR__LINE_SMALL_SORT) {
+        qsort(iv, (size_t)n, sizeof *iv, by_len ? gr__cmp_ivl_len : gr__cmp_ivl_pos);
+        return;
+    }
+    for (i = 1; i < n; i++) {
+        gr__ivl_t x = iv[i];
+        double kx = by_len ? x.s0 - x.s1 : x.s0;
+        for (j = i; j > 0 && (by_len ? iv[j - 1].s0 - iv[j - 1].s1 : iv[j - 1].s0) > kx; j--) iv[j] = iv[j - 1];
+        iv[j] = x;
+    }
+}
+
 static int gr__cmp_ivl_len(const void *a, const void *b)
 {
     const gr__ivl_t *x = (const gr__ivl_t *)a, *y = (const gr__ivl_t *)b;
@@ -4833,11 +5057,11 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
 {
     gr__ivl_t *iv = sc->ls.iv;
     int nb = sc->nlg ? gr__sheet_breaks(sc, sh, lights, nl, NULL, 0) : 0, n = 0, i;
-    double last = -1, sin2 = 0, done = 0;
+    double last = -1, sin2 = 0, done = 0, snap = gr__sheet_snap(sc, sh);
     gr__brk_sort(sc, nb);
     for (i = 0; i <= nb; i++) {
         double s = i < nb ? sc->ls.brk[i].s : 1;
-        if (s - last <= GR__LINE_SNAP) { /* coalesce: keep the steepest edge */
+        if (s - last <= snap) { /* coalesce: keep the steepest edge */
             if (i < nb && sc->ls.brk[i].sin2 > sin2) sin2 = sc->ls.brk[i].sin2;
             continue;
         }
@@ -4850,14 +5074,14 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
         last = s;
         sin2 = i < nb ? sc->ls.brk[i].sin2 : 0;
     }
-    if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_len);
+    if (tol > 0) gr__ivl_sort(iv, n, 1); /* longest first, for the early exit */
     for (i = 0; i < n; i++) {
         if (tol > 0 && done >= 2 * (1 - tol)) { if (st) st->early_exits++; break; }
         gr__classify(sc, sh, &iv[i]);
         done += iv[i].s1 - iv[i].s0;
         if (st) st->evaluated++;
     }
-    if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_pos);
+    if (tol > 0) gr__ivl_sort(iv, n, 0);
     if (st) { st->segments++; st->intervals += n; } /* (view intervals; shadows split them below) */
     if (nl > 0) n = gr__shadow_split(sc, sh, lights, nl, n);
     *weight = 0;
@@ -4867,24 +5091,57 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
     return n;
 }
 
-/* The n line samples of a footprint (§5.6), rays coming down along -E
-   from above everything. */
-static void gr__top_sheet(const gr_grid_t *grid, const gr_footprint_t *fp, int j, int n, gr__sheet_t *sh)
+/* Line j of the n line samples of a footprint (§5.6), rays coming down
+   along -E from above everything. The lines come in two families: the
+   first ceil(n/2) run along A1, the other floor(n/2) along A2, each
+   family spread across the footprint as parallel chords at the midpoints
+   of equal strata of the other axis (offset c_i = -1 + (2i + 1)/count).
+   n = 2 is the paper's pair of axes through F; with more lines each
+   family is a stratified quadrature of the footprint's area: a chord
+   gives the exact length shares at its offset, and the family's answer is
+   the area-weighted mean of its chords, so its error falls with the
+   number of chords (lines through F at rotated angles would converge to a
+   density peaked at F instead). The chord spans the footprint: the full
+   side for the parallelogram, |a| <= sqrt(1 - c^2) for the ellipse
+   (query.ellipse), whose strata weigh their exact area (the semicircle
+   law). Returns the chord's weight within its family (the weights of a
+   family sum to 1); *family gets 0 or 1. */
+static double gr__top_sheet(const gr_grid_t *grid, const gr_query_t *q, int j, int n, gr__sheet_t *sh, int *family)
 {
-    double ang = 3.14159265358979323846 * j / n, c = cos(ang), s = sin(ang), ew = fp->view[2], lift;
-    int k;
+    const gr_footprint_t *fp = &q->footprint;
+    int n0 = (n + 1) / 2, fam = j < n0 ? 0 : 1, count = fam ? n - n0 : n0, i = fam ? j - n0 : j, k;
+    const double *along = fam ? fp->axis2 : fp->axis1, *across = fam ? fp->axis1 : fp->axis2;
+    double lo = -1 + 2.0 * i / count, hi = -1 + 2.0 * (i + 1) / count, c = 0.5 * (lo + hi), half = 1, weight;
+    double ew = fp->view[2], lift, f[2], scale = grid->h + grid->w + grid->d;
+    if (q->ellipse) {
+        half = sqrt(1 - c * c);
+        weight = gr__disc_cdf(hi) - gr__disc_cdf(lo);
+    } else {
+        weight = 1.0 / count;
+    }
     if (ew < GR__GRAZING_MIN_W) ew = GR__GRAZING_MIN_W;
-    lift = (grid->h + grid->w + grid->d) / ew; /* start above every protrusion */
-    sh->o[0] = fp->center[0] + lift * fp->view[0];
-    sh->o[1] = fp->center[1] + lift * fp->view[1];
+    /* start just above every protrusion (GR__LINE_CLEAR_REL over the top),
+       but no farther from F than half the rays' reach (GR__LINE_TRAVEL_REL
+       scene scales), so grazing views keep their rays near the footprint
+       (a protrusion farther along the view is not seen then) */
+    lift = (grid->h + GR__LINE_CLEAR_REL * scale) / ew;
+    if (lift > 0.5 * GR__LINE_TRAVEL_REL * scale) lift = 0.5 * GR__LINE_TRAVEL_REL * scale;
+    f[0] = fp->center[0] + c * across[0];
+    f[1] = fp->center[1] + c * across[1];
+    sh->o[0] = f[0] + lift * fp->view[0];
+    sh->o[1] = f[1] + lift * fp->view[1];
     sh->o[2] = lift * fp->view[2];
-    sh->a[0] = c * fp->axis1[0] + s * fp->axis2[0];
-    sh->a[1] = c * fp->axis1[1] + s * fp->axis2[1];
+    sh->a[0] = half * along[0];
+    sh->a[1] = half * along[1];
     sh->a[2] = 0;
     for (k = 0; k < 3; k++) sh->d[k] = -fp->view[k];
     sh->thr[0] = sh->thr[1] = sh->thr[2] = 1;
     sh->level = 0;
+    sh->inside = 0;
+    *family = fam;
+    return weight;
 }
+
 
 /* Shared argument checks of gr_query_lines / gr_shade_indirect. */
 static gr_result_t gr__line_check(const gr_grid_t *grid, const gr_query_t *q, void *scratch, size_t bytes)
@@ -4918,6 +5175,17 @@ static void gr__line_layout(const gr_grid_t *grid, void *scratch, gr__scratch_t 
 #endif /* line-sample engine */
 
 #ifndef GR_NO_LINE_SAMPLES
+/* The sheet whose scene (gr__line_scene, not tight) holds every top-level
+   line's rays: centred on F, spanning the footprint's UV box. */
+static void gr__footprint_sheet(const gr_grid_t *grid, const gr_query_t *q, gr__sheet_t *all)
+{
+    const gr_footprint_t *fp = &q->footprint;
+    int fam;
+    (void)gr__top_sheet(grid, q, 0, 1, all, &fam);
+    all->a[0] = fabs(fp->axis1[0]) + fabs(fp->axis2[0]);
+    all->a[1] = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
+}
+
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats)
 {
@@ -4932,8 +5200,8 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     gr__lscene_t sc;
     gr__sheet_t sh;
     const gr_footprint_t *fp;
-    double wsum = 0, tol, *acc;
-    int n, j, i, k, nl, stride, built = 0;
+    double wfam[2] = {0, 0}, tol, *acc;
+    int n, j, i, k, nl, stride;
     gr_result_t r;
     if (!list) return GR_ERR_INVALID_ARG;
     list->count = 0;
@@ -4951,54 +5219,50 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     stride = 1 + nl;
     gr__line_layout(grid, scratch, &s, &sc);
     acc = sc.ls.acc;
-    /* two passes: Jones & Perry weights, then (if no segment crossed an
-       edge) plain averages; acc holds weighted sums in [0, npl), plain
-       ones after them */
+    {
+        gr__sheet_t all;
+        gr__footprint_sheet(grid, query, &all); /* every line shares the footprint's scene */
+        gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl);
+    }
+    /* acc holds each family's area-weighted sums (family f at
+       [f npl, (f + 1) npl)); the families combine by their mean Jones &
+       Perry weights, or plainly when neither crosses an edge */
+    memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
     for (j = 0; j < n; j++) {
-        double wj, cl;
-        int m;
-        gr__top_sheet(grid, fp, j, n, &sh);
-        if (!built) { /* every top-level segment shares the footprint's scene */
-            gr__sheet_t all = sh;
-            double ext = sqrt(fp->axis1[0] * fp->axis1[0] + fp->axis1[1] * fp->axis1[1] + fp->axis2[0] * fp->axis2[0] +
-                              fp->axis2[1] * fp->axis2[1]);
-            all.a[0] = ext; /* a box covering all rotations: the footprint's circumscribed extent */
-            all.a[1] = ext;
-            gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl); /* all rotations: not tight */
-            memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
-            built = 1;
-        }
+        double wj, cl, wa;
+        int m, fam;
+        wa = gr__top_sheet(grid, query, j, n, &sh, &fam);
         m = gr__sheet_eval(&sc, &sh, query->lights, nl, tol, &wj, &cl, stats);
         if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = wj;
-        wsum += wj;
+        wfam[fam] += wa * wj;
         for (i = 0; i < m; i++) {
             const gr__ivl_t *v = &sc.ls.iv[i];
-            double len;
-            int base;
+            double len, *a;
+            int q;
             if (v->plane < 0 || !(cl > 0)) continue;
-            len = (v->s1 - v->s0) / (2 * cl); /* the unclassified rest shared in proportion */
-            for (k = 0; k < 2; k++) {
-                double *a;
-                int q;
-                base = (k * sc.npl + v->plane) * stride;
-                a = acc + base;
-                a[0] += (k ? 1.0 : wj) * len;
-                for (q = 0; q < nl; q++)
-                    if (v->lit & (1u << q)) a[1 + q] += (k ? 1.0 : wj) * len;
-            }
+            len = wa * (v->s1 - v->s0) / (2 * cl); /* the unclassified rest shared in proportion */
+            a = acc + (fam * sc.npl + v->plane) * stride;
+            a[0] += len;
+            for (q = 0; q < nl; q++)
+                if (v->lit & (1u << q)) a[1 + q] += len;
         }
     }
     {
-        int half = wsum > 0 ? 0 : 1;
-        double norm = wsum > 0 ? wsum : n;
+        int nfam = n > 1 ? 2 : 1, f;
+        double wf[2], wsum = wfam[0] + wfam[1];
+        for (f = 0; f < 2; f++) wf[f] = f >= nfam ? 0 : wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
         for (i = 0; i < sc.npl; i++) {
-            int base = (half * sc.npl + i) * stride;
             const gr__plane_t *p = &sc.ls.pl[i];
             gr__mfacet_t mf;
-            double lit[GR_MAX_LIGHTS], ratio;
-            ratio = acc[base] / norm;
+            double lit[GR_MAX_LIGHTS], ratio = 0;
+            for (k = 0; k < nl; k++) lit[k] = 0;
+            for (f = 0; f < nfam; f++) {
+                const double *a = acc + (f * sc.npl + i) * stride;
+                ratio += wf[f] * a[0];
+                for (k = 0; k < nl; k++) lit[k] += wf[f] * a[1 + k];
+            }
             if (!(ratio > 0)) continue;
-            for (k = 0; k < nl; k++) lit[k] = acc[base + 1 + k] / acc[base];
+            for (k = 0; k < nl; k++) lit[k] /= ratio;
             for (k = 0; k < 3; k++) mf.n[k] = p->n[k];
             mf.groove = p->lg < 0 ? -1 : sc.ls.lg[p->lg].groove;
             mf.facet = p->facet;
@@ -5013,6 +5277,7 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
         }
     list->flags |= sc.flags;
     list->grooves = sc.nlg;
+    if (stats && (sc.flags & GR_LIST_LINE_APPROX)) stats->flags |= GR_STATS_LINE_APPROX;
     gr__list_finish(list, nl);
     return GR_OK;
 }
@@ -5043,24 +5308,72 @@ static void gr__to_host(const gr_indirect_t *ind, const double *origin, const do
     for (k = 0; k < 3; k++) rgb[k] += thr[k] * frac * c[k];
 }
 
+/* Unpolarised Fresnel reflectance at an interface met at cos ci > 0, eta
+   = n_from / n_to; 1 under total internal reflection. *ct: the
+   transmitted cosine (0 under total internal reflection). */
+static double gr__fresnel(double ci, double eta, double *ct)
+{
+    double st2 = eta * eta * (1 - ci * ci), rs, rp;
+    if (st2 >= 1) { *ct = 0; return 1; }
+    *ct = sqrt(1 - st2);
+    rs = (eta * ci - *ct) / (eta * ci + *ct);
+    rp = (ci - eta * *ct) / (ci + eta * *ct);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+/* The pending-segment stack of gr_shade_indirect() (§6.1's recursion). */
+typedef struct gr__stack_t { gr__sheet_t *s; int top, full; } gr__stack_t;
+
+/* Push the piece [x0, x1] (3D, on the facet) as the next footprint, seen
+   along dir in the given medium, carrying thr; when the stack is full the
+   piece leaves along dir unexamined (§6.2's host) and the stack says so. */
+static void gr__push_piece(const gr_indirect_t *ind, gr__stack_t *st, const double *x0, const double *x1,
+                           const double *side, const double *dir, const double *thr, int level, int inside,
+                           double *rgb)
+{
+    double mid[3];
+    int k;
+    for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + side[k];
+    if (st->top == GR_INDIRECT_STACK) {
+        st->full = 1;
+        gr__to_host(ind, mid, dir, level, inside, thr, 1, rgb);
+        return;
+    }
+    {
+        gr__sheet_t *c = &st->s[st->top++];
+        for (k = 0; k < 3; k++) {
+            c->o[k] = mid[k];
+            c->a[k] = 0.5 * (x1[k] - x0[k]);
+            c->d[k] = dir[k];
+            c->thr[k] = thr[k];
+        }
+        c->level = level;
+        c->inside = inside;
+    }
+}
+
 /* One evaluated segment: direct terms, then the pieces that bounce
-   (§6.1: each facet run's visible piece, seen along E_r, becomes the next
-   footprint) pushed on the stack, and what leaves to the host (§6.2). */
+   (§6.1: each facet run's visible piece becomes the next footprint, seen
+   along the mirror direction E_r and, for a transmitting facet, along the
+   refracted one E_t), and what leaves to the host (§6.2). */
 static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, const gr_query_t *q,
-                       const gr_indirect_t *ind, gr__sheet_t *stack, int *top, double *rgb)
+                       const gr_indirect_t *ind, gr__stack_t *stack, double *rgb)
 {
     const gr__ivl_t *iv = sc->ls.iv;
-    double e[3], esc = 0, esc_s = 0, off = GR__LINE_OFFSET_REL * sc->scale;
+    double e[3], dd[3], esc = 0, esc_s = 0, off = GR__LINE_OFFSET_REL * sc->scale;
     int i, j, k, l;
-    for (k = 0; k < 3; k++) e[k] = -sh->d[k];
     {
-        double len = sqrt(gr__dot3(e, e));
-        for (k = 0; k < 3; k++) e[k] /= len;
+        double len = sqrt(gr__dot3(sh->d, sh->d));
+        for (k = 0; k < 3; k++) {
+            dd[k] = sh->d[k] / len;
+            e[k] = -dd[k];
+        }
     }
     for (i = 0; i < m; i = j) {
         const gr__plane_t *p;
         const gr_specular_t *sp;
-        double frac, x0[3], x1[3], mid[3], nf[3];
+        double frac, x0[3], x1[3], nf[3], wr[3], wt[3], dr[3], dt[3], up[3], down[3], ci, ct, eta, F;
+        int tir, thin;
         /* a run of intervals on one facet */
         for (j = i + 1; j < m && iv[j].plane == iv[i].plane; j++) {}
         frac = (iv[j - 1].s1 - iv[i].s0) / 2;
@@ -5071,8 +5384,8 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
             continue;
         }
         p = &sc->ls.pl[iv[i].plane];
-        gr__facing(sc, iv[i].plane, sh->d, nf);
-        if (ind->brdf)
+        gr__facing(sc, iv[i].plane, sh->d, nf); /* toward the side the rays come from */
+        if (ind->brdf && !sh->inside) /* direct light: on the outside only */
             for (l = i; l < j; l++)
                 for (k = 0; k < q->light_count; k++) {
                     double c[3] = {0, 0, 0}, fl = (iv[l].s1 - iv[l].s0) / 2;
@@ -5083,47 +5396,46 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
                 }
         sp = gr__spec(ind, p->refl);
         if (sh->level >= ind->depth || !sp) continue;
+        /* the bounce weights: Fresnel or the constants, thin or solid */
+        ci = -gr__dot3(dd, nf);
+        eta = sp->ior > 0 ? sp->ior : GR__DEFAULT_IOR;
+        eta = sh->inside ? eta : 1 / eta;
+        thin = sp->thin != 0;
+        F = gr__fresnel(ci, eta, &ct);
+        tir = !thin && ct == 0;
+        for (k = 0; k < 3; k++) {
+            if (sp->fresnel) {
+                double R = thin ? 2 * F / (1 + F) : F;
+                wr[k] = sp->kr[k] * R;
+                wt[k] = tir ? 0 : sp->kt[k] * (1 - R);
+            } else {
+                wr[k] = sp->kr[k] + (tir ? sp->kt[k] : 0);
+                wt[k] = tir ? 0 : sp->kt[k];
+            }
+            wr[k] *= sh->thr[k] * frac;
+            wt[k] *= sh->thr[k] * frac;
+            dr[k] = dd[k] + 2 * ci * nf[k];
+            dt[k] = thin ? dd[k] : eta * dd[k] + (eta * ci - ct) * nf[k];
+            up[k] = off * nf[k];
+            down[k] = -off * nf[k];
+        }
         gr__sheet_point(sc, sh, iv[i].plane, iv[i].s0, x0);
         gr__sheet_point(sc, sh, iv[i].plane, iv[j - 1].s1, x1);
-        for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + off * nf[k];
-        if (gr__nonzero3(sp->kr)) {
-            double dn = gr__dot3(sh->d, nf), dr[3];
-            for (k = 0; k < 3; k++) dr[k] = sh->d[k] - 2 * dn * nf[k];
-            if (*top < GR__LINE_STACK) {
-                gr__sheet_t *c = &stack[(*top)++];
-                for (k = 0; k < 3; k++) {
-                    c->o[k] = mid[k];
-                    c->a[k] = 0.5 * (x1[k] - x0[k]);
-                    c->d[k] = dr[k];
-                    c->thr[k] = sh->thr[k] * sp->kr[k] * frac;
-                }
-                c->level = sh->level + 1;
-            } else { /* stack full: the piece leaves along E_r unexamined */
-                double t3[3];
-                for (k = 0; k < 3; k++) t3[k] = sh->thr[k] * sp->kr[k];
-                gr__to_host(ind, mid, dr, sh->level + 1, 0, t3, frac, rgb);
-            }
-        }
-        if (gr__nonzero3(sp->kt)) { /* refraction into the material (Snell), to the host */
-            double eta = 1 / (sp->ior > 0 ? sp->ior : GR__DEFAULT_IOR), dl = sqrt(gr__dot3(sh->d, sh->d));
-            double dd[3], ci, kk, dt[3], t3[3], in[3];
-            for (k = 0; k < 3; k++) dd[k] = sh->d[k] / dl;
-            ci = -gr__dot3(dd, nf);
-            kk = 1 - eta * eta * (1 - ci * ci);
-            if (kk >= 0 && ci > 0) {
-                for (k = 0; k < 3; k++) {
-                    dt[k] = eta * dd[k] + (eta * ci - sqrt(kk)) * nf[k];
-                    t3[k] = sh->thr[k] * sp->kt[k];
-                    in[k] = mid[k] - 2 * off * nf[k];
-                }
-                gr__to_host(ind, in, dt, sh->level + 1, 1, t3, frac, rgb);
+        if (gr__nonzero3(wr)) gr__push_piece(ind, stack, x0, x1, up, dr, wr, sh->level + 1, sh->inside, rgb);
+        if (gr__nonzero3(wt)) {
+            if (thin) { /* through the pane, to the host behind it */
+                double mid[3];
+                for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + down[k];
+                gr__to_host(ind, mid, dt, sh->level + 1, !sh->inside, wt, 1, rgb);
+            } else {
+                gr__push_piece(ind, stack, x0, x1, down, dt, wt, sh->level + 1, !sh->inside, rgb);
             }
         }
     }
-    if (esc > 0) {
+    if (esc > 0) { /* §6.2: 1 - Σ r_i leaves: up into the scene, or into the bulk */
         double o[3], sm = esc_s / esc;
         for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
-        gr__to_host(ind, o, sh->d, sh->level, 0, sh->thr, esc, rgb);
+        gr__to_host(ind, o, sh->d, sh->level, sh->inside, sh->thr, esc, rgb);
     }
 }
 
@@ -5132,10 +5444,11 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
 {
     gr__scratch_t s;
     gr__lscene_t sc;
-    gr__sheet_t stack[GR__LINE_STACK];
+    gr__stack_t stack;
     const gr_footprint_t *fp;
-    double wsum = 0, plain[3] = {0, 0, 0}, tol;
-    int n, j, k;
+    double wfam[2] = {0, 0}, cfam[2][3] = {{0, 0, 0}, {0, 0, 0}}, tol;
+    int n, j, k, full = 0;
+    unsigned approx = 0;
     gr_result_t r;
     if (!indirect || !rgb) return GR_ERR_INVALID_ARG;
     rgb[0] = rgb[1] = rgb[2] = 0;
@@ -5150,34 +5463,44 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
     n = query->line_samples ? query->line_samples : 2;
     tol = gr__exit_tol(query);
     gr__line_layout(grid, scratch, &s, &sc);
+    stack.s = sc.ls.stack;
     for (j = 0; j < n; j++) {
-        double cj[3] = {0, 0, 0}, wj = 0;
-        int top = 1;
-        gr__top_sheet(grid, fp, j, n, &stack[0]);
-        while (top > 0) {
-            gr__sheet_t sh = stack[--top];
+        double cj[3] = {0, 0, 0}, wj = 0, wa;
+        int fam;
+        stack.top = 1;
+        stack.full = 0;
+        wa = gr__top_sheet(grid, query, j, n, &stack.s[0], &fam);
+        while (stack.top > 0) {
+            gr__sheet_t sh = stack.s[--stack.top];
             double w, cl;
-            int m;
-            gr__line_scene(grid, &s, &sc, &sh, 1, NULL, query->lights, query->light_count);
+            int m, nl = sh.inside ? 0 : query->light_count; /* no direct light inside the material */
+            gr__line_scene(grid, &s, &sc, &sh, 1, NULL, query->lights, nl);
             /* the early exit (§5.6) would leave unclassified gaps, which
                here would read as light leaving: bounces classify all */
-            m = gr__sheet_eval(&sc, &sh, query->lights, query->light_count, sh.level ? -1 : tol, &w, &cl, stats);
+            m = gr__sheet_eval(&sc, &sh, query->lights, nl, sh.level ? -1 : tol, &w, &cl, stats);
+            approx |= sc.flags & GR_LIST_LINE_APPROX;
             if (sh.level == 0) {
                 wj = w;
                 if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = w;
                 if (cl > 0 && cl < 1) /* share the unclassified rest in proportion */
                     for (k = 0; k < 3; k++) sh.thr[k] /= cl;
             }
-            gr__bounce(&sc, &sh, m, query, indirect, stack, &top, cj);
+            gr__bounce(&sc, &sh, m, query, indirect, &stack, cj);
         }
-        wsum += wj;
-        for (k = 0; k < 3; k++) {
-            rgb[k] += wj * cj[k];
-            plain[k] += cj[k];
+        full |= stack.full;
+        wfam[fam] += wa * wj; /* families combined as in gr_query_lines() */
+        for (k = 0; k < 3; k++) cfam[fam][k] += wa * cj[k];
+    }
+    {
+        int nfam = n > 1 ? 2 : 1, f;
+        double wsum = wfam[0] + wfam[1];
+        for (f = 0; f < nfam; f++) {
+            double wf = wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
+            for (k = 0; k < 3; k++) rgb[k] += wf * cfam[f][k];
         }
     }
-    for (k = 0; k < 3; k++) rgb[k] = wsum > 0 ? rgb[k] / wsum : plain[k] / n;
-    return GR_OK;
+    if (stats) stats->flags = (approx ? GR_STATS_LINE_APPROX : 0u) | (full ? GR_STATS_STACK_FULL : 0u);
+    return full ? GR_ERR_STACK_FULL : GR_OK;
 }
 #endif
 /* ==== [end section: interreflection] ==== */

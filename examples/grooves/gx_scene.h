@@ -233,8 +233,10 @@ static void gx_sun_view(gx_scene_t *s, double elev, double azim, ex_v3_t rad, ex
 
 /* Figure 21d: a window frame protruding over glass, with inter-reflection:
    three mullions each way (raised bars crossing at right angles) over a
-   glass pane that reflects 8 % and lets 90 % through to the room behind
-   (the host's callback); the frame is glossy paint reflecting 25 %. */
+   thin glass pane (ior 1.5, Fresnel: about 8 % reflected at normal
+   incidence for both faces, more at grazing angles; the rest goes
+   straight through to the room behind, the host's callback); the frame
+   is glossy paint reflecting 25 %. */
 static int gx_scene_frame(gx_scene_t *s)
 {
     static const double bar[10] = {-0.018, 0, -0.016, 0.03, 0, 0.036, 0.016, 0.03, 0.018, 0};
@@ -248,7 +250,9 @@ static int gx_scene_frame(gx_scene_t *s)
     }
     s->mats[0] = gx_material(0.0, 0.0, 0.0, 0.04, 0.04, 0.04, 0.05);     /* glass (its reflection is k_r) */
     s->mats[1] = gx_material(0.55, 0.52, 0.46, 0.04, 0.04, 0.04, 0.35);  /* painted frame */
-    gx_spec(&s->spec[0], 0.08, 0.9, 1.5);
+    gx_spec(&s->spec[0], 1, 1, 1.5);
+    s->spec[0].fresnel = 1;
+    s->spec[0].thin = 1;
     gx_spec(&s->spec[1], 0.25, 0, 0);
     s->depth = 2;
     s->below = ex_v3(0.9, 0.7, 0.45);                                    /* a warm room */
@@ -426,6 +430,8 @@ typedef struct gx_ours_t {
     RTCScene plane;
     long long embree_bytes;       /* Embree's bytes once the plane is committed */
     int perturb_normals;          /* gr_query_t.perturb_normals: 0 true normals, -1 §4.4's */
+    int line_samples;             /* gr_query_t.line_samples: 0 polygons at crossings and ends,
+                                     n > 0 n line samples (§5.6); the §6 scenes take 2 for 0 */
     ex_camera_t cam;
 } gx_ours_t;
 
@@ -497,6 +503,7 @@ static ex_v3_t gx_ours_indirect(const gx_ours_t *o, gr_query_t *q, const gr_fram
 {
     const gx_scene_t *s = o->s;
     gr_indirect_t ind;
+    gr_result_t r;
     double rgb[3];
     (void)frame;
     memset(&ind, 0, sizeof ind);
@@ -505,8 +512,9 @@ static ex_v3_t gx_ours_indirect(const gx_ours_t *o, gr_query_t *q, const gr_fram
     ind.specular_count = GX_MAX_MATS;
     ind.brdf = gx_brdf_cb; ind.brdf_user = (void *)s;
     ind.trace = gx_trace_cb; ind.trace_user = (void *)s;
-    q->line_samples = 2;
-    if (gr_shade_indirect(o->grid, q, &ind, scratch, bytes, rgb, NULL) != GR_OK) return s->background;
+    if (q->line_samples == 0) q->line_samples = 2;
+    r = gr_shade_indirect(o->grid, q, &ind, scratch, bytes, rgb, NULL);
+    if (r != GR_OK && r != GR_ERR_STACK_FULL) return s->background; /* a full stack still gives a colour */
     return ex_v3(rgb[0], rgb[1], rgb[2]);
 }
 
@@ -537,6 +545,7 @@ static ex_v3_t gx_ours_radiance(const gx_ours_t *o, double px, double py)
     rd.ry_dir[0] = ray.ry_d.x; rd.ry_dir[1] = ray.ry_d.y; rd.ry_dir[2] = ray.ry_d.z;
     memset(&q, 0, sizeof q);
     q.perturb_normals = o->perturb_normals;
+    q.line_samples = o->line_samples;
     if (gr_footprint_from_differentials(&rd, &q.footprint, &frame) != GR_OK) return s->background;
     for (k = 0; k < s->nlights; k++) gr_frame_to_texture(&frame, s->light[k], L + 3 * k);
     q.lights = L; q.light_count = s->nlights;
@@ -590,6 +599,15 @@ static long long gx_geo_bytes(const gx_geo_t *g)
     return g->embree_bytes + (long long)g->sc.ntris * 2 * (long long)sizeof(int);
 }
 
+/* Unpolarised Fresnel reflectance entering glass of index n from air at
+   cos ci (the geometry renderer's own, for the thin pane). */
+static double gx_fresnel(double ci, double n)
+{
+    double st = sqrt(ci < 1 ? 1 - ci * ci : 0) / n, ct = sqrt(1 - st * st);
+    double a = (ci - n * ct) / (ci + n * ct), b = (ct - n * ci) / (ct + n * ci);
+    return 0.5 * (a * a + b * b);
+}
+
 static ex_v3_t gx_geo_radiance(const gx_geo_t *g, double px, double py)
 {
     const gx_scene_t *s = g->s;
@@ -618,10 +636,20 @@ static ex_v3_t gx_geo_radiance(const gx_geo_t *g, double px, double py)
         c = ex_add(c, ex_mul(thr, gx_shade(s, refl, h.n, e, &mask, NULL)));
         if (level == s->depth || refl < 0 || refl >= GX_MAX_MATS) break;
         sp = &s->spec[refl];
-        c = ex_add(c, ex_mul(thr, ex_mul(ex_v3(sp->kt[0], sp->kt[1], sp->kt[2]), s->below)));
-        thr = ex_mul(thr, ex_v3(sp->kr[0], sp->kr[1], sp->kr[2]));
-        if (!(thr.x > 0 || thr.y > 0 || thr.z > 0)) break;
         dn = dd[0] * h.n[0] + dd[1] * h.n[1] + dd[2] * h.n[2];
+        {   /* the pane's (or facet's) reflected and transmitted shares:
+               constants, or a thin pane's two Fresnel faces (the scenes
+               here transmit only through thin panes) */
+            double R = 1, T = 1;
+            if (sp->fresnel) {
+                double f = gx_fresnel(-dn, sp->ior > 0 ? sp->ior : 1.5);
+                R = sp->thin ? 2 * f / (1 + f) : f;
+                T = 1 - R;
+            }
+            c = ex_add(c, ex_mul(thr, ex_mul(ex_v3(T * sp->kt[0], T * sp->kt[1], T * sp->kt[2]), s->below)));
+            thr = ex_mul(thr, ex_v3(R * sp->kr[0], R * sp->kr[1], R * sp->kr[2]));
+        }
+        if (!(thr.x > 0 || thr.y > 0 || thr.z > 0)) break;
         for (k = 0; k < 3; k++) {
             dd[k] -= 2 * dn * h.n[k];
             o[k] = h.p[k] + g->sc.eps * h.n[k];
