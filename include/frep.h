@@ -4654,6 +4654,8 @@ typedef struct fr__ray_t {
     int mono;         /* pc set and g' available: monotone segments hand over (fr__trace_interval) */
     double gam, dgam; /* gamma_{2n+2} for g's and g''s degrees n (fr__poly_range_of) */
     const fr_prepared_t *prep; /* desc->prepared, if made for this tape */
+    double inv[3];    /* 1 / d[k] (0 where d[k] = 0), when have_inv: from fr__clip_padded */
+    int have_inv;
     void *eval;
     unsigned long long evals, iters;
     unsigned int max_iters;
@@ -5338,7 +5340,7 @@ static int fr__poly_leaf(const double *c, int deg, double s0, double s1, double 
 /* The sign of the shape from the leaves' signs v[0, nl): min, max and
    negation over signs, as over values (an R-function has the sign of min or
    max of its operands); node values go to v[nl...]. */
-static int fr__csg_sign(const fr__csg_node_t *nd, unsigned int nn, unsigned int nl, signed char *v,
+static FR__HOT_INLINE int fr__csg_sign(const fr__csg_node_t *nd, unsigned int nn, unsigned int nl, signed char *v,
                         const signed char *force)
 {
     signed char *w = v + nl;
@@ -5380,7 +5382,7 @@ typedef struct fr__csg_walk_t {
     const int *deg;
 } fr__csg_walk_t;
 
-static int fr__walk_sign(const fr__csg_walk_t *W, signed char *v)
+static FR__HOT_INLINE int fr__walk_sign(const fr__csg_walk_t *W, signed char *v)
 {
     return W->nodes ? fr__csg_sign(W->nodes, W->nn, W->nl, v, W->force) : fr__csg_sign_tape(W->tape, W->list, W->cnt, W->deg, v);
 }
@@ -5395,7 +5397,7 @@ static int fr__walk_sign(const fr__csg_walk_t *W, signed char *v)
    root, where rounding could hide a grazing ray's sign change. Returns the
    crossing's index or -1, with the shape's signs before (glo) and after
    (ghi) and the bracket's half-width. */
-static int fr__csg_walk(fr__ray_t *R, const fr__csg_walk_t *W, double *cand, unsigned int *cl, int nc, signed char *vlo,
+static FR__HOT_INLINE int fr__csg_walk(fr__ray_t *R, const fr__csg_walk_t *W, double *cand, unsigned int *cl, int nc, signed char *vlo,
                         signed char *vhi, int *glo, int *ghi, double *dt_out)
 {
     int k, plo = 0, phi = 0;
@@ -5542,9 +5544,11 @@ static int fr__clip_padded(fr__ray_t *R, const double *b)
         double op = 8.0 * FR__U * fabs(R->o[k]), inv, ta, tb;
         if (R->d[k] == 0) {
             if (!(R->o[k] >= b[k] - op && R->o[k] <= b[k + 3] + op)) return 0;
+            R->inv[k] = 0.0;
             continue;
         }
         inv = 1.0 / R->d[k];
+        R->inv[k] = inv;
         ta = (b[k] - R->o[k]) * inv;
         tb = (b[k + 3] - R->o[k]) * inv;
         if (ta > tb) { double x = ta; ta = tb; tb = x; }
@@ -5552,6 +5556,7 @@ static int fr__clip_padded(fr__ray_t *R, const double *b)
         if (tb < Z) Z = tb;
         if (op * fabs(inv) > tp) tp = op * fabs(inv);
     }
+    R->have_inv = 1;
     A -= 4.0 * FR__U * fabs(A) + tp;
     Z += 4.0 * FR__U * fabs(Z) + tp;
     if (A < R->t0) A = R->t0;
@@ -5961,14 +5966,15 @@ typedef struct fr__slab_t {
     double o[3], inv[3], opad[3], tpad;
     int flat[3]; /* d[k] == 0 */
 } fr__slab_t;
-static void fr__slab_init(fr__slab_t *S, const double o[3], const double d[3])
+static void fr__slab_init(fr__slab_t *S, const fr__ray_t *R)
 {
+    const double *o = R->o, *d = R->d;
     int k;
     S->tpad = 0.0;
     for (k = 0; k < 3; k++) {
         S->o[k] = o[k];
         S->flat[k] = d[k] == 0;
-        S->inv[k] = d[k] != 0 ? 1.0 / d[k] : 0.0;
+        S->inv[k] = R->have_inv ? R->inv[k] : d[k] != 0 ? 1.0 / d[k] : 0.0; /* the clip's reciprocals */
         S->opad[k] = 8.0 * FR__U * fabs(o[k]);
         if (S->opad[k] * fabs(S->inv[k]) > S->tpad) S->tpad = S->opad[k] * fabs(S->inv[k]);
     }
@@ -6133,7 +6139,7 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         for (i = 0; i < nn; i++) force[i] = 0;
         for (i = 0; i + 1 < nl + nn; i++) live[i] = 0;
         live[nl + nn - 1] = 1;
-        fr__slab_init(&S, R->o, R->d);
+        fr__slab_init(&S, R);
         slab = 1;
         for (i = nn; i-- > 0;) {
             if (!live[nl + i]) continue;
@@ -6155,7 +6161,7 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         int culled = 0, sg = 0, m;
         if (live && !live[j]) { vlo[j] = vhi[j] = 0; continue; } /* only culled nodes use it */
         if (lf->boxed) {
-            if (!slab) { fr__slab_init(&S, R->o, R->d); slab = 1; }
+            if (!slab) { fr__slab_init(&S, R); slab = 1; }
             culled = !fr__slab_meets(&S, lf->box, R->t0, R->t1);
         }
         if (lf->quadric) m = fr__quadric_leaf(lf, R, inv_dd, culled, cand + nc, &sg);
@@ -6236,6 +6242,7 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     hit->evals = hit->iterations = 0;
     for (k = 0; k < 3; k++) { R.o[k] = o[k]; R.d[k] = d[k]; }
     R.t0 = t0; R.t1 = t1;
+    R.have_inv = 0;
     /* clip first: rays that miss the solid's box cost only this (a prepared
        model's box clips too when desc->bounds does not) */
     R.prep = desc->prepared && desc->prepared->tape == t && desc->prepared->kind != FR_PREPARED_NONE ? desc->prepared : NULL;
