@@ -400,6 +400,7 @@ int main(int argc, char **argv)
     }
     if (csv) fclose(csv);
 
+    printf("\n");
     /* ---- the ODM remark family, drawn as the authors' search driver draws
        it (cridemichel/quartic_C, Drivers/accuracytest.c): x^4 - 1e-162 x^3
        + A x^2 + 1e-162 x + B, A and B uniform in [-50, 50]; the driver

@@ -280,16 +280,16 @@ int main(int argc, char **argv)
                        fr_prepare(&tape, box, &prep) == FR_OK;
             free(s);
             if (has_prep && poly) {
-                cand[nc] = mk(FR_METHOD_ANALYTIC, 0); cand[nc].bounds = box; label[nc++] = "analytic, box";
+                cand[nc] = mk(FR_METHOD_ANALYTIC, 0); cand[nc].bounds = box; label[nc++] = "analytic box";
                 cand[nc] = mk(FR_METHOD_ANALYTIC, 0); cand[nc].bounds = box; cand[nc].prepared = &prep;
-                label[nc++] = "analytic, box, prepared";
+                label[nc++] = "analytic box prepared";
             }
             if (has_prep && prep.kind == FR_PREPARED_POLY) {
-                cand[nc] = mk(FR_METHOD_INTERVAL, 1e-7); cand[nc].bounds = box; label[nc++] = "interval 1e-7, box";
+                cand[nc] = mk(FR_METHOD_INTERVAL, 1e-7); cand[nc].bounds = box; label[nc++] = "interval 1e-7 box";
                 cand[nc] = mk(FR_METHOD_INTERVAL, 1e-7); cand[nc].bounds = box; cand[nc].prepared = &prep;
-                label[nc++] = "interval 1e-7, box, prepared";
+                label[nc++] = "interval 1e-7 box prepared";
                 cand[nc] = mk(FR_METHOD_INTERVAL, 1e-10); cand[nc].bounds = box; cand[nc].prepared = &prep;
-                label[nc++] = "interval 1e-10, box, prepared";
+                label[nc++] = "interval 1e-10 box prepared";
             }
         }
         {
