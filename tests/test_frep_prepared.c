@@ -11,6 +11,7 @@
 #include "frep.h"
 #include <quadmath.h>
 #include "test_frep_trace_models.h"
+#include "test_frep_ref_models.h"
 
 /* ---------------------------------------------------------------- the cup */
 
@@ -64,18 +65,10 @@ static void cup_leaves(const double o[3], const double d[3], qleaf_t L[6])
     }
 }
 
-static __float128 qleaf_at(const qleaf_t *l, __float128 t) { return l->c[0] + t * (l->c[1] + t * l->c[2]); }
-
-/* the cup's sign at t: max(min(S1, -S2, P1), min(C, P2, P3)) */
-static int cup_sign(const qleaf_t L[6], __float128 t)
+/* the cup's sign at t (test_frep_ref_models.h) */
+static int cup_sign(const double o[3], const double d[3], __float128 t)
 {
-    __float128 v[6], a, b;
-    int i;
-    for (i = 0; i < 6; i++) v[i] = qleaf_at(&L[i], t);
-    v[1] = -v[1];
-    a = fminq(fminq(v[0], v[1]), v[2]);
-    b = fminq(fminq(v[3], v[4]), v[5]);
-    a = fmaxq(a, b);
+    __float128 a = cup_q(o, d, t);
     return a > 0 ? 1 : a < 0 ? -1 : 0;
 }
 
@@ -113,7 +106,7 @@ static int cup_reference(const double o[3], const double d[3], double t0, double
         if (tc <= (__float128)t0 - dl || tc > (__float128)t1 + dl) continue;
         if (near || fabsq(tc - t0) < dl || fabsq(tc - t1) < dl) { *ambiguous = 1; return 0; }
         if (tc <= (__float128)t0) continue;
-        if (cup_sign(L, tc - dl / 4) * cup_sign(L, tc + dl / 4) < 0) { *t_ref = (double)tc; return 1; }
+        if (cup_sign(o, d, tc - dl / 4) * cup_sign(o, d, tc + dl / 4) < 0) { *t_ref = (double)tc; return 1; }
     }
     return 0;
 }
@@ -372,17 +365,7 @@ static void prepared_csg_shadow_rays_and_fd_normals(void)
 
 /* ---------------------------------------------------------------- polynomial tapes */
 
-/* g(t) of the tangle cube and of the quartic torus in __float128 */
-static __float128 tangle_q(const double o[3], const double d[3], __float128 t)
-{
-    __float128 s = 11.8Q;
-    int k;
-    for (k = 0; k < 3; k++) {
-        __float128 x = (__float128)o[k] + t * (__float128)d[k], x2 = x * x;
-        s += x2 * x2 - 5 * x2;
-    }
-    return -s;
-}
+/* g(t) of the quartic torus in __float128 (the tangle cube's: test_frep_ref_models.h) */
 static __float128 torus_q(const double o[3], const double d[3], __float128 t, double R, double r)
 {
     __float128 x = (__float128)o[0] + t * d[0], y = (__float128)o[1] + t * d[1], z = (__float128)o[2] + t * d[2];
