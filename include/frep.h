@@ -570,7 +570,9 @@ typedef struct fr_trace_desc_t {
        enclosure G' of g' free of 0, the segment is narrowed to its meet
        with m - g(m) / G', or dropped when they do not meet. Rigorous like
        the bisection (no root is lost); ignored on other tapes (no interval
-       derivative there). Default 0. */
+       derivative there). Default 0. Where G' excludes 0 the default
+       monotone hand-over (FR_METHOD_INTERVAL above) already decides the
+       segment, so Newton only acts on the segments that leaves open. */
     int interval_newton;
     unsigned int max_iters;   /* iteration cap of every loop; 0: 100000 */
     fr_normal_mode_t normal;  /* default AD */
