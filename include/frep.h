@@ -693,13 +693,14 @@ FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const doub
    FR_PREPARED_NONE  nothing to precompute (other tapes); fr_trace traces as
        without it.
 
-   Hits agree with the unprepared fr_trace to rounding (tests/
-   test_frep_trace.c, prepared_*), except that a root exactly at t0 is
-   never a hit of the prepared CSG path (the unprepared one reports one
-   where f(t0) is exactly 0). The prepared model refers to the tape and
-   must not outlive it; it is read-only, so threads share it. Memory comes
-   from FR_MALLOC with the tape's alloc_ctx; free it with
-   fr_prepared_free. Without a box, CSG leaves keep the Taylor program.
+   Hits agree with the unprepared fr_trace to rounding
+   (tests/test_frep_prepared.c); in both, a leaf root exactly at t0 counts
+   as before the segment (a ray starting on the surface is no hit at t0).
+   The box given here also clips every ray, like fr_trace_desc_t.bounds. The
+   prepared model refers to the tape and must not outlive it; it is
+   read-only, so threads share it. Memory comes from FR_MALLOC with the
+   tape's alloc_ctx; free it with fr_prepared_free. Without a box, CSG
+   leaves keep the Taylor program and no leaf or node is culled.
    Errors: FR_ERR_INVALID_ARG (NULL, empty tape, non-finite or inverted
    box), FR_ERR_OUT_OF_MEMORY. */
 typedef enum fr_prepared_kind_t {
