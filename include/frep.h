@@ -5582,15 +5582,51 @@ static int fr__clip_padded(fr__ray_t *R, const double *b)
 #define FR__QUAD_SMALL 4.9090934652977266e-91 /* 2^-300 */
 
 
-/* The quadric (degree <= 2) monomial forms of slots 0..last in powers of
-   q = p - e: W holds 10 doubles per slot, [1, X, Y, Z, XX, XY, XZ, YY, YZ,
-   ZZ]; slots of generic degree outside [0, 2] get NaN. Returns 1 if slot
-   `last` came out finite. */
-static int fr__quadric_forms(const fr_tape_t *t, const int *gdeg, unsigned int last, const double e[3], double *W)
+/* The slots of root's subtree in ascending order (operands precede their
+   users), into out; returns their count. stamp (n entries, left as they
+   are between calls) marks visits with tag, which must differ from every
+   earlier call's; stack holds n entries. */
+static unsigned int fr__subtree(const fr_tape_t *t, unsigned int root, unsigned int tag, unsigned int *stamp,
+                                unsigned int *stack, unsigned int *out)
 {
-    unsigned int i;
+    unsigned int sp = 0, m = 0;
+    stack[sp++] = root;
+    stamp[root] = tag;
+    while (sp > 0) {
+        unsigned int x = stack[--sp], op[3], k;
+        const fr_instr_t *in = &t->code[x];
+        int ar = fr__arity(in->op);
+        out[m++] = x;
+        op[0] = in->a; op[1] = in->b; op[2] = in->c;
+        for (k = 0; k < (unsigned int)ar; k++)
+            if (stamp[op[k]] != tag) { stamp[op[k]] = tag; stack[sp++] = op[k]; }
+    }
+    { /* ascending: Shell sort (Ciura's gaps; no libc qsort, which a user FR_MALLOC leaves undeclared) */
+        static const unsigned int gaps[8] = {701, 301, 132, 57, 23, 10, 4, 1};
+        unsigned int gi, i, j;
+        for (gi = 0; gi < 8; gi++) {
+            unsigned int h = gaps[gi];
+            for (i = h; i < m; i++) {
+                unsigned int v = out[i];
+                for (j = i; j >= h && out[j - h] > v; j -= h) out[j] = out[j - h];
+                out[j] = v;
+            }
+        }
+    }
+    return m;
+}
+
+/* The quadric (degree <= 2) monomial forms of the slots in list
+   (ascending; the last is the leaf) in powers of q = p - e: W holds 10 doubles
+   per slot, [1, X, Y, Z, XX, XY, XZ, YY, YZ, ZZ]; slots of generic degree
+   outside [0, 2] get NaN. Returns 1 if the leaf came out finite. */
+static int fr__quadric_forms(const fr_tape_t *t, const int *gdeg, const unsigned int *list, unsigned int cnt,
+                             const double e[3], double *W)
+{
+    unsigned int j, last = list[cnt - 1];
     int k;
-    for (i = 0; i <= last; i++) {
+    for (j = 0; j < cnt; j++) {
+        unsigned int i = list[j];
         const fr_instr_t *in = &t->code[i];
         double *c = W + 10 * (size_t)i, r[10];
         const double *a = W + 10 * (size_t)in->a, *b = W + 10 * (size_t)in->b;
@@ -5745,15 +5781,18 @@ static fr_result_t fr__prepare_leaves(const fr_tape_t *t, const int *gdeg, const
 {
     size_t n = t->n_code;
     double *W = (double *)(void *)work;
+    unsigned int *stamp = (unsigned int *)(void *)(work + 10 * n * sizeof(double)), *stack = stamp + n, *sub = stack + n;
     double lo[3], hi[3], c[3];
     unsigned int j;
     int k;
+    for (j = 0; j < n; j++) stamp[j] = 0;
     fr__leaf_search_box(box, lo, hi);
     for (k = 0; k < 3; k++) c[k] = 0.5 * lo[k] + 0.5 * hi[k];
     for (j = 0; j < nl; j++) {
         fr__leaf_t *lf = &L[j];
         lf->boxed = 0;
-        if (lf->degree <= 2 && fr__quadric_forms(t, gdeg, lf->slot, c, W)) {
+        unsigned int ns = lf->degree <= 2 ? fr__subtree(t, lf->slot, j + 1, stamp, stack, sub) : 0;
+        if (lf->degree <= 2 && fr__quadric_forms(t, gdeg, sub, ns, c, W)) {
             lf->quadric = 1;
             for (k = 0; k < 3; k++) lf->e[k] = c[k];
             fr__quadric_store(lf, W + 10 * (size_t)lf->slot);
@@ -5763,7 +5802,7 @@ static fr_result_t fr__prepare_leaves(const fr_tape_t *t, const int *gdeg, const
                 if (fr__box_search(fr__quadric_cell, lf, 1, lo, hi, FR__LEAF_BOX_DEPTH, blo, bhi) != FR_OK) continue;
                 if (blo[0] <= bhi[0]) {
                     for (k = 0; k < 3; k++) e2[k] = 0.5 * blo[k] + 0.5 * bhi[k];
-                    if (!fr__quadric_forms(t, gdeg, lf->slot, e2, W)) continue;
+                    if (!fr__quadric_forms(t, gdeg, sub, ns, e2, W)) continue;
                     for (k = 0; k < 3; k++) lf->e[k] = e2[k];
                     fr__quadric_store(lf, W + 10 * (size_t)lf->slot);
                     if (fr__box_search(fr__quadric_cell, lf, 1, lo, hi, FR__LEAF_BOX_DEPTH, blo, bhi) != FR_OK) continue;
@@ -5828,7 +5867,7 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
        quadric forms, or a compacted sub-tape with its interval scratch */
     work_bytes = fr__align8(n * sizeof(int)) + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int));
     {
-        size_t a = 10 * n * sizeof(double), b = fr__align8(n) + fr__align8(2 * n * sizeof(unsigned int)) +
+        size_t a = 10 * n * sizeof(double) + 3 * n * sizeof(unsigned int), b = fr__align8(n) + fr__align8(2 * n * sizeof(unsigned int)) +
                                                  fr__align8(n * sizeof(fr_instr_t)) + fr__eval_scratch_max(t);
         work_bytes += a > b ? a : b;
     }
