@@ -475,7 +475,8 @@ static __float128 torus_q(const double o[3], const double d[3], __float128 t, do
 }
 
 /* Random rays at the tangle cube and the quartic torus: the prepared
-   Taylor program gives the unprepared hits, ANALYTIC within 1e-12 and
+   Taylor program gives the unprepared hits, ANALYTIC within 1e-12 (and
+   the program's AD normals within 1e-12 of the tape's) and
    INTERVAL (monotone hand-over, footprint and any-hit too) within its
    tolerance; every INTERVAL hit brackets a sign change of g in
    __float128 within tol + 1e-12, and no miss leaves a sign change that
@@ -508,7 +509,11 @@ static void prepared_poly_agrees_on_random_rays(void)
         b = trace(m, o, d, 0, 2, iv);
         bp = trace(m, o, d, 0, 2, ivp);
         T_INT_EQ(ap.hit, a.hit);
-        if (a.hit && ap.hit) T_NEAR(ap.t, a.t, 1e-12 * (1 + fabs(a.t)));
+        if (a.hit && ap.hit) {
+            T_NEAR(ap.t, a.t, 1e-12 * (1 + fabs(a.t)));
+            /* the program's AD normal against the tape's */
+            T_GE(ap.normal[0] * a.normal[0] + ap.normal[1] * a.normal[1] + ap.normal[2] * a.normal[2], 1 - 1e-12);
+        }
         T_INT_EQ(bp.hit, b.hit);
         T_INT_EQ(bp.hit, a.hit);
         if (bp.hit) {
