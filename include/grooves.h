@@ -301,6 +301,16 @@ typedef struct gr_query_t {
     double line_exit_tol;  /* §5.6 early exit of line samples: stop when
                               Σ r_i >= 1 - tol; default 0 means 1e-3;
                               negative disables */
+    int straight_occlusion; /* 0 (default): §4.3's masking and shadowing
+                              with each cross-section point taken where
+                              the ray that reaches it meets the groove: the
+                              section scaled by f there (the depth change
+                              along the ray's way, exact for a linear f)
+                              and, on a curved path, moved by the bend's
+                              drift under a ray running along it (exact
+                              for a circular arc). Nonzero: the straight
+                              groove with the constant profile at P, as
+                              the paper has it (§4.2-4.3) */
 } gr_query_t;
 
 /* One entry of the facet list: a texture-space facet orientation with its
@@ -878,6 +888,15 @@ extern "C" {
    footprint and where the view ray meets the facet (gr__hit_normal): past
    it the straight approximation of the occlusion means little anyway. */
 #define GR__TURN_MAX 1.0
+/* Smallest stretch 1 - kappa f b of a curved sweep taken (gr__stretch),
+   and smallest denominator of the secant solve for the scale where a ray
+   meets a perturbed groove (gr__ray_point; below it the secant's own end
+   is used): both only guard the local model past its range. */
+#define GR__STRETCH_MIN 0.25
+#define GR__RAY_SECANT_MIN 0.5
+/* gr__ray_point takes its second secant step only when the first moved
+   the scale by more than this fraction of f. */
+#define GR__RAY_SECOND_STEP 1e-3
 #define GR__PI 3.14159265358979323846
 /* Intervals shorter than this fraction of an elliptical footprint's radius
    integrate its semicircle density by the midpoint rule (relative error
@@ -1614,7 +1633,9 @@ typedef struct gr__cand_t {
     double d;       /* d_P = B . (F - P), B = (-T_v, T_u) (eq. 2) */
     double param;   /* path parameter at P, in [0,1] */
     double dtds;    /* d param / d arc length at P */
+    double dtds2;   /* its derivative per unit arc length (Bézier speed changes) */
     double kappa;   /* signed path curvature at P (> 0: T turns counter-clockwise) */
+    double dkds;    /* its derivative per unit arc length */
     double f;       /* perturbation scale f(param) */
     double dfds;    /* its slope per unit arc length, averaged across the footprint */
     double xmin;    /* leftmost point of its section in the merged profile */
@@ -1641,6 +1662,11 @@ typedef struct gr__scratch_t {
     gr__key_t *key;
     double *x, *w, *q, *lo, *hi, *va, *vb, *lit;
     gr__mfacet_t *mf;
+    /* per merged point: its candidate (-1 for ground) and its point of the
+       unscaled section (b, w); the view's projection */
+    int *pc;
+    double *bs, *ws, *qe;
+    int *visited; /* cell lists the last §4 footprint read (gr__gather) */
 } gr__scratch_t;
 
 static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *s)
@@ -1664,6 +1690,11 @@ static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *
     GR__CARVE(vb, double, np)
     GR__CARVE(lit, double, np * GR_MAX_LIGHTS)
     GR__CARVE(mf, gr__mfacet_t, np)
+    GR__CARVE(pc, int, np)
+    GR__CARVE(bs, double, np)
+    GR__CARVE(ws, double, np)
+    GR__CARVE(qe, double, np)
+    GR__CARVE(visited, int, 1)
 #undef GR__CARVE
     return off;
 }
@@ -1712,6 +1743,28 @@ static void gr__bezier_eval(const double *p, int n, double tau, double b[2], dou
     }
 }
 
+/* The local frame of a candidate at a point of Bézier piece a (degree deg,
+   one of `pieces`) with position b and derivatives d1, d2 there (|d1| > 0):
+   P, unit T, d param / ds and its slope, signed curvature and its slope
+   (from the third derivative, constant per piece: 6 (p3 - 3 p2 + 3 p1 -
+   p0) for a cubic, 0 for a quadratic). */
+static void gr__bezier_frame(const double *a, int deg, int pieces, const double b[2], const double d1[2],
+                             const double d2[2], gr__cand_t *c)
+{
+    double sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]), cr = d1[0] * d2[1] - d1[1] * d2[0], d3[2] = {0, 0}, dcr;
+    double s2 = sp * sp;
+    if (deg == 3) {
+        d3[0] = 6 * (a[6] - 3 * a[4] + 3 * a[2] - a[0]);
+        d3[1] = 6 * (a[7] - 3 * a[5] + 3 * a[3] - a[1]);
+    }
+    dcr = d1[0] * d3[1] - d1[1] * d3[0];
+    c->p[0] = b[0]; c->p[1] = b[1];
+    c->t[0] = d1[0] / sp; c->t[1] = d1[1] / sp;
+    c->dtds = 1 / (pieces * sp);
+    c->dtds2 = -(d1[0] * d2[0] + d1[1] * d2[1]) / (pieces * s2 * s2);
+    c->kappa = cr / (s2 * sp);
+    c->dkds = (dcr * s2 - 3 * cr * (d1[0] * d2[0] + d1[1] * d2[1])) / (s2 * s2 * s2);
+}
 #endif
 
 /* Distance from x to the interval [lo, hi]. */
@@ -1744,7 +1797,9 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
                 c->t[0] = ex / len; c->t[1] = ey / len;
                 c->param = (acc + s * len) / rec->length;
                 c->dtds = 1 / rec->length;
+                c->dtds2 = 0;
                 c->kappa = 0;
+                c->dkds = 0;
                 c->end = rec->closed ? 0 : (k == 0 && raw < 0) ? -1 : (k == rec->pieces - 1 && raw > 1) ? 1 : 0;
             }
             acc += len;
@@ -1755,7 +1810,7 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
         int deg = gr__degree(rec->kind);
         for (k = 0; k < rec->pieces; k++) {
             const double *a = pts + 2 * k * deg;
-            double box[4], dx, dy, bt = 0, bd = HUGE_VAL, b[2], d1[2], d2[2], sp, cr;
+            double box[4], dx, dy, bt = 0, bd = HUGE_VAL, b[2], d1[2], d2[2], sp;
             int s, it;
             /* the control polygon bounds the piece: skip it when farther */
             gr__bounds(a, deg + 1, box);
@@ -1786,12 +1841,8 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
             if (bd < best && sp > 0) {
                 best = bd;
                 found = 1;
-                c->p[0] = b[0]; c->p[1] = b[1];
-                c->t[0] = d1[0] / sp; c->t[1] = d1[1] / sp;
+                gr__bezier_frame(a, deg, rec->pieces, b, d1, d2, c);
                 c->param = (k + bt) / rec->pieces;
-                c->dtds = 1 / (rec->pieces * sp);
-                cr = d1[0] * d2[1] - d1[1] * d2[0];
-                c->kappa = cr / (sp * sp * sp);
                 c->end = 0;
                 if (!rec->closed && k == 0 && bt == 0 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] < 0) c->end = -1;
                 if (!rec->closed && k == rec->pieces - 1 && bt == 1 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] > 0) c->end = 1;
@@ -1885,11 +1936,13 @@ static int gr__append_new(const int *list, int count, unsigned char *seen, int *
 /* Grooves whose paths cross the boundary cells of box (2m + 2(n-2) cells,
    §4.1), plus those anchored inside it (paths wholly inside the box, which
    the boundary cells would miss). Returns the count of unique ids, in the
-   order found; `seen` (one bit per groove) is scratch. */
-static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char *seen, int *ids)
+   order found; `seen` (one bit per groove) is scratch. *visited, when
+   given, receives the number of cell lists read (tests check §4.1's
+   count). */
+static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char *seen, int *ids, int *visited)
 {
     gr__cells_t c = gr__grid_cells(grid);
-    int fu, mu, fv, mv, i, j, n = 0;
+    int fu, mu, fv, mv, i, j, n = 0, nv = 0;
     memset(seen, 0, (size_t)grid->groove_count / 8 + 1);
     gr__cell_range(gr__cell_coord(box[0], c.u0, c.cu), gr__cell_coord(box[2], c.u0, c.cu), c.nu, c.wrap, &fu, &mu);
     gr__cell_range(gr__cell_coord(box[1], c.v0, c.cv), gr__cell_coord(box[3], c.v0, c.cv), c.nv, c.wrap, &fv, &mv);
@@ -1899,6 +1952,7 @@ static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char 
         for (i = 0; i < mu; i += edge_row || mu == 1 ? 1 : mu - 1) {
             int cell = row * c.nu + (fu + i) % c.nu;
             n = gr__append_new(grid->cell_items_ + grid->cell_start_[cell], grid->cell_count_[cell], seen, ids, n);
+            nv++;
             if (!edge_row && mu == 1) break;
         }
     }
@@ -1917,9 +1971,11 @@ static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char 
                 int cell = row * c.nu + i;
                 n = gr__append_new(grid->anchor_items_ + grid->anchor_start_[cell],
                                    grid->anchor_start_[cell + 1] - grid->anchor_start_[cell], seen, ids, n);
+                nv++;
             }
         }
     }
+    if (visited) *visited = nv;
     return n;
 }
 
@@ -1932,6 +1988,7 @@ typedef struct gr__qset_t {
     double parallel_sin;
     int perturb_normals;
     int ellipse;
+    int ray_profile; /* !straight_occlusion */
 } gr__qset_t;
 
 /* Visible (or lit) interval per facet of a profile with projected points q
@@ -2053,20 +2110,24 @@ static double gr__extent(const gr_footprint_t *fp, const double v[2])
    parameter param: a central difference over the footprint's extent ext
    along T (at least GR__PERTURB_STEP in the parameter), so the tilt it
    gives the facets is the footprint's average. */
-static double gr__perturb_slope(const gr__groove_t *rec, const gr__cand_t *c, double param, double ext)
+static double gr__perturb_slope(const gr__groove_t *rec, double dtds, double param, double ext)
 {
-    double h = ext * c->dtds, ta, tb;
+    double h = ext * dtds, ta, tb;
     if (!(h > GR__PERTURB_STEP)) h = GR__PERTURB_STEP;
     ta = param - h < 0 ? 0 : param - h;
     tb = param + h > 1 ? 1 : param + h;
-    return tb > ta ? (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * c->dtds : 0;
+    return tb > ta ? (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * dtds : 0;
 }
 
 /* Texture-space normal of facet R_j = [C_j, C_j+1] of candidate c (§4.4:
    (0, N_b, N_w) in groove space), with the groove frame turned by phi about
    W and tilted by the perturbation's slope dfds: beyond §4.4, with
-   X = P(s) + f(s)(b B + w W), dX/ds x dX/dtau adds f'(s)(b dw - w db) T. */
-static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, double phi, double dfds, double n[3])
+   X = P(s) + f(s)(b B + w W) and dB/ds = -kappa T,
+   dX/ds x dX/dtau is parallel to (f'(s)(b dw - w db)/alpha, -dw, db) in
+   (T, B, W), alpha = 1 - kappa f b at the point (1 on a straight path: the
+   bend stretches the outer side of the sweep, which flattens its tilt). */
+static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, double phi, double dfds, double alpha,
+                               double n[3])
 {
     double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = sqrt(db * db + dw * dw);
     double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nlen, t[2];
@@ -2077,41 +2138,293 @@ static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, do
         t[0] = cs * c->t[0] - sn * c->t[1];
         t[1] = sn * c->t[0] + cs * c->t[1];
     }
-    if (dfds != 0 && len > 0) nt = dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / len;
+    if (dfds != 0 && len > 0) nt = dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / (len * alpha);
     nlen = sqrt(nb * nb + nw * nw + nt * nt);
     n[0] = (-t[1] * nb + t[0] * nt) / nlen;
     n[1] = (t[0] * nb + t[1] * nt) / nlen;
     n[2] = nw / nlen;
 }
 
+/* 1 - kappa f b (the sweep's stretch along T at distance f b from a path
+   of curvature kappa), kept at or above GR__STRETCH_MIN: past the centre
+   of curvature the sweep folds and the local model means nothing. */
+static double gr__stretch(const gr__cand_t *c, double fb)
+{
+    double a = 1 - c->kappa * fb;
+    return a >= GR__STRETCH_MIN ? a : GR__STRETCH_MIN;
+}
+
+/* The path parameter an arc length ds from P (second order: a Bézier's
+   speed changes along it). */
+static double gr__param_at(const gr__cand_t *c, double ds)
+{
+    return c->param + ds * (c->dtds + 0.5 * c->dtds2 * ds);
+}
+
+/* Where the ray along a direction D (tau = (D . T) / D_w) that reaches the
+   point (bs, ws) of candidate c's unscaled section meets the groove:
+   returns the distance it has run along T from the mouth, and the scale
+   *fh of the section there. §4.2-4.3 take the section at P (f(s)); a ray
+   reaching depth w has run w tau along the path, where the section is
+   scaled by f(s + w tau), w = fh ws: fh solves h(x) = f(s + x ws tau) - x
+   = 0, by two secant steps from x = f (two calls of the perturbation; the
+   first step is exact for a linear f, the second is skipped when the first
+   barely moved f). The run is kept within one path
+   length (grazing directions); steps that would leave [0, perturb_max]
+   stop at the last good estimate. */
+static double gr__ray_point(const gr__groove_t *rec, const gr__cand_t *c, double bs, double ws, double tau, double *fh)
+{
+    double f = c->f, lim = 1 / c->dtds, run, d0;
+    *fh = f;
+    if (ws == 0 || tau == 0) return 0;
+    if (rec->perturb && f > 0) {
+        double a = 1 / gr__stretch(c, f * bs); /* path arc per unit run */
+        d0 = f * ws * tau;
+        if (!(fabs(d0) <= lim)) d0 = d0 < 0 ? -lim : lim;
+        if (d0 != 0) {
+            double fb = gr__perturb(rec, gr__param_at(c, d0 * a)), h0 = fb - f;
+            double den = 1 - h0 / d0 * ws * tau, x1 = den >= GR__RAY_SECANT_MIN ? f / den : fb;
+            if (x1 > rec->fmax) x1 = rec->fmax;
+            *fh = x1;
+            /* the second step only where the first moved f noticeably
+               (its own error is second order in that move) */
+            if (fabs(x1 - f) > GR__RAY_SECOND_STEP * f && fabs(x1 * ws * tau) <= lim) {
+                double h1 = gr__perturb(rec, gr__param_at(c, x1 * ws * tau * a)) - x1, x2;
+                x2 = h1 != h0 ? x1 - h1 * (x1 - f) / (h1 - h0) : x1;
+                if (x2 >= 0 && x2 <= rec->fmax) *fh = x2;
+            }
+        }
+    }
+    run = *fh * ws * tau;
+    if (!(fabs(run) <= lim)) run = run < 0 ? -lim : lim;
+    return run;
+}
+
+/* The bend's drift: a ray that has run `run` along T from the mouth of a
+   groove whose path curves (signed kappa) ends that much farther from the
+   centre of curvature than the straight line puts it, so the mouth point
+   of the ray reaching b lies at b - D_b + drift (eq. 2's frame), with
+   drift = sgn(kappa) (rho - sqrt(rho^2 - run^2)) and rho = 1/|kappa| -
+   sgn(kappa) b the point's distance from the centre: exact for a circular
+   arc. A curvature that changes along the path (dkds) enters as the
+   circle whose sagitta over the run matches the path's to third order,
+   kappa + dkds run / 3 (the path leaves its tangent by
+   kappa run^2/2 + dkds run^3/6). */
+static double gr__bend_drift(double kappa, double dkds, double b, double run)
+{
+    double rho, r2;
+    kappa += dkds * run / 3;
+    if (kappa == 0 || run == 0) return 0;
+    rho = 1 / fabs(kappa) - (kappa > 0 ? b : -b);
+    if (!(rho > 0)) return 0;
+    r2 = run * run < rho * rho ? run * run : rho * rho;
+    return (kappa > 0 ? 1 : -1) * r2 / (rho + sqrt(rho * rho - r2));
+}
+
+/* Candidate c re-anchored an arc length ds along its path: parameter,
+   scale and, on a Bézier path, the frame there. Its offset d is kept: a
+   light's sweep compares points of one footprint with each other, so only
+   their relative positions matter. */
+static void gr__cand_shift(const gr_grid_t *grid, const gr__cand_t *c, double ds, gr__cand_t *out)
+{
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    double param = gr__param_at(c, ds);
+    *out = *c;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    out->param = param;
+    if (rec->perturb) out->f = gr__perturb(rec, param);
+#ifndef GR_NO_CURVES
+    if (c->kappa != 0 || c->dkds != 0) {
+        int deg = gr__degree(rec->kind), k = (int)(param * rec->pieces);
+        const double *a;
+        double b[2], d1[2], d2[2];
+        if (k >= rec->pieces) k = rec->pieces - 1;
+        a = grid->points_ + 2 * (rec->first_point + k * deg);
+        gr__bezier_eval(a, deg, param * rec->pieces - k, b, d1, d2);
+        if (d1[0] * d1[0] + d1[1] * d1[1] > 0) gr__bezier_frame(a, deg, rec->pieces, b, d1, d2, out);
+    }
+#else
+    (void)grid;
+#endif
+}
+
+#ifndef GR_NO_CURVES
+/* The mouth coordinate B . (M - P) (candidate c's frame at P) of the ray
+   along dir that reaches the section point (bs, ws) of a Bézier groove,
+   refined on the path itself: the local model (scale fh, run) puts the hit
+   at arc run / (1 - kappa f b) from P; there the true point H = P(s) +
+   f(s) (bs B(s) + ws W) has its mouth point M = H - (f(s) ws / dir_w)
+   dir_uv, whose offset v = T . (M - P) along the path is the model's
+   residual; the ray entering on P's cross line (v = 0) enters at
+   B . (M - P) - v tan(turn) (one Newton step along the groove, which runs
+   at that turn there). Exact where the model is, second order in its
+   residual elsewhere (the bend's changing curvature). */
+static double gr__mouth_on_path(const gr_grid_t *grid, const gr__cand_t *c, double bs, double ws, const double *dir,
+                                double fh, double run)
+{
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    int deg = gr__degree(rec->kind), k;
+    double param = gr__param_at(c, run / gr__stretch(c, fh * bs)), b[2], d1[2], d2[2], sp, th[2], f, w, m[2], u, v, ct;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    k = (int)(param * rec->pieces);
+    if (k >= rec->pieces) k = rec->pieces - 1;
+    gr__bezier_eval(grid->points_ + 2 * (rec->first_point + k * deg), deg, param * rec->pieces - k, b, d1, d2);
+    sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]);
+    if (!(sp > 0)) return fh * bs + gr__bend_drift(c->kappa, c->dkds, fh * bs, run) - fh * ws * (dir[0] * -c->t[1] + dir[1] * c->t[0]) / dir[2];
+    th[0] = d1[0] / sp;
+    th[1] = d1[1] / sp;
+    f = rec->perturb ? gr__perturb(rec, param) : c->f;
+    w = f * ws;
+    m[0] = b[0] - f * bs * th[1] - w * dir[0] / dir[2] - c->p[0];
+    m[1] = b[1] + f * bs * th[0] - w * dir[1] / dir[2] - c->p[1];
+    u = -c->t[1] * m[0] + c->t[0] * m[1];
+    v = c->t[0] * m[0] + c->t[1] * m[1];
+    ct = c->t[0] * th[0] + c->t[1] * th[1];
+    if (ct < GR__STRETCH_MIN) ct = GR__STRETCH_MIN;
+    return u - v * (-c->t[1] * th[0] + c->t[0] * th[1]) / ct;
+}
+#endif
+
+/* The merged points projected along direction dir (above the surface):
+   q_i = dw x_i - db w_i, (db, dw) its (dir . B_ref, dir_w) scaled by
+   inv_m (gr__grazing_scale; §4.2's signed tan θ' times dw). With the ray
+   profile each groove point is taken where the ray along dir that reaches
+   it meets the groove (gr__ray_point, gr__bend_drift), the rays entering
+   the mouth an arc length `anchor` along the path from the footprint: 0
+   for the view; for a light, where its rays toward the seen facets enter
+   (gr__light_anchor), the groove then taken in its own frame there (on a
+   bend the light sees it turned). Ground points stay. */
+static void gr__project(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int np, const double *dir,
+                        double db, double dw, double inv_m, double anchor, double *q)
+{
+    gr__cand_t cs;
+    int i, last = -1;
+    double dbi = db;
+    for (i = 0; i < np; i++) {
+        const gr__cand_t *c;
+        double tau, fh, run, x, w;
+        if (!qs->ray_profile || s->pc[i] < 0 || (s->ws[i] == 0 && anchor == 0)) {
+            q[i] = dw * s->x[i] - db * s->w[i];
+            continue;
+        }
+        c = &s->cand[s->pc[i]];
+        if (c->kappa == 0 && c->dkds == 0 && !grid->grooves_[c->groove].perturb) {
+            q[i] = dw * s->x[i] - db * s->w[i];
+            continue;
+        }
+        if (anchor != 0) {
+            if (s->pc[i] != last) {
+                gr__cand_shift(grid, c, anchor, &cs);
+                /* the direction across the groove there, in the same scale */
+                dbi = c->sigma * (-dir[0] * cs.t[1] + dir[1] * cs.t[0]) * inv_m;
+            }
+            last = s->pc[i];
+            c = &cs;
+        } else
+            dbi = db;
+        tau = (dir[0] * c->t[0] + dir[1] * c->t[1]) / dir[2];
+        run = gr__ray_point(&grid->grooves_[c->groove], c, s->bs[i], s->ws[i], tau, &fh);
+#ifndef GR_NO_CURVES
+        if ((c->kappa != 0 || c->dkds != 0) && run != 0) { /* on the path itself: q = dw times the mouth coordinate */
+            q[i] = dw * c->sigma * (gr__mouth_on_path(grid, c, s->bs[i], s->ws[i], dir, fh, run) - c->d);
+            continue;
+        }
+#endif
+        x = c->sigma * (fh * s->bs[i] - c->d + gr__bend_drift(c->kappa, c->dkds, fh * s->bs[i], run));
+        w = fh * s->ws[i];
+        q[i] = dw * x - dbi * w;
+    }
+}
+
+/* Where the rays of light l toward the seen facets enter the mouth, as an
+   arc length along the path from the footprint: the view ray runs run_E
+   to a facet's seen middle, the light ray from there up runs back run_L,
+   so it entered at run_E - run_L. Weighted by the facets' seen lengths
+   (one anchor per light and footprint); 0 without the ray profile or
+   where nothing curved or perturbed is seen. */
+static double gr__light_anchor(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int nf,
+                               const double *e, const double *l)
+{
+    double sum = 0, wsum = 0;
+    int i;
+    if (!qs->ray_profile) return 0;
+    for (i = 0; i < nf; i++) {
+        const gr__cand_t *c;
+        const gr__groove_t *rec;
+        double de, mid, bs, ws, fh, len;
+        if (s->pc[i] < 0 || s->pc[i] != s->pc[i + 1] || !(s->vb[i] > s->va[i])) continue;
+        c = &s->cand[s->pc[i]];
+        rec = &grid->grooves_[c->groove];
+        if (c->kappa == 0 && c->dkds == 0 && !rec->perturb) continue;
+        de = s->qe[i + 1] - s->qe[i];
+        mid = de != 0 ? (0.5 * (s->va[i] + s->vb[i]) - s->qe[i]) / de : 0.5;
+        mid = mid < 0 ? 0 : mid > 1 ? 1 : mid;
+        bs = s->bs[i] + mid * (s->bs[i + 1] - s->bs[i]);
+        ws = s->ws[i] + mid * (s->ws[i + 1] - s->ws[i]);
+        len = s->vb[i] - s->va[i];
+        sum += len * (gr__ray_point(rec, c, bs, ws, (e[0] * c->t[0] + e[1] * c->t[1]) / e[2], &fh) -
+                      gr__ray_point(rec, c, bs, ws, (l[0] * c->t[0] + l[1] * c->t[1]) / l[2], &fh));
+        wsum += len;
+    }
+    return wsum > 0 ? sum / wsum : 0;
+}
+
+#ifndef GR_NO_CURVES
+/* A Bézier path at parameter param (piece k of n covers [k/n, (k+1)/n],
+   uniformly): the angle (radians, counter-clockwise) from the unit tangent
+   t0 to its tangent there, and d param / d arc length there. */
+static double gr__turn_to(const gr_grid_t *grid, const gr__groove_t *rec, double param, const double t0[2],
+                          double *dtds)
+{
+    int deg = gr__degree(rec->kind), k;
+    double tau, b[2], d1[2], d2[2], sp;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    k = (int)(param * rec->pieces);
+    if (k >= rec->pieces) k = rec->pieces - 1;
+    tau = param * rec->pieces - k;
+    gr__bezier_eval(grid->points_ + 2 * (rec->first_point + k * deg), deg, tau, b, d1, d2);
+    sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]);
+    if (sp > 0) *dtds = 1 / (rec->pieces * sp);
+    return atan2(t0[0] * d1[1] - t0[1] * d1[0], t0[0] * d1[0] + t0[1] * d1[1]);
+}
+#endif
+
 /* The normal where the view ray really meets a visible facet (i, of
-   candidate c). §4.2-4.3 keep the straight line at P for occlusion, but
-   the ray reaches the facet's visible part at its mean depth w_m, an arc
-   length ds = w_m (E . T) / E_w along the path from P (ds kept within one
-   path length, |ds dt/ds| <= 1, for grazing views). There a curved path
-   has turned by kappa ds (at most GR__TURN_MAX) and the perturbation has
-   its own slope: on a tight bend, or a perturbation that changes within
-   the ray's way through the groove, these decide where a highlight falls. */
-static void gr__hit_normal(const gr_grid_t *grid, const gr__scratch_t *s, const gr_footprint_t *fp, int i, double ew,
-                           double eb, int point, gr__mfacet_t *m)
+   candidate c). The ray reaches the facet's visible part at its middle,
+   the point (bs, ws) of the unscaled section, after running `run` along
+   T (gr__ray_point), i.e. run / (1 - kappa f b) along the path (reached
+   through d param / ds and its slope). There a curved path has turned (the
+   path's own tangent there; at most
+   GR__TURN_MAX), and the perturbation has its own slope (a central
+   difference across the footprint's extent along T): on a tight bend, or
+   a perturbation that changes within the ray's way through the groove,
+   these decide where a highlight falls. */
+static void gr__hit_normal(const gr_grid_t *grid, const gr__scratch_t *s, const gr_footprint_t *fp, int i, int point,
+                           gr__mfacet_t *m)
 {
     const gr__cand_t *c = &s->cand[m->cand];
     const gr__groove_t *rec = &grid->grooves_[c->groove];
     const double *e = fp->view;
-    double qa = ew * s->x[i] - eb * s->w[i], de = (ew * s->x[i + 1] - eb * s->w[i + 1]) - qa, mid, wm, ds, phi, dfds;
+    double de = s->qe[i + 1] - s->qe[i], mid, bs, ws, fh, run, phi, dfds, alpha, th, dtds;
     if (c->kappa == 0 && c->dfds == 0) return;
     mid = point ? 0 : 0.5 * (s->va[i] + s->vb[i]);
-    mid = de != 0 ? (mid - qa) / de : 0.5;
+    mid = de != 0 ? (mid - s->qe[i]) / de : 0.5;
     if (!(mid >= 0)) mid = 0;
     if (mid > 1) mid = 1;
-    wm = s->w[i] + mid * (s->w[i + 1] - s->w[i]);
-    ds = wm * (e[0] * c->t[0] + e[1] * c->t[1]) / e[2];
-    if (!(fabs(ds * c->dtds) <= 1)) ds = ds < 0 ? -1 / c->dtds : 1 / c->dtds;
-    phi = c->kappa * ds;
+    bs = s->bs[i] + mid * (s->bs[i + 1] - s->bs[i]);
+    ws = s->ws[i] + mid * (s->ws[i + 1] - s->ws[i]);
+    run = gr__ray_point(rec, c, bs, ws, (e[0] * c->t[0] + e[1] * c->t[1]) / e[2], &fh);
+    alpha = gr__stretch(c, fh * bs);
+    phi = 0;
+    dtds = c->dtds;
+    th = gr__param_at(c, run / alpha);
+#ifndef GR_NO_CURVES
+    if (c->kappa != 0) phi = gr__turn_to(grid, rec, th, c->t, &dtds);
+#endif
     if (phi > GR__TURN_MAX) phi = GR__TURN_MAX;
     if (phi < -GR__TURN_MAX) phi = -GR__TURN_MAX;
-    dfds = c->dfds != 0 ? gr__perturb_slope(rec, c, c->param + ds * c->dtds, gr__extent(fp, c->t)) : 0;
-    gr__section_normal(c, grid->section_ + 2 * rec->first_sec, m->facet, phi, dfds, m->n);
+    dfds = c->dfds != 0 ? gr__perturb_slope(rec, dtds, th, gr__extent(fp, c->t)) : 0;
+    gr__section_normal(c, grid->section_ + 2 * rec->first_sec, m->facet, phi, dfds, alpha, m->n);
 }
 
 #ifndef GR_NO_OVERSAMPLE
@@ -2127,6 +2440,14 @@ static int gr__oversample_need(const gr_grid_t *grid, const gr__cand_t *c, const
     if (c->kappa != 0) {
         double sag = 0.5 * fabs(c->kappa) * ext * ext;
         double k = ceil(sqrt(sag / (tol * width)));
+        /* the seen boundaries tilt across the footprint as the groove turns
+           under it: a view ray running `run` along the path at the deepest
+           point shifts by about kappa ext run from one end of the
+           footprint to the other (run kept within one path length) */
+        double run = rec->down / rec->fmax * c->f * fabs(fp->view[0] * c->t[0] + fp->view[1] * c->t[1]);
+        run = run < fp->view[2] / c->dtds ? run / fp->view[2] : 1 / c->dtds;
+        if (k > need) need = k;
+        k = ceil(fabs(c->kappa) * ext * run / (tol * width));
         if (k > need) need = k;
     }
     if (rec->perturb) {
@@ -2237,7 +2558,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (sv < 0) box[1] += sv; else box[3] += sv;
         }
     }
-    n = gr__gather(grid, box, s->seen, s->ids);
+    n = gr__gather(grid, box, s->seen, s->ids, s->visited);
     radius = sqrt(ext_u * ext_u + ext_v * ext_v);
     /* §4.2: each groove's nearest point, tangent and distance; keep those
        that can reach the footprint */
@@ -2262,7 +2583,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (to_end < gr__extent(fp, c->t)) list->flags |= GR_LIST_PATH_END;
         }
         c->f = gr__perturb(rec, c->param);
-        c->dfds = rec->perturb && qs->perturb_normals ? gr__perturb_slope(rec, c, c->param, gr__extent(fp, c->t)) : 0;
+        c->dfds = rec->perturb && qs->perturb_normals ? gr__perturb_slope(rec, c->dtds, c->param, gr__extent(fp, c->t)) : 0;
         if (ref < 0 || fabs(c->d) < fabs(s->cand[ref].d)) ref = npar;
         npar++;
     }
@@ -2291,7 +2612,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             int nk = gr__oversample_need(grid, &s->cand[k], fp, qs->oversample_tol);
             if (nk > need) { need = nk; split_t[0] = s->cand[k].t[0]; split_t[1] = s->cand[k].t[1]; }
         }
-        if (need > 1) return need > qs->max_oversample ? qs->max_oversample : need;
+        if (need > 1) return need > GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE ? GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE : need;
     }
 #else
     (void)allow_split;
@@ -2328,6 +2649,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     ground.n[0] = 0; ground.n[1] = 0; ground.n[2] = 1;
     ground.groove = -1; ground.facet = -1; ground.refl = grid->base_reflectance; ground.cand = -1;
     s->x[np] = (npar ? (s->key[0].x < -half ? s->key[0].x : -half) : -half) - margin;
+    s->pc[np] = -1;
     s->w[np++] = 0;
     for (k = 0; k < npar; k++) {
         const gr__cand_t *c = &s->cand[s->key[k].cand];
@@ -2340,11 +2662,14 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             int src = c->sigma > 0 ? i : nsec - 1 - i;
             s->x[np] = c->sigma * (c->f * sec[2 * src] - c->d);
             s->w[np] = c->f * sec[2 * src + 1];
+            s->pc[np] = s->key[k].cand;
+            s->bs[np] = sec[2 * src];
+            s->ws[np] = sec[2 * src + 1];
             if (i + 1 < nsec) {
                 /* facet R_j = [C_j, C_j+1] in the groove's own orientation */
                 int j = c->sigma > 0 ? i : nsec - 2 - i;
                 gr__mfacet_t *m = &s->mf[np];
-                gr__section_normal(c, sec, j, 0, c->dfds, m->n);
+                gr__section_normal(c, sec, j, 0, c->dfds, 1, m->n);
                 m->groove = c->groove;
                 m->facet = j;
                 m->refl = grid->facet_refl_[rec->first_facet + j];
@@ -2355,16 +2680,18 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     }
     s->mf[np - 1] = ground;
     s->x[np] = (s->x[np - 1] > half ? s->x[np - 1] : half) + margin;
+    s->pc[np] = -1;
     s->w[np++] = 0;
     nf = np - 1;
     if (list->grooves < npar) list->grooves = npar;
     /* projection with the signed tan θ' (§4.2), scaled by E_w so grazing
-       views stay finite: q = E_w proj = E_w x - E_b w */
+       views stay finite: q = E_w proj = E_w x - E_b w (each groove point
+       where the view ray reaching it meets the groove, gr__project) */
     eb = e[0] * bref[0] + e[1] * bref[1];
     ew = e[2];
     gr__grazing_scale(&eb, &ew);
-    for (i = 0; i < np; i++) s->q[i] = ew * s->x[i] - eb * s->w[i];
-    gr__sweep(s->q, np, eb > 0, s->lo, s->hi);     /* masking, eq. 4 */
+    gr__project(grid, qs, s, np, e, eb, ew, 1, 0, s->qe);
+    gr__sweep(s->qe, np, eb > 0, s->lo, s->hi);    /* masking, eq. 4 */
     sq0 = -half * ew;
     sq1 = half * ew;
     for (i = 0; i < nf; i++) {                      /* clipping, eq. 3 */
@@ -2383,20 +2710,20 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
        intersected with the visible part in the facet's own parameter */
     for (k = 0; k < nl; k++) {
         const double *l = qs->lights + 3 * k;
-        double lb = l[0] * bref[0] + l[1] * bref[1], lw = l[2];
+        double lb = l[0] * bref[0] + l[1] * bref[1], lw = l[2], inv_m = 1 / (fabs(lb) > lw ? fabs(lb) : lw);
         if (!(l[2] > 0)) { /* at or below the horizon */
             for (i = 0; i < nf; i++) s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0;
             continue;
         }
         gr__grazing_scale(&lb, &lw);
-        for (i = 0; i < np; i++) s->q[i] = lw * s->x[i] - lb * s->w[i];
+        gr__project(grid, qs, s, np, l, lb, lw, inv_m, gr__light_anchor(grid, qs, s, nf, e, l), s->q);
         gr__sweep(s->q, np, lb > 0, s->lo, s->hi);
         for (i = 0; i < nf; i++) {
             double de, sa, sb, la, lbb, dl, ov, v;
             if (!(s->vb[i] > s->va[i]) && !(point && s->va[i] == 0)) continue;
-            de = (ew * s->x[i + 1] - eb * s->w[i + 1]) - (ew * s->x[i] - eb * s->w[i]);
-            sa = (s->va[i] - (ew * s->x[i] - eb * s->w[i])) / de;
-            sb = (s->vb[i] - (ew * s->x[i] - eb * s->w[i])) / de;
+            de = s->qe[i + 1] - s->qe[i];
+            sa = (s->va[i] - s->qe[i]) / de;
+            sb = (s->vb[i] - s->qe[i]) / de;
             if (!(s->hi[i] > s->lo[i])) { s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0; continue; }
             dl = s->q[i + 1] - s->q[i];
             la = (s->lo[i] - s->q[i]) / dl;
@@ -2405,7 +2732,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             else {
                 /* the lit part of the visible interval, back in view
                    projection, weighted by the footprint density */
-                double oa = sa > la ? sa : la, ob = sb < lbb ? sb : lbb, qv = ew * s->x[i] - eb * s->w[i];
+                double oa = sa > la ? sa : la, ob = sb < lbb ? sb : lbb, qv = s->qe[i];
                 double wv = gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta);
                 ov = ob - oa;
                 if (!(ov > 0)) v = 0;
@@ -2422,7 +2749,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         else r = s->vb[i] > s->va[i] ? gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta) : 0;
         if (r > 0) {
             gr__mfacet_t m = s->mf[i];
-            if (m.cand >= 0 && qs->perturb_normals) gr__hit_normal(grid, s, fp, i, ew, eb, point, &m);
+            if (m.cand >= 0 && qs->perturb_normals) gr__hit_normal(grid, s, fp, i, point, &m);
             gr__list_add(list, &m, weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
         }
     }
@@ -2457,6 +2784,7 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     qs.max_oversample = query->max_oversample <= 0 ? GR__DEFAULT_MAX_OVERSAMPLE : query->max_oversample;
     if (qs.max_oversample > GR__LIMIT_MAX_OVERSAMPLE) qs.max_oversample = GR__LIMIT_MAX_OVERSAMPLE;
     qs.perturb_normals = query->perturb_normals >= 0;
+    qs.ray_profile = query->straight_occlusion == 0;
     qs.ellipse = query->ellipse != 0;
     qs.parallel_sin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     el = sqrt(gr__dot3(fp->view, fp->view));
@@ -2472,42 +2800,71 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
 #endif
     need = gr__query_one(grid, &qs, fp, 1.0, &s, list, 1, t);
     if (need > 1) {
-        /* §4.2 oversampling: split along the axis that runs most along the
-           nearest groove; each part keeps its own straight approximation */
+        /* §4.2 oversampling: the footprint's extent along the groove is cut
+           `need` times, each part with its own straight approximation */
         gr_footprint_t sub = *fp;
         gr__qset_t qsub = qs;
-        double p1, p2;
-        const double *ax, *other;
-        double *sa, *so;
-        p1 = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
-        p2 = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
-        ax = p1 >= p2 ? fp->axis1 : fp->axis2;
-        other = p1 >= p2 ? fp->axis2 : fp->axis1;
-        sa = p1 >= p2 ? sub.axis1 : sub.axis2;
-        so = p1 >= p2 ? sub.axis2 : sub.axis1;
-        sa[0] = ax[0] / need;
-        sa[1] = ax[1] / need;
+        double p[2];
+        int n[2], j1, j2;
+        p[0] = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
+        p[1] = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
         list->count = 0;
         list->flags = 0;
         list->grooves = 0;
-        /* an ellipse's slabs are taken as parallelograms of the slab's
-           area (weight) and mean chord (other axis); a parallelogram's
-           slabs are exact */
         qsub.ellipse = 0;
-        for (k = 0; k < need; k++) {
-            double o = (2.0 * k + 1) / need - 1, wk = 1.0 / need;
-            if (qs.ellipse) {
-                double a0 = -1 + 2.0 * k / need, a1 = a0 + 2.0 / need, hbar;
+        if (qs.ellipse) {
+            /* an ellipse's slabs across its axis most along the groove,
+               taken as parallelograms of the slab's area (weight) and mean
+               chord (the other axis): an approximation */
+            int a = p[0] >= p[1] ? 0 : 1;
+            if (need > qs.max_oversample) need = qs.max_oversample;
+            const double *ax = a ? fp->axis2 : fp->axis1, *other = a ? fp->axis1 : fp->axis2;
+            double *sa = a ? sub.axis2 : sub.axis1, *so = a ? sub.axis1 : sub.axis2;
+            sa[0] = ax[0] / need;
+            sa[1] = ax[1] / need;
+            for (k = 0; k < need; k++) {
+                double o = (2.0 * k + 1) / need - 1, a0 = -1 + 2.0 * k / need, a1 = a0 + 2.0 / need, wk, hbar;
                 wk = gr__disc_cdf(a1) - gr__disc_cdf(a0);
                 hbar = GR__PI * wk / (2 * (a1 - a0)); /* slab area / (2 width), unit disc */
                 so[0] = other[0] * hbar;
                 so[1] = other[1] * hbar;
+                sub.center[0] = fp->center[0] + o * ax[0];
+                sub.center[1] = fp->center[1] + o * ax[1];
+                gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, t);
             }
-            sub.center[0] = fp->center[0] + o * ax[0];
-            sub.center[1] = fp->center[1] + o * ax[1];
-            gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, t);
+            list->subfootprints = need;
+        } else {
+            /* a parallelogram into n1 x n2 parallelograms (exact weights),
+               each axis cut in proportion to its own extent along the
+               groove, so every part spans 1/need of the extent: an axis
+               oblique to the groove runs along it too, and cutting only
+               the other would leave that part of the extent whole (the
+               answer would not converge as the tolerance shrinks). Past
+               max_oversample parts, the split that makes the parts'
+               extent p1/n1 + p2/n2 least with n1 n2 <= max_oversample */
+            for (k = 0; k < 2; k++) {
+                n[k] = (int)ceil(need * p[k] / (p[0] + p[1]) - 1e-9);
+                if (n[k] < 1) n[k] = 1;
+            }
+            if (n[0] * n[1] > qs.max_oversample) {
+                int m = qs.max_oversample;
+                n[0] = p[1] > 0 ? (int)floor(sqrt(m * p[0] / p[1]) + 0.5) : m;
+                n[0] = n[0] < 1 ? 1 : n[0] > m ? m : n[0];
+                n[1] = m / n[0];
+            }
+            sub.axis1[0] = fp->axis1[0] / n[0];
+            sub.axis1[1] = fp->axis1[1] / n[0];
+            sub.axis2[0] = fp->axis2[0] / n[1];
+            sub.axis2[1] = fp->axis2[1] / n[1];
+            for (j1 = 0; j1 < n[0]; j1++)
+                for (j2 = 0; j2 < n[1]; j2++) {
+                    double o1 = (2.0 * j1 + 1) / n[0] - 1, o2 = (2.0 * j2 + 1) / n[1] - 1;
+                    sub.center[0] = fp->center[0] + o1 * fp->axis1[0] + o2 * fp->axis2[0];
+                    sub.center[1] = fp->center[1] + o1 * fp->axis1[1] + o2 * fp->axis2[1];
+                    gr__query_one(grid, &qsub, &sub, 1.0 / (n[0] * n[1]), &s, list, 0, t);
+                }
+            list->subfootprints = n[0] * n[1];
         }
-        list->subfootprints = need;
     }
 #ifndef GR_NO_LINE_SAMPLES
     /* §5.6 ([section: line samples]): crossings and ends, as §4's answer
@@ -3242,7 +3599,7 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
         double du = out->box[k & 1 ? 2 : 0] - f[0], dv = out->box[k & 2 ? 3 : 1] - f[1];
         if (hypot(du, dv) > reach) reach = hypot(du, dv);
     }
-    n = gr__gather(grid, out->box, s.seen, s.ids);
+    n = gr__gather(grid, out->box, s.seen, s.ids, NULL);
     for (k = 0; k < n; k++)
         if (gr__path_in_box(grid, &grid->grooves_[s.ids[k]], out->box) && gr__locate(grid, s.ids[k], f, 2 * reach, &s.cand[m]))
             m++;
@@ -4514,7 +4871,7 @@ static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         double su = floor((c[0] - grid->domain[0]) / wu) * wu, sv = floor((c[1] - grid->domain[1]) / wv) * wv;
         box[0] -= su; box[2] -= su; box[1] -= sv; box[3] -= sv;
     }
-    n = gr__gather(grid, box, s->seen, s->ids);
+    n = gr__gather(grid, box, s->seen, s->ids, NULL);
     for (k = 0; k < n; k++) {
         gr__lg_t g;
         if (!gr__lg_make(grid, s->ids[k], c, reach, &g)) continue;

@@ -430,6 +430,7 @@ typedef struct gx_ours_t {
     RTCScene plane;
     long long embree_bytes;       /* Embree's bytes once the plane is committed */
     int perturb_normals;          /* gr_query_t.perturb_normals: 0 true normals, -1 §4.4's */
+    int straight_occlusion;       /* gr_query_t.straight_occlusion: 0 the ray profile, 1 §4.3's */
     int line_samples;             /* gr_query_t.line_samples: 0 polygons at crossings and ends,
                                      n > 0 n line samples (§5.6); the §6 scenes take 2 for 0 */
     ex_camera_t cam;
@@ -545,6 +546,7 @@ static ex_v3_t gx_ours_radiance(const gx_ours_t *o, double px, double py)
     rd.ry_dir[0] = ray.ry_d.x; rd.ry_dir[1] = ray.ry_d.y; rd.ry_dir[2] = ray.ry_d.z;
     memset(&q, 0, sizeof q);
     q.perturb_normals = o->perturb_normals;
+    q.straight_occlusion = o->straight_occlusion;
     q.line_samples = o->line_samples;
     if (gr_footprint_from_differentials(&rd, &q.footprint, &frame) != GR_OK) return s->background;
     for (k = 0; k < s->nlights; k++) gr_frame_to_texture(&frame, s->light[k], L + 3 * k);
