@@ -7,6 +7,9 @@
      build/examples/frep_render --demo out        (the gallery, into out/)
 
    --mode picks fr_trace's method: auto analytic step interval sphere.
+   Every ray is clipped to the model's fr_bound_box box and traced with
+   its fr_prepare model (--unprepared: without it, for comparison; --exact:
+   interval bisection without the pixel-footprint hand-over).
    It prints frames per second and rays per second (primary + shadow +
    secondary rays), timed over --frames frames after the first. */
 #define IV_IMPLEMENTATION
