@@ -2,7 +2,9 @@
 
    Grooves as UV paths with polyline cross-sections, shaded exactly per pixel
    footprint with clipping, masking and shadowing (Bosch et al. 2006, §3–4:
-   isolated and parallel grooves).
+   isolated and parallel grooves; §5: crossings, ends and corners by
+   polygon footprints, protruding and self-crossing grooves too, or by line
+   samples; §6: specular inter-reflection and transmission).
 
    The host renderer builds a grid once from a list of grooves, then for each
    shading point turns its ray differentials into a footprint and asks for the
@@ -25,6 +27,8 @@
      GR_MAX_LIGHTS      lights per query (default 4)
      GR_MAX_FACETS      entries in a gr_facet_list_t (default 32)
      GR_MAX_JUNCTIONS   crossings/ends gr_detect() stores per footprint (default 16)
+     GR_POLY_MAX_GROOVES grooves the polygon path takes in one footprint's
+                        search box (default 16; more are §4's)
      GR_NO_CURVES       leave out Bézier paths (the builder then rejects them
                         with GR_ERR_UNSUPPORTED)
      GR_NO_OVERSAMPLE   leave out footprint oversampling (§4.2)
@@ -189,6 +193,11 @@ typedef struct gr_grid_t {
     int *anchor_items_;
     int *row_anchor_sum_;    /* per row, prefix counts of anchors */
     int total_points_, total_section_, total_facets_, item_capacity_;
+    /* §5 self-intersections, found by the builder: the hits, and each
+       self-crossing groove cut into pieces (records after the grooves,
+       listed in no cell) that the polygon path takes as separate grooves */
+    struct gr_self_hit_t *self_;
+    int self_count_, split_records_;
 } gr_grid_t;
 
 /* Size query for gr_grid_build_into(): *bytes receives the buffer size. It
@@ -442,7 +451,9 @@ GR_DEF size_t gr_poly_boolean_scratch_bytes(int total_points);
    and the result is a set of trapezoids, exact up to the rounding of the
    crossing heights. *area (optional) receives the result's area. traps
    (optional, NULL for the area only) receives up to trap_cap trapezoids, 8
-   doubles each: 4 counter-clockwise (x, y) corners, bottom edge first;
+   doubles each: 4 counter-clockwise (x, y) corners, bottom edge first (a
+   trapezoid runs on through the slabs while its two sides are the same
+   edges, so a region is not cut at every vertex height);
    *trap_count (optional) receives how many the result has. The trapezoids
    do not overlap and their union is the result. Errors: GR_ERR_INVALID_ARG
    (NULL sets or scratch, negative counts, ring sizes that do not add up),
@@ -458,6 +469,14 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
 /* Entries in a gr_junctions_t (default 16). */
 #ifndef GR_MAX_JUNCTIONS
 #  define GR_MAX_JUNCTIONS 16
+#endif
+/* Grooves the polygon path takes in a footprint's §5.1 box (default 16);
+   beyond, §4 answers with its flags. Its scratch grows with it (about
+   16 KiB a groove): 8 cuts the cost of the densest footprints several
+   times and leaves them to §4's approximation (docs/grooves.md, What is
+   left). */
+#ifndef GR_POLY_MAX_GROOVES
+#  define GR_POLY_MAX_GROOVES 16
 #endif
 
 /* What a footprint meets besides isolated or parallel grooves (§5, Figure 7). */
@@ -485,7 +504,9 @@ typedef struct gr_junction_t {
     double point[2]; /* UV, in the footprint's tile image: the path end, the
                         self-intersection point, or for a crossing the
                         meeting point of the two tangent lines at the paths'
-                        points nearest the footprint centre */
+                        points nearest the footprint centre (when that lies
+                        far away, the point nearest the centre where the
+                        two grooves' strips overlap) */
 } gr_junction_t;
 
 /* The result of gr_detect(): caller-owned, fixed size. */
@@ -527,7 +548,10 @@ GR_DEF gr_result_t gr_self_intersections(const gr_grid_t *grid, gr_self_hit_t *o
      - two grooves whose tangents differ by more than query->parallel_tol
        (default 0.02 rad) cross (the paper's test: tangents T differ),
        provided their tangent lines meet near the footprint and within the
-       sum of their widths of both paths;
+       sum of their widths of both paths, or (nearly parallel grooves that
+       meet far away) their strips of half width w overlap near the
+       footprint: the point is then the overlap's point nearest the
+       footprint centre;
      - a path end inside the box is an intersected end when its distance to
        another counted groove's path is below the sum of their widths w (the
        paper's distance test), a corner when another end is that close, and
@@ -950,6 +974,12 @@ typedef struct gr__groove_t {
     double bbox[4];        /* control-point bounds of the path */
     gr_perturb_fn perturb;
     void *perturb_user;
+    /* self-crossing grooves (§5): a groove's pieces are records
+       first_split .. first_split + split_count - 1; a piece covers the
+       parameters [t0, t1] of its groove `parent` (itself for a groove),
+       and its ends with join[e] set continue into the next piece */
+    int parent, first_split, split_count, join[2];
+    double t0, t1;
 } gr__groove_t;
 
 static void gr__diag(gr_diag_t *diag, gr_result_t r, long long element, const char *msg)
@@ -1150,14 +1180,23 @@ static void gr__bezier_sub(const double *p, int n, double t0, double t1, double 
 
 /* ---- Grid build (§3 bounds and blockers, §4.1 uniform grid) ------------- */
 
+#ifndef GR_NO_INTERSECTIONS
+/* [section: intersections] the builder's part of §5: a path's
+   self-intersections, and the cut of a self-crossing groove into pieces */
+static int gr__path_self_hits(const double *pts, int kind, int n, int closed, int g, struct gr_self_hit_t *out, int cap);
+static void gr__split_groove(gr_grid_t *gr, int g, struct gr_self_hit_t *hits, int nh, int *next, int *pt);
+static int gr__path_closed(const double *p, int n, int wrap, const double dom[4]);
+#endif
+
 /* Everything the size query and the builder agree on. */
 typedef struct gr__plan_t {
     double dom[4];
     gr__cells_t cells;
     int groove_count, total_points, total_section, total_facets, total_blockers;
+    int self_hits, split_records, split_points; /* §5: upper bounds for the pieces */
     long long item_capacity;
     size_t off_grooves, off_points, off_section, off_refl, off_bstart, off_blockers,
-        off_cstart, off_ccount, off_items, off_astart, off_aitems, off_rowsum, bytes;
+        off_cstart, off_ccount, off_items, off_astart, off_aitems, off_rowsum, off_self, bytes;
 } gr__plan_t;
 
 static size_t gr__align8(size_t x) { return (x + 7u) & ~(size_t)7u; }
@@ -1276,6 +1315,24 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
     pl->cells.cu = (pl->dom[2] - pl->dom[0]) / pl->cells.nu;
     pl->cells.cv = (pl->dom[3] - pl->dom[1]) / pl->cells.nv;
     pl->cells.wrap = !desc->no_wrap;
+#ifndef GR_NO_INTERSECTIONS
+    /* §5: self-intersections, and room for the pieces they cut a groove
+       into (at most three cuts per hit, gr__split_groove) */
+    for (g = 0; g < desc->groove_count; g++) {
+        const gr_groove_desc_t *gd = &desc->grooves[g];
+        int nh = gr__path_self_hits(gd->points, (int)gd->kind, gd->point_count,
+                                    gr__path_closed(gd->points, gd->point_count, pl->cells.wrap, pl->dom), g, NULL, 0);
+        if (nh > 100000000 - pl->self_hits) {
+            gr__diag(diag, GR_ERR_INVALID_ARG, g, "too many self-intersections in total (> 1e8)");
+            return GR_ERR_INVALID_ARG;
+        }
+        pl->self_hits += nh;
+        if (nh > 0) {
+            pl->split_records += 3 * nh + 1;
+            pl->split_points += gd->point_count + 4 * (3 * nh + 1);
+        }
+    }
+#endif
     for (g = 0; g < desc->groove_count; g++) {
         const gr_groove_desc_t *gd = &desc->grooves[g];
         pl->item_capacity += gr__path_boxes(&pl->cells, gd->points, (int)gd->kind, gd->point_count, g, NULL, NULL, NULL, NULL);
@@ -1287,8 +1344,10 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
     {
         size_t nc = (size_t)pl->cells.nu * (size_t)pl->cells.nv;
         off = gr__align8(sizeof(gr_grid_t));
-        pl->off_grooves = off; off = gr__align8(off + sizeof(gr__groove_t) * (size_t)pl->groove_count);
-        pl->off_points = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_points);
+        pl->off_grooves = off;
+        off = gr__align8(off + sizeof(gr__groove_t) * ((size_t)pl->groove_count + (size_t)pl->split_records));
+        pl->off_points = off;
+        off = gr__align8(off + sizeof(double) * 2 * ((size_t)pl->total_points + (size_t)pl->split_points));
         pl->off_section = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_section);
         pl->off_refl = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_facets);
         pl->off_bstart = off; off = gr__align8(off + sizeof(int) * ((size_t)pl->total_section + 1));
@@ -1299,6 +1358,9 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
         pl->off_astart = off; off = gr__align8(off + sizeof(int) * (nc + 1));
         pl->off_aitems = off; off = gr__align8(off + sizeof(int) * (size_t)pl->groove_count);
         pl->off_rowsum = off; off = gr__align8(off + sizeof(int) * (size_t)pl->cells.nv * ((size_t)pl->cells.nu + 1));
+#ifndef GR_NO_INTERSECTIONS
+        pl->off_self = off; off = gr__align8(off + sizeof(gr_self_hit_t) * (size_t)pl->self_hits);
+#endif
         pl->bytes = off;
     }
     return GR_OK;
@@ -1312,6 +1374,20 @@ GR_DEF gr_result_t gr_grid_size(const gr_grid_desc_t *desc, size_t *bytes, gr_di
     r = gr__plan(desc, &pl, diag);
     *bytes = r == GR_OK ? pl.bytes : 0;
     return r;
+}
+
+/* A path with no ends: its first point is its last or, on a repeating
+   tile, the same point across the seam (ends a whole number of tiles
+   apart: the path runs on across it, §4.1 wrap, as one closed path). */
+static int gr__path_closed(const double *p, int n, int wrap, const double dom[4])
+{
+    int last = n - 1;
+    double wu = dom[2] - dom[0], wv = dom[3] - dom[1], du = p[2 * last] - p[0], dv = p[2 * last + 1] - p[1];
+    if (p[0] == p[2 * last] && p[1] == p[2 * last + 1]) return 1;
+    if (!wrap) return 0;
+    du -= floor(du / wu + 0.5) * wu;
+    dv -= floor(dv / wv + 0.5) * wv;
+    return hypot(du, dv) <= GR__SEAM_CLOSED_REL * hypot(wu, wv);
 }
 
 /* Copy one groove into the flat arrays and fill its record (§3 bounds).
@@ -1358,19 +1434,12 @@ static void gr__store_groove(gr_grid_t *gr, const gr_groove_desc_t *gd, int g, i
     rec->up = maxw * rec->fmax;
     rec->down = -minw * rec->fmax;
     gr__bounds(gd->points, gd->point_count, rec->bbox);
+    rec->parent = g;
+    rec->t1 = 1;
     {
         const double *p = gd->points;
         int last = gd->point_count - 1;
-        rec->closed = p[0] == p[2 * last] && p[1] == p[2 * last + 1];
-        if (gr->wrap && !rec->closed) {
-            /* ends a whole number of tiles apart: the path runs on across
-               the seam (§4.1 wrap), as one closed path */
-            double wu = gr->domain[2] - gr->domain[0], wv = gr->domain[3] - gr->domain[1];
-            double du = p[2 * last] - p[0], dv = p[2 * last + 1] - p[1];
-            du -= floor(du / wu + 0.5) * wu;
-            dv -= floor(dv / wv + 0.5) * wv;
-            rec->closed = hypot(du, dv) <= GR__SEAM_CLOSED_REL * hypot(wu, wv);
-        }
+        rec->closed = gr__path_closed(p, gd->point_count, gr->wrap, gr->domain);
         rec->length = 0;
         if (rec->kind == GR_PATH_POLYLINE)
             for (i = 0; i < last; i++) rec->length += hypot(p[2 * i + 2] - p[2 * i], p[2 * i + 3] - p[2 * i + 1]);
@@ -1444,6 +1513,23 @@ GR_DEF gr_result_t gr_grid_build_into(const gr_grid_desc_t *desc, void *buffer, 
         if (rec->up > gr->h) gr->h = rec->up;
         if (rec->down > gr->d) gr->d = rec->down;
     }
+#ifndef GR_NO_INTERSECTIONS
+    /* §5: self-intersections found once, each self-crossing groove cut into
+       pieces after the grooves (the grid's cells list the grooves only) */
+    gr->self_ = (gr_self_hit_t *)(void *)(base + pl.off_self);
+    {
+        int next = pl.groove_count, h0;
+        for (g = 0; g < pl.groove_count; g++) {
+            const gr__groove_t *rec = &gr->grooves_[g];
+            h0 = gr->self_count_;
+            gr->self_count_ += gr__path_self_hits(gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count,
+                                                  rec->closed, g, gr->self_ + h0, pl.self_hits - h0);
+            if (gr->self_count_ > h0) gr__split_groove(gr, g, gr->self_ + h0, gr->self_count_ - h0, &next, &pt);
+        }
+        GR_ASSERT(gr->self_count_ == pl.self_hits && next <= pl.groove_count + pl.split_records);
+        gr->split_records_ = next - pl.groove_count;
+    }
+#endif
     /* cell lists: count (upper bound), prefix sum, fill without repeats */
     nc = pl.cells.nu * pl.cells.nv;
     memset(gr->cell_start_, 0, sizeof(int) * ((size_t)nc + 1));
@@ -1671,7 +1757,10 @@ typedef struct gr__scratch_t {
 
 static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *s)
 {
-    size_t off = 0, np = (size_t)g->total_facets_ + (size_t)g->groove_count + 2, nid = (size_t)g->groove_count;
+    /* a self-crossing groove's pieces (§5) are candidates of their own in
+       gr_detect(): room for them, and for two end states each */
+    size_t off = 0, np = (size_t)g->total_facets_ + (size_t)g->groove_count + 2 + 2 * (size_t)g->split_records_;
+    size_t nid = (size_t)g->groove_count;
     char *b = (char *)base;
     gr__scratch_t tmp;
     if (!s) s = &tmp;
@@ -1679,7 +1768,7 @@ static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *
     s->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (count));
     GR__CARVE(seen, unsigned char, nid / 8 + 1)
     GR__CARVE(ids, int, nid)
-    GR__CARVE(cand, gr__cand_t, (size_t)g->groove_count)
+    GR__CARVE(cand, gr__cand_t, (size_t)g->groove_count + (size_t)g->split_records_)
     GR__CARVE(key, gr__key_t, (size_t)g->groove_count)
     GR__CARVE(x, double, np)
     GR__CARVE(w, double, np)
@@ -3001,6 +3090,7 @@ typedef struct gr__pedge_t {
     double x0, y0, x1, y1;
     int set;  /* 0: a, 1: b */
     int ring; /* global ring index (a's rings first) */
+    int id;   /* its place among the edges as made (the sort's tie-break) */
 } gr__pedge_t;
 
 /* A crossing of an edge with a slab's mid line. */
@@ -3017,60 +3107,50 @@ static double gr__pedge_x(const gr__pedge_t *e, double y)
     return e->x0 + t * (e->x1 - e->x0);
 }
 
-static int gr__cmp_pcross(const void *a, const void *b)
-{
-    const gr__pcross_t *x = (const gr__pcross_t *)a, *y = (const gr__pcross_t *)b;
-    return x->x < y->x ? -1 : x->x > y->x ? 1 : (x->edge > y->edge) - (x->edge < y->edge);
-}
+/* Sorting for the sweep: the lists run from a few entries to a few
+   hundred, where Shell sort (Ciura's gaps; the last, 1, is insertion sort)
+   with inlined compares beats qsort's indirect ones several times over.
+   GR__SHELL_SORT(T, a, n, AFTER) sorts a[0..n) of type T, AFTER(p, x)
+   being true when element p goes after x. */
+#define GR__SHELL_SORT(T, a, n, AFTER)                                              \
+    do {                                                                            \
+        static const int gr__gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};            \
+        int gr__g, gr__i, gr__j;                                                    \
+        for (gr__g = 0; gr__g < 8; gr__g++) {                                       \
+            int gr__h = gr__gaps[gr__g];                                            \
+            for (gr__i = gr__h; gr__i < (n); gr__i++) {                             \
+                T gr__x = (a)[gr__i];                                               \
+                for (gr__j = gr__i; gr__j >= gr__h && AFTER((a)[gr__j - gr__h], gr__x); gr__j -= gr__h) \
+                    (a)[gr__j] = (a)[gr__j - gr__h];                                \
+                (a)[gr__j] = gr__x;                                                 \
+            }                                                                       \
+        }                                                                           \
+    } while (0)
+#define GR__AFTER_DOUBLE(p, x) ((p) > (x))
+#define GR__AFTER_EDGE(p, x) ((p).y0 > (x).y0 || ((p).y0 == (x).y0 && (p).id > (x).id))
 
-/* Sorting for the sweep: the lists are short (a few crossings per slab,
-   tens of slab heights at §5's sizes), where insertion sort beats qsort's
-   indirect compares several times over; qsort takes the long ones. */
-#define GR__SMALL_SORT 24
-/* Doubles: Shell sort with Ciura's gaps (the last gap, 1, is insertion
-   sort). The slab heights number up to E + E(E-1)/2 for E edges; inlined
-   compares beat qsort's indirect ones at those sizes. */
-static void gr__sort_doubles(double *a, int n)
-{
-    static const int gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
-    int g, i, j;
-    for (g = 0; g < 8; g++) {
-        int h = gaps[g];
-        for (i = h; i < n; i++) {
-            double x = a[i];
-            for (j = i; j >= h && a[j - h] > x; j -= h) a[j] = a[j - h];
-            a[j] = x;
-        }
-    }
-}
-static void gr__sort_pcross(gr__pcross_t *a, int n)
+/* Doubles: the crossing heights of a sweep (up to E (E - 1) / 2 for E
+   edges) and a trace's section crossings. */
+static void gr__sort_doubles(double *a, int n) { GR__SHELL_SORT(double, a, n, GR__AFTER_DOUBLE); }
+
+/* Crossings of a slab's mid line by (x, edge), a total order, so the same
+   as any sort; by insertion, as the list comes nearly sorted. */
+static void gr__sort_pcross_nearly(gr__pcross_t *a, int n)
 {
     int i, j;
-    if (n > GR__SMALL_SORT) { qsort(a, (size_t)n, sizeof(gr__pcross_t), gr__cmp_pcross); return; }
     for (i = 1; i < n; i++) {
         gr__pcross_t x = a[i];
-        for (j = i; j > 0 && gr__cmp_pcross(&a[j - 1], &x) > 0; j--) a[j] = a[j - 1];
+        for (j = i; j > 0 && (a[j - 1].x > x.x || (a[j - 1].x == x.x && a[j - 1].edge > x.edge)); j--) a[j] = a[j - 1];
         a[j] = x;
     }
 }
 
-/* Edges by their lower end (the sweep's insertion order); insertion sort,
-   as the edge lists are short, with qsort for the long ones. */
-static int gr__cmp_pedge_y0(const void *a, const void *b)
-{
-    const gr__pedge_t *x = (const gr__pedge_t *)a, *y = (const gr__pedge_t *)b;
-    return (x->y0 > y->y0) - (x->y0 < y->y0);
-}
-static void gr__sort_pedges_by_y0(gr__pedge_t *a, int n)
-{
-    int i, j;
-    if (n > GR__SMALL_SORT) { qsort(a, (size_t)n, sizeof *a, gr__cmp_pedge_y0); return; }
-    for (i = 1; i < n; i++) {
-        gr__pedge_t x = a[i];
-        for (j = i; j > 0 && a[j - 1].y0 > x.y0; j--) a[j] = a[j - 1];
-        a[j] = x;
-    }
-}
+/* Edges by their lower end (the sweep's insertion order), ties in the
+   order they were made: by (y0, id), a total order. */
+static void gr__sort_pedges_by_y0(gr__pedge_t *a, int n) { GR__SHELL_SORT(gr__pedge_t, a, n, GR__AFTER_EDGE); }
+#undef GR__AFTER_EDGE
+#undef GR__AFTER_DOUBLE
+#undef GR__SHELL_SORT
 
 /* Scratch of gr_poly_boolean for E edges (= points). */
 typedef struct gr__pscratch_t {
@@ -3078,12 +3158,17 @@ typedef struct gr__pscratch_t {
     double *ys;
     gr__pcross_t *cross, *ia, *ib;
     int *active; /* edges spanning the current slab (the sweep's active list) */
+    int *run;    /* the previous and this slab's trapezoids: (left edge, right edge, index) */
     unsigned char *parity;
 } gr__pscratch_t;
 
-static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
+/* Crossing heights gr_poly_boolean() has room for with E edges: every
+   pair may cross (as ys holds crossings only, E (E - 1) / 2). */
+static size_t gr__pcross_cap(int e) { size_t ne = e > 0 ? (size_t)e : 1; return ne * (ne - 1) / 2 + 1; }
+
+static size_t gr__pscratch_layout(int e, size_t max_cross, void *base, gr__pscratch_t *s)
 {
-    size_t off = 0, ne = e > 0 ? (size_t)e : 1, ny = 2 * ne + ne * (ne - 1) / 2;
+    size_t off = 0, ne = e > 0 ? (size_t)e : 1, ny = max_cross;
     char *b = (char *)base;
 #define GR__PCARVE(field, type, count) \
     s->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (count));
@@ -3093,6 +3178,7 @@ static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
     GR__PCARVE(ia, gr__pcross_t, ne)
     GR__PCARVE(ib, gr__pcross_t, ne)
     GR__PCARVE(active, int, ne)
+    GR__PCARVE(run, int, 6 * ne + 6)
     GR__PCARVE(parity, unsigned char, ne)
 #undef GR__PCARVE
     return off;
@@ -3101,7 +3187,7 @@ static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
 GR_DEF size_t gr_poly_boolean_scratch_bytes(int total_points)
 {
     gr__pscratch_t s;
-    return total_points < 0 ? 0 : gr__pscratch_layout(total_points, NULL, &s);
+    return total_points < 0 ? 0 : gr__pscratch_layout(total_points, gr__pcross_cap(total_points), NULL, &s);
 }
 
 /* Ring sizes of a set: the r-th ring's size, or -1 when they do not add up. */
@@ -3148,6 +3234,7 @@ static int gr__pset_edges(const gr_polyset_t *p, int set, int *ring, gr__pedge_t
             else { d->x0 = v[0]; d->y0 = v[1]; d->x1 = u[0]; d->y1 = u[1]; }
             d->set = set;
             d->ring = id;
+            d->id = ne - 1;
         }
         first += n;
     }
@@ -3158,7 +3245,7 @@ static int gr__pset_edges(const gr_polyset_t *p, int set, int *ring, gr__pedge_t
    boundaries besides the vertex heights. The edges come sorted by their
    lower end, so the partners of edge i that share some height with it are
    the run after it that starts below its top. */
-static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny)
+static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny, size_t cap)
 {
     int i, j;
     for (i = 0; i < ne; i++)
@@ -3174,7 +3261,9 @@ static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny)
             d1 = a1 - b1;
             if ((d0 < 0 && d1 > 0) || (d0 > 0 && d1 < 0)) {
                 double y = lo + (hi - lo) * (d0 / (d0 - d1));
-                if (y > lo && y < hi) ys[ny++] = y;
+                if (!(y > lo && y < hi)) continue;
+                if ((size_t)ny >= cap) return -1;
+                ys[ny++] = y;
             }
         }
     return ny;
@@ -3211,58 +3300,72 @@ static int gr__pop_in(gr_poly_op_t op, int in_a, int in_b)
     }
 }
 
-GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op,
-                                   void *scratch, size_t scratch_bytes,
-                                   double *traps, int trap_cap, int *trap_count, double *area)
+/* gr_poly_boolean() on valid sets, with room for max_cross crossing
+   heights in its scratch (GR_ERR_BUFFER_TOO_SMALL when more): the polygon
+   path's sets have a few, and its scratch need not hold every pair. */
+static gr_result_t gr__poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op, void *scratch,
+                                    size_t max_cross, double *traps, int trap_cap, int *trap_count, double *area)
 {
     gr__pscratch_t s;
-    gr_result_t r;
-    double total = 0;
-    int ne, ny, nys, k, ntrap = 0, over = 0, rings = 0, next, nact;
+    double total = 0, run_top = 0, y0;
+    int ne, nx, ci, ntrap = 0, over = 0, rings = 0, next, nact, nprev = 0, *prev, *now_run;
     if (area) *area = 0;
     if (trap_count) *trap_count = 0;
-    if (!a || !b || !scratch || (traps && trap_cap < 0) || (int)op < 0 || (int)op > 3) return GR_ERR_INVALID_ARG;
-    if ((r = gr__pset_check(a)) != GR_OK || (r = gr__pset_check(b)) != GR_OK) return r;
-    if (scratch_bytes < gr_poly_boolean_scratch_bytes(a->point_count + b->point_count)) return GR_ERR_BUFFER_TOO_SMALL;
-    gr__pscratch_layout(a->point_count + b->point_count, scratch, &s);
+    gr__pscratch_layout(a->point_count + b->point_count, max_cross, scratch, &s);
+    prev = s.run;
+    now_run = s.run + 3 * (a->point_count + b->point_count + 1);
     ne = gr__pset_edges(a, 0, &rings, s.edge, 0);
     ne = gr__pset_edges(b, 1, &rings, s.edge, ne);
     memset(s.parity, 0, (size_t)rings);
-    /* slab boundaries: every vertex height and every edge crossing */
-    ny = 0;
-    for (k = 0; k < ne; k++) {
-        s.ys[ny++] = s.edge[k].y0;
-        s.ys[ny++] = s.edge[k].y1;
-    }
+    /* slab boundaries: every vertex height and every edge crossing. The
+       sweep rises from event to event: the next is the lowest of the next
+       edge's lower end (edges sorted by it), the active edges' upper ends
+       and the next crossing height (sorted), so an edge joins the active
+       list once and leaves it for good, and each slab visits only the
+       edges that span it, with no sort of all the heights */
     gr__sort_pedges_by_y0(s.edge, ne);
-    ny = gr__pedge_crossings(s.edge, ne, s.ys, ny);
-    gr__sort_doubles(s.ys, ny);
-    for (nys = 0, k = 0; k < ny; k++)
-        if (nys == 0 || s.ys[k] != s.ys[nys - 1]) s.ys[nys++] = s.ys[k];
-    /* the slabs' mid lines rise, so an edge joins the active list once
-       (edges sorted by their lower end) and leaves it for good: each slab
-       visits only the edges that span it, not all of them */
-    for (k = 0, next = 0, nact = 0; k + 1 < nys; k++) {
-        double y0 = s.ys[k], y1 = s.ys[k + 1], ym = 0.5 * (y0 + y1);
-        int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, e, m, kept;
+    nx = gr__pedge_crossings(s.edge, ne, s.ys, 0, max_cross);
+    if (nx < 0) return GR_ERR_BUFFER_TOO_SMALL;
+    gr__sort_doubles(s.ys, nx);
+    /* a trapezoid whose two edges go on into the next slab is extended
+       there instead of starting another (its sides are those edges, so
+       the union is exact): regions do not fragment at every height */
+    y0 = ne > 0 ? s.edge[0].y0 : 0;
+    for (next = 0, nact = 0, ci = 0; ne > 0;) {
+        double y1 = HUGE_VAL, ym;
+        int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, e, m, kept, nnow = 0, *sw;
         gr__pcross_t left;
+        for (m = 0, kept = 0; m < nact; m++) /* edges ending at y0 leave */
+            if (s.edge[s.active[m]].y1 > y0) {
+                s.active[kept++] = s.active[m];
+                if (s.edge[s.active[m]].y1 < y1) y1 = s.edge[s.active[m]].y1;
+            }
+        nact = kept;
+        for (; next < ne && s.edge[next].y0 <= y0; next++) /* edges starting at y0 join */
+            if (s.edge[next].y1 > y0) {
+                s.active[nact++] = next;
+                if (s.edge[next].y1 < y1) y1 = s.edge[next].y1;
+            }
+        if (next < ne && s.edge[next].y0 < y1) y1 = s.edge[next].y0;
+        while (ci < nx && s.ys[ci] <= y0) ci++;
+        if (ci < nx && s.ys[ci] < y1) y1 = s.ys[ci];
+        if (y1 == HUGE_VAL) break; /* above every edge */
+        ym = 0.5 * (y0 + y1);
         left.x = 0;
         left.edge = -1;
         /* two adjacent doubles: the mid line would fall on a vertex height,
            where the strict crossing test loses a pass-through vertex */
-        if (!(y0 < ym && ym < y1)) continue;
-        for (m = 0, kept = 0; m < nact; m++)
-            if (s.edge[s.active[m]].y1 > ym) s.active[kept++] = s.active[m];
-        nact = kept;
-        for (; next < ne && s.edge[next].y0 < ym; next++)
-            if (s.edge[next].y1 > ym) s.active[nact++] = next;
+        if (!(y0 < ym && ym < y1) || nact == 0) { y0 = y1; continue; }
         for (m = 0; m < nact; m++) {
             e = s.active[m];
             s.cross[nc].x = gr__pedge_x(&s.edge[e], ym);
             s.cross[nc++].edge = e;
         }
-        if (nc == 0) continue;
-        gr__sort_pcross(s.cross, nc);
+        /* the active list is kept in the last slab's x order, so the
+           crossings come nearly sorted (only new edges and the swaps at
+           crossing heights move): insertion sort, linear in practice */
+        gr__sort_pcross_nearly(s.cross, nc);
+        for (m = 0; m < nc; m++) s.active[m] = s.cross[m].edge;
         na = gr__pset_intervals(s.cross, nc, s.edge, 0, s.parity, s.ia);
         nb = gr__pset_intervals(s.cross, nc, s.edge, 1, s.parity, s.ib);
         /* merge the two interval lists; all boundaries at one x are applied
@@ -3279,22 +3382,56 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
                 /* a trapezoid; its mid-line width times the slab height is
                    its exact area (the sides are straight in the slab) */
                 const gr__pedge_t *el = &s.edge[left.edge], *er = &s.edge[edge];
+                int p, id = -1;
                 total += (x - left.x) * (y1 - y0);
-                if (traps && ntrap < trap_cap) {
-                    double *t = traps + 8 * ntrap;
-                    t[0] = gr__pedge_x(el, y0); t[1] = y0;
-                    t[2] = gr__pedge_x(er, y0); t[3] = y0;
-                    t[4] = gr__pedge_x(er, y1); t[5] = y1;
-                    t[6] = gr__pedge_x(el, y1); t[7] = y1;
-                } else if (traps) over = 1;
-                ntrap++;
+                if (run_top == y0)
+                    for (p = 0; p < nprev && id < 0; p++)
+                        if (prev[3 * p] == left.edge && prev[3 * p + 1] == edge) id = prev[3 * p + 2];
+                if (id >= 0) { /* the trapezoid below goes on */
+                    if (traps && id < trap_cap) {
+                        double *t = traps + 8 * id;
+                        t[4] = gr__pedge_x(er, y1); t[5] = y1;
+                        t[6] = gr__pedge_x(el, y1); t[7] = y1;
+                    }
+                } else {
+                    id = ntrap++;
+                    if (traps && id < trap_cap) {
+                        double *t = traps + 8 * id;
+                        t[0] = gr__pedge_x(el, y0); t[1] = y0;
+                        t[2] = gr__pedge_x(er, y0); t[3] = y0;
+                        t[4] = gr__pedge_x(er, y1); t[5] = y1;
+                        t[6] = gr__pedge_x(el, y1); t[7] = y1;
+                    } else if (traps) over = 1;
+                }
+                now_run[3 * nnow] = left.edge;
+                now_run[3 * nnow + 1] = edge;
+                now_run[3 * nnow + 2] = id;
+                nnow++;
             }
             was = now;
         }
+        sw = prev; prev = now_run; now_run = sw;
+        nprev = nnow;
+        run_top = y1;
+        y0 = y1;
     }
     if (area) *area = total;
     if (trap_count) *trap_count = ntrap;
     return over ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
+}
+
+GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op,
+                                   void *scratch, size_t scratch_bytes,
+                                   double *traps, int trap_cap, int *trap_count, double *area)
+{
+    gr_result_t r;
+    if (area) *area = 0;
+    if (trap_count) *trap_count = 0;
+    if (!a || !b || !scratch || (traps && trap_cap < 0) || (int)op < 0 || (int)op > 3) return GR_ERR_INVALID_ARG;
+    if ((r = gr__pset_check(a)) != GR_OK || (r = gr__pset_check(b)) != GR_OK) return r;
+    if (scratch_bytes < gr_poly_boolean_scratch_bytes(a->point_count + b->point_count)) return GR_ERR_BUFFER_TOO_SMALL;
+    return gr__poly_boolean(a, b, op, scratch, gr__pcross_cap(a->point_count + b->point_count), traps, trap_cap,
+                            trap_count, area);
 }
 
 /* ---- Intersections and ends: detection (§5, §5.1) ------------------------ */
@@ -3357,33 +3494,237 @@ static int gr__seg_cross(const double *a, const double *b, const double *c, cons
     return *s < 1 && *u < 1;
 }
 
+/* A crossing of chords kk (a b, parameters ta) and ll (c d, tc), kk < ll,
+   of one path with m chords, appended to out (up to cap); 1 if there is one. */
+static int gr__chord_pair_hit(const double *a, const double *b, const double *ta, const double *c, const double *d,
+                              const double *tc, int kk, int ll, int m, int closed, int g, gr_self_hit_t *out, int cap,
+                              int nh)
+{
+    double sv, u;
+    if (ll == kk + 1) return 0;                     /* neighbours share a point */
+    if (closed && kk == 0 && ll == m - 1) return 0; /* neighbours across the closing point */
+    if ((c[0] < a[0] && c[0] < b[0] && d[0] < a[0] && d[0] < b[0]) ||
+        (c[0] > a[0] && c[0] > b[0] && d[0] > a[0] && d[0] > b[0]) ||
+        (c[1] < a[1] && c[1] < b[1] && d[1] < a[1] && d[1] < b[1]) ||
+        (c[1] > a[1] && c[1] > b[1] && d[1] > a[1] && d[1] > b[1]))
+        return 0; /* boxes apart */
+    if (!gr__seg_cross(a, b, c, d, &sv, &u)) return 0;
+    if (out && nh < cap) {
+        out[nh].groove = g;
+        out[nh].point[0] = a[0] + sv * (b[0] - a[0]);
+        out[nh].point[1] = a[1] + sv * (b[1] - a[1]);
+        out[nh].param[0] = ta[0] + sv * (ta[1] - ta[0]);
+        out[nh].param[1] = tc[0] + u * (tc[1] - tc[0]);
+    }
+    return 1;
+}
+
+/* Every crossing of two non-adjacent chords of one path (§5: found before
+   rendering): polyline segments exactly, Bézier pieces through
+   GR__SELF_FLATTEN chords each (two pieces whose control points' boxes
+   are apart cannot cross; each piece's chord ends are evaluated once per
+   pair of pieces). Writes up to cap hits (out may be NULL), returns how
+   many there are. */
+static int gr__path_self_hits(const double *pts, int kind, int n, int closed, int g, gr_self_hit_t *out, int cap)
+{
+    int pieces = gr__pieces(kind, n), k, l, nh = 0;
+    if (kind == GR_PATH_POLYLINE) {
+        double len = 0, acc_k = 0;
+        for (k = 0; k < pieces; k++) len += hypot(pts[2 * k + 2] - pts[2 * k], pts[2 * k + 3] - pts[2 * k + 1]);
+        for (k = 0; k < pieces; k++) {
+            const double *a = pts + 2 * k, *b = a + 2;
+            double lk = hypot(b[0] - a[0], b[1] - a[1]), acc_l = acc_k + lk, ta[2];
+            ta[0] = acc_k / len;
+            ta[1] = (acc_k + lk) / len;
+            for (l = k + 1; l < pieces; l++) {
+                const double *c = pts + 2 * l, *d = c + 2;
+                double ll = hypot(d[0] - c[0], d[1] - c[1]), tc[2];
+                tc[0] = acc_l / len;
+                tc[1] = (acc_l + ll) / len;
+                acc_l += ll;
+                nh += gr__chord_pair_hit(a, b, ta, c, d, tc, k, l, pieces, closed, g, out, cap, nh);
+            }
+            acc_k += lk;
+        }
+        return nh;
+    }
+#ifndef GR_NO_CURVES
+    {
+        int deg = gr__degree(kind), m = pieces * GR__SELF_FLATTEN, P, Q, i;
+        double pa[2 * (GR__SELF_FLATTEN + 1)], pb[2 * (GR__SELF_FLATTEN + 1)], d1[2], d2[2];
+        for (P = 0; P < pieces; P++) {
+            double ba[4];
+            gr__bounds(pts + 2 * deg * P, deg + 1, ba);
+            for (i = 0; i <= GR__SELF_FLATTEN; i++)
+                gr__bezier_eval(pts + 2 * deg * P, deg, (double)i / GR__SELF_FLATTEN, pa + 2 * i, d1, d2);
+            for (Q = P; Q < pieces; Q++) {
+                double bb[4];
+                const double *qb = pa;
+                gr__bounds(pts + 2 * deg * Q, deg + 1, bb);
+                if (Q > P && (bb[0] > ba[2] || bb[2] < ba[0] || bb[1] > ba[3] || bb[3] < ba[1])) continue;
+                if (Q > P) {
+                    for (i = 0; i <= GR__SELF_FLATTEN; i++)
+                        gr__bezier_eval(pts + 2 * deg * Q, deg, (double)i / GR__SELF_FLATTEN, pb + 2 * i, d1, d2);
+                    qb = pb;
+                }
+                for (k = 0; k < GR__SELF_FLATTEN; k++)
+                    for (l = Q > P ? 0 : k + 1; l < GR__SELF_FLATTEN; l++) {
+                        double ta[2], tc[2];
+                        ta[0] = (P + (double)k / GR__SELF_FLATTEN) / pieces;
+                        ta[1] = (P + (double)(k + 1) / GR__SELF_FLATTEN) / pieces;
+                        tc[0] = (Q + (double)l / GR__SELF_FLATTEN) / pieces;
+                        tc[1] = (Q + (double)(l + 1) / GR__SELF_FLATTEN) / pieces;
+                        nh += gr__chord_pair_hit(pa + 2 * k, pa + 2 * k + 2, ta, qb + 2 * l, qb + 2 * l + 2, tc,
+                                                 P * GR__SELF_FLATTEN + k, Q * GR__SELF_FLATTEN + l, m, closed, g, out,
+                                                 cap, nh);
+                    }
+            }
+        }
+    }
+#else
+    (void)l;
+#endif
+    return nh;
+}
+
+static int gr__cmp_hit_t2(const void *pa, const void *pb)
+{
+    double a = ((const gr_self_hit_t *)pa)->param[1], b = ((const gr_self_hit_t *)pb)->param[1];
+    return (a > b) - (a < b);
+}
+static int gr__cmp_rec_t0(const void *pa, const void *pb)
+{
+    double a = ((const gr__groove_t *)pa)->t0, b = ((const gr__groove_t *)pb)->t0;
+    return (a > b) - (a < b);
+}
+
+/* Point of a polyline at arc-length parameter t (t in [0, 1], len its length). */
+static void gr__polyline_at(const double *pts, int n, double len, double t, double q[2])
+{
+    double want = t * len, acc = 0;
+    int k;
+    for (k = 0; k + 1 < n; k++) {
+        double l = hypot(pts[2 * k + 2] - pts[2 * k], pts[2 * k + 3] - pts[2 * k + 1]);
+        if (acc + l >= want || k + 2 == n) {
+            double s = l > 0 ? (want - acc) / l : 0;
+            s = s < 0 ? 0 : s > 1 ? 1 : s;
+            q[0] = pts[2 * k] + s * (pts[2 * k + 2] - pts[2 * k]);
+            q[1] = pts[2 * k + 1] + s * (pts[2 * k + 3] - pts[2 * k + 1]);
+            return;
+        }
+        acc += l;
+    }
+    q[0] = pts[0];
+    q[1] = pts[1];
+}
+
+/* §5: "the groove should be simply treated as two independent grooves".
+   The hits of groove g (sorted here by their second parameter) are
+   intervals (t1, t2) of its path parameter; a cut inside each separates
+   the two passes of its crossing. Greedy interval stabbing gives the
+   fewest cuts, each in the middle of the parameters it serves (far from
+   the crossings, where the pieces meet end to end). A Bézier chain is cut
+   at a joint where one serves, or else inside a piece and also at that
+   piece's two joints, so every piece is whole Bézier pieces or part of
+   one: its uniform parameter maps affinely onto the groove's. The pieces
+   go to records *next, ... with their own points from *pt on. */
+static void gr__split_groove(gr_grid_t *gr, int g, gr_self_hit_t *hits, int nh, int *next, int *pt)
+{
+    gr__groove_t *par = &gr->grooves_[g], *rec = gr->grooves_ + *next;
+    const double *pts = gr->points_ + 2 * par->first_point;
+    int k, nb = 0, n = par->pieces, deg = gr__degree(par->kind), bez = par->kind != GR_PATH_POLYLINE, i;
+    (void)deg; /* Bézier pieces only, left out with GR_NO_CURVES */
+    double lo = 0, hi = -1;
+    qsort(hits, (size_t)nh, sizeof *hits, gr__cmp_hit_t2);
+    /* cut parameters, in piece units for a chain (joints are integers),
+       kept in the records' t0 until the records are made */
+    for (k = 0; k <= nh; k++) {
+        if (k < nh && hi > lo && hits[k].param[0] < hi) { /* overlaps the group: narrow it */
+            if (hits[k].param[0] > lo) lo = hits[k].param[0];
+            continue;
+        }
+        if (hi > lo) { /* the group's cut */
+            double mid = 0.5 * (lo + hi);
+            if (!bez) rec[nb++].t0 = mid;
+            else {
+                double u = mid * n, j = floor(u + 0.5);
+                if (j > lo * n && j < hi * n && j > 0 && j < n) rec[nb++].t0 = j;
+                else {
+                    rec[nb++].t0 = u;
+                    if (floor(u) > 0) rec[nb++].t0 = floor(u);
+                    if (floor(u) + 1 < n) rec[nb++].t0 = floor(u) + 1;
+                }
+            }
+        }
+        if (k < nh) { lo = hits[k].param[0]; hi = hits[k].param[1]; }
+    }
+    qsort(rec, (size_t)nb, sizeof *rec, gr__cmp_rec_t0);
+    for (i = 0, k = 0; k < nb; k++) /* unique, strictly inside */
+        if (rec[k].t0 > 0 && rec[k].t0 < (bez ? n : 1) && (i == 0 || rec[k].t0 > rec[i - 1].t0)) rec[i++].t0 = rec[k].t0;
+    nb = i;
+    par->first_split = *next;
+    par->split_count = nb + 1;
+    /* piece i covers [b_(i-1), b_i]: made from the last down, so each reads
+       its upper bound (its own t0 slot) before writing over it */
+    for (i = nb; i >= 0; i--) {
+        double ua = i > 0 ? rec[i - 1].t0 : 0, ub = i < nb ? rec[i].t0 : (bez ? n : 1);
+        gr__groove_t *r = &rec[i];
+        double *q = gr->points_ + 2 * *pt;
+        int np = 0;
+        if (!bez) {
+            double acc = 0;
+            gr__polyline_at(pts, par->point_count, par->length, ua, q);
+            np = 1;
+            for (k = 1; k + 1 < par->point_count; k++) { /* the vertices strictly inside */
+                double t;
+                acc += hypot(pts[2 * k] - pts[2 * k - 2], pts[2 * k + 1] - pts[2 * k - 1]);
+                t = acc / par->length;
+                if (t > ua && t < ub) { q[2 * np] = pts[2 * k]; q[2 * np + 1] = pts[2 * k + 1]; np++; }
+            }
+            gr__polyline_at(pts, par->point_count, par->length, ub, q + 2 * np);
+            np++;
+        }
+#ifndef GR_NO_CURVES
+        else if (ua == floor(ua) && ub == floor(ub)) { /* whole pieces */
+            np = deg * (int)(ub - ua) + 1;
+            memcpy(q, pts + 2 * deg * (int)ua, sizeof(double) * 2 * (size_t)np);
+        } else { /* part of one piece */
+            int j = (int)floor(ua);
+            GR_ASSERT(ub <= j + 1);
+            gr__bezier_sub(pts + 2 * deg * j, deg, ua - j, ub - j, q);
+            np = deg + 1;
+        }
+#endif
+        *r = *par;
+        r->first_point = *pt;
+        r->point_count = np;
+        r->pieces = gr__pieces(r->kind, np);
+        r->closed = 0;
+        r->parent = g;
+        r->first_split = r->split_count = 0;
+        r->t0 = bez ? ua / n : ua;
+        r->t1 = bez ? ub / n : ub;
+        /* an end of a piece is the groove's own only at t = 0 or 1 of an open path */
+        r->join[0] = ua > 0 || par->closed;
+        r->join[1] = ub < (bez ? n : 1) || par->closed;
+        gr__bounds(q, np, r->bbox);
+        r->length = 0;
+        if (!bez)
+            for (k = 0; k + 1 < np; k++) r->length += hypot(q[2 * k + 2] - q[2 * k], q[2 * k + 3] - q[2 * k + 1]);
+        *pt += np;
+    }
+    *next += nb + 1;
+}
+
+/* The hits were found by the builder (gr__path_self_hits), each groove's
+   sorted by its second parameter. */
 GR_DEF gr_result_t gr_self_intersections(const gr_grid_t *grid, gr_self_hit_t *out, int cap, int *count)
 {
-    int g, n = 0;
     if (count) *count = 0;
     if (!grid || !count || cap < 0 || (!out && cap > 0)) return GR_ERR_INVALID_ARG;
-    for (g = 0; g < grid->groove_count; g++) {
-        const gr__groove_t *rec = &grid->grooves_[g];
-        int m = gr__chord_count(rec), k, l;
-        for (k = 0; k < m; k++)
-            for (l = k + 2; l < m; l++) {
-                double a[2], b[2], c[2], d[2], ta[2], tc[2], s, u;
-                if (rec->closed && k == 0 && l == m - 1) continue; /* neighbours across the closing point */
-                gr__chord(grid, rec, k, a, b, ta);
-                gr__chord(grid, rec, l, c, d, tc);
-                if (!gr__seg_cross(a, b, c, d, &s, &u)) continue;
-                if (n < cap) {
-                    out[n].groove = g;
-                    out[n].point[0] = a[0] + s * (b[0] - a[0]);
-                    out[n].point[1] = a[1] + s * (b[1] - a[1]);
-                    out[n].param[0] = ta[0] + s * (ta[1] - ta[0]);
-                    out[n].param[1] = tc[0] + u * (tc[1] - tc[0]);
-                }
-                n++;
-            }
-    }
-    *count = n;
-    return n > cap ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
+    *count = grid->self_count_;
+    if (cap > 0) memcpy(out, grid->self_, sizeof *out * (size_t)(grid->self_count_ < cap ? grid->self_count_ : cap));
+    return grid->self_count_ > cap ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
 }
 
 /* The search box (§4.1, §5.1) about the footprint centre f: the
@@ -3462,11 +3803,33 @@ static int gr__path_in_box(const gr_grid_t *grid, const gr__groove_t *rec, const
         if (sb[0] > rec->bbox[2] + rec->half_width || sb[2] < rec->bbox[0] - rec->half_width ||
             sb[1] > rec->bbox[3] + rec->half_width || sb[3] < rec->bbox[1] - rec->half_width)
             continue; /* control points bound the path */
-        for (k = 0; k < m; k++) {
-            double a[2], b[2];
-            gr__chord(grid, rec, k, a, b, NULL);
-            if (gr__seg_box(a, b, sb)) return 1;
+        if (rec->kind == GR_PATH_POLYLINE) {
+            for (k = 0; k < m; k++) {
+                double a[2], b[2];
+                gr__chord(grid, rec, k, a, b, NULL);
+                if (gr__seg_box(a, b, sb)) return 1;
+            }
+            continue;
         }
+#ifndef GR_NO_CURVES
+        { /* a Bézier piece whose control points lie off the box is skipped
+             (they bound it); each chord end is evaluated once */
+            int deg = gr__degree(rec->kind), piece, c;
+            const double *pts = grid->points_ + 2 * rec->first_point;
+            for (piece = 0; piece < rec->pieces; piece++) {
+                const double *q = pts + 2 * deg * piece;
+                double cb[4], a[2], b[2], d1[2], d2[2];
+                gr__bounds(q, deg + 1, cb);
+                if (cb[0] > sb[2] || cb[2] < sb[0] || cb[1] > sb[3] || cb[3] < sb[1]) continue;
+                a[0] = q[0]; a[1] = q[1];
+                for (c = 1; c <= GR__SELF_FLATTEN; c++) {
+                    gr__bezier_eval(q, deg, (double)c / GR__SELF_FLATTEN, b, d1, d2);
+                    if (gr__seg_box(a, b, sb)) return 1;
+                    a[0] = b[0]; a[1] = b[1];
+                }
+            }
+        }
+#endif
     }
     return 0;
 }
@@ -3520,8 +3883,9 @@ static void gr__detect_ends(const gr_grid_t *grid, const gr__cand_t *cand, int n
         /* closed covers a path whose ends meet across the seam of a
            repeating tile (gr__store_groove): it runs on, no end (§4.1) */
         for (e = 0; e < 2; e++) gr__end_point(grid, cand[i].groove, e, f, p[e]);
-        for (e = 0; e < 2; e++)
-            state[2 * i + e] = !grid->grooves_[cand[i].groove].closed && gr__in_box(box, p[e]);
+        for (e = 0; e < 2; e++) /* a piece's cut end (§5, self-crossing) runs on too */
+            state[2 * i + e] = !grid->grooves_[cand[i].groove].closed && !grid->grooves_[cand[i].groove].join[e] &&
+                               gr__in_box(box, p[e]);
     }
     for (i = 0; i < n; i++)
         for (e = 0; e < 2; e++) {
@@ -3559,6 +3923,35 @@ static void gr__detect_ends(const gr_grid_t *grid, const gr__cand_t *cand, int n
 
 /* The footprint centre's image in the tile (as gr_query()), where
    gr_detect() and the polygon path place the grooves' nearest points. */
+/* The point nearest f of the overlap of two strips, |B_a.(x - pa)| <= wa
+   and |B_b.(x - pb)| <= wb about crossing lines (cr = T_a x T_b != 0):
+   the rhombus with corners p ± (wb / s) T_a ± (wa / s) T_b, p the lines'
+   meeting point, s = |cr|. f itself when it lies inside. */
+static void gr__overlap_nearest(const double *pa, const double *ta, double wa, const double *pb, const double *tb,
+                                double wb, double cr, const double *f, double q[2])
+{
+    double s = fabs(cr), m = ((pb[0] - pa[0]) * tb[1] - (pb[1] - pa[1]) * tb[0]) / cr, c[8], best = HUGE_VAL;
+    double p[2] = {pa[0] + m * ta[0], pa[1] + m * ta[1]}, da = wb / s, db = wa / s;
+    int k, inside = 1;
+    for (k = 0; k < 4; k++) { /* counter-clockwise or clockwise: the side test below takes either */
+        double sa = k == 0 || k == 3 ? 1 : -1, sb = k < 2 ? 1 : -1;
+        c[2 * k] = p[0] + sa * da * ta[0] + sb * db * tb[0];
+        c[2 * k + 1] = p[1] + sa * da * ta[1] + sb * db * tb[1];
+    }
+    for (k = 0; k < 4; k++) {
+        const double *u = c + 2 * k, *v = c + 2 * ((k + 1) % 4);
+        double ex = v[0] - u[0], ey = v[1] - u[1], l2 = ex * ex + ey * ey;
+        double t = l2 > 0 ? ((f[0] - u[0]) * ex + (f[1] - u[1]) * ey) / l2 : 0, x, y, d;
+        if (gr__cross2(u, v, f) * gr__cross2(u, v, c + 2 * ((k + 2) % 4)) < 0) inside = 0;
+        t = t < 0 ? 0 : t > 1 ? 1 : t;
+        x = u[0] + t * ex;
+        y = u[1] + t * ey;
+        d = hypot(f[0] - x, f[1] - y);
+        if (d < best) { best = d; q[0] = x; q[1] = y; }
+    }
+    if (inside) { q[0] = f[0]; q[1] = f[1]; }
+}
+
 static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
 {
     f[0] = c[0];
@@ -3570,8 +3963,48 @@ static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
     }
 }
 
-GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
-                             int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
+/* A self-crossing groove's candidate replaced by one per piece (§5: "two
+   independent grooves with different directions"), when one of its
+   crossings lies in the box. A piece whose nearest point to f is one of
+   its cut ends, with f beyond that end, is the neighbouring piece's
+   approach and is dropped; so is a piece that does not enter the box.
+   Parameters and their rates are the groove's. Returns the new count. */
+static int gr__split_candidates(const gr_grid_t *grid, gr__cand_t *cand, int m, int cap, const double *box,
+                                const double *f, double reach)
+{
+    int i, n = m, h, k;
+    for (i = 0; i < m; i++) {
+        const gr__groove_t *rec = &grid->grooves_[cand[i].groove];
+        int hit = 0, first = n;
+        if (rec->split_count == 0 || n + rec->split_count > cap) continue;
+        for (h = 0; h < grid->self_count_ && !hit; h++) {
+            double p[2];
+            if (grid->self_[h].groove != cand[i].groove) continue;
+            gr__image_near(grid, grid->self_[h].point, f, p);
+            hit = gr__in_box(box, p);
+        }
+        if (!hit) continue;
+        for (k = 0; k < rec->split_count; k++) {
+            int id = rec->first_split + k;
+            const gr__groove_t *pc = &grid->grooves_[id];
+            gr__cand_t *c = &cand[n];
+            if (!gr__path_in_box(grid, pc, box) || !gr__locate(grid, id, f, 2 * reach, c)) continue;
+            if ((c->end < 0 && pc->join[0]) || (c->end > 0 && pc->join[1])) continue;
+            c->param = pc->t0 + (pc->t1 - pc->t0) * c->param;
+            c->dtds *= pc->t1 - pc->t0;
+            n++;
+        }
+        if (n == first) continue; /* no piece near after all: keep the groove */
+        cand[i] = cand[--n];      /* the last piece takes the groove's place */
+    }
+    return n;
+}
+
+/* gr_detect() with the grooves named as the polygon path needs them: a
+   self-crossing groove's pieces by their records (indices from
+   groove_count on). */
+static gr_result_t gr__detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
+                              int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
 {
     const gr_footprint_t *fp;
     gr__scratch_t s;
@@ -3603,8 +4036,10 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
     for (k = 0; k < n; k++)
         if (gr__path_in_box(grid, &grid->grooves_[s.ids[k]], out->box) && gr__locate(grid, s.ids[k], f, 2 * reach, &s.cand[m]))
             m++;
+    if (grid->split_records_ > 0)
+        m = gr__split_candidates(grid, s.cand, m, grid->groove_count + grid->split_records_, out->box, f, reach);
     out->grooves = m;
-    gr__detect_ends(grid, s.cand, m, out->box, f, s.x, out); /* s.x holds >= 2 per groove */
+    gr__detect_ends(grid, s.cand, m, out->box, f, s.x, out); /* s.x holds >= 2 per candidate */
     /* crossings: tangents that differ by more than the parallel tolerance */
     psin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     for (i = 0; i < m; i++)
@@ -3624,18 +4059,43 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
                other is an isolated end and a normal groove, simulated
                apart (§5) */
             lim = grid->grooves_[a->groove].half_width + grid->grooves_[b->groove].half_width;
-            if (!(hypot(p[0] - f[0], p[1] - f[1]) <= reach + lim) || !gr__locate(grid, a->groove, p, lim, &c) ||
-                !gr__locate(grid, b->groove, p, lim, &c))
-                continue;
+            if (!(hypot(p[0] - f[0], p[1] - f[1]) <= reach + lim)) {
+                /* nearly parallel grooves meet far away, but their strips
+                   can overlap near the footprint all the same: then the
+                   overlap's point nearest the footprint stands for p */
+                gr__overlap_nearest(pa, a->t, grid->grooves_[a->groove].half_width, pb, b->t,
+                                    grid->grooves_[b->groove].half_width, cr, f, p);
+                if (!(hypot(p[0] - f[0], p[1] - f[1]) <= reach)) continue;
+            }
+            if (!gr__locate(grid, a->groove, p, lim, &c) || !gr__locate(grid, b->groove, p, lim, &c)) continue;
             gr__junction_add(out, GR_JUNCTION_CROSSING, a->groove, b->groove, -1, -1, p);
         }
-    /* self-intersections (§5): precomputed points inside the box */
+    /* self-intersections (§5): precomputed points inside the box, the
+       builder's unless the caller passes its own */
+    if (!self) {
+        self = grid->self_;
+        self_count = grid->self_count_;
+    }
     for (k = 0; k < self_count; k++) {
         double p[2];
         gr__image_near(grid, self[k].point, f, p);
         if (gr__in_box(out->box, p)) gr__junction_add(out, GR_JUNCTION_SELF, self[k].groove, -1, -1, -1, p);
     }
     return GR_OK;
+}
+
+GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
+                             int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
+{
+    gr_result_t r = gr__detect(grid, query, self, self_count, scratch, scratch_bytes, out);
+    int k;
+    /* pieces of a self-crossing groove are named by their groove */
+    for (k = 0; r == GR_OK && k < out->count; k++) {
+        gr_junction_t *j = &out->items[k];
+        if (j->groove >= 0) j->groove = grid->grooves_[j->groove].parent;
+        if (j->other >= 0) j->other = grid->grooves_[j->other].parent;
+    }
+    return r;
 }
 
 /* ---- The polygon path, first steps (§5.2) -------------------------------- */
@@ -3847,11 +4307,19 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 
 /* Limits of the polygon path; a footprint beyond them is answered by §4
    (flags GR_LIST_NONPARALLEL / GR_LIST_PATH_END as before). */
-#define GR__PP_MAX_GROOVES 8  /* grooves in the §5.1 search box */
+#define GR__PP_MAX_GROOVES GR_POLY_MAX_GROOVES /* grooves in the §5.1 search box */
 #define GR__PP_RING 80        /* points of one piece's clipped ring, or one cut */
 #define GR__PP_TRAPS 512      /* trapezoids of an intermediate region (before merging) */
 #define GR__PP_EDGES 400      /* edges of both operands of one boolean */
-#define GR__PP_MAX_PIECES 64  /* facets and end caps of those grooves */
+#define GR__PP_CROSS 4096     /* crossing heights of one boolean (the random tests' largest: ~1000) */
+/* Sides of the polygon standing for an elliptical footprint (query.ellipse):
+   of the ellipse's area, its boundary within 0.33 % of the radius
+   (vertices at 1.0032, edge middles at 0.9984) */
+#define GR__PP_ELLIPSE_SIDES 32
+#define GR__PP_MAX_PIECES (8 * GR_POLY_MAX_GROOVES)   /* facets and end caps of those grooves */
+#define GR__PP_SURF_TRAPS (128 * GR_POLY_MAX_GROOVES) /* trapezoids of all pieces' surfaces (the random tests' largest: ~300) */
+#define GR__PP_OCC_POINTS 200 /* points of the occluder rings subtracted in one boolean */
+#define GR__PP_OCC_RINGS 64
 /* Coplanar pieces of two grooves (equal floors at a crossing): the lower
    groove index keeps the overlap; the cut plane is moved by this fraction
    of the grid's largest section size to decide it. */
@@ -3859,6 +4327,9 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 /* A plane is seen edge-on along D when |N.D| falls below this (unit vectors):
    its projection has no area (as GR__EDGE_ON_REL for eq. 8). */
 #define GR__PP_EDGE_ON 1e-9
+/* A footprint whose area 4 |A1 x A2| is below this fraction of 4 |A1| |A2|
+   has no area for the polygon path (its axes are parallel to rounding). */
+#define GR__PP_FLAT_REL 1e-12
 
 /* One locally straight groove near the footprint, in coordinates relative
    to the footprint centre's tile image f (§4.2's straight approximation). */
@@ -3892,6 +4363,11 @@ typedef struct gr__pps_t {
     double *mouth;      /* the grooves' openings at w = 0 (UV strips, 4 points each) */
     int nmouth;
     int *sizes;
+    double *surf;       /* every piece's surface: trapezoids, surf_count[j] from surf_first[j] */
+    double *surf_box;   /* and its box, 4 per piece */
+    int *surf_first, *surf_count;
+    double *occ;        /* occluder rings gathered for one boolean */
+    int *occ_sizes;
     void *bool_scratch;
     size_t bool_bytes;
 } gr__pps_t;
@@ -3915,8 +4391,17 @@ static size_t gr__pp_layout(void *base, gr__pps_t *s)
     GR__PPCARVE(mouth, double, 2 * GR__PP_RING * GR__PP_MAX_GROOVES)
     GR__PPCARVE(tmp2, double, 2 * GR__PP_RING)
     GR__PPCARVE(sizes, int, 4 * GR__PP_MAX_GROOVES + 4)
+    GR__PPCARVE(surf, double, 8 * GR__PP_SURF_TRAPS)
+    GR__PPCARVE(surf_box, double, 4 * (GR__PP_MAX_PIECES + 1))
+    GR__PPCARVE(surf_first, int, GR__PP_MAX_PIECES + 1)
+    GR__PPCARVE(surf_count, int, GR__PP_MAX_PIECES + 1)
+    GR__PPCARVE(occ, double, 2 * GR__PP_OCC_POINTS)
+    GR__PPCARVE(occ_sizes, int, GR__PP_OCC_RINGS)
 #undef GR__PPCARVE
-    s->bool_bytes = gr_poly_boolean_scratch_bytes(GR__PP_EDGES);
+    {
+        gr__pscratch_t ptmp;
+        s->bool_bytes = gr__pscratch_layout(GR__PP_EDGES, GR__PP_CROSS, NULL, &ptmp);
+    }
     s->bool_scratch = b ? b + off : NULL;
     return off + s->bool_bytes;
 }
@@ -3979,25 +4464,44 @@ static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, doubl
                       int *npts, int *sizes, int *nrings, double *tmp, double *tmp2)
 {
     double k[3], ga[3], gc[3], det, s = g->s;
+    /* a plane on the volume's boundary (equal floors of crossing grooves,
+       the ground at every mouth, a wall where a groove ends) decides as if
+       moved by `shift` along its normal, so exactly one of two coplanar
+       pieces keeps the overlap. Only the decision moves, not the geometry:
+       |shift| is the tolerance within which a point counts as on the
+       boundary, and the strips' edges stay where the unmoved plane has
+       them (moving the plane itself would move every cut by |shift| / the
+       section's slope, a partition error of that order) */
+    double tn = pc->n[0] * g->t[0] + pc->n[1] * g->t[1];
     int i, n = 0;
     gr__pp_groove_affine(pc, g, k, ga, gc);
-    /* a plane on the volume's boundary (equal floors of crossing grooves)
-       is moved by `shift` along its normal, so exactly one of the two
-       coplanar pieces keeps the overlap */
-    k[0] += shift * (pc->n[0] * g->t[0] + pc->n[1] * g->t[1]);
-    k[1] += shift * (-pc->n[0] * g->t[1] + pc->n[1] * g->t[0]);
-    k[2] += shift * pc->n[2];
+    /* the plane holds T when its (b, w) map is singular; X and Y are unit
+       vectors, so |det| is the sine of the angle between the plane and T
+       (a bound relative to the (b, w) parts alone would call the rounding
+       of a plane holding T, ~1e-17 under fused multiply-adds, regular) */
     det = ga[1] * gc[2] - ga[2] * gc[1];
-    if (fabs(det) > GR__PP_EDGE_ON * (fabs(ga[1]) + fabs(ga[2])) * (fabs(gc[1]) + fabs(gc[2]))) {
+    if (fabs(det) > GR__PP_EDGE_ON) {
         for (i = 0; i < g->nsec; i++) { /* (b, w) -> (a, c) by the inverse 2x2 map */
             double db = s * g->sec[2 * i] - k[1], dw = s * g->sec[2 * i + 1] - k[2];
             tmp[2 * i] = (db * gc[2] - dw * gc[1]) / det;
             tmp[2 * i + 1] = (ga[1] * dw - ga[2] * db) / det;
         }
         n = g->nsec;
-        /* x in [x0, x1]: two half-planes */
-        n = gr__pp_halfplane(tmp, n, ga[0], gc[0], k[0] - g->x0, tmp2);
-        n = gr__pp_halfplane(tmp2, n, -ga[0], -gc[0], g->x1 - k[0], tmp);
+        /* x in [x0, x1]: two half-planes. A plane across T (x constant on
+           it) lying on an end x0 or x1 decides by the shifted x */
+        if (fabs(ga[0]) + fabs(gc[0]) <= GR__PP_EDGE_ON) {
+            double x = k[0], xs = k[0] + shift * tn;
+            if (fabs(x - g->x0) <= fabs(shift)) x = xs;
+            if (fabs(x - g->x1) <= fabs(shift)) x = xs;
+            if (!(x >= g->x0 && x <= g->x1)) return 0;
+            memcpy(tmp2, tmp, sizeof(double) * 2 * (size_t)n);
+        } else {
+            /* a half-plane at most doubles a ring's points (a non-convex
+               section crosses the line at most once per edge) */
+            n = gr__pp_halfplane(tmp, n, ga[0], gc[0], k[0] - g->x0, tmp2);
+            if (2 * n > GR__PP_RING) return -1;
+            n = gr__pp_halfplane(tmp2, n, -ga[0], -gc[0], g->x1 - k[0], tmp);
+        }
         if (n < 3) return 0;
         if (*npts + n > cap || *nrings >= 4 * GR__PP_MAX_GROOVES) return -1;
         memcpy(out + 2 * *npts, tmp, sizeof(double) * 2 * (size_t)n);
@@ -4009,18 +4513,27 @@ static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, doubl
         /* T in the plane: along the unit direction u (in 2D) across T the
            plane's trace runs through the section; intervals where it is
            inside become strips u-interval x [x0, x1] along T */
-        double tl = hypot(ga[0], gc[0]), ua, uc, bs[2 * (GR_MAX_FACETS + 2)], db, dw, ta, tc;
-        int nb = 0;
+        double tl = hypot(ga[0], gc[0]), ua, uc, bs[2 * (GR_MAX_FACETS + 2)], db, dw, ta, tc, tol = fabs(shift);
+        double nb_ = -pc->n[0] * g->t[1] + pc->n[1] * g->t[0];
+        int nb = 0, on_pos;
         if (!(tl > 0)) return 0;
         ta = ga[0] / tl; tc = gc[0] / tl; /* 2D direction of T */
         ua = -tc; uc = ta;
         db = ua * ga[1] + uc * gc[1];
         dw = ua * ga[2] + uc * gc[2];
+        /* a section point on the trace (within tol) takes the side the
+           moved plane would leave it on: c - shift (db n_w - dw n_b) */
+        on_pos = -shift * (db * pc->n[2] - dw * nb_) > 0;
         for (i = 0; i < g->nsec; i++) { /* crossings of the trace (b, w) = k + u (db, dw) with the closed section */
             const double *p0 = g->sec + 2 * i, *p1 = g->sec + 2 * ((i + 1) % g->nsec);
             double e0[2] = {s * p0[0] - k[1], s * p0[1] - k[2]}, e1[2] = {s * p1[0] - k[1], s * p1[1] - k[2]};
             double c0 = db * e0[1] - dw * e0[0], c1 = db * e1[1] - dw * e1[0]; /* side of the trace */
-            if ((c0 >= 0) != (c1 >= 0)) {
+            int s0, s1;
+            if (fabs(c0) <= tol) c0 = 0;
+            if (fabs(c1) <= tol) c1 = 0;
+            s0 = c0 == 0 ? on_pos : c0 > 0;
+            s1 = c1 == 0 ? on_pos : c1 > 0;
+            if (s0 != s1) {
                 double t = c0 / (c0 - c1), q[2] = {e0[0] + t * (e1[0] - e0[0]), e0[1] + t * (e1[1] - e0[1])};
                 bs[nb++] = (q[0] * db + q[1] * dw) / (db * db + dw * dw);
             }
@@ -4109,7 +4622,7 @@ static int gr__pp_bool(const gr__pps_t *ps, const gr_polyset_t *a, const gr_poly
     int n = 0, first, chunk, total = 0;
     double part;
     if (a->point_count + b->point_count <= GR__PP_EDGES) {
-        if (gr_poly_boolean(a, b, op, ps->bool_scratch, ps->bool_bytes, out, out ? GR__PP_TRAPS : 0, &n, area) != GR_OK)
+        if (gr__poly_boolean(a, b, op, ps->bool_scratch, GR__PP_CROSS, out, out ? GR__PP_TRAPS : 0, &n, area) != GR_OK)
             return -1;
         return out ? gr__pp_merge(out, n) : n;
     }
@@ -4123,8 +4636,8 @@ static int gr__pp_bool(const gr__pps_t *ps, const gr_polyset_t *a, const gr_poly
         sub.point_count = 4 * m;
         sub.ring_sizes = NULL;
         sub.ring_count = m;
-        if (gr_poly_boolean(&sub, b, op, ps->bool_scratch, ps->bool_bytes, out ? out + 8 * total : NULL,
-                            out ? GR__PP_TRAPS - total : 0, &n, &part) != GR_OK)
+        if (gr__poly_boolean(&sub, b, op, ps->bool_scratch, GR__PP_CROSS, out ? out + 8 * total : NULL,
+                             out ? GR__PP_TRAPS - total : 0, &n, &part) != GR_OK)
             return -1;
         *area += part;
         total += n;
@@ -4160,128 +4673,171 @@ static int gr__pp_cuts(const gr__pps_t *ps, const gr__ppp_t *pc, int ng, double 
     return nr;
 }
 
-/* The part of piece i seen along d (§5.2-5.4): the piece clipped to the
-   footprint's pre-image (fpoly, local UV; or the trapezoids `start`
-   instead), minus the crossing grooves' cuts (§5.3), within the pre-image
-   of the grooves' mouths (rays leaving through the ground are blocked),
-   minus every other piece in front of it along d, itself minus its cuts
+/* Bounding box (x0, y0, x1, y1) of n points. */
+static void gr__box_of(const double *p, int n, double box[4])
+{
+    int k;
+    box[0] = box[1] = HUGE_VAL;
+    box[2] = box[3] = -HUGE_VAL;
+    for (k = 0; k < n; k++) {
+        if (p[2 * k] < box[0]) box[0] = p[2 * k];
+        if (p[2 * k] > box[2]) box[2] = p[2 * k];
+        if (p[2 * k + 1] < box[1]) box[1] = p[2 * k + 1];
+        if (p[2 * k + 1] > box[3]) box[3] = p[2 * k + 1];
+    }
+}
+
+/* The surface of every piece (§5.3): its strip (or cap, or the ground)
+   minus what the other grooves carve away, as trapezoids in its own
+   coordinates, into the pool ps->surf. A piece's surface does not depend
+   on the direction it is seen or lit from, so it is made once per
+   footprint and serves both as the piece's own start and as an occluder
+   of the others (§5.4: blocking facets and their prolongations, cut where
+   a crossing groove removes them). Returns 0, or -1 when a buffer is full. */
+static int gr__pp_surfaces(gr__pps_t *ps, int np, int ng, const double *box, double big, double tie)
+{
+    int j, used = 0;
+    for (j = 0; j < np; j++) {
+        const gr__ppp_t *pc = &ps->p[j];
+        gr_polyset_t a, b;
+        double area, *r0 = ps->tmp, *r1 = ps->tmp2;
+        int nr, npts, n, side;
+        /* only its part over the §5.1 search box matters: every ray from
+           the footprint toward the viewer or a light stays over the box
+           (that is how the box was grown), and so does every point of the
+           surface such a ray meets. The box's four sides pulled back onto
+           the plane (u(a, c) = o_u + a X_u + c Y_u is affine on it) */
+        memcpy(r0, pc->ring, sizeof(double) * 2 * (size_t)pc->nring);
+        n = pc->nring;
+        for (side = 0; side < 4 && n >= 3; side++) {
+            int ax = side & 1, hi = side >> 1;
+            double sg = hi ? -1 : 1, *t = r0;
+            if (2 * n > GR__PP_RING) return -1; /* a half-plane at most doubles it */
+            n = gr__pp_halfplane(r0, n, sg * pc->x[ax], sg * pc->y[ax], sg * (pc->o[ax] - box[ax + 2 * hi]), r1);
+            r0 = r1; r1 = t;
+        }
+        ps->surf_first[j] = used;
+        ps->surf_count[j] = 0;
+        if (n < 3) continue;
+        memcpy(ps->rc, r0, sizeof(double) * 2 * (size_t)n);
+        a = gr__pp_set(ps->rc, n, NULL, 1);
+        nr = gr__pp_cuts(ps, pc, ng, big, tie, &npts);
+        if (nr < 0) return -1;
+        b = gr__pp_set(nr > 0 ? ps->cut : NULL, nr > 0 ? npts : 0, nr > 0 ? ps->sizes : NULL, nr);
+        n = gr__pp_bool(ps, &a, &b, nr > 0 ? GR_POLY_DIFFERENCE : GR_POLY_UNION, ps->ra, &area);
+        if (n < 0 || used + n > GR__PP_SURF_TRAPS) return -1;
+        memcpy(ps->surf + 8 * used, ps->ra, sizeof(double) * 8 * (size_t)n);
+        ps->surf_first[j] = used;
+        ps->surf_count[j] = n;
+        gr__box_of(ps->ra, 4 * n, ps->surf_box + 4 * j);
+        used += n;
+    }
+    return 0;
+}
+
+/* cur minus the occluder rings gathered in ps->occ (one boolean: the rings
+   of a set unite); the new count in *ncur, swapping cur and nxt. -1 when
+   a buffer is too small. */
+static int gr__pp_occlude(const gr__pps_t *ps, double **cur, double **nxt, int *ncur, int npts, int nrings, double *area)
+{
+    gr_polyset_t a = gr__pp_traps(*cur, *ncur), b = gr__pp_set(ps->occ, npts, ps->occ_sizes, nrings);
+    double *sw;
+    int n;
+    if (nrings == 0) return 0;
+    n = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, *nxt, area);
+    if (n < 0) return -1;
+    sw = *cur; *cur = *nxt; *nxt = sw;
+    *ncur = n;
+    return 0;
+}
+
+/* The part of piece i seen along d (§5.2-5.4): the piece's surface
+   clipped to the footprint's pre-image (fpoly, local UV; or the
+   trapezoids `start` instead, already on the surface), minus every other
+   piece's surface in front of it along d
    (blocking facets and their prolongations into the crossing groove,
-   §5.4). The result (trapezoids in ps->ra or ps->rb) is returned in *res;
-   the count, or -1 when a buffer overflows. */
-static int gr__pp_region(const gr__pps_t *ps, int np, int ng, int i, const double *d, const double *fpoly,
-                         const double *start, int nstart, double big, double tie, double **res, double *area)
+   §5.4), all of them in one boolean; pieces 0 .. np - 1 and the ground
+   (piece np). The result (trapezoids in ps->ra or
+   ps->rb) is returned in *res; the count, or -1 when a buffer overflows. */
+static int gr__pp_region(const gr__pps_t *ps, int np, int i, const double *d, const double *fpoly, int nfp,
+                         const double *start, int nstart, double tie, double **res, double *area)
 {
     const gr__ppp_t *pc = &ps->p[i];
-    double *cur = ps->ra, *nxt = ps->rb, *sw, occ_unused;
+    double *cur = ps->ra, *nxt = ps->rb, cb[4];
     gr_polyset_t a, b;
-    int n, k, j, nr, npts, ncur;
+    int k, j, ncur;
     *area = 0;
     *res = cur;
     if (start) {
-        a = gr__pp_traps(start, nstart);
+        if (nstart > GR__PP_TRAPS) return -1;
+        memcpy(cur, start, sizeof(double) * 8 * (size_t)nstart);
+        ncur = nstart;
+        for (k = 0; k < ncur; k++) *area += fabs(gr_poly_area(cur + 8 * k, 4));
     } else {
-        double pre[8];
-        for (k = 0; k < 4; k++) {
+        double pre[2 * GR__PP_ELLIPSE_SIDES];
+        for (k = 0; k < nfp; k++) {
             double p3[3] = {fpoly[2 * k], fpoly[2 * k + 1], 0};
             gr__pp_onto(pc, p3, d, pre + 2 * k);
         }
-        n = 0;
-        /* into rc, which is free until the occluders: the cuts use tmp */
-        if (gr_poly_clip_convex(pc->ring, pc->nring, pre, 4, ps->rc, ps->tmp2, GR__PP_RING, &n) != GR_OK) return -1;
-        if (n < 3) return 0;
-        a = gr__pp_set(ps->rc, n, NULL, 1);
-    }
-    /* §5.3: what the crossing grooves carve away */
-    nr = gr__pp_cuts(ps, pc, ng, big, tie, &npts);
-    if (nr < 0) return -1;
-    if (nr > 0) {
-        b = gr__pp_set(ps->cut, npts, ps->sizes, nr);
-        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, cur, area);
-    } else {
-        b = gr__pp_set(NULL, 0, NULL, 0);
-        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_UNION, cur, area);
+        if (ps->surf_count[i] == 0) return 0;
+        gr__box_of(pre, nfp, cb);
+        if (cb[0] >= ps->surf_box[4 * i + 2] || cb[2] <= ps->surf_box[4 * i] || cb[1] >= ps->surf_box[4 * i + 3] ||
+            cb[3] <= ps->surf_box[4 * i + 1])
+            return 0; /* the footprint misses the piece */
+        a = gr__pp_traps(ps->surf + 8 * ps->surf_first[i], ps->surf_count[i]);
+        b = gr__pp_set(pre, nfp, NULL, 1);
+        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, cur, area);
     }
     if (ncur <= 0) return ncur;
-    /* a ray from below w = 0 must reach it inside a groove's opening (the
-       ground blocks it elsewhere); the piece's part at or above w = 0
-       (protruding facets) skips this test */
+    if (ncur <= 0) { *res = cur; *area = 0; return ncur; }
+    /* §5.4: occlusion by every other piece's surface in front along d; only
+       the parts whose box meets the region's are kept. The ground (piece
+       np, the plane minus the grooves' mouths) is one of them: a ray from
+       below w = 0 must leave through a mouth, and one from above never
+       meets it (its part in front of this plane, slid along d, lies below
+       w = 0, off any piece above) */
+    gr__box_of(cur, 4 * ncur, cb);
     {
-        double wlo = HUGE_VAL, whi = -HUGE_VAL, box[4] = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, quad[8], half[16];
-        int m, nh, na = 0;
-        for (m = 0; m < pc->nring; m++) {
-            double w = pc->o[2] + pc->ring[2 * m] * pc->x[2] + pc->ring[2 * m + 1] * pc->y[2];
-            wlo = fmin(wlo, w);
-            whi = fmax(whi, w);
-            box[0] = fmin(box[0], pc->ring[2 * m]); box[2] = fmax(box[2], pc->ring[2 * m]);
-            box[1] = fmin(box[1], pc->ring[2 * m + 1]); box[3] = fmax(box[3], pc->ring[2 * m + 1]);
-        }
-        if (wlo < -tie) {
-            if (whi > tie) { /* both sides: keep the part above aside (in rc) */
-                quad[0] = box[0] - 1; quad[1] = box[1] - 1; quad[2] = box[2] + 1; quad[3] = box[1] - 1;
-                quad[4] = box[2] + 1; quad[5] = box[3] + 1; quad[6] = box[0] - 1; quad[7] = box[3] + 1;
-                nh = gr__pp_halfplane(quad, 4, pc->x[2], pc->y[2], pc->o[2], half);
-                a = gr__pp_traps(cur, ncur);
-                b = gr__pp_set(half, nh, NULL, 1);
-                na = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, ps->rc, &occ_unused);
-                nh = gr__pp_halfplane(quad, 4, -pc->x[2], -pc->y[2], -pc->o[2], half);
-                b = gr__pp_set(half, nh, NULL, 1);
-                ncur = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, nxt, area);
-                if (na < 0 || ncur < 0) return -1;
-                sw = cur; cur = nxt; nxt = sw;
+        double sg = gr__dot3(pc->n, d) > 0 ? 1 : -1;
+        int npts = 0, nrings = 0;
+        for (j = 0; j <= np && ncur > 0; j++) {
+            const gr__ppp_t *oc = &ps->p[j];
+            const double *st = ps->surf + 8 * ps->surf_first[j];
+            double dd[3], ka, kc, k0;
+            int m, t, flat = 1;
+            if (j == i || ps->surf_count[j] == 0 || fabs(gr__dot3(oc->n, d)) <= GR__PP_EDGE_ON) continue;
+            for (m = 0; m < 3; m++) dd[m] = oc->o[m] - pc->o[m];
+            /* its part on the viewer's side of this plane; a coplanar piece
+               (every corner within the tie margin) hides nothing, its
+               overlap is settled by the cuts */
+            ka = sg * gr__dot3(pc->n, oc->x); kc = sg * gr__dot3(pc->n, oc->y); k0 = sg * gr__dot3(pc->n, dd);
+            for (m = 0; m < oc->nring && flat; m++) flat = fabs(ka * oc->ring[2 * m] + kc * oc->ring[2 * m + 1] + k0) <= tie;
+            if (flat) continue;
+            for (t = 0; t < ps->surf_count[j]; t++) {
+                double *q = ps->occ + 2 * npts, bx[4];
+                int nf = gr__pp_halfplane(st + 8 * t, 4, ka, kc, k0, ps->tmp);
+                if (nf < 3) continue;
+                for (m = 0; m < nf; m++) {
+                    double p3[3];
+                    gr__pp_point(oc, ps->tmp[2 * m], ps->tmp[2 * m + 1], p3);
+                    gr__pp_onto(pc, p3, d, q + 2 * m);
+                }
+                gr__box_of(q, nf, bx);
+                if (bx[0] >= cb[2] || bx[2] <= cb[0] || bx[1] >= cb[3] || bx[3] <= cb[1]) continue;
+                ps->occ_sizes[nrings++] = nf;
+                npts += nf;
+                /* full: subtract what is gathered. A trapezoid cut by one
+                   half-plane has 5 corners, but a degenerate one (its
+                   sides collinear to rounding) can classify its corners
+                   in and out alternately: 2 per side, 8 at most */
+                if (npts + 8 > GR__PP_OCC_POINTS || nrings == GR__PP_OCC_RINGS) {
+                    if (gr__pp_occlude(ps, &cur, &nxt, &ncur, npts, nrings, area) < 0) return -1;
+                    npts = nrings = 0;
+                    if (ncur == 0) break;
+                }
             }
-            for (k = 0; k < 4 * ps->nmouth; k++) {
-                double p3[3] = {ps->mouth[2 * k], ps->mouth[2 * k + 1], 0};
-                gr__pp_onto(pc, p3, d, ps->cut + 2 * k);
-            }
-            a = gr__pp_traps(cur, ncur);
-            b = gr__pp_set(ps->cut, 4 * ps->nmouth, NULL, ps->nmouth);
-            ncur = ps->nmouth > 0 ? gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, nxt, area) : 0;
-            if (ncur < 0) return -1;
-            sw = cur; cur = nxt; nxt = sw;
-            if (na > 0) {
-                if (ncur + na > GR__PP_TRAPS) return -1;
-                memcpy(cur + 8 * ncur, ps->rc, sizeof(double) * 8 * (size_t)na);
-                ncur = gr__pp_merge(cur, ncur + na);
-            }
-            *area = 0;
-            for (m = 0; m < ncur; m++) *area += fabs(gr_poly_area(cur + 8 * m, 4));
         }
-    }
-    /* §5.4: occlusion by every other piece in front along d */
-    for (j = 0; j < np && ncur > 0; j++) {
-        const gr__ppp_t *oc = &ps->p[j];
-        double sg = gr__dot3(pc->n, d) > 0 ? 1 : -1, dd[3], occ_area;
-        int nf, m, nocc;
-        if (j == i || fabs(gr__dot3(oc->n, d)) <= GR__PP_EDGE_ON) continue;
-        for (m = 0; m < 3; m++) dd[m] = oc->o[m] - pc->o[m];
-        /* its cuts, carried onto this plane (the map is affine on its plane) */
-        nr = gr__pp_cuts(ps, oc, ng, big, tie, &npts);
-        if (nr < 0) return -1;
-        for (m = 0; m < npts; m++) {
-            double p3[3];
-            gr__pp_point(oc, ps->cut[2 * m], ps->cut[2 * m + 1], p3);
-            gr__pp_onto(pc, p3, d, ps->cut + 2 * m);
-        }
-        /* its part on the viewer's side of this plane */
-        /* strictly in front (by the tie margin): coplanar pieces do not
-           hide each other (their overlap is settled by the cuts) */
-        nf = gr__pp_halfplane(oc->ring, oc->nring, sg * gr__dot3(pc->n, oc->x), sg * gr__dot3(pc->n, oc->y),
-                              sg * gr__dot3(pc->n, dd) - tie, ps->tmp);
-        if (nf < 3) continue;
-        for (m = 0; m < nf; m++) {
-            double p3[3];
-            gr__pp_point(oc, ps->tmp[2 * m], ps->tmp[2 * m + 1], p3);
-            gr__pp_onto(pc, p3, d, ps->tmp2 + 2 * m);
-        }
-        a = gr__pp_set(ps->tmp2, nf, NULL, 1);
-        b = gr__pp_set(ps->cut, npts, ps->sizes, nr);
-        nocc = gr__pp_bool(ps, &a, &b, nr > 0 ? GR_POLY_DIFFERENCE : GR_POLY_UNION, ps->rc, &occ_area);
-        if (nocc < 0) return -1;
-        if (nocc == 0 || !(occ_area > 0)) continue;
-        a = gr__pp_traps(cur, ncur);
-        b = gr__pp_traps(ps->rc, nocc);
-        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, nxt, area);
-        sw = cur; cur = nxt; nxt = sw;
+        if (ncur > 0 && gr__pp_occlude(ps, &cur, &nxt, &ncur, npts, nrings, area) < 0) return -1;
     }
     *res = cur;
     if (ncur <= 0) *area = 0;
@@ -4361,6 +4917,7 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
                the groove; its part above closes a protrusion and faces out
                of it, away from the groove */
             double x = e == 0 ? g->x0 : g->x1, sg = e == 0 ? 1 : -1, sec[2 * (GR_MAX_FACETS + 1)];
+            double half[4 * (GR_MAX_FACETS + 1)];
             int side;
             if (!g->end[e] || fabs(x) > big) continue;
             for (k = 0; k < g->nsec; k++) {
@@ -4370,7 +4927,13 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
             for (side = 0; side < 2; side++) {
                 gr__ppp_t *pc = &ps->p[np];
                 double su = side ? -sg : sg;
-                pc->nring = gr__pp_halfplane(sec, g->nsec, 0, side ? 1 : -1, 0, pc->ring);
+                /* the section's part on one side of w = 0: up to twice its
+                   points for a section crossing w = 0 on every facet,
+                   beyond a piece's ring for long sections (then declined) */
+                int nh = gr__pp_halfplane(sec, g->nsec, 0, side ? 1 : -1, 0, half);
+                if (nh > GR_MAX_FACETS + 2) return -1;
+                memcpy(pc->ring, half, sizeof(double) * 2 * (size_t)nh);
+                pc->nring = nh;
                 if (pc->nring < 3 || !(fabs(gr_poly_area(pc->ring, pc->nring)) > 0)) continue;
                 pc->o[0] = g->p[0] + x * g->t[0]; pc->o[1] = g->p[1] + x * g->t[1]; pc->o[2] = 0;
                 pc->x[0] = bx; pc->x[1] = by; pc->x[2] = 0;
@@ -4389,27 +4952,51 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
 /* The polygon path (§5.2-5.5) for a footprint with intersections or ends:
    r_i = A_R / A_F for every piece, measured in UV (the projection along E
    scales a plane's areas by |N.E| / E_w), lit fractions the same way along
-   each light. Returns 1 when it filled the list, 0 to leave it to §4:
-   protruding sections, too many grooves or junctions, a footprint without
-   area, or a region outgrowing its buffers. */
+   each light. Protruding sections (w > 0) take the same path: their
+   facets are pieces like any other, in front of what they hide (§5.4's
+   prolongations are the pieces' own extent along T). Returns 1 when it
+   filled the list, 0 to leave it to §4: too many grooves or junctions, a
+   footprint without area, or a region outgrowing its buffers. */
 static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__scratch_t *s, const gr_junctions_t *jn,
                         void *base, gr_facet_list_t *list)
 {
     const gr_footprint_t *fp = &q->footprint;
     gr__pps_t ps;
     gr__mfacet_t m;
-    double e[3], el, fpoly[8], af, f[2], big, tie, lit[GR_MAX_LIGHTS], area, *vis;
-    int ng = jn->grooves, np, i, k, l, nl = q->light_count, npts;
+    double e[3], el, fpoly[2 * GR__PP_ELLIPSE_SIDES], af, cr, f[2], big, tie, lit[GR_MAX_LIGHTS], area, *vis;
+    int ng = jn->grooves, np, i, k, l, nl = q->light_count, npts, nfp = 4;
     gr__ppp_t *gp;
-    /* protruding sections are left to §4 for now: the pieces, caps (split
-       at w = 0) and the opening test above w = 0 are in and match the
-       oracle on crossing ridges, but random scenes mixing ridges, cuts and
-       curved paths still break the partition by up to 50 % */
-    if (ng < 1 || ng > GR__PP_MAX_GROOVES || jn->dropped || grid->h > 0) return 0;
-    gr_footprint_polygon(fp, GR_FP_QUAD, fpoly);
-    for (k = 0; k < 4; k++) { fpoly[2 * k] -= fp->center[0]; fpoly[2 * k + 1] -= fp->center[1]; }
-    af = fabs(gr_poly_area(fpoly, 4));
-    if (!(af > 0)) return 0;
+    /* the path needs every path end (its grooves' extents), not every
+       crossing: detection lists the ends first, so a full list whose last
+       entry is a crossing or a self-intersection dropped none of them */
+    if (ng < 1 || ng > GR__PP_MAX_GROOVES) return 0;
+    if (jn->dropped && jn->items[jn->count - 1].kind != GR_JUNCTION_CROSSING &&
+        jn->items[jn->count - 1].kind != GR_JUNCTION_SELF)
+        return 0;
+    /* the footprint (§5.2): the parallelogram F ± A1 ± A2 (local UV about
+       F), or for query.ellipse the GR__PP_ELLIPSE_SIDES-gon inscribed in
+       F + A1 cos a + A2 sin a and scaled to the ellipse's area, pi |A1 x
+       A2| (the paper's rhombus through the axes' tips has 2/pi of it).
+       A_F from the axes: the shoelace sum of a flat quad's corners is not
+       exactly 0 under fused multiply-adds; a footprint without area (a
+       line or a point) is §4's, as A_R / A_F would divide rounding by
+       rounding */
+    cr = fabs(fp->axis1[0] * fp->axis2[1] - fp->axis1[1] * fp->axis2[0]);
+    if (!(cr > GR__PP_FLAT_REL * hypot(fp->axis1[0], fp->axis1[1]) * hypot(fp->axis2[0], fp->axis2[1]))) return 0;
+    if (q->ellipse) {
+        double step = 2 * GR__PI / GR__PP_ELLIPSE_SIDES, rho = sqrt(2 * GR__PI / (GR__PP_ELLIPSE_SIDES * sin(step)));
+        nfp = GR__PP_ELLIPSE_SIDES;
+        for (k = 0; k < nfp; k++) {
+            double c = rho * cos(k * step), sn = rho * sin(k * step);
+            fpoly[2 * k] = c * fp->axis1[0] + sn * fp->axis2[0];
+            fpoly[2 * k + 1] = c * fp->axis1[1] + sn * fp->axis2[1];
+        }
+        af = GR__PI * cr;
+    } else {
+        gr_footprint_polygon(fp, GR_FP_QUAD, fpoly);
+        for (k = 0; k < 4; k++) { fpoly[2 * k] -= fp->center[0]; fpoly[2 * k + 1] -= fp->center[1]; }
+        af = 4 * cr;
+    }
     el = sqrt(gr__dot3(fp->view, fp->view));
     for (k = 0; k < 3; k++) e[k] = fp->view[k] / el;
     gr__tile_image(grid, fp->center, f);
@@ -4435,6 +5022,13 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
     ps.nmouth = gr__pp_cuts(&ps, gp, ng, big, tie, &npts);
     if (ps.nmouth < 0 || npts != 4 * ps.nmouth) return 0;
     memcpy(ps.mouth, ps.cut, sizeof(double) * 2 * (size_t)npts);
+    {
+        /* the search box about f, a little larger (it bounds what matters) */
+        double bx[4], mg = 1e-6 * (jn->box[2] - jn->box[0] + jn->box[3] - jn->box[1]);
+        bx[0] = jn->box[0] - f[0] - mg; bx[1] = jn->box[1] - f[1] - mg;
+        bx[2] = jn->box[2] - f[0] + mg; bx[3] = jn->box[3] - f[1] + mg;
+        if (gr__pp_surfaces(&ps, np + 1, ng, bx, big, tie) < 0) return 0;
+    }
     list->count = 0;
     list->flags = 0;
     for (i = 0; i <= np; i++) {
@@ -4442,7 +5036,7 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
         double ne = gr__dot3(pc->n, e), ratio;
         int nv;
         if (!(ne > GR__PP_EDGE_ON)) continue; /* back-facing or edge-on (§4.3) */
-        nv = gr__pp_region(&ps, np, ng, i, e, fpoly, NULL, 0, big, tie, &vis, &area);
+        nv = gr__pp_region(&ps, np, i, e, fpoly, nfp, NULL, 0, tie, &vis, &area);
         if (nv < 0) return 0;
         ratio = fmin(area * ne / e[2] / af, 1); /* a whole footprint, to rounding */
         if (!(ratio > 0)) continue;
@@ -4455,15 +5049,19 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
             if (!(ll > 0) || !(L0[2] > 0)) continue;
             for (k = 0; k < 3; k++) L[k] = L0[k] / ll;
             if (!(gr__dot3(pc->n, L) > GR__PP_EDGE_ON)) continue;
-            if (gr__pp_region(&ps, np, ng, i, L, NULL, ps.rv, nv, big, tie, &lr, &la) < 0) return 0;
+            if (gr__pp_region(&ps, np, i, L, NULL, 0, ps.rv, nv, tie, &lr, &la) < 0) return 0;
             lit[l] = area > 0 ? la / area : 0;
         }
         m.n[0] = pc->n[0]; m.n[1] = pc->n[1]; m.n[2] = pc->n[2];
-        m.groove = pc->g >= 0 ? ps.g[pc->g].groove : -1;
+        m.groove = pc->g >= 0 ? ps.g[pc->g].groove : -1; /* a piece's record until the list is done */
         m.facet = pc->facet;
         m.refl = pc->refl;
         gr__list_add(list, &m, ratio, lit, nl);
     }
+    /* pieces of a self-crossing groove (§5) run in two directions: they
+       were kept apart above, and are named by their groove now */
+    for (i = 0; i < list->count; i++)
+        if (list->facets[i].groove >= 0) list->facets[i].groove = grid->grooves_[list->facets[i].groove].parent;
     list->grooves = ng;
     list->subfootprints = 1;
     list->flags |= GR_LIST_POLYGON;
@@ -4477,8 +5075,13 @@ static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q, void *scr
 {
     gr_junctions_t jn;
     size_t base = gr__align8(gr__scratch_layout(grid, NULL, NULL));
-    if (gr_detect(grid, q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
-    return gr__pp_query(grid, q, s, &jn, (char *)scratch + base, list);
+    if (gr__detect(grid, q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
+    if (gr__pp_query(grid, q, s, &jn, (char *)scratch + base, list)) return 1;
+    /* declined part way (a buffer outgrown): §4 starts from an empty list */
+    list->count = 0;
+    list->flags = 0;
+    list->grooves = 0;
+    return 0;
 }
 
 static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }

@@ -55,6 +55,7 @@ typedef struct gx_scene_t {
     int depth;
     gr_specular_t spec[GX_MAX_MATS];
     ex_v3_t below;
+    int lines_panel;              /* --demo adds a panel with 2 line samples (§5.6) at junctions */
 } gx_scene_t;
 
 static ex_material_t gx_material(double r, double g, double b, double f0r, double f0g, double f0b, double rough)
@@ -296,8 +297,9 @@ static void gx_two_lights(gx_scene_t *s, const double l0[5], const double l1[5],
 }
 
 /* Figures 15/16: a tiled floor, 12 x 12 tiles whose grout lines cross at
-   every corner (gr_query takes the polygon path there, §5.2-5.5); the grout
-   (reflectance 1) differs from the glazed tiles (0). */
+   every corner (gr_query takes the polygon path there, §5.2-5.5, or 2 line
+   samples in the demo's second panel); the grout (reflectance 1) differs
+   from the glazed tiles (0). */
 static int gx_scene_tiles(gx_scene_t *s)
 {
     int i, n = 13;
@@ -327,6 +329,7 @@ static int gx_scene_tiles(gx_scene_t *s)
     }
     s->eye = ex_v3(0.5, -0.25, 0.3); s->at = ex_v3(0.5, 0.45, 0.0); s->fov = 50;
     s->bench_eye = ex_v3(0.5, 0.1, 0.12); s->bench_at = ex_v3(0.5, 0.4, 0.0); s->bench_fov = 20;
+    s->lines_panel = 1; /* Fig. 16: polygons, 2 line samples, geometry */
     return 0;
 }
 
@@ -372,11 +375,65 @@ static int gx_scene_bricks(gx_scene_t *s)
     return 0;
 }
 
+/* A scratch field (issue 8's scene list): 140 scratches on brushed
+   aluminium, long and short, straight and bent, that cross one another
+   and end in view, several pixels wide near the camera. Half are clean
+   (asymmetric) V cuts; the others have the lips a stylus ploughs up beside
+   the cut (w > 0: protrusions at the crossings). A low raking light
+   catches their walls. gr_query() answers the footprints at their
+   crossings, ends and corners with the polygon path (§5.2-5.5), so this
+   is its cost in a render; --demo adds a panel with 2 line samples. */
+static int gx_scene_scratchfield(gx_scene_t *s)
+{
+    static const double v[6] = {-1, 0, 0.15, -0.9, 1, 0};
+    static const double lips[14] = {-1.6, 0, -1.2, 0.22, -0.8, 0, 0, -0.8, 0.8, 0, 1.2, 0.22, 1.6, 0};
+    int i, k, n = 140;
+    double *store;
+    ex_rng_t rng = ex_rng_for_sample(0x5c7a7c4, 1, 2, 3);
+    memset(s, 0, sizeof *s);
+    s->name = "scratchfield"; s->title = "a scratch field: scratches that cross and end (polygons, §5)";
+    if (gx_alloc(s, n, 20 * (size_t)n)) return -1;
+    store = s->store;
+    for (i = 0; i < n; i++) {
+        double cu = 0.05 + 0.9 * ex_rng_unit(&rng), cv = 0.05 + 0.9 * ex_rng_unit(&rng);
+        double ang = EX_PI * ex_rng_unit(&rng), len = 0.04 + 0.36 * ex_rng_unit(&rng) * ex_rng_unit(&rng);
+        double bend = ex_rng_unit(&rng) < 0.35 ? 0.25 * (ex_rng_unit(&rng) - 0.5) : 0;
+        double half = 0.0015 + 0.0035 * ex_rng_unit(&rng);
+        double du = 0.5 * len * cos(ang), dv = 0.5 * len * sin(ang), *p = store + 20 * i, *sec = p + 6;
+        int lipped = ex_rng_unit(&rng) < 0.5, ns = lipped ? 7 : 3;
+        p[0] = cu - du; p[1] = cv - dv;
+        p[2] = cu - bend * dv; p[3] = cv + bend * du;
+        p[4] = cu + du; p[5] = cv + dv;
+        for (k = 0; k < 2 * ns; k++) sec[k] = half * (lipped ? lips[k] : v[k]);
+        if (bend != 0) {
+            s->desc[i].kind = GR_PATH_QUADRATIC;
+            s->desc[i].point_count = 3;
+        } else { /* a segment: its end points */
+            p[2] = p[4]; p[3] = p[5];
+            s->desc[i].point_count = 2;
+        }
+        s->desc[i].points = p;
+        s->desc[i].section = sec;
+        s->desc[i].section_count = ns;
+        s->desc[i].reflectance = 0;
+    }
+    s->mats[0] = gx_material(0.10, 0.10, 0.11, 0.91, 0.92, 0.93, 0.2); /* brushed aluminium */
+    {
+        static const double key[5] = {20, -35, 4.0, 3.9, 3.6}, fill[5] = {50, 215, 0.8, 0.85, 1.0};
+        gx_two_lights(s, key, fill, ex_v3(0.12, 0.13, 0.15));
+    }
+    s->eye = ex_v3(0.5, -0.12, 0.32); s->at = ex_v3(0.5, 0.5, 0.0); s->fov = 45;
+    s->bench_eye = ex_v3(0.5, 0.12, 0.16); s->bench_at = ex_v3(0.5, 0.5, 0.0); s->bench_fov = 22;
+    s->lines_panel = 1;
+    return 0;
+}
+
 typedef int (*gx_scene_fn)(gx_scene_t *);
-static const char *const gx_scene_names[] = {"parallel", "curves", "scratches", "tiles", "bricks", "frame", "interreflect",
-                                             NULL};
-static const gx_scene_fn gx_scene_makers[] = {gx_scene_parallel, gx_scene_curves, gx_scene_scratches, gx_scene_tiles,
-                                              gx_scene_bricks,   gx_scene_frame,  gx_scene_interreflect};
+static const char *const gx_scene_names[] = {"parallel", "curves",      "scratches", "tiles", "bricks",
+                                             "frame",    "interreflect", "scratchfield", NULL};
+static const gx_scene_fn gx_scene_makers[] = {gx_scene_parallel, gx_scene_curves,       gx_scene_scratches,
+                                              gx_scene_tiles,    gx_scene_bricks,       gx_scene_frame,
+                                              gx_scene_interreflect, gx_scene_scratchfield};
 
 /* Switches the scene to its benchmark view. */
 static void gx_scene_bench_view(gx_scene_t *s)
