@@ -271,6 +271,17 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o[3],
                               const double dir[3], unsigned object, unsigned triangle,
                               double t_host, re_hit_t *out);
 
+/* re_query() for a host that knows the barycentric coordinates of its hit:
+   point = (1-u-v) p0 + u p1 + v p2, with p0, p1, p2 the triangle's corners
+   in index order (Embree's hit.u, hit.v). Same answers; a hit on the flat
+   part of its face, away from every rounding, is recognised from (u, v)
+   and three per-triangle bands (query step 0, docs/rounded_edges.md) and
+   returns RE_UNCHANGED at once, without the kd-tree. u, v may carry a
+   float tracer's error (RE__BAND_MARGIN). */
+RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o[3],
+                                 const double dir[3], unsigned object, unsigned triangle,
+                                 double t_host, double u, double v, re_hit_t *out);
+
 /* Origin on the sharp mesh (I'' of paper §4) for a secondary ray leaving a
    RE_HIT_ROUNDED hit along `dir` (dir . hit->normal > 0): where that ray
    leaves the sharp mesh, pushed out along the crossed face's normal by
@@ -563,6 +574,10 @@ typedef struct re__object_t {
     double rmax;
     double origin[3]; /* kd splits are floats relative to this (bounding-box centre) */
     const unsigned *tri_plane; /* per triangle: plane id, RE__NONE if not rounded nearby */
+    const unsigned char *bands; /* 4 per triangle, in units of 1/RE__BAND_STEPS,
+                                   rounded up: the barycentric band along the
+                                   edge opposite corner k (k < 3), and the cap
+                                   at the corners (3); query step 0 */
     const re__plane_t *planes;
     const double *sph; /* 3 per sphere */
     const unsigned *sph_corner;
@@ -1522,6 +1537,7 @@ leaf:
 typedef struct re__final_t {
     unsigned n_corners, n_spheres, n_cyls, n_edge_cyls, n_planes, n_refs, n_radii;
     unsigned *tri_plane;
+    unsigned char *bands;
     re__plane_t *planes;
     double *sph;
     unsigned *sph_corner;
@@ -1539,6 +1555,160 @@ static float re__float_up(double x)
     float f = (float)x;
     if ((double)f < x) f = nextafterf(f, HUGE_VALF);
     return f;
+}
+
+/* Query step 0: per-triangle bands. The flat part of face f is the face
+   shrunk by the half-planes H_g = {x : n_g.x <= c_g - r (1 - n_g.n_f)} of
+   the planes g of its corners (the offset of the eroded face; query step 2
+   tests the same lines). For every corner c of f and plane g of c, the
+   triangles of f with a vertex outside H_g are found by a walk over the
+   face's flat edges from the triangles at c (the part of a convex face
+   outside a half-plane is convex, so they are connected). The cut-off part
+   of such a triangle is a polygon whose barycentric coordinates follow from
+   the three signed distances alone; it is excluded by a band along one of
+   the triangle's edges (lambda_k <= beta_k) or by a cap shared by its
+   three corners (some lambda_k >= 1 - gamma, for the pieces near a corner
+   that lie along no edge of the triangle, as on the diagonal of a box
+   face): the hit is flat when every barycentric coordinate lies in
+   (beta_k, 1 - gamma). The pieces of a triangle are assigned largest first,
+   each to the band that loses the least area to it (on a box face the bands
+   skip 97% of the flat part; the narrowest band per piece, without the
+   cap, 74%). Bands err
+   only wide: rounded up to 1/RE__BAND_STEPS, plus RE__BAND_MARGIN for a
+   float host's u, v. */
+#define RE__BAND_STEPS 255.0
+#define RE__BAND_MARGIN 1e-6
+typedef struct re__piece_t {
+    unsigned t;
+    double need[4]; /* band each edge (0-2) or the corner cap (3) would need to exclude the piece */
+} re__piece_t;
+static double re__piece_min(const re__piece_t *p)
+{
+    return re__min(re__min(p->need[0], p->need[1]), re__min(p->need[2], p->need[3]));
+}
+/* Share of the triangle's area behind band a of width b: an edge band
+   1 - (1 - b)^2, the three corner caps 3 b^2. */
+static double re__band_area(unsigned a, double b) { return a < 3 ? b * (2 - b) : 3 * b * b; }
+static void re__band_take(double *beta, const double need[4])
+{
+    unsigned a, kb = 0;
+    double best = HUGE_VAL;
+    for (a = 0; a < 4; a++) {
+        double grow = need[a] > beta[a] ? re__band_area(a, re__min(need[a], 1.0)) - re__band_area(a, beta[a]) : 0;
+        if (grow < best || (grow == best && need[a] < need[kb])) best = grow, kb = a;
+    }
+    beta[kb] = re__max(beta[kb], need[kb]);
+}
+static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, const double *patch_r, unsigned *uf,
+                             re__final_t *F)
+{
+    unsigned T = an->T, c, j, i, t, k, *stamp, *queue, st = 0, *pfirst, np_cap = 8 * T + 64, n_pieces = 0;
+    double *beta;
+    re__piece_t *pc, *sorted;
+    RE__TAKE(beta, double, 4 * (size_t)T + 1);
+    RE__TAKE(stamp, unsigned, (size_t)T + 1);
+    RE__TAKE(queue, unsigned, (size_t)T + 1);
+    RE__TAKE(pfirst, unsigned, (size_t)T + 2);
+    RE__TAKE(pc, re__piece_t, np_cap);
+    for (t = 0; t < 4 * T; t++) beta[t] = 0;
+    for (t = 0; t < T; t++) stamp[t] = 0;
+    for (c = 0; c < an->nc; c++) {
+        unsigned v = an->c_vertex[c], pf = an->c_pfirst[c], np = an->c_np[c];
+        double r;
+        if (fc[c] == RE__NONE) continue;
+        r = patch_r[re__uf_find(uf, c)];
+        for (j = 0; j < np; j++) {
+            unsigned f = an->c_planes[pf + j];
+            const re__plane_t *P = &an->planes[f];
+            for (i = 0; i < np; i++) {
+                const re__plane_t *G = &an->planes[an->c_planes[pf + i]];
+                double lim = G->c - r * (1 - re__dot(G->n, P->n));
+                unsigned qh = 0, qt = 0, q;
+                if (i == j) continue;
+                st++;
+                /* seeds: the triangles of plane f at v */
+                for (q = an->voff[v]; q < an->voff[v + 1]; q++) {
+                    const re__edge_t *e = &an->edges[an->vinc[q]];
+                    unsigned h;
+                    for (h = 0; h < 2 && h < e->count; h++) {
+                        unsigned tt = e->he[h] / 3;
+                        if (an->tplane[tt] == f && stamp[tt] != st) stamp[tt] = st, queue[qt++] = tt;
+                    }
+                }
+                while (qh < qt) {
+                    unsigned tt = queue[qh++], n_out = 0;
+                    double sd[3], lam[8][3], need[4];
+                    int np2 = 0;
+                    for (k = 0; k < 3; k++) {
+                        sd[k] = re__dot(G->n, an->pos + 3 * (size_t)an->tri[3 * tt + k]) - lim;
+                        if (sd[k] > 0) n_out++;
+                    }
+                    if (!n_out) continue;
+                    /* the cut-off polygon's vertices in barycentric coordinates */
+                    for (k = 0; k < 3; k++) {
+                        unsigned k2 = (k + 1) % 3, a;
+                        if (sd[k] > 0) {
+                            for (a = 0; a < 3; a++) lam[np2][a] = a == k;
+                            np2++;
+                        }
+                        if ((sd[k] > 0) != (sd[k2] > 0)) {
+                            double tau = sd[k] / (sd[k] - sd[k2]);
+                            for (a = 0; a < 3; a++) lam[np2][a] = (a == k ? 1 - tau : 0) + (a == k2 ? tau : 0);
+                            np2++;
+                        }
+                    }
+                    {
+                        unsigned a;
+                        int m;
+                        need[3] = 1;
+                        for (a = 0; a < 3; a++) {
+                            double lo_a = 1;
+                            need[a] = 0;
+                            for (m = 0; m < np2; m++) need[a] = re__max(need[a], lam[m][a]), lo_a = re__min(lo_a, lam[m][a]);
+                            need[3] = re__min(need[3], 1 - lo_a);
+                        }
+                        if (n_pieces < np_cap) {
+                            pc[n_pieces].t = tt;
+                            for (a = 0; a < 4; a++) pc[n_pieces].need[a] = need[a];
+                            n_pieces++;
+                        } else
+                            re__band_take(beta + 4 * (size_t)tt, need); /* out of room: at once */
+                    }
+                    /* on across the face's flat edges */
+                    for (k = 0; k < 3; k++) {
+                        unsigned e = an->he_edge[3 * tt + k], o2;
+                        if (e == RE__NONE || an->edges[e].cls != RE__E_FLAT) continue;
+                        o2 = an->edges[e].he[0] / 3 == tt ? an->edges[e].he[1] / 3 : an->edges[e].he[0] / 3;
+                        if (stamp[o2] != st) stamp[o2] = st, queue[qt++] = o2;
+                    }
+                }
+            }
+        }
+    }
+    /* per triangle, largest pieces first (counting sort by triangle, then an
+       insertion sort of each triangle's few pieces) */
+    RE__TAKE(sorted, re__piece_t, n_pieces + 1);
+    memset(pfirst, 0, sizeof(unsigned) * ((size_t)T + 2));
+    for (i = 0; i < n_pieces; i++) pfirst[pc[i].t + 2]++;
+    for (t = 0; t < T; t++) pfirst[t + 2] += pfirst[t + 1];
+    for (i = 0; i < n_pieces; i++) sorted[pfirst[pc[i].t + 1]++] = pc[i];
+    for (t = 0; t < T; t++) {
+        unsigned a = pfirst[t], b = pfirst[t + 1], x, y;
+        for (x = a + 1; x < b; x++)
+            for (y = x; y > a && re__piece_min(&sorted[y - 1]) < re__piece_min(&sorted[y]); y--) {
+                re__piece_t tmp = sorted[y];
+                sorted[y] = sorted[y - 1], sorted[y - 1] = tmp;
+            }
+        for (x = a; x < b; x++) re__band_take(beta + 4 * (size_t)t, sorted[x].need);
+    }
+    RE__TAKE(F->bands, unsigned char, 4 * (size_t)T);
+    for (t = 0; t < T; t++)
+        for (k = 0; k < 4; k++) {
+            double b = beta[4 * t + k];
+            double q = b > 0 ? ceil((b + RE__BAND_MARGIN) * RE__BAND_STEPS) : 0;
+            F->bands[4 * t + k] = (unsigned char)(q > RE__BAND_STEPS ? RE__BAND_STEPS : q);
+        }
+    return RE_OK;
 }
 
 static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
@@ -1714,6 +1884,10 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     F->kd.n_tmp = F->n_edge_cyls;
     if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, RE__KD_DUP * F->n_edge_cyls, 0) == RE__NONE)
         return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "kd-tree scratch too small");
+    {
+        re_result_t rc = re__bands(an, ar, fc, patch_r, uf, F);
+        if (rc != RE_OK) return rc;
+    }
     an->st.rounded_corners += nco;
     an->st.spheres += ns;
     an->st.cylinders += ncyl;
@@ -1728,7 +1902,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
 
 static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
 {
-    return RE__ALIGN(sizeof(unsigned) * an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
+    return RE__ALIGN(sizeof(unsigned) * an->T) + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
            RE__ALIGN(sizeof(double) * 3 * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_spheres) +
            RE__ALIGN(sizeof(re__cyl_t) * F->n_cyls) + RE__ALIGN(sizeof(float) * 2 * F->n_edge_cyls) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
@@ -1761,6 +1935,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->size = an->size;
     for (c = 0; c < 3; c++) o->origin[c] = an->origin[c];
     o->tri_plane = (const unsigned *)re__put(&at, F->tri_plane, sizeof(unsigned) * an->T);
+    o->bands = (const unsigned char *)re__put(&at, F->bands, 4 * (size_t)an->T);
     o->planes = (const re__plane_t *)re__put(&at, F->planes, sizeof(re__plane_t) * F->n_planes);
     o->sph = (const double *)re__put(&at, F->sph, sizeof(double) * 3 * F->n_spheres);
     o->sph_corner = (const unsigned *)re__put(&at, F->sph_corner, sizeof(unsigned) * F->n_spheres);
@@ -2379,6 +2554,37 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
         out->normal[0] = g->n[0], out->normal[1] = g->n[1], out->normal[2] = g->n[2];
     }
     return out->kind;
+}
+
+/* Query step 0: every barycentric coordinate beyond its band (re__bands):
+   the hit is on the flat part of its face. */
+static int re__band_flat(const re__object_t *o, unsigned triangle, double u, double v)
+{
+    const unsigned char *b = o->bands + 4 * (size_t)triangle;
+    double l0 = (1 - u - v) * RE__BAND_STEPS, l1 = u * RE__BAND_STEPS, l2 = v * RE__BAND_STEPS,
+           cap = RE__BAND_STEPS - (double)b[3];
+    return l0 > (double)b[0] && l1 > (double)b[1] && l2 > (double)b[2] && l0 < cap && l1 < cap && l2 < cap;
+}
+
+RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                                 unsigned triangle, double t_host, double u, double v, re_hit_t *out)
+{
+    const re__object_t *o;
+    unsigned f;
+    if (!out || !scene || !o3 || !dir || object >= scene->n_objects) return re_query(scene, o3, dir, object, triangle, t_host, out);
+    o = &scene->objects[object];
+    if (triangle >= o->n_tris || !o->n_nodes || (f = o->tri_plane[triangle]) == RE__NONE)
+        return re_query(scene, o3, dir, object, triangle, t_host, out);
+    if (!re__band_flat(o, triangle, u, v)) return re_query(scene, o3, dir, object, triangle, t_host, out);
+    memset(out, 0, sizeof *out);
+    out->kind = RE_UNCHANGED;
+    out->t = t_host;
+    out->object = object;
+    out->feature = RE_FEATURE_FACE;
+    out->feature_index = triangle;
+    re__madd(o3, t_host, dir, out->point);
+    out->normal[0] = o->planes[f].n[0], out->normal[1] = o->planes[f].n[1], out->normal[2] = o->planes[f].n[2];
+    return RE_UNCHANGED;
 }
 
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
