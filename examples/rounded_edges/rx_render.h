@@ -352,23 +352,75 @@ static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, do
     return h;
 }
 
-/* rtcOccluded1 from o along d in (tnear, tfar), hiding geometry skip_geom's
-   hits at t <= skip_t. */
-static int rx__occluded_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, double tnear, double tfar, unsigned skip_geom,
-                             double skip_t)
+/* Shadow rays in one occlusion traversal. The filter decides each candidate
+   hit on its own, so Embree may visit them in any order: a hit of the skipped
+   geometry before skip_t is ignored; a hit on an object that is not rounded
+   blocks; a front-face hit blocks when re_query_uv finds the flat face or a
+   rounding before tmax, and is ignored on a pass-through; a back-face hit of
+   a rounded object (the ray leaves it) asks the reversed ray, as rx__trace
+   does: it blocks when that ray meets the rounded solid (or the flat face)
+   before reaching the origin. Each answer is whether the segment meets that
+   object's rounded solid around this face, which is what occlusion asks. */
+typedef struct rx__occ_ctx_t {
+    struct RTCIntersectContext ctx; /* first: Embree passes its address to the filter */
+    const rx_world_t *w;
+    unsigned skip_geom;
+    float skip_t;
+    double o[3], d[3], tmax;
+} rx__occ_ctx_t;
+
+static void rx__occlude_filter(const struct RTCFilterFunctionNArguments *args)
 {
-    rx__ctx_t c;
+    const rx__occ_ctx_t *c = (const rx__occ_ctx_t *)args->context;
+    const rx_world_t *w = c->w;
+    unsigned i, N = args->N;
+    /* SOA fields of RTCHitN (Ng_x, Ng_y, Ng_z, u, v, primID, geomID) and
+       RTCRayN (tfar is the 9th field), as in rx__skip_filter */
+    const float *ng = (const float *)args->hit, *uu = ng + 3 * N, *vv = ng + 4 * N;
+    const unsigned *prim = (const unsigned *)args->hit + 5 * N, *geom = (const unsigned *)args->hit + 6 * N;
+    const float *tfar = (const float *)args->ray + 8 * N;
+    for (i = 0; i < N; i++) {
+        unsigned g = geom[i];
+        double t = tfar[i], nd;
+        re_hit_t q;
+        re_hit_kind_t k;
+        int obj;
+        if (args->valid[i] != -1) continue;
+        if (g == c->skip_geom && tfar[i] <= c->skip_t) { args->valid[i] = 0; continue; }
+        if ((obj = w->re_object[g]) < 0) continue; /* not rounded: blocks */
+        nd = ng[i] * c->d[0] + ng[i + N] * c->d[1] + ng[i + 2 * N] * c->d[2];
+        if (nd < 0) {
+            k = re_query_uv(w->round, c->o, c->d, (unsigned)obj, prim[i], t, uu[i], vv[i], &q);
+            if (k == RE_PASS_THROUGH || (k == RE_HIT_ROUNDED && q.t >= c->tmax)) args->valid[i] = 0;
+        } else {
+            double back = rx__next_t(w, t), o2[3], d2[3];
+            int a;
+            for (a = 0; a < 3; a++) o2[a] = c->o[a] + back * c->d[a], d2[a] = -c->d[a];
+            k = re_query_uv(w->round, o2, d2, (unsigned)obj, prim[i], back - t, uu[i], vv[i], &q);
+            if (!(k == RE_UNCHANGED || (k == RE_HIT_ROUNDED && q.t < back))) args->valid[i] = 0;
+        }
+    }
+}
+
+/* 1 when the segment o + t d, t in (0, tmax), meets the mode's surfaces,
+   hiding geometry skip_geom's hits at t <= skip_t. */
+static int rx__occluded_round(const rx_world_t *w, ex_v3_t o, ex_v3_t d, double tmax, unsigned skip_geom, double skip_t)
+{
+    rx__occ_ctx_t c;
     struct RTCRay r;
-    if (skip_geom == RTC_INVALID_GEOMETRY_ID) return ex_embree_occluded(w->rtc, o, d, tnear, tfar);
     memset(&r, 0, sizeof r);
     rtcInitIntersectContext(&c.ctx);
-    c.ctx.filter = rx__skip_filter;
+    c.ctx.filter = rx__occlude_filter;
+    c.w = w;
     c.skip_geom = skip_geom;
     c.skip_t = (float)skip_t;
+    c.o[0] = o.x; c.o[1] = o.y; c.o[2] = o.z;
+    c.d[0] = d.x; c.d[1] = d.y; c.d[2] = d.z;
+    c.tmax = tmax;
     r.org_x = (float)o.x; r.org_y = (float)o.y; r.org_z = (float)o.z;
     r.dir_x = (float)d.x; r.dir_y = (float)d.y; r.dir_z = (float)d.z;
-    r.tnear = (float)tnear;
-    r.tfar = tfar < 3e38 ? (float)tfar : INFINITY;
+    r.tnear = 0;
+    r.tfar = tmax < 3e38 ? (float)tmax : INFINITY;
     r.mask = 0xFFFFFFFFu;
     rtcOccluded1(w->rtc, &c.ctx, &r);
     return r.tfar < 0;
@@ -556,21 +608,11 @@ static int rx__intersect(void *user, const ex_ray_t *ray, double tmax, ex_surfac
 static int rx__occluded(void *user, ex_v3_t o, ex_v3_t d, double tmax)
 {
     rx_world_t *w = (rx_world_t *)user;
-    ex_ray_t ray;
-    ex_surface_t s;
     unsigned skip_geom = RTC_INVALID_GEOMETRY_ID;
     double skip_t = 0;
-    int chamfer;
     if (w->mode.kind != RX_ROUNDED) return ex_embree_occluded(w->rtc, o, d, 0, tmax);
     rx__spawn_skip(w, o, d, &skip_geom, &skip_t);
-    if (!rx__occluded_skip(w, o, d, 0, tmax, skip_geom, skip_t)) return 0;
-    /* The rounded solid lies inside the sharp one, so only a blocked shadow
-       ray needs the careful walk (it may start in a removed volume or pass
-       through one). */
-    memset(&ray, 0, sizeof ray);
-    ray.o = o;
-    ray.d = d;
-    return rx__trace(w, &ray, tmax, skip_geom, skip_t, &s, &chamfer, NULL, NULL);
+    return rx__occluded_round(w, o, d, tmax, skip_geom, skip_t);
 }
 
 static void rx__pixel(void *user, int x, int y, int sample, ex_rng_t *rng, float rgb[3])
