@@ -1838,8 +1838,16 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         cb = an->vcorner[e->v[1]];
         cy->s[0] = sbase[ca] + an->edge_end[2 * i];
         cy->s[1] = sbase[cb] + an->edge_end[2 * i + 1];
-        cy->p[0] = pmap[an->tplane[e->he[0] / 3]];
-        cy->p[1] = pmap[an->tplane[e->he[1] / 3]];
+        /* p[0]: the face whose triangle runs v[0] -> v[1], on the left of
+           the edge leaving v[0] (seen from outside); p[1] is on the left
+           leaving v[1]. Around a corner every face plane is on the left of
+           exactly one of its edges, so the query reads each once. */
+        {
+            unsigned h0 = an->tri[e->he[0]] == e->v[0] ? e->he[0] : e->he[1];
+            unsigned h1 = h0 == e->he[0] ? e->he[1] : e->he[0];
+            cy->p[0] = pmap[an->tplane[h0 / 3]];
+            cy->p[1] = pmap[an->tplane[h1 / 3]];
+        }
     }
     /* Detection (§3.1): the removed zone on a face lies within g, the larger
        face reach of the edge's two corners, of the mesh edge. The query
@@ -2285,44 +2293,62 @@ static double re__dist2_halfline(const double p[3], const double a[3], const dou
     return re__dot(q, q);
 }
 
-/* Plane slot j < 2*np of a corner: the planes its edge cylinders join (each
-   plane twice; storing them once more would cost memory, not time). */
+/* Face plane j < np of a corner: the one on the left of its edge cylinder j
+   leaving the corner (re__finish orders each cylinder's planes so), which
+   lists every plane of the corner once. */
 static unsigned re__corner_plane(const re__object_t *o, const re__corner_t *K, unsigned j)
 {
-    return o->cyls[o->refs[K->first + j / 2]].p[j & 1];
+    const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
+    return cy->p[cy->s[0] - K->sfirst < K->ns ? 0 : 1];
 }
 
 static int re__corner_has_plane(const re__object_t *o, const re__corner_t *K, unsigned f)
 {
     unsigned j;
     for (j = 0; j < K->np; j++)
-        if (o->cyls[o->refs[K->first + j]].p[0] == f || o->cyls[o->refs[K->first + j]].p[1] == f) return 1;
+        if (re__corner_plane(o, K, j) == f) return 1;
     return 0;
 }
 
-static int re__add_corner(unsigned *set, unsigned *n, unsigned c)
+/* The corners a query works on, with a 64-bit filter of their ids, so "is
+   w in the set?" mostly needs no search. */
+typedef struct re__set_t {
+    unsigned c[RE__MAX_WALK], n;
+    unsigned long long bloom;
+} re__set_t;
+
+static unsigned long long re__bloom_bit(unsigned c) { return 1ull << ((c * 0x9E3779B1u) >> 26); }
+
+/* Position of corner w in the set, or n. */
+static unsigned re__set_find(const re__set_t *S, unsigned w)
 {
-    unsigned i;
-    for (i = 0; i < *n; i++)
-        if (set[i] == c) return 0;
-    if (*n == RE__MAX_WALK) return 0;
-    set[(*n)++] = c;
+    unsigned q;
+    if (!(S->bloom & re__bloom_bit(w))) return S->n;
+    for (q = 0; q < S->n && S->c[q] != w; q++) {}
+    return q;
+}
+
+static int re__set_add(re__set_t *S, unsigned c)
+{
+    if (re__set_find(S, c) < S->n || S->n == RE__MAX_WALK) return 0;
+    S->c[S->n++] = c;
+    S->bloom |= re__bloom_bit(c);
     return 1;
 }
 
 /* Is I (on plane f) on the flat part of its face, i.e. is I - r*n_f inside
    every shifted plane of the corners around it? (erosion + dilation: the
    flat part is the offset of the eroded face.) */
-static int re__on_flat_part(const re__object_t *o, const unsigned *set, unsigned n, unsigned f, const double I[3])
+static int re__on_flat_part(const re__object_t *o, const re__set_t *S, unsigned f, const double I[3])
 {
     const re__plane_t *pf = &o->planes[f];
     unsigned i, j;
-    for (i = 0; i < n; i++) {
-        const re__corner_t *K = &o->corners[set[i]];
+    for (i = 0; i < S->n; i++) {
+        const re__corner_t *K = &o->corners[S->c[i]];
         double q[3], mag, r = o->radii[K->rid];
         re__madd(I, -r, pf->n, q);
         mag = fabs(q[0]) + fabs(q[1]) + fabs(q[2]);
-        for (j = 0; j < 2u * K->np; j++) {
+        for (j = 0; j < K->np; j++) {
             unsigned gi = re__corner_plane(o, K, j);
             const re__plane_t *g = &o->planes[gi];
             if (gi == f) continue;
@@ -2357,55 +2383,54 @@ static void re__try_cyl(const re__object_t *o, unsigned c, double r, const doubl
    `set`: the solid is the union of the capsules around the eroded
    polytope's vertices and edges and the flat slabs, and past I the ray is
    inside the sharp mesh, so only capsules can be entered (docs: "Query"). */
-static void re__nearest_feature(const re__object_t *o, const unsigned *set, unsigned n, const double I[3],
-                                const double d[3], re__best_t *b)
+static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const double I[3], const double d[3],
+                                re__best_t *b)
 {
     unsigned i, j;
     b->s = HUGE_VAL;
     b->kind = RE_FEATURE_FACE;
     b->index = 0;
     b->h = 0;
-    for (i = 0; i < n; i++) {
-        const re__corner_t *K = &o->corners[set[i]];
+    for (i = 0; i < S->n; i++) {
+        const re__corner_t *K = &o->corners[S->c[i]];
         const unsigned *ref = o->refs + K->first;
         double r = o->radii[K->rid];
         for (j = 0; j < K->ns; j++) re__try_sphere(o, K->sfirst + j, r, I, d, b);
         for (j = 0; j < K->np; j++) {
-            unsigned c = ref[j], far = o->cyls[c].s[o->sph_corner[o->cyls[c].s[0]] == set[i] ? 1 : 0], q;
-            unsigned w = o->sph_corner[far];
+            unsigned c = ref[j], far = o->cyls[c].s[o->sph_corner[o->cyls[c].s[0]] == S->c[i] ? 1 : 0];
+            unsigned q = re__set_find(S, o->sph_corner[far]);
             /* each feature once: an edge between two corners of the set is
                tried from the first of them, and the far end sphere only when
                its corner is not in the set (else it is one of that
                corner's own spheres) */
-            for (q = 0; q < n && set[q] != w; q++) {}
             if (q < i) continue;
             re__try_cyl(o, c, r, I, d, b);
-            if (q == n) re__try_sphere(o, far, r, I, d, b);
+            if (q == S->n) re__try_sphere(o, far, r, I, d, b);
         }
         for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[K->np + j], r, I, d, b);
     }
 }
 
 /* Where the ray leaves the sharp mesh: the first shifted-out plane among
-   the corners' faces (the mesh is convex around a rounded corner). */
-static double re__exit(const re__object_t *o, const unsigned *set, unsigned n, const double I[3], const double d[3],
-                       unsigned *plane)
+   the corners' faces (the mesh is convex around a rounded corner). The
+   candidates are compared as fractions, one division at the end. */
+static double re__exit(const re__object_t *o, const re__set_t *S, const double I[3], const double d[3], unsigned *plane)
 {
-    double best = HUGE_VAL;
+    double bn = HUGE_VAL, bd = 1;
     unsigned i, j;
     *plane = RE__NONE;
-    for (i = 0; i < n; i++) {
-        const re__corner_t *K = &o->corners[set[i]];
-        for (j = 0; j < 2u * K->np; j++) {
+    for (i = 0; i < S->n; i++) {
+        const re__corner_t *K = &o->corners[S->c[i]];
+        for (j = 0; j < K->np; j++) {
             unsigned gi = re__corner_plane(o, K, j);
             const re__plane_t *g = &o->planes[gi];
-            double nd = re__dot(g->n, d), s;
+            double nd = re__dot(g->n, d), num;
             if (!(nd > 0)) continue;
-            s = re__max(0.0, (g->c - re__dot(g->n, I)) / nd);
-            if (s < best) best = s, *plane = gi;
+            num = re__max(0.0, g->c - re__dot(g->n, I));
+            if (num * bd < bn * nd) bn = num, bd = nd, *plane = gi;
         }
     }
-    return best;
+    return *plane == RE__NONE ? HUGE_VAL : bn / bd;
 }
 
 static void re__feature_normal(const re__object_t *o, const re__best_t *b, const double P[3], double nrm[3])
@@ -2429,7 +2454,8 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
                               unsigned triangle, double t_host, re_hit_t *out)
 {
     const re__object_t *o;
-    unsigned set[RE__MAX_WALK], n = 0, f, node, i, j, iter, exit_plane;
+    re__set_t S;
+    unsigned f, node, i, j, iter, exit_plane, ndet = 0, c0 = RE__NONE;
     double I[3];
     re__best_t best;
     double s_exit;
@@ -2447,6 +2473,8 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     if (triangle >= o->n_tris || !re__finite3(I) || !re__finite3(dir) || !o->n_nodes) return RE_UNCHANGED;
     f = o->tri_plane[triangle];
     if (f == RE__NONE) return RE_UNCHANGED;
+    S.n = 0;
+    S.bloom = 0;
     out->normal[0] = o->planes[f].n[0], out->normal[1] = o->planes[f].n[1], out->normal[2] = o->planes[f].n[2];
     /* detection: the kd-tree leaf holding I, then the corners whose rounded
        zone can reach I (paper §3.1 detection cylinders, widened to cover the
@@ -2488,25 +2516,59 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             t = re__dot(w, u);
             if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) continue;
             ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
+            ndet++;
             if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
-                re__add_corner(set, &n, ka);
-                re__add_corner(set, &n, kb);
+                re__set_add(&S, ka);
+                re__set_add(&S, kb);
+                c0 = c;
                 continue;
             }
-            if (re__corner_has_plane(o, &o->corners[ka], f)) re__add_corner(set, &n, ka);
-            if (re__corner_has_plane(o, &o->corners[kb], f)) re__add_corner(set, &n, kb);
+            if (re__corner_has_plane(o, &o->corners[ka], f)) re__set_add(&S, ka);
+            if (re__corner_has_plane(o, &o->corners[kb], f)) re__set_add(&S, kb);
         }
     }
-    if (!n || re__on_flat_part(o, set, n, f, I)) return RE_UNCHANGED;
+    if (!S.n || re__on_flat_part(o, &S, f, I)) return RE_UNCHANGED;
+    best.smin = -RE__HOST_T_SLACK * fabs(t_host);
+    /* One edge found, away from its corners (the common case): inside the
+       removed volume around the middle of an edge the only surfaces are its
+       rounding cylinder and its two faces. If the ray meets one of them
+       before coming within walk reach of either corner, that is the answer;
+       else the general search below decides. */
+    if (ndet == 1 && c0 != RE__NONE && S.n == 2) {
+        const re__cyl_t *cy = &o->cyls[c0];
+        double P[3], IP[3], inv_l2, nd0, nd1, e0 = HUGE_VAL, e1 = HUGE_VAL, sc;
+        const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
+        best.s = HUGE_VAL;
+        best.kind = RE_FEATURE_FACE;
+        best.index = 0;
+        best.h = 0;
+        re__try_cyl(o, c0, o->radii[o->corners[S.c[0]].rid], I, dir, &best);
+        nd0 = re__dot(P0->n, dir), nd1 = re__dot(P1->n, dir);
+        if (nd0 > 0) e0 = re__max(0.0, P0->c - re__dot(P0->n, I)) / nd0;
+        if (nd1 > 0) e1 = re__max(0.0, P1->c - re__dot(P1->n, I)) / nd1;
+        s_exit = re__min(e0, e1);
+        exit_plane = e0 <= e1 ? cy->p[0] : cy->p[1];
+        sc = re__min(best.s, s_exit);
+        if (sc < HUGE_VAL) {
+            re__madd(I, sc, dir, P);
+            re__sub(P, I, IP);
+            inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
+            for (i = 0; i < 2; i++) {
+                const re__corner_t *K = &o->corners[S.c[i]];
+                double wk = (double)K->walk;
+                if (re__dist2_segment(o->sph + 3 * (size_t)K->sfirst, I, IP, inv_l2) <= wk * wk) break;
+            }
+            if (i == 2) goto answer;
+        }
+    }
     /* inside the removed volume: nearest capsule or the exit, walking the
        adjacency graph (cylinder -> corner) while the ray runs toward corners
        not yet in the set (grazing rays, §3.1) */
     for (iter = 0;; iter++) {
         double P[3], IP[3], inv_l2, s;
         int grown = 0;
-        best.smin = -RE__HOST_T_SLACK * fabs(t_host);
-        re__nearest_feature(o, set, n, I, dir, &best);
-        s_exit = re__exit(o, set, n, I, dir, &exit_plane);
+        re__nearest_feature(o, &S, I, dir, &best);
+        s_exit = re__exit(o, &S, I, dir, &exit_plane);
         s = re__min(best.s, s_exit);
         if (iter == RE__MAX_WALK) break;
         /* nothing found yet (the ray runs along the edges, out of reach of
@@ -2514,19 +2576,18 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
         re__madd(I, s < HUGE_VAL ? s : 0.0, dir, P);
         re__sub(P, I, IP);
         inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
-        for (i = 0; i < n && n < RE__MAX_WALK; i++) {
-            const re__corner_t *K = &o->corners[set[i]];
+        for (i = 0; i < S.n && S.n < RE__MAX_WALK; i++) {
+            const re__corner_t *K = &o->corners[S.c[i]];
             for (j = 0; j < K->np; j++) {
                 const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
                 unsigned ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
-                unsigned w = ka == set[i] ? kb : ka, q;
+                unsigned w = ka == S.c[i] ? kb : ka;
                 const double *wc;
                 double g, d2;
                 /* a corner already in the set is skipped before its record and
                    sphere are loaded (cache misses were most of the walk's cost
                    in the render profile; the set is small) */
-                for (q = 0; q < n && set[q] != w; q++) {}
-                if (q < n) continue;
+                if (re__set_find(&S, w) < S.n) continue;
                 /* removed points lie within r of the removed zone on the faces
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within the face reach of its corner: `walk` bounds both, from
@@ -2534,11 +2595,12 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
                 wc = o->sph + 3 * (size_t)o->corners[w].sfirst;
                 g = (double)o->corners[w].walk;
                 d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
-                if (d2 <= g * g && re__add_corner(set, &n, w)) grown = 1;
+                if (d2 <= g * g && re__set_add(&S, w)) grown = 1;
             }
         }
         if (!grown) break;
     }
+answer:
     if (best.s <= s_exit && best.s < HUGE_VAL) {
         out->kind = RE_HIT_ROUNDED;
         out->t = t_host + best.s;
@@ -2590,7 +2652,8 @@ RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], co
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
 {
     const re__object_t *o;
-    unsigned set[2], n = 0, plane;
+    re__set_t S;
+    unsigned plane;
     double s, push;
     const double *nrm;
     if (!origin) return;
@@ -2601,14 +2664,16 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
     push = RE_ORIGIN_OFFSET_REL * o->size;
     nrm = hit->normal;
     if (hit->kind == RE_HIT_ROUNDED && dir) {
+        S.n = 0;
+        S.bloom = 0;
         if (hit->feature == RE_FEATURE_SPHERE && hit->feature_index < o->n_spheres) {
-            set[n++] = o->sph_corner[hit->feature_index];
+            re__set_add(&S, o->sph_corner[hit->feature_index]);
         } else if (hit->feature == RE_FEATURE_CYLINDER && hit->feature_index < o->n_cyls) {
             const re__cyl_t *cy = &o->cyls[hit->feature_index];
-            set[n++] = o->sph_corner[cy->s[0]];
-            if (o->sph_corner[cy->s[1]] != set[0]) set[n++] = o->sph_corner[cy->s[1]];
+            re__set_add(&S, o->sph_corner[cy->s[0]]);
+            re__set_add(&S, o->sph_corner[cy->s[1]]);
         }
-        s = re__exit(o, set, n, hit->point, dir, &plane);
+        s = re__exit(o, &S, hit->point, dir, &plane);
         if (s < HUGE_VAL) {
             re__madd(hit->point, s, dir, origin);
             nrm = o->planes[plane].n;
