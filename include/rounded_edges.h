@@ -1309,7 +1309,7 @@ static double re__edge_request(const re__an_t *an, const re__edge_t *e)
      neighbouring corners (a slab thinner than 2r, a short prism). */
 static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out, unsigned **uf_out)
 {
-    unsigned *uf, i, c;
+    unsigned *uf, i, c, *pmark;
     double *req, *rmax, *r;
     long long *lim0, *lim1;
     unsigned char *mism;
@@ -1322,6 +1322,8 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     RE__TAKE(lim0, long long, nc + 1);
     RE__TAKE(lim1, long long, nc + 1);
     RE__TAKE(mism, unsigned char, nc + 1);
+    RE__TAKE(pmark, unsigned, an->n_planes + 1);
+    memset(pmark, 0, sizeof(unsigned) * (an->n_planes + 1));
     for (c = 0; c < nc; c++) uf[c] = c, req[c] = HUGE_VAL, rmax[c] = HUGE_VAL, mism[c] = 0, lim0[c] = lim1[c] = -1;
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
@@ -1354,8 +1356,15 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     }
     for (c = 0; c < nc; c++) {
         unsigned v = an->c_vertex[c], p, q, s, g;
+        double umax = 0, skip;
         if (an->vstate[v] != RE__V_CORNER) continue;
         p = re__uf_find(uf, c);
+        /* a plane farther than req (1 + |u|) from v cannot bound the radius
+           below the request (n.u + 1 <= |u| + 1), so it cannot clamp it:
+           skipped before its plane and sphere loops */
+        for (s = 0; s < an->c_ns[c]; s++) umax = re__max(umax, re__len(an->su + 3 * (size_t)(an->c_sfirst[c] + s)));
+        skip = req[p] * (umax + 1) * (1 + 1e-9);
+        for (s = 0; s < an->c_np[c]; s++) pmark[an->c_planes[an->c_pfirst[c] + s]] = c + 1;
         for (q = an->voff[v]; q < an->voff[v + 1]; q++) {
             const re__edge_t *e = &an->edges[an->vinc[q]];
             unsigned w, cw;
@@ -1365,10 +1374,8 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
             for (g = 0; g < an->c_np[cw]; g++) {
                 const re__plane_t *pl = &an->planes[an->c_planes[an->c_pfirst[cw] + g]];
                 double b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
-                if (b < 0) continue; /* not a locally convex configuration */
-                for (s = 0; s < an->c_np[c]; s++)
-                    if (an->c_planes[an->c_pfirst[c] + s] == an->c_planes[an->c_pfirst[cw] + g]) break;
-                if (s < an->c_np[c]) continue;
+                if (b < 0 || b >= skip) continue; /* not locally convex, or too far to matter */
+                if (pmark[an->c_planes[an->c_pfirst[cw] + g]] == c + 1) continue; /* a plane of c itself */
                 for (s = 0; s < an->c_ns[c]; s++) {
                     double a = re__dot(pl->n, an->su + 3 * (size_t)(an->c_sfirst[c] + s)) + 1.0;
                     if (a > 0 && b / a < rmax[p]) rmax[p] = b / a, lim0[p] = v, lim1[p] = -1;
@@ -1424,7 +1431,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
 #define RE__KD_DEPTH 48
 #define RE__KD_BINS 16
 #define RE__KD_STEP 1.0   /* cost of one node step, in units of one candidate test */
-#define RE__KD_DUP 3u     /* leaf references at most this times the boxes (memory) */
+#define RE__KD_DUP 2u     /* leaf references at most this times the boxes (memory) */
 #define RE__KD_SAMPLE 256u
 
 typedef struct re__kd_t {
@@ -1560,32 +1567,33 @@ static float re__float_up(double x)
 /* Query step 0: per-triangle bands. The flat part of face f is the face
    shrunk by the half-planes H_g = {x : n_g.x <= c_g - r (1 - n_g.n_f)} of
    the planes g of its corners (the offset of the eroded face; query step 2
-   tests the same lines). For every corner c of f and plane g of c, the
-   triangles of f with a vertex outside H_g are found by a walk over the
-   face's flat edges from the triangles at c (the part of a convex face
-   outside a half-plane is convex, so they are connected). The cut-off part
-   of such a triangle is a polygon whose barycentric coordinates follow from
-   the three signed distances alone; it is excluded by a band along one of
-   the triangle's edges (lambda_k <= beta_k) or by a cap shared by its
-   three corners (some lambda_k >= 1 - gamma, for the pieces near a corner
-   that lie along no edge of the triangle, as on the diagonal of a box
-   face): the hit is flat when every barycentric coordinate lies in
-   (beta_k, 1 - gamma). The pieces of a triangle are assigned largest first,
-   each to the band that loses the least area to it (on a box face the bands
-   skip 97% of the flat part; the narrowest band per piece, without the
-   cap, 74%). Bands err
-   only wide: rounded up to 1/RE__BAND_STEPS, plus RE__BAND_MARGIN for a
-   float host's u, v. */
+   tests the same lines). Near a rounded edge between f and g the face
+   outside H_g is a strip along the edge; its triangles are found by a walk
+   over the face's flat edges from the edge's own triangle (the part of a
+   convex face outside a half-plane is convex, so they are connected). The
+   cut-off part of such a triangle is a polygon whose barycentric
+   coordinates follow from the three signed distances alone. At a corner
+   with four or more planes, the planes that are not its edges' neighbours
+   cut the face only inside the corner's face reach rho of the vertex (the
+   shrunk polygon runs through the projected sphere centres there), so each
+   triangle at the vertex gets a cap piece rho / altitude instead, and a
+   triangle of the face within rho of the vertex that does not touch it is
+   always queried. A piece is excluded by a band along one of the
+   triangle's edges (lambda_k <= beta_k) or by the cap shared by its three
+   corners (some lambda_k >= 1 - gamma): the hit is flat when every
+   barycentric coordinate lies in (beta_k, 1 - gamma). The pieces of a
+   triangle are assigned largest first, each to the band that loses the
+   least area to it (on a box face the bands skip 99% of the flat part; the
+   narrowest band per piece, without the cap, 74%). Bands err only wide:
+   rounded up to 1/RE__BAND_STEPS, plus RE__BAND_MARGIN for a float host's
+   u, v. */
 #define RE__BAND_STEPS 255.0
 #define RE__BAND_MARGIN 1e-6
 typedef struct re__piece_t {
     unsigned t;
     double need[4]; /* band each edge (0-2) or the corner cap (3) would need to exclude the piece */
+    double key;     /* the smallest of them: pieces are assigned largest key first */
 } re__piece_t;
-static double re__piece_min(const re__piece_t *p)
-{
-    return re__min(re__min(p->need[0], p->need[1]), re__min(p->need[2], p->need[3]));
-}
 /* Share of the triangle's area behind band a of width b: an edge band
    1 - (1 - b)^2, the three corner caps 3 b^2. */
 static double re__band_area(unsigned a, double b) { return a < 3 ? b * (2 - b) : 3 * b * b; }
@@ -1593,93 +1601,207 @@ static void re__band_take(double *beta, const double need[4])
 {
     unsigned a, kb = 0;
     double best = HUGE_VAL;
+    if (need[0] <= beta[0] || need[1] <= beta[1] || need[2] <= beta[2] || need[3] <= beta[3]) return; /* held already */
     for (a = 0; a < 4; a++) {
         double grow = need[a] > beta[a] ? re__band_area(a, re__min(need[a], 1.0)) - re__band_area(a, beta[a]) : 0;
         if (grow < best || (grow == best && need[a] < need[kb])) best = grow, kb = a;
     }
     beta[kb] = re__max(beta[kb], need[kb]);
 }
-static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, const double *patch_r, unsigned *uf,
-                             re__final_t *F)
-{
-    unsigned T = an->T, c, j, i, t, k, *stamp, *queue, st = 0, *pfirst, np_cap = 8 * T + 64, n_pieces = 0;
+
+typedef struct re__bandwork_t {
+    unsigned *nb; /* 3 per triangle: the neighbour across its flat edge k, or RE__NONE */
+    double *ih;   /* 3 per triangle: 1 / its altitude from corner k */
     double *beta;
-    re__piece_t *pc, *sorted;
-    RE__TAKE(beta, double, 4 * (size_t)T + 1);
-    RE__TAKE(stamp, unsigned, (size_t)T + 1);
-    RE__TAKE(queue, unsigned, (size_t)T + 1);
+    unsigned *stamp, *queue, st;
+    re__piece_t *pc;
+    unsigned n_pieces, cap;
+} re__bandwork_t;
+
+static void re__piece_add(re__bandwork_t *B, unsigned t, const double need[4])
+{
+    unsigned a;
+    if (B->n_pieces == B->cap) { re__band_take(B->beta + 4 * (size_t)t, need); return; } /* out of room: at once */
+    B->pc[B->n_pieces].t = t;
+    for (a = 0; a < 4; a++) B->pc[B->n_pieces].need[a] = need[a];
+    B->pc[B->n_pieces].key = re__min(re__min(need[0], need[1]), re__min(need[2], need[3]));
+    B->n_pieces++;
+}
+
+/* The strip of face f (plane fi) outside H_g, from the triangle of
+   half-edge he on (the edge between f and g). On that triangle the strip
+   runs along its own edge, so it is a band of width r tan(theta/2) (theta
+   the angle between the normals) over the altitude: no piece. Beyond it,
+   across the face's flat edges, the cut-off polygons are pieces. */
+static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, const re__plane_t *G, double r, unsigned he)
+{
+    const re__plane_t *P = &an->planes[fi];
+    double cs = re__dot(G->n, P->n), lim = G->c - r * (1 - cs), sn;
+    unsigned qh = 0, qt = 0, k, t0 = he / 3, ke = he % 3, m0 = (ke + 2) % 3;
+    sn = sqrt(re__max(0.0, 1 - cs * cs));
+    /* the strip's width over the altitude from the opposite corner m0;
+       tan(theta/2) = (1 - cos) / sin */
+    B->beta[4 * (size_t)t0 + m0] =
+        re__max(B->beta[4 * (size_t)t0 + m0], sn > 0 ? r * (1 - cs) / sn * B->ih[3 * (size_t)t0 + m0] : 1.0);
+    B->st++;
+    B->stamp[t0] = B->st;
+    B->queue[qt++] = t0;
+    while (qh < qt) {
+        unsigned tt = B->queue[qh++], n_out = 0, a;
+        double sd[3], need[4];
+        for (k = 0; k < 3; k++) {
+            sd[k] = re__dot(G->n, an->pos + 3 * (size_t)an->tri[3 * tt + k]) - lim;
+            if (sd[k] > 0) n_out++;
+        }
+        if (tt == t0) goto next;
+        if (!n_out) continue; /* not cut (cannot happen: it shares an outside corner) */
+        /* the cut-off polygon: the outside corners and the crossings of the
+           edges that change sign, in barycentric coordinates; need[a] is
+           its largest lambda_a, and the cap needs 1 - its smallest lambda_a
+           when one corner a alone is outside (else the cap cannot hold it) */
+        for (a = 0; a < 3; a++) need[a] = sd[a] > 0 ? 1.0 : 0.0;
+        need[3] = 1;
+        for (k = 0; k < 3; k++) {
+            unsigned k2 = (k + 1) % 3;
+            if ((sd[k] > 0) != (sd[k2] > 0)) {
+                double tau = sd[k] / (sd[k] - sd[k2]); /* lambda_k = 1 - tau, lambda_k2 = tau */
+                need[k] = re__max(need[k], 1 - tau);
+                need[k2] = re__max(need[k2], tau);
+            }
+        }
+        if (n_out == 1) {
+            unsigned a0 = sd[0] > 0 ? 0u : sd[1] > 0 ? 1u : 2u, ap = (a0 + 2) % 3, an2 = (a0 + 1) % 3;
+            /* crossings on the edges (a0, an2) and (ap, a0): lambda_a0 = 1 - tau there */
+            double ta = sd[a0] / (sd[a0] - sd[an2]), tb = sd[ap] / (sd[ap] - sd[a0]);
+            need[3] = re__max(ta, 1 - tb);
+        }
+        re__piece_add(B, tt, need);
+    next:
+        /* on across the face's flat edges that the cut-off part reaches (an
+           edge with a corner outside H_g) */
+        for (k = 0; k < 3; k++) {
+            unsigned o2 = B->nb[3 * (size_t)tt + k];
+            if (o2 == RE__NONE || !(sd[k] > 0 || sd[(k + 1) % 3] > 0)) continue;
+            if (B->stamp[o2] != B->st) B->stamp[o2] = B->st, B->queue[qt++] = o2;
+        }
+    }
+}
+
+/* Distance from p to triangle t's closest point, bounded below by the
+   distance to its plane and to its edges (exact enough for a reach test:
+   it errs low only where the point projects inside, where it is exact). */
+static double re__point_tri_dist(const re__an_t *an, unsigned t, const double p[3])
+{
+    const double *a = an->pos + 3 * (size_t)an->tri[3 * t], *b = an->pos + 3 * (size_t)an->tri[3 * t + 1],
+                 *c = an->pos + 3 * (size_t)an->tri[3 * t + 2];
+    const double *vs[3];
+    double best = HUGE_VAL, n[3], e[3], q[3], inside = 1;
+    unsigned k;
+    vs[0] = a, vs[1] = b, vs[2] = c;
+    n[0] = an->tn[3 * (size_t)t], n[1] = an->tn[3 * (size_t)t + 1], n[2] = an->tn[3 * (size_t)t + 2];
+    for (k = 0; k < 3; k++) {
+        const double *u = vs[k], *w = vs[(k + 1) % 3];
+        double ab[3], ap[3], cr[3], tt, l2;
+        re__sub(w, u, ab);
+        re__sub(p, u, ap);
+        re__cross(ab, ap, cr);
+        if (re__dot(cr, n) < 0) inside = 0;
+        l2 = re__dot(ab, ab);
+        tt = l2 > 0 ? re__max(0.0, re__min(1.0, re__dot(ap, ab) / l2)) : 0;
+        re__madd(u, tt, ab, q);
+        re__sub(p, q, e);
+        best = re__min(best, re__len(e));
+    }
+    if (inside) {
+        re__sub(p, a, e);
+        return fabs(re__dot(e, n));
+    }
+    return best;
+}
+
+static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, const double *patch_r, unsigned *uf,
+                             const double *reach, re__final_t *F)
+{
+    unsigned T = an->T, c, j, i, t, k, *pfirst;
+    re__bandwork_t B;
+    re__piece_t *sorted;
+    RE__TAKE(B.nb, unsigned, 3 * (size_t)T + 1);
+    for (t = 0; t < T; t++)
+        for (k = 0; k < 3; k++) {
+            unsigned e = an->he_edge[3 * t + k];
+            B.nb[3 * (size_t)t + k] = e == RE__NONE || an->edges[e].cls != RE__E_FLAT ? RE__NONE
+                                      : an->edges[e].he[0] / 3 == t ? an->edges[e].he[1] / 3 : an->edges[e].he[0] / 3;
+        }
+    RE__TAKE(B.beta, double, 4 * (size_t)T + 1);
+    RE__TAKE(B.ih, double, 3 * (size_t)T + 1);
+    for (t = 0; t < T; t++)
+        for (k = 0; k < 3; k++) {
+            double ed[3];
+            if (an->tbad[t]) { B.ih[3 * (size_t)t + k] = 0; continue; }
+            re__sub(an->pos + 3 * (size_t)an->tri[3 * t + (k + 2) % 3], an->pos + 3 * (size_t)an->tri[3 * t + (k + 1) % 3], ed);
+            B.ih[3 * (size_t)t + k] = re__len(ed) / an->tarea[t]; /* 1 / the altitude from corner k */
+        }
+    RE__TAKE(B.stamp, unsigned, (size_t)T + 1);
+    RE__TAKE(B.queue, unsigned, (size_t)T + 1);
     RE__TAKE(pfirst, unsigned, (size_t)T + 2);
-    RE__TAKE(pc, re__piece_t, np_cap);
-    for (t = 0; t < 4 * T; t++) beta[t] = 0;
-    for (t = 0; t < T; t++) stamp[t] = 0;
-    for (c = 0; c < an->nc; c++) {
-        unsigned v = an->c_vertex[c], pf = an->c_pfirst[c], np = an->c_np[c];
+    B.cap = 8 * T + 64;
+    B.n_pieces = 0;
+    B.st = 0;
+    RE__TAKE(B.pc, re__piece_t, B.cap);
+    for (t = 0; t < 4 * T; t++) B.beta[t] = 0;
+    for (t = 0; t < T; t++) B.stamp[t] = 0;
+    /* the strips of each rounded edge, on both its faces */
+    for (i = 0; i < an->E; i++) {
+        const re__edge_t *e = &an->edges[i];
+        unsigned t0, t1;
         double r;
-        if (fc[c] == RE__NONE) continue;
-        r = patch_r[re__uf_find(uf, c)];
-        for (j = 0; j < np; j++) {
-            unsigned f = an->c_planes[pf + j];
-            const re__plane_t *P = &an->planes[f];
-            for (i = 0; i < np; i++) {
-                const re__plane_t *G = &an->planes[an->c_planes[pf + i]];
-                double lim = G->c - r * (1 - re__dot(G->n, P->n));
-                unsigned qh = 0, qt = 0, q;
-                if (i == j) continue;
-                st++;
-                /* seeds: the triangles of plane f at v */
-                for (q = an->voff[v]; q < an->voff[v + 1]; q++) {
-                    const re__edge_t *e = &an->edges[an->vinc[q]];
-                    unsigned h;
-                    for (h = 0; h < 2 && h < e->count; h++) {
-                        unsigned tt = e->he[h] / 3;
-                        if (an->tplane[tt] == f && stamp[tt] != st) stamp[tt] = st, queue[qt++] = tt;
-                    }
-                }
+        if (!e->rounded) continue;
+        r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
+        t0 = e->he[0] / 3, t1 = e->he[1] / 3;
+        re__band_strip(an, &B, an->tplane[t0], &an->planes[an->tplane[t1]], r, e->he[0]);
+        re__band_strip(an, &B, an->tplane[t1], &an->planes[an->tplane[t0]], r, e->he[1]);
+    }
+    /* caps at corners with planes that are not edge neighbours */
+    for (c = 0; c < an->nc; c++) {
+        unsigned v = an->c_vertex[c], np = an->c_np[c];
+        double rho;
+        if (fc[c] == RE__NONE || np < 4) continue;
+        rho = reach[fc[c]] / 1.5;
+        for (j = an->voff[v]; j < an->voff[v + 1]; j++) {
+            const re__edge_t *e = &an->edges[an->vinc[j]];
+            unsigned h;
+            for (h = 0; h < 2 && h < e->count; h++) {
+                unsigned tt = e->he[h] / 3, kv = e->he[h] % 3, qh = 0, qt = 0, m;
+                double need[4];
+                /* each triangle at v once: the one whose half-edge leaves v */
+                if (an->tri[e->he[h]] != v || an->tplane[tt] == RE__NONE) continue;
+                /* the disc of radius rho around corner kv: within rho / h_m
+                   of the two edges through it (h_m the altitude from corner
+                   m, twice the area over the opposite edge), and of corner
+                   kv itself */
+                for (m = 0; m < 3; m++) need[m] = m == kv ? 1.0 : rho * B.ih[3 * (size_t)tt + m];
+                need[3] = rho * B.ih[3 * (size_t)tt + kv];
+                re__piece_add(&B, tt, need);
+                if (B.nb[3 * (size_t)tt] == RE__NONE && B.nb[3 * (size_t)tt + 1] == RE__NONE &&
+                    B.nb[3 * (size_t)tt + 2] == RE__NONE)
+                    continue; /* alone on its face */
+                /* the face's triangles within rho that do not touch v: always queried */
+                B.st++;
+                B.stamp[tt] = B.st;
+                B.queue[qt++] = tt;
                 while (qh < qt) {
-                    unsigned tt = queue[qh++], n_out = 0;
-                    double sd[3], lam[8][3], need[4];
-                    int np2 = 0;
+                    unsigned t2 = B.queue[qh++];
                     for (k = 0; k < 3; k++) {
-                        sd[k] = re__dot(G->n, an->pos + 3 * (size_t)an->tri[3 * tt + k]) - lim;
-                        if (sd[k] > 0) n_out++;
-                    }
-                    if (!n_out) continue;
-                    /* the cut-off polygon's vertices in barycentric coordinates */
-                    for (k = 0; k < 3; k++) {
-                        unsigned k2 = (k + 1) % 3, a;
-                        if (sd[k] > 0) {
-                            for (a = 0; a < 3; a++) lam[np2][a] = a == k;
-                            np2++;
+                        unsigned o2 = B.nb[3 * (size_t)t2 + k];
+                        if (o2 == RE__NONE || B.stamp[o2] == B.st) continue;
+                        B.stamp[o2] = B.st;
+                        if (an->tri[3 * o2] == v || an->tri[3 * o2 + 1] == v || an->tri[3 * o2 + 2] == v) {
+                            B.queue[qt++] = o2; /* a fan triangle of v: its own cap */
+                            continue;
                         }
-                        if ((sd[k] > 0) != (sd[k2] > 0)) {
-                            double tau = sd[k] / (sd[k] - sd[k2]);
-                            for (a = 0; a < 3; a++) lam[np2][a] = (a == k ? 1 - tau : 0) + (a == k2 ? tau : 0);
-                            np2++;
-                        }
-                    }
-                    {
-                        unsigned a;
-                        int m;
-                        need[3] = 1;
-                        for (a = 0; a < 3; a++) {
-                            double lo_a = 1;
-                            need[a] = 0;
-                            for (m = 0; m < np2; m++) need[a] = re__max(need[a], lam[m][a]), lo_a = re__min(lo_a, lam[m][a]);
-                            need[3] = re__min(need[3], 1 - lo_a);
-                        }
-                        if (n_pieces < np_cap) {
-                            pc[n_pieces].t = tt;
-                            for (a = 0; a < 4; a++) pc[n_pieces].need[a] = need[a];
-                            n_pieces++;
-                        } else
-                            re__band_take(beta + 4 * (size_t)tt, need); /* out of room: at once */
-                    }
-                    /* on across the face's flat edges */
-                    for (k = 0; k < 3; k++) {
-                        unsigned e = an->he_edge[3 * tt + k], o2;
-                        if (e == RE__NONE || an->edges[e].cls != RE__E_FLAT) continue;
-                        o2 = an->edges[e].he[0] / 3 == tt ? an->edges[e].he[1] / 3 : an->edges[e].he[0] / 3;
-                        if (stamp[o2] != st) stamp[o2] = st, queue[qt++] = o2;
+                        if (re__point_tri_dist(an, o2, an->pos + 3 * (size_t)v) > rho) continue;
+                        B.beta[4 * (size_t)o2] = B.beta[4 * (size_t)o2 + 1] = B.beta[4 * (size_t)o2 + 2] = 1;
+                        B.queue[qt++] = o2;
                     }
                 }
             }
@@ -1687,24 +1809,24 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
     }
     /* per triangle, largest pieces first (counting sort by triangle, then an
        insertion sort of each triangle's few pieces) */
-    RE__TAKE(sorted, re__piece_t, n_pieces + 1);
+    RE__TAKE(sorted, re__piece_t, B.n_pieces + 1);
     memset(pfirst, 0, sizeof(unsigned) * ((size_t)T + 2));
-    for (i = 0; i < n_pieces; i++) pfirst[pc[i].t + 2]++;
+    for (i = 0; i < B.n_pieces; i++) pfirst[B.pc[i].t + 2]++;
     for (t = 0; t < T; t++) pfirst[t + 2] += pfirst[t + 1];
-    for (i = 0; i < n_pieces; i++) sorted[pfirst[pc[i].t + 1]++] = pc[i];
+    for (i = 0; i < B.n_pieces; i++) sorted[pfirst[B.pc[i].t + 1]++] = B.pc[i];
     for (t = 0; t < T; t++) {
         unsigned a = pfirst[t], b = pfirst[t + 1], x, y;
         for (x = a + 1; x < b; x++)
-            for (y = x; y > a && re__piece_min(&sorted[y - 1]) < re__piece_min(&sorted[y]); y--) {
+            for (y = x; y > a && sorted[y - 1].key < sorted[y].key; y--) {
                 re__piece_t tmp = sorted[y];
                 sorted[y] = sorted[y - 1], sorted[y - 1] = tmp;
             }
-        for (x = a; x < b; x++) re__band_take(beta + 4 * (size_t)t, sorted[x].need);
+        for (x = a; x < b; x++) re__band_take(B.beta + 4 * (size_t)t, sorted[x].need);
     }
     RE__TAKE(F->bands, unsigned char, 4 * (size_t)T);
     for (t = 0; t < T; t++)
         for (k = 0; k < 4; k++) {
-            double b = beta[4 * t + k];
+            double b = B.beta[4 * t + k];
             double q = b > 0 ? ceil((b + RE__BAND_MARGIN) * RE__BAND_STEPS) : 0;
             F->bands[4 * t + k] = (unsigned char)(q > RE__BAND_STEPS ? RE__BAND_STEPS : q);
         }
@@ -1893,7 +2015,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, RE__KD_DUP * F->n_edge_cyls, 0) == RE__NONE)
         return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "kd-tree scratch too small");
     {
-        re_result_t rc = re__bands(an, ar, fc, patch_r, uf, F);
+        re_result_t rc = re__bands(an, ar, fc, patch_r, uf, reach, F);
         if (rc != RE_OK) return rc;
     }
     an->st.rounded_corners += nco;

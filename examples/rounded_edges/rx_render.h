@@ -453,10 +453,11 @@ static void rx__spawn_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, unsigned *
 {
     const rx__spawn_t *sp = &rx__spawn;
     ex_v3_t p, e;
-    double dir[3], org[3], t, tol = 1e-4 * w->scene->scale;
+    double dir[3], org[3], t, tol;
     *skip_geom = RTC_INVALID_GEOMETRY_ID;
     *skip_t = 0;
     if (sp->w != w) return;
+    tol = 1e-4 * w->scene->scale;
     p = ex_v3(sp->hit.point[0], sp->hit.point[1], sp->hit.point[2]);
     if (ex_dot(ex_sub(o, p), ex_sub(o, p)) > tol * tol) return;
     dir[0] = d.x; dir[1] = d.y; dir[2] = d.z;
@@ -593,7 +594,7 @@ static int rx__intersect(void *user, const ex_ray_t *ray, double tmax, ex_surfac
     re_hit_t q;
     unsigned geom = 0;
     int chamfer, found;
-    if (w->mode.kind == RX_ROUNDED) rx__spawn_skip(w, ray->o, ray->d, &skip_geom, &skip_t);
+    if (w->mode.kind == RX_ROUNDED && rx__spawn.w) rx__spawn_skip(w, ray->o, ray->d, &skip_geom, &skip_t);
     q.kind = RE_UNCHANGED;
     found = rx__trace(w, ray, tmax, skip_geom, skip_t, s, &chamfer, &q, &geom);
     if (w->mode.kind == RX_ROUNDED) {
@@ -611,7 +612,7 @@ static int rx__occluded(void *user, ex_v3_t o, ex_v3_t d, double tmax)
     unsigned skip_geom = RTC_INVALID_GEOMETRY_ID;
     double skip_t = 0;
     if (w->mode.kind != RX_ROUNDED) return ex_embree_occluded(w->rtc, o, d, 0, tmax);
-    rx__spawn_skip(w, o, d, &skip_geom, &skip_t);
+    if (rx__spawn.w) rx__spawn_skip(w, o, d, &skip_geom, &skip_t);
     return rx__occluded_round(w, o, d, tmax, skip_geom, skip_t);
 }
 
