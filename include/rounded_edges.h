@@ -1300,6 +1300,33 @@ static double re__edge_request(const re__an_t *an, const re__edge_t *e)
     return r == HUGE_VAL ? an->m->radius : r;
 }
 
+/* A straight rounded edge split by vertices where only its two face planes
+   meet (k = 2) is one rounding cylinder: from corner c along edge e, step
+   over such vertices to the corner at the far end of the chain. Returns it
+   (RE__NONE for a closed chain) and the chain's last edge in *last. */
+static unsigned re__chain_end(const re__an_t *an, unsigned c, unsigned e, unsigned *last)
+{
+    unsigned v = an->c_vertex[c], steps = 0;
+    for (;;) {
+        const re__edge_t *ed = &an->edges[e];
+        unsigned w = ed->v[0] == v ? ed->v[1] : ed->v[0], cw = an->vcorner[w], q, nx = RE__NONE;
+        *last = e;
+        if (an->c_np[cw] != 2) return cw;
+        if (cw == c || ++steps > an->V) return RE__NONE;
+        for (q = an->voff[w]; q < an->voff[w + 1]; q++)
+            if (an->vinc[q] != e && an->edges[an->vinc[q]].rounded) nx = an->vinc[q];
+        if (nx == RE__NONE) return RE__NONE;
+        v = w, e = nx;
+    }
+}
+
+/* Unit-radius offset of the sphere where rounded edge e meets corner c. */
+static const double *re__edge_su(const re__an_t *an, unsigned c, unsigned e)
+{
+    const re__edge_t *ed = &an->edges[e];
+    return an->su + 3 * (size_t)(an->c_sfirst[c] + an->edge_end[2 * e + (ed->v[0] == an->c_vertex[c] ? 0u : 1u)]);
+}
+
 /* Step 6: one radius per patch (corners linked by rounded edges) and its
    largest valid value. Everything at a corner scales linearly with r, so
    each constraint gives a bound r <= b directly:
@@ -1347,6 +1374,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         rq = re__edge_request(an, e);
         if (req[p] != HUGE_VAL && req[p] != rq) mism[p] = 1;
         req[p] = re__min(req[p], rq);
+        if (an->c_np[ca] == 2 || an->c_np[cb] == 2) continue; /* part of a chain: bounded from its ends below */
         re__sub(an->pos + 3 * (size_t)e->v[1], an->pos + 3 * (size_t)e->v[0], dir);
         L = re__len(dir);
         re__sub(an->su + 3 * (size_t)(an->c_sfirst[ca] + an->edge_end[2 * i]),
@@ -1357,7 +1385,9 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     for (c = 0; c < nc; c++) {
         unsigned v = an->c_vertex[c], p, q, s, g;
         double umax = 0, skip;
-        if (an->vstate[v] != RE__V_CORNER) continue;
+        /* a vertex inside a straight edge: its sphere ends up between the
+           chain's end spheres (re__finish), which are checked */
+        if (an->vstate[v] != RE__V_CORNER || an->c_np[c] == 2) continue;
         p = re__uf_find(uf, c);
         /* a plane farther than req (1 + |u|) from v cannot bound the radius
            below the request (n.u + 1 <= |u| + 1), so it cannot clamp it:
@@ -1371,6 +1401,20 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
             if (!e->rounded) continue;
             w = e->v[0] == v ? e->v[1] : e->v[0];
             cw = an->vcorner[w];
+            if (an->c_np[cw] == 2) {
+                /* a straight chain: its far corner bounds the radius, by the
+                   chain's length (the edge bound) and by its planes */
+                unsigned last, cb = re__chain_end(an, c, an->vinc[q], &last);
+                double dir[3], du[3], L, den;
+                if (cb == RE__NONE) continue;
+                w = an->c_vertex[cb];
+                cw = cb;
+                re__sub(an->pos + 3 * (size_t)w, an->pos + 3 * (size_t)v, dir);
+                L = re__len(dir);
+                re__sub(re__edge_su(an, c, an->vinc[q]), re__edge_su(an, cb, last), du);
+                den = re__dot(du, dir) / L;
+                if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = v, lim1[p] = w;
+            }
             for (g = 0; g < an->c_np[cw]; g++) {
                 const re__plane_t *pl = &an->planes[an->c_planes[an->c_pfirst[cw] + g]];
                 double b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
@@ -1866,6 +1910,32 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             unsigned q = an->c_planes[an->c_pfirst[c] + j];
             if (pmap[q] == RE__NONE) pmap[q] = F->n_planes++;
         }
+    }
+    /* A vertex inside a straight edge (k = 2) has its sphere on the chain's
+       axis; where the chain's end spheres are set back past it (a short
+       first segment), it is moved along the axis into their span, which
+       leaves the union of capsules unchanged and keeps it inside. */
+    for (c = 0; c < an->nc; c++) {
+        unsigned v = an->c_vertex[c], q, e0 = RE__NONE, e1 = RE__NONE, l0, l1, ca, cb, a;
+        double r, pa[3], pb[3], pc[3], ab[3], t, L2;
+        if (fc[c] == RE__NONE || an->c_np[c] != 2) continue;
+        for (q = an->voff[v]; q < an->voff[v + 1]; q++)
+            if (an->edges[an->vinc[q]].rounded) { if (e0 == RE__NONE) e0 = an->vinc[q]; else e1 = an->vinc[q]; }
+        if (e1 == RE__NONE) continue;
+        ca = re__chain_end(an, c, e0, &l0);
+        cb = re__chain_end(an, c, e1, &l1);
+        if (ca == RE__NONE || cb == RE__NONE) continue;
+        r = patch_r[re__uf_find(uf, c)];
+        re__madd(an->pos + 3 * (size_t)an->c_vertex[ca], r, re__edge_su(an, ca, l0), pa);
+        re__madd(an->pos + 3 * (size_t)an->c_vertex[cb], r, re__edge_su(an, cb, l1), pb);
+        re__madd(an->pos + 3 * (size_t)v, r, an->su + 3 * (size_t)an->c_sfirst[c], pc);
+        re__sub(pb, pa, ab);
+        L2 = re__dot(ab, ab);
+        re__sub(pc, pa, pc);
+        t = L2 > 0 ? re__dot(pc, ab) / L2 : -1; /* ends at one point (the largest radius): there */
+        if (t >= 0 && t <= 1) continue;
+        for (a = 0; a < 3; a++)
+            an->su[3 * (size_t)an->c_sfirst[c] + a] = ((t < 0 ? pa[a] : pb[a]) - an->pos[3 * (size_t)v + a]) / r;
     }
     F->n_corners = nco;
     F->n_spheres = ns;
