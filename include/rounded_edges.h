@@ -1739,8 +1739,9 @@ static double re__point_tri_dist(const re__an_t *an, unsigned t, const double p[
     const double *a = an->pos + 3 * (size_t)an->tri[3 * t], *b = an->pos + 3 * (size_t)an->tri[3 * t + 1],
                  *c = an->pos + 3 * (size_t)an->tri[3 * t + 2];
     const double *vs[3];
-    double best = HUGE_VAL, n[3], e[3], q[3], inside = 1;
+    double best = HUGE_VAL, n[3], e[3], q[3];
     unsigned k;
+    int inside = 1;
     vs[0] = a, vs[1] = b, vs[2] = c;
     n[0] = an->tn[3 * (size_t)t], n[1] = an->tn[3 * (size_t)t + 1], n[2] = an->tn[3 * (size_t)t + 2];
     for (k = 0; k < 3; k++) {
