@@ -1625,19 +1625,15 @@ static float re__float_up(double x)
    always queried. A piece is excluded by a band along one of the
    triangle's edges (lambda_k <= beta_k) or by the cap shared by its three
    corners (some lambda_k >= 1 - gamma): the hit is flat when every
-   barycentric coordinate lies in (beta_k, 1 - gamma). The pieces of a
-   triangle are assigned largest first, each to the band that loses the
-   least area to it (on a box face the bands skip 99% of the flat part; the
-   narrowest band per piece, without the cap, 74%). Bands err only wide:
+   barycentric coordinate lies in (beta_k, 1 - gamma). Every edge's band on
+   its own triangle is set first; then each other piece goes to the band
+   that loses the least area to it (on a box face the bands skip 99% of
+   the flat part; the narrowest band per piece, without the cap, 74%).
+   Bands err only wide:
    rounded up to 1/RE__BAND_STEPS, plus RE__BAND_MARGIN for a float host's
    u, v. */
 #define RE__BAND_STEPS 255.0
 #define RE__BAND_MARGIN 1e-6
-typedef struct re__piece_t {
-    unsigned t;
-    double need[4]; /* band each edge (0-2) or the corner cap (3) would need to exclude the piece */
-    double key;     /* the smallest of them: pieces are assigned largest key first */
-} re__piece_t;
 /* Share of the triangle's area behind band a of width b: an edge band
    1 - (1 - b)^2, the three corner caps 3 b^2. */
 static double re__band_area(unsigned a, double b) { return a < 3 ? b * (2 - b) : 3 * b * b; }
@@ -1658,35 +1654,29 @@ typedef struct re__bandwork_t {
     double *ih;   /* 3 per triangle: 1 / its altitude from corner k */
     double *beta;
     unsigned *stamp, *queue, st;
-    re__piece_t *pc;
-    unsigned n_pieces, cap;
 } re__bandwork_t;
-
-static void re__piece_add(re__bandwork_t *B, unsigned t, const double need[4])
-{
-    unsigned a;
-    if (B->n_pieces == B->cap) { re__band_take(B->beta + 4 * (size_t)t, need); return; } /* out of room: at once */
-    B->pc[B->n_pieces].t = t;
-    for (a = 0; a < 4; a++) B->pc[B->n_pieces].need[a] = need[a];
-    B->pc[B->n_pieces].key = re__min(re__min(need[0], need[1]), re__min(need[2], need[3]));
-    B->n_pieces++;
-}
 
 /* The strip of face f (plane fi) outside H_g, from the triangle of
    half-edge he on (the edge between f and g). On that triangle the strip
    runs along its own edge, so it is a band of width r tan(theta/2) (theta
    the angle between the normals) over the altitude: no piece. Beyond it,
    across the face's flat edges, the cut-off polygons are pieces. */
-static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, const re__plane_t *G, double r, unsigned he)
+static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, const re__plane_t *G, double r, unsigned he,
+                           int own)
 {
     const re__plane_t *P = &an->planes[fi];
     double cs = re__dot(G->n, P->n), lim = G->c - r * (1 - cs), sn;
     unsigned qh = 0, qt = 0, k, t0 = he / 3, ke = he % 3, m0 = (ke + 2) % 3;
-    sn = sqrt(re__max(0.0, 1 - cs * cs));
-    /* the strip's width over the altitude from the opposite corner m0;
-       tan(theta/2) = (1 - cos) / sin */
-    B->beta[4 * (size_t)t0 + m0] =
-        re__max(B->beta[4 * (size_t)t0 + m0], sn > 0 ? r * (1 - cs) / sn * B->ih[3 * (size_t)t0 + m0] : 1.0);
+    if (own) {
+        /* the strip's width over the altitude from the opposite corner m0;
+           tan(theta/2) = (1 - cos) / sin */
+        sn = sqrt(re__max(0.0, 1 - cs * cs));
+        B->beta[4 * (size_t)t0 + m0] =
+            re__max(B->beta[4 * (size_t)t0 + m0], sn > 0 ? r * (1 - cs) / sn * B->ih[3 * (size_t)t0 + m0] : 1.0);
+        return;
+    }
+    if (B->nb[3 * (size_t)t0] == RE__NONE && B->nb[3 * (size_t)t0 + 1] == RE__NONE && B->nb[3 * (size_t)t0 + 2] == RE__NONE)
+        return; /* alone on its face: nothing beyond the own band */
     B->st++;
     B->stamp[t0] = B->st;
     B->queue[qt++] = t0;
@@ -1719,7 +1709,7 @@ static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, c
             double ta = sd[a0] / (sd[a0] - sd[an2]), tb = sd[ap] / (sd[ap] - sd[a0]);
             need[3] = re__max(ta, 1 - tb);
         }
-        re__piece_add(B, tt, need);
+        re__band_take(B->beta + 4 * (size_t)tt, need);
     next:
         /* on across the face's flat edges that the cut-off part reaches (an
            edge with a corner outside H_g) */
@@ -1767,9 +1757,9 @@ static double re__point_tri_dist(const re__an_t *an, unsigned t, const double p[
 static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, const double *patch_r, unsigned *uf,
                              const double *reach, re__final_t *F)
 {
-    unsigned T = an->T, c, j, i, t, k, *pfirst;
+    unsigned T = an->T, c, j, i, t, k;
+    int own;
     re__bandwork_t B;
-    re__piece_t *sorted;
     RE__TAKE(B.nb, unsigned, 3 * (size_t)T + 1);
     for (t = 0; t < T; t++)
         for (k = 0; k < 3; k++) {
@@ -1788,24 +1778,25 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
         }
     RE__TAKE(B.stamp, unsigned, (size_t)T + 1);
     RE__TAKE(B.queue, unsigned, (size_t)T + 1);
-    RE__TAKE(pfirst, unsigned, (size_t)T + 2);
-    B.cap = 8 * T + 64;
-    B.n_pieces = 0;
     B.st = 0;
-    RE__TAKE(B.pc, re__piece_t, B.cap);
     for (t = 0; t < 4 * T; t++) B.beta[t] = 0;
     for (t = 0; t < T; t++) B.stamp[t] = 0;
-    /* the strips of each rounded edge, on both its faces */
-    for (i = 0; i < an->E; i++) {
-        const re__edge_t *e = &an->edges[i];
-        unsigned t0, t1;
-        double r;
-        if (!e->rounded) continue;
-        r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
-        t0 = e->he[0] / 3, t1 = e->he[1] / 3;
-        re__band_strip(an, &B, an->tplane[t0], &an->planes[an->tplane[t1]], r, e->he[0]);
-        re__band_strip(an, &B, an->tplane[t1], &an->planes[an->tplane[t0]], r, e->he[1]);
-    }
+    /* the strips of each rounded edge, on both its faces: first every
+       edge's band on its own triangles, then the pieces beyond them, each
+       assigned at once to the band that loses the least area (the own
+       bands, the widest, are in place by then, so a corner piece joins
+       one of them or the cap) */
+    for (own = 1; own >= 0; own--)
+        for (i = 0; i < an->E; i++) {
+            const re__edge_t *e = &an->edges[i];
+            unsigned t0, t1;
+            double r;
+            if (!e->rounded) continue;
+            r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
+            t0 = e->he[0] / 3, t1 = e->he[1] / 3;
+            re__band_strip(an, &B, an->tplane[t0], &an->planes[an->tplane[t1]], r, e->he[0], own);
+            re__band_strip(an, &B, an->tplane[t1], &an->planes[an->tplane[t0]], r, e->he[1], own);
+        }
     /* caps at corners with planes that are not edge neighbours */
     for (c = 0; c < an->nc; c++) {
         unsigned v = an->c_vertex[c], np = an->c_np[c];
@@ -1826,7 +1817,7 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
                    kv itself */
                 for (m = 0; m < 3; m++) need[m] = m == kv ? 1.0 : rho * B.ih[3 * (size_t)tt + m];
                 need[3] = rho * B.ih[3 * (size_t)tt + kv];
-                re__piece_add(&B, tt, need);
+                re__band_take(B.beta + 4 * (size_t)tt, need);
                 if (B.nb[3 * (size_t)tt] == RE__NONE && B.nb[3 * (size_t)tt + 1] == RE__NONE &&
                     B.nb[3 * (size_t)tt + 2] == RE__NONE)
                     continue; /* alone on its face */
@@ -1851,22 +1842,6 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
                 }
             }
         }
-    }
-    /* per triangle, largest pieces first (counting sort by triangle, then an
-       insertion sort of each triangle's few pieces) */
-    RE__TAKE(sorted, re__piece_t, B.n_pieces + 1);
-    memset(pfirst, 0, sizeof(unsigned) * ((size_t)T + 2));
-    for (i = 0; i < B.n_pieces; i++) pfirst[B.pc[i].t + 2]++;
-    for (t = 0; t < T; t++) pfirst[t + 2] += pfirst[t + 1];
-    for (i = 0; i < B.n_pieces; i++) sorted[pfirst[B.pc[i].t + 1]++] = B.pc[i];
-    for (t = 0; t < T; t++) {
-        unsigned a = pfirst[t], b = pfirst[t + 1], x, y;
-        for (x = a + 1; x < b; x++)
-            for (y = x; y > a && sorted[y - 1].key < sorted[y].key; y--) {
-                re__piece_t tmp = sorted[y];
-                sorted[y] = sorted[y - 1], sorted[y - 1] = tmp;
-            }
-        for (x = a; x < b; x++) re__band_take(B.beta + 4 * (size_t)t, sorted[x].need);
     }
     RE__TAKE(F->bands, unsigned char, 4 * (size_t)T);
     for (t = 0; t < T; t++)
