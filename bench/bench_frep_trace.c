@@ -5,8 +5,11 @@
    image of primary rays is cast; we report rays per second on 1 and on 2
    threads, mean and max |t - t_ref| over rays both hit, and the percentage
    of missed and false hits. The reference is interval bisection (affine
-   forms) to 1e-13 of the same ray, and for polynomial models the analytic
-   method is cross-checked against it. A row is Pareto-optimal when no other
+   forms) to 1e-13 of the same ray, and for polynomial models (the cup and
+   Barth's sextic as CSG of polynomials) its hits are confirmed in
+   __float128. Rows marked "box" clip rays to the model's fr_bound_box box,
+   "prepared" also use its fr_prepare model, as a renderer would (the
+   other rows trace the bare segment [0, 12]). A row is Pareto-optimal when no other
    row of the model is at least as fast (1 thread), at least as accurate
    (max error) and misses no more rays.
    Usage: bench_frep_trace OUTDIR   (CSV: OUTDIR/frep_trace.csv) */
@@ -16,6 +19,7 @@
 #include "frep.h"
 #include <pthread.h>
 #include <quadmath.h>
+#include "test_frep_ref_models.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -173,21 +177,11 @@ static fr_trace_desc_t mk(fr_method_t m, double tol)
     return d;
 }
 
-/* The tangle cube in __float128: -(x^4 - 5x^2 + y^4 - 5y^2 + z^4 - 5z^2 + 11.8). */
-static __float128 tangle_q(const double *o, const double *d, __float128 t)
-{
-    __float128 s = 11.8Q;
-    int k;
-    for (k = 0; k < 3; k++) {
-        __float128 x = (__float128)o[k] + t * (__float128)d[k], x2 = x * x;
-        s += x2 * x2 - 5 * x2;
-    }
-    return -s;
-}
-
-/* Confirms reference hits of a polynomial model in quad: a sign change of
-   g within +-eps of t_ref. Returns the number confirmed; *n gets the hits. */
-static long quad_confirm(const double *o, const double *d, const double *tref, double eps, long *n)
+/* Confirms reference hits of a polynomial model (the tangle cube) or a
+   CSG of polynomials (cup, Barth) in quad: a sign change of g within
+   +-eps of t_ref. Returns the number confirmed; *n gets the hits. */
+static long quad_confirm(__float128 (*g)(const double *, const double *, __float128), const double *o, const double *d,
+                         const double *tref, double eps, long *n)
 {
     long ok = 0, i;
     *n = 0;
@@ -195,8 +189,8 @@ static long quad_confirm(const double *o, const double *d, const double *tref, d
         __float128 a, b;
         if (!(tref[i] == tref[i])) continue;
         (*n)++;
-        a = tangle_q(o + 3 * i, d + 3 * i, (__float128)tref[i] - eps);
-        b = tangle_q(o + 3 * i, d + 3 * i, (__float128)tref[i] + eps);
+        a = g(o + 3 * i, d + 3 * i, (__float128)tref[i] - eps);
+        b = g(o + 3 * i, d + 3 * i, (__float128)tref[i] + eps);
         if ((a <= 0 && b >= 0) || (a >= 0 && b <= 0)) ok++;
     }
     return ok;
@@ -221,7 +215,9 @@ int main(int argc, char **argv)
         double t0 = 0, t1 = 12, tref_time;
         fr_trace_desc_t cand[MAXROWS];
         const char *label[MAXROWS];
-        int nc = 0;
+        int nc = 0, has_prep = 0;
+        fr_prepared_t prep;
+        double box[6];
         if (mi < 4) {
             snprintf(path, sizeof path, "examples/models/%s.hf", names[mi]);
             if (load_model(path, &tape)) { fprintf(stderr, "skip %s\n", names[mi]); continue; }
@@ -239,6 +235,27 @@ int main(int argc, char **argv)
         }
         /* the method x parameter grid */
         if (poly) { cand[nc] = mk(FR_METHOD_ANALYTIC, 0); label[nc++] = "analytic"; }
+        {
+            /* a renderer's setup: the model's box (fr_bound_box), and the
+               prepared model (fr_prepare) of that box */
+            static const double lo[3] = {-5, -5, -5}, hi[3] = {5, 5, 5};
+            void *s = malloc(fr_scratch_size(&tape, FR_EVAL_INTERVAL));
+            has_prep = s && !(tape.flags & FR_TAPE_NO_INTERVAL) && fr_bound_box(&tape, lo, hi, 7, s, box, box + 3) == FR_OK &&
+                       fr_prepare(&tape, box, &prep) == FR_OK;
+            free(s);
+            if (has_prep && poly) {
+                cand[nc] = mk(FR_METHOD_ANALYTIC, 0); cand[nc].bounds = box; label[nc++] = "analytic box";
+                cand[nc] = mk(FR_METHOD_ANALYTIC, 0); cand[nc].bounds = box; cand[nc].prepared = &prep;
+                label[nc++] = "analytic box prepared";
+            }
+            if (has_prep && prep.kind == FR_PREPARED_POLY) {
+                cand[nc] = mk(FR_METHOD_INTERVAL, 1e-7); cand[nc].bounds = box; label[nc++] = "interval 1e-7 box";
+                cand[nc] = mk(FR_METHOD_INTERVAL, 1e-7); cand[nc].bounds = box; cand[nc].prepared = &prep;
+                label[nc++] = "interval 1e-7 box prepared";
+                cand[nc] = mk(FR_METHOD_INTERVAL, 1e-10); cand[nc].bounds = box; cand[nc].prepared = &prep;
+                label[nc++] = "interval 1e-10 box prepared";
+            }
+        }
         {
             static const double steps[3] = {12.0 / 64, 12.0 / 256, 12.0 / 1024};
             static const char *sl[3] = {"step L/64 illinois", "step L/256 illinois", "step L/1024 illinois"};
@@ -297,9 +314,10 @@ int main(int argc, char **argv)
         }
         printf("\n%s (%d x %d primary rays, reference interval bisection 1e-13%s)\n", names[mi], W, H,
                poly ? "; polynomial leaves: analytic available" : "");
-        if (!strcmp(names[mi], "tangle_cube")) {
-            long nh, ok = quad_confirm(o, d, tref, 1e-11, &nh);
-            printf("reference checked in __float128: %ld of %ld hits have a sign change of g within +-1e-11\n", ok, nh);
+        if (mi < 3) {
+            __float128 (*g)(const double *, const double *, __float128) = mi == 0 ? cup_q : mi == 1 ? tangle_q : barth_q;
+            long nh, ok = quad_confirm(g, o, d, tref, 1e-11, &nh);
+            printf("reference checked in __float128: %ld of %ld hits have a sign change of f within +-1e-11\n", ok, nh);
         }
         printf("%-32s %11s %11s %10s %10s %7s %7s %s\n", "method", "rays/s 1c", "rays/s 2c", "mean|dt|", "max|dt|",
                "miss%", "false%", "pareto");
@@ -312,6 +330,7 @@ int main(int argc, char **argv)
                         rows[r].pareto);
         }
         fflush(stdout);
+        if (has_prep) fr_prepared_free(&prep);
         fr_tape_free(&tape);
     }
     if (csv) fclose(csv);

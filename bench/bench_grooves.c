@@ -12,11 +12,12 @@
 
    "Equal error": the geometry time at ours' RMSE, interpolated log-log
    between the two spp levels that bracket it (extrapolated as time ∝
-   error^-2 beyond 256 spp, and marked so). Ours runs twice: as §4.4 (facet
-   normals of the unperturbed section in the frame at the footprint,
-   perturb_normals = -1) and with grooves.h's default normals (tilted by the
-   perturbation's slope and turned along a curved path where the view ray
-   meets each facet), method "ours_tilt".
+   error^-2 beyond 256 spp, and marked so). Ours runs twice: method "paper"
+   is §4 as the paper has it (occlusion by the straight groove with the
+   profile at P, straight_occlusion = 1; §4.4's facet normals in the frame
+   at P, perturb_normals = -1), method "ours" is grooves.h's default (each
+   section point where the ray reaching it meets the groove; normals of the
+   swept surface there).
 
    build/bench/bench_grooves out/bench  → table on stdout, progress on stderr,
    out/bench/grooves_error_time.csv and out/bench/grooves_summary.csv */
@@ -85,7 +86,7 @@ static run_t run_geometry(gx_geo_t *g, int spp, const float *ref, float *out)
     return r;
 }
 
-static run_t run_ours(const gx_scene_t *s, int perturb_normals, const float *ref, float *out)
+static run_t run_ours(const gx_scene_t *s, int paper, const float *ref, float *out)
 {
     gx_ours_t o;
     ex_render_desc_t rd;
@@ -93,7 +94,8 @@ static run_t run_ours(const gx_scene_t *s, int perturb_normals, const float *ref
     memset(&rd, 0, sizeof rd);
     rd.width = W; rd.height = H; rd.spp = 1; rd.quiet = 1;
     if (gx_ours_init(&o, s, W, H)) exit(1);
-    o.perturb_normals = perturb_normals;
+    o.perturb_normals = paper ? -1 : 0;
+    o.straight_occlusion = paper;
     r.seconds = best_time(&rd, gx_ours_pixel, &o, out, 25);
     r.bytes = gx_ours_bytes(&o);
     r.rmse = display_rmse(out, ref, s->exposure);
@@ -149,7 +151,7 @@ int main(int argc, char **argv)
         gx_geo_t g;
         run_t geo[5], ours, refrun;
         double teq, speed;
-        int extra, tilt;
+        int extra, paper;
         if (gx_scene_make(&s, gx_scene_names[si])) { fprintf(stderr, "bench_grooves: out of memory\n"); return 1; }
         gx_scene_bench_view(&s);
         if (gx_geo_init(&g, &s, W, H)) return 1;
@@ -164,9 +166,9 @@ int main(int argc, char **argv)
                    geo[i].bytes / 1024.0);
             fprintf(csv, "%s,geometry,%d,%.6f,%.6g,%lld\n", s.name, spps[i], geo[i].seconds, geo[i].rmse, geo[i].bytes);
         }
-        for (tilt = 0; tilt < 2; tilt++) {
-            const char *m = tilt ? "ours_tilt" : "ours";
-            ours = run_ours(&s, tilt ? 0 : -1, ref, img);
+        for (paper = 1; paper >= 0; paper--) {
+            const char *m = paper ? "paper" : "ours";
+            ours = run_ours(&s, paper, ref, img);
             printf("%-10s %-9s %5d %10.4f %10.5f %11.1f\n", s.name, m, 1, ours.seconds, ours.rmse, ours.bytes / 1024.0);
             fprintf(csv, "%s,%s,1,%.6f,%.6g,%lld\n", s.name, m, ours.seconds, ours.rmse, ours.bytes);
             teq = time_at_error(geo, 5, ours.rmse, &extra);

@@ -9,12 +9,15 @@
    (half-axes 0.004-0.03, turned at random), view with E_w >= 0.3, one
    light. Per method: CPU time per footprint (clock(), one thread) and the
    mean error against supersampled geometry (Embree on the explicit mesh
-   of tests/grooves_oracle.h, 64 x 64 rays per footprint): the total
+   of tests/grooves_oracle.h, 256 x 256 rays per footprint): the total
    variation ½ Σ_i |r_i - r_i,ref| of the visible ratios, (groove, facet)
    by (groove, facet). Methods: gr_query() with line_samples = 0, which
-   sends these footprints to the polygon path (§5.2-5.5), 1/2/4/8 line
-   samples, and geometry with 4x4, 8x8, 16x16 rays (shadow rays included).
-   Then gr_shade_indirect() with every facet a 50% mirror at depth 0..3. */
+   sends these footprints to the polygon path (§5.2-5.5), 1/2/4/8/16/32
+   line samples, and geometry with 4x4 ... 32x32 rays (shadow rays included); the
+   geometry time at each method's error, interpolated log-log between the
+   geometry rows. Then §5.6's cache on a scanline, and gr_shade_indirect()
+   at depth 0..3 (and 8, the converged answer the others are compared
+   with), every facet a 50 % mirror, then clear Fresnel glass. */
 #define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "grooves_oracle.h"
@@ -26,12 +29,41 @@
 
 #define NG 7
 #define NFP 300
-#define NREF 64
+#define NREF 256
 #define SLOTS (2 * NG * GRO_SLOTS + 1)
 
 static const double VSEC[6] = {-0.01, 0, 0, -0.02, 0.01, 0};
 
 static double cpu(void) { return (double)clock() / CLOCKS_PER_SEC; }
+
+/* the rows of the error-against-time table: line samples (0 = polygons
+   through gr_query) or supersampled geometry (rays per side) */
+typedef struct method_t { const char *name; int lines, rays; } method_t;
+static const method_t methods[] = {
+    {"polygons (gr_query)", 0, 0}, {"1 line sample", 1, 0},   {"2 line samples", 2, 0}, {"4 line samples", 4, 0},
+    {"8 line samples", 8, 0},      {"16 line samples", 16, 0}, {"32 line samples", 32, 0}, {"geometry 4x4", 0, 4},
+    {"geometry 8x8", 0, 8},        {"geometry 16x16", 0, 16},  {"geometry 32x32", 0, 32},
+};
+#define NMETHODS (int)(sizeof methods / sizeof methods[0])
+static double us[NMETHODS], mean_err[NMETHODS], vs_poly[NMETHODS];
+
+/* Geometry's time at a given error: log-log interpolation between its
+   rows (error falls as rays grow), extrapolated along the end slopes. */
+static double geometry_at(double err, int *extrap)
+{
+    int m, first = -1, last = -1;
+    for (m = 0; m < NMETHODS; m++)
+        if (methods[m].rays) { if (first < 0) first = m; last = m; }
+    *extrap = err < mean_err[last] || err > mean_err[first];
+    for (m = first; m < last; m++) {
+        double e0 = log(mean_err[m]), e1 = log(mean_err[m + 1]), f;
+        if (m + 1 < last && err < mean_err[m + 1]) continue;
+        if (m > first && err > mean_err[m]) continue;
+        f = (log(err) - e0) / (e1 - e0);
+        return exp(log(us[m]) + f * (log(us[m + 1]) - log(us[m])));
+    }
+    return us[first];
+}
 
 static unsigned long long rng_s = 88172645463325252ull;
 static double urand(void)
@@ -81,10 +113,11 @@ static double tv(const double *a, const double *b)
     return 0.5 * s;
 }
 
+/* the host: a sky brightest at the zenith, a uniform 0.5 in the bulk */
 static void sky(void *user, const double origin[3], const double dir[3], int depth, int inside, double weight, double rgb[3])
 {
-    (void)user; (void)origin; (void)depth; (void)inside; (void)weight;
-    rgb[0] = rgb[1] = rgb[2] = dir[2] > 0 ? dir[2] : 0;
+    (void)user; (void)origin; (void)depth; (void)weight;
+    rgb[0] = rgb[1] = rgb[2] = inside ? 0.5 : dir[2] > 0 ? dir[2] : 0;
 }
 
 int main(int argc, char **argv)
@@ -100,12 +133,10 @@ int main(int argc, char **argv)
     gro_device_t dev;
     gro_scene_t sc;
     gr_query_t *qs;
-    double (*ref)[SLOTS], share[SLOTS];
+    double (*ref)[SLOTS], (*poly)[SLOTS], share[SLOTS];
     size_t need;
     void *scratch;
-    int i, k, m;
-    static const char *names[8] = {"polygons (gr_query)", "1 line sample", "2 line samples", "4 line samples",
-                                   "8 line samples", "geometry 4x4", "geometry 8x8", "geometry 16x16"};
+    int i, m;
     memset(g, 0, sizeof g);
     for (i = 0; i < 2 * NG; i++) {
         double c = 0.2 + 0.6 * (i % NG) / (NG - 1);
@@ -122,7 +153,8 @@ int main(int argc, char **argv)
     scratch = malloc(need);
     qs = (gr_query_t *)calloc(NFP, sizeof *qs);
     ref = (double (*)[SLOTS])calloc(NFP, sizeof *ref);
-    if (!scratch || !qs || !ref) return 1;
+    poly = (double (*)[SLOTS])calloc(NFP, sizeof *poly);
+    if (!scratch || !qs || !ref || !poly) return 1;
     for (i = 0; i < NFP; i++) {
         double r1 = 0.004 + 0.026 * urand(), r2 = 0.004 + 0.026 * urand(), rot = 3.14159 * urand();
         double ew = 0.3 + 0.7 * urand(), ph = 6.2832 * urand(), s = sqrt(1 - ew * ew);
@@ -134,38 +166,58 @@ int main(int argc, char **argv)
         q->footprint.view[0] = s * cos(ph); q->footprint.view[1] = s * sin(ph); q->footprint.view[2] = ew;
         q->lights = light; q->light_count = 1;
         geometry(&sc, q, NREF, ref[i]);
+        if (i % 50 == 49) fprintf(stderr, "bench_grooves_lines: reference %d/%d\r", i + 1, NFP);
     }
+    fprintf(stderr, "\n");
     snprintf(path, sizeof path, "%s/grooves_lines.csv", dir);
     csv = fopen(path, "w");
     if (!csv) { fprintf(stderr, "bench_grooves_lines: cannot write %s\n", path); return 1; }
-    fprintf(csv, "method,us_per_footprint,mean_tv_error\n");
-    printf("%-20s %14s %12s\n", "method", "us/footprint", "mean error");
-    for (m = 0; m < 8; m++) {
-        double t0, t, err = 0;
-        int rep, reps = m >= 5 ? 1 : 3;
+    fprintf(csv, "method,us_per_footprint,mean_tv_error,geometry_us_at_equal_error,mean_tv_vs_polygons\n");
+    for (m = 0; m < NMETHODS; m++) {
+        double t0, err = 0, err_poly = 0;
+        int rep, reps = methods[m].rays ? 1 : 3;
         t0 = cpu();
         for (rep = 0; rep < reps; rep++)
             for (i = 0; i < NFP; i++) {
                 gr_facet_list_t l;
                 gr_query_t q = qs[i];
-                if (m == 0) gr_query(grid, &q, scratch, need, &l);
-                else if (m <= 4) {
-                    q.line_samples = m == 1 ? 1 : 1 << (m - 1);
-                    gr_query_lines(grid, &q, scratch, need, &l, NULL);
-                } else {
-                    geometry(&sc, &q, 4 << (m - 5), share);
-                    if (rep == 0) err += tv(share, ref[i]) / NFP;
+                if (methods[m].rays) {
+                    geometry(&sc, &q, methods[m].rays, share);
+                    if (rep == 0) {
+                        err += tv(share, ref[i]) / NFP;
+                        err_poly += tv(share, poly[i]) / NFP;
+                    }
                     continue;
+                }
+                if (methods[m].lines == 0) gr_query(grid, &q, scratch, need, &l);
+                else {
+                    q.line_samples = methods[m].lines;
+                    gr_query_lines(grid, &q, scratch, need, &l, NULL);
                 }
                 if (rep == 0) {
                     list_share(&l, grid, share);
                     err += tv(share, ref[i]) / NFP;
+                    if (m == 0) memcpy(poly[i], share, sizeof share);
+                    else err_poly += tv(share, poly[i]) / NFP;
                 }
             }
-        t = (cpu() - t0) / (reps * NFP) * 1e6;
-        printf("%-20s %14.1f %12.4f\n", names[m], t, err);
-        fprintf(csv, "%s,%.2f,%.5f\n", names[m], t, err);
+        us[m] = (cpu() - t0) / (reps * NFP) * 1e6;
+        mean_err[m] = err;
+        vs_poly[m] = err_poly;
     }
+    printf("%-20s %12s %11s %18s %12s %12s\n", "method", "us/footprint", "mean error", "geometry us at", "vs polygons",
+           "difference");
+    printf("%-20s %12s %11s %18s %12s %12s\n", "", "", "", "equal error (ratio)", "(speed-up)", "to polygons");
+    for (m = 0; m < NMETHODS; m++) {
+        int extrap = 0;
+        double g = methods[m].rays ? us[m] : geometry_at(mean_err[m], &extrap);
+        printf("%-20s %12.1f %11.4f %11.1f%s (%4.1fx) %9.2fx %12.4f\n", methods[m].name, us[m], mean_err[m], g,
+               extrap ? "*" : " ", g / us[m], us[0] / us[m], vs_poly[m]);
+        fprintf(csv, "%s,%.2f,%.5f,%.2f,%.5f\n", methods[m].name, us[m], mean_err[m], g, vs_poly[m]);
+    }
+    printf("(* extrapolated beyond the finest geometry row along its last slope; reference %dx%d rays; the last\n"
+           " column is the mean total variation against the polygon path's answer, exact for straight grooves)\n",
+           NREF, NREF);
     { /* §5.6's cache on a scanline of neighbouring footprints (pixel steps
          of 0.001 across the floor at v = 0.4 + a little, E fixed) */
         gr_line_cache_t cache;
@@ -192,30 +244,51 @@ int main(int argc, char **argv)
                "2 lines, cached", tt[1], cache.hits, cache.misses);
         fprintf(csv, "2 line samples scanline,%.2f,\n2 line samples scanline cached,%.2f,\n", tt[0], tt[1]);
     }
-    printf("\n%-20s %14s\n", "inter-reflection", "us/footprint");
-    for (k = 0; k <= 3; k++) {
+    /* §6: cost of the recursion at depths 0..3, and what the truncation
+       leaves out: the mean |rgb_k - rgb_8| against depth 8 (GR_MAX_DEPTH);
+       the floor as 50 % mirrors, then as clear glass (Fresnel, ior 1.5:
+       every hit splits into a reflected and a refracted segment) */
+    printf("\n%-24s %12s %12s %16s\n", "inter-reflection", "us/footprint", "segments", "|rgb - depth 8|");
+    for (m = 0; m < 2; m++) {
+        static const int depths[5] = {8, 0, 1, 2, 3};
+        static double conv[NFP];
         gr_specular_t spec[2];
         gr_indirect_t ind;
-        double t0, t, rgb[3];
+        int di, c;
         memset(spec, 0, sizeof spec);
-        for (m = 0; m < 3; m++) spec[0].kr[m] = spec[1].kr[m] = 0.5;
-        memset(&ind, 0, sizeof ind);
-        ind.depth = k; ind.specular = spec; ind.specular_count = 2; ind.trace = sky;
-        t0 = cpu();
-        for (i = 0; i < NFP; i++) {
-            gr_query_t q = qs[i];
-            q.line_samples = 2;
-            gr_shade_indirect(grid, &q, &ind, scratch, need, rgb, NULL);
+        for (c = 0; c < 3; c++) {
+            spec[0].kr[c] = spec[1].kr[c] = m ? 1 : 0.5;
+            spec[0].kt[c] = spec[1].kt[c] = m ? 1 : 0;
         }
-        t = (cpu() - t0) / NFP * 1e6;
-        printf("depth %-14d %14.1f\n", k, t);
-        fprintf(csv, "indirect depth %d (2 line samples),%.2f,\n", k, t);
+        spec[0].fresnel = spec[1].fresnel = m;
+        memset(&ind, 0, sizeof ind);
+        ind.specular = spec; ind.specular_count = 2; ind.trace = sky;
+        for (di = 0; di < 5; di++) {
+            double t0, t, err = 0, rgb[3];
+            long long segs = 0;
+            ind.depth = depths[di];
+            t0 = cpu();
+            for (i = 0; i < NFP; i++) {
+                gr_query_t q = qs[i];
+                gr_line_stats_t st;
+                q.line_samples = 2;
+                gr_shade_indirect(grid, &q, &ind, scratch, need, rgb, &st);
+                segs += st.segments;
+                if (di == 0) conv[i] = rgb[0];
+                else err += fabs(rgb[0] - conv[i]) / NFP;
+            }
+            t = (cpu() - t0) / NFP * 1e6;
+            printf("%-6s depth %-11d %12.1f %12.1f %16.4f\n", m ? "glass" : "mirror", depths[di], t, (double)segs / NFP,
+                   err);
+            fprintf(csv, "indirect %s depth %d (2 line samples),%.2f,%.5f\n", m ? "glass" : "mirror 50%", depths[di], t,
+                    err);
+        }
     }
     fclose(csv);
     printf("wrote %s\n", path);
     gro_scene_free(&sc);
     gro_device_free(&dev);
     gr_grid_free(grid);
-    free(scratch); free(qs); free(ref);
+    free(scratch); free(qs); free(ref); free(poly);
     return 0;
 }

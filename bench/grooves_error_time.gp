@@ -16,7 +16,7 @@ set multiplot layout 1,3
 do for [s in "parallel curves scratches"] {
     set title s
     plot f using (strcol(1) eq s && strcol(2) eq "geometry" ? $4 : 1/0):5 with linespoints pt 7 lc rgb "#555555" title "geometry 1-256 spp", \
-         f using (strcol(1) eq s && strcol(2) eq "ours" ? $4 : 1/0):5 with points pt 9 ps 2 lc rgb "#c0392b" title "grooves.h, 1 spp", \
-         f using (strcol(1) eq s && strcol(2) eq "ours_tilt" ? $4 : 1/0):5 with points pt 5 ps 1.5 lc rgb "#2874a6" title "grooves.h + perturb\\_normals"
+         f using (strcol(1) eq s && strcol(2) eq "paper" ? $4 : 1/0):5 with points pt 9 ps 2 lc rgb "#c0392b" title "§4 as the paper, 1 spp", \
+         f using (strcol(1) eq s && strcol(2) eq "ours" ? $4 : 1/0):5 with points pt 5 ps 1.5 lc rgb "#2874a6" title "grooves.h, 1 spp"
 }
 unset multiplot

@@ -36,8 +36,11 @@
    RAYS (docs/frep.md, "Polynomial solvers and ray intersection")
      fr_trace finds the first root of f(o + t d) by the analytic, stepping,
      interval-bisection or sphere-tracing method; fr_bound_box gives a box
-     around the solid for fr_trace_desc_t.bounds, and the any_hit,
-     footprint and interval_newton options serve renderers.
+     around the solid for fr_trace_desc_t.bounds, fr_prepare a prepared
+     model for fr_trace_desc_t.prepared (per-model work done once: quadric
+     CSG leaves in monomial form, the CSG sign tree, leaf and node boxes,
+     fixed-degree Taylor programs), and the any_hit, footprint and
+     interval_newton options serve renderers.
 
    LICENSE
      MIT, see the end of this file.
@@ -492,7 +495,10 @@ FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, do
        polynomial in t, its coefficients (fr_ray_poly) go to fr_solve_poly;
        otherwise every polynomial leaf under min/max/R-function nodes is
        solved, the leaf roots are sorted, and the first one where f changes
-       sign is the hit (CSG of polynomial primitives).
+       sign is the hit (CSG of polynomial primitives). The sign change is
+       found without evaluating f near the root: each leaf's crossings
+       (roots where its sign changes, from the signs between its roots) flip
+       that leaf's sign in the CSG tree, so grazing rays keep their entry.
    FR_METHOD_STEP      §3.1.3 / §4.1.1: march to the first sign change with a
        fixed step, or with steps |g| / (L |d|) from the Lipschitz bound L;
        then Illinois regula falsi (default), Newton or Brent, each with a
@@ -502,7 +508,10 @@ FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, do
        2009) or plain intervals, and the tape pruned per segment. Never
        misses a root: the hit is the leftmost segment of width <= tol whose
        enclosure contains 0 (a near miss closer than the enclosure width may
-       be reported as a touch).
+       be reported as a touch). On a polynomial tape a segment where the
+       enclosure of g' excludes 0 holds at most one root: with a sign change
+       it goes to regula falsi (to tol, bracketed), without one it is
+       dropped once its ends' enclosures share a strict sign.
    FR_METHOD_SPHERE    sphere tracing for distance bounds (Hart 1996) with
        Keinert et al. 2014's over-relaxation as an option. Needs a finite
        Lipschitz bound (tape->lipschitz or desc->lipschitz).
@@ -530,6 +539,8 @@ typedef enum fr_normal_mode_t {
     FR_NORMAL_FD,     /* central finite differences (black boxes without gradients) */
     FR_NORMAL_NONE    /* skip the normal */
 } fr_normal_mode_t;
+
+struct fr_prepared_t; /* fr_prepare, below */
 
 /* Method and parameters; zero means the documented default. */
 typedef struct fr_trace_desc_t {
@@ -559,7 +570,9 @@ typedef struct fr_trace_desc_t {
        enclosure G' of g' free of 0, the segment is narrowed to its meet
        with m - g(m) / G', or dropped when they do not meet. Rigorous like
        the bisection (no root is lost); ignored on other tapes (no interval
-       derivative there). Default 0. */
+       derivative there). Default 0. Where G' excludes 0 the default
+       monotone hand-over (FR_METHOD_INTERVAL above) already decides the
+       segment, so Newton only acts on the segments that leaves open. */
     int interval_newton;
     unsigned int max_iters;   /* iteration cap of every loop; 0: 100000 */
     fr_normal_mode_t normal;  /* default AD */
@@ -585,6 +598,11 @@ typedef struct fr_trace_desc_t {
        ends have opposite signs (a sign change at t0 and t1 costs no
        interval evaluation at all); STEP skips the refinement. Default 0. */
     int any_hit;
+    /* NULL (default), or a prepared model of this very tape (fr_prepare):
+       fr_trace then clips the segment to its box as well and uses its
+       precomputed structures (see fr_prepare). One made for another tape
+       is ignored. */
+    const struct fr_prepared_t *prepared;
 } fr_trace_desc_t;
 
 typedef struct fr_hit_t {
@@ -642,6 +660,70 @@ FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const do
 FR_DEF size_t fr_ray_poly_scratch_size(const fr_tape_t *t);
 FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const double d[3], void *scratch,
                                double *coef, int *degree);
+
+/* PREPARED MODELS: what every ray of fr_trace recomputes from the tape,
+   worked out once per model (paper §3.1.1's analytic method, for renderers
+   that trace millions of rays through one model). fr_prepare analyses the
+   tape and the box `bounds` (6 doubles, lo x y z then hi x y z, holding
+   the whole solid, as fr_bound_box gives; NULL: no box) and fills *out:
+
+   FR_PREPARED_POLY  the shape is a polynomial in x, y, z (tangle cube,
+       Barth's sextic without its clip): the tape's polynomial slots as a
+       straight-line Taylor program of fixed degrees, run once per ray for
+       ANALYTIC and, with its magnitude run fused into the same pass, for
+       INTERVAL's centred form. Same operations in the same order as
+       fr_ray_poly, so the same coefficients (ulps apart at most where a
+       zero component of d lowers a degree).
+   FR_PREPARED_CSG   the shape is min/max/R-function/negation nodes over
+       polynomial leaves (cup, Barth's sextic with its clip): the CSG tree
+       as a boolean structure over the leaves' signs, and per leaf of
+       degree <= 2 (spheres, cylinders, cones, planes, any quadric) its 10
+       monomial coefficients about the centre of the box holding its zero
+       set (by interval subdivision of `bounds`), so a ray's leaf
+       polynomial is a few dozen flops and its roots come from the
+       quadratic formula with Kahan's fma discriminant (roots within a few
+       ulps of those of the ray polynomial's double coefficients; extreme
+       scales go to fr_solve_poly). Higher-degree leaves keep the Taylor
+       program. A ray that misses a leaf's box costs that leaf one value
+       (its sign); the sorted roots are classified by flipping the sign of
+       their leaf and re-evaluating the boolean tree, not the tape; the
+       normal is the leaf's exact gradient (what AD through the CSG nodes
+       gives, up to a positive factor), oriented by the crossing.
+       ANALYTIC and AUTO use it; other methods trace as without it.
+   FR_PREPARED_NONE  nothing to precompute (other tapes); fr_trace traces as
+       without it.
+
+   Hits agree with the unprepared fr_trace to rounding
+   (tests/test_frep_prepared.c); in both, a leaf root exactly at t0 counts
+   as before the segment (a ray starting on the surface is no hit at t0).
+   The box given here also clips every ray, like fr_trace_desc_t.bounds. The
+   prepared model refers to the tape and must not outlive it; it is
+   read-only, so threads share it. Memory comes from FR_MALLOC with the
+   tape's alloc_ctx; free it with fr_prepared_free. Without a box, CSG
+   leaves keep the Taylor program and no leaf or node is culled.
+   Errors: FR_ERR_INVALID_ARG (NULL, empty tape, non-finite or inverted
+   box), FR_ERR_OUT_OF_MEMORY. */
+typedef enum fr_prepared_kind_t {
+    FR_PREPARED_NONE = 0,
+    FR_PREPARED_POLY,
+    FR_PREPARED_CSG
+} fr_prepared_kind_t;
+
+typedef struct fr_prepared_t {
+    const fr_tape_t *tape;       /* the tape it serves */
+    fr_prepared_kind_t kind;
+    int has_box;                 /* box holds the bounds given to fr_prepare */
+    double box[6];
+    unsigned int n_prog;         /* instructions of the Taylor program */
+    unsigned int n_leaves;       /* CSG leaves, of which n_quadrics in monomial form */
+    unsigned int n_quadrics;
+    unsigned int n_nodes;        /* CSG nodes */
+    void *mem;                   /* one block: program, leaves, nodes */
+    void *alloc_ctx;
+} fr_prepared_t;
+
+FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepared_t *out);
+FR_DEF void fr_prepared_free(fr_prepared_t *p);
 
 /* ==== [end section: trace] ==== */
 
@@ -1720,27 +1802,33 @@ static void fr__run_point(const fr_tape_t *t, const double p[3], double *v)
     }
 }
 
-FR_DEF size_t fr_scratch_size(const fr_tape_t *t, fr_eval_kind_t kind)
+/* Scratch bytes per instruction of each evaluation kind. */
+static inline size_t fr__scratch_per_instr(fr_eval_kind_t kind)
 {
-    size_t n = t ? (size_t)t->n_code : 0;
-    if (n == 0) n = 1;
     switch (kind) {
-    case FR_EVAL_POINT: return n * sizeof(double);
-    case FR_EVAL_BATCH: return n * FR_BATCH * sizeof(double);
-    case FR_EVAL_GRAD: return n * 4 * sizeof(double);
+    case FR_EVAL_POINT: return sizeof(double);
+    case FR_EVAL_BATCH: return FR_BATCH * sizeof(double);
+    case FR_EVAL_GRAD: return 4 * sizeof(double);
 #ifndef FR_NO_INTERVAL
-    case FR_EVAL_INTERVAL: return n * sizeof(iv_t);
+    case FR_EVAL_INTERVAL: return sizeof(iv_t);
 #ifndef IV_NO_AFFINE
-    case FR_EVAL_AFFINE: return n * (sizeof(iv_affine_t) + sizeof(iv_t));
+    case FR_EVAL_AFFINE: return sizeof(iv_affine_t) + sizeof(iv_t);
 #else
     case FR_EVAL_AFFINE: return 0;
 #endif
-    case FR_EVAL_PRUNE: return n * (sizeof(iv_t) + 3 * sizeof(unsigned int) + 2);
+    case FR_EVAL_PRUNE: return sizeof(iv_t) + 3 * sizeof(unsigned int) + 2;
 #else
     case FR_EVAL_INTERVAL: case FR_EVAL_AFFINE: case FR_EVAL_PRUNE: return 0;
 #endif
     }
     return 0;
+}
+
+FR_DEF size_t fr_scratch_size(const fr_tape_t *t, fr_eval_kind_t kind)
+{
+    size_t n = t ? (size_t)t->n_code : 0;
+    if (n == 0) n = 1;
+    return n * fr__scratch_per_instr(kind);
 }
 
 FR_DEF double fr_eval(const fr_tape_t *t, const double p[3], void *scratch)
@@ -4078,6 +4166,8 @@ static size_t fr__align8(size_t n) { return (n + 7u) & ~(size_t)7u; }
      [flags]  n bytes (analytic CSG: slot needed)
      [list]   n unsigned ints (analytic CSG: the needed slots, ascending)
      [cand]   n * FR_POLY_MAX_DEGREE doubles (analytic CSG candidate roots)
+     [cleaf]  n * FR_POLY_MAX_DEGREE unsigned ints (prepared CSG: each candidate's leaf)
+     [sgn]    4n signed chars (prepared CSG: leaf and node signs either side of a candidate, culled nodes, live slots)
      [prune]  FR__PRUNE_LEVELS * n instructions (interval: pruned tapes) */
 typedef struct fr__trace_mem_t {
     void *eval;
@@ -4086,39 +4176,49 @@ typedef struct fr__trace_mem_t {
     unsigned char *need;
     unsigned int *list;
     double *cand;
+    unsigned int *cleaf;
+    signed char *sgn;
     fr_instr_t *prune;
 } fr__trace_mem_t;
 
 static size_t fr__eval_scratch_max(const fr_tape_t *t)
 {
-    size_t m = fr_scratch_size(t, FR_EVAL_POINT), s;
-    s = fr_scratch_size(t, FR_EVAL_GRAD); if (s > m) m = s;
-    s = fr_scratch_size(t, FR_EVAL_INTERVAL); if (s > m) m = s;
-    s = fr_scratch_size(t, FR_EVAL_AFFINE); if (s > m) m = s;
-    s = fr_scratch_size(t, FR_EVAL_PRUNE); if (s > m) m = s;
-    return fr__align8(m);
+    /* every kind's scratch is n times its bytes per instruction (fr_trace
+       runs this per ray: the constant maximum, multiplied out once) */
+    size_t m = fr__scratch_per_instr(FR_EVAL_GRAD), s, n = t->n_code ? (size_t)t->n_code : 1;
+    s = fr__scratch_per_instr(FR_EVAL_INTERVAL); if (s > m) m = s;
+    s = fr__scratch_per_instr(FR_EVAL_AFFINE); if (s > m) m = s;
+    s = fr__scratch_per_instr(FR_EVAL_PRUNE); if (s > m) m = s;
+    return fr__align8(n * m);
 }
 
 static size_t fr__trace_layout(const fr_tape_t *t, void *base, fr__trace_mem_t *mem)
 {
-    size_t n = t->n_code ? (size_t)t->n_code : 1, off = 0;
+    /* n rounded up to a multiple of 8 keeps every part 8-aligned with no
+       per-part rounding (fr_trace lays this out per ray) */
+    size_t n = ((t->n_code ? (size_t)t->n_code : 1) + 7u) & ~(size_t)7u, off;
     unsigned char *b = (unsigned char *)base;
-    if (mem) mem->eval = b;
-    off += fr__eval_scratch_max(t);
-    if (mem) mem->taylor = (double *)(void *)(b + off);
-    off += fr__align8(n * FR__TAYLOR_N * sizeof(double));
-    if (mem) mem->deg = (int *)(void *)(b + off);
-    off += fr__align8(n * sizeof(int));
-    if (mem) mem->taylor_mag = (double *)(void *)(b + off);
-    off += fr__align8(n * FR__TAYLOR_N * sizeof(double));
-    if (mem) mem->deg_mag = (int *)(void *)(b + off);
-    off += fr__align8(n * sizeof(int));
-    if (mem) mem->need = b + off;
-    off += fr__align8(n);
-    if (mem) mem->list = (unsigned int *)(void *)(b + off);
-    off += fr__align8(n * sizeof(unsigned int));
-    if (mem) mem->cand = (double *)(void *)(b + off);
-    off += fr__align8(n * FR_POLY_MAX_DEGREE * sizeof(double));
+    off = fr__eval_scratch_max(t);
+    if (mem) {
+        mem->eval = b;
+        mem->taylor = (double *)(void *)(b + off);
+        mem->deg = (int *)(void *)(b + off + n * FR__TAYLOR_N * sizeof(double));
+    }
+    off += n * (FR__TAYLOR_N * sizeof(double) + sizeof(int));
+    if (mem) {
+        mem->taylor_mag = (double *)(void *)(b + off);
+        mem->deg_mag = (int *)(void *)(b + off + n * FR__TAYLOR_N * sizeof(double));
+    }
+    off += n * (FR__TAYLOR_N * sizeof(double) + sizeof(int));
+    if (mem) {
+        mem->need = b + off;
+        mem->list = (unsigned int *)(void *)(b + off + n);
+        mem->cand = (double *)(void *)(b + off + n + n * sizeof(unsigned int));
+        mem->cleaf = (unsigned int *)(void *)(b + off + n + n * sizeof(unsigned int) + n * FR_POLY_MAX_DEGREE * sizeof(double));
+    }
+    off += n + n * sizeof(unsigned int) + n * FR_POLY_MAX_DEGREE * (sizeof(double) + sizeof(unsigned int));
+    if (mem) mem->sgn = (signed char *)(void *)(b + off);
+    off += 4 * n;
     if (mem) mem->prune = (fr_instr_t *)(void *)(b + off);
 #ifndef FR_NO_INTERVAL
     off += fr__align8((size_t)FR__PRUNE_LEVELS * n * sizeof(fr_instr_t));
@@ -4198,82 +4298,139 @@ static int fr__tpoly_const_op(const fr_instr_t *in, double a, double b, double *
     }
 }
 
+#if defined(__GNUC__) || defined(__clang__)
+#define FR__HOT_INLINE __attribute__((always_inline)) inline /* per-slot steps of hot loops */
+#else
+#define FR__HOT_INLINE inline
+#endif
+
+/* c = a^n truncated (n >= 0), c distinct from a; returns the degree or -1. */
+static FR__HOT_INLINE int fr__tpoly_powi(const double *a, int da, int n, double *c)
+{
+    double base[FR__TAYLOR_N];
+    int k, db = da, dc;
+    if (n >= 2 && (n & (n - 1)) == 0) {
+        /* x^2, x^4, x^8 (the tangle cube's powers): squarings in place, no
+           copy of the base and no product with 1 */
+        dc = fr__tpoly_mul(a, da, a, da, c);
+        for (n >>= 1; n > 1 && dc >= 0; n >>= 1) dc = fr__tpoly_mul(c, dc, c, dc, c);
+        return dc;
+    }
+    for (k = 0; k <= da; k++) base[k] = a[k];
+    c[0] = a[0] - a[0] + 1.0; /* 1, or NaN for a non-finite base */
+    dc = 0;
+    while (n > 0 && dc >= 0) { /* binary powering */
+        if (n & 1) dc = fr__tpoly_mul(c, dc, base, db, c);
+        n >>= 1;
+        if (n > 0) db = fr__tpoly_mul(base, db, base, db, base);
+        if (db < 0) return -1;
+    }
+    return dc;
+}
+
+/* The degree of slot `in` as a polynomial in t from its operands' degrees
+   da, db (-1: not a polynomial), var_deg the degree of a coordinate (1, or
+   0 where the ray's direction has no such component); -1 when the result
+   is not a polynomial of degree <= FR_POLY_MAX_DEGREE. */
+static FR__HOT_INLINE int fr__tpoly_degree(const fr_instr_t *in, int da, int db, int var_deg)
+{
+    switch ((fr_op_t)in->op) {
+    case FR_OP_CONST: return 0;
+    case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: return var_deg;
+    case FR_OP_NEG: return da;
+    case FR_OP_ADD: case FR_OP_SUB: return da >= 0 && db >= 0 ? (da > db ? da : db) : -1;
+    case FR_OP_MUL: return da >= 0 && db >= 0 && da + db <= FR_POLY_MAX_DEGREE ? da + db : -1;
+    case FR_OP_SQR: return da >= 0 && 2 * da <= FR_POLY_MAX_DEGREE ? 2 * da : -1;
+    case FR_OP_POWI:
+        return da >= 0 && in->k >= 0 && in->k == floor(in->k) && in->k * da <= FR_POLY_MAX_DEGREE ? (int)in->k * da
+                                                                                                  : -1;
+    case FR_OP_DIV: return da >= 0 && db == 0 ? da : -1;
+    case FR_OP_MIN: case FR_OP_MAX: return da == 0 && db == 0 ? 0 : -1;
+    case FR_OP_SQRT: case FR_OP_ABS: case FR_OP_EXP: case FR_OP_LOG: case FR_OP_SIN: case FR_OP_COS:
+    case FR_OP_ATAN: case FR_OP_POWC: return da == 0 ? 0 : -1;
+    default: return -1;
+    }
+}
+
+/* One slot of a Taylor run: c from its operands A (degree da) and B (db),
+   dc the result's degree (fr__tpoly_degree). With plain != NULL (the slot's
+   plain coefficients) it is the magnitude run instead: every input and
+   constant by its absolute value and every subtraction an addition, so each
+   coefficient is the sum of the absolute values of the terms whose rounded
+   sum the plain run computed; it scales the plain coefficients' rounding
+   error (fr__poly_range). An invalid operand of a constant op (a division
+   by 0, a non-finite argument) gives NaN, which every later op keeps. */
+static FR__HOT_INLINE void fr__tpoly_step(const fr_instr_t *in, const double *A, int da, const double *B, int db, int dc,
+                                  const double o[3], const double d[3], double *c, const double *plain)
+{
+    int k, mag = plain != NULL;
+    switch ((fr_op_t)in->op) {
+    case FR_OP_CONST: c[0] = mag ? fabs(in->k) : in->k; break;
+    case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: {
+        int ax = (int)in->op - (int)FR_OP_VAR_X;
+        c[0] = mag ? fabs(o[ax]) : o[ax]; c[1] = mag ? fabs(d[ax]) : d[ax];
+        break;
+    }
+    case FR_OP_NEG: for (k = 0; k <= da; k++) c[k] = mag ? A[k] : -A[k]; break;
+    case FR_OP_ADD: case FR_OP_SUB: {
+        double sgn = in->op == FR_OP_ADD || mag ? 1.0 : -1.0;
+        int lo = da < db ? da : db;
+        for (k = 0; k <= lo; k++) c[k] = A[k] + sgn * B[k];
+        for (; k <= da; k++) c[k] = A[k];
+        for (; k <= db; k++) c[k] = sgn * B[k];
+        break;
+    }
+    case FR_OP_MUL: fr__tpoly_mul(A, da, B, db, c); break;
+    case FR_OP_SQR: fr__tpoly_mul(A, da, A, da, c); break;
+    case FR_OP_POWI: fr__tpoly_powi(A, da, (int)in->k, c); break;
+    case FR_OP_DIV: {
+        double q = B[0] != 0 ? B[0] : NAN;
+        for (k = 0; k <= da; k++) c[k] = A[k] / q;
+        break;
+    }
+    default: /* an op on constants */
+        if (mag) c[0] = fabs(plain[0]);
+        else if (!(A[0] - A[0] == 0) || ((in->op == FR_OP_MIN || in->op == FR_OP_MAX) && !(B[0] - B[0] == 0)) ||
+                 !fr__tpoly_const_op(in, A[0], B[0], c))
+            c[0] = NAN;
+        break;
+    }
+    (void)dc;
+}
+
+/* The degree of a slot's coefficients c of degree dg (-1: none), trailing
+   zeros trimmed; -1 if any is not finite (an overflow on this ray). */
+static int fr__checked_degree(const double *c, int dg)
+{
+    int k;
+    for (k = 0; k <= dg; k++) if (!(c[k] - c[k] == 0)) return -1;
+    return dg >= 0 ? fr__tpoly_trim(c, dg) : -1;
+}
+
 /* Evaluate every slot of the tape as a polynomial in t (paper §3.1.1: turn
    f(X) = 0 into g(t) = 0). deg[i] = -1 marks a slot that is not a
    polynomial of degree <= FR_POLY_MAX_DEGREE; such slots propagate.
    With signed_P (the result of a plain run) it is the magnitude run
-   instead: every input and constant by its absolute value and every
-   subtraction an addition, so each coefficient is the sum of the absolute
-   values of the terms whose rounded sum the plain run computed; it scales
-   the plain coefficients' rounding error (fr__poly_range). */
+   (fr__tpoly_step). Sums are trimmed of trailing zero coefficients. An
+   overflow is not checked per slot: inf and NaN propagate through every
+   op (fr__tpoly_step turns invalid constant ops into NaN), so the slots
+   that are used -- the output, CSG leaves -- are checked where they are
+   read (fr__checked_degree); a check per slot was a quarter of the run. */
 static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d[3], double *P, int *deg,
                            const double *signed_P)
 {
     unsigned int i;
-    int mag = signed_P != NULL;
     for (i = 0; i < t->n_code; i++) {
         const fr_instr_t *in = &t->code[i];
         double *c = P + (size_t)i * FR__TAYLOR_N;
         const double *A = P + (size_t)in->a * FR__TAYLOR_N, *B = P + (size_t)in->b * FR__TAYLOR_N;
-        int da = deg[in->a], db = deg[in->b], k, dc = -1;
-        switch ((fr_op_t)in->op) {
-        case FR_OP_CONST: c[0] = mag ? fabs(in->k) : in->k; dc = 0; break;
-        case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: {
-            int ax = (int)in->op - (int)FR_OP_VAR_X;
-            c[0] = mag ? fabs(o[ax]) : o[ax]; c[1] = mag ? fabs(d[ax]) : d[ax];
-            dc = d[ax] != 0 ? 1 : 0;
-            break;
+        int da = i > 0 ? deg[in->a] : -1, db = i > 0 ? deg[in->b] : -1, dc;
+        int vd = in->op >= FR_OP_VAR_X && in->op <= FR_OP_VAR_Z ? d[in->op - FR_OP_VAR_X] != 0 : 1;
+        dc = fr__tpoly_degree(in, da, db, vd);
+        if (dc >= 0) {
+            fr__tpoly_step(in, A, da, B, db, dc, o, d, c, signed_P ? signed_P + (size_t)i * FR__TAYLOR_N : NULL);
+            if (in->op == FR_OP_ADD || in->op == FR_OP_SUB) dc = fr__tpoly_trim(c, dc);
         }
-        case FR_OP_NEG:
-            if (da >= 0) { for (k = 0; k <= da; k++) c[k] = mag ? A[k] : -A[k]; dc = da; }
-            break;
-        case FR_OP_ADD: case FR_OP_SUB:
-            if (da >= 0 && db >= 0) {
-                double sgn = in->op == FR_OP_ADD || mag ? 1.0 : -1.0;
-                dc = da > db ? da : db;
-                for (k = 0; k <= dc; k++) c[k] = (k <= da ? A[k] : 0.0) + sgn * (k <= db ? B[k] : 0.0);
-                dc = fr__tpoly_trim(c, dc);
-            }
-            break;
-        case FR_OP_MUL:
-            if (da >= 0 && db >= 0) dc = fr__tpoly_mul(A, da, B, db, c);
-            break;
-        case FR_OP_SQR:
-            if (da >= 0) dc = fr__tpoly_mul(A, da, A, da, c);
-            break;
-        case FR_OP_POWI:
-            if (da >= 0 && in->k >= 0 && in->k == floor(in->k) && in->k * da <= FR_POLY_MAX_DEGREE) {
-                double base[FR__TAYLOR_N];
-                int n = (int)in->k, db2 = da;
-                if (n >= 2 && (n & (n - 1)) == 0) {
-                    /* x^2, x^4, x^8 (the tangle cube's powers): squarings in
-                       place, no copy of the base and no product with 1 */
-                    dc = fr__tpoly_mul(A, da, A, da, c);
-                    for (n >>= 1; n > 1 && dc >= 0; n >>= 1) dc = fr__tpoly_mul(c, dc, c, dc, c);
-                    break;
-                }
-                for (k = 0; k <= da; k++) base[k] = A[k];
-                c[0] = 1.0; dc = 0;
-                while (n > 0 && dc >= 0) { /* binary powering */
-                    if (n & 1) dc = fr__tpoly_mul(c, dc, base, db2, c);
-                    n >>= 1;
-                    if (n > 0) db2 = fr__tpoly_mul(base, db2, base, db2, base);
-                    if (db2 < 0) { dc = -1; break; }
-                }
-            }
-            break;
-        case FR_OP_DIV:
-            if (da >= 0 && db == 0 && B[0] != 0) { for (k = 0; k <= da; k++) c[k] = A[k] / B[0]; dc = da; }
-            break;
-        default:
-            if (da == 0 && (db == 0 || in->op == FR_OP_SQRT || in->op == FR_OP_ABS || in->op == FR_OP_EXP ||
-                            in->op == FR_OP_LOG || in->op == FR_OP_SIN || in->op == FR_OP_COS ||
-                            in->op == FR_OP_ATAN || in->op == FR_OP_POWC) &&
-                (mag ? (c[0] = fabs(signed_P[(size_t)i * FR__TAYLOR_N]), 1) : fr__tpoly_const_op(in, A[0], B[0], c)))
-                dc = 0;
-            break;
-        }
-        if (dc >= 0) for (k = 0; k <= dc; k++) if (!(c[k] - c[k] == 0)) dc = -1; /* inf/NaN */
         deg[i] = dc;
     }
 }
@@ -4289,12 +4446,198 @@ FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const doub
     deg = (int *)(void *)((unsigned char *)scratch + fr__align8((size_t)t->n_code * FR__TAYLOR_N * sizeof(double)));
     fr__taylor_run(t, o, d, P, deg, NULL);
     out = t->outputs[0];
-    dg = deg[out];
+    dg = fr__checked_degree(P + (size_t)out * FR__TAYLOR_N, deg[out]);
     if (dg < 0) return FR_ERR_NOT_POLYNOMIAL;
     for (k = 0; k <= FR_POLY_MAX_DEGREE; k++) coef[k] = k <= dg ? P[(size_t)out * FR__TAYLOR_N + (size_t)k] : 0.0;
     *degree = dg;
     return FR_OK;
 }
+
+/* ---------------------------------------------------------------- prepared models: the parts */
+
+/* One instruction of a prepared Taylor program: tape slot `slot` with the
+   degrees fr__tpoly_degree gives for a direction without zero components,
+   an upper bound for every ray (a zero component, or a cancellation, only
+   leaves exact zeros on top, which fr__prog_degree trims). */
+typedef struct fr__tp_t {
+    unsigned int slot, a, b;           /* the tape's slot and its operands (0 if unused), */
+    unsigned int oc, oa, ob;           /* and their offsets in a Taylor array (slot * FR__TAYLOR_N) */
+    unsigned char da, db, dc, kernel; /* kernel: FR__K_*, chosen by fr__prog_kernel */
+} fr__tp_t;
+
+/* Kernels of fr__prog_run, plain and magnitude run side by side: products
+   by a constant, squares of linear and quadratic factors and fourth powers
+   of linear ones (a quadric or quartic tape is mostly these) written out;
+   the rest through fr__tpoly_step. A doubled product 2 a_i a_j is rounded
+   once where fr__tpoly_mul rounds a_i a_j + a_j a_i twice, within the same
+   bound (fr__poly_range_of). */
+#define FR__K_STEP 0
+#define FR__K_MULK 1 /* b of degree 0 */
+#define FR__K_KMUL 2 /* a of degree 0 */
+#define FR__K_SQR1 3 /* a^2, a linear */
+#define FR__K_SQR2 4 /* a^2, a quadratic */
+#define FR__K_POW4 5 /* a^4, a linear */
+#define FR__K_ADD 6
+#define FR__K_SUB 7
+#define FR__K_CONST 8
+#define FR__K_VAR 9
+#define FR__K_NEG 10
+static unsigned char fr__prog_kernel(const fr_instr_t *in, int da, int db)
+{
+    int sq = in->op == FR_OP_SQR || (in->op == FR_OP_POWI && in->k == 2);
+    if (in->op == FR_OP_CONST) return FR__K_CONST;
+    if (in->op >= FR_OP_VAR_X && in->op <= FR_OP_VAR_Z) return FR__K_VAR;
+    if (in->op == FR_OP_NEG) return FR__K_NEG;
+    if (in->op == FR_OP_MUL && db == 0) return FR__K_MULK;
+    if (in->op == FR_OP_MUL && da == 0) return FR__K_KMUL;
+    if (sq && da == 1) return FR__K_SQR1;
+    if (sq && da == 2) return FR__K_SQR2;
+    if (in->op == FR_OP_POWI && in->k == 4 && da == 1) return FR__K_POW4;
+    if (in->op == FR_OP_ADD) return FR__K_ADD;
+    if (in->op == FR_OP_SUB) return FR__K_SUB;
+    return FR__K_STEP;
+}
+
+/* c = a^2, a of degree 2 (5 coefficients), c may alias nothing. */
+static FR__HOT_INLINE void fr__sqr2(double a0, double a1, double a2, double *c)
+{
+    c[0] = a0 * a0;
+    c[1] = 2.0 * (a0 * a1);
+    c[2] = a1 * a1 + 2.0 * (a0 * a2);
+    c[3] = 2.0 * (a1 * a2);
+    c[4] = a2 * a2;
+}
+
+/* A CSG leaf of a prepared model. For a quadric (degree <= 2, `quadric`)
+   its monomial form about e: f(e + q) = k + b.q + q^T A q with q[0] = k,
+   q[1..3] = b, q[4..6] = A's diagonal, q[7..9] = A's xy, xz, yz entries
+   (half the monomial coefficients). `box` holds the leaf's zero set inside
+   the prepared box when `boxed`. */
+typedef struct fr__leaf_t {
+    unsigned int slot;
+    int degree, quadric, boxed;
+    int shape; /* quadrics: FR__LEAF_LINEAR (A = 0), FR__LEAF_DIAGONAL, FR__LEAF_FULL */
+    double e[3], q[10], box[6];
+} fr__leaf_t;
+#define FR__LEAF_LINEAR 1
+#define FR__LEAF_DIAGONAL 2
+#define FR__LEAF_FULL 3
+
+/* A CSG node over signs; a and b index leaves [0, n_leaves), then nodes. */
+typedef struct fr__csg_node_t {
+    unsigned int op, a, b; /* FR__CSG_NEG, FR__CSG_MIN (intersections), FR__CSG_MAX (unions) */
+    unsigned int slot;
+    int boxed;             /* box holds the node's solid {f >= 0} */
+    double box[6];
+} fr__csg_node_t;
+
+/* The head of fr_prepared_t.mem: the box, padded once as fr__clip_box
+   pads it per ray. */
+typedef struct fr__prep_head_t {
+    double box[6];
+    unsigned int n_boxed_nodes;
+} fr__prep_head_t;
+
+#define FR__CSG_NEG 0u
+#define FR__CSG_MIN 1u
+#define FR__CSG_MAX 2u
+
+/* The block of fr_prepared_t.mem: head, leaves, nodes, program. */
+static size_t fr__prep_layout(unsigned int nl, unsigned int nn, unsigned int np, fr__leaf_t **L, fr__csg_node_t **N,
+                              fr__tp_t **P, void *mem)
+{
+    size_t off = fr__align8(sizeof(fr__prep_head_t));
+    unsigned char *b = (unsigned char *)mem;
+    if (L) *L = (fr__leaf_t *)(void *)(b + off);
+    off += fr__align8((size_t)nl * sizeof(fr__leaf_t));
+    if (N) *N = (fr__csg_node_t *)(void *)(b + off);
+    off += fr__align8((size_t)nn * sizeof(fr__csg_node_t));
+    if (P) *P = (fr__tp_t *)(void *)(b + off);
+    off += fr__align8((size_t)np * sizeof(fr__tp_t));
+    return off;
+}
+
+/* Run a prepared Taylor program on the ray o + s d: the plain run into P
+   and, if M is not NULL, the magnitude run into M in the same pass (the
+   two runs of fr__taylor_run, per slot side by side). */
+/* One pass of fr__prog_run, mag constant so each caller gets its own copy. */
+static FR__HOT_INLINE void fr__prog_pass(const fr_tape_t *t, const fr__tp_t *prog, unsigned int np, const double o[3],
+                                         const double d[3], double *P, double *M, int mag)
+{
+    unsigned int j;
+    int k;
+    for (j = 0; j < np; j++) {
+        const fr__tp_t *pi = &prog[j];
+        const double *A = P + pi->oa, *B = P + pi->ob, *MA = M + pi->oa, *MB = M + pi->ob;
+        double *c = P + pi->oc, *mc = M + pi->oc;
+        int da = pi->da, db = pi->db;
+        switch (pi->kernel) {
+        case FR__K_CONST: {
+            double v = t->code[pi->slot].k;
+            c[0] = v;
+            if (mag) mc[0] = fabs(v);
+            break;
+        }
+        case FR__K_VAR: {
+            int ax = (int)t->code[pi->slot].op - (int)FR_OP_VAR_X;
+            c[0] = o[ax]; c[1] = d[ax];
+            if (mag) { mc[0] = fabs(o[ax]); mc[1] = fabs(d[ax]); }
+            break;
+        }
+        case FR__K_NEG:
+            for (k = 0; k <= da; k++) c[k] = -A[k];
+            if (mag) for (k = 0; k <= da; k++) mc[k] = MA[k];
+            break;
+        case FR__K_MULK:
+            for (k = 0; k <= da; k++) c[k] = A[k] * B[0];
+            if (mag) for (k = 0; k <= da; k++) mc[k] = MA[k] * MB[0];
+            break;
+        case FR__K_KMUL:
+            for (k = 0; k <= db; k++) c[k] = A[0] * B[k];
+            if (mag) for (k = 0; k <= db; k++) mc[k] = MA[0] * MB[k];
+            break;
+        case FR__K_SQR1:
+            c[0] = A[0] * A[0]; c[1] = 2.0 * (A[0] * A[1]); c[2] = A[1] * A[1];
+            if (mag) { mc[0] = MA[0] * MA[0]; mc[1] = 2.0 * (MA[0] * MA[1]); mc[2] = MA[1] * MA[1]; }
+            break;
+        case FR__K_SQR2:
+            fr__sqr2(A[0], A[1], A[2], c);
+            if (mag) fr__sqr2(MA[0], MA[1], MA[2], mc);
+            break;
+        case FR__K_POW4:
+            fr__sqr2(A[0] * A[0], 2.0 * (A[0] * A[1]), A[1] * A[1], c);
+            if (mag) fr__sqr2(MA[0] * MA[0], 2.0 * (MA[0] * MA[1]), MA[1] * MA[1], mc);
+            break;
+        case FR__K_ADD: case FR__K_SUB: {
+            double sg = pi->kernel == FR__K_ADD ? 1.0 : -1.0;
+            int lo = da < db ? da : db;
+            for (k = 0; k <= lo; k++) c[k] = A[k] + sg * B[k];
+            for (; k <= da; k++) c[k] = A[k];
+            for (; k <= db; k++) c[k] = sg * B[k];
+            if (mag) {
+                for (k = 0; k <= lo; k++) mc[k] = MA[k] + MB[k];
+                for (; k <= da; k++) mc[k] = MA[k];
+                for (; k <= db; k++) mc[k] = MB[k];
+            }
+            break;
+        }
+        default: {
+            const fr_instr_t *in = &t->code[pi->slot];
+            fr__tpoly_step(in, A, da, B, db, pi->dc, o, d, c, NULL);
+            if (mag) fr__tpoly_step(in, MA, da, MB, db, pi->dc, o, d, mc, c);
+            break;
+        }
+        }
+    }
+}
+
+static void fr__prog_run(const fr_tape_t *t, const fr__tp_t *prog, unsigned int np, const double o[3], const double d[3],
+                         double *P, double *M)
+{
+    if (M) fr__prog_pass(t, prog, np, o, d, P, M, 1);
+    else fr__prog_pass(t, prog, np, o, d, P, P, 0);
+}
+
 
 /* ---------------------------------------------------------------- shared helpers */
 
@@ -4311,6 +4654,11 @@ typedef struct fr__ray_t {
     double ts, rho;
     double dc[FR_POLY_MAX_DEGREE + 1], dm[FR_POLY_MAX_DEGREE + 1], drho;
     int newton;       /* desc->interval_newton, and pc set */
+    int mono;         /* pc set and g' available: monotone segments hand over (fr__trace_interval) */
+    double gam, dgam; /* gamma_{2n+2} for g's and g''s degrees n (fr__poly_range_of) */
+    const fr_prepared_t *prep; /* desc->prepared, if made for this tape */
+    double inv[3];    /* 1 / d[k] (0 where d[k] = 0), when have_inv: from fr__clip_padded */
+    int have_inv;
     void *eval;
     unsigned long long evals, iters;
     unsigned int max_iters;
@@ -4517,11 +4865,39 @@ static double fr__gamma(double m) { return m * FR__U / (1.0 - m * FR__U); }
 
 /* Taylor shift q(s) -> q(s + mu), degree n, by repeated synthetic division
    (the order fr__poly_range_of's rounding bound counts). */
-static inline void fr__taylor_shift(double *q, int n, double mu)
+static FR__HOT_INLINE void fr__taylor_shift(double *q, int n, double mu)
 {
     int i, k;
     for (i = 0; i < n; i++)
         for (k = n - 1; k >= i; k--) q[k] += mu * q[k + 1];
+}
+
+/* fr__poly_range_of's three sums for degree 3 and 4 (a quartic's g' and
+   the quartic: tangle cube, tori), written out (the loops' bookkeeping was
+   half the cost): q = pc shifted by mu (the order of fr__taylor_shift),
+   rad = sum_{j >= 1} |q_j| r^j, pad = pm(x) by Horner. */
+static void fr__shift_sum3(const double *pc, const double *pm, double mu, double r, double x, double *q, double *rad,
+                           double *pad)
+{
+    double q0 = pc[0], q1 = pc[1], q2 = pc[2], q3 = pc[3], r2 = r * r;
+    q2 += mu * q3; q1 += mu * q2; q0 += mu * q1;
+    q2 += mu * q3; q1 += mu * q2;
+    q2 += mu * q3;
+    q[0] = q0;
+    *rad = (fabs(q1) * r + fabs(q2) * r2) + fabs(q3) * (r2 * r);
+    *pad = ((pm[3] * x + pm[2]) * x + pm[1]) * x + pm[0];
+}
+static void fr__shift_sum4(const double *pc, const double *pm, double mu, double r, double x, double *q, double *rad,
+                           double *pad)
+{
+    double q0 = pc[0], q1 = pc[1], q2 = pc[2], q3 = pc[3], q4 = pc[4], r2 = r * r;
+    q3 += mu * q4; q2 += mu * q3; q1 += mu * q2; q0 += mu * q1;
+    q3 += mu * q4; q2 += mu * q3; q1 += mu * q2;
+    q3 += mu * q4; q2 += mu * q3;
+    q3 += mu * q4;
+    q[0] = q0;
+    *rad = (fabs(q1) * r + fabs(q2) * r2) + (fabs(q3) * r + fabs(q4) * r2) * r2;
+    *pad = (((pm[4] * x + pm[3]) * x + pm[2]) * x + pm[1]) * x + pm[0];
 }
 
 /* The enclosure of g over [a, b] from the ray polynomial (a centred form):
@@ -4540,10 +4916,12 @@ static inline void fr__taylor_shift(double *q, int n, double mu)
    and the shift and the sums add gamma_{2n+2} of the shifted magnitudes,
    so the radius gets (rho + 2 gamma_{2n+2}) Q_j r^j with Q the magnitudes
    shifted by |mu|, and s = t - ts is widened by its own rounding. */
+/* *pad_share: 1 when the rounding pad is FR__POLY_PAD_SHARE of the radius
+   or more (fr__g_range then asks the affine forms too), else 0. */
 static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double *pm, int pdeg, int mdeg, double rho,
-                              double a, double b, double *pad_share)
+                              double gam, double a, double b, double *pad_share)
 {
-    double q[FR__TAYLOR_N], sa, sb, mu, amu, r, rad = 0, pad = 0, rj = 1, g;
+    double q[FR__TAYLOR_N], sa, sb, mu, amu, r, rad = 0, pad = 0, rj = 1, g, x;
     int n = mdeg, k;
     sa = a - R->ts; sb = b - R->ts;
     sa -= 2.0 * FR__U * (fabs(a) + fabs(R->ts));
@@ -4552,47 +4930,49 @@ static iv_t fr__poly_range_of(const fr__ray_t *R, const double *pc, const double
     r = (sb - mu > mu - sa ? sb - mu : mu - sa) * (1.0 + 4.0 * FR__U);
     amu = fabs(mu);
     if (n < 0) { *pad_share = 0; return iv_point(0.0); } /* the zero polynomial */
-    for (k = 0; k <= n; k++) q[k] = k <= pdeg ? pc[k] : 0.0;
-    if (n == 4) fr__taylor_shift(q, 4, mu); /* quartics (tangle cube, tori): unrolled by the compiler */
-    else fr__taylor_shift(q, n, mu);
-    g = rho + 2.0 * fr__gamma(2.0 * n + 2.0);
-    for (k = 1; k <= n; k++) {
-        rj *= r;
-        rad += fabs(q[k]) * rj;
-    }
+    g = rho + 2.0 * gam; /* gam = gamma_{2n+2}, once per ray */
     /* sum_j Q_j r^j, Q = pm shifted by |mu|, is pm(|mu| + r) exactly (a
        shift then an evaluation at r is an evaluation at |mu| + r): one
        Horner pass of nonnegative terms instead of a second O(n^2) shift
        (a third of this function's time). Its rounding, relative and below
        gamma_{2n} with |mu| + r rounded up, is covered by one more factor
        1 + gamma_{2n+2}. */
-    {
-        double x = (amu + r) * (1.0 + 2.0 * FR__U); /* |mu| + r rounded up */
+    x = (amu + r) * (1.0 + 2.0 * FR__U); /* |mu| + r rounded up */
+    if (pdeg == n && n == 4) fr__shift_sum4(pc, pm, mu, r, x, q, &rad, &pad);
+    else if (pdeg == n && n == 3) fr__shift_sum3(pc, pm, mu, r, x, q, &rad, &pad);
+    else {
+        for (k = 0; k <= n; k++) q[k] = k <= pdeg ? pc[k] : 0.0;
+        fr__taylor_shift(q, n, mu);
+        for (k = 1; k <= n; k++) {
+            rj *= r;
+            rad += fabs(q[k]) * rj;
+        }
         pad = pm[n];
         for (k = n; k-- > 0;) pad = pad * x + pm[k];
     }
-    pad *= 1.0 + fr__gamma(2.0 * n + 2.0);
-    *pad_share = g * pad / (rad + g * pad + DBL_MIN);
-    rad = (rad + g * pad) * (1.0 + fr__gamma(2.0 * n + 2.0)) + 2.0 * FR__U * fabs(q[0]) + DBL_MIN;
+    pad *= 1.0 + gam;
+    /* the rounding pad's share of the radius, compared without a division */
+    *pad_share = g * pad >= FR__POLY_PAD_SHARE * (rad + g * pad) ? 1.0 : 0.0;
+    rad = (rad + g * pad) * (1.0 + gam) + 2.0 * FR__U * fabs(q[0]) + DBL_MIN;
     if (!(rad < HUGE_VAL) || q[0] != q[0]) return iv_entire();
     return iv_make(q[0] - rad, q[0] + rad);
 }
 static iv_t fr__poly_range(const fr__ray_t *R, double a, double b, double *pad_share)
 {
-    return fr__poly_range_of(R, R->pc, R->pm, R->pdeg, R->mdeg, R->rho, a, b, pad_share);
+    return fr__poly_range_of(R, R->pc, R->pm, R->pdeg, R->mdeg, R->rho, R->gam, a, b, pad_share);
 }
 
 /* Interval Newton (Moore 1966; Hansen 1992) on [a, b] for a polynomial
    tape: with G' an enclosure of g' over the segment that excludes 0, every
    root lies in N = m - g(m) / G' (mean value theorem), m the midpoint and
-   g(m) enclosed by the centred form at the point m. Narrows [*a, *b] to
+   g(m) enclosed by the centred form at the point m; dg is G' (the
+   caller's, fr__trace_interval). Narrows [*a, *b] to
    its intersection with N; returns 0 when that is empty (no root), 1
    otherwise. A G' containing 0 leaves the segment unchanged. */
-static int fr__newton_narrow(fr__ray_t *R, double *a, double *b)
+static int fr__newton_narrow(fr__ray_t *R, iv_t dg, double *a, double *b)
 {
     double share, m = 0.5 * *a + 0.5 * *b;
-    iv_t dg = fr__poly_range_of(R, R->dc, R->dm, R->pdeg - 1, R->mdeg - 1, R->drho, *a, *b, &share), gm, nw;
-    R->evals++;
+    iv_t gm, nw;
     if (iv_contains(dg, 0.0) || iv_is_empty(dg)) return 1;
     gm = fr__poly_range(R, m, m, &share);
     nw = iv_sub(iv_point(m), iv_div(gm, dg));
@@ -4616,7 +4996,7 @@ static fr_result_t fr__g_range(fr__ray_t *R, const fr_tape_t *tp, double a, doub
     if (R->pc) {
         double share;
         pr = fr__poly_range(R, a, b, &share);
-        if (!iv_contains(pr, 0.0) || share < FR__POLY_PAD_SHARE) { *out = pr; return FR_OK; }
+        if (!iv_contains(pr, 0.0) || share == 0) { *out = pr; return FR_OK; }
     }
 #ifndef IV_NO_AFFINE
     if (!plain) {
@@ -4660,7 +5040,7 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         fr__seg_t s = stack[--sp];
         int lvl = s.depth / FR__PRUNE_EVERY;
         const fr_tape_t *tp;
-        iv_t range;
+        iv_t range, dg;
         fr_result_t e;
         double tl;
         R->iters++;
@@ -4678,11 +5058,42 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         if (iv_is_empty(range) || !iv_contains(range, 0.0)) continue;
         /* tl: where bisection ends; tol, or the pixel footprint at s.b */
         tl = R->tol + R->footprint * fabs(s.b);
+        dg = iv_entire();
+        if (R->mono && s.b - s.a > tl) {
+            /* A polynomial tape: where the centred form of g' excludes 0, g
+               is strictly monotone on the segment, so it holds at most one
+               root, and the first one, as every segment left of it is
+               excluded (depth-first, left first). A sign change at the ends
+               then goes straight to regula falsi (to tol, bracketed); no
+               sign change, with the ends' enclosures of one strict sign,
+               proves there is none. Either saves the bisection levels down
+               to tl. */
+            double share;
+            dg = fr__poly_range_of(R, R->dc, R->dm, R->pdeg - 1, R->mdeg - 1, R->drho, R->dgam, s.a, s.b, &share);
+            R->evals++;
+            if (!iv_is_empty(dg) && !iv_contains(dg, 0.0)) {
+                double ga = fr__g(R, s.a), gb = fr__g(R, s.b);
+                if (ga == 0 || gb == 0 || fr__opposite(ga, gb)) {
+                    *found = 1;
+                    *t_err = 0.5 * R->tol;
+                    if (ga == 0) *t_hit = s.a;
+                    else if (gb == 0) *t_hit = s.b;
+                    else if (R->any_hit) { *t_hit = 0.5 * (s.a + s.b); *t_err = 0.5 * (s.b - s.a); }
+                    else *t_hit = fr__refine(R, FR_REFINE_ILLINOIS, s.a, s.b, ga, gb, t_err);
+                    return FR_OK;
+                }
+                {
+                    iv_t ea = fr__poly_range(R, s.a, s.a, &share), eb = fr__poly_range(R, s.b, s.b, &share);
+                    R->evals += 2;
+                    if ((ea.lo > 0 && eb.lo > 0) || (ea.hi < 0 && eb.hi < 0)) continue;
+                }
+            }
+        }
         if (R->newton && s.b - s.a > tl) {
             /* interval Newton: drop the segment or narrow it; a segment
                that shrank by half or more is tried again as it is */
             double na = s.a, nb = s.b;
-            if (!fr__newton_narrow(R, &na, &nb)) continue;
+            if (!fr__newton_narrow(R, dg, &na, &nb)) continue;
             if (nb - na <= 0.5 * (s.b - s.a) && s.depth < FR__TRACE_MAX_DEPTH) {
                 stack[sp].a = na; stack[sp].b = nb; stack[sp].depth = s.depth + 1; sp++;
                 continue;
@@ -4728,20 +5139,22 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
    7 siblings per level). */
 #define FR__BOUND_DEPTH 6
 #define FR__BOUND_MAX_DEPTH 10
-FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
-                                double out_lo[3], double out_hi[3])
+/* An enclosure of a function over a cell (fr__box_search). */
+typedef fr_result_t (*fr__cell_fn)(const void *ctx, const iv_t box[3], iv_t *r);
+
+/* The bounding box of the octree cells of [lo, hi] at depth `depth` whose
+   enclosure may hold the solid (keep_zero 0: r.hi >= 0) or the surface
+   (keep_zero 1: r.lo <= 0 <= r.hi); cells inside the box found so far are
+   skipped. Nothing kept gives out_lo > out_hi. */
+static fr_result_t fr__box_search(fr__cell_fn fn, const void *ctx, int keep_zero, const double lo[3], const double hi[3],
+                                  int depth, double out_lo[3], double out_hi[3])
 {
     struct { double lo[3], hi[3]; int depth; } stack[7 * FR__BOUND_MAX_DEPTH + 1];
-    int sp = 0, k;
-    if (!t || !lo || !hi || !scratch || !out_lo || !out_hi || t->n_code == 0 || depth < 0) return FR_ERR_INVALID_ARG;
-    if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+    int sp, k;
     for (k = 0; k < 3; k++) {
-        if (!(lo[k] - lo[k] == 0) || !(hi[k] - hi[k] == 0) || !(lo[k] <= hi[k])) return FR_ERR_INVALID_ARG;
         stack[0].lo[k] = lo[k]; stack[0].hi[k] = hi[k];
         out_lo[k] = HUGE_VAL; out_hi[k] = -HUGE_VAL;
     }
-    if (depth == 0) depth = FR__BOUND_DEPTH;
-    if (depth > FR__BOUND_MAX_DEPTH) depth = FR__BOUND_MAX_DEPTH;
     stack[0].depth = 0;
     sp = 1;
     while (sp > 0) {
@@ -4753,8 +5166,8 @@ FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const do
             inside &= stack[sp].lo[k] >= out_lo[k] && stack[sp].hi[k] <= out_hi[k];
         }
         if (inside) continue; /* cannot grow the box */
-        if (fr_eval_interval(t, box, scratch, &r) != FR_OK) return FR_ERR_NO_INTERVAL;
-        if (iv_is_empty(r) || r.hi < 0) continue; /* no solid here (or f is NaN throughout) */
+        if (fn(ctx, box, &r) != FR_OK) return FR_ERR_NO_INTERVAL;
+        if (iv_is_empty(r) || r.hi < 0 || (keep_zero && r.lo > 0)) continue; /* nothing here (or f is NaN throughout) */
         if (stack[sp].depth >= depth) {
             for (k = 0; k < 3; k++) {
                 if (stack[sp].lo[k] < out_lo[k]) out_lo[k] = stack[sp].lo[k];
@@ -4778,6 +5191,32 @@ FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const do
     }
     return FR_OK;
 }
+
+typedef struct fr__tape_cell_t {
+    const fr_tape_t *tape;
+    void *scratch;
+} fr__tape_cell_t;
+static fr_result_t fr__tape_cell(const void *ctx, const iv_t box[3], iv_t *r)
+{
+    const fr__tape_cell_t *c = (const fr__tape_cell_t *)ctx;
+    return fr_eval_interval(c->tape, box, c->scratch, r);
+}
+
+FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
+                                double out_lo[3], double out_hi[3])
+{
+    fr__tape_cell_t c;
+    int k;
+    if (!t || !lo || !hi || !scratch || !out_lo || !out_hi || t->n_code == 0 || depth < 0) return FR_ERR_INVALID_ARG;
+    if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+    for (k = 0; k < 3; k++)
+        if (!(lo[k] - lo[k] == 0) || !(hi[k] - hi[k] == 0) || !(lo[k] <= hi[k])) return FR_ERR_INVALID_ARG;
+    if (depth == 0) depth = FR__BOUND_DEPTH;
+    if (depth > FR__BOUND_MAX_DEPTH) depth = FR__BOUND_MAX_DEPTH;
+    c.tape = t;
+    c.scratch = scratch;
+    return fr__box_search(fr__tape_cell, &c, 0, lo, hi, depth, out_lo, out_hi);
+}
 #endif
 
 /* ---------------------------------------------------------------- analytic */
@@ -4791,15 +5230,36 @@ static double fr__analytic_expand(const fr__ray_t *R, const fr__trace_mem_t *mem
 {
     double ts, ob[3];
     int k;
+    const fr_prepared_t *P = R->prep && R->prep->kind == FR_PREPARED_POLY ? R->prep : NULL;
     ts = -(R->o[0] * R->d[0] + R->o[1] * R->d[1] + R->o[2] * R->d[2]) /
          (R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2]);
     if (!(ts >= R->t0)) ts = R->t0;
     if (!(ts <= R->t1)) ts = R->t1;
     if (!(ts - ts == 0)) ts = 0; /* unbounded segment */
     for (k = 0; k < 3; k++) ob[k] = R->o[k] + ts * R->d[k];
+    if (P) {
+        /* the prepared program: only the shape's slots, fixed degrees, both
+           runs in one pass; an overflow on this ray takes the full runs */
+        fr__tp_t *prog;
+        unsigned int out = R->tape->outputs[0];
+        int dg;
+        fr__prep_layout(P->n_leaves, P->n_nodes, P->n_prog, NULL, NULL, &prog, P->mem);
+        dg = prog[P->n_prog - 1].dc;
+        fr__prog_run(R->tape, prog, P->n_prog, ob, R->d, mem->taylor, with_mag ? mem->taylor_mag : NULL);
+        mem->deg[out] = fr__checked_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, dg);
+        if (with_mag) mem->deg_mag[out] = fr__checked_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, dg);
+        if (mem->deg[out] >= 0 && (!with_mag || mem->deg_mag[out] >= 0)) return ts;
+    }
     fr__taylor_run(R->tape, ob, R->d, mem->taylor, mem->deg, NULL);
-    if (with_mag && mem->deg[R->tape->outputs[0]] >= 0)
-        fr__taylor_run(R->tape, ob, R->d, mem->taylor_mag, mem->deg_mag, mem->taylor);
+    {
+        unsigned int out = R->tape->outputs[0];
+        mem->deg[out] = fr__checked_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, mem->deg[out]);
+        if (with_mag && mem->deg[out] >= 0) {
+            fr__taylor_run(R->tape, ob, R->d, mem->taylor_mag, mem->deg_mag, mem->taylor);
+            mem->deg_mag[out] = fr__checked_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, mem->deg_mag[out]);
+            if (mem->deg_mag[out] < 0) mem->deg[out] = -1;
+        }
+    }
     return ts;
 }
 
@@ -4820,7 +5280,10 @@ static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
         const fr_instr_t *in = &t->code[i];
         if (!mem->need[i]) continue;
         mem->list[cnt++] = i;
-        if (mem->deg[i] >= 0) continue;
+        if (mem->deg[i] >= 0) { /* a leaf: it must not have overflowed on this ray */
+            if (fr__checked_degree(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i]) < 0) return -1;
+            continue;
+        }
         switch ((fr_op_t)in->op) {
         case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
             mem->need[in->a] = 1; mem->need[in->b] = 1; break;
@@ -4836,48 +5299,134 @@ static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
     return cnt;
 }
 
-/* g at the two ends of a candidate's sign-test bracket, t - ts = s[0] and
-   s[1], from the CSG tree of fr__csg_mark: each polynomial leaf by Horner's
-   rule on its Taylor coefficients (a few flops instead of its whole
-   subtree, a dozen instructions for a quadric), each CSG node by min or
-   max (below). Both ends share one pass over the tree (the walk and the loads cost
-   more than the arithmetic). v holds 2n doubles (the grad evaluator's
-   scratch has 4n); g receives the two values. */
-static void fr__csg_g2(fr__ray_t *R, const fr__trace_mem_t *mem, int cnt, const double s[2], double *v, double g[2])
+
+/* Analytic CSG classification (paper §3.1.1, "select the root ... placed
+   on the surface of the CSG solid"), shared by the prepared and the plain
+   path: leaves' signs, crossings, and a walk over the sorted crossings. */
+
+static int fr__sgn(double x) { return x > 0 ? 1 : x < 0 ? -1 : 0; }
+
+/* A leaf's crossing roots, general degree: fr_solve_poly on [s0, s1] (s = t
+   - ts), each root a crossing where the leaf's sign differs in the gaps
+   either side (Horner at the gaps' midpoints, so a double root is a touch);
+   roots at s0 belong to the part before the segment. cand receives ts + s
+   of the crossings, *sg the sign just after s0. -1: invalid coefficients. */
+static int fr__poly_leaf(const double *c, int deg, double s0, double s1, double ts, int culled, double *cand, int *sg)
 {
-    const fr_tape_t *tp = R->tape;
-    int j, e;
-    unsigned int out = tp->outputs[0];
-    R->evals += 2;
-    for (j = 0; j < cnt; j++) {
-        unsigned int i = mem->list[j];
-        const fr_instr_t *in = &tp->code[i];
-        if (mem->deg[i] >= 0) {
-            const double *q = mem->taylor + (size_t)i * FR__TAYLOR_N;
-            int k = mem->deg[i];
-            double r0 = q[k], r1 = q[k];
-            while (k-- > 0) { r0 = r0 * s[0] + q[k]; r1 = r1 * s[1] + q[k]; }
-            v[2 * i] = r0; v[2 * i + 1] = r1;
-            continue;
-        }
-        for (e = 0; e < 2; e++) {
-            double a = v[2 * in->a + (unsigned int)e], c = v[2 * in->b + (unsigned int)e], r;
-            switch ((fr_op_t)in->op) {
-            /* Only g's sign is tested, and an R-function (alpha in [0, 1],
-               which the builder enforces) has the sign of max (union) or
-               min (intersection) of its operands: that is what makes it an
-               R-function (Rvachev; paper §2, "Rvachev's R-functions";
-               FR_PRUNE_SIGN relies on it too). So no square root per node
-               (they were the sign tests' cost), and the sign is the exact
-               one where a + b - sqrt(...) would round to 0. */
-            case FR_OP_NEG: r = -a; break;
-            case FR_OP_MIN: case FR_OP_RINT: r = a < c ? a : c; break;
-            default: r = a > c ? a : c; break; /* MAX, RUNI: the only other CSG nodes */
-            }
-            v[2 * i + (unsigned int)e] = r;
+    double r[FR_POLY_MAX_DEGREE], x, y;
+    int nr, j, m = 0, prev, first = 0, k;
+    if (culled || deg <= 0) {
+        x = 0.5 * s0 + 0.5 * s1;
+        for (y = c[deg > 0 ? deg : 0], k = deg; k-- > 0;) y = y * x + c[k];
+        *sg = fr__sgn(y);
+        return 0;
+    }
+    nr = fr_solve_poly(c, deg, s0, s1, r);
+    if (nr < 0) return -1;
+    while (first < nr && r[first] <= s0) first++;
+    prev = 0;
+    for (j = first - 1; j < nr; j++) {
+        double a = j < first ? s0 : r[j], b = j + 1 < nr ? r[j + 1] : s1;
+        int g;
+        x = 0.5 * a + 0.5 * b;
+        for (y = c[deg], k = deg; k-- > 0;) y = y * x + c[k];
+        g = fr__sgn(y);
+        if (j < first) *sg = prev = g;
+        else {
+            if (g != 0 && prev != 0 && g != prev) cand[m++] = ts + r[j];
+            if (g != 0) prev = g;
         }
     }
-    g[0] = v[2 * out]; g[1] = v[2 * out + 1];
+    return m;
+}
+
+/* The sign of the shape from the leaves' signs v[0, nl): min, max and
+   negation over signs, as over values (an R-function has the sign of min or
+   max of its operands); node values go to v[nl...]. */
+static FR__HOT_INLINE int fr__csg_sign(const fr__csg_node_t *nd, unsigned int nn, unsigned int nl, signed char *v,
+                        const signed char *force)
+{
+    signed char *w = v + nl;
+    unsigned int j;
+    for (j = 0; j < nn; j++) {
+        int a = v[nd[j].a], b = v[nd[j].b], mn = a < b ? a : b, mx = a < b ? b : a;
+        w[j] = (signed char)(nd[j].op == FR__CSG_MAX ? mx : nd[j].op == FR__CSG_MIN ? mn : -a);
+        if (force && force[j]) w[j] = force[j];
+    }
+    return nn ? w[nn - 1] : v[0];
+}
+
+/* The same over the tape's own slots (fr__csg_mark's list, ascending):
+   leaves (deg >= 0) hold their signs in v[slot]. */
+static int fr__csg_sign_tape(const fr_tape_t *t, const unsigned int *list, int cnt, const int *deg, signed char *v)
+{
+    int j;
+    for (j = 0; j < cnt; j++) {
+        unsigned int i = list[j];
+        const fr_instr_t *in = &t->code[i];
+        int a, b;
+        if (deg[i] >= 0) continue;
+        a = v[in->a];
+        b = in->op == FR_OP_NEG ? 0 : v[in->b];
+        v[i] = (signed char)(in->op == FR_OP_NEG ? -a : in->op == FR_OP_MIN || in->op == FR_OP_RINT ? (a < b ? a : b)
+                                                                                                  : (a < b ? b : a));
+    }
+    return v[t->outputs[0]];
+}
+
+/* The tree a walk evaluates: a prepared model's nodes, or the tape's slots. */
+typedef struct fr__csg_walk_t {
+    const fr__csg_node_t *nodes; /* prepared: nn nodes over nl leaves, force as fr__csg_sign */
+    unsigned int nn, nl;
+    const signed char *force;
+    const fr_tape_t *tape;       /* plain: fr__csg_mark's list of cnt slots, with the Taylor degrees */
+    const unsigned int *list;
+    int cnt;
+    const int *deg;
+} fr__csg_walk_t;
+
+static FR__HOT_INLINE int fr__walk_sign(const fr__csg_walk_t *W, signed char *v)
+{
+    return W->nodes ? fr__csg_sign(W->nodes, W->nn, W->nl, v, W->force) : fr__csg_sign_tape(W->tape, W->list, W->cnt, W->deg, v);
+}
+
+/* Sort the nc crossings cand (t) with their leaves cl, then find the first
+   where the shape's sign differs between just before and just after it,
+   within FR__CSG_SIGN_ULPS of the point's scale (near-coincident surfaces
+   count together): vlo and vhi start as the leaves' signs after t0; a
+   crossing flips its leaf's sign in vhi once it is within the bracket's
+   end and in vlo once it is before the bracket's start, and the tree is
+   re-evaluated only where a leaf changed -- no evaluation of g near a
+   root, where rounding could hide a grazing ray's sign change. Returns the
+   crossing's index or -1, with the shape's signs before (glo) and after
+   (ghi) and the bracket's half-width. */
+static FR__HOT_INLINE int fr__csg_walk(fr__ray_t *R, const fr__csg_walk_t *W, double *cand, unsigned int *cl, int nc, signed char *vlo,
+                        signed char *vhi, int *glo, int *ghi, double *dt_out)
+{
+    int k, plo = 0, phi = 0;
+    double oscale;
+    for (k = 1; k < nc; k++) { /* insertion sort: few candidates */
+        double x = cand[k];
+        unsigned int y = cl[k];
+        int i = k;
+        while (i > 0 && cand[i - 1] > x) { cand[i] = cand[i - 1]; cl[i] = cl[i - 1]; i--; }
+        cand[i] = x;
+        cl[i] = y;
+    }
+    if (nc == 0) return -1;
+    *glo = *ghi = fr__walk_sign(W, vlo);
+    oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) / (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
+    for (k = 0; k < nc; k++) {
+        double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
+        int mlo = plo, mhi = phi;
+        while (phi < nc && cand[phi] <= tc + dt) { vhi[cl[phi]] = (signed char)-vhi[cl[phi]]; phi++; }
+        while (plo < nc && cand[plo] < tc - dt) { vlo[cl[plo]] = (signed char)-vlo[cl[plo]]; plo++; }
+        if (plo != mlo) *glo = fr__walk_sign(W, vlo);
+        if (phi != mhi) *ghi = fr__walk_sign(W, vhi);
+        R->iters++;
+        if (*glo * *ghi < 0) { *dt_out = dt; return k; }
+    }
+    return -1;
 }
 
 /* The paper's analytic method. A polynomial tape: the roots of g. Otherwise
@@ -4893,7 +5442,7 @@ static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, 
     const fr_tape_t *t = R->tape;
     unsigned int out = t->outputs[0];
     int nc = 0, k, j;
-    double oscale, *cand = mem->cand, s0 = R->t0 - ts, s1 = R->t1 - ts, *v = (double *)mem->eval;
+    double oscale, *cand = mem->cand, s0 = R->t0 - ts, s1 = R->t1 - ts;
     *found = 0;
     oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) /
              (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
@@ -4906,34 +5455,27 @@ static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, 
     }
     if (cnt == -2) cnt = fr__csg_mark(t, mem);
     if (cnt < 0) return FR_ERR_NOT_POLYNOMIAL;
-    for (j = 0; j < cnt; j++) { /* the polynomial leaves: collect their roots */
-        unsigned int i = mem->list[j];
-        int nr;
-        if (mem->deg[i] <= 0) continue;
-        nr = fr_solve_poly(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i], s0, s1, cand + nc);
-        R->iters++;
-        for (k = 0; k < nr; k++) cand[nc + k] += ts;
-        if (nr > 0) nc += nr;
-    }
-    /* insertion sort: few candidates */
-    for (k = 1; k < nc; k++) {
-        double x = cand[k];
-        j = k;
-        while (j > 0 && cand[j - 1] > x) { cand[j] = cand[j - 1]; j--; }
-        cand[j] = x;
-    }
-    for (k = 0; k < nc; k++) {
-        double tc = cand[k], dt = FR__CSG_SIGN_ULPS * FR__U * (fabs(tc) + oscale);
-        double lo = tc - dt < R->t0 ? R->t0 : tc - dt, hi = tc + dt > R->t1 ? R->t1 : tc + dt;
-        double sb[2], gb[2], glo, ghi;
-        sb[0] = lo - ts; sb[1] = hi - ts;
-        fr__csg_g2(R, mem, cnt, sb, v, gb);
-        glo = gb[0]; ghi = gb[1];
-        R->iters++;
-        if (fr__opposite(glo, ghi) || (tc == R->t0 && glo == 0) ) {
-            *found = 1; *t_hit = tc; *t_err = dt;
-            return FR_OK;
+    {
+        signed char *vlo = mem->sgn, *vhi = mem->sgn + t->n_code;
+        fr__csg_walk_t W;
+        int glo, ghi, kh;
+        double dt;
+        for (j = 0; j < cnt; j++) { /* the polynomial leaves: their crossings and signs */
+            unsigned int i = mem->list[j];
+            int m, sg = 0;
+            if (mem->deg[i] < 0) continue;
+            m = fr__poly_leaf(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i], s0, s1, ts, 0, cand + nc, &sg);
+            R->iters++;
+            if (m < 0) return FR_ERR_NOT_POLYNOMIAL;
+            for (k = 0; k < m; k++) mem->cleaf[nc + k] = i;
+            nc += m;
+            vlo[i] = vhi[i] = (signed char)sg;
         }
+        memset(&W, 0, sizeof W);
+        W.tape = t; W.list = mem->list; W.cnt = cnt; W.deg = mem->deg;
+        kh = fr__csg_walk(R, &W, cand, mem->cleaf, nc, vlo, vhi, &glo, &ghi, &dt);
+        if (kh >= 0) { *found = 1; *t_hit = cand[kh]; *t_err = dt; }
+        R->evals += (unsigned long long)cnt;
     }
     return FR_OK;
 }
@@ -4962,6 +5504,64 @@ static void fr__normal(fr__ray_t *R, const fr_trace_desc_t *desc, const double p
     for (k = 0; k < 3; k++) nrm[k] = len > 0 && len == len ? -g[k] / len : 0.0;
 }
 
+/* The AD normal of a prepared polynomial (FR_PREPARED_POLY) at p: value
+   and gradient per slot (4 doubles in V) by the program's kernels, the
+   derivative rules of fr_eval_grad on fewer and straighter cases (a fourth
+   of the tangle cube's interval time went to the tape's AD). Returns 0
+   for a program it cannot take (the caller then uses fr__normal). */
+static int fr__prog_normal(const fr_tape_t *t, const fr_prepared_t *P, const double p[3], double *V, double nrm[3])
+{
+    fr__tp_t *prog;
+    unsigned int j, out = t->outputs[0];
+    int k;
+    double len;
+    fr__prep_layout(P->n_leaves, P->n_nodes, P->n_prog, NULL, NULL, &prog, P->mem);
+    for (j = 0; j < P->n_prog; j++) {
+        const fr__tp_t *pi = &prog[j];
+        const fr_instr_t *in = &t->code[pi->slot];
+        double *c = V + 4 * (size_t)pi->slot;
+        const double *A = V + 4 * (size_t)pi->a, *B = V + 4 * (size_t)pi->b;
+        double f = 0;
+        switch (pi->kernel) {
+        case FR__K_CONST: c[0] = in->k; c[1] = c[2] = c[3] = 0; continue;
+        case FR__K_VAR: {
+            int ax = (int)in->op - (int)FR_OP_VAR_X;
+            c[0] = p[ax]; c[1] = c[2] = c[3] = 0; c[1 + ax] = 1;
+            continue;
+        }
+        case FR__K_NEG: for (k = 0; k < 4; k++) c[k] = -A[k]; continue;
+        case FR__K_ADD: for (k = 0; k < 4; k++) c[k] = A[k] + B[k]; continue;
+        case FR__K_SUB: for (k = 0; k < 4; k++) c[k] = A[k] - B[k]; continue;
+        case FR__K_MULK: for (k = 0; k < 4; k++) c[k] = A[k] * B[0]; continue;
+        case FR__K_KMUL: for (k = 0; k < 4; k++) c[k] = A[0] * B[k]; continue;
+        case FR__K_SQR1: case FR__K_SQR2: f = 2.0 * A[0]; c[0] = A[0] * A[0]; break;
+        case FR__K_POW4: { double a2 = A[0] * A[0]; f = 4.0 * (a2 * A[0]); c[0] = a2 * a2; break; }
+        default:
+            switch ((fr_op_t)in->op) {
+            case FR_OP_MUL: c[0] = A[0] * B[0]; for (k = 1; k < 4; k++) c[k] = A[k] * B[0] + A[0] * B[k]; continue;
+            case FR_OP_SQR: f = 2.0 * A[0]; c[0] = A[0] * A[0]; break;
+            case FR_OP_POWI: {
+                int n = (int)in->k;
+                c[0] = fr__powi(A[0], n);
+                f = n == 0 ? 0.0 : in->k * fr__powi(A[0], n - 1);
+                break;
+            }
+            case FR_OP_DIV: c[0] = A[0] / B[0]; f = 1.0 / B[0]; break; /* B is a constant */
+            default:
+                if (pi->dc != 0 || !fr__tpoly_const_op(in, A[0], B[0], &c[0])) return 0;
+                c[1] = c[2] = c[3] = 0;
+                continue;
+            }
+            break;
+        }
+        for (k = 1; k < 4; k++) c[k] = f * A[k]; /* the chain rule of a unary step */
+    }
+    len = sqrt(V[4 * (size_t)out + 1] * V[4 * (size_t)out + 1] + V[4 * (size_t)out + 2] * V[4 * (size_t)out + 2] +
+               V[4 * (size_t)out + 3] * V[4 * (size_t)out + 3]);
+    for (k = 0; k < 3; k++) nrm[k] = len > 0 && len == len ? -V[4 * (size_t)out + 1 + (size_t)k] / len : 0.0;
+    return 1;
+}
+
 /* Clip [R->t0, R->t1] to the box b (lo x y z, hi x y z) by the slab test;
    0 if nothing is left. The box is padded by 2^-20 of its size plus the
    rounding of o and of the slab divisions, so a surface on the box's face
@@ -4973,16 +5573,17 @@ static int fr__clip_box(fr__ray_t *R, const double *b)
     int k;
     for (k = 0; k < 3; k++) {
         double pad = FR__BOX_PAD * (b[k + 3] - b[k]) + 8.0 * FR__U * (fabs(R->o[k]) + fabs(b[k]) + fabs(b[k + 3]));
-        double lo = b[k] - pad, hi = b[k + 3] + pad, ta, tb;
+        double lo = b[k] - pad, hi = b[k + 3] + pad, ta, tb, inv;
         if (!(lo <= hi)) return 0; /* empty or NaN box */
         if (R->d[k] == 0) {
             if (R->o[k] < lo || R->o[k] > hi) return 0;
             continue;
         }
-        ta = (lo - R->o[k]) / R->d[k];
-        tb = (hi - R->o[k]) / R->d[k];
+        inv = 1.0 / R->d[k];
+        ta = (lo - R->o[k]) * inv;
+        tb = (hi - R->o[k]) * inv;
         if (ta > tb) { double x = ta; ta = tb; tb = x; }
-        ta -= 4.0 * FR__U * fabs(ta); /* the divisions' rounding, outward */
+        ta -= 4.0 * FR__U * fabs(ta); /* the reciprocal's and products' rounding, outward */
         tb += 4.0 * FR__U * fabs(tb);
         if (ta > a) a = ta;
         if (tb < z) z = tb;
@@ -4992,51 +5593,795 @@ static int fr__clip_box(fr__ray_t *R, const double *b)
     return 1;
 }
 
+/* ---------------------------------------------------------------- prepared models */
+
+/* fr__clip_box with a box padded beforehand (fr__box_pad_set): only the
+   ray's own rounding is added, to the box's bounds in t. */
+static int fr__clip_padded(fr__ray_t *R, const double *b)
+{
+    double A = -HUGE_VAL, Z = HUGE_VAL, tp = 0.0;
+    int k;
+    for (k = 0; k < 3; k++) {
+        double op = 8.0 * FR__U * fabs(R->o[k]), inv, ta, tb;
+        if (R->d[k] == 0) {
+            if (!(R->o[k] >= b[k] - op && R->o[k] <= b[k + 3] + op)) return 0;
+            R->inv[k] = 0.0;
+            continue;
+        }
+        inv = 1.0 / R->d[k];
+        R->inv[k] = inv;
+        ta = (b[k] - R->o[k]) * inv;
+        tb = (b[k + 3] - R->o[k]) * inv;
+        if (ta > tb) { double x = ta; ta = tb; tb = x; }
+        if (ta > A) A = ta;
+        if (tb < Z) Z = tb;
+        if (op * fabs(inv) > tp) tp = op * fabs(inv);
+    }
+    R->have_inv = 1;
+    A -= 4.0 * FR__U * fabs(A) + tp;
+    Z += 4.0 * FR__U * fabs(Z) + tp;
+    if (A < R->t0) A = R->t0;
+    if (Z > R->t1) Z = R->t1;
+    if (!(A <= Z)) return 0;
+    R->t0 = A;
+    R->t1 = Z;
+    return 1;
+}
+
+/* Leaf zero-set boxes: octree depth, and the padding of the search box
+   beyond the prepared box (twice fr__clip_box's, so the clipped segments
+   of every ray lie inside it). */
+#define FR__LEAF_BOX_DEPTH 6
+#define FR__LEAF_CULL_SHARE 0.25
+/* Quadric leaves use the quadratic formula while their largest coefficient
+   on the ray lies in [2^-300, 2^300] (no overflow or underflow in Kahan's
+   discriminant), else fr_solve_poly. */
+#define FR__QUAD_BIG 2.037035976334486e90     /* 2^300 */
+#define FR__QUAD_SMALL 4.9090934652977266e-91 /* 2^-300 */
+
+
+/* The slots of root's subtree in ascending order (operands precede their
+   users), into out; returns their count. stamp (n entries, left as they
+   are between calls) marks visits with tag, which must differ from every
+   earlier call's; stack holds n entries. */
+static unsigned int fr__subtree(const fr_tape_t *t, unsigned int root, unsigned int tag, unsigned int *stamp,
+                                unsigned int *stack, unsigned int *out)
+{
+    unsigned int sp = 0, m = 0;
+    stack[sp++] = root;
+    stamp[root] = tag;
+    while (sp > 0) {
+        unsigned int x = stack[--sp], op[3], k;
+        const fr_instr_t *in = &t->code[x];
+        int ar = fr__arity(in->op);
+        out[m++] = x;
+        op[0] = in->a; op[1] = in->b; op[2] = in->c;
+        for (k = 0; k < (unsigned int)ar; k++)
+            if (stamp[op[k]] != tag) { stamp[op[k]] = tag; stack[sp++] = op[k]; }
+    }
+    { /* ascending: Shell sort (Ciura's gaps; no libc qsort, which a user FR_MALLOC leaves undeclared) */
+        static const unsigned int gaps[8] = {701, 301, 132, 57, 23, 10, 4, 1};
+        unsigned int gi, i, j;
+        for (gi = 0; gi < 8; gi++) {
+            unsigned int h = gaps[gi];
+            for (i = h; i < m; i++) {
+                unsigned int v = out[i];
+                for (j = i; j >= h && out[j - h] > v; j -= h) out[j] = out[j - h];
+                out[j] = v;
+            }
+        }
+    }
+    return m;
+}
+
+/* The quadric (degree <= 2) monomial forms of the slots in list
+   (ascending; the last is the leaf) in powers of q = p - e: W holds 10 doubles
+   per slot, [1, X, Y, Z, XX, XY, XZ, YY, YZ, ZZ]; slots of generic degree
+   outside [0, 2] get NaN. Returns 1 if the leaf came out finite. */
+static int fr__quadric_forms(const fr_tape_t *t, const int *gdeg, const unsigned int *list, unsigned int cnt,
+                             const double e[3], double *W)
+{
+    unsigned int j, last = list[cnt - 1];
+    int k;
+    for (j = 0; j < cnt; j++) {
+        unsigned int i = list[j];
+        const fr_instr_t *in = &t->code[i];
+        double *c = W + 10 * (size_t)i, r[10];
+        const double *a = W + 10 * (size_t)in->a, *b = W + 10 * (size_t)in->b;
+        for (k = 0; k < 10; k++) r[k] = 0.0;
+        if (gdeg[i] < 0 || gdeg[i] > 2) {
+            r[0] = NAN;
+        } else {
+            switch ((fr_op_t)in->op) {
+        case FR_OP_CONST: r[0] = in->k; break;
+        case FR_OP_VAR_X: case FR_OP_VAR_Y: case FR_OP_VAR_Z: {
+            int ax = (int)in->op - (int)FR_OP_VAR_X;
+            r[0] = e[ax]; r[1 + ax] = 1.0;
+            break;
+        }
+        case FR_OP_NEG: for (k = 0; k < 10; k++) r[k] = -a[k]; break;
+        case FR_OP_ADD: for (k = 0; k < 10; k++) r[k] = a[k] + b[k]; break;
+        case FR_OP_SUB: for (k = 0; k < 10; k++) r[k] = a[k] - b[k]; break;
+        case FR_OP_SQR: case FR_OP_MUL: case FR_OP_POWI: {
+            /* products of total degree <= 2 (gdeg says so): constant times
+               anything, or linear times linear */
+            const double *y = in->op == FR_OP_MUL ? b : a;
+            int n = in->op == FR_OP_POWI ? (int)in->k : 2;
+            if (n == 0) { r[0] = 1.0; break; }
+            if (n == 1) { for (k = 0; k < 10; k++) r[k] = a[k]; break; }
+            if (in->op == FR_OP_POWI && gdeg[in->a] == 0) { r[0] = fr__powi(a[0], n); break; }
+            if (n != 2) { r[0] = NAN; break; }
+            r[0] = a[0] * y[0];
+            for (k = 1; k < 10; k++) r[k] = a[0] * y[k] + a[k] * y[0];
+            r[4] += a[1] * y[1]; r[5] += a[1] * y[2] + a[2] * y[1]; r[6] += a[1] * y[3] + a[3] * y[1];
+            r[7] += a[2] * y[2]; r[8] += a[2] * y[3] + a[3] * y[2]; r[9] += a[3] * y[3];
+            break;
+        }
+        case FR_OP_DIV: for (k = 0; k < 10; k++) r[k] = b[0] != 0 ? a[k] / b[0] : NAN; break;
+        default:
+            if (!fr__tpoly_const_op(in, a[0], b[0], &r[0])) r[0] = NAN;
+            break;
+            }
+        }
+        for (k = 0; k < 10; k++) c[k] = r[k];
+    }
+    for (k = 0; k < 10; k++) if (!(W[10 * (size_t)last + (size_t)k] - W[10 * (size_t)last + (size_t)k] == 0)) return 0;
+    return 1;
+}
+
+/* The leaf's form from W's slot: k, b, A's diagonal, A's off-diagonal. */
+static void fr__quadric_store(fr__leaf_t *L, const double *w)
+{
+    L->q[0] = w[0]; L->q[1] = w[1]; L->q[2] = w[2]; L->q[3] = w[3];
+    L->q[4] = w[4]; L->q[5] = w[7]; L->q[6] = w[9];
+    L->q[7] = 0.5 * w[5]; L->q[8] = 0.5 * w[6]; L->q[9] = 0.5 * w[8];
+    /* planes and axis-aligned quadrics (the library's spheres, cylinders,
+       cones, ellipsoids) skip the products by zeros */
+    L->shape = L->q[7] != 0 || L->q[8] != 0 || L->q[9] != 0 ? FR__LEAF_FULL
+             : L->q[4] != 0 || L->q[5] != 0 || L->q[6] != 0 ? FR__LEAF_DIAGONAL : FR__LEAF_LINEAR;
+}
+
+#ifndef FR_NO_INTERVAL
+/* A quadric leaf's form over a cell, in intervals (rigorous for the form). */
+static fr_result_t fr__quadric_cell(const void *ctx, const iv_t box[3], iv_t *r)
+{
+    const fr__leaf_t *L = (const fr__leaf_t *)ctx;
+    iv_t X[3], f = iv_point(L->q[0]);
+    int k;
+    for (k = 0; k < 3; k++) X[k] = iv_sub(box[k], iv_point(L->e[k]));
+    for (k = 0; k < 3; k++) {
+        f = iv_add(f, iv_mul_d(X[k], L->q[1 + k]));
+        f = iv_add(f, iv_mul_d(iv_sqr(X[k]), L->q[4 + k]));
+    }
+    f = iv_add(f, iv_mul_d(iv_mul(X[0], X[1]), 2.0 * L->q[7]));
+    f = iv_add(f, iv_mul_d(iv_mul(X[0], X[2]), 2.0 * L->q[8]));
+    f = iv_add(f, iv_mul_d(iv_mul(X[1], X[2]), 2.0 * L->q[9]));
+    *r = f;
+    return FR_OK;
+}
+#endif
+
+/* The search box of leaf zero sets: the prepared box, padded. */
+static void fr__leaf_search_box(const double *box, double lo[3], double hi[3])
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        double pad = 2.0 * (FR__BOX_PAD * (box[k + 3] - box[k]) + 8.0 * FR__U * (fabs(box[k]) + fabs(box[k + 3])));
+        lo[k] = box[k] - pad;
+        hi[k] = box[k + 3] + pad;
+    }
+}
+
+/* A leaf's zero-set box, padded as fr__clip_box pads (fr__slab_meets adds
+   the ray's own rounding); an empty box stays empty. */
+/* out = [lo, hi] padded as fr__clip_box pads a box (fr__slab_meets and
+   fr__clip_padded add the ray's own rounding); an empty box stays empty.
+   Returns its volume's share of the model box's. */
+static double fr__box_pad_set(const double lo[3], const double hi[3], const double *model, double *out)
+{
+    double v = 1.0, vm = 1.0;
+    int k;
+    for (k = 0; k < 3; k++) {
+        double pad = lo[k] <= hi[k] ? FR__BOX_PAD * (hi[k] - lo[k]) + 8.0 * FR__U * (fabs(lo[k]) + fabs(hi[k])) : 0.0;
+        out[k] = lo[k] - pad;
+        out[k + 3] = hi[k] + pad;
+        v *= lo[k] <= hi[k] ? hi[k] - lo[k] : 0.0;
+        vm *= model[k + 3] - model[k];
+    }
+    return vm > 0 ? v / vm : 1.0;
+}
+
+/* A slab test costs about half a quadric leaf, and a plane less than the
+   test: quadric leaves and CSG nodes are culled only when their box is at
+   most FR__LEAF_CULL_SHARE of the model's (rays through the model then
+   miss it often), other leaves always. */
+#ifndef FR_NO_INTERVAL
+static void fr__leaf_box_set(fr__leaf_t *lf, const double lo[3], const double hi[3], const double *model)
+{
+    double share = fr__box_pad_set(lo, hi, model, lf->box);
+    lf->boxed = !lf->quadric || (lf->shape != FR__LEAF_LINEAR && share <= FR__LEAF_CULL_SHARE);
+}
+#endif
+
+#ifndef FR_NO_INTERVAL
+/* The box of slot `slot`'s zero set (keep_zero 1) or solid (0) inside [lo,
+   hi], by fr__box_search on its sub-tape compacted into work (live, newidx,
+   rep, code, then interval scratch; fr_prepare sizes it). 0 if the tape has
+   no interval evaluation. */
+static int fr__subtape_box(const fr_tape_t *t, unsigned int slot, int keep_zero, const double lo[3], const double hi[3],
+                           unsigned char *work, double out_lo[3], double out_hi[3])
+{
+    size_t n = t->n_code;
+    unsigned char *live = work;
+    unsigned int *newidx = (unsigned int *)(void *)(work + fr__align8(n)), *rep = newidx + n, m, i;
+    fr_instr_t *code = (fr_instr_t *)(void *)(work + fr__align8(n) + fr__align8(2 * n * sizeof(unsigned int)));
+    fr_tape_t sub = *t;
+    fr__tape_cell_t cell;
+    if (t->flags & FR_TAPE_NO_INTERVAL) return 0;
+    for (i = 0; i < n; i++) rep[i] = i;
+    m = fr__compact(t->code, (unsigned int)n, rep, &slot, 1, live, newidx, code, &sub.outputs[0]);
+    sub.code = code;
+    sub.n_code = m;
+    sub.n_outputs = 1;
+    cell.tape = &sub;
+    cell.scratch = (unsigned char *)code + fr__align8(n * sizeof(fr_instr_t));
+    return fr__box_search(fr__tape_cell, &cell, keep_zero, lo, hi, FR__LEAF_BOX_DEPTH, out_lo, out_hi) == FR_OK;
+}
+#endif
+
+/* The leaves' forms and boxes. Quadrics: the form about the search box's
+   centre gives a first zero-set box, then the form about that box's
+   centre (the leaf's own middle: no cancellation of far-off terms) and
+   the final box from it. Other leaves: the box of their sub-tape's zero
+   set (compacted with the work area). */
+static fr_result_t fr__prepare_leaves(const fr_tape_t *t, const int *gdeg, const double *box, fr__leaf_t *L,
+                                      unsigned int nl, unsigned char *work)
+{
+    size_t n = t->n_code;
+    double *W = (double *)(void *)work;
+    unsigned int *stamp = (unsigned int *)(void *)(work + 10 * n * sizeof(double)), *stack = stamp + n, *sub = stack + n;
+    double lo[3], hi[3], c[3];
+    unsigned int j;
+    int k;
+    for (j = 0; j < n; j++) stamp[j] = 0;
+    fr__leaf_search_box(box, lo, hi);
+    for (k = 0; k < 3; k++) c[k] = 0.5 * lo[k] + 0.5 * hi[k];
+    for (j = 0; j < nl; j++) {
+        fr__leaf_t *lf = &L[j];
+        lf->boxed = 0;
+        unsigned int ns = lf->degree <= 2 ? fr__subtree(t, lf->slot, j + 1, stamp, stack, sub) : 0;
+        if (lf->degree <= 2 && fr__quadric_forms(t, gdeg, sub, ns, c, W)) {
+            lf->quadric = 1;
+            for (k = 0; k < 3; k++) lf->e[k] = c[k];
+            fr__quadric_store(lf, W + 10 * (size_t)lf->slot);
+#ifndef FR_NO_INTERVAL
+            {
+                double blo[3], bhi[3], e2[3];
+                if (fr__box_search(fr__quadric_cell, lf, 1, lo, hi, FR__LEAF_BOX_DEPTH, blo, bhi) != FR_OK) continue;
+                if (blo[0] <= bhi[0]) {
+                    for (k = 0; k < 3; k++) e2[k] = 0.5 * blo[k] + 0.5 * bhi[k];
+                    if (!fr__quadric_forms(t, gdeg, sub, ns, e2, W)) continue;
+                    for (k = 0; k < 3; k++) lf->e[k] = e2[k];
+                    fr__quadric_store(lf, W + 10 * (size_t)lf->slot);
+                    if (fr__box_search(fr__quadric_cell, lf, 1, lo, hi, FR__LEAF_BOX_DEPTH, blo, bhi) != FR_OK) continue;
+                }
+                fr__leaf_box_set(lf, blo, bhi, box);
+            }
+#endif
+            continue;
+        }
+        lf->quadric = 0;
+#ifndef FR_NO_INTERVAL
+        {
+            double blo[3], bhi[3];
+            if (fr__subtape_box(t, lf->slot, 1, lo, hi, work, blo, bhi)) fr__leaf_box_set(lf, blo, bhi, box);
+        }
+#endif
+    }
+    (void)n;
+    return FR_OK;
+}
+
+#ifndef FR_NO_INTERVAL
+/* The nodes' solid boxes, for nodes small enough to cull (fr__leaf_box_set). */
+static void fr__prepare_nodes(const fr_tape_t *t, const double *box, fr__csg_node_t *N, unsigned int nn,
+                              unsigned char *work)
+{
+    double lo[3], hi[3];
+    unsigned int j;
+    fr__leaf_search_box(box, lo, hi);
+    for (j = 0; j < nn; j++) {
+        double blo[3], bhi[3];
+        N[j].boxed = 0;
+        if (N[j].op == FR__CSG_NEG || !fr__subtape_box(t, N[j].slot, 0, lo, hi, work, blo, bhi)) continue;
+        N[j].boxed = fr__box_pad_set(blo, bhi, box, N[j].box) <= FR__LEAF_CULL_SHARE;
+    }
+}
+#endif
+
+FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepared_t *out)
+{
+    size_t n, work_bytes;
+    unsigned char *work, *need;
+    int *gdeg;
+    unsigned int *idx, i, outs, nl = 0, nn = 0, np = 0, j;
+    fr__leaf_t *L;
+    fr__csg_node_t *N;
+    fr__tp_t *P;
+    int k;
+    if (!t || !out || t->n_code == 0) return FR_ERR_INVALID_ARG;
+    memset(out, 0, sizeof *out);
+    out->tape = t;
+    out->alloc_ctx = t->alloc_ctx;
+    if (bounds) {
+        for (k = 0; k < 3; k++)
+            if (!(bounds[k] - bounds[k] == 0) || !(bounds[k + 3] - bounds[k + 3] == 0) || !(bounds[k] <= bounds[k + 3]))
+                return FR_ERR_INVALID_ARG;
+        for (k = 0; k < 6; k++) out->box[k] = bounds[k];
+        out->has_box = 1;
+    }
+    n = t->n_code;
+    /* work: generic degrees, marks, indices; then 10 doubles per slot for
+       quadric forms, or a compacted sub-tape with its interval scratch */
+    work_bytes = fr__align8(n * sizeof(int)) + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int));
+    {
+        size_t a = 10 * n * sizeof(double) + 3 * n * sizeof(unsigned int), b = fr__align8(n) + fr__align8(2 * n * sizeof(unsigned int)) +
+                                                 fr__align8(n * sizeof(fr_instr_t)) + fr__eval_scratch_max(t);
+        work_bytes += a > b ? a : b;
+    }
+    work = (unsigned char *)FR_MALLOC(work_bytes, t->alloc_ctx);
+    if (!work) return FR_ERR_OUT_OF_MEMORY;
+    gdeg = (int *)(void *)work;
+    need = work + fr__align8(n * sizeof(int));
+    idx = (unsigned int *)(void *)(need + 2 * fr__align8(n));
+    for (i = 0; i < n; i++) {
+        const fr_instr_t *in = &t->code[i];
+        gdeg[i] = fr__tpoly_degree(in, i > 0 ? gdeg[in->a] : -1, i > 0 ? gdeg[in->b] : -1, 1);
+    }
+    outs = t->outputs[0];
+    /* need: 1 shape slot the analysis reaches, 2 in the Taylor program too */
+    memset(need, 0, n);
+    need[outs] = 1;
+    out->kind = gdeg[outs] >= 0 ? FR_PREPARED_POLY : FR_PREPARED_CSG;
+    for (i = outs + 1; i-- > 0 && out->kind != FR_PREPARED_NONE;) {
+        const fr_instr_t *in = &t->code[i];
+        if (!need[i]) continue;
+        if (gdeg[i] >= 0) { /* a polynomial slot: in the program, with its operands */
+            int ar = fr__arity(in->op);
+            if (out->kind == FR_PREPARED_POLY || need[i] == 2) {
+                need[i] = 2;
+                if (ar >= 1) need[in->a] = 2;
+                if (ar >= 2) need[in->b] = 2;
+            }
+            continue;
+        }
+        switch ((fr_op_t)in->op) { /* a CSG node */
+        case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
+            if (!need[in->b]) need[in->b] = 1;
+            /* fallthrough */
+        case FR_OP_NEG:
+            if (!need[in->a]) need[in->a] = 1;
+            break;
+        default: out->kind = FR_PREPARED_NONE; break;
+        }
+    }
+    if (out->kind == FR_PREPARED_NONE) { FR_FREE(work, t->alloc_ctx); return FR_OK; }
+    /* leaves and nodes of the CSG tree; leaves that are not quadrics, or all
+       of them without a box, join the program (second pass below) */
+    if (out->kind == FR_PREPARED_CSG)
+        for (i = 0; i <= outs; i++) {
+            if (!need[i]) continue;
+            if (gdeg[i] >= 0) idx[i] = nl++;
+            else nn++;
+        }
+    for (i = 0; i <= outs; i++) if (need[i] == 2) np++;
+    {
+        size_t bytes = fr__prep_layout(nl, nn, np + (unsigned int)n, NULL, NULL, NULL, NULL);
+        out->mem = FR_MALLOC(bytes, t->alloc_ctx);
+        if (!out->mem) { FR_FREE(work, t->alloc_ctx); memset(out, 0, sizeof *out); return FR_ERR_OUT_OF_MEMORY; }
+        memset(out->mem, 0, sizeof(fr__prep_head_t));
+    }
+    fr__prep_layout(nl, nn, np + (unsigned int)n, &L, &N, &P, out->mem);
+    if (out->has_box) {
+        fr__prep_head_t *h = (fr__prep_head_t *)out->mem;
+        fr__box_pad_set(out->box, out->box + 3, out->box, h->box);
+    }
+    if (out->kind == FR_PREPARED_CSG) {
+        unsigned int jl = 0, jn = 0;
+        for (i = 0; i <= outs; i++) {
+            const fr_instr_t *in = &t->code[i];
+            if (!need[i]) continue;
+            if (gdeg[i] >= 0) {
+                memset(&L[jl], 0, sizeof L[jl]);
+                L[jl].slot = i;
+                L[jl].degree = gdeg[i];
+                jl++;
+                continue;
+            }
+            N[jn].op = in->op == FR_OP_NEG ? FR__CSG_NEG : in->op == FR_OP_MIN || in->op == FR_OP_RINT ? FR__CSG_MIN
+                                                                                                     : FR__CSG_MAX;
+            N[jn].a = idx[in->a];
+            N[jn].b = in->op == FR_OP_NEG ? 0 : idx[in->b];
+            N[jn].slot = i;
+            N[jn].boxed = 0;
+            idx[i] = nl + jn;
+            jn++;
+        }
+        out->n_leaves = nl;
+        out->n_nodes = nn;
+        if (out->has_box) {
+            unsigned char *w = need + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int));
+            fr__prepare_leaves(t, gdeg, out->box, L, nl, w);
+#ifndef FR_NO_INTERVAL
+            fr__prepare_nodes(t, out->box, N, nn, w);
+            for (j = 0; j < nn; j++) ((fr__prep_head_t *)out->mem)->n_boxed_nodes += (unsigned int)N[j].boxed;
+#endif
+        }
+        /* non-quadric leaves: their subtrees make the program */
+        for (j = 0; j < nl; j++) {
+            if (L[j].quadric) { out->n_quadrics++; continue; }
+            need[L[j].slot] = 2;
+        }
+        for (i = outs + 1; i-- > 0;) {
+            const fr_instr_t *in = &t->code[i];
+            int ar;
+            if (need[i] != 2) continue;
+            ar = fr__arity(in->op);
+            if (ar >= 1) need[in->a] = 2;
+            if (ar >= 2) need[in->b] = 2;
+        }
+    }
+    np = 0;
+    for (i = 0; i <= outs; i++) {
+        const fr_instr_t *in = &t->code[i];
+        if (need[i] != 2) continue;
+        P[np].slot = i;
+        P[np].dc = (unsigned char)gdeg[i];
+        P[np].da = (unsigned char)(fr__arity(in->op) >= 1 && gdeg[in->a] > 0 ? gdeg[in->a] : 0);
+        P[np].db = (unsigned char)(fr__arity(in->op) >= 2 && gdeg[in->b] > 0 ? gdeg[in->b] : 0);
+        P[np].kernel = fr__prog_kernel(in, P[np].da, P[np].db);
+        P[np].a = fr__arity(in->op) >= 1 ? in->a : 0;
+        P[np].b = fr__arity(in->op) >= 2 ? in->b : 0;
+        P[np].oc = i * FR__TAYLOR_N;
+        P[np].oa = P[np].a * FR__TAYLOR_N;
+        P[np].ob = P[np].b * FR__TAYLOR_N;
+        np++;
+    }
+    out->n_prog = np;
+    FR_FREE(work, t->alloc_ctx);
+    return FR_OK;
+}
+
+FR_DEF void fr_prepared_free(fr_prepared_t *p)
+{
+    if (!p) return;
+    if (p->mem) FR_FREE(p->mem, p->alloc_ctx);
+    memset(p, 0, sizeof *p);
+}
+
+/* A ray set up for many slab tests against leaf boxes (padded at
+   fr_prepare as fr__clip_box pads): reciprocal directions, and the
+   rounding of o's subtraction as one pad in t. */
+typedef struct fr__slab_t {
+    double o[3], inv[3], opad[3], tpad;
+    int flat[3]; /* d[k] == 0 */
+} fr__slab_t;
+static void fr__slab_init(fr__slab_t *S, const fr__ray_t *R)
+{
+    const double *o = R->o, *d = R->d;
+    int k;
+    S->tpad = 0.0;
+    for (k = 0; k < 3; k++) {
+        S->o[k] = o[k];
+        S->flat[k] = d[k] == 0;
+        S->inv[k] = R->have_inv ? R->inv[k] : d[k] != 0 ? 1.0 / d[k] : 0.0; /* the clip's reciprocals */
+        S->opad[k] = 8.0 * FR__U * fabs(o[k]);
+        if (S->opad[k] * fabs(S->inv[k]) > S->tpad) S->tpad = S->opad[k] * fabs(S->inv[k]);
+    }
+}
+/* Does o + t d, t in [a, z], meet the (padded) box b? The slab test of
+   fr__clip_box; the products' rounding (4u relative, monotone in t) is
+   applied once to the final bounds. */
+static int fr__slab_meets(const fr__slab_t *S, const double *b, double a, double z)
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        double lo = b[k] - S->o[k], hi = b[k + 3] - S->o[k], ta, tb;
+        if (S->flat[k]) {
+            if (!(lo <= S->opad[k] && hi >= -S->opad[k])) return 0;
+            continue;
+        }
+        ta = lo * S->inv[k];
+        tb = hi * S->inv[k];
+        if (ta > tb) { double x = ta; ta = tb; tb = x; }
+        if (ta > a) a = ta;
+        if (tb < z) z = tb;
+    }
+    return a - 4.0 * FR__U * fabs(a) - S->tpad <= z + 4.0 * FR__U * fabs(z) + S->tpad;
+}
+
+
+/* A quadric leaf on the ray: g(ts + s) = c0 + c1 s + c2 s^2 with ts the
+   ray's point nearest the leaf's centre e, from the leaf's monomial form
+   (a few dozen flops instead of a Taylor run over its subtree). Its roots
+   by the quadratic formula, the discriminant by Kahan's fma scheme (exact
+   up to the final roundings, so the roots are within a few ulps of those of
+   the double coefficients, the cancelling one taken as c0 / h); D <= 0 is
+   no crossing (a double root only touches). Returns the crossings in (t0,
+   t1] into cand and the sign just after t0 into *sg (from the roots and the
+   leading coefficient, so it agrees with them), as fr__poly_leaf; -1 on
+   overflow. A leaf whose box the segment misses only needs its sign.
+   Coefficients beyond [2^-300, 2^300] go to fr__poly_leaf. (Four leaves
+   side by side in a vector were slower: libm's sqrt keeps gcc from
+   vectorising, and node culling leaves about half the cup's leaves.) */
+static int fr__quadric_leaf(const fr__leaf_t *L, const fr__ray_t *R, double inv_dd, int culled, double *cand, int *sg)
+{
+    const double *q = L->q, *d = R->d;
+    double oe[3], q0[3], u[3], v[3], c[3], r[2], ts, s0, s1, m, lead;
+    int k, n, after = 0, cnt = 0;
+    for (k = 0; k < 3; k++) oe[k] = R->o[k] - L->e[k];
+    if (L->shape == FR__LEAF_LINEAR) {
+        /* a plane: g(t) = c0 + c1 t about t = 0, its root t = -c0 / c1 as
+           well conditioned as o + t d itself */
+        c[0] = q[0] + (q[1] * oe[0] + q[2] * oe[1] + q[3] * oe[2]);
+        c[1] = q[1] * d[0] + q[2] * d[1] + q[3] * d[2];
+        if (culled || c[1] == 0) { *sg = fr__sgn(c[0] + c[1] * R->t0); return 0; }
+        r[0] = -c[0] / c[1];
+        if (!(r[0] - r[0] == 0)) return -1;
+        *sg = r[0] > R->t0 ? -fr__sgn(c[1]) : fr__sgn(c[1]);
+        if (r[0] > R->t0 && r[0] <= R->t1) { cand[0] = r[0]; return 1; }
+        return 0;
+    }
+    ts = -(oe[0] * d[0] + oe[1] * d[1] + oe[2] * d[2]) * inv_dd;
+    if (!(ts >= R->t0)) ts = R->t0;
+    if (!(ts <= R->t1)) ts = R->t1;
+    for (k = 0; k < 3; k++) q0[k] = oe[k] + ts * d[k];
+    if (L->shape == FR__LEAF_DIAGONAL) {
+        for (k = 0; k < 3; k++) { v[k] = q[4 + k] * q0[k]; u[k] = q[4 + k] * d[k]; }
+    } else {
+        v[0] = q[4] * q0[0] + q[7] * q0[1] + q[8] * q0[2];
+        v[1] = q[7] * q0[0] + q[5] * q0[1] + q[9] * q0[2];
+        v[2] = q[8] * q0[0] + q[9] * q0[1] + q[6] * q0[2];
+        u[0] = q[4] * d[0] + q[7] * d[1] + q[8] * d[2];
+        u[1] = q[7] * d[0] + q[5] * d[1] + q[9] * d[2];
+        u[2] = q[8] * d[0] + q[9] * d[1] + q[6] * d[2];
+    }
+    c[0] = q[0] + (q0[0] * (q[1] + v[0]) + q0[1] * (q[2] + v[1]) + q0[2] * (q[3] + v[2]));
+    if (culled) { *sg = fr__sgn(c[0]); return 0; }
+    c[2] = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+    c[1] = (q[1] * d[0] + q[2] * d[1] + q[3] * d[2]) + 2.0 * (q0[0] * u[0] + q0[1] * u[1] + q0[2] * u[2]);
+    s0 = R->t0 - ts;
+    s1 = R->t1 - ts;
+    m = fabs(c[0]) > fabs(c[1]) ? fabs(c[0]) : fabs(c[1]);
+    if (fabs(c[2]) > m) m = fabs(c[2]);
+    if (!(m - m == 0)) return -1;
+    if (m == 0) { *sg = 0; return 0; }
+    if (!(m < FR__QUAD_BIG && m > FR__QUAD_SMALL)) return fr__poly_leaf(c, fr__tpoly_trim(c, 2), s0, s1, ts, 0, cand, sg);
+    {
+        /* Most leaves have no root in the segment. That is certain, with no
+           square root or division, when g(s0) and g(s1) share a sign by
+           more than 8x their Horner error and either g' keeps its sign
+           over the segment (no vertex inside) or the ends' sign is the
+           opposite of c2's (the vertex, where g has the sign of -c2 if
+           there are two roots, is then beyond both roots' reach). Roots
+           computed below are within ulps of the true ones, so they would
+           lie outside the segment as well. */
+        double g0 = c[0] + s0 * (c[1] + s0 * c[2]), g1 = c[0] + s1 * (c[1] + s1 * c[2]);
+        double e0 = 8.0 * 4.0 * FR__U * (fabs(c[0]) + fabs(s0) * (fabs(c[1]) + fabs(s0) * fabs(c[2])));
+        double e1 = 8.0 * 4.0 * FR__U * (fabs(c[0]) + fabs(s1) * (fabs(c[1]) + fabs(s1) * fabs(c[2])));
+        if ((g0 > e0 && g1 > e1) || (g0 < -e0 && g1 < -e1)) {
+            double p0 = c[1] + 2.0 * c[2] * s0, p1 = c[1] + 2.0 * c[2] * s1;
+            if ((p0 > 0 && p1 > 0) || (p0 < 0 && p1 < 0) || (g0 > 0) != (c[2] > 0)) { *sg = fr__sgn(g0); return 0; }
+        }
+    }
+    if (c[2] == 0) {
+        if (c[1] == 0) { *sg = fr__sgn(c[0]); return 0; }
+        r[0] = -c[0] / c[1];
+        n = 1;
+        lead = c[1];
+    } else {
+        double p = c[1] * c[1], dp = fma(c[1], c[1], -p), c4 = 4.0 * c[2], qq = c4 * c[0], dq = fma(c4, c[0], -qq);
+        double D = (p - qq) + (dp - dq), h;
+        lead = c[2];
+        if (!(D > 0)) { *sg = fr__sgn(lead); return 0; }
+        h = -0.5 * (c[1] + copysign(sqrt(D), c[1]));
+        r[0] = h / c[2];
+        r[1] = c[0] / h;
+        if (r[0] > r[1]) { double x = r[0]; r[0] = r[1]; r[1] = x; }
+        n = 2;
+    }
+    for (k = 0; k < n; k++) after += r[k] > s0;
+    *sg = (after & 1) ? -fr__sgn(lead) : fr__sgn(lead);
+    for (k = 0; k < n; k++)
+        if (r[k] > s0 && r[k] <= s1) cand[cnt++] = ts + r[k];
+    return cnt;
+}
+
+
+/* ANALYTIC on a prepared CSG model (paper §3.1.1): every leaf's crossings
+   of the segment, sorted; a candidate is the hit where the shape's sign
+   differs between just before and just after it -- within the same
+   FR__CSG_SIGN_ULPS bracket as fr__trace_analytic -- found by flipping the
+   sign of each crossing's leaf (v_lo: crossings before the bracket, v_hi:
+   up to its end) and evaluating the boolean tree. *leaf and *orient give
+   the normal: the hit leaf's gradient, times -1 where the shape's sign
+   rises with the leaf's, +1 where it falls (0: unknown, use AD). Returns
+   FR_ERR_NOT_POLYNOMIAL when a leaf overflows on this ray (the caller then
+   traces without the prepared model). */
+static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *mem, int *found, double *t_hit,
+                                          double *t_err, unsigned int *leaf, int *orient)
+{
+    const fr_prepared_t *Pp = R->prep;
+    const fr_tape_t *t = R->tape;
+    fr__leaf_t *L;
+    fr__csg_node_t *N;
+    fr__tp_t *prog;
+    unsigned int nl = Pp->n_leaves, nn = Pp->n_nodes, j;
+    double *cand = mem->cand, dd, inv_dd, ts = 0;
+    unsigned int *cl = mem->cleaf;
+    signed char *vlo = mem->sgn, *vhi = mem->sgn + nl + nn;
+    int nc = 0, k;
+    fr__slab_t S;
+    int slab = 0;
+    signed char *force = NULL, *live = NULL;
+    fr__prep_layout(nl, nn, Pp->n_prog, &L, &N, &prog, Pp->mem);
+    *found = 0;
+    *orient = 0;
+    dd = R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2];
+    inv_dd = 1.0 / dd;
+    if (((const fr__prep_head_t *)Pp->mem)->n_boxed_nodes) {
+        /* nodes whose solid box the segment misses are outside (-1)
+           throughout: their subtrees' leaves need no roots, unless another
+           live node uses them (top-down from the shape) */
+        unsigned int i;
+        force = vhi + nl + nn;
+        live = force + nn;
+        for (i = 0; i < nn; i++) force[i] = 0;
+        for (i = 0; i + 1 < nl + nn; i++) live[i] = 0;
+        live[nl + nn - 1] = 1;
+        fr__slab_init(&S, R);
+        slab = 1;
+        for (i = nn; i-- > 0;) {
+            if (!live[nl + i]) continue;
+            if (N[i].boxed && !fr__slab_meets(&S, N[i].box, R->t0, R->t1)) { force[i] = -1; continue; }
+            live[N[i].a] = 1;
+            if (N[i].op != FR__CSG_NEG) live[N[i].b] = 1;
+        }
+    }
+    if (Pp->n_prog) { /* the Taylor program of the leaves that are not quadrics */
+        double ob[3];
+        ts = -(R->o[0] * R->d[0] + R->o[1] * R->d[1] + R->o[2] * R->d[2]) * inv_dd;
+        if (!(ts >= R->t0)) ts = R->t0;
+        if (!(ts <= R->t1)) ts = R->t1;
+        for (k = 0; k < 3; k++) ob[k] = R->o[k] + ts * R->d[k];
+        fr__prog_run(t, prog, Pp->n_prog, ob, R->d, mem->taylor, NULL);
+    }
+    for (j = 0; j < nl; j++) {
+        const fr__leaf_t *lf = &L[j];
+        int culled = 0, sg = 0, m;
+        if (live && !live[j]) { vlo[j] = vhi[j] = 0; continue; } /* only culled nodes use it */
+        if (lf->boxed) {
+            if (!slab) { fr__slab_init(&S, R); slab = 1; }
+            culled = !fr__slab_meets(&S, lf->box, R->t0, R->t1);
+        }
+        if (lf->quadric) m = fr__quadric_leaf(lf, R, inv_dd, culled, cand + nc, &sg);
+        else {
+            const double *c = mem->taylor + (size_t)lf->slot * FR__TAYLOR_N;
+            int dg = fr__checked_degree(c, lf->degree);
+            m = dg < 0 ? -1 : fr__poly_leaf(c, dg, R->t0 - ts, R->t1 - ts, ts, culled, cand + nc, &sg);
+        }
+        if (m < 0) return FR_ERR_NOT_POLYNOMIAL;
+        if (!culled) R->iters++;
+        for (k = 0; k < m; k++) cl[nc + k] = j;
+        nc += m;
+        vlo[j] = vhi[j] = (signed char)sg;
+    }
+    R->evals += nl;
+    {
+        fr__csg_walk_t W;
+        int glo, ghi, kh;
+        double dt;
+        memset(&W, 0, sizeof W);
+        W.nodes = N; W.nn = nn; W.nl = nl; W.force = force;
+        kh = fr__csg_walk(R, &W, cand, cl, nc, vlo, vhi, &glo, &ghi, &dt);
+        if (kh >= 0) {
+            unsigned int lf = cl[kh];
+            *found = 1;
+            *t_hit = cand[kh];
+            *t_err = dt;
+            *leaf = lf;
+            if (L[lf].quadric && vlo[lf] * vhi[lf] < 0) *orient = (vhi[lf] > vlo[lf]) == (ghi > glo) ? -1 : 1;
+        }
+    }
+    return FR_OK;
+}
+
+/* The normal of a prepared quadric leaf at p: orient times its gradient
+   b + 2 A (p - e), unit; 0 if it vanishes. */
+static int fr__quadric_normal(const fr__leaf_t *L, int orient, const double p[3], double nrm[3])
+{
+    const double *q = L->q;
+    double x = p[0] - L->e[0], y = p[1] - L->e[1], z = p[2] - L->e[2], g[3], len;
+    int k;
+    g[0] = q[1] + 2.0 * (q[4] * x + q[7] * y + q[8] * z);
+    g[1] = q[2] + 2.0 * (q[7] * x + q[5] * y + q[9] * z);
+    g[2] = q[3] + 2.0 * (q[8] * x + q[9] * y + q[6] * z);
+    len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    if (!(len > 0 && len < HUGE_VAL)) return 0;
+    for (k = 0; k < 3; k++) nrm[k] = orient * g[k] / len;
+    return 1;
+}
+
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
 {
-    fr_trace_desc_t desc;
+    fr_trace_desc_t zero_desc;
+    const fr_trace_desc_t *desc = desc_in;
     fr__trace_mem_t mem;
     fr__ray_t R;
     fr_method_t m;
     fr_result_t e = FR_OK;
-    double t_hit = 0, t_err = 0, L, ts = 0;
-    int found = 0, k, cnt = -2;
+    double t_hit = 0, t_err = 0, L, ts = 0, step;
+    int found = 0, k, cnt = -2, orient = 0;
+    unsigned int leaf = 0;
     if (!t || !o || !d || !scratch || !hit || t->n_code == 0) return FR_ERR_INVALID_ARG;
-    if (desc_in) desc = *desc_in;
-    else {
-        unsigned char *z = (unsigned char *)&desc;
+    if (!desc) {
+        unsigned char *z = (unsigned char *)&zero_desc;
         size_t zi;
-        for (zi = 0; zi < sizeof desc; zi++) z[zi] = 0;
+        for (zi = 0; zi < sizeof zero_desc; zi++) z[zi] = 0;
+        desc = &zero_desc;
     }
     for (k = 0; k < 3; k++)
         if (!(o[k] - o[k] == 0) || !(d[k] - d[k] == 0)) return FR_ERR_INVALID_ARG;
-    if (!(t0 <= t1) || t0 != t0 || (d[0] == 0 && d[1] == 0 && d[2] == 0) || (int)desc.method < 0 || (int)desc.method >= (int)FR_METHOD_COUNT_)
+    if (!(t0 <= t1) || t0 != t0 || (d[0] == 0 && d[1] == 0 && d[2] == 0) || (int)desc->method < 0 || (int)desc->method >= (int)FR_METHOD_COUNT_)
         return FR_ERR_INVALID_ARG;
-    fr__trace_layout(t, scratch, &mem);
-    R.tape = t;
-    for (k = 0; k < 3; k++) { R.o[k] = o[k]; R.d[k] = d[k]; }
-    R.t0 = t0; R.t1 = t1;
-    R.eval = mem.eval;
-    R.evals = R.iters = 0;
-    R.max_iters = desc.max_iters ? desc.max_iters : FR__TRACE_MAX_ITERS;
-    if (desc.tol > 0) R.tol = desc.tol;
-    else if (desc.tol < 0) R.tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
-    else R.tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + fabs(t0));
-    if (!(R.tol > 0)) R.tol = FR__U;
-    R.footprint = desc.footprint > 0 && desc.footprint < HUGE_VAL ? desc.footprint : 0.0;
-    R.pc = R.pm = NULL;
-    R.pdeg = R.mdeg = -1;
-    R.ts = R.rho = R.drho = 0.0;
-    R.newton = 0;
-    R.any_hit = desc.any_hit;
     hit->hit = 0;
-    hit->method = m = desc.method;
+    hit->method = m = desc->method;
     hit->t = hit->t_err = 0.0;
     for (k = 0; k < 3; k++) hit->point[k] = hit->normal[k] = 0.0;
     hit->evals = hit->iterations = 0;
-    if (desc.bounds && !fr__clip_box(&R, desc.bounds)) return FR_OK; /* the ray misses the solid's box */
-    L = desc.lipschitz > 0 ? desc.lipschitz : t->lipschitz;
+    for (k = 0; k < 3; k++) { R.o[k] = o[k]; R.d[k] = d[k]; }
+    R.t0 = t0; R.t1 = t1;
+    R.have_inv = 0;
+    /* clip first: rays that miss the solid's box cost only this (a prepared
+       model's box clips too when desc->bounds does not) */
+    R.prep = desc->prepared && desc->prepared->tape == t && desc->prepared->kind != FR_PREPARED_NONE ? desc->prepared : NULL;
+    if (R.prep && R.prep->has_box &&
+        (!desc->bounds || (desc->bounds[0] == R.prep->box[0] && desc->bounds[1] == R.prep->box[1] &&
+                           desc->bounds[2] == R.prep->box[2] && desc->bounds[3] == R.prep->box[3] &&
+                           desc->bounds[4] == R.prep->box[4] && desc->bounds[5] == R.prep->box[5]))) {
+        if (!fr__clip_padded(&R, ((const fr__prep_head_t *)R.prep->mem)->box)) return FR_OK;
+    } else {
+        if (desc->bounds && !fr__clip_box(&R, desc->bounds)) return FR_OK; /* the ray misses the solid's box */
+        if (R.prep && R.prep->has_box && !fr__clip_box(&R, R.prep->box)) return FR_OK;
+    }
+    fr__trace_layout(t, scratch, &mem);
+    R.tape = t;
+    R.eval = mem.eval;
+    R.evals = R.iters = 0;
+    R.max_iters = desc->max_iters ? desc->max_iters : FR__TRACE_MAX_ITERS;
+    if (desc->tol > 0) R.tol = desc->tol;
+    else if (desc->tol < 0) R.tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
+    else R.tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + fabs(t0));
+    if (!(R.tol > 0)) R.tol = FR__U;
+    R.footprint = desc->footprint > 0 && desc->footprint < HUGE_VAL ? desc->footprint : 0.0;
+    R.pc = R.pm = NULL;
+    R.pdeg = R.mdeg = -1;
+    R.ts = R.rho = R.drho = 0.0;
+    R.newton = R.mono = 0;
+    R.gam = R.dgam = 0.0;
+    R.any_hit = desc->any_hit;
+    step = desc->step;
+    L = desc->lipschitz > 0 ? desc->lipschitz : t->lipschitz;
+    if (R.prep && R.prep->kind == FR_PREPARED_CSG && (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC)) {
+        e = fr__trace_prepared_csg(&R, &mem, &found, &t_hit, &t_err, &leaf, &orient);
+        if (e == FR_OK) { m = FR_METHOD_ANALYTIC; goto done; }
+        /* a leaf overflowed on this ray: trace it without the prepared model */
+        e = FR_OK;
+        found = 0;
+        orient = 0;
+    }
+    R.prep = R.prep && R.prep->kind == FR_PREPARED_POLY ? R.prep : NULL;
     if (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC) ts = fr__analytic_expand(&R, &mem, 0);
     if (m == FR_METHOD_AUTO) {
         /* analytic if every shape path ends in polynomial leaves */
@@ -5051,18 +6396,18 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
         e = fr__trace_analytic(&R, &mem, ts, cnt, &found, &t_hit, &t_err);
         break;
     case FR_METHOD_STEP:
-        if (desc.refine == FR_REFINE_NEWTON && (t->flags & FR_TAPE_NO_GRADIENT)) return FR_ERR_NO_GRADIENT;
-        if (desc.step <= 0 && !(L > 0 && L < HUGE_VAL)) {
+        if (desc->refine == FR_REFINE_NEWTON && (t->flags & FR_TAPE_NO_GRADIENT)) return FR_ERR_NO_GRADIENT;
+        if (step <= 0 && !(L > 0 && L < HUGE_VAL)) {
             if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
-            desc.step = (R.t1 - R.t0) / 256.0;
+            step = (R.t1 - R.t0) / 256.0;
         }
-        found = fr__trace_step(&R, desc.step, desc.refine, L, &t_hit, &t_err);
+        found = fr__trace_step(&R, step, desc->refine, L, &t_hit, &t_err);
         break;
     case FR_METHOD_INTERVAL:
 #ifndef FR_NO_INTERVAL
         if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
         if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
-        if (!desc.plain_intervals && !desc.no_poly_range) { /* polynomial tape: the centred form of g */
+        if (!desc->plain_intervals && !desc->no_poly_range) { /* polynomial tape: the centred form of g */
             double nr = 160.0 * (double)t->n_code; /* roundings per coefficient, see fr__poly_range */
             unsigned int out = t->outputs[0];
             if (nr * FR__U < 1e-3) {
@@ -5074,37 +6419,51 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
                     R.mdeg = mem.deg_mag[out];
                     R.rho = 2.0 * fr__gamma(nr);
                     if (R.mdeg < R.pdeg) R.pc = NULL; /* cannot happen; stay safe */
-                    if (R.pc && desc.interval_newton && R.mdeg >= 1) {
+                    if (R.pc) R.gam = fr__gamma(2.0 * R.mdeg + 2.0);
+                    if (R.pc && R.mdeg >= 1) {
                         /* g' = sum (k+1) c_{k+1} s^k; the products by k+1 round once more */
                         for (k = 0; k < R.mdeg; k++) {
                             R.dc[k] = k + 1 <= R.pdeg ? (double)(k + 1) * R.pc[k + 1] : 0.0;
                             R.dm[k] = (double)(k + 1) * R.pm[k + 1];
                         }
                         R.drho = R.rho + 4.0 * FR__U;
-                        R.newton = 1;
+                        R.dgam = fr__gamma(2.0 * (R.mdeg - 1) + 2.0);
+                        R.newton = desc->interval_newton;
+                        R.mono = 1;
                     }
                 }
             }
         }
-        e = fr__trace_interval(&R, desc.plain_intervals, !desc.no_prune && !R.pc, mem.prune, &found, &t_hit, &t_err);
+        e = fr__trace_interval(&R, desc->plain_intervals, !desc->no_prune && !R.pc, mem.prune, &found, &t_hit, &t_err);
         break;
 #else
         return FR_ERR_NO_INTERVAL;
 #endif
     case FR_METHOD_SPHERE:
         if (!(L > 0 && L < HUGE_VAL)) return FR_ERR_NO_LIPSCHITZ;
-        found = fr__trace_sphere(&R, L, desc.over_relax > 0 ? desc.over_relax : FR__SPHERE_OMEGA, &t_hit, &t_err);
+        found = fr__trace_sphere(&R, L, desc->over_relax > 0 ? desc->over_relax : FR__SPHERE_OMEGA, &t_hit, &t_err);
         break;
     default:
         return FR_ERR_INVALID_ARG;
     }
+done:
     if (e != FR_OK) return e;
     hit->hit = found;
     hit->method = m;
     hit->t = found ? t_hit : 0.0;
     hit->t_err = found ? t_err : 0.0;
     for (k = 0; k < 3; k++) { hit->point[k] = found ? o[k] + t_hit * d[k] : 0.0; hit->normal[k] = 0.0; }
-    if (found) fr__normal(&R, &desc, hit->point, hit->normal);
+    if (found) {
+        fr__leaf_t *lv = NULL;
+        if (orient) fr__prep_layout(R.prep->n_leaves, R.prep->n_nodes, R.prep->n_prog, &lv, NULL, NULL, R.prep->mem);
+        if (orient && desc->normal == FR_NORMAL_AD && fr__quadric_normal(&lv[leaf], orient, hit->point, hit->normal))
+            R.evals++;
+        else if (R.prep && R.prep->kind == FR_PREPARED_POLY && desc->normal == FR_NORMAL_AD &&
+                 fr__prog_normal(t, R.prep, hit->point, (double *)mem.eval, hit->normal))
+            R.evals++;
+        else
+            fr__normal(&R, desc, hit->point, hit->normal);
+    }
     hit->evals = R.evals;
     hit->iterations = R.iters;
     return FR_OK;

@@ -2,7 +2,9 @@
 
    Grooves as UV paths with polyline cross-sections, shaded exactly per pixel
    footprint with clipping, masking and shadowing (Bosch et al. 2006, §3–4:
-   isolated and parallel grooves).
+   isolated and parallel grooves; §5: crossings, ends and corners by
+   polygon footprints, protruding and self-crossing grooves too, or by line
+   samples; §6: specular inter-reflection and transmission).
 
    The host renderer builds a grid once from a list of grooves, then for each
    shading point turns its ray differentials into a footprint and asks for the
@@ -25,6 +27,8 @@
      GR_MAX_LIGHTS      lights per query (default 4)
      GR_MAX_FACETS      entries in a gr_facet_list_t (default 32)
      GR_MAX_JUNCTIONS   crossings/ends gr_detect() stores per footprint (default 16)
+     GR_POLY_MAX_GROOVES grooves the polygon path takes in one footprint's
+                        search box (default 16; more are §4's)
      GR_NO_CURVES       leave out Bézier paths (the builder then rejects them
                         with GR_ERR_UNSUPPORTED)
      GR_NO_OVERSAMPLE   leave out footprint oversampling (§4.2)
@@ -85,6 +89,9 @@ typedef enum gr_result_t {
     GR_ERR_SECTION_ORDER,    /* a cross-section whose last b is not above its first b */
     GR_ERR_PERTURBATION,     /* a perturbation without a valid perturb_max */
     GR_ERR_UNSUPPORTED,      /* a feature left out at compile time (GR_NO_...) */
+    GR_ERR_STACK_FULL,       /* gr_shade_indirect(): the bounces needed more than
+                                GR_INDIRECT_STACK pending segments; the colour is
+                                filled but approximate (see there) */
     GR_RESULT_COUNT_
 } gr_result_t;
 
@@ -186,6 +193,11 @@ typedef struct gr_grid_t {
     int *anchor_items_;
     int *row_anchor_sum_;    /* per row, prefix counts of anchors */
     int total_points_, total_section_, total_facets_, item_capacity_;
+    /* §5 self-intersections, found by the builder: the hits, and each
+       self-crossing groove cut into pieces (records after the grooves,
+       listed in no cell) that the polygon path takes as separate grooves */
+    struct gr_self_hit_t *self_;
+    int self_count_, split_records_;
 } gr_grid_t;
 
 /* Size query for gr_grid_build_into(): *bytes receives the buffer size. It
@@ -276,7 +288,7 @@ typedef struct gr_query_t {
     int line_samples;      /* intersections and ends (§5, issue 8): 0 (default)
                               answers footprints that gr_detect() finds
                               crossings or path ends in with the exact
-                              polygon path (§5.2-5.5); n = 1..8 asks for n
+                              polygon path (§5.2-5.5); n = 1..32 asks for n
                               line samples (§5.6, gr_query_lines()) for
                               footprints whose §4 answer flags
                               GR_LIST_NONPARALLEL or GR_LIST_PATH_END
@@ -298,6 +310,16 @@ typedef struct gr_query_t {
     double line_exit_tol;  /* §5.6 early exit of line samples: stop when
                               Σ r_i >= 1 - tol; default 0 means 1e-3;
                               negative disables */
+    int straight_occlusion; /* 0 (default): §4.3's masking and shadowing
+                              with each cross-section point taken where
+                              the ray that reaches it meets the groove: the
+                              section scaled by f there (the depth change
+                              along the ray's way, exact for a linear f)
+                              and, on a curved path, moved by the bend's
+                              drift under a ray running along it (exact
+                              for a circular arc). Nonzero: the straight
+                              groove with the constant profile at P, as
+                              the paper has it (§4.2-4.3) */
 } gr_query_t;
 
 /* One entry of the facet list: a texture-space facet orientation with its
@@ -429,7 +451,9 @@ GR_DEF size_t gr_poly_boolean_scratch_bytes(int total_points);
    and the result is a set of trapezoids, exact up to the rounding of the
    crossing heights. *area (optional) receives the result's area. traps
    (optional, NULL for the area only) receives up to trap_cap trapezoids, 8
-   doubles each: 4 counter-clockwise (x, y) corners, bottom edge first;
+   doubles each: 4 counter-clockwise (x, y) corners, bottom edge first (a
+   trapezoid runs on through the slabs while its two sides are the same
+   edges, so a region is not cut at every vertex height);
    *trap_count (optional) receives how many the result has. The trapezoids
    do not overlap and their union is the result. Errors: GR_ERR_INVALID_ARG
    (NULL sets or scratch, negative counts, ring sizes that do not add up),
@@ -445,6 +469,14 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
 /* Entries in a gr_junctions_t (default 16). */
 #ifndef GR_MAX_JUNCTIONS
 #  define GR_MAX_JUNCTIONS 16
+#endif
+/* Grooves the polygon path takes in a footprint's §5.1 box (default 16);
+   beyond, §4 answers with its flags. Its scratch grows with it (about
+   16 KiB a groove): 8 cuts the cost of the densest footprints several
+   times and leaves them to §4's approximation (docs/grooves.md, What is
+   left). */
+#ifndef GR_POLY_MAX_GROOVES
+#  define GR_POLY_MAX_GROOVES 16
 #endif
 
 /* What a footprint meets besides isolated or parallel grooves (§5, Figure 7). */
@@ -472,7 +504,9 @@ typedef struct gr_junction_t {
     double point[2]; /* UV, in the footprint's tile image: the path end, the
                         self-intersection point, or for a crossing the
                         meeting point of the two tangent lines at the paths'
-                        points nearest the footprint centre */
+                        points nearest the footprint centre (when that lies
+                        far away, the point nearest the centre where the
+                        two grooves' strips overlap) */
 } gr_junction_t;
 
 /* The result of gr_detect(): caller-owned, fixed size. */
@@ -514,7 +548,10 @@ GR_DEF gr_result_t gr_self_intersections(const gr_grid_t *grid, gr_self_hit_t *o
      - two grooves whose tangents differ by more than query->parallel_tol
        (default 0.02 rad) cross (the paper's test: tangents T differ),
        provided their tangent lines meet near the footprint and within the
-       sum of their widths of both paths;
+       sum of their widths of both paths, or (nearly parallel grooves that
+       meet far away) their strips of half width w overlap near the
+       footprint: the point is then the overlap's point nearest the
+       footprint centre;
      - a path end inside the box is an intersected end when its distance to
        another counted groove's path is below the sum of their widths w (the
        paper's distance test), a corner when another end is that close, and
@@ -603,7 +640,8 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
    planes (the ground, facets and end walls of those grooves) and the
    breakpoints it can hold per segment; beyond any of them the result is
    approximate and flagged GR_LIST_LINE_APPROX. They size the scratch
-   (about 125 KB with these defaults). */
+   (with GR_LINE_MAX_EDGES and GR_INDIRECT_STACK about 320 KB with these
+   defaults, within the polygon path's share of gr_query_scratch_bytes()). */
 #ifndef GR_LINE_MAX_GROOVES
 #  define GR_LINE_MAX_GROOVES 16
 #endif
@@ -613,13 +651,25 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 #ifndef GR_LINE_MAX_BREAKS
 #  define GR_LINE_MAX_BREAKS 1024
 #endif
-/* Most line samples per footprint (gr_query_t.line_samples). */
-#define GR_LINE_MAX_SAMPLES 8
+#ifndef GR_LINE_MAX_EDGES /* edge lines kept per scene; beyond, found per segment (slower, same answer) */
+#  define GR_LINE_MAX_EDGES 2048
+#endif
+/* Most line samples per footprint (gr_query_t.line_samples): 16 chords
+   along each axis. */
+#define GR_LINE_MAX_SAMPLES 32
 /* gr_facet_list_t.flags: line samples dropped grooves or breakpoints. */
 #define GR_LIST_LINE_APPROX 32u
 
+/* gr_line_stats_t.flags */
+#define GR_STATS_LINE_APPROX 1u /* a segment's scene dropped grooves, planes or
+                                   breakpoints (GR_LIST_LINE_APPROX) */
+#define GR_STATS_STACK_FULL  2u /* gr_shade_indirect(): more pending bounce
+                                   segments than GR_INDIRECT_STACK (it then
+                                   returns GR_ERR_STACK_FULL) */
+
 /* Optional counters from gr_query_lines() (and gr_shade_indirect()). */
 typedef struct gr_line_stats_t {
+    unsigned flags;    /* GR_STATS_... */
     int segments;      /* segments evaluated (line samples and bounces) */
     int intervals;     /* 1D intervals the segments were cut into */
     int evaluated;     /* intervals whose facet was found (the rest were
@@ -634,10 +684,12 @@ typedef struct gr_line_stats_t {
    footprint, in their straight approximation, for a box GR_LINE_CACHE_GROW
    times the footprint's search box; a later footprint whose box lies
    inside reuses them and skips the grid search and the nearest-point
-   solves. Only straight grooves (2-point paths) are cached, so the answer
-   is the uncached one; a box with a curve or polyline, or more grooves
-   than GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use;
-   it refers to one grid (another grid refills it). */
+   solves. Only straight, unperturbed grooves (2-point paths) are cached:
+   their straight approximation is the groove itself, the same from every
+   footprint, so the answer is bit for bit the uncached one; a box with a
+   curve, a polyline, a perturbed groove, or more grooves than
+   GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use; it
+   refers to one grid (another grid refills it). */
 #define GR_LINE_CACHE_GROW 3.0
 typedef struct gr_line_cache_t {
     const gr_grid_t *grid;  /* the grid it was filled from */
@@ -650,30 +702,35 @@ typedef struct gr_line_cache_t {
 
 #ifndef GR_NO_LINE_SAMPLES
 /* §5.6 line samples. The footprint F + a A1 + b A2 is sampled by
-   n = query->line_samples segments through F (0 means 2), evenly rotated:
-   segment j runs along cos(πj/n) A1 + sin(πj/n) A2, so 2 samples are the
-   footprint axes A1 and A2 as in the paper. Each segment is processed as a
-   1D version of §5.2-5.4: the rays from the viewer through the segment form
-   a plane; every groove near the footprint, in its local straight
-   approximation (§4.2) scaled by its perturbation, cuts that plane along
-   its facets, and the segment is cut into intervals at every point where
-   the first surface changes (projected section points, the crossing lines
-   of two grooves' facets, §5.3's intersection profiles) or where a shadow
-   boundary falls (§5.4: section points and crossing lines projected along
-   each light onto a facet). Inside one interval the visible facet and its
-   lit state are constant, so one ray per interval classifies it: the solid
-   is the ground w <= 0 minus every groove's cut (the part of its section
-   below w = 0) plus every protrusion. r_i is facet i's length share. The
-   segments are combined with Jones & Perry 2000's weights: segment j
-   weighs Σ sin²α over the edges it crosses (α between the segment and the
-   edge's image in UV), so a segment running along the edges counts little;
-   when no segment crosses an edge they are averaged. Early exit (§5.6):
-   intervals are classified longest first and a segment stops once
-   Σ r_i >= 1 - query->line_exit_tol; the unclassified rest (< tol) is
-   shared in proportion (each r_i moves by at most tol).
-   Path ends are treated as continuing (GR_LIST_PATH_END), as in gr_query().
-   Uses gr_query_scratch_bytes() of scratch; stats is optional. Errors as
-   gr_query(), plus GR_ERR_INVALID_ARG for line_samples outside 0..8. */
+   n = query->line_samples line segments (0 means 2) in two families: the
+   first ceil(n/2) run along A1, the other floor(n/2) along A2, each family
+   a set of parallel chords across the whole footprint at the midpoints of
+   equal strata of the other axis, so n = 2 is the paper's pair of axes
+   through F and more lines are a stratified quadrature of the footprint's
+   area (its error falls with n). Each chord is processed as a 1D version
+   of §5.2-5.4: the rays from the viewer through it form a plane; every
+   groove near the footprint, in its local straight approximation (§4.2)
+   scaled by its perturbation, cuts that plane along its facets, and the
+   chord is cut into intervals wherever an edge of the scene pierces the
+   plane (section points swept along T, the crossing lines of two grooves'
+   facets: §5.3's intersection profiles) or an edge's shadow along a light
+   falls on a facet the chord sees (§5.4). Inside one interval the visible
+   facet and its lit state are constant, so one ray per interval
+   classifies it: the solid is the ground w <= 0 minus every groove's cut
+   (the part of its section below w = 0) plus every protrusion, path ends
+   closed by flat walls of the section's shape (listed with facet index
+   section_count - 1 at the first end, section_count at the last). r_i is
+   facet i's length share; a family's share is the area-weighted mean of
+   its chords'. The families are combined with Jones & Perry 2000's
+   weights: a chord weighs Σ sin²α over the edges it crosses (α between
+   the chord and the edge's image in UV), a family the mean of its chords,
+   so a family running along the edges counts little; when neither crosses
+   an edge they are averaged. Early exit (§5.6): intervals are classified
+   longest first and a chord stops once Σ r_i >= 1 - query->line_exit_tol;
+   the unclassified rest (< tol) is shared in proportion (each r_i of a
+   chord moves by at most tol). Uses gr_query_scratch_bytes() of scratch;
+   stats is optional. Errors as gr_query(), plus GR_ERR_INVALID_ARG for
+   line_samples outside 0..GR_LINE_MAX_SAMPLES. */
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats);
 
@@ -688,22 +745,46 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
 #ifndef GR_NO_INTERREFLECTION
 /* Deepest recursion gr_shade_indirect() accepts. */
 #define GR_MAX_DEPTH 8
+/* Pending bounce segments gr_shade_indirect() can hold (in the query
+   scratch, about 110 bytes each); a footprint that needs more gets
+   GR_ERR_STACK_FULL. Each segment of a bounce pushes up to two per facet
+   it sees (reflected and transmitted), so the need grows with the depth
+   and the facets per segment. */
+#ifndef GR_INDIRECT_STACK
+#  define GR_INDIRECT_STACK 512
+#endif
 
 /* Specular behaviour of one reflectance id (the per-facet ids of
    gr_groove_desc_t.facet_reflectance and the grid's base_reflectance). */
 typedef struct gr_specular_t {
     double kr[3];  /* specular reflectance k_r per channel (0: no bounce) */
     double kt[3];  /* specular transmittance k_t per channel (0: none) */
-    double ior;    /* index of refraction for transmission; 0 means 1.5 */
+    double ior;    /* index of refraction of the material behind the facet
+                      (the solid's side); 0 means 1.5 */
+    int fresnel;   /* 0 (default): k_r and k_t are the bounce weights, as the
+                      paper's constants (under total internal reflection
+                      k_t is reflected too). 1: a dielectric: reflection
+                      k_r F, transmission k_t (1 - F), F the unpolarised
+                      Fresnel reflectance for the ior at the angle of
+                      incidence (1 under total internal reflection) */
+    int thin;      /* 0 (default): transmitted light refracts (Snell, ior)
+                      and is followed inside the solid, where it may leave
+                      through another facet or be reflected back from
+                      inside (§6.1's rays from below); what reaches the bulk
+                      below the grooves goes to trace() with inside = 1.
+                      1: a thin pane (window glass, Figure 21d): transmitted
+                      light keeps its direction and goes straight to trace()
+                      with inside = 1; with fresnel, the pane's two faces
+                      sum to R' = 2F/(1 + F), T' = (1 - F)/(1 + F) */
 } gr_specular_t;
 
 /* Host ray-trace callback (§6.2): the radiance arriving along dir (unit,
-   texture space, pointing away from the surface) at origin (texture space
-   u, v, w: the centre of the segment piece the rays leave from). inside = 0:
-   a ray that left the grooved surface (Σ r_i < 1 at that bounce); inside = 1:
-   a ray refracted into the material through a transmitting facet (the host
-   owns what lies below the surface, e.g. the glass pane behind a frame).
-   depth: the bounce it leaves at (1 = after the first reflection). weight:
+   texture space) at origin (texture space u, v, w: the centre of the
+   segment piece the rays leave from). inside = 0: rays that left the
+   grooved surface upward (Σ r_i < 1 at that bounce); inside = 1: rays in
+   the material that reached the bulk below the grooves, or passed a thin
+   pane (the host owns what lies there, e.g. the room behind a window).
+   depth: the bounce it leaves at (0 = the footprint's own rays). weight:
    the mean throughput it carries (informative, e.g. for Russian roulette;
    the library applies it). */
 typedef void (*gr_trace_fn)(void *user, const double origin[3], const double dir[3], int depth, int inside,
@@ -725,21 +806,30 @@ typedef struct gr_indirect_t {
    grooves, on gr_query_lines()'s segments (query->line_samples of them,
    combined with the same Jones & Perry weights). On each segment, each
    interval's facet gets its direct term Σ_k lit_k brdf(...) (eq. 6); if
-   depth allows and its id reflects, the facet's visible piece becomes the
-   next footprint (§6.1: the piece of the facet the segment sees, a 3D
-   segment on the facet; projecting it back to UV along E_r, as the paper
-   does, gives the same rays) seen along the mirror direction E_r, with
-   throughput r_i k_r. Rays of a bounce may leave from below the texture
-   plane and point up or down (E_w < 0 in the paper's terms): the 1D ray
-   classification is the same for any direction, which is §6.1's inverted
-   masking order. Where a bounce's rays find no facet (Σ r_i < 1) the rest
-   goes to trace() with weight 1 - Σ r_i (§6.2); light refracted by a
-   transmitting facet goes to trace() with inside = 1. Recursion runs on an
-   explicit stack (GR_MAX_DEPTH levels); pieces beyond its capacity go to
-   trace() along their mirror direction (GR_LIST_LINE_APPROX in stats is
-   not reported; stats->segments counts the work). Uses
-   gr_query_scratch_bytes() of scratch. Errors as gr_query_lines(), plus
-   GR_ERR_INVALID_ARG for a NULL indirect or rgb, depth outside
+   depth allows and its id reflects or transmits (gr_specular_t), the
+   facet's visible piece becomes the next footprint (§6.1: the piece of the
+   facet the segment sees, a 3D segment on the facet; projecting it back to
+   UV along E_r, as the paper does, gives the same rays), seen along the
+   mirror direction E_r with throughput r_i k_r, and along the refracted
+   direction E_t (Snell with the id's ior) with r_i k_t; with fresnel set,
+   k_r F and k_t (1 - F). Refracted rays run inside the solid: they leave
+   it through another facet (refracted again, or reflected back inside,
+   totally when past the critical angle), or reach the bulk below the
+   grooves. Rays of a bounce may leave from below the texture plane and
+   point up or down (E_w < 0 in the paper's terms): the 1D ray
+   classification is the same for any direction and either medium, which
+   is §6.1's inverted masking order. What a bounce's rays do not meet
+   (Σ r_i < 1) goes to trace() with weight 1 - Σ r_i (§6.2): inside = 0 for
+   rays leaving up into the scene, inside = 1 for rays reaching the bulk
+   (or passing a thin pane). Rays inside the material are followed 64
+   scene scales (w + h + d) along the surface; beyond, they count as bulk
+   light. Direct light (brdf) is added on the outside only. Recursion runs
+   on an explicit stack of GR_INDIRECT_STACK segments in the scratch: when
+   a footprint needs more, the pieces that do not fit leave along their
+   direction to trace() unexamined, stats->flags gets GR_STATS_STACK_FULL
+   and the call returns GR_ERR_STACK_FULL with rgb filled (approximate).
+   Uses gr_query_scratch_bytes() of scratch. Errors as gr_query_lines(),
+   plus GR_ERR_INVALID_ARG for a NULL indirect or rgb, depth outside
    0..GR_MAX_DEPTH, specular_count < 0 or specular NULL with a count. */
 GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *query, const gr_indirect_t *indirect,
                                      void *scratch, size_t scratch_bytes, double rgb[3], gr_line_stats_t *stats);
@@ -773,6 +863,7 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
 #endif
 #include <stdio.h>  /* snprintf for diagnostics */
 #include <stdlib.h> /* qsort */
+#include <float.h>  /* DBL_EPSILON */
 #include <string.h>
 
 #ifdef __cplusplus
@@ -821,6 +912,15 @@ extern "C" {
    footprint and where the view ray meets the facet (gr__hit_normal): past
    it the straight approximation of the occlusion means little anyway. */
 #define GR__TURN_MAX 1.0
+/* Smallest stretch 1 - kappa f b of a curved sweep taken (gr__stretch),
+   and smallest denominator of the secant solve for the scale where a ray
+   meets a perturbed groove (gr__ray_point; below it the secant's own end
+   is used): both only guard the local model past its range. */
+#define GR__STRETCH_MIN 0.25
+#define GR__RAY_SECANT_MIN 0.5
+/* gr__ray_point takes its second secant step only when the first moved
+   the scale by more than this fraction of f. */
+#define GR__RAY_SECOND_STEP 1e-3
 #define GR__PI 3.14159265358979323846
 /* Intervals shorter than this fraction of an elliptical footprint's radius
    integrate its semicircle density by the midpoint rule (relative error
@@ -849,6 +949,7 @@ GR_DEF const char *gr_result_string(gr_result_t r)
     case GR_ERR_SECTION_ORDER: return "cross-section does not run from low to high b";
     case GR_ERR_PERTURBATION: return "perturbation without a valid perturb_max";
     case GR_ERR_UNSUPPORTED: return "feature left out at compile time";
+    case GR_ERR_STACK_FULL: return "indirect light: recursion stack full (result approximate)";
     case GR_RESULT_COUNT_: break;
     }
     return "unknown result";
@@ -873,6 +974,12 @@ typedef struct gr__groove_t {
     double bbox[4];        /* control-point bounds of the path */
     gr_perturb_fn perturb;
     void *perturb_user;
+    /* self-crossing grooves (§5): a groove's pieces are records
+       first_split .. first_split + split_count - 1; a piece covers the
+       parameters [t0, t1] of its groove `parent` (itself for a groove),
+       and its ends with join[e] set continue into the next piece */
+    int parent, first_split, split_count, join[2];
+    double t0, t1;
 } gr__groove_t;
 
 static void gr__diag(gr_diag_t *diag, gr_result_t r, long long element, const char *msg)
@@ -1073,14 +1180,23 @@ static void gr__bezier_sub(const double *p, int n, double t0, double t1, double 
 
 /* ---- Grid build (§3 bounds and blockers, §4.1 uniform grid) ------------- */
 
+#ifndef GR_NO_INTERSECTIONS
+/* [section: intersections] the builder's part of §5: a path's
+   self-intersections, and the cut of a self-crossing groove into pieces */
+static int gr__path_self_hits(const double *pts, int kind, int n, int closed, int g, struct gr_self_hit_t *out, int cap);
+static void gr__split_groove(gr_grid_t *gr, int g, struct gr_self_hit_t *hits, int nh, int *next, int *pt);
+static int gr__path_closed(const double *p, int n, int wrap, const double dom[4]);
+#endif
+
 /* Everything the size query and the builder agree on. */
 typedef struct gr__plan_t {
     double dom[4];
     gr__cells_t cells;
     int groove_count, total_points, total_section, total_facets, total_blockers;
+    int self_hits, split_records, split_points; /* §5: upper bounds for the pieces */
     long long item_capacity;
     size_t off_grooves, off_points, off_section, off_refl, off_bstart, off_blockers,
-        off_cstart, off_ccount, off_items, off_astart, off_aitems, off_rowsum, bytes;
+        off_cstart, off_ccount, off_items, off_astart, off_aitems, off_rowsum, off_self, bytes;
 } gr__plan_t;
 
 static size_t gr__align8(size_t x) { return (x + 7u) & ~(size_t)7u; }
@@ -1199,6 +1315,24 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
     pl->cells.cu = (pl->dom[2] - pl->dom[0]) / pl->cells.nu;
     pl->cells.cv = (pl->dom[3] - pl->dom[1]) / pl->cells.nv;
     pl->cells.wrap = !desc->no_wrap;
+#ifndef GR_NO_INTERSECTIONS
+    /* §5: self-intersections, and room for the pieces they cut a groove
+       into (at most three cuts per hit, gr__split_groove) */
+    for (g = 0; g < desc->groove_count; g++) {
+        const gr_groove_desc_t *gd = &desc->grooves[g];
+        int nh = gr__path_self_hits(gd->points, (int)gd->kind, gd->point_count,
+                                    gr__path_closed(gd->points, gd->point_count, pl->cells.wrap, pl->dom), g, NULL, 0);
+        if (nh > 100000000 - pl->self_hits) {
+            gr__diag(diag, GR_ERR_INVALID_ARG, g, "too many self-intersections in total (> 1e8)");
+            return GR_ERR_INVALID_ARG;
+        }
+        pl->self_hits += nh;
+        if (nh > 0) {
+            pl->split_records += 3 * nh + 1;
+            pl->split_points += gd->point_count + 4 * (3 * nh + 1);
+        }
+    }
+#endif
     for (g = 0; g < desc->groove_count; g++) {
         const gr_groove_desc_t *gd = &desc->grooves[g];
         pl->item_capacity += gr__path_boxes(&pl->cells, gd->points, (int)gd->kind, gd->point_count, g, NULL, NULL, NULL, NULL);
@@ -1210,8 +1344,10 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
     {
         size_t nc = (size_t)pl->cells.nu * (size_t)pl->cells.nv;
         off = gr__align8(sizeof(gr_grid_t));
-        pl->off_grooves = off; off = gr__align8(off + sizeof(gr__groove_t) * (size_t)pl->groove_count);
-        pl->off_points = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_points);
+        pl->off_grooves = off;
+        off = gr__align8(off + sizeof(gr__groove_t) * ((size_t)pl->groove_count + (size_t)pl->split_records));
+        pl->off_points = off;
+        off = gr__align8(off + sizeof(double) * 2 * ((size_t)pl->total_points + (size_t)pl->split_points));
         pl->off_section = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_section);
         pl->off_refl = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_facets);
         pl->off_bstart = off; off = gr__align8(off + sizeof(int) * ((size_t)pl->total_section + 1));
@@ -1222,6 +1358,9 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
         pl->off_astart = off; off = gr__align8(off + sizeof(int) * (nc + 1));
         pl->off_aitems = off; off = gr__align8(off + sizeof(int) * (size_t)pl->groove_count);
         pl->off_rowsum = off; off = gr__align8(off + sizeof(int) * (size_t)pl->cells.nv * ((size_t)pl->cells.nu + 1));
+#ifndef GR_NO_INTERSECTIONS
+        pl->off_self = off; off = gr__align8(off + sizeof(gr_self_hit_t) * (size_t)pl->self_hits);
+#endif
         pl->bytes = off;
     }
     return GR_OK;
@@ -1235,6 +1374,20 @@ GR_DEF gr_result_t gr_grid_size(const gr_grid_desc_t *desc, size_t *bytes, gr_di
     r = gr__plan(desc, &pl, diag);
     *bytes = r == GR_OK ? pl.bytes : 0;
     return r;
+}
+
+/* A path with no ends: its first point is its last or, on a repeating
+   tile, the same point across the seam (ends a whole number of tiles
+   apart: the path runs on across it, §4.1 wrap, as one closed path). */
+static int gr__path_closed(const double *p, int n, int wrap, const double dom[4])
+{
+    int last = n - 1;
+    double wu = dom[2] - dom[0], wv = dom[3] - dom[1], du = p[2 * last] - p[0], dv = p[2 * last + 1] - p[1];
+    if (p[0] == p[2 * last] && p[1] == p[2 * last + 1]) return 1;
+    if (!wrap) return 0;
+    du -= floor(du / wu + 0.5) * wu;
+    dv -= floor(dv / wv + 0.5) * wv;
+    return hypot(du, dv) <= GR__SEAM_CLOSED_REL * hypot(wu, wv);
 }
 
 /* Copy one groove into the flat arrays and fill its record (§3 bounds).
@@ -1281,19 +1434,12 @@ static void gr__store_groove(gr_grid_t *gr, const gr_groove_desc_t *gd, int g, i
     rec->up = maxw * rec->fmax;
     rec->down = -minw * rec->fmax;
     gr__bounds(gd->points, gd->point_count, rec->bbox);
+    rec->parent = g;
+    rec->t1 = 1;
     {
         const double *p = gd->points;
         int last = gd->point_count - 1;
-        rec->closed = p[0] == p[2 * last] && p[1] == p[2 * last + 1];
-        if (gr->wrap && !rec->closed) {
-            /* ends a whole number of tiles apart: the path runs on across
-               the seam (§4.1 wrap), as one closed path */
-            double wu = gr->domain[2] - gr->domain[0], wv = gr->domain[3] - gr->domain[1];
-            double du = p[2 * last] - p[0], dv = p[2 * last + 1] - p[1];
-            du -= floor(du / wu + 0.5) * wu;
-            dv -= floor(dv / wv + 0.5) * wv;
-            rec->closed = hypot(du, dv) <= GR__SEAM_CLOSED_REL * hypot(wu, wv);
-        }
+        rec->closed = gr__path_closed(p, gd->point_count, gr->wrap, gr->domain);
         rec->length = 0;
         if (rec->kind == GR_PATH_POLYLINE)
             for (i = 0; i < last; i++) rec->length += hypot(p[2 * i + 2] - p[2 * i], p[2 * i + 3] - p[2 * i + 1]);
@@ -1367,6 +1513,23 @@ GR_DEF gr_result_t gr_grid_build_into(const gr_grid_desc_t *desc, void *buffer, 
         if (rec->up > gr->h) gr->h = rec->up;
         if (rec->down > gr->d) gr->d = rec->down;
     }
+#ifndef GR_NO_INTERSECTIONS
+    /* §5: self-intersections found once, each self-crossing groove cut into
+       pieces after the grooves (the grid's cells list the grooves only) */
+    gr->self_ = (gr_self_hit_t *)(void *)(base + pl.off_self);
+    {
+        int next = pl.groove_count, h0;
+        for (g = 0; g < pl.groove_count; g++) {
+            const gr__groove_t *rec = &gr->grooves_[g];
+            h0 = gr->self_count_;
+            gr->self_count_ += gr__path_self_hits(gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count,
+                                                  rec->closed, g, gr->self_ + h0, pl.self_hits - h0);
+            if (gr->self_count_ > h0) gr__split_groove(gr, g, gr->self_ + h0, gr->self_count_ - h0, &next, &pt);
+        }
+        GR_ASSERT(gr->self_count_ == pl.self_hits && next <= pl.groove_count + pl.split_records);
+        gr->split_records_ = next - pl.groove_count;
+    }
+#endif
     /* cell lists: count (upper bound), prefix sum, fill without repeats */
     nc = pl.cells.nu * pl.cells.nv;
     memset(gr->cell_start_, 0, sizeof(int) * ((size_t)nc + 1));
@@ -1556,7 +1719,9 @@ typedef struct gr__cand_t {
     double d;       /* d_P = B . (F - P), B = (-T_v, T_u) (eq. 2) */
     double param;   /* path parameter at P, in [0,1] */
     double dtds;    /* d param / d arc length at P */
+    double dtds2;   /* its derivative per unit arc length (Bézier speed changes) */
     double kappa;   /* signed path curvature at P (> 0: T turns counter-clockwise) */
+    double dkds;    /* its derivative per unit arc length */
     double f;       /* perturbation scale f(param) */
     double dfds;    /* its slope per unit arc length, averaged across the footprint */
     double xmin;    /* leftmost point of its section in the merged profile */
@@ -1583,11 +1748,19 @@ typedef struct gr__scratch_t {
     gr__key_t *key;
     double *x, *w, *q, *lo, *hi, *va, *vb, *lit;
     gr__mfacet_t *mf;
+    /* per merged point: its candidate (-1 for ground) and its point of the
+       unscaled section (b, w); the view's projection */
+    int *pc;
+    double *bs, *ws, *qe;
+    int *visited; /* cell lists the last §4 footprint read (gr__gather) */
 } gr__scratch_t;
 
 static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *s)
 {
-    size_t off = 0, np = (size_t)g->total_facets_ + (size_t)g->groove_count + 2, nid = (size_t)g->groove_count;
+    /* a self-crossing groove's pieces (§5) are candidates of their own in
+       gr_detect(): room for them, and for two end states each */
+    size_t off = 0, np = (size_t)g->total_facets_ + (size_t)g->groove_count + 2 + 2 * (size_t)g->split_records_;
+    size_t nid = (size_t)g->groove_count;
     char *b = (char *)base;
     gr__scratch_t tmp;
     if (!s) s = &tmp;
@@ -1595,7 +1768,7 @@ static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *
     s->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (count));
     GR__CARVE(seen, unsigned char, nid / 8 + 1)
     GR__CARVE(ids, int, nid)
-    GR__CARVE(cand, gr__cand_t, (size_t)g->groove_count)
+    GR__CARVE(cand, gr__cand_t, (size_t)g->groove_count + (size_t)g->split_records_)
     GR__CARVE(key, gr__key_t, (size_t)g->groove_count)
     GR__CARVE(x, double, np)
     GR__CARVE(w, double, np)
@@ -1606,6 +1779,11 @@ static size_t gr__scratch_layout(const gr_grid_t *g, void *base, gr__scratch_t *
     GR__CARVE(vb, double, np)
     GR__CARVE(lit, double, np * GR_MAX_LIGHTS)
     GR__CARVE(mf, gr__mfacet_t, np)
+    GR__CARVE(pc, int, np)
+    GR__CARVE(bs, double, np)
+    GR__CARVE(ws, double, np)
+    GR__CARVE(qe, double, np)
+    GR__CARVE(visited, int, 1)
 #undef GR__CARVE
     return off;
 }
@@ -1654,6 +1832,28 @@ static void gr__bezier_eval(const double *p, int n, double tau, double b[2], dou
     }
 }
 
+/* The local frame of a candidate at a point of Bézier piece a (degree deg,
+   one of `pieces`) with position b and derivatives d1, d2 there (|d1| > 0):
+   P, unit T, d param / ds and its slope, signed curvature and its slope
+   (from the third derivative, constant per piece: 6 (p3 - 3 p2 + 3 p1 -
+   p0) for a cubic, 0 for a quadratic). */
+static void gr__bezier_frame(const double *a, int deg, int pieces, const double b[2], const double d1[2],
+                             const double d2[2], gr__cand_t *c)
+{
+    double sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]), cr = d1[0] * d2[1] - d1[1] * d2[0], d3[2] = {0, 0}, dcr;
+    double s2 = sp * sp;
+    if (deg == 3) {
+        d3[0] = 6 * (a[6] - 3 * a[4] + 3 * a[2] - a[0]);
+        d3[1] = 6 * (a[7] - 3 * a[5] + 3 * a[3] - a[1]);
+    }
+    dcr = d1[0] * d3[1] - d1[1] * d3[0];
+    c->p[0] = b[0]; c->p[1] = b[1];
+    c->t[0] = d1[0] / sp; c->t[1] = d1[1] / sp;
+    c->dtds = 1 / (pieces * sp);
+    c->dtds2 = -(d1[0] * d2[0] + d1[1] * d2[1]) / (pieces * s2 * s2);
+    c->kappa = cr / (s2 * sp);
+    c->dkds = (dcr * s2 - 3 * cr * (d1[0] * d2[0] + d1[1] * d2[1])) / (s2 * s2 * s2);
+}
 #endif
 
 /* Distance from x to the interval [lo, hi]. */
@@ -1686,7 +1886,9 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
                 c->t[0] = ex / len; c->t[1] = ey / len;
                 c->param = (acc + s * len) / rec->length;
                 c->dtds = 1 / rec->length;
+                c->dtds2 = 0;
                 c->kappa = 0;
+                c->dkds = 0;
                 c->end = rec->closed ? 0 : (k == 0 && raw < 0) ? -1 : (k == rec->pieces - 1 && raw > 1) ? 1 : 0;
             }
             acc += len;
@@ -1697,7 +1899,7 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
         int deg = gr__degree(rec->kind);
         for (k = 0; k < rec->pieces; k++) {
             const double *a = pts + 2 * k * deg;
-            double box[4], dx, dy, bt = 0, bd = HUGE_VAL, b[2], d1[2], d2[2], sp, cr;
+            double box[4], dx, dy, bt = 0, bd = HUGE_VAL, b[2], d1[2], d2[2], sp;
             int s, it;
             /* the control polygon bounds the piece: skip it when farther */
             gr__bounds(a, deg + 1, box);
@@ -1728,12 +1930,8 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
             if (bd < best && sp > 0) {
                 best = bd;
                 found = 1;
-                c->p[0] = b[0]; c->p[1] = b[1];
-                c->t[0] = d1[0] / sp; c->t[1] = d1[1] / sp;
+                gr__bezier_frame(a, deg, rec->pieces, b, d1, d2, c);
                 c->param = (k + bt) / rec->pieces;
-                c->dtds = 1 / (rec->pieces * sp);
-                cr = d1[0] * d2[1] - d1[1] * d2[0];
-                c->kappa = cr / (sp * sp * sp);
                 c->end = 0;
                 if (!rec->closed && k == 0 && bt == 0 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] < 0) c->end = -1;
                 if (!rec->closed && k == rec->pieces - 1 && bt == 1 && (f[0] - b[0]) * d1[0] + (f[1] - b[1]) * d1[1] > 0) c->end = 1;
@@ -1827,11 +2025,13 @@ static int gr__append_new(const int *list, int count, unsigned char *seen, int *
 /* Grooves whose paths cross the boundary cells of box (2m + 2(n-2) cells,
    §4.1), plus those anchored inside it (paths wholly inside the box, which
    the boundary cells would miss). Returns the count of unique ids, in the
-   order found; `seen` (one bit per groove) is scratch. */
-static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char *seen, int *ids)
+   order found; `seen` (one bit per groove) is scratch. *visited, when
+   given, receives the number of cell lists read (tests check §4.1's
+   count). */
+static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char *seen, int *ids, int *visited)
 {
     gr__cells_t c = gr__grid_cells(grid);
-    int fu, mu, fv, mv, i, j, n = 0;
+    int fu, mu, fv, mv, i, j, n = 0, nv = 0;
     memset(seen, 0, (size_t)grid->groove_count / 8 + 1);
     gr__cell_range(gr__cell_coord(box[0], c.u0, c.cu), gr__cell_coord(box[2], c.u0, c.cu), c.nu, c.wrap, &fu, &mu);
     gr__cell_range(gr__cell_coord(box[1], c.v0, c.cv), gr__cell_coord(box[3], c.v0, c.cv), c.nv, c.wrap, &fv, &mv);
@@ -1841,6 +2041,7 @@ static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char 
         for (i = 0; i < mu; i += edge_row || mu == 1 ? 1 : mu - 1) {
             int cell = row * c.nu + (fu + i) % c.nu;
             n = gr__append_new(grid->cell_items_ + grid->cell_start_[cell], grid->cell_count_[cell], seen, ids, n);
+            nv++;
             if (!edge_row && mu == 1) break;
         }
     }
@@ -1859,9 +2060,11 @@ static int gr__gather(const gr_grid_t *grid, const double box[4], unsigned char 
                 int cell = row * c.nu + i;
                 n = gr__append_new(grid->anchor_items_ + grid->anchor_start_[cell],
                                    grid->anchor_start_[cell + 1] - grid->anchor_start_[cell], seen, ids, n);
+                nv++;
             }
         }
     }
+    if (visited) *visited = nv;
     return n;
 }
 
@@ -1874,6 +2077,7 @@ typedef struct gr__qset_t {
     double parallel_sin;
     int perturb_normals;
     int ellipse;
+    int ray_profile; /* !straight_occlusion */
 } gr__qset_t;
 
 /* Visible (or lit) interval per facet of a profile with projected points q
@@ -1995,20 +2199,24 @@ static double gr__extent(const gr_footprint_t *fp, const double v[2])
    parameter param: a central difference over the footprint's extent ext
    along T (at least GR__PERTURB_STEP in the parameter), so the tilt it
    gives the facets is the footprint's average. */
-static double gr__perturb_slope(const gr__groove_t *rec, const gr__cand_t *c, double param, double ext)
+static double gr__perturb_slope(const gr__groove_t *rec, double dtds, double param, double ext)
 {
-    double h = ext * c->dtds, ta, tb;
+    double h = ext * dtds, ta, tb;
     if (!(h > GR__PERTURB_STEP)) h = GR__PERTURB_STEP;
     ta = param - h < 0 ? 0 : param - h;
     tb = param + h > 1 ? 1 : param + h;
-    return tb > ta ? (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * c->dtds : 0;
+    return tb > ta ? (gr__perturb(rec, tb) - gr__perturb(rec, ta)) / (tb - ta) * dtds : 0;
 }
 
 /* Texture-space normal of facet R_j = [C_j, C_j+1] of candidate c (§4.4:
    (0, N_b, N_w) in groove space), with the groove frame turned by phi about
    W and tilted by the perturbation's slope dfds: beyond §4.4, with
-   X = P(s) + f(s)(b B + w W), dX/ds x dX/dtau adds f'(s)(b dw - w db) T. */
-static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, double phi, double dfds, double n[3])
+   X = P(s) + f(s)(b B + w W) and dB/ds = -kappa T,
+   dX/ds x dX/dtau is parallel to (f'(s)(b dw - w db)/alpha, -dw, db) in
+   (T, B, W), alpha = 1 - kappa f b at the point (1 on a straight path: the
+   bend stretches the outer side of the sweep, which flattens its tilt). */
+static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, double phi, double dfds, double alpha,
+                               double n[3])
 {
     double db = sec[2 * j + 2] - sec[2 * j], dw = sec[2 * j + 3] - sec[2 * j + 1], len = sqrt(db * db + dw * dw);
     double nb = len > 0 ? -dw / len : 0, nw = len > 0 ? db / len : 1, nt = 0, nlen, t[2];
@@ -2019,41 +2227,293 @@ static void gr__section_normal(const gr__cand_t *c, const double *sec, int j, do
         t[0] = cs * c->t[0] - sn * c->t[1];
         t[1] = sn * c->t[0] + cs * c->t[1];
     }
-    if (dfds != 0 && len > 0) nt = dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / len;
+    if (dfds != 0 && len > 0) nt = dfds * (sec[2 * j] * dw - sec[2 * j + 1] * db) / (len * alpha);
     nlen = sqrt(nb * nb + nw * nw + nt * nt);
     n[0] = (-t[1] * nb + t[0] * nt) / nlen;
     n[1] = (t[0] * nb + t[1] * nt) / nlen;
     n[2] = nw / nlen;
 }
 
+/* 1 - kappa f b (the sweep's stretch along T at distance f b from a path
+   of curvature kappa), kept at or above GR__STRETCH_MIN: past the centre
+   of curvature the sweep folds and the local model means nothing. */
+static double gr__stretch(const gr__cand_t *c, double fb)
+{
+    double a = 1 - c->kappa * fb;
+    return a >= GR__STRETCH_MIN ? a : GR__STRETCH_MIN;
+}
+
+/* The path parameter an arc length ds from P (second order: a Bézier's
+   speed changes along it). */
+static double gr__param_at(const gr__cand_t *c, double ds)
+{
+    return c->param + ds * (c->dtds + 0.5 * c->dtds2 * ds);
+}
+
+/* Where the ray along a direction D (tau = (D . T) / D_w) that reaches the
+   point (bs, ws) of candidate c's unscaled section meets the groove:
+   returns the distance it has run along T from the mouth, and the scale
+   *fh of the section there. §4.2-4.3 take the section at P (f(s)); a ray
+   reaching depth w has run w tau along the path, where the section is
+   scaled by f(s + w tau), w = fh ws: fh solves h(x) = f(s + x ws tau) - x
+   = 0, by two secant steps from x = f (two calls of the perturbation; the
+   first step is exact for a linear f, the second is skipped when the first
+   barely moved f). The run is kept within one path
+   length (grazing directions); steps that would leave [0, perturb_max]
+   stop at the last good estimate. */
+static double gr__ray_point(const gr__groove_t *rec, const gr__cand_t *c, double bs, double ws, double tau, double *fh)
+{
+    double f = c->f, lim = 1 / c->dtds, run, d0;
+    *fh = f;
+    if (ws == 0 || tau == 0) return 0;
+    if (rec->perturb && f > 0) {
+        double a = 1 / gr__stretch(c, f * bs); /* path arc per unit run */
+        d0 = f * ws * tau;
+        if (!(fabs(d0) <= lim)) d0 = d0 < 0 ? -lim : lim;
+        if (d0 != 0) {
+            double fb = gr__perturb(rec, gr__param_at(c, d0 * a)), h0 = fb - f;
+            double den = 1 - h0 / d0 * ws * tau, x1 = den >= GR__RAY_SECANT_MIN ? f / den : fb;
+            if (x1 > rec->fmax) x1 = rec->fmax;
+            *fh = x1;
+            /* the second step only where the first moved f noticeably
+               (its own error is second order in that move) */
+            if (fabs(x1 - f) > GR__RAY_SECOND_STEP * f && fabs(x1 * ws * tau) <= lim) {
+                double h1 = gr__perturb(rec, gr__param_at(c, x1 * ws * tau * a)) - x1, x2;
+                x2 = h1 != h0 ? x1 - h1 * (x1 - f) / (h1 - h0) : x1;
+                if (x2 >= 0 && x2 <= rec->fmax) *fh = x2;
+            }
+        }
+    }
+    run = *fh * ws * tau;
+    if (!(fabs(run) <= lim)) run = run < 0 ? -lim : lim;
+    return run;
+}
+
+/* The bend's drift: a ray that has run `run` along T from the mouth of a
+   groove whose path curves (signed kappa) ends that much farther from the
+   centre of curvature than the straight line puts it, so the mouth point
+   of the ray reaching b lies at b - D_b + drift (eq. 2's frame), with
+   drift = sgn(kappa) (rho - sqrt(rho^2 - run^2)) and rho = 1/|kappa| -
+   sgn(kappa) b the point's distance from the centre: exact for a circular
+   arc. A curvature that changes along the path (dkds) enters as the
+   circle whose sagitta over the run matches the path's to third order,
+   kappa + dkds run / 3 (the path leaves its tangent by
+   kappa run^2/2 + dkds run^3/6). */
+static double gr__bend_drift(double kappa, double dkds, double b, double run)
+{
+    double rho, r2;
+    kappa += dkds * run / 3;
+    if (kappa == 0 || run == 0) return 0;
+    rho = 1 / fabs(kappa) - (kappa > 0 ? b : -b);
+    if (!(rho > 0)) return 0;
+    r2 = run * run < rho * rho ? run * run : rho * rho;
+    return (kappa > 0 ? 1 : -1) * r2 / (rho + sqrt(rho * rho - r2));
+}
+
+/* Candidate c re-anchored an arc length ds along its path: parameter,
+   scale and, on a Bézier path, the frame there. Its offset d is kept: a
+   light's sweep compares points of one footprint with each other, so only
+   their relative positions matter. */
+static void gr__cand_shift(const gr_grid_t *grid, const gr__cand_t *c, double ds, gr__cand_t *out)
+{
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    double param = gr__param_at(c, ds);
+    *out = *c;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    out->param = param;
+    if (rec->perturb) out->f = gr__perturb(rec, param);
+#ifndef GR_NO_CURVES
+    if (c->kappa != 0 || c->dkds != 0) {
+        int deg = gr__degree(rec->kind), k = (int)(param * rec->pieces);
+        const double *a;
+        double b[2], d1[2], d2[2];
+        if (k >= rec->pieces) k = rec->pieces - 1;
+        a = grid->points_ + 2 * (rec->first_point + k * deg);
+        gr__bezier_eval(a, deg, param * rec->pieces - k, b, d1, d2);
+        if (d1[0] * d1[0] + d1[1] * d1[1] > 0) gr__bezier_frame(a, deg, rec->pieces, b, d1, d2, out);
+    }
+#else
+    (void)grid;
+#endif
+}
+
+#ifndef GR_NO_CURVES
+/* The mouth coordinate B . (M - P) (candidate c's frame at P) of the ray
+   along dir that reaches the section point (bs, ws) of a Bézier groove,
+   refined on the path itself: the local model (scale fh, run) puts the hit
+   at arc run / (1 - kappa f b) from P; there the true point H = P(s) +
+   f(s) (bs B(s) + ws W) has its mouth point M = H - (f(s) ws / dir_w)
+   dir_uv, whose offset v = T . (M - P) along the path is the model's
+   residual; the ray entering on P's cross line (v = 0) enters at
+   B . (M - P) - v tan(turn) (one Newton step along the groove, which runs
+   at that turn there). Exact where the model is, second order in its
+   residual elsewhere (the bend's changing curvature). */
+static double gr__mouth_on_path(const gr_grid_t *grid, const gr__cand_t *c, double bs, double ws, const double *dir,
+                                double fh, double run)
+{
+    const gr__groove_t *rec = &grid->grooves_[c->groove];
+    int deg = gr__degree(rec->kind), k;
+    double param = gr__param_at(c, run / gr__stretch(c, fh * bs)), b[2], d1[2], d2[2], sp, th[2], f, w, m[2], u, v, ct;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    k = (int)(param * rec->pieces);
+    if (k >= rec->pieces) k = rec->pieces - 1;
+    gr__bezier_eval(grid->points_ + 2 * (rec->first_point + k * deg), deg, param * rec->pieces - k, b, d1, d2);
+    sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]);
+    if (!(sp > 0)) return fh * bs + gr__bend_drift(c->kappa, c->dkds, fh * bs, run) - fh * ws * (dir[0] * -c->t[1] + dir[1] * c->t[0]) / dir[2];
+    th[0] = d1[0] / sp;
+    th[1] = d1[1] / sp;
+    f = rec->perturb ? gr__perturb(rec, param) : c->f;
+    w = f * ws;
+    m[0] = b[0] - f * bs * th[1] - w * dir[0] / dir[2] - c->p[0];
+    m[1] = b[1] + f * bs * th[0] - w * dir[1] / dir[2] - c->p[1];
+    u = -c->t[1] * m[0] + c->t[0] * m[1];
+    v = c->t[0] * m[0] + c->t[1] * m[1];
+    ct = c->t[0] * th[0] + c->t[1] * th[1];
+    if (ct < GR__STRETCH_MIN) ct = GR__STRETCH_MIN;
+    return u - v * (-c->t[1] * th[0] + c->t[0] * th[1]) / ct;
+}
+#endif
+
+/* The merged points projected along direction dir (above the surface):
+   q_i = dw x_i - db w_i, (db, dw) its (dir . B_ref, dir_w) scaled by
+   inv_m (gr__grazing_scale; §4.2's signed tan θ' times dw). With the ray
+   profile each groove point is taken where the ray along dir that reaches
+   it meets the groove (gr__ray_point, gr__bend_drift), the rays entering
+   the mouth an arc length `anchor` along the path from the footprint: 0
+   for the view; for a light, where its rays toward the seen facets enter
+   (gr__light_anchor), the groove then taken in its own frame there (on a
+   bend the light sees it turned). Ground points stay. */
+static void gr__project(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int np, const double *dir,
+                        double db, double dw, double inv_m, double anchor, double *q)
+{
+    gr__cand_t cs;
+    int i, last = -1;
+    double dbi = db;
+    for (i = 0; i < np; i++) {
+        const gr__cand_t *c;
+        double tau, fh, run, x, w;
+        if (!qs->ray_profile || s->pc[i] < 0 || (s->ws[i] == 0 && anchor == 0)) {
+            q[i] = dw * s->x[i] - db * s->w[i];
+            continue;
+        }
+        c = &s->cand[s->pc[i]];
+        if (c->kappa == 0 && c->dkds == 0 && !grid->grooves_[c->groove].perturb) {
+            q[i] = dw * s->x[i] - db * s->w[i];
+            continue;
+        }
+        if (anchor != 0) {
+            if (s->pc[i] != last) {
+                gr__cand_shift(grid, c, anchor, &cs);
+                /* the direction across the groove there, in the same scale */
+                dbi = c->sigma * (-dir[0] * cs.t[1] + dir[1] * cs.t[0]) * inv_m;
+            }
+            last = s->pc[i];
+            c = &cs;
+        } else
+            dbi = db;
+        tau = (dir[0] * c->t[0] + dir[1] * c->t[1]) / dir[2];
+        run = gr__ray_point(&grid->grooves_[c->groove], c, s->bs[i], s->ws[i], tau, &fh);
+#ifndef GR_NO_CURVES
+        if ((c->kappa != 0 || c->dkds != 0) && run != 0) { /* on the path itself: q = dw times the mouth coordinate */
+            q[i] = dw * c->sigma * (gr__mouth_on_path(grid, c, s->bs[i], s->ws[i], dir, fh, run) - c->d);
+            continue;
+        }
+#endif
+        x = c->sigma * (fh * s->bs[i] - c->d + gr__bend_drift(c->kappa, c->dkds, fh * s->bs[i], run));
+        w = fh * s->ws[i];
+        q[i] = dw * x - dbi * w;
+    }
+}
+
+/* Where the rays of light l toward the seen facets enter the mouth, as an
+   arc length along the path from the footprint: the view ray runs run_E
+   to a facet's seen middle, the light ray from there up runs back run_L,
+   so it entered at run_E - run_L. Weighted by the facets' seen lengths
+   (one anchor per light and footprint); 0 without the ray profile or
+   where nothing curved or perturbed is seen. */
+static double gr__light_anchor(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int nf,
+                               const double *e, const double *l)
+{
+    double sum = 0, wsum = 0;
+    int i;
+    if (!qs->ray_profile) return 0;
+    for (i = 0; i < nf; i++) {
+        const gr__cand_t *c;
+        const gr__groove_t *rec;
+        double de, mid, bs, ws, fh, len;
+        if (s->pc[i] < 0 || s->pc[i] != s->pc[i + 1] || !(s->vb[i] > s->va[i])) continue;
+        c = &s->cand[s->pc[i]];
+        rec = &grid->grooves_[c->groove];
+        if (c->kappa == 0 && c->dkds == 0 && !rec->perturb) continue;
+        de = s->qe[i + 1] - s->qe[i];
+        mid = de != 0 ? (0.5 * (s->va[i] + s->vb[i]) - s->qe[i]) / de : 0.5;
+        mid = mid < 0 ? 0 : mid > 1 ? 1 : mid;
+        bs = s->bs[i] + mid * (s->bs[i + 1] - s->bs[i]);
+        ws = s->ws[i] + mid * (s->ws[i + 1] - s->ws[i]);
+        len = s->vb[i] - s->va[i];
+        sum += len * (gr__ray_point(rec, c, bs, ws, (e[0] * c->t[0] + e[1] * c->t[1]) / e[2], &fh) -
+                      gr__ray_point(rec, c, bs, ws, (l[0] * c->t[0] + l[1] * c->t[1]) / l[2], &fh));
+        wsum += len;
+    }
+    return wsum > 0 ? sum / wsum : 0;
+}
+
+#ifndef GR_NO_CURVES
+/* A Bézier path at parameter param (piece k of n covers [k/n, (k+1)/n],
+   uniformly): the angle (radians, counter-clockwise) from the unit tangent
+   t0 to its tangent there, and d param / d arc length there. */
+static double gr__turn_to(const gr_grid_t *grid, const gr__groove_t *rec, double param, const double t0[2],
+                          double *dtds)
+{
+    int deg = gr__degree(rec->kind), k;
+    double tau, b[2], d1[2], d2[2], sp;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    k = (int)(param * rec->pieces);
+    if (k >= rec->pieces) k = rec->pieces - 1;
+    tau = param * rec->pieces - k;
+    gr__bezier_eval(grid->points_ + 2 * (rec->first_point + k * deg), deg, tau, b, d1, d2);
+    sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]);
+    if (sp > 0) *dtds = 1 / (rec->pieces * sp);
+    return atan2(t0[0] * d1[1] - t0[1] * d1[0], t0[0] * d1[0] + t0[1] * d1[1]);
+}
+#endif
+
 /* The normal where the view ray really meets a visible facet (i, of
-   candidate c). §4.2-4.3 keep the straight line at P for occlusion, but
-   the ray reaches the facet's visible part at its mean depth w_m, an arc
-   length ds = w_m (E . T) / E_w along the path from P (ds kept within one
-   path length, |ds dt/ds| <= 1, for grazing views). There a curved path
-   has turned by kappa ds (at most GR__TURN_MAX) and the perturbation has
-   its own slope: on a tight bend, or a perturbation that changes within
-   the ray's way through the groove, these decide where a highlight falls. */
-static void gr__hit_normal(const gr_grid_t *grid, const gr__scratch_t *s, const gr_footprint_t *fp, int i, double ew,
-                           double eb, int point, gr__mfacet_t *m)
+   candidate c). The ray reaches the facet's visible part at its middle,
+   the point (bs, ws) of the unscaled section, after running `run` along
+   T (gr__ray_point), i.e. run / (1 - kappa f b) along the path (reached
+   through d param / ds and its slope). There a curved path has turned (the
+   path's own tangent there; at most
+   GR__TURN_MAX), and the perturbation has its own slope (a central
+   difference across the footprint's extent along T): on a tight bend, or
+   a perturbation that changes within the ray's way through the groove,
+   these decide where a highlight falls. */
+static void gr__hit_normal(const gr_grid_t *grid, const gr__scratch_t *s, const gr_footprint_t *fp, int i, int point,
+                           gr__mfacet_t *m)
 {
     const gr__cand_t *c = &s->cand[m->cand];
     const gr__groove_t *rec = &grid->grooves_[c->groove];
     const double *e = fp->view;
-    double qa = ew * s->x[i] - eb * s->w[i], de = (ew * s->x[i + 1] - eb * s->w[i + 1]) - qa, mid, wm, ds, phi, dfds;
+    double de = s->qe[i + 1] - s->qe[i], mid, bs, ws, fh, run, phi, dfds, alpha, th, dtds;
     if (c->kappa == 0 && c->dfds == 0) return;
     mid = point ? 0 : 0.5 * (s->va[i] + s->vb[i]);
-    mid = de != 0 ? (mid - qa) / de : 0.5;
+    mid = de != 0 ? (mid - s->qe[i]) / de : 0.5;
     if (!(mid >= 0)) mid = 0;
     if (mid > 1) mid = 1;
-    wm = s->w[i] + mid * (s->w[i + 1] - s->w[i]);
-    ds = wm * (e[0] * c->t[0] + e[1] * c->t[1]) / e[2];
-    if (!(fabs(ds * c->dtds) <= 1)) ds = ds < 0 ? -1 / c->dtds : 1 / c->dtds;
-    phi = c->kappa * ds;
+    bs = s->bs[i] + mid * (s->bs[i + 1] - s->bs[i]);
+    ws = s->ws[i] + mid * (s->ws[i + 1] - s->ws[i]);
+    run = gr__ray_point(rec, c, bs, ws, (e[0] * c->t[0] + e[1] * c->t[1]) / e[2], &fh);
+    alpha = gr__stretch(c, fh * bs);
+    phi = 0;
+    dtds = c->dtds;
+    th = gr__param_at(c, run / alpha);
+#ifndef GR_NO_CURVES
+    if (c->kappa != 0) phi = gr__turn_to(grid, rec, th, c->t, &dtds);
+#endif
     if (phi > GR__TURN_MAX) phi = GR__TURN_MAX;
     if (phi < -GR__TURN_MAX) phi = -GR__TURN_MAX;
-    dfds = c->dfds != 0 ? gr__perturb_slope(rec, c, c->param + ds * c->dtds, gr__extent(fp, c->t)) : 0;
-    gr__section_normal(c, grid->section_ + 2 * rec->first_sec, m->facet, phi, dfds, m->n);
+    dfds = c->dfds != 0 ? gr__perturb_slope(rec, dtds, th, gr__extent(fp, c->t)) : 0;
+    gr__section_normal(c, grid->section_ + 2 * rec->first_sec, m->facet, phi, dfds, alpha, m->n);
 }
 
 #ifndef GR_NO_OVERSAMPLE
@@ -2069,6 +2529,14 @@ static int gr__oversample_need(const gr_grid_t *grid, const gr__cand_t *c, const
     if (c->kappa != 0) {
         double sag = 0.5 * fabs(c->kappa) * ext * ext;
         double k = ceil(sqrt(sag / (tol * width)));
+        /* the seen boundaries tilt across the footprint as the groove turns
+           under it: a view ray running `run` along the path at the deepest
+           point shifts by about kappa ext run from one end of the
+           footprint to the other (run kept within one path length) */
+        double run = rec->down / rec->fmax * c->f * fabs(fp->view[0] * c->t[0] + fp->view[1] * c->t[1]);
+        run = run < fp->view[2] / c->dtds ? run / fp->view[2] : 1 / c->dtds;
+        if (k > need) need = k;
+        k = ceil(fabs(c->kappa) * ext * run / (tol * width));
         if (k > need) need = k;
     }
     if (rec->perturb) {
@@ -2179,7 +2647,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (sv < 0) box[1] += sv; else box[3] += sv;
         }
     }
-    n = gr__gather(grid, box, s->seen, s->ids);
+    n = gr__gather(grid, box, s->seen, s->ids, s->visited);
     radius = sqrt(ext_u * ext_u + ext_v * ext_v);
     /* §4.2: each groove's nearest point, tangent and distance; keep those
        that can reach the footprint */
@@ -2204,7 +2672,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (to_end < gr__extent(fp, c->t)) list->flags |= GR_LIST_PATH_END;
         }
         c->f = gr__perturb(rec, c->param);
-        c->dfds = rec->perturb && qs->perturb_normals ? gr__perturb_slope(rec, c, c->param, gr__extent(fp, c->t)) : 0;
+        c->dfds = rec->perturb && qs->perturb_normals ? gr__perturb_slope(rec, c->dtds, c->param, gr__extent(fp, c->t)) : 0;
         if (ref < 0 || fabs(c->d) < fabs(s->cand[ref].d)) ref = npar;
         npar++;
     }
@@ -2233,7 +2701,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             int nk = gr__oversample_need(grid, &s->cand[k], fp, qs->oversample_tol);
             if (nk > need) { need = nk; split_t[0] = s->cand[k].t[0]; split_t[1] = s->cand[k].t[1]; }
         }
-        if (need > 1) return need > qs->max_oversample ? qs->max_oversample : need;
+        if (need > 1) return need > GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE ? GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE : need;
     }
 #else
     (void)allow_split;
@@ -2270,6 +2738,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     ground.n[0] = 0; ground.n[1] = 0; ground.n[2] = 1;
     ground.groove = -1; ground.facet = -1; ground.refl = grid->base_reflectance; ground.cand = -1;
     s->x[np] = (npar ? (s->key[0].x < -half ? s->key[0].x : -half) : -half) - margin;
+    s->pc[np] = -1;
     s->w[np++] = 0;
     for (k = 0; k < npar; k++) {
         const gr__cand_t *c = &s->cand[s->key[k].cand];
@@ -2282,11 +2751,14 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             int src = c->sigma > 0 ? i : nsec - 1 - i;
             s->x[np] = c->sigma * (c->f * sec[2 * src] - c->d);
             s->w[np] = c->f * sec[2 * src + 1];
+            s->pc[np] = s->key[k].cand;
+            s->bs[np] = sec[2 * src];
+            s->ws[np] = sec[2 * src + 1];
             if (i + 1 < nsec) {
                 /* facet R_j = [C_j, C_j+1] in the groove's own orientation */
                 int j = c->sigma > 0 ? i : nsec - 2 - i;
                 gr__mfacet_t *m = &s->mf[np];
-                gr__section_normal(c, sec, j, 0, c->dfds, m->n);
+                gr__section_normal(c, sec, j, 0, c->dfds, 1, m->n);
                 m->groove = c->groove;
                 m->facet = j;
                 m->refl = grid->facet_refl_[rec->first_facet + j];
@@ -2297,16 +2769,18 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     }
     s->mf[np - 1] = ground;
     s->x[np] = (s->x[np - 1] > half ? s->x[np - 1] : half) + margin;
+    s->pc[np] = -1;
     s->w[np++] = 0;
     nf = np - 1;
     if (list->grooves < npar) list->grooves = npar;
     /* projection with the signed tan θ' (§4.2), scaled by E_w so grazing
-       views stay finite: q = E_w proj = E_w x - E_b w */
+       views stay finite: q = E_w proj = E_w x - E_b w (each groove point
+       where the view ray reaching it meets the groove, gr__project) */
     eb = e[0] * bref[0] + e[1] * bref[1];
     ew = e[2];
     gr__grazing_scale(&eb, &ew);
-    for (i = 0; i < np; i++) s->q[i] = ew * s->x[i] - eb * s->w[i];
-    gr__sweep(s->q, np, eb > 0, s->lo, s->hi);     /* masking, eq. 4 */
+    gr__project(grid, qs, s, np, e, eb, ew, 1, 0, s->qe);
+    gr__sweep(s->qe, np, eb > 0, s->lo, s->hi);    /* masking, eq. 4 */
     sq0 = -half * ew;
     sq1 = half * ew;
     for (i = 0; i < nf; i++) {                      /* clipping, eq. 3 */
@@ -2325,20 +2799,20 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
        intersected with the visible part in the facet's own parameter */
     for (k = 0; k < nl; k++) {
         const double *l = qs->lights + 3 * k;
-        double lb = l[0] * bref[0] + l[1] * bref[1], lw = l[2];
+        double lb = l[0] * bref[0] + l[1] * bref[1], lw = l[2], inv_m = 1 / (fabs(lb) > lw ? fabs(lb) : lw);
         if (!(l[2] > 0)) { /* at or below the horizon */
             for (i = 0; i < nf; i++) s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0;
             continue;
         }
         gr__grazing_scale(&lb, &lw);
-        for (i = 0; i < np; i++) s->q[i] = lw * s->x[i] - lb * s->w[i];
+        gr__project(grid, qs, s, np, l, lb, lw, inv_m, gr__light_anchor(grid, qs, s, nf, e, l), s->q);
         gr__sweep(s->q, np, lb > 0, s->lo, s->hi);
         for (i = 0; i < nf; i++) {
             double de, sa, sb, la, lbb, dl, ov, v;
             if (!(s->vb[i] > s->va[i]) && !(point && s->va[i] == 0)) continue;
-            de = (ew * s->x[i + 1] - eb * s->w[i + 1]) - (ew * s->x[i] - eb * s->w[i]);
-            sa = (s->va[i] - (ew * s->x[i] - eb * s->w[i])) / de;
-            sb = (s->vb[i] - (ew * s->x[i] - eb * s->w[i])) / de;
+            de = s->qe[i + 1] - s->qe[i];
+            sa = (s->va[i] - s->qe[i]) / de;
+            sb = (s->vb[i] - s->qe[i]) / de;
             if (!(s->hi[i] > s->lo[i])) { s->lit[(size_t)i * GR_MAX_LIGHTS + k] = 0; continue; }
             dl = s->q[i + 1] - s->q[i];
             la = (s->lo[i] - s->q[i]) / dl;
@@ -2347,7 +2821,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             else {
                 /* the lit part of the visible interval, back in view
                    projection, weighted by the footprint density */
-                double oa = sa > la ? sa : la, ob = sb < lbb ? sb : lbb, qv = ew * s->x[i] - eb * s->w[i];
+                double oa = sa > la ? sa : la, ob = sb < lbb ? sb : lbb, qv = s->qe[i];
                 double wv = gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta);
                 ov = ob - oa;
                 if (!(ov > 0)) v = 0;
@@ -2364,7 +2838,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         else r = s->vb[i] > s->va[i] ? gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta) : 0;
         if (r > 0) {
             gr__mfacet_t m = s->mf[i];
-            if (m.cand >= 0 && qs->perturb_normals) gr__hit_normal(grid, s, fp, i, ew, eb, point, &m);
+            if (m.cand >= 0 && qs->perturb_normals) gr__hit_normal(grid, s, fp, i, point, &m);
             gr__list_add(list, &m, weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
         }
     }
@@ -2399,6 +2873,7 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     qs.max_oversample = query->max_oversample <= 0 ? GR__DEFAULT_MAX_OVERSAMPLE : query->max_oversample;
     if (qs.max_oversample > GR__LIMIT_MAX_OVERSAMPLE) qs.max_oversample = GR__LIMIT_MAX_OVERSAMPLE;
     qs.perturb_normals = query->perturb_normals >= 0;
+    qs.ray_profile = query->straight_occlusion == 0;
     qs.ellipse = query->ellipse != 0;
     qs.parallel_sin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     el = sqrt(gr__dot3(fp->view, fp->view));
@@ -2414,42 +2889,71 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
 #endif
     need = gr__query_one(grid, &qs, fp, 1.0, &s, list, 1, t);
     if (need > 1) {
-        /* §4.2 oversampling: split along the axis that runs most along the
-           nearest groove; each part keeps its own straight approximation */
+        /* §4.2 oversampling: the footprint's extent along the groove is cut
+           `need` times, each part with its own straight approximation */
         gr_footprint_t sub = *fp;
         gr__qset_t qsub = qs;
-        double p1, p2;
-        const double *ax, *other;
-        double *sa, *so;
-        p1 = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
-        p2 = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
-        ax = p1 >= p2 ? fp->axis1 : fp->axis2;
-        other = p1 >= p2 ? fp->axis2 : fp->axis1;
-        sa = p1 >= p2 ? sub.axis1 : sub.axis2;
-        so = p1 >= p2 ? sub.axis2 : sub.axis1;
-        sa[0] = ax[0] / need;
-        sa[1] = ax[1] / need;
+        double p[2];
+        int n[2], j1, j2;
+        p[0] = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
+        p[1] = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
         list->count = 0;
         list->flags = 0;
         list->grooves = 0;
-        /* an ellipse's slabs are taken as parallelograms of the slab's
-           area (weight) and mean chord (other axis); a parallelogram's
-           slabs are exact */
         qsub.ellipse = 0;
-        for (k = 0; k < need; k++) {
-            double o = (2.0 * k + 1) / need - 1, wk = 1.0 / need;
-            if (qs.ellipse) {
-                double a0 = -1 + 2.0 * k / need, a1 = a0 + 2.0 / need, hbar;
+        if (qs.ellipse) {
+            /* an ellipse's slabs across its axis most along the groove,
+               taken as parallelograms of the slab's area (weight) and mean
+               chord (the other axis): an approximation */
+            int a = p[0] >= p[1] ? 0 : 1;
+            if (need > qs.max_oversample) need = qs.max_oversample;
+            const double *ax = a ? fp->axis2 : fp->axis1, *other = a ? fp->axis1 : fp->axis2;
+            double *sa = a ? sub.axis2 : sub.axis1, *so = a ? sub.axis1 : sub.axis2;
+            sa[0] = ax[0] / need;
+            sa[1] = ax[1] / need;
+            for (k = 0; k < need; k++) {
+                double o = (2.0 * k + 1) / need - 1, a0 = -1 + 2.0 * k / need, a1 = a0 + 2.0 / need, wk, hbar;
                 wk = gr__disc_cdf(a1) - gr__disc_cdf(a0);
                 hbar = GR__PI * wk / (2 * (a1 - a0)); /* slab area / (2 width), unit disc */
                 so[0] = other[0] * hbar;
                 so[1] = other[1] * hbar;
+                sub.center[0] = fp->center[0] + o * ax[0];
+                sub.center[1] = fp->center[1] + o * ax[1];
+                gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, t);
             }
-            sub.center[0] = fp->center[0] + o * ax[0];
-            sub.center[1] = fp->center[1] + o * ax[1];
-            gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, t);
+            list->subfootprints = need;
+        } else {
+            /* a parallelogram into n1 x n2 parallelograms (exact weights),
+               each axis cut in proportion to its own extent along the
+               groove, so every part spans 1/need of the extent: an axis
+               oblique to the groove runs along it too, and cutting only
+               the other would leave that part of the extent whole (the
+               answer would not converge as the tolerance shrinks). Past
+               max_oversample parts, the split that makes the parts'
+               extent p1/n1 + p2/n2 least with n1 n2 <= max_oversample */
+            for (k = 0; k < 2; k++) {
+                n[k] = (int)ceil(need * p[k] / (p[0] + p[1]) - 1e-9);
+                if (n[k] < 1) n[k] = 1;
+            }
+            if (n[0] * n[1] > qs.max_oversample) {
+                int m = qs.max_oversample;
+                n[0] = p[1] > 0 ? (int)floor(sqrt(m * p[0] / p[1]) + 0.5) : m;
+                n[0] = n[0] < 1 ? 1 : n[0] > m ? m : n[0];
+                n[1] = m / n[0];
+            }
+            sub.axis1[0] = fp->axis1[0] / n[0];
+            sub.axis1[1] = fp->axis1[1] / n[0];
+            sub.axis2[0] = fp->axis2[0] / n[1];
+            sub.axis2[1] = fp->axis2[1] / n[1];
+            for (j1 = 0; j1 < n[0]; j1++)
+                for (j2 = 0; j2 < n[1]; j2++) {
+                    double o1 = (2.0 * j1 + 1) / n[0] - 1, o2 = (2.0 * j2 + 1) / n[1] - 1;
+                    sub.center[0] = fp->center[0] + o1 * fp->axis1[0] + o2 * fp->axis2[0];
+                    sub.center[1] = fp->center[1] + o1 * fp->axis1[1] + o2 * fp->axis2[1];
+                    gr__query_one(grid, &qsub, &sub, 1.0 / (n[0] * n[1]), &s, list, 0, t);
+                }
+            list->subfootprints = n[0] * n[1];
         }
-        list->subfootprints = need;
     }
 #ifndef GR_NO_LINE_SAMPLES
     /* §5.6 ([section: line samples]): crossings and ends, as §4's answer
@@ -2586,6 +3090,7 @@ typedef struct gr__pedge_t {
     double x0, y0, x1, y1;
     int set;  /* 0: a, 1: b */
     int ring; /* global ring index (a's rings first) */
+    int id;   /* its place among the edges as made (the sort's tie-break) */
 } gr__pedge_t;
 
 /* A crossing of an edge with a slab's mid line. */
@@ -2602,60 +3107,50 @@ static double gr__pedge_x(const gr__pedge_t *e, double y)
     return e->x0 + t * (e->x1 - e->x0);
 }
 
-static int gr__cmp_pcross(const void *a, const void *b)
-{
-    const gr__pcross_t *x = (const gr__pcross_t *)a, *y = (const gr__pcross_t *)b;
-    return x->x < y->x ? -1 : x->x > y->x ? 1 : (x->edge > y->edge) - (x->edge < y->edge);
-}
+/* Sorting for the sweep: the lists run from a few entries to a few
+   hundred, where Shell sort (Ciura's gaps; the last, 1, is insertion sort)
+   with inlined compares beats qsort's indirect ones several times over.
+   GR__SHELL_SORT(T, a, n, AFTER) sorts a[0..n) of type T, AFTER(p, x)
+   being true when element p goes after x. */
+#define GR__SHELL_SORT(T, a, n, AFTER)                                              \
+    do {                                                                            \
+        static const int gr__gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};            \
+        int gr__g, gr__i, gr__j;                                                    \
+        for (gr__g = 0; gr__g < 8; gr__g++) {                                       \
+            int gr__h = gr__gaps[gr__g];                                            \
+            for (gr__i = gr__h; gr__i < (n); gr__i++) {                             \
+                T gr__x = (a)[gr__i];                                               \
+                for (gr__j = gr__i; gr__j >= gr__h && AFTER((a)[gr__j - gr__h], gr__x); gr__j -= gr__h) \
+                    (a)[gr__j] = (a)[gr__j - gr__h];                                \
+                (a)[gr__j] = gr__x;                                                 \
+            }                                                                       \
+        }                                                                           \
+    } while (0)
+#define GR__AFTER_DOUBLE(p, x) ((p) > (x))
+#define GR__AFTER_EDGE(p, x) ((p).y0 > (x).y0 || ((p).y0 == (x).y0 && (p).id > (x).id))
 
-/* Sorting for the sweep: the lists are short (a few crossings per slab,
-   tens of slab heights at §5's sizes), where insertion sort beats qsort's
-   indirect compares several times over; qsort takes the long ones. */
-#define GR__SMALL_SORT 24
-/* Doubles: Shell sort with Ciura's gaps (the last gap, 1, is insertion
-   sort). The slab heights number up to E + E(E-1)/2 for E edges; inlined
-   compares beat qsort's indirect ones at those sizes. */
-static void gr__sort_doubles(double *a, int n)
-{
-    static const int gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
-    int g, i, j;
-    for (g = 0; g < 8; g++) {
-        int h = gaps[g];
-        for (i = h; i < n; i++) {
-            double x = a[i];
-            for (j = i; j >= h && a[j - h] > x; j -= h) a[j] = a[j - h];
-            a[j] = x;
-        }
-    }
-}
-static void gr__sort_pcross(gr__pcross_t *a, int n)
+/* Doubles: the crossing heights of a sweep (up to E (E - 1) / 2 for E
+   edges) and a trace's section crossings. */
+static void gr__sort_doubles(double *a, int n) { GR__SHELL_SORT(double, a, n, GR__AFTER_DOUBLE); }
+
+/* Crossings of a slab's mid line by (x, edge), a total order, so the same
+   as any sort; by insertion, as the list comes nearly sorted. */
+static void gr__sort_pcross_nearly(gr__pcross_t *a, int n)
 {
     int i, j;
-    if (n > GR__SMALL_SORT) { qsort(a, (size_t)n, sizeof(gr__pcross_t), gr__cmp_pcross); return; }
     for (i = 1; i < n; i++) {
         gr__pcross_t x = a[i];
-        for (j = i; j > 0 && gr__cmp_pcross(&a[j - 1], &x) > 0; j--) a[j] = a[j - 1];
+        for (j = i; j > 0 && (a[j - 1].x > x.x || (a[j - 1].x == x.x && a[j - 1].edge > x.edge)); j--) a[j] = a[j - 1];
         a[j] = x;
     }
 }
 
-/* Edges by their lower end (the sweep's insertion order); insertion sort,
-   as the edge lists are short, with qsort for the long ones. */
-static int gr__cmp_pedge_y0(const void *a, const void *b)
-{
-    const gr__pedge_t *x = (const gr__pedge_t *)a, *y = (const gr__pedge_t *)b;
-    return (x->y0 > y->y0) - (x->y0 < y->y0);
-}
-static void gr__sort_pedges_by_y0(gr__pedge_t *a, int n)
-{
-    int i, j;
-    if (n > GR__SMALL_SORT) { qsort(a, (size_t)n, sizeof *a, gr__cmp_pedge_y0); return; }
-    for (i = 1; i < n; i++) {
-        gr__pedge_t x = a[i];
-        for (j = i; j > 0 && a[j - 1].y0 > x.y0; j--) a[j] = a[j - 1];
-        a[j] = x;
-    }
-}
+/* Edges by their lower end (the sweep's insertion order), ties in the
+   order they were made: by (y0, id), a total order. */
+static void gr__sort_pedges_by_y0(gr__pedge_t *a, int n) { GR__SHELL_SORT(gr__pedge_t, a, n, GR__AFTER_EDGE); }
+#undef GR__AFTER_EDGE
+#undef GR__AFTER_DOUBLE
+#undef GR__SHELL_SORT
 
 /* Scratch of gr_poly_boolean for E edges (= points). */
 typedef struct gr__pscratch_t {
@@ -2663,12 +3158,17 @@ typedef struct gr__pscratch_t {
     double *ys;
     gr__pcross_t *cross, *ia, *ib;
     int *active; /* edges spanning the current slab (the sweep's active list) */
+    int *run;    /* the previous and this slab's trapezoids: (left edge, right edge, index) */
     unsigned char *parity;
 } gr__pscratch_t;
 
-static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
+/* Crossing heights gr_poly_boolean() has room for with E edges: every
+   pair may cross (as ys holds crossings only, E (E - 1) / 2). */
+static size_t gr__pcross_cap(int e) { size_t ne = e > 0 ? (size_t)e : 1; return ne * (ne - 1) / 2 + 1; }
+
+static size_t gr__pscratch_layout(int e, size_t max_cross, void *base, gr__pscratch_t *s)
 {
-    size_t off = 0, ne = e > 0 ? (size_t)e : 1, ny = 2 * ne + ne * (ne - 1) / 2;
+    size_t off = 0, ne = e > 0 ? (size_t)e : 1, ny = max_cross;
     char *b = (char *)base;
 #define GR__PCARVE(field, type, count) \
     s->field = (type *)(void *)(b ? b + off : NULL); off = gr__align8(off + sizeof(type) * (count));
@@ -2678,6 +3178,7 @@ static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
     GR__PCARVE(ia, gr__pcross_t, ne)
     GR__PCARVE(ib, gr__pcross_t, ne)
     GR__PCARVE(active, int, ne)
+    GR__PCARVE(run, int, 6 * ne + 6)
     GR__PCARVE(parity, unsigned char, ne)
 #undef GR__PCARVE
     return off;
@@ -2686,7 +3187,7 @@ static size_t gr__pscratch_layout(int e, void *base, gr__pscratch_t *s)
 GR_DEF size_t gr_poly_boolean_scratch_bytes(int total_points)
 {
     gr__pscratch_t s;
-    return total_points < 0 ? 0 : gr__pscratch_layout(total_points, NULL, &s);
+    return total_points < 0 ? 0 : gr__pscratch_layout(total_points, gr__pcross_cap(total_points), NULL, &s);
 }
 
 /* Ring sizes of a set: the r-th ring's size, or -1 when they do not add up. */
@@ -2733,6 +3234,7 @@ static int gr__pset_edges(const gr_polyset_t *p, int set, int *ring, gr__pedge_t
             else { d->x0 = v[0]; d->y0 = v[1]; d->x1 = u[0]; d->y1 = u[1]; }
             d->set = set;
             d->ring = id;
+            d->id = ne - 1;
         }
         first += n;
     }
@@ -2743,7 +3245,7 @@ static int gr__pset_edges(const gr_polyset_t *p, int set, int *ring, gr__pedge_t
    boundaries besides the vertex heights. The edges come sorted by their
    lower end, so the partners of edge i that share some height with it are
    the run after it that starts below its top. */
-static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny)
+static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny, size_t cap)
 {
     int i, j;
     for (i = 0; i < ne; i++)
@@ -2759,7 +3261,9 @@ static int gr__pedge_crossings(const gr__pedge_t *e, int ne, double *ys, int ny)
             d1 = a1 - b1;
             if ((d0 < 0 && d1 > 0) || (d0 > 0 && d1 < 0)) {
                 double y = lo + (hi - lo) * (d0 / (d0 - d1));
-                if (y > lo && y < hi) ys[ny++] = y;
+                if (!(y > lo && y < hi)) continue;
+                if ((size_t)ny >= cap) return -1;
+                ys[ny++] = y;
             }
         }
     return ny;
@@ -2796,58 +3300,72 @@ static int gr__pop_in(gr_poly_op_t op, int in_a, int in_b)
     }
 }
 
-GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op,
-                                   void *scratch, size_t scratch_bytes,
-                                   double *traps, int trap_cap, int *trap_count, double *area)
+/* gr_poly_boolean() on valid sets, with room for max_cross crossing
+   heights in its scratch (GR_ERR_BUFFER_TOO_SMALL when more): the polygon
+   path's sets have a few, and its scratch need not hold every pair. */
+static gr_result_t gr__poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op, void *scratch,
+                                    size_t max_cross, double *traps, int trap_cap, int *trap_count, double *area)
 {
     gr__pscratch_t s;
-    gr_result_t r;
-    double total = 0;
-    int ne, ny, nys, k, ntrap = 0, over = 0, rings = 0, next, nact;
+    double total = 0, run_top = 0, y0;
+    int ne, nx, ci, ntrap = 0, over = 0, rings = 0, next, nact, nprev = 0, *prev, *now_run;
     if (area) *area = 0;
     if (trap_count) *trap_count = 0;
-    if (!a || !b || !scratch || (traps && trap_cap < 0) || (int)op < 0 || (int)op > 3) return GR_ERR_INVALID_ARG;
-    if ((r = gr__pset_check(a)) != GR_OK || (r = gr__pset_check(b)) != GR_OK) return r;
-    if (scratch_bytes < gr_poly_boolean_scratch_bytes(a->point_count + b->point_count)) return GR_ERR_BUFFER_TOO_SMALL;
-    gr__pscratch_layout(a->point_count + b->point_count, scratch, &s);
+    gr__pscratch_layout(a->point_count + b->point_count, max_cross, scratch, &s);
+    prev = s.run;
+    now_run = s.run + 3 * (a->point_count + b->point_count + 1);
     ne = gr__pset_edges(a, 0, &rings, s.edge, 0);
     ne = gr__pset_edges(b, 1, &rings, s.edge, ne);
     memset(s.parity, 0, (size_t)rings);
-    /* slab boundaries: every vertex height and every edge crossing */
-    ny = 0;
-    for (k = 0; k < ne; k++) {
-        s.ys[ny++] = s.edge[k].y0;
-        s.ys[ny++] = s.edge[k].y1;
-    }
+    /* slab boundaries: every vertex height and every edge crossing. The
+       sweep rises from event to event: the next is the lowest of the next
+       edge's lower end (edges sorted by it), the active edges' upper ends
+       and the next crossing height (sorted), so an edge joins the active
+       list once and leaves it for good, and each slab visits only the
+       edges that span it, with no sort of all the heights */
     gr__sort_pedges_by_y0(s.edge, ne);
-    ny = gr__pedge_crossings(s.edge, ne, s.ys, ny);
-    gr__sort_doubles(s.ys, ny);
-    for (nys = 0, k = 0; k < ny; k++)
-        if (nys == 0 || s.ys[k] != s.ys[nys - 1]) s.ys[nys++] = s.ys[k];
-    /* the slabs' mid lines rise, so an edge joins the active list once
-       (edges sorted by their lower end) and leaves it for good: each slab
-       visits only the edges that span it, not all of them */
-    for (k = 0, next = 0, nact = 0; k + 1 < nys; k++) {
-        double y0 = s.ys[k], y1 = s.ys[k + 1], ym = 0.5 * (y0 + y1);
-        int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, e, m, kept;
+    nx = gr__pedge_crossings(s.edge, ne, s.ys, 0, max_cross);
+    if (nx < 0) return GR_ERR_BUFFER_TOO_SMALL;
+    gr__sort_doubles(s.ys, nx);
+    /* a trapezoid whose two edges go on into the next slab is extended
+       there instead of starting another (its sides are those edges, so
+       the union is exact): regions do not fragment at every height */
+    y0 = ne > 0 ? s.edge[0].y0 : 0;
+    for (next = 0, nact = 0, ci = 0; ne > 0;) {
+        double y1 = HUGE_VAL, ym;
+        int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, e, m, kept, nnow = 0, *sw;
         gr__pcross_t left;
+        for (m = 0, kept = 0; m < nact; m++) /* edges ending at y0 leave */
+            if (s.edge[s.active[m]].y1 > y0) {
+                s.active[kept++] = s.active[m];
+                if (s.edge[s.active[m]].y1 < y1) y1 = s.edge[s.active[m]].y1;
+            }
+        nact = kept;
+        for (; next < ne && s.edge[next].y0 <= y0; next++) /* edges starting at y0 join */
+            if (s.edge[next].y1 > y0) {
+                s.active[nact++] = next;
+                if (s.edge[next].y1 < y1) y1 = s.edge[next].y1;
+            }
+        if (next < ne && s.edge[next].y0 < y1) y1 = s.edge[next].y0;
+        while (ci < nx && s.ys[ci] <= y0) ci++;
+        if (ci < nx && s.ys[ci] < y1) y1 = s.ys[ci];
+        if (y1 == HUGE_VAL) break; /* above every edge */
+        ym = 0.5 * (y0 + y1);
         left.x = 0;
         left.edge = -1;
         /* two adjacent doubles: the mid line would fall on a vertex height,
            where the strict crossing test loses a pass-through vertex */
-        if (!(y0 < ym && ym < y1)) continue;
-        for (m = 0, kept = 0; m < nact; m++)
-            if (s.edge[s.active[m]].y1 > ym) s.active[kept++] = s.active[m];
-        nact = kept;
-        for (; next < ne && s.edge[next].y0 < ym; next++)
-            if (s.edge[next].y1 > ym) s.active[nact++] = next;
+        if (!(y0 < ym && ym < y1) || nact == 0) { y0 = y1; continue; }
         for (m = 0; m < nact; m++) {
             e = s.active[m];
             s.cross[nc].x = gr__pedge_x(&s.edge[e], ym);
             s.cross[nc++].edge = e;
         }
-        if (nc == 0) continue;
-        gr__sort_pcross(s.cross, nc);
+        /* the active list is kept in the last slab's x order, so the
+           crossings come nearly sorted (only new edges and the swaps at
+           crossing heights move): insertion sort, linear in practice */
+        gr__sort_pcross_nearly(s.cross, nc);
+        for (m = 0; m < nc; m++) s.active[m] = s.cross[m].edge;
         na = gr__pset_intervals(s.cross, nc, s.edge, 0, s.parity, s.ia);
         nb = gr__pset_intervals(s.cross, nc, s.edge, 1, s.parity, s.ib);
         /* merge the two interval lists; all boundaries at one x are applied
@@ -2864,22 +3382,56 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
                 /* a trapezoid; its mid-line width times the slab height is
                    its exact area (the sides are straight in the slab) */
                 const gr__pedge_t *el = &s.edge[left.edge], *er = &s.edge[edge];
+                int p, id = -1;
                 total += (x - left.x) * (y1 - y0);
-                if (traps && ntrap < trap_cap) {
-                    double *t = traps + 8 * ntrap;
-                    t[0] = gr__pedge_x(el, y0); t[1] = y0;
-                    t[2] = gr__pedge_x(er, y0); t[3] = y0;
-                    t[4] = gr__pedge_x(er, y1); t[5] = y1;
-                    t[6] = gr__pedge_x(el, y1); t[7] = y1;
-                } else if (traps) over = 1;
-                ntrap++;
+                if (run_top == y0)
+                    for (p = 0; p < nprev && id < 0; p++)
+                        if (prev[3 * p] == left.edge && prev[3 * p + 1] == edge) id = prev[3 * p + 2];
+                if (id >= 0) { /* the trapezoid below goes on */
+                    if (traps && id < trap_cap) {
+                        double *t = traps + 8 * id;
+                        t[4] = gr__pedge_x(er, y1); t[5] = y1;
+                        t[6] = gr__pedge_x(el, y1); t[7] = y1;
+                    }
+                } else {
+                    id = ntrap++;
+                    if (traps && id < trap_cap) {
+                        double *t = traps + 8 * id;
+                        t[0] = gr__pedge_x(el, y0); t[1] = y0;
+                        t[2] = gr__pedge_x(er, y0); t[3] = y0;
+                        t[4] = gr__pedge_x(er, y1); t[5] = y1;
+                        t[6] = gr__pedge_x(el, y1); t[7] = y1;
+                    } else if (traps) over = 1;
+                }
+                now_run[3 * nnow] = left.edge;
+                now_run[3 * nnow + 1] = edge;
+                now_run[3 * nnow + 2] = id;
+                nnow++;
             }
             was = now;
         }
+        sw = prev; prev = now_run; now_run = sw;
+        nprev = nnow;
+        run_top = y1;
+        y0 = y1;
     }
     if (area) *area = total;
     if (trap_count) *trap_count = ntrap;
     return over ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
+}
+
+GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op,
+                                   void *scratch, size_t scratch_bytes,
+                                   double *traps, int trap_cap, int *trap_count, double *area)
+{
+    gr_result_t r;
+    if (area) *area = 0;
+    if (trap_count) *trap_count = 0;
+    if (!a || !b || !scratch || (traps && trap_cap < 0) || (int)op < 0 || (int)op > 3) return GR_ERR_INVALID_ARG;
+    if ((r = gr__pset_check(a)) != GR_OK || (r = gr__pset_check(b)) != GR_OK) return r;
+    if (scratch_bytes < gr_poly_boolean_scratch_bytes(a->point_count + b->point_count)) return GR_ERR_BUFFER_TOO_SMALL;
+    return gr__poly_boolean(a, b, op, scratch, gr__pcross_cap(a->point_count + b->point_count), traps, trap_cap,
+                            trap_count, area);
 }
 
 /* ---- Intersections and ends: detection (§5, §5.1) ------------------------ */
@@ -2942,33 +3494,237 @@ static int gr__seg_cross(const double *a, const double *b, const double *c, cons
     return *s < 1 && *u < 1;
 }
 
+/* A crossing of chords kk (a b, parameters ta) and ll (c d, tc), kk < ll,
+   of one path with m chords, appended to out (up to cap); 1 if there is one. */
+static int gr__chord_pair_hit(const double *a, const double *b, const double *ta, const double *c, const double *d,
+                              const double *tc, int kk, int ll, int m, int closed, int g, gr_self_hit_t *out, int cap,
+                              int nh)
+{
+    double sv, u;
+    if (ll == kk + 1) return 0;                     /* neighbours share a point */
+    if (closed && kk == 0 && ll == m - 1) return 0; /* neighbours across the closing point */
+    if ((c[0] < a[0] && c[0] < b[0] && d[0] < a[0] && d[0] < b[0]) ||
+        (c[0] > a[0] && c[0] > b[0] && d[0] > a[0] && d[0] > b[0]) ||
+        (c[1] < a[1] && c[1] < b[1] && d[1] < a[1] && d[1] < b[1]) ||
+        (c[1] > a[1] && c[1] > b[1] && d[1] > a[1] && d[1] > b[1]))
+        return 0; /* boxes apart */
+    if (!gr__seg_cross(a, b, c, d, &sv, &u)) return 0;
+    if (out && nh < cap) {
+        out[nh].groove = g;
+        out[nh].point[0] = a[0] + sv * (b[0] - a[0]);
+        out[nh].point[1] = a[1] + sv * (b[1] - a[1]);
+        out[nh].param[0] = ta[0] + sv * (ta[1] - ta[0]);
+        out[nh].param[1] = tc[0] + u * (tc[1] - tc[0]);
+    }
+    return 1;
+}
+
+/* Every crossing of two non-adjacent chords of one path (§5: found before
+   rendering): polyline segments exactly, Bézier pieces through
+   GR__SELF_FLATTEN chords each (two pieces whose control points' boxes
+   are apart cannot cross; each piece's chord ends are evaluated once per
+   pair of pieces). Writes up to cap hits (out may be NULL), returns how
+   many there are. */
+static int gr__path_self_hits(const double *pts, int kind, int n, int closed, int g, gr_self_hit_t *out, int cap)
+{
+    int pieces = gr__pieces(kind, n), k, l, nh = 0;
+    if (kind == GR_PATH_POLYLINE) {
+        double len = 0, acc_k = 0;
+        for (k = 0; k < pieces; k++) len += hypot(pts[2 * k + 2] - pts[2 * k], pts[2 * k + 3] - pts[2 * k + 1]);
+        for (k = 0; k < pieces; k++) {
+            const double *a = pts + 2 * k, *b = a + 2;
+            double lk = hypot(b[0] - a[0], b[1] - a[1]), acc_l = acc_k + lk, ta[2];
+            ta[0] = acc_k / len;
+            ta[1] = (acc_k + lk) / len;
+            for (l = k + 1; l < pieces; l++) {
+                const double *c = pts + 2 * l, *d = c + 2;
+                double ll = hypot(d[0] - c[0], d[1] - c[1]), tc[2];
+                tc[0] = acc_l / len;
+                tc[1] = (acc_l + ll) / len;
+                acc_l += ll;
+                nh += gr__chord_pair_hit(a, b, ta, c, d, tc, k, l, pieces, closed, g, out, cap, nh);
+            }
+            acc_k += lk;
+        }
+        return nh;
+    }
+#ifndef GR_NO_CURVES
+    {
+        int deg = gr__degree(kind), m = pieces * GR__SELF_FLATTEN, P, Q, i;
+        double pa[2 * (GR__SELF_FLATTEN + 1)], pb[2 * (GR__SELF_FLATTEN + 1)], d1[2], d2[2];
+        for (P = 0; P < pieces; P++) {
+            double ba[4];
+            gr__bounds(pts + 2 * deg * P, deg + 1, ba);
+            for (i = 0; i <= GR__SELF_FLATTEN; i++)
+                gr__bezier_eval(pts + 2 * deg * P, deg, (double)i / GR__SELF_FLATTEN, pa + 2 * i, d1, d2);
+            for (Q = P; Q < pieces; Q++) {
+                double bb[4];
+                const double *qb = pa;
+                gr__bounds(pts + 2 * deg * Q, deg + 1, bb);
+                if (Q > P && (bb[0] > ba[2] || bb[2] < ba[0] || bb[1] > ba[3] || bb[3] < ba[1])) continue;
+                if (Q > P) {
+                    for (i = 0; i <= GR__SELF_FLATTEN; i++)
+                        gr__bezier_eval(pts + 2 * deg * Q, deg, (double)i / GR__SELF_FLATTEN, pb + 2 * i, d1, d2);
+                    qb = pb;
+                }
+                for (k = 0; k < GR__SELF_FLATTEN; k++)
+                    for (l = Q > P ? 0 : k + 1; l < GR__SELF_FLATTEN; l++) {
+                        double ta[2], tc[2];
+                        ta[0] = (P + (double)k / GR__SELF_FLATTEN) / pieces;
+                        ta[1] = (P + (double)(k + 1) / GR__SELF_FLATTEN) / pieces;
+                        tc[0] = (Q + (double)l / GR__SELF_FLATTEN) / pieces;
+                        tc[1] = (Q + (double)(l + 1) / GR__SELF_FLATTEN) / pieces;
+                        nh += gr__chord_pair_hit(pa + 2 * k, pa + 2 * k + 2, ta, qb + 2 * l, qb + 2 * l + 2, tc,
+                                                 P * GR__SELF_FLATTEN + k, Q * GR__SELF_FLATTEN + l, m, closed, g, out,
+                                                 cap, nh);
+                    }
+            }
+        }
+    }
+#else
+    (void)l;
+#endif
+    return nh;
+}
+
+static int gr__cmp_hit_t2(const void *pa, const void *pb)
+{
+    double a = ((const gr_self_hit_t *)pa)->param[1], b = ((const gr_self_hit_t *)pb)->param[1];
+    return (a > b) - (a < b);
+}
+static int gr__cmp_rec_t0(const void *pa, const void *pb)
+{
+    double a = ((const gr__groove_t *)pa)->t0, b = ((const gr__groove_t *)pb)->t0;
+    return (a > b) - (a < b);
+}
+
+/* Point of a polyline at arc-length parameter t (t in [0, 1], len its length). */
+static void gr__polyline_at(const double *pts, int n, double len, double t, double q[2])
+{
+    double want = t * len, acc = 0;
+    int k;
+    for (k = 0; k + 1 < n; k++) {
+        double l = hypot(pts[2 * k + 2] - pts[2 * k], pts[2 * k + 3] - pts[2 * k + 1]);
+        if (acc + l >= want || k + 2 == n) {
+            double s = l > 0 ? (want - acc) / l : 0;
+            s = s < 0 ? 0 : s > 1 ? 1 : s;
+            q[0] = pts[2 * k] + s * (pts[2 * k + 2] - pts[2 * k]);
+            q[1] = pts[2 * k + 1] + s * (pts[2 * k + 3] - pts[2 * k + 1]);
+            return;
+        }
+        acc += l;
+    }
+    q[0] = pts[0];
+    q[1] = pts[1];
+}
+
+/* §5: "the groove should be simply treated as two independent grooves".
+   The hits of groove g (sorted here by their second parameter) are
+   intervals (t1, t2) of its path parameter; a cut inside each separates
+   the two passes of its crossing. Greedy interval stabbing gives the
+   fewest cuts, each in the middle of the parameters it serves (far from
+   the crossings, where the pieces meet end to end). A Bézier chain is cut
+   at a joint where one serves, or else inside a piece and also at that
+   piece's two joints, so every piece is whole Bézier pieces or part of
+   one: its uniform parameter maps affinely onto the groove's. The pieces
+   go to records *next, ... with their own points from *pt on. */
+static void gr__split_groove(gr_grid_t *gr, int g, gr_self_hit_t *hits, int nh, int *next, int *pt)
+{
+    gr__groove_t *par = &gr->grooves_[g], *rec = gr->grooves_ + *next;
+    const double *pts = gr->points_ + 2 * par->first_point;
+    int k, nb = 0, n = par->pieces, deg = gr__degree(par->kind), bez = par->kind != GR_PATH_POLYLINE, i;
+    (void)deg; /* Bézier pieces only, left out with GR_NO_CURVES */
+    double lo = 0, hi = -1;
+    qsort(hits, (size_t)nh, sizeof *hits, gr__cmp_hit_t2);
+    /* cut parameters, in piece units for a chain (joints are integers),
+       kept in the records' t0 until the records are made */
+    for (k = 0; k <= nh; k++) {
+        if (k < nh && hi > lo && hits[k].param[0] < hi) { /* overlaps the group: narrow it */
+            if (hits[k].param[0] > lo) lo = hits[k].param[0];
+            continue;
+        }
+        if (hi > lo) { /* the group's cut */
+            double mid = 0.5 * (lo + hi);
+            if (!bez) rec[nb++].t0 = mid;
+            else {
+                double u = mid * n, j = floor(u + 0.5);
+                if (j > lo * n && j < hi * n && j > 0 && j < n) rec[nb++].t0 = j;
+                else {
+                    rec[nb++].t0 = u;
+                    if (floor(u) > 0) rec[nb++].t0 = floor(u);
+                    if (floor(u) + 1 < n) rec[nb++].t0 = floor(u) + 1;
+                }
+            }
+        }
+        if (k < nh) { lo = hits[k].param[0]; hi = hits[k].param[1]; }
+    }
+    qsort(rec, (size_t)nb, sizeof *rec, gr__cmp_rec_t0);
+    for (i = 0, k = 0; k < nb; k++) /* unique, strictly inside */
+        if (rec[k].t0 > 0 && rec[k].t0 < (bez ? n : 1) && (i == 0 || rec[k].t0 > rec[i - 1].t0)) rec[i++].t0 = rec[k].t0;
+    nb = i;
+    par->first_split = *next;
+    par->split_count = nb + 1;
+    /* piece i covers [b_(i-1), b_i]: made from the last down, so each reads
+       its upper bound (its own t0 slot) before writing over it */
+    for (i = nb; i >= 0; i--) {
+        double ua = i > 0 ? rec[i - 1].t0 : 0, ub = i < nb ? rec[i].t0 : (bez ? n : 1);
+        gr__groove_t *r = &rec[i];
+        double *q = gr->points_ + 2 * *pt;
+        int np = 0;
+        if (!bez) {
+            double acc = 0;
+            gr__polyline_at(pts, par->point_count, par->length, ua, q);
+            np = 1;
+            for (k = 1; k + 1 < par->point_count; k++) { /* the vertices strictly inside */
+                double t;
+                acc += hypot(pts[2 * k] - pts[2 * k - 2], pts[2 * k + 1] - pts[2 * k - 1]);
+                t = acc / par->length;
+                if (t > ua && t < ub) { q[2 * np] = pts[2 * k]; q[2 * np + 1] = pts[2 * k + 1]; np++; }
+            }
+            gr__polyline_at(pts, par->point_count, par->length, ub, q + 2 * np);
+            np++;
+        }
+#ifndef GR_NO_CURVES
+        else if (ua == floor(ua) && ub == floor(ub)) { /* whole pieces */
+            np = deg * (int)(ub - ua) + 1;
+            memcpy(q, pts + 2 * deg * (int)ua, sizeof(double) * 2 * (size_t)np);
+        } else { /* part of one piece */
+            int j = (int)floor(ua);
+            GR_ASSERT(ub <= j + 1);
+            gr__bezier_sub(pts + 2 * deg * j, deg, ua - j, ub - j, q);
+            np = deg + 1;
+        }
+#endif
+        *r = *par;
+        r->first_point = *pt;
+        r->point_count = np;
+        r->pieces = gr__pieces(r->kind, np);
+        r->closed = 0;
+        r->parent = g;
+        r->first_split = r->split_count = 0;
+        r->t0 = bez ? ua / n : ua;
+        r->t1 = bez ? ub / n : ub;
+        /* an end of a piece is the groove's own only at t = 0 or 1 of an open path */
+        r->join[0] = ua > 0 || par->closed;
+        r->join[1] = ub < (bez ? n : 1) || par->closed;
+        gr__bounds(q, np, r->bbox);
+        r->length = 0;
+        if (!bez)
+            for (k = 0; k + 1 < np; k++) r->length += hypot(q[2 * k + 2] - q[2 * k], q[2 * k + 3] - q[2 * k + 1]);
+        *pt += np;
+    }
+    *next += nb + 1;
+}
+
+/* The hits were found by the builder (gr__path_self_hits), each groove's
+   sorted by its second parameter. */
 GR_DEF gr_result_t gr_self_intersections(const gr_grid_t *grid, gr_self_hit_t *out, int cap, int *count)
 {
-    int g, n = 0;
     if (count) *count = 0;
     if (!grid || !count || cap < 0 || (!out && cap > 0)) return GR_ERR_INVALID_ARG;
-    for (g = 0; g < grid->groove_count; g++) {
-        const gr__groove_t *rec = &grid->grooves_[g];
-        int m = gr__chord_count(rec), k, l;
-        for (k = 0; k < m; k++)
-            for (l = k + 2; l < m; l++) {
-                double a[2], b[2], c[2], d[2], ta[2], tc[2], s, u;
-                if (rec->closed && k == 0 && l == m - 1) continue; /* neighbours across the closing point */
-                gr__chord(grid, rec, k, a, b, ta);
-                gr__chord(grid, rec, l, c, d, tc);
-                if (!gr__seg_cross(a, b, c, d, &s, &u)) continue;
-                if (n < cap) {
-                    out[n].groove = g;
-                    out[n].point[0] = a[0] + s * (b[0] - a[0]);
-                    out[n].point[1] = a[1] + s * (b[1] - a[1]);
-                    out[n].param[0] = ta[0] + s * (ta[1] - ta[0]);
-                    out[n].param[1] = tc[0] + u * (tc[1] - tc[0]);
-                }
-                n++;
-            }
-    }
-    *count = n;
-    return n > cap ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
+    *count = grid->self_count_;
+    if (cap > 0) memcpy(out, grid->self_, sizeof *out * (size_t)(grid->self_count_ < cap ? grid->self_count_ : cap));
+    return grid->self_count_ > cap ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
 }
 
 /* The search box (§4.1, §5.1) about the footprint centre f: the
@@ -3047,11 +3803,33 @@ static int gr__path_in_box(const gr_grid_t *grid, const gr__groove_t *rec, const
         if (sb[0] > rec->bbox[2] + rec->half_width || sb[2] < rec->bbox[0] - rec->half_width ||
             sb[1] > rec->bbox[3] + rec->half_width || sb[3] < rec->bbox[1] - rec->half_width)
             continue; /* control points bound the path */
-        for (k = 0; k < m; k++) {
-            double a[2], b[2];
-            gr__chord(grid, rec, k, a, b, NULL);
-            if (gr__seg_box(a, b, sb)) return 1;
+        if (rec->kind == GR_PATH_POLYLINE) {
+            for (k = 0; k < m; k++) {
+                double a[2], b[2];
+                gr__chord(grid, rec, k, a, b, NULL);
+                if (gr__seg_box(a, b, sb)) return 1;
+            }
+            continue;
         }
+#ifndef GR_NO_CURVES
+        { /* a Bézier piece whose control points lie off the box is skipped
+             (they bound it); each chord end is evaluated once */
+            int deg = gr__degree(rec->kind), piece, c;
+            const double *pts = grid->points_ + 2 * rec->first_point;
+            for (piece = 0; piece < rec->pieces; piece++) {
+                const double *q = pts + 2 * deg * piece;
+                double cb[4], a[2], b[2], d1[2], d2[2];
+                gr__bounds(q, deg + 1, cb);
+                if (cb[0] > sb[2] || cb[2] < sb[0] || cb[1] > sb[3] || cb[3] < sb[1]) continue;
+                a[0] = q[0]; a[1] = q[1];
+                for (c = 1; c <= GR__SELF_FLATTEN; c++) {
+                    gr__bezier_eval(q, deg, (double)c / GR__SELF_FLATTEN, b, d1, d2);
+                    if (gr__seg_box(a, b, sb)) return 1;
+                    a[0] = b[0]; a[1] = b[1];
+                }
+            }
+        }
+#endif
     }
     return 0;
 }
@@ -3105,8 +3883,9 @@ static void gr__detect_ends(const gr_grid_t *grid, const gr__cand_t *cand, int n
         /* closed covers a path whose ends meet across the seam of a
            repeating tile (gr__store_groove): it runs on, no end (§4.1) */
         for (e = 0; e < 2; e++) gr__end_point(grid, cand[i].groove, e, f, p[e]);
-        for (e = 0; e < 2; e++)
-            state[2 * i + e] = !grid->grooves_[cand[i].groove].closed && gr__in_box(box, p[e]);
+        for (e = 0; e < 2; e++) /* a piece's cut end (§5, self-crossing) runs on too */
+            state[2 * i + e] = !grid->grooves_[cand[i].groove].closed && !grid->grooves_[cand[i].groove].join[e] &&
+                               gr__in_box(box, p[e]);
     }
     for (i = 0; i < n; i++)
         for (e = 0; e < 2; e++) {
@@ -3144,6 +3923,35 @@ static void gr__detect_ends(const gr_grid_t *grid, const gr__cand_t *cand, int n
 
 /* The footprint centre's image in the tile (as gr_query()), where
    gr_detect() and the polygon path place the grooves' nearest points. */
+/* The point nearest f of the overlap of two strips, |B_a.(x - pa)| <= wa
+   and |B_b.(x - pb)| <= wb about crossing lines (cr = T_a x T_b != 0):
+   the rhombus with corners p ± (wb / s) T_a ± (wa / s) T_b, p the lines'
+   meeting point, s = |cr|. f itself when it lies inside. */
+static void gr__overlap_nearest(const double *pa, const double *ta, double wa, const double *pb, const double *tb,
+                                double wb, double cr, const double *f, double q[2])
+{
+    double s = fabs(cr), m = ((pb[0] - pa[0]) * tb[1] - (pb[1] - pa[1]) * tb[0]) / cr, c[8], best = HUGE_VAL;
+    double p[2] = {pa[0] + m * ta[0], pa[1] + m * ta[1]}, da = wb / s, db = wa / s;
+    int k, inside = 1;
+    for (k = 0; k < 4; k++) { /* counter-clockwise or clockwise: the side test below takes either */
+        double sa = k == 0 || k == 3 ? 1 : -1, sb = k < 2 ? 1 : -1;
+        c[2 * k] = p[0] + sa * da * ta[0] + sb * db * tb[0];
+        c[2 * k + 1] = p[1] + sa * da * ta[1] + sb * db * tb[1];
+    }
+    for (k = 0; k < 4; k++) {
+        const double *u = c + 2 * k, *v = c + 2 * ((k + 1) % 4);
+        double ex = v[0] - u[0], ey = v[1] - u[1], l2 = ex * ex + ey * ey;
+        double t = l2 > 0 ? ((f[0] - u[0]) * ex + (f[1] - u[1]) * ey) / l2 : 0, x, y, d;
+        if (gr__cross2(u, v, f) * gr__cross2(u, v, c + 2 * ((k + 2) % 4)) < 0) inside = 0;
+        t = t < 0 ? 0 : t > 1 ? 1 : t;
+        x = u[0] + t * ex;
+        y = u[1] + t * ey;
+        d = hypot(f[0] - x, f[1] - y);
+        if (d < best) { best = d; q[0] = x; q[1] = y; }
+    }
+    if (inside) { q[0] = f[0]; q[1] = f[1]; }
+}
+
 static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
 {
     f[0] = c[0];
@@ -3155,8 +3963,48 @@ static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
     }
 }
 
-GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
-                             int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
+/* A self-crossing groove's candidate replaced by one per piece (§5: "two
+   independent grooves with different directions"), when one of its
+   crossings lies in the box. A piece whose nearest point to f is one of
+   its cut ends, with f beyond that end, is the neighbouring piece's
+   approach and is dropped; so is a piece that does not enter the box.
+   Parameters and their rates are the groove's. Returns the new count. */
+static int gr__split_candidates(const gr_grid_t *grid, gr__cand_t *cand, int m, int cap, const double *box,
+                                const double *f, double reach)
+{
+    int i, n = m, h, k;
+    for (i = 0; i < m; i++) {
+        const gr__groove_t *rec = &grid->grooves_[cand[i].groove];
+        int hit = 0, first = n;
+        if (rec->split_count == 0 || n + rec->split_count > cap) continue;
+        for (h = 0; h < grid->self_count_ && !hit; h++) {
+            double p[2];
+            if (grid->self_[h].groove != cand[i].groove) continue;
+            gr__image_near(grid, grid->self_[h].point, f, p);
+            hit = gr__in_box(box, p);
+        }
+        if (!hit) continue;
+        for (k = 0; k < rec->split_count; k++) {
+            int id = rec->first_split + k;
+            const gr__groove_t *pc = &grid->grooves_[id];
+            gr__cand_t *c = &cand[n];
+            if (!gr__path_in_box(grid, pc, box) || !gr__locate(grid, id, f, 2 * reach, c)) continue;
+            if ((c->end < 0 && pc->join[0]) || (c->end > 0 && pc->join[1])) continue;
+            c->param = pc->t0 + (pc->t1 - pc->t0) * c->param;
+            c->dtds *= pc->t1 - pc->t0;
+            n++;
+        }
+        if (n == first) continue; /* no piece near after all: keep the groove */
+        cand[i] = cand[--n];      /* the last piece takes the groove's place */
+    }
+    return n;
+}
+
+/* gr_detect() with the grooves named as the polygon path needs them: a
+   self-crossing groove's pieces by their records (indices from
+   groove_count on). */
+static gr_result_t gr__detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
+                              int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
 {
     const gr_footprint_t *fp;
     gr__scratch_t s;
@@ -3184,12 +4032,14 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
         double du = out->box[k & 1 ? 2 : 0] - f[0], dv = out->box[k & 2 ? 3 : 1] - f[1];
         if (hypot(du, dv) > reach) reach = hypot(du, dv);
     }
-    n = gr__gather(grid, out->box, s.seen, s.ids);
+    n = gr__gather(grid, out->box, s.seen, s.ids, NULL);
     for (k = 0; k < n; k++)
         if (gr__path_in_box(grid, &grid->grooves_[s.ids[k]], out->box) && gr__locate(grid, s.ids[k], f, 2 * reach, &s.cand[m]))
             m++;
+    if (grid->split_records_ > 0)
+        m = gr__split_candidates(grid, s.cand, m, grid->groove_count + grid->split_records_, out->box, f, reach);
     out->grooves = m;
-    gr__detect_ends(grid, s.cand, m, out->box, f, s.x, out); /* s.x holds >= 2 per groove */
+    gr__detect_ends(grid, s.cand, m, out->box, f, s.x, out); /* s.x holds >= 2 per candidate */
     /* crossings: tangents that differ by more than the parallel tolerance */
     psin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     for (i = 0; i < m; i++)
@@ -3209,18 +4059,43 @@ GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, con
                other is an isolated end and a normal groove, simulated
                apart (§5) */
             lim = grid->grooves_[a->groove].half_width + grid->grooves_[b->groove].half_width;
-            if (!(hypot(p[0] - f[0], p[1] - f[1]) <= reach + lim) || !gr__locate(grid, a->groove, p, lim, &c) ||
-                !gr__locate(grid, b->groove, p, lim, &c))
-                continue;
+            if (!(hypot(p[0] - f[0], p[1] - f[1]) <= reach + lim)) {
+                /* nearly parallel grooves meet far away, but their strips
+                   can overlap near the footprint all the same: then the
+                   overlap's point nearest the footprint stands for p */
+                gr__overlap_nearest(pa, a->t, grid->grooves_[a->groove].half_width, pb, b->t,
+                                    grid->grooves_[b->groove].half_width, cr, f, p);
+                if (!(hypot(p[0] - f[0], p[1] - f[1]) <= reach)) continue;
+            }
+            if (!gr__locate(grid, a->groove, p, lim, &c) || !gr__locate(grid, b->groove, p, lim, &c)) continue;
             gr__junction_add(out, GR_JUNCTION_CROSSING, a->groove, b->groove, -1, -1, p);
         }
-    /* self-intersections (§5): precomputed points inside the box */
+    /* self-intersections (§5): precomputed points inside the box, the
+       builder's unless the caller passes its own */
+    if (!self) {
+        self = grid->self_;
+        self_count = grid->self_count_;
+    }
     for (k = 0; k < self_count; k++) {
         double p[2];
         gr__image_near(grid, self[k].point, f, p);
         if (gr__in_box(out->box, p)) gr__junction_add(out, GR_JUNCTION_SELF, self[k].groove, -1, -1, -1, p);
     }
     return GR_OK;
+}
+
+GR_DEF gr_result_t gr_detect(const gr_grid_t *grid, const gr_query_t *query, const gr_self_hit_t *self,
+                             int self_count, void *scratch, size_t scratch_bytes, gr_junctions_t *out)
+{
+    gr_result_t r = gr__detect(grid, query, self, self_count, scratch, scratch_bytes, out);
+    int k;
+    /* pieces of a self-crossing groove are named by their groove */
+    for (k = 0; r == GR_OK && k < out->count; k++) {
+        gr_junction_t *j = &out->items[k];
+        if (j->groove >= 0) j->groove = grid->grooves_[j->groove].parent;
+        if (j->other >= 0) j->other = grid->grooves_[j->other].parent;
+    }
+    return r;
 }
 
 /* ---- The polygon path, first steps (§5.2) -------------------------------- */
@@ -3432,11 +4307,19 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 
 /* Limits of the polygon path; a footprint beyond them is answered by §4
    (flags GR_LIST_NONPARALLEL / GR_LIST_PATH_END as before). */
-#define GR__PP_MAX_GROOVES 8  /* grooves in the §5.1 search box */
+#define GR__PP_MAX_GROOVES GR_POLY_MAX_GROOVES /* grooves in the §5.1 search box */
 #define GR__PP_RING 80        /* points of one piece's clipped ring, or one cut */
 #define GR__PP_TRAPS 512      /* trapezoids of an intermediate region (before merging) */
 #define GR__PP_EDGES 400      /* edges of both operands of one boolean */
-#define GR__PP_MAX_PIECES 64  /* facets and end caps of those grooves */
+#define GR__PP_CROSS 4096     /* crossing heights of one boolean (the random tests' largest: ~1000) */
+/* Sides of the polygon standing for an elliptical footprint (query.ellipse):
+   of the ellipse's area, its boundary within 0.33 % of the radius
+   (vertices at 1.0032, edge middles at 0.9984) */
+#define GR__PP_ELLIPSE_SIDES 32
+#define GR__PP_MAX_PIECES (8 * GR_POLY_MAX_GROOVES)   /* facets and end caps of those grooves */
+#define GR__PP_SURF_TRAPS (128 * GR_POLY_MAX_GROOVES) /* trapezoids of all pieces' surfaces (the random tests' largest: ~300) */
+#define GR__PP_OCC_POINTS 200 /* points of the occluder rings subtracted in one boolean */
+#define GR__PP_OCC_RINGS 64
 /* Coplanar pieces of two grooves (equal floors at a crossing): the lower
    groove index keeps the overlap; the cut plane is moved by this fraction
    of the grid's largest section size to decide it. */
@@ -3444,6 +4327,9 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 /* A plane is seen edge-on along D when |N.D| falls below this (unit vectors):
    its projection has no area (as GR__EDGE_ON_REL for eq. 8). */
 #define GR__PP_EDGE_ON 1e-9
+/* A footprint whose area 4 |A1 x A2| is below this fraction of 4 |A1| |A2|
+   has no area for the polygon path (its axes are parallel to rounding). */
+#define GR__PP_FLAT_REL 1e-12
 
 /* One locally straight groove near the footprint, in coordinates relative
    to the footprint centre's tile image f (§4.2's straight approximation). */
@@ -3477,6 +4363,11 @@ typedef struct gr__pps_t {
     double *mouth;      /* the grooves' openings at w = 0 (UV strips, 4 points each) */
     int nmouth;
     int *sizes;
+    double *surf;       /* every piece's surface: trapezoids, surf_count[j] from surf_first[j] */
+    double *surf_box;   /* and its box, 4 per piece */
+    int *surf_first, *surf_count;
+    double *occ;        /* occluder rings gathered for one boolean */
+    int *occ_sizes;
     void *bool_scratch;
     size_t bool_bytes;
 } gr__pps_t;
@@ -3500,8 +4391,17 @@ static size_t gr__pp_layout(void *base, gr__pps_t *s)
     GR__PPCARVE(mouth, double, 2 * GR__PP_RING * GR__PP_MAX_GROOVES)
     GR__PPCARVE(tmp2, double, 2 * GR__PP_RING)
     GR__PPCARVE(sizes, int, 4 * GR__PP_MAX_GROOVES + 4)
+    GR__PPCARVE(surf, double, 8 * GR__PP_SURF_TRAPS)
+    GR__PPCARVE(surf_box, double, 4 * (GR__PP_MAX_PIECES + 1))
+    GR__PPCARVE(surf_first, int, GR__PP_MAX_PIECES + 1)
+    GR__PPCARVE(surf_count, int, GR__PP_MAX_PIECES + 1)
+    GR__PPCARVE(occ, double, 2 * GR__PP_OCC_POINTS)
+    GR__PPCARVE(occ_sizes, int, GR__PP_OCC_RINGS)
 #undef GR__PPCARVE
-    s->bool_bytes = gr_poly_boolean_scratch_bytes(GR__PP_EDGES);
+    {
+        gr__pscratch_t ptmp;
+        s->bool_bytes = gr__pscratch_layout(GR__PP_EDGES, GR__PP_CROSS, NULL, &ptmp);
+    }
     s->bool_scratch = b ? b + off : NULL;
     return off + s->bool_bytes;
 }
@@ -3564,25 +4464,44 @@ static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, doubl
                       int *npts, int *sizes, int *nrings, double *tmp, double *tmp2)
 {
     double k[3], ga[3], gc[3], det, s = g->s;
+    /* a plane on the volume's boundary (equal floors of crossing grooves,
+       the ground at every mouth, a wall where a groove ends) decides as if
+       moved by `shift` along its normal, so exactly one of two coplanar
+       pieces keeps the overlap. Only the decision moves, not the geometry:
+       |shift| is the tolerance within which a point counts as on the
+       boundary, and the strips' edges stay where the unmoved plane has
+       them (moving the plane itself would move every cut by |shift| / the
+       section's slope, a partition error of that order) */
+    double tn = pc->n[0] * g->t[0] + pc->n[1] * g->t[1];
     int i, n = 0;
     gr__pp_groove_affine(pc, g, k, ga, gc);
-    /* a plane on the volume's boundary (equal floors of crossing grooves)
-       is moved by `shift` along its normal, so exactly one of the two
-       coplanar pieces keeps the overlap */
-    k[0] += shift * (pc->n[0] * g->t[0] + pc->n[1] * g->t[1]);
-    k[1] += shift * (-pc->n[0] * g->t[1] + pc->n[1] * g->t[0]);
-    k[2] += shift * pc->n[2];
+    /* the plane holds T when its (b, w) map is singular; X and Y are unit
+       vectors, so |det| is the sine of the angle between the plane and T
+       (a bound relative to the (b, w) parts alone would call the rounding
+       of a plane holding T, ~1e-17 under fused multiply-adds, regular) */
     det = ga[1] * gc[2] - ga[2] * gc[1];
-    if (fabs(det) > GR__PP_EDGE_ON * (fabs(ga[1]) + fabs(ga[2])) * (fabs(gc[1]) + fabs(gc[2]))) {
+    if (fabs(det) > GR__PP_EDGE_ON) {
         for (i = 0; i < g->nsec; i++) { /* (b, w) -> (a, c) by the inverse 2x2 map */
             double db = s * g->sec[2 * i] - k[1], dw = s * g->sec[2 * i + 1] - k[2];
             tmp[2 * i] = (db * gc[2] - dw * gc[1]) / det;
             tmp[2 * i + 1] = (ga[1] * dw - ga[2] * db) / det;
         }
         n = g->nsec;
-        /* x in [x0, x1]: two half-planes */
-        n = gr__pp_halfplane(tmp, n, ga[0], gc[0], k[0] - g->x0, tmp2);
-        n = gr__pp_halfplane(tmp2, n, -ga[0], -gc[0], g->x1 - k[0], tmp);
+        /* x in [x0, x1]: two half-planes. A plane across T (x constant on
+           it) lying on an end x0 or x1 decides by the shifted x */
+        if (fabs(ga[0]) + fabs(gc[0]) <= GR__PP_EDGE_ON) {
+            double x = k[0], xs = k[0] + shift * tn;
+            if (fabs(x - g->x0) <= fabs(shift)) x = xs;
+            if (fabs(x - g->x1) <= fabs(shift)) x = xs;
+            if (!(x >= g->x0 && x <= g->x1)) return 0;
+            memcpy(tmp2, tmp, sizeof(double) * 2 * (size_t)n);
+        } else {
+            /* a half-plane at most doubles a ring's points (a non-convex
+               section crosses the line at most once per edge) */
+            n = gr__pp_halfplane(tmp, n, ga[0], gc[0], k[0] - g->x0, tmp2);
+            if (2 * n > GR__PP_RING) return -1;
+            n = gr__pp_halfplane(tmp2, n, -ga[0], -gc[0], g->x1 - k[0], tmp);
+        }
         if (n < 3) return 0;
         if (*npts + n > cap || *nrings >= 4 * GR__PP_MAX_GROOVES) return -1;
         memcpy(out + 2 * *npts, tmp, sizeof(double) * 2 * (size_t)n);
@@ -3594,18 +4513,27 @@ static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, doubl
         /* T in the plane: along the unit direction u (in 2D) across T the
            plane's trace runs through the section; intervals where it is
            inside become strips u-interval x [x0, x1] along T */
-        double tl = hypot(ga[0], gc[0]), ua, uc, bs[2 * (GR_MAX_FACETS + 2)], db, dw, ta, tc;
-        int nb = 0;
+        double tl = hypot(ga[0], gc[0]), ua, uc, bs[2 * (GR_MAX_FACETS + 2)], db, dw, ta, tc, tol = fabs(shift);
+        double nb_ = -pc->n[0] * g->t[1] + pc->n[1] * g->t[0];
+        int nb = 0, on_pos;
         if (!(tl > 0)) return 0;
         ta = ga[0] / tl; tc = gc[0] / tl; /* 2D direction of T */
         ua = -tc; uc = ta;
         db = ua * ga[1] + uc * gc[1];
         dw = ua * ga[2] + uc * gc[2];
+        /* a section point on the trace (within tol) takes the side the
+           moved plane would leave it on: c - shift (db n_w - dw n_b) */
+        on_pos = -shift * (db * pc->n[2] - dw * nb_) > 0;
         for (i = 0; i < g->nsec; i++) { /* crossings of the trace (b, w) = k + u (db, dw) with the closed section */
             const double *p0 = g->sec + 2 * i, *p1 = g->sec + 2 * ((i + 1) % g->nsec);
             double e0[2] = {s * p0[0] - k[1], s * p0[1] - k[2]}, e1[2] = {s * p1[0] - k[1], s * p1[1] - k[2]};
             double c0 = db * e0[1] - dw * e0[0], c1 = db * e1[1] - dw * e1[0]; /* side of the trace */
-            if ((c0 >= 0) != (c1 >= 0)) {
+            int s0, s1;
+            if (fabs(c0) <= tol) c0 = 0;
+            if (fabs(c1) <= tol) c1 = 0;
+            s0 = c0 == 0 ? on_pos : c0 > 0;
+            s1 = c1 == 0 ? on_pos : c1 > 0;
+            if (s0 != s1) {
                 double t = c0 / (c0 - c1), q[2] = {e0[0] + t * (e1[0] - e0[0]), e0[1] + t * (e1[1] - e0[1])};
                 bs[nb++] = (q[0] * db + q[1] * dw) / (db * db + dw * dw);
             }
@@ -3694,7 +4622,7 @@ static int gr__pp_bool(const gr__pps_t *ps, const gr_polyset_t *a, const gr_poly
     int n = 0, first, chunk, total = 0;
     double part;
     if (a->point_count + b->point_count <= GR__PP_EDGES) {
-        if (gr_poly_boolean(a, b, op, ps->bool_scratch, ps->bool_bytes, out, out ? GR__PP_TRAPS : 0, &n, area) != GR_OK)
+        if (gr__poly_boolean(a, b, op, ps->bool_scratch, GR__PP_CROSS, out, out ? GR__PP_TRAPS : 0, &n, area) != GR_OK)
             return -1;
         return out ? gr__pp_merge(out, n) : n;
     }
@@ -3708,8 +4636,8 @@ static int gr__pp_bool(const gr__pps_t *ps, const gr_polyset_t *a, const gr_poly
         sub.point_count = 4 * m;
         sub.ring_sizes = NULL;
         sub.ring_count = m;
-        if (gr_poly_boolean(&sub, b, op, ps->bool_scratch, ps->bool_bytes, out ? out + 8 * total : NULL,
-                            out ? GR__PP_TRAPS - total : 0, &n, &part) != GR_OK)
+        if (gr__poly_boolean(&sub, b, op, ps->bool_scratch, GR__PP_CROSS, out ? out + 8 * total : NULL,
+                             out ? GR__PP_TRAPS - total : 0, &n, &part) != GR_OK)
             return -1;
         *area += part;
         total += n;
@@ -3745,128 +4673,171 @@ static int gr__pp_cuts(const gr__pps_t *ps, const gr__ppp_t *pc, int ng, double 
     return nr;
 }
 
-/* The part of piece i seen along d (§5.2-5.4): the piece clipped to the
-   footprint's pre-image (fpoly, local UV; or the trapezoids `start`
-   instead), minus the crossing grooves' cuts (§5.3), within the pre-image
-   of the grooves' mouths (rays leaving through the ground are blocked),
-   minus every other piece in front of it along d, itself minus its cuts
+/* Bounding box (x0, y0, x1, y1) of n points. */
+static void gr__box_of(const double *p, int n, double box[4])
+{
+    int k;
+    box[0] = box[1] = HUGE_VAL;
+    box[2] = box[3] = -HUGE_VAL;
+    for (k = 0; k < n; k++) {
+        if (p[2 * k] < box[0]) box[0] = p[2 * k];
+        if (p[2 * k] > box[2]) box[2] = p[2 * k];
+        if (p[2 * k + 1] < box[1]) box[1] = p[2 * k + 1];
+        if (p[2 * k + 1] > box[3]) box[3] = p[2 * k + 1];
+    }
+}
+
+/* The surface of every piece (§5.3): its strip (or cap, or the ground)
+   minus what the other grooves carve away, as trapezoids in its own
+   coordinates, into the pool ps->surf. A piece's surface does not depend
+   on the direction it is seen or lit from, so it is made once per
+   footprint and serves both as the piece's own start and as an occluder
+   of the others (§5.4: blocking facets and their prolongations, cut where
+   a crossing groove removes them). Returns 0, or -1 when a buffer is full. */
+static int gr__pp_surfaces(gr__pps_t *ps, int np, int ng, const double *box, double big, double tie)
+{
+    int j, used = 0;
+    for (j = 0; j < np; j++) {
+        const gr__ppp_t *pc = &ps->p[j];
+        gr_polyset_t a, b;
+        double area, *r0 = ps->tmp, *r1 = ps->tmp2;
+        int nr, npts, n, side;
+        /* only its part over the §5.1 search box matters: every ray from
+           the footprint toward the viewer or a light stays over the box
+           (that is how the box was grown), and so does every point of the
+           surface such a ray meets. The box's four sides pulled back onto
+           the plane (u(a, c) = o_u + a X_u + c Y_u is affine on it) */
+        memcpy(r0, pc->ring, sizeof(double) * 2 * (size_t)pc->nring);
+        n = pc->nring;
+        for (side = 0; side < 4 && n >= 3; side++) {
+            int ax = side & 1, hi = side >> 1;
+            double sg = hi ? -1 : 1, *t = r0;
+            if (2 * n > GR__PP_RING) return -1; /* a half-plane at most doubles it */
+            n = gr__pp_halfplane(r0, n, sg * pc->x[ax], sg * pc->y[ax], sg * (pc->o[ax] - box[ax + 2 * hi]), r1);
+            r0 = r1; r1 = t;
+        }
+        ps->surf_first[j] = used;
+        ps->surf_count[j] = 0;
+        if (n < 3) continue;
+        memcpy(ps->rc, r0, sizeof(double) * 2 * (size_t)n);
+        a = gr__pp_set(ps->rc, n, NULL, 1);
+        nr = gr__pp_cuts(ps, pc, ng, big, tie, &npts);
+        if (nr < 0) return -1;
+        b = gr__pp_set(nr > 0 ? ps->cut : NULL, nr > 0 ? npts : 0, nr > 0 ? ps->sizes : NULL, nr);
+        n = gr__pp_bool(ps, &a, &b, nr > 0 ? GR_POLY_DIFFERENCE : GR_POLY_UNION, ps->ra, &area);
+        if (n < 0 || used + n > GR__PP_SURF_TRAPS) return -1;
+        memcpy(ps->surf + 8 * used, ps->ra, sizeof(double) * 8 * (size_t)n);
+        ps->surf_first[j] = used;
+        ps->surf_count[j] = n;
+        gr__box_of(ps->ra, 4 * n, ps->surf_box + 4 * j);
+        used += n;
+    }
+    return 0;
+}
+
+/* cur minus the occluder rings gathered in ps->occ (one boolean: the rings
+   of a set unite); the new count in *ncur, swapping cur and nxt. -1 when
+   a buffer is too small. */
+static int gr__pp_occlude(const gr__pps_t *ps, double **cur, double **nxt, int *ncur, int npts, int nrings, double *area)
+{
+    gr_polyset_t a = gr__pp_traps(*cur, *ncur), b = gr__pp_set(ps->occ, npts, ps->occ_sizes, nrings);
+    double *sw;
+    int n;
+    if (nrings == 0) return 0;
+    n = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, *nxt, area);
+    if (n < 0) return -1;
+    sw = *cur; *cur = *nxt; *nxt = sw;
+    *ncur = n;
+    return 0;
+}
+
+/* The part of piece i seen along d (§5.2-5.4): the piece's surface
+   clipped to the footprint's pre-image (fpoly, local UV; or the
+   trapezoids `start` instead, already on the surface), minus every other
+   piece's surface in front of it along d
    (blocking facets and their prolongations into the crossing groove,
-   §5.4). The result (trapezoids in ps->ra or ps->rb) is returned in *res;
-   the count, or -1 when a buffer overflows. */
-static int gr__pp_region(const gr__pps_t *ps, int np, int ng, int i, const double *d, const double *fpoly,
-                         const double *start, int nstart, double big, double tie, double **res, double *area)
+   §5.4), all of them in one boolean; pieces 0 .. np - 1 and the ground
+   (piece np). The result (trapezoids in ps->ra or
+   ps->rb) is returned in *res; the count, or -1 when a buffer overflows. */
+static int gr__pp_region(const gr__pps_t *ps, int np, int i, const double *d, const double *fpoly, int nfp,
+                         const double *start, int nstart, double tie, double **res, double *area)
 {
     const gr__ppp_t *pc = &ps->p[i];
-    double *cur = ps->ra, *nxt = ps->rb, *sw, occ_unused;
+    double *cur = ps->ra, *nxt = ps->rb, cb[4];
     gr_polyset_t a, b;
-    int n, k, j, nr, npts, ncur;
+    int k, j, ncur;
     *area = 0;
     *res = cur;
     if (start) {
-        a = gr__pp_traps(start, nstart);
+        if (nstart > GR__PP_TRAPS) return -1;
+        memcpy(cur, start, sizeof(double) * 8 * (size_t)nstart);
+        ncur = nstart;
+        for (k = 0; k < ncur; k++) *area += fabs(gr_poly_area(cur + 8 * k, 4));
     } else {
-        double pre[8];
-        for (k = 0; k < 4; k++) {
+        double pre[2 * GR__PP_ELLIPSE_SIDES];
+        for (k = 0; k < nfp; k++) {
             double p3[3] = {fpoly[2 * k], fpoly[2 * k + 1], 0};
             gr__pp_onto(pc, p3, d, pre + 2 * k);
         }
-        n = 0;
-        /* into rc, which is free until the occluders: the cuts use tmp */
-        if (gr_poly_clip_convex(pc->ring, pc->nring, pre, 4, ps->rc, ps->tmp2, GR__PP_RING, &n) != GR_OK) return -1;
-        if (n < 3) return 0;
-        a = gr__pp_set(ps->rc, n, NULL, 1);
-    }
-    /* §5.3: what the crossing grooves carve away */
-    nr = gr__pp_cuts(ps, pc, ng, big, tie, &npts);
-    if (nr < 0) return -1;
-    if (nr > 0) {
-        b = gr__pp_set(ps->cut, npts, ps->sizes, nr);
-        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, cur, area);
-    } else {
-        b = gr__pp_set(NULL, 0, NULL, 0);
-        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_UNION, cur, area);
+        if (ps->surf_count[i] == 0) return 0;
+        gr__box_of(pre, nfp, cb);
+        if (cb[0] >= ps->surf_box[4 * i + 2] || cb[2] <= ps->surf_box[4 * i] || cb[1] >= ps->surf_box[4 * i + 3] ||
+            cb[3] <= ps->surf_box[4 * i + 1])
+            return 0; /* the footprint misses the piece */
+        a = gr__pp_traps(ps->surf + 8 * ps->surf_first[i], ps->surf_count[i]);
+        b = gr__pp_set(pre, nfp, NULL, 1);
+        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, cur, area);
     }
     if (ncur <= 0) return ncur;
-    /* a ray from below w = 0 must reach it inside a groove's opening (the
-       ground blocks it elsewhere); the piece's part at or above w = 0
-       (protruding facets) skips this test */
+    if (ncur <= 0) { *res = cur; *area = 0; return ncur; }
+    /* §5.4: occlusion by every other piece's surface in front along d; only
+       the parts whose box meets the region's are kept. The ground (piece
+       np, the plane minus the grooves' mouths) is one of them: a ray from
+       below w = 0 must leave through a mouth, and one from above never
+       meets it (its part in front of this plane, slid along d, lies below
+       w = 0, off any piece above) */
+    gr__box_of(cur, 4 * ncur, cb);
     {
-        double wlo = HUGE_VAL, whi = -HUGE_VAL, box[4] = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, quad[8], half[16];
-        int m, nh, na = 0;
-        for (m = 0; m < pc->nring; m++) {
-            double w = pc->o[2] + pc->ring[2 * m] * pc->x[2] + pc->ring[2 * m + 1] * pc->y[2];
-            wlo = fmin(wlo, w);
-            whi = fmax(whi, w);
-            box[0] = fmin(box[0], pc->ring[2 * m]); box[2] = fmax(box[2], pc->ring[2 * m]);
-            box[1] = fmin(box[1], pc->ring[2 * m + 1]); box[3] = fmax(box[3], pc->ring[2 * m + 1]);
-        }
-        if (wlo < -tie) {
-            if (whi > tie) { /* both sides: keep the part above aside (in rc) */
-                quad[0] = box[0] - 1; quad[1] = box[1] - 1; quad[2] = box[2] + 1; quad[3] = box[1] - 1;
-                quad[4] = box[2] + 1; quad[5] = box[3] + 1; quad[6] = box[0] - 1; quad[7] = box[3] + 1;
-                nh = gr__pp_halfplane(quad, 4, pc->x[2], pc->y[2], pc->o[2], half);
-                a = gr__pp_traps(cur, ncur);
-                b = gr__pp_set(half, nh, NULL, 1);
-                na = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, ps->rc, &occ_unused);
-                nh = gr__pp_halfplane(quad, 4, -pc->x[2], -pc->y[2], -pc->o[2], half);
-                b = gr__pp_set(half, nh, NULL, 1);
-                ncur = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, nxt, area);
-                if (na < 0 || ncur < 0) return -1;
-                sw = cur; cur = nxt; nxt = sw;
+        double sg = gr__dot3(pc->n, d) > 0 ? 1 : -1;
+        int npts = 0, nrings = 0;
+        for (j = 0; j <= np && ncur > 0; j++) {
+            const gr__ppp_t *oc = &ps->p[j];
+            const double *st = ps->surf + 8 * ps->surf_first[j];
+            double dd[3], ka, kc, k0;
+            int m, t, flat = 1;
+            if (j == i || ps->surf_count[j] == 0 || fabs(gr__dot3(oc->n, d)) <= GR__PP_EDGE_ON) continue;
+            for (m = 0; m < 3; m++) dd[m] = oc->o[m] - pc->o[m];
+            /* its part on the viewer's side of this plane; a coplanar piece
+               (every corner within the tie margin) hides nothing, its
+               overlap is settled by the cuts */
+            ka = sg * gr__dot3(pc->n, oc->x); kc = sg * gr__dot3(pc->n, oc->y); k0 = sg * gr__dot3(pc->n, dd);
+            for (m = 0; m < oc->nring && flat; m++) flat = fabs(ka * oc->ring[2 * m] + kc * oc->ring[2 * m + 1] + k0) <= tie;
+            if (flat) continue;
+            for (t = 0; t < ps->surf_count[j]; t++) {
+                double *q = ps->occ + 2 * npts, bx[4];
+                int nf = gr__pp_halfplane(st + 8 * t, 4, ka, kc, k0, ps->tmp);
+                if (nf < 3) continue;
+                for (m = 0; m < nf; m++) {
+                    double p3[3];
+                    gr__pp_point(oc, ps->tmp[2 * m], ps->tmp[2 * m + 1], p3);
+                    gr__pp_onto(pc, p3, d, q + 2 * m);
+                }
+                gr__box_of(q, nf, bx);
+                if (bx[0] >= cb[2] || bx[2] <= cb[0] || bx[1] >= cb[3] || bx[3] <= cb[1]) continue;
+                ps->occ_sizes[nrings++] = nf;
+                npts += nf;
+                /* full: subtract what is gathered. A trapezoid cut by one
+                   half-plane has 5 corners, but a degenerate one (its
+                   sides collinear to rounding) can classify its corners
+                   in and out alternately: 2 per side, 8 at most */
+                if (npts + 8 > GR__PP_OCC_POINTS || nrings == GR__PP_OCC_RINGS) {
+                    if (gr__pp_occlude(ps, &cur, &nxt, &ncur, npts, nrings, area) < 0) return -1;
+                    npts = nrings = 0;
+                    if (ncur == 0) break;
+                }
             }
-            for (k = 0; k < 4 * ps->nmouth; k++) {
-                double p3[3] = {ps->mouth[2 * k], ps->mouth[2 * k + 1], 0};
-                gr__pp_onto(pc, p3, d, ps->cut + 2 * k);
-            }
-            a = gr__pp_traps(cur, ncur);
-            b = gr__pp_set(ps->cut, 4 * ps->nmouth, NULL, ps->nmouth);
-            ncur = ps->nmouth > 0 ? gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, nxt, area) : 0;
-            if (ncur < 0) return -1;
-            sw = cur; cur = nxt; nxt = sw;
-            if (na > 0) {
-                if (ncur + na > GR__PP_TRAPS) return -1;
-                memcpy(cur + 8 * ncur, ps->rc, sizeof(double) * 8 * (size_t)na);
-                ncur = gr__pp_merge(cur, ncur + na);
-            }
-            *area = 0;
-            for (m = 0; m < ncur; m++) *area += fabs(gr_poly_area(cur + 8 * m, 4));
         }
-    }
-    /* §5.4: occlusion by every other piece in front along d */
-    for (j = 0; j < np && ncur > 0; j++) {
-        const gr__ppp_t *oc = &ps->p[j];
-        double sg = gr__dot3(pc->n, d) > 0 ? 1 : -1, dd[3], occ_area;
-        int nf, m, nocc;
-        if (j == i || fabs(gr__dot3(oc->n, d)) <= GR__PP_EDGE_ON) continue;
-        for (m = 0; m < 3; m++) dd[m] = oc->o[m] - pc->o[m];
-        /* its cuts, carried onto this plane (the map is affine on its plane) */
-        nr = gr__pp_cuts(ps, oc, ng, big, tie, &npts);
-        if (nr < 0) return -1;
-        for (m = 0; m < npts; m++) {
-            double p3[3];
-            gr__pp_point(oc, ps->cut[2 * m], ps->cut[2 * m + 1], p3);
-            gr__pp_onto(pc, p3, d, ps->cut + 2 * m);
-        }
-        /* its part on the viewer's side of this plane */
-        /* strictly in front (by the tie margin): coplanar pieces do not
-           hide each other (their overlap is settled by the cuts) */
-        nf = gr__pp_halfplane(oc->ring, oc->nring, sg * gr__dot3(pc->n, oc->x), sg * gr__dot3(pc->n, oc->y),
-                              sg * gr__dot3(pc->n, dd) - tie, ps->tmp);
-        if (nf < 3) continue;
-        for (m = 0; m < nf; m++) {
-            double p3[3];
-            gr__pp_point(oc, ps->tmp[2 * m], ps->tmp[2 * m + 1], p3);
-            gr__pp_onto(pc, p3, d, ps->tmp2 + 2 * m);
-        }
-        a = gr__pp_set(ps->tmp2, nf, NULL, 1);
-        b = gr__pp_set(ps->cut, npts, ps->sizes, nr);
-        nocc = gr__pp_bool(ps, &a, &b, nr > 0 ? GR_POLY_DIFFERENCE : GR_POLY_UNION, ps->rc, &occ_area);
-        if (nocc < 0) return -1;
-        if (nocc == 0 || !(occ_area > 0)) continue;
-        a = gr__pp_traps(cur, ncur);
-        b = gr__pp_traps(ps->rc, nocc);
-        ncur = gr__pp_bool(ps, &a, &b, GR_POLY_DIFFERENCE, nxt, area);
-        sw = cur; cur = nxt; nxt = sw;
+        if (ncur > 0 && gr__pp_occlude(ps, &cur, &nxt, &ncur, npts, nrings, area) < 0) return -1;
     }
     *res = cur;
     if (ncur <= 0) *area = 0;
@@ -3946,6 +4917,7 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
                the groove; its part above closes a protrusion and faces out
                of it, away from the groove */
             double x = e == 0 ? g->x0 : g->x1, sg = e == 0 ? 1 : -1, sec[2 * (GR_MAX_FACETS + 1)];
+            double half[4 * (GR_MAX_FACETS + 1)];
             int side;
             if (!g->end[e] || fabs(x) > big) continue;
             for (k = 0; k < g->nsec; k++) {
@@ -3955,7 +4927,13 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
             for (side = 0; side < 2; side++) {
                 gr__ppp_t *pc = &ps->p[np];
                 double su = side ? -sg : sg;
-                pc->nring = gr__pp_halfplane(sec, g->nsec, 0, side ? 1 : -1, 0, pc->ring);
+                /* the section's part on one side of w = 0: up to twice its
+                   points for a section crossing w = 0 on every facet,
+                   beyond a piece's ring for long sections (then declined) */
+                int nh = gr__pp_halfplane(sec, g->nsec, 0, side ? 1 : -1, 0, half);
+                if (nh > GR_MAX_FACETS + 2) return -1;
+                memcpy(pc->ring, half, sizeof(double) * 2 * (size_t)nh);
+                pc->nring = nh;
                 if (pc->nring < 3 || !(fabs(gr_poly_area(pc->ring, pc->nring)) > 0)) continue;
                 pc->o[0] = g->p[0] + x * g->t[0]; pc->o[1] = g->p[1] + x * g->t[1]; pc->o[2] = 0;
                 pc->x[0] = bx; pc->x[1] = by; pc->x[2] = 0;
@@ -3974,27 +4952,51 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
 /* The polygon path (§5.2-5.5) for a footprint with intersections or ends:
    r_i = A_R / A_F for every piece, measured in UV (the projection along E
    scales a plane's areas by |N.E| / E_w), lit fractions the same way along
-   each light. Returns 1 when it filled the list, 0 to leave it to §4:
-   protruding sections, too many grooves or junctions, a footprint without
-   area, or a region outgrowing its buffers. */
+   each light. Protruding sections (w > 0) take the same path: their
+   facets are pieces like any other, in front of what they hide (§5.4's
+   prolongations are the pieces' own extent along T). Returns 1 when it
+   filled the list, 0 to leave it to §4: too many grooves or junctions, a
+   footprint without area, or a region outgrowing its buffers. */
 static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__scratch_t *s, const gr_junctions_t *jn,
                         void *base, gr_facet_list_t *list)
 {
     const gr_footprint_t *fp = &q->footprint;
     gr__pps_t ps;
     gr__mfacet_t m;
-    double e[3], el, fpoly[8], af, f[2], big, tie, lit[GR_MAX_LIGHTS], area, *vis;
-    int ng = jn->grooves, np, i, k, l, nl = q->light_count, npts;
+    double e[3], el, fpoly[2 * GR__PP_ELLIPSE_SIDES], af, cr, f[2], big, tie, lit[GR_MAX_LIGHTS], area, *vis;
+    int ng = jn->grooves, np, i, k, l, nl = q->light_count, npts, nfp = 4;
     gr__ppp_t *gp;
-    /* protruding sections are left to §4 for now: the pieces, caps (split
-       at w = 0) and the opening test above w = 0 are in and match the
-       oracle on crossing ridges, but random scenes mixing ridges, cuts and
-       curved paths still break the partition by up to 50 % */
-    if (ng < 1 || ng > GR__PP_MAX_GROOVES || jn->dropped || grid->h > 0) return 0;
-    gr_footprint_polygon(fp, GR_FP_QUAD, fpoly);
-    for (k = 0; k < 4; k++) { fpoly[2 * k] -= fp->center[0]; fpoly[2 * k + 1] -= fp->center[1]; }
-    af = fabs(gr_poly_area(fpoly, 4));
-    if (!(af > 0)) return 0;
+    /* the path needs every path end (its grooves' extents), not every
+       crossing: detection lists the ends first, so a full list whose last
+       entry is a crossing or a self-intersection dropped none of them */
+    if (ng < 1 || ng > GR__PP_MAX_GROOVES) return 0;
+    if (jn->dropped && jn->items[jn->count - 1].kind != GR_JUNCTION_CROSSING &&
+        jn->items[jn->count - 1].kind != GR_JUNCTION_SELF)
+        return 0;
+    /* the footprint (§5.2): the parallelogram F ± A1 ± A2 (local UV about
+       F), or for query.ellipse the GR__PP_ELLIPSE_SIDES-gon inscribed in
+       F + A1 cos a + A2 sin a and scaled to the ellipse's area, pi |A1 x
+       A2| (the paper's rhombus through the axes' tips has 2/pi of it).
+       A_F from the axes: the shoelace sum of a flat quad's corners is not
+       exactly 0 under fused multiply-adds; a footprint without area (a
+       line or a point) is §4's, as A_R / A_F would divide rounding by
+       rounding */
+    cr = fabs(fp->axis1[0] * fp->axis2[1] - fp->axis1[1] * fp->axis2[0]);
+    if (!(cr > GR__PP_FLAT_REL * hypot(fp->axis1[0], fp->axis1[1]) * hypot(fp->axis2[0], fp->axis2[1]))) return 0;
+    if (q->ellipse) {
+        double step = 2 * GR__PI / GR__PP_ELLIPSE_SIDES, rho = sqrt(2 * GR__PI / (GR__PP_ELLIPSE_SIDES * sin(step)));
+        nfp = GR__PP_ELLIPSE_SIDES;
+        for (k = 0; k < nfp; k++) {
+            double c = rho * cos(k * step), sn = rho * sin(k * step);
+            fpoly[2 * k] = c * fp->axis1[0] + sn * fp->axis2[0];
+            fpoly[2 * k + 1] = c * fp->axis1[1] + sn * fp->axis2[1];
+        }
+        af = GR__PI * cr;
+    } else {
+        gr_footprint_polygon(fp, GR_FP_QUAD, fpoly);
+        for (k = 0; k < 4; k++) { fpoly[2 * k] -= fp->center[0]; fpoly[2 * k + 1] -= fp->center[1]; }
+        af = 4 * cr;
+    }
     el = sqrt(gr__dot3(fp->view, fp->view));
     for (k = 0; k < 3; k++) e[k] = fp->view[k] / el;
     gr__tile_image(grid, fp->center, f);
@@ -4020,6 +5022,13 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
     ps.nmouth = gr__pp_cuts(&ps, gp, ng, big, tie, &npts);
     if (ps.nmouth < 0 || npts != 4 * ps.nmouth) return 0;
     memcpy(ps.mouth, ps.cut, sizeof(double) * 2 * (size_t)npts);
+    {
+        /* the search box about f, a little larger (it bounds what matters) */
+        double bx[4], mg = 1e-6 * (jn->box[2] - jn->box[0] + jn->box[3] - jn->box[1]);
+        bx[0] = jn->box[0] - f[0] - mg; bx[1] = jn->box[1] - f[1] - mg;
+        bx[2] = jn->box[2] - f[0] + mg; bx[3] = jn->box[3] - f[1] + mg;
+        if (gr__pp_surfaces(&ps, np + 1, ng, bx, big, tie) < 0) return 0;
+    }
     list->count = 0;
     list->flags = 0;
     for (i = 0; i <= np; i++) {
@@ -4027,7 +5036,7 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
         double ne = gr__dot3(pc->n, e), ratio;
         int nv;
         if (!(ne > GR__PP_EDGE_ON)) continue; /* back-facing or edge-on (§4.3) */
-        nv = gr__pp_region(&ps, np, ng, i, e, fpoly, NULL, 0, big, tie, &vis, &area);
+        nv = gr__pp_region(&ps, np, i, e, fpoly, nfp, NULL, 0, tie, &vis, &area);
         if (nv < 0) return 0;
         ratio = fmin(area * ne / e[2] / af, 1); /* a whole footprint, to rounding */
         if (!(ratio > 0)) continue;
@@ -4040,15 +5049,19 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
             if (!(ll > 0) || !(L0[2] > 0)) continue;
             for (k = 0; k < 3; k++) L[k] = L0[k] / ll;
             if (!(gr__dot3(pc->n, L) > GR__PP_EDGE_ON)) continue;
-            if (gr__pp_region(&ps, np, ng, i, L, NULL, ps.rv, nv, big, tie, &lr, &la) < 0) return 0;
+            if (gr__pp_region(&ps, np, i, L, NULL, 0, ps.rv, nv, tie, &lr, &la) < 0) return 0;
             lit[l] = area > 0 ? la / area : 0;
         }
         m.n[0] = pc->n[0]; m.n[1] = pc->n[1]; m.n[2] = pc->n[2];
-        m.groove = pc->g >= 0 ? ps.g[pc->g].groove : -1;
+        m.groove = pc->g >= 0 ? ps.g[pc->g].groove : -1; /* a piece's record until the list is done */
         m.facet = pc->facet;
         m.refl = pc->refl;
         gr__list_add(list, &m, ratio, lit, nl);
     }
+    /* pieces of a self-crossing groove (§5) run in two directions: they
+       were kept apart above, and are named by their groove now */
+    for (i = 0; i < list->count; i++)
+        if (list->facets[i].groove >= 0) list->facets[i].groove = grid->grooves_[list->facets[i].groove].parent;
     list->grooves = ng;
     list->subfootprints = 1;
     list->flags |= GR_LIST_POLYGON;
@@ -4062,8 +5075,13 @@ static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q, void *scr
 {
     gr_junctions_t jn;
     size_t base = gr__align8(gr__scratch_layout(grid, NULL, NULL));
-    if (gr_detect(grid, q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
-    return gr__pp_query(grid, q, s, &jn, (char *)scratch + base, list);
+    if (gr__detect(grid, q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
+    if (gr__pp_query(grid, q, s, &jn, (char *)scratch + base, list)) return 1;
+    /* declined part way (a buffer outgrown): §4 starts from an empty list */
+    list->count = 0;
+    list->flags = 0;
+    list->grooves = 0;
+    return 0;
 }
 
 static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
@@ -4080,8 +5098,14 @@ static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
    cut an interval in two). */
 #define GR__LINE_ON_FACET_REL 1e-9
 /* Breakpoints closer than this (in the segment parameter s in [-1, 1])
-   coalesce: intervals that short carry no measurable ratio. */
+   coalesce: intervals that short carry no measurable ratio. To it adds
+   the rounding of the breakpoints' positions, GR__LINE_SNAP_ULPS units
+   of the largest texture coordinate along the rays, in units of the
+   segment (gr__sheet_snap): a footprint far smaller than its coordinates
+   would otherwise keep slivers whose class is rounding noise, and Jones &
+   Perry would count their edges. */
 #define GR__LINE_SNAP 1e-12
+#define GR__LINE_SNAP_ULPS 16.0
 /* Shadow and bounce rays start this fraction of the scene scale
    (w + h + d of the grid) off their facet, along its normal, so the facet
    they leave is not found again through rounding. */
@@ -4094,8 +5118,6 @@ static size_t gr__pp_scratch_bytes(void) { return gr__pp_layout(NULL, NULL); }
 #define GR__LINE_CLEAR_REL 1e-6
 /* Default early-exit tolerance of §5.6 (gr_query_t.line_exit_tol). */
 #define GR__LINE_DEFAULT_EXIT 1e-3
-/* Depth of the explicit stack of pending bounce segments (§6.1). */
-#define GR__LINE_STACK 64
 
 /* A groove near the segment, locally straight (§4.2), in this frame's UV. */
 typedef struct gr__lg_t {
@@ -4127,13 +5149,28 @@ typedef struct gr__ivl_t {
 
 typedef struct gr__xing_t { double t; int plane; } gr__xing_t;
 
+/* An edge line of the scene: points q + λ D, λ in [l0, l1] (where it lies
+   on the facets it bounds), between planes p1 and p2 (both -1 for a
+   section point's line). */
+typedef struct gr__edge_t { double q[3], D[3], l0, l1; int p1, p2; } gr__edge_t;
+
+/* A segment of rays o + s a + t d, s in [-1, 1], t >= 0 (§5.6; §6.1 for
+   bounces), with the throughput it carries; inside: the rays run in the
+   material (refracted into it by a transmitting facet). */
+typedef struct gr__sheet_t {
+    double o[3], a[3], d[3], thr[3];
+    int level, inside;
+} gr__sheet_t;
+
 typedef struct gr__lscratch_t {
     gr__lg_t *lg;
     gr__plane_t *pl;
     gr__xing_t *xs;
     gr__brk_t *brk;
     gr__ivl_t *iv, *iv2;      /* intervals; iv2: after the shadow split */
+    gr__edge_t *ed;           /* the scene's edges, found once per scene */
     double *acc;              /* per plane: ratio, then lit per light */
+    gr__sheet_t *stack;       /* gr_shade_indirect's pending segments */
 } gr__lscratch_t;
 
 #define GR__LINE_MAX_PLANES GR_LINE_MAX_PLANES
@@ -4152,7 +5189,13 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
     GR__LCARVE(brk, gr__brk_t, GR_LINE_MAX_BREAKS)
     GR__LCARVE(iv, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
     GR__LCARVE(iv2, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
+    GR__LCARVE(ed, gr__edge_t, GR_LINE_MAX_EDGES)
     GR__LCARVE(acc, double, 2 * GR__LINE_MAX_PLANES * (1 + GR_MAX_LIGHTS))
+#ifndef GR_NO_INTERREFLECTION
+    GR__LCARVE(stack, gr__sheet_t, GR_INDIRECT_STACK)
+#else
+    ls->stack = NULL;
+#endif
 #undef GR__LCARVE
     return off;
 }
@@ -4161,17 +5204,12 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
 typedef struct gr__lscene_t {
     const gr_grid_t *grid;
     gr__lscratch_t ls;
-    int nlg, npl;
+    int nlg, npl, ned;         /* ned -1: more than GR_LINE_MAX_EDGES, found per segment */
     double top, bottom, scale; /* highest w, lowest w, w + h + d */
+    double box[4];             /* UV box holding every ray of the scene's segments */
     unsigned flags;
 } gr__lscene_t;
 
-/* A segment of rays o + s a + t d, s in [-1, 1], t >= 0 (§5.6; §6.1 for
-   bounces), with the throughput it carries. */
-typedef struct gr__sheet_t {
-    double o[3], a[3], d[3], thr[3];
-    int level;
-} gr__sheet_t;
 
 static void gr__sec_pt(const gr__lg_t *g, int k, double c[2])
 {
@@ -4242,11 +5280,15 @@ static int gr__on_plane(const gr__lscene_t *sc, int i, const double *x)
     return u >= -GR__LINE_ON_FACET_REL && u <= 1 + GR__LINE_ON_FACET_REL;
 }
 
-/* The first entry into the solid along o + t d, t in (0, tmax]: the plane
-   entered (its index) and *thit, or -1 when the ray leaves (§6.2). The ray
-   is cut at every crossing of a facet or the ground; the solid's state is
+/* The first change of medium along o + t d, t in (0, tmax]: for a ray in
+   the air (inside = 0) the first entry into the solid, for a ray inside
+   the material (inside = 1, refracted by a transmitting facet, §6.1) the
+   first exit from it; the plane crossed there (its index) and *thit, or
+   -1 when the ray leaves the groove layer unchanged (§6.2: upward into the
+   scene from the air, downward into the bulk from inside). The ray is cut
+   at every crossing of a facet or the ground; the solid's state is
    constant between crossings, so one point per piece decides. */
-static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d, double tmax, double *thit)
+static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d, double tmax, int inside, double *thit)
 {
     gr__xing_t *xs = sc->ls.xs;
     int i, j, m = 0;
@@ -4285,8 +5327,8 @@ static int gr__ray_hit(const gr__lscene_t *sc, const double *o, const double *d,
         double next = i < m ? xs[i].t : tmax, mid = 0.5 * (prev + next);
         if (i == m && !(tmax < HUGE_VAL)) mid = prev + sc->scale / sqrt(gr__dot3(d, d));
         for (j = 0; j < 3; j++) x[j] = o[j] + mid * d[j];
-        if (gr__solid(sc, x)) {
-            if (i == 0) { *thit = 0; return -2; } /* started inside: rounding at a touching facet */
+        if (gr__solid(sc, x) != inside) {
+            if (i == 0) { *thit = 0; return -2; } /* started in the other medium: rounding at a touching facet */
             *thit = prev;
             return xs[i - 1].plane;
         }
@@ -4329,12 +5371,20 @@ static int gr__lit(const gr__lscene_t *sc, int plane, const double *d, const dou
     gr__facing(sc, plane, d, n);
     if (!(l[2] > 0) || !(gr__dot3(n, l) > 0)) return 0;
     for (k = 0; k < 3; k++) o[k] = x[k] + off * n[k];
-    return gr__ray_hit(sc, o, l, gr__ray_tmax(sc, o, l, seglen), &th) == -1;
+    return gr__ray_hit(sc, o, l, gr__ray_tmax(sc, o, l, seglen), 0, &th) == -1;
 }
 
 /* Gather the grooves that can meet rays from the segment (box: the
    segment and where its rays cross the top and bottom, enlarged by w,
    §4.1/§5.1) and build their facet planes, nearest GR_LINE_MAX_GROOVES. */
+/* A straight, unperturbed segment: its straight approximation is
+   the groove itself, the same from every footprint (§5.6's cache keeps
+   only these). */
+static int gr__line_cacheable(const gr__groove_t *rec)
+{
+    return rec->kind == GR_PATH_POLYLINE && rec->point_count == 2 && !rec->perturb;
+}
+
 /* Groove id in its straight approximation at the point nearest c. */
 static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double reach, gr__lg_t *g)
 {
@@ -4356,6 +5406,15 @@ static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double re
     g->first_facet = rec->first_facet;
     g->lo = rec->closed ? -HUGE_VAL : -cd.param / cd.dtds;
     g->hi = rec->closed ? HUGE_VAL : (1 - cd.param) / cd.dtds;
+    if (gr__line_cacheable(rec)) { /* anchored at its first point: the same record from any footprint */
+        const double *a = grid->points_ + 2 * rec->first_point;
+        g->p[0] = a[0] + (c[0] - cd.fc[0]); /* the image shift: a whole number of tiles, 0 without wrap */
+        g->p[1] = a[1] + (c[1] - cd.fc[1]);
+        if (!rec->closed) {
+            g->lo = 0;
+            g->hi = rec->length;
+        }
+    }
     return g->f > 0; /* scaled away here otherwise */
 }
 
@@ -4415,20 +5474,20 @@ static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         double su = floor((c[0] - grid->domain[0]) / wu) * wu, sv = floor((c[1] - grid->domain[1]) / wv) * wv;
         box[0] -= su; box[2] -= su; box[1] -= sv; box[3] -= sv;
     }
-    n = gr__gather(grid, box, s->seen, s->ids);
+    n = gr__gather(grid, box, s->seen, s->ids, NULL);
     for (k = 0; k < n; k++) {
         gr__lg_t g;
         if (!gr__lg_make(grid, s->ids[k], c, reach, &g)) continue;
         if (!fill) { gr__lg_keep(sc, &g, c, reach, quad); continue; }
-        if (fill->count == GR_LINE_MAX_GROOVES || grid->grooves_[s->ids[k]].point_count != 2 ||
-            grid->grooves_[s->ids[k]].kind != GR_PATH_POLYLINE)
-            return 0;
+        if (fill->count == GR_LINE_MAX_GROOVES || !gr__line_cacheable(&grid->grooves_[s->ids[k]])) return 0;
         memcpy(fill->store_ + 16 * fill->count++, &g, sizeof g);
     }
     return 1;
 }
 
 typedef char gr__lg_fits_cache[sizeof(gr__lg_t) <= 16 * sizeof(double) ? 1 : -1];
+
+static void gr__edge_list(gr__lscene_t *sc);
 
 static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh,
                            int tight, gr_line_cache_t *cache, const double *lights, int nl)
@@ -4481,6 +5540,7 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         if (quad.p[2 * e + 1] - grid->w < box[1]) box[1] = quad.p[2 * e + 1] - grid->w;
         if (quad.p[2 * e + 1] + grid->w > box[3]) box[3] = quad.p[2 * e + 1] + grid->w;
     }
+    memcpy(sc->box, box, sizeof box);
     c[0] = 0.5 * (box[0] + box[2]);
     c[1] = 0.5 * (box[1] + box[3]);
     reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
@@ -4513,6 +5573,11 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         }
     } else {
         gr__line_gather(grid, s, sc, box, c, reach, tight ? &quad : NULL, NULL);
+    }
+    for (i = 1; i < sc->nlg; i++) { /* in groove order, however they were found (cache or grid) */
+        gr__lg_t x = sc->ls.lg[i];
+        for (k = i; k > 0 && sc->ls.lg[k - 1].groove > x.groove; k--) sc->ls.lg[k] = sc->ls.lg[k - 1];
+        sc->ls.lg[k] = x;
     }
     /* planes: the ground, then every facet of every groove (§3) */
     memset(&sc->ls.pl[0], 0, sizeof sc->ls.pl[0]);
@@ -4573,6 +5638,7 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
             sc->npl++;
         }
     }
+    gr__edge_list(sc);
 }
 
 /* sin²α between the segment (UV part of a) and a 3D edge direction D seen
@@ -4593,20 +5659,6 @@ static double gr__edge_sin2(const double *a, const double *dir, const double *D)
     return aa > 0 && ee > 0 ? cr * cr / (aa * ee) : 0;
 }
 
-/* The segment parameter where the rays meet both planes n1.x = h1 and
-   n2.x = h2 (a line of the two planes, §5.3): 2x2 in (s, t). */
-static int gr__sheet_two_planes(const gr__sheet_t *sh, const double *n1, double h1, const double *n2, double h2,
-                                double *s, double *t)
-{
-    double a11 = gr__dot3(n1, sh->a), a12 = gr__dot3(n1, sh->d), a21 = gr__dot3(n2, sh->a), a22 = gr__dot3(n2, sh->d);
-    double r1 = h1 - gr__dot3(n1, sh->o), r2 = h2 - gr__dot3(n2, sh->o), det = a11 * a22 - a12 * a21;
-    double sc = sqrt(gr__dot3(n1, n1) * gr__dot3(n2, n2) * gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d));
-    if (!(fabs(det) > 1e-14 * sc)) return 0;
-    *s = (r1 * a22 - a12 * r2) / det;
-    *t = (a11 * r2 - r1 * a21) / det;
-    return 1;
-}
-
 static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int plane)
 {
     if (!(s > -1 && s < 1)) return;
@@ -4617,17 +5669,16 @@ static void gr__brk_add(gr__lscene_t *sc, int *nb, double s, double sin2, int pl
     (*nb)++;
 }
 
-/* An edge line of the scene: a point q and direction D, valid on the
-   planes (p1, p2) it bounds (p2 = -1 for a section point's line). */
-typedef struct gr__edge_t { double q[3], D[3]; int p1, p2; } gr__edge_t;
 
 /* Walks the edge lines: every section point's line, then the line of
    each pair of planes i < j of different grooves (or with an end wall). */
-typedef struct gr__edge_it_t { int g, k, i, j; } gr__edge_it_t;
+typedef struct gr__edge_it_t { int g, k, i, j, n; gr__edge_t e; } gr__edge_it_t;
 
 static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *e)
 {
     int m;
+    e->l0 = -HUGE_VAL;
+    e->l1 = HUGE_VAL;
     while (it->g < sc->nlg) { /* a section point swept along T */
         const gr__lg_t *lg = &sc->ls.lg[it->g];
         double c[2];
@@ -4662,6 +5713,83 @@ static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *
     return 0;
 }
 
+/* Narrow e's λ range to where it lies on plane i's facet (its section
+   segment, padded by GR__LINE_ON_FACET_REL, as gr__on_plane); the ground
+   and end walls leave it (their holes are the solid's business). 0 when
+   the range is empty. */
+static int gr__edge_on_facet(const gr__lscene_t *sc, int i, gr__edge_t *e)
+{
+    const gr__plane_t *p;
+    const gr__lg_t *g;
+    double bw[2], db, dw, l2, u0, u1, lo, hi, eps = GR__LINE_ON_FACET_REL;
+    if (i < 0) return 1;
+    p = &sc->ls.pl[i];
+    if (p->lg < 0 || p->cap) return 1;
+    g = &sc->ls.lg[p->lg];
+    gr__to_groove(g, e->q, bw);
+    u0 = gr__facet_param(p, bw);
+    db = p->c1[0] - p->c0[0];
+    dw = p->c1[1] - p->c0[1];
+    l2 = db * db + dw * dw;
+    u1 = ((g->bn[0] * e->D[0] + g->bn[1] * e->D[1]) * db + e->D[2] * dw) / l2;
+    if (u1 == 0) return u0 >= -eps && u0 <= 1 + eps;
+    lo = (-eps - u0) / u1;
+    hi = (1 + eps - u0) / u1;
+    if (lo > hi) { double t = lo; lo = hi; hi = t; }
+    if (lo > e->l0) e->l0 = lo;
+    if (hi < e->l1) e->l1 = hi;
+    return e->l0 <= e->l1;
+}
+
+/* Narrow e's λ range to the scene's box (no ray of its segments meets an
+   edge, or passes one toward a light, outside it). 0 when empty. */
+static int gr__edge_in_box(const gr__lscene_t *sc, gr__edge_t *e)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        double lo, hi;
+        if (e->D[k] == 0) {
+            if (e->q[k] < sc->box[k] || e->q[k] > sc->box[k + 2]) return 0;
+            continue;
+        }
+        lo = (sc->box[k] - e->q[k]) / e->D[k];
+        hi = (sc->box[k + 2] - e->q[k]) / e->D[k];
+        if (lo > hi) { double t = lo; lo = hi; hi = t; }
+        if (lo > e->l0) e->l0 = lo;
+        if (hi < e->l1) e->l1 = hi;
+    }
+    return e->l0 <= e->l1;
+}
+
+/* The next edge that exists (lies on both its facets somewhere in the
+   scene's box): from the scene's list, or found afresh (into it->e) when
+   the list overflowed. NULL at the end. */
+static const gr__edge_t *gr__edge_fetch(const gr__lscene_t *sc, gr__edge_it_t *it)
+{
+    if (sc->ned >= 0) return it->n < sc->ned ? &sc->ls.ed[it->n++] : NULL;
+    while (gr__edge_next(sc, it, &it->e))
+        if (gr__edge_on_facet(sc, it->e.p1, &it->e) && gr__edge_on_facet(sc, it->e.p2, &it->e) &&
+            gr__edge_in_box(sc, &it->e))
+            return &it->e;
+    return NULL;
+}
+
+/* The scene's edge list (once per scene: every segment of a footprint
+   and both its passes reuse it). */
+static void gr__edge_list(gr__lscene_t *sc)
+{
+    gr__edge_it_t it;
+    const gr__edge_t *e;
+    int n = 0;
+    memset(&it, 0, sizeof it);
+    sc->ned = -1; /* fetch afresh while filling */
+    while ((e = gr__edge_fetch(sc, &it)) != NULL) {
+        if (n == GR_LINE_MAX_EDGES) return; /* overflow: stays -1 */
+        sc->ls.ed[n++] = *e;
+    }
+    sc->ned = n;
+}
+
 /* Cut the segment where its first surface can change (seen = NULL: §5.6,
    the 1D version of §5.2-5.3), or where a shadow boundary can fall on a
    facet it sees (seen[m] != 0; §5.4: every edge's shadow along each
@@ -4669,47 +5797,74 @@ static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *
 static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl,
                             const unsigned char *seen, int nb)
 {
-    int m, l;
-    gr__edge_t e;
+    int m, l, v;
+    const gr__edge_t *ep;
     gr__edge_it_t it;
+    double nS[3], ns2, pad = GR__LINE_ON_FACET_REL * sc->scale;
+    /* the seen planes, with their dot products against the segment's
+       a, d and o, for the 2x2 system of a ray meeting two planes, per plane once) */
+    int vis[GR_LINE_MAX_PLANES], nvis = 0;
+    double pv[GR_LINE_MAX_PLANES][4], aadd = gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d);
+    gr__cross3(sh->a, sh->d, nS); /* the normal of the segment's plane of rays */
+    ns2 = gr__dot3(nS, nS);
+    for (m = 0; seen && m < sc->npl; m++)
+        if (seen[m]) {
+            const gr__plane_t *p = &sc->ls.pl[m];
+            pv[nvis][0] = gr__dot3(p->n, sh->a);
+            pv[nvis][1] = gr__dot3(p->n, sh->d);
+            pv[nvis][2] = p->h - gr__dot3(p->n, sh->o);
+            pv[nvis][3] = gr__dot3(p->n, p->n) * aadd;
+            vis[nvis++] = m;
+        }
     memset(&it, 0, sizeof it);
-    while (gr__edge_next(sc, &it, &e)) {
-        double s, t, x[3], nD[3];
-        if (seen) {
-        } else if (e.p1 < 0) {
-            /* a section point's line: o + s a + t d = q + λ D (Cramer) */
-            double m0[3], det, rhs[3];
-            gr__cross3(sh->d, e.D, m0);
-            det = -gr__dot3(sh->a, m0);
-            for (m = 0; m < 3; m++) rhs[m] = e.q[m] - sh->o[m];
-            if (fabs(det) > 1e-14 * sqrt(gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d) * gr__dot3(e.D, e.D))) {
-                double c1[3];
-                s = -gr__dot3(rhs, m0) / det;
-                gr__cross3(rhs, e.D, c1);
-                t = -gr__dot3(sh->a, c1) / det;
+    while ((ep = gr__edge_fetch(sc, &it)) != NULL) {
+        const gr__edge_t e = *ep;
+        double s, t, x[3], r[3], c[3], nD[3], dd = gr__dot3(e.D, e.D), den = gr__dot3(nS, e.D);
+        if (!seen && fabs(den) > 1e-14 * sqrt(ns2 * dd)) {
+            /* where the edge pierces the plane of rays: x = q + λ D = o + s a + t d */
+            double lam;
+            for (m = 0; m < 3; m++) r[m] = sh->o[m] - e.q[m];
+            lam = gr__dot3(nS, r) / den;
+            if (lam >= e.l0 && lam <= e.l1) {
+                for (m = 0; m < 3; m++) r[m] = e.q[m] + lam * e.D[m] - sh->o[m];
+                gr__cross3(r, sh->d, c);
+                s = gr__dot3(c, nS) / ns2;
+                gr__cross3(sh->a, r, c);
+                t = gr__dot3(c, nS) / ns2;
                 if (t >= 0) gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
             }
-        } else if (gr__sheet_two_planes(sh, sc->ls.pl[e.p1].n, sc->ls.pl[e.p1].h, sc->ls.pl[e.p2].n,
-                                        sc->ls.pl[e.p2].h, &s, &t) && t >= 0) {
-            for (m = 0; m < 3; m++) x[m] = sh->o[m] + s * sh->a[m] + t * sh->d[m];
-            if (gr__on_plane(sc, e.p1, x) && gr__on_plane(sc, e.p2, x))
-                gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, e.D), -1);
         }
         /* §5.4: the edge's shadow along each light on each seen facet */
         for (l = 0; seen && l < nl; l++) {
             const double *L = lights + 3 * l;
-            double hP;
+            double nd2, lpad = pad / sqrt(dd), a11, a12, r1;
             if (!(L[2] > 0)) continue;
-            gr__cross3(e.D, L, nD);
-            if (!(gr__dot3(nD, nD) > 1e-24 * gr__dot3(e.D, e.D))) continue;
-            hP = gr__dot3(nD, e.q);
-            for (m = 0; m < sc->npl; m++) {
-                double dir[3];
+            gr__cross3(e.D, L, nD); /* the plane through the edge along L */
+            nd2 = gr__dot3(nD, nD);
+            if (!(nd2 > 1e-24 * dd)) continue;
+            a11 = gr__dot3(nD, sh->a);
+            a12 = gr__dot3(nD, sh->d);
+            r1 = gr__dot3(nD, e.q) - gr__dot3(nD, sh->o);
+            for (v = 0; v < nvis; v++) {
+                double dir[3], lam, mu, det = a11 * pv[v][1] - a12 * pv[v][0];
                 int k;
-                if (!seen[m] || m == e.p1 || m == e.p2) continue;
-                if (!gr__sheet_two_planes(sh, nD, hP, sc->ls.pl[m].n, sc->ls.pl[m].h, &s, &t) || t < 0) continue;
+                m = vis[v];
+                if (m == e.p1 || m == e.p2) continue;
+                /* the ray (s, t) meeting this plane and facet m: Cramer on n.(o + s a + t d) = h */
+                if (!(fabs(det) > 1e-14 * sqrt(nd2 * pv[v][3]))) continue;
+                s = (r1 * pv[v][1] - a12 * pv[v][2]) / det;
+                t = (a11 * pv[v][2] - r1 * pv[v][0]) / det;
+                if (t < 0 || !(s > -1 && s < 1)) continue;
                 for (k = 0; k < 3; k++) x[k] = sh->o[k] + s * sh->a[k] + t * sh->d[k];
                 if (!gr__on_plane(sc, m, x)) continue;
+                /* x = q + λ D + μ L: cast by the edge's existing part
+                   (λ in range), which lies toward the light (μ <= 0) */
+                for (k = 0; k < 3; k++) r[k] = x[k] - e.q[k];
+                gr__cross3(r, L, c);
+                lam = gr__dot3(c, nD) / nd2;
+                gr__cross3(e.D, r, c);
+                mu = gr__dot3(c, nD) / nd2;
+                if (lam < e.l0 - lpad || lam > e.l1 + lpad || mu > pad) continue;
                 gr__cross3(nD, sc->ls.pl[m].n, dir);
                 gr__brk_add(sc, &nb, s, gr__edge_sin2(sh->a, sh->d, dir), m);
             }
@@ -4756,9 +5911,19 @@ static void gr__classify(const gr__lscene_t *sc, const gr__sheet_t *sh, gr__ivl_
     double o[3], th, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), sm = 0.5 * (iv->s0 + iv->s1);
     int k;
     for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
-    iv->plane = gr__ray_hit(sc, o, sh->d, gr__ray_tmax(sc, o, sh->d, seglen), &th);
+    iv->plane = gr__ray_hit(sc, o, sh->d, gr__ray_tmax(sc, o, sh->d, seglen), sh->inside, &th);
     if (iv->plane == -2) iv->plane = -1; /* inside at the start: counted as leaving */
     iv->lit = 0;
+}
+
+/* The coalescing distance of a segment's breakpoints (GR__LINE_SNAP). */
+static double gr__sheet_snap(const gr__lscene_t *sc, const gr__sheet_t *sh)
+{
+    double mag = fabs(sh->o[0]), al = sqrt(gr__dot3(sh->a, sh->a));
+    if (fabs(sh->o[1]) > mag) mag = fabs(sh->o[1]);
+    if (fabs(sh->o[2]) > mag) mag = fabs(sh->o[2]);
+    mag += GR__LINE_TRAVEL_REL * sc->scale;
+    return al > 0 ? GR__LINE_SNAP + GR__LINE_SNAP_ULPS * DBL_EPSILON * mag / al : GR__LINE_SNAP;
 }
 
 /* §5.4 on one segment: split the seen intervals at the shadow boundaries
@@ -4767,7 +5932,7 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
 {
     gr__ivl_t *iv = sc->ls.iv, *out = sc->ls.iv2;
     unsigned char seen[GR_LINE_MAX_PLANES];
-    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
+    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a)), snap = gr__sheet_snap(sc, sh);
     int i, k, nb, b = 0, m = 0;
     memset(seen, 0, (size_t)sc->npl);
     for (i = 0; i < n; i++)
@@ -4782,8 +5947,8 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
             int j;
             if (iv[i].plane >= 0 && m + (n - i) < GR_LINE_MAX_BREAKS + 1) {
                 for (j = b; j < nb && sc->ls.brk[j].s < iv[i].s1; j++)
-                    if (sc->ls.brk[j].plane == iv[i].plane && sc->ls.brk[j].s - s0 > GR__LINE_SNAP &&
-                        iv[i].s1 - sc->ls.brk[j].s > GR__LINE_SNAP) {
+                    if (sc->ls.brk[j].plane == iv[i].plane && sc->ls.brk[j].s - s0 > snap &&
+                        iv[i].s1 - sc->ls.brk[j].s > snap) {
                         s1 = sc->ls.brk[j].s;
                         next = sc->ls.brk[j].sin2;
                         b = j + 1;
@@ -4812,6 +5977,25 @@ static int gr__shadow_split(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
     return m;
 }
 
+/* Intervals sorted by length, longest first (by_len), or by position:
+   insertion sort for short lists, qsort beyond. */
+static int gr__cmp_ivl_len(const void *a, const void *b);
+static int gr__cmp_ivl_pos(const void *a, const void *b);
+static void gr__ivl_sort(gr__ivl_t *iv, int n, int by_len)
+{
+    int i, j;
+    if (n > GR__LINE_SMALL_SORT) {
+        qsort(iv, (size_t)n, sizeof *iv, by_len ? gr__cmp_ivl_len : gr__cmp_ivl_pos);
+        return;
+    }
+    for (i = 1; i < n; i++) {
+        gr__ivl_t x = iv[i];
+        double kx = by_len ? x.s0 - x.s1 : x.s0;
+        for (j = i; j > 0 && (by_len ? iv[j - 1].s0 - iv[j - 1].s1 : iv[j - 1].s0) > kx; j--) iv[j] = iv[j - 1];
+        iv[j] = x;
+    }
+}
+
 static int gr__cmp_ivl_len(const void *a, const void *b)
 {
     const gr__ivl_t *x = (const gr__ivl_t *)a, *y = (const gr__ivl_t *)b;
@@ -4833,11 +6017,11 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
 {
     gr__ivl_t *iv = sc->ls.iv;
     int nb = sc->nlg ? gr__sheet_breaks(sc, sh, lights, nl, NULL, 0) : 0, n = 0, i;
-    double last = -1, sin2 = 0, done = 0;
+    double last = -1, sin2 = 0, done = 0, snap = gr__sheet_snap(sc, sh);
     gr__brk_sort(sc, nb);
     for (i = 0; i <= nb; i++) {
         double s = i < nb ? sc->ls.brk[i].s : 1;
-        if (s - last <= GR__LINE_SNAP) { /* coalesce: keep the steepest edge */
+        if (s - last <= snap) { /* coalesce: keep the steepest edge */
             if (i < nb && sc->ls.brk[i].sin2 > sin2) sin2 = sc->ls.brk[i].sin2;
             continue;
         }
@@ -4850,14 +6034,14 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
         last = s;
         sin2 = i < nb ? sc->ls.brk[i].sin2 : 0;
     }
-    if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_len);
+    if (tol > 0) gr__ivl_sort(iv, n, 1); /* longest first, for the early exit */
     for (i = 0; i < n; i++) {
         if (tol > 0 && done >= 2 * (1 - tol)) { if (st) st->early_exits++; break; }
         gr__classify(sc, sh, &iv[i]);
         done += iv[i].s1 - iv[i].s0;
         if (st) st->evaluated++;
     }
-    if (n > 1) qsort(iv, (size_t)n, sizeof *iv, gr__cmp_ivl_pos);
+    if (tol > 0) gr__ivl_sort(iv, n, 0);
     if (st) { st->segments++; st->intervals += n; } /* (view intervals; shadows split them below) */
     if (nl > 0) n = gr__shadow_split(sc, sh, lights, nl, n);
     *weight = 0;
@@ -4867,24 +6051,57 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
     return n;
 }
 
-/* The n line samples of a footprint (§5.6), rays coming down along -E
-   from above everything. */
-static void gr__top_sheet(const gr_grid_t *grid, const gr_footprint_t *fp, int j, int n, gr__sheet_t *sh)
+/* Line j of the n line samples of a footprint (§5.6), rays coming down
+   along -E from above everything. The lines come in two families: the
+   first ceil(n/2) run along A1, the other floor(n/2) along A2, each
+   family spread across the footprint as parallel chords at the midpoints
+   of equal strata of the other axis (offset c_i = -1 + (2i + 1)/count).
+   n = 2 is the paper's pair of axes through F; with more lines each
+   family is a stratified quadrature of the footprint's area: a chord
+   gives the exact length shares at its offset, and the family's answer is
+   the area-weighted mean of its chords, so its error falls with the
+   number of chords (lines through F at rotated angles would converge to a
+   density peaked at F instead). The chord spans the footprint: the full
+   side for the parallelogram, |a| <= sqrt(1 - c^2) for the ellipse
+   (query.ellipse), whose strata weigh their exact area (the semicircle
+   law). Returns the chord's weight within its family (the weights of a
+   family sum to 1); *family gets 0 or 1. */
+static double gr__top_sheet(const gr_grid_t *grid, const gr_query_t *q, int j, int n, gr__sheet_t *sh, int *family)
 {
-    double ang = 3.14159265358979323846 * j / n, c = cos(ang), s = sin(ang), ew = fp->view[2], lift;
-    int k;
+    const gr_footprint_t *fp = &q->footprint;
+    int n0 = (n + 1) / 2, fam = j < n0 ? 0 : 1, count = fam ? n - n0 : n0, i = fam ? j - n0 : j, k;
+    const double *along = fam ? fp->axis2 : fp->axis1, *across = fam ? fp->axis1 : fp->axis2;
+    double lo = -1 + 2.0 * i / count, hi = -1 + 2.0 * (i + 1) / count, c = 0.5 * (lo + hi), half = 1, weight;
+    double ew = fp->view[2], lift, f[2], scale = grid->h + grid->w + grid->d;
+    if (q->ellipse) {
+        half = sqrt(1 - c * c);
+        weight = gr__disc_cdf(hi) - gr__disc_cdf(lo);
+    } else {
+        weight = 1.0 / count;
+    }
     if (ew < GR__GRAZING_MIN_W) ew = GR__GRAZING_MIN_W;
-    lift = (grid->h + grid->w + grid->d) / ew; /* start above every protrusion */
-    sh->o[0] = fp->center[0] + lift * fp->view[0];
-    sh->o[1] = fp->center[1] + lift * fp->view[1];
+    /* start just above every protrusion (GR__LINE_CLEAR_REL over the top),
+       but no farther from F than half the rays' reach (GR__LINE_TRAVEL_REL
+       scene scales), so grazing views keep their rays near the footprint
+       (a protrusion farther along the view is not seen then) */
+    lift = (grid->h + GR__LINE_CLEAR_REL * scale) / ew;
+    if (lift > 0.5 * GR__LINE_TRAVEL_REL * scale) lift = 0.5 * GR__LINE_TRAVEL_REL * scale;
+    f[0] = fp->center[0] + c * across[0];
+    f[1] = fp->center[1] + c * across[1];
+    sh->o[0] = f[0] + lift * fp->view[0];
+    sh->o[1] = f[1] + lift * fp->view[1];
     sh->o[2] = lift * fp->view[2];
-    sh->a[0] = c * fp->axis1[0] + s * fp->axis2[0];
-    sh->a[1] = c * fp->axis1[1] + s * fp->axis2[1];
+    sh->a[0] = half * along[0];
+    sh->a[1] = half * along[1];
     sh->a[2] = 0;
     for (k = 0; k < 3; k++) sh->d[k] = -fp->view[k];
     sh->thr[0] = sh->thr[1] = sh->thr[2] = 1;
     sh->level = 0;
+    sh->inside = 0;
+    *family = fam;
+    return weight;
 }
+
 
 /* Shared argument checks of gr_query_lines / gr_shade_indirect. */
 static gr_result_t gr__line_check(const gr_grid_t *grid, const gr_query_t *q, void *scratch, size_t bytes)
@@ -4918,6 +6135,17 @@ static void gr__line_layout(const gr_grid_t *grid, void *scratch, gr__scratch_t 
 #endif /* line-sample engine */
 
 #ifndef GR_NO_LINE_SAMPLES
+/* The sheet whose scene (gr__line_scene, not tight) holds every top-level
+   line's rays: centred on F, spanning the footprint's UV box. */
+static void gr__footprint_sheet(const gr_grid_t *grid, const gr_query_t *q, gr__sheet_t *all)
+{
+    const gr_footprint_t *fp = &q->footprint;
+    int fam;
+    (void)gr__top_sheet(grid, q, 0, 1, all, &fam);
+    all->a[0] = fabs(fp->axis1[0]) + fabs(fp->axis2[0]);
+    all->a[1] = fabs(fp->axis1[1]) + fabs(fp->axis2[1]);
+}
+
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats)
 {
@@ -4932,8 +6160,8 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     gr__lscene_t sc;
     gr__sheet_t sh;
     const gr_footprint_t *fp;
-    double wsum = 0, tol, *acc;
-    int n, j, i, k, nl, stride, built = 0;
+    double wfam[2] = {0, 0}, tol, *acc;
+    int n, j, i, k, nl, stride;
     gr_result_t r;
     if (!list) return GR_ERR_INVALID_ARG;
     list->count = 0;
@@ -4951,54 +6179,50 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     stride = 1 + nl;
     gr__line_layout(grid, scratch, &s, &sc);
     acc = sc.ls.acc;
-    /* two passes: Jones & Perry weights, then (if no segment crossed an
-       edge) plain averages; acc holds weighted sums in [0, npl), plain
-       ones after them */
+    {
+        gr__sheet_t all;
+        gr__footprint_sheet(grid, query, &all); /* every line shares the footprint's scene */
+        gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl);
+    }
+    /* acc holds each family's area-weighted sums (family f at
+       [f npl, (f + 1) npl)); the families combine by their mean Jones &
+       Perry weights, or plainly when neither crosses an edge */
+    memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
     for (j = 0; j < n; j++) {
-        double wj, cl;
-        int m;
-        gr__top_sheet(grid, fp, j, n, &sh);
-        if (!built) { /* every top-level segment shares the footprint's scene */
-            gr__sheet_t all = sh;
-            double ext = sqrt(fp->axis1[0] * fp->axis1[0] + fp->axis1[1] * fp->axis1[1] + fp->axis2[0] * fp->axis2[0] +
-                              fp->axis2[1] * fp->axis2[1]);
-            all.a[0] = ext; /* a box covering all rotations: the footprint's circumscribed extent */
-            all.a[1] = ext;
-            gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl); /* all rotations: not tight */
-            memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
-            built = 1;
-        }
+        double wj, cl, wa;
+        int m, fam;
+        wa = gr__top_sheet(grid, query, j, n, &sh, &fam);
         m = gr__sheet_eval(&sc, &sh, query->lights, nl, tol, &wj, &cl, stats);
         if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = wj;
-        wsum += wj;
+        wfam[fam] += wa * wj;
         for (i = 0; i < m; i++) {
             const gr__ivl_t *v = &sc.ls.iv[i];
-            double len;
-            int base;
+            double len, *a;
+            int q;
             if (v->plane < 0 || !(cl > 0)) continue;
-            len = (v->s1 - v->s0) / (2 * cl); /* the unclassified rest shared in proportion */
-            for (k = 0; k < 2; k++) {
-                double *a;
-                int q;
-                base = (k * sc.npl + v->plane) * stride;
-                a = acc + base;
-                a[0] += (k ? 1.0 : wj) * len;
-                for (q = 0; q < nl; q++)
-                    if (v->lit & (1u << q)) a[1 + q] += (k ? 1.0 : wj) * len;
-            }
+            len = wa * (v->s1 - v->s0) / (2 * cl); /* the unclassified rest shared in proportion */
+            a = acc + (fam * sc.npl + v->plane) * stride;
+            a[0] += len;
+            for (q = 0; q < nl; q++)
+                if (v->lit & (1u << q)) a[1 + q] += len;
         }
     }
     {
-        int half = wsum > 0 ? 0 : 1;
-        double norm = wsum > 0 ? wsum : n;
+        int nfam = n > 1 ? 2 : 1, f;
+        double wf[2], wsum = wfam[0] + wfam[1];
+        for (f = 0; f < 2; f++) wf[f] = f >= nfam ? 0 : wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
         for (i = 0; i < sc.npl; i++) {
-            int base = (half * sc.npl + i) * stride;
             const gr__plane_t *p = &sc.ls.pl[i];
             gr__mfacet_t mf;
-            double lit[GR_MAX_LIGHTS], ratio;
-            ratio = acc[base] / norm;
+            double lit[GR_MAX_LIGHTS], ratio = 0;
+            for (k = 0; k < nl; k++) lit[k] = 0;
+            for (f = 0; f < nfam; f++) {
+                const double *a = acc + (f * sc.npl + i) * stride;
+                ratio += wf[f] * a[0];
+                for (k = 0; k < nl; k++) lit[k] += wf[f] * a[1 + k];
+            }
             if (!(ratio > 0)) continue;
-            for (k = 0; k < nl; k++) lit[k] = acc[base + 1 + k] / acc[base];
+            for (k = 0; k < nl; k++) lit[k] /= ratio;
             for (k = 0; k < 3; k++) mf.n[k] = p->n[k];
             mf.groove = p->lg < 0 ? -1 : sc.ls.lg[p->lg].groove;
             mf.facet = p->facet;
@@ -5013,6 +6237,7 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
         }
     list->flags |= sc.flags;
     list->grooves = sc.nlg;
+    if (stats && (sc.flags & GR_LIST_LINE_APPROX)) stats->flags |= GR_STATS_LINE_APPROX;
     gr__list_finish(list, nl);
     return GR_OK;
 }
@@ -5043,24 +6268,72 @@ static void gr__to_host(const gr_indirect_t *ind, const double *origin, const do
     for (k = 0; k < 3; k++) rgb[k] += thr[k] * frac * c[k];
 }
 
+/* Unpolarised Fresnel reflectance at an interface met at cos ci > 0, eta
+   = n_from / n_to; 1 under total internal reflection. *ct: the
+   transmitted cosine (0 under total internal reflection). */
+static double gr__fresnel(double ci, double eta, double *ct)
+{
+    double st2 = eta * eta * (1 - ci * ci), rs, rp;
+    if (st2 >= 1) { *ct = 0; return 1; }
+    *ct = sqrt(1 - st2);
+    rs = (eta * ci - *ct) / (eta * ci + *ct);
+    rp = (ci - eta * *ct) / (ci + eta * *ct);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+/* The pending-segment stack of gr_shade_indirect() (§6.1's recursion). */
+typedef struct gr__stack_t { gr__sheet_t *s; int top, full; } gr__stack_t;
+
+/* Push the piece [x0, x1] (3D, on the facet) as the next footprint, seen
+   along dir in the given medium, carrying thr; when the stack is full the
+   piece leaves along dir unexamined (§6.2's host) and the stack says so. */
+static void gr__push_piece(const gr_indirect_t *ind, gr__stack_t *st, const double *x0, const double *x1,
+                           const double *side, const double *dir, const double *thr, int level, int inside,
+                           double *rgb)
+{
+    double mid[3];
+    int k;
+    for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + side[k];
+    if (st->top == GR_INDIRECT_STACK) {
+        st->full = 1;
+        gr__to_host(ind, mid, dir, level, inside, thr, 1, rgb);
+        return;
+    }
+    {
+        gr__sheet_t *c = &st->s[st->top++];
+        for (k = 0; k < 3; k++) {
+            c->o[k] = mid[k];
+            c->a[k] = 0.5 * (x1[k] - x0[k]);
+            c->d[k] = dir[k];
+            c->thr[k] = thr[k];
+        }
+        c->level = level;
+        c->inside = inside;
+    }
+}
+
 /* One evaluated segment: direct terms, then the pieces that bounce
-   (§6.1: each facet run's visible piece, seen along E_r, becomes the next
-   footprint) pushed on the stack, and what leaves to the host (§6.2). */
+   (§6.1: each facet run's visible piece becomes the next footprint, seen
+   along the mirror direction E_r and, for a transmitting facet, along the
+   refracted one E_t), and what leaves to the host (§6.2). */
 static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, const gr_query_t *q,
-                       const gr_indirect_t *ind, gr__sheet_t *stack, int *top, double *rgb)
+                       const gr_indirect_t *ind, gr__stack_t *stack, double *rgb)
 {
     const gr__ivl_t *iv = sc->ls.iv;
-    double e[3], esc = 0, esc_s = 0, off = GR__LINE_OFFSET_REL * sc->scale;
+    double e[3], dd[3], esc = 0, esc_s = 0, off = GR__LINE_OFFSET_REL * sc->scale;
     int i, j, k, l;
-    for (k = 0; k < 3; k++) e[k] = -sh->d[k];
     {
-        double len = sqrt(gr__dot3(e, e));
-        for (k = 0; k < 3; k++) e[k] /= len;
+        double len = sqrt(gr__dot3(sh->d, sh->d));
+        for (k = 0; k < 3; k++) {
+            dd[k] = sh->d[k] / len;
+            e[k] = -dd[k];
+        }
     }
     for (i = 0; i < m; i = j) {
         const gr__plane_t *p;
         const gr_specular_t *sp;
-        double frac, x0[3], x1[3], mid[3], nf[3];
+        double frac, x0[3], x1[3], nf[3], wr[3], wt[3], dr[3], dt[3], up[3], down[3], ci, ct, eta, F;
+        int tir, thin;
         /* a run of intervals on one facet */
         for (j = i + 1; j < m && iv[j].plane == iv[i].plane; j++) {}
         frac = (iv[j - 1].s1 - iv[i].s0) / 2;
@@ -5071,8 +6344,8 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
             continue;
         }
         p = &sc->ls.pl[iv[i].plane];
-        gr__facing(sc, iv[i].plane, sh->d, nf);
-        if (ind->brdf)
+        gr__facing(sc, iv[i].plane, sh->d, nf); /* toward the side the rays come from */
+        if (ind->brdf && !sh->inside) /* direct light: on the outside only */
             for (l = i; l < j; l++)
                 for (k = 0; k < q->light_count; k++) {
                     double c[3] = {0, 0, 0}, fl = (iv[l].s1 - iv[l].s0) / 2;
@@ -5083,47 +6356,46 @@ static void gr__bounce(const gr__lscene_t *sc, const gr__sheet_t *sh, int m, con
                 }
         sp = gr__spec(ind, p->refl);
         if (sh->level >= ind->depth || !sp) continue;
+        /* the bounce weights: Fresnel or the constants, thin or solid */
+        ci = -gr__dot3(dd, nf);
+        eta = sp->ior > 0 ? sp->ior : GR__DEFAULT_IOR;
+        eta = sh->inside ? eta : 1 / eta;
+        thin = sp->thin != 0;
+        F = gr__fresnel(ci, eta, &ct);
+        tir = !thin && ct == 0;
+        for (k = 0; k < 3; k++) {
+            if (sp->fresnel) {
+                double R = thin ? 2 * F / (1 + F) : F;
+                wr[k] = sp->kr[k] * R;
+                wt[k] = tir ? 0 : sp->kt[k] * (1 - R);
+            } else {
+                wr[k] = sp->kr[k] + (tir ? sp->kt[k] : 0);
+                wt[k] = tir ? 0 : sp->kt[k];
+            }
+            wr[k] *= sh->thr[k] * frac;
+            wt[k] *= sh->thr[k] * frac;
+            dr[k] = dd[k] + 2 * ci * nf[k];
+            dt[k] = thin ? dd[k] : eta * dd[k] + (eta * ci - ct) * nf[k];
+            up[k] = off * nf[k];
+            down[k] = -off * nf[k];
+        }
         gr__sheet_point(sc, sh, iv[i].plane, iv[i].s0, x0);
         gr__sheet_point(sc, sh, iv[i].plane, iv[j - 1].s1, x1);
-        for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + off * nf[k];
-        if (gr__nonzero3(sp->kr)) {
-            double dn = gr__dot3(sh->d, nf), dr[3];
-            for (k = 0; k < 3; k++) dr[k] = sh->d[k] - 2 * dn * nf[k];
-            if (*top < GR__LINE_STACK) {
-                gr__sheet_t *c = &stack[(*top)++];
-                for (k = 0; k < 3; k++) {
-                    c->o[k] = mid[k];
-                    c->a[k] = 0.5 * (x1[k] - x0[k]);
-                    c->d[k] = dr[k];
-                    c->thr[k] = sh->thr[k] * sp->kr[k] * frac;
-                }
-                c->level = sh->level + 1;
-            } else { /* stack full: the piece leaves along E_r unexamined */
-                double t3[3];
-                for (k = 0; k < 3; k++) t3[k] = sh->thr[k] * sp->kr[k];
-                gr__to_host(ind, mid, dr, sh->level + 1, 0, t3, frac, rgb);
-            }
-        }
-        if (gr__nonzero3(sp->kt)) { /* refraction into the material (Snell), to the host */
-            double eta = 1 / (sp->ior > 0 ? sp->ior : GR__DEFAULT_IOR), dl = sqrt(gr__dot3(sh->d, sh->d));
-            double dd[3], ci, kk, dt[3], t3[3], in[3];
-            for (k = 0; k < 3; k++) dd[k] = sh->d[k] / dl;
-            ci = -gr__dot3(dd, nf);
-            kk = 1 - eta * eta * (1 - ci * ci);
-            if (kk >= 0 && ci > 0) {
-                for (k = 0; k < 3; k++) {
-                    dt[k] = eta * dd[k] + (eta * ci - sqrt(kk)) * nf[k];
-                    t3[k] = sh->thr[k] * sp->kt[k];
-                    in[k] = mid[k] - 2 * off * nf[k];
-                }
-                gr__to_host(ind, in, dt, sh->level + 1, 1, t3, frac, rgb);
+        if (gr__nonzero3(wr)) gr__push_piece(ind, stack, x0, x1, up, dr, wr, sh->level + 1, sh->inside, rgb);
+        if (gr__nonzero3(wt)) {
+            if (thin) { /* through the pane, to the host behind it */
+                double mid[3];
+                for (k = 0; k < 3; k++) mid[k] = 0.5 * (x0[k] + x1[k]) + down[k];
+                gr__to_host(ind, mid, dt, sh->level + 1, !sh->inside, wt, 1, rgb);
+            } else {
+                gr__push_piece(ind, stack, x0, x1, down, dt, wt, sh->level + 1, !sh->inside, rgb);
             }
         }
     }
-    if (esc > 0) {
+    if (esc > 0) { /* §6.2: 1 - Σ r_i leaves: up into the scene, or into the bulk */
         double o[3], sm = esc_s / esc;
         for (k = 0; k < 3; k++) o[k] = sh->o[k] + sm * sh->a[k];
-        gr__to_host(ind, o, sh->d, sh->level, 0, sh->thr, esc, rgb);
+        gr__to_host(ind, o, sh->d, sh->level, sh->inside, sh->thr, esc, rgb);
     }
 }
 
@@ -5132,10 +6404,11 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
 {
     gr__scratch_t s;
     gr__lscene_t sc;
-    gr__sheet_t stack[GR__LINE_STACK];
+    gr__stack_t stack;
     const gr_footprint_t *fp;
-    double wsum = 0, plain[3] = {0, 0, 0}, tol;
-    int n, j, k;
+    double wfam[2] = {0, 0}, cfam[2][3] = {{0, 0, 0}, {0, 0, 0}}, tol;
+    int n, j, k, full = 0;
+    unsigned approx = 0;
     gr_result_t r;
     if (!indirect || !rgb) return GR_ERR_INVALID_ARG;
     rgb[0] = rgb[1] = rgb[2] = 0;
@@ -5150,34 +6423,44 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
     n = query->line_samples ? query->line_samples : 2;
     tol = gr__exit_tol(query);
     gr__line_layout(grid, scratch, &s, &sc);
+    stack.s = sc.ls.stack;
     for (j = 0; j < n; j++) {
-        double cj[3] = {0, 0, 0}, wj = 0;
-        int top = 1;
-        gr__top_sheet(grid, fp, j, n, &stack[0]);
-        while (top > 0) {
-            gr__sheet_t sh = stack[--top];
+        double cj[3] = {0, 0, 0}, wj = 0, wa;
+        int fam;
+        stack.top = 1;
+        stack.full = 0;
+        wa = gr__top_sheet(grid, query, j, n, &stack.s[0], &fam);
+        while (stack.top > 0) {
+            gr__sheet_t sh = stack.s[--stack.top];
             double w, cl;
-            int m;
-            gr__line_scene(grid, &s, &sc, &sh, 1, NULL, query->lights, query->light_count);
+            int m, nl = sh.inside ? 0 : query->light_count; /* no direct light inside the material */
+            gr__line_scene(grid, &s, &sc, &sh, 1, NULL, query->lights, nl);
             /* the early exit (§5.6) would leave unclassified gaps, which
                here would read as light leaving: bounces classify all */
-            m = gr__sheet_eval(&sc, &sh, query->lights, query->light_count, sh.level ? -1 : tol, &w, &cl, stats);
+            m = gr__sheet_eval(&sc, &sh, query->lights, nl, sh.level ? -1 : tol, &w, &cl, stats);
+            approx |= sc.flags & GR_LIST_LINE_APPROX;
             if (sh.level == 0) {
                 wj = w;
                 if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = w;
                 if (cl > 0 && cl < 1) /* share the unclassified rest in proportion */
                     for (k = 0; k < 3; k++) sh.thr[k] /= cl;
             }
-            gr__bounce(&sc, &sh, m, query, indirect, stack, &top, cj);
+            gr__bounce(&sc, &sh, m, query, indirect, &stack, cj);
         }
-        wsum += wj;
-        for (k = 0; k < 3; k++) {
-            rgb[k] += wj * cj[k];
-            plain[k] += cj[k];
+        full |= stack.full;
+        wfam[fam] += wa * wj; /* families combined as in gr_query_lines() */
+        for (k = 0; k < 3; k++) cfam[fam][k] += wa * cj[k];
+    }
+    {
+        int nfam = n > 1 ? 2 : 1, f;
+        double wsum = wfam[0] + wfam[1];
+        for (f = 0; f < nfam; f++) {
+            double wf = wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
+            for (k = 0; k < 3; k++) rgb[k] += wf * cfam[f][k];
         }
     }
-    for (k = 0; k < 3; k++) rgb[k] = wsum > 0 ? rgb[k] / wsum : plain[k] / n;
-    return GR_OK;
+    if (stats) stats->flags = (approx ? GR_STATS_LINE_APPROX : 0u) | (full ? GR_STATS_STACK_FULL : 0u);
+    return full ? GR_ERR_STACK_FULL : GR_OK;
 }
 #endif
 /* ==== [end section: interreflection] ==== */

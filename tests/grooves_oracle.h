@@ -8,8 +8,9 @@
    plane belongs to the ground unless it lies inside a groove's mouth, which is
    tested against flat "mouth" quads built from the very same edge vertices as
    the sweep, so ground and grooves meet without gaps or overlaps. A path's
-   two ends are closed by caps: the section polygon (closed along w = 0),
-   facets GRO_CAP0 (t = 0) and GRO_CAP1 (t = 1).
+   two ends are closed by caps: the section polygon (closed along w = 0,
+   in runs between its points on w = 0), facets GRO_CAP0 (t = 0) and
+   GRO_CAP1 (t = 1).
 
    Crossings (constructive solid geometry): the surface is the ground minus
    the union of the grooves' cut volumes (section parts below w = 0), plus
@@ -413,6 +414,28 @@ static int gro__ear_clip(const double *sec, int n, uint32_t *tri)
     return nt + 1;
 }
 
+/* The cap: the section closed along w = 0, cut at its points on w = 0
+   into runs (a lip above, the cut below, the next lip, ... each a simple
+   polygon closed along w = 0: the whole is not simple where the section
+   touches w = 0 between its ends), each ear-clipped; triangles of section
+   indices, their count. A facet crossing w = 0 between two points is left
+   as it is (the whole run is clipped, which fails for a self-crossing one). */
+static int gro__cap_triangles(const double *sec, int n, uint32_t *tri)
+{
+    int i0 = 0, i, nt = 0, k;
+    for (i = 1; i < n; i++) {
+        int m;
+        if (sec[2 * i + 1] != 0 && i + 1 < n) continue;
+        if (i - i0 >= 2) {
+            m = gro__ear_clip(sec + 2 * i0, i - i0 + 1, tri + 3 * nt);
+            for (k = 0; k < 3 * m; k++) tri[3 * nt + k] += (uint32_t)i0;
+            nt += m;
+        }
+        i0 = i;
+    }
+    return nt;
+}
+
 /* ------------------------------------------------------------ sweep */
 
 typedef struct gro__buf_t {
@@ -592,7 +615,7 @@ static void gro__sweep_run(const gro__ctx_t *c, int gi, int inst, const gro__run
         int m, nc;
         size_t row = j == 0 ? base : base + (size_t)(n - 1) * ns;
         if (c->joined || r->t[j == 0 ? 0 : n - 1] != (j == 0 ? 0.0 : 1.0)) continue;
-        nc = gro__ear_clip(g->sec, ns, tri);
+        nc = gro__cap_triangles(g->sec, ns, tri);
         for (m = 0; m < nc; m++) {
             uint32_t *t = b->t + 3 * b->nt;
             t[0] = (uint32_t)row + tri[3 * m]; t[1] = (uint32_t)row + tri[3 * m + 1];

@@ -298,6 +298,26 @@ static void odm_remark_family_biquadratic(void)
             }
 }
 
+/* The family itself as the authors' search driver draws it
+   (cridemichel/quartic_C, Drivers/accuracytest.c): x^4 - 1e-162 x^3 +
+   A x^2 + 1e-162 x + B with A, B uniform in [-50, 50] (real numbers, not
+   integers), where the driver flags a solver whose summed relative root
+   error exceeds 1e-3. Cases 25 and 26 are two such polynomials that no
+   reachable source lists. Against the __float128 oracle on the very
+   doubles: the same real roots, each within 4e-16 relative. */
+static void odm_remark_family_random_draws(void)
+{
+    t_rng_t g = {1010};
+    long n = t_count(10000), i;
+    for (i = 0; i < n; i++) {
+        double c[5], A = (t_rng_unit(&g) - 0.5) * 100.0, B = (t_rng_unit(&g) - 0.5) * 100.0;
+        char what[96];
+        c[0] = B; c[1] = 1e-162; c[2] = A; c[3] = -1e-162; c[4] = 1;
+        snprintf(what, sizeof what, "x^4 - 1e-162 x^3 + %.17g x^2 + 1e-162 x + %.17g", A, B);
+        check_roots(what, c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    }
+}
+
 static void zero_roots_split_off(void)
 {
     static const double c[6] = {0, 0, -2, 1, 0, 0}; /* t^2 (t - 2) */
@@ -407,6 +427,7 @@ int main(int argc, char **argv)
         T_CASE(quartic_roots_1e154_1e152_10_1),
         T_CASE(odm_2020_cases_1_to_24),
         T_CASE(odm_remark_family_biquadratic),
+        T_CASE(odm_remark_family_random_draws),
         T_CASE(zero_roots_split_off),
         T_CASE(invalid_input_returns_minus_one),
         T_CASE(random_quartics_against_oracle),

@@ -108,6 +108,39 @@ static void detect_oblique_and_parallel(void)
     gr_grid_free(grid);
 }
 
+/* Two grooves 0.05 rad apart (not parallel at the default 0.02) whose
+   lines meet 0.24 away from the footprint, but whose strips (half width
+   0.01 each) overlap under it: 0.012 apart at u = 0.5. A crossing, with the
+   footprint centre itself as the point (it lies in the overlap); before
+   the overlap rule it was missed, and §4 answered with the nearest
+   groove alone. 0.025 apart the strips overlap only from 0.1 away, and
+   the path stays outside the box: none. */
+static void detect_overlap_far_from_meeting(void)
+{
+    double h[] = {0.1, 0.5, 0.9, 0.5}, o[4], a = 0.05;
+    const double *paths[] = {h, o};
+    const int counts[] = {2, 2};
+    gr_grid_t *grid;
+    gr_junctions_t j;
+    int k;
+    for (k = 0; k < 2; k++) {
+        double gap = k == 0 ? 0.012 : 0.025;
+        o[0] = 0.1; o[1] = 0.5 + gap - 0.4 * tan(a); o[2] = 0.9; o[3] = 0.5 + gap + 0.4 * tan(a);
+        grid = build(paths, counts, 2, vsec, 3, GR_PATH_POLYLINE);
+        j = detect_at(grid, 0.5, 0.505, 0.004, NULL, NULL, 0);
+        T_INT_EQ(j.grooves, 2 - k);
+        if (k == 0) {
+            T_INT_EQ(j.count, 1);
+            T_INT_EQ(j.items[0].kind, GR_JUNCTION_CROSSING);
+            T_NEAR(j.items[0].point[0], 0.5, 1e-15);
+            T_NEAR(j.items[0].point[1], 0.505, 1e-15);
+        } else {
+            T_INT_EQ(j.count, 0);
+        }
+        gr_grid_free(grid);
+    }
+}
+
 /* T: a groove ending on another is an intersected end, not a crossing */
 static void detect_t_intersected_end(void)
 {
@@ -203,12 +236,26 @@ static void self_intersection_polyline(void)
     T_NEAR(hit[0].param[1], (1.5 * l0 + 0.6) / len, 1e-15);
     T_INT_EQ(gr_self_intersections(grid, hit, 0, &n), GR_ERR_BUFFER_TOO_SMALL);
     T_INT_EQ(n, 1);
+    /* the builder cut the groove between the two passes (§5): they meet
+       as a crossing of the groove with itself, beside the point itself */
     j = detect_at(grid, 0.5, 0.5, 0.004, NULL, hit, 1);
-    T_INT_EQ(j.count, 1);
-    T_INT_EQ(j.items[0].kind, GR_JUNCTION_SELF);
-    /* on the path, 0.28 from the point and 0.14 from the first end: nothing */
+    T_INT_EQ(j.count, 2);
+    T_INT_EQ(j.grooves, 2);
+    T_INT_EQ(j.items[0].kind, GR_JUNCTION_CROSSING);
+    T_INT_EQ(j.items[0].groove, 0);
+    T_INT_EQ(j.items[0].other, 0);
+    T_NEAR(j.items[0].point[0], 0.5, 1e-15);
+    T_NEAR(j.items[0].point[1], 0.5, 1e-15);
+    T_INT_EQ(j.items[1].kind, GR_JUNCTION_SELF);
+    /* without the caller's list, the builder's */
+    j = detect_at(grid, 0.5, 0.5, 0.004, NULL, NULL, 0);
+    T_INT_EQ(j.count, 2);
+    T_INT_EQ(j.items[1].kind, GR_JUNCTION_SELF);
+    /* on the path, 0.28 from the point and 0.14 from the first end: nothing
+       (one groove: its pieces are taken only about a crossing) */
     j = detect_at(grid, 0.3, 0.3, 0.004, NULL, hit, 1);
     T_INT_EQ(j.count, 0);
+    T_INT_EQ(j.grooves, 1);
     gr_grid_free(grid);
 }
 
@@ -356,7 +403,8 @@ static void detect_bad_input(void)
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
-        T_CASE(detect_x_crossing), T_CASE(detect_oblique_and_parallel), T_CASE(detect_t_intersected_end),
+        T_CASE(detect_x_crossing), T_CASE(detect_oblique_and_parallel), T_CASE(detect_overlap_far_from_meeting),
+        T_CASE(detect_t_intersected_end),
         T_CASE(detect_isolated_end), T_CASE(detect_corner), T_CASE(stiff_distance_test_threshold),
         T_CASE(self_intersection_polyline),
 #ifndef GR_NO_CURVES

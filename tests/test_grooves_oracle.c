@@ -40,6 +40,13 @@ typedef struct scene_t {
 static scene_t S; /* large: static, one scene at a time */
 
 static double worst_ratio, worst_lit; /* largest errors seen, printed per case */
+/* query settings compare_tol() passes on (0: defaults) */
+static int q_straight;
+static double q_oversample_tol;
+static int q_max_oversample;
+/* 1: match oracle facets to entries by (groove, facet) rather than by
+   normal (one groove whose facets' normals turn and tilt far along it) */
+static int q_match_ids;
 
 static void scene_begin(void) { memset(&S, 0, sizeof S); }
 
@@ -155,6 +162,9 @@ static double compare_tol(const gr_footprint_t *fp, const double *lights, int nl
     int ground_used = 0;
     memset(&q, 0, sizeof q);
     q.footprint = *fp; q.lights = lights; q.light_count = nl;
+    q.straight_occlusion = q_straight;
+    q.oversample_tol = q_oversample_tol;
+    q.max_oversample = q_max_oversample;
     if (gr_query_scratch_bytes(S.grid) > sizeof scratch) { T_FAIL("scratch too small"); return 1; }
     if (!T_INT_EQ(gr_query(S.grid, &q, scratch, sizeof scratch, &list), GR_OK)) return 1;
     if (oracle_run(fp, lights, nl, n, &o)) return 1;
@@ -171,6 +181,11 @@ static double compare_tol(const gr_footprint_t *fp, const double *lights, int nl
             owner[g][k] = -1;
             if (gro_vis(&o, g, k) == 0 && (nl == 0 || gro_lit(&o, 0, g, k) == 0)) continue;
             facet_normal(g, k, fp->center[0], fp->center[1], nn);
+            if (q_match_ids) {
+                for (i = 0; i < list.count; i++)
+                    if (list.facets[i].groove == g && list.facets[i].facet == k) owner[g][k] = i;
+                continue;
+            }
             for (i = 0; i < list.count; i++) {
                 const double *m = list.facets[i].normal;
                 double dd = nn[0] * m[0] + nn[1] * m[1] + nn[2] * m[2];
@@ -581,16 +596,20 @@ static void thousands_of_grooves_under_one_footprint(void)
     scene_end();
 }
 
-/* Model limit (§4.3): a perturbation that changes the depth quickly along
-   the path. A ray seen obliquely along the groove crosses cross-sections of
-   different scale underground, which the constant-profile model ignores.
-   Scale 1 + 0.4 sin 12t changes by ~9 % over that distance; measured error
-   0.023, bounded here by 0.05. */
+/* A perturbation that changes the depth quickly along the path: a ray
+   seen obliquely along the groove crosses sections of different scale
+   underground. Scale 1 + 0.4 sin 12t changes by ~9 % over that distance.
+   §4.2-4.3's constant profile at P (straight_occlusion = 1, the paper's
+   model limit) is off by 0.023 (bound 0.05, and above 0.01 so the case is
+   sensitive); grooves.h's default takes each section point where the ray
+   reaching it meets the groove (gr__ray_point): r_i within the oracle's
+   noise (measured 1.6e-4), lit shares 2.6e-3 (the light's rays run along
+   the groove too); bound 5e-3 for both. */
 static double steep_wave(double t, void *u) { (void)u; return 1.0 + 0.4 * sin(12 * t); }
-static void steep_perturbation_model_limit(void)
+static void steep_perturbation_depth_change(void)
 {
     static const double line[4] = {0.1, 0.1, 0.9, 0.15};
-    double worst = 0;
+    double worst = 0, worst_straight = 0, lit_d = 0;
     int i;
     scene_begin();
     scene_add(GR_PATH_POLYLINE, line, 2, V_SEC, 3);
@@ -602,9 +621,16 @@ static void steep_perturbation_model_limit(void)
         path_frame(t, P, T);
         f = footprint(P[0] + 0.003 * -T[1], P[1] + 0.003 * T[0], T, 0.01, 0.002, 30 + 25 * i, 90 + 60 * i);
         dir_deg(45, 120 * i, L);
-        worst = fmax(worst, compare_tol(&f, L, 1, 256, 0.05));
+        worst_lit = 0;
+        worst = fmax(worst, compare_tol(&f, L, 1, 256, 5e-3));
+        lit_d = fmax(lit_d, worst_lit);
+        q_straight = 1;
+        worst_straight = fmax(worst_straight, compare_tol(&f, L, 1, 256, 0.05));
+        q_straight = 0;
     }
-    fprintf(stderr, "    steep perturbation: max |r_i - oracle| = %.3f (constant-profile model of §4.2-4.3)\n", worst);
+    T_GT(worst_straight, 0.01);
+    fprintf(stderr, "    steep perturbation: max |r_i - oracle| = %.1e, lit %.1e where rays meet the groove; %.3f with §4.3's constant profile\n",
+            worst, lit_d, worst_straight);
     worst_ratio = worst_lit = 0;
     scene_end();
 }
@@ -665,9 +691,9 @@ static void perturbed_normals_follow_the_slope(void)
    the curves scene's cubic (radius of curvature 0.11 at t = 0.75) with a
    U-section 0.06 wide, seen 50° from the normal looking along the path.
    grooves.h turns each facet's normal to where the ray meets it
-   (gr__hit_normal); the oracle's mean hit normal per facet must agree
-   within 0.03 rad (measured 0.014), where the normal at the footprint
-   centre is off by up to 0.087 rad. */
+   (gr__hit_normal, the path's own tangent there); the oracle's mean hit
+   normal per facet must agree within 5e-3 rad (measured 6e-4), where the
+   normal at the footprint centre is off by up to 0.087 rad. */
 static void curved_normals_where_the_ray_meets(void)
 {
     static const double curve[8] = {0.15, 0.2, 0.3, 0.95, 0.75, -0.1, 0.85, 0.75};
@@ -696,7 +722,7 @@ static void curved_normals_where_the_ray_meets(void)
             double ang, atp[3];
             if (f->groove != 0 || f->merged != 1 || gro_vis(&o, 0, f->facet) < 0.2) continue;
             ang = angle_between(f->normal, o.nsum + 3 * f->facet);
-            T_LE(ang, 0.03);
+            T_LE(ang, 5e-3);
             worst = fmax(worst, ang);
             facet_normal(0, f->facet, q.footprint.center[0], q.footprint.center[1], atp);
             worst_p = fmax(worst_p, angle_between(atp, o.nsum + 3 * f->facet));
@@ -707,6 +733,218 @@ static void curved_normals_where_the_ray_meets(void)
     fprintf(stderr, "    tight bend: normal angle to the mesh %.4f rad where the ray meets, %.3f rad at P\n", worst,
             worst_p);
     scene_end();
+}
+
+/* The curves scene's curved groove (examples/grooves, Fig. 2): its cubic,
+   radius of curvature down to 0.11, a rounded U 0.06 wide. */
+static const double BEND[8] = {0.15, 0.2, 0.3, 0.95, 0.75, -0.1, 0.85, 0.75};
+static const double BEND_U[10] = {-0.03, 0, -0.024, -0.02, 0, -0.028, 0.024, -0.02, 0.03, 0};
+#define BEND_RATIO_TOL 0.02
+#define BEND_NORMAL_TOL 0.02
+static double bend_wave(double t, void *u) { (void)u; return 1.0 + 0.45 * sin(6 * M_PI * t); }
+
+/* The bend cases' scene: the cubic with the U section, optionally with the
+   curves scene's perturbation; entries matched to the oracle by id. */
+static int bend_scene(int perturbed)
+{
+    scene_begin();
+    scene_add(GR_PATH_CUBIC, BEND, 4, BEND_U, 5);
+    if (perturbed) { S.desc[0].perturb = bend_wave; S.desc[0].perturb_max = 1.45; }
+    S.no_wrap = 1;
+    q_match_ids = 1;
+    return scene_build();
+}
+
+/* After a bend case: default matching and counters, the scene freed. */
+static void bend_case_end(void)
+{
+    q_match_ids = 0;
+    worst_ratio = worst_lit = 0;
+    scene_end();
+}
+
+/* Footprint k of the bend cases: down the bend (t = 0.70 ... 0.84), across
+   the groove at b = -0.02, 0, 0.02, seen 50° from the normal looking along
+   the path one way or the other, a light at 40° along it. */
+static gr_footprint_t bend_footprint(int k, double *L)
+{
+    double P[2], T[2], off = 0.02 * (k % 3 - 1), az;
+    path_frame(0.70 + 0.02 * (k / 2 % 8), P, T);
+    az = atan2(T[1], T[0]) * 180 / M_PI + (k % 2 ? 180 : 0);
+    dir_deg(40, az + 30, L);
+    return footprint(P[0] - off * T[1], P[1] + off * T[0], T, 0.004, 0.003, 50, az + 15);
+}
+
+/* On a tight bend a ray seen along the path runs ~0.03 underground, where
+   the path has turned and the groove lies farther out (drift ~ kappa run^2
+   / 2, a pixel of the curves scene): footprints on the walls and the floor
+   of the bend, views 50° and a light 40° from the surface, both along the
+   path. §4.3's straight occlusion (straight_occlusion = 1) errs by 0.37 in
+   r_i (asserted above 0.1: the case is sensitive). The default moves each
+   section point by the bend's drift under the ray reaching it
+   (gr__bend_drift, then refined on the path itself, gr__mouth_on_path):
+   r_i within 0.035 (measured 0.026: what remains is that the seen
+   boundaries tilt across the footprint as the bend turns under it, which
+   the footprint's 1D model takes parallel to the path; oversampling at
+   tol 0.01, whose count includes that tilt, takes it to 1.6e-3, bound
+   5e-3). Each light sees
+   the groove from where its rays toward the seen facets enter it
+   (gr__light_anchor: on this bend 0.05 farther along, turned by 0.4 rad):
+   lit shares within 0.035 (measured 0.026; 0.092 with the light's profile
+   taken across the footprint, 0.37 straight). */
+static void tight_bend_occlusion(void)
+{
+    double worst = 0, worst_lit_d = 0, worst_straight = 0, worst_straight_lit = 0, worst_os = 0;
+    int k;
+    if (!bend_scene(0)) return;
+    for (k = 0; k < 16; k++) {
+        double L[3];
+        gr_footprint_t f = bend_footprint(k, L);
+        worst_ratio = worst_lit = 0;
+        worst = fmax(worst, compare_tol(&f, L, 1, 256, 0.035));
+        worst_lit_d = fmax(worst_lit_d, worst_lit);
+        q_straight = 1;
+        worst_ratio = worst_lit = 0;
+        worst_straight = fmax(worst_straight, compare_tol(&f, L, 1, 128, 1));
+        worst_straight_lit = fmax(worst_straight_lit, worst_lit);
+        q_straight = 0;
+        /* oversampled finer: the parts resolve the tilting boundaries */
+        q_oversample_tol = 0.01;
+        q_max_oversample = 64;
+        worst_ratio = 0;
+        compare_tol(&f, L, 1, 256, 0.035);
+        worst_os = fmax(worst_os, worst_ratio);
+        q_oversample_tol = 0;
+        q_max_oversample = 0;
+    }
+    T_LE(worst_os, 5e-3);
+    T_GT(worst_straight, 0.1);
+    fprintf(stderr, "    tight bend: max |r_i - oracle| = %.3f, lit %.3f where rays meet the groove (r_i %.1e at tol 0.01); %.3f, %.3f straight (§4.3)\n",
+            worst, worst_lit_d, worst_os, worst_straight, worst_straight_lit);
+    bend_case_end();
+}
+
+/* The same bend with the curves scene's perturbation f = 1 + 0.45 sin 6 pi t
+   (the section's scale changes by up to 25 % under one ray), the stress
+   case of the curves scene: r_i and lit shares within BEND_RATIO_TOL
+   (measured 7.8e-3 and 1.2e-2; 0.057 before the mouth point was refined
+   on the path itself: the drift's circle overshoots this bend's true
+   sagitta by ~5e-4 where its curvature changes by 30 %), and the listed normal
+   of every facet seen over a fifth of the footprint within
+   BEND_NORMAL_TOL of the oracle's mean hit normal (measured 0.012 rad;
+   §4.4's normal at P is off by 0.38 rad, asserted above 0.05). */
+static void bend_with_steep_perturbation(void)
+{
+    static unsigned char scratch[1 << 20];
+    double worst_n = 0, worst_p = 0;
+    int k;
+    if (!bend_scene(1)) return;
+    for (k = 0; k < 16; k++) {
+        double L[3];
+        gr_query_t q;
+        gr_facet_list_t list;
+        gro_result_t o;
+        int e, paper;
+        gr_footprint_t fp = bend_footprint(k, L);
+        compare_tol(&fp, L, 1, 256, BEND_RATIO_TOL);
+        if (oracle_run(&fp, NULL, 0, 128, &o)) continue;
+        for (paper = 0; paper < 2; paper++) {
+            memset(&q, 0, sizeof q);
+            q.footprint = fp;
+            q.perturb_normals = paper ? -1 : 0;
+            q.straight_occlusion = paper;
+            if (!T_INT_EQ(gr_query(S.grid, &q, scratch, sizeof scratch, &list), GR_OK)) continue;
+            for (e = 0; e < list.count; e++) {
+                const gr_facet_t *f = &list.facets[e];
+                double ang;
+                if (f->groove != 0 || gro_vis(&o, 0, f->facet) < 0.2) continue;
+                ang = angle_between(f->normal, o.nsum + 3 * f->facet);
+                if (paper) worst_p = fmax(worst_p, ang);
+                else { T_LE(ang, BEND_NORMAL_TOL); worst_n = fmax(worst_n, ang); }
+            }
+        }
+        gro_result_free(&o);
+    }
+    T_GT(worst_p, 0.05);
+    fprintf(stderr, "    bend + perturbation: max |r_i - oracle| = %.1e, lit %.1e; normals %.1e rad (§4.4: %.3f)\n",
+            worst_ratio, worst_lit, worst_n, worst_p);
+    bend_case_end();
+}
+
+/* The curves scene's straight groove: a V with raised lips (w > 0: it
+   masks and shadows beyond its width, §4.1's h tan θ) that shrinks along
+   its path, f = 1 - 0.85 t, seen and lit along the path both ways. f is
+   linear, so the scale where a ray meets the groove is exact
+   (gr__ray_point's first step): r_i and lit within 5e-3 (measured 3.1e-4,
+   the oracle's noise); §4.3's constant profile is off by 0.023 (asserted
+   above 0.02, so the case is sensitive). */
+static double shrink(double t, void *u) { (void)u; return 1.0 - 0.85 * t; }
+static void shrinking_lipped_groove(void)
+{
+    static const double line[4] = {0.08, 0.9, 0.66, 0.93};
+    static const double lip[8] = {-0.028, 0, -0.022, 0.006, 0, -0.024, 0.028, 0};
+    double worst = 0, worst_straight = 0, lit_d = 0;
+    int k;
+    scene_begin();
+    scene_add(GR_PATH_POLYLINE, line, 2, lip, 4);
+    S.desc[0].perturb = shrink; S.desc[0].perturb_max = 1;
+    if (!scene_build()) return;
+    for (k = 0; k < 12; k++) {
+        double P[2], T[2], L[3], off = 0.012 * (k % 3 - 1), az;
+        gr_footprint_t f;
+        path_frame(0.2 + 0.15 * (k / 3), P, T);
+        az = atan2(T[1], T[0]) * 180 / M_PI + (k % 2 ? 180 : 0);
+        f = footprint(P[0] - off * T[1], P[1] + off * T[0], T, 0.004, 0.003, 55, az + 10);
+        dir_deg(35, az - 20, L);
+        worst_lit = 0;
+        worst = fmax(worst, compare_tol(&f, L, 1, 256, 5e-3));
+        lit_d = fmax(lit_d, worst_lit);
+        q_straight = 1;
+        worst_straight = fmax(worst_straight, compare_tol(&f, L, 1, 128, 1));
+        q_straight = 0;
+    }
+    T_GT(worst_straight, 0.02);
+    fprintf(stderr, "    shrinking lipped groove: max |r_i - oracle| = %.1e (lit %.1e) where rays meet it; %.3f straight\n",
+            worst, lit_d, worst_straight);
+    worst_ratio = worst_lit = 0;
+    scene_end();
+}
+
+/* §4.2's oversampling (issue 7 item 5) converges toward the geometry as
+   its tolerance shrinks: a footprint 0.026 x 0.02 (a pixel of the curves
+   scene's bench view, 4x) on the perturbed bend, whose axes are both
+   oblique to the path. Largest |r_i - oracle| (n = 512) at tol = none,
+   0.05, 0.02, 0.01 with up to 64 parts: measured 1.8e-2, 3.7e-3, 1.0e-3,
+   1.4e-3; asserted: each at most the one before plus 1e-3 (the oracle's
+   noise and the layout of the parts), the last below 2e-3 and under a
+   quarter of the first. Before the parts were cut along both axes (one
+   axis only) the error stayed at 0.04 whatever the tolerance. */
+static void oversampling_converges_on_bend(void)
+{
+    static const double tols[4] = {-1, 0.05, 0.02, 0.01};
+    gr_footprint_t f;
+    double err[4], L[3] = {0, 0, 1};
+    int i;
+    if (!bend_scene(1)) return;
+    memset(&f, 0, sizeof f);
+    f.center[0] = 0.75414; f.center[1] = 0.41482;
+    f.axis1[0] = 4 * 0.00322; f.axis1[1] = 0;
+    f.axis2[0] = 4 * -0.00083; f.axis2[1] = 4 * -0.00488;
+    f.view[0] = -0.217; f.view[1] = -0.738; f.view[2] = 0.640;
+    for (i = 0; i < 3; i++) f.view[i] /= sqrt(0.217 * 0.217 + 0.738 * 0.738 + 0.64 * 0.64);
+    q_max_oversample = 64;
+    for (i = 0; i < 4; i++) {
+        q_oversample_tol = tols[i];
+        err[i] = compare_tol(&f, L, 1, 512, 0.05);
+        if (i > 0) T_LE(err[i], err[i - 1] + 1e-3);
+    }
+    q_max_oversample = 0;
+    q_oversample_tol = 0;
+    T_LE(err[3], 2e-3);
+    T_LT(err[3], err[0] / 4);
+    fprintf(stderr, "    oversampling on the bend: max |r_i - oracle| %.1e (none), %.1e, %.1e, %.1e (tol 0.05, 0.02, 0.01)\n",
+            err[0], err[1], err[2], err[3]);
+    bend_case_end();
 }
 
 /* Oblique footprints (neither axis along the groove). The parallelogram
@@ -801,9 +1039,13 @@ int main(int argc, char **argv)
         T_CASE(line_and_point_footprints),
         T_CASE(curved_and_perturbed_grooves),
         T_CASE(thousands_of_grooves_under_one_footprint),
-        T_CASE(steep_perturbation_model_limit),
+        T_CASE(steep_perturbation_depth_change),
         T_CASE(perturbed_normals_follow_the_slope),
         T_CASE(curved_normals_where_the_ray_meets),
+        T_CASE(tight_bend_occlusion),
+        T_CASE(bend_with_steep_perturbation),
+        T_CASE(oversampling_converges_on_bend),
+        T_CASE(shrinking_lipped_groove),
         T_CASE(footprint_oblique_axes),
     };
     int rc;

@@ -7,6 +7,9 @@
      build/examples/frep_render --demo out        (the gallery, into out/)
 
    --mode picks fr_trace's method: auto analytic step interval sphere.
+   Every ray is clipped to the model's fr_bound_box box and traced with
+   its fr_prepare model (--unprepared: without it, for comparison; --exact:
+   interval bisection without the pixel-footprint hand-over).
    It prints frames per second and rays per second (primary + shadow +
    secondary rays), timed over --frames frames after the first. */
 #define IV_IMPLEMENTATION
@@ -36,12 +39,13 @@ typedef struct scene_t {
     fr_trace_desc_t desc;  /* primary, reflected and refracted rays */
     fr_trace_desc_t shadow; /* shadow rays: any hit, no normal */
     double box[6];         /* the solid's box (lo xyz, hi xyz): every ray is clipped to it */
+    fr_prepared_t prep;    /* fr_prepare: what every ray would recompute from the tape */
     int glass;             /* refractive material */
     double floor_z;
     ex_v3_t light;         /* point light */
     ex_v3_t centre;        /* of the box, and the camera's target */
     double radius;         /* of the box's bounding sphere */
-    unsigned long long rays;
+    size_t scratch_bytes;  /* fr_trace_scratch_size, once */
 } scene_t;
 
 static const char *const scenes[] = {"cup", "blended_cylinders", "tangle_cube", "barth_sextic", "noise_hole",
@@ -70,7 +74,7 @@ static double menger_point(const double p[3], void *user)
     return -d;
 }
 
-static int load_scene(scene_t *sc, const char *name, const char *mode)
+static int load_scene(scene_t *sc, const char *name, const char *mode, int prepare)
 {
     memset(sc, 0, sizeof *sc);
     sc->name = name;
@@ -141,9 +145,11 @@ static int load_scene(scene_t *sc, const char *name, const char *mode)
     sc->desc.tol = 1e-6;
     sc->desc.step = 2.0 * sc->radius / 200.0;
     sc->desc.bounds = sc->box;
+    if (prepare && fr_prepare(&sc->tape, sc->box, &sc->prep) == FR_OK) sc->desc.prepared = &sc->prep;
     if (sc->desc.method == FR_METHOD_AUTO && (sc->tape.flags & FR_TAPE_NO_INTERVAL))
         sc->desc.method = sc->tape.lipschitz < HUGE_VAL ? FR_METHOD_SPHERE : FR_METHOD_STEP;
     if (sc->tape.flags & FR_TAPE_NO_GRADIENT) sc->desc.normal = FR_NORMAL_FD;
+    sc->scratch_bytes = fr_trace_scratch_size(&sc->tape, &sc->desc);
     sc->shadow = sc->desc;
     sc->shadow.any_hit = 1;
     sc->shadow.normal = FR_NORMAL_NONE;
@@ -155,10 +161,14 @@ static int load_scene(scene_t *sc, const char *name, const char *mode)
 
 static __thread void *tls_scratch;
 static __thread size_t tls_size;
+/* rays traced for the current pixel by this thread (pixel() stores them
+   per pixel: a shared atomic counter cost a locked add per ray and made
+   the threads fight over the scene's cache line) */
+static __thread unsigned int tls_rays;
 
 static void *scratch_for(const scene_t *sc)
 {
-    size_t need = fr_trace_scratch_size(&sc->tape, &sc->desc);
+    size_t need = sc->scratch_bytes;
     if (need > tls_size) {
         free(tls_scratch);
         tls_scratch = malloc(need);
@@ -172,7 +182,7 @@ static int trace_model(scene_t *sc, const fr_trace_desc_t *desc, ex_v3_t o, ex_v
                        fr_hit_t *h)
 {
     double oo[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
-    __atomic_fetch_add(&sc->rays, 1ull, __ATOMIC_RELAXED);
+    tls_rays++;
     if (fr_trace(&sc->tape, oo, dd, tmin, tmax, desc, scratch_for(sc), h) != FR_OK) return 0;
     return h->hit;
 }
@@ -201,7 +211,17 @@ static ex_v3_t sky(ex_v3_t d)
 
 static ex_v3_t shade(scene_t *sc, ex_v3_t o, ex_v3_t d, int depth, int inside);
 
-static ex_v3_t blinn_phong(scene_t *sc, ex_v3_t p, ex_v3_t n, ex_v3_t d, ex_v3_t base, double shininess)
+/* x^n, n >= 1, by squaring: the Phong and Schlick powers without a libm
+   pow per shading point (within a few ulps of pow) */
+static double pow_n(double x, int n)
+{
+    double r = 1.0;
+    for (; n > 0; n >>= 1, x *= x)
+        if (n & 1) r *= x;
+    return r;
+}
+
+static ex_v3_t blinn_phong(scene_t *sc, ex_v3_t p, ex_v3_t n, ex_v3_t d, ex_v3_t base, int shininess)
 {
     ex_v3_t l = ex_sub(sc->light, p), h, col = ex_scale(base, 0.18);
     double dist = ex_len(l), ndl;
@@ -211,7 +231,7 @@ static ex_v3_t blinn_phong(scene_t *sc, ex_v3_t p, ex_v3_t n, ex_v3_t d, ex_v3_t
     if (ndl > 0 && !trace_model(sc, &sc->shadow, ex_madd(p, n, RAY_EPS), l, 0, dist, &sh)) { /* shadow ray */
         h = ex_normalize(ex_sub(l, ex_normalize(d)));
         col = ex_add(col, ex_scale(base, 0.85 * ndl));
-        col = ex_add(col, ex_scale(ex_v3(1, 1, 1), 0.35 * pow(fmax(0, ex_dot(n, h)), shininess)));
+        col = ex_add(col, ex_scale(ex_v3(1, 1, 1), 0.35 * pow_n(fmax(0, ex_dot(n, h)), shininess)));
     }
     return col;
 }
@@ -231,7 +251,7 @@ static ex_v3_t shade(scene_t *sc, ex_v3_t o, ex_v3_t d, int depth, int inside)
             double eta = inside ? 1.33 : 1.0 / 1.33, c = -ex_dot(n, ex_normalize(d)), k, fr;
             ex_v3_t dn = ex_normalize(d), refl = ex_reflect(dn, n), rcol, tcol = ex_v3(0, 0, 0);
             k = 1 - eta * eta * (1 - c * c);
-            fr = 0.04 + 0.96 * pow(1 - c, 5);
+            fr = 0.04 + 0.96 * pow_n(1 - c, 5);
             rcol = shade(sc, ex_madd(p, n, RAY_EPS), refl, depth + 1, inside);
             if (k > 0) {
                 ex_v3_t tdir = ex_add(ex_scale(dn, eta), ex_scale(n, eta * c - sqrt(k)));
@@ -262,13 +282,17 @@ static ex_v3_t shade(scene_t *sc, ex_v3_t o, ex_v3_t d, int depth, int inside)
 typedef struct ctx_t {
     scene_t *sc;
     ex_camera_t cam;
+    unsigned int *rays; /* per pixel, summed after each frame */
+    int width;
 } ctx_t;
 
 static void pixel(void *user, int x, int y, int sample, ex_rng_t *rng, float rgb[3])
 {
     ctx_t *c = (ctx_t *)user;
-    ex_ray_t r = ex_camera_ray(&c->cam, x + 0.5, y + 0.5);
-    ex_v3_t col = shade(c->sc, r.o, r.d, 0, 0);
+    ex_v3_t col, d = ex_camera_dir(&c->cam, x + 0.5, y + 0.5); /* no ray differentials needed */
+    tls_rays = 0;
+    col = shade(c->sc, c->cam.eye, d, 0, 0);
+    c->rays[(size_t)y * (size_t)c->width + (size_t)x] = tls_rays;
     (void)sample; (void)rng;
     rgb[0] = (float)col.x; rgb[1] = (float)col.y; rgb[2] = (float)col.z;
 }
@@ -280,8 +304,13 @@ static double render(scene_t *sc, const ex_args_t *a, int frames, int exact, con
     ex_render_desc_t rd;
     float *rgb = (float *)malloc(sizeof(float) * 3 * (size_t)a->width * (size_t)a->height);
     double t, secs;
+    unsigned long long rays = 0;
+    size_t np = (size_t)a->width * (size_t)a->height, i;
     int f;
     c.sc = sc;
+    c.width = a->width;
+    c.rays = (unsigned int *)calloc(np, sizeof(unsigned int));
+    if (!rgb || !c.rays) { fprintf(stderr, "frep_render: out of memory\n"); exit(1); }
     {   /* frame the solid whole, seen from above front right: 0.9 of the box's
            bounding sphere, since no model fills its box's corners */
         double dist = 0.9 * sc->radius / sin(0.5 * FOV_DEG * M_PI / 180.0);
@@ -295,14 +324,17 @@ static double render(scene_t *sc, const ex_args_t *a, int frames, int exact, con
     rd.width = a->width; rd.height = a->height; rd.spp = 1; rd.threads = a->threads; rd.quiet = 1;
     rd.label = sc->name;
     ex_render(&rd, pixel, &c, rgb); /* warm-up, and the image */
-    sc->rays = 0;
     t = ex_now();
-    for (f = 0; f < frames; f++) ex_render(&rd, pixel, &c, rgb);
+    for (f = 0; f < frames; f++) {
+        ex_render(&rd, pixel, &c, rgb);
+        for (i = 0; i < np; i++) rays += c.rays[i];
+    }
     secs = ex_now() - t;
     printf("%-18s %-9s %dx%d: %7.2f fps, %10.0f rays/s (%.2f rays/pixel)\n", sc->name,
-           modes[sc->desc.method], a->width, a->height, frames / secs, (double)sc->rays / secs,
-           (double)sc->rays / frames / (a->width * a->height));
+           modes[sc->desc.method], a->width, a->height, frames / secs, (double)rays / secs,
+           (double)rays / frames / (double)np);
     if (out_path && ex_image_write(out_path, rgb, a->width, a->height) == 0) printf("  wrote %s\n", out_path);
+    free(c.rays);
     free(rgb);
     return frames / secs;
 }
@@ -311,8 +343,8 @@ int main(int argc, char **argv)
 {
     ex_args_t a;
     ex_args_spec_t spec;
-    int frames = 3, exact = 0;
-    ex_flag_t extra[2];
+    int frames = 3, exact = 0, unprepared = 0;
+    ex_flag_t extra[3];
     memset(&a, 0, sizeof a);
     memset(&spec, 0, sizeof spec);
     a.width = 256; a.height = 256; a.spp = 1;
@@ -320,8 +352,10 @@ int main(int argc, char **argv)
     extra[0].help = "timed frames after the warm-up (default 3)";
     extra[1].name = "exact"; extra[1].kind = EX_FLAG_BOOL; extra[1].value = &exact;
     extra[1].help = "interval bisection to the tolerance, without the pixel-footprint hand-over";
+    extra[2].name = "unprepared"; extra[2].kind = EX_FLAG_BOOL; extra[2].value = &unprepared;
+    extra[2].help = "trace the tape without fr_prepare's prepared model (for comparison)";
     spec.summary = "a Whitted ray tracer for FRep models (fr_trace), printing fps and rays/s";
-    spec.scenes = scenes; spec.modes = modes; spec.extra = extra; spec.nextra = 2;
+    spec.scenes = scenes; spec.modes = modes; spec.extra = extra; spec.nextra = 3;
     ex_args_parse(argc, argv, &spec, &a);
     if (frames < 1) frames = 1;
     if (a.demo_dir) {
@@ -329,10 +363,11 @@ int main(int argc, char **argv)
         for (k = 0; scenes[k]; k++) {
             scene_t sc;
             char name[128], path[4096];
-            if (load_scene(&sc, scenes[k], "auto")) return 1;
+            if (load_scene(&sc, scenes[k], "auto", 1)) return 1;
             snprintf(name, sizeof name, "frep_%s.png", scenes[k]);
             ex_args_output(&a, name, path, sizeof path);
             render(&sc, &a, 1, 0, path);
+            fr_prepared_free(&sc.prep);
             fr_tape_free(&sc.tape);
         }
         return 0;
@@ -340,8 +375,9 @@ int main(int argc, char **argv)
     {
         scene_t sc;
         char path[4096];
-        if (load_scene(&sc, a.scene ? a.scene : "cup", a.mode ? a.mode : "auto")) return 1;
+        if (load_scene(&sc, a.scene ? a.scene : "cup", a.mode ? a.mode : "auto", !unprepared)) return 1;
         render(&sc, &a, frames, exact, a.out ? ex_args_output(&a, "frep_render.png", path, sizeof path) : NULL);
+        fr_prepared_free(&sc.prep);
         fr_tape_free(&sc.tape);
     }
     return 0;

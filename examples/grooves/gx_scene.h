@@ -55,6 +55,7 @@ typedef struct gx_scene_t {
     int depth;
     gr_specular_t spec[GX_MAX_MATS];
     ex_v3_t below;
+    int lines_panel;              /* --demo adds a panel with 2 line samples (§5.6) at junctions */
 } gx_scene_t;
 
 static ex_material_t gx_material(double r, double g, double b, double f0r, double f0g, double f0b, double rough)
@@ -233,8 +234,10 @@ static void gx_sun_view(gx_scene_t *s, double elev, double azim, ex_v3_t rad, ex
 
 /* Figure 21d: a window frame protruding over glass, with inter-reflection:
    three mullions each way (raised bars crossing at right angles) over a
-   glass pane that reflects 8 % and lets 90 % through to the room behind
-   (the host's callback); the frame is glossy paint reflecting 25 %. */
+   thin glass pane (ior 1.5, Fresnel: about 8 % reflected at normal
+   incidence for both faces, more at grazing angles; the rest goes
+   straight through to the room behind, the host's callback); the frame
+   is glossy paint reflecting 25 %. */
 static int gx_scene_frame(gx_scene_t *s)
 {
     static const double bar[10] = {-0.018, 0, -0.016, 0.03, 0, 0.036, 0.016, 0.03, 0.018, 0};
@@ -248,7 +251,9 @@ static int gx_scene_frame(gx_scene_t *s)
     }
     s->mats[0] = gx_material(0.0, 0.0, 0.0, 0.04, 0.04, 0.04, 0.05);     /* glass (its reflection is k_r) */
     s->mats[1] = gx_material(0.55, 0.52, 0.46, 0.04, 0.04, 0.04, 0.35);  /* painted frame */
-    gx_spec(&s->spec[0], 0.08, 0.9, 1.5);
+    gx_spec(&s->spec[0], 1, 1, 1.5);
+    s->spec[0].fresnel = 1;
+    s->spec[0].thin = 1;
     gx_spec(&s->spec[1], 0.25, 0, 0);
     s->depth = 2;
     s->below = ex_v3(0.9, 0.7, 0.45);                                    /* a warm room */
@@ -292,8 +297,9 @@ static void gx_two_lights(gx_scene_t *s, const double l0[5], const double l1[5],
 }
 
 /* Figures 15/16: a tiled floor, 12 x 12 tiles whose grout lines cross at
-   every corner (gr_query takes the polygon path there, §5.2-5.5); the grout
-   (reflectance 1) differs from the glazed tiles (0). */
+   every corner (gr_query takes the polygon path there, §5.2-5.5, or 2 line
+   samples in the demo's second panel); the grout (reflectance 1) differs
+   from the glazed tiles (0). */
 static int gx_scene_tiles(gx_scene_t *s)
 {
     int i, n = 13;
@@ -323,6 +329,7 @@ static int gx_scene_tiles(gx_scene_t *s)
     }
     s->eye = ex_v3(0.5, -0.25, 0.3); s->at = ex_v3(0.5, 0.45, 0.0); s->fov = 50;
     s->bench_eye = ex_v3(0.5, 0.1, 0.12); s->bench_at = ex_v3(0.5, 0.4, 0.0); s->bench_fov = 20;
+    s->lines_panel = 1; /* Fig. 16: polygons, 2 line samples, geometry */
     return 0;
 }
 
@@ -368,11 +375,65 @@ static int gx_scene_bricks(gx_scene_t *s)
     return 0;
 }
 
+/* A scratch field (issue 8's scene list): 140 scratches on brushed
+   aluminium, long and short, straight and bent, that cross one another
+   and end in view, several pixels wide near the camera. Half are clean
+   (asymmetric) V cuts; the others have the lips a stylus ploughs up beside
+   the cut (w > 0: protrusions at the crossings). A low raking light
+   catches their walls. gr_query() answers the footprints at their
+   crossings, ends and corners with the polygon path (§5.2-5.5), so this
+   is its cost in a render; --demo adds a panel with 2 line samples. */
+static int gx_scene_scratchfield(gx_scene_t *s)
+{
+    static const double v[6] = {-1, 0, 0.15, -0.9, 1, 0};
+    static const double lips[14] = {-1.6, 0, -1.2, 0.22, -0.8, 0, 0, -0.8, 0.8, 0, 1.2, 0.22, 1.6, 0};
+    int i, k, n = 140;
+    double *store;
+    ex_rng_t rng = ex_rng_for_sample(0x5c7a7c4, 1, 2, 3);
+    memset(s, 0, sizeof *s);
+    s->name = "scratchfield"; s->title = "a scratch field: scratches that cross and end (polygons, §5)";
+    if (gx_alloc(s, n, 20 * (size_t)n)) return -1;
+    store = s->store;
+    for (i = 0; i < n; i++) {
+        double cu = 0.05 + 0.9 * ex_rng_unit(&rng), cv = 0.05 + 0.9 * ex_rng_unit(&rng);
+        double ang = EX_PI * ex_rng_unit(&rng), len = 0.04 + 0.36 * ex_rng_unit(&rng) * ex_rng_unit(&rng);
+        double bend = ex_rng_unit(&rng) < 0.35 ? 0.25 * (ex_rng_unit(&rng) - 0.5) : 0;
+        double half = 0.0015 + 0.0035 * ex_rng_unit(&rng);
+        double du = 0.5 * len * cos(ang), dv = 0.5 * len * sin(ang), *p = store + 20 * i, *sec = p + 6;
+        int lipped = ex_rng_unit(&rng) < 0.5, ns = lipped ? 7 : 3;
+        p[0] = cu - du; p[1] = cv - dv;
+        p[2] = cu - bend * dv; p[3] = cv + bend * du;
+        p[4] = cu + du; p[5] = cv + dv;
+        for (k = 0; k < 2 * ns; k++) sec[k] = half * (lipped ? lips[k] : v[k]);
+        if (bend != 0) {
+            s->desc[i].kind = GR_PATH_QUADRATIC;
+            s->desc[i].point_count = 3;
+        } else { /* a segment: its end points */
+            p[2] = p[4]; p[3] = p[5];
+            s->desc[i].point_count = 2;
+        }
+        s->desc[i].points = p;
+        s->desc[i].section = sec;
+        s->desc[i].section_count = ns;
+        s->desc[i].reflectance = 0;
+    }
+    s->mats[0] = gx_material(0.10, 0.10, 0.11, 0.91, 0.92, 0.93, 0.2); /* brushed aluminium */
+    {
+        static const double key[5] = {20, -35, 4.0, 3.9, 3.6}, fill[5] = {50, 215, 0.8, 0.85, 1.0};
+        gx_two_lights(s, key, fill, ex_v3(0.12, 0.13, 0.15));
+    }
+    s->eye = ex_v3(0.5, -0.12, 0.32); s->at = ex_v3(0.5, 0.5, 0.0); s->fov = 45;
+    s->bench_eye = ex_v3(0.5, 0.12, 0.16); s->bench_at = ex_v3(0.5, 0.5, 0.0); s->bench_fov = 22;
+    s->lines_panel = 1;
+    return 0;
+}
+
 typedef int (*gx_scene_fn)(gx_scene_t *);
-static const char *const gx_scene_names[] = {"parallel", "curves", "scratches", "tiles", "bricks", "frame", "interreflect",
-                                             NULL};
-static const gx_scene_fn gx_scene_makers[] = {gx_scene_parallel, gx_scene_curves, gx_scene_scratches, gx_scene_tiles,
-                                              gx_scene_bricks,   gx_scene_frame,  gx_scene_interreflect};
+static const char *const gx_scene_names[] = {"parallel", "curves",      "scratches", "tiles", "bricks",
+                                             "frame",    "interreflect", "scratchfield", NULL};
+static const gx_scene_fn gx_scene_makers[] = {gx_scene_parallel, gx_scene_curves,       gx_scene_scratches,
+                                              gx_scene_tiles,    gx_scene_bricks,       gx_scene_frame,
+                                              gx_scene_interreflect, gx_scene_scratchfield};
 
 /* Switches the scene to its benchmark view. */
 static void gx_scene_bench_view(gx_scene_t *s)
@@ -426,6 +487,9 @@ typedef struct gx_ours_t {
     RTCScene plane;
     long long embree_bytes;       /* Embree's bytes once the plane is committed */
     int perturb_normals;          /* gr_query_t.perturb_normals: 0 true normals, -1 §4.4's */
+    int straight_occlusion;       /* gr_query_t.straight_occlusion: 0 the ray profile, 1 §4.3's */
+    int line_samples;             /* gr_query_t.line_samples: 0 polygons at crossings and ends,
+                                     n > 0 n line samples (§5.6); the §6 scenes take 2 for 0 */
     ex_camera_t cam;
 } gx_ours_t;
 
@@ -497,6 +561,7 @@ static ex_v3_t gx_ours_indirect(const gx_ours_t *o, gr_query_t *q, const gr_fram
 {
     const gx_scene_t *s = o->s;
     gr_indirect_t ind;
+    gr_result_t r;
     double rgb[3];
     (void)frame;
     memset(&ind, 0, sizeof ind);
@@ -505,8 +570,9 @@ static ex_v3_t gx_ours_indirect(const gx_ours_t *o, gr_query_t *q, const gr_fram
     ind.specular_count = GX_MAX_MATS;
     ind.brdf = gx_brdf_cb; ind.brdf_user = (void *)s;
     ind.trace = gx_trace_cb; ind.trace_user = (void *)s;
-    q->line_samples = 2;
-    if (gr_shade_indirect(o->grid, q, &ind, scratch, bytes, rgb, NULL) != GR_OK) return s->background;
+    if (q->line_samples == 0) q->line_samples = 2;
+    r = gr_shade_indirect(o->grid, q, &ind, scratch, bytes, rgb, NULL);
+    if (r != GR_OK && r != GR_ERR_STACK_FULL) return s->background; /* a full stack still gives a colour */
     return ex_v3(rgb[0], rgb[1], rgb[2]);
 }
 
@@ -537,6 +603,8 @@ static ex_v3_t gx_ours_radiance(const gx_ours_t *o, double px, double py)
     rd.ry_dir[0] = ray.ry_d.x; rd.ry_dir[1] = ray.ry_d.y; rd.ry_dir[2] = ray.ry_d.z;
     memset(&q, 0, sizeof q);
     q.perturb_normals = o->perturb_normals;
+    q.straight_occlusion = o->straight_occlusion;
+    q.line_samples = o->line_samples;
     if (gr_footprint_from_differentials(&rd, &q.footprint, &frame) != GR_OK) return s->background;
     for (k = 0; k < s->nlights; k++) gr_frame_to_texture(&frame, s->light[k], L + 3 * k);
     q.lights = L; q.light_count = s->nlights;
@@ -590,6 +658,15 @@ static long long gx_geo_bytes(const gx_geo_t *g)
     return g->embree_bytes + (long long)g->sc.ntris * 2 * (long long)sizeof(int);
 }
 
+/* Unpolarised Fresnel reflectance entering glass of index n from air at
+   cos ci (the geometry renderer's own, for the thin pane). */
+static double gx_fresnel(double ci, double n)
+{
+    double st = sqrt(ci < 1 ? 1 - ci * ci : 0) / n, ct = sqrt(1 - st * st);
+    double a = (ci - n * ct) / (ci + n * ct), b = (ct - n * ci) / (ct + n * ci);
+    return 0.5 * (a * a + b * b);
+}
+
 static ex_v3_t gx_geo_radiance(const gx_geo_t *g, double px, double py)
 {
     const gx_scene_t *s = g->s;
@@ -618,10 +695,20 @@ static ex_v3_t gx_geo_radiance(const gx_geo_t *g, double px, double py)
         c = ex_add(c, ex_mul(thr, gx_shade(s, refl, h.n, e, &mask, NULL)));
         if (level == s->depth || refl < 0 || refl >= GX_MAX_MATS) break;
         sp = &s->spec[refl];
-        c = ex_add(c, ex_mul(thr, ex_mul(ex_v3(sp->kt[0], sp->kt[1], sp->kt[2]), s->below)));
-        thr = ex_mul(thr, ex_v3(sp->kr[0], sp->kr[1], sp->kr[2]));
-        if (!(thr.x > 0 || thr.y > 0 || thr.z > 0)) break;
         dn = dd[0] * h.n[0] + dd[1] * h.n[1] + dd[2] * h.n[2];
+        {   /* the pane's (or facet's) reflected and transmitted shares:
+               constants, or a thin pane's two Fresnel faces (the scenes
+               here transmit only through thin panes) */
+            double R = 1, T = 1;
+            if (sp->fresnel) {
+                double f = gx_fresnel(-dn, sp->ior > 0 ? sp->ior : 1.5);
+                R = sp->thin ? 2 * f / (1 + f) : f;
+                T = 1 - R;
+            }
+            c = ex_add(c, ex_mul(thr, ex_mul(ex_v3(T * sp->kt[0], T * sp->kt[1], T * sp->kt[2]), s->below)));
+            thr = ex_mul(thr, ex_v3(R * sp->kr[0], R * sp->kr[1], R * sp->kr[2]));
+        }
+        if (!(thr.x > 0 || thr.y > 0 || thr.z > 0)) break;
         for (k = 0; k < 3; k++) {
             dd[k] -= 2 * dn * h.n[k];
             o[k] = h.p[k] + g->sc.eps * h.n[k];
