@@ -2618,6 +2618,17 @@ static void re__feature_normal(const re__object_t *o, const re__best_t *b, const
     if (len > 0) nrm[0] /= len, nrm[1] /= len, nrm[2] /= len;
 }
 
+/* The answer "the host's hit stands", before any point or normal. */
+static void re__unchanged(re_hit_t *out, unsigned object, unsigned triangle, double t_host)
+{
+    memset(out, 0, sizeof *out);
+    out->kind = RE_UNCHANGED;
+    out->t = t_host;
+    out->object = object;
+    out->feature = RE_FEATURE_FACE;
+    out->feature_index = triangle;
+}
+
 RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
                               unsigned triangle, double t_host, re_hit_t *out)
 {
@@ -2628,12 +2639,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     re__best_t best;
     double s_exit;
     if (!out) return RE_UNCHANGED;
-    memset(out, 0, sizeof *out);
-    out->kind = RE_UNCHANGED;
-    out->t = t_host;
-    out->object = object;
-    out->feature = RE_FEATURE_FACE;
-    out->feature_index = triangle;
+    re__unchanged(out, object, triangle, t_host);
     if (!scene || !o3 || !dir || object >= scene->n_objects) return RE_UNCHANGED;
     re__madd(o3, t_host, dir, I);
     out->point[0] = I[0], out->point[1] = I[1], out->point[2] = I[2];
@@ -2806,12 +2812,7 @@ RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], co
     if (triangle >= o->n_tris || !o->n_nodes || (f = o->tri_plane[triangle]) == RE__NONE)
         return re_query(scene, o3, dir, object, triangle, t_host, out);
     if (!re__band_flat(o, triangle, u, v)) return re_query(scene, o3, dir, object, triangle, t_host, out);
-    memset(out, 0, sizeof *out);
-    out->kind = RE_UNCHANGED;
-    out->t = t_host;
-    out->object = object;
-    out->feature = RE_FEATURE_FACE;
-    out->feature_index = triangle;
+    re__unchanged(out, object, triangle, t_host);
     re__madd(o3, t_host, dir, out->point);
     out->normal[0] = o->planes[f].n[0], out->normal[1] = o->planes[f].n[1], out->normal[2] = o->planes[f].n[2];
     return RE_UNCHANGED;
