@@ -861,10 +861,12 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
     unsigned *cnt;
     unsigned long long *key;
     char msg[160];
-    RE__TAKE(cnt, unsigned, (size_t)V + 1);
-    RE__TAKE(key, unsigned long long, 3 * (size_t)T);
+    size_t mark;
     RE__TAKE(an->he_edge, unsigned, 3 * (size_t)T);
     RE__TAKE(an->edges, re__edge_t, 3 * (size_t)T);
+    mark = ar->used; /* the buckets are scratch of this step only */
+    RE__TAKE(cnt, unsigned, (size_t)V + 1);
+    RE__TAKE(key, unsigned long long, 3 * (size_t)T);
     memset(cnt, 0, sizeof(unsigned) * ((size_t)V + 1));
     for (t = 0; t < T; t++)
         for (k = 0; k < 3; k++) {
@@ -960,6 +962,7 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
             break;
         }
     }
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -969,9 +972,12 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
 static re_result_t re__planes(re__an_t *an, re__arena_t *ar)
 {
     unsigned T = an->T, t, i, *uf, *best;
+    size_t mark;
+    RE__TAKE(an->tplane, unsigned, T);
+    RE__TAKE(an->planes, re__plane_t, T);
+    mark = ar->used;
     RE__TAKE(uf, unsigned, T);
     RE__TAKE(best, unsigned, T);
-    RE__TAKE(an->tplane, unsigned, T);
     for (t = 0; t < T; t++) uf[t] = t, best[t] = RE__NONE;
     for (i = 0; i < an->E; i++)
         if (an->edges[i].cls == RE__E_FLAT) re__uf_join(uf, an->edges[i].he[0] / 3, an->edges[i].he[1] / 3);
@@ -982,7 +988,6 @@ static re_result_t re__planes(re__an_t *an, re__arena_t *ar)
         if (best[r] == RE__NONE || an->tarea[t] > an->tarea[best[r]]) best[r] = t;
     }
     an->n_planes = 0;
-    RE__TAKE(an->planes, re__plane_t, T);
     for (t = 0; t < T; t++) an->tplane[t] = RE__NONE;
     for (t = 0; t < T; t++)
         if (!an->tbad[t] && uf[t] == t) {
@@ -996,6 +1001,7 @@ static re_result_t re__planes(re__an_t *an, re__arena_t *ar)
         }
     for (t = 0; t < T; t++)
         if (!an->tbad[t]) an->tplane[t] = an->tplane[re__uf_find(uf, t)];
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -1116,6 +1122,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
    order are eroded by re__erode_corner(). Mixed vertices stay sharp. */
 static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
 {
+    size_t mark;
     unsigned V = an->V, E = an->E, i, v, t;
     unsigned *tfan, *hfan;
     char msg[160];
@@ -1170,6 +1177,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->c_start, unsigned, an->np_total);
     RE__TAKE(an->su, double, 3 * (size_t)an->np_total);
     RE__TAKE(an->c_x, unsigned, 4 * (size_t)an->np_total);
+    mark = ar->used; /* the fan walk's arrays are scratch of this step only */
     RE__TAKE(tfan, unsigned, an->T + 1);
     RE__TAKE(hfan, unsigned, an->T + 1);
     {
@@ -1240,6 +1248,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
             }
         }
     }
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -1251,6 +1260,7 @@ static re_result_t re__propagate(re__an_t *an, re__arena_t *ar)
     unsigned *queue, qn = 0, v, i;
     unsigned char *inq;
     char msg[160];
+    size_t mark = ar->used;
     RE__TAKE(queue, unsigned, an->V + 1);
     RE__TAKE(inq, unsigned char, an->V + 1);
     for (v = 0; v < an->V; v++) {
@@ -1285,6 +1295,7 @@ static re_result_t re__propagate(re__an_t *an, re__arena_t *ar)
         } else
             an->st.rounded_edges++;
     }
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -1342,10 +1353,12 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     unsigned char *mism;
     char msg[160];
     unsigned nc = an->nc;
+    size_t mark;
     RE__TAKE(uf, unsigned, nc + 1);
+    RE__TAKE(r, double, nc + 1);
+    mark = ar->used; /* the rest is scratch of this step only */
     RE__TAKE(req, double, nc + 1);
     RE__TAKE(rmax, double, nc + 1);
-    RE__TAKE(r, double, nc + 1);
     RE__TAKE(lim0, long long, nc + 1);
     RE__TAKE(lim1, long long, nc + 1);
     RE__TAKE(mism, unsigned char, nc + 1);
@@ -1451,6 +1464,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     }
     *patch_r_out = r;
     *uf_out = uf;
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -1759,7 +1773,10 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
 {
     unsigned T = an->T, c, j, i, t, k;
     int own;
+    size_t mark;
     re__bandwork_t B;
+    RE__TAKE(F->bands, unsigned char, 4 * (size_t)T);
+    mark = ar->used; /* the rest is scratch of this step only */
     RE__TAKE(B.nb, unsigned, 3 * (size_t)T + 1);
     for (t = 0; t < T; t++)
         for (k = 0; k < 3; k++) {
@@ -1843,13 +1860,13 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
             }
         }
     }
-    RE__TAKE(F->bands, unsigned char, 4 * (size_t)T);
     for (t = 0; t < T; t++)
         for (k = 0; k < 4; k++) {
             double b = B.beta[4 * t + k];
             double q = b > 0 ? ceil((b + RE__BAND_MARGIN) * RE__BAND_STEPS) : 0;
             F->bands[4 * t + k] = (unsigned char)(q > RE__BAND_STEPS ? RE__BAND_STEPS : q);
         }
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -1857,6 +1874,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
                               re__final_t *F)
 {
     unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, ns = 0, ncyl = 0, nref = 0, nco = 0;
+    size_t kd_mark;
     double *box, *reach, *dmax, lo[3], hi[3];
     RE__TAKE(fc, unsigned, an->nc + 1);
     RE__TAKE(sbase, unsigned, an->nc + 1);
@@ -2025,6 +2043,13 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
        |sphere - vertex| of the vertices. Both are floats rounded up. The
        kd box holds that set: the axis extended by m at both ends, widened
        by g + (m - g) (the edge line is that close to the axis). */
+    F->kd.cap_leafrefs = RE__KD_DUP * F->n_edge_cyls + 64;
+    F->kd.cap_nodes = 2 * F->kd.cap_leafrefs;
+    F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
+    if (F->kd.cap_nodes >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
+    RE__TAKE(F->kd.nodes, re__node_t, F->kd.cap_nodes);
+    RE__TAKE(F->kd.leafrefs, unsigned, F->kd.cap_leafrefs);
+    kd_mark = ar->used; /* the boxes and the partition lists are scratch of the tree build only */
     RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls + 1);
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
     for (i = 0; i < F->n_edge_cyls; i++) {
@@ -2048,18 +2073,15 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
     }
     F->kd.box = box;
-    F->kd.cap_leafrefs = RE__KD_DUP * F->n_edge_cyls + 64;
-    F->kd.cap_nodes = 2 * F->kd.cap_leafrefs;
-    F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
     F->kd.n_nodes = F->kd.n_leafrefs = F->kd.n_leaves = 0;
-    if (F->kd.cap_nodes >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
-    RE__TAKE(F->kd.nodes, re__node_t, F->kd.cap_nodes);
-    RE__TAKE(F->kd.leafrefs, unsigned, F->kd.cap_leafrefs);
     RE__TAKE(F->kd.tmp, unsigned, F->kd.cap_tmp);
     for (i = 0; i < F->n_edge_cyls; i++) F->kd.tmp[i] = i;
     F->kd.n_tmp = F->n_edge_cyls;
     if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, RE__KD_DUP * F->n_edge_cyls, 0) == RE__NONE)
         return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "kd-tree scratch too small");
+    F->kd.box = NULL;
+    F->kd.tmp = NULL;
+    ar->used = kd_mark;
     {
         re_result_t rc = re__bands(an, ar, fc, patch_r, uf, reach, F);
         if (rc != RE_OK) return rc;
