@@ -14,7 +14,9 @@
      1. Build once: fill re_mesh_t per object (the same vertices/triangles the
         host traces), re_build() (or re_build_sizes() + re_build_into()).
      2. Per ray: the host traces its sharp mesh. On a front-face hit of object
-        k, triangle f at t, call re_query(scene, o, dir, k, f, t, &h):
+        k, triangle f at t, call re_query(scene, o, dir, k, f, t, &h), or
+        re_query_uv(..., t, u, v, &h) with the hit's barycentrics (Embree's
+        hit.u, hit.v), which answers a hit on a face's flat part at once:
           RE_UNCHANGED     shade the host hit as usual;
           RE_HIT_ROUNDED   shade h.point with h.normal (h.t replaces t);
           RE_PASS_THROUGH  the ray grazes the removed edge volume and leaves
