@@ -8,7 +8,9 @@
    B/edge = re_stats_t.bytes (the whole scene block: header, per-triangle
    plane ids, planes, spheres, cylinders, detection radii, corners, radii,
    adjacency lists, kd nodes and leaf references) / rounded edges.
-   refs/leaf = kd leaf references / kd leaves (detection candidates per leaf). */
+   refs/leaf = kd leaf references / kd leaves (detection candidates per leaf).
+   query ns = one re_query_uv() (the host passes its barycentrics, so a hit
+   on a face's flat part is answered by the per-triangle bands). */
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 #include <math.h>
@@ -213,7 +215,7 @@ int main(int argc, char **argv)
             for (a = 0; a < 3; a++) d[a] = -n[a] / l + 0.7 * (double)(((rng >> (a * 7)) & 127) - 64) / 64.0;
             if (d[0] * n[0] + d[1] * n[1] + d[2] * n[2] >= 0) for (a = 0; a < 3; a++) d[a] = -n[a];
             for (a = 0; a < 3; a++) o[a] = p[a] - d[a];
-            re_query(s, o, d, 0, t, 1.0, &h);
+            re_query_uv(s, o, d, 0, t, 1.0, u, v, &h);
             sink += h.t;
         }
         tq = (now() - tq) / nq * 1e9;

@@ -14,7 +14,9 @@
      1. Build once: fill re_mesh_t per object (the same vertices/triangles the
         host traces), re_build() (or re_build_sizes() + re_build_into()).
      2. Per ray: the host traces its sharp mesh. On a front-face hit of object
-        k, triangle f at t, call re_query(scene, o, dir, k, f, t, &h):
+        k, triangle f at t, call re_query(scene, o, dir, k, f, t, &h), or
+        re_query_uv(..., t, u, v, &h) with the hit's barycentrics (Embree's
+        hit.u, hit.v), which answers a hit on a face's flat part at once:
           RE_UNCHANGED     shade the host hit as usual;
           RE_HIT_ROUNDED   shade h.point with h.normal (h.t replaces t);
           RE_PASS_THROUGH  the ray grazes the removed edge volume and leaves
@@ -270,6 +272,17 @@ typedef struct re_hit_t {
 RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o[3],
                               const double dir[3], unsigned object, unsigned triangle,
                               double t_host, re_hit_t *out);
+
+/* re_query() for a host that knows the barycentric coordinates of its hit:
+   point = (1-u-v) p0 + u p1 + v p2, with p0, p1, p2 the triangle's corners
+   in index order (Embree's hit.u, hit.v). Same answers; a hit on the flat
+   part of its face, away from every rounding, is recognised from (u, v)
+   and three per-triangle bands (query step 0, docs/rounded_edges.md) and
+   returns RE_UNCHANGED at once, without the kd-tree. u, v may carry a
+   float tracer's error (RE__BAND_MARGIN). */
+RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o[3],
+                                 const double dir[3], unsigned object, unsigned triangle,
+                                 double t_host, double u, double v, re_hit_t *out);
 
 /* Origin on the sharp mesh (I'' of paper §4) for a secondary ray leaving a
    RE_HIT_ROUNDED hit along `dir` (dir . hit->normal > 0): where that ray
@@ -563,6 +576,10 @@ typedef struct re__object_t {
     double rmax;
     double origin[3]; /* kd splits are floats relative to this (bounding-box centre) */
     const unsigned *tri_plane; /* per triangle: plane id, RE__NONE if not rounded nearby */
+    const unsigned char *bands; /* 4 per triangle, in units of 1/RE__BAND_STEPS,
+                                   rounded up: the barycentric band along the
+                                   edge opposite corner k (k < 3), and the cap
+                                   at the corners (3); query step 0 */
     const re__plane_t *planes;
     const double *sph; /* 3 per sphere */
     const unsigned *sph_corner;
@@ -846,10 +863,12 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
     unsigned *cnt;
     unsigned long long *key;
     char msg[160];
-    RE__TAKE(cnt, unsigned, (size_t)V + 1);
-    RE__TAKE(key, unsigned long long, 3 * (size_t)T);
+    size_t mark;
     RE__TAKE(an->he_edge, unsigned, 3 * (size_t)T);
     RE__TAKE(an->edges, re__edge_t, 3 * (size_t)T);
+    mark = ar->used; /* the buckets are scratch of this step only */
+    RE__TAKE(cnt, unsigned, (size_t)V + 1);
+    RE__TAKE(key, unsigned long long, 3 * (size_t)T);
     memset(cnt, 0, sizeof(unsigned) * ((size_t)V + 1));
     for (t = 0; t < T; t++)
         for (k = 0; k < 3; k++) {
@@ -945,6 +964,7 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
             break;
         }
     }
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -954,9 +974,12 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
 static re_result_t re__planes(re__an_t *an, re__arena_t *ar)
 {
     unsigned T = an->T, t, i, *uf, *best;
+    size_t mark;
+    RE__TAKE(an->tplane, unsigned, T);
+    RE__TAKE(an->planes, re__plane_t, T);
+    mark = ar->used;
     RE__TAKE(uf, unsigned, T);
     RE__TAKE(best, unsigned, T);
-    RE__TAKE(an->tplane, unsigned, T);
     for (t = 0; t < T; t++) uf[t] = t, best[t] = RE__NONE;
     for (i = 0; i < an->E; i++)
         if (an->edges[i].cls == RE__E_FLAT) re__uf_join(uf, an->edges[i].he[0] / 3, an->edges[i].he[1] / 3);
@@ -967,7 +990,6 @@ static re_result_t re__planes(re__an_t *an, re__arena_t *ar)
         if (best[r] == RE__NONE || an->tarea[t] > an->tarea[best[r]]) best[r] = t;
     }
     an->n_planes = 0;
-    RE__TAKE(an->planes, re__plane_t, T);
     for (t = 0; t < T; t++) an->tplane[t] = RE__NONE;
     for (t = 0; t < T; t++)
         if (!an->tbad[t] && uf[t] == t) {
@@ -981,6 +1003,7 @@ static re_result_t re__planes(re__an_t *an, re__arena_t *ar)
         }
     for (t = 0; t < T; t++)
         if (!an->tbad[t]) an->tplane[t] = an->tplane[re__uf_find(uf, t)];
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -1101,6 +1124,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
    order are eroded by re__erode_corner(). Mixed vertices stay sharp. */
 static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
 {
+    size_t mark;
     unsigned V = an->V, E = an->E, i, v, t;
     unsigned *tfan, *hfan;
     char msg[160];
@@ -1155,6 +1179,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->c_start, unsigned, an->np_total);
     RE__TAKE(an->su, double, 3 * (size_t)an->np_total);
     RE__TAKE(an->c_x, unsigned, 4 * (size_t)an->np_total);
+    mark = ar->used; /* the fan walk's arrays are scratch of this step only */
     RE__TAKE(tfan, unsigned, an->T + 1);
     RE__TAKE(hfan, unsigned, an->T + 1);
     {
@@ -1225,6 +1250,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
             }
         }
     }
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -1236,6 +1262,7 @@ static re_result_t re__propagate(re__an_t *an, re__arena_t *ar)
     unsigned *queue, qn = 0, v, i;
     unsigned char *inq;
     char msg[160];
+    size_t mark = ar->used;
     RE__TAKE(queue, unsigned, an->V + 1);
     RE__TAKE(inq, unsigned char, an->V + 1);
     for (v = 0; v < an->V; v++) {
@@ -1270,6 +1297,7 @@ static re_result_t re__propagate(re__an_t *an, re__arena_t *ar)
         } else
             an->st.rounded_edges++;
     }
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -1285,6 +1313,33 @@ static double re__edge_request(const re__an_t *an, const re__edge_t *e)
     return r == HUGE_VAL ? an->m->radius : r;
 }
 
+/* A straight rounded edge split by vertices where only its two face planes
+   meet (k = 2) is one rounding cylinder: from corner c along edge e, step
+   over such vertices to the corner at the far end of the chain. Returns it
+   (RE__NONE for a closed chain) and the chain's last edge in *last. */
+static unsigned re__chain_end(const re__an_t *an, unsigned c, unsigned e, unsigned *last)
+{
+    unsigned v = an->c_vertex[c], steps = 0;
+    for (;;) {
+        const re__edge_t *ed = &an->edges[e];
+        unsigned w = ed->v[0] == v ? ed->v[1] : ed->v[0], cw = an->vcorner[w], q, nx = RE__NONE;
+        *last = e;
+        if (an->c_np[cw] != 2) return cw;
+        if (cw == c || ++steps > an->V) return RE__NONE;
+        for (q = an->voff[w]; q < an->voff[w + 1]; q++)
+            if (an->vinc[q] != e && an->edges[an->vinc[q]].rounded) nx = an->vinc[q];
+        if (nx == RE__NONE) return RE__NONE;
+        v = w, e = nx;
+    }
+}
+
+/* Unit-radius offset of the sphere where rounded edge e meets corner c. */
+static const double *re__edge_su(const re__an_t *an, unsigned c, unsigned e)
+{
+    const re__edge_t *ed = &an->edges[e];
+    return an->su + 3 * (size_t)(an->c_sfirst[c] + an->edge_end[2 * e + (ed->v[0] == an->c_vertex[c] ? 0u : 1u)]);
+}
+
 /* Step 6: one radius per patch (corners linked by rounded edges) and its
    largest valid value. Everything at a corner scales linearly with r, so
    each constraint gives a bound r <= b directly:
@@ -1294,19 +1349,23 @@ static double re__edge_request(const re__an_t *an, const re__edge_t *e)
      neighbouring corners (a slab thinner than 2r, a short prism). */
 static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out, unsigned **uf_out)
 {
-    unsigned *uf, i, c;
+    unsigned *uf, i, c, *pmark;
     double *req, *rmax, *r;
     long long *lim0, *lim1;
     unsigned char *mism;
     char msg[160];
     unsigned nc = an->nc;
+    size_t mark;
     RE__TAKE(uf, unsigned, nc + 1);
+    RE__TAKE(r, double, nc + 1);
+    mark = ar->used; /* the rest is scratch of this step only */
     RE__TAKE(req, double, nc + 1);
     RE__TAKE(rmax, double, nc + 1);
-    RE__TAKE(r, double, nc + 1);
     RE__TAKE(lim0, long long, nc + 1);
     RE__TAKE(lim1, long long, nc + 1);
     RE__TAKE(mism, unsigned char, nc + 1);
+    RE__TAKE(pmark, unsigned, an->n_planes + 1);
+    memset(pmark, 0, sizeof(unsigned) * (an->n_planes + 1));
     for (c = 0; c < nc; c++) uf[c] = c, req[c] = HUGE_VAL, rmax[c] = HUGE_VAL, mism[c] = 0, lim0[c] = lim1[c] = -1;
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
@@ -1330,6 +1389,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         rq = re__edge_request(an, e);
         if (req[p] != HUGE_VAL && req[p] != rq) mism[p] = 1;
         req[p] = re__min(req[p], rq);
+        if (an->c_np[ca] == 2 || an->c_np[cb] == 2) continue; /* part of a chain: bounded from its ends below */
         re__sub(an->pos + 3 * (size_t)e->v[1], an->pos + 3 * (size_t)e->v[0], dir);
         L = re__len(dir);
         re__sub(an->su + 3 * (size_t)(an->c_sfirst[ca] + an->edge_end[2 * i]),
@@ -1339,21 +1399,42 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     }
     for (c = 0; c < nc; c++) {
         unsigned v = an->c_vertex[c], p, q, s, g;
-        if (an->vstate[v] != RE__V_CORNER) continue;
+        double umax = 0, skip;
+        /* a vertex inside a straight edge: its sphere ends up between the
+           chain's end spheres (re__finish), which are checked */
+        if (an->vstate[v] != RE__V_CORNER || an->c_np[c] == 2) continue;
         p = re__uf_find(uf, c);
+        /* a plane farther than req (1 + |u|) from v cannot bound the radius
+           below the request (n.u + 1 <= |u| + 1), so it cannot clamp it:
+           skipped before its plane and sphere loops */
+        for (s = 0; s < an->c_ns[c]; s++) umax = re__max(umax, re__len(an->su + 3 * (size_t)(an->c_sfirst[c] + s)));
+        skip = req[p] * (umax + 1) * (1 + 1e-9);
+        for (s = 0; s < an->c_np[c]; s++) pmark[an->c_planes[an->c_pfirst[c] + s]] = c + 1;
         for (q = an->voff[v]; q < an->voff[v + 1]; q++) {
             const re__edge_t *e = &an->edges[an->vinc[q]];
             unsigned w, cw;
             if (!e->rounded) continue;
             w = e->v[0] == v ? e->v[1] : e->v[0];
             cw = an->vcorner[w];
+            if (an->c_np[cw] == 2) {
+                /* a straight chain: its far corner bounds the radius, by the
+                   chain's length (the edge bound) and by its planes */
+                unsigned last, cb = re__chain_end(an, c, an->vinc[q], &last);
+                double dir[3], du[3], L, den;
+                if (cb == RE__NONE) continue;
+                w = an->c_vertex[cb];
+                cw = cb;
+                re__sub(an->pos + 3 * (size_t)w, an->pos + 3 * (size_t)v, dir);
+                L = re__len(dir);
+                re__sub(re__edge_su(an, c, an->vinc[q]), re__edge_su(an, cb, last), du);
+                den = re__dot(du, dir) / L;
+                if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = v, lim1[p] = w;
+            }
             for (g = 0; g < an->c_np[cw]; g++) {
                 const re__plane_t *pl = &an->planes[an->c_planes[an->c_pfirst[cw] + g]];
                 double b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
-                if (b < 0) continue; /* not a locally convex configuration */
-                for (s = 0; s < an->c_np[c]; s++)
-                    if (an->c_planes[an->c_pfirst[c] + s] == an->c_planes[an->c_pfirst[cw] + g]) break;
-                if (s < an->c_np[c]) continue;
+                if (b < 0 || b >= skip) continue; /* not locally convex, or too far to matter */
+                if (pmark[an->c_planes[an->c_pfirst[cw] + g]] == c + 1) continue; /* a plane of c itself */
                 for (s = 0; s < an->c_ns[c]; s++) {
                     double a = re__dot(pl->n, an->su + 3 * (size_t)(an->c_sfirst[c] + s)) + 1.0;
                     if (a > 0 && b / a < rmax[p]) rmax[p] = b / a, lim0[p] = v, lim1[p] = -1;
@@ -1385,6 +1466,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     }
     *patch_r_out = r;
     *uf_out = uf;
+    ar->used = mark;
     return RE_OK;
 }
 
@@ -1409,7 +1491,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
 #define RE__KD_DEPTH 48
 #define RE__KD_BINS 16
 #define RE__KD_STEP 1.0   /* cost of one node step, in units of one candidate test */
-#define RE__KD_DUP 3u     /* leaf references at most this times the boxes (memory) */
+#define RE__KD_DUP 2u     /* leaf references at most this times the boxes (memory) */
 #define RE__KD_SAMPLE 256u
 
 typedef struct re__kd_t {
@@ -1522,6 +1604,7 @@ leaf:
 typedef struct re__final_t {
     unsigned n_corners, n_spheres, n_cyls, n_edge_cyls, n_planes, n_refs, n_radii;
     unsigned *tri_plane;
+    unsigned char *bands;
     re__plane_t *planes;
     double *sph;
     unsigned *sph_corner;
@@ -1541,10 +1624,259 @@ static float re__float_up(double x)
     return f;
 }
 
+/* Query step 0: per-triangle bands. The flat part of face f is the face
+   shrunk by the half-planes H_g = {x : n_g.x <= c_g - r (1 - n_g.n_f)} of
+   the planes g of its corners (the offset of the eroded face; query step 2
+   tests the same lines). Near a rounded edge between f and g the face
+   outside H_g is a strip along the edge; its triangles are found by a walk
+   over the face's flat edges from the edge's own triangle (the part of a
+   convex face outside a half-plane is convex, so they are connected). The
+   cut-off part of such a triangle is a polygon whose barycentric
+   coordinates follow from the three signed distances alone. At a corner
+   with four or more planes, the planes that are not its edges' neighbours
+   cut the face only inside the corner's face reach rho of the vertex (the
+   shrunk polygon runs through the projected sphere centres there), so each
+   triangle at the vertex gets a cap piece rho / altitude instead, and a
+   triangle of the face within rho of the vertex that does not touch it is
+   always queried. A piece is excluded by a band along one of the
+   triangle's edges (lambda_k <= beta_k) or by the cap shared by its three
+   corners (some lambda_k >= 1 - gamma): the hit is flat when every
+   barycentric coordinate lies in (beta_k, 1 - gamma). Every edge's band on
+   its own triangle is set first; then each other piece goes to the band
+   that loses the least area to it (on a box face the bands skip 99% of
+   the flat part; the narrowest band per piece, without the cap, 74%).
+   Bands err only wide:
+   rounded up to 1/RE__BAND_STEPS, plus RE__BAND_MARGIN for a float host's
+   u, v. */
+#define RE__BAND_STEPS 255.0
+#define RE__BAND_MARGIN 1e-6
+/* Share of the triangle's area behind band a of width b: an edge band
+   1 - (1 - b)^2, the three corner caps 3 b^2. */
+static double re__band_area(unsigned a, double b) { return a < 3 ? b * (2 - b) : 3 * b * b; }
+static void re__band_take(double *beta, const double need[4])
+{
+    unsigned a, kb = 0;
+    double best = HUGE_VAL;
+    if (need[0] <= beta[0] || need[1] <= beta[1] || need[2] <= beta[2] || need[3] <= beta[3]) return; /* held already */
+    for (a = 0; a < 4; a++) {
+        double grow = need[a] > beta[a] ? re__band_area(a, re__min(need[a], 1.0)) - re__band_area(a, beta[a]) : 0;
+        if (grow < best || (grow == best && need[a] < need[kb])) best = grow, kb = a;
+    }
+    beta[kb] = re__max(beta[kb], need[kb]);
+}
+
+typedef struct re__bandwork_t {
+    unsigned *nb; /* 3 per triangle: the neighbour across its flat edge k, or RE__NONE */
+    double *ih;   /* 3 per triangle: 1 / its altitude from corner k */
+    double *beta;
+    unsigned *stamp, *queue, st;
+} re__bandwork_t;
+
+/* The strip of face f (plane fi) outside H_g, from the triangle of
+   half-edge he on (the edge between f and g). On that triangle the strip
+   runs along its own edge, so it is a band of width r tan(theta/2) (theta
+   the angle between the normals) over the altitude: no piece. Beyond it,
+   across the face's flat edges, the cut-off polygons are pieces. */
+static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, const re__plane_t *G, double r, unsigned he,
+                           int own)
+{
+    const re__plane_t *P = &an->planes[fi];
+    double cs = re__dot(G->n, P->n), lim = G->c - r * (1 - cs), sn;
+    unsigned qh = 0, qt = 0, k, t0 = he / 3, ke = he % 3, m0 = (ke + 2) % 3;
+    if (own) {
+        /* the strip's width over the altitude from the opposite corner m0;
+           tan(theta/2) = (1 - cos) / sin */
+        sn = sqrt(re__max(0.0, 1 - cs * cs));
+        B->beta[4 * (size_t)t0 + m0] =
+            re__max(B->beta[4 * (size_t)t0 + m0], sn > 0 ? r * (1 - cs) / sn * B->ih[3 * (size_t)t0 + m0] : 1.0);
+        return;
+    }
+    if (B->nb[3 * (size_t)t0] == RE__NONE && B->nb[3 * (size_t)t0 + 1] == RE__NONE && B->nb[3 * (size_t)t0 + 2] == RE__NONE)
+        return; /* alone on its face: nothing beyond the own band */
+    B->st++;
+    B->stamp[t0] = B->st;
+    B->queue[qt++] = t0;
+    while (qh < qt) {
+        unsigned tt = B->queue[qh++], n_out = 0, a;
+        double sd[3], need[4];
+        for (k = 0; k < 3; k++) {
+            sd[k] = re__dot(G->n, an->pos + 3 * (size_t)an->tri[3 * tt + k]) - lim;
+            if (sd[k] > 0) n_out++;
+        }
+        if (tt == t0) goto next;
+        if (!n_out) continue; /* not cut (cannot happen: it shares an outside corner) */
+        /* the cut-off polygon: the outside corners and the crossings of the
+           edges that change sign, in barycentric coordinates; need[a] is
+           its largest lambda_a, and the cap needs 1 - its smallest lambda_a
+           when one corner a alone is outside (else the cap cannot hold it) */
+        for (a = 0; a < 3; a++) need[a] = sd[a] > 0 ? 1.0 : 0.0;
+        need[3] = 1;
+        for (k = 0; k < 3; k++) {
+            unsigned k2 = (k + 1) % 3;
+            if ((sd[k] > 0) != (sd[k2] > 0)) {
+                double tau = sd[k] / (sd[k] - sd[k2]); /* lambda_k = 1 - tau, lambda_k2 = tau */
+                need[k] = re__max(need[k], 1 - tau);
+                need[k2] = re__max(need[k2], tau);
+            }
+        }
+        if (n_out == 1) {
+            unsigned a0 = sd[0] > 0 ? 0u : sd[1] > 0 ? 1u : 2u, ap = (a0 + 2) % 3, an2 = (a0 + 1) % 3;
+            /* crossings on the edges (a0, an2) and (ap, a0): lambda_a0 = 1 - tau there */
+            double ta = sd[a0] / (sd[a0] - sd[an2]), tb = sd[ap] / (sd[ap] - sd[a0]);
+            need[3] = re__max(ta, 1 - tb);
+        }
+        re__band_take(B->beta + 4 * (size_t)tt, need);
+    next:
+        /* on across the face's flat edges that the cut-off part reaches (an
+           edge with a corner outside H_g) */
+        for (k = 0; k < 3; k++) {
+            unsigned o2 = B->nb[3 * (size_t)tt + k];
+            if (o2 == RE__NONE || !(sd[k] > 0 || sd[(k + 1) % 3] > 0)) continue;
+            if (B->stamp[o2] != B->st) B->stamp[o2] = B->st, B->queue[qt++] = o2;
+        }
+    }
+}
+
+/* Distance from p to triangle t's closest point, bounded below by the
+   distance to its plane and to its edges (exact enough for a reach test:
+   it errs low only where the point projects inside, where it is exact). */
+static double re__point_tri_dist(const re__an_t *an, unsigned t, const double p[3])
+{
+    const double *a = an->pos + 3 * (size_t)an->tri[3 * t], *b = an->pos + 3 * (size_t)an->tri[3 * t + 1],
+                 *c = an->pos + 3 * (size_t)an->tri[3 * t + 2];
+    const double *vs[3];
+    double best = HUGE_VAL, n[3], e[3], q[3];
+    unsigned k;
+    int inside = 1;
+    vs[0] = a, vs[1] = b, vs[2] = c;
+    n[0] = an->tn[3 * (size_t)t], n[1] = an->tn[3 * (size_t)t + 1], n[2] = an->tn[3 * (size_t)t + 2];
+    for (k = 0; k < 3; k++) {
+        const double *u = vs[k], *w = vs[(k + 1) % 3];
+        double ab[3], ap[3], cr[3], tt, l2;
+        re__sub(w, u, ab);
+        re__sub(p, u, ap);
+        re__cross(ab, ap, cr);
+        if (re__dot(cr, n) < 0) inside = 0;
+        l2 = re__dot(ab, ab);
+        tt = l2 > 0 ? re__max(0.0, re__min(1.0, re__dot(ap, ab) / l2)) : 0;
+        re__madd(u, tt, ab, q);
+        re__sub(p, q, e);
+        best = re__min(best, re__len(e));
+    }
+    if (inside) {
+        re__sub(p, a, e);
+        return fabs(re__dot(e, n));
+    }
+    return best;
+}
+
+static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, const double *patch_r, unsigned *uf,
+                             const double *reach, re__final_t *F)
+{
+    unsigned T = an->T, c, j, i, t, k;
+    int own;
+    size_t mark;
+    re__bandwork_t B;
+    RE__TAKE(F->bands, unsigned char, 4 * (size_t)T);
+    mark = ar->used; /* the rest is scratch of this step only */
+    RE__TAKE(B.nb, unsigned, 3 * (size_t)T + 1);
+    for (t = 0; t < T; t++)
+        for (k = 0; k < 3; k++) {
+            unsigned e = an->he_edge[3 * t + k];
+            B.nb[3 * (size_t)t + k] = e == RE__NONE || an->edges[e].cls != RE__E_FLAT ? RE__NONE
+                                      : an->edges[e].he[0] / 3 == t ? an->edges[e].he[1] / 3 : an->edges[e].he[0] / 3;
+        }
+    RE__TAKE(B.beta, double, 4 * (size_t)T + 1);
+    RE__TAKE(B.ih, double, 3 * (size_t)T + 1);
+    for (t = 0; t < T; t++)
+        for (k = 0; k < 3; k++) {
+            double ed[3];
+            if (an->tbad[t]) { B.ih[3 * (size_t)t + k] = 0; continue; }
+            re__sub(an->pos + 3 * (size_t)an->tri[3 * t + (k + 2) % 3], an->pos + 3 * (size_t)an->tri[3 * t + (k + 1) % 3], ed);
+            B.ih[3 * (size_t)t + k] = re__len(ed) / an->tarea[t]; /* 1 / the altitude from corner k */
+        }
+    RE__TAKE(B.stamp, unsigned, (size_t)T + 1);
+    RE__TAKE(B.queue, unsigned, (size_t)T + 1);
+    B.st = 0;
+    for (t = 0; t < 4 * T; t++) B.beta[t] = 0;
+    for (t = 0; t < T; t++) B.stamp[t] = 0;
+    /* the strips of each rounded edge, on both its faces: first every
+       edge's band on its own triangles, then the pieces beyond them, each
+       assigned at once to the band that loses the least area (the own
+       bands, the widest, are in place by then, so a corner piece joins
+       one of them or the cap) */
+    for (own = 1; own >= 0; own--)
+        for (i = 0; i < an->E; i++) {
+            const re__edge_t *e = &an->edges[i];
+            unsigned t0, t1;
+            double r;
+            if (!e->rounded) continue;
+            r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
+            t0 = e->he[0] / 3, t1 = e->he[1] / 3;
+            re__band_strip(an, &B, an->tplane[t0], &an->planes[an->tplane[t1]], r, e->he[0], own);
+            re__band_strip(an, &B, an->tplane[t1], &an->planes[an->tplane[t0]], r, e->he[1], own);
+        }
+    /* caps at corners with planes that are not edge neighbours */
+    for (c = 0; c < an->nc; c++) {
+        unsigned v = an->c_vertex[c], np = an->c_np[c];
+        double rho;
+        if (fc[c] == RE__NONE || np < 4) continue;
+        rho = reach[fc[c]] / 1.5;
+        for (j = an->voff[v]; j < an->voff[v + 1]; j++) {
+            const re__edge_t *e = &an->edges[an->vinc[j]];
+            unsigned h;
+            for (h = 0; h < 2 && h < e->count; h++) {
+                unsigned tt = e->he[h] / 3, kv = e->he[h] % 3, qh = 0, qt = 0, m;
+                double need[4];
+                /* each triangle at v once: the one whose half-edge leaves v */
+                if (an->tri[e->he[h]] != v || an->tplane[tt] == RE__NONE) continue;
+                /* the disc of radius rho around corner kv: within rho / h_m
+                   of the two edges through it (h_m the altitude from corner
+                   m, twice the area over the opposite edge), and of corner
+                   kv itself */
+                for (m = 0; m < 3; m++) need[m] = m == kv ? 1.0 : rho * B.ih[3 * (size_t)tt + m];
+                need[3] = rho * B.ih[3 * (size_t)tt + kv];
+                re__band_take(B.beta + 4 * (size_t)tt, need);
+                if (B.nb[3 * (size_t)tt] == RE__NONE && B.nb[3 * (size_t)tt + 1] == RE__NONE &&
+                    B.nb[3 * (size_t)tt + 2] == RE__NONE)
+                    continue; /* alone on its face */
+                /* the face's triangles within rho that do not touch v: always queried */
+                B.st++;
+                B.stamp[tt] = B.st;
+                B.queue[qt++] = tt;
+                while (qh < qt) {
+                    unsigned t2 = B.queue[qh++];
+                    for (k = 0; k < 3; k++) {
+                        unsigned o2 = B.nb[3 * (size_t)t2 + k];
+                        if (o2 == RE__NONE || B.stamp[o2] == B.st) continue;
+                        B.stamp[o2] = B.st;
+                        if (an->tri[3 * o2] == v || an->tri[3 * o2 + 1] == v || an->tri[3 * o2 + 2] == v) {
+                            B.queue[qt++] = o2; /* a fan triangle of v: its own cap */
+                            continue;
+                        }
+                        if (re__point_tri_dist(an, o2, an->pos + 3 * (size_t)v) > rho) continue;
+                        B.beta[4 * (size_t)o2] = B.beta[4 * (size_t)o2 + 1] = B.beta[4 * (size_t)o2 + 2] = 1;
+                        B.queue[qt++] = o2;
+                    }
+                }
+            }
+        }
+    }
+    for (t = 0; t < T; t++)
+        for (k = 0; k < 4; k++) {
+            double b = B.beta[4 * t + k];
+            double q = b > 0 ? ceil((b + RE__BAND_MARGIN) * RE__BAND_STEPS) : 0;
+            F->bands[4 * t + k] = (unsigned char)(q > RE__BAND_STEPS ? RE__BAND_STEPS : q);
+        }
+    ar->used = mark;
+    return RE_OK;
+}
+
 static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
                               re__final_t *F)
 {
     unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, ns = 0, ncyl = 0, nref = 0, nco = 0;
+    size_t kd_mark;
     double *box, *reach, *dmax, lo[3], hi[3];
     RE__TAKE(fc, unsigned, an->nc + 1);
     RE__TAKE(sbase, unsigned, an->nc + 1);
@@ -1574,6 +1906,32 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             unsigned q = an->c_planes[an->c_pfirst[c] + j];
             if (pmap[q] == RE__NONE) pmap[q] = F->n_planes++;
         }
+    }
+    /* A vertex inside a straight edge (k = 2) has its sphere on the chain's
+       axis; where the chain's end spheres are set back past it (a short
+       first segment), it is moved along the axis into their span, which
+       leaves the union of capsules unchanged and keeps it inside. */
+    for (c = 0; c < an->nc; c++) {
+        unsigned v = an->c_vertex[c], q, e0 = RE__NONE, e1 = RE__NONE, l0, l1, ca, cb, a;
+        double r, pa[3], pb[3], pc[3], ab[3], t, L2;
+        if (fc[c] == RE__NONE || an->c_np[c] != 2) continue;
+        for (q = an->voff[v]; q < an->voff[v + 1]; q++)
+            if (an->edges[an->vinc[q]].rounded) { if (e0 == RE__NONE) e0 = an->vinc[q]; else e1 = an->vinc[q]; }
+        if (e1 == RE__NONE) continue;
+        ca = re__chain_end(an, c, e0, &l0);
+        cb = re__chain_end(an, c, e1, &l1);
+        if (ca == RE__NONE || cb == RE__NONE) continue;
+        r = patch_r[re__uf_find(uf, c)];
+        re__madd(an->pos + 3 * (size_t)an->c_vertex[ca], r, re__edge_su(an, ca, l0), pa);
+        re__madd(an->pos + 3 * (size_t)an->c_vertex[cb], r, re__edge_su(an, cb, l1), pb);
+        re__madd(an->pos + 3 * (size_t)v, r, an->su + 3 * (size_t)an->c_sfirst[c], pc);
+        re__sub(pb, pa, ab);
+        L2 = re__dot(ab, ab);
+        re__sub(pc, pa, pc);
+        t = L2 > 0 ? re__dot(pc, ab) / L2 : -1; /* ends at one point (the largest radius): there */
+        if (t >= 0 && t <= 1) continue;
+        for (a = 0; a < 3; a++)
+            an->su[3 * (size_t)an->c_sfirst[c] + a] = ((t < 0 ? pa[a] : pb[a]) - an->pos[3 * (size_t)v + a]) / r;
     }
     F->n_corners = nco;
     F->n_spheres = ns;
@@ -1668,8 +2026,16 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         cb = an->vcorner[e->v[1]];
         cy->s[0] = sbase[ca] + an->edge_end[2 * i];
         cy->s[1] = sbase[cb] + an->edge_end[2 * i + 1];
-        cy->p[0] = pmap[an->tplane[e->he[0] / 3]];
-        cy->p[1] = pmap[an->tplane[e->he[1] / 3]];
+        /* p[0]: the face whose triangle runs v[0] -> v[1], on the left of
+           the edge leaving v[0] (seen from outside); p[1] is on the left
+           leaving v[1]. Around a corner every face plane is on the left of
+           exactly one of its edges, so the query reads each once. */
+        {
+            unsigned h0 = an->tri[e->he[0]] == e->v[0] ? e->he[0] : e->he[1];
+            unsigned h1 = h0 == e->he[0] ? e->he[1] : e->he[0];
+            cy->p[0] = pmap[an->tplane[h0 / 3]];
+            cy->p[1] = pmap[an->tplane[h1 / 3]];
+        }
     }
     /* Detection (§3.1): the removed zone on a face lies within g, the larger
        face reach of the edge's two corners, of the mesh edge. The query
@@ -1679,6 +2045,13 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
        |sphere - vertex| of the vertices. Both are floats rounded up. The
        kd box holds that set: the axis extended by m at both ends, widened
        by g + (m - g) (the edge line is that close to the axis). */
+    F->kd.cap_leafrefs = RE__KD_DUP * F->n_edge_cyls + 64;
+    F->kd.cap_nodes = 2 * F->kd.cap_leafrefs;
+    F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
+    if (F->kd.cap_nodes >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
+    RE__TAKE(F->kd.nodes, re__node_t, F->kd.cap_nodes);
+    RE__TAKE(F->kd.leafrefs, unsigned, F->kd.cap_leafrefs);
+    kd_mark = ar->used; /* the boxes and the partition lists are scratch of the tree build only */
     RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls + 1);
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
     for (i = 0; i < F->n_edge_cyls; i++) {
@@ -1702,18 +2075,19 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
     }
     F->kd.box = box;
-    F->kd.cap_leafrefs = RE__KD_DUP * F->n_edge_cyls + 64;
-    F->kd.cap_nodes = 2 * F->kd.cap_leafrefs;
-    F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
     F->kd.n_nodes = F->kd.n_leafrefs = F->kd.n_leaves = 0;
-    if (F->kd.cap_nodes >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
-    RE__TAKE(F->kd.nodes, re__node_t, F->kd.cap_nodes);
-    RE__TAKE(F->kd.leafrefs, unsigned, F->kd.cap_leafrefs);
     RE__TAKE(F->kd.tmp, unsigned, F->kd.cap_tmp);
     for (i = 0; i < F->n_edge_cyls; i++) F->kd.tmp[i] = i;
     F->kd.n_tmp = F->n_edge_cyls;
     if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, RE__KD_DUP * F->n_edge_cyls, 0) == RE__NONE)
         return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "kd-tree scratch too small");
+    F->kd.box = NULL;
+    F->kd.tmp = NULL;
+    ar->used = kd_mark;
+    {
+        re_result_t rc = re__bands(an, ar, fc, patch_r, uf, reach, F);
+        if (rc != RE_OK) return rc;
+    }
     an->st.rounded_corners += nco;
     an->st.spheres += ns;
     an->st.cylinders += ncyl;
@@ -1728,7 +2102,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
 
 static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
 {
-    return RE__ALIGN(sizeof(unsigned) * an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
+    return RE__ALIGN(sizeof(unsigned) * an->T) + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
            RE__ALIGN(sizeof(double) * 3 * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_spheres) +
            RE__ALIGN(sizeof(re__cyl_t) * F->n_cyls) + RE__ALIGN(sizeof(float) * 2 * F->n_edge_cyls) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
@@ -1761,6 +2135,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->size = an->size;
     for (c = 0; c < 3; c++) o->origin[c] = an->origin[c];
     o->tri_plane = (const unsigned *)re__put(&at, F->tri_plane, sizeof(unsigned) * an->T);
+    o->bands = (const unsigned char *)re__put(&at, F->bands, 4 * (size_t)an->T);
     o->planes = (const re__plane_t *)re__put(&at, F->planes, sizeof(re__plane_t) * F->n_planes);
     o->sph = (const double *)re__put(&at, F->sph, sizeof(double) * 3 * F->n_spheres);
     o->sph_corner = (const unsigned *)re__put(&at, F->sph_corner, sizeof(unsigned) * F->n_spheres);
@@ -2110,44 +2485,62 @@ static double re__dist2_halfline(const double p[3], const double a[3], const dou
     return re__dot(q, q);
 }
 
-/* Plane slot j < 2*np of a corner: the planes its edge cylinders join (each
-   plane twice; storing them once more would cost memory, not time). */
+/* Face plane j < np of a corner: the one on the left of its edge cylinder j
+   leaving the corner (re__finish orders each cylinder's planes so), which
+   lists every plane of the corner once. */
 static unsigned re__corner_plane(const re__object_t *o, const re__corner_t *K, unsigned j)
 {
-    return o->cyls[o->refs[K->first + j / 2]].p[j & 1];
+    const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
+    return cy->p[cy->s[0] - K->sfirst < K->ns ? 0 : 1];
 }
 
 static int re__corner_has_plane(const re__object_t *o, const re__corner_t *K, unsigned f)
 {
     unsigned j;
     for (j = 0; j < K->np; j++)
-        if (o->cyls[o->refs[K->first + j]].p[0] == f || o->cyls[o->refs[K->first + j]].p[1] == f) return 1;
+        if (re__corner_plane(o, K, j) == f) return 1;
     return 0;
 }
 
-static int re__add_corner(unsigned *set, unsigned *n, unsigned c)
+/* The corners a query works on, with a 64-bit filter of their ids, so "is
+   w in the set?" mostly needs no search. */
+typedef struct re__set_t {
+    unsigned c[RE__MAX_WALK], n;
+    unsigned long long bloom;
+} re__set_t;
+
+static unsigned long long re__bloom_bit(unsigned c) { return 1ull << ((c * 0x9E3779B1u) >> 26); }
+
+/* Position of corner w in the set, or n. */
+static unsigned re__set_find(const re__set_t *S, unsigned w)
 {
-    unsigned i;
-    for (i = 0; i < *n; i++)
-        if (set[i] == c) return 0;
-    if (*n == RE__MAX_WALK) return 0;
-    set[(*n)++] = c;
+    unsigned q;
+    if (!(S->bloom & re__bloom_bit(w))) return S->n;
+    for (q = 0; q < S->n && S->c[q] != w; q++) {}
+    return q;
+}
+
+static int re__set_add(re__set_t *S, unsigned c)
+{
+    if (re__set_find(S, c) < S->n || S->n == RE__MAX_WALK) return 0;
+    S->c[S->n++] = c;
+    S->bloom |= re__bloom_bit(c);
     return 1;
 }
 
 /* Is I (on plane f) on the flat part of its face, i.e. is I - r*n_f inside
    every shifted plane of the corners around it? (erosion + dilation: the
    flat part is the offset of the eroded face.) */
-static int re__on_flat_part(const re__object_t *o, const unsigned *set, unsigned n, unsigned f, const double I[3])
+static int re__on_flat_part(const re__object_t *o, const re__set_t *S, unsigned f, const double I[3])
 {
     const re__plane_t *pf = &o->planes[f];
     unsigned i, j;
-    for (i = 0; i < n; i++) {
-        const re__corner_t *K = &o->corners[set[i]];
+    for (i = 0; i < S->n; i++) {
+        const re__corner_t *K = &o->corners[S->c[i]];
         double q[3], mag, r = o->radii[K->rid];
         re__madd(I, -r, pf->n, q);
         mag = fabs(q[0]) + fabs(q[1]) + fabs(q[2]);
-        for (j = 0; j < 2u * K->np; j++) {
+        for (j = 0; j < K->np; j++) {
             unsigned gi = re__corner_plane(o, K, j);
             const re__plane_t *g = &o->planes[gi];
             if (gi == f) continue;
@@ -2182,55 +2575,54 @@ static void re__try_cyl(const re__object_t *o, unsigned c, double r, const doubl
    `set`: the solid is the union of the capsules around the eroded
    polytope's vertices and edges and the flat slabs, and past I the ray is
    inside the sharp mesh, so only capsules can be entered (docs: "Query"). */
-static void re__nearest_feature(const re__object_t *o, const unsigned *set, unsigned n, const double I[3],
-                                const double d[3], re__best_t *b)
+static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const double I[3], const double d[3],
+                                re__best_t *b)
 {
     unsigned i, j;
     b->s = HUGE_VAL;
     b->kind = RE_FEATURE_FACE;
     b->index = 0;
     b->h = 0;
-    for (i = 0; i < n; i++) {
-        const re__corner_t *K = &o->corners[set[i]];
+    for (i = 0; i < S->n; i++) {
+        const re__corner_t *K = &o->corners[S->c[i]];
         const unsigned *ref = o->refs + K->first;
         double r = o->radii[K->rid];
         for (j = 0; j < K->ns; j++) re__try_sphere(o, K->sfirst + j, r, I, d, b);
         for (j = 0; j < K->np; j++) {
-            unsigned c = ref[j], far = o->cyls[c].s[o->sph_corner[o->cyls[c].s[0]] == set[i] ? 1 : 0], q;
-            unsigned w = o->sph_corner[far];
+            unsigned c = ref[j], far = o->cyls[c].s[o->sph_corner[o->cyls[c].s[0]] == S->c[i] ? 1 : 0];
+            unsigned q = re__set_find(S, o->sph_corner[far]);
             /* each feature once: an edge between two corners of the set is
                tried from the first of them, and the far end sphere only when
                its corner is not in the set (else it is one of that
                corner's own spheres) */
-            for (q = 0; q < n && set[q] != w; q++) {}
             if (q < i) continue;
             re__try_cyl(o, c, r, I, d, b);
-            if (q == n) re__try_sphere(o, far, r, I, d, b);
+            if (q == S->n) re__try_sphere(o, far, r, I, d, b);
         }
         for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[K->np + j], r, I, d, b);
     }
 }
 
 /* Where the ray leaves the sharp mesh: the first shifted-out plane among
-   the corners' faces (the mesh is convex around a rounded corner). */
-static double re__exit(const re__object_t *o, const unsigned *set, unsigned n, const double I[3], const double d[3],
-                       unsigned *plane)
+   the corners' faces (the mesh is convex around a rounded corner). The
+   candidates are compared as fractions, one division at the end. */
+static double re__exit(const re__object_t *o, const re__set_t *S, const double I[3], const double d[3], unsigned *plane)
 {
-    double best = HUGE_VAL;
+    double bn = HUGE_VAL, bd = 1;
     unsigned i, j;
     *plane = RE__NONE;
-    for (i = 0; i < n; i++) {
-        const re__corner_t *K = &o->corners[set[i]];
-        for (j = 0; j < 2u * K->np; j++) {
+    for (i = 0; i < S->n; i++) {
+        const re__corner_t *K = &o->corners[S->c[i]];
+        for (j = 0; j < K->np; j++) {
             unsigned gi = re__corner_plane(o, K, j);
             const re__plane_t *g = &o->planes[gi];
-            double nd = re__dot(g->n, d), s;
+            double nd = re__dot(g->n, d), num;
             if (!(nd > 0)) continue;
-            s = re__max(0.0, (g->c - re__dot(g->n, I)) / nd);
-            if (s < best) best = s, *plane = gi;
+            num = re__max(0.0, g->c - re__dot(g->n, I));
+            if (num * bd < bn * nd) bn = num, bd = nd, *plane = gi;
         }
     }
-    return best;
+    return *plane == RE__NONE ? HUGE_VAL : bn / bd;
 }
 
 static void re__feature_normal(const re__object_t *o, const re__best_t *b, const double P[3], double nrm[3])
@@ -2250,21 +2642,28 @@ static void re__feature_normal(const re__object_t *o, const re__best_t *b, const
     if (len > 0) nrm[0] /= len, nrm[1] /= len, nrm[2] /= len;
 }
 
-RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
-                              unsigned triangle, double t_host, re_hit_t *out)
+/* The answer "the host's hit stands", before any point or normal. */
+static void re__unchanged(re_hit_t *out, unsigned object, unsigned triangle, double t_host)
 {
-    const re__object_t *o;
-    unsigned set[RE__MAX_WALK], n = 0, f, node, i, j, iter, exit_plane;
-    double I[3];
-    re__best_t best;
-    double s_exit;
-    if (!out) return RE_UNCHANGED;
     memset(out, 0, sizeof *out);
     out->kind = RE_UNCHANGED;
     out->t = t_host;
     out->object = object;
     out->feature = RE_FEATURE_FACE;
     out->feature_index = triangle;
+}
+
+RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                              unsigned triangle, double t_host, re_hit_t *out)
+{
+    const re__object_t *o;
+    re__set_t S;
+    unsigned f, node, i, j, iter, exit_plane, ndet = 0, c0 = RE__NONE;
+    double I[3];
+    re__best_t best;
+    double s_exit;
+    if (!out) return RE_UNCHANGED;
+    re__unchanged(out, object, triangle, t_host);
     if (!scene || !o3 || !dir || object >= scene->n_objects) return RE_UNCHANGED;
     re__madd(o3, t_host, dir, I);
     out->point[0] = I[0], out->point[1] = I[1], out->point[2] = I[2];
@@ -2272,6 +2671,8 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     if (triangle >= o->n_tris || !re__finite3(I) || !re__finite3(dir) || !o->n_nodes) return RE_UNCHANGED;
     f = o->tri_plane[triangle];
     if (f == RE__NONE) return RE_UNCHANGED;
+    S.n = 0;
+    S.bloom = 0;
     out->normal[0] = o->planes[f].n[0], out->normal[1] = o->planes[f].n[1], out->normal[2] = o->planes[f].n[2];
     /* detection: the kd-tree leaf holding I, then the corners whose rounded
        zone can reach I (paper §3.1 detection cylinders, widened to cover the
@@ -2313,25 +2714,59 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             t = re__dot(w, u);
             if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) continue;
             ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
+            ndet++;
             if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
-                re__add_corner(set, &n, ka);
-                re__add_corner(set, &n, kb);
+                re__set_add(&S, ka);
+                re__set_add(&S, kb);
+                c0 = c;
                 continue;
             }
-            if (re__corner_has_plane(o, &o->corners[ka], f)) re__add_corner(set, &n, ka);
-            if (re__corner_has_plane(o, &o->corners[kb], f)) re__add_corner(set, &n, kb);
+            if (re__corner_has_plane(o, &o->corners[ka], f)) re__set_add(&S, ka);
+            if (re__corner_has_plane(o, &o->corners[kb], f)) re__set_add(&S, kb);
         }
     }
-    if (!n || re__on_flat_part(o, set, n, f, I)) return RE_UNCHANGED;
+    if (!S.n || re__on_flat_part(o, &S, f, I)) return RE_UNCHANGED;
+    best.smin = -RE__HOST_T_SLACK * fabs(t_host);
+    /* One edge found, away from its corners (the common case): inside the
+       removed volume around the middle of an edge the only surfaces are its
+       rounding cylinder and its two faces. If the ray meets one of them
+       before coming within walk reach of either corner, that is the answer;
+       else the general search below decides. */
+    if (ndet == 1 && c0 != RE__NONE && S.n == 2) {
+        const re__cyl_t *cy = &o->cyls[c0];
+        double P[3], IP[3], inv_l2, nd0, nd1, e0 = HUGE_VAL, e1 = HUGE_VAL, sc;
+        const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
+        best.s = HUGE_VAL;
+        best.kind = RE_FEATURE_FACE;
+        best.index = 0;
+        best.h = 0;
+        re__try_cyl(o, c0, o->radii[o->corners[S.c[0]].rid], I, dir, &best);
+        nd0 = re__dot(P0->n, dir), nd1 = re__dot(P1->n, dir);
+        if (nd0 > 0) e0 = re__max(0.0, P0->c - re__dot(P0->n, I)) / nd0;
+        if (nd1 > 0) e1 = re__max(0.0, P1->c - re__dot(P1->n, I)) / nd1;
+        s_exit = re__min(e0, e1);
+        exit_plane = e0 <= e1 ? cy->p[0] : cy->p[1];
+        sc = re__min(best.s, s_exit);
+        if (sc < HUGE_VAL) {
+            re__madd(I, sc, dir, P);
+            re__sub(P, I, IP);
+            inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
+            for (i = 0; i < 2; i++) {
+                const re__corner_t *K = &o->corners[S.c[i]];
+                double wk = (double)K->walk;
+                if (re__dist2_segment(o->sph + 3 * (size_t)K->sfirst, I, IP, inv_l2) <= wk * wk) break;
+            }
+            if (i == 2) goto answer;
+        }
+    }
     /* inside the removed volume: nearest capsule or the exit, walking the
        adjacency graph (cylinder -> corner) while the ray runs toward corners
        not yet in the set (grazing rays, §3.1) */
     for (iter = 0;; iter++) {
         double P[3], IP[3], inv_l2, s;
         int grown = 0;
-        best.smin = -RE__HOST_T_SLACK * fabs(t_host);
-        re__nearest_feature(o, set, n, I, dir, &best);
-        s_exit = re__exit(o, set, n, I, dir, &exit_plane);
+        re__nearest_feature(o, &S, I, dir, &best);
+        s_exit = re__exit(o, &S, I, dir, &exit_plane);
         s = re__min(best.s, s_exit);
         if (iter == RE__MAX_WALK) break;
         /* nothing found yet (the ray runs along the edges, out of reach of
@@ -2339,19 +2774,18 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
         re__madd(I, s < HUGE_VAL ? s : 0.0, dir, P);
         re__sub(P, I, IP);
         inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
-        for (i = 0; i < n && n < RE__MAX_WALK; i++) {
-            const re__corner_t *K = &o->corners[set[i]];
+        for (i = 0; i < S.n && S.n < RE__MAX_WALK; i++) {
+            const re__corner_t *K = &o->corners[S.c[i]];
             for (j = 0; j < K->np; j++) {
                 const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
                 unsigned ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
-                unsigned w = ka == set[i] ? kb : ka, q;
+                unsigned w = ka == S.c[i] ? kb : ka;
                 const double *wc;
                 double g, d2;
                 /* a corner already in the set is skipped before its record and
                    sphere are loaded (cache misses were most of the walk's cost
                    in the render profile; the set is small) */
-                for (q = 0; q < n && set[q] != w; q++) {}
-                if (q < n) continue;
+                if (re__set_find(&S, w) < S.n) continue;
                 /* removed points lie within r of the removed zone on the faces
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within the face reach of its corner: `walk` bounds both, from
@@ -2359,11 +2793,12 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
                 wc = o->sph + 3 * (size_t)o->corners[w].sfirst;
                 g = (double)o->corners[w].walk;
                 d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
-                if (d2 <= g * g && re__add_corner(set, &n, w)) grown = 1;
+                if (d2 <= g * g && re__set_add(&S, w)) grown = 1;
             }
         }
         if (!grown) break;
     }
+answer:
     if (best.s <= s_exit && best.s < HUGE_VAL) {
         out->kind = RE_HIT_ROUNDED;
         out->t = t_host + best.s;
@@ -2381,10 +2816,37 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     return out->kind;
 }
 
+/* Query step 0: every barycentric coordinate beyond its band (re__bands):
+   the hit is on the flat part of its face. */
+static int re__band_flat(const re__object_t *o, unsigned triangle, double u, double v)
+{
+    const unsigned char *b = o->bands + 4 * (size_t)triangle;
+    double l0 = (1 - u - v) * RE__BAND_STEPS, l1 = u * RE__BAND_STEPS, l2 = v * RE__BAND_STEPS,
+           cap = RE__BAND_STEPS - (double)b[3];
+    return l0 > (double)b[0] && l1 > (double)b[1] && l2 > (double)b[2] && l0 < cap && l1 < cap && l2 < cap;
+}
+
+RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                                 unsigned triangle, double t_host, double u, double v, re_hit_t *out)
+{
+    const re__object_t *o;
+    unsigned f;
+    if (!out || !scene || !o3 || !dir || object >= scene->n_objects) return re_query(scene, o3, dir, object, triangle, t_host, out);
+    o = &scene->objects[object];
+    if (triangle >= o->n_tris || !o->n_nodes || (f = o->tri_plane[triangle]) == RE__NONE)
+        return re_query(scene, o3, dir, object, triangle, t_host, out);
+    if (!re__band_flat(o, triangle, u, v)) return re_query(scene, o3, dir, object, triangle, t_host, out);
+    re__unchanged(out, object, triangle, t_host);
+    re__madd(o3, t_host, dir, out->point);
+    out->normal[0] = o->planes[f].n[0], out->normal[1] = o->planes[f].n[1], out->normal[2] = o->planes[f].n[2];
+    return RE_UNCHANGED;
+}
+
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
 {
     const re__object_t *o;
-    unsigned set[2], n = 0, plane;
+    re__set_t S;
+    unsigned plane;
     double s, push;
     const double *nrm;
     if (!origin) return;
@@ -2395,14 +2857,16 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
     push = RE_ORIGIN_OFFSET_REL * o->size;
     nrm = hit->normal;
     if (hit->kind == RE_HIT_ROUNDED && dir) {
+        S.n = 0;
+        S.bloom = 0;
         if (hit->feature == RE_FEATURE_SPHERE && hit->feature_index < o->n_spheres) {
-            set[n++] = o->sph_corner[hit->feature_index];
+            re__set_add(&S, o->sph_corner[hit->feature_index]);
         } else if (hit->feature == RE_FEATURE_CYLINDER && hit->feature_index < o->n_cyls) {
             const re__cyl_t *cy = &o->cyls[hit->feature_index];
-            set[n++] = o->sph_corner[cy->s[0]];
-            if (o->sph_corner[cy->s[1]] != set[0]) set[n++] = o->sph_corner[cy->s[1]];
+            re__set_add(&S, o->sph_corner[cy->s[0]]);
+            re__set_add(&S, o->sph_corner[cy->s[1]]);
         }
-        s = re__exit(o, set, n, hit->point, dir, &plane);
+        s = re__exit(o, &S, hit->point, dir, &plane);
         if (s < HUGE_VAL) {
             re__madd(hit->point, s, dir, origin);
             nrm = o->planes[plane].n;

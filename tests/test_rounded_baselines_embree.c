@@ -138,7 +138,7 @@ static void primary_rays_match_rounded_box_and_floor(void)
         tb = oracle_box(o, ray.d, 0, 100);
         tf = oracle_floor(o, ray.d, 0);
         want = fmin(tb, tf);
-        hit = rx__trace(&f.w, &ray, HUGE_VAL, &s, &chamfer);
+        hit = rx__trace(&f.w, &ray, HUGE_VAL, RTC_INVALID_GEOMETRY_ID, 0, &s, &chamfer, NULL, NULL);
         if (want == HUGE_VAL) { T_CHECK(!hit); continue; }
         if (!T_CHECK(hit)) continue;
         /* a grazing hit (|d.n| small) pins the surface, not t: accept a t
@@ -188,19 +188,84 @@ static void secondary_rays_leave_the_rounding(void)
         memset(&ray, 0, sizeof ray);
         ray.o = o;
         ray.d = ex_normalize(ex_sub(target, o));
-        if (!rx__trace(&f.w, &ray, HUGE_VAL, &s, &chamfer) || !chamfer || s.mat == NULL) continue;
+        if (!rx__trace(&f.w, &ray, HUGE_VAL, RTC_INVALID_GEOMETRY_ID, 0, &s, &chamfer, NULL, NULL) || !chamfer || s.mat == NULL) continue;
         if (fabs(sdf_box(s.p)) > 1e-6) continue; /* the floor, not the rounding */
         ex_onb(s.ng, &t, &b);
         dir = ex_from_local(t, b, s.ng, sqrt(u1) * cos(2 * EX_PI * u2), sqrt(u1) * sin(2 * EX_PI * u2), sqrt(1 - u1));
         ray.o = ex_madd(s.p, s.ng, 1e-5 * f.s.scale);
         ray.d = dir;
         want = fmin(oracle_box(ray.o, dir, 1e-9, 100), oracle_floor(ray.o, dir, 0));
-        hit = rx__trace(&f.w, &ray, HUGE_VAL, &s2, &chamfer);
+        hit = rx__trace(&f.w, &ray, HUGE_VAL, RTC_INVALID_GEOMETRY_ID, 0, &s2, &chamfer, NULL, NULL);
         if (want == HUGE_VAL) T_CHECK(!hit);
         else if (T_CHECK(hit)) T_NEAR(s2.t, want, T_TOL);
         done++;
     }
     T_GT(done, n / 4);
+    fixture_free(&f);
+}
+
+/* The same through the renderer's callbacks: a rounded hit returned by
+   rx__intersect is remembered by the thread, and the secondary and shadow
+   rays that start there hide the box only up to where they leave its sharp
+   mesh (rx__spawn_skip), without the back-face hit and reversed query. Their
+   hits and occlusion match the oracle; a ray from elsewhere does not pick
+   up the remembered hit. */
+static void secondary_rays_from_the_remembered_hit(void)
+{
+    fixture_t f;
+    t_rng_t g = {17};
+    long n = t_count(20000), i, done = 0, skipped = 0, blocked = 0;
+    fixture_init(&f);
+    if (!f.ok) { fixture_free(&f); return; }
+    for (i = 0; i < n; i++) {
+        ex_v3_t target = bottom_edge_point(&g), o = ex_v3(t_rng_range(&g, -4, 4), t_rng_range(&g, 0.5, 3), 4);
+        ex_v3_t light = ex_v3(t_rng_range(&g, -3, 3), t_rng_range(&g, -0.5, 3), t_rng_range(&g, -3, 3));
+        ex_ray_t ray;
+        ex_surface_t s, s2;
+        ex_v3_t t, b, dir, od;
+        unsigned sg;
+        int hit, occ;
+        double want, u1 = t_rng_unit(&g), u2 = t_rng_unit(&g), sk, dist, tb;
+        memset(&ray, 0, sizeof ray);
+        ray.o = o;
+        ray.d = ex_normalize(ex_sub(target, o));
+        if (!rx__intersect(&f.w, &ray, HUGE_VAL, &s) || rx__spawn.w != &f.w) continue;
+        if (!T_LT(fabs(sdf_box(s.p)), 1e-6)) continue; /* a remembered hit is on the rounding */
+        ex_onb(s.ng, &t, &b);
+        dir = ex_from_local(t, b, s.ng, sqrt(u1) * cos(2 * EX_PI * u2), sqrt(u1) * sin(2 * EX_PI * u2), sqrt(1 - u1));
+        od = ex_madd(s.p, s.ng, 1e-5 * f.s.scale);
+        /* a shadow ray first (the path tracer's order), then the bounce */
+        dist = ex_len(ex_sub(light, od));
+        if (ex_dot(ex_sub(light, od), s.ng) > 0 && sdf_box(light) > 0.1) {
+            ex_v3_t ld = ex_scale(ex_sub(light, od), 1 / dist);
+            tb = fmin(oracle_box(od, ld, 1e-9, dist), oracle_floor(od, ld, 0));
+            if (fabs(tb - dist) > 1e-3) {
+                rx__spawn_skip(&f.w, od, ld, &sg, &sk);
+                skipped += sg != RTC_INVALID_GEOMETRY_ID;
+                occ = rx__occluded(&f.w, od, ld, dist);
+                blocked += occ;
+                if (occ != (tb < dist))
+                    T_FAIL("shadow ray %ld from a rounded hit: occluded %d, oracle %d (t %g of %g)", i, occ, tb < dist, tb, dist);
+                else
+                    T_CHECK(1);
+            }
+        }
+        ray.o = od;
+        ray.d = dir;
+        want = fmin(oracle_box(ray.o, dir, 1e-9, 100), oracle_floor(ray.o, dir, 0));
+        hit = rx__intersect(&f.w, &ray, HUGE_VAL, &s2);
+        if (want == HUGE_VAL) T_CHECK(!hit);
+        else if (T_CHECK(hit)) T_NEAR(s2.t, want, T_TOL);
+        done++;
+        /* a ray from elsewhere ignores the remembered hit */
+        rx__spawn_skip(&f.w, ex_v3(0, 5, 5), dir, &sg, &sk);
+        T_CHECK(sg == RTC_INVALID_GEOMETRY_ID);
+    }
+    fprintf(stderr, "    %ld secondary rays, %ld shadow rays started at the remembered hit, %ld of them blocked\n", done,
+            skipped, blocked);
+    T_GT(done, n / 4);
+    T_GT(skipped, done / 10);
+    T_GT(blocked, 0);
     fixture_free(&f);
 }
 
@@ -247,6 +312,7 @@ int main(int argc, char **argv)
     static const t_case_t cases[] = {
         T_CASE(primary_rays_match_rounded_box_and_floor),
         T_CASE(secondary_rays_leave_the_rounding),
+        T_CASE(secondary_rays_from_the_remembered_hit),
         T_CASE(shadow_rays_from_under_the_rounding),
     };
     return T_RUN(argc, argv, cases);

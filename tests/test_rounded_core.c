@@ -158,10 +158,52 @@ static void c1_continuity_hulls(void)
     }
 }
 
+/* Query step 0 (per-triangle bands, re_query_uv): on the faces of a box the
+   flat part is the face shrunk by r. Points on the faces, hit head-on: the
+   bands must never call a rounded point flat (every battery above checks
+   re_query_uv against re_query bit for bit), and they must skip nearly all
+   of the flat ones (they are rounded up by 1/255 of a triangle's altitude). */
+static void flat_bands_skip_the_flat_part(void)
+{
+    tm_mesh_t m = {0};
+    double lo[3] = {-0.5, -0.3, -0.2}, hi[3] = {0.5, 0.3, 0.2}, r = 0.05;
+    re_scene_t *s;
+    re_diag_t dg;
+    t_rng_t rng = {41};
+    long i, n = t_count(200000), flat = 0, skipped = 0, wrong = 0;
+    tm_box(&m, lo, hi);
+    s = build1(&m, r, &dg);
+    if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
+    for (i = 0; i < n; i++) {
+        int ax = (int)(t_rng_u64(&rng) % 3), side = (int)(t_rng_u64(&rng) % 2), a, is_flat = 1;
+        double p[3], o[3], d[3] = {0, 0, 0}, t, u, v;
+        unsigned tri;
+        for (a = 0; a < 3; a++) {
+            p[a] = a == ax ? (side ? hi[a] : lo[a]) : t_rng_range(&rng, lo[a], hi[a]);
+            if (a != ax && (p[a] - lo[a] < r || hi[a] - p[a] < r)) is_flat = 0;
+        }
+        d[ax] = side ? -1 : 1;
+        for (a = 0; a < 3; a++) o[a] = p[a] - d[a];
+        if (!tm_hit_uv(&m, o, d, &t, &tri, &u, &v)) continue;
+        flat += is_flat;
+        if (re__band_flat(&s->objects[0], tri, u, v)) {
+            skipped++;
+            if (!is_flat && wrong++ < 5) T_FAIL("bands call (%g %g %g) flat; it lies within r of an edge", p[0], p[1], p[2]);
+        }
+    }
+    fprintf(stderr, "    %ld flat points, %ld skipped by the bands\n", flat, skipped);
+    T_INT_EQ(wrong, 0);
+    T_GT(skipped, (long)(0.97 * (double)flat));
+    T_GT(g_uv_calls, 0); /* the batteries ran re_query_uv beside re_query */
+    re_free(s);
+    tm_free(&m);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(box_exact_vs_analytic),
+        T_CASE(flat_bands_skip_the_flat_part),
         T_CASE(c1_continuity_box),
         T_CASE(c1_continuity_hulls),
         T_CASE(random_convex_polyhedra_vs_eroded),

@@ -442,7 +442,21 @@ static void concave_edges_and_mixed_vertices_reported(void)
         T_INT_EQ(cn.n[RE_REPORT_MIXED_VERTEX], 2);
         T_INT_EQ(st.convex_edges, 17); /* 12 outline + 5 vertical */
         T_INT_EQ(st.rounded_edges, 0);  /* one patch, reaching the mixed vertices */
+        T_INT_EQ(cn.n[RE_REPORT_SHARP_PATCH_EDGE], 17); /* each convex edge left sharp is named */
         re_free(s);
+    }
+    /* no more than the patch: a separate box in the same mesh is still rounded */
+    {
+        const double lo[3] = {3, 0, 0}, hi[3] = {4, 1, 1};
+        tm_box(&m, lo, hi);
+        mesh = mesh_of(&m, 0.05);
+        if (T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, &cn, &dg, &s), RE_OK)) {
+            re_get_stats(s, &st);
+            T_INT_EQ(st.rounded_edges, 12);
+            T_INT_EQ(cn.n[RE_REPORT_SHARP_PATCH_EDGE], 17);
+            T_INT_EQ(cn.n[RE_REPORT_MIXED_VERTEX], 2);
+            re_free(s);
+        }
     }
     tm_free(&m);
 }

@@ -27,6 +27,25 @@ static re_scene_t *build1(const tm_mesh_t *m, double r, re_diag_t *dg)
     return s;
 }
 
+/* re_query_uv() gives re_query()'s answer, bit for bit, whether or not its
+   per-triangle bands let it skip the kd-tree (query step 0). */
+static long g_uv_skipped, g_uv_calls;
+static void check_query_uv(const re_scene_t *s, const double o[3], const double d[3], unsigned tri, double t_host,
+                           double u, double v, const re_hit_t *want)
+{
+    re_hit_t h;
+    const re__object_t *ob = &s->objects[0];
+    g_uv_calls++;
+    if (tri < ob->n_tris && ob->tri_plane[tri] != RE__NONE && re__band_flat(ob, tri, u, v)) g_uv_skipped++;
+    re_query_uv(s, o, d, 0, tri, t_host, u, v, &h);
+    if (h.kind != want->kind || h.t != want->t || h.normal[0] != want->normal[0] || h.normal[1] != want->normal[1] ||
+        h.normal[2] != want->normal[2])
+        T_FAIL("re_query_uv: kind %d t %.17g, re_query: kind %d t %.17g (tri %u, u %.9g v %.9g)", (int)h.kind, h.t,
+               (int)want->kind, want->t, tri, u, v);
+    else
+        T_CHECK(1);
+}
+
 typedef struct rbox_t { double c[3], half[3], r; } rbox_t;
 static double rbox_sdf(const void *ctx, const double p[3])
 {
@@ -39,11 +58,12 @@ static double rbox_sdf(const void *ctx, const double p[3])
 static int check_box_ray(const re_scene_t *s, const tm_mesh_t *m, const rbox_t *b, const double o[3],
                          const double d[3], double rel, double scale, long *n_round, long *n_pass)
 {
-    double t_host, t_ref, n_ref[3];
+    double t_host, t_ref, n_ref[3], u, v;
     unsigned tri;
     re_hit_t h;
-    if (!tm_hit(m, o, d, &t_host, &tri)) return 0;
+    if (!tm_hit_uv(m, o, d, &t_host, &tri, &u, &v)) return 0;
     re_query(s, o, d, 0, tri, t_host, &h);
+    check_query_uv(s, o, d, tri, t_host, u, v, &h);
     t_ref = tm_trace(rbox_sdf, b, o, d, 1e3 * scale, scale);
     if (h.kind == RE_UNCHANGED || h.kind == RE_HIT_ROUNDED) {
         double p[3];
@@ -168,7 +188,7 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
     E.r = r;
     tm_erode(P, r);
     for (i = 0; i < nrays; i++) {
-        double o[3], d[3], tgt[3], u, v, w, t_host, t_ref;
+        double o[3], d[3], tgt[3], u, v, w, t_host, t_ref, bu, bv;
         unsigned tri;
         re_hit_t h;
         const double *vx = m->v + 3 * (t_rng_u64(&rng) % m->nv);
@@ -178,8 +198,9 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
         u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
         o[0] = tgt[0] + 3 * scale * w * cos(u), o[1] = tgt[1] + 3 * scale * w * sin(u), o[2] = tgt[2] + 3 * scale * v;
         tm_sub(tgt, o, d);
-        if (!tm_hit(m, o, d, &t_host, &tri)) continue;
+        if (!tm_hit_uv(m, o, d, &t_host, &tri, &bu, &bv)) continue;
         re_query(s, o, d, 0, tri, t_host, &h);
+        check_query_uv(s, o, d, tri, t_host, bu, bv, &h);
         t_ref = tm_trace(tm_eroded_sdf, &E, o, d, 10.0, scale);
         if (h.kind == RE_PASS_THROUGH) {
             n_pass++;

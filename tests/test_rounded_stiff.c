@@ -88,6 +88,105 @@ static void radius_above_largest_is_rejected(void)
     tm_free(&m);
 }
 
+/* Radius validation per element (issue 6: "an edge shorter than its two
+   tangent set-backs, or a slab thinner than its inradius allows"). */
+typedef struct clamp_log_t { int n; long long e1, e2; double value; char msg[160]; } clamp_log_t;
+static void log_clamp(void *u, const re_report_t *r)
+{
+    clamp_log_t *L = (clamp_log_t *)u;
+    if (r->kind != RE_REPORT_RADIUS_CLAMPED) return;
+    L->n++, L->e1 = r->element, L->e2 = r->element2, L->value = r->value;
+    snprintf(L->msg, sizeof L->msg, "%s", r->message);
+}
+/* Builds m at radius r under `policy`; returns the build result, the clamp
+   report in *L and the diagnostic in *dg. */
+static re_result_t build_policy(const tm_mesh_t *m, double r, re_radius_policy_t policy, clamp_log_t *L, re_diag_t *dg,
+                                double *r_out)
+{
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    re_result_t rc;
+    memset(&mesh, 0, sizeof mesh);
+    memset(&desc, 0, sizeof desc);
+    memset(L, 0, sizeof *L);
+    mesh.positions = m->v, mesh.vertex_count = m->nv, mesh.indices = m->idx, mesh.index_count = m->ni, mesh.radius = r;
+    desc.objects = &mesh, desc.object_count = 1, desc.radius_policy = policy;
+    desc.report = log_clamp, desc.report_user = L;
+    rc = re_build(&desc, &s, dg);
+    *r_out = s ? re_object_radius(s, 0) : 0;
+    re_free(s);
+    return rc;
+}
+
+/* A prism over a pentagon with one side 0.042 long between two 135-degree
+   corners: at r = 0.1 the set-backs of its top and bottom edges (r tan 22.5
+   degrees at each end) exceed the edge. The edge is named; clamped, the
+   radius is the largest at which the edge's cylinder does not turn over,
+   and the hits match the eroded polytope there. */
+static void short_edge_is_named(void)
+{
+    double q[5][2] = {{0, 0}, {1, 0}, {1, 0.5}, {0.97, 0.53}, {0, 0.53}};
+    tm_mesh_t m = {0};
+    static tm_poly_t P;
+    clamp_log_t L;
+    re_diag_t dg;
+    double r = 0, want = 0.03 * sqrt(2.0) / (2 * tan(M_PI / 8));
+    tm_prism(&m, &P, (const double(*)[2])q, 5, 0.25);
+    T_INT_EQ(build_policy(&m, 0.1, RE_RADIUS_REJECT, &L, &dg, &r), RE_ERR_RADIUS_TOO_LARGE);
+    T_CHECK(strstr(dg.message, "shorter than its two set-backs") != NULL);
+    T_GE(dg.element, 0);
+    T_INT_EQ(build_policy(&m, 0.1, RE_RADIUS_CLAMP, &L, &dg, &r), RE_OK);
+    T_GT(L.n, 0);
+    T_GE(L.e2, 0); /* an edge: both of its vertices */
+    T_NEAR(r, want, 1e-9);
+    fprintf(stderr, "    %s\n", L.msg);
+    poly_rays(&m, &P, 0.1, t_count(4000), 1e-7, 31, "short edge, clamped");
+    tm_free(&m);
+}
+
+/* A slab 1 x 1 x 0.02 whose side walls are split into four rows: the top
+   corners' ring (their edge neighbours) holds no bottom plane, because the
+   vertical edges pass through vertices inside straight edges. At r = 0.015
+   the solid is thinner than 2r; the validation follows each straight edge
+   chain to its end: the chain is shorter than its two set-backs, and the
+   radius is clamped to 0.01 (half the thickness; before, the first 0.005
+   segment alone clamped it to 0.005). */
+static void thin_slab_with_subdivided_walls(void)
+{
+    const double xy[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, h = 0.02;
+    tm_mesh_t m = {0};
+    static tm_poly_t P;
+    clamp_log_t L;
+    re_diag_t dg;
+    double r = 0;
+    unsigned i, l;
+    for (i = 0; i < 4; i++)
+        for (l = 0; l <= 4; l++) tm_vert(&m, xy[i][0], xy[i][1], h * l / 4);
+    tm_quad(&m, 0 * 5 + 4, 1 * 5 + 4, 2 * 5 + 4, 3 * 5 + 4); /* top, CCW from +z */
+    tm_quad(&m, 3 * 5, 2 * 5, 1 * 5, 0 * 5);                 /* bottom */
+    for (i = 0; i < 4; i++)
+        for (l = 0; l < 4; l++) {
+            unsigned a = i * 5 + l, b = ((i + 1) % 4) * 5 + l;
+            tm_quad(&m, a, b, b + 1, a + 1);
+        }
+    T_INT_EQ(build_policy(&m, 0.015, RE_RADIUS_REJECT, &L, &dg, &r), RE_ERR_RADIUS_TOO_LARGE);
+    T_CHECK(strstr(dg.message, "too large") != NULL);
+    T_GE(dg.element, 0);
+    T_INT_EQ(build_policy(&m, 0.015, RE_RADIUS_CLAMP, &L, &dg, &r), RE_OK);
+    T_GT(L.n, 0);
+    T_NEAR(r, 0.01, 1e-12);
+    fprintf(stderr, "    %s\n", L.msg);
+    T_INT_EQ(build_policy(&m, 0.0099, RE_RADIUS_REJECT, &L, &dg, &r), RE_OK); /* below it: valid */
+    /* exact below the limit, where the chain's end spheres are set back past
+       the split vertices at 1/4 and 3/4 of the height (their spheres move
+       into the chain's span) */
+    tm_planes(&m, &P);
+    poly_rays(&m, &P, 0.009, t_count(4000), 1e-7, 32, "thin slab, r = 0.009");
+    poly_rays(&m, &P, 0.015, t_count(4000), 1e-7, 33, "thin slab, clamped to 0.01");
+    tm_free(&m);
+}
+
 /* a ridge of 179.9 degrees on top of a slab */
 static void dihedral_179_9_degrees(void)
 {
@@ -389,6 +488,8 @@ int main(int argc, char **argv)
         T_CASE(largest_valid_radius_box),
         T_CASE(radius_above_largest_is_clamped),
         T_CASE(radius_above_largest_is_rejected),
+        T_CASE(short_edge_is_named),
+        T_CASE(thin_slab_with_subdivided_walls),
         T_CASE(dihedral_179_9_degrees),
         T_CASE(dihedral_1_degree),
         T_CASE(icosphere_level1),

@@ -51,8 +51,10 @@ static void tm_cross(const double a[3], const double b[3], double o[3])
 static double tm_len(const double a[3]) { return sqrt(tm_dot(a, a)); }
 static void tm_norm(double a[3]) { double l = tm_len(a); a[0] /= l, a[1] /= l, a[2] /= l; }
 
-/* Brute-force nearest front-face hit (Moller-Trumbore in double). */
-static int tm_hit(const tm_mesh_t *m, const double o[3], const double d[3], double *t_out, unsigned *tri_out)
+/* Brute-force nearest front-face hit (Moller-Trumbore in double), with its
+   barycentric coordinates u, v (point = (1-u-v) p0 + u p1 + v p2). */
+static int tm_hit_uv(const tm_mesh_t *m, const double o[3], const double d[3], double *t_out, unsigned *tri_out,
+                     double *u_out, double *v_out)
 {
     unsigned t;
     double best = HUGE_VAL;
@@ -74,10 +76,15 @@ static int tm_hit(const tm_mesh_t *m, const double o[3], const double d[3], doub
         v = tm_dot(d, q) / det;
         if (v < -1e-12 || u + v > 1 + 1e-12) continue;
         tt = tm_dot(e2, q) / det;
-        if (tt > 0 && tt < best) best = tt, *tri_out = t, found = 1;
+        if (tt > 0 && tt < best) best = tt, *tri_out = t, *u_out = u, *v_out = v, found = 1;
     }
     *t_out = best;
     return found;
+}
+static int tm_hit(const tm_mesh_t *m, const double o[3], const double d[3], double *t_out, unsigned *tri_out)
+{
+    double u, v;
+    return tm_hit_uv(m, o, d, t_out, tri_out, &u, &v);
 }
 
 /* ---- Oracle 1: the analytic rounded box (inner box (+) ball) ---- */

@@ -47,9 +47,6 @@ typedef struct rx_world_t {
     re_scene_t *round;          /* rounded mode only */
     int *re_object;             /* scene object -> re object, -1 if not rounded */
     size_t *tess_first_round;   /* tess mode: first rounded-part triangle per object */
-    double *band;               /* rounded mode: per object, no hit farther than this from
-                                   its triangle's edges can be on a rounding (rx_band) */
-    rx_flat_t *flat;            /* rounded mode: per object, its faces' flat parts (rx_tess.h) */
     ex_world_t shade;
     ex_camera_t cam;
     /* figures */
@@ -91,7 +88,6 @@ double rx_world_render(rx_world_t *w, int spp, int threads, unsigned long long s
 #include "ex_render.h"
 #include "ex_timer.h"
 #include "rx_tess.h"
-#include "rx_band.h"
 
 int rx_mode_parse(const char *s, rx_mode_t *m)
 {
@@ -174,13 +170,6 @@ static int rx__build_round(rx_world_t *w)
     }
     re_get_stats(w->round, &w->round_stats);
     w->round_bytes = w->round_stats.bytes;
-    for (i = 0; i < s->nobj; i++)
-        if (w->re_object[i] >= 0) {
-            w->band[i] = rx_band(w->round, (unsigned)w->re_object[i], &s->obj[i].mesh);
-            if (w->mode.kind == RX_ROUNDED &&
-                rx_flat_build(w->round, (unsigned)w->re_object[i], &s->obj[i].mesh, &w->flat[i]) < 0)
-                return -1;
-        }
     return 0;
 }
 
@@ -193,9 +182,7 @@ int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, i
     w->mode = m;
     w->re_object = (int *)malloc(sizeof(int) * (size_t)(s->nobj + 1));
     w->tess_first_round = (size_t *)calloc((size_t)s->nobj + 1, sizeof(size_t));
-    w->band = (double *)calloc((size_t)s->nobj + 1, sizeof(double));
-    w->flat = (rx_flat_t *)calloc((size_t)s->nobj + 1, sizeof(rx_flat_t));
-    if (!w->re_object || !w->tess_first_round || !w->band || !w->flat) { fprintf(stderr, "out of memory\n"); rx_world_free(w); return -1; }
+    if (!w->re_object || !w->tess_first_round) { fprintf(stderr, "out of memory\n"); rx_world_free(w); return -1; }
     if (!(w->dev = ex_embree_device())) { rx_world_free(w); return -1; }
     rtcSetDeviceMemoryMonitorFunction(w->dev, rx__memory_monitor, &w->embree_mem_live);
     w->rtc = rtcNewScene(w->dev);
@@ -248,15 +235,10 @@ int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, i
 
 void rx_world_free(rx_world_t *w)
 {
-    int i;
     if (w->round) re_free(w->round);
     ex_embree_release(w->dev, w->rtc);
     free(w->re_object);
     free(w->tess_first_round);
-    free(w->band);
-    if (w->flat)
-        for (i = 0; i < (w->scene ? w->scene->nobj : 0); i++) rx_flat_free(&w->flat[i]);
-    free(w->flat);
     memset(w, 0, sizeof *w);
 }
 
@@ -266,11 +248,6 @@ void rx_world_free(rx_world_t *w)
    above Embree's single-precision self-intersection error at both small and
    large t, far below any feature of our scenes. */
 #define RX_STEP_REL 1e-5
-
-/* A hit counts as on a face's flat part only this far inside its polygon
-   (times the scene size): Embree's single-precision hit points wander about
-   1e-7 of it. */
-#define RX_FLAT_MARGIN_REL 1e-5
 
 static double rx__next_t(const rx_world_t *w, double t)
 {
@@ -375,13 +352,134 @@ static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, do
     return h;
 }
 
-/* The closest hit of the mode's surface along ray, (0, tmax). *chamfer is
-   set when the rounding (or bevel, or tessellated rounding) changed it. */
-static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, ex_surface_t *s, int *chamfer_out)
+/* Shadow rays in one occlusion traversal. The filter decides each candidate
+   hit on its own, so Embree may visit them in any order: a hit of the skipped
+   geometry before skip_t is ignored; a hit on an object that is not rounded
+   blocks; a front-face hit blocks when re_query_uv finds the flat face or a
+   rounding before tmax, and is ignored on a pass-through; a back-face hit of
+   a rounded object (the ray leaves it) asks the reversed ray, as rx__trace
+   does: it blocks when that ray meets the rounded solid (or the flat face)
+   before reaching the origin. Each answer is whether the segment meets that
+   object's rounded solid around this face, which is what occlusion asks. */
+typedef struct rx__occ_ctx_t {
+    struct RTCIntersectContext ctx; /* first: Embree passes its address to the filter */
+    const rx_world_t *w;
+    unsigned skip_geom;
+    float skip_t;
+    double o[3], d[3], tmax;
+} rx__occ_ctx_t;
+
+static void rx__occlude_filter(const struct RTCFilterFunctionNArguments *args)
+{
+    const rx__occ_ctx_t *c = (const rx__occ_ctx_t *)args->context;
+    const rx_world_t *w = c->w;
+    unsigned i, N = args->N;
+    /* SOA fields of RTCHitN (Ng_x, Ng_y, Ng_z, u, v, primID, geomID) and
+       RTCRayN (tfar is the 9th field), as in rx__skip_filter */
+    const float *ng = (const float *)args->hit, *uu = ng + 3 * N, *vv = ng + 4 * N;
+    const unsigned *prim = (const unsigned *)args->hit + 5 * N, *geom = (const unsigned *)args->hit + 6 * N;
+    const float *tfar = (const float *)args->ray + 8 * N;
+    for (i = 0; i < N; i++) {
+        unsigned g = geom[i];
+        double t = tfar[i], nd;
+        re_hit_t q;
+        re_hit_kind_t k;
+        int obj;
+        if (args->valid[i] != -1) continue;
+        if (g == c->skip_geom && tfar[i] <= c->skip_t) { args->valid[i] = 0; continue; }
+        if ((obj = w->re_object[g]) < 0) continue; /* not rounded: blocks */
+        nd = ng[i] * c->d[0] + ng[i + N] * c->d[1] + ng[i + 2 * N] * c->d[2];
+        if (nd < 0) {
+            k = re_query_uv(w->round, c->o, c->d, (unsigned)obj, prim[i], t, uu[i], vv[i], &q);
+            if (k == RE_PASS_THROUGH || (k == RE_HIT_ROUNDED && q.t >= c->tmax)) args->valid[i] = 0;
+        } else {
+            double back = rx__next_t(w, t), o2[3], d2[3];
+            int a;
+            for (a = 0; a < 3; a++) o2[a] = c->o[a] + back * c->d[a], d2[a] = -c->d[a];
+            k = re_query_uv(w->round, o2, d2, (unsigned)obj, prim[i], back - t, uu[i], vv[i], &q);
+            if (!(k == RE_UNCHANGED || (k == RE_HIT_ROUNDED && q.t < back))) args->valid[i] = 0;
+        }
+    }
+}
+
+/* 1 when the segment o + t d, t in (0, tmax), meets the mode's surfaces,
+   hiding geometry skip_geom's hits at t <= skip_t. */
+static int rx__occluded_round(const rx_world_t *w, ex_v3_t o, ex_v3_t d, double tmax, unsigned skip_geom, double skip_t)
+{
+    rx__occ_ctx_t c;
+    struct RTCRay r;
+    memset(&r, 0, sizeof r);
+    rtcInitIntersectContext(&c.ctx);
+    c.ctx.filter = rx__occlude_filter;
+    c.w = w;
+    c.skip_geom = skip_geom;
+    c.skip_t = (float)skip_t;
+    c.o[0] = o.x; c.o[1] = o.y; c.o[2] = o.z;
+    c.d[0] = d.x; c.d[1] = d.y; c.d[2] = d.z;
+    c.tmax = tmax;
+    r.org_x = (float)o.x; r.org_y = (float)o.y; r.org_z = (float)o.z;
+    r.dir_x = (float)d.x; r.dir_y = (float)d.y; r.dir_z = (float)d.z;
+    r.tnear = 0;
+    r.tfar = tmax < 3e38 ? (float)tmax : INFINITY;
+    r.mask = 0xFFFFFFFFu;
+    rtcOccluded1(w->rtc, &c.ctx, &r);
+    return r.tfar < 0;
+}
+
+/* Secondary rays from a rounded hit (protocol step 4). The shared path
+   tracer (examples/common) picks a ray's direction after shading and starts
+   it at the hit point pushed out along the normal, so it cannot ask for
+   re_secondary_origin() itself. Each render thread therefore remembers the
+   last rounded hit its intersect callback returned; a ray starting there
+   (the shadow rays and the bounce ray of that path vertex) hides its own
+   object up to I'', where it leaves the sharp mesh, and needs no second
+   trace and no reversed query. Other surfaces in the removed volume (a floor
+   under a resting cube's rounded edge) are still found. */
+#ifdef __cplusplus
+#define RX_THREAD_LOCAL thread_local
+#else
+#define RX_THREAD_LOCAL _Thread_local
+#endif
+typedef struct rx__spawn_t {
+    const rx_world_t *w; /* NULL: the last hit was not on a rounding */
+    unsigned geom;
+    re_hit_t hit;
+} rx__spawn_t;
+static RX_THREAD_LOCAL rx__spawn_t rx__spawn;
+
+/* When ray (o, d) starts at this thread's last rounded hit: *skip_geom and
+   *skip_t to hide that object's sharp mesh up to where the ray leaves it. */
+static void rx__spawn_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, unsigned *skip_geom, double *skip_t)
+{
+    const rx__spawn_t *sp = &rx__spawn;
+    ex_v3_t p, e;
+    double dir[3], org[3], t, tol;
+    *skip_geom = RTC_INVALID_GEOMETRY_ID;
+    *skip_t = 0;
+    if (sp->w != w) return;
+    tol = 1e-4 * w->scene->scale;
+    p = ex_v3(sp->hit.point[0], sp->hit.point[1], sp->hit.point[2]);
+    if (ex_dot(ex_sub(o, p), ex_sub(o, p)) > tol * tol) return;
+    dir[0] = d.x; dir[1] = d.y; dir[2] = d.z;
+    re_secondary_origin(w->round, &sp->hit, dir, org);
+    e = ex_sub(ex_v3(org[0], org[1], org[2]), o);
+    t = ex_dot(e, d) / ex_dot(d, d);
+    if (!(t > 0)) return;
+    *skip_geom = sp->geom;
+    *skip_t = rx__next_t(w, t);
+}
+
+/* The closest hit of the mode's surface along ray, (0, tmax), hiding
+   geometry skip_geom0's hits up to skip_t0 (RTC_INVALID_GEOMETRY_ID: none).
+   *chamfer is set when the rounding (or bevel, or tessellated rounding)
+   changed it; *rounded (when not NULL) gets the rounded hit and *geom its
+   geometry, if that is what it returns. */
+static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned skip_geom0, double skip_t0, ex_surface_t *s,
+                     int *chamfer_out, re_hit_t *rounded, unsigned *geom)
 {
     const rx_scene_t *sc = w->scene;
-    double tnear = 0, skip_t = 0;
-    unsigned skip_geom = RTC_INVALID_GEOMETRY_ID;
+    double tnear = 0, skip_t = skip_t0;
+    unsigned skip_geom = skip_geom0;
     int chamfer = 0;
     int iter, found = 0;
     for (iter = 0; iter < 64; iter++) {
@@ -431,15 +529,14 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, ex_surface
                 skip_t = back;
                 continue;
             }
-            /* on the flat part of a face the query would say RE_UNCHANGED */
-            if (rx_flat_inside(&w->flat[h.geom_id], h.prim_id, s->p, RX_FLAT_MARGIN_REL * sc->scale) ||
-                !rx_near_boundary(&ob->mesh, h.prim_id, s->p, w->band[h.geom_id]))
-                break;
+            /* Embree's barycentrics let the query recognise the flat part
+               of a face from three per-triangle bands (query step 0) */
             o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
             d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
-            k = re_query(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, &q);
+            k = re_query_uv(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, h.u, h.v, &q);
             if (k == RE_HIT_ROUNDED) {
                 chamfer = 1;
+                if (rounded) *rounded = q, *geom = h.geom_id;
                 s->t = q.t;
                 s->p = ex_v3(q.point[0], q.point[1], q.point[2]);
                 s->n = s->ng = ex_v3(q.normal[0], q.normal[1], q.normal[2]);
@@ -492,7 +589,18 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, ex_surface
 static int rx__intersect(void *user, const ex_ray_t *ray, double tmax, ex_surface_t *s)
 {
     rx_world_t *w = (rx_world_t *)user;
-    int chamfer, found = rx__trace(w, ray, tmax, s, &chamfer);
+    unsigned skip_geom = RTC_INVALID_GEOMETRY_ID;
+    double skip_t = 0;
+    re_hit_t q;
+    unsigned geom = 0;
+    int chamfer, found;
+    if (w->mode.kind == RX_ROUNDED && rx__spawn.w) rx__spawn_skip(w, ray->o, ray->d, &skip_geom, &skip_t);
+    q.kind = RE_UNCHANGED;
+    found = rx__trace(w, ray, tmax, skip_geom, skip_t, s, &chamfer, &q, &geom);
+    if (w->mode.kind == RX_ROUNDED) {
+        rx__spawn.w = found && q.kind == RE_HIT_ROUNDED ? w : NULL;
+        if (rx__spawn.w) rx__spawn.geom = geom, rx__spawn.hit = q;
+    }
     __atomic_fetch_add(&w->rays, 1, __ATOMIC_RELAXED);
     if (chamfer) __atomic_fetch_add(&w->chamfer_rays, 1, __ATOMIC_RELAXED);
     return found;
@@ -501,18 +609,11 @@ static int rx__intersect(void *user, const ex_ray_t *ray, double tmax, ex_surfac
 static int rx__occluded(void *user, ex_v3_t o, ex_v3_t d, double tmax)
 {
     rx_world_t *w = (rx_world_t *)user;
-    ex_ray_t ray;
-    ex_surface_t s;
-    int chamfer;
-    if (!ex_embree_occluded(w->rtc, o, d, 0, tmax)) return 0;
-    /* The rounded solid lies inside the sharp one, so only a blocked shadow
-       ray needs the careful walk (it may start in a removed volume or pass
-       through one). */
-    if (w->mode.kind != RX_ROUNDED) return 1;
-    memset(&ray, 0, sizeof ray);
-    ray.o = o;
-    ray.d = d;
-    return rx__trace(w, &ray, tmax, &s, &chamfer);
+    unsigned skip_geom = RTC_INVALID_GEOMETRY_ID;
+    double skip_t = 0;
+    if (w->mode.kind != RX_ROUNDED) return ex_embree_occluded(w->rtc, o, d, 0, tmax);
+    if (rx__spawn.w) rx__spawn_skip(w, o, d, &skip_geom, &skip_t);
+    return rx__occluded_round(w, o, d, tmax, skip_geom, skip_t);
 }
 
 static void rx__pixel(void *user, int x, int y, int sample, ex_rng_t *rng, float rgb[3])

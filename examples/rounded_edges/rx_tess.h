@@ -36,10 +36,12 @@ extern "C" {
 int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp, int level, ex_mesh_t *out,
                    size_t *first_round);
 
-/* The flat parts of a fully rounded object's faces, as convex polygons, for
-   a tight "is this hit on the flat part?" test: a hit strictly inside its
-   face's shrunk polygon is where re_query() says RE_UNCHANGED, so the host
-   may skip the call. */
+/* The flat parts of a fully rounded object's faces, as convex polygons
+   built from the enumerated spheres (the polygons the tessellation fills):
+   a hit strictly inside its face's shrunk polygon is where re_query() says
+   RE_UNCHANGED. The renderer does not need it (re_query_uv's per-triangle
+   bands answer that question inside the library); the tests use it as an
+   independent oracle for those bands. */
 typedef struct rx_flat_t {
     size_t ntris;        /* 0: no polygons (object not fully rounded): never claim flat */
     size_t *tri_lines;   /* 2 per triangle of the sharp mesh: its face polygon's edges
