@@ -4526,6 +4526,11 @@ typedef struct fr__leaf_t {
     int degree, quadric, boxed;
     int shape; /* quadrics: FR__LEAF_LINEAR (A = 0), FR__LEAF_DIAGONAL, FR__LEAF_FULL */
     double e[3], q[10], box[6];
+    /* decides[s]: with the leaf of sign 2s - 1 throughout the segment and
+       the boxed nodes of needs[s] missed (-1), the shape has one sign
+       throughout, so there is no hit (fr__prepare_decides) */
+    int decides[2];
+    unsigned long long needs[2];
 } fr__leaf_t;
 #define FR__LEAF_LINEAR 1
 #define FR__LEAF_DIAGONAL 2
@@ -6053,6 +6058,46 @@ static void fr__prepare_masks(fr__csg_node_t *N, unsigned int nn, unsigned int n
     }
 }
 
+/* fr__leaf_t.decides and needs: a leaf of one sign throughout settles
+   every node up a chain of single users as long as each node's other
+   operand cannot undo it: an intersection (min) of a negative operand is
+   negative, a union (max) of a positive one positive, negation flips; a
+   union of a negative operand needs the other operand negative too, which
+   a boxed node the ray misses is (its bit joins needs). Reaching the shape
+   settles its sign: no crossing can change it. work: nl + nn unsigned ints. */
+static void fr__prepare_decides(fr__leaf_t *L, unsigned int nl, const fr__csg_node_t *N, unsigned int nn,
+                                unsigned int *work)
+{
+    unsigned int *user = work, i, j;
+    int s0;
+    for (i = 0; i < nl + nn; i++) user[i] = ~0u; /* the one user, ~0u none, ~1u several */
+    for (i = 0; i < nn; i++) {
+        unsigned int ops[2], k, no = N[i].op == FR__CSG_NEG ? 1u : 2u;
+        ops[0] = N[i].a; ops[1] = N[i].b;
+        for (k = 0; k < no; k++) user[ops[k]] = user[ops[k]] == ~0u ? nl + i : ~1u;
+    }
+    for (j = 0; j < nl; j++)
+        for (s0 = 0; s0 < 2; s0++) {
+            unsigned int cur = j;
+            int sg = 2 * s0 - 1, ok = 1;
+            unsigned long long need = 0;
+            while (ok && cur != nl + nn - 1) {
+                unsigned int p = user[cur], other;
+                if (p >= nl + nn) { ok = 0; break; } /* no single user */
+                other = N[p - nl].a == cur ? N[p - nl].b : N[p - nl].a;
+                if (N[p - nl].op == FR__CSG_NEG) sg = -sg;
+                else if (N[p - nl].op == FR__CSG_MIN) ok = sg < 0;
+                else if (sg < 0) { /* a union: the other operand must be a missed box */
+                    ok = other >= nl && N[other - nl].bit != 0;
+                    if (ok) need |= N[other - nl].bit;
+                }
+                cur = p;
+            }
+            L[j].decides[s0] = ok;
+            L[j].needs[s0] = need;
+        }
+}
+
 static void fr__prepare_nodes(const fr_tape_t *t, const double *box, fr__csg_node_t *N, unsigned int nn,
                               unsigned char *work)
 {
@@ -6179,14 +6224,17 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
         }
         out->n_leaves = nl;
         out->n_nodes = nn;
-        if (out->has_box) {
+        {
             unsigned char *w = need + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int));
-            fr__prepare_leaves(t, gdeg, out->box, L, nl, w);
+            if (out->has_box) {
+                fr__prepare_leaves(t, gdeg, out->box, L, nl, w);
 #ifndef FR_NO_INTERVAL
-            fr__prepare_nodes(t, out->box, N, nn, w);
-            fr__prepare_masks(N, nn, nl, w);
-            for (j = 0; j < nn; j++) ((fr__prep_head_t *)out->mem)->n_boxed_nodes += N[j].bit != 0;
+                fr__prepare_nodes(t, out->box, N, nn, w);
+                fr__prepare_masks(N, nn, nl, w);
+                for (j = 0; j < nn; j++) ((fr__prep_head_t *)out->mem)->n_boxed_nodes += N[j].bit != 0;
 #endif
+            }
+            fr__prepare_decides(L, nl, N, nn, (unsigned int *)(void *)w);
         }
         /* non-quadric leaves: their subtrees make the program */
         for (j = 0; j < nl; j++) {
@@ -6443,6 +6491,10 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         }
         if (m < 0) return FR_ERR_NOT_POLYNOMIAL;
         if (!culled) R->iters++;
+        if (m == 0 && sg != 0 && lf->decides[sg > 0] && (force & lf->needs[sg > 0]) == lf->needs[sg > 0]) {
+            R->evals += j + 1; /* the shape keeps one sign: no crossing can be the hit */
+            return FR_OK;
+        }
         for (k = 0; k < m; k++) cl[nc + k] = j;
         nc += m;
         vlo[j] = vhi[j] = (signed char)sg;
