@@ -4303,14 +4303,6 @@ static int fr__tpoly_const_op(const fr_instr_t *in, double a, double b, double *
 #else
 #define FR__HOT_INLINE inline
 #endif
-/* pointers whose targets do not overlap (C99 restrict; the common C++ spelling) */
-#if defined(__cplusplus) && (defined(__GNUC__) || defined(__clang__) || defined(_MSC_VER))
-#define FR__RESTRICT __restrict
-#elif defined(__cplusplus) || !defined(__STDC_VERSION__) || __STDC_VERSION__ < 199901L
-#define FR__RESTRICT
-#else
-#define FR__RESTRICT restrict
-#endif
 
 /* c = a^n truncated (n >= 0), c distinct from a; returns the degree or -1. */
 static FR__HOT_INLINE int fr__tpoly_powi(const double *a, int da, int n, double *c)
@@ -4553,10 +4545,6 @@ typedef struct fr__csg_node_t {
 typedef struct fr__prep_head_t {
     double box[6];
     unsigned int n_boxed_nodes;
-    /* 4 or 8: every program slot's degree is below it and every slot of
-       degree 0 is a finite constant, so the program runs at this fixed
-       width (fr__prog_pass_w); 0: slot by slot at its own degree */
-    unsigned int width;
 } fr__prep_head_t;
 
 #define FR__CSG_NEG 0u
@@ -4652,123 +4640,10 @@ static FR__HOT_INLINE void fr__prog_pass(const fr_tape_t *t, const fr__tp_t *pro
     }
 }
 
-/* fr__prog_pass at a fixed width W (4 or 8, a constant in each caller's
-   copy): every slot writes W coefficients, zeros above its degree, so the
-   kernels are straight vector code with no per-slot degree bookkeeping
-   (that bookkeeping was most of the pass: 1756 instructions per tangle
-   cube ray). The coefficients that matter are the very ones of
-   fr__prog_pass: the extra terms are sums with and products of exact
-   zeros, and the degree-0 slots (the only ones a zero could meet an
-   infinity in) are finite constants (fr_prepare checks). */
-/* The kernels of fr__prog_pass_w on W coefficients: a slot never overlaps
-   its operands' slots, and restrict on the parameters lets the compiler
-   keep each one a few vector operations. */
-static FR__HOT_INLINE void fr__w_add(double *FR__RESTRICT c, const double *FR__RESTRICT a, const double *FR__RESTRICT b,
-                                     double sb, int W)
+static void fr__prog_run(const fr_tape_t *t, const fr__tp_t *prog, unsigned int np, const double o[3], const double d[3],
+                         double *P, double *M)
 {
-    int k;
-    for (k = 0; k < W; k++) c[k] = a[k] + sb * b[k];
-}
-static FR__HOT_INLINE void fr__w_scale(double *FR__RESTRICT c, const double *FR__RESTRICT a, double s, int W)
-{
-    int k;
-    for (k = 0; k < W; k++) c[k] = s * a[k];
-}
-static FR__HOT_INLINE void fr__w_zero(double *FR__RESTRICT c, int from, int W)
-{
-    int k;
-    for (k = from; k < W; k++) c[k] = 0.0;
-}
-
-static FR__HOT_INLINE void fr__prog_pass_w(const fr_tape_t *t, const fr__tp_t *prog, unsigned int np, const double o[3],
-                                           const double d[3], double *P, double *M, int mag, int W)
-{
-    unsigned int j;
-    for (j = 0; j < np; j++) {
-        const fr__tp_t *pi = &prog[j];
-        double *c = P + pi->oc, *mc = M + pi->oc, a0, a1, ma0, ma1;
-        /* operands' addresses only where a kernel reads them (computed up
-           front they were a fifth of the pass) */
-        switch (pi->kernel) {
-        case FR__K_CONST:
-            fr__w_zero(c, 0, W);
-            c[0] = t->code[pi->slot].k;
-            if (mag) { fr__w_zero(mc, 0, W); mc[0] = fabs(c[0]); }
-            break;
-        case FR__K_VAR: {
-            int ax = (int)t->code[pi->slot].op - (int)FR_OP_VAR_X;
-            fr__w_zero(c, 0, W);
-            c[0] = o[ax]; c[1] = d[ax];
-            if (mag) { fr__w_zero(mc, 0, W); mc[0] = fabs(o[ax]); mc[1] = fabs(d[ax]); }
-            break;
-        }
-        case FR__K_NEG:
-            fr__w_scale(c, (P + pi->oa), -1.0, W);
-            if (mag) fr__w_scale(mc, (M + pi->oa), 1.0, W);
-            break;
-        case FR__K_MULK:
-            fr__w_scale(c, (P + pi->oa), (P + pi->ob)[0], W);
-            if (mag) fr__w_scale(mc, (M + pi->oa), (M + pi->ob)[0], W);
-            break;
-        case FR__K_KMUL:
-            fr__w_scale(c, (P + pi->ob), (P + pi->oa)[0], W);
-            if (mag) fr__w_scale(mc, (M + pi->ob), (M + pi->oa)[0], W);
-            break;
-        case FR__K_SQR1:
-            a0 = (P + pi->oa)[0]; a1 = (P + pi->oa)[1];
-            fr__w_zero(c, 0, W);
-            c[0] = a0 * a0; c[1] = 2.0 * (a0 * a1); c[2] = a1 * a1;
-            if (mag) {
-                ma0 = (M + pi->oa)[0]; ma1 = (M + pi->oa)[1];
-                fr__w_zero(mc, 0, W);
-                mc[0] = ma0 * ma0; mc[1] = 2.0 * (ma0 * ma1); mc[2] = ma1 * ma1;
-            }
-            break;
-        case FR__K_SQR2:
-            if (W < 5) break; /* cannot happen: degree 4 needs W = 8 */
-            fr__sqr2((P + pi->oa)[0], (P + pi->oa)[1], (P + pi->oa)[2], c);
-            fr__w_zero(c, 5, W);
-            if (mag) { fr__sqr2((M + pi->oa)[0], (M + pi->oa)[1], (M + pi->oa)[2], mc); fr__w_zero(mc, 5, W); }
-            break;
-        case FR__K_POW4:
-            if (W < 5) break;
-            a0 = (P + pi->oa)[0]; a1 = (P + pi->oa)[1];
-            fr__sqr2(a0 * a0, 2.0 * (a0 * a1), a1 * a1, c);
-            fr__w_zero(c, 5, W);
-            if (mag) {
-                ma0 = (M + pi->oa)[0]; ma1 = (M + pi->oa)[1];
-                fr__sqr2(ma0 * ma0, 2.0 * (ma0 * ma1), ma1 * ma1, mc);
-                fr__w_zero(mc, 5, W);
-            }
-            break;
-        case FR__K_ADD: case FR__K_SUB:
-            fr__w_add(c, (P + pi->oa), (P + pi->ob), pi->kernel == FR__K_ADD ? 1.0 : -1.0, W);
-            if (mag) fr__w_add(mc, (M + pi->oa), (M + pi->ob), 1.0, W);
-            break;
-        default: {
-            const fr_instr_t *in = &t->code[pi->slot];
-            fr__tpoly_step(in, (P + pi->oa), pi->da, (P + pi->ob), pi->db, pi->dc, o, d, c, NULL);
-            fr__w_zero(c, pi->dc + 1, W);
-            if (mag) {
-                fr__tpoly_step(in, (M + pi->oa), pi->da, (M + pi->ob), pi->db, pi->dc, o, d, mc, c);
-                fr__w_zero(mc, pi->dc + 1, W);
-            }
-            break;
-        }
-        }
-    }
-}
-
-static void fr__prog_run(const fr_tape_t *t, const fr__tp_t *prog, unsigned int np, unsigned int width,
-                         const double o[3], const double d[3], double *P, double *M)
-{
-    if (width == 8) {
-        if (M) fr__prog_pass_w(t, prog, np, o, d, P, M, 1, 8);
-        else fr__prog_pass_w(t, prog, np, o, d, P, P, 0, 8);
-    } else if (width == 4) {
-        if (M) fr__prog_pass_w(t, prog, np, o, d, P, M, 1, 4);
-        else fr__prog_pass_w(t, prog, np, o, d, P, P, 0, 4);
-    } else if (M) fr__prog_pass(t, prog, np, o, d, P, M, 1);
+    if (M) fr__prog_pass(t, prog, np, o, d, P, M, 1);
     else fr__prog_pass(t, prog, np, o, d, P, P, 0);
 }
 
@@ -5380,8 +5255,7 @@ static double fr__analytic_expand(const fr__ray_t *R, const fr__trace_mem_t *mem
         int dg;
         fr__prep_layout(P->n_leaves, P->n_nodes, P->n_prog, NULL, NULL, &prog, P->mem);
         dg = prog[P->n_prog - 1].dc;
-        fr__prog_run(R->tape, prog, P->n_prog, ((const fr__prep_head_t *)P->mem)->width, ob, R->d, mem->taylor,
-                     with_mag ? mem->taylor_mag : NULL);
+        fr__prog_run(R->tape, prog, P->n_prog, ob, R->d, mem->taylor, with_mag ? mem->taylor_mag : NULL);
         mem->deg[out] = fr__checked_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, dg);
         if (with_mag) mem->deg_mag[out] = fr__checked_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, dg);
         if (mem->deg[out] >= 0 && (!with_mag || mem->deg_mag[out] >= 0)) return ts;
@@ -6267,15 +6141,6 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
         np++;
     }
     out->n_prog = np;
-    {   /* the program's fixed width (fr__prog_pass_w), if it has one */
-        unsigned int w = 4;
-        for (j = 0; j < np && w; j++) {
-            const fr_instr_t *in = &t->code[P[j].slot];
-            if (P[j].dc >= 4) w = 8;
-            if (P[j].dc >= 8 || (P[j].dc == 0 && !(P[j].kernel == FR__K_CONST && in->k - in->k == 0))) w = 0;
-        }
-        ((fr__prep_head_t *)out->mem)->width = np ? w : 0;
-    }
     FR_FREE(work, t->alloc_ctx);
     return FR_OK;
 }
@@ -6473,7 +6338,7 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         if (!(ts >= R->t0)) ts = R->t0;
         if (!(ts <= R->t1)) ts = R->t1;
         for (k = 0; k < 3; k++) ob[k] = R->o[k] + ts * R->d[k];
-        fr__prog_run(t, prog, Pp->n_prog, ((const fr__prep_head_t *)Pp->mem)->width, ob, R->d, mem->taylor, NULL);
+        fr__prog_run(t, prog, Pp->n_prog, ob, R->d, mem->taylor, NULL);
     }
     for (j = 0; j < nl; j++) {
         const fr__leaf_t *lf = &L[j];
