@@ -4518,6 +4518,11 @@ typedef struct fr__leaf_t {
     int degree, quadric, boxed;
     int shape; /* quadrics: FR__LEAF_LINEAR (A = 0), FR__LEAF_DIAGONAL, FR__LEAF_FULL */
     double e[3], q[10], box[6];
+    /* decides[s]: with the leaf of sign 2s - 1 throughout the segment and
+       the boxed nodes of needs[s] missed (-1), the shape has one sign
+       throughout, so there is no hit (fr__prepare_decides) */
+    int decides[2];
+    unsigned long long needs[2];
 } fr__leaf_t;
 #define FR__LEAF_LINEAR 1
 #define FR__LEAF_DIAGONAL 2
@@ -4529,6 +4534,10 @@ typedef struct fr__csg_node_t {
     unsigned int slot;
     int boxed;             /* box holds the node's solid {f >= 0} */
     double box[6];
+    /* boxed nodes (the first 64): the node's own bit, and the leaves
+       (when n_leaves <= 64) and boxed nodes only it reaches, whose work a
+       ray missing its box skips (fr__prepare_masks) */
+    unsigned long long bit, leaf_mask, node_mask;
 } fr__csg_node_t;
 
 /* The head of fr_prepared_t.mem: the box, padded once as fr__clip_box
@@ -4658,6 +4667,7 @@ typedef struct fr__ray_t {
     double gam, dgam; /* gamma_{2n+2} for g's and g''s degrees n (fr__poly_range_of) */
     const fr_prepared_t *prep; /* desc->prepared, if made for this tape */
     double inv[3];    /* 1 / d[k] (0 where d[k] = 0), when have_inv: from fr__clip_padded */
+    double tpad;      /* and max_k 8u |o[k]| |inv[k]|: o's rounding in t (fr__slab_meets) */
     int have_inv;
     void *eval;
     unsigned long long evals, iters;
@@ -5344,14 +5354,14 @@ static int fr__poly_leaf(const double *c, int deg, double s0, double s1, double 
    negation over signs, as over values (an R-function has the sign of min or
    max of its operands); node values go to v[nl...]. */
 static FR__HOT_INLINE int fr__csg_sign(const fr__csg_node_t *nd, unsigned int nn, unsigned int nl, signed char *v,
-                        const signed char *force)
+                                       unsigned long long force)
 {
     signed char *w = v + nl;
     unsigned int j;
     for (j = 0; j < nn; j++) {
         int a = v[nd[j].a], b = v[nd[j].b], mn = a < b ? a : b, mx = a < b ? b : a;
         w[j] = (signed char)(nd[j].op == FR__CSG_MAX ? mx : nd[j].op == FR__CSG_MIN ? mn : -a);
-        if (force && force[j]) w[j] = force[j];
+        if (force & nd[j].bit) w[j] = -1;
     }
     return nn ? w[nn - 1] : v[0];
 }
@@ -5378,7 +5388,7 @@ static int fr__csg_sign_tape(const fr_tape_t *t, const unsigned int *list, int c
 typedef struct fr__csg_walk_t {
     const fr__csg_node_t *nodes; /* prepared: nn nodes over nl leaves, force as fr__csg_sign */
     unsigned int nn, nl;
-    const signed char *force;
+    unsigned long long force;
     const fr_tape_t *tape;       /* plain: fr__csg_mark's list of cnt slots, with the Taylor degrees */
     const unsigned int *list;
     int cnt;
@@ -5618,6 +5628,7 @@ static int fr__clip_padded(fr__ray_t *R, const double *b)
         if (op * fabs(inv) > tp) tp = op * fabs(inv);
     }
     R->have_inv = 1;
+    R->tpad = tp;
     A -= 4.0 * FR__U * fabs(A) + tp;
     Z += 4.0 * FR__U * fabs(Z) + tp;
     if (A < R->t0) A = R->t0;
@@ -5884,6 +5895,83 @@ static fr_result_t fr__prepare_leaves(const fr_tape_t *t, const int *gdeg, const
 
 #ifndef FR_NO_INTERVAL
 /* The nodes' solid boxes, for nodes small enough to cull (fr__leaf_box_set). */
+/* The masks of the boxed nodes (fr__csg_node_t.bit, leaf_mask,
+   node_mask): what a ray that misses a node's box may skip is what only
+   that node reaches, that is what the shape reaches from below it but not
+   along paths avoiding it (a leaf or node shared with the rest of the tree
+   is still needed there). Boxed nodes beyond the 64th lose their box.
+   work: 2 (nl + nn) bytes. */
+static void fr__prepare_masks(fr__csg_node_t *N, unsigned int nn, unsigned int nl, unsigned char *work)
+{
+    unsigned char *avoid = work, *below = work + nl + nn;
+    unsigned int i, x, nb = 0;
+    for (i = nn; i-- > 0;) {
+        if (!N[i].boxed) continue;
+        if (nb == 64) { N[i].boxed = 0; continue; }
+        N[i].bit = 1ull << nb++;
+    }
+    for (i = 0; i < nn; i++) {
+        if (!N[i].bit) continue;
+        memset(work, 0, 2 * (size_t)(nl + nn));
+        if (i != nn - 1) avoid[nl + nn - 1] = 1;
+        below[nl + i] = 1;
+        for (x = nn; x-- > 0;) { /* operands precede their users */
+            if (avoid[nl + x] && x != i) {
+                avoid[N[x].a] = 1;
+                if (N[x].op != FR__CSG_NEG) avoid[N[x].b] = 1;
+            }
+            if (below[nl + x]) {
+                below[N[x].a] = 1;
+                if (N[x].op != FR__CSG_NEG) below[N[x].b] = 1;
+            }
+        }
+        for (x = 0; x < nl && nl <= 64; x++)
+            if (below[x] && !avoid[x]) N[i].leaf_mask |= 1ull << x;
+        for (x = 0; x < nn; x++)
+            if (x != i && N[x].bit && below[nl + x] && !avoid[nl + x]) N[i].node_mask |= N[x].bit;
+    }
+}
+
+/* fr__leaf_t.decides and needs: a leaf of one sign throughout settles
+   every node up a chain of single users as long as each node's other
+   operand cannot undo it: an intersection (min) of a negative operand is
+   negative, a union (max) of a positive one positive, negation flips; a
+   union of a negative operand needs the other operand negative too, which
+   a boxed node the ray misses is (its bit joins needs). Reaching the shape
+   settles its sign: no crossing can change it. work: nl + nn unsigned ints. */
+static void fr__prepare_decides(fr__leaf_t *L, unsigned int nl, const fr__csg_node_t *N, unsigned int nn,
+                                unsigned int *work)
+{
+    unsigned int *user = work, i, j;
+    int s0;
+    for (i = 0; i < nl + nn; i++) user[i] = ~0u; /* the one user, ~0u none, ~1u several */
+    for (i = 0; i < nn; i++) {
+        unsigned int ops[2], k, no = N[i].op == FR__CSG_NEG ? 1u : 2u;
+        ops[0] = N[i].a; ops[1] = N[i].b;
+        for (k = 0; k < no; k++) user[ops[k]] = user[ops[k]] == ~0u ? nl + i : ~1u;
+    }
+    for (j = 0; j < nl; j++)
+        for (s0 = 0; s0 < 2; s0++) {
+            unsigned int cur = j;
+            int sg = 2 * s0 - 1, ok = 1;
+            unsigned long long need = 0;
+            while (ok && cur != nl + nn - 1) {
+                unsigned int p = user[cur], other;
+                if (p >= nl + nn) { ok = 0; break; } /* no single user */
+                other = N[p - nl].a == cur ? N[p - nl].b : N[p - nl].a;
+                if (N[p - nl].op == FR__CSG_NEG) sg = -sg;
+                else if (N[p - nl].op == FR__CSG_MIN) ok = sg < 0;
+                else if (sg < 0) { /* a union: the other operand must be a missed box */
+                    ok = other >= nl && N[other - nl].bit != 0;
+                    if (ok) need |= N[other - nl].bit;
+                }
+                cur = p;
+            }
+            L[j].decides[s0] = ok;
+            L[j].needs[s0] = need;
+        }
+}
+
 static void fr__prepare_nodes(const fr_tape_t *t, const double *box, fr__csg_node_t *N, unsigned int nn,
                               unsigned char *work)
 {
@@ -6004,18 +6092,23 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
             N[jn].b = in->op == FR_OP_NEG ? 0 : idx[in->b];
             N[jn].slot = i;
             N[jn].boxed = 0;
+            N[jn].bit = N[jn].leaf_mask = N[jn].node_mask = 0;
             idx[i] = nl + jn;
             jn++;
         }
         out->n_leaves = nl;
         out->n_nodes = nn;
-        if (out->has_box) {
+        {
             unsigned char *w = need + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int));
-            fr__prepare_leaves(t, gdeg, out->box, L, nl, w);
+            if (out->has_box) {
+                fr__prepare_leaves(t, gdeg, out->box, L, nl, w);
 #ifndef FR_NO_INTERVAL
-            fr__prepare_nodes(t, out->box, N, nn, w);
-            for (j = 0; j < nn; j++) ((fr__prep_head_t *)out->mem)->n_boxed_nodes += (unsigned int)N[j].boxed;
+                fr__prepare_nodes(t, out->box, N, nn, w);
+                fr__prepare_masks(N, nn, nl, w);
+                for (j = 0; j < nn; j++) ((fr__prep_head_t *)out->mem)->n_boxed_nodes += N[j].bit != 0;
 #endif
+            }
+            fr__prepare_decides(L, nl, N, nn, (unsigned int *)(void *)w);
         }
         /* non-quadric leaves: their subtrees make the program */
         for (j = 0; j < nl; j++) {
@@ -6059,45 +6152,41 @@ FR_DEF void fr_prepared_free(fr_prepared_t *p)
     memset(p, 0, sizeof *p);
 }
 
-/* A ray set up for many slab tests against leaf boxes (padded at
-   fr_prepare as fr__clip_box pads): reciprocal directions, and the
-   rounding of o's subtraction as one pad in t. */
-typedef struct fr__slab_t {
-    double o[3], inv[3], opad[3], tpad;
-    int flat[3]; /* d[k] == 0 */
-} fr__slab_t;
-static void fr__slab_init(fr__slab_t *S, const fr__ray_t *R)
+/* The reciprocal directions and o's rounding pad in t for slab tests
+   (fr__slab_meets), unless fr__clip_padded left them. */
+static void fr__ray_inv(fr__ray_t *R)
 {
-    const double *o = R->o, *d = R->d;
     int k;
-    S->tpad = 0.0;
+    if (R->have_inv) return;
+    R->tpad = 0.0;
     for (k = 0; k < 3; k++) {
-        S->o[k] = o[k];
-        S->flat[k] = d[k] == 0;
-        S->inv[k] = R->have_inv ? R->inv[k] : d[k] != 0 ? 1.0 / d[k] : 0.0; /* the clip's reciprocals */
-        S->opad[k] = 8.0 * FR__U * fabs(o[k]);
-        if (S->opad[k] * fabs(S->inv[k]) > S->tpad) S->tpad = S->opad[k] * fabs(S->inv[k]);
+        double op = 8.0 * FR__U * fabs(R->o[k]);
+        R->inv[k] = R->d[k] != 0 ? 1.0 / R->d[k] : 0.0;
+        if (op * fabs(R->inv[k]) > R->tpad) R->tpad = op * fabs(R->inv[k]);
     }
+    R->have_inv = 1;
 }
-/* Does o + t d, t in [a, z], meet the (padded) box b? The slab test of
-   fr__clip_box; the products' rounding (4u relative, monotone in t) is
-   applied once to the final bounds. */
-static int fr__slab_meets(const fr__slab_t *S, const double *b, double a, double z)
+/* Does o + t d, t in [a, z], meet the box b (padded at fr_prepare as
+   fr__clip_box pads)? The slab test of fr__clip_box with the clip's
+   reciprocals (fr__ray_inv); the products' rounding (4u relative,
+   monotone in t) and o's (R->tpad) are applied once to the final bounds. */
+static int fr__slab_meets(const fr__ray_t *R, const double *b, double a, double z)
 {
     int k;
     for (k = 0; k < 3; k++) {
-        double lo = b[k] - S->o[k], hi = b[k + 3] - S->o[k], ta, tb;
-        if (S->flat[k]) {
-            if (!(lo <= S->opad[k] && hi >= -S->opad[k])) return 0;
+        double lo = b[k] - R->o[k], hi = b[k + 3] - R->o[k], ta, tb;
+        if (R->d[k] == 0) {
+            double opad = 8.0 * FR__U * fabs(R->o[k]);
+            if (!(lo <= opad && hi >= -opad)) return 0;
             continue;
         }
-        ta = lo * S->inv[k];
-        tb = hi * S->inv[k];
+        ta = lo * R->inv[k];
+        tb = hi * R->inv[k];
         if (ta > tb) { double x = ta; ta = tb; tb = x; }
         if (ta > a) a = ta;
         if (tb < z) z = tb;
     }
-    return a - 4.0 * FR__U * fabs(a) - S->tpad <= z + 4.0 * FR__U * fabs(z) + S->tpad;
+    return a - 4.0 * FR__U * fabs(a) - R->tpad <= z + 4.0 * FR__U * fabs(z) + R->tpad;
 }
 
 
@@ -6221,9 +6310,7 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
     unsigned int *cl = mem->cleaf;
     signed char *vlo = mem->sgn, *vhi = mem->sgn + nl + nn;
     int nc = 0, k;
-    fr__slab_t S;
-    int slab = 0;
-    signed char *force = NULL, *live = NULL;
+    unsigned long long force = 0, skip = 0, gone = 0;
     fr__prep_layout(nl, nn, Pp->n_prog, &L, &N, &prog, Pp->mem);
     *found = 0;
     *orient = 0;
@@ -6231,21 +6318,18 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
     inv_dd = 1.0 / dd;
     if (((const fr__prep_head_t *)Pp->mem)->n_boxed_nodes) {
         /* nodes whose solid box the segment misses are outside (-1)
-           throughout: their subtrees' leaves need no roots, unless another
-           live node uses them (top-down from the shape) */
+           throughout (force); the leaves and boxed nodes only they reach
+           need no work (top-down from the shape, so a node inside a
+           missed one is not even tested) */
         unsigned int i;
-        force = vhi + nl + nn;
-        live = force + nn;
-        for (i = 0; i < nn; i++) force[i] = 0;
-        for (i = 0; i + 1 < nl + nn; i++) live[i] = 0;
-        live[nl + nn - 1] = 1;
-        fr__slab_init(&S, R);
-        slab = 1;
+        fr__ray_inv(R);
         for (i = nn; i-- > 0;) {
-            if (!live[nl + i]) continue;
-            if (N[i].boxed && !fr__slab_meets(&S, N[i].box, R->t0, R->t1)) { force[i] = -1; continue; }
-            live[N[i].a] = 1;
-            if (N[i].op != FR__CSG_NEG) live[N[i].b] = 1;
+            if (!N[i].bit || (gone & N[i].bit)) continue;
+            if (!fr__slab_meets(R, N[i].box, R->t0, R->t1)) {
+                force |= N[i].bit;
+                skip |= N[i].leaf_mask;
+                gone |= N[i].node_mask;
+            }
         }
     }
     if (Pp->n_prog) { /* the Taylor program of the leaves that are not quadrics */
@@ -6259,10 +6343,10 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
     for (j = 0; j < nl; j++) {
         const fr__leaf_t *lf = &L[j];
         int culled = 0, sg = 0, m;
-        if (live && !live[j]) { vlo[j] = vhi[j] = 0; continue; } /* only culled nodes use it */
+        if (skip && j < 64 && ((skip >> j) & 1u)) { vlo[j] = vhi[j] = 0; continue; } /* only missed nodes use it */
         if (lf->boxed) {
-            if (!slab) { fr__slab_init(&S, R); slab = 1; }
-            culled = !fr__slab_meets(&S, lf->box, R->t0, R->t1);
+            fr__ray_inv(R);
+            culled = !fr__slab_meets(R, lf->box, R->t0, R->t1);
         }
         if (lf->quadric) m = fr__quadric_leaf(lf, R, inv_dd, culled, cand + nc, &sg);
         else {
@@ -6272,6 +6356,10 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         }
         if (m < 0) return FR_ERR_NOT_POLYNOMIAL;
         if (!culled) R->iters++;
+        if (m == 0 && sg != 0 && lf->decides[sg > 0] && (force & lf->needs[sg > 0]) == lf->needs[sg > 0]) {
+            R->evals += j + 1; /* the shape keeps one sign: no crossing can be the hit */
+            return FR_OK;
+        }
         for (k = 0; k < m; k++) cl[nc + k] = j;
         nc += m;
         vlo[j] = vhi[j] = (signed char)sg;
@@ -6331,9 +6419,10 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
         for (zi = 0; zi < sizeof zero_desc; zi++) z[zi] = 0;
         desc = &zero_desc;
     }
-    for (k = 0; k < 3; k++)
-        if (!(o[k] - o[k] == 0) || !(d[k] - d[k] == 0)) return FR_ERR_INVALID_ARG;
-    if (!(t0 <= t1) || t0 != t0 || (d[0] == 0 && d[1] == 0 && d[2] == 0) || (int)desc->method < 0 || (int)desc->method >= (int)FR_METHOD_COUNT_)
+    /* x - x is 0 for finite x, NaN for infinities and NaN: one test for all six */
+    if (!((o[0] - o[0]) + (o[1] - o[1]) + (o[2] - o[2]) + (d[0] - d[0]) + (d[1] - d[1]) + (d[2] - d[2]) == 0))
+        return FR_ERR_INVALID_ARG;
+    if (!(t0 <= t1) || (d[0] == 0 && d[1] == 0 && d[2] == 0) || (unsigned int)desc->method >= (unsigned int)FR_METHOD_COUNT_)
         return FR_ERR_INVALID_ARG;
     hit->hit = 0;
     hit->method = m = desc->method;
@@ -6359,6 +6448,15 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     R.tape = t;
     R.eval = mem.eval;
     R.evals = R.iters = 0;
+    /* the prepared CSG path needs none of the set-up below */
+    if (R.prep && R.prep->kind == FR_PREPARED_CSG && (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC)) {
+        e = fr__trace_prepared_csg(&R, &mem, &found, &t_hit, &t_err, &leaf, &orient);
+        if (e == FR_OK) { m = FR_METHOD_ANALYTIC; goto done; }
+        /* a leaf overflowed on this ray: trace it without the prepared model */
+        e = FR_OK;
+        found = 0;
+        orient = 0;
+    }
     R.max_iters = desc->max_iters ? desc->max_iters : FR__TRACE_MAX_ITERS;
     if (desc->tol > 0) R.tol = desc->tol;
     else if (desc->tol < 0) R.tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
@@ -6373,14 +6471,6 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     R.any_hit = desc->any_hit;
     step = desc->step;
     L = desc->lipschitz > 0 ? desc->lipschitz : t->lipschitz;
-    if (R.prep && R.prep->kind == FR_PREPARED_CSG && (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC)) {
-        e = fr__trace_prepared_csg(&R, &mem, &found, &t_hit, &t_err, &leaf, &orient);
-        if (e == FR_OK) { m = FR_METHOD_ANALYTIC; goto done; }
-        /* a leaf overflowed on this ray: trace it without the prepared model */
-        e = FR_OK;
-        found = 0;
-        orient = 0;
-    }
     R.prep = R.prep && R.prep->kind == FR_PREPARED_POLY ? R.prep : NULL;
     if (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC) ts = fr__analytic_expand(&R, &mem, 0);
     if (m == FR_METHOD_AUTO) {

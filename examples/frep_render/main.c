@@ -45,6 +45,7 @@ typedef struct scene_t {
     ex_v3_t light;         /* point light */
     ex_v3_t centre;        /* of the box, and the camera's target */
     double radius;         /* of the box's bounding sphere */
+    double bound_r2;       /* that radius padded, squared: the renderer's bounding volume (misses_bound) */
     size_t scratch_bytes;  /* fr_trace_scratch_size, once */
 } scene_t;
 
@@ -133,6 +134,9 @@ static int load_scene(scene_t *sc, const char *name, const char *mode, int prepa
         if (!(sc->box[0] <= sc->box[3])) { fprintf(stderr, "frep_render: %s is empty\n", name); return -1; }
         sc->centre = ex_v3(0.5 * (sc->box[0] + sc->box[3]), 0.5 * (sc->box[1] + sc->box[4]), 0.5 * (sc->box[2] + sc->box[5]));
         sc->radius = 0.5 * ex_len(ex_v3(sc->box[3] - sc->box[0], sc->box[4] - sc->box[1], sc->box[5] - sc->box[2]));
+        /* fr_trace pads the box by 2^-20 of its size plus the rounding of o
+           (ulps): 1e-5 of the radius holds that padded box with room to spare */
+        sc->bound_r2 = (sc->radius * (1 + 1e-5)) * (sc->radius * (1 + 1e-5));
         /* the model stands on the floor; the light keeps its direction */
         sc->floor_z = sc->box[2] - 1e-3 * sc->radius;
         sc->light = ex_add(sc->centre, ex_scale(ex_v3(4, -3, 6), sc->radius / 1.6));
@@ -177,12 +181,26 @@ static void *scratch_for(const scene_t *sc)
     return tls_scratch;
 }
 
-/* desc clips the segment to the solid's box (fr_trace_desc_t.bounds) */
+/* The renderer's own bounding volume, as a ray tracer tests an object's
+   before calling its intersector: a ray from outside the sphere around the
+   solid's box that passes it by (t >= 0) misses the box fr_trace clips to,
+   so fr_trace would report no hit. A handful of flops instead of the call
+   (most shadow rays from the floor, reflections towards the sky). */
+static int misses_bound(const scene_t *sc, ex_v3_t o, ex_v3_t d)
+{
+    ex_v3_t oc = ex_sub(o, sc->centre);
+    double b = ex_dot(oc, d), c = ex_dot(oc, oc) - sc->bound_r2;
+    return c > 0 && (b >= 0 || b * b < c * ex_dot(d, d)); /* outside, and moving away or passing by */
+}
+
+/* desc clips the segment to the solid's box (fr_trace_desc_t.bounds);
+   tmin >= 0 */
 static int trace_model(scene_t *sc, const fr_trace_desc_t *desc, ex_v3_t o, ex_v3_t d, double tmin, double tmax,
                        fr_hit_t *h)
 {
     double oo[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
     tls_rays++;
+    if (misses_bound(sc, o, d)) return 0;
     if (fr_trace(&sc->tape, oo, dd, tmin, tmax, desc, scratch_for(sc), h) != FR_OK) return 0;
     return h->hit;
 }
