@@ -212,7 +212,7 @@ int main(int argc, char **argv)
             for (a = 0; a < 3; a++) p[a] = A[a] + u * (B[a] - A[a]) + v * (C[a] - A[a]), e1[a] = B[a] - A[a], e2[a] = C[a] - A[a];
             n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
             l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            for (a = 0; a < 3; a++) d[a] = -n[a] / l + 0.7 * (double)(((rng >> (a * 7)) & 127) - 64) / 64.0;
+            for (a = 0; a < 3; a++) d[a] = -n[a] / l + 0.7 * (double)((int)((rng >> (a * 7)) & 127) - 64) / 64.0;
             if (d[0] * n[0] + d[1] * n[1] + d[2] * n[2] >= 0) for (a = 0; a < 3; a++) d[a] = -n[a];
             for (a = 0; a < 3; a++) o[a] = p[a] - d[a];
             re_query_uv(s, o, d, 0, t, 1.0, u, v, &h);

@@ -540,16 +540,41 @@ typedef struct re__plane_t {
     double c;    /* n.x = c on the face; n.x <= c inside */
 } re__plane_t;
 
+/* A rounding sphere, 8 bytes: its corner, and where its centre comes from.
+   Most centres are the point where three of the corner's face planes,
+   shifted inward by r, meet (a vertex of the eroded polytope, "Memory" in
+   docs/rounded_edges.md): `info` holds the three plane slots (bits 0-7,
+   8-15, 16-23) and re__centre() solves for it at query time. A centre that
+   is not such a triple point (a vertex inside a straight edge, k = 2), or
+   whose triple point the build could not reproduce within
+   RE__SPHERE_SOLVE_REL, is stored: info = RE__SPH_STORED | its index in
+   `xsph`. */
+typedef struct re__sph_t {
+    unsigned corner, info;
+} re__sph_t;
+#define RE__SPH_STORED 0x80000000u
+
 /* A rounding cylinder between two sphere centres; its corners are the
-   spheres' (sph_corner). Cylinders [0, n_edge_cyls) round mesh edges, the
+   spheres' (re__sph_t.corner). Cylinders [0, n_edge_cyls) round mesh edges, the
    rest are extra (exact-corner) cylinders inside one corner. */
 typedef struct re__cyl_t {
     unsigned s[2]; /* spheres at the axis ends */
     unsigned p[2]; /* the two offset planes it joins */
 } re__cyl_t;
 
+/* An extra (exact-corner) cylinder, 8 bytes: both ends are spheres of one
+   corner and both planes are its own, so it keeps local slots: spheres
+   sph[sfirst + s[i]], planes re__corner_plane(p[i]). A corner's extra
+   cylinders are numbered consecutively, so its reference list holds only
+   the first (re__corner_t). */
+typedef struct re__xcyl_t {
+    unsigned corner;
+    unsigned char p[2], s[2];
+} re__xcyl_t;
+
 /* A rounded mesh vertex, 24 bytes. refs[first ...]: np edge cylinders
-   (cylinder j joins planes j and j+1), then nx extra cylinders; its ns
+   (cylinder j joins planes j and j+1), then, when nx > 0, the first of its
+   nx consecutive extra cylinders; its ns
    spheres are sph[sfirst ...]. The mesh vertex itself is not stored: every
    test that needs it uses the first sphere centre with a radius widened by
    their distance (docs/rounded_edges.md, "Memory"). */
@@ -571,7 +596,7 @@ typedef struct re__node_t {
 } re__node_t;
 
 typedef struct re__object_t {
-    unsigned n_tris, n_planes, n_spheres, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leafrefs, n_radii;
+    unsigned n_tris, n_planes, n_spheres, n_xsph, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leafrefs, n_radii;
     double size; /* bounding-box diagonal: the object's length scale */
     double rmax;
     double origin[3]; /* kd splits are floats relative to this (bounding-box centre) */
@@ -581,12 +606,14 @@ typedef struct re__object_t {
                                    edge opposite corner k (k < 3), and the cap
                                    at the corners (3); query step 0 */
     const re__plane_t *planes;
-    const double *sph; /* 3 per sphere */
-    const unsigned *sph_corner;
-    const re__cyl_t *cyls;
-    const float *det;  /* 2 per edge cylinder: detection radius around the mesh
-                          edge's line, and the reach past its end spheres
-                          along the axis (query step 1) */
+    const re__sph_t *sph;
+    const double *xsph; /* 3 per stored sphere centre (RE__SPH_STORED) */
+    const re__cyl_t *cyls;    /* edge cylinders [0, n_edge_cyls) */
+    const re__xcyl_t *xcyls;  /* extra cylinders [n_edge_cyls, n_cyls) */
+    const unsigned short *det; /* 2 per edge cylinder, as the upper halves of
+                          floats rounded up (re__det): detection radius
+                          around the mesh edge's line, and the reach past
+                          its end spheres along the axis (query step 1) */
     const re__corner_t *corners;
     const double *radii; /* one per rounded patch */
     const unsigned *refs;
@@ -662,6 +689,8 @@ typedef struct re__an_t {
     unsigned *c_x;                /* extra cylinders: pairs of plane slots */
     unsigned *c_start;            /* per plane slot j: sphere (local) where edge j starts */
     double *su;                   /* unit-radius sphere offsets, 3 per sphere */
+    unsigned *s_tri;              /* per sphere: the plane slots it solves from
+                                     (re__sph_t.info), RE__NONE if none */
     unsigned ns_total, nx_total, np_total;
     unsigned *edge_end; /* 2 per edge: local sphere index at v[0], v[1] side */
     unsigned n_planes;
@@ -1021,6 +1050,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     const unsigned *pl = an->c_planes + an->c_pfirst[c];
     const unsigned *ed = an->c_edges + an->c_pfirst[c];
     double *su = an->su + 3 * (size_t)an->c_sfirst[c];
+    unsigned *stri = an->s_tri + an->c_sfirst[c];
     unsigned *start = an->c_start + an->c_pfirst[c];
     unsigned *xs = an->c_x + 4 * (size_t)an->c_xfirst[c];
     unsigned cap = k; /* a k-plane corner has at most k - 2 eroded vertices (k = 2: one) */
@@ -1033,6 +1063,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
            axis (at v + d*H) so the two cylinders meet */
         double cs = re__dot(RE__N(0), RE__N(1));
         for (i = 0; i < 3; i++) su[i] = -(RE__N(0)[i] + RE__N(1)[i]) / (1 + cs);
+        stri[0] = RE__NONE; /* on two planes only: its centre is stored */
         mask[0] = 3ull;
         ns = 1;
     } else {
@@ -1065,11 +1096,13 @@ static int re__erode_corner(re__an_t *an, unsigned c)
                     }
                     if (q < ns) { /* one vertex of a near-concurrent cluster: keep the most feasible point */
                         mask[q] |= mk;
-                        if (worst < viol[q]) su[3 * q] = u[0], su[3 * q + 1] = u[1], su[3 * q + 2] = u[2], viol[q] = worst;
+                        if (worst < viol[q])
+                            su[3 * q] = u[0], su[3 * q + 1] = u[1], su[3 * q + 2] = u[2], viol[q] = worst, stri[q] = i | j << 8 | l << 16;
                         continue;
                     }
                     if (ns == cap) return 0;
                     su[3 * ns] = u[0], su[3 * ns + 1] = u[1], su[3 * ns + 2] = u[2];
+                    stri[ns] = i | j << 8 | l << 16;
                     viol[ns] = worst;
                     mask[ns++] = mk;
                 }
@@ -1178,6 +1211,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->c_edges, unsigned, an->np_total);
     RE__TAKE(an->c_start, unsigned, an->np_total);
     RE__TAKE(an->su, double, 3 * (size_t)an->np_total);
+    RE__TAKE(an->s_tri, unsigned, an->np_total);
     RE__TAKE(an->c_x, unsigned, 4 * (size_t)an->np_total);
     mark = ar->used; /* the fan walk's arrays are scratch of this step only */
     RE__TAKE(tfan, unsigned, an->T + 1);
@@ -1492,7 +1526,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
 #define RE__KD_BINS 16
 #define RE__KD_STEP 1.0   /* cost of one node step, in units of one candidate test */
 #define RE__KD_DUP 2u     /* leaf references at most this times the boxes (memory) */
-#define RE__KD_SAMPLE 256u
+#define RE__KD_SAMPLE 64u
 
 typedef struct re__kd_t {
     const double *box; /* 6 per primitive, relative to the origin: lo[3], hi[3] */
@@ -1599,6 +1633,25 @@ leaf:
     return re__kd_leaf(kd, list, n);
 }
 
+/* The point where the three planes, shifted inward by r, meet (Cramer's
+   rule), solved relative to org (the object's bounding-box centre) so it
+   keeps its precision at coordinates near 1e6. The build (re__finish) and
+   the query (re__centre) both call this, on the same stored planes. */
+static void re__solve3(const re__plane_t *A, const re__plane_t *B, const re__plane_t *C, double r, const double org[3],
+                       double x[3])
+{
+    double bc[3], ca[3], ab[3], det, da, db, dc;
+    unsigned q;
+    re__cross(B->n, C->n, bc);
+    re__cross(C->n, A->n, ca);
+    re__cross(A->n, B->n, ab);
+    det = re__dot(A->n, bc);
+    da = A->c - r - re__dot(A->n, org);
+    db = B->c - r - re__dot(B->n, org);
+    dc = C->c - r - re__dot(C->n, org);
+    for (q = 0; q < 3; q++) x[q] = org[q] + (da * bc[q] + db * ca[q] + dc * ab[q]) / det;
+}
+
 /* ---- Step 7: final arrays, packed into one block ------------------------------ */
 
 typedef struct re__final_t {
@@ -1606,10 +1659,13 @@ typedef struct re__final_t {
     unsigned *tri_plane;
     unsigned char *bands;
     re__plane_t *planes;
-    double *sph;
-    unsigned *sph_corner;
+    double *sph; /* 3 per sphere: the centres the query will compute */
+    re__sph_t *srec;
+    double *xsph;
+    unsigned n_xsph;
     re__cyl_t *cyls;
-    float *det;
+    re__xcyl_t *xcyls;
+    unsigned short *det;
     re__corner_t *corners;
     double *radii;
     unsigned *refs;
@@ -1623,6 +1679,32 @@ static float re__float_up(double x)
     if ((double)f < x) f = nextafterf(f, HUGE_VALF);
     return f;
 }
+
+/* A positive x rounded up to the upper 16 bits of a float (8 exponent bits,
+   7 mantissa bits: at most 0.8% too large), for the detection radii, which
+   only ever err large (re__det reads them back). */
+static unsigned short re__det_up(double x)
+{
+    float f = re__float_up(x);
+    unsigned b;
+    memcpy(&b, &f, sizeof b);
+    if (b & 0xFFFFu) b += 0x10000u; /* positive: rounds the magnitude up */
+    return (unsigned short)(b >> 16);
+}
+static double re__det(unsigned short h)
+{
+    unsigned b = (unsigned)h << 16;
+    float f;
+    memcpy(&f, &b, sizeof f);
+    return (double)f;
+}
+
+/* Build-time check of the sphere centres the query solves for: a triple
+   point is used when it lies within this times r (plus 64 ulp of the
+   vertex's coordinates) of v + r*u, the centre the erosion found; else the
+   centre is stored. RE__CORNER_MERGE already moves the surface by up to
+   1e-7 r. */
+#define RE__SPHERE_SOLVE_REL 1e-9
 
 /* Query step 0: per-triangle bands. The flat part of face f is the face
    shrunk by the half-planes H_g = {x : n_g.x <= c_g - r (1 - n_g.n_f)} of
@@ -1876,6 +1958,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
                               re__final_t *F)
 {
     unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, ns = 0, ncyl = 0, nref = 0, nco = 0;
+    unsigned qslot[RE_MAX_CORNER_PLANES];
     size_t kd_mark;
     double *box, *reach, *dmax, lo[3], hi[3];
     RE__TAKE(fc, unsigned, an->nc + 1);
@@ -1899,7 +1982,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         ns += an->c_ns[c];
         xbase[c] = ncyl;
         ncyl += an->c_nx[c];
-        nref += (unsigned)an->c_np[c] + an->c_nx[c];
+        nref += (unsigned)an->c_np[c] + (an->c_nx[c] ? 1u : 0u);
         p = re__uf_find(uf, c);
         if (rmap[p] == RE__NONE) rmap[p] = F->n_radii++;
         for (j = 0; j < an->c_np[c]; j++) {
@@ -1935,14 +2018,17 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     }
     F->n_corners = nco;
     F->n_spheres = ns;
+    F->n_xsph = 0;
     F->n_cyls = ncyl;
     F->n_refs = nref;
     RE__TAKE(F->tri_plane, unsigned, an->T);
     RE__TAKE(F->planes, re__plane_t, F->n_planes);
     RE__TAKE(F->sph, double, 3 * (size_t)ns);
-    RE__TAKE(F->sph_corner, unsigned, ns);
-    RE__TAKE(F->cyls, re__cyl_t, ncyl);
-    RE__TAKE(F->det, float, 2 * (size_t)F->n_edge_cyls);
+    RE__TAKE(F->srec, re__sph_t, ns);
+    RE__TAKE(F->xsph, double, 3 * (size_t)ns);
+    RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
+    RE__TAKE(F->xcyls, re__xcyl_t, ncyl - F->n_edge_cyls);
+    RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->corners, re__corner_t, nco);
     RE__TAKE(F->radii, double, F->n_radii);
     RE__TAKE(F->refs, unsigned, nref);
@@ -1972,10 +2058,36 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         K->nx = an->c_nx[c];
         K->pad_ = 0;
         for (j = 0; j < K->np; j++) F->refs[nref++] = ecyl[an->c_edges[pf + j]];
+        /* the query numbers a corner's planes by its edges (re__corner_plane:
+           plane j is the face whose half-edge of edge j leaves the corner);
+           qslot maps the fan slots of c_planes to those */
+        for (j = 0; j < K->np; j++) {
+            const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
+            unsigned hq = an->tri[e->he[0]] == K->vertex ? e->he[0] : e->he[1];
+            for (k = 0; k < K->np && an->c_planes[pf + k] != an->tplane[hq / 3]; k++) {}
+            qslot[k] = j;
+        }
         for (j = 0; j < K->ns; j++) {
-            double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3];
+            double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3], x[3];
+            unsigned tri = an->s_tri[an->c_sfirst[c] + j];
+            re__sph_t *sr = &F->srec[sbase[c] + j];
             re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
-            F->sph_corner[sbase[c] + j] = fc[c];
+            sr->corner = fc[c];
+            sr->info = RE__SPH_STORED;
+            if (tri != RE__NONE) {
+                double tol = RE__SPHERE_SOLVE_REL * r + 64 * 2.220446049250313e-16 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
+                re__solve3(&an->planes[an->c_planes[pf + (tri & 255u)]], &an->planes[an->c_planes[pf + (tri >> 8 & 255u)]],
+                           &an->planes[an->c_planes[pf + (tri >> 16)]], r, an->origin, x);
+                re__sub(x, sp, dd);
+                if (fabs(dd[0]) <= tol && fabs(dd[1]) <= tol && fabs(dd[2]) <= tol) {
+                    sp[0] = x[0], sp[1] = x[1], sp[2] = x[2];
+                    sr->info = qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 8 | qslot[tri >> 16] << 16;
+                }
+            }
+            if (sr->info == RE__SPH_STORED) {
+                sr->info |= F->n_xsph;
+                memcpy(F->xsph + 3 * (size_t)F->n_xsph++, sp, 3 * sizeof(double));
+            }
             re__sub(sp, v, dd);
             dm = re__max(dm, re__len(dd));
             /* on a face g through s, the corner zone is the hull of v and the
@@ -2006,14 +2118,15 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         dmax[fc[c]] = dm;
         /* the walk measures from the first sphere, not from v: widen by |s - v| */
         K->walk = re__float_up((reach[fc[c]] + r + dm) * (1 + 1e-6));
+        if (K->nx) F->refs[nref++] = xbase[c];
         for (j = 0; j < K->nx; j++) {
             const unsigned *x = an->c_x + 4 * (size_t)(an->c_xfirst[c] + j);
-            re__cyl_t *cy = &F->cyls[xbase[c] + j];
-            cy->p[0] = pmap[an->c_planes[pf + x[0]]];
-            cy->p[1] = pmap[an->c_planes[pf + x[1]]];
-            cy->s[0] = sbase[c] + x[2];
-            cy->s[1] = sbase[c] + x[3];
-            F->refs[nref++] = xbase[c] + j;
+            re__xcyl_t *xc = &F->xcyls[xbase[c] + j - F->n_edge_cyls];
+            xc->corner = fc[c];
+            xc->p[0] = (unsigned char)qslot[x[0]];
+            xc->p[1] = (unsigned char)qslot[x[1]];
+            xc->s[0] = (unsigned char)x[2];
+            xc->s[1] = (unsigned char)x[3];
         }
     }
     for (i = 0; i < an->E; i++) {
@@ -2056,11 +2169,11 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
     for (i = 0; i < F->n_edge_cyls; i++) {
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
-        unsigned ka = F->sph_corner[F->cyls[i].s[0]], kb = F->sph_corner[F->cyls[i].s[1]], a;
+        unsigned ka = F->srec[F->cyls[i].s[0]].corner, kb = F->srec[F->cyls[i].s[1]].corner, a;
         double g, m, u[3], L, e0[3], e1[3];
-        F->det[2 * i] = re__float_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6));
-        F->det[2 * i + 1] = re__float_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
-        g = (double)F->det[2 * i + 1];
+        F->det[2 * i] = re__det_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6));
+        F->det[2 * i + 1] = re__det_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
+        g = re__det(F->det[2 * i + 1]);
         m = g;
         re__sub(s1, s0, u);
         L = re__len(u);
@@ -2103,8 +2216,9 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
 static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
 {
     return RE__ALIGN(sizeof(unsigned) * an->T) + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
-           RE__ALIGN(sizeof(double) * 3 * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_spheres) +
-           RE__ALIGN(sizeof(re__cyl_t) * F->n_cyls) + RE__ALIGN(sizeof(float) * 2 * F->n_edge_cyls) +
+           RE__ALIGN(sizeof(re__sph_t) * F->n_spheres) + RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
+           RE__ALIGN(sizeof(re__cyl_t) * F->n_edge_cyls) + RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
+           RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
            RE__ALIGN(sizeof(unsigned) * F->n_refs) + RE__ALIGN(sizeof(re__node_t) * F->kd.n_nodes) +
            RE__ALIGN(sizeof(unsigned) * F->kd.n_leafrefs);
@@ -2125,6 +2239,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->n_tris = an->T;
     o->n_planes = F->n_planes;
     o->n_spheres = F->n_spheres;
+    o->n_xsph = F->n_xsph;
     o->n_cyls = F->n_cyls;
     o->n_edge_cyls = F->n_edge_cyls;
     o->n_corners = F->n_corners;
@@ -2137,10 +2252,11 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->tri_plane = (const unsigned *)re__put(&at, F->tri_plane, sizeof(unsigned) * an->T);
     o->bands = (const unsigned char *)re__put(&at, F->bands, 4 * (size_t)an->T);
     o->planes = (const re__plane_t *)re__put(&at, F->planes, sizeof(re__plane_t) * F->n_planes);
-    o->sph = (const double *)re__put(&at, F->sph, sizeof(double) * 3 * F->n_spheres);
-    o->sph_corner = (const unsigned *)re__put(&at, F->sph_corner, sizeof(unsigned) * F->n_spheres);
-    o->cyls = (const re__cyl_t *)re__put(&at, F->cyls, sizeof(re__cyl_t) * F->n_cyls);
-    o->det = (const float *)re__put(&at, F->det, sizeof(float) * 2 * F->n_edge_cyls);
+    o->sph = (const re__sph_t *)re__put(&at, F->srec, sizeof(re__sph_t) * F->n_spheres);
+    o->xsph = (const double *)re__put(&at, F->xsph, sizeof(double) * 3 * F->n_xsph);
+    o->cyls = (const re__cyl_t *)re__put(&at, F->cyls, sizeof(re__cyl_t) * F->n_edge_cyls);
+    o->xcyls = (const re__xcyl_t *)re__put(&at, F->xcyls, sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls));
+    o->det = (const unsigned short *)re__put(&at, F->det, sizeof(unsigned short) * 2 * F->n_edge_cyls);
     o->corners = (const re__corner_t *)re__put(&at, F->corners, sizeof(re__corner_t) * F->n_corners);
     o->radii = (const double *)re__put(&at, F->radii, sizeof(double) * F->n_radii);
     o->refs = (const unsigned *)re__put(&at, F->refs, sizeof(unsigned) * F->n_refs);
@@ -2494,6 +2610,34 @@ static unsigned re__corner_plane(const re__object_t *o, const re__corner_t *K, u
     return cy->p[cy->s[0] - K->sfirst < K->ns ? 0 : 1];
 }
 
+/* Centre of sphere s: stored, or solved from its three plane slots. */
+static void re__centre(const re__object_t *o, unsigned s, double x[3])
+{
+    const re__sph_t *sp = &o->sph[s];
+    const re__corner_t *K;
+    if (sp->info & RE__SPH_STORED) {
+        memcpy(x, o->xsph + 3 * (size_t)(sp->info & ~RE__SPH_STORED), 3 * sizeof(double));
+        return;
+    }
+    K = &o->corners[sp->corner];
+    re__solve3(&o->planes[re__corner_plane(o, K, sp->info & 255u)], &o->planes[re__corner_plane(o, K, sp->info >> 8 & 255u)],
+               &o->planes[re__corner_plane(o, K, sp->info >> 16 & 255u)], o->radii[K->rid], o->origin, x);
+}
+
+/* Cylinder c (edge or extra) with global sphere and plane ids. */
+static re__cyl_t re__cyl(const re__object_t *o, unsigned c)
+{
+    re__cyl_t cy;
+    const re__xcyl_t *x;
+    const re__corner_t *K;
+    unsigned i;
+    if (c < o->n_edge_cyls) return o->cyls[c];
+    x = &o->xcyls[c - o->n_edge_cyls];
+    K = &o->corners[x->corner];
+    for (i = 0; i < 2; i++) cy.s[i] = K->sfirst + x->s[i], cy.p[i] = re__corner_plane(o, K, x->p[i]);
+    return cy;
+}
+
 static int re__corner_has_plane(const re__object_t *o, const re__corner_t *K, unsigned f)
 {
     unsigned j;
@@ -2550,24 +2694,50 @@ static int re__on_flat_part(const re__object_t *o, const re__set_t *S, unsigned 
     return 1;
 }
 
+/* Sphere centres solved during one query, direct-mapped by id: detection,
+   the one-edge path, the walk and the capsule search ask for the same few
+   spheres again and again (a box corner's sphere ends all three of its
+   edges), and each solve is about 100 instructions. */
+#define RE__CC 16u
 typedef struct re__best_t {
     double s;
     double smin; /* earliest entry accepted (<= 0): the host's t may be late */
     re_feature_t kind;
     unsigned index;
     double h; /* axial position for cylinders, as a fraction of the axis */
+    unsigned cid[RE__CC];
+    double cx[RE__CC][3];
 } re__best_t;
+
+static void re__cc_clear(re__best_t *b)
+{
+    unsigned k;
+    for (k = 0; k < RE__CC; k++) b->cid[k] = RE__NONE;
+}
+
+static void re__cget(const re__object_t *o, re__best_t *b, unsigned s, double x[3])
+{
+    unsigned k = s & (RE__CC - 1u);
+    if (b->cid[k] != s) b->cid[k] = s, re__centre(o, s, b->cx[k]);
+    x[0] = b->cx[k][0], x[1] = b->cx[k][1], x[2] = b->cx[k][2];
+}
 
 static void re__try_sphere(const re__object_t *o, unsigned s, double r, const double I[3], const double d[3], re__best_t *b)
 {
-    double e = re__sphere_entry(I, d, o->sph + 3 * (size_t)s, r, b->smin);
+    double c[3], e;
+    re__cget(o, b, s, c);
+    e = re__sphere_entry(I, d, c, r, b->smin);
     if (e < b->s) b->s = e, b->kind = RE_FEATURE_SPHERE, b->index = s;
 }
 
 static void re__try_cyl(const re__object_t *o, unsigned c, double r, const double I[3], const double d[3], re__best_t *b)
 {
-    const re__cyl_t *cy = &o->cyls[c];
-    double h = 0, e = re__cyl_entry(I, d, o->sph + 3 * (size_t)cy->s[0], o->sph + 3 * (size_t)cy->s[1], r, b->smin, &h);
+    re__cyl_t cyv = re__cyl(o, c);
+    const re__cyl_t *cy = &cyv;
+    double h = 0, a[3], z[3], e;
+    re__cget(o, b, cy->s[0], a);
+    re__cget(o, b, cy->s[1], z);
+    e = re__cyl_entry(I, d, a, z, r, b->smin, &h);
     if (e < b->s) b->s = e, b->kind = RE_FEATURE_CYLINDER, b->index = c, b->h = h;
 }
 
@@ -2589,8 +2759,8 @@ static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const
         double r = o->radii[K->rid];
         for (j = 0; j < K->ns; j++) re__try_sphere(o, K->sfirst + j, r, I, d, b);
         for (j = 0; j < K->np; j++) {
-            unsigned c = ref[j], far = o->cyls[c].s[o->sph_corner[o->cyls[c].s[0]] == S->c[i] ? 1 : 0];
-            unsigned q = re__set_find(S, o->sph_corner[far]);
+            unsigned c = ref[j], far = o->cyls[c].s[o->sph[o->cyls[c].s[0]].corner == S->c[i] ? 1 : 0];
+            unsigned q = re__set_find(S, o->sph[far].corner);
             /* each feature once: an edge between two corners of the set is
                tried from the first of them, and the far end sphere only when
                its corner is not in the set (else it is one of that
@@ -2599,7 +2769,7 @@ static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const
             re__try_cyl(o, c, r, I, d, b);
             if (q == S->n) re__try_sphere(o, far, r, I, d, b);
         }
-        for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[K->np + j], r, I, d, b);
+        for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[K->np] + j, r, I, d, b);
     }
 }
 
@@ -2625,16 +2795,18 @@ static double re__exit(const re__object_t *o, const re__set_t *S, const double I
     return *plane == RE__NONE ? HUGE_VAL : bn / bd;
 }
 
-static void re__feature_normal(const re__object_t *o, const re__best_t *b, const double P[3], double nrm[3])
+static void re__feature_normal(const re__object_t *o, re__best_t *b, const double P[3], double nrm[3])
 {
     double c[3], len;
     if (b->kind == RE_FEATURE_SPHERE) {
-        re__sub(P, o->sph + 3 * (size_t)b->index, nrm);
+        re__cget(o, b, b->index, c);
+        re__sub(P, c, nrm);
     } else {
-        const re__cyl_t *cy = &o->cyls[b->index];
-        const double *a = o->sph + 3 * (size_t)cy->s[0];
-        double u[3];
-        re__sub(o->sph + 3 * (size_t)cy->s[1], a, u);
+        re__cyl_t cy = re__cyl(o, b->index);
+        double a[3], u[3];
+        re__cget(o, b, cy.s[0], a);
+        re__cget(o, b, cy.s[1], u);
+        re__sub(u, a, u);
         re__madd(a, b->h, u, c);
         re__sub(P, c, nrm);
     }
@@ -2677,6 +2849,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     /* detection: the kd-tree leaf holding I, then the corners whose rounded
        zone can reach I (paper §3.1 detection cylinders, widened to cover the
        exact corners) */
+    re__cc_clear(&best);
     {
         const unsigned *leaf;
         unsigned cnt;
@@ -2693,9 +2866,8 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
         for (i = 0; i < cnt; i++) {
             unsigned c = leaf[i];
             const re__cyl_t *cy = &o->cyls[c];
-            const double *s0 = o->sph + 3 * (size_t)cy->s[0], *s1 = o->sph + 3 * (size_t)cy->s[1];
             const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
-            double g = (double)o->det[2 * c], m = (double)o->det[2 * c + 1], u[3], w[3], L2, t, a0, a1, cs;
+            double g = re__det(o->det[2 * c]), m, s0[3], s1[3], u[3], w[3], L2, t, a0, a1, cs;
             unsigned ka, kb;
             /* across first: distance to the mesh edge's line, from the two
                face planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1
@@ -2708,12 +2880,15 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             cs = re__dot(P0->n, P1->n);
             if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) continue;
             /* along the axis: within m of the end spheres */
+            m = re__det(o->det[2 * c + 1]);
+            re__cget(o, &best, cy->s[0], s0);
+            re__cget(o, &best, cy->s[1], s1);
             re__sub(s1, s0, u);
             re__sub(I, s0, w);
             L2 = re__dot(u, u);
             t = re__dot(w, u);
             if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) continue;
-            ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
+            ka = o->sph[cy->s[0]].corner, kb = o->sph[cy->s[1]].corner;
             ndet++;
             if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
                 re__set_add(&S, ka);
@@ -2753,8 +2928,9 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
             for (i = 0; i < 2; i++) {
                 const re__corner_t *K = &o->corners[S.c[i]];
-                double wk = (double)K->walk;
-                if (re__dist2_segment(o->sph + 3 * (size_t)K->sfirst, I, IP, inv_l2) <= wk * wk) break;
+                double wk = (double)K->walk, sc0[3];
+                re__cget(o, &best, K->sfirst, sc0);
+                if (re__dist2_segment(sc0, I, IP, inv_l2) <= wk * wk) break;
             }
             if (i == 2) goto answer;
         }
@@ -2778,10 +2954,9 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             const re__corner_t *K = &o->corners[S.c[i]];
             for (j = 0; j < K->np; j++) {
                 const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
-                unsigned ka = o->sph_corner[cy->s[0]], kb = o->sph_corner[cy->s[1]];
+                unsigned ka = o->sph[cy->s[0]].corner, kb = o->sph[cy->s[1]].corner;
                 unsigned w = ka == S.c[i] ? kb : ka;
-                const double *wc;
-                double g, d2;
+                double g, d2, wc[3];
                 /* a corner already in the set is skipped before its record and
                    sphere are loaded (cache misses were most of the walk's cost
                    in the render profile; the set is small) */
@@ -2790,7 +2965,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within the face reach of its corner: `walk` bounds both, from
                    the corner's first sphere */
-                wc = o->sph + 3 * (size_t)o->corners[w].sfirst;
+                re__cget(o, &best, o->corners[w].sfirst, wc);
                 g = (double)o->corners[w].walk;
                 d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
                 if (d2 <= g * g && re__set_add(&S, w)) grown = 1;
@@ -2860,11 +3035,11 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
         S.n = 0;
         S.bloom = 0;
         if (hit->feature == RE_FEATURE_SPHERE && hit->feature_index < o->n_spheres) {
-            re__set_add(&S, o->sph_corner[hit->feature_index]);
+            re__set_add(&S, o->sph[hit->feature_index].corner);
         } else if (hit->feature == RE_FEATURE_CYLINDER && hit->feature_index < o->n_cyls) {
-            const re__cyl_t *cy = &o->cyls[hit->feature_index];
-            re__set_add(&S, o->sph_corner[cy->s[0]]);
-            re__set_add(&S, o->sph_corner[cy->s[1]]);
+            re__cyl_t cy = re__cyl(o, hit->feature_index);
+            re__set_add(&S, o->sph[cy.s[0]].corner);
+            re__set_add(&S, o->sph[cy.s[1]].corner);
         }
         s = re__exit(o, &S, hit->point, dir, &plane);
         if (s < HUGE_VAL) {
@@ -2890,9 +3065,8 @@ RE_DEF int re_get_sphere(const re_scene_t *scene, unsigned object, unsigned i, r
     const re__corner_t *K;
     if (!scene || !out || object >= scene->n_objects || i >= scene->objects[object].n_spheres) return 0;
     o = &scene->objects[object];
-    K = &o->corners[o->sph_corner[i]];
-    out->center[0] = o->sph[3 * (size_t)i], out->center[1] = o->sph[3 * (size_t)i + 1],
-    out->center[2] = o->sph[3 * (size_t)i + 2];
+    K = &o->corners[o->sph[i].corner];
+    re__centre(o, i, out->center);
     out->radius = o->radii[K->rid];
     out->vertex = K->vertex;
     return 1;
@@ -2900,22 +3074,23 @@ RE_DEF int re_get_sphere(const re_scene_t *scene, unsigned object, unsigned i, r
 RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i, re_cylinder_t *out)
 {
     const re__object_t *o;
-    const re__cyl_t *cy;
+    re__cyl_t cyv;
+    const re__cyl_t *cy = &cyv;
     unsigned a;
     if (!scene || !out || object >= scene->n_objects || i >= scene->objects[object].n_cyls) return 0;
     o = &scene->objects[object];
-    cy = &o->cyls[i];
+    cyv = re__cyl(o, i);
+    re__centre(o, cy->s[0], out->a);
+    re__centre(o, cy->s[1], out->b);
     for (a = 0; a < 3; a++) {
-        out->a[a] = o->sph[3 * (size_t)cy->s[0] + a];
-        out->b[a] = o->sph[3 * (size_t)cy->s[1] + a];
         out->n0[a] = o->planes[cy->p[0]].n[a];
         out->n1[a] = o->planes[cy->p[1]].n[a];
     }
-    out->radius = o->radii[o->corners[o->sph_corner[cy->s[0]]].rid];
+    out->radius = o->radii[o->corners[o->sph[cy->s[0]].corner].rid];
     out->sa = cy->s[0];
     out->sb = cy->s[1];
-    out->edge_v0 = i >= o->n_edge_cyls ? -1 : (long long)o->corners[o->sph_corner[cy->s[0]]].vertex;
-    out->edge_v1 = i >= o->n_edge_cyls ? -1 : (long long)o->corners[o->sph_corner[cy->s[1]]].vertex;
+    out->edge_v0 = i >= o->n_edge_cyls ? -1 : (long long)o->corners[o->sph[cy->s[0]].corner].vertex;
+    out->edge_v1 = i >= o->n_edge_cyls ? -1 : (long long)o->corners[o->sph[cy->s[1]].corner].vertex;
     return 1;
 }
 
