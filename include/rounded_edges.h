@@ -572,7 +572,7 @@ typedef struct re__xcyl_t {
     unsigned char p[2], s[2];
 } re__xcyl_t;
 
-/* A rounded mesh vertex, 24 bytes. refs[first ...]: np edge cylinders
+/* A rounded mesh vertex, 20 bytes (its vertex id is in re__object_t.cvertex). refs[first ...]: np edge cylinders
    (cylinder j joins planes j and j+1), then, when nx > 0, the first of its
    nx consecutive extra cylinders; its ns
    spheres are sph[sfirst ...]. The mesh vertex itself is not stored: every
@@ -583,7 +583,7 @@ typedef struct re__corner_t {
                       corner lies within `walk` of sph[sfirst] (face reach + r +
                       |sphere - vertex|, rounded up to float) */
     unsigned rid;  /* radius of its patch: radii[rid] */
-    unsigned vertex, first, sfirst;
+    unsigned first, sfirst;
     unsigned char np, ns, nx, pad_;
 } re__corner_t;
 
@@ -595,12 +595,36 @@ typedef struct re__node_t {
     unsigned info, data;
 } re__node_t;
 
+/* An array of ids stored in blocks of RE__PK_BLOCK: per block a base and one
+   byte per entry, id = base + byte (255: RE__NONE), about 1.1 bytes an id
+   where neighbouring entries have nearby ids (a triangle's plane: planes are
+   numbered in triangle order; a corner's vertex: corners are numbered in
+   vertex order). A block whose ids span more than 254 keeps them whole:
+   base = RE__PK_FULL | its offset in `full`. */
+#define RE__PK_BLOCK 32u
+#define RE__PK_FULL 0x80000000u
+typedef struct re__pk_t {
+    const unsigned *base;
+    const unsigned char *off;
+    const unsigned *full;
+} re__pk_t;
+
+static unsigned re__pk_get(const re__pk_t *p, unsigned i)
+{
+    unsigned b = p->base[i / RE__PK_BLOCK];
+    unsigned char d;
+    if (b & RE__PK_FULL) return p->full[(b & ~RE__PK_FULL) + i % RE__PK_BLOCK];
+    d = p->off[i];
+    return d == 255u ? RE__NONE : b + d;
+}
+
 typedef struct re__object_t {
     unsigned n_tris, n_planes, n_spheres, n_xsph, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leafrefs, n_radii;
     double size; /* bounding-box diagonal: the object's length scale */
     double rmax;
     double origin[3]; /* kd splits are floats relative to this (bounding-box centre) */
-    const unsigned *tri_plane; /* per triangle: plane id, RE__NONE if not rounded nearby */
+    re__pk_t tri_plane; /* per triangle: plane id, RE__NONE if not rounded nearby */
+    re__pk_t cvertex;   /* per corner: its mesh vertex (enumeration only) */
     const unsigned char *bands; /* 4 per triangle, in units of 1/RE__BAND_STEPS,
                                    rounded up: the barycentric band along the
                                    edge opposite corner k (k < 3), and the cap
@@ -1524,7 +1548,11 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
 #define RE__KD_LEAF 2     /* never split a cell with this many boxes or fewer */
 #define RE__KD_DEPTH 48
 #define RE__KD_BINS 16
-#define RE__KD_STEP 1.0   /* cost of one node step, in units of one candidate test */
+/* Cost of one node step, in units of one candidate test: 4 where the time
+   model alone would say about 1, because a split also costs a node and the
+   duplicated references (memory; at 1 boxes-42k kept 3x the nodes, 6 bytes
+   per rounded edge, for 7% fewer query instructions). */
+#define RE__KD_STEP 4.0
 #define RE__KD_DUP 2u     /* leaf references at most this times the boxes (memory) */
 #define RE__KD_SAMPLE 64u
 
@@ -1652,11 +1680,60 @@ static void re__solve3(const re__plane_t *A, const re__plane_t *B, const re__pla
     for (q = 0; q < 3; q++) x[q] = org[q] + (da * bc[q] + db * ca[q] + dc * ab[q]) / det;
 }
 
+#define RE__ALIGN(x) (((x) + 15u) & ~(size_t)15u)
+
+/* Packing of id arrays (re__pk_t): the block's smallest id is its base. */
+static int re__pk_block(const unsigned *ids, unsigned n, unsigned b, unsigned *base)
+{
+    unsigned i, lo = RE__NONE, hi = 0;
+    for (i = b * RE__PK_BLOCK; i < n && i < (b + 1) * RE__PK_BLOCK; i++)
+        if (ids[i] != RE__NONE) lo = ids[i] < lo ? ids[i] : lo, hi = ids[i] > hi ? ids[i] : hi;
+    *base = lo == RE__NONE ? 0 : lo;
+    return lo == RE__NONE || (hi - lo < 255u && hi < RE__PK_FULL);
+}
+static unsigned re__pk_full_blocks(const unsigned *ids, unsigned n)
+{
+    unsigned b, nf = 0, base;
+    for (b = 0; b * RE__PK_BLOCK < n; b++) nf += re__pk_block(ids, n, b, &base) ? 0u : 1u;
+    return nf;
+}
+static size_t re__pk_bytes(unsigned n, unsigned n_full)
+{
+    return RE__ALIGN(sizeof(unsigned) * ((n + RE__PK_BLOCK - 1) / RE__PK_BLOCK)) + RE__ALIGN(n) +
+           RE__ALIGN(sizeof(unsigned) * RE__PK_BLOCK * (size_t)n_full);
+}
+/* Writes the packed form of ids[n] at *at (re__pk_bytes(n, full blocks)). */
+static re__pk_t re__pk_put(unsigned char **at, const unsigned *ids, unsigned n, unsigned n_full)
+{
+    re__pk_t p;
+    unsigned *base = (unsigned *)*at, b, i, nf = 0, nb = (n + RE__PK_BLOCK - 1) / RE__PK_BLOCK;
+    unsigned char *off = *at + RE__ALIGN(sizeof(unsigned) * nb);
+    unsigned *full = (unsigned *)(off + RE__ALIGN(n));
+    for (b = 0; b < nb; b++) {
+        unsigned lo;
+        if (re__pk_block(ids, n, b, &lo)) {
+            base[b] = lo;
+            for (i = b * RE__PK_BLOCK; i < n && i < (b + 1) * RE__PK_BLOCK; i++)
+                off[i] = ids[i] == RE__NONE ? (unsigned char)255 : (unsigned char)(ids[i] - lo);
+        } else {
+            base[b] = RE__PK_FULL | (nf * RE__PK_BLOCK);
+            for (i = b * RE__PK_BLOCK; i < (b + 1) * RE__PK_BLOCK; i++) {
+                full[nf * RE__PK_BLOCK + i % RE__PK_BLOCK] = i < n ? ids[i] : RE__NONE;
+                if (i < n) off[i] = 0;
+            }
+            nf++;
+        }
+    }
+    *at += re__pk_bytes(n, n_full);
+    p.base = base, p.off = off, p.full = full;
+    return p;
+}
+
 /* ---- Step 7: final arrays, packed into one block ------------------------------ */
 
 typedef struct re__final_t {
     unsigned n_corners, n_spheres, n_cyls, n_edge_cyls, n_planes, n_refs, n_radii;
-    unsigned *tri_plane;
+    unsigned *tri_plane, *cvertex, n_tp_full, n_cv_full;
     unsigned char *bands;
     re__plane_t *planes;
     double *sph; /* 3 per sphere: the centres the query will compute */
@@ -1987,7 +2064,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         if (rmap[p] == RE__NONE) rmap[p] = F->n_radii++;
         for (j = 0; j < an->c_np[c]; j++) {
             unsigned q = an->c_planes[an->c_pfirst[c] + j];
-            if (pmap[q] == RE__NONE) pmap[q] = F->n_planes++;
+            pmap[q] = 0; /* used; numbered below, in triangle order (re__pk_t) */
         }
     }
     /* A vertex inside a straight edge (k = 2) has its sphere on the chain's
@@ -2016,12 +2093,18 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         for (a = 0; a < 3; a++)
             an->su[3 * (size_t)an->c_sfirst[c] + a] = ((t < 0 ? pa[a] : pb[a]) - an->pos[3 * (size_t)v + a]) / r;
     }
+    for (i = 0; i < an->T; i++) {
+        unsigned q = an->tplane[i];
+        if (q != RE__NONE && pmap[q] == 0) pmap[q] = RE__PK_FULL | F->n_planes++;
+    }
+    for (i = 0; i < an->n_planes; i++) pmap[i] = pmap[i] == RE__NONE ? RE__NONE : pmap[i] & ~RE__PK_FULL;
     F->n_corners = nco;
     F->n_spheres = ns;
     F->n_xsph = 0;
     F->n_cyls = ncyl;
     F->n_refs = nref;
     RE__TAKE(F->tri_plane, unsigned, an->T);
+    RE__TAKE(F->cvertex, unsigned, nco);
     RE__TAKE(F->planes, re__plane_t, F->n_planes);
     RE__TAKE(F->sph, double, 3 * (size_t)ns);
     RE__TAKE(F->srec, re__sph_t, ns);
@@ -2036,6 +2119,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(dmax, double, nco + 1);
     for (i = 0; i < an->T; i++)
         F->tri_plane[i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
+    F->n_tp_full = re__pk_full_blocks(F->tri_plane, an->T);
     for (i = 0; i < an->n_planes; i++)
         if (pmap[i] != RE__NONE) F->planes[pmap[i]] = an->planes[i];
     nref = 0;
@@ -2050,7 +2134,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         r = patch_r[re__uf_find(uf, c)];
         K->rid = rmap[re__uf_find(uf, c)];
         F->radii[K->rid] = r;
-        K->vertex = an->c_vertex[c];
+        F->cvertex[fc[c]] = an->c_vertex[c];
         K->first = nref;
         K->sfirst = sbase[c];
         K->np = an->c_np[c];
@@ -2063,7 +2147,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
            qslot maps the fan slots of c_planes to those */
         for (j = 0; j < K->np; j++) {
             const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
-            unsigned hq = an->tri[e->he[0]] == K->vertex ? e->he[0] : e->he[1];
+            unsigned hq = an->tri[e->he[0]] == an->c_vertex[c] ? e->he[0] : e->he[1];
             for (k = 0; k < K->np && an->c_planes[pf + k] != an->tplane[hq / 3]; k++) {}
             qslot[k] = j;
         }
@@ -2106,7 +2190,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
             const double *sp = F->sph + 3 * (size_t)(sbase[c] + an->c_start[pf + j]);
             double dd[3], ed[3], cr[3], dist;
-            unsigned o2 = e->v[0] == K->vertex ? e->v[1] : e->v[0];
+            unsigned o2 = e->v[0] == an->c_vertex[c] ? e->v[1] : e->v[0];
             re__sub(sp, v, dd);
             re__sub(an->pos + 3 * (size_t)o2, v, ed);
             re__cross(dd, ed, cr);
@@ -2129,6 +2213,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             xc->s[1] = (unsigned char)x[3];
         }
     }
+    F->n_cv_full = re__pk_full_blocks(F->cvertex, nco);
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
         re__cyl_t *cy;
@@ -2211,11 +2296,9 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     return RE_OK;
 }
 
-#define RE__ALIGN(x) (((x) + 15u) & ~(size_t)15u)
-
 static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
 {
-    return RE__ALIGN(sizeof(unsigned) * an->T) + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
+    return re__pk_bytes(an->T, F->n_tp_full) + re__pk_bytes(F->n_corners, F->n_cv_full) + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
            RE__ALIGN(sizeof(re__sph_t) * F->n_spheres) + RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
            RE__ALIGN(sizeof(re__cyl_t) * F->n_edge_cyls) + RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
            RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls) +
@@ -2249,7 +2332,8 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->n_radii = F->n_radii;
     o->size = an->size;
     for (c = 0; c < 3; c++) o->origin[c] = an->origin[c];
-    o->tri_plane = (const unsigned *)re__put(&at, F->tri_plane, sizeof(unsigned) * an->T);
+    o->tri_plane = re__pk_put(&at, F->tri_plane, an->T, F->n_tp_full);
+    o->cvertex = re__pk_put(&at, F->cvertex, F->n_corners, F->n_cv_full);
     o->bands = (const unsigned char *)re__put(&at, F->bands, 4 * (size_t)an->T);
     o->planes = (const re__plane_t *)re__put(&at, F->planes, sizeof(re__plane_t) * F->n_planes);
     o->sph = (const re__sph_t *)re__put(&at, F->srec, sizeof(re__sph_t) * F->n_spheres);
@@ -2841,7 +2925,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     out->point[0] = I[0], out->point[1] = I[1], out->point[2] = I[2];
     o = &scene->objects[object];
     if (triangle >= o->n_tris || !re__finite3(I) || !re__finite3(dir) || !o->n_nodes) return RE_UNCHANGED;
-    f = o->tri_plane[triangle];
+    f = re__pk_get(&o->tri_plane, triangle);
     if (f == RE__NONE) return RE_UNCHANGED;
     S.n = 0;
     S.bloom = 0;
@@ -3008,7 +3092,7 @@ RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], co
     unsigned f;
     if (!out || !scene || !o3 || !dir || object >= scene->n_objects) return re_query(scene, o3, dir, object, triangle, t_host, out);
     o = &scene->objects[object];
-    if (triangle >= o->n_tris || !o->n_nodes || (f = o->tri_plane[triangle]) == RE__NONE)
+    if (triangle >= o->n_tris || !o->n_nodes || (f = re__pk_get(&o->tri_plane, triangle)) == RE__NONE)
         return re_query(scene, o3, dir, object, triangle, t_host, out);
     if (!re__band_flat(o, triangle, u, v)) return re_query(scene, o3, dir, object, triangle, t_host, out);
     re__unchanged(out, object, triangle, t_host);
@@ -3068,7 +3152,7 @@ RE_DEF int re_get_sphere(const re_scene_t *scene, unsigned object, unsigned i, r
     K = &o->corners[o->sph[i].corner];
     re__centre(o, i, out->center);
     out->radius = o->radii[K->rid];
-    out->vertex = K->vertex;
+    out->vertex = re__pk_get(&o->cvertex, o->sph[i].corner);
     return 1;
 }
 RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i, re_cylinder_t *out)
@@ -3089,8 +3173,8 @@ RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i,
     out->radius = o->radii[o->corners[o->sph[cy->s[0]].corner].rid];
     out->sa = cy->s[0];
     out->sb = cy->s[1];
-    out->edge_v0 = i >= o->n_edge_cyls ? -1 : (long long)o->corners[o->sph[cy->s[0]].corner].vertex;
-    out->edge_v1 = i >= o->n_edge_cyls ? -1 : (long long)o->corners[o->sph[cy->s[1]].corner].vertex;
+    out->edge_v0 = i >= o->n_edge_cyls ? -1 : (long long)re__pk_get(&o->cvertex, o->sph[cy->s[0]].corner);
+    out->edge_v1 = i >= o->n_edge_cyls ? -1 : (long long)re__pk_get(&o->cvertex, o->sph[cy->s[1]].corner);
     return 1;
 }
 

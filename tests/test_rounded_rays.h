@@ -36,7 +36,7 @@ static void check_query_uv(const re_scene_t *s, const double o[3], const double 
     re_hit_t h;
     const re__object_t *ob = &s->objects[0];
     g_uv_calls++;
-    if (tri < ob->n_tris && ob->tri_plane[tri] != RE__NONE && re__band_flat(ob, tri, u, v)) g_uv_skipped++;
+    if (tri < ob->n_tris && re__pk_get(&ob->tri_plane, tri) != RE__NONE && re__band_flat(ob, tri, u, v)) g_uv_skipped++;
     re_query_uv(s, o, d, 0, tri, t_host, u, v, &h);
     if (h.kind != want->kind || h.t != want->t || h.normal[0] != want->normal[0] || h.normal[1] != want->normal[1] ||
         h.normal[2] != want->normal[2])
