@@ -171,6 +171,18 @@ typedef struct re_report_t {
 
 typedef void (*re_report_fn)(void *user, const re_report_t *report);
 
+/* Memory against query time (docs/rounded_edges.md, "Storage"). The answers
+   agree to about 1e-9 r either way. */
+typedef enum re_layout_t {
+    RE_LAYOUT_FAST = 0, /* default: sphere centres stored as doubles, the
+                           kd-tree split for query time */
+    RE_LAYOUT_COMPACT   /* sphere centres solved at query time from three face
+                           planes (24 bytes less per sphere), a shallower
+                           kd-tree; 75-87 instead of 89-112 bytes per rounded
+                           edge on the benchmark scenes, about 1.5x the
+                           instructions of a query that reaches the kd-tree */
+} re_layout_t;
+
 typedef struct re_scene_desc_t {
     const re_mesh_t *objects;
     unsigned object_count;
@@ -179,6 +191,7 @@ typedef struct re_scene_desc_t {
     re_report_fn report;              /* optional, called during the build */
     void *report_user;
     void *alloc_ctx;                  /* passed to RE_MALLOC/RE_FREE */
+    re_layout_t layout;               /* default RE_LAYOUT_FAST */
 } re_scene_desc_t;
 
 /* The diagnostic filled when a build fails (docs/conventions.md). */
@@ -609,7 +622,7 @@ typedef struct re__pk_t {
     const unsigned *full;
 } re__pk_t;
 
-static unsigned re__pk_get(const re__pk_t *p, unsigned i)
+static inline unsigned re__pk_get(const re__pk_t *p, unsigned i)
 {
     unsigned b = p->base[i / RE__PK_BLOCK];
     unsigned char d;
@@ -620,6 +633,7 @@ static unsigned re__pk_get(const re__pk_t *p, unsigned i)
 
 typedef struct re__object_t {
     unsigned n_tris, n_planes, n_spheres, n_xsph, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leafrefs, n_radii;
+    int compact; /* RE_LAYOUT_COMPACT: sphere centres solved (re__cptr) */
     double size; /* bounding-box diagonal: the object's length scale */
     double rmax;
     double origin[3]; /* kd splits are floats relative to this (bounding-box centre) */
@@ -1548,11 +1562,13 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
 #define RE__KD_LEAF 2     /* never split a cell with this many boxes or fewer */
 #define RE__KD_DEPTH 48
 #define RE__KD_BINS 16
-/* Cost of one node step, in units of one candidate test: 4 where the time
-   model alone would say about 1, because a split also costs a node and the
-   duplicated references (memory; at 1 boxes-42k kept 3x the nodes, 6 bytes
-   per rounded edge, for 7% fewer query instructions). */
-#define RE__KD_STEP 4.0
+/* Cost of one node step, in units of one candidate test: 1 for query time;
+   RE_LAYOUT_COMPACT charges 4, because a split also costs a node and the
+   duplicated references (at 1 boxes-42k keeps 3x the nodes, 6 bytes per
+   rounded edge, for 7% fewer query instructions; the example's small
+   objects get leaves a few times larger). */
+#define RE__KD_STEP 1.0
+#define RE__KD_STEP_COMPACT 4.0
 #define RE__KD_DUP 2u     /* leaf references at most this times the boxes (memory) */
 #define RE__KD_SAMPLE 64u
 
@@ -1565,6 +1581,7 @@ typedef struct re__kd_t {
     unsigned *tmp;
     unsigned n_tmp, cap_tmp;
     unsigned n_leaves;
+    int compact; /* RE_LAYOUT_COMPACT */
 } re__kd_t;
 
 static unsigned re__kd_leaf(re__kd_t *kd, const unsigned *list, unsigned n)
@@ -1585,7 +1602,7 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
                              unsigned budget, int depth)
 {
     const unsigned *list = kd->tmp + list_at;
-    double lo[3], hi[3], len, best = (double)n, w, scale;
+    double lo[3], hi[3], len, best = (double)n, w, scale, step_cost = kd->compact ? RE__KD_STEP_COMPACT : RE__KD_STEP;
     unsigned i, a, axis = 0, nl = 0, nr = 0, id, mark = kd->n_tmp, k, bk = 0;
     /* the cost is estimated from at most ~RE__KD_SAMPLE boxes (the
        partition itself is exact), so a level costs one pass over the boxes */
@@ -1623,7 +1640,7 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
             double c;
             sl += cl[k - 1]; /* boxes starting left of plane k: on the left */
             sh += ch[k - 1]; /* boxes ending left of plane k: not on the right */
-            c = RE__KD_STEP + scale * ((double)k * sl + (double)(RE__KD_BINS - k) * (ns - sh)) / RE__KD_BINS;
+            c = step_cost + scale * ((double)k * sl + (double)(RE__KD_BINS - k) * (ns - sh)) / RE__KD_BINS;
             if (c < best) best = c, bk = k;
         }
     }
@@ -2158,7 +2175,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
             sr->corner = fc[c];
             sr->info = RE__SPH_STORED;
-            if (tri != RE__NONE) {
+            if (tri != RE__NONE && an->desc->layout == RE_LAYOUT_COMPACT) {
                 double tol = RE__SPHERE_SOLVE_REL * r + 64 * 2.220446049250313e-16 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
                 re__solve3(&an->planes[an->c_planes[pf + (tri & 255u)]], &an->planes[an->c_planes[pf + (tri >> 8 & 255u)]],
                            &an->planes[an->c_planes[pf + (tri >> 16)]], r, an->origin, x);
@@ -2213,6 +2230,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             xc->s[1] = (unsigned char)x[3];
         }
     }
+    RE_ASSERT(an->desc->layout == RE_LAYOUT_COMPACT || F->n_xsph == ns); /* re__cptr reads xsph by sphere id */
     F->n_cv_full = re__pk_full_blocks(F->cvertex, nco);
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
@@ -2273,6 +2291,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
     }
     F->kd.box = box;
+    F->kd.compact = an->desc->layout == RE_LAYOUT_COMPACT;
     F->kd.n_nodes = F->kd.n_leafrefs = F->kd.n_leaves = 0;
     RE__TAKE(F->kd.tmp, unsigned, F->kd.cap_tmp);
     for (i = 0; i < F->n_edge_cyls; i++) F->kd.tmp[i] = i;
@@ -2323,6 +2342,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->n_planes = F->n_planes;
     o->n_spheres = F->n_spheres;
     o->n_xsph = F->n_xsph;
+    o->compact = an->desc->layout == RE_LAYOUT_COMPACT;
     o->n_cyls = F->n_cyls;
     o->n_edge_cyls = F->n_edge_cyls;
     o->n_corners = F->n_corners;
@@ -2436,10 +2456,11 @@ static re_result_t re__check_desc(const re_scene_desc_t *desc, re_diag_t *diag)
     }
     if (!desc || (desc->object_count && !desc->objects) || desc->object_count >= 0x10000000u ||
         (desc->radius_policy != RE_RADIUS_CLAMP && desc->radius_policy != RE_RADIUS_REJECT) ||
-        (desc->bad_input != RE_BAD_INPUT_REJECT && desc->bad_input != RE_BAD_INPUT_SKIP)) {
+        (desc->bad_input != RE_BAD_INPUT_REJECT && desc->bad_input != RE_BAD_INPUT_SKIP) ||
+        (desc->layout != RE_LAYOUT_FAST && desc->layout != RE_LAYOUT_COMPACT)) {
         if (diag) {
             diag->result = RE_ERR_INVALID_ARG;
-            snprintf(diag->message, sizeof diag->message, "NULL desc/objects or an unknown policy value");
+            snprintf(diag->message, sizeof diag->message, "NULL desc/objects or an unknown policy or layout value");
         }
         return RE_ERR_INVALID_ARG;
     }
@@ -2789,38 +2810,52 @@ typedef struct re__best_t {
     re_feature_t kind;
     unsigned index;
     double h; /* axial position for cylinders, as a fraction of the axis */
+    unsigned cvalid; /* bit k: cid[k], cx[k] hold a centre */
     unsigned cid[RE__CC];
     double cx[RE__CC][3];
 } re__best_t;
 
-static void re__cc_clear(re__best_t *b)
+/* Centre of sphere s for the query: the stored one (RE_LAYOUT_FAST stores
+   every centre, in sphere order), else solved once into the cache. The
+   pointer into the cache holds until another sphere of the same slot is
+   asked for (re__cpair keeps the first of two). */
+static inline const double *re__cptr(const re__object_t *o, re__best_t *b, unsigned s)
 {
     unsigned k;
-    for (k = 0; k < RE__CC; k++) b->cid[k] = RE__NONE;
+    if (!o->compact) return o->xsph + 3 * (size_t)s;
+    if (o->sph[s].info & RE__SPH_STORED) return o->xsph + 3 * (size_t)(o->sph[s].info & ~RE__SPH_STORED);
+    k = s & (RE__CC - 1u);
+    if (!(b->cvalid >> k & 1u) || b->cid[k] != s) b->cvalid |= 1u << k, b->cid[k] = s, re__centre(o, s, b->cx[k]);
+    return b->cx[k];
 }
-
-static void re__cget(const re__object_t *o, re__best_t *b, unsigned s, double x[3])
+static inline void re__cpair(const re__object_t *o, re__best_t *b, unsigned s0, unsigned s1, const double **p0, const double **p1,
+                             double keep[3])
 {
-    unsigned k = s & (RE__CC - 1u);
-    if (b->cid[k] != s) b->cid[k] = s, re__centre(o, s, b->cx[k]);
-    x[0] = b->cx[k][0], x[1] = b->cx[k][1], x[2] = b->cx[k][2];
+    *p0 = re__cptr(o, b, s0);
+    if (o->compact && !((s0 ^ s1) & (RE__CC - 1u)) && !(o->sph[s0].info & RE__SPH_STORED))
+        keep[0] = (*p0)[0], keep[1] = (*p0)[1], keep[2] = (*p0)[2], *p0 = keep;
+    *p1 = re__cptr(o, b, s1);
 }
 
 static void re__try_sphere(const re__object_t *o, unsigned s, double r, const double I[3], const double d[3], re__best_t *b)
 {
-    double c[3], e;
-    re__cget(o, b, s, c);
-    e = re__sphere_entry(I, d, c, r, b->smin);
+    double e = re__sphere_entry(I, d, re__cptr(o, b, s), r, b->smin);
     if (e < b->s) b->s = e, b->kind = RE_FEATURE_SPHERE, b->index = s;
 }
 
 static void re__try_cyl(const re__object_t *o, unsigned c, double r, const double I[3], const double d[3], re__best_t *b)
 {
-    re__cyl_t cyv = re__cyl(o, c);
-    const re__cyl_t *cy = &cyv;
-    double h = 0, a[3], z[3], e;
-    re__cget(o, b, cy->s[0], a);
-    re__cget(o, b, cy->s[1], z);
+    double h = 0, keep[3], e;
+    const double *a, *z;
+    unsigned s0, s1;
+    if (c < o->n_edge_cyls) {
+        s0 = o->cyls[c].s[0], s1 = o->cyls[c].s[1];
+    } else { /* an extra cylinder: its spheres only (re__cyl would also find its planes) */
+        const re__xcyl_t *x = &o->xcyls[c - o->n_edge_cyls];
+        unsigned sf = o->corners[x->corner].sfirst;
+        s0 = sf + x->s[0], s1 = sf + x->s[1];
+    }
+    re__cpair(o, b, s0, s1, &a, &z, keep);
     e = re__cyl_entry(I, d, a, z, r, b->smin, &h);
     if (e < b->s) b->s = e, b->kind = RE_FEATURE_CYLINDER, b->index = c, b->h = h;
 }
@@ -2883,14 +2918,13 @@ static void re__feature_normal(const re__object_t *o, re__best_t *b, const doubl
 {
     double c[3], len;
     if (b->kind == RE_FEATURE_SPHERE) {
-        re__cget(o, b, b->index, c);
-        re__sub(P, c, nrm);
+        re__sub(P, re__cptr(o, b, b->index), nrm);
     } else {
         re__cyl_t cy = re__cyl(o, b->index);
-        double a[3], u[3];
-        re__cget(o, b, cy.s[0], a);
-        re__cget(o, b, cy.s[1], u);
-        re__sub(u, a, u);
+        double keep[3], u[3];
+        const double *a, *z;
+        re__cpair(o, b, cy.s[0], cy.s[1], &a, &z, keep);
+        re__sub(z, a, u);
         re__madd(a, b->h, u, c);
         re__sub(P, c, nrm);
     }
@@ -2933,7 +2967,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     /* detection: the kd-tree leaf holding I, then the corners whose rounded
        zone can reach I (paper §3.1 detection cylinders, widened to cover the
        exact corners) */
-    re__cc_clear(&best);
+    best.cvalid = 0;
     {
         const unsigned *leaf;
         unsigned cnt;
@@ -2951,7 +2985,8 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             unsigned c = leaf[i];
             const re__cyl_t *cy = &o->cyls[c];
             const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
-            double g = re__det(o->det[2 * c]), m, s0[3], s1[3], u[3], w[3], L2, t, a0, a1, cs;
+            double g = re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
+            const double *s0, *s1;
             unsigned ka, kb;
             /* across first: distance to the mesh edge's line, from the two
                face planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1
@@ -2965,8 +3000,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) continue;
             /* along the axis: within m of the end spheres */
             m = re__det(o->det[2 * c + 1]);
-            re__cget(o, &best, cy->s[0], s0);
-            re__cget(o, &best, cy->s[1], s1);
+            re__cpair(o, &best, cy->s[0], cy->s[1], &s0, &s1, keep);
             re__sub(s1, s0, u);
             re__sub(I, s0, w);
             L2 = re__dot(u, u);
@@ -3012,9 +3046,8 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
             inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
             for (i = 0; i < 2; i++) {
                 const re__corner_t *K = &o->corners[S.c[i]];
-                double wk = (double)K->walk, sc0[3];
-                re__cget(o, &best, K->sfirst, sc0);
-                if (re__dist2_segment(sc0, I, IP, inv_l2) <= wk * wk) break;
+                double wk = (double)K->walk;
+                if (re__dist2_segment(re__cptr(o, &best, K->sfirst), I, IP, inv_l2) <= wk * wk) break;
             }
             if (i == 2) goto answer;
         }
@@ -3040,7 +3073,8 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
                 const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
                 unsigned ka = o->sph[cy->s[0]].corner, kb = o->sph[cy->s[1]].corner;
                 unsigned w = ka == S.c[i] ? kb : ka;
-                double g, d2, wc[3];
+                double g, d2;
+                const double *wc;
                 /* a corner already in the set is skipped before its record and
                    sphere are loaded (cache misses were most of the walk's cost
                    in the render profile; the set is small) */
@@ -3049,7 +3083,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within the face reach of its corner: `walk` bounds both, from
                    the corner's first sphere */
-                re__cget(o, &best, o->corners[w].sfirst, wc);
+                wc = re__cptr(o, &best, o->corners[w].sfirst);
                 g = (double)o->corners[w].walk;
                 d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
                 if (d2 <= g * g && re__set_add(&S, w)) grown = 1;

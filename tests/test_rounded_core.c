@@ -199,6 +199,47 @@ static void flat_bands_skip_the_flat_part(void)
     tm_free(&m);
 }
 
+/* RE_LAYOUT_COMPACT solves the sphere centres at query time from three
+   face planes: the same batteries against the same oracles, and the block
+   must be smaller than the fast layout's (else nothing was solved). */
+static void compact_layout_box_exact_vs_analytic(void)
+{
+    double lo[3] = {-0.5, -0.3, -0.2}, hi[3] = {0.5, 0.3, 0.2};
+    tm_mesh_t m = {0};
+    re_scene_t *s;
+    re_diag_t dg;
+    re_stats_t fast, compact;
+    tm_box(&m, lo, hi);
+    s = build1(&m, 0.05, &dg);
+    if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
+    re_get_stats(s, &fast);
+    re_free(s);
+    g_layout = RE_LAYOUT_COMPACT;
+    s = build1(&m, 0.05, &dg);
+    if (T_CHECK(s != NULL)) {
+        re_get_stats(s, &compact);
+        T_GE((double)fast.bytes - (double)compact.bytes, 24.0 * (double)compact.spheres - 16); /* every centre solved */
+        re_free(s);
+    }
+    box_rays(lo, hi, 0.05, t_count(30000), 1e-9, 11);
+    g_layout = RE_LAYOUT_FAST;
+    tm_free(&m);
+}
+
+static void compact_layout_random_convex_polyhedra_vs_eroded(void)
+{
+    g_layout = RE_LAYOUT_COMPACT;
+    random_convex_polyhedra_vs_eroded();
+    g_layout = RE_LAYOUT_FAST;
+}
+
+static void compact_layout_apex_degrees_4_to_8(void)
+{
+    g_layout = RE_LAYOUT_COMPACT;
+    apex_degree_4(), apex_degree_5(), apex_degree_6(), apex_degree_7(), apex_degree_8();
+    g_layout = RE_LAYOUT_FAST;
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -209,6 +250,9 @@ int main(int argc, char **argv)
         T_CASE(random_convex_polyhedra_vs_eroded),
         T_CASE(apex_degree_3), T_CASE(apex_degree_4), T_CASE(apex_degree_5),
         T_CASE(apex_degree_6), T_CASE(apex_degree_7), T_CASE(apex_degree_8),
+        T_CASE(compact_layout_box_exact_vs_analytic),
+        T_CASE(compact_layout_random_convex_polyhedra_vs_eroded),
+        T_CASE(compact_layout_apex_degrees_4_to_8),
     };
     return T_RUN(argc, argv, cases);
 }

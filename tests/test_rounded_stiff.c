@@ -449,6 +449,28 @@ static void float_icosphere_case(double sc, const double axis[3], double angle, 
     ex_mesh_free(&em);
 }
 
+/* RE_LAYOUT_COMPACT (sphere centres solved at query time, relative to the
+   object's centre) on the cases where that precision matters */
+static void compact_layout_coordinates_offset_1e6(void)
+{
+    g_layout = RE_LAYOUT_COMPACT;
+    coordinates_offset_1e6();
+    g_layout = RE_LAYOUT_FAST;
+}
+static void compact_layout_tiny_radius_1e6_of_size_hull(void)
+{
+    g_layout = RE_LAYOUT_COMPACT;
+    tiny_radius_1e6_of_size_hull();
+    g_layout = RE_LAYOUT_FAST;
+}
+static void float_icosphere_random_motions(void);
+static void compact_layout_float_icosphere_random_motions(void)
+{
+    g_layout = RE_LAYOUT_COMPACT;
+    float_icosphere_random_motions();
+    g_layout = RE_LAYOUT_FAST;
+}
+
 /* the example author's repro: rotation 0.3 about y, moved by (1.3, 1, 0.2) */
 static void float_icosphere_rotated_translated(void)
 {
@@ -499,6 +521,9 @@ int main(int argc, char **argv)
         T_CASE(grazing_along_a_subdivided_edge),
         T_CASE(float_icosphere_rotated_translated),
         T_CASE(float_icosphere_random_motions),
+        T_CASE(compact_layout_coordinates_offset_1e6),
+        T_CASE(compact_layout_tiny_radius_1e6_of_size_hull),
+        T_CASE(compact_layout_float_icosphere_random_motions),
     };
     return T_RUN(argc, argv, cases);
 }
