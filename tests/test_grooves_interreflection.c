@@ -211,10 +211,12 @@ static void t_mirror_energy_vs_pathtraced(void)
     gro_device_free(&dev);
 }
 
-/* Crossings (X of a V and a ridge, oblique V pair, T): one segment
-   (line_samples = 1, A2 = 0) is exact, so its per-depth energies must
-   match the path tracer on the segment's rays (the oracle carves
-   crossings and caps ends, as the library does). */
+/* Crossings (X of a V and a ridge, oblique V pair, T, and a self-crossing
+   "alpha" polyline at its crossing): one segment (line_samples = 1, A2 =
+   0) is exact, so its per-depth energies must match the path tracer on
+   the segment's rays (the oracle carves crossings and caps ends, as the
+   library does; it gets the alpha as two paths, cut far from the
+   crossing, since it never carves a path with itself). */
 static void t_crossing_energy_vs_pathtraced(void)
 {
     static const double views[3][3] = {{0, 0, 1}, {0.4, 0.3, 0.866}, {-0.6, 0.2, 0.775}};
@@ -223,8 +225,10 @@ static void t_crossing_energy_vs_pathtraced(void)
     int c, v, k, n;
     double worst = 0;
     if (!mirror_setup(spec, &dev, &n)) return;
-    for (c = 0; c < 3; c++) {
+    for (c = 0; c < 4; c++) {
         static const double P0[4] = {0.2, 0.5, 0.8, 0.5}, PX[4] = {0.5, 0.2, 0.5, 0.8}, PT[4] = {0.5, 0.8, 0.5, 0.5};
+        static const double alpha[10] = {0.2, 0.3, 0.6, 0.7, 0.8, 0.5, 0.6, 0.3, 0.2, 0.7};
+        static const double a0[6] = {0.2, 0.3, 0.6, 0.7, 0.8, 0.5}, a1[6] = {0.8, 0.5, 0.6, 0.3, 0.2, 0.7};
         double PO[4] = {0.5 - 0.3 * cos(1.047), 0.5 - 0.3 * sin(1.047), 0.5 + 0.3 * cos(1.047), 0.5 + 0.3 * sin(1.047)};
         gr_groove_desc_t g[2];
         gr_grid_desc_t d;
@@ -237,13 +241,20 @@ static void t_crossing_energy_vs_pathtraced(void)
         g[1] = g[0];
         g[1].points = c == 0 ? PX : c == 1 ? PO : PT;
         if (c == 0) { g[1].section = RSEC; g[1].section_count = 5; }
-        d.grooves = g; d.groove_count = 2; d.no_wrap = 1;
+        if (c == 3) { g[0].points = alpha; g[0].point_count = 5; }
+        d.grooves = g; d.groove_count = c == 3 ? 1 : 2; d.no_wrap = 1;
         if (!T_CHECK(gr_grid_build(&d, &grid, NULL) == GR_OK)) return;
         og[0] = gro_from_gr(&g[0]);
         og[1] = gro_from_gr(&g[1]);
+        if (c == 3) {
+            og[1] = og[0];
+            og[0].ctrl = a0; og[1].ctrl = a1;
+            og[0].nctrl = og[1].nctrl = 3;
+        }
         if (!T_CHECK(gro_scene_build(&sc, dev.dev, og, 2, NULL) == 0)) return;
         for (v = 0; v < 3; v++) {
-            gr_query_t q = gt_query(0.5 + 0.004 * v - 0.003, 0.5 + 0.003 * c - 0.002, 0, views[v][0], views[v][1], views[v][2]);
+            gr_query_t q = gt_query(c == 3 ? 0.4 + 0.002 * v : 0.5 + 0.004 * v - 0.003, 0.5 + 0.003 * (c % 3) - 0.002, 0,
+                                    views[v][0], views[v][1], views[v][2]);
             double er[MAXD + 1], eg[MAXD + 1];
             q.footprint.axis1[0] = 0.016 * cos(0.3 + v);
             q.footprint.axis1[1] = 0.016 * sin(0.3 + v);
