@@ -198,7 +198,11 @@ static void t_crossings_vs_raster(void)
     int c, k, ns;
     t_rng_t rng = {20261122u};
     double worst[3][NCOUNTS] = {{0}}, mean[3][NCOUNTS] = {{0}};
-    long n = t_count(24);
+    /* The falling-mean check below is statistical: a reduced run
+       (FILIGREE_TEST_SCALE) keeps at least 8 footprints per crossing, or a
+       single footprint that misses the crossing has all errors at the
+       raster's floor and no trend to test. */
+    long n = t_count(24) < 8 ? 8 : t_count(24);
     for (c = 0; c < 3; c++) {
         scene_t s;
         if (!T_CHECK(crossing_scene(&s, c, VSEC, 3))) return;
