@@ -553,6 +553,22 @@ static double compare_split(const gr_grid_t *grid, const gr_query_t *q, const gr
     return sum;
 }
 
+/* The library's materials for the reference's (grey): ids 0 and 1 */
+static void spec_of(const mat_t *mats, gr_specular_t spec[2])
+{
+    int k, c;
+    memset(spec, 0, 2 * sizeof *spec);
+    for (k = 0; k < 2; k++) {
+        for (c = 0; c < 3; c++) {
+            spec[k].kr[c] = mats[k].kr;
+            spec[k].kt[c] = mats[k].kt;
+        }
+        spec[k].ior = mats[k].ior;
+        spec[k].fresnel = mats[k].fresnel;
+        spec[k].thin = mats[k].thin;
+    }
+}
+
 static void t_transmission_vs_pathtraced(void)
 {
     static const double TRAP[8] = {-0.01, 0, -0.006, 0.012, 0.006, 0.012, 0.01, 0};
@@ -581,17 +597,7 @@ static void t_transmission_vs_pathtraced(void)
         size_t need;
         void *scratch;
         if (!T_CHECK(grid) || !T_CHECK(gro_scene_build(&sc, dev.dev, &og, 1, NULL) == 0)) return;
-        memset(spec, 0, sizeof spec);
-        for (k = 0; k < 2; k++) {
-            int c;
-            for (c = 0; c < 3; c++) {
-                spec[k].kr[c] = mats[sc_i][k].kr;
-                spec[k].kt[c] = mats[sc_i][k].kt;
-            }
-            spec[k].ior = mats[sc_i][k].ior;
-            spec[k].fresnel = mats[sc_i][k].fresnel;
-            spec[k].thin = mats[sc_i][k].thin;
-        }
+        spec_of(mats[sc_i], spec);
         need = gr_query_scratch_bytes(grid);
         scratch = malloc(need);
         pt_scale = sc_i == 0 ? 0.01 + 0.05 : sc_i == 3 ? 0.01 + 0.02 : 0.01 + 0.012; /* w + h + d */
@@ -684,7 +690,7 @@ static void t_transmission_ridge_over_cut(void)
         {{0.25, 0.7, 1.3, 0, 0}, {0.3, 0.6, 1.6, 0, 0}},
     };
     gro_device_t dev;
-    int c, m, v, k, n = (int)(4000 * t_scale());
+    int c, m, v, n = (int)(4000 * t_scale());
     double worst = 0;
     if (n < 400) n = 400;
     if (gro_device_init(&dev)) { T_FAIL("embree"); return; }
@@ -712,16 +718,7 @@ static void t_transmission_ridge_over_cut(void)
         pt_scale = 0.01 + 0.012 + (c ? 0.05 : 0.02); /* w + h + d */
         for (m = 0; m < 2; m++) {
             gr_specular_t spec[2];
-            memset(spec, 0, sizeof spec);
-            for (k = 0; k < 2; k++) {
-                int ch;
-                for (ch = 0; ch < 3; ch++) {
-                    spec[k].kr[ch] = mats[m][k].kr;
-                    spec[k].kt[ch] = mats[m][k].kt;
-                }
-                spec[k].ior = mats[m][k].ior;
-                spec[k].fresnel = mats[m][k].fresnel;
-            }
+            spec_of(mats[m], spec);
             for (v = 0; v < 4; v++) {
                 gr_query_t q = gt_query(0.5 + 0.002 * v - 0.003, 0.5 - 0.001 * v + 0.001, 0, views[v][0], views[v][1],
                                         views[v][2]);

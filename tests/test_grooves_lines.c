@@ -266,6 +266,40 @@ static double lit_gf(const gr_facet_list_t *l, int g, int f, int k)
     return s;
 }
 
+/* A chord query: centre (cu, cv), A1 of length r at angle rot, A2 = 0,
+   one light, no early exit. */
+static gr_query_t chord_query(double cu, double cv, const double *view, const double *light, double r, double rot)
+{
+    gr_query_t q = gt_query(cu, cv, 0, view[0], view[1], view[2]);
+    q.lights = light;
+    q.light_count = 1;
+    q.line_exit_tol = -1;
+    q.footprint.axis1[0] = r * cos(rot);
+    q.footprint.axis1[1] = r * sin(rot);
+    return q;
+}
+
+/* The oracle's answer for q's footprint (ng grooves, one light, n x n
+   rays); 0 on failure (reported). */
+static int oracle_for(const gr_query_t *q, const gro_groove_t *og, int ng, gro_device_t *dev, int n, uint64_t seed,
+                      gro_result_t *res)
+{
+    gro_query_t oq;
+    memset(&oq, 0, sizeof oq);
+    oq.grooves = og;
+    oq.ngrooves = ng;
+    memcpy(oq.F, q->footprint.center, sizeof oq.F);
+    memcpy(oq.A1, q->footprint.axis1, sizeof oq.A1);
+    memcpy(oq.A2, q->footprint.axis2, sizeof oq.A2);
+    memcpy(oq.E, q->footprint.view, sizeof oq.E);
+    oq.lights = q->lights;
+    oq.nlights = q->light_count;
+    oq.n = n;
+    oq.seed = seed;
+    if (gro_query(&oq, dev->dev, res)) { T_FAIL("gro_query"); return 0; }
+    return 1;
+}
+
 /* Oblique views with a light at X, oblique and T crossings against the
    Embree oracle (grooves_oracle.h: CSG at crossings, capped ends). One
    segment (A2 = 0 for both) must agree to the oracle's sampling (384 x 384
@@ -292,16 +326,10 @@ static void t_oblique_crossings_vs_oracle(void)
         for (v = 0; v < 3; v++)
             for (k = 0; k < n; k++) {
                 double r = t_rng_range(&rng, 0.006, 0.02), rot = t_rng_range(&rng, 0, 3.14159);
-                gr_query_t q = gt_query(0.5 + t_rng_range(&rng, -0.012, 0.012), 0.5 + t_rng_range(&rng, -0.012, 0.012), 0,
-                                        views[v][0], views[v][1], views[v][2]);
-                gro_query_t oq;
+                double cv = 0.5 + t_rng_range(&rng, -0.012, 0.012), cu = 0.5 + t_rng_range(&rng, -0.012, 0.012);
+                gr_query_t q = chord_query(cu, cv, views[v], light, r, rot);
                 gro_result_t res;
                 int pass, g, f;
-                q.lights = light;
-                q.light_count = 1;
-                q.line_exit_tol = -1;
-                q.footprint.axis1[0] = r * cos(rot);
-                q.footprint.axis1[1] = r * sin(rot);
                 for (pass = 0; pass < 2; pass++) {
                     gr_facet_list_t l, l8;
                     double e = 0, e8 = 0;
@@ -309,18 +337,7 @@ static void t_oblique_crossings_vs_oracle(void)
                         q.footprint.axis2[0] = -r * sin(rot);
                         q.footprint.axis2[1] = r * cos(rot);
                     }
-                    memset(&oq, 0, sizeof oq);
-                    oq.grooves = og;
-                    oq.ngrooves = 2;
-                    memcpy(oq.F, q.footprint.center, sizeof oq.F);
-                    memcpy(oq.A1, q.footprint.axis1, sizeof oq.A1);
-                    memcpy(oq.A2, q.footprint.axis2, sizeof oq.A2);
-                    memcpy(oq.E, q.footprint.view, sizeof oq.E);
-                    oq.lights = light;
-                    oq.nlights = 1;
-                    oq.n = pass ? 160 : 384;
-                    oq.seed = (uint64_t)(k + 1);
-                    if (gro_query(&oq, dev.dev, &res)) { T_FAIL("gro_query"); return; }
+                    if (!oracle_for(&q, og, 2, &dev, pass ? 160 : 384, (uint64_t)(k + 1), &res)) return;
                     q.line_samples = pass ? 2 : 1;
                     if (!run_lines(s.grid, &q, &l, NULL)) return;
                     q.line_samples = 8;
@@ -411,16 +428,10 @@ static void t_self_crossing_vs_oracle(void)
         for (v = 0; v < 3; v++)
             for (k = 0; k < n; k++) {
                 double r = r0 * t_rng_range(&rng, 0.6, 1.4), rot = t_rng_range(&rng, 0, 3.14159);
-                gr_query_t q = gt_query(x[0] + t_rng_range(&rng, -0.3, 0.3) * r0, x[1] + t_rng_range(&rng, -0.3, 0.3) * r0,
-                                        0, views[v][0], views[v][1], views[v][2]);
+                double cv = x[1] + t_rng_range(&rng, -0.3, 0.3) * r0, cu = x[0] + t_rng_range(&rng, -0.3, 0.3) * r0;
+                gr_query_t q = chord_query(cu, cv, views[v], light, r, rot);
                 int pass, f;
-                q.lights = light;
-                q.light_count = 1;
-                q.line_exit_tol = -1;
-                q.footprint.axis1[0] = r * cos(rot);
-                q.footprint.axis1[1] = r * sin(rot);
                 for (pass = 0; pass < 2; pass++) {
-                    gro_query_t oq;
                     gro_result_t res;
                     gr_facet_list_t l;
                     double e = 0, seen[2] = {0, 0};
@@ -428,18 +439,7 @@ static void t_self_crossing_vs_oracle(void)
                         q.footprint.axis2[0] = -r * sin(rot);
                         q.footprint.axis2[1] = r * cos(rot);
                     }
-                    memset(&oq, 0, sizeof oq);
-                    oq.grooves = og;
-                    oq.ngrooves = 2;
-                    memcpy(oq.F, q.footprint.center, sizeof oq.F);
-                    memcpy(oq.A1, q.footprint.axis1, sizeof oq.A1);
-                    memcpy(oq.A2, q.footprint.axis2, sizeof oq.A2);
-                    memcpy(oq.E, q.footprint.view, sizeof oq.E);
-                    oq.lights = light;
-                    oq.nlights = 1;
-                    oq.n = pass ? 160 : 384;
-                    oq.seed = (uint64_t)(k + 11);
-                    if (gro_query(&oq, dev.dev, &res)) { T_FAIL("gro_query"); return; }
+                    if (!oracle_for(&q, og, 2, &dev, pass ? 160 : 384, (uint64_t)(k + 11), &res)) return;
                     q.line_samples = pass ? 8 : 1;
                     if (!run_lines(grid, &q, &l, NULL)) return;
                     e = fmax(fabs(ratio_gf(&l, -1, -1) - res.ground_vis), fabs(lit_gf(&l, -1, -1, 0) - res.ground_lit[0]));
