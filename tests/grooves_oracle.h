@@ -887,9 +887,10 @@ static int gro_scene_lit(const gro_scene_t *sc, const gro_hit_t *h, const double
     if (h->kind == GRO_HIT_NONE || L[2] <= 0) return 0;
     if (h->n[0] * L[0] + h->n[1] * L[1] + h->n[2] * L[2] <= 0) return 0;
     for (i = 0; i < 3; i++) o[i] = h->p[i] + sc->eps * h->n[i];
-    if (o[2] < 0) { /* the ray must leave through a mouth, not through the ground */
+    if (o[2] < 0) { /* the ray must leave through a mouth, not through the ground (a bridge's
+                       underside needs no test: the ray would meet the bridge from inside) */
         double tc = -o[2] / L[2];
-        if (gro_is_ground(sc, o[0] + tc * L[0], o[1] + tc * L[1])) return 0;
+        if (gro__plane_surface(sc, o[0] + tc * L[0], o[1] + tc * L[1], 0)) return 0;
     }
     gro__ray(&r, sc, o, L, 0, INFINITY);
     rtcInitIntersectContext(&ctx);
