@@ -178,7 +178,7 @@ typedef enum re_layout_t {
                            kd-tree split for query time */
     RE_LAYOUT_COMPACT   /* sphere centres solved at query time from three face
                            planes (24 bytes less per sphere), a shallower
-                           kd-tree; 75-87 instead of 89-112 bytes per rounded
+                           kd-tree; 74-87 instead of 90-118 bytes per rounded
                            edge on the benchmark scenes, about 1.5x the
                            instructions of a query that reaches the kd-tree */
 } re_layout_t;
@@ -2258,7 +2258,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
        tests the distance to the edge's line (from the two face planes, so
        the vertices need not be stored) and the axial position along the
        rounding axis, whose end spheres lie within m - g = the larger
-       |sphere - vertex| of the vertices. Both are floats rounded up. The
+       |sphere - vertex| of the vertices. Both are rounded up (bfloat16). The
        kd box holds that set: the axis extended by m at both ends, widened
        by g + (m - g) (the edge line is that close to the axis). */
     F->kd.cap_leafrefs = RE__KD_DUP * F->n_edge_cyls + 64;

@@ -226,19 +226,9 @@ static void compact_layout_box_exact_vs_analytic(void)
     tm_free(&m);
 }
 
-static void compact_layout_random_convex_polyhedra_vs_eroded(void)
-{
-    g_layout = RE_LAYOUT_COMPACT;
-    random_convex_polyhedra_vs_eroded();
-    g_layout = RE_LAYOUT_FAST;
-}
-
-static void compact_layout_apex_degrees_4_to_8(void)
-{
-    g_layout = RE_LAYOUT_COMPACT;
-    apex_degree_4(), apex_degree_5(), apex_degree_6(), apex_degree_7(), apex_degree_8();
-    g_layout = RE_LAYOUT_FAST;
-}
+static void compact_layout_random_convex_polyhedra_vs_eroded(void) { with_compact_layout(random_convex_polyhedra_vs_eroded); }
+static void apex_degrees_4_to_8(void) { apex_degree_4(), apex_degree_5(), apex_degree_6(), apex_degree_7(), apex_degree_8(); }
+static void compact_layout_apex_degrees_4_to_8(void) { with_compact_layout(apex_degrees_4_to_8); }
 
 int main(int argc, char **argv)
 {

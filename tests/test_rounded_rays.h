@@ -13,6 +13,14 @@ static int g_t_conditioned;
    with RE_LAYOUT_COMPACT (sphere centres solved at query time) */
 static re_layout_t g_layout = RE_LAYOUT_FAST;
 
+/* runs a test with build1() asking for RE_LAYOUT_COMPACT */
+static void with_compact_layout(void (*test)(void))
+{
+    g_layout = RE_LAYOUT_COMPACT;
+    test();
+    g_layout = RE_LAYOUT_FAST;
+}
+
 static re_scene_t *build1(const tm_mesh_t *m, double r, re_diag_t *dg)
 {
     re_mesh_t mesh;

@@ -451,25 +451,10 @@ static void float_icosphere_case(double sc, const double axis[3], double angle, 
 
 /* RE_LAYOUT_COMPACT (sphere centres solved at query time, relative to the
    object's centre) on the cases where that precision matters */
-static void compact_layout_coordinates_offset_1e6(void)
-{
-    g_layout = RE_LAYOUT_COMPACT;
-    coordinates_offset_1e6();
-    g_layout = RE_LAYOUT_FAST;
-}
-static void compact_layout_tiny_radius_1e6_of_size_hull(void)
-{
-    g_layout = RE_LAYOUT_COMPACT;
-    tiny_radius_1e6_of_size_hull();
-    g_layout = RE_LAYOUT_FAST;
-}
+static void compact_layout_coordinates_offset_1e6(void) { with_compact_layout(coordinates_offset_1e6); }
+static void compact_layout_tiny_radius_1e6_of_size_hull(void) { with_compact_layout(tiny_radius_1e6_of_size_hull); }
 static void float_icosphere_random_motions(void);
-static void compact_layout_float_icosphere_random_motions(void)
-{
-    g_layout = RE_LAYOUT_COMPACT;
-    float_icosphere_random_motions();
-    g_layout = RE_LAYOUT_FAST;
-}
+static void compact_layout_float_icosphere_random_motions(void) { with_compact_layout(float_icosphere_random_motions); }
 
 /* the example author's repro: rotation 0.3 about y, moved by (1.3, 1, 0.2) */
 static void float_icosphere_rotated_translated(void)
