@@ -3543,6 +3543,33 @@ static double fr__horner_comp(const double *hi, const double *lo, int n, double 
     return s + err;
 }
 
+/* Compensated Horner as fr__horner_comp (lo required), with the plain
+   derivative, and the sign of the value as -1, 0, +1, 0 meaning "zero within
+   what compensated evaluation can resolve" (a root, possibly multiple, at
+   x): FR__ZERO_K n^2 u^2 sum|c_i||x|^i. One pass gives the polish all it
+   needs per Newton step. */
+static int fr__sign_comp(const double *hi, const double *lo, int n, double x, double *value, double *deriv)
+{
+    double s = hi[n], err = lo[n], a = fabs(hi[n]), ax = fabs(x), d = 0.0, v;
+    int i;
+    for (i = n - 1; i >= 0; i--) {
+        double p = s * x;
+        double pe = fma(s, x, -p);
+        double t = p + hi[i];
+        double z = t - p;
+        double te = (p - (t - z)) + (hi[i] - z);
+        d = d * x + s;
+        err = err * x + (pe + te + lo[i]);
+        s = t;
+        a = a * ax + fabs(hi[i]);
+    }
+    v = s + err;
+    *value = v;
+    *deriv = d;
+    if (fabs(v) <= FR__ZERO_K * (double)(n * n) * FR__U * FR__U * a) return 0;
+    return v > 0 ? 1 : -1;
+}
+
 /* Sign of p(x) as -1, 0, +1, where 0 means "zero within what compensated
    evaluation can resolve" (a root, possibly multiple, at x). Plain Horner
    decides first when its value exceeds its error bound gamma_2n sum|c_i||x|^i
@@ -3550,7 +3577,7 @@ static double fr__horner_comp(const double *hi, const double *lo, int n, double 
    only runs near a root. */
 static int fr__sign_at(const double *hi, const double *lo, int n, double x, double *value)
 {
-    double a = fabs(hi[n]), v = hi[n], ax = fabs(x), tol;
+    double a = fabs(hi[n]), v = hi[n], ax = fabs(x), d;
     int i;
     for (i = n - 1; i >= 0; i--) {
         v = v * x + hi[i];
@@ -3560,11 +3587,7 @@ static int fr__sign_at(const double *hi, const double *lo, int n, double x, doub
         *value = v;
         return v > 0 ? 1 : -1;
     }
-    v = fr__horner_comp(hi, lo, n, x, &a);
-    tol = FR__ZERO_K * (double)(n * n) * FR__U * FR__U * a;
-    *value = v;
-    if (fabs(v) <= tol) return 0;
-    return v > 0 ? 1 : -1;
+    return fr__sign_comp(hi, lo, n, x, value, &d);
 }
 
 /* A bisection point of [a, b]: when the ends differ a lot in magnitude it
@@ -3633,10 +3656,9 @@ static double fr__root_in_piece(const double *hi, const double *lo, int n, doubl
     st[1] = 0.0;
     for (it = 0; it < FR__POLISH_ITERS; it++) {
         double v, xn;
-        int s = fr__sign_at(hi, lo, n, x, &v);
+        int s = fr__sign_comp(hi, lo, n, x, &v, &df);
         if (s == 0) break;
         if (s == sl) a = x; else b = x;
-        fr__horner_deriv(hi, n, x, &df);
         if (fabs(v / df) <= 2.0 * FR__U * fabs(x)) { x -= v / df; break; } /* an ulp */
         xn = fr__newton_or_split(x, v / df, a, b, tiny, st);
         if (fabs(xn - x) <= 2.0 * FR__U * fabs(x)) { x = xn; break; }
@@ -3760,9 +3782,46 @@ static int fr__estimate_roots(const double *c, int n, double *est)
     }
 }
 
+/* Where p, with p'(e) = 0 and value v at the critical point e, meets zero on
+   the side `side` (+1 right, -1 left) if it is the parabola
+   v + p''(e) (x - e)^2 / 2 there: e + side sqrt(-v / (p''(e)/2)). NaN when
+   the curvature does not bend p towards zero. */
+static double fr__parabola_root(const double *hi, int n, double e, double v, int side)
+{
+    double h2 = 0.0, d = 0.0, p = hi[n], w;
+    int i;
+    for (i = n - 1; i >= 0; i--) { /* p''/2, p', p by Horner */
+        h2 = h2 * e + d;
+        d = d * e + p;
+        p = p * e + hi[i];
+    }
+    w = -v / h2;
+    return w > 0 ? e + (side > 0 ? sqrt(w) : -sqrt(w)) : (double)NAN;
+}
+
+/* |p(x)| / sum |c_i| |x|^i by plain Horner: how close x is to a root, in
+   units of what rounding alone can resolve (2n u, Higham 2002 eq. 5.3). */
+static double fr__abs_value_ratio(const double *hi, int n, double x)
+{
+    double v = hi[n], a = fabs(hi[n]), ax = fabs(x);
+    int i;
+    for (i = n - 1; i >= 0; i--) {
+        v = v * x + hi[i];
+        a = a * ax + fabs(hi[i]);
+    }
+    return a > 0 ? fabs(v) / a : 0.0;
+}
+
 /* Roots of p (degree n, hi + lo) in [ya, yb], given the ascending roots bp of
    p' there: between consecutive breakpoints p is monotone, so a sign change
-   means exactly one root; a breakpoint where p is zero is a multiple root. */
+   means exactly one root; a breakpoint where p is zero is a multiple root.
+   Newton starts in each piece from the best closed-form estimate, or, when
+   none is at rounding level, from the best of it and the parabolas at the
+   piece's critical ends (smallest |p| relative to its rounding): with
+   roots spread over many magnitudes the closed forms lose the small ones to
+   cancellation, and a critical end is where plain Newton, with p' = 0,
+   would leave the piece; the parabola also splits a near-double root's pair
+   at its critical point to about the relative size of the cubic term. */
 static int fr__roots_between(const double *hi, const double *lo, int n, double ya, double yb,
                              const double *bp, int nbp, double tiny, double *out)
 {
@@ -3774,9 +3833,21 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
         if (!(xr > xl)) continue;
         sr = fr__sign_at(hi, lo, n, xr, &vr);
         if (sl * sr < 0) {
-            double start = xl; /* none: regula falsi */
+            double start = xl, best = HUGE_VAL, cand[2]; /* none: regula falsi */
             for (k = 0; k < nest; k++)
-                if (est[k] > xl && est[k] < xr) start = est[k];
+                if (est[k] > xl && est[k] < xr) {
+                    double v = fr__abs_value_ratio(hi, n, est[k]);
+                    if (v < best) { best = v; start = est[k]; }
+                }
+            if (n >= 2 && !(best <= 64.0 * n * FR__U)) { /* no closed form at rounding level: the parabolas */
+                cand[0] = j > 0 ? fr__parabola_root(hi, n, xl, vl, 1) : (double)NAN;    /* xl = bp[j - 1] */
+                cand[1] = j < nbp ? fr__parabola_root(hi, n, xr, vr, -1) : (double)NAN; /* xr = bp[j] */
+                for (k = 0; k < 2; k++)
+                    if (cand[k] > xl && cand[k] < xr) {
+                        double v = fr__abs_value_ratio(hi, n, cand[k]);
+                        if (v < best) { best = v; start = cand[k]; }
+                    }
+            }
             out[cnt++] = fr__root_in_piece(hi, lo, n, xl, xr, vl, vr, sl, start, tiny);
         }
         if (sr == 0 && cnt < n) out[cnt++] = xr;
