@@ -4156,10 +4156,26 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
         buf[0] = -d[0] / d[1];
         cnt = 1;
     } else {
+        /* Descartes' rule of signs: no sign change in d (in d(-x)) means no
+           positive (negative) root, so that side is not searched (the empty
+           bands of roots spread beyond one band, the negative pieces of
+           every derivative level when all roots are positive) */
+        int i0 = -1, pos = 0, neg = 0;
+        for (i = 0; i <= m; i++)
+            if (d[i] != 0) {
+                if (i0 >= 0) {
+                    int flip = (d[i] > 0) != (d[i0] > 0);
+                    pos += flip;
+                    neg += ((i - i0) & 1) ? !flip : flip;
+                }
+                i0 = i;
+            }
+        if (!pos && t1 > 0) t1 = 0;
+        if (!neg && t0 < 0) t0 = 0;
         fr__root_exponent_bounds(ex, m, &Elo, &Ehi); /* every root has 2^Elo < |x| < 2^Ehi */
         W = FR__BAND_BITS / (m > 0 ? m : 1);
-        if (m == 0) {
-            /* only the zero root */
+        if (m == 0 || (!pos && !neg)) {
+            /* only the zero root, if any */
         } else if (Ehi - Elo <= W) {
             double B = fr__ldexp(1.0, Ehi);
             cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
