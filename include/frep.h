@@ -3476,12 +3476,21 @@ done:
 #define FR__BAND_BITS 900
 /* Iteration caps: safeguarded Newton halves the bracket at worst, and a band
    spans at most FR__BAND_BITS bits, bisected geometrically. */
-/* Coefficient exponents within +-FR__DIRECT_EXP go to the degree 2..4 fast
-   paths unscaled: roots then lie within 2^+-121 (Fujiwara), so every term
-   c_i x^i of the polish, and the rounding error that TwoProd recovers from
-   it, stays above 2^-600, far from underflow; discriminant terms (products
-   of six coefficients) stay within 2^+-360. */
+/* Coefficient exponents at most FR__DIRECT_EXP, with the constant and the
+   leading coefficient at least 2^-FR__DIRECT_EXP, go to the degree 2..4
+   fast paths unscaled: roots then lie within 2^+-122 (Fujiwara's bounds;
+   small middle coefficients only tighten them), so the terms that balance
+   at a root, and the rounding errors TwoProd recovers from them, stay far
+   from underflow; discriminant terms (products of six coefficients) stay
+   below 2^370, and the ones made of the ends alone (a^3 e^3 and its kin)
+   above 2^-370. Middle coefficients as small as 1e-162 (Orellana and De
+   Michele's remark family) then need no scaling. */
 #define FR__DIRECT_EXP 60
+/* Absolute slack of the fast paths' sign tests: products that underflow
+   lose up to 2^-1074 each, and a discriminant has fewer than 200
+   operations, so 1e-300 covers them; next to the ends' terms (above
+   2^-370) it changes nothing. */
+#define FR__UNDERFLOW_SLACK 1e-300
 #define FR__PLAIN_ITERS 120
 #define FR__POLISH_ITERS 80
 
@@ -3767,8 +3776,26 @@ static int fr__estimate_roots(const double *c, int n, double *est)
         p = b - 0.375 * a * a;
         q = cc - 0.5 * a * b + 0.125 * a * a * a;
         r = d - 0.25 * a * cc + a * a * b * 0.0625 - 3.0 * a * a * a * a * 0.00390625;
-        fr__cubic_estimates(p, p * p * 0.25 - r, -q * q * 0.125, &m, 1);
-        if (!(m > 0)) return 0;
+        /* q y negligible next to p y^2 and r at the roots' scale
+           (|p|^(1/2) or |r|^(1/4)): the quartic is biquadratic, y^2 = z with
+           z^2 + p z + r = 0. Ferrari's resolvent would have the root m ~ q^2,
+           rounded or underflowed (the 1e-162 odd coefficients of Orellana
+           and De Michele's remark family), and nothing positive when q = 0. */
+        m = 0.0;
+        if (!(fabs(q) <= 1e-8 * (fabs(p) * sqrt(fabs(p)) + sqrt(sqrt(fabs(r))) * sqrt(fabs(r)))))
+            fr__cubic_estimates(p, p * p * 0.25 - r, -q * q * 0.125, &m, 1);
+        if (!(m > 0)) {
+            double disc = p * p - 4.0 * r, z[2];
+            if (!(disc >= 0)) return 0;
+            z[0] = -0.5 * (p + (p < 0 ? -sqrt(disc) : sqrt(disc)));
+            z[1] = z[0] != 0 ? r / z[0] : 0.0;
+            for (k = 0; k < 2; k++)
+                if (z[k] > 0) {
+                    est[ny++] = sqrt(z[k]) - 0.25 * a;
+                    est[ny++] = -sqrt(z[k]) - 0.25 * a;
+                }
+            return ny;
+        }
         s2 = sqrt(2.0 * m);
         for (k = -1; k <= 1; k += 2) {
             /* y^2 + k s2 y + h, without cancellation (h q0 = product of roots) */
@@ -3941,7 +3968,7 @@ static int fr__quadratic_fast(const double *q, double *out)
 {
     double a = q[2], b = q[1], c = q[0], p = b * b, dp = fma(b, b, -p), f = 4.0 * a * c, df = fma(4.0 * a, c, -f);
     double D = (p - f) + (dp - df), h;
-    if (!(fabs(D) > 8.0 * FR__U * FR__U * (p + fabs(f)))) return -1;
+    if (!(fabs(D) > 8.0 * FR__U * FR__U * (p + fabs(f)) + FR__UNDERFLOW_SLACK)) return -1;
     if (D < 0) return 0;
     h = -0.5 * (b + (b < 0 ? -sqrt(D) : sqrt(D)));
     if (h == 0) return -1;
@@ -3974,7 +4001,7 @@ static int fr__cubic_fast(const double *q, double *out)
     t[3] = -4.0 * a * c2 * c;    t[4] = -27.0 * a * a * d * d;
     D = ((t[0] + t[1]) + (t[2] + t[3])) + t[4];
     S = ((fabs(t[0]) + fabs(t[1])) + (fabs(t[2]) + fabs(t[3]))) + fabs(t[4]);
-    if (!(fabs(D) > 32.0 * FR__U * S)) return -1;
+    if (!(fabs(D) > 32.0 * FR__U * S + FR__UNDERFLOW_SLACK)) return -1;
     want = D > 0 ? 3 : 1;
     n = fr__estimate_roots(q, 3, out);
     if (n != want) return -1;
@@ -4008,13 +4035,14 @@ static int fr__quartic_fast(const double *q, double *out)
         D = fr__sum8(t, &S) + fr__sum8(t + 8, &S2);
         S += S2;
     }
-    if (!(fabs(D) > 64.0 * FR__U * S)) return -1; /* each term has < 8 roundings, the sum 4 */
+    if (!(fabs(D) > 64.0 * FR__U * S + FR__UNDERFLOW_SLACK)) return -1; /* each term has < 8 roundings, the sum 4 */
     if (D < 0) want = 2;
     else {
         P = 8 * a * c - 3 * b2; SP = 8 * fabs(a * c) + 3 * b2;
         L = 64 * a2 * a * e - 16 * a2 * c2 + 16 * a * b2 * c - 16 * a2 * b * d - 3 * b2 * b2;
         SL = 64 * fabs(a2 * a * e) + 16 * a2 * c2 + 16 * fabs(a * b2 * c) + 16 * fabs(a2 * b * d) + 3 * b2 * b2;
-        if (!(fabs(P) > 16.0 * FR__U * SP) || !(fabs(L) > 32.0 * FR__U * SL)) return -1;
+        if (!(fabs(P) > 16.0 * FR__U * SP + FR__UNDERFLOW_SLACK) || !(fabs(L) > 32.0 * FR__U * SL + FR__UNDERFLOW_SLACK))
+            return -1;
         want = P < 0 && L < 0 ? 4 : 0;
     }
     if (want == 0) return 0;
@@ -4127,7 +4155,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
 {
     double buf[FR_POLY_MAX_DEGREE + 1];
     const double *d;
-    int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = 0, direct, ex[FR_POLY_MAX_DEGREE + 1] = {0};
+    int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = INT_MIN, direct, ex[FR_POLY_MAX_DEGREE + 1] = {0};
     if (!c || !r || degree < 0 || degree > FR_POLY_MAX_DEGREE || !(t0 <= t1)) return -1;
     for (i = 0; i <= degree; i++)
         if (!(c[i] - c[i] == 0)) return -1; /* NaN or infinite */
@@ -4140,12 +4168,14 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
     m = n - z;
     for (i = 0; i <= m; i++) {
         ex[i] = d[i] != 0 ? fr__ilogb(d[i]) : INT_MIN; /* once, for all below */
-        if (ex[i] != INT_MIN && (ex[i] > emax || -ex[i] > emax)) emax = ex[i] < 0 ? -ex[i] : ex[i];
+        if (ex[i] > emax) emax = ex[i];
     }
-    /* Coefficients within 2^+-FR__DIRECT_EXP: the fast paths run on them as
-       they are. The band's power-of-two scaling is exact, so it would give
-       the same roots, and the bounds and scaling below cost a quarter of a
-       quartic solve. */
+    if (-ex[0] > emax) emax = -ex[0]; /* the ends bound the roots away from 0 and infinity */
+    if (-ex[m] > emax) emax = -ex[m];
+    /* Coefficients below 2^FR__DIRECT_EXP, the ends above 2^-FR__DIRECT_EXP:
+       the fast paths run on them as they are. The band's power-of-two
+       scaling is exact, so it would give the same roots, and the bounds and
+       scaling below cost a quarter of a quartic solve. */
     direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, m, buf) : -1;
     if (direct >= 0) {
         cnt = direct; /* certified; filtered below */
