@@ -4008,6 +4008,36 @@ static int fr__cubic_fast(const double *q, double *out)
     return fr__fast_finish(q, 3, out, n);
 }
 
+/* Four real roots certified one by one, where the discriminant's sign is
+   uncertain (clusters, roots of spread magnitudes): Ferrari's estimates
+   polished by fr__fast_finish (converged, sorted, 64 ulps apart), then a
+   certain sign change of the compensated value across x -+ 2u|x| around
+   each (fr__sign_comp, outside its rounding band). Four disjoint brackets
+   with a root each hold all of a quartic's roots, each returned root within
+   2u of its own. -1 otherwise. */
+static int fr__quartic_brackets(const double *q, double *out)
+{
+    static const double zero[5] = {0, 0, 0, 0, 0};
+    double v, der[1], prev = -HUGE_VAL;
+    int j, sa, sb;
+    if (fr__estimate_roots(q, 4, out) != 4 || fr__fast_finish(q, 4, out, 4) != 4) return -1;
+    for (j = 0; j < 4; j++) {
+        double dlt;
+        /* one more Newton step on the compensated value: where the roots
+           crowd, fr__polish_all's plain p' is off in its sixth digit and
+           its early stop leaves a root a few ulps out (cluster 2, 2.001,
+           2.002, 2.003: 7 ulps) */
+        if (fr__sign_comp(q, zero, 4, out[j], &v, der) != 0 && der[0] != 0) out[j] -= v / der[0];
+        dlt = 2.0 * FR__U * fabs(out[j]);
+        if (!(out[j] - dlt > prev)) return -1; /* brackets disjoint, in order */
+        prev = out[j] + dlt;
+        sa = fr__sign_comp(q, zero, 4, out[j] - dlt, &v, der);
+        sb = fr__sign_comp(q, zero, 4, prev, &v, der);
+        if (sa == 0 || sb == 0 || sa == sb) return -1;
+    }
+    return 4;
+}
+
 /* A fast path for quartics that is taken only when it can certify itself:
    the signs of the discriminant and of Lazard's P and D, each computed with
    a running error bound, give the number of distinct real roots (a^6 times
@@ -4035,14 +4065,14 @@ static int fr__quartic_fast(const double *q, double *out)
         D = fr__sum8(t, &S) + fr__sum8(t + 8, &S2);
         S += S2;
     }
-    if (!(fabs(D) > 64.0 * FR__U * S + FR__UNDERFLOW_SLACK)) return -1; /* each term has < 8 roundings, the sum 4 */
+    if (!(fabs(D) > 64.0 * FR__U * S + FR__UNDERFLOW_SLACK)) return fr__quartic_brackets(q, out); /* each term has < 8 roundings, the sum 4 */
     if (D < 0) want = 2;
     else {
         P = 8 * a * c - 3 * b2; SP = 8 * fabs(a * c) + 3 * b2;
         L = 64 * a2 * a * e - 16 * a2 * c2 + 16 * a * b2 * c - 16 * a2 * b * d - 3 * b2 * b2;
         SL = 64 * fabs(a2 * a * e) + 16 * a2 * c2 + 16 * fabs(a * b2 * c) + 16 * fabs(a2 * b * d) + 3 * b2 * b2;
         if (!(fabs(P) > 16.0 * FR__U * SP + FR__UNDERFLOW_SLACK) || !(fabs(L) > 32.0 * FR__U * SL + FR__UNDERFLOW_SLACK))
-            return -1;
+            return fr__quartic_brackets(q, out);
         want = P < 0 && L < 0 ? 4 : 0;
     }
     if (want == 0) return 0;
