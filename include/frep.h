@@ -4014,13 +4014,22 @@ static int fr__cubic_fast(const double *q, double *out)
    certain sign change of the compensated value across x -+ 2u|x| around
    each (fr__sign_comp, outside its rounding band). Four disjoint brackets
    with a root each hold all of a quartic's roots, each returned root within
-   2u of its own. -1 otherwise. */
+   2u of its own. -1 otherwise, at once when two estimates are closer than
+   1e-5 relative: near-multiple roots, which rounding splits by about u^(1/2)
+   or u^(1/3), do not certify, and polishing them costs more than the
+   derivative sequence. */
 static int fr__quartic_brackets(const double *q, double *out)
 {
     static const double zero[5] = {0, 0, 0, 0, 0};
     double v, der[1], prev = -HUGE_VAL;
-    int j, sa, sb;
-    if (fr__estimate_roots(q, 4, out) != 4 || fr__fast_finish(q, 4, out, 4) != 4) return -1;
+    int i, j, sa, sb;
+    if (fr__estimate_roots(q, 4, out) != 4) return -1;
+    for (i = 1; i < 4; i++) /* sorted, for the gaps */
+        for (j = i; j > 0 && out[j] < out[j - 1]; j--) { v = out[j]; out[j] = out[j - 1]; out[j - 1] = v; }
+    for (i = 1; i < 4; i++)
+        if (!(out[i] - out[i - 1] > 1e-5 * (fabs(out[i]) > fabs(out[i - 1]) ? fabs(out[i]) : fabs(out[i - 1]))))
+            return -1;
+    if (fr__fast_finish(q, 4, out, 4) != 4) return -1;
     for (j = 0; j < 4; j++) {
         double dlt;
         /* one more Newton step on the compensated value: where the roots
