@@ -4106,9 +4106,10 @@ static int fr__solve_fast(const double *q, int n, double *out)
    level D_k = p^(k)/k! has coefficients q[i+k] C(i+k, k); the products are
    split exactly into hi + lo by fma, so every level is evaluated as
    accurately as p itself. */
-static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo, double xa, double xb, double *out)
+static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo, double xa, double xb, int try_fast,
+                          double *out)
 {
-    double q[FR_POLY_MAX_DEGREE + 1], hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
+    double q[FR_POLY_MAX_DEGREE + 1] = {0}, hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
     double bp[FR_POLY_MAX_DEGREE + 1], cur[FR_POLY_MAX_DEGREE + 1];
     double ya = fr__ldexp(xa, -K), yb = fr__ldexp(xb, -K);
     int i, k, nbp = 0, ncur = 0, M = INT_MIN;
@@ -4123,7 +4124,7 @@ static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo,
         if (y >= ya && y <= yb) { out[0] = fr__ldexp(y, K); return 1; }
         return 0;
     }
-    if ((ncur = fr__solve_fast(q, n, cur)) >= 0) {
+    if (try_fast && (ncur = fr__solve_fast(q, n, cur)) >= 0) {
         for (i = k = 0; i < ncur; i++)
             if (cur[i] >= ya && cur[i] <= yb) out[k++] = fr__ldexp(cur[i], K);
         return k;
@@ -4215,7 +4216,9 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
        the fast paths run on them as they are. The band's power-of-two
        scaling is exact, so it would give the same roots, and the bounds and
        scaling below cost a quarter of a quartic solve. */
-    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, m, buf) : -1;
+    /* -2: not tried; -1: tried and not certified, which the band's exact
+       scaling would not change, so the band skips the fast path */
+    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, m, buf) : -2;
     if (direct >= 0) {
         cnt = direct; /* certified; filtered below */
     } else if (z == 0 && m == 1 && emax <= FR__DIRECT_EXP) {
@@ -4247,7 +4250,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
             /* only the zero root, if any */
         } else if (Ehi - Elo <= W) {
             double B = fr__ldexp(1.0, Ehi);
-            cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
+            cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, direct == -2, buf);
         } else {
             /* Roots spread over more than W bits: bands of at most W bits each,
                negative side from the largest magnitude down, then positive. */
@@ -4261,7 +4264,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
                     if (xb > t1) xb = t1;
                     if (xa <= xb && cnt < m) {
                         double band[FR_POLY_MAX_DEGREE + 1];
-                        int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, band);
+                        int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, direct == -2, band);
                         for (k = 0; k < nb && cnt < m; k++)
                             if (cnt == 0 || band[k] > buf[cnt - 1]) buf[cnt++] = band[k];
                     }
