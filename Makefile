@@ -96,8 +96,10 @@ $(B)/examples/common/%.cpp.o: examples/common/%.cpp $(HEADERS) $(wildcard exampl
 	@mkdir -p $(dir $@)
 	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -Wno-deprecated-declarations -pthread -c $< -o $@
 
+# examples and benchmarks may include tests/*.h (the grooves oracle is the
+# examples' geometry baseline): they depend on them, so edits rebuild them
 .SECONDEXPANSION:
-$(B)/examples/%: $$(wildcard examples/$$*/*.c examples/$$*/*.cpp examples/$$*/*.h) $(EX_COMMON_OBJ) $(HEADERS)
+$(B)/examples/%: $$(wildcard examples/$$*/*.c examples/$$*/*.cpp examples/$$*/*.h) $(EX_COMMON_OBJ) $(TEST_DEPS)
 	@mkdir -p $(dir $@)
 	$(foreach s,$(filter %.c,$^),$(CC) -std=gnu11 $(CFLAGS_ALL) -pthread -c $(s) -o $@.$(notdir $(s)).o &&) true
 	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -pthread -o $@ \
@@ -113,11 +115,11 @@ demo: deps-demo
 # ---------------------------------------------------------------- benchmarks
 deps-bench:
 	@scripts/deps.sh bench
-$(B)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h examples/*/*.h) $(EX_COMMON_OBJ)
+$(B)/bench/%: bench/%.c $(TEST_DEPS) $(wildcard bench/*.h examples/*/*.h) $(EX_COMMON_OBJ)
 	@mkdir -p $(dir $@)
 	$(CC) -std=gnu11 $(CFLAGS_ALL) -Ibench -c $< -o $@.o
 	$(CXX) -o $@ $@.o $(EX_COMMON_OBJ) $(BENCH_LDLIBS)
-$(B)/bench/%: bench/%.cpp $(HEADERS) $(wildcard bench/*.h examples/*/*.h) $(EX_COMMON_OBJ)
+$(B)/bench/%: bench/%.cpp $(TEST_DEPS) $(wildcard bench/*.h examples/*/*.h) $(EX_COMMON_OBJ)
 	@mkdir -p $(dir $@)
 	$(CXX) -std=gnu++17 $(CFLAGS_ALL) -Ibench -o $@ $< $(EX_COMMON_OBJ) $(BENCH_LDLIBS)
 

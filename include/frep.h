@@ -6052,45 +6052,6 @@ static fr_result_t fr__prepare_leaves(const fr_tape_t *t, const int *gdeg, const
     return FR_OK;
 }
 
-#ifndef FR_NO_INTERVAL
-/* The nodes' solid boxes, for nodes small enough to cull (fr__leaf_box_set). */
-/* The masks of the boxed nodes (fr__csg_node_t.bit, leaf_mask,
-   node_mask): what a ray that misses a node's box may skip is what only
-   that node reaches, that is what the shape reaches from below it but not
-   along paths avoiding it (a leaf or node shared with the rest of the tree
-   is still needed there). Boxed nodes beyond the 64th lose their box.
-   work: 2 (nl + nn) bytes. */
-static void fr__prepare_masks(fr__csg_node_t *N, unsigned int nn, unsigned int nl, unsigned char *work)
-{
-    unsigned char *avoid = work, *below = work + nl + nn;
-    unsigned int i, x, nb = 0;
-    for (i = nn; i-- > 0;) {
-        if (!N[i].boxed) continue;
-        if (nb == 64) { N[i].boxed = 0; continue; }
-        N[i].bit = 1ull << nb++;
-    }
-    for (i = 0; i < nn; i++) {
-        if (!N[i].bit) continue;
-        memset(work, 0, 2 * (size_t)(nl + nn));
-        if (i != nn - 1) avoid[nl + nn - 1] = 1;
-        below[nl + i] = 1;
-        for (x = nn; x-- > 0;) { /* operands precede their users */
-            if (avoid[nl + x] && x != i) {
-                avoid[N[x].a] = 1;
-                if (N[x].op != FR__CSG_NEG) avoid[N[x].b] = 1;
-            }
-            if (below[nl + x]) {
-                below[N[x].a] = 1;
-                if (N[x].op != FR__CSG_NEG) below[N[x].b] = 1;
-            }
-        }
-        for (x = 0; x < nl && nl <= 64; x++)
-            if (below[x] && !avoid[x]) N[i].leaf_mask |= 1ull << x;
-        for (x = 0; x < nn; x++)
-            if (x != i && N[x].bit && below[nl + x] && !avoid[nl + x]) N[i].node_mask |= N[x].bit;
-    }
-}
-
 /* fr__leaf_t.decides and needs: a leaf of one sign throughout settles
    every node up a chain of single users as long as each node's other
    operand cannot undo it: an intersection (min) of a negative operand is
@@ -6129,6 +6090,45 @@ static void fr__prepare_decides(fr__leaf_t *L, unsigned int nl, const fr__csg_no
             L[j].decides[s0] = ok;
             L[j].needs[s0] = need;
         }
+}
+
+#ifndef FR_NO_INTERVAL
+/* The nodes' solid boxes, for nodes small enough to cull (fr__leaf_box_set). */
+/* The masks of the boxed nodes (fr__csg_node_t.bit, leaf_mask,
+   node_mask): what a ray that misses a node's box may skip is what only
+   that node reaches, that is what the shape reaches from below it but not
+   along paths avoiding it (a leaf or node shared with the rest of the tree
+   is still needed there). Boxed nodes beyond the 64th lose their box.
+   work: 2 (nl + nn) bytes. */
+static void fr__prepare_masks(fr__csg_node_t *N, unsigned int nn, unsigned int nl, unsigned char *work)
+{
+    unsigned char *avoid = work, *below = work + nl + nn;
+    unsigned int i, x, nb = 0;
+    for (i = nn; i-- > 0;) {
+        if (!N[i].boxed) continue;
+        if (nb == 64) { N[i].boxed = 0; continue; }
+        N[i].bit = 1ull << nb++;
+    }
+    for (i = 0; i < nn; i++) {
+        if (!N[i].bit) continue;
+        memset(work, 0, 2 * (size_t)(nl + nn));
+        if (i != nn - 1) avoid[nl + nn - 1] = 1;
+        below[nl + i] = 1;
+        for (x = nn; x-- > 0;) { /* operands precede their users */
+            if (avoid[nl + x] && x != i) {
+                avoid[N[x].a] = 1;
+                if (N[x].op != FR__CSG_NEG) avoid[N[x].b] = 1;
+            }
+            if (below[nl + x]) {
+                below[N[x].a] = 1;
+                if (N[x].op != FR__CSG_NEG) below[N[x].b] = 1;
+            }
+        }
+        for (x = 0; x < nl && nl <= 64; x++)
+            if (below[x] && !avoid[x]) N[i].leaf_mask |= 1ull << x;
+        for (x = 0; x < nn; x++)
+            if (x != i && N[x].bit && below[nl + x] && !avoid[nl + x]) N[i].node_mask |= N[x].bit;
+    }
 }
 
 static void fr__prepare_nodes(const fr_tape_t *t, const double *box, fr__csg_node_t *N, unsigned int nn,

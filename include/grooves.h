@@ -290,10 +290,11 @@ typedef struct gr_query_t {
                               crossings or path ends in with the exact
                               polygon path (§5.2-5.5); n = 1..32 asks for n
                               line samples (§5.6, gr_query_lines()) for
-                              footprints whose §4 answer flags
-                              GR_LIST_NONPARALLEL or GR_LIST_PATH_END
-                              (without GR_NO_LINE_SAMPLES; with it they
-                              keep §4's answer and its flags) */
+                              footprints whose §4 search flags
+                              GR_LIST_NONPARALLEL or GR_LIST_PATH_END, or
+                              that a self-crossing reaches (§4's profile
+                              is then skipped; without GR_NO_LINE_SAMPLES;
+                              with it they keep §4's answer and its flags) */
     int perturb_normals;   /* 0 (default) or positive: the true normal of the
                               swept, scaled section where the view ray meets
                               each facet: §4.4's (0, N_b, N_w) tilted along T
@@ -719,8 +720,10 @@ typedef struct gr_line_cache_t {
    classifies it: the solid is the ground w <= 0 minus every groove's cut
    (the part of its section below w = 0) plus every protrusion, path ends
    closed by flat walls of the section's shape (listed with facet index
-   section_count - 1 at the first end, section_count at the last). r_i is
-   facet i's length share; a family's share is the area-weighted mean of
+   section_count - 1 at the first end, section_count at the last). A
+   self-crossing groove whose crossing lies near is taken as its pieces
+   (§5, as the polygon path does), so its two passes cross like two
+   grooves; entries name the groove. r_i is facet i's length share; a family's share is the area-weighted mean of
    its chords'. The families are combined with Jones & Perry 2000's
    weights: a chord weighs Σ sin²α over the edges it crosses (α between
    the chord and the edge's image in UV), a family the mean of its chords,
@@ -2613,16 +2616,34 @@ static double gr__xmass(double q0, double len, double big, double beta)
     return m;
 }
 
+#ifndef GR_NO_LINE_SAMPLES
+static int gr__self_in_box(const gr_grid_t *grid, int g, const double *box, const double *f);
+#endif
+/* gr__query_one()'s answer when `divert` found crossings or ends (line
+   samples answer those, §5.6): nothing was added. */
+#define GR__DIVERT (-1)
+#ifndef GR_NO_LINE_SAMPLES
+#  define GR__LINES_WANTED(query) ((query)->line_samples > 0)
+#else
+#  define GR__LINES_WANTED(query) 0
+#endif
+
 /* One footprint: gather, approximate, merge, project, clip, mask, shadow
    (§4.1-4.4), adding weight x ratios to the list. With allow_split it
-   returns the oversampling count needed (> 1: nothing was added). */
+   returns the oversampling count needed (> 1: nothing was added). With
+   divert, a footprint that a non-parallel groove, a path end (the flags
+   GR_LIST_NONPARALLEL, GR_LIST_PATH_END) or a groove's self-crossing
+   reaches returns GR__DIVERT right after the search (§4.1-4.2) and the
+   oversampling count, before any profile work: line samples will answer
+   it (a footprint to be oversampled is left to its parts' flags, as §4's
+   answer always was, unless a self-crossing reaches it). */
 static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_footprint_t *fp, double weight,
-                         const gr__scratch_t *s, gr_facet_list_t *list, int allow_split, double split_t[2])
+                         const gr__scratch_t *s, gr_facet_list_t *list, int allow_split, int divert, double split_t[2])
 {
     const double *e = fp->view;
     double f[2], box[4], ext_u, ext_v, radius, tanmax, bref[2], eb, ew, sq0, sq1, pm, pn, beta, half, margin;
     double maxhalf = 0;
-    int n, k, ref = -1, np = 0, nf, npar = 0, i, point, nl = qs->light_count;
+    int n, k, ref = -1, np = 0, nf, npar = 0, i, point, nl = qs->light_count, self_cross = 0;
     gr__mfacet_t ground;
     f[0] = fp->center[0];
     f[1] = fp->center[1];
@@ -2671,6 +2692,9 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             double to_end = (c->param < 1 - c->param ? c->param : 1 - c->param) / c->dtds;
             if (to_end < gr__extent(fp, c->t)) list->flags |= GR_LIST_PATH_END;
         }
+#ifndef GR_NO_LINE_SAMPLES
+        if (divert && gr__self_in_box(grid, c->groove, box, f)) self_cross = 1;
+#endif
         c->f = gr__perturb(rec, c->param);
         c->dfds = rec->perturb && qs->perturb_normals ? gr__perturb_slope(rec, c->dtds, c->param, gr__extent(fp, c->t)) : 0;
         if (ref < 0 || fabs(c->d) < fabs(s->cand[ref].d)) ref = npar;
@@ -2701,12 +2725,16 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             int nk = gr__oversample_need(grid, &s->cand[k], fp, qs->oversample_tol);
             if (nk > need) { need = nk; split_t[0] = s->cand[k].t[0]; split_t[1] = s->cand[k].t[1]; }
         }
-        if (need > 1) return need > GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE ? GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE : need;
+        if (need > 1 && !(divert && self_cross))
+            return need > GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE ? GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE : need;
     }
 #else
     (void)allow_split;
     (void)split_t;
 #endif
+    /* an oversampled footprint's parts decide by their own flags (the
+       caller); a self-crossing diverts at once */
+    if (divert && (self_cross || (list->flags & (GR_LIST_NONPARALLEL | GR_LIST_PATH_END)))) return GR__DIVERT;
     /* the footprint across the groove: §4.2's segment S = [-pm, pm] from the
        larger axis projection, widened by the smaller one pn into the
        parallelogram's trapezoid density (gr__xmass) on [-half, half] */
@@ -2887,7 +2915,12 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
         return GR_OK;
     }
 #endif
-    need = gr__query_one(grid, &qs, fp, 1.0, &s, list, 1, t);
+    need = gr__query_one(grid, &qs, fp, 1.0, &s, list, 1, GR__LINES_WANTED(query), t);
+#ifndef GR_NO_LINE_SAMPLES
+    /* §5.6 ([section: line samples]): crossings, ends and self-crossings
+       take query->line_samples line samples, found by §4's search alone */
+    if (need == GR__DIVERT) return gr_query_lines(grid, query, scratch, scratch_bytes, list, NULL);
+#endif
     if (need > 1) {
         /* §4.2 oversampling: the footprint's extent along the groove is cut
            `need` times, each part with its own straight approximation */
@@ -2919,7 +2952,7 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
                 so[1] = other[1] * hbar;
                 sub.center[0] = fp->center[0] + o * ax[0];
                 sub.center[1] = fp->center[1] + o * ax[1];
-                gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, t);
+                gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, 0, t);
             }
             list->subfootprints = need;
         } else {
@@ -2950,14 +2983,13 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
                     double o1 = (2.0 * j1 + 1) / n[0] - 1, o2 = (2.0 * j2 + 1) / n[1] - 1;
                     sub.center[0] = fp->center[0] + o1 * fp->axis1[0] + o2 * fp->axis2[0];
                     sub.center[1] = fp->center[1] + o1 * fp->axis1[1] + o2 * fp->axis2[1];
-                    gr__query_one(grid, &qsub, &sub, 1.0 / (n[0] * n[1]), &s, list, 0, t);
+                    gr__query_one(grid, &qsub, &sub, 1.0 / (n[0] * n[1]), &s, list, 0, 0, t);
                 }
             list->subfootprints = n[0] * n[1];
         }
     }
 #ifndef GR_NO_LINE_SAMPLES
-    /* §5.6 ([section: line samples]): crossings and ends, as §4's answer
-       flags them, take query->line_samples line samples */
+    /* an oversampled footprint's parts may still flag them */
     if (query->line_samples > 0 && (list->flags & (GR_LIST_NONPARALLEL | GR_LIST_PATH_END)))
         return gr_query_lines(grid, query, scratch, scratch_bytes, list, NULL);
 #endif
@@ -3963,37 +3995,50 @@ static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
     }
 }
 
+/* Does one of groove g's self-intersections (§5), in its image nearest
+   f, lie in the box? Then the groove is taken as its pieces there. */
+static int gr__self_in_box(const gr_grid_t *grid, int g, const double *box, const double *f)
+{
+    int h;
+    if (grid->grooves_[g].split_count == 0) return 0;
+    for (h = 0; h < grid->self_count_; h++) {
+        double p[2];
+        if (grid->self_[h].groove != g) continue;
+        gr__image_near(grid, grid->self_[h].point, f, p);
+        if (gr__in_box(box, p)) return 1;
+    }
+    return 0;
+}
+
+/* Piece `id` of a self-crossing groove as a candidate near f: 0 when it
+   does not enter the box, lies beyond reach, or its nearest point to f
+   is one of its cut ends with f beyond that end (the neighbouring piece's
+   approach). Its parameter and rate become the groove's. */
+static int gr__piece_locate(const gr_grid_t *grid, int id, const double *box, const double *f, double reach,
+                            gr__cand_t *c)
+{
+    const gr__groove_t *pc = &grid->grooves_[id];
+    if (!gr__path_in_box(grid, pc, box) || !gr__locate(grid, id, f, reach, c)) return 0;
+    if ((c->end < 0 && pc->join[0]) || (c->end > 0 && pc->join[1])) return 0;
+    c->param = pc->t0 + (pc->t1 - pc->t0) * c->param;
+    c->dtds *= pc->t1 - pc->t0;
+    return 1;
+}
+
 /* A self-crossing groove's candidate replaced by one per piece (§5: "two
    independent grooves with different directions"), when one of its
-   crossings lies in the box. A piece whose nearest point to f is one of
-   its cut ends, with f beyond that end, is the neighbouring piece's
-   approach and is dropped; so is a piece that does not enter the box.
-   Parameters and their rates are the groove's. Returns the new count. */
+   crossings lies in the box (gr__piece_locate drops the pieces that do
+   not reach it). Returns the new count. */
 static int gr__split_candidates(const gr_grid_t *grid, gr__cand_t *cand, int m, int cap, const double *box,
                                 const double *f, double reach)
 {
-    int i, n = m, h, k;
+    int i, n = m, k;
     for (i = 0; i < m; i++) {
         const gr__groove_t *rec = &grid->grooves_[cand[i].groove];
-        int hit = 0, first = n;
-        if (rec->split_count == 0 || n + rec->split_count > cap) continue;
-        for (h = 0; h < grid->self_count_ && !hit; h++) {
-            double p[2];
-            if (grid->self_[h].groove != cand[i].groove) continue;
-            gr__image_near(grid, grid->self_[h].point, f, p);
-            hit = gr__in_box(box, p);
-        }
-        if (!hit) continue;
-        for (k = 0; k < rec->split_count; k++) {
-            int id = rec->first_split + k;
-            const gr__groove_t *pc = &grid->grooves_[id];
-            gr__cand_t *c = &cand[n];
-            if (!gr__path_in_box(grid, pc, box) || !gr__locate(grid, id, f, 2 * reach, c)) continue;
-            if ((c->end < 0 && pc->join[0]) || (c->end > 0 && pc->join[1])) continue;
-            c->param = pc->t0 + (pc->t1 - pc->t0) * c->param;
-            c->dtds *= pc->t1 - pc->t0;
-            n++;
-        }
+        int first = n;
+        if (n + rec->split_count > cap || !gr__self_in_box(grid, cand[i].groove, box, f)) continue;
+        for (k = 0; k < rec->split_count; k++)
+            if (gr__piece_locate(grid, rec->first_split + k, box, f, 2 * reach, &cand[n])) n++;
         if (n == first) continue; /* no piece near after all: keep the groove */
         cand[i] = cand[--n];      /* the last piece takes the groove's place */
     }
@@ -5385,13 +5430,14 @@ static int gr__line_cacheable(const gr__groove_t *rec)
     return rec->kind == GR_PATH_POLYLINE && rec->point_count == 2 && !rec->perturb;
 }
 
-/* Groove id in its straight approximation at the point nearest c. */
-static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double reach, gr__lg_t *g)
+/* Groove (or piece of a self-crossing groove) id in its straight
+   approximation at cd, its point nearest c (parameter and rate the
+   groove's). A piece runs on straight past its cut ends (they join the
+   next piece, §5), and has walls only at the groove's own ends. */
+static int gr__lg_from(const gr_grid_t *grid, int id, const gr__cand_t *cd0, const double *c, gr__lg_t *g)
 {
     const gr__groove_t *rec = &grid->grooves_[id];
-    gr__cand_t cd;
-    memset(&cd, 0, sizeof cd);
-    if (!gr__locate(grid, id, c, reach + rec->half_width, &cd)) return 0;
+    gr__cand_t cd = *cd0;
     g->p[0] = cd.p[0] + c[0] - cd.fc[0];
     g->p[1] = cd.p[1] + c[1] - cd.fc[1];
     g->t[0] = cd.t[0];
@@ -5404,9 +5450,9 @@ static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double re
     g->nsec = rec->sec_count;
     g->groove = id;
     g->first_facet = rec->first_facet;
-    g->lo = rec->closed ? -HUGE_VAL : -cd.param / cd.dtds;
-    g->hi = rec->closed ? HUGE_VAL : (1 - cd.param) / cd.dtds;
-    if (gr__line_cacheable(rec)) { /* anchored at its first point: the same record from any footprint */
+    g->lo = rec->closed || rec->join[0] ? -HUGE_VAL : -(cd.param - rec->t0) / cd.dtds;
+    g->hi = rec->closed || rec->join[1] ? HUGE_VAL : (rec->t1 - cd.param) / cd.dtds;
+    if (rec->parent == id && gr__line_cacheable(rec)) { /* anchored at its first point: the same record from any footprint */
         const double *a = grid->points_ + 2 * rec->first_point;
         g->p[0] = a[0] + (c[0] - cd.fc[0]); /* the image shift: a whole number of tiles, 0 without wrap */
         g->p[1] = a[1] + (c[1] - cd.fc[1]);
@@ -5417,6 +5463,16 @@ static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double re
     }
     return g->f > 0; /* scaled away here otherwise */
 }
+
+/* Groove id in its straight approximation at the point nearest c. */
+static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double reach, gr__lg_t *g)
+{
+    gr__cand_t cd;
+    memset(&cd, 0, sizeof cd);
+    if (!gr__locate(grid, id, c, reach + grid->grooves_[id].half_width, &cd)) return 0;
+    return gr__lg_from(grid, id, &cd, c, g);
+}
+
 
 /* The UV points whose convex hull holds every ray a segment casts: its
    ends, where their view rays leave the slab, and those points moved
@@ -5462,6 +5518,33 @@ static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, do
     }
 }
 
+/* A self-crossing groove whose crossing lies in the box is taken as its
+   pieces (§5, as the polygon path does: gr__split_candidates), each in its
+   own straight approximation; 0 when none is near (the groove then stands
+   for itself). Pieces are never cached (their groove is no segment). */
+static int gr__lg_pieces(gr__lscene_t *sc, int id, const double *box, const double *c, double reach,
+                         const gr__region_t *quad)
+{
+    const gr_grid_t *grid = sc->grid;
+    const gr__groove_t *rec = &grid->grooves_[id];
+    double bc[2];
+    int k, n = 0;
+    bc[0] = 0.5 * (box[0] + box[2]);
+    bc[1] = 0.5 * (box[1] + box[3]);
+    if (!gr__self_in_box(grid, id, box, bc)) return 0;
+    for (k = 0; k < rec->split_count; k++) {
+        int pid = rec->first_split + k;
+        gr__cand_t cd;
+        gr__lg_t g;
+        memset(&cd, 0, sizeof cd);
+        if (!gr__piece_locate(grid, pid, box, c, reach + rec->half_width, &cd) || !gr__lg_from(grid, pid, &cd, c, &g))
+            continue;
+        gr__lg_keep(sc, &g, c, reach, quad);
+        n++;
+    }
+    return n;
+}
+
 /* The grid search (§4.1) around box, centre c: every groove in its
    straight approximation, passed to gr__lg_keep, or stored in the cache
    (returns 0 when the cache cannot hold them all, or one is not straight). */
@@ -5477,6 +5560,7 @@ static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
     n = gr__gather(grid, box, s->seen, s->ids, NULL);
     for (k = 0; k < n; k++) {
         gr__lg_t g;
+        if (!fill && grid->split_records_ > 0 && gr__lg_pieces(sc, s->ids[k], box, c, reach, quad)) continue;
         if (!gr__lg_make(grid, s->ids[k], c, reach, &g)) continue;
         if (!fill) { gr__lg_keep(sc, &g, c, reach, quad); continue; }
         if (fill->count == GR_LINE_MAX_GROOVES || !gr__line_cacheable(&grid->grooves_[s->ids[k]])) return 0;
@@ -6224,12 +6308,16 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
             if (!(ratio > 0)) continue;
             for (k = 0; k < nl; k++) lit[k] /= ratio;
             for (k = 0; k < 3; k++) mf.n[k] = p->n[k];
-            mf.groove = p->lg < 0 ? -1 : sc.ls.lg[p->lg].groove;
+            mf.groove = p->lg < 0 ? -1 : sc.ls.lg[p->lg].groove; /* a piece's record until the list is done */
             mf.facet = p->facet;
             mf.refl = p->refl;
             gr__list_add(list, &mf, ratio, lit, nl);
         }
     }
+    /* the two passes of a self-crossing groove (§5) were kept apart: named
+       by their groove now */
+    for (i = 0; i < list->count; i++)
+        if (list->facets[i].groove >= 0) list->facets[i].groove = grid->grooves_[list->facets[i].groove].parent;
     for (i = 0; i < sc.nlg; i++)
         for (k = 0; k < i; k++) {
             const gr__lg_t *a = &sc.ls.lg[i], *b = &sc.ls.lg[k];

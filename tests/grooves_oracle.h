@@ -21,7 +21,11 @@
    section polygon swept along that instance's sampled path, one prism per
    chord; strictly: farther than `eps` from its boundary, so coincident
    floors of equal depth stay), and traversal goes on to the next surface.
-   Primary and shadow rays use it alike. Limits: one instance is never
+   Primary and shadow rays use it alike. Where a protrusion crosses
+   another groove's cut it bridges the hole, and the plane w = 0 is the
+   bridge's underside: gro_scene_intersect() reports it as the ground seen
+   from below (normal down; the ground's material), tested against the
+   volumes just above and below the plane (gro__plane_surface). Limits: one instance is never
    tested against itself (a self-crossing path is not carved), and at a
    polyline corner the prisms miss the outer miter wedge (straight paths and
    smooth curves are exact to the chord tolerance).
@@ -96,6 +100,7 @@ typedef struct gro_scene_t {
     double origin[2], ground[4];
     double eps;            /* shadow-ray offset, UV units */
     double top;            /* highest point of any section (>= 0), UV */
+    int bridges;           /* 1: a protrusion may bridge another instance's cut (w = 0 then has an underside) */
 } gro_scene_t;
 
 typedef struct gro_hit_t {
@@ -281,7 +286,8 @@ static int gro__in_section(const double *sec, int n, double b, double w, double 
     return in;
 }
 
-/* 1 when the local point x lies strictly inside an instance other than `inst`. */
+/* 1 when the local point x lies strictly inside an instance other than
+   `inst` (-1: any instance). */
 static int gro__inside_other(const gro__vol_t *v, const double *x, int inst)
 {
     int cu, cv, i;
@@ -754,6 +760,15 @@ static int gro_scene_build(gro_scene_t *sc, RTCDevice dev, const gro_groove_t *g
         int several = 0;
         for (i = 1; i < b.vol->nsegs; i++) several |= b.vol->segs[i].inst != b.vol->segs[0].inst;
         sc->mesh = gro__commit_mesh(dev, b.v, b.nv, b.t, b.nt, several ? b.vol : NULL);
+        if (several) { /* a section part below w = 0 and one above it: a bridge is possible */
+            int cut = 0, prot = 0, k;
+            for (gi = 0; gi < ng; gi++)
+                for (k = 0; k < gs[gi].nsec; k++) {
+                    cut |= gs[gi].sec[2 * k + 1] < 0;
+                    prot |= gs[gi].sec[2 * k + 1] > 0;
+                }
+            sc->bridges = cut && prot;
+        }
     }
     sc->mouths = gro__commit_mesh(dev, b.mv, b.nmv, b.mt, b.nmt, NULL);
     sc->tri_groove = b.tg; sc->tri_facet = b.tf;
@@ -781,9 +796,18 @@ static void gro__ray(struct RTCRay *r, const gro_scene_t *sc, const double *o, c
     r->time = 0; r->mask = 0xFFFFFFFFu; r->id = 0; r->flags = 0;
 }
 
-/* 1 when the UV point (u, v) belongs to the ground: inside its extent and
-   outside every groove mouth. */
-static int gro_is_ground(const gro_scene_t *sc, double u, double v)
+/* 1 when the UV point (u, v) of the plane w = 0 is on the surface: the
+   ground (inside its extent and outside every groove mouth), or the
+   underside of a protrusion bridging another groove's cut. The solid is
+   the ground minus the cuts plus the protrusions, so w = 0 is a surface
+   where the solid's state differs just above and just below it: no mouth
+   (ground below, air above), or a cut below and a protrusion above (a
+   bridge seen from inside the cut); a point of a mouth with only a cut
+   or only a protrusion there is not. The volumes are tested 2 filter
+   margins off the plane, so the bridge is exact up to that margin at its
+   borders. may_bridge = 0 skips that test (a ray coming down from above
+   every protrusion meets a bar's top before its underside). */
+static int gro__plane_surface(const gro_scene_t *sc, double u, double v, int may_bridge)
 {
     struct RTCRay r;
     struct RTCIntersectContext ctx;
@@ -795,8 +819,18 @@ static int gro_is_ground(const gro_scene_t *sc, double u, double v)
     gro__ray(&r, sc, o, d, 0, 2);
     rtcInitIntersectContext(&ctx);
     rtcOccluded1(sc->mouths, &ctx, &r);
-    return !(r.tfar < 0); /* Embree sets tfar = -inf on occlusion */
+    if (!(r.tfar < 0)) return 1; /* Embree sets tfar = -inf on occlusion */
+    if (sc->bridges && may_bridge) {
+        double below[3], above[3];
+        below[0] = above[0] = u - sc->origin[0];
+        below[1] = above[1] = v - sc->origin[1];
+        below[2] = -2 * sc->vol->eps;
+        above[2] = 2 * sc->vol->eps;
+        return gro__inside_other(sc->vol, below, -1) && gro__inside_other(sc->vol, above, -1);
+    }
+    return 0;
 }
+static int gro_is_ground(const gro_scene_t *sc, double u, double v) { return gro__plane_surface(sc, u, v, 1); }
 
 /* First hit along o + t·d, t in (tnear, tfar): a facet of the mesh, or the
    ground plane w = 0 where no groove's mouth covers it. */
@@ -828,7 +862,7 @@ static gro_hit_t gro_scene_intersect(const gro_scene_t *sc, const double *o, con
     }
     if (tg < h.t) {
         double u = o[0] + tg * d[0], v = o[1] + tg * d[1];
-        if (gro_is_ground(sc, u, v)) {
+        if (gro__plane_surface(sc, u, v, !(d[2] < 0 && o[2] >= sc->top))) {
             h.kind = GRO_HIT_GROUND;
             h.t = tg;
             h.n[0] = 0; h.n[1] = 0; h.n[2] = d[2] < 0 ? 1 : -1;
@@ -853,9 +887,10 @@ static int gro_scene_lit(const gro_scene_t *sc, const gro_hit_t *h, const double
     if (h->kind == GRO_HIT_NONE || L[2] <= 0) return 0;
     if (h->n[0] * L[0] + h->n[1] * L[1] + h->n[2] * L[2] <= 0) return 0;
     for (i = 0; i < 3; i++) o[i] = h->p[i] + sc->eps * h->n[i];
-    if (o[2] < 0) { /* the ray must leave through a mouth, not through the ground */
+    if (o[2] < 0) { /* the ray must leave through a mouth, not through the ground (a bridge's
+                       underside needs no test: the ray would meet the bridge from inside) */
         double tc = -o[2] / L[2];
-        if (gro_is_ground(sc, o[0] + tc * L[0], o[1] + tc * L[1])) return 0;
+        if (gro__plane_surface(sc, o[0] + tc * L[0], o[1] + tc * L[1], 0)) return 0;
     }
     gro__ray(&r, sc, o, L, 0, INFINITY);
     rtcInitIntersectContext(&ctx);

@@ -54,4 +54,24 @@ static double gt_ratio_sum(const gr_facet_list_t *l)
     return s;
 }
 
+/* A cubic Bézier (4 points) split at t by de Casteljau into its halves
+   h0 (t in [0, t]) and h1 ([t, 1]), 4 points each: the oracle gets a
+   self-crossing loop as two paths (it never carves a path with itself). */
+static void gt_cubic_halves(const double *cub, double t, double *h0, double *h1)
+{
+    double q[8];
+    int k, i;
+    memcpy(q, cub, sizeof q);
+    h0[0] = cub[0]; h0[1] = cub[1];
+    h1[6] = cub[6]; h1[7] = cub[7];
+    for (k = 0; k < 3; k++) {
+        for (i = 0; i < 3 - k; i++) {
+            q[2 * i] = (1 - t) * q[2 * i] + t * q[2 * i + 2];
+            q[2 * i + 1] = (1 - t) * q[2 * i + 1] + t * q[2 * i + 3];
+        }
+        h0[2 * (k + 1)] = q[0]; h0[2 * (k + 1) + 1] = q[1];
+        h1[2 * (2 - k)] = q[2 * (2 - k)]; h1[2 * (2 - k) + 1] = q[2 * (2 - k) + 1];
+    }
+}
+
 #endif

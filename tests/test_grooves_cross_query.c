@@ -391,19 +391,7 @@ static void self_crossing_loops(void)
     S.desc[0].kind = GR_PATH_CUBIC;
     S.desc[0].point_count = 4;
     {
-        double t = 0.5, q[8]; /* the loop's middle: the cubic is symmetric about t = 1/2 */
-        memcpy(q, cub, sizeof q);
-        for (k = 0; k < 3; k++) { /* de Casteljau at t */
-            int i;
-            for (i = 0; i < 3 - k; i++) {
-                q[2 * i] = (1 - t) * q[2 * i] + t * q[2 * i + 2];
-                q[2 * i + 1] = (1 - t) * q[2 * i + 1] + t * q[2 * i + 3];
-            }
-            c0[2 * (k + 1)] = q[0]; c0[2 * (k + 1) + 1] = q[1];
-            c1[2 * (2 - k)] = q[2 * (2 - k)]; c1[2 * (2 - k) + 1] = q[2 * (2 - k) + 1];
-        }
-        c0[0] = cub[0]; c0[1] = cub[1];
-        c1[6] = cub[6]; c1[7] = cub[7];
+        gt_cubic_halves(cub, 0.5, c0, c1); /* the loop's middle: the cubic is symmetric about t = 1/2 */
         for (k = 0; k < 2; k++) {
             pc[k] = S.desc[0];
             pc[k].points = k ? c1 : c0;

@@ -20,7 +20,9 @@
    scene and down into the bulk, for a deep glass V, a glass ridge on
    glass (total internal reflection inside it), a metal frame on a thin
    pane (Figure 21d) and the paper's constants with refraction; the same
-   1e-3 bound per (bounce, medium).
+   1e-3 bound per (bounce, medium); and a glass ridge across a V and a
+   deep V (ridge-over-cut: the ridge bridges the cut, whose underside
+   refracted and reflected rays meet), one exact chord.
    Named stiff cases: grazing view (E_w = 0.1), a wall whose mirror ray
    points down into the other wall (a direction from below the texture
    plane, §6.1's inverted masking: E_1 = 0), a protruding ridge, depth 0
@@ -209,10 +211,12 @@ static void t_mirror_energy_vs_pathtraced(void)
     gro_device_free(&dev);
 }
 
-/* Crossings (X of a V and a ridge, oblique V pair, T): one segment
-   (line_samples = 1, A2 = 0) is exact, so its per-depth energies must
-   match the path tracer on the segment's rays (the oracle carves
-   crossings and caps ends, as the library does). */
+/* Crossings (X of a V and a ridge, oblique V pair, T, and a self-crossing
+   "alpha" polyline at its crossing): one segment (line_samples = 1, A2 =
+   0) is exact, so its per-depth energies must match the path tracer on
+   the segment's rays (the oracle carves crossings and caps ends, as the
+   library does; it gets the alpha as two paths, cut far from the
+   crossing, since it never carves a path with itself). */
 static void t_crossing_energy_vs_pathtraced(void)
 {
     static const double views[3][3] = {{0, 0, 1}, {0.4, 0.3, 0.866}, {-0.6, 0.2, 0.775}};
@@ -221,8 +225,10 @@ static void t_crossing_energy_vs_pathtraced(void)
     int c, v, k, n;
     double worst = 0;
     if (!mirror_setup(spec, &dev, &n)) return;
-    for (c = 0; c < 3; c++) {
+    for (c = 0; c < 4; c++) {
         static const double P0[4] = {0.2, 0.5, 0.8, 0.5}, PX[4] = {0.5, 0.2, 0.5, 0.8}, PT[4] = {0.5, 0.8, 0.5, 0.5};
+        static const double alpha[10] = {0.2, 0.3, 0.6, 0.7, 0.8, 0.5, 0.6, 0.3, 0.2, 0.7};
+        static const double a0[6] = {0.2, 0.3, 0.6, 0.7, 0.8, 0.5}, a1[6] = {0.8, 0.5, 0.6, 0.3, 0.2, 0.7};
         double PO[4] = {0.5 - 0.3 * cos(1.047), 0.5 - 0.3 * sin(1.047), 0.5 + 0.3 * cos(1.047), 0.5 + 0.3 * sin(1.047)};
         gr_groove_desc_t g[2];
         gr_grid_desc_t d;
@@ -235,13 +241,20 @@ static void t_crossing_energy_vs_pathtraced(void)
         g[1] = g[0];
         g[1].points = c == 0 ? PX : c == 1 ? PO : PT;
         if (c == 0) { g[1].section = RSEC; g[1].section_count = 5; }
-        d.grooves = g; d.groove_count = 2; d.no_wrap = 1;
+        if (c == 3) { g[0].points = alpha; g[0].point_count = 5; }
+        d.grooves = g; d.groove_count = c == 3 ? 1 : 2; d.no_wrap = 1;
         if (!T_CHECK(gr_grid_build(&d, &grid, NULL) == GR_OK)) return;
         og[0] = gro_from_gr(&g[0]);
         og[1] = gro_from_gr(&g[1]);
+        if (c == 3) {
+            og[1] = og[0];
+            og[0].ctrl = a0; og[1].ctrl = a1;
+            og[0].nctrl = og[1].nctrl = 3;
+        }
         if (!T_CHECK(gro_scene_build(&sc, dev.dev, og, 2, NULL) == 0)) return;
         for (v = 0; v < 3; v++) {
-            gr_query_t q = gt_query(0.5 + 0.004 * v - 0.003, 0.5 + 0.003 * c - 0.002, 0, views[v][0], views[v][1], views[v][2]);
+            gr_query_t q = gt_query(c == 3 ? 0.4 + 0.002 * v : 0.5 + 0.004 * v - 0.003, 0.5 + 0.003 * (c % 3) - 0.002, 0,
+                                    views[v][0], views[v][1], views[v][2]);
             double er[MAXD + 1], eg[MAXD + 1];
             q.footprint.axis1[0] = 0.016 * cos(0.3 + v);
             q.footprint.axis1[1] = 0.016 * sin(0.3 + v);
@@ -540,6 +553,22 @@ static double compare_split(const gr_grid_t *grid, const gr_query_t *q, const gr
     return sum;
 }
 
+/* The library's materials for the reference's (grey): ids 0 and 1 */
+static void spec_of(const mat_t *mats, gr_specular_t spec[2])
+{
+    int k, c;
+    memset(spec, 0, 2 * sizeof *spec);
+    for (k = 0; k < 2; k++) {
+        for (c = 0; c < 3; c++) {
+            spec[k].kr[c] = mats[k].kr;
+            spec[k].kt[c] = mats[k].kt;
+        }
+        spec[k].ior = mats[k].ior;
+        spec[k].fresnel = mats[k].fresnel;
+        spec[k].thin = mats[k].thin;
+    }
+}
+
 static void t_transmission_vs_pathtraced(void)
 {
     static const double TRAP[8] = {-0.01, 0, -0.006, 0.012, 0.006, 0.012, 0.01, 0};
@@ -568,17 +597,7 @@ static void t_transmission_vs_pathtraced(void)
         size_t need;
         void *scratch;
         if (!T_CHECK(grid) || !T_CHECK(gro_scene_build(&sc, dev.dev, &og, 1, NULL) == 0)) return;
-        memset(spec, 0, sizeof spec);
-        for (k = 0; k < 2; k++) {
-            int c;
-            for (c = 0; c < 3; c++) {
-                spec[k].kr[c] = mats[sc_i][k].kr;
-                spec[k].kt[c] = mats[sc_i][k].kt;
-            }
-            spec[k].ior = mats[sc_i][k].ior;
-            spec[k].fresnel = mats[sc_i][k].fresnel;
-            spec[k].thin = mats[sc_i][k].thin;
-        }
+        spec_of(mats[sc_i], spec);
         need = gr_query_scratch_bytes(grid);
         scratch = malloc(need);
         pt_scale = sc_i == 0 ? 0.01 + 0.05 : sc_i == 3 ? 0.01 + 0.02 : 0.01 + 0.012; /* w + h + d */
@@ -599,10 +618,8 @@ static void t_transmission_vs_pathtraced(void)
         gr_grid_free(grid);
     }
     { /* an X crossing of a glass V and a deep glass V, one chord (exact at
-         crossings): refracted rays inside the carved solid. (Crossings of
-         a protrusion and a cut are left out: the paper leaves them out,
-         and the library keeps a protrusion's bridge over a cut while the
-         oracle's mesh has no underside there.) */
+         crossings): refracted rays inside the carved solid. A protrusion
+         across a cut: t_transmission_ridge_over_cut. */
         static const double P0[4] = {0.2, 0.5, 0.8, 0.5}, PX[4] = {0.5, 0.2, 0.5, 0.8};
         static const double xviews[2][3] = {{0.4, 0.3, 0.866}, {-0.6, 0.2, 0.775}};
         gr_groove_desc_t g[2];
@@ -648,6 +665,79 @@ static void t_transmission_vs_pathtraced(void)
     printf("  transmission: worst |E_k - reference| = %.2e (N = %d), total internal reflection met %.3f\n", worst, n,
            tir_seen);
     T_GT(tir_seen, 0.05); /* the dielectric cases exercise it */
+    gro_device_free(&dev);
+}
+
+/* Named case: a protruding ridge over a cut (ridge-over-cut). A glass
+   trapezoid ridge runs across a glass V (and across a deep V); over the
+   V's hole the ridge is a bridge, whose underside is the plane w = 0 seen
+   from below (the solid is ground - cuts + protrusions), carrying the
+   ground's id. Rays refracted into the ridge leave through that underside
+   into the V, rays inside the V meet it from below. One chord
+   (line_samples = 1, A2 = 0) is exact, so every (bounce, medium) energy
+   must match the splitting path tracer on the oracle's mesh, which gives
+   the bridge its underside (tests/grooves_oracle.h), within the
+   reference's bound. Materials: Fresnel glass everywhere, and constants
+   with a different index for the ground (the underside's id) and the
+   grooves, so a wrong id or a missing underside shows. */
+static void t_transmission_ridge_over_cut(void)
+{
+    static const double TRAP[8] = {-0.01, 0, -0.006, 0.012, 0.006, 0.012, 0.01, 0};
+    static const double PV[4] = {0.2, 0.5, 0.8, 0.5}, PR[4] = {0.5, 0.2, 0.5, 0.8};
+    static const double views[4][3] = {{0.3, 0.2, 0.933}, {0.6, -0.3, 0.742}, {-0.2, 0.7, 0.686}, {0.1, -0.85, 0.517}};
+    static const mat_t mats[2][2] = {
+        {{1, 1, 1.5, 1, 0}, {1, 1, 1.5, 1, 0}},
+        {{0.25, 0.7, 1.3, 0, 0}, {0.3, 0.6, 1.6, 0, 0}},
+    };
+    gro_device_t dev;
+    int c, m, v, n = (int)(4000 * t_scale());
+    double worst = 0;
+    if (n < 400) n = 400;
+    if (gro_device_init(&dev)) { T_FAIL("embree"); return; }
+    for (c = 0; c < 2; c++) {
+        gr_groove_desc_t g[2];
+        gr_grid_desc_t d;
+        gr_grid_t *grid = NULL;
+        gro_groove_t og[2];
+        gro_scene_t sc;
+        size_t need;
+        void *scratch;
+        memset(g, 0, sizeof g);
+        memset(&d, 0, sizeof d);
+        g[0].points = PV; g[0].point_count = 2; g[0].section = c ? DEEP : VSEC; g[0].section_count = 3;
+        g[0].reflectance = 1;
+        g[1] = g[0];
+        g[1].points = PR; g[1].section = TRAP; g[1].section_count = 4;
+        d.grooves = g; d.groove_count = 2; d.no_wrap = 1;
+        if (!T_CHECK(gr_grid_build(&d, &grid, NULL) == GR_OK)) return;
+        og[0] = gro_from_gr(&g[0]);
+        og[1] = gro_from_gr(&g[1]);
+        if (!T_CHECK(gro_scene_build(&sc, dev.dev, og, 2, NULL) == 0)) return;
+        need = gr_query_scratch_bytes(grid);
+        scratch = malloc(need);
+        pt_scale = 0.01 + 0.012 + (c ? 0.05 : 0.02); /* w + h + d */
+        for (m = 0; m < 2; m++) {
+            gr_specular_t spec[2];
+            spec_of(mats[m], spec);
+            for (v = 0; v < 4; v++) {
+                gr_query_t q = gt_query(0.5 + 0.002 * v - 0.003, 0.5 - 0.001 * v + 0.001, 0, views[v][0], views[v][1],
+                                        views[v][2]);
+                double eo[MAXD + 1], ei[MAXD + 1];
+                q.footprint.axis1[0] = 0.018 * cos(0.4 + 0.7 * v);
+                q.footprint.axis1[1] = 0.018 * sin(0.4 + 0.7 * v);
+                q.line_samples = 1;
+                reference_split(&sc, &q.footprint, n, mats[m], eo, ei);
+                printf("  ridge over %s, %s, view %d E_k out/in path-traced | ours:", c ? "deep V" : "V",
+                       m ? "constants" : "glass", v);
+                (void)compare_split(grid, &q, spec, eo, ei, n, scratch, need, &worst);
+                printf("\n");
+            }
+        }
+        free(scratch);
+        gro_scene_free(&sc);
+        gr_grid_free(grid);
+    }
+    printf("  ridge over cut: worst |E_k - reference| = %.2e (N = %d)\n", worst, n);
     gro_device_free(&dev);
 }
 
@@ -797,7 +887,7 @@ int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(t_mirror_energy_vs_pathtraced), T_CASE(t_crossing_energy_vs_pathtraced), T_CASE(t_direction_from_below), T_CASE(t_depth0_is_direct),
-        T_CASE(t_shadow_from_outside_the_view), T_CASE(t_transmission_to_host), T_CASE(t_transmission_vs_pathtraced),
+        T_CASE(t_shadow_from_outside_the_view), T_CASE(t_transmission_to_host), T_CASE(t_transmission_vs_pathtraced), T_CASE(t_transmission_ridge_over_cut),
         T_CASE(t_stack_full), T_CASE(t_stiff_indirect_scale_grazing),
     };
     return T_RUN(argc, argv, cases);

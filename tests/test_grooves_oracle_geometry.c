@@ -386,6 +386,65 @@ static void isolated_end_cap_is_seen(void)
     gro_result_free(&r);
 }
 
+/* A protruding bar across a cut is a bridge: the solid is the ground
+   minus the cuts plus the protrusions, so over the cut's hole the plane
+   w = 0 is the bar's underside (a surface facing down), and over solid
+   ground it is no surface (the bar and the ground are one solid). Rays
+   from inside the cut up under the bar, and from inside the bar down
+   over the cut, meet w = 0; beside the bar, and inside the bar over the
+   ground, they do not; the cut's floor under the bar is in its shadow. */
+static void bridge_has_an_underside(void)
+{
+    const double a = 0.01, d = 0.02, h = 0.01;
+    const double cut[8] = {-a, 0, -a, -d, a, -d, a, 0}, bar[8] = {-a, 0, -a, h, a, h, a, 0};
+    static const double pa[4] = {0.2, 0.5, 0.8, 0.5}, pb[4] = {0.5, 0.2, 0.5, 0.8};
+    static const double up[3] = {0, 0, 1}, down[3] = {0, 0, -1}, slant[3] = {0.6, 0, 0.8};
+    gro_groove_t g[2];
+    gro_scene_t sc;
+    gro_hit_t hit;
+    double o[3];
+    g[0] = rect_groove(pa, cut);
+    g[1] = rect_groove(pb, bar);
+    if (!T_CHECK(gro_scene_build(&sc, dev.dev, g, 2, NULL) == 0)) return;
+    T_INT_EQ(sc.bridges, 1);
+    o[0] = 0.5; o[1] = 0.5; o[2] = -0.015; /* in the cut, under the bar */
+    hit = gro_scene_intersect(&sc, o, up, 0, INFINITY);
+    T_INT_EQ(hit.kind, GRO_HIT_GROUND);
+    T_NEAR(hit.t, 0.015, 1e-9);
+    T_NEAR(hit.n[2], -1, 1e-12);
+    o[0] = 0.495 - 0.75 * 0.015; /* slanting up, entering under the bar's -u side */
+    hit = gro_scene_intersect(&sc, o, slant, 0, INFINITY);
+    T_INT_EQ(hit.kind, GRO_HIT_GROUND);
+    T_NEAR(hit.p[0], 0.495, 1e-6);
+    o[0] = 0.53; /* in the cut, beside the bar: the sky */
+    hit = gro_scene_intersect(&sc, o, up, 0, INFINITY);
+    T_INT_EQ(hit.kind, GRO_HIT_NONE);
+    o[0] = 0.5; o[2] = 0.005; /* inside the bar over the cut: out through the underside */
+    hit = gro_scene_intersect(&sc, o, down, 0, INFINITY);
+    T_INT_EQ(hit.kind, GRO_HIT_GROUND);
+    T_NEAR(hit.t, 0.005, 1e-9);
+    T_NEAR(hit.n[2], 1, 1e-12);
+    o[1] = 0.6; /* inside the bar over the ground: one solid, no surface at w = 0 */
+    hit = gro_scene_intersect(&sc, o, down, 0, INFINITY);
+    T_INT_EQ(hit.kind, GRO_HIT_NONE);
+    o[1] = 0.5; o[2] = 0.1; /* the cut's floor: shadowed under the bar, lit beside it */
+    o[0] = 0.5 + 0.3 * a;
+    hit = gro_scene_intersect(&sc, o, down, 0, INFINITY);
+    T_INT_EQ(hit.kind, GRO_HIT_FACET);
+    T_INT_EQ(hit.groove, 1); /* the bar's top */
+    hit.kind = GRO_HIT_FACET; hit.p[0] = 0.5 + 0.3 * a; hit.p[1] = 0.5; hit.p[2] = -d;
+    hit.n[0] = hit.n[1] = 0; hit.n[2] = 1;
+    T_INT_EQ(gro_scene_lit(&sc, &hit, up), 0);
+    hit.p[0] = 0.5 + 2 * a;
+    T_INT_EQ(gro_scene_lit(&sc, &hit, up), 1);
+    gro_scene_free(&sc);
+    { /* one groove alone cannot bridge itself: no test */
+        if (!T_CHECK(gro_scene_build(&sc, dev.dev, g + 1, 1, NULL) == 0)) return;
+        T_INT_EQ(sc.bridges, 0);
+        gro_scene_free(&sc);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -400,6 +459,7 @@ int main(int argc, char **argv)
         T_CASE(x_crossing_deeper_floor_wins),
         T_CASE(t_crossing_end_cap_and_floor),
         T_CASE(isolated_end_cap_is_seen),
+        T_CASE(bridge_has_an_underside),
     };
     int rc;
     if (gro_device_init(&dev)) { printf("0 passed, 1 failed\n"); return 1; }
