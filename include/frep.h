@@ -3533,33 +3533,11 @@ static inline double fr__horner_deriv(const double *c, int n, double x, double *
    by fma and TwoSum keep each step's rounding error, and the errors are
    summed by a second Horner pass (Graillat, Langlois & Louvet 2005, Alg. 4).
    Each error-free step's product is used by a non-add operation, so compilers
-   cannot contract it into an fma under -ffp-contract=fast. */
-static double fr__horner_comp(const double *hi, const double *lo, int n, double x, double *abs_poly)
+   cannot contract it into an fma under -ffp-contract=fast. The plain
+   derivative comes along in *deriv (the polish needs both per step). */
+static double fr__horner_comp(const double *hi, const double *lo, int n, double x, double *abs_poly, double *deriv)
 {
-    double s = hi[n], err = lo ? lo[n] : 0.0, a = fabs(hi[n]), ax = fabs(x);
-    int i;
-    for (i = n - 1; i >= 0; i--) {
-        double p = s * x;
-        double pe = fma(s, x, -p);
-        double t = p + hi[i];
-        double z = t - p;
-        double te = (p - (t - z)) + (hi[i] - z);
-        err = err * x + (pe + te + (lo ? lo[i] : 0.0));
-        s = t;
-        a = a * ax + fabs(hi[i]);
-    }
-    *abs_poly = a;
-    return s + err;
-}
-
-/* Compensated Horner as fr__horner_comp (lo required), with the plain
-   derivative, and the sign of the value as -1, 0, +1, 0 meaning "zero within
-   what compensated evaluation can resolve" (a root, possibly multiple, at
-   x): FR__ZERO_K n^2 u^2 sum|c_i||x|^i. One pass gives the polish all it
-   needs per Newton step. */
-static int fr__sign_comp(const double *hi, const double *lo, int n, double x, double *value, double *deriv)
-{
-    double s = hi[n], err = lo[n], a = fabs(hi[n]), ax = fabs(x), d = 0.0, v;
+    double s = hi[n], err = lo ? lo[n] : 0.0, a = fabs(hi[n]), ax = fabs(x), d = 0.0;
     int i;
     for (i = n - 1; i >= 0; i--) {
         double p = s * x;
@@ -3568,13 +3546,23 @@ static int fr__sign_comp(const double *hi, const double *lo, int n, double x, do
         double z = t - p;
         double te = (p - (t - z)) + (hi[i] - z);
         d = d * x + s;
-        err = err * x + (pe + te + lo[i]);
+        err = err * x + (pe + te + (lo ? lo[i] : 0.0));
         s = t;
         a = a * ax + fabs(hi[i]);
     }
-    v = s + err;
-    *value = v;
+    *abs_poly = a;
     *deriv = d;
+    return s + err;
+}
+
+/* The compensated value (fr__horner_comp), its plain derivative, and its
+   sign as -1, 0, +1, 0 meaning "zero within what compensated evaluation
+   can resolve" (a root, possibly multiple, at x): FR__ZERO_K n^2 u^2
+   sum|c_i||x|^i. */
+static int fr__sign_comp(const double *hi, const double *lo, int n, double x, double *value, double *deriv)
+{
+    double a, v = fr__horner_comp(hi, lo, n, x, &a, deriv);
+    *value = v;
     if (fabs(v) <= FR__ZERO_K * (double)(n * n) * FR__U * FR__U * a) return 0;
     return v > 0 ? 1 : -1;
 }
@@ -4184,9 +4172,9 @@ static void fr__root_exponent_bounds(const int *ex, int n, int *lo, int *hi)
 
 FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, double *abs_bound)
 {
-    double a, v;
+    double a, v, d;
     if (!c || degree < 0) { if (abs_bound) *abs_bound = 0; return 0.0; }
-    v = fr__horner_comp(c, NULL, degree, t, &a);
+    v = fr__horner_comp(c, NULL, degree, t, &a, &d);
     if (abs_bound) *abs_bound = a;
     return v;
 }
