@@ -689,29 +689,15 @@ typedef struct gr_line_stats_t {
    their straight approximation is the groove itself, the same from every
    footprint, so the answer is bit for bit the uncached one; a box with a
    curve, a polyline, a perturbed groove, or more grooves than
-   GR_LINE_MAX_GROOVES, is not cached. It also keeps each cached groove's
-   projected cross-sections, along the view and along each light (§4.2-4.3:
-   the section points moved along the direction to w = 0, b - w tan θ',
-   kept as f (b E_w - w E_b) so grazing directions stay finite), and
-   reuses one when the direction in groove space, (E_b, E_w), is the same
-   bit for bit: so from footprint to footprint under an orthographic or
-   distant view and for directional lights; a perspective view misses on
-   the view's and still hits on the lights'. Sections of more than
-   GR_LINE_CACHE_SECTION points are projected per footprint. Zero-initialise
-   before use; it refers to one grid (another grid refills it). */
+   GR_LINE_MAX_GROOVES, is not cached. Zero-initialise before use; it
+   refers to one grid (another grid refills it). */
 #define GR_LINE_CACHE_GROW 3.0
-#ifndef GR_LINE_CACHE_SECTION
-#  define GR_LINE_CACHE_SECTION 16
-#endif
 typedef struct gr_line_cache_t {
     const gr_grid_t *grid;  /* the grid it was filled from */
     double box[4];          /* the UV box it covers */
     int valid, count;
     long long hits, misses; /* footprints served from it / that refilled it */
-    long long proj_hits, proj_misses; /* projected cross-sections reused
-                               from it / projected and stored into it */
     double store_[GR_LINE_MAX_GROOVES * 16]; /* private */
-    double proj_[GR_LINE_MAX_GROOVES * (1 + GR_MAX_LIGHTS) * (3 + GR_LINE_CACHE_SECTION)]; /* private */
 } gr_line_cache_t;
 #endif
 
@@ -5187,7 +5173,6 @@ typedef struct gr__lg_t {
                                  length; +-HUGE_VAL for closed paths) */
     const double *sec;
     int nsec, groove, first_facet;
-    int slot;                 /* its place in the caller's cache, -1 if not from it */
 } gr__lg_t;
 
 /* A facet plane n.x = h (texture space); plane 0 is the ground w = 0. */
@@ -5211,17 +5196,8 @@ typedef struct gr__xing_t { double t; int plane; } gr__xing_t;
 
 /* An edge line of the scene: points q + λ D, λ in [l0, l1] (where it lies
    on the facets it bounds), between planes p1 and p2 (both -1 for a
-   section point's line, which is point pt of scene groove lg; both -1
-   for the others). */
-typedef struct gr__edge_t { double q[3], D[3], l0, l1; int p1, p2, lg, pt; } gr__edge_t;
-
-/* A scene groove's projected cross-section along one direction (§4.2-4.3)
-   is kept as [E_b, E_w, count, f (b_k E_w - w_k E_b) for each point k],
-   GR__PROJ_STRIDE doubles, count 0 when empty; per scene groove one for
-   the view (slot 0) and one per light (slot 1 + l), in the scratch and in
-   the caller's cache alike. */
-#define GR__PROJ_STRIDE (3 + GR_LINE_CACHE_SECTION)
-#define GR__PROJ_SLOTS (1 + GR_MAX_LIGHTS)
+   section point's line). */
+typedef struct gr__edge_t { double q[3], D[3], l0, l1; int p1, p2; } gr__edge_t;
 
 /* A segment of rays o + s a + t d, s in [-1, 1], t >= 0 (§5.6; §6.1 for
    bounces), with the throughput it carries; inside: the rays run in the
@@ -5239,7 +5215,6 @@ typedef struct gr__lscratch_t {
     gr__ivl_t *iv, *iv2;      /* intervals; iv2: after the shadow split */
     gr__edge_t *ed;           /* the scene's edges, found once per scene */
     double *acc;              /* per plane: ratio, then lit per light */
-    double *proj;             /* projected sections, GR__PROJ_SLOTS per groove */
     gr__sheet_t *stack;       /* gr_shade_indirect's pending segments */
 } gr__lscratch_t;
 
@@ -5261,7 +5236,6 @@ static size_t gr__line_scratch(void *base, struct gr__lscratch_t *ls)
     GR__LCARVE(iv2, gr__ivl_t, GR_LINE_MAX_BREAKS + 1)
     GR__LCARVE(ed, gr__edge_t, GR_LINE_MAX_EDGES)
     GR__LCARVE(acc, double, 2 * GR__LINE_MAX_PLANES * (1 + GR_MAX_LIGHTS))
-    GR__LCARVE(proj, double, GR_LINE_MAX_GROOVES * GR__PROJ_SLOTS * GR__PROJ_STRIDE)
 #ifndef GR_NO_INTERREFLECTION
     GR__LCARVE(stack, gr__sheet_t, GR_INDIRECT_STACK)
 #else
@@ -5279,7 +5253,6 @@ typedef struct gr__lscene_t {
     double top, bottom, scale; /* highest w, lowest w, w + h + d */
     double box[4];             /* UV box holding every ray of the scene's segments */
     unsigned flags;
-    gr_line_cache_t *cache;    /* the caller's, when its grooves are the scene's */
 } gr__lscene_t;
 
 
@@ -5477,7 +5450,6 @@ static int gr__lg_from(const gr_grid_t *grid, int id, const gr__cand_t *cd0, con
     g->nsec = rec->sec_count;
     g->groove = id;
     g->first_facet = rec->first_facet;
-    g->slot = -1;
     g->lo = rec->closed || rec->join[0] ? -HUGE_VAL : -(cd.param - rec->t0) / cd.dtds;
     g->hi = rec->closed || rec->join[1] ? HUGE_VAL : (rec->t1 - cd.param) / cd.dtds;
     if (rec->parent == id && gr__line_cacheable(rec)) { /* anchored at its first point: the same record from any footprint */
@@ -5613,7 +5585,6 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
     sc->scale = grid->w + grid->h + grid->d;
     sc->nlg = 0;
     sc->flags = 0;
-    sc->cache = NULL;
     for (e = -1; e <= 1; e += 2) {
         double o[3], tmax;
         for (k = 0; k < 3; k++) o[k] = sh->o[k] + e * sh->a[k];
@@ -5672,16 +5643,13 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
             cache->count = 0;
             cache->valid = gr__line_gather(grid, s, sc, big, bc, br, NULL, cache);
             cache->misses++;
-            for (k = 0; k < GR_LINE_MAX_GROOVES * GR__PROJ_SLOTS; k++) cache->proj_[k * GR__PROJ_STRIDE + 2] = 0;
         } else {
             cache->hits++;
         }
         if (cache->valid) {
-            sc->cache = cache;
             for (k = 0; k < cache->count; k++) {
                 gr__lg_t g;
                 memcpy(&g, cache->store_ + 16 * k, sizeof g);
-                g.slot = k;
                 gr__lg_keep(sc, &g, c, reach, tight ? &quad : NULL);
             }
         } else {
@@ -5695,7 +5663,6 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         for (k = i; k > 0 && sc->ls.lg[k - 1].groove > x.groove; k--) sc->ls.lg[k] = sc->ls.lg[k - 1];
         sc->ls.lg[k] = x;
     }
-    for (i = 0; i < sc->nlg * GR__PROJ_SLOTS; i++) sc->ls.proj[i * GR__PROJ_STRIDE + 2] = 0; /* none projected yet */
     /* planes: the ground, then every facet of every groove (§3) */
     memset(&sc->ls.pl[0], 0, sizeof sc->ls.pl[0]);
     sc->ls.pl[0].n[2] = 1;
@@ -5800,8 +5767,6 @@ static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *
         const gr__lg_t *lg = &sc->ls.lg[it->g];
         double c[2];
         if (it->k >= lg->nsec) { it->g++; it->k = 0; continue; }
-        e->lg = it->g;
-        e->pt = it->k;
         gr__sec_pt(lg, it->k++, c);
         e->q[0] = lg->p[0] + c[0] * lg->bn[0];
         e->q[1] = lg->p[1] + c[0] * lg->bn[1];
@@ -5826,7 +5791,6 @@ static int gr__edge_next(const gr__lscene_t *sc, gr__edge_it_t *it, gr__edge_t *
             for (m = 0; m < 3; m++) e->q[m] = (a->h * nj_d[m] + b->h * d_ni[m]) / dd;
             e->p1 = it->i;
             e->p2 = it->j - 1;
-            e->lg = e->pt = -1;
             return 1;
         }
     }
@@ -5910,94 +5874,6 @@ static void gr__edge_list(gr__lscene_t *sc)
     sc->ned = n;
 }
 
-/* Scene groove i's cross-section projected along dir (slot j: 0 the view,
-   1 + l light l), as GR__PROJ_STRIDE doubles [E_b, E_w, count, points]:
-   each section point's line, seen along dir, is the line of UV at
-   b' = b - w E_b / E_w across the path (§4.2's projection with the signed
-   tan θ' of §4.3), kept multiplied by E_w. Reused within the scene (every
-   chord of a footprint shares the view) and through the caller's cache
-   when (E_b, E_w) match bit for bit (§5.6); computed in this one place
-   either way, so a reused section is the one that would be computed.
-   NULL for a section longer than GR_LINE_CACHE_SECTION. */
-static const double *gr__lproj(gr__lscene_t *sc, int i, int j, const double *dir)
-{
-    const gr__lg_t *g = &sc->ls.lg[i];
-    double key[2], *e = sc->ls.proj + (size_t)(i * GR__PROJ_SLOTS + j) * GR__PROJ_STRIDE, *c = NULL;
-    int k;
-    if (g->nsec > GR_LINE_CACHE_SECTION) return NULL;
-    key[0] = g->bn[0] * dir[0] + g->bn[1] * dir[1];
-    key[1] = dir[2];
-    if (e[2] > 0 && memcmp(e, key, sizeof key) == 0) return e;
-    if (sc->cache && g->slot >= 0) {
-        c = sc->cache->proj_ + (size_t)(g->slot * GR__PROJ_SLOTS + j) * GR__PROJ_STRIDE;
-        if (c[2] > 0 && memcmp(c, key, sizeof key) == 0) {
-            memcpy(e, c, sizeof(double) * (size_t)(3 + g->nsec));
-            sc->cache->proj_hits++;
-            return e;
-        }
-    }
-    e[0] = key[0];
-    e[1] = key[1];
-    e[2] = g->nsec;
-    for (k = 0; k < g->nsec; k++) e[3 + k] = g->f * (g->sec[2 * k] * key[1] - g->sec[2 * k + 1] * key[0]);
-    if (c) {
-        memcpy(c, e, sizeof(double) * (size_t)(3 + g->nsec));
-        sc->cache->proj_misses++;
-    }
-    return e;
-}
-
-/* What a segment needs of one scene groove's projections: for its view
-   breakpoints, the projected section along d and the segment in groove
-   space (a ray o + s a + t d meets point k's line where
-   c0 + s c1 = f (b_k d_w - w_k d_b)); for its shadows, per light the
-   plane through a section point's line along L (normal T x L, offset
-   base - the light's projected point). */
-typedef struct gr__gseg_t {
-    const double *pv, *pl[GR_MAX_LIGHTS];
-    double c0, c1, bo, ba, to, ta, td, sin2;
-    double nD[GR_MAX_LIGHTS][3], nd2[GR_MAX_LIGHTS], a11[GR_MAX_LIGHTS], a12[GR_MAX_LIGHTS], base[GR_MAX_LIGHTS];
-} gr__gseg_t;
-
-static void gr__gseg(gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl, int view, int i,
-                     gr__gseg_t *gs)
-{
-    const gr__lg_t *g = &sc->ls.lg[i];
-    double op[3], t3[3], p3[3];
-    int l;
-    op[0] = sh->o[0] - g->p[0];
-    op[1] = sh->o[1] - g->p[1];
-    op[2] = sh->o[2];
-    t3[0] = g->t[0];
-    t3[1] = g->t[1];
-    t3[2] = 0;
-    gs->pv = view ? gr__lproj(sc, i, 0, sh->d) : NULL;
-    if (gs->pv) {
-        double db = gs->pv[0], dw = gs->pv[1];
-        gs->bo = g->bn[0] * op[0] + g->bn[1] * op[1];
-        gs->ba = g->bn[0] * sh->a[0] + g->bn[1] * sh->a[1];
-        gs->to = g->t[0] * op[0] + g->t[1] * op[1];
-        gs->ta = g->t[0] * sh->a[0] + g->t[1] * sh->a[1];
-        gs->td = g->t[0] * sh->d[0] + g->t[1] * sh->d[1];
-        gs->c0 = dw * gs->bo - db * op[2];
-        gs->c1 = dw * gs->ba - db * sh->a[2];
-        gs->sin2 = gr__edge_sin2(sh->a, sh->d, t3);
-    }
-    p3[0] = g->p[0];
-    p3[1] = g->p[1];
-    p3[2] = 0;
-    for (l = 0; l < nl; l++) {
-        const double *L = lights + 3 * l;
-        gs->pl[l] = !view && L[2] > 0 ? gr__lproj(sc, i, 1 + l, L) : NULL;
-        if (!gs->pl[l]) continue;
-        gr__cross3(t3, L, gs->nD[l]);
-        gs->nd2[l] = gr__dot3(gs->nD[l], gs->nD[l]);
-        gs->a11[l] = gr__dot3(gs->nD[l], sh->a);
-        gs->a12[l] = gr__dot3(gs->nD[l], sh->d);
-        gs->base[l] = gr__dot3(gs->nD[l], p3) - gr__dot3(gs->nD[l], sh->o);
-    }
-}
-
 /* Cut the segment where its first surface can change (seen = NULL: §5.6,
    the 1D version of §5.2-5.3), or where a shadow boundary can fall on a
    facet it sees (seen[m] != 0; §5.4: every edge's shadow along each
@@ -6013,9 +5889,7 @@ static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
        a, d and o, for the 2x2 system of a ray meeting two planes, per plane once) */
     int vis[GR_LINE_MAX_PLANES], nvis = 0;
     double pv[GR_LINE_MAX_PLANES][4], aadd = gr__dot3(sh->a, sh->a) * gr__dot3(sh->d, sh->d);
-    gr__gseg_t gs[GR_LINE_MAX_GROOVES];
     gr__cross3(sh->a, sh->d, nS); /* the normal of the segment's plane of rays */
-    for (m = 0; m < sc->nlg; m++) gr__gseg(sc, sh, lights, nl, !seen, m, &gs[m]);
     ns2 = gr__dot3(nS, nS);
     for (m = 0; seen && m < sc->npl; m++)
         if (seen[m]) {
@@ -6029,20 +5903,8 @@ static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
     memset(&it, 0, sizeof it);
     while ((ep = gr__edge_fetch(sc, &it)) != NULL) {
         const gr__edge_t e = *ep;
-        const gr__gseg_t *g = e.lg >= 0 ? &gs[e.lg] : NULL;
-        double s, t, x[3], r[3], c[3], nD[3], dd = gr__dot3(e.D, e.D), den;
-        if (!seen && g && g->pv) {
-            /* a section point's line: from its projected point (§4.2) */
-            const gr__lg_t *lg = &sc->ls.lg[e.lg];
-            if (fabs(g->c1) > 1e-14 * sqrt(ns2 * dd)) {
-                double lam;
-                s = (g->pv[3 + e.pt] - g->c0) / g->c1;
-                t = fabs(sh->d[2]) >= fabs(g->pv[0]) ? (e.q[2] - sh->o[2] - s * sh->a[2]) / sh->d[2]
-                                                      : (lg->f * lg->sec[2 * e.pt] - g->bo - s * g->ba) / g->pv[0];
-                lam = g->to + s * g->ta + t * g->td;
-                if (t >= 0 && lam >= e.l0 && lam <= e.l1) gr__brk_add(sc, &nb, s, g->sin2, -1);
-            }
-        } else if (!seen && fabs(den = gr__dot3(nS, e.D)) > 1e-14 * sqrt(ns2 * dd)) {
+        double s, t, x[3], r[3], c[3], nD[3], dd = gr__dot3(e.D, e.D), den = gr__dot3(nS, e.D);
+        if (!seen && fabs(den) > 1e-14 * sqrt(ns2 * dd)) {
             /* where the edge pierces the plane of rays: x = q + λ D = o + s a + t d */
             double lam;
             for (m = 0; m < 3; m++) r[m] = sh->o[m] - e.q[m];
@@ -6061,22 +5923,12 @@ static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
             const double *L = lights + 3 * l;
             double nd2, lpad = pad / sqrt(dd), a11, a12, r1;
             if (!(L[2] > 0)) continue;
-            if (g && g->pl[l]) { /* a section point's line: its groove's plane along L, at its projected point (§4.3) */
-                nD[0] = g->nD[l][0];
-                nD[1] = g->nD[l][1];
-                nD[2] = g->nD[l][2];
-                nd2 = g->nd2[l];
-                a11 = g->a11[l];
-                a12 = g->a12[l];
-                r1 = g->base[l] - g->pl[l][3 + e.pt];
-            } else {
-                gr__cross3(e.D, L, nD); /* the plane through the edge along L */
-                nd2 = gr__dot3(nD, nD);
-                a11 = gr__dot3(nD, sh->a);
-                a12 = gr__dot3(nD, sh->d);
-                r1 = gr__dot3(nD, e.q) - gr__dot3(nD, sh->o);
-            }
+            gr__cross3(e.D, L, nD); /* the plane through the edge along L */
+            nd2 = gr__dot3(nD, nD);
             if (!(nd2 > 1e-24 * dd)) continue;
+            a11 = gr__dot3(nD, sh->a);
+            a12 = gr__dot3(nD, sh->d);
+            r1 = gr__dot3(nD, e.q) - gr__dot3(nD, sh->o);
             for (v = 0; v < nvis; v++) {
                 double dir[3], lam, mu, det = a11 * pv[v][1] - a12 * pv[v][0];
                 int k;
