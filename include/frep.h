@@ -3476,12 +3476,21 @@ done:
 #define FR__BAND_BITS 900
 /* Iteration caps: safeguarded Newton halves the bracket at worst, and a band
    spans at most FR__BAND_BITS bits, bisected geometrically. */
-/* Coefficient exponents within +-FR__DIRECT_EXP go to the degree 2..4 fast
-   paths unscaled: roots then lie within 2^+-121 (Fujiwara), so every term
-   c_i x^i of the polish, and the rounding error that TwoProd recovers from
-   it, stays above 2^-600, far from underflow; discriminant terms (products
-   of six coefficients) stay within 2^+-360. */
+/* Coefficient exponents at most FR__DIRECT_EXP, with the constant and the
+   leading coefficient at least 2^-FR__DIRECT_EXP, go to the degree 2..4
+   fast paths unscaled: roots then lie within 2^+-122 (Fujiwara's bounds;
+   small middle coefficients only tighten them), so the terms that balance
+   at a root, and the rounding errors TwoProd recovers from them, stay far
+   from underflow; discriminant terms (products of six coefficients) stay
+   below 2^370, and the ones made of the ends alone (a^3 e^3 and its kin)
+   above 2^-370. Middle coefficients as small as 1e-162 (Orellana and De
+   Michele's remark family) then need no scaling. */
 #define FR__DIRECT_EXP 60
+/* Absolute slack of the fast paths' sign tests: products that underflow
+   lose up to 2^-1074 each, and a discriminant has fewer than 200
+   operations, so 1e-300 covers them; next to the ends' terms (above
+   2^-370) it changes nothing. */
+#define FR__UNDERFLOW_SLACK 1e-300
 #define FR__PLAIN_ITERS 120
 #define FR__POLISH_ITERS 80
 
@@ -3524,10 +3533,11 @@ static inline double fr__horner_deriv(const double *c, int n, double x, double *
    by fma and TwoSum keep each step's rounding error, and the errors are
    summed by a second Horner pass (Graillat, Langlois & Louvet 2005, Alg. 4).
    Each error-free step's product is used by a non-add operation, so compilers
-   cannot contract it into an fma under -ffp-contract=fast. */
-static double fr__horner_comp(const double *hi, const double *lo, int n, double x, double *abs_poly)
+   cannot contract it into an fma under -ffp-contract=fast. The plain
+   derivative comes along in *deriv (the polish needs both per step). */
+static double fr__horner_comp(const double *hi, const double *lo, int n, double x, double *abs_poly, double *deriv)
 {
-    double s = hi[n], err = lo ? lo[n] : 0.0, a = fabs(hi[n]), ax = fabs(x);
+    double s = hi[n], err = lo ? lo[n] : 0.0, a = fabs(hi[n]), ax = fabs(x), d = 0.0;
     int i;
     for (i = n - 1; i >= 0; i--) {
         double p = s * x;
@@ -3535,12 +3545,26 @@ static double fr__horner_comp(const double *hi, const double *lo, int n, double 
         double t = p + hi[i];
         double z = t - p;
         double te = (p - (t - z)) + (hi[i] - z);
+        d = d * x + s;
         err = err * x + (pe + te + (lo ? lo[i] : 0.0));
         s = t;
         a = a * ax + fabs(hi[i]);
     }
     *abs_poly = a;
+    *deriv = d;
     return s + err;
+}
+
+/* The compensated value (fr__horner_comp), its plain derivative, and its
+   sign as -1, 0, +1, 0 meaning "zero within what compensated evaluation
+   can resolve" (a root, possibly multiple, at x): FR__ZERO_K n^2 u^2
+   sum|c_i||x|^i. */
+static int fr__sign_comp(const double *hi, const double *lo, int n, double x, double *value, double *deriv)
+{
+    double a, v = fr__horner_comp(hi, lo, n, x, &a, deriv);
+    *value = v;
+    if (fabs(v) <= FR__ZERO_K * (double)(n * n) * FR__U * FR__U * a) return 0;
+    return v > 0 ? 1 : -1;
 }
 
 /* Sign of p(x) as -1, 0, +1, where 0 means "zero within what compensated
@@ -3550,7 +3574,7 @@ static double fr__horner_comp(const double *hi, const double *lo, int n, double 
    only runs near a root. */
 static int fr__sign_at(const double *hi, const double *lo, int n, double x, double *value)
 {
-    double a = fabs(hi[n]), v = hi[n], ax = fabs(x), tol;
+    double a = fabs(hi[n]), v = hi[n], ax = fabs(x), d;
     int i;
     for (i = n - 1; i >= 0; i--) {
         v = v * x + hi[i];
@@ -3560,11 +3584,7 @@ static int fr__sign_at(const double *hi, const double *lo, int n, double x, doub
         *value = v;
         return v > 0 ? 1 : -1;
     }
-    v = fr__horner_comp(hi, lo, n, x, &a);
-    tol = FR__ZERO_K * (double)(n * n) * FR__U * FR__U * a;
-    *value = v;
-    if (fabs(v) <= tol) return 0;
-    return v > 0 ? 1 : -1;
+    return fr__sign_comp(hi, lo, n, x, value, &d);
 }
 
 /* A bisection point of [a, b]: when the ends differ a lot in magnitude it
@@ -3633,10 +3653,9 @@ static double fr__root_in_piece(const double *hi, const double *lo, int n, doubl
     st[1] = 0.0;
     for (it = 0; it < FR__POLISH_ITERS; it++) {
         double v, xn;
-        int s = fr__sign_at(hi, lo, n, x, &v);
+        int s = fr__sign_comp(hi, lo, n, x, &v, &df);
         if (s == 0) break;
         if (s == sl) a = x; else b = x;
-        fr__horner_deriv(hi, n, x, &df);
         if (fabs(v / df) <= 2.0 * FR__U * fabs(x)) { x -= v / df; break; } /* an ulp */
         xn = fr__newton_or_split(x, v / df, a, b, tiny, st);
         if (fabs(xn - x) <= 2.0 * FR__U * fabs(x)) { x = xn; break; }
@@ -3745,8 +3764,26 @@ static int fr__estimate_roots(const double *c, int n, double *est)
         p = b - 0.375 * a * a;
         q = cc - 0.5 * a * b + 0.125 * a * a * a;
         r = d - 0.25 * a * cc + a * a * b * 0.0625 - 3.0 * a * a * a * a * 0.00390625;
-        fr__cubic_estimates(p, p * p * 0.25 - r, -q * q * 0.125, &m, 1);
-        if (!(m > 0)) return 0;
+        /* q y negligible next to p y^2 and r at the roots' scale
+           (|p|^(1/2) or |r|^(1/4)): the quartic is biquadratic, y^2 = z with
+           z^2 + p z + r = 0. Ferrari's resolvent would have the root m ~ q^2,
+           rounded or underflowed (the 1e-162 odd coefficients of Orellana
+           and De Michele's remark family), and nothing positive when q = 0. */
+        m = 0.0;
+        if (!(fabs(q) <= 1e-8 * (fabs(p) * sqrt(fabs(p)) + sqrt(sqrt(fabs(r))) * sqrt(fabs(r)))))
+            fr__cubic_estimates(p, p * p * 0.25 - r, -q * q * 0.125, &m, 1);
+        if (!(m > 0)) {
+            double disc = p * p - 4.0 * r, z[2];
+            if (!(disc >= 0)) return 0;
+            z[0] = -0.5 * (p + (p < 0 ? -sqrt(disc) : sqrt(disc)));
+            z[1] = z[0] != 0 ? r / z[0] : 0.0;
+            for (k = 0; k < 2; k++)
+                if (z[k] > 0) {
+                    est[ny++] = sqrt(z[k]) - 0.25 * a;
+                    est[ny++] = -sqrt(z[k]) - 0.25 * a;
+                }
+            return ny;
+        }
         s2 = sqrt(2.0 * m);
         for (k = -1; k <= 1; k += 2) {
             /* y^2 + k s2 y + h, without cancellation (h q0 = product of roots) */
@@ -3760,9 +3797,46 @@ static int fr__estimate_roots(const double *c, int n, double *est)
     }
 }
 
+/* Where p, with p'(e) = 0 and value v at the critical point e, meets zero on
+   the side `side` (+1 right, -1 left) if it is the parabola
+   v + p''(e) (x - e)^2 / 2 there: e + side sqrt(-v / (p''(e)/2)). NaN when
+   the curvature does not bend p towards zero. */
+static double fr__parabola_root(const double *hi, int n, double e, double v, int side)
+{
+    double h2 = 0.0, d = 0.0, p = hi[n], w;
+    int i;
+    for (i = n - 1; i >= 0; i--) { /* p''/2, p', p by Horner */
+        h2 = h2 * e + d;
+        d = d * e + p;
+        p = p * e + hi[i];
+    }
+    w = -v / h2;
+    return w > 0 ? e + (side > 0 ? sqrt(w) : -sqrt(w)) : (double)NAN;
+}
+
+/* |p(x)| / sum |c_i| |x|^i by plain Horner: how close x is to a root, in
+   units of what rounding alone can resolve (2n u, Higham 2002 eq. 5.3). */
+static double fr__abs_value_ratio(const double *hi, int n, double x)
+{
+    double v = hi[n], a = fabs(hi[n]), ax = fabs(x);
+    int i;
+    for (i = n - 1; i >= 0; i--) {
+        v = v * x + hi[i];
+        a = a * ax + fabs(hi[i]);
+    }
+    return a > 0 ? fabs(v) / a : 0.0;
+}
+
 /* Roots of p (degree n, hi + lo) in [ya, yb], given the ascending roots bp of
    p' there: between consecutive breakpoints p is monotone, so a sign change
-   means exactly one root; a breakpoint where p is zero is a multiple root. */
+   means exactly one root; a breakpoint where p is zero is a multiple root.
+   Newton starts in each piece from the best closed-form estimate, or, when
+   none is at rounding level, from the best of it and the parabolas at the
+   piece's critical ends (smallest |p| relative to its rounding): with
+   roots spread over many magnitudes the closed forms lose the small ones to
+   cancellation, and a critical end is where plain Newton, with p' = 0,
+   would leave the piece; the parabola also splits a near-double root's pair
+   at its critical point to about the relative size of the cubic term. */
 static int fr__roots_between(const double *hi, const double *lo, int n, double ya, double yb,
                              const double *bp, int nbp, double tiny, double *out)
 {
@@ -3774,9 +3848,21 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
         if (!(xr > xl)) continue;
         sr = fr__sign_at(hi, lo, n, xr, &vr);
         if (sl * sr < 0) {
-            double start = xl; /* none: regula falsi */
+            double start = xl, best = HUGE_VAL, cand[2]; /* none: regula falsi */
             for (k = 0; k < nest; k++)
-                if (est[k] > xl && est[k] < xr) start = est[k];
+                if (est[k] > xl && est[k] < xr) {
+                    double v = fr__abs_value_ratio(hi, n, est[k]);
+                    if (v < best) { best = v; start = est[k]; }
+                }
+            if (n >= 2 && !(best <= 64.0 * n * FR__U)) { /* no closed form at rounding level: the parabolas */
+                cand[0] = j > 0 ? fr__parabola_root(hi, n, xl, vl, 1) : (double)NAN;    /* xl = bp[j - 1] */
+                cand[1] = j < nbp ? fr__parabola_root(hi, n, xr, vr, -1) : (double)NAN; /* xr = bp[j] */
+                for (k = 0; k < 2; k++)
+                    if (cand[k] > xl && cand[k] < xr) {
+                        double v = fr__abs_value_ratio(hi, n, cand[k]);
+                        if (v < best) { best = v; start = cand[k]; }
+                    }
+            }
             out[cnt++] = fr__root_in_piece(hi, lo, n, xl, xr, vl, vr, sl, start, tiny);
         }
         if (sr == 0 && cnt < n) out[cnt++] = xr;
@@ -3870,7 +3956,7 @@ static int fr__quadratic_fast(const double *q, double *out)
 {
     double a = q[2], b = q[1], c = q[0], p = b * b, dp = fma(b, b, -p), f = 4.0 * a * c, df = fma(4.0 * a, c, -f);
     double D = (p - f) + (dp - df), h;
-    if (!(fabs(D) > 8.0 * FR__U * FR__U * (p + fabs(f)))) return -1;
+    if (!(fabs(D) > 8.0 * FR__U * FR__U * (p + fabs(f)) + FR__UNDERFLOW_SLACK)) return -1;
     if (D < 0) return 0;
     h = -0.5 * (b + (b < 0 ? -sqrt(D) : sqrt(D)));
     if (h == 0) return -1;
@@ -3903,11 +3989,50 @@ static int fr__cubic_fast(const double *q, double *out)
     t[3] = -4.0 * a * c2 * c;    t[4] = -27.0 * a * a * d * d;
     D = ((t[0] + t[1]) + (t[2] + t[3])) + t[4];
     S = ((fabs(t[0]) + fabs(t[1])) + (fabs(t[2]) + fabs(t[3]))) + fabs(t[4]);
-    if (!(fabs(D) > 32.0 * FR__U * S)) return -1;
+    if (!(fabs(D) > 32.0 * FR__U * S + FR__UNDERFLOW_SLACK)) return -1;
     want = D > 0 ? 3 : 1;
     n = fr__estimate_roots(q, 3, out);
     if (n != want) return -1;
     return fr__fast_finish(q, 3, out, n);
+}
+
+/* Four real roots certified one by one, where the discriminant's sign is
+   uncertain (clusters, roots of spread magnitudes): Ferrari's estimates
+   polished by fr__fast_finish (converged, sorted, 64 ulps apart), then a
+   certain sign change of the compensated value across x -+ 2u|x| around
+   each (fr__sign_comp, outside its rounding band). Four disjoint brackets
+   with a root each hold all of a quartic's roots, each returned root within
+   2u of its own. -1 otherwise, at once when two estimates are closer than
+   1e-5 relative: near-multiple roots, which rounding splits by about u^(1/2)
+   or u^(1/3), do not certify, and polishing them costs more than the
+   derivative sequence. */
+static int fr__quartic_brackets(const double *q, double *out)
+{
+    static const double zero[5] = {0, 0, 0, 0, 0};
+    double v, der[1], prev = -HUGE_VAL;
+    int i, j, sa, sb;
+    if (fr__estimate_roots(q, 4, out) != 4) return -1;
+    for (i = 1; i < 4; i++) /* sorted, for the gaps */
+        for (j = i; j > 0 && out[j] < out[j - 1]; j--) { v = out[j]; out[j] = out[j - 1]; out[j - 1] = v; }
+    for (i = 1; i < 4; i++)
+        if (!(out[i] - out[i - 1] > 1e-5 * (fabs(out[i]) > fabs(out[i - 1]) ? fabs(out[i]) : fabs(out[i - 1]))))
+            return -1;
+    if (fr__fast_finish(q, 4, out, 4) != 4) return -1;
+    for (j = 0; j < 4; j++) {
+        double dlt;
+        /* one more Newton step on the compensated value: where the roots
+           crowd, fr__polish_all's plain p' is off in its sixth digit and
+           its early stop leaves a root a few ulps out (cluster 2, 2.001,
+           2.002, 2.003: 7 ulps) */
+        if (fr__sign_comp(q, zero, 4, out[j], &v, der) != 0 && der[0] != 0) out[j] -= v / der[0];
+        dlt = 2.0 * FR__U * fabs(out[j]);
+        if (!(out[j] - dlt > prev)) return -1; /* brackets disjoint, in order */
+        prev = out[j] + dlt;
+        sa = fr__sign_comp(q, zero, 4, out[j] - dlt, &v, der);
+        sb = fr__sign_comp(q, zero, 4, prev, &v, der);
+        if (sa == 0 || sb == 0 || sa == sb) return -1;
+    }
+    return 4;
 }
 
 /* A fast path for quartics that is taken only when it can certify itself:
@@ -3937,13 +4062,14 @@ static int fr__quartic_fast(const double *q, double *out)
         D = fr__sum8(t, &S) + fr__sum8(t + 8, &S2);
         S += S2;
     }
-    if (!(fabs(D) > 64.0 * FR__U * S)) return -1; /* each term has < 8 roundings, the sum 4 */
+    if (!(fabs(D) > 64.0 * FR__U * S + FR__UNDERFLOW_SLACK)) return fr__quartic_brackets(q, out); /* each term has < 8 roundings, the sum 4 */
     if (D < 0) want = 2;
     else {
         P = 8 * a * c - 3 * b2; SP = 8 * fabs(a * c) + 3 * b2;
         L = 64 * a2 * a * e - 16 * a2 * c2 + 16 * a * b2 * c - 16 * a2 * b * d - 3 * b2 * b2;
         SL = 64 * fabs(a2 * a * e) + 16 * a2 * c2 + 16 * fabs(a * b2 * c) + 16 * fabs(a2 * b * d) + 3 * b2 * b2;
-        if (!(fabs(P) > 16.0 * FR__U * SP) || !(fabs(L) > 32.0 * FR__U * SL)) return -1;
+        if (!(fabs(P) > 16.0 * FR__U * SP + FR__UNDERFLOW_SLACK) || !(fabs(L) > 32.0 * FR__U * SL + FR__UNDERFLOW_SLACK))
+            return fr__quartic_brackets(q, out);
         want = P < 0 && L < 0 ? 4 : 0;
     }
     if (want == 0) return 0;
@@ -3968,9 +4094,10 @@ static int fr__solve_fast(const double *q, int n, double *out)
    level D_k = p^(k)/k! has coefficients q[i+k] C(i+k, k); the products are
    split exactly into hi + lo by fma, so every level is evaluated as
    accurately as p itself. */
-static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo, double xa, double xb, double *out)
+static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo, double xa, double xb, int try_fast,
+                          double *out)
 {
-    double q[FR_POLY_MAX_DEGREE + 1], hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
+    double q[FR_POLY_MAX_DEGREE + 1] = {0}, hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
     double bp[FR_POLY_MAX_DEGREE + 1], cur[FR_POLY_MAX_DEGREE + 1];
     double ya = fr__ldexp(xa, -K), yb = fr__ldexp(xb, -K);
     int i, k, nbp = 0, ncur = 0, M = INT_MIN;
@@ -3985,7 +4112,7 @@ static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo,
         if (y >= ya && y <= yb) { out[0] = fr__ldexp(y, K); return 1; }
         return 0;
     }
-    if ((ncur = fr__solve_fast(q, n, cur)) >= 0) {
+    if (try_fast && (ncur = fr__solve_fast(q, n, cur)) >= 0) {
         for (i = k = 0; i < ncur; i++)
             if (cur[i] >= ya && cur[i] <= yb) out[k++] = fr__ldexp(cur[i], K);
         return k;
@@ -4045,9 +4172,9 @@ static void fr__root_exponent_bounds(const int *ex, int n, int *lo, int *hi)
 
 FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, double *abs_bound)
 {
-    double a, v;
+    double a, v, d;
     if (!c || degree < 0) { if (abs_bound) *abs_bound = 0; return 0.0; }
-    v = fr__horner_comp(c, NULL, degree, t, &a);
+    v = fr__horner_comp(c, NULL, degree, t, &a, &d);
     if (abs_bound) *abs_bound = a;
     return v;
 }
@@ -4056,7 +4183,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
 {
     double buf[FR_POLY_MAX_DEGREE + 1];
     const double *d;
-    int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = 0, direct, ex[FR_POLY_MAX_DEGREE + 1] = {0};
+    int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = INT_MIN, direct, ex[FR_POLY_MAX_DEGREE + 1] = {0};
     if (!c || !r || degree < 0 || degree > FR_POLY_MAX_DEGREE || !(t0 <= t1)) return -1;
     for (i = 0; i <= degree; i++)
         if (!(c[i] - c[i] == 0)) return -1; /* NaN or infinite */
@@ -4069,13 +4196,17 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
     m = n - z;
     for (i = 0; i <= m; i++) {
         ex[i] = d[i] != 0 ? fr__ilogb(d[i]) : INT_MIN; /* once, for all below */
-        if (ex[i] != INT_MIN && (ex[i] > emax || -ex[i] > emax)) emax = ex[i] < 0 ? -ex[i] : ex[i];
+        if (ex[i] > emax) emax = ex[i];
     }
-    /* Coefficients within 2^+-FR__DIRECT_EXP: the fast paths run on them as
-       they are. The band's power-of-two scaling is exact, so it would give
-       the same roots, and the bounds and scaling below cost a quarter of a
-       quartic solve. */
-    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, m, buf) : -1;
+    if (-ex[0] > emax) emax = -ex[0]; /* the ends bound the roots away from 0 and infinity */
+    if (-ex[m] > emax) emax = -ex[m];
+    /* Coefficients below 2^FR__DIRECT_EXP, the ends above 2^-FR__DIRECT_EXP:
+       the fast paths run on them as they are. The band's power-of-two
+       scaling is exact, so it would give the same roots, and the bounds and
+       scaling below cost a quarter of a quartic solve. */
+    /* -2: not tried; -1: tried and not certified, which the band's exact
+       scaling would not change, so the band skips the fast path */
+    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, m, buf) : -2;
     if (direct >= 0) {
         cnt = direct; /* certified; filtered below */
     } else if (z == 0 && m == 1 && emax <= FR__DIRECT_EXP) {
@@ -4085,13 +4216,29 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
         buf[0] = -d[0] / d[1];
         cnt = 1;
     } else {
+        /* Descartes' rule of signs: no sign change in d (in d(-x)) means no
+           positive (negative) root, so that side is not searched (the empty
+           bands of roots spread beyond one band, the negative pieces of
+           every derivative level when all roots are positive) */
+        int i0 = -1, pos = 0, neg = 0;
+        for (i = 0; i <= m; i++)
+            if (d[i] != 0) {
+                if (i0 >= 0) {
+                    int flip = (d[i] > 0) != (d[i0] > 0);
+                    pos += flip;
+                    neg += ((i - i0) & 1) ? !flip : flip;
+                }
+                i0 = i;
+            }
+        if (!pos && t1 > 0) t1 = 0;
+        if (!neg && t0 < 0) t0 = 0;
         fr__root_exponent_bounds(ex, m, &Elo, &Ehi); /* every root has 2^Elo < |x| < 2^Ehi */
         W = FR__BAND_BITS / (m > 0 ? m : 1);
-        if (m == 0) {
-            /* only the zero root */
+        if (m == 0 || (!pos && !neg)) {
+            /* only the zero root, if any */
         } else if (Ehi - Elo <= W) {
             double B = fr__ldexp(1.0, Ehi);
-            cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, buf);
+            cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, direct == -2, buf);
         } else {
             /* Roots spread over more than W bits: bands of at most W bits each,
                negative side from the largest magnitude down, then positive. */
@@ -4105,7 +4252,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
                     if (xb > t1) xb = t1;
                     if (xa <= xb && cnt < m) {
                         double band[FR_POLY_MAX_DEGREE + 1];
-                        int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, band);
+                        int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, direct == -2, band);
                         for (k = 0; k < nb && cnt < m; k++)
                             if (cnt == 0 || band[k] > buf[cnt - 1]) buf[cnt++] = band[k];
                     }

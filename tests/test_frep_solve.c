@@ -318,6 +318,30 @@ static void odm_remark_family_random_draws(void)
     }
 }
 
+/* Middle coefficients far below the others (down to subnormal) while the
+   ends stay moderate: the fast paths take them unscaled (the roots stay
+   within 2^+-122; the products that underflow lose less than the sign
+   tests' absolute slack), and the biquadratic estimates seed quartics whose
+   odd part underflows in Ferrari's resolvent. Against the oracle. */
+static void tiny_middle_coefficients(void)
+{
+    static const double cases[][5] = {
+        {4, 1e-310, -5, -1e-315, 1},        /* ~(x^2 - 1)(x^2 - 4), subnormal odd part */
+        {-30, 1e-200, 7, 1e-250, 1},        /* two real roots */
+        {1, -1e-162, -3, 1e-162, 1},        /* x^4 - 3x^2 + 1 perturbed */
+        {2, 1e-300, 3, 0, 1},               /* no real root */
+        {-1, 1e-200, 1, 0, 0},              /* quadratic x^2 + 1e-200 x - 1 */
+        {1e-20, -1, 1e-280, 1, 0},          /* cubic x^3 + 1e-280 x^2 - x + 1e-20 */
+    };
+    int k;
+    for (k = 0; k < (int)(sizeof cases / sizeof cases[0]); k++) {
+        char what[48];
+        int deg = cases[k][4] != 0 ? 4 : cases[k][3] != 0 ? 3 : 2;
+        snprintf(what, sizeof what, "tiny middle coefficients, case %d", k);
+        check_roots(what, cases[k], deg, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    }
+}
+
 static void zero_roots_split_off(void)
 {
     static const double c[6] = {0, 0, -2, 1, 0, 0}; /* t^2 (t - 2) */
@@ -428,6 +452,7 @@ int main(int argc, char **argv)
         T_CASE(odm_2020_cases_1_to_24),
         T_CASE(odm_remark_family_biquadratic),
         T_CASE(odm_remark_family_random_draws),
+        T_CASE(tiny_middle_coefficients),
         T_CASE(zero_roots_split_off),
         T_CASE(invalid_input_returns_minus_one),
         T_CASE(random_quartics_against_oracle),

@@ -22,6 +22,7 @@
 #include "ex_math.h"
 #include "ex_render.h"
 #include "ex_timer.h"
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -163,6 +164,10 @@ static int load_scene(scene_t *sc, const char *name, const char *mode, int prepa
 
 /* ---------------------------------------------------------------- tracing */
 
+/* ex_render starts its threads anew for every frame, so a thread's scratch
+   is handed to a key whose destructor frees it when the thread ends (a
+   bare __thread pointer leaked one buffer per thread per frame) */
+static pthread_key_t scratch_key;
 static __thread void *tls_scratch;
 static __thread size_t tls_size;
 /* rays traced for the current pixel by this thread (pixel() stores them
@@ -177,6 +182,7 @@ static void *scratch_for(const scene_t *sc)
         free(tls_scratch);
         tls_scratch = malloc(need);
         tls_size = tls_scratch ? need : 0;
+        pthread_setspecific(scratch_key, tls_scratch);
     }
     return tls_scratch;
 }
@@ -375,6 +381,7 @@ int main(int argc, char **argv)
     spec.summary = "a Whitted ray tracer for FRep models (fr_trace), printing fps and rays/s";
     spec.scenes = scenes; spec.modes = modes; spec.extra = extra; spec.nextra = 3;
     ex_args_parse(argc, argv, &spec, &a);
+    if (pthread_key_create(&scratch_key, free)) { fprintf(stderr, "frep_render: no thread key\n"); return 1; }
     if (frames < 1) frames = 1;
     if (a.demo_dir) {
         int k;
