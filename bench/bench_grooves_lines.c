@@ -219,30 +219,45 @@ int main(int argc, char **argv)
            " column is the mean total variation against the polygon path's answer, exact for straight grooves)\n",
            NREF, NREF);
     { /* §5.6's cache on a scanline of neighbouring footprints (pixel steps
-         of 0.001 across the floor at v = 0.4 + a little, E fixed) */
-        gr_line_cache_t cache;
-        double tt[2];
-        int pass;
-        memset(&cache, 0, sizeof cache);
-        for (pass = 0; pass < 2; pass++) {
-            double t0 = cpu();
-            int rep;
-            for (rep = 0; rep < 3; rep++)
-                for (i = 0; i < 600; i++) {
-                    gr_facet_list_t l;
-                    gr_query_t q = qs[0];
-                    q.footprint.center[0] = 0.2 + 0.001 * i;
-                    q.footprint.center[1] = 0.395 + 0.00002 * i;
-                    q.footprint.axis1[0] = 0.003; q.footprint.axis1[1] = 0;
-                    q.footprint.axis2[0] = 0; q.footprint.axis2[1] = 0.005;
-                    q.line_samples = 2;
-                    gr_query_lines_cached(grid, &q, pass ? &cache : NULL, scratch, need, &l, NULL);
-                }
-            tt[pass] = (cpu() - t0) / 1800 * 1e6;
+         of 0.001 across the floor at v = 0.4 + a little, one light): seen
+         by an orthographic camera (E fixed: qs[0]'s), then by a
+         perspective one (E toward a camera at (0.5, 0.1, 1), turning per
+         pixel) */
+        int persp;
+        for (persp = 0; persp < 2; persp++) {
+            gr_line_cache_t cache;
+            double tt[2];
+            int pass;
+            memset(&cache, 0, sizeof cache);
+            for (pass = 0; pass < 2; pass++) {
+                double t0 = cpu();
+                int rep;
+                for (rep = 0; rep < 3; rep++)
+                    for (i = 0; i < 600; i++) {
+                        gr_facet_list_t l;
+                        gr_query_t q = qs[0];
+                        q.footprint.center[0] = 0.2 + 0.001 * i;
+                        q.footprint.center[1] = 0.395 + 0.00002 * i;
+                        q.footprint.axis1[0] = 0.003; q.footprint.axis1[1] = 0;
+                        q.footprint.axis2[0] = 0; q.footprint.axis2[1] = 0.005;
+                        if (persp) {
+                            double e[3], n;
+                            int k;
+                            e[0] = 0.5 - q.footprint.center[0]; e[1] = 0.1 - q.footprint.center[1]; e[2] = 1;
+                            n = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+                            for (k = 0; k < 3; k++) q.footprint.view[k] = e[k] / n;
+                        }
+                        q.line_samples = 2;
+                        gr_query_lines_cached(grid, &q, pass ? &cache : NULL, scratch, need, &l, NULL);
+                    }
+                tt[pass] = (cpu() - t0) / 1800 * 1e6;
+            }
+            printf("%-20s %14.1f   (%s view, directional light)\n%-20s %14.1f   (%lld served, %lld refills)\n",
+                   "2 lines, scanline", tt[0], persp ? "perspective" : "orthographic", "2 lines, cached", tt[1],
+                   cache.hits, cache.misses);
+            fprintf(csv, "2 line samples scanline%s,%.2f,\n2 line samples scanline%s cached,%.2f,\n",
+                    persp ? " perspective" : "", tt[0], persp ? " perspective" : "", tt[1]);
         }
-        printf("%-20s %14.1f\n%-20s %14.1f   (%lld served, %lld refills)\n", "2 lines, scanline", tt[0],
-               "2 lines, cached", tt[1], cache.hits, cache.misses);
-        fprintf(csv, "2 line samples scanline,%.2f,\n2 line samples scanline cached,%.2f,\n", tt[0], tt[1]);
     }
     /* §6: cost of the recursion at depths 0..3, and what the truncation
        leaves out: the mean |rgb_k - rgb_8| against depth 8 (GR_MAX_DEPTH);

@@ -580,6 +580,54 @@ static int lists_identical(const gr_facet_list_t *a, const gr_facet_list_t *b)
     return 1;
 }
 
+/* §5.6's cache along scanlines seen from an orthographic camera (one view
+   for every footprint) and a perspective one (the view turns per pixel),
+   with a directional light, or for the perspective case a point light
+   (its direction turns too), 2 and 8 samples: answers bit-identical to the
+   uncached ones whatever the directions do (the cache keeps grooves, not
+   directions), and the grooves served from it. */
+static void t_cache_views(void)
+{
+    static const double sun[3] = {0.5, 0.3, 0.81}, cam[3] = {0.3, 0.1, 0.9}, lamp[3] = {0.8, 0.9, 0.4};
+    int c, v, k;
+    for (c = 0; c < 2; c++)
+        for (v = 0; v < 3; v++) { /* orthographic + sun, perspective + sun, perspective + lamp */
+            scene_t s;
+            gr_line_cache_t cache;
+            size_t need;
+            void *scratch;
+            int same = 0;
+            if (!T_CHECK(crossing_scene(&s, c == 0 ? 0 : 2, VSEC, 3))) return;
+            memset(&cache, 0, sizeof cache);
+            need = gr_query_scratch_bytes(s.grid);
+            scratch = malloc(need);
+            for (k = 0; k < 60; k++) {
+                double u = 0.47 + 0.001 * k, w = 0.5 + 0.0003 * k, l[3];
+                gr_query_t q = v ? gt_query(u, w, 0.004, cam[0] - u, cam[1] - w, cam[2]) : gt_query(u, w, 0.004, 0.3, -0.2, 0.93);
+                gr_facet_list_t a, b;
+                if (v == 2) {
+                    double n = sqrt((lamp[0] - u) * (lamp[0] - u) + (lamp[1] - w) * (lamp[1] - w) + lamp[2] * lamp[2]);
+                    l[0] = (lamp[0] - u) / n; l[1] = (lamp[1] - w) / n; l[2] = lamp[2] / n;
+                } else {
+                    memcpy(l, sun, sizeof l);
+                }
+                q.lights = l;
+                q.light_count = 1;
+                q.line_samples = k & 1 ? 8 : 2;
+                T_INT_EQ(gr_query_lines(s.grid, &q, scratch, need, &a, NULL), GR_OK);
+                T_INT_EQ(gr_query_lines_cached(s.grid, &q, &cache, scratch, need, &b, NULL), GR_OK);
+                same += lists_identical(&a, &b);
+            }
+            printf("  cache, %s crossing, %s: %lld of 60 served, %lld refills, %d of 60 identical\n", c ? "T" : "X",
+                   v == 0 ? "orthographic, sun" : v == 1 ? "perspective, sun" : "perspective, lamp", cache.hits,
+                   cache.misses, same);
+            T_INT_EQ(same, 60);
+            T_GT(cache.hits, 50);
+            free(scratch);
+            gr_grid_free(s.grid);
+        }
+}
+
 static void t_cache(void)
 {
     static const double lights[3] = {0.5, 0.3, 0.81};
@@ -632,6 +680,7 @@ static void t_cache(void)
         free(scratch);
         gr_grid_free(s.grid);
     }
+    t_cache_views();
 }
 
 /* gr_query() with line_samples > 0 sends crossings and ends to
