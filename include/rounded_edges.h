@@ -2729,6 +2729,17 @@ static void re__centre(const re__object_t *o, unsigned s, double x[3])
                &o->planes[re__corner_plane(o, K, sp->info >> 16 & 255u)], o->radii[K->rid], o->origin, x);
 }
 
+/* Global sphere ids of cylinder c's axis ends (edge or extra). */
+static void re__cyl_spheres(const re__object_t *o, unsigned c, unsigned s[2])
+{
+    const re__xcyl_t *x;
+    unsigned sf;
+    if (c < o->n_edge_cyls) { s[0] = o->cyls[c].s[0], s[1] = o->cyls[c].s[1]; return; }
+    x = &o->xcyls[c - o->n_edge_cyls];
+    sf = o->corners[x->corner].sfirst;
+    s[0] = sf + x->s[0], s[1] = sf + x->s[1];
+}
+
 /* Cylinder c (edge or extra) with global sphere and plane ids. */
 static re__cyl_t re__cyl(const re__object_t *o, unsigned c)
 {
@@ -2847,15 +2858,9 @@ static void re__try_cyl(const re__object_t *o, unsigned c, double r, const doubl
 {
     double h = 0, keep[3], e;
     const double *a, *z;
-    unsigned s0, s1;
-    if (c < o->n_edge_cyls) {
-        s0 = o->cyls[c].s[0], s1 = o->cyls[c].s[1];
-    } else { /* an extra cylinder: its spheres only (re__cyl would also find its planes) */
-        const re__xcyl_t *x = &o->xcyls[c - o->n_edge_cyls];
-        unsigned sf = o->corners[x->corner].sfirst;
-        s0 = sf + x->s[0], s1 = sf + x->s[1];
-    }
-    re__cpair(o, b, s0, s1, &a, &z, keep);
+    unsigned sp[2];
+    re__cyl_spheres(o, c, sp);
+    re__cpair(o, b, sp[0], sp[1], &a, &z, keep);
     e = re__cyl_entry(I, d, a, z, r, b->smin, &h);
     if (e < b->s) b->s = e, b->kind = RE_FEATURE_CYLINDER, b->index = c, b->h = h;
 }
@@ -2920,10 +2925,11 @@ static void re__feature_normal(const re__object_t *o, re__best_t *b, const doubl
     if (b->kind == RE_FEATURE_SPHERE) {
         re__sub(P, re__cptr(o, b, b->index), nrm);
     } else {
-        re__cyl_t cy = re__cyl(o, b->index);
+        unsigned sp[2];
         double keep[3], u[3];
         const double *a, *z;
-        re__cpair(o, b, cy.s[0], cy.s[1], &a, &z, keep);
+        re__cyl_spheres(o, b->index, sp);
+        re__cpair(o, b, sp[0], sp[1], &a, &z, keep);
         re__sub(z, a, u);
         re__madd(a, b->h, u, c);
         re__sub(P, c, nrm);
@@ -2943,8 +2949,18 @@ static void re__unchanged(re_hit_t *out, unsigned object, unsigned triangle, dou
     out->feature_index = triangle;
 }
 
-RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
-                              unsigned triangle, double t_host, re_hit_t *out)
+/* Query step 0: every barycentric coordinate beyond its band (re__bands):
+   the hit is on the flat part of its face. */
+static int re__band_flat(const re__object_t *o, unsigned triangle, double u, double v)
+{
+    const unsigned char *b = o->bands + 4 * (size_t)triangle;
+    double l0 = (1 - u - v) * RE__BAND_STEPS, l1 = u * RE__BAND_STEPS, l2 = v * RE__BAND_STEPS,
+           cap = RE__BAND_STEPS - (double)b[3];
+    return l0 > (double)b[0] && l1 > (double)b[1] && l2 > (double)b[2] && l0 < cap && l1 < cap && l2 < cap;
+}
+
+static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                               unsigned triangle, double t_host, const double *uv, re_hit_t *out)
 {
     const re__object_t *o;
     re__set_t S;
@@ -2964,6 +2980,7 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const
     S.n = 0;
     S.bloom = 0;
     out->normal[0] = o->planes[f].n[0], out->normal[1] = o->planes[f].n[1], out->normal[2] = o->planes[f].n[2];
+    if (uv && re__band_flat(o, triangle, uv[0], uv[1])) return RE_UNCHANGED;
     /* detection: the kd-tree leaf holding I, then the corners whose rounded
        zone can reach I (paper §3.1 detection cylinders, widened to cover the
        exact corners) */
@@ -3109,30 +3126,18 @@ answer:
     return out->kind;
 }
 
-/* Query step 0: every barycentric coordinate beyond its band (re__bands):
-   the hit is on the flat part of its face. */
-static int re__band_flat(const re__object_t *o, unsigned triangle, double u, double v)
+RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                              unsigned triangle, double t_host, re_hit_t *out)
 {
-    const unsigned char *b = o->bands + 4 * (size_t)triangle;
-    double l0 = (1 - u - v) * RE__BAND_STEPS, l1 = u * RE__BAND_STEPS, l2 = v * RE__BAND_STEPS,
-           cap = RE__BAND_STEPS - (double)b[3];
-    return l0 > (double)b[0] && l1 > (double)b[1] && l2 > (double)b[2] && l0 < cap && l1 < cap && l2 < cap;
+    return re__query(scene, o3, dir, object, triangle, t_host, NULL, out);
 }
 
 RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
                                  unsigned triangle, double t_host, double u, double v, re_hit_t *out)
 {
-    const re__object_t *o;
-    unsigned f;
-    if (!out || !scene || !o3 || !dir || object >= scene->n_objects) return re_query(scene, o3, dir, object, triangle, t_host, out);
-    o = &scene->objects[object];
-    if (triangle >= o->n_tris || !o->n_nodes || (f = re__pk_get(&o->tri_plane, triangle)) == RE__NONE)
-        return re_query(scene, o3, dir, object, triangle, t_host, out);
-    if (!re__band_flat(o, triangle, u, v)) return re_query(scene, o3, dir, object, triangle, t_host, out);
-    re__unchanged(out, object, triangle, t_host);
-    re__madd(o3, t_host, dir, out->point);
-    out->normal[0] = o->planes[f].n[0], out->normal[1] = o->planes[f].n[1], out->normal[2] = o->planes[f].n[2];
-    return RE_UNCHANGED;
+    double uv[2];
+    uv[0] = u, uv[1] = v;
+    return re__query(scene, o3, dir, object, triangle, t_host, uv, out);
 }
 
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
@@ -3155,9 +3160,10 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
         if (hit->feature == RE_FEATURE_SPHERE && hit->feature_index < o->n_spheres) {
             re__set_add(&S, o->sph[hit->feature_index].corner);
         } else if (hit->feature == RE_FEATURE_CYLINDER && hit->feature_index < o->n_cyls) {
-            re__cyl_t cy = re__cyl(o, hit->feature_index);
-            re__set_add(&S, o->sph[cy.s[0]].corner);
-            re__set_add(&S, o->sph[cy.s[1]].corner);
+            unsigned sp[2];
+            re__cyl_spheres(o, hit->feature_index, sp);
+            re__set_add(&S, o->sph[sp[0]].corner);
+            re__set_add(&S, o->sph[sp[1]].corner);
         }
         s = re__exit(o, &S, hit->point, dir, &plane);
         if (s < HUGE_VAL) {

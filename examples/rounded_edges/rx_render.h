@@ -319,6 +319,16 @@ static void rx__skip_filter(const struct RTCFilterFunctionNArguments *args)
         if (args->valid[i] == -1 && geom[i] == c->skip_geom && tfar[i] <= c->skip_t) args->valid[i] = 0;
 }
 
+/* The Embree ray o + t d, t in [tnear, tfar] (r zeroed). */
+static void rx__rtc_ray(struct RTCRay *r, ex_v3_t o, ex_v3_t d, double tnear, double tfar)
+{
+    r->org_x = (float)o.x; r->org_y = (float)o.y; r->org_z = (float)o.z;
+    r->dir_x = (float)d.x; r->dir_y = (float)d.y; r->dir_z = (float)d.z;
+    r->tnear = (float)tnear;
+    r->tfar = tfar < 3e38 ? (float)tfar : INFINITY;
+    r->mask = 0xFFFFFFFFu;
+}
+
 /* ex_embree_intersect, hiding geometry skip_geom's hits at t <= skip_t. */
 static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, double tnear, double tfar,
                                    unsigned skip_geom, double skip_t)
@@ -333,11 +343,7 @@ static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, do
     c.ctx.filter = rx__skip_filter;
     c.skip_geom = skip_geom;
     c.skip_t = (float)skip_t;
-    rh.ray.org_x = (float)o.x; rh.ray.org_y = (float)o.y; rh.ray.org_z = (float)o.z;
-    rh.ray.dir_x = (float)d.x; rh.ray.dir_y = (float)d.y; rh.ray.dir_z = (float)d.z;
-    rh.ray.tnear = (float)tnear;
-    rh.ray.tfar = tfar < 3e38 ? (float)tfar : INFINITY;
-    rh.ray.mask = 0xFFFFFFFFu;
+    rx__rtc_ray(&rh.ray, o, d, tnear, tfar);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(w->rtc, &c.ctx, &rh);
@@ -352,6 +358,19 @@ static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, do
     return h;
 }
 
+/* A ray o + t d that leaves object obj's sharp mesh through triangle prim
+   at t, asked about in reverse (the query takes rays from outside): from
+   *back = just past the exit, toward o. */
+static re_hit_kind_t rx__query_back(const rx_world_t *w, const double o[3], const double d[3], unsigned obj, unsigned prim,
+                                    double t, double u, double v, double *back, re_hit_t *q)
+{
+    double o2[3], d2[3];
+    int a;
+    *back = rx__next_t(w, t);
+    for (a = 0; a < 3; a++) o2[a] = o[a] + d[a] * *back, d2[a] = -d[a];
+    return re_query_uv(w->round, o2, d2, obj, prim, *back - t, u, v, q);
+}
+
 /* Shadow rays in one occlusion traversal. The filter decides each candidate
    hit on its own, so Embree may visit them in any order: a hit of the skipped
    geometry before skip_t is ignored; a hit on an object that is not rounded
@@ -362,10 +381,8 @@ static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, do
    before reaching the origin. Each answer is whether the segment meets that
    object's rounded solid around this face, which is what occlusion asks. */
 typedef struct rx__occ_ctx_t {
-    struct RTCIntersectContext ctx; /* first: Embree passes its address to the filter */
+    rx__ctx_t skip; /* first (its ctx is first): Embree passes its address to the filter */
     const rx_world_t *w;
-    unsigned skip_geom;
-    float skip_t;
     double o[3], d[3], tmax;
 } rx__occ_ctx_t;
 
@@ -386,17 +403,15 @@ static void rx__occlude_filter(const struct RTCFilterFunctionNArguments *args)
         re_hit_kind_t k;
         int obj;
         if (args->valid[i] != -1) continue;
-        if (g == c->skip_geom && tfar[i] <= c->skip_t) { args->valid[i] = 0; continue; }
+        if (g == c->skip.skip_geom && tfar[i] <= c->skip.skip_t) { args->valid[i] = 0; continue; }
         if ((obj = w->re_object[g]) < 0) continue; /* not rounded: blocks */
         nd = ng[i] * c->d[0] + ng[i + N] * c->d[1] + ng[i + 2 * N] * c->d[2];
         if (nd < 0) {
             k = re_query_uv(w->round, c->o, c->d, (unsigned)obj, prim[i], t, uu[i], vv[i], &q);
             if (k == RE_PASS_THROUGH || (k == RE_HIT_ROUNDED && q.t >= c->tmax)) args->valid[i] = 0;
         } else {
-            double back = rx__next_t(w, t), o2[3], d2[3];
-            int a;
-            for (a = 0; a < 3; a++) o2[a] = c->o[a] + back * c->d[a], d2[a] = -c->d[a];
-            k = re_query_uv(w->round, o2, d2, (unsigned)obj, prim[i], back - t, uu[i], vv[i], &q);
+            double back;
+            k = rx__query_back(w, c->o, c->d, (unsigned)obj, prim[i], t, uu[i], vv[i], &back, &q);
             if (!(k == RE_UNCHANGED || (k == RE_HIT_ROUNDED && q.t < back))) args->valid[i] = 0;
         }
     }
@@ -409,20 +424,16 @@ static int rx__occluded_round(const rx_world_t *w, ex_v3_t o, ex_v3_t d, double 
     rx__occ_ctx_t c;
     struct RTCRay r;
     memset(&r, 0, sizeof r);
-    rtcInitIntersectContext(&c.ctx);
-    c.ctx.filter = rx__occlude_filter;
+    rtcInitIntersectContext(&c.skip.ctx);
+    c.skip.ctx.filter = rx__occlude_filter;
     c.w = w;
-    c.skip_geom = skip_geom;
-    c.skip_t = (float)skip_t;
+    c.skip.skip_geom = skip_geom;
+    c.skip.skip_t = (float)skip_t;
     c.o[0] = o.x; c.o[1] = o.y; c.o[2] = o.z;
     c.d[0] = d.x; c.d[1] = d.y; c.d[2] = d.z;
     c.tmax = tmax;
-    r.org_x = (float)o.x; r.org_y = (float)o.y; r.org_z = (float)o.z;
-    r.dir_x = (float)d.x; r.dir_y = (float)d.y; r.dir_z = (float)d.z;
-    r.tnear = 0;
-    r.tfar = tmax < 3e38 ? (float)tmax : INFINITY;
-    r.mask = 0xFFFFFFFFu;
-    rtcOccluded1(w->rtc, &c.ctx, &r);
+    rx__rtc_ray(&r, o, d, 0, tmax);
+    rtcOccluded1(w->rtc, &c.skip.ctx, &r);
     return r.tfar < 0;
 }
 
@@ -507,11 +518,10 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
                    rounded solid before reaching our origin (or meets the flat
                    face, the solid itself), the segment crosses the rounded
                    solid; otherwise the exit is the paper's I'' and we go on. */
-                double back = rx__next_t(w, h.t), step = back - h.t;
-                ex_v3_t o2 = ex_madd(ray->o, ray->d, back), d2 = ex_neg(ray->d);
-                o[0] = o2.x; o[1] = o2.y; o[2] = o2.z;
-                d[0] = d2.x; d[1] = d2.y; d[2] = d2.z;
-                k = re_query(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, step, &q);
+                double back;
+                o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
+                d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
+                k = rx__query_back(w, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, h.u, h.v, &back, &q);
                 if (k == RE_UNCHANGED) break; /* through the flat face: the solid blocks it here */
                 if (k == RE_HIT_ROUNDED && q.t < back) {
                     /* exact for visibility (shadow rays); as a hit it is where
