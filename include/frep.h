@@ -4008,7 +4008,6 @@ static int fr__cubic_fast(const double *q, double *out)
    derivative sequence. */
 static int fr__quartic_brackets(const double *q, double *out)
 {
-    static const double zero[5] = {0, 0, 0, 0, 0};
     double v, der[1], prev = -HUGE_VAL;
     int i, j, sa, sb;
     if (fr__estimate_roots(q, 4, out) != 4) return -1;
@@ -4024,12 +4023,12 @@ static int fr__quartic_brackets(const double *q, double *out)
            crowd, fr__polish_all's plain p' is off in its sixth digit and
            its early stop leaves a root a few ulps out (cluster 2, 2.001,
            2.002, 2.003: 7 ulps) */
-        if (fr__sign_comp(q, zero, 4, out[j], &v, der) != 0 && der[0] != 0) out[j] -= v / der[0];
+        if (fr__sign_comp(q, NULL, 4, out[j], &v, der) != 0 && der[0] != 0) out[j] -= v / der[0];
         dlt = 2.0 * FR__U * fabs(out[j]);
         if (!(out[j] - dlt > prev)) return -1; /* brackets disjoint, in order */
         prev = out[j] + dlt;
-        sa = fr__sign_comp(q, zero, 4, out[j] - dlt, &v, der);
-        sb = fr__sign_comp(q, zero, 4, prev, &v, der);
+        sa = fr__sign_comp(q, NULL, 4, out[j] - dlt, &v, der);
+        sb = fr__sign_comp(q, NULL, 4, prev, &v, der);
         if (sa == 0 || sb == 0 || sa == sb) return -1;
     }
     return 4;
@@ -4500,14 +4499,14 @@ static FR__HOT_INLINE int fr__tpoly_degree(const fr_instr_t *in, int da, int db,
 }
 
 /* One slot of a Taylor run: c from its operands A (degree da) and B (db),
-   dc the result's degree (fr__tpoly_degree). With plain != NULL (the slot's
+   whose result's degree fr__tpoly_degree gives. With plain != NULL (the slot's
    plain coefficients) it is the magnitude run instead: every input and
    constant by its absolute value and every subtraction an addition, so each
    coefficient is the sum of the absolute values of the terms whose rounded
    sum the plain run computed; it scales the plain coefficients' rounding
    error (fr__poly_range). An invalid operand of a constant op (a division
    by 0, a non-finite argument) gives NaN, which every later op keeps. */
-static FR__HOT_INLINE void fr__tpoly_step(const fr_instr_t *in, const double *A, int da, const double *B, int db, int dc,
+static FR__HOT_INLINE void fr__tpoly_step(const fr_instr_t *in, const double *A, int da, const double *B, int db,
                                   const double o[3], const double d[3], double *c, const double *plain)
 {
     int k, mag = plain != NULL;
@@ -4542,7 +4541,6 @@ static FR__HOT_INLINE void fr__tpoly_step(const fr_instr_t *in, const double *A,
             c[0] = NAN;
         break;
     }
-    (void)dc;
 }
 
 /* The degree of a slot's coefficients c of degree dg (-1: none), trailing
@@ -4575,7 +4573,7 @@ static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d
         int vd = in->op >= FR_OP_VAR_X && in->op <= FR_OP_VAR_Z ? d[in->op - FR_OP_VAR_X] != 0 : 1;
         dc = fr__tpoly_degree(in, da, db, vd);
         if (dc >= 0) {
-            fr__tpoly_step(in, A, da, B, db, dc, o, d, c, signed_P ? signed_P + (size_t)i * FR__TAYLOR_N : NULL);
+            fr__tpoly_step(in, A, da, B, db, o, d, c, signed_P ? signed_P + (size_t)i * FR__TAYLOR_N : NULL);
             if (in->op == FR_OP_ADD || in->op == FR_OP_SUB) dc = fr__tpoly_trim(c, dc);
         }
         deg[i] = dc;
@@ -4779,8 +4777,8 @@ static FR__HOT_INLINE void fr__prog_pass(const fr_tape_t *t, const fr__tp_t *pro
         }
         default: {
             const fr_instr_t *in = &t->code[pi->slot];
-            fr__tpoly_step(in, A, da, B, db, pi->dc, o, d, c, NULL);
-            if (mag) fr__tpoly_step(in, MA, da, MB, db, pi->dc, o, d, mc, c);
+            fr__tpoly_step(in, A, da, B, db, o, d, c, NULL);
+            if (mag) fr__tpoly_step(in, MA, da, MB, db, o, d, mc, c);
             break;
         }
         }
@@ -5599,12 +5597,11 @@ static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, 
     const fr_tape_t *t = R->tape;
     unsigned int out = t->outputs[0];
     int nc = 0, k, j;
-    double oscale, *cand = mem->cand, s0 = R->t0 - ts, s1 = R->t1 - ts;
+    double *cand = mem->cand, s0 = R->t0 - ts, s1 = R->t1 - ts;
     *found = 0;
-    oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) /
-             (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
-    if (mem->deg[out] >= 0) {
-        double r[FR_POLY_MAX_DEGREE];
+    if (mem->deg[out] >= 0) { /* a polynomial tape; CSG trees scale their own (fr__csg_walk) */
+        double r[FR_POLY_MAX_DEGREE], oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) /
+                                               (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
         int nr = fr_solve_poly(mem->taylor + (size_t)out * FR__TAYLOR_N, mem->deg[out], s0, s1, r);
         R->iters++;
         if (nr > 0) { *found = 1; *t_hit = ts + r[0]; *t_err = 4.0 * FR__U * (fabs(*t_hit) + oscale); }
