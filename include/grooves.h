@@ -4719,19 +4719,6 @@ static int gr__pp_cuts(const gr__pps_t *ps, const gr__ppp_t *pc, int ng, double 
 }
 
 /* Bounding box (x0, y0, x1, y1) of n points. */
-static void gr__box_of(const double *p, int n, double box[4])
-{
-    int k;
-    box[0] = box[1] = HUGE_VAL;
-    box[2] = box[3] = -HUGE_VAL;
-    for (k = 0; k < n; k++) {
-        if (p[2 * k] < box[0]) box[0] = p[2 * k];
-        if (p[2 * k] > box[2]) box[2] = p[2 * k];
-        if (p[2 * k + 1] < box[1]) box[1] = p[2 * k + 1];
-        if (p[2 * k + 1] > box[3]) box[3] = p[2 * k + 1];
-    }
-}
-
 /* The surface of every piece (§5.3): its strip (or cap, or the ground)
    minus what the other grooves carve away, as trapezoids in its own
    coordinates, into the pool ps->surf. A piece's surface does not depend
@@ -4774,7 +4761,8 @@ static int gr__pp_surfaces(gr__pps_t *ps, int np, int ng, const double *box, dou
         memcpy(ps->surf + 8 * used, ps->ra, sizeof(double) * 8 * (size_t)n);
         ps->surf_first[j] = used;
         ps->surf_count[j] = n;
-        gr__box_of(ps->ra, 4 * n, ps->surf_box + 4 * j);
+        if (n > 0) gr__bounds(ps->ra, 4 * n, ps->surf_box + 4 * j);
+        else ps->surf_box[4 * j] = ps->surf_box[4 * j + 1] = HUGE_VAL, ps->surf_box[4 * j + 2] = ps->surf_box[4 * j + 3] = -HUGE_VAL;
         used += n;
     }
     return 0;
@@ -4825,7 +4813,7 @@ static int gr__pp_region(const gr__pps_t *ps, int np, int i, const double *d, co
             gr__pp_onto(pc, p3, d, pre + 2 * k);
         }
         if (ps->surf_count[i] == 0) return 0;
-        gr__box_of(pre, nfp, cb);
+        gr__bounds(pre, nfp, cb);
         if (cb[0] >= ps->surf_box[4 * i + 2] || cb[2] <= ps->surf_box[4 * i] || cb[1] >= ps->surf_box[4 * i + 3] ||
             cb[3] <= ps->surf_box[4 * i + 1])
             return 0; /* the footprint misses the piece */
@@ -4834,14 +4822,13 @@ static int gr__pp_region(const gr__pps_t *ps, int np, int i, const double *d, co
         ncur = gr__pp_bool(ps, &a, &b, GR_POLY_INTERSECTION, cur, area);
     }
     if (ncur <= 0) return ncur;
-    if (ncur <= 0) { *res = cur; *area = 0; return ncur; }
     /* §5.4: occlusion by every other piece's surface in front along d; only
        the parts whose box meets the region's are kept. The ground (piece
        np, the plane minus the grooves' mouths) is one of them: a ray from
        below w = 0 must leave through a mouth, and one from above never
        meets it (its part in front of this plane, slid along d, lies below
        w = 0, off any piece above) */
-    gr__box_of(cur, 4 * ncur, cb);
+    gr__bounds(cur, 4 * ncur, cb);
     {
         double sg = gr__dot3(pc->n, d) > 0 ? 1 : -1;
         int npts = 0, nrings = 0;
@@ -4867,7 +4854,7 @@ static int gr__pp_region(const gr__pps_t *ps, int np, int i, const double *d, co
                     gr__pp_point(oc, ps->tmp[2 * m], ps->tmp[2 * m + 1], p3);
                     gr__pp_onto(pc, p3, d, q + 2 * m);
                 }
-                gr__box_of(q, nf, bx);
+                gr__bounds(q, nf, bx);
                 if (bx[0] >= cb[2] || bx[2] <= cb[0] || bx[1] >= cb[3] || bx[3] <= cb[1]) continue;
                 ps->occ_sizes[nrings++] = nf;
                 npts += nf;
