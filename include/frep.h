@@ -3463,6 +3463,12 @@ done:
 #include <limits.h>
 #include <string.h>
 
+#if defined(__GNUC__) || defined(__clang__)
+#define FR__HOT_INLINE __attribute__((always_inline)) inline /* hot loops specialised per call site */
+#else
+#define FR__HOT_INLINE inline
+#endif
+
 /* Unit roundoff of double, 2^-53. */
 #define FR__U 1.1102230246251565404e-16
 /* A value within FR__ZERO_K n^2 u^2 sum|c_i||t|^i of zero has no certain sign
@@ -3890,19 +3896,19 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
    lanes (structure of arrays, one AVX vector), so the CPU overlaps their
    dependency chains. Returns 0 when a root does not settle or is not
    finite (the caller then falls back). */
-static int fr__polish_all(const double *q, int n, double *x, int k)
+static FR__HOT_INLINE int fr__polish_lanes(const double *q, const double *lo, int n, double *x, int k)
 {
     /* unused lanes repeat root 0 */
     double X[4], S[4], E[4], D[4], H[4], T[4], DX[4], ERR[4];
     int it, i, j, left;
     for (j = 0; j < 4; j++) X[j] = x[j < k ? j : 0];
     for (it = 0; it < FR__FAST_POLISH_ITERS; it++) {
-        for (j = 0; j < 4; j++) { S[j] = q[n]; E[j] = 0.0; D[j] = 0.0; H[j] = 0.0; T[j] = 0.0; }
+        for (j = 0; j < 4; j++) { S[j] = q[n]; E[j] = lo ? lo[n] : 0.0; D[j] = 0.0; H[j] = 0.0; T[j] = 0.0; }
         for (i = n - 1; i >= 0; i--)
             for (j = 0; j < 4; j++) {
                 double p = S[j] * X[j], pe = fma(S[j], X[j], -p), t = p + q[i], z = t - p;
                 double te = (p - (t - z)) + (q[i] - z);
-                E[j] = E[j] * X[j] + (pe + te);
+                E[j] = E[j] * X[j] + (pe + te + (lo ? lo[i] : 0.0));
                 T[j] = T[j] * X[j] + H[j]; /* third derivative / 6 */
                 H[j] = H[j] * X[j] + D[j]; /* second derivative / 2 */
                 D[j] = D[j] * X[j] + S[j]; /* first derivative */
@@ -3926,13 +3932,20 @@ static int fr__polish_all(const double *q, int n, double *x, int k)
     return it < FR__FAST_POLISH_ITERS;
 }
 
+/* fr__polish_lanes without lo (the fast paths on p itself, where every
+   cycle counts) and with it (derivative levels), each compiled for its case. */
+static int fr__polish_all(const double *q, const double *lo, int n, double *x, int k)
+{
+    return lo ? fr__polish_lanes(q, lo, n, x, k) : fr__polish_lanes(q, NULL, n, x, k);
+}
+
 /* The common tail of the certified fast paths: polish the k estimates,
    sort them, and demand that they be distinct (64 ulps apart), so each
    stands for its own root of the certified count; -1 otherwise. */
-static int fr__fast_finish(const double *q, int n, double *x, int k)
+static int fr__fast_finish(const double *q, const double *lo, int n, double *x, int k)
 {
     int i;
-    if (!fr__polish_all(q, n, x, k)) return -1;
+    if (!fr__polish_all(q, lo, n, x, k)) return -1;
     for (i = 1; i < k; i++) {
         double v = x[i];
         int j = i;
@@ -3952,17 +3965,17 @@ static int fr__fast_finish(const double *q, int n, double *x, int k)
    its sign is certain outside that band; the cancellation-free formula
    q = -(b + sign(b) sqrt(D)) / 2, roots q/a and c/q, then a compensated
    polish. -1 (near-double roots, no convergence) falls back. */
-static int fr__quadratic_fast(const double *q, double *out)
+static int fr__quadratic_fast(const double *q, const double *lo, double *out)
 {
     double a = q[2], b = q[1], c = q[0], p = b * b, dp = fma(b, b, -p), f = 4.0 * a * c, df = fma(4.0 * a, c, -f);
-    double D = (p - f) + (dp - df), h;
-    if (!(fabs(D) > 8.0 * FR__U * FR__U * (p + fabs(f)) + FR__UNDERFLOW_SLACK)) return -1;
+    double D = (p - f) + (dp - df), h, tol = (lo ? 3.0 * FR__U : 8.0 * FR__U * FR__U) * (p + fabs(f));
+    if (!(fabs(D) > tol + FR__UNDERFLOW_SLACK)) return -1;
     if (D < 0) return 0;
     h = -0.5 * (b + (b < 0 ? -sqrt(D) : sqrt(D)));
     if (h == 0) return -1;
     out[0] = h / a;
     out[1] = c / h;
-    return fr__fast_finish(q, 2, out, 2);
+    return fr__fast_finish(q, lo, 2, out, 2);
 }
 
 /* Sum of t[0..7] and of their magnitudes, as a balanced tree: 3 additions
@@ -3981,7 +3994,7 @@ static double fr__sum8(const double *t, double *abs_sum)
    their (pairwise) sum 3 more, so 32 u sum|terms| bounds the error and outside it the
    sign is certain. Cardano's (or the trigonometric) estimates must give
    that many roots, and fr__fast_finish must certify them. */
-static int fr__cubic_fast(const double *q, double *out)
+static int fr__cubic_fast(const double *q, const double *lo, double *out)
 {
     double a = q[3], b = q[2], c = q[1], d = q[0], b2 = b * b, c2 = c * c, t[5], D, S;
     int n, want;
@@ -3989,11 +4002,11 @@ static int fr__cubic_fast(const double *q, double *out)
     t[3] = -4.0 * a * c2 * c;    t[4] = -27.0 * a * a * d * d;
     D = ((t[0] + t[1]) + (t[2] + t[3])) + t[4];
     S = ((fabs(t[0]) + fabs(t[1])) + (fabs(t[2]) + fabs(t[3]))) + fabs(t[4]);
-    if (!(fabs(D) > 32.0 * FR__U * S + FR__UNDERFLOW_SLACK)) return -1;
+    if (!(fabs(D) > (lo ? 37.0 : 32.0) * FR__U * S + FR__UNDERFLOW_SLACK)) return -1;
     want = D > 0 ? 3 : 1;
     n = fr__estimate_roots(q, 3, out);
     if (n != want) return -1;
-    return fr__fast_finish(q, 3, out, n);
+    return fr__fast_finish(q, lo, 3, out, n);
 }
 
 /* Four real roots certified one by one, where the discriminant's sign is
@@ -4006,7 +4019,7 @@ static int fr__cubic_fast(const double *q, double *out)
    1e-5 relative: near-multiple roots, which rounding splits by about u^(1/2)
    or u^(1/3), do not certify, and polishing them costs more than the
    derivative sequence. */
-static int fr__quartic_brackets(const double *q, double *out)
+static int fr__quartic_brackets(const double *q, const double *lo, double *out)
 {
     double v, der[1], prev = -HUGE_VAL;
     int i, j, sa, sb;
@@ -4016,19 +4029,19 @@ static int fr__quartic_brackets(const double *q, double *out)
     for (i = 1; i < 4; i++)
         if (!(out[i] - out[i - 1] > 1e-5 * (fabs(out[i]) > fabs(out[i - 1]) ? fabs(out[i]) : fabs(out[i - 1]))))
             return -1;
-    if (fr__fast_finish(q, 4, out, 4) != 4) return -1;
+    if (fr__fast_finish(q, lo, 4, out, 4) != 4) return -1;
     for (j = 0; j < 4; j++) {
         double dlt;
         /* one more Newton step on the compensated value: where the roots
            crowd, fr__polish_all's plain p' is off in its sixth digit and
            its early stop leaves a root a few ulps out (cluster 2, 2.001,
            2.002, 2.003: 7 ulps) */
-        if (fr__sign_comp(q, NULL, 4, out[j], &v, der) != 0 && der[0] != 0) out[j] -= v / der[0];
+        if (fr__sign_comp(q, lo, 4, out[j], &v, der) != 0 && der[0] != 0) out[j] -= v / der[0];
         dlt = 2.0 * FR__U * fabs(out[j]);
         if (!(out[j] - dlt > prev)) return -1; /* brackets disjoint, in order */
         prev = out[j] + dlt;
-        sa = fr__sign_comp(q, NULL, 4, out[j] - dlt, &v, der);
-        sb = fr__sign_comp(q, NULL, 4, prev, &v, der);
+        sa = fr__sign_comp(q, lo, 4, out[j] - dlt, &v, der);
+        sb = fr__sign_comp(q, lo, 4, prev, &v, der);
         if (sa == 0 || sb == 0 || sa == sb) return -1;
     }
     return 4;
@@ -4043,7 +4056,7 @@ static int fr__quartic_brackets(const double *q, double *out)
    Newton to an ulp, and they must be distinct; otherwise -1 sends the
    quartic to the derivative sequence. Near-multiple roots, where the
    discriminant's sign is uncertain, always take the general path. */
-static int fr__quartic_fast(const double *q, double *out)
+static int fr__quartic_fast(const double *q, const double *lo, double *out)
 {
     double a = q[4], b = q[3], c = q[2], d = q[1], e = q[0], t[16], D, S, P, SP, L, SL;
     double a2 = a * a, b2 = b * b, c2 = c * c, d2 = d * d, e2 = e * e;
@@ -4061,30 +4074,52 @@ static int fr__quartic_fast(const double *q, double *out)
         D = fr__sum8(t, &S) + fr__sum8(t + 8, &S2);
         S += S2;
     }
-    if (!(fabs(D) > 64.0 * FR__U * S + FR__UNDERFLOW_SLACK)) return fr__quartic_brackets(q, out); /* each term has < 8 roundings, the sum 4 */
+    /* each term has < 8 roundings, the sum 4; lo: see fr__solve_fast */
+    if (!(fabs(D) > (lo ? 71.0 : 64.0) * FR__U * S + FR__UNDERFLOW_SLACK)) return fr__quartic_brackets(q, lo, out);
     if (D < 0) want = 2;
     else {
         P = 8 * a * c - 3 * b2; SP = 8 * fabs(a * c) + 3 * b2;
         L = 64 * a2 * a * e - 16 * a2 * c2 + 16 * a * b2 * c - 16 * a2 * b * d - 3 * b2 * b2;
         SL = 64 * fabs(a2 * a * e) + 16 * a2 * c2 + 16 * fabs(a * b2 * c) + 16 * fabs(a2 * b * d) + 3 * b2 * b2;
-        if (!(fabs(P) > 16.0 * FR__U * SP + FR__UNDERFLOW_SLACK) || !(fabs(L) > 32.0 * FR__U * SL + FR__UNDERFLOW_SLACK))
-            return fr__quartic_brackets(q, out);
+        if (!(fabs(P) > (lo ? 19.0 : 16.0) * FR__U * SP + FR__UNDERFLOW_SLACK) ||
+            !(fabs(L) > (lo ? 37.0 : 32.0) * FR__U * SL + FR__UNDERFLOW_SLACK))
+            return fr__quartic_brackets(q, lo, out);
         want = P < 0 && L < 0 ? 4 : 0;
     }
     if (want == 0) return 0;
     n = fr__estimate_roots(q, 4, out);
     if (n != want) return -1;
-    return fr__fast_finish(q, 4, out, n);
+    return fr__fast_finish(q, lo, 4, out, n);
 }
 
-/* The certified fast path of degree n (2..4, q[n] != 0), or -1. */
-static int fr__solve_fast(const double *q, int n, double *out)
+/* The certified fast path of degree n (2..4, q[n] != 0), or -1, for the
+   polynomial q + lo (lo NULL or |lo[i]| <= u |q[i]|: a derivative level's
+   exact split). The discriminants are taken from q alone; a term of degree
+   g in the coefficients then differs from the exact polynomial's by at
+   most ((1 + u)^g - 1) |term| < (g + 1) u |term|, which the sign tests'
+   bounds add (g = 2 for b^2 - 4ac, 4 for the cubic's, 6 for the quartic's,
+   2 and 4 for Lazard's P and D); the polish and the brackets use q + lo. */
+static int fr__solve_fast(const double *q, const double *lo, int n, double *out)
 {
     if (q[n] == 0) return -1;
-    if (n == 2) return fr__quadratic_fast(q, out);
-    if (n == 3) return fr__cubic_fast(q, out);
-    if (n == 4) return fr__quartic_fast(q, out);
+    if (n == 2) return fr__quadratic_fast(q, lo, out);
+    if (n == 3) return fr__cubic_fast(q, lo, out);
+    if (n == 4) return fr__quartic_fast(q, lo, out);
     return -1;
+}
+
+/* The derivative level D_k = p^(k)/k! of q (degree n): coefficients
+   q[i+k] C(i+k, k), i = 0..n-k, each product split exactly into hi + lo by
+   fma, so every level is evaluated as accurately as p itself. */
+static void fr__derivative_level(const double *q, int n, int k, double *hi, double *lo)
+{
+    double binom = 1.0; /* C(i + k, k), exact */
+    int i;
+    for (i = 0; i <= n - k; i++) {
+        if (i > 0) binom = binom * (double)(i + k) / (double)i;
+        hi[i] = q[i + k] * binom;
+        lo[i] = fma(q[i + k], binom, -hi[i]);
+    }
 }
 
 /* Roots of c (degree n, c[0] != 0) with x in [xa, xb], a band inside
@@ -4099,7 +4134,7 @@ static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo,
     double q[FR_POLY_MAX_DEGREE + 1] = {0}, hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
     double bp[FR_POLY_MAX_DEGREE + 1], cur[FR_POLY_MAX_DEGREE + 1];
     double ya = fr__ldexp(xa, -K), yb = fr__ldexp(xb, -K);
-    int i, k, nbp = 0, ncur = 0, M = INT_MIN;
+    int i, k, k0, nbp = 0, ncur = 0, M = INT_MIN;
     if (ya < -1.0) ya = -1.0;
     if (yb > 1.0) yb = 1.0;
     if (!(ya <= yb)) return 0;
@@ -4111,20 +4146,28 @@ static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo,
         if (y >= ya && y <= yb) { out[0] = fr__ldexp(y, K); return 1; }
         return 0;
     }
-    if (try_fast && (ncur = fr__solve_fast(q, n, cur)) >= 0) {
+    if (try_fast && (ncur = fr__solve_fast(q, NULL, n, cur)) >= 0) {
         for (i = k = 0; i < ncur; i++)
             if (cur[i] >= ya && cur[i] <= yb) out[k++] = fr__ldexp(cur[i], K);
         return k;
     }
-    for (k = n - 1; k >= 0; k--) {
-        int m = n - k;
-        double binom = 1.0; /* C(i + k, k), exact */
-        for (i = 0; i <= m; i++) {
-            if (i > 0) binom = binom * (double)(i + k) / (double)i;
-            hi[i] = q[i + k] * binom;
-            lo[i] = fma(q[i + k], binom, -hi[i]);
+    /* The highest derivative level of degree 2..4 whose fast path certifies
+       its real roots supplies the breakpoints, and the levels above it are
+       skipped (for a quartic, p' by the cubic fast path instead of p''',
+       p'' and p' by the sequence); a level whose fast path fails (multiple
+       critical points) hands over to the next lower degree. */
+    for (k0 = n - 1, k = n - 4 > 1 ? n - 4 : 1; k <= n - 2; k++) {
+        fr__derivative_level(q, n, k, hi, lo);
+        if ((ncur = fr__solve_fast(hi, lo, n - k, cur)) >= 0) {
+            for (i = 0; i < ncur; i++)
+                if (cur[i] > ya && cur[i] < yb) bp[nbp++] = cur[i];
+            k0 = k - 1;
+            break;
         }
-        ncur = fr__roots_between(hi, lo, m, ya, yb, bp, nbp, fr__ldexp(1.0, Elo - K), cur);
+    }
+    for (k = k0; k >= 0; k--) {
+        fr__derivative_level(q, n, k, hi, lo);
+        ncur = fr__roots_between(hi, lo, n - k, ya, yb, bp, nbp, fr__ldexp(1.0, Elo - K), cur);
         for (i = 0; i < ncur; i++) bp[i] = cur[i];
         nbp = ncur;
     }
@@ -4205,7 +4248,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
        scaling below cost a quarter of a quartic solve. */
     /* -2: not tried; -1: tried and not certified, which the band's exact
        scaling would not change, so the band skips the fast path */
-    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, m, buf) : -2;
+    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, NULL, m, buf) : -2;
     if (direct >= 0) {
         cnt = direct; /* certified; filtered below */
     } else if (z == 0 && m == 1 && emax <= FR__DIRECT_EXP) {
@@ -4443,12 +4486,6 @@ static int fr__tpoly_const_op(const fr_instr_t *in, double a, double b, double *
     default: return 0;
     }
 }
-
-#if defined(__GNUC__) || defined(__clang__)
-#define FR__HOT_INLINE __attribute__((always_inline)) inline /* per-slot steps of hot loops */
-#else
-#define FR__HOT_INLINE inline
-#endif
 
 /* c = a^n truncated (n >= 0), c distinct from a; returns the degree or -1. */
 static FR__HOT_INLINE int fr__tpoly_powi(const double *a, int da, int n, double *c)
