@@ -3988,6 +3988,58 @@ static double fr__sum8(const double *t, double *abs_sum)
     return ((t[0] + t[1]) + (t[2] + t[3])) + ((t[4] + t[5]) + (t[6] + t[7]));
 }
 
+/* Second chance for a fast path whose closed-form estimates est[0..ne-1]
+   did not give the certified number want of distinct real roots, or did
+   not converge: where the roots' magnitudes are spread, the closed forms
+   lose the small roots to cancellation (and may turn a complex pair into
+   two real estimates), while the same formulas on the reversed polynomial
+   x^n p(1/x) lose the large ones instead. The candidates from both are
+   ranked by |p(x)| / sum |c_i||x|^i, and the want best that are 1e-6 apart
+   (relative) and at most 1e-4 (a closed form's, not noise) are polished
+   and certified by fr__fast_finish like the first ones; -1 otherwise. When
+   all n roots are real and one is still missing (a middle root of roots
+   spread both ways, which neither direction resolves), it is the product
+   of the roots, (-1)^n c_0 / c_n, divided by the others': no cancellation.
+   Only the starting points differ, so the certificate is the fast path's
+   own. */
+static int fr__fast_retry(const double *q, const double *lo, int n, int want, const double *est, int ne, double *out)
+{
+    double cand[8], rank[8], rev[5], er[4];
+    int nc = 0, i, j, k = 0, nr;
+    for (i = 0; i < ne; i++) cand[nc++] = est[i];
+    for (i = 0; i <= n; i++) rev[i] = q[n - i];
+    nr = fr__estimate_roots(rev, n, er);
+    for (i = 0; i < nr; i++)
+        if (er[i] != 0) cand[nc++] = 1.0 / er[i];
+    for (i = 0; i < nc; i++) rank[i] = fr__abs_value_ratio(q, n, cand[i]);
+    while (k < want) {
+        int b = -1;
+        for (i = 0; i < nc; i++)
+            if (rank[i] <= 1e-4 && (b < 0 || rank[i] < rank[b])) b = i; /* NaN and used (2) never */
+        if (b < 0) break;
+        rank[b] = 2.0;
+        for (j = 0; j < k && !(fabs(cand[b] - out[j]) <= 1e-6 * fabs(cand[b])); j++) continue;
+        if (j == k) out[k++] = cand[b];
+    }
+    if (k == n - 1 && want == n) {
+        double prod = out[0];
+        for (i = 1; i < k; i++) prod *= out[i];
+        out[k++] = ((n & 1) ? -q[0] : q[0]) / q[n] / prod;
+    }
+    if (k < want) return -1;
+    return fr__fast_finish(q, lo, n, out, want);
+}
+
+/* The fast paths' common end: the n estimates est[] must be the certified
+   number want of roots and certify, else fr__fast_retry. */
+static int fr__fast_certify(const double *q, const double *lo, int n, int want, const double *est, int ne, double *out)
+{
+    int i;
+    for (i = 0; i < ne; i++) out[i] = est[i];
+    if (ne == want && fr__fast_finish(q, lo, n, out, want) == want) return want;
+    return fr__fast_retry(q, lo, n, want, est, ne, out);
+}
+
 /* The same certified fast path for cubics: the discriminant
    18abcd - 4b^3 d + b^2 c^2 - 4ac^3 - 27a^2 d^2 is > 0 for three distinct
    real roots and < 0 for one. Each term carries at most 5 roundings and
@@ -3996,7 +4048,7 @@ static double fr__sum8(const double *t, double *abs_sum)
    that many roots, and fr__fast_finish must certify them. */
 static int fr__cubic_fast(const double *q, const double *lo, double *out)
 {
-    double a = q[3], b = q[2], c = q[1], d = q[0], b2 = b * b, c2 = c * c, t[5], D, S;
+    double a = q[3], b = q[2], c = q[1], d = q[0], b2 = b * b, c2 = c * c, t[5], D, S, est[3];
     int n, want;
     t[0] = 18.0 * a * b * c * d; t[1] = -4.0 * b2 * b * d; t[2] = b2 * c2;
     t[3] = -4.0 * a * c2 * c;    t[4] = -27.0 * a * a * d * d;
@@ -4004,9 +4056,8 @@ static int fr__cubic_fast(const double *q, const double *lo, double *out)
     S = ((fabs(t[0]) + fabs(t[1])) + (fabs(t[2]) + fabs(t[3]))) + fabs(t[4]);
     if (!(fabs(D) > (lo ? 37.0 : 32.0) * FR__U * S + FR__UNDERFLOW_SLACK)) return -1;
     want = D > 0 ? 3 : 1;
-    n = fr__estimate_roots(q, 3, out);
-    if (n != want) return -1;
-    return fr__fast_finish(q, lo, 3, out, n);
+    n = fr__estimate_roots(q, 3, est);
+    return fr__fast_certify(q, lo, 3, want, est, n, out);
 }
 
 /* Four real roots certified one by one, where the discriminant's sign is
@@ -4058,7 +4109,7 @@ static int fr__quartic_brackets(const double *q, const double *lo, double *out)
    discriminant's sign is uncertain, always take the general path. */
 static int fr__quartic_fast(const double *q, const double *lo, double *out)
 {
-    double a = q[4], b = q[3], c = q[2], d = q[1], e = q[0], t[16], D, S, P, SP, L, SL;
+    double a = q[4], b = q[3], c = q[2], d = q[1], e = q[0], t[16], D, S, P, SP, L, SL, est[4];
     double a2 = a * a, b2 = b * b, c2 = c * c, d2 = d * d, e2 = e * e;
     int n, want;
     t[0] = 256 * a2 * a * e2 * e;       t[1] = -192 * a2 * b * d * e2;
@@ -4087,9 +4138,8 @@ static int fr__quartic_fast(const double *q, const double *lo, double *out)
         want = P < 0 && L < 0 ? 4 : 0;
     }
     if (want == 0) return 0;
-    n = fr__estimate_roots(q, 4, out);
-    if (n != want) return -1;
-    return fr__fast_finish(q, lo, 4, out, n);
+    n = fr__estimate_roots(q, 4, est);
+    return fr__fast_certify(q, lo, 4, want, est, n, out);
 }
 
 /* The certified fast path of degree n (2..4, q[n] != 0), or -1, for the
@@ -4190,6 +4240,104 @@ static int fr__ceil_div(int a, int b)
     return (int)(((unsigned long long)(a + b - 1) + off) * m[b] >> 32) - (int)(off * m[b] >> 32);
 }
 
+/* Widest gap, in bits, between the Newton polygon's groups of root
+   magnitudes at which fr__split_solve cuts p into truncated polynomials:
+   the terms it drops are then below 2^-FR__SPLIT_GAP of the kept ones in
+   the group's annulus, so the truncated roots start the polish ~1e-6 off. */
+#define FR__SPLIT_GAP 20
+
+/* The root near x of d (degree m, d[0] != 0, exponents ex[]), polished and
+   certified in its own power-of-two scaling x = 2^K y, |y| in [1/2, 1):
+   the terms that balance at the root then stay far from overflow and
+   underflow, whatever the other roots' magnitudes. *root gets the root and
+   1 is returned when the polish converges and the compensated value
+   changes sign, certainly, across y -+ 2u|y| (the root is within 2u|x|). */
+static int fr__certified_root_near(const double *d, const int *ex, int m, double x, double *root)
+{
+    double q[5], y, v, der;
+    int i, K = fr__ilogb(x) + 1, M = INT_MIN, sa, sb;
+    for (i = 0; i <= m; i++)
+        if (ex[i] != INT_MIN && ex[i] + K * i > M) M = ex[i] + K * i;
+    for (i = 0; i <= m; i++) q[i] = ex[i] != INT_MIN ? fr__ldexp(d[i], K * i - M) : 0.0;
+    y = fr__ldexp(x, -K);
+    if (!fr__polish_all(q, NULL, m, &y, 1)) return 0;
+    v = 2.0 * FR__U * fabs(y);
+    sa = fr__sign_comp(q, NULL, m, y - v, &v, &der);
+    v = 2.0 * FR__U * fabs(y);
+    sb = fr__sign_comp(q, NULL, m, y + v, &v, &der);
+    *root = fr__ldexp(y, K);
+    return sa != 0 && sb != 0 && sa != sb;
+}
+
+/* Roots of spread magnitudes, split by the Newton polygon (degree m of 3
+   or 4, d[0], d[m] != 0, coefficient exponents ex[], INT_MIN for a zero).
+   A cut after coefficient k at radius 2^s, where every other term is below
+   2^-FR__SPLIT_GAP of |d_k| 2^(k s), also satisfies Pellet's theorem: k
+   roots lie inside |x| < 2^s and the rest outside. Between consecutive cuts
+   the group's roots are those of the truncated polynomial d_l + ... + d_h
+   x^(h-l) (its closed form, in its own scaling), up to the dropped terms.
+   They are only starting points: each is polished on p and certified by a
+   sign change across x -+ 2u|x| (fr__certified_root_near); m disjoint such
+   brackets hold all of p's roots. Anything else (no cut, a group whose
+   truncated roots are complex, closer than 1e-5 relative (near-multiple:
+   they would not certify) or do not certify) returns -1, for the
+   derivative sequence; every group's estimates are checked before any
+   root is polished, so a failure costs little. ODM's cases 22 and 24 (roots 1, 10, 1e152, 1e154;
+   -1e30, 1e-30, 1, 1e30) take this path. */
+static int fr__split_solve(const double *d, const int *ex, int m, double *out)
+{
+    int cut[5], ncut = 1, k, i, g, cnt = 0;
+    double est[4];
+    cut[0] = 0;
+    for (k = 1; k < m; k++) {
+        int lo = INT_MIN, hi = INT_MAX;
+        if (ex[k] == INT_MIN) continue;
+        /* necessary, from the neighbours alone: 2 ex[k] - ex[k-1] - ex[k+1] >= 2 (gap + 1) */
+        if (ex[k - 1] != INT_MIN && ex[k + 1] != INT_MIN && 2 * ex[k] - ex[k - 1] - ex[k + 1] < 2 * FR__SPLIT_GAP + 2)
+            continue;
+        for (i = 0; i <= m; i++) {
+            int num;
+            if (i == k || ex[i] == INT_MIN) continue;
+            num = ex[i] - ex[k] + 1 + FR__SPLIT_GAP; /* ex[k] + k s >= ex[i] + 1 + i s + gap */
+            if (i < k) { int b = fr__ceil_div(num, k - i); if (b > lo) lo = b; }
+            else { int b = -fr__ceil_div(num, i - k); if (b < hi) hi = b; } /* s <= floor(-num / (i - k)) */
+        }
+        if (lo <= hi) cut[ncut++] = k;
+    }
+    if (ncut == 1) return -1;
+    cut[ncut] = m;
+    for (g = 0; g < ncut; g++) {
+        int l = cut[g], h = cut[g + 1], n = h - l, K, M = INT_MIN, ne;
+        double t[5], *e = est + cnt;
+        /* the truncated polynomial, scaled to its roots' geometric mean */
+        K = -fr__ceil_div(ex[h] - ex[l], n); /* floor((ex[l] - ex[h]) / n) */
+        for (i = l; i <= h; i++)
+            if (ex[i] != INT_MIN && ex[i] + K * (i - l) > M) M = ex[i] + K * (i - l);
+        for (i = l; i <= h; i++) t[i - l] = ex[i] != INT_MIN ? fr__ldexp(d[i], K * (i - l) - M) : 0.0;
+        if (n == 1) { e[0] = -t[0] / t[1]; ne = 1; }
+        else ne = fr__estimate_roots(t, n, e);
+        if (ne != n) return -1; /* complex, or lost: not for this path */
+        for (i = 0; i < n; i++) {
+            for (k = 0; k < i; k++)
+                if (!(fabs(e[i] - e[k]) > 1e-5 * fabs(e[i]))) return -1;
+            if (!(e[i] != 0)) return -1;
+            e[i] = fr__ldexp(e[i], K);
+        }
+        cnt += n;
+    }
+    for (i = 0; i < m; i++)
+        if (!fr__certified_root_near(d, ex, m, est[i], &out[i])) return -1;
+    for (i = 1; i < m; i++) { /* sorted, brackets disjoint */
+        double v = out[i];
+        int j = i;
+        while (j > 0 && out[j - 1] > v) { out[j] = out[j - 1]; j--; }
+        out[j] = v;
+    }
+    for (i = 1; i < m; i++)
+        if (!(out[i] - 2.0 * FR__U * fabs(out[i]) > out[i - 1] + 2.0 * FR__U * fabs(out[i - 1]))) return -1;
+    return m;
+}
+
 /* Exponents with 2^lo < |x| < 2^hi for every root x (Fujiwara's bound
    |x| <= 2 max |c_i / c_n|^(1/(n-i)), and the same on the reversed
    coefficients for 1/|x|), from the coefficients' exponents ex[] (INT_MIN
@@ -4225,7 +4373,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
 {
     double buf[FR_POLY_MAX_DEGREE + 1];
     const double *d;
-    int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = INT_MIN, direct, ex[FR_POLY_MAX_DEGREE + 1] = {0};
+    int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = INT_MIN, direct, split, ex[FR_POLY_MAX_DEGREE + 1] = {0};
     if (!c || !r || degree < 0 || degree > FR_POLY_MAX_DEGREE || !(t0 <= t1)) return -1;
     for (i = 0; i <= degree; i++)
         if (!(c[i] - c[i] == 0)) return -1; /* NaN or infinite */
@@ -4251,6 +4399,8 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
     direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, NULL, m, buf) : -2;
     if (direct >= 0) {
         cnt = direct; /* certified; filtered below */
+    } else if (z == 0 && (m == 3 || m == 4) && (split = fr__split_solve(d, ex, m, buf)) >= 0) {
+        cnt = split; /* roots of spread magnitudes, certified; filtered below */
     } else if (z == 0 && m == 1 && emax <= FR__DIRECT_EXP) {
         /* a plane's leaf in analytic CSG: the band below would scale by
            powers of two and divide, the same correctly rounded quotient
