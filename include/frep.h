@@ -3805,19 +3805,28 @@ static int fr__estimate_roots(const double *c, int n, double *est)
 
 /* Where p, with p'(e) = 0 and value v at the critical point e, meets zero on
    the side `side` (+1 right, -1 left) if it is the parabola
-   v + p''(e) (x - e)^2 / 2 there: e + side sqrt(-v / (p''(e)/2)). NaN when
-   the curvature does not bend p towards zero. */
-static double fr__parabola_root(const double *hi, int n, double e, double v, int side)
+   v + p''(e) (x - e)^2 / 2 there (order 2): e + side sqrt(-v / (p''(e)/2));
+   NaN when the curvature does not bend p towards zero. Order 3 is the
+   same for the cubic v + p'''(e) (x - e)^3 / 6, for a critical point that
+   is (nearly) a double root of p' too, where p'' vanishes: a triple root
+   that rounding split (ODM's case 15), whose real root sits ~u^(1/3) from
+   the critical point, where the parabola is far off. */
+static double fr__critical_end_start(const double *hi, int n, double e, double v, int side, int order)
 {
-    double h2 = 0.0, d = 0.0, p = hi[n], w;
+    double h3 = 0.0, h2 = 0.0, d = 0.0, p = hi[n], w;
     int i;
-    for (i = n - 1; i >= 0; i--) { /* p''/2, p', p by Horner */
+    for (i = n - 1; i >= 0; i--) { /* p'''/6, p''/2, p', p by Horner */
+        h3 = h3 * e + h2;
         h2 = h2 * e + d;
         d = d * e + p;
         p = p * e + hi[i];
     }
-    w = -v / h2;
-    return w > 0 ? e + (side > 0 ? sqrt(w) : -sqrt(w)) : (double)NAN;
+    if (order == 2) {
+        w = -v / h2;
+        return w > 0 ? e + (side > 0 ? sqrt(w) : -sqrt(w)) : (double)NAN;
+    }
+    w = -v / h3; /* v + h3 t^3 = 0: t = cbrt(w), on the side's sign */
+    return (w > 0) == (side > 0) && w != 0 ? e + (side > 0 ? 1.0 : -1.0) * fr__cbrt_est(fabs(w)) : (double)NAN;
 }
 
 /* |p(x)| / sum |c_i| |x|^i by plain Horner: how close x is to a root, in
@@ -3854,20 +3863,23 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
         if (!(xr > xl)) continue;
         sr = fr__sign_at(hi, lo, n, xr, &vr);
         if (sl * sr < 0) {
-            double start = xl, best = HUGE_VAL, cand[2]; /* none: regula falsi */
+            double start = xl, best = HUGE_VAL; /* none: regula falsi */
             for (k = 0; k < nest; k++)
                 if (est[k] > xl && est[k] < xr) {
                     double v = fr__abs_value_ratio(hi, n, est[k]);
                     if (v < best) { best = v; start = est[k]; }
                 }
             if (n >= 2 && !(best <= 64.0 * n * FR__U)) { /* no closed form at rounding level: the parabolas */
-                cand[0] = j > 0 ? fr__parabola_root(hi, n, xl, vl, 1) : (double)NAN;    /* xl = bp[j - 1] */
-                cand[1] = j < nbp ? fr__parabola_root(hi, n, xr, vr, -1) : (double)NAN; /* xr = bp[j] */
-                for (k = 0; k < 2; k++)
-                    if (cand[k] > xl && cand[k] < xr) {
-                        double v = fr__abs_value_ratio(hi, n, cand[k]);
-                        if (v < best) { best = v; start = cand[k]; }
+                for (k = 0; k < 4; k++) { /* the parabolas, then the cubics if neither is at rounding level */
+                    int order = k < 2 ? 2 : 3, left = !(k & 1); /* the critical end xl = bp[j - 1], or xr = bp[j] */
+                    double x;
+                    if ((left ? j == 0 : j == nbp) || (order == 3 && best <= 64.0 * n * FR__U)) continue;
+                    x = left ? fr__critical_end_start(hi, n, xl, vl, 1, order) : fr__critical_end_start(hi, n, xr, vr, -1, order);
+                    if (x > xl && x < xr) {
+                        double v = fr__abs_value_ratio(hi, n, x);
+                        if (v < best) { best = v; start = x; }
                     }
+                }
             }
             out[cnt++] = fr__root_in_piece(hi, lo, n, xl, xr, vl, vr, sl, start, tiny);
         }
