@@ -4012,8 +4012,13 @@ static double fr__sum8(const double *t, double *abs_sum)
    all n roots are real and one is still missing (a middle root of roots
    spread both ways, which neither direction resolves), it is the product
    of the roots, (-1)^n c_0 / c_n, divided by the others': no cancellation.
-   Only the starting points differ, so the certificate is the fast path's
-   own. */
+   When a quartic's two middle roots are missing, x^2 - S x + P, their
+   factor, follows from the two found, r and s, by the coefficients of x^2
+   and x: e2 = P + S (r + s) + r s and e3 = P (r + s) + S r s (e_k the
+   elementary symmetric functions, c_4 e2 = c_2, c_4 e3 = -c_1), a 2x2
+   system with determinant r^2 + r s + s^2 > 0, well conditioned when r
+   and s are the extreme roots. Only the starting points differ, so the
+   certificate is the fast path's own. */
 static int fr__fast_retry(const double *q, const double *lo, int n, int want, const double *est, int ne, double *out)
 {
     double cand[8], rank[8], rev[5], er[4];
@@ -4037,6 +4042,15 @@ static int fr__fast_retry(const double *q, const double *lo, int n, int want, co
         double prod = out[0];
         for (i = 1; i < k; i++) prod *= out[i];
         out[k++] = ((n & 1) ? -q[0] : q[0]) / q[n] / prod;
+    } else if (k == 2 && want == 4 && n == 4) {
+        double r = out[0], t = out[1], rs = r * t, sum = r + t, det = sum * sum - rs;
+        double b1 = q[2] / q[4] - rs, e3 = -q[1] / q[4], S = (b1 * sum - e3) / det, P = (sum * e3 - rs * b1) / det;
+        double disc = S * S - 4.0 * P, h;
+        if (!(disc >= 0) || !(det > 0)) return -1;
+        h = 0.5 * (S + (S < 0 ? -sqrt(disc) : sqrt(disc))); /* no cancellation; the other is P / h */
+        if (h == 0) return -1;
+        out[k++] = h;
+        out[k++] = P / h;
     }
     if (k < want) return -1;
     return fr__fast_finish(q, lo, n, out, want);
