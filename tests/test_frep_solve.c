@@ -314,7 +314,8 @@ static void fast_retry_spread_roots(void)
         check_roots("fast retry", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
     }
     from_roots(c, re8, 2, pair8, 1, 1);
-    T_INT_EQ(fr__estimate_roots(c, 4, est), 4); /* 4 real estimates, 2 real roots */
+    /* 2 real roots; Ferrari gives 4 real estimates under -O2 (the retry
+       picks 2 by residual), 2 under the sanitizer build's -O1 */
     T_INT_EQ(fr__solve_fast(c, NULL, 4, out), 2);
     check_roots("fast retry, complex pair between", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
 }
