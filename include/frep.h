@@ -463,9 +463,13 @@ FR_DEF fr_result_t fr_parse(const char *text, size_t len, const fr_parse_desc_t 
    Quadratics, cubics and quartics first try closed-form estimates that must
    certify themselves (the discriminant's sign with an error bound fixes the
    number of distinct real roots; each estimate must converge under a
-   compensated third-order polish; all must be distinct), which is 6-23x
-   faster than gsl_poly_complex_solve on random quartics; anything uncertain
-   takes the general path above. */
+   compensated third-order polish; all must be distinct), which is 6-28x
+   faster than gsl_poly_complex_solve on random quartics; cubics and
+   quartics whose roots are spread so far that the coefficients' Newton
+   polygon splits them into groups are solved group by group, every root
+   certified by a sign change; anything uncertain takes the general path
+   above, with its breakpoints from the fast path on the highest
+   derivative that certifies. */
 
 #define FR_POLY_MAX_DEGREE 16 /* at most 16: fr__ceil_div has a table per divisor */
 
