@@ -452,6 +452,25 @@ static double urand(void)
     return (double)(rng_s >> 11) * (1.0 / 9007199254740992.0);
 }
 
+/* The arrays of one timing, from one allocation: each starts on a 64-byte
+   boundary and array k lies k * 320 bytes further from a 4 KiB boundary
+   than array 0. Without this the layout is malloc's: arrays of 32 or 64
+   KiB land a multiple of 4 KiB plus 16 bytes apart, so wide loads split
+   cache lines and a load 4 KiB from a pending store waits for it (x86
+   compares only the low 12 address bits first); that made single rows
+   of every kind (double loops included) 1.3-2x slower from one run to
+   the next. Every loop here, double and interval, gets the same layout. */
+struct arena_t {
+    std::vector<unsigned char> mem;
+    size_t stride;
+    arena_t(size_t bytes, int count) : mem(((bytes + 4095) / 4096 * 4096 + 320) * (size_t)count + 64), stride((bytes + 4095) / 4096 * 4096 + 320) {}
+    template <class T> T *get(int k)
+    {
+        uintptr_t b = ((uintptr_t)mem.data() + 63) & ~(uintptr_t)63;
+        return (T *)(b + (size_t)k * stride);
+    }
+};
+
 /* An empty asm that the compiler must assume changes v (in a register):
    a loop with it cannot be vectorised and costs nothing else. */
 static inline void opaque(double &v) { __asm__("" : "+x"(v)); }
@@ -467,10 +486,11 @@ template <class U> static inline void opaque(U &) {}
 template <class T, bool SCALAR = false, class MK, class OP, class SUM>
 static double time_op(MK make, OP op, SUM sum, int reps, int trials = 7)
 {
-    std::vector<T> a(N), b(N), c(N);
-    for (int i = 0; i < N; i++) { a[i] = make(xs[i], xw[i]); b[i] = make(ys[i], yw[i]); }
-    const T *__restrict ap = a.data(), *__restrict bp = b.data();
-    T *__restrict cp = c.data();
+    arena_t mem(N * sizeof(T), 3);
+    T *a = mem.get<T>(0), *b = mem.get<T>(1), *c = mem.get<T>(2);
+    for (int i = 0; i < N; i++) { a[i] = make(xs[i], xw[i]); b[i] = make(ys[i], yw[i]); c[i] = a[i]; }
+    const T *__restrict ap = a, *__restrict bp = b;
+    T *__restrict cp = c;
     double best = 1e30;
     for (int trial = 0; trial < trials; trial++) {
         double t0 = now_ns(), acc = 0;
@@ -496,13 +516,14 @@ static double time_op(MK make, OP op, SUM sum, int reps, int trials = 7)
 template <class T, class MK, class FN, class SUM>
 static double time_arr(MK make, FN fn, SUM sum, int reps, int trials = 7)
 {
-    std::vector<T> a(N), b(N), c(N);
-    for (int i = 0; i < N; i++) { a[i] = make(xs[i], xw[i]); b[i] = make(ys[i], yw[i]); }
+    arena_t mem(N * sizeof(T), 3);
+    T *a = mem.get<T>(0), *b = mem.get<T>(1), *c = mem.get<T>(2);
+    for (int i = 0; i < N; i++) { a[i] = make(xs[i], xw[i]); b[i] = make(ys[i], yw[i]); c[i] = a[i]; }
     double best = 1e30;
     for (int trial = 0; trial < trials; trial++) {
         double t0 = now_ns(), acc = 0;
         for (int r = 0; r < reps; r++) {
-            fn(c.data(), a.data(), b.data(), (size_t)N);
+            fn(c, a, b, (size_t)N);
             acc += sum(c[r % N]);
         }
         sink = acc;
@@ -517,16 +538,18 @@ static double time_arr(MK make, FN fn, SUM sum, int reps, int trials = 7)
 template <class T, class MK, class FN>
 static double time_soa(MK make, FN fn, int reps, int trials)
 {
-    std::vector<double> al(N), ah(N), bl(N), bh(N), cl(N), ch(N);
+    arena_t mem(N * sizeof(double), 6);
+    double *al = mem.get<double>(0), *ah = mem.get<double>(1), *bl = mem.get<double>(2), *bh = mem.get<double>(3);
+    double *cl = mem.get<double>(4), *ch = mem.get<double>(5);
     for (int i = 0; i < N; i++) {
         T x = make(xs[i], xw[i]), y = make(ys[i], yw[i]);
-        al[i] = x.lo, ah[i] = x.hi, bl[i] = y.lo, bh[i] = y.hi;
+        al[i] = x.lo, ah[i] = x.hi, bl[i] = y.lo, bh[i] = y.hi, cl[i] = ch[i] = 0;
     }
     double best = 1e30;
     for (int trial = 0; trial < trials; trial++) {
         double t0 = now_ns(), acc = 0;
         for (int r = 0; r < reps; r++) {
-            fn(cl.data(), ch.data(), al.data(), ah.data(), bl.data(), bh.data(), (size_t)N);
+            fn(cl, ch, al, ah, bl, bh, (size_t)N);
             acc += cl[r % N] + ch[r % N];
         }
         sink = acc;

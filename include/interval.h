@@ -77,6 +77,13 @@
      scalar code's results exactly (tested); IV_NO_SIMD selects the
      scalar code.
 
+   ARRAY FORMS
+     iv_add_n / iv_sub_n / iv_mul_n (iv_t arrays) and iv_add_soa /
+     iv_sub_soa / iv_mul_soa (separate lo and hi arrays) do the pair
+     path's steps for four to eight intervals per AVX-512 instruction (two
+     to four with AVX2) and give the per-call results bit for bit; they
+     are what reaches the throughput figures of docs/interval.md.
+
    CONVENTIONS
      See docs/conventions.md: results are iv_result_t codes with IV_OK = 0,
      zero-initialised config structs mean defaults, queries are const,
