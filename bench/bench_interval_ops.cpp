@@ -655,18 +655,30 @@ int main(int argc, char **argv)
     const int reps = 600;
     std::vector<row_t> rows;
     using namespace boost::numeric;
-#define ROW(name, dexpr, rexpr, fexpr, bexpr) do { \
+/* one throughput row: dexpr over double arrays (vectorised and scalar),
+   rtime and ftime timing the rigorous and fast forms (3 trials each),
+   in ROUNDS interleaved rounds; Boost once, per element */
+#define ROW_T(name, dexpr, rtime, ftime, bexpr) do { \
         fprintf(stderr, "timing %s\n", name); \
         row_t r_; r_.op = name; \
         r_.d = r_.d1 = r_.rig = r_.fast = 1e30; \
         for (int k_ = 0; k_ < ROUNDS; k_++) { \
             r_.d = std::min(r_.d, time_op<double>(d_make, [](double a, double b) { (void)a; (void)b; return dexpr; }, d_sum, reps, 3)); \
             r_.d1 = std::min(r_.d1, time_op<double, true>(d_make, [](double a, double b) { (void)a; (void)b; return dexpr; }, d_sum, reps, 3)); \
-            r_.rig = std::min(r_.rig, time_op<iv_t>(r_make, [](iv_t a, iv_t b) { (void)a; (void)b; return rexpr; }, r_sum, reps, 3)); \
-            r_.fast = std::min(r_.fast, time_op<F_iv_t>(f_make, [](F_iv_t a, F_iv_t b) { (void)a; (void)b; return fexpr; }, f_sum, reps, 3)); \
+            r_.rig = std::min(r_.rig, rtime); \
+            r_.fast = std::min(r_.fast, ftime); \
         } \
         r_.boost = time_op<biv_t>(b_make, [](const biv_t &a, const biv_t &b) { (void)a; (void)b; return bexpr; }, b_sum, reps / 30 + 1); \
         rows.push_back(r_); } while (0)
+#define ROW(name, dexpr, rexpr, fexpr, bexpr) \
+    ROW_T(name, dexpr, time_op<iv_t>(r_make, [](iv_t a, iv_t b) { (void)a; (void)b; return rexpr; }, r_sum, reps, 3), \
+          time_op<F_iv_t>(f_make, [](F_iv_t a, F_iv_t b) { (void)a; (void)b; return fexpr; }, f_sum, reps, 3), bexpr)
+/* the array forms against the same double loops; Boost has none, its
+   column is its per-element loop again */
+#define ROW_N(name, dexpr, rfn, ffn, bexpr) \
+    ROW_T(name, dexpr, time_arr<iv_t>(r_make, rfn, r_sum, reps, 3), time_arr<F_iv_t>(f_make, ffn, f_sum, reps, 3), bexpr)
+#define ROW_SOA(name, dexpr, rfn, ffn, bexpr) \
+    ROW_T(name, dexpr, time_soa<iv_t>(r_make, rfn, reps, 3), time_soa<F_iv_t>(f_make, ffn, reps, 3), bexpr)
     ROW("add", a + b, iv_add(a, b), F_iv_add(a, b), a + b);
     ROW("sub", a - b, iv_sub(a, b), F_iv_sub(a, b), a - b);
     ROW("mul", a * b, iv_mul(a, b), F_iv_mul(a, b), a * b);
@@ -674,34 +686,8 @@ int main(int argc, char **argv)
     ROW("sqr", a * a, iv_sqr(a), F_iv_sqr(a), square(a));
     ROW("sqrt", sqrt(b + 0 * a), iv_sqrt(b), F_iv_sqrt(b), sqrt(b));
     ROW("tangle", d_tangle(a, b), r_tangle(a, b), f_tangle(a, b), b_tangle(a, b));
-    /* the array forms against the same double loops; Boost has none, its
-       column is its per-element loop again */
-#define ROW_N(name, dexpr, rfn, ffn, bexpr) do { \
-        fprintf(stderr, "timing %s\n", name); \
-        row_t r_; r_.op = name; \
-        r_.d = r_.d1 = r_.rig = r_.fast = 1e30; \
-        for (int k_ = 0; k_ < ROUNDS; k_++) { \
-            r_.d = std::min(r_.d, time_op<double>(d_make, [](double a, double b) { return dexpr; }, d_sum, reps, 3)); \
-            r_.d1 = std::min(r_.d1, time_op<double, true>(d_make, [](double a, double b) { return dexpr; }, d_sum, reps, 3)); \
-            r_.rig = std::min(r_.rig, time_arr<iv_t>(r_make, rfn, r_sum, reps, 3)); \
-            r_.fast = std::min(r_.fast, time_arr<F_iv_t>(f_make, ffn, f_sum, reps, 3)); \
-        } \
-        r_.boost = time_op<biv_t>(b_make, [](const biv_t &a, const biv_t &b) { return bexpr; }, b_sum, reps / 30 + 1); \
-        rows.push_back(r_); } while (0)
     ROW_N("add_n", a + b, iv_add_n, F_iv_add_n, a + b);
     ROW_N("mul_n", a * b, iv_mul_n, F_iv_mul_n, a * b);
-#define ROW_SOA(name, dexpr, rfn, ffn, bexpr) do { \
-        fprintf(stderr, "timing %s\n", name); \
-        row_t r_; r_.op = name; \
-        r_.d = r_.d1 = r_.rig = r_.fast = 1e30; \
-        for (int k_ = 0; k_ < ROUNDS; k_++) { \
-            r_.d = std::min(r_.d, time_op<double>(d_make, [](double a, double b) { return dexpr; }, d_sum, reps, 3)); \
-            r_.d1 = std::min(r_.d1, time_op<double, true>(d_make, [](double a, double b) { return dexpr; }, d_sum, reps, 3)); \
-            r_.rig = std::min(r_.rig, time_soa<iv_t>(r_make, rfn, reps, 3)); \
-            r_.fast = std::min(r_.fast, time_soa<F_iv_t>(f_make, ffn, reps, 3)); \
-        } \
-        r_.boost = time_op<biv_t>(b_make, [](const biv_t &a, const biv_t &b) { return bexpr; }, b_sum, reps / 30 + 1); \
-        rows.push_back(r_); } while (0)
     ROW_SOA("add_soa", a + b, iv_add_soa, F_iv_add_soa, a + b);
     ROW_SOA("mul_soa", a * b, iv_mul_soa, F_iv_mul_soa, a * b);
     printf("throughput: independent operations over arrays, ns per operation (best of 15 in 5 interleaved rounds, %d ops each (Boost: best of 7 at 1/30 of that))\n", reps * N);
