@@ -3577,6 +3577,45 @@ static int fr__sign_comp(const double *hi, const double *lo, int n, double x, do
     return v > 0 ? 1 : -1;
 }
 
+/* fr__sign_comp at four points at once (structure of arrays, one AVX
+   vector per step; the same operations per lane, so the same certificate):
+   sign[j], value[j] and the plain derivative deriv[j] at x[j], on the
+   coefficients hi + j qs (qs = 0: shared; as fr__polish_lanes). */
+static FR__HOT_INLINE void fr__sign_comp_lanes(const double *hi, int qs, const double *lo, int n, const double *x,
+                                               int *sign, double *value, double *deriv)
+{
+    double X[4], AX[4], S[4], E[4], A[4], D[4];
+    int i, j;
+    for (j = 0; j < 4; j++) {
+        X[j] = x[j]; AX[j] = fabs(x[j]);
+        S[j] = hi[j * qs + n]; E[j] = lo ? lo[n] : 0.0; A[j] = fabs(S[j]); D[j] = 0.0;
+    }
+    for (i = n - 1; i >= 0; i--) {
+        double cl = lo ? lo[i] : 0.0;
+        for (j = 0; j < 4; j++) {
+            double c = hi[j * qs + i], p = S[j] * X[j], pe = fma(S[j], X[j], -p), t = p + c, z = t - p;
+            double te = (p - (t - z)) + (c - z);
+            D[j] = D[j] * X[j] + S[j];
+            E[j] = E[j] * X[j] + (pe + te + cl);
+            S[j] = t;
+            A[j] = A[j] * AX[j] + fabs(c);
+        }
+    }
+    for (j = 0; j < 4; j++) {
+        double v = S[j] + E[j];
+        value[j] = v;
+        deriv[j] = D[j];
+        sign[j] = fabs(v) <= FR__ZERO_K * (double)(n * n) * FR__U * FR__U * A[j] ? 0 : v > 0 ? 1 : -1;
+    }
+}
+
+/* fr__sign_comp_lanes on one shared polynomial (the quartic brackets). */
+static void fr__sign_comp4(const double *hi, const double *lo, int n, const double *x, int *sign, double *value,
+                           double *deriv)
+{
+    fr__sign_comp_lanes(hi, 0, lo, n, x, sign, value, deriv);
+}
+
 /* Sign of p(x) as -1, 0, +1, where 0 means "zero within what compensated
    evaluation can resolve" (a root, possibly multiple, at x). Plain Horner
    decides first when its value exceeds its error bound gamma_2n sum|c_i||x|^i
@@ -3717,6 +3756,26 @@ static double fr__cbrt_est(double x)
     return y;
 }
 
+/* The two other roots of y^3 + a y^2 + b y + c from an estimate L of its
+   largest root in magnitude: dividing y - L out from the low end, C = -c / L
+   and B = (C - b) / L for the factor y^2 + B y + C (stable: the dropped root
+   is the largest), gives them to about L's relative error. Cardano's forms
+   give small roots only to ~1e-8 |L| absolute: ~1 relative when |L| is 1e8
+   times theirs (a fast path's polish took 4 passes instead of 1), or, when
+   rounding puts R^2 >= Q^3, not at all (a second fast-path attempt).
+   Starting points only: the certificate is the caller's. Returns 2 with
+   est[0..1] set when the pair is real and both are below |L| / 16, else 0. */
+static int fr__deflated_pair(double L, double b, double c, double *est)
+{
+    double C = -c / L, B = (C - b) / L, disc = B * B - 4.0 * C, t;
+    if (!(disc >= 0)) return 0;
+    t = -0.5 * (B + (B < 0 ? -sqrt(disc) : sqrt(disc)));
+    if (!(t != 0 && 16.0 * fabs(t) <= fabs(L))) return 0;
+    est[0] = t;
+    est[1] = C / t;
+    return 2;
+}
+
 /* Closed-form estimates (Cardano; trigonometric form when three roots are
    real, Numerical Recipes 5.6) of the real roots of y^3 + a y^2 + b y + c.
    In the trigonometric case, with psi = acos(-R / Q^(3/2)) / 3 in
@@ -3737,11 +3796,15 @@ static int fr__cubic_estimates(double a, double b, double c, double *est, int la
         if (largest_only) return 1;
         est[1] = -sQ * (cs + 1.7320508075688772 * sn) - shift;
         est[2] = -sQ * (cs - 1.7320508075688772 * sn) - shift;
+        if (fabs(est[1]) > fabs(est[0])) { double t = est[0]; est[0] = est[1]; est[1] = t; }
+        if (16.0 * fabs(est[1]) <= fabs(est[0]) && 16.0 * fabs(est[2]) <= fabs(est[0]))
+            fr__deflated_pair(est[0], b, c, est + 1); /* spread: the small pair from the low end */
         return 3;
     } else {
         double A = -(R < 0 ? -1.0 : 1.0) * fr__cbrt_est(fabs(R) + sqrt(R * R - Q3));
         est[0] = A + (A != 0 ? Q / A : 0.0) - shift;
-        return 1;
+        if (largest_only || est[0] == 0) return 1;
+        return 1 + fr__deflated_pair(est[0], b, c, est + 1); /* a spread pair that rounding hid */
     }
 }
 
@@ -3910,20 +3973,22 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
    two compensated ones (measured: 45% of quartics with four real roots
    needed a second). The roots' iterations are independent and run in four
    lanes (structure of arrays, one AVX vector), so the CPU overlaps their
-   dependency chains. Returns 0 when a root does not settle or is not
-   finite (the caller then falls back). */
-static FR__HOT_INLINE int fr__polish_lanes(const double *q, const double *lo, int n, double *x, int k)
+   dependency chains. Lane j polishes on the coefficients q + j qs: qs = 0
+   shares q, qs > 0 gives each lane its own polynomial (all four lanes'
+   filled; the split path's roots, each in its own scaling). Returns 0 when
+   a root does not settle or is not finite (the caller then falls back). */
+static FR__HOT_INLINE int fr__polish_lanes(const double *q, int qs, const double *lo, int n, double *x, int k)
 {
     /* unused lanes repeat root 0 */
     double X[4], S[4], E[4], D[4], H[4], T[4], DX[4], ERR[4];
     int it, i, j, left;
     for (j = 0; j < 4; j++) X[j] = x[j < k ? j : 0];
     for (it = 0; it < FR__FAST_POLISH_ITERS; it++) {
-        for (j = 0; j < 4; j++) { S[j] = q[n]; E[j] = lo ? lo[n] : 0.0; D[j] = 0.0; H[j] = 0.0; T[j] = 0.0; }
+        for (j = 0; j < 4; j++) { S[j] = q[j * qs + n]; E[j] = lo ? lo[n] : 0.0; D[j] = 0.0; H[j] = 0.0; T[j] = 0.0; }
         for (i = n - 1; i >= 0; i--)
             for (j = 0; j < 4; j++) {
-                double p = S[j] * X[j], pe = fma(S[j], X[j], -p), t = p + q[i], z = t - p;
-                double te = (p - (t - z)) + (q[i] - z);
+                double c = q[j * qs + i], p = S[j] * X[j], pe = fma(S[j], X[j], -p), t = p + c, z = t - p;
+                double te = (p - (t - z)) + (c - z);
                 E[j] = E[j] * X[j] + (pe + te + (lo ? lo[i] : 0.0));
                 T[j] = T[j] * X[j] + H[j]; /* third derivative / 6 */
                 H[j] = H[j] * X[j] + D[j]; /* second derivative / 2 */
@@ -3952,7 +4017,7 @@ static FR__HOT_INLINE int fr__polish_lanes(const double *q, const double *lo, in
    cycle counts) and with it (derivative levels), each compiled for its case. */
 static int fr__polish_all(const double *q, const double *lo, int n, double *x, int k)
 {
-    return lo ? fr__polish_lanes(q, lo, n, x, k) : fr__polish_lanes(q, NULL, n, x, k);
+    return lo ? fr__polish_lanes(q, 0, lo, n, x, k) : fr__polish_lanes(q, 0, NULL, n, x, k);
 }
 
 /* The common tail of the certified fast paths: polish the k estimates,
@@ -4102,8 +4167,8 @@ static int fr__cubic_fast(const double *q, const double *lo, double *out)
    derivative sequence. */
 static int fr__quartic_brackets(const double *q, const double *lo, double *out)
 {
-    double v, der[1], prev = -HUGE_VAL;
-    int i, j, sa, sb;
+    double v, val[4], der[4], xa[4], xb[4], prev = -HUGE_VAL;
+    int i, j, sg[4], sa[4], sb[4];
     if (fr__estimate_roots(q, 4, out) != 4) return -1;
     for (i = 1; i < 4; i++) /* sorted, for the gaps */
         for (j = i; j > 0 && out[j] < out[j - 1]; j--) { v = out[j]; out[j] = out[j - 1]; out[j - 1] = v; }
@@ -4111,20 +4176,24 @@ static int fr__quartic_brackets(const double *q, const double *lo, double *out)
         if (!(out[i] - out[i - 1] > 1e-5 * (fabs(out[i]) > fabs(out[i - 1]) ? fabs(out[i]) : fabs(out[i - 1]))))
             return -1;
     if (fr__fast_finish(q, lo, 4, out, 4) != 4) return -1;
+    /* one more Newton step on the compensated value: where the roots
+       crowd, fr__polish_all's plain p' is off in its sixth digit and its
+       early stop leaves a root a few ulps out (cluster 2, 2.001, 2.002,
+       2.003: 7 ulps) */
+    fr__sign_comp4(q, lo, 4, out, sg, val, der);
     for (j = 0; j < 4; j++) {
         double dlt;
-        /* one more Newton step on the compensated value: where the roots
-           crowd, fr__polish_all's plain p' is off in its sixth digit and
-           its early stop leaves a root a few ulps out (cluster 2, 2.001,
-           2.002, 2.003: 7 ulps) */
-        if (fr__sign_comp(q, lo, 4, out[j], &v, der) != 0 && der[0] != 0) out[j] -= v / der[0];
+        if (sg[j] != 0 && der[j] != 0) out[j] -= val[j] / der[j];
         dlt = 2.0 * FR__U * fabs(out[j]);
         if (!(out[j] - dlt > prev)) return -1; /* brackets disjoint, in order */
         prev = out[j] + dlt;
-        sa = fr__sign_comp(q, lo, 4, out[j] - dlt, &v, der);
-        sb = fr__sign_comp(q, lo, 4, prev, &v, der);
-        if (sa == 0 || sb == 0 || sa == sb) return -1;
+        xa[j] = out[j] - dlt;
+        xb[j] = prev;
     }
+    fr__sign_comp4(q, lo, 4, xa, sa, val, der);
+    fr__sign_comp4(q, lo, 4, xb, sb, val, der);
+    for (j = 0; j < 4; j++)
+        if (sa[j] == 0 || sb[j] == 0 || sa[j] == sb[j]) return -1;
     return 4;
 }
 
@@ -4276,27 +4345,36 @@ static int fr__ceil_div(int a, int b)
    the group's annulus, so the truncated roots start the polish ~1e-6 off. */
 #define FR__SPLIT_GAP 20
 
-/* The root near x of d (degree m, d[0] != 0, exponents ex[]), polished and
-   certified in its own power-of-two scaling x = 2^K y, |y| in [1/2, 1):
-   the terms that balance at the root then stay far from overflow and
-   underflow, whatever the other roots' magnitudes. *root gets the root and
-   1 is returned when the polish converges and the compensated value
-   changes sign, certainly, across y -+ 2u|y| (the root is within 2u|x|). */
-static int fr__certified_root_near(const double *d, const int *ex, int m, double x, double *root)
+/* The m roots of d (degree m, d[0] != 0, exponents ex[]) near x[], each
+   polished and certified in its own power-of-two scaling x = 2^K y, |y| in
+   [1/2, 1): the terms that balance at the root then stay far from overflow
+   and underflow, whatever the other roots' magnitudes. The m scaled
+   polynomials are polished in one call, a lane each. root[] gets the roots
+   and 1 is returned when the polish converges and, for every root, the
+   compensated value changes sign, certainly, across y -+ 2u|y| (the root is
+   within 2u|x|). */
+static int fr__certified_roots_near(const double *d, const int *ex, int m, const double *x, double *root)
 {
-    double q[5], y, v, der;
-    int i, K = fr__ilogb(x) + 1, M = INT_MIN, sa, sb;
-    for (i = 0; i <= m; i++)
-        if (ex[i] != INT_MIN && ex[i] + K * i > M) M = ex[i] + K * i;
-    for (i = 0; i <= m; i++) q[i] = ex[i] != INT_MIN ? fr__ldexp(d[i], K * i - M) : 0.0;
-    y = fr__ldexp(x, -K);
-    if (!fr__polish_all(q, NULL, m, &y, 1)) return 0;
-    v = 2.0 * FR__U * fabs(y);
-    sa = fr__sign_comp(q, NULL, m, y - v, &v, &der);
-    v = 2.0 * FR__U * fabs(y);
-    sb = fr__sign_comp(q, NULL, m, y + v, &v, &der);
-    *root = fr__ldexp(y, K);
-    return sa != 0 && sb != 0 && sa != sb;
+    double q[4][5], y[4], ys[4], v[4], der[4];
+    int i, j, s, K[4], sg[2][4];
+    for (j = 0; j < 4; j++) {
+        int M = INT_MIN, l = j < m ? j : 0;
+        K[j] = fr__ilogb(x[l]) + 1;
+        for (i = 0; i <= m; i++)
+            if (ex[i] != INT_MIN && ex[i] + K[j] * i > M) M = ex[i] + K[j] * i;
+        for (i = 0; i <= m; i++) q[j][i] = ex[i] != INT_MIN ? fr__ldexp(d[i], K[j] * i - M) : 0.0;
+        y[j] = fr__ldexp(x[l], -K[j]);
+    }
+    if (!fr__polish_lanes(q[0], 5, NULL, m, y, m)) return 0;
+    for (s = 0; s < 2; s++) { /* y -+ 2u|y| */
+        for (j = 0; j < 4; j++) ys[j] = y[j] + (s ? 2.0 : -2.0) * FR__U * fabs(y[j]);
+        fr__sign_comp_lanes(q[0], 5, NULL, m, ys, sg[s], v, der);
+    }
+    for (j = 0; j < m; j++) {
+        root[j] = fr__ldexp(y[j], K[j]);
+        if (!(sg[0][j] != 0 && sg[1][j] != 0 && sg[0][j] != sg[1][j])) return 0;
+    }
+    return 1;
 }
 
 /* Roots of spread magnitudes, split by the Newton polygon (degree m of 3
@@ -4307,7 +4385,7 @@ static int fr__certified_root_near(const double *d, const int *ex, int m, double
    the group's roots are those of the truncated polynomial d_l + ... + d_h
    x^(h-l) (its closed form, in its own scaling), up to the dropped terms.
    They are only starting points: each is polished on p and certified by a
-   sign change across x -+ 2u|x| (fr__certified_root_near); m disjoint such
+   sign change across x -+ 2u|x| (fr__certified_roots_near); m disjoint such
    brackets hold all of p's roots. Anything else (no cut, a group whose
    truncated roots are complex, closer than 1e-5 relative (near-multiple:
    they would not certify) or do not certify) returns -1, for the
@@ -4355,8 +4433,7 @@ static int fr__split_solve(const double *d, const int *ex, int m, double *out)
         }
         cnt += n;
     }
-    for (i = 0; i < m; i++)
-        if (!fr__certified_root_near(d, ex, m, est[i], &out[i])) return -1;
+    if (!fr__certified_roots_near(d, ex, m, est, out)) return -1;
     for (i = 1; i < m; i++) { /* sorted, brackets disjoint */
         double v = out[i];
         int j = i;
