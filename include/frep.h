@@ -3764,13 +3764,17 @@ static double fr__cbrt_est(double x)
    times theirs (a fast path's polish took 4 passes instead of 1), or, when
    rounding puts R^2 >= Q^3, not at all (a second fast-path attempt).
    Starting points only: the certificate is the caller's. Returns 2 with
-   est[0..1] set when the pair is real and both are below |L| / 16, else 0. */
+   est[0..1] set when the pair is real and both are below |L| / 16, 0 when
+   it is complex (rounding can put a complex pair beside a large root into
+   the trigonometric form, whose two small estimates are then noise), -1
+   otherwise. */
 static int fr__deflated_pair(double L, double b, double c, double *est)
 {
     double C = -c / L, B = (C - b) / L, disc = B * B - 4.0 * C, t;
-    if (!(disc >= 0)) return 0;
+    if (disc < 0) return 0;
+    if (!(disc >= 0)) return -1;
     t = -0.5 * (B + (B < 0 ? -sqrt(disc) : sqrt(disc)));
-    if (!(t != 0 && 16.0 * fabs(t) <= fabs(L))) return 0;
+    if (!(t != 0 && 16.0 * fabs(t) <= fabs(L))) return -1;
     est[0] = t;
     est[1] = C / t;
     return 2;
@@ -3797,14 +3801,15 @@ static int fr__cubic_estimates(double a, double b, double c, double *est, int la
         est[1] = -sQ * (cs + 1.7320508075688772 * sn) - shift;
         est[2] = -sQ * (cs - 1.7320508075688772 * sn) - shift;
         if (fabs(est[1]) > fabs(est[0])) { double t = est[0]; est[0] = est[1]; est[1] = t; }
-        if (16.0 * fabs(est[1]) <= fabs(est[0]) && 16.0 * fabs(est[2]) <= fabs(est[0]))
-            fr__deflated_pair(est[0], b, c, est + 1); /* spread: the small pair from the low end */
+        if (16.0 * fabs(est[1]) <= fabs(est[0]) && 16.0 * fabs(est[2]) <= fabs(est[0]) &&
+            fr__deflated_pair(est[0], b, c, est + 1) == 0) /* spread: the small pair from the low end */
+            return 1;
         return 3;
     } else {
         double A = -(R < 0 ? -1.0 : 1.0) * fr__cbrt_est(fabs(R) + sqrt(R * R - Q3));
         est[0] = A + (A != 0 ? Q / A : 0.0) - shift;
         if (largest_only || est[0] == 0) return 1;
-        return 1 + fr__deflated_pair(est[0], b, c, est + 1); /* a spread pair that rounding hid */
+        return fr__deflated_pair(est[0], b, c, est + 1) > 0 ? 3 : 1; /* a spread pair that rounding hid */
     }
 }
 
@@ -3909,6 +3914,19 @@ static double fr__abs_value_ratio(const double *hi, int n, double x)
     return a > 0 ? fabs(v) / a : 0.0;
 }
 
+/* Closed-form estimates that a failed quartic fast path computed, kept for
+   the derivative sequence's level 0 (the same polynomial: Ferrari's
+   estimates, 250-400 instructions, are not computed twice); n < 0: none. */
+typedef struct fr__est_t { int n; double x[4]; } fr__est_t;
+
+static void fr__keep_estimates(fr__est_t *keep, const double *est, int n)
+{
+    int i;
+    if (!keep) return;
+    for (i = 0; i < n; i++) keep->x[i] = est[i];
+    keep->n = n;
+}
+
 /* Roots of p (degree n, hi + lo) in [ya, yb], given the ascending roots bp of
    p' there: between consecutive breakpoints p is monotone, so a sign change
    means exactly one root; a breakpoint where p is zero is a multiple root.
@@ -3920,10 +3938,14 @@ static double fr__abs_value_ratio(const double *hi, int n, double x)
    would leave the piece; the parabola also splits a near-double root's pair
    at its critical point to about the relative size of the cubic term. */
 static int fr__roots_between(const double *hi, const double *lo, int n, double ya, double yb,
-                             const double *bp, int nbp, double tiny, double *out)
+                             const double *bp, int nbp, double tiny, const fr__est_t *known, double *out)
 {
     double xl = ya, vl, xr, vr, est[4];
-    int sl = fr__sign_at(hi, lo, n, ya, &vl), sr, j, k, cnt = 0, nest = fr__estimate_roots(hi, n, est);
+    int sl = fr__sign_at(hi, lo, n, ya, &vl), sr, j, k, cnt = 0, nest;
+    if (known && known->n >= 0) /* the failed fast path's, of this very polynomial */
+        for (nest = 0; nest < known->n; nest++) est[nest] = known->x[nest];
+    else
+        nest = fr__estimate_roots(hi, n, est);
     if (sl == 0) out[cnt++] = ya;
     for (j = 0; j <= nbp && cnt < n; j++) {
         xr = j < nbp ? bp[j] : yb;
@@ -4165,11 +4187,12 @@ static int fr__cubic_fast(const double *q, const double *lo, double *out)
    1e-5 relative: near-multiple roots, which rounding splits by about u^(1/2)
    or u^(1/3), do not certify, and polishing them costs more than the
    derivative sequence. */
-static int fr__quartic_brackets(const double *q, const double *lo, double *out)
+static int fr__quartic_brackets(const double *q, const double *lo, double *out, fr__est_t *keep)
 {
     double v, val[4], der[4], xa[4], xb[4], prev = -HUGE_VAL;
-    int i, j, sg[4], sa[4], sb[4];
-    if (fr__estimate_roots(q, 4, out) != 4) return -1;
+    int i, j, sg[4], sa[4], sb[4], ne = fr__estimate_roots(q, 4, out);
+    fr__keep_estimates(keep, out, ne);
+    if (ne != 4) return -1;
     for (i = 1; i < 4; i++) /* sorted, for the gaps */
         for (j = i; j > 0 && out[j] < out[j - 1]; j--) { v = out[j]; out[j] = out[j - 1]; out[j - 1] = v; }
     for (i = 1; i < 4; i++)
@@ -4206,9 +4229,9 @@ static int fr__quartic_brackets(const double *q, const double *lo, double *out)
    Newton to an ulp, and they must be distinct; otherwise -1 sends the
    quartic to the derivative sequence. Near-multiple roots, where the
    discriminant's sign is uncertain, always take the general path. */
-static int fr__quartic_fast(const double *q, const double *lo, double *out)
+static int fr__quartic_fast(const double *q, const double *lo, double *out, fr__est_t *keep)
 {
-    double a = q[4], b = q[3], c = q[2], d = q[1], e = q[0], t[16], D, S, P, SP, L, SL, est[4];
+    double a = q[4], b = q[3], c = q[2], d = q[1], e = q[0], t[16], D, S, P, SP, L, SL, est[4] = {0};
     double a2 = a * a, b2 = b * b, c2 = c * c, d2 = d * d, e2 = e * e;
     int n, want;
     t[0] = 256 * a2 * a * e2 * e;       t[1] = -192 * a2 * b * d * e2;
@@ -4225,7 +4248,7 @@ static int fr__quartic_fast(const double *q, const double *lo, double *out)
         S += S2;
     }
     /* each term has < 8 roundings, the sum 4; lo: see fr__solve_fast */
-    if (!(fabs(D) > (lo ? 71.0 : 64.0) * FR__U * S + FR__UNDERFLOW_SLACK)) return fr__quartic_brackets(q, lo, out);
+    if (!(fabs(D) > (lo ? 71.0 : 64.0) * FR__U * S + FR__UNDERFLOW_SLACK)) return fr__quartic_brackets(q, lo, out, keep);
     if (D < 0) want = 2;
     else {
         P = 8 * a * c - 3 * b2; SP = 8 * fabs(a * c) + 3 * b2;
@@ -4233,12 +4256,13 @@ static int fr__quartic_fast(const double *q, const double *lo, double *out)
         SL = 64 * fabs(a2 * a * e) + 16 * a2 * c2 + 16 * fabs(a * b2 * c) + 16 * fabs(a2 * b * d) + 3 * b2 * b2;
         if (!(fabs(P) > (lo ? 19.0 : 16.0) * FR__U * SP + FR__UNDERFLOW_SLACK) ||
             !(fabs(L) > (lo ? 37.0 : 32.0) * FR__U * SL + FR__UNDERFLOW_SLACK))
-            return fr__quartic_brackets(q, lo, out);
+            return fr__quartic_brackets(q, lo, out, keep);
         want = P < 0 && L < 0 ? 4 : 0;
     }
     if (want == 0) return 0;
     n = fr__estimate_roots(q, 4, est);
-    return fr__fast_certify(q, lo, 4, want, est, n, out);
+    if ((want = fr__fast_certify(q, lo, 4, want, est, n, out)) < 0) fr__keep_estimates(keep, est, n);
+    return want;
 }
 
 /* The certified fast path of degree n (2..4, q[n] != 0), or -1, for the
@@ -4247,13 +4271,15 @@ static int fr__quartic_fast(const double *q, const double *lo, double *out)
    g in the coefficients then differs from the exact polynomial's by at
    most ((1 + u)^g - 1) |term| < (g + 1) u |term|, which the sign tests'
    bounds add (g = 2 for b^2 - 4ac, 4 for the cubic's, 6 for the quartic's,
-   2 and 4 for Lazard's P and D); the polish and the brackets use q + lo. */
-static int fr__solve_fast(const double *q, const double *lo, int n, double *out)
+   2 and 4 for Lazard's P and D); the polish and the brackets use q + lo.
+   keep (NULL, or set to n = -1 by the caller) receives a quartic's
+   closed-form estimates when its fast path fails after computing them. */
+static int fr__solve_fast(const double *q, const double *lo, int n, double *out, fr__est_t *keep)
 {
     if (q[n] == 0) return -1;
     if (n == 2) return fr__quadratic_fast(q, lo, out);
     if (n == 3) return fr__cubic_fast(q, lo, out);
-    if (n == 4) return fr__quartic_fast(q, lo, out);
+    if (n == 4) return fr__quartic_fast(q, lo, out, keep);
     return -1;
 }
 
@@ -4278,8 +4304,9 @@ static void fr__derivative_level(const double *q, int n, int k, double *hi, doub
    split exactly into hi + lo by fma, so every level is evaluated as
    accurately as p itself. */
 static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo, double xa, double xb, int try_fast,
-                          double *out)
+                          const fr__est_t *known, double *out)
 {
+    fr__est_t est0;
     double q[FR_POLY_MAX_DEGREE + 1] = {0}, hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
     double bp[FR_POLY_MAX_DEGREE + 1], cur[FR_POLY_MAX_DEGREE + 1];
     double ya = fr__ldexp(xa, -K), yb = fr__ldexp(xb, -K);
@@ -4295,7 +4322,10 @@ static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo,
         if (y >= ya && y <= yb) { out[0] = fr__ldexp(y, K); return 1; }
         return 0;
     }
-    if (try_fast && (ncur = fr__solve_fast(q, NULL, n, cur)) >= 0) {
+    est0.n = -1;
+    if (known) /* estimates of c, in x: to y */
+        for (est0.n = 0; est0.n < known->n; est0.n++) est0.x[est0.n] = fr__ldexp(known->x[est0.n], -K);
+    if (try_fast && (ncur = fr__solve_fast(q, NULL, n, cur, &est0)) >= 0) {
         for (i = k = 0; i < ncur; i++)
             if (cur[i] >= ya && cur[i] <= yb) out[k++] = fr__ldexp(cur[i], K);
         return k;
@@ -4307,7 +4337,7 @@ static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo,
        critical points) hands over to the next lower degree. */
     for (k0 = n - 1, k = n - 4 > 1 ? n - 4 : 1; k <= n - 2; k++) {
         fr__derivative_level(q, n, k, hi, lo);
-        if ((ncur = fr__solve_fast(hi, lo, n - k, cur)) >= 0) {
+        if ((ncur = fr__solve_fast(hi, lo, n - k, cur, NULL)) >= 0) {
             for (i = 0; i < ncur; i++)
                 if (cur[i] > ya && cur[i] < yb) bp[nbp++] = cur[i];
             k0 = k - 1;
@@ -4316,7 +4346,7 @@ static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo,
     }
     for (k = k0; k >= 0; k--) {
         fr__derivative_level(q, n, k, hi, lo);
-        ncur = fr__roots_between(hi, lo, n - k, ya, yb, bp, nbp, fr__ldexp(1.0, Elo - K), cur);
+        ncur = fr__roots_between(hi, lo, n - k, ya, yb, bp, nbp, fr__ldexp(1.0, Elo - K), k == 0 ? &est0 : NULL, cur);
         for (i = 0; i < ncur; i++) bp[i] = cur[i];
         nbp = ncur;
     }
@@ -4481,6 +4511,8 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
     double buf[FR_POLY_MAX_DEGREE + 1];
     const double *d;
     int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = INT_MIN, direct, split, ex[FR_POLY_MAX_DEGREE + 1] = {0};
+    fr__est_t known;
+    known.n = -1;
     if (!c || !r || degree < 0 || degree > FR_POLY_MAX_DEGREE || !(t0 <= t1)) return -1;
     for (i = 0; i <= degree; i++)
         if (!(c[i] - c[i] == 0)) return -1; /* NaN or infinite */
@@ -4503,7 +4535,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
        scaling below cost a quarter of a quartic solve. */
     /* -2: not tried; -1: tried and not certified, which the band's exact
        scaling would not change, so the band skips the fast path */
-    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, NULL, m, buf) : -2;
+    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, NULL, m, buf, &known) : -2;
     if (direct >= 0) {
         cnt = direct; /* certified; filtered below */
     } else if (z == 0 && (m == 3 || m == 4) && (split = fr__split_solve(d, ex, m, buf)) >= 0) {
@@ -4537,7 +4569,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
             /* only the zero root, if any */
         } else if (Ehi - Elo <= W) {
             double B = fr__ldexp(1.0, Ehi);
-            cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, direct == -2, buf);
+            cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, direct == -2, &known, buf);
         } else {
             /* Roots spread over more than W bits: bands of at most W bits each,
                negative side from the largest magnitude down, then positive. */
@@ -4551,7 +4583,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
                     if (xb > t1) xb = t1;
                     if (xa <= xb && cnt < m) {
                         double band[FR_POLY_MAX_DEGREE + 1];
-                        int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, direct == -2, band);
+                        int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, direct == -2, &known, band);
                         for (k = 0; k < nb && cnt < m; k++)
                             if (cnt == 0 || band[k] > buf[cnt - 1]) buf[cnt++] = band[k];
                     }

@@ -316,7 +316,7 @@ static void fast_retry_spread_roots(void)
     from_roots(c, re8, 2, pair8, 1, 1);
     /* 2 real roots; Ferrari gives 4 real estimates under -O2 (the retry
        picks 2 by residual), 2 under the sanitizer build's -O1 */
-    T_INT_EQ(fr__solve_fast(c, NULL, 4, out), 2);
+    T_INT_EQ(fr__solve_fast(c, NULL, 4, out, NULL), 2);
     check_roots("fast retry, complex pair between", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
 }
 
@@ -337,7 +337,7 @@ static void derivative_level_fast_breakpoints(void)
     from_roots(c, r5, 5, NULL, 0, 1);
     for (k = 1; k <= 2; k++) {
         fr__derivative_level(c, 5, k, hi, lo);
-        nb = fr__solve_fast(hi, lo, 5 - k, bp);
+        nb = fr__solve_fast(hi, lo, 5 - k, bp, NULL);
         T_INT_EQ(nb, 5 - k);
         for (j = 0; j < nb; j++) { /* a sign change of the exact level across bp -+ 4 ulps */
             __float128 v[2];
@@ -354,6 +354,66 @@ static void derivative_level_fast_breakpoints(void)
     for (k = 0; k < 3; k++) {
         from_roots(c, r4[k], 4, NULL, 0, 1);
         check_roots("near-double amid spread", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    }
+}
+
+/* fr__deflated_pair: Cardano's small pair of a cubic with spread roots is
+   good only to ~1e-8 of the largest root (absolute), or missing when
+   rounding puts R^2 >= Q^3; the largest root divided out from the low end
+   gives the pair to ~1e-8 relative. Each case's estimates must be within
+   1e-6 relative of the roots (one each), the fast path must certify, and
+   the roots match the oracle to 4e-16. A complex pair beside a large root
+   gets no real estimates. */
+static void cubic_deflated_pair(void)
+{
+    static const double re[4][3] = {{3.3e6, 1e7, 7.5e14}, /* ODM case 21's p' */
+                                    {-2e-3, 5, 1e11}, {1e-14, 1e-30, 1}, {-1, 7e-5, -4e20}};
+    static const double re1[1] = {1e10}, pair1[1][2] = {{1, 1}};
+    double c[5], est[3], out[3];
+    int k, i, j;
+    for (k = 0; k < 4; k++) {
+        from_roots(c, re[k], 3, NULL, 0, 1);
+        T_INT_EQ(fr__estimate_roots(c, 3, est), 3);
+        for (i = 0; i < 3; i++) {
+            double best = HUGE_VAL;
+            for (j = 0; j < 3; j++)
+                if (fabs(est[j] - re[k][i]) < best) best = fabs(est[j] - re[k][i]);
+            T_LE(best, 1e-6 * fabs(re[k][i]));
+        }
+        T_INT_EQ(fr__solve_fast(c, NULL, 3, out, NULL), 3);
+        check_roots("cubic, deflated pair", c, 3, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    }
+    from_roots(c, re1, 1, pair1, 1, 1);
+    T_INT_EQ(fr__estimate_roots(c, 3, est), 1);
+    check_roots("cubic, complex pair beside a large root", c, 3, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+}
+
+/* fr__sign_comp4 (the quartic brackets' four points at once) gives
+   fr__sign_comp's sign at each point, and its value and derivative to a
+   few ulps, with and without a lo part, on points near and away from the
+   roots of ODM case 2's cluster and of a random quartic. */
+static void sign_comp4_matches_scalar(void)
+{
+    static const double re[2][4] = {{2, 2.001, 2.002, 2.003}, {-3.5, 0.25, 1.75, 40}};
+    double c[5], lo[5], x[4], v[4], d[4];
+    int k, j, s[4], l;
+    for (k = 0; k < 2; k++) {
+        from_roots(c, re[k], 4, NULL, 0, 1);
+        for (j = 0; j < 5; j++) lo[j] = ldexp(c[j], -60) * (j & 1 ? 1 : -1);
+        for (l = 0; l < 2; l++) {
+            int t;
+            for (t = 0; t < 3; t++) {
+                for (j = 0; j < 4; j++) x[j] = re[k][j] * (1.0 + (t == 0 ? 0.0 : t == 1 ? 4e-16 : -1e-3));
+                fr__sign_comp4(c, l ? lo : NULL, 4, x, s, v, d);
+                for (j = 0; j < 4; j++) {
+                    double v1, d1;
+                    int s1 = fr__sign_comp(c, l ? lo : NULL, 4, x[j], &v1, &d1);
+                    T_INT_EQ(s[j], s1);
+                    T_LE(fabs(v[j] - v1), 1e-15 * fabs(v1) + 1e-300);
+                    T_LE(fabs(d[j] - d1), 1e-14 * fabs(d1) + 1e-300);
+                }
+            }
+        }
     }
 }
 
@@ -605,6 +665,8 @@ int main(int argc, char **argv)
         T_CASE(fast_retry_spread_roots),
         T_CASE(derivative_level_fast_breakpoints),
         T_CASE(near_triple_roots),
+        T_CASE(cubic_deflated_pair),
+        T_CASE(sign_comp4_matches_scalar),
         T_CASE(odm_2020_cases_1_to_24),
         T_CASE(odm_remark_family_biquadratic),
         T_CASE(odm_remark_family_random_draws),
