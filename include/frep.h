@@ -3739,12 +3739,14 @@ static void fr__cos_sin_est(double t, double *c, double *s)
 
 /* cbrt(x) for x >= 0: the exponent divided by 3 in the bit pattern (about
    6% off), then two Halley steps (cubic convergence, below 1e-14). Outside
-   the normal range the bit trick fails, so libm takes over. */
+   the normal range the bit trick fails, so libm takes over (not for 0, a
+   depressed cubic's common case). */
 static double fr__cbrt_est(double x)
 {
     unsigned long long u;
     double y;
     int it;
+    if (x == 0) return 0.0;
     if (!(x >= 1e-300 && x <= 1e300)) return cbrt(x);
     memcpy(&u, &x, sizeof u);
     u = u / 3u + 0x2A9F7893782DA1CEull;
