@@ -574,13 +574,18 @@ typedef struct re__cyl_t {
     unsigned s[2]; /* spheres at the axis ends */
     unsigned p[2]; /* the two offset planes it joins */
 } re__cyl_t;
-/* An edge cylinder as stored, 12 bytes: s[0], the sphere at the edge's
-   lower vertex, grows with the cylinder id (edges are numbered by their
-   lower vertex), so it is packed apart (re__object_t.c_s0). */
+/* An edge cylinder as stored, 10 bytes: its planes here (p[0] is the face
+   on the left leaving the edge's lower vertex, p[1] leaving the upper);
+   s[0], the sphere at the lower vertex, grows with the cylinder id (edges
+   are numbered by their lower vertex), so it is packed apart
+   (re__object_t.c_s0), and s[1] is kept as s[1] - s[0] in 16 bits
+   (re__object_t.ds1): spheres are numbered in vertex order, and an edge's
+   vertices seldom lie 65535 spheres apart; those that do are listed in
+   xs1 (re__cyl_s1). */
 typedef struct re__ecyl_t {
-    unsigned s1;   /* sphere at the other end */
-    unsigned p[2]; /* re__cyl_t.p */
+    unsigned p[2];
 } re__ecyl_t;
+#define RE__DS1_FAR 0xFFFFu
 
 /* An extra (exact-corner) cylinder, 4 bytes (its corner is in
    re__object_t.x_corner): both ends are spheres of one corner and both
@@ -593,7 +598,8 @@ typedef struct re__xcyl_t {
 
 /* A rounded mesh vertex, 8 bytes; its monotone ids are packed apart
    (re__object_t: k_first, k_sfirst, k_rid; its vertex id in cvertex).
-   refs[first ...]: np edge cylinders (cylinder j joins planes j and j+1);
+   refs[first ...]: np edge cylinders (cylinder j joins planes j and j+1),
+   each as id << 1 | (1 if the corner is the edge's lower vertex);
    its nx extra cylinders are xfirst ... (packed, only in objects that have
    extra cylinders); its ns spheres are sfirst ...; its radius radii[rid]. The mesh vertex itself
    is not stored: every test that needs it uses the first sphere centre with
@@ -627,8 +633,9 @@ typedef struct re__node_t {
 #define RE__PK_BLOCK 32u
 #define RE__PK_FULL 0x80000000u
 /* Largest span of a block kept as bytes (254: 255 is RE__NONE), the
-   largest span of a kd leaf run (re__kd_narrow) and the plane slots a
-   solved sphere centre may use (5 bits, re__object_t.sinfo). Tests lower
+   largest span of a kd leaf run (re__kd_narrow), the plane slots a solved
+   sphere centre may use (5 bits, re__object_t.sinfo) and the largest
+   sphere distance of an edge cylinder's ends kept in 16 bits. Tests lower
    them to run the fallbacks (tests/test_rounded_packing.c). */
 #ifndef RE__PK_SPAN
 #define RE__PK_SPAN 254u
@@ -638,6 +645,9 @@ typedef struct re__node_t {
 #endif
 #ifndef RE__SOLVED_SLOTS
 #define RE__SOLVED_SLOTS 32u
+#endif
+#ifndef RE__DS1_SPAN /* largest s[1] - s[0] kept in 16 bits (re__ecyl_t) */
+#define RE__DS1_SPAN 0xFFFEu
 #endif
 typedef struct re__pk_t {
     const unsigned *base;
@@ -683,11 +693,16 @@ typedef struct re__object_t {
     const unsigned *xsid; /* compact layout: the stored spheres, ascending */
     const double *xsph; /* 3 per stored sphere centre (every one in the fast layout) */
     const re__ecyl_t *cyls;   /* edge cylinders [0, n_edge_cyls) */
+    const unsigned short *ds1; /* per edge cylinder: s[1] - s[0], or RE__DS1_FAR */
+    const unsigned *xs1;      /* 2 per far cylinder, ascending: its id, its s[1] */
+    unsigned n_xs1;
     const re__xcyl_t *xcyls;  /* extra cylinders [n_edge_cyls, n_cyls) */
-    const unsigned short *det; /* 2 per edge cylinder, as the upper halves of
-                          floats rounded up (re__det): detection radius
-                          around the mesh edge's line, and the reach past
-                          its end spheres along the axis (query step 1) */
+    const unsigned short *det; /* fast layout: 2 per edge cylinder, as the upper
+                          halves of floats rounded up (re__det): detection
+                          radius around the mesh edge's line, and the reach
+                          past its end spheres along the axis (query step 1) */
+    const unsigned char *det8; /* compact layout: the same in one byte each (re__det8) */
+    unsigned det_e0;           /* compact layout: re__det8's exponent base */
     const re__corner_t *corners;
     const double *radii; /* one per rounded patch */
     const unsigned *refs;
@@ -1841,6 +1856,9 @@ typedef struct re__final_t {
     re__cyl_t *cyls;
     re__xcyl_t *xcyls;
     unsigned short *det;
+    unsigned char *det8;
+    unsigned det_e0;
+    unsigned n_xs1; /* edge cylinders whose s[1] - s[0] does not fit 16 bits */
     re__corner_t *corners;
     double *radii;
     unsigned *refs;
@@ -1870,6 +1888,38 @@ static unsigned short re__det_up(double x)
 static double re__det(unsigned short h)
 {
     unsigned b = (unsigned)h << 16;
+    float f;
+    memcpy(&f, &b, sizeof f);
+    return (double)f;
+}
+/* The compact layout's detection radii: one byte, a 4-bit exponent above
+   the object's base e0 (a float's biased exponent) and a 4-bit mantissa,
+   rounded up (at most 6.25% too large; below 2^(e0 - 127) they become that
+   value). e0 is chosen so the largest radius of the object fits. */
+static unsigned re__det8_exp(double x)
+{
+    float f = re__float_up(x);
+    unsigned b, ex, m;
+    memcpy(&b, &f, sizeof b);
+    ex = b >> 23, m = (b >> 19) & 15u;
+    if (b & 0x7FFFFu) m++;
+    return m == 16u ? ex + 1u : ex;
+}
+static unsigned char re__det8_up(double x, unsigned e0)
+{
+    float f = re__float_up(x);
+    unsigned b, ex, m;
+    memcpy(&b, &f, sizeof b);
+    ex = b >> 23, m = (b >> 19) & 15u;
+    if (b & 0x7FFFFu) m++;
+    if (m == 16u) m = 0, ex++;
+    if (ex < e0) return 0;
+    RE_ASSERT(ex - e0 <= 15u);
+    return (unsigned char)((ex - e0) << 4 | m);
+}
+static double re__det8(unsigned char h, unsigned e0)
+{
+    unsigned b = (e0 + (unsigned)(h >> 4)) << 23 | (unsigned)(h & 15u) << 19;
     float f;
     memcpy(&f, &b, sizeof f);
     return (double)f;
@@ -2217,6 +2267,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
     RE__TAKE(F->xcyls, re__xcyl_t, ncyl - F->n_edge_cyls);
     RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
+    RE__TAKE(F->det8, unsigned char, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->corners, re__corner_t, nco);
     RE__TAKE(F->radii, double, F->n_radii);
     RE__TAKE(F->refs, unsigned, nref);
@@ -2245,7 +2296,10 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         K->ns = an->c_ns[c];
         K->nx = an->c_nx[c];
         K->pad_ = 0;
-        for (j = 0; j < K->np; j++) F->refs[nref++] = ecyl[an->c_edges[pf + j]];
+        for (j = 0; j < K->np; j++) {
+            const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
+            F->refs[nref++] = ecyl[an->c_edges[pf + j]] << 1 | (e->v[0] == an->c_vertex[c] ? 1u : 0u);
+        }
         /* the query numbers a corner's planes by its edges (re__corner_plane:
            plane j is the face whose half-edge of edge j leaves the corner);
            qslot maps the fan slots of c_planes to those */
@@ -2341,6 +2395,9 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
         F->pk[RE__PKA_C_S0][ecyl[i]] = cy->s[0];
     }
+    F->n_xs1 = 0;
+    for (i = 0; i < F->n_edge_cyls; i++)
+        F->n_xs1 += F->cyls[i].s[1] > F->cyls[i].s[0] && F->cyls[i].s[1] - F->cyls[i].s[0] <= RE__DS1_SPAN ? 0u : 1u;
     for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
     /* Detection (§3.1): the removed zone on a face lies within g, the larger
        face reach of the edge's two corners, of the mesh edge. The query
@@ -2359,13 +2416,21 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     kd_mark = ar->used; /* the boxes and the partition lists are scratch of the tree build only */
     RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls + 1);
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
+    F->det_e0 = 1;
+    for (i = 0; i < F->n_edge_cyls; i++) { /* the largest m fits re__det8 */
+        unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
+        unsigned ex = re__det8_exp((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
+        F->det_e0 = ex > 16u && ex - 15u > F->det_e0 ? ex - 15u : F->det_e0;
+    }
     for (i = 0; i < F->n_edge_cyls; i++) {
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
         unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]], a;
         double g, m, u[3], L, e0[3], e1[3];
         F->det[2 * i] = re__det_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6));
         F->det[2 * i + 1] = re__det_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
-        g = re__det(F->det[2 * i + 1]);
+        F->det8[2 * i] = re__det8_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6), F->det_e0);
+        F->det8[2 * i + 1] = re__det8_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6), F->det_e0);
+        g = an->desc->layout == RE_LAYOUT_COMPACT ? re__det8(F->det8[2 * i + 1], F->det_e0) : re__det(F->det[2 * i + 1]);
         m = g;
         re__sub(s1, s0, u);
         L = re__len(u);
@@ -2414,8 +2479,9 @@ static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
     return b + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
            (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(sizeof(unsigned short) * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_xsph) : 0) +
            RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
-           RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls) + RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
-           RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls) +
+           RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) +
+           RE__ALIGN(sizeof(unsigned) * 2 * (size_t)F->n_xs1) + RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
+           (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(2 * (size_t)F->n_edge_cyls) : RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls)) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
            RE__ALIGN(sizeof(unsigned) * F->n_refs) + RE__ALIGN(sizeof(re__node_t) * F->kd.n_nodes) +
            RE__ALIGN(sizeof(unsigned short) * F->n_leaf16);
@@ -2468,12 +2534,29 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->xsph = (const double *)re__put(&at, F->xsph, sizeof(double) * 3 * F->n_xsph);
     {
         re__ecyl_t *ec = (re__ecyl_t *)at;
-        for (c = 0; c < F->n_edge_cyls; c++) ec[c].s1 = F->cyls[c].s[1], ec[c].p[0] = F->cyls[c].p[0], ec[c].p[1] = F->cyls[c].p[1];
+        unsigned short *ds;
+        unsigned *xs, nx = 0;
+        for (c = 0; c < F->n_edge_cyls; c++) ec[c].p[0] = F->cyls[c].p[0], ec[c].p[1] = F->cyls[c].p[1];
         o->cyls = ec;
         at += RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls);
+        ds = (unsigned short *)at;
+        at += RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls);
+        xs = (unsigned *)at;
+        for (c = 0; c < F->n_edge_cyls; c++) {
+            unsigned d = F->cyls[c].s[1] - F->cyls[c].s[0];
+            ds[c] = (unsigned short)(F->cyls[c].s[1] > F->cyls[c].s[0] && d <= RE__DS1_SPAN ? d : RE__DS1_FAR);
+            if (ds[c] == RE__DS1_FAR) xs[2 * nx] = c, xs[2 * nx + 1] = F->cyls[c].s[1], nx++;
+        }
+        RE_ASSERT(nx == F->n_xs1);
+        at += RE__ALIGN(sizeof(unsigned) * 2 * (size_t)nx);
+        o->ds1 = ds, o->xs1 = xs, o->n_xs1 = nx;
     }
     o->xcyls = (const re__xcyl_t *)re__put(&at, F->xcyls, sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls));
-    o->det = (const unsigned short *)re__put(&at, F->det, sizeof(unsigned short) * 2 * F->n_edge_cyls);
+    o->det = NULL, o->det8 = NULL, o->det_e0 = F->det_e0;
+    if (o->compact)
+        o->det8 = (const unsigned char *)re__put(&at, F->det8, 2 * (size_t)F->n_edge_cyls);
+    else
+        o->det = (const unsigned short *)re__put(&at, F->det, sizeof(unsigned short) * 2 * F->n_edge_cyls);
     o->corners = (const re__corner_t *)re__put(&at, F->corners, sizeof(re__corner_t) * F->n_corners);
     o->radii = (const double *)re__put(&at, F->radii, sizeof(double) * F->n_radii);
     o->refs = (const unsigned *)re__put(&at, F->refs, sizeof(unsigned) * F->n_refs);
@@ -2839,11 +2922,23 @@ static re__kv_t re__kview(const re__object_t *o, unsigned k)
     return v;
 }
 static unsigned re__s_corner(const re__object_t *o, unsigned s) { return re__pk_id(&o->s_corner, s); }
-/* The end sphere of edge cylinder c that is not corner K's. */
-static unsigned re__far_sphere(const re__object_t *o, const re__kv_t *K, unsigned c)
+/* s[1] of edge cylinder c, whose s[0] is s0 (re__ecyl_t). */
+static unsigned re__cyl_s1(const re__object_t *o, unsigned c, unsigned s0)
 {
-    unsigned s1 = o->cyls[c].s1;
-    return s1 - K->sfirst < K->ns ? re__pk_id(&o->c_s0, c) : s1;
+    unsigned d = o->ds1[c], lo = 0, hi = o->n_xs1;
+    if (d != RE__DS1_FAR) return s0 + d;
+    while (hi - lo > 1) {
+        unsigned mid = lo + (hi - lo) / 2;
+        if (o->xs1[2 * mid] <= c) lo = mid; else hi = mid;
+    }
+    return o->xs1[2 * lo + 1];
+}
+/* The end sphere of a corner's reference (re__corner_t.refs) that is not
+   the corner's own. */
+static unsigned re__far_sphere(const re__object_t *o, unsigned ref)
+{
+    unsigned c = ref >> 1, s0 = re__pk_id(&o->c_s0, c);
+    return ref & 1u ? re__cyl_s1(o, c, s0) : s0;
 }
 static double re__k_radius(const re__object_t *o, unsigned k) { return o->radii[re__pk_id(&o->k_rid, k)]; }
 static unsigned re__k_xfirst(const re__object_t *o, unsigned k) { return re__pk_id(&o->k_xfirst, k); }
@@ -2854,8 +2949,8 @@ static unsigned re__k_xfirst(const re__object_t *o, unsigned k) { return re__pk_
    lists every plane of the corner once. */
 static unsigned re__corner_plane(const re__object_t *o, const re__kv_t *K, unsigned j)
 {
-    const re__ecyl_t *cy = &o->cyls[o->refs[K->first + j]];
-    return cy->p[cy->s1 - K->sfirst < K->ns ? 1 : 0];
+    unsigned ref = o->refs[K->first + j];
+    return o->cyls[ref >> 1].p[ref & 1u ? 0 : 1];
 }
 
 /* Index in xsph of a stored centre (compact layout): its rank in xsid. */
@@ -2889,7 +2984,7 @@ static void re__cyl_spheres(const re__object_t *o, unsigned c, unsigned s[2])
 {
     const re__xcyl_t *x;
     unsigned sf;
-    if (c < o->n_edge_cyls) { s[0] = re__pk_id(&o->c_s0, c), s[1] = o->cyls[c].s1; return; }
+    if (c < o->n_edge_cyls) { s[0] = re__pk_id(&o->c_s0, c), s[1] = re__cyl_s1(o, c, s[0]); return; }
     x = &o->xcyls[c - o->n_edge_cyls];
     sf = re__pk_id(&o->k_sfirst, re__pk_id(&o->x_corner, c - o->n_edge_cyls));
     s[0] = sf + x->s[0], s[1] = sf + x->s[1];
@@ -2903,7 +2998,7 @@ static re__cyl_t re__cyl(const re__object_t *o, unsigned c)
     re__kv_t K;
     unsigned i;
     if (c < o->n_edge_cyls) {
-        cy.s[0] = re__pk_id(&o->c_s0, c), cy.s[1] = o->cyls[c].s1, cy.p[0] = o->cyls[c].p[0], cy.p[1] = o->cyls[c].p[1];
+        cy.s[0] = re__pk_id(&o->c_s0, c), cy.s[1] = re__cyl_s1(o, c, cy.s[0]), cy.p[0] = o->cyls[c].p[0], cy.p[1] = o->cyls[c].p[1];
         return cy;
     }
     x = &o->xcyls[c - o->n_edge_cyls];
@@ -3041,7 +3136,7 @@ static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const
         double r = re__k_radius(o, K.k);
         for (j = 0; j < K.ns; j++) re__try_sphere(o, K.sfirst + j, r, I, d, b);
         for (j = 0; j < K.np; j++) {
-            unsigned c = ref[j], far = re__far_sphere(o, &K, c);
+            unsigned c = ref[j] >> 1, far = re__far_sphere(o, ref[j]);
             unsigned q = re__set_find(S, re__s_corner(o, far));
             /* each feature once: an edge between two corners of the set is
                tried from the first of them, and the far end sphere only when
@@ -3125,9 +3220,9 @@ static inline unsigned re__detect(const re__object_t *o, unsigned c, const doubl
 {
     const re__ecyl_t *cy = &o->cyls[c];
     const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
-    double g = re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
+    double g = o->compact ? re__det8(o->det8[2 * c], o->det_e0) : re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
     const double *s0, *s1;
-    unsigned ka, kb, si0;
+    unsigned ka, kb, si0, si1;
     re__kv_t Ka, Kb;
     /* across first: distance to the mesh edge's line, from the two face
        planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1 cos) / sin^2.
@@ -3139,15 +3234,16 @@ static inline unsigned re__detect(const re__object_t *o, unsigned c, const doubl
     cs = re__dot(P0->n, P1->n);
     if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) return 0;
     /* along the axis: within m of the end spheres */
-    m = re__det(o->det[2 * c + 1]);
+    m = o->compact ? re__det8(o->det8[2 * c + 1], o->det_e0) : re__det(o->det[2 * c + 1]);
     si0 = re__pk_id(&o->c_s0, c);
-    re__cpair(o, best, si0, cy->s1, &s0, &s1, keep);
+    si1 = re__cyl_s1(o, c, si0);
+    re__cpair(o, best, si0, si1, &s0, &s1, keep);
     re__sub(s1, s0, u);
     re__sub(I, s0, w);
     L2 = re__dot(u, u);
     t = re__dot(w, u);
     if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) return 0;
-    ka = re__s_corner(o, si0), kb = re__s_corner(o, cy->s1);
+    ka = re__s_corner(o, si0), kb = re__s_corner(o, si1);
     if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
         re__set_add(S, ka);
         re__set_add(S, kb);
@@ -3259,7 +3355,7 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
         for (i = 0; i < S.n && S.n < RE__MAX_WALK; i++) {
             re__kv_t K = re__kview(o, S.c[i]);
             for (j = 0; j < K.np; j++) {
-                unsigned w = re__s_corner(o, re__far_sphere(o, &K, o->refs[K.first + j]));
+                unsigned w = re__s_corner(o, re__far_sphere(o, o->refs[K.first + j]));
                 double g, d2;
                 const double *wc;
                 /* a corner already in the set is skipped before its record and
