@@ -835,7 +835,7 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     char msg[128];
     RE__TAKE(an->pos, double, 3 * (size_t)an->V);
     RE__TAKE(an->tri, unsigned, 3 * (size_t)an->T);
-    RE__TAKE(an->tsrc, unsigned, 3 * (size_t)an->T);
+    if (m->edge_radius) RE__TAKE(an->tsrc, unsigned, 3 * (size_t)an->T); /* read by re__edge_request only */
     RE__TAKE(an->tn, double, 3 * (size_t)an->T);
     RE__TAKE(an->tarea, double, an->T);
     RE__TAKE(an->tbad, unsigned char, an->T);
@@ -844,16 +844,18 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     for (f = 0; f < nf; f++) {
         unsigned n = m->face_sizes ? m->face_sizes[f] : 3u, j;
         for (j = 1; j + 1 < n; j++, t++) {
-            unsigned *tr = an->tri + 3 * (size_t)t, *src = an->tsrc + 3 * (size_t)t;
+            unsigned *tr = an->tri + 3 * (size_t)t;
             double e1[3], e2[3], e3[3], cr[3], len, lmax;
             int bad = 0;
             tr[0] = m->indices[base];
             tr[1] = m->indices[base + j];
             tr[2] = m->indices[base + j + 1];
-            /* index positions of the polygon's own edges (fan diagonals have none) */
-            src[0] = j == 1 ? base : RE__NONE;
-            src[1] = base + j;
-            src[2] = j + 2 == n ? base + j + 1 : RE__NONE;
+            if (an->tsrc) { /* index positions of the polygon's own edges (fan diagonals have none) */
+                unsigned *src = an->tsrc + 3 * (size_t)t;
+                src[0] = j == 1 ? base : RE__NONE;
+                src[1] = base + j;
+                src[2] = j + 2 == n ? base + j + 1 : RE__NONE;
+            }
             an->tbad[t] = 0;
             for (k = 0; k < 3; k++)
                 if (tr[k] >= an->V) {
@@ -1255,18 +1257,24 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(tfan, unsigned, an->T + 1);
     RE__TAKE(hfan, unsigned, an->T + 1);
     {
-        unsigned off = 0;
+        /* The slot arrays are sized by the vertex degrees (an upper bound);
+           each corner takes only what it uses: k plane slots, ns spheres, nx
+           extra cylinders (its erosion may write up to k of each, past the
+           end, before the next corner overwrites them). The used prefix is
+           dense, so the build touches (and page-faults in) about half the
+           memory of degree-sized slots; the fresh pages cost more than the
+           arithmetic on them. */
+        unsigned poff = 0, soff = 0, xoff = 0;
         for (v = 0; v < V; v++) {
             unsigned c = an->vcorner[v], deg, m = 0, h, i0, k = 0, j, ok = 1, too_many = 0;
             if (c == RE__NONE) continue;
             deg = an->voff[v + 1] - an->voff[v];
             an->c_vertex[c] = v;
-            an->c_pfirst[c] = off;
-            an->c_sfirst[c] = off;
-            an->c_xfirst[c] = off;
+            an->c_pfirst[c] = poff;
+            an->c_sfirst[c] = soff;
+            an->c_xfirst[c] = xoff;
             an->c_np[c] = 0;
             an->c_ns[c] = an->c_nx[c] = 0;
-            off += deg;
             /* walk the fan: in triangle t, cross the edge prev -> v */
             t = an->edges[an->vinc[an->voff[v]]].he[0] / 3;
             do {
@@ -1320,6 +1328,9 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
                          "left sharp", v, k);
                 re__report(an, RE_REPORT_UNROUNDABLE_CORNER, v, -1, (double)k, msg);
             }
+            poff += k;
+            soff += an->c_ns[c];
+            xoff += an->c_nx[c];
         }
     }
     ar->used = mark;
