@@ -603,7 +603,12 @@ typedef struct re__corner_t {
 /* kd-tree node (§3.2), 8 bytes. Inner node: info = axis | right child << 2
    (the left child follows the node), data = the split as a float bit
    pattern, relative to the object's origin. Leaf: info = 3 | first << 2,
-   data = count of references leafrefs[first ...]. */
+   data = the smallest edge cylinder id of the leaf, its base; the list
+   leaf16[first ...] is its count n, then n ids as offsets from the base
+   (2 bytes a reference: a leaf's edges are neighbours in space, and their
+   ids seldom span 65536). A leaf that does not fit (count or span beyond
+   16 bits) has data = RE__NONE and keeps each id and the count as two
+   16-bit halves, low first (re__kd_narrow). */
 typedef struct re__node_t {
     unsigned info, data;
 } re__node_t;
@@ -632,7 +637,7 @@ static inline unsigned re__pk_get(const re__pk_t *p, unsigned i)
 }
 
 typedef struct re__object_t {
-    unsigned n_tris, n_planes, n_spheres, n_xsph, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leafrefs, n_radii;
+    unsigned n_tris, n_planes, n_spheres, n_xsph, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leaf16, n_radii;
     int compact; /* RE_LAYOUT_COMPACT: sphere centres solved (re__cptr) */
     double size; /* bounding-box diagonal: the object's length scale */
     double rmax;
@@ -656,7 +661,7 @@ typedef struct re__object_t {
     const double *radii; /* one per rounded patch */
     const unsigned *refs;
     const re__node_t *nodes;
-    const unsigned *leafrefs;
+    const unsigned short *leaf16; /* kd leaf lists (re__node_t) */
     re_stats_t stats;
     void *block; /* RE_MALLOC'd storage (re_build) or NULL */
 } re__object_t;
@@ -1693,6 +1698,38 @@ leaf:
    rule), solved relative to org (the object's bounding-box centre) so it
    keeps its precision at coordinates near 1e6. The build (re__finish) and
    the query (re__centre) both call this, on the same stored planes. */
+/* The leaves' lists in 16-bit form (re__node_t), written to nodes16 and
+   out when they are not NULL; returns the number of 16-bit entries. */
+static size_t re__kd_narrow(const re__kd_t *kd, re__node_t *nodes16, unsigned short *out)
+{
+    size_t at = 0;
+    unsigned id, i;
+    for (id = 0; id < kd->n_nodes; id++) {
+        const re__node_t *nd = &kd->nodes[id];
+        const unsigned *l = kd->leafrefs + (nd->info >> 2);
+        unsigned n = nd->data, lo = RE__NONE, hi = 0;
+        if ((nd->info & 3u) != 3u) continue;
+        for (i = 0; i < n; i++) lo = l[i] < lo ? l[i] : lo, hi = l[i] > hi ? l[i] : hi;
+        if (nodes16) nodes16[id].info = 3u | (unsigned)(at << 2);
+        if (n <= 0xFFFFu && (n == 0 || hi - lo <= 0xFFFFu)) {
+            if (nodes16) nodes16[id].data = n ? lo : 0;
+            if (out) {
+                out[at] = (unsigned short)n;
+                for (i = 0; i < n; i++) out[at + 1 + i] = (unsigned short)(l[i] - lo);
+            }
+            at += 1 + (size_t)n;
+        } else {
+            if (nodes16) nodes16[id].data = RE__NONE;
+            if (out) {
+                out[at] = (unsigned short)(n & 0xFFFFu), out[at + 1] = (unsigned short)(n >> 16);
+                for (i = 0; i < n; i++) out[at + 2 + 2 * i] = (unsigned short)(l[i] & 0xFFFFu), out[at + 3 + 2 * i] = (unsigned short)(l[i] >> 16);
+            }
+            at += 2 + 2 * (size_t)n;
+        }
+    }
+    return at;
+}
+
 static void re__solve3(const re__plane_t *A, const re__plane_t *B, const re__plane_t *C, double r, const double org[3],
                        double x[3])
 {
@@ -1775,6 +1812,7 @@ typedef struct re__final_t {
     double *radii;
     unsigned *refs;
     re__kd_t kd;
+    size_t n_leaf16; /* 16-bit entries of the leaf lists (re__kd_narrow) */
 } re__final_t;
 
 /* x rounded up to a float: the stored detection radii only ever err large */
@@ -2312,6 +2350,8 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     F->kd.box = NULL;
     F->kd.tmp = NULL;
     ar->used = kd_mark;
+    F->n_leaf16 = re__kd_narrow(&F->kd, NULL, NULL);
+    if (F->n_leaf16 >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
     {
         re_result_t rc = re__bands(an, ar, fc, patch_r, uf, reach, F);
         if (rc != RE_OK) return rc;
@@ -2334,7 +2374,7 @@ static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
            RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
            RE__ALIGN(sizeof(unsigned) * F->n_refs) + RE__ALIGN(sizeof(re__node_t) * F->kd.n_nodes) +
-           RE__ALIGN(sizeof(unsigned) * F->kd.n_leafrefs);
+           RE__ALIGN(sizeof(unsigned short) * F->n_leaf16);
 }
 
 static void *re__put(unsigned char **at, const void *src, size_t bytes)
@@ -2359,7 +2399,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->n_corners = F->n_corners;
     o->n_refs = F->n_refs;
     o->n_nodes = F->kd.n_nodes;
-    o->n_leafrefs = F->kd.n_leafrefs;
+    o->n_leaf16 = (unsigned)F->n_leaf16;
     o->n_radii = F->n_radii;
     o->size = an->size;
     for (c = 0; c < 3; c++) o->origin[c] = an->origin[c];
@@ -2376,7 +2416,9 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->radii = (const double *)re__put(&at, F->radii, sizeof(double) * F->n_radii);
     o->refs = (const unsigned *)re__put(&at, F->refs, sizeof(unsigned) * F->n_refs);
     o->nodes = (const re__node_t *)re__put(&at, F->kd.nodes, sizeof(re__node_t) * F->kd.n_nodes);
-    o->leafrefs = (const unsigned *)re__put(&at, F->kd.leafrefs, sizeof(unsigned) * F->kd.n_leafrefs);
+    o->leaf16 = (const unsigned short *)at;
+    re__kd_narrow(&F->kd, (re__node_t *)o->nodes, (unsigned short *)at);
+    at += RE__ALIGN(sizeof(unsigned short) * F->n_leaf16);
     o->rmax = 0;
     for (c = 0; c < F->n_radii; c++) o->rmax = re__max(o->rmax, F->radii[c]);
 }
@@ -2997,8 +3039,8 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
        exact corners) */
     best.cvalid = 0;
     {
-        const unsigned *leaf;
-        unsigned cnt;
+        const unsigned short *leaf;
+        unsigned cnt, base, wide;
         double Ir[3];
         re__sub(I, o->origin, Ir); /* the splits' frame (see re__kd_build) */
         for (node = 0; (o->nodes[node].info & 3u) != 3u;) {
@@ -3007,10 +3049,13 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
             memcpy(&sp, &nd->data, sizeof sp);
             node = Ir[nd->info & 3u] <= (double)sp ? node + 1 : nd->info >> 2;
         }
-        leaf = o->leafrefs + (o->nodes[node].info >> 2);
-        cnt = o->nodes[node].data;
+        leaf = o->leaf16 + (o->nodes[node].info >> 2);
+        base = o->nodes[node].data;
+        wide = base == RE__NONE;
+        cnt = wide ? leaf[0] | (unsigned)leaf[1] << 16 : leaf[0];
+        leaf += wide ? 2 : 1;
         for (i = 0; i < cnt; i++) {
-            unsigned c = leaf[i];
+            unsigned c = wide ? leaf[2 * i] | (unsigned)leaf[2 * i + 1] << 16 : base + leaf[i];
             const re__cyl_t *cy = &o->cyls[c];
             const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
             double g = re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
