@@ -960,8 +960,8 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
     /* cnt[i] is now the end of bucket i; bucket i starts at cnt[i-1] */
     for (i = 0; i < V; i++) {
         unsigned s = i ? cnt[i - 1] : 0, e = cnt[i], j;
-        if (e - s > 16) qsort(key + s, e - s, sizeof *key, re__cmp_u64);
-        else { /* typical vertex degree: insertion sort beats qsort's calls */
+        if (e - s > 64) qsort(key + s, e - s, sizeof *key, re__cmp_u64);
+        else { /* up to a 24-gon fan's apex (47): insertion sort beats qsort's calls; the keys are unique, so the order is the same */
             unsigned x, y;
             for (x = s + 1; x < e; x++)
                 for (y = x; y > s && key[y - 1] > key[y]; y--) {
@@ -1519,14 +1519,20 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
                 if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = v, lim1[p] = w;
             }
             for (g = 0; g < an->c_np[cw]; g++) {
-                const re__plane_t *pl = &an->planes[an->c_planes[an->c_pfirst[cw] + g]];
-                double b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
+                unsigned pi = an->c_planes[an->c_pfirst[cw] + g];
+                const re__plane_t *pl = &an->planes[pi];
+                double b, amax = 0;
+                /* a plane of c itself, or one seen from another neighbour
+                   already (it would give the same bound again) */
+                if (pmark[pi] == c + 1) continue;
+                pmark[pi] = c + 1;
+                b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
                 if (b < 0 || b >= skip) continue; /* not locally convex, or too far to matter */
-                if (pmark[an->c_planes[an->c_pfirst[cw] + g]] == c + 1) continue; /* a plane of c itself */
-                for (s = 0; s < an->c_ns[c]; s++) {
-                    double a = re__dot(pl->n, an->su + 3 * (size_t)(an->c_sfirst[c] + s)) + 1.0;
-                    if (a > 0 && b / a < rmax[p]) rmax[p] = b / a, lim0[p] = v, lim1[p] = -1;
-                }
+                /* b / a decreases with a (and so does its rounding), so the
+                   sphere that leans farthest into the plane bounds r */
+                for (s = 0; s < an->c_ns[c]; s++)
+                    amax = re__max(amax, re__dot(pl->n, an->su + 3 * (size_t)(an->c_sfirst[c] + s)) + 1.0);
+                if (amax > 0 && b / amax < rmax[p]) rmax[p] = b / amax, lim0[p] = v, lim1[p] = -1;
             }
         }
     }
