@@ -715,7 +715,7 @@ typedef struct re__an_t {
     unsigned obj;
     re_diag_t *diag;
     unsigned V, T, E;
-    double *pos;
+    const double *pos; /* 3 per vertex: the caller's array itself when it is packed doubles */
     unsigned *tri, *tsrc, *tplane;
     double *tn, *tarea;
     unsigned char *tbad;
@@ -838,13 +838,19 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     unsigned t = 0, f, nf, base = 0, i, k;
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     char msg[128];
-    RE__TAKE(an->pos, double, 3 * (size_t)an->V);
+    if (m->position_type == RE_FLOAT64 && (m->position_stride == 0 || m->position_stride == 3 * sizeof(double)))
+        an->pos = (const double *)m->positions; /* no copy: fewer fresh scratch pages */
+    else {
+        double *pos;
+        RE__TAKE(pos, double, 3 * (size_t)an->V);
+        for (i = 0; i < an->V; i++) re__read_pos(m, i, pos + 3 * (size_t)i);
+        an->pos = pos;
+    }
     RE__TAKE(an->tri, unsigned, 3 * (size_t)an->T);
     if (m->edge_radius) RE__TAKE(an->tsrc, unsigned, 3 * (size_t)an->T); /* read by re__edge_request only */
     RE__TAKE(an->tn, double, 3 * (size_t)an->T);
     RE__TAKE(an->tarea, double, an->T);
     RE__TAKE(an->tbad, unsigned char, an->T);
-    for (i = 0; i < an->V; i++) re__read_pos(m, i, an->pos + 3 * (size_t)i);
     nf = m->face_sizes ? m->face_count : an->T;
     for (f = 0; f < nf; f++) {
         unsigned n = m->face_sizes ? m->face_sizes[f] : 3u, j;
@@ -2180,7 +2186,8 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->planes, re__plane_t, F->n_planes);
     RE__TAKE(F->sph, double, 3 * (size_t)ns);
     RE__TAKE(F->srec, re__sph_t, ns);
-    RE__TAKE(F->xsph, double, 3 * (size_t)ns);
+    if (an->desc->layout == RE_LAYOUT_COMPACT) RE__TAKE(F->xsph, double, 3 * (size_t)ns);
+    else F->xsph = F->sph; /* every centre stored, in sphere order: the same array */
     RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
     RE__TAKE(F->xcyls, re__xcyl_t, ncyl - F->n_edge_cyls);
     RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
@@ -2242,7 +2249,8 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             }
             if (sr->info == RE__SPH_STORED) {
                 sr->info |= F->n_xsph;
-                memcpy(F->xsph + 3 * (size_t)F->n_xsph++, sp, 3 * sizeof(double));
+                if (F->xsph != F->sph) memcpy(F->xsph + 3 * (size_t)F->n_xsph, sp, 3 * sizeof(double));
+                F->n_xsph++;
             }
             re__sub(sp, v, dd);
             dm = re__max(dm, re__len(dd));
