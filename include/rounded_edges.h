@@ -730,12 +730,12 @@ typedef struct re__an_t {
     unsigned char *c_np, *c_ns, *c_nx;
     unsigned *c_planes, *c_edges; /* fan-ordered planes / crossing edges */
     unsigned *c_x;                /* extra cylinders: pairs of plane slots */
-    unsigned *c_start;            /* per plane slot j: sphere (local) where edge j starts */
+    unsigned char *c_start;       /* per plane slot j: sphere (local, < 64) where edge j starts */
     double *su;                   /* unit-radius sphere offsets, 3 per sphere */
     unsigned *s_tri;              /* per sphere: the plane slots it solves from
                                      (re__sph_t.info), RE__NONE if none */
     unsigned ns_total, nx_total, np_total;
-    unsigned *edge_end; /* 2 per edge: local sphere index at v[0], v[1] side */
+    unsigned char *edge_end; /* 2 per edge: local sphere index (< 64) at the v[0], v[1] side; 255 = none */
     unsigned n_planes;
     re__plane_t *planes;
     unsigned *plane_used;
@@ -1102,7 +1102,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     const unsigned *ed = an->c_edges + an->c_pfirst[c];
     double *su = an->su + 3 * (size_t)an->c_sfirst[c];
     unsigned *stri = an->s_tri + an->c_sfirst[c];
-    unsigned *start = an->c_start + an->c_pfirst[c];
+    unsigned char *start = an->c_start + an->c_pfirst[c];
     unsigned *xs = an->c_x + 4 * (size_t)an->c_xfirst[c];
     unsigned cap = k; /* a k-plane corner has at most k - 2 eroded vertices (k = 2: one) */
     unsigned long long mask[RE_MAX_CORNER_PLANES];
@@ -1173,8 +1173,8 @@ static int re__erode_corner(re__an_t *an, unsigned c)
                 if (pr < bp) bp = pr, best = i;
             }
         if (best == RE__NONE) return 0;
-        start[j] = best;
-        an->edge_end[2 * ed[j] + (e->v[0] == an->c_vertex[c] ? 0u : 1u)] = best;
+        start[j] = (unsigned char)best;
+        an->edge_end[2 * ed[j] + (e->v[0] == an->c_vertex[c] ? 0u : 1u)] = (unsigned char)best;
     }
     /* extra cylinders: finite eroded edges between non-neighbouring planes */
     for (i = 0; i < k; i++)
@@ -1216,7 +1216,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->vinc, unsigned, 2 * (size_t)E + 1);
     RE__TAKE(an->vstate, unsigned char, V);
     RE__TAKE(an->vcorner, unsigned, V);
-    RE__TAKE(an->edge_end, unsigned, 2 * (size_t)E + 1);
+    RE__TAKE(an->edge_end, unsigned char, 2 * (size_t)E + 1);
     memset(an->voff, 0, sizeof(unsigned) * ((size_t)V + 1));
     for (i = 0; i < E; i++) an->voff[an->edges[i].v[0] + 1]++, an->voff[an->edges[i].v[1] + 1]++;
     for (v = 0; v < V; v++) an->voff[v + 1] += an->voff[v];
@@ -1224,7 +1224,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
         unsigned a = an->edges[i].v[0], b = an->edges[i].v[1];
         an->vinc[an->voff[a]++] = i;
         an->vinc[an->voff[b]++] = i;
-        an->edge_end[2 * i] = an->edge_end[2 * i + 1] = RE__NONE;
+        an->edge_end[2 * i] = an->edge_end[2 * i + 1] = 255;
     }
     for (v = V; v > 0; v--) an->voff[v] = an->voff[v - 1];
     an->voff[0] = 0;
@@ -1260,7 +1260,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->c_nx, unsigned char, an->nc);
     RE__TAKE(an->c_planes, unsigned, an->np_total);
     RE__TAKE(an->c_edges, unsigned, an->np_total);
-    RE__TAKE(an->c_start, unsigned, an->np_total);
+    RE__TAKE(an->c_start, unsigned char, an->np_total);
     RE__TAKE(an->su, double, 3 * (size_t)an->np_total);
     RE__TAKE(an->s_tri, unsigned, an->np_total);
     RE__TAKE(an->c_x, unsigned, 4 * (size_t)an->np_total);
