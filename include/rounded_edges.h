@@ -553,50 +553,48 @@ typedef struct re__plane_t {
     double c;    /* n.x = c on the face; n.x <= c inside */
 } re__plane_t;
 
-/* A rounding sphere, 8 bytes: its corner, and where its centre comes from.
-   Most centres are the point where three of the corner's face planes,
-   shifted inward by r, meet (a vertex of the eroded polytope, "Memory" in
-   docs/rounded_edges.md): `info` holds the three plane slots (bits 0-7,
-   8-15, 16-23) and re__centre() solves for it at query time. A centre that
-   is not such a triple point (a vertex inside a straight edge, k = 2), or
-   whose triple point the build could not reproduce within
-   RE__SPHERE_SOLVE_REL, is stored: info = RE__SPH_STORED | its index in
-   `xsph`. */
-typedef struct re__sph_t {
-    unsigned corner, info;
-} re__sph_t;
-#define RE__SPH_STORED 0x80000000u
+/* A rounding sphere is its corner (re__object_t.s_corner) and, in the
+   compact layout, 2 bytes saying where its centre comes from
+   (re__object_t.sinfo). Most centres are the point where three of the
+   corner's face planes, shifted inward by r, meet (a vertex of the eroded
+   polytope, "Memory" in docs/rounded_edges.md): the info holds the three
+   plane slots (bits 0-4, 5-9, 10-14) and re__centre() solves for it at
+   query time. A centre that is not such a triple point (a vertex inside a
+   straight edge, k = 2), whose slots do not fit 5 bits (corners of more
+   than 32 planes), or whose triple point the build could not reproduce
+   within RE__SPHERE_SOLVE_REL, is stored: info = RE__SPH_STORED, centre in
+   `xsph` at its rank in the ascending list `xsid`. The fast layout stores
+   every centre, xsph in sphere order. */
+#define RE__SPH_STORED 0x8000u
 
 /* A rounding cylinder between two sphere centres; its corners are the
-   spheres' (re__sph_t.corner). Cylinders [0, n_edge_cyls) round mesh edges, the
+   spheres' (re__object_t.s_corner). Cylinders [0, n_edge_cyls) round mesh edges, the
    rest are extra (exact-corner) cylinders inside one corner. */
 typedef struct re__cyl_t {
     unsigned s[2]; /* spheres at the axis ends */
     unsigned p[2]; /* the two offset planes it joins */
 } re__cyl_t;
 
-/* An extra (exact-corner) cylinder, 8 bytes: both ends are spheres of one
-   corner and both planes are its own, so it keeps local slots: spheres
-   sph[sfirst + s[i]], planes re__corner_plane(p[i]). A corner's extra
-   cylinders are numbered consecutively, so its reference list holds only
-   the first (re__corner_t). */
+/* An extra (exact-corner) cylinder, 4 bytes (its corner is in
+   re__object_t.x_corner): both ends are spheres of one corner and both
+   planes are its own, so it keeps local slots: spheres sfirst + s[i],
+   planes re__corner_plane(p[i]). A corner's extra cylinders are numbered
+   consecutively, so its reference list holds only the first. */
 typedef struct re__xcyl_t {
-    unsigned corner;
     unsigned char p[2], s[2];
 } re__xcyl_t;
 
-/* A rounded mesh vertex, 20 bytes (its vertex id is in re__object_t.cvertex). refs[first ...]: np edge cylinders
-   (cylinder j joins planes j and j+1), then, when nx > 0, the first of its
-   nx consecutive extra cylinders; its ns
-   spheres are sph[sfirst ...]. The mesh vertex itself is not stored: every
-   test that needs it uses the first sphere centre with a radius widened by
-   their distance (docs/rounded_edges.md, "Memory"). */
+/* A rounded mesh vertex, 8 bytes; its monotone ids are packed apart
+   (re__object_t: k_first, k_sfirst, k_rid; its vertex id in cvertex).
+   refs[first ...]: np edge cylinders (cylinder j joins planes j and j+1),
+   then, when nx > 0, the first of its nx consecutive extra cylinders; its
+   ns spheres are sfirst ...; its radius radii[rid]. The mesh vertex itself
+   is not stored: every test that needs it uses the first sphere centre with
+   a radius widened by their distance (docs/rounded_edges.md, "Memory"). */
 typedef struct re__corner_t {
     float walk;    /* adjacency walk (query step 4): a removed point near this
-                      corner lies within `walk` of sph[sfirst] (face reach + r +
+                      corner lies within `walk` of sphere sfirst (face reach + r +
                       |sphere - vertex|, rounded up to float) */
-    unsigned rid;  /* radius of its patch: radii[rid] */
-    unsigned first, sfirst;
     unsigned char np, ns, nx, pad_;
 } re__corner_t;
 
@@ -644,13 +642,17 @@ typedef struct re__object_t {
     double origin[3]; /* kd splits are floats relative to this (bounding-box centre) */
     re__pk_t tri_plane; /* per triangle: plane id, RE__NONE if not rounded nearby */
     re__pk_t cvertex;   /* per corner: its mesh vertex (enumeration only) */
+    re__pk_t k_first, k_sfirst, k_rid; /* per corner: re__corner_t */
+    re__pk_t s_corner;  /* per sphere: its corner */
+    re__pk_t x_corner;  /* per extra cylinder: its corner */
     const unsigned char *bands; /* 4 per triangle, in units of 1/RE__BAND_STEPS,
                                    rounded up: the barycentric band along the
                                    edge opposite corner k (k < 3), and the cap
                                    at the corners (3); query step 0 */
     const re__plane_t *planes;
-    const re__sph_t *sph;
-    const double *xsph; /* 3 per stored sphere centre (RE__SPH_STORED) */
+    const unsigned short *sinfo; /* compact layout: per sphere (RE__SPH_STORED) */
+    const unsigned *xsid; /* compact layout: the stored spheres, ascending */
+    const double *xsph; /* 3 per stored sphere centre (every one in the fast layout) */
     const re__cyl_t *cyls;    /* edge cylinders [0, n_edge_cyls) */
     const re__xcyl_t *xcyls;  /* extra cylinders [n_edge_cyls, n_cyls) */
     const unsigned short *det; /* 2 per edge cylinder, as the upper halves of
@@ -733,7 +735,7 @@ typedef struct re__an_t {
     unsigned char *c_start;       /* per plane slot j: sphere (local, < 64) where edge j starts */
     double *su;                   /* unit-radius sphere offsets, 3 per sphere */
     unsigned *s_tri;              /* per sphere: the plane slots it solves from
-                                     (re__sph_t.info), RE__NONE if none */
+                                     (re__object_t.sinfo), RE__NONE if none */
     unsigned ns_total, nx_total, np_total;
     unsigned char *edge_end; /* 2 per edge: local sphere index (< 64) at the v[0], v[1] side; 255 = none */
     unsigned n_planes;
@@ -1808,13 +1810,17 @@ static re__pk_t re__pk_put(unsigned char **at, const unsigned *ids, unsigned n, 
 
 /* ---- Step 7: final arrays, packed into one block ------------------------------ */
 
+/* The packed id arrays of an object (re__pk_t), in re__final_t.pk. */
+enum { RE__PKA_TRI_PLANE, RE__PKA_CVERTEX, RE__PKA_K_FIRST, RE__PKA_K_SFIRST, RE__PKA_K_RID, RE__PKA_S_CORNER, RE__PKA_X_CORNER, RE__PKA_N };
+
 typedef struct re__final_t {
     unsigned n_corners, n_spheres, n_cyls, n_edge_cyls, n_planes, n_refs, n_radii;
-    unsigned *tri_plane, *cvertex, n_tp_full, n_cv_full;
+    unsigned *pk[RE__PKA_N], pk_n[RE__PKA_N], pk_full[RE__PKA_N]; /* ids, count, full blocks */
     unsigned char *bands;
     re__plane_t *planes;
     double *sph; /* 3 per sphere: the centres the query will compute */
-    re__sph_t *srec;
+    unsigned short *sinfo;
+    unsigned *xsid;
     double *xsph;
     unsigned n_xsph;
     re__cyl_t *cyls;
@@ -2181,11 +2187,15 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     F->n_xsph = 0;
     F->n_cyls = ncyl;
     F->n_refs = nref;
-    RE__TAKE(F->tri_plane, unsigned, an->T);
-    RE__TAKE(F->cvertex, unsigned, nco);
+    F->pk_n[RE__PKA_TRI_PLANE] = an->T;
+    F->pk_n[RE__PKA_CVERTEX] = F->pk_n[RE__PKA_K_FIRST] = F->pk_n[RE__PKA_K_SFIRST] = F->pk_n[RE__PKA_K_RID] = nco;
+    F->pk_n[RE__PKA_S_CORNER] = ns;
+    F->pk_n[RE__PKA_X_CORNER] = ncyl - F->n_edge_cyls;
+    for (i = 0; i < RE__PKA_N; i++) RE__TAKE(F->pk[i], unsigned, F->pk_n[i]);
     RE__TAKE(F->planes, re__plane_t, F->n_planes);
     RE__TAKE(F->sph, double, 3 * (size_t)ns);
-    RE__TAKE(F->srec, re__sph_t, ns);
+    RE__TAKE(F->sinfo, unsigned short, ns);
+    RE__TAKE(F->xsid, unsigned, ns);
     if (an->desc->layout == RE_LAYOUT_COMPACT) RE__TAKE(F->xsph, double, 3 * (size_t)ns);
     else F->xsph = F->sph; /* every centre stored, in sphere order: the same array */
     RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
@@ -2197,8 +2207,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(reach, double, nco + 1);
     RE__TAKE(dmax, double, nco + 1);
     for (i = 0; i < an->T; i++)
-        F->tri_plane[i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
-    F->n_tp_full = re__pk_full_blocks(F->tri_plane, an->T);
+        F->pk[RE__PKA_TRI_PLANE][i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
     for (i = 0; i < an->n_planes; i++)
         if (pmap[i] != RE__NONE) F->planes[pmap[i]] = an->planes[i];
     nref = 0;
@@ -2211,11 +2220,11 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         K = &F->corners[fc[c]];
         v = an->pos + 3 * (size_t)an->c_vertex[c];
         r = patch_r[re__uf_find(uf, c)];
-        K->rid = rmap[re__uf_find(uf, c)];
-        F->radii[K->rid] = r;
-        F->cvertex[fc[c]] = an->c_vertex[c];
-        K->first = nref;
-        K->sfirst = sbase[c];
+        F->pk[RE__PKA_K_RID][fc[c]] = rmap[re__uf_find(uf, c)];
+        F->radii[rmap[re__uf_find(uf, c)]] = r;
+        F->pk[RE__PKA_CVERTEX][fc[c]] = an->c_vertex[c];
+        F->pk[RE__PKA_K_FIRST][fc[c]] = nref;
+        F->pk[RE__PKA_K_SFIRST][fc[c]] = sbase[c];
         K->np = an->c_np[c];
         K->ns = an->c_ns[c];
         K->nx = an->c_nx[c];
@@ -2233,22 +2242,23 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         for (j = 0; j < K->ns; j++) {
             double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3], x[3];
             unsigned tri = an->s_tri[an->c_sfirst[c] + j];
-            re__sph_t *sr = &F->srec[sbase[c] + j];
+            unsigned short *sr = &F->sinfo[sbase[c] + j];
             re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
-            sr->corner = fc[c];
-            sr->info = RE__SPH_STORED;
-            if (tri != RE__NONE && an->desc->layout == RE_LAYOUT_COMPACT) {
+            F->pk[RE__PKA_S_CORNER][sbase[c] + j] = fc[c];
+            *sr = RE__SPH_STORED;
+            if (tri != RE__NONE && an->desc->layout == RE_LAYOUT_COMPACT && qslot[tri & 255u] < 32u &&
+                qslot[tri >> 8 & 255u] < 32u && qslot[tri >> 16] < 32u) {
                 double tol = RE__SPHERE_SOLVE_REL * r + 64 * 2.220446049250313e-16 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
                 re__solve3(&an->planes[an->c_planes[pf + (tri & 255u)]], &an->planes[an->c_planes[pf + (tri >> 8 & 255u)]],
                            &an->planes[an->c_planes[pf + (tri >> 16)]], r, an->origin, x);
                 re__sub(x, sp, dd);
                 if (fabs(dd[0]) <= tol && fabs(dd[1]) <= tol && fabs(dd[2]) <= tol) {
                     sp[0] = x[0], sp[1] = x[1], sp[2] = x[2];
-                    sr->info = qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 8 | qslot[tri >> 16] << 16;
+                    *sr = (unsigned short)(qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 5 | qslot[tri >> 16] << 10);
                 }
             }
-            if (sr->info == RE__SPH_STORED) {
-                sr->info |= F->n_xsph;
+            if (*sr == RE__SPH_STORED) {
+                F->xsid[F->n_xsph] = sbase[c] + j;
                 if (F->xsph != F->sph) memcpy(F->xsph + 3 * (size_t)F->n_xsph, sp, 3 * sizeof(double));
                 F->n_xsph++;
             }
@@ -2286,7 +2296,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         for (j = 0; j < K->nx; j++) {
             const unsigned *x = an->c_x + 4 * (size_t)(an->c_xfirst[c] + j);
             re__xcyl_t *xc = &F->xcyls[xbase[c] + j - F->n_edge_cyls];
-            xc->corner = fc[c];
+            F->pk[RE__PKA_X_CORNER][xbase[c] + j - F->n_edge_cyls] = fc[c];
             xc->p[0] = (unsigned char)qslot[x[0]];
             xc->p[1] = (unsigned char)qslot[x[1]];
             xc->s[0] = (unsigned char)x[2];
@@ -2294,7 +2304,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
     }
     RE_ASSERT(an->desc->layout == RE_LAYOUT_COMPACT || F->n_xsph == ns); /* re__cptr reads xsph by sphere id */
-    F->n_cv_full = re__pk_full_blocks(F->cvertex, nco);
+    for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
         re__cyl_t *cy;
@@ -2335,7 +2345,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
     for (i = 0; i < F->n_edge_cyls; i++) {
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
-        unsigned ka = F->srec[F->cyls[i].s[0]].corner, kb = F->srec[F->cyls[i].s[1]].corner, a;
+        unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]], a;
         double g, m, u[3], L, e0[3], e1[3];
         F->det[2 * i] = re__det_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6));
         F->det[2 * i + 1] = re__det_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
@@ -2382,8 +2392,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
 
 static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
 {
-    return re__pk_bytes(an->T, F->n_tp_full) + re__pk_bytes(F->n_corners, F->n_cv_full) + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
-           RE__ALIGN(sizeof(re__sph_t) * F->n_spheres) + RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
+    size_t b = 0;
+    unsigned i;
+    for (i = 0; i < RE__PKA_N; i++) b += re__pk_bytes(F->pk_n[i], F->pk_full[i]);
+    return b + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
+           (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(sizeof(unsigned short) * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_xsph) : 0) +
+           RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
            RE__ALIGN(sizeof(re__cyl_t) * F->n_edge_cyls) + RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
            RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
@@ -2417,11 +2431,22 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->n_radii = F->n_radii;
     o->size = an->size;
     for (c = 0; c < 3; c++) o->origin[c] = an->origin[c];
-    o->tri_plane = re__pk_put(&at, F->tri_plane, an->T, F->n_tp_full);
-    o->cvertex = re__pk_put(&at, F->cvertex, F->n_corners, F->n_cv_full);
+#define RE__PUT_PK(field, a) o->field = re__pk_put(&at, F->pk[a], F->pk_n[a], F->pk_full[a])
+    RE__PUT_PK(tri_plane, RE__PKA_TRI_PLANE);
+    RE__PUT_PK(cvertex, RE__PKA_CVERTEX);
+    RE__PUT_PK(k_first, RE__PKA_K_FIRST);
+    RE__PUT_PK(k_sfirst, RE__PKA_K_SFIRST);
+    RE__PUT_PK(k_rid, RE__PKA_K_RID);
+    RE__PUT_PK(s_corner, RE__PKA_S_CORNER);
+    RE__PUT_PK(x_corner, RE__PKA_X_CORNER);
+#undef RE__PUT_PK
     o->bands = (const unsigned char *)re__put(&at, F->bands, 4 * (size_t)an->T);
     o->planes = (const re__plane_t *)re__put(&at, F->planes, sizeof(re__plane_t) * F->n_planes);
-    o->sph = (const re__sph_t *)re__put(&at, F->srec, sizeof(re__sph_t) * F->n_spheres);
+    o->sinfo = NULL, o->xsid = NULL;
+    if (o->compact) {
+        o->sinfo = (const unsigned short *)re__put(&at, F->sinfo, sizeof(unsigned short) * F->n_spheres);
+        o->xsid = (const unsigned *)re__put(&at, F->xsid, sizeof(unsigned) * F->n_xsph);
+    }
     o->xsph = (const double *)re__put(&at, F->xsph, sizeof(double) * 3 * F->n_xsph);
     o->cyls = (const re__cyl_t *)re__put(&at, F->cyls, sizeof(re__cyl_t) * F->n_edge_cyls);
     o->xcyls = (const re__xcyl_t *)re__put(&at, F->xcyls, sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls));
@@ -2773,27 +2798,60 @@ static double re__dist2_halfline(const double p[3], const double a[3], const dou
     return re__dot(q, q);
 }
 
+/* A corner with its packed ids read (re__corner_t). */
+typedef struct re__kv_t {
+    unsigned k, first, sfirst, np, ns, nx;
+    double r, walk;
+} re__kv_t;
+
+static re__kv_t re__kview(const re__object_t *o, unsigned k)
+{
+    re__kv_t v;
+    const re__corner_t *K = &o->corners[k];
+    v.k = k;
+    v.first = re__pk_get(&o->k_first, k);
+    v.sfirst = re__pk_get(&o->k_sfirst, k);
+    v.np = K->np, v.ns = K->ns, v.nx = K->nx;
+    v.r = o->radii[re__pk_get(&o->k_rid, k)];
+    v.walk = (double)K->walk;
+    return v;
+}
+static unsigned re__s_corner(const re__object_t *o, unsigned s) { return re__pk_get(&o->s_corner, s); }
+static double re__k_radius(const re__object_t *o, unsigned k) { return o->radii[re__pk_get(&o->k_rid, k)]; }
+
 /* Face plane j < np of a corner: the one on the left of its edge cylinder j
    leaving the corner (re__finish orders each cylinder's planes so), which
    lists every plane of the corner once. */
-static unsigned re__corner_plane(const re__object_t *o, const re__corner_t *K, unsigned j)
+static unsigned re__corner_plane(const re__object_t *o, const re__kv_t *K, unsigned j)
 {
     const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
     return cy->p[cy->s[0] - K->sfirst < K->ns ? 0 : 1];
 }
 
+/* Index in xsph of a stored centre (compact layout): its rank in xsid. */
+static unsigned re__xsph_rank(const re__object_t *o, unsigned s)
+{
+    unsigned lo = 0, hi = o->n_xsph;
+    while (hi - lo > 1) {
+        unsigned mid = lo + (hi - lo) / 2;
+        if (o->xsid[mid] <= s) lo = mid; else hi = mid;
+    }
+    return lo;
+}
+
 /* Centre of sphere s: stored, or solved from its three plane slots. */
 static void re__centre(const re__object_t *o, unsigned s, double x[3])
 {
-    const re__sph_t *sp = &o->sph[s];
-    const re__corner_t *K;
-    if (sp->info & RE__SPH_STORED) {
-        memcpy(x, o->xsph + 3 * (size_t)(sp->info & ~RE__SPH_STORED), 3 * sizeof(double));
+    unsigned info;
+    re__kv_t K;
+    if (!o->compact || (o->sinfo[s] & RE__SPH_STORED)) {
+        memcpy(x, o->xsph + 3 * (size_t)(o->compact ? re__xsph_rank(o, s) : s), 3 * sizeof(double));
         return;
     }
-    K = &o->corners[sp->corner];
-    re__solve3(&o->planes[re__corner_plane(o, K, sp->info & 255u)], &o->planes[re__corner_plane(o, K, sp->info >> 8 & 255u)],
-               &o->planes[re__corner_plane(o, K, sp->info >> 16 & 255u)], o->radii[K->rid], o->origin, x);
+    info = o->sinfo[s];
+    K = re__kview(o, re__s_corner(o, s));
+    re__solve3(&o->planes[re__corner_plane(o, &K, info & 31u)], &o->planes[re__corner_plane(o, &K, info >> 5 & 31u)],
+               &o->planes[re__corner_plane(o, &K, info >> 10 & 31u)], K.r, o->origin, x);
 }
 
 /* Global sphere ids of cylinder c's axis ends (edge or extra). */
@@ -2803,7 +2861,7 @@ static void re__cyl_spheres(const re__object_t *o, unsigned c, unsigned s[2])
     unsigned sf;
     if (c < o->n_edge_cyls) { s[0] = o->cyls[c].s[0], s[1] = o->cyls[c].s[1]; return; }
     x = &o->xcyls[c - o->n_edge_cyls];
-    sf = o->corners[x->corner].sfirst;
+    sf = re__pk_get(&o->k_sfirst, re__pk_get(&o->x_corner, c - o->n_edge_cyls));
     s[0] = sf + x->s[0], s[1] = sf + x->s[1];
 }
 
@@ -2812,16 +2870,16 @@ static re__cyl_t re__cyl(const re__object_t *o, unsigned c)
 {
     re__cyl_t cy;
     const re__xcyl_t *x;
-    const re__corner_t *K;
+    re__kv_t K;
     unsigned i;
     if (c < o->n_edge_cyls) return o->cyls[c];
     x = &o->xcyls[c - o->n_edge_cyls];
-    K = &o->corners[x->corner];
-    for (i = 0; i < 2; i++) cy.s[i] = K->sfirst + x->s[i], cy.p[i] = re__corner_plane(o, K, x->p[i]);
+    K = re__kview(o, re__pk_get(&o->x_corner, c - o->n_edge_cyls));
+    for (i = 0; i < 2; i++) cy.s[i] = K.sfirst + x->s[i], cy.p[i] = re__corner_plane(o, &K, x->p[i]);
     return cy;
 }
 
-static int re__corner_has_plane(const re__object_t *o, const re__corner_t *K, unsigned f)
+static int re__corner_has_plane(const re__object_t *o, const re__kv_t *K, unsigned f)
 {
     unsigned j;
     for (j = 0; j < K->np; j++)
@@ -2863,12 +2921,12 @@ static int re__on_flat_part(const re__object_t *o, const re__set_t *S, unsigned 
     const re__plane_t *pf = &o->planes[f];
     unsigned i, j;
     for (i = 0; i < S->n; i++) {
-        const re__corner_t *K = &o->corners[S->c[i]];
-        double q[3], mag, r = o->radii[K->rid];
+        re__kv_t K = re__kview(o, S->c[i]);
+        double q[3], mag, r = K.r;
         re__madd(I, -r, pf->n, q);
         mag = fabs(q[0]) + fabs(q[1]) + fabs(q[2]);
-        for (j = 0; j < K->np; j++) {
-            unsigned gi = re__corner_plane(o, K, j);
+        for (j = 0; j < K.np; j++) {
+            unsigned gi = re__corner_plane(o, &K, j);
             const re__plane_t *g = &o->planes[gi];
             if (gi == f) continue;
             if (re__dot(g->n, q) - (g->c - r) > RE__SIDE_ULPS * (fabs(g->c) + mag + r)) return 0;
@@ -2901,7 +2959,7 @@ static inline const double *re__cptr(const re__object_t *o, re__best_t *b, unsig
 {
     unsigned k;
     if (!o->compact) return o->xsph + 3 * (size_t)s;
-    if (o->sph[s].info & RE__SPH_STORED) return o->xsph + 3 * (size_t)(o->sph[s].info & ~RE__SPH_STORED);
+    if (o->sinfo[s] & RE__SPH_STORED) return o->xsph + 3 * (size_t)re__xsph_rank(o, s);
     k = s & (RE__CC - 1u);
     if (!(b->cvalid >> k & 1u) || b->cid[k] != s) b->cvalid |= 1u << k, b->cid[k] = s, re__centre(o, s, b->cx[k]);
     return b->cx[k];
@@ -2910,7 +2968,7 @@ static inline void re__cpair(const re__object_t *o, re__best_t *b, unsigned s0, 
                              double keep[3])
 {
     *p0 = re__cptr(o, b, s0);
-    if (o->compact && !((s0 ^ s1) & (RE__CC - 1u)) && !(o->sph[s0].info & RE__SPH_STORED))
+    if (o->compact && !((s0 ^ s1) & (RE__CC - 1u)) && !(o->sinfo[s0] & RE__SPH_STORED))
         keep[0] = (*p0)[0], keep[1] = (*p0)[1], keep[2] = (*p0)[2], *p0 = keep;
     *p1 = re__cptr(o, b, s1);
 }
@@ -2945,13 +3003,13 @@ static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const
     b->index = 0;
     b->h = 0;
     for (i = 0; i < S->n; i++) {
-        const re__corner_t *K = &o->corners[S->c[i]];
-        const unsigned *ref = o->refs + K->first;
-        double r = o->radii[K->rid];
-        for (j = 0; j < K->ns; j++) re__try_sphere(o, K->sfirst + j, r, I, d, b);
-        for (j = 0; j < K->np; j++) {
-            unsigned c = ref[j], far = o->cyls[c].s[o->sph[o->cyls[c].s[0]].corner == S->c[i] ? 1 : 0];
-            unsigned q = re__set_find(S, o->sph[far].corner);
+        re__kv_t K = re__kview(o, S->c[i]);
+        const unsigned *ref = o->refs + K.first;
+        double r = K.r;
+        for (j = 0; j < K.ns; j++) re__try_sphere(o, K.sfirst + j, r, I, d, b);
+        for (j = 0; j < K.np; j++) {
+            unsigned c = ref[j], far = o->cyls[c].s[o->cyls[c].s[0] - K.sfirst < K.ns ? 1 : 0];
+            unsigned q = re__set_find(S, re__s_corner(o, far));
             /* each feature once: an edge between two corners of the set is
                tried from the first of them, and the far end sphere only when
                its corner is not in the set (else it is one of that
@@ -2960,7 +3018,7 @@ static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const
             re__try_cyl(o, c, r, I, d, b);
             if (q == S->n) re__try_sphere(o, far, r, I, d, b);
         }
-        for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[K->np] + j, r, I, d, b);
+        for (j = 0; j < K.nx; j++) re__try_cyl(o, ref[K.np] + j, r, I, d, b);
     }
 }
 
@@ -2973,9 +3031,9 @@ static double re__exit(const re__object_t *o, const re__set_t *S, const double I
     unsigned i, j;
     *plane = RE__NONE;
     for (i = 0; i < S->n; i++) {
-        const re__corner_t *K = &o->corners[S->c[i]];
-        for (j = 0; j < K->np; j++) {
-            unsigned gi = re__corner_plane(o, K, j);
+        re__kv_t K = re__kview(o, S->c[i]);
+        for (j = 0; j < K.np; j++) {
+            unsigned gi = re__corner_plane(o, &K, j);
             const re__plane_t *g = &o->planes[gi];
             double nd = re__dot(g->n, d), num;
             if (!(nd > 0)) continue;
@@ -3093,7 +3151,7 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
             L2 = re__dot(u, u);
             t = re__dot(w, u);
             if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) continue;
-            ka = o->sph[cy->s[0]].corner, kb = o->sph[cy->s[1]].corner;
+            ka = re__s_corner(o, cy->s[0]), kb = re__s_corner(o, cy->s[1]);
             ndet++;
             if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
                 re__set_add(&S, ka);
@@ -3101,8 +3159,11 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
                 c0 = c;
                 continue;
             }
-            if (re__corner_has_plane(o, &o->corners[ka], f)) re__set_add(&S, ka);
-            if (re__corner_has_plane(o, &o->corners[kb], f)) re__set_add(&S, kb);
+            {
+                re__kv_t Ka = re__kview(o, ka), Kb = re__kview(o, kb);
+                if (re__corner_has_plane(o, &Ka, f)) re__set_add(&S, ka);
+                if (re__corner_has_plane(o, &Kb, f)) re__set_add(&S, kb);
+            }
         }
     }
     if (!S.n || re__on_flat_part(o, &S, f, I)) return RE_UNCHANGED;
@@ -3120,7 +3181,7 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
         best.kind = RE_FEATURE_FACE;
         best.index = 0;
         best.h = 0;
-        re__try_cyl(o, c0, o->radii[o->corners[S.c[0]].rid], I, dir, &best);
+        re__try_cyl(o, c0, re__k_radius(o, S.c[0]), I, dir, &best);
         nd0 = re__dot(P0->n, dir), nd1 = re__dot(P1->n, dir);
         if (nd0 > 0) e0 = re__max(0.0, P0->c - re__dot(P0->n, I)) / nd0;
         if (nd1 > 0) e1 = re__max(0.0, P1->c - re__dot(P1->n, I)) / nd1;
@@ -3132,9 +3193,8 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
             re__sub(P, I, IP);
             inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
             for (i = 0; i < 2; i++) {
-                const re__corner_t *K = &o->corners[S.c[i]];
-                double wk = (double)K->walk;
-                if (re__dist2_segment(re__cptr(o, &best, K->sfirst), I, IP, inv_l2) <= wk * wk) break;
+                double wk = (double)o->corners[S.c[i]].walk;
+                if (re__dist2_segment(re__cptr(o, &best, re__pk_get(&o->k_sfirst, S.c[i])), I, IP, inv_l2) <= wk * wk) break;
             }
             if (i == 2) goto answer;
         }
@@ -3155,11 +3215,10 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
         re__sub(P, I, IP);
         inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
         for (i = 0; i < S.n && S.n < RE__MAX_WALK; i++) {
-            const re__corner_t *K = &o->corners[S.c[i]];
-            for (j = 0; j < K->np; j++) {
-                const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
-                unsigned ka = o->sph[cy->s[0]].corner, kb = o->sph[cy->s[1]].corner;
-                unsigned w = ka == S.c[i] ? kb : ka;
+            re__kv_t K = re__kview(o, S.c[i]);
+            for (j = 0; j < K.np; j++) {
+                const re__cyl_t *cy = &o->cyls[o->refs[K.first + j]];
+                unsigned w = re__s_corner(o, cy->s[cy->s[0] - K.sfirst < K.ns ? 1 : 0]);
                 double g, d2;
                 const double *wc;
                 /* a corner already in the set is skipped before its record and
@@ -3170,7 +3229,7 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within the face reach of its corner: `walk` bounds both, from
                    the corner's first sphere */
-                wc = re__cptr(o, &best, o->corners[w].sfirst);
+                wc = re__cptr(o, &best, re__pk_get(&o->k_sfirst, w));
                 g = (double)o->corners[w].walk;
                 d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
                 if (d2 <= g * g && re__set_add(&S, w)) grown = 1;
@@ -3228,12 +3287,12 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
         S.n = 0;
         S.bloom = 0;
         if (hit->feature == RE_FEATURE_SPHERE && hit->feature_index < o->n_spheres) {
-            re__set_add(&S, o->sph[hit->feature_index].corner);
+            re__set_add(&S, re__s_corner(o, hit->feature_index));
         } else if (hit->feature == RE_FEATURE_CYLINDER && hit->feature_index < o->n_cyls) {
             unsigned sp[2];
             re__cyl_spheres(o, hit->feature_index, sp);
-            re__set_add(&S, o->sph[sp[0]].corner);
-            re__set_add(&S, o->sph[sp[1]].corner);
+            re__set_add(&S, re__s_corner(o, sp[0]));
+            re__set_add(&S, re__s_corner(o, sp[1]));
         }
         s = re__exit(o, &S, hit->point, dir, &plane);
         if (s < HUGE_VAL) {
@@ -3256,13 +3315,11 @@ RE_DEF unsigned re_cylinder_count(const re_scene_t *scene, unsigned object)
 RE_DEF int re_get_sphere(const re_scene_t *scene, unsigned object, unsigned i, re_sphere_t *out)
 {
     const re__object_t *o;
-    const re__corner_t *K;
     if (!scene || !out || object >= scene->n_objects || i >= scene->objects[object].n_spheres) return 0;
     o = &scene->objects[object];
-    K = &o->corners[o->sph[i].corner];
     re__centre(o, i, out->center);
-    out->radius = o->radii[K->rid];
-    out->vertex = re__pk_get(&o->cvertex, o->sph[i].corner);
+    out->radius = re__k_radius(o, re__s_corner(o, i));
+    out->vertex = re__pk_get(&o->cvertex, re__s_corner(o, i));
     return 1;
 }
 RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i, re_cylinder_t *out)
@@ -3280,11 +3337,11 @@ RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i,
         out->n0[a] = o->planes[cy->p[0]].n[a];
         out->n1[a] = o->planes[cy->p[1]].n[a];
     }
-    out->radius = o->radii[o->corners[o->sph[cy->s[0]].corner].rid];
+    out->radius = re__k_radius(o, re__s_corner(o, cy->s[0]));
     out->sa = cy->s[0];
     out->sb = cy->s[1];
-    out->edge_v0 = i >= o->n_edge_cyls ? -1 : (long long)re__pk_get(&o->cvertex, o->sph[cy->s[0]].corner);
-    out->edge_v1 = i >= o->n_edge_cyls ? -1 : (long long)re__pk_get(&o->cvertex, o->sph[cy->s[1]].corner);
+    out->edge_v0 = i >= o->n_edge_cyls ? -1 : (long long)re__pk_get(&o->cvertex, re__s_corner(o, cy->s[0]));
+    out->edge_v1 = i >= o->n_edge_cyls ? -1 : (long long)re__pk_get(&o->cvertex, re__s_corner(o, cy->s[1]));
     return 1;
 }
 
