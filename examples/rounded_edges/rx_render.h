@@ -39,14 +39,6 @@ int rx_mode_parse(const char *s, rx_mode_t *m);
 /* The same names back. Returns buf. */
 const char *rx_mode_name(rx_mode_t m, char *buf, size_t size);
 
-#define RX_MAX_TALLY 64 /* render threads with a counter slot of their own (more share, atomically) */
-/* One render thread's ray counters, 128 bytes apart so that no two threads'
-   counters share a cache line: one shared pair of counters, updated by
-   every ray of every thread, moved its line between the cores on every ray
-   (a cost of every mode, sharp included). */
-typedef struct rx_tally_t {
-    long long rays, chamfer, pad_[14];
-} rx_tally_t;
 typedef struct rx_world_t {
     const rx_scene_t *scene;
     rx_mode_t mode;
@@ -66,11 +58,9 @@ typedef struct rx_world_t {
     re_stats_t round_stats;
     long long concave_reports;  /* build reports of edges/vertices left sharp */
     int tess_sharp_objects;     /* tess mode: objects left sharp (a corner without sphere) */
-    /* counters of the last render (summed from tally when it ends) */
+    /* counters, updated atomically during rendering */
     long long rays;             /* path rays (camera and bounce; shadow rays not counted) */
     long long chamfer_rays;     /* of those, the ones the rounding changed */
-    rx_tally_t tally[RX_MAX_TALLY]; /* per-thread counters during a render */
-    unsigned tally_next, tally_epoch;
     long long embree_mem_live;  /* device memory monitor */
 } rx_world_t;
 
@@ -606,24 +596,6 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
     return found;
 }
 
-/* This thread's counter slot in w->tally for the current render. */
-typedef struct rx__slot_t {
-    const rx_world_t *w;
-    unsigned epoch, slot;
-} rx__slot_t;
-static RX_THREAD_LOCAL rx__slot_t rx__slot;
-
-static rx_tally_t *rx__my_tally(rx_world_t *w)
-{
-    rx__slot_t *m = &rx__slot;
-    if (m->w != w || m->epoch != w->tally_epoch) {
-        m->w = w;
-        m->epoch = w->tally_epoch;
-        m->slot = __atomic_fetch_add(&w->tally_next, 1u, __ATOMIC_RELAXED) % RX_MAX_TALLY;
-    }
-    return &w->tally[m->slot];
-}
-
 static int rx__intersect(void *user, const ex_ray_t *ray, double tmax, ex_surface_t *s)
 {
     rx_world_t *w = (rx_world_t *)user;
@@ -639,13 +611,8 @@ static int rx__intersect(void *user, const ex_ray_t *ray, double tmax, ex_surfac
         rx__spawn.w = found && q.kind == RE_HIT_ROUNDED ? w : NULL;
         if (rx__spawn.w) rx__spawn.geom = geom, rx__spawn.hit = q;
     }
-    {
-        /* atomic (a slot is shared past RX_MAX_TALLY threads), but the line
-           stays in this core's cache */
-        rx_tally_t *c = rx__my_tally(w);
-        __atomic_fetch_add(&c->rays, 1, __ATOMIC_RELAXED);
-        if (chamfer) __atomic_fetch_add(&c->chamfer, 1, __ATOMIC_RELAXED);
-    }
+    __atomic_fetch_add(&w->rays, 1, __ATOMIC_RELAXED);
+    if (chamfer) __atomic_fetch_add(&w->chamfer_rays, 1, __ATOMIC_RELAXED);
     return found;
 }
 
@@ -673,7 +640,6 @@ double rx_world_render(rx_world_t *w, int spp, int threads, unsigned long long s
     ex_render_desc_t d;
     double t0;
     char name[64];
-    int i;
     memset(&w->shade, 0, sizeof w->shade);
     w->shade.intersect = rx__intersect;
     w->shade.occluded = rx__occluded;
@@ -692,14 +658,9 @@ double rx_world_render(rx_world_t *w, int spp, int threads, unsigned long long s
     d.label = rx_mode_name(w->mode, name, sizeof name);
     d.quiet = quiet;
     w->rays = w->chamfer_rays = 0;
-    memset(w->tally, 0, sizeof w->tally);
-    w->tally_next = 0;
-    w->tally_epoch++; /* threads that counted for an earlier render take a new slot */
     t0 = ex_now();
     if (ex_render(&d, rx__pixel, w, rgb)) return -1;
-    t0 = ex_now() - t0;
-    for (i = 0; i < RX_MAX_TALLY; i++) w->rays += w->tally[i].rays, w->chamfer_rays += w->tally[i].chamfer;
-    return t0;
+    return ex_now() - t0;
 }
 
 #endif /* RX_RENDER_IMPLEMENTATION_DONE */
