@@ -1835,6 +1835,22 @@ static void gr__bezier_eval(const double *p, int n, double tau, double b[2], dou
     }
 }
 
+/* Groove rec's Bézier path at parameter param, clamped to [0, 1] (piece k
+   of n covers [k/n, (k+1)/n], uniformly): position and derivatives with
+   respect to the piece's own parameter; returns the piece's control points. */
+static const double *gr__bezier_at(const gr_grid_t *grid, const gr__groove_t *rec, double param, double b[2],
+                                   double d1[2], double d2[2])
+{
+    int deg = gr__degree(rec->kind), k;
+    const double *a;
+    param = param < 0 ? 0 : param > 1 ? 1 : param;
+    k = (int)(param * rec->pieces);
+    if (k >= rec->pieces) k = rec->pieces - 1;
+    a = grid->points_ + 2 * (rec->first_point + k * deg);
+    gr__bezier_eval(a, deg, param * rec->pieces - k, b, d1, d2);
+    return a;
+}
+
 /* The local frame of a candidate at a point of Bézier piece a (degree deg,
    one of `pieces`) with position b and derivatives d1, d2 there (|d1| > 0):
    P, unit T, d param / ds and its slope, signed curvature and its slope
@@ -2108,6 +2124,18 @@ static void gr__sweep(const double *q, int npts, int reverse, double *lo, double
     }
 }
 
+/* The pieces of a self-crossing groove (§5) run in two directions, so the
+   list keeps them apart as they are added; once it is complete, each entry
+   is named by its groove. */
+#ifndef GR_NO_INTERSECTIONS
+static void gr__list_name_parents(const gr_grid_t *grid, gr_facet_list_t *list)
+{
+    int i;
+    for (i = 0; i < list->count; i++)
+        if (list->facets[i].groove >= 0) list->facets[i].groove = grid->grooves_[list->facets[i].groove].parent;
+}
+#endif
+
 /* Add weight * (facet's share) to the list, merging equal orientations. */
 static void gr__list_add(gr_facet_list_t *list, const gr__mfacet_t *m, double ratio, const double *lit, int nl)
 {
@@ -2327,13 +2355,9 @@ static void gr__cand_shift(const gr_grid_t *grid, const gr__cand_t *c, double ds
     if (rec->perturb) out->f = gr__perturb(rec, param);
 #ifndef GR_NO_CURVES
     if (c->kappa != 0 || c->dkds != 0) {
-        int deg = gr__degree(rec->kind), k = (int)(param * rec->pieces);
-        const double *a;
         double b[2], d1[2], d2[2];
-        if (k >= rec->pieces) k = rec->pieces - 1;
-        a = grid->points_ + 2 * (rec->first_point + k * deg);
-        gr__bezier_eval(a, deg, param * rec->pieces - k, b, d1, d2);
-        if (d1[0] * d1[0] + d1[1] * d1[1] > 0) gr__bezier_frame(a, deg, rec->pieces, b, d1, d2, out);
+        const double *a = gr__bezier_at(grid, rec, param, b, d1, d2);
+        if (d1[0] * d1[0] + d1[1] * d1[1] > 0) gr__bezier_frame(a, gr__degree(rec->kind), rec->pieces, b, d1, d2, out);
     }
 #else
     (void)grid;
@@ -2355,12 +2379,9 @@ static double gr__mouth_on_path(const gr_grid_t *grid, const gr__cand_t *c, doub
                                 double fh, double run)
 {
     const gr__groove_t *rec = &grid->grooves_[c->groove];
-    int deg = gr__degree(rec->kind), k;
     double param = gr__param_at(c, run / gr__stretch(c, fh * bs)), b[2], d1[2], d2[2], sp, th[2], f, w, m[2], u, v, ct;
     param = param < 0 ? 0 : param > 1 ? 1 : param;
-    k = (int)(param * rec->pieces);
-    if (k >= rec->pieces) k = rec->pieces - 1;
-    gr__bezier_eval(grid->points_ + 2 * (rec->first_point + k * deg), deg, param * rec->pieces - k, b, d1, d2);
+    gr__bezier_at(grid, rec, param, b, d1, d2);
     sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]);
     if (!(sp > 0)) return fh * bs + gr__bend_drift(c->kappa, c->dkds, fh * bs, run) - fh * ws * (dir[0] * -c->t[1] + dir[1] * c->t[0]) / dir[2];
     th[0] = d1[0] / sp;
@@ -2468,13 +2489,8 @@ static double gr__light_anchor(const gr_grid_t *grid, const gr__qset_t *qs, cons
 static double gr__turn_to(const gr_grid_t *grid, const gr__groove_t *rec, double param, const double t0[2],
                           double *dtds)
 {
-    int deg = gr__degree(rec->kind), k;
-    double tau, b[2], d1[2], d2[2], sp;
-    param = param < 0 ? 0 : param > 1 ? 1 : param;
-    k = (int)(param * rec->pieces);
-    if (k >= rec->pieces) k = rec->pieces - 1;
-    tau = param * rec->pieces - k;
-    gr__bezier_eval(grid->points_ + 2 * (rec->first_point + k * deg), deg, tau, b, d1, d2);
+    double b[2], d1[2], d2[2], sp;
+    gr__bezier_at(grid, rec, param, b, d1, d2);
     sp = sqrt(d1[0] * d1[0] + d1[1] * d1[1]);
     if (sp > 0) *dtds = 1 / (rec->pieces * sp);
     return atan2(t0[0] * d1[1] - t0[1] * d1[0], t0[0] * d1[0] + t0[1] * d1[1]);
@@ -3996,14 +4012,20 @@ static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
 }
 
 /* Does one of groove g's self-intersections (§5), in its image nearest
-   f, lie in the box? Then the groove is taken as its pieces there. */
+   f, lie in the box? Then the groove is taken as its pieces there. The
+   builder stores the hits groove by groove, so g's run is found by
+   bisection. */
 static int gr__self_in_box(const gr_grid_t *grid, int g, const double *box, const double *f)
 {
-    int h;
+    int lo = 0, hi = grid->self_count_, h;
     if (grid->grooves_[g].split_count == 0) return 0;
-    for (h = 0; h < grid->self_count_; h++) {
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (grid->self_[mid].groove < g) lo = mid + 1;
+        else hi = mid;
+    }
+    for (h = lo; h < grid->self_count_ && grid->self_[h].groove == g; h++) {
         double p[2];
-        if (grid->self_[h].groove != g) continue;
         gr__image_near(grid, grid->self_[h].point, f, p);
         if (gr__in_box(box, p)) return 1;
     }
@@ -5090,10 +5112,7 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
         m.refl = pc->refl;
         gr__list_add(list, &m, ratio, lit, nl);
     }
-    /* pieces of a self-crossing groove (§5) run in two directions: they
-       were kept apart above, and are named by their groove now */
-    for (i = 0; i < list->count; i++)
-        if (list->facets[i].groove >= 0) list->facets[i].groove = grid->grooves_[list->facets[i].groove].parent;
+    gr__list_name_parents(grid, list);
     list->grooves = ng;
     list->subfootprints = 1;
     list->flags |= GR_LIST_POLYGON;
@@ -6301,10 +6320,7 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
             gr__list_add(list, &mf, ratio, lit, nl);
         }
     }
-    /* the two passes of a self-crossing groove (§5) were kept apart: named
-       by their groove now */
-    for (i = 0; i < list->count; i++)
-        if (list->facets[i].groove >= 0) list->facets[i].groove = grid->grooves_[list->facets[i].groove].parent;
+    gr__list_name_parents(grid, list);
     for (i = 0; i < sc.nlg; i++)
         for (k = 0; k < i; k++) {
             const gr__lg_t *a = &sc.ls.lg[i], *b = &sc.ls.lg[k];

@@ -761,7 +761,7 @@ typedef struct re__an_t {
     unsigned obj;
     re_diag_t *diag;
     unsigned V, T, E;
-    double *pos;
+    const double *pos; /* 3 per vertex: the caller's array itself when it is packed doubles */
     unsigned *tri, *tsrc, *tplane;
     double *tn, *tarea;
     unsigned char *tbad;
@@ -776,12 +776,12 @@ typedef struct re__an_t {
     unsigned char *c_np, *c_ns, *c_nx;
     unsigned *c_planes, *c_edges; /* fan-ordered planes / crossing edges */
     unsigned *c_x;                /* extra cylinders: pairs of plane slots */
-    unsigned *c_start;            /* per plane slot j: sphere (local) where edge j starts */
+    unsigned char *c_start;       /* per plane slot j: sphere (local, < 64) where edge j starts */
     double *su;                   /* unit-radius sphere offsets, 3 per sphere */
     unsigned *s_tri;              /* per sphere: the plane slots it solves from
                                      (re__object_t.sinfo), RE__NONE if none */
     unsigned ns_total, nx_total, np_total;
-    unsigned *edge_end; /* 2 per edge: local sphere index at v[0], v[1] side */
+    unsigned char *edge_end; /* 2 per edge: local sphere index (< 64) at the v[0], v[1] side; 255 = none */
     unsigned n_planes;
     re__plane_t *planes;
     unsigned *plane_used;
@@ -884,27 +884,35 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     unsigned t = 0, f, nf, base = 0, i, k;
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     char msg[128];
-    RE__TAKE(an->pos, double, 3 * (size_t)an->V);
+    if (m->position_type == RE_FLOAT64 && (m->position_stride == 0 || m->position_stride == 3 * sizeof(double)))
+        an->pos = (const double *)m->positions; /* no copy: fewer fresh scratch pages */
+    else {
+        double *pos;
+        RE__TAKE(pos, double, 3 * (size_t)an->V);
+        for (i = 0; i < an->V; i++) re__read_pos(m, i, pos + 3 * (size_t)i);
+        an->pos = pos;
+    }
     RE__TAKE(an->tri, unsigned, 3 * (size_t)an->T);
-    RE__TAKE(an->tsrc, unsigned, 3 * (size_t)an->T);
+    if (m->edge_radius) RE__TAKE(an->tsrc, unsigned, 3 * (size_t)an->T); /* read by re__edge_request only */
     RE__TAKE(an->tn, double, 3 * (size_t)an->T);
     RE__TAKE(an->tarea, double, an->T);
     RE__TAKE(an->tbad, unsigned char, an->T);
-    for (i = 0; i < an->V; i++) re__read_pos(m, i, an->pos + 3 * (size_t)i);
     nf = m->face_sizes ? m->face_count : an->T;
     for (f = 0; f < nf; f++) {
         unsigned n = m->face_sizes ? m->face_sizes[f] : 3u, j;
         for (j = 1; j + 1 < n; j++, t++) {
-            unsigned *tr = an->tri + 3 * (size_t)t, *src = an->tsrc + 3 * (size_t)t;
+            unsigned *tr = an->tri + 3 * (size_t)t;
             double e1[3], e2[3], e3[3], cr[3], len, lmax;
             int bad = 0;
             tr[0] = m->indices[base];
             tr[1] = m->indices[base + j];
             tr[2] = m->indices[base + j + 1];
-            /* index positions of the polygon's own edges (fan diagonals have none) */
-            src[0] = j == 1 ? base : RE__NONE;
-            src[1] = base + j;
-            src[2] = j + 2 == n ? base + j + 1 : RE__NONE;
+            if (an->tsrc) { /* index positions of the polygon's own edges (fan diagonals have none) */
+                unsigned *src = an->tsrc + 3 * (size_t)t;
+                src[0] = j == 1 ? base : RE__NONE;
+                src[1] = base + j;
+                src[2] = j + 2 == n ? base + j + 1 : RE__NONE;
+            }
             an->tbad[t] = 0;
             for (k = 0; k < 3; k++)
                 if (tr[k] >= an->V) {
@@ -1004,8 +1012,8 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
     /* cnt[i] is now the end of bucket i; bucket i starts at cnt[i-1] */
     for (i = 0; i < V; i++) {
         unsigned s = i ? cnt[i - 1] : 0, e = cnt[i], j;
-        if (e - s > 16) qsort(key + s, e - s, sizeof *key, re__cmp_u64);
-        else { /* typical vertex degree: insertion sort beats qsort's calls */
+        if (e - s > 64) qsort(key + s, e - s, sizeof *key, re__cmp_u64);
+        else { /* up to a 24-gon fan's apex (47): insertion sort beats qsort's calls; the keys are unique, so the order is the same */
             unsigned x, y;
             for (x = s + 1; x < e; x++)
                 for (y = x; y > s && key[y - 1] > key[y]; y--) {
@@ -1140,7 +1148,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     const unsigned *ed = an->c_edges + an->c_pfirst[c];
     double *su = an->su + 3 * (size_t)an->c_sfirst[c];
     unsigned *stri = an->s_tri + an->c_sfirst[c];
-    unsigned *start = an->c_start + an->c_pfirst[c];
+    unsigned char *start = an->c_start + an->c_pfirst[c];
     unsigned *xs = an->c_x + 4 * (size_t)an->c_xfirst[c];
     unsigned cap = k; /* a k-plane corner has at most k - 2 eroded vertices (k = 2: one) */
     unsigned long long mask[RE_MAX_CORNER_PLANES];
@@ -1211,8 +1219,8 @@ static int re__erode_corner(re__an_t *an, unsigned c)
                 if (pr < bp) bp = pr, best = i;
             }
         if (best == RE__NONE) return 0;
-        start[j] = best;
-        an->edge_end[2 * ed[j] + (e->v[0] == an->c_vertex[c] ? 0u : 1u)] = best;
+        start[j] = (unsigned char)best;
+        an->edge_end[2 * ed[j] + (e->v[0] == an->c_vertex[c] ? 0u : 1u)] = (unsigned char)best;
     }
     /* extra cylinders: finite eroded edges between non-neighbouring planes */
     for (i = 0; i < k; i++)
@@ -1254,7 +1262,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->vinc, unsigned, 2 * (size_t)E + 1);
     RE__TAKE(an->vstate, unsigned char, V);
     RE__TAKE(an->vcorner, unsigned, V);
-    RE__TAKE(an->edge_end, unsigned, 2 * (size_t)E + 1);
+    RE__TAKE(an->edge_end, unsigned char, 2 * (size_t)E + 1);
     memset(an->voff, 0, sizeof(unsigned) * ((size_t)V + 1));
     for (i = 0; i < E; i++) an->voff[an->edges[i].v[0] + 1]++, an->voff[an->edges[i].v[1] + 1]++;
     for (v = 0; v < V; v++) an->voff[v + 1] += an->voff[v];
@@ -1262,7 +1270,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
         unsigned a = an->edges[i].v[0], b = an->edges[i].v[1];
         an->vinc[an->voff[a]++] = i;
         an->vinc[an->voff[b]++] = i;
-        an->edge_end[2 * i] = an->edge_end[2 * i + 1] = RE__NONE;
+        an->edge_end[2 * i] = an->edge_end[2 * i + 1] = 255;
     }
     for (v = V; v > 0; v--) an->voff[v] = an->voff[v - 1];
     an->voff[0] = 0;
@@ -1298,7 +1306,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->c_nx, unsigned char, an->nc);
     RE__TAKE(an->c_planes, unsigned, an->np_total);
     RE__TAKE(an->c_edges, unsigned, an->np_total);
-    RE__TAKE(an->c_start, unsigned, an->np_total);
+    RE__TAKE(an->c_start, unsigned char, an->np_total);
     RE__TAKE(an->su, double, 3 * (size_t)an->np_total);
     RE__TAKE(an->s_tri, unsigned, an->np_total);
     RE__TAKE(an->c_x, unsigned, 4 * (size_t)an->np_total);
@@ -1306,18 +1314,24 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(tfan, unsigned, an->T + 1);
     RE__TAKE(hfan, unsigned, an->T + 1);
     {
-        unsigned off = 0;
+        /* The slot arrays are sized by the vertex degrees (an upper bound);
+           each corner takes only what it uses: k plane slots, ns spheres, nx
+           extra cylinders (its erosion may write up to k of each, past the
+           end, before the next corner overwrites them). The used prefix is
+           dense, so the build touches (and page-faults in) about half the
+           memory of degree-sized slots; the fresh pages cost more than the
+           arithmetic on them. */
+        unsigned poff = 0, soff = 0, xoff = 0;
         for (v = 0; v < V; v++) {
             unsigned c = an->vcorner[v], deg, m = 0, h, i0, k = 0, j, ok = 1, too_many = 0;
             if (c == RE__NONE) continue;
             deg = an->voff[v + 1] - an->voff[v];
             an->c_vertex[c] = v;
-            an->c_pfirst[c] = off;
-            an->c_sfirst[c] = off;
-            an->c_xfirst[c] = off;
+            an->c_pfirst[c] = poff;
+            an->c_sfirst[c] = soff;
+            an->c_xfirst[c] = xoff;
             an->c_np[c] = 0;
             an->c_ns[c] = an->c_nx[c] = 0;
-            off += deg;
             /* walk the fan: in triangle t, cross the edge prev -> v */
             t = an->edges[an->vinc[an->voff[v]]].he[0] / 3;
             do {
@@ -1371,6 +1385,9 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
                          "left sharp", v, k);
                 re__report(an, RE_REPORT_UNROUNDABLE_CORNER, v, -1, (double)k, msg);
             }
+            poff += k;
+            soff += an->c_ns[c];
+            xoff += an->c_nx[c];
         }
     }
     ar->used = mark;
@@ -1554,14 +1571,20 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
                 if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = v, lim1[p] = w;
             }
             for (g = 0; g < an->c_np[cw]; g++) {
-                const re__plane_t *pl = &an->planes[an->c_planes[an->c_pfirst[cw] + g]];
-                double b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
+                unsigned pi = an->c_planes[an->c_pfirst[cw] + g];
+                const re__plane_t *pl = &an->planes[pi];
+                double b, amax = 0;
+                /* a plane of c itself, or one seen from another neighbour
+                   already (it would give the same bound again) */
+                if (pmark[pi] == c + 1) continue;
+                pmark[pi] = c + 1;
+                b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
                 if (b < 0 || b >= skip) continue; /* not locally convex, or too far to matter */
-                if (pmark[an->c_planes[an->c_pfirst[cw] + g]] == c + 1) continue; /* a plane of c itself */
-                for (s = 0; s < an->c_ns[c]; s++) {
-                    double a = re__dot(pl->n, an->su + 3 * (size_t)(an->c_sfirst[c] + s)) + 1.0;
-                    if (a > 0 && b / a < rmax[p]) rmax[p] = b / a, lim0[p] = v, lim1[p] = -1;
-                }
+                /* b / a decreases with a (and so does its rounding), so the
+                   sphere that leans farthest into the plane bounds r */
+                for (s = 0; s < an->c_ns[c]; s++)
+                    amax = re__max(amax, re__dot(pl->n, an->su + 3 * (size_t)(an->c_sfirst[c] + s)) + 1.0);
+                if (amax > 0 && b / amax < rmax[p]) rmax[p] = b / amax, lim0[p] = v, lim1[p] = -1;
             }
         }
     }
@@ -2263,7 +2286,8 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->sph, double, 3 * (size_t)ns);
     RE__TAKE(F->sinfo, unsigned short, ns);
     RE__TAKE(F->xsid, unsigned, ns);
-    RE__TAKE(F->xsph, double, 3 * (size_t)ns);
+    if (an->desc->layout == RE_LAYOUT_COMPACT) RE__TAKE(F->xsph, double, 3 * (size_t)ns);
+    else F->xsph = F->sph; /* every centre stored, in sphere order: the same array */
     RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
     RE__TAKE(F->xcyls, re__xcyl_t, ncyl - F->n_edge_cyls);
     RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
@@ -2329,7 +2353,8 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             }
             if (*sr == RE__SPH_STORED) {
                 F->xsid[F->n_xsph] = sbase[c] + j;
-                memcpy(F->xsph + 3 * (size_t)F->n_xsph++, sp, 3 * sizeof(double));
+                if (F->xsph != F->sph) memcpy(F->xsph + 3 * (size_t)F->n_xsph, sp, 3 * sizeof(double));
+                F->n_xsph++;
             }
             re__sub(sp, v, dd);
             dm = re__max(dm, re__len(dd));
@@ -3531,9 +3556,16 @@ static double re__bv_seed_unit(unsigned seed, unsigned long long stream)
 /* Van der Corput radical inverse in base 2 (the Hammersley second coordinate). */
 static double re__bv_radical_inverse(unsigned i)
 {
-    unsigned long long v = i & 0xFFFFFFFFull, r = 0;
-    int k;
-    for (k = 0; k < 32; k++) { r = (r << 1) | (v & 1u); v >>= 1; }
+    /* the 32 bits reversed by swapping halves, bytes, nibbles, pairs and
+       bits (a bit-by-bit loop cost the 4-sample bevel ~900 instructions a
+       shading point, a quarter of its own work, where a renderer reads a
+       table) */
+    unsigned long long r = i & 0xFFFFFFFFull;
+    r = ((r >> 16) | (r << 16)) & 0xFFFFFFFFull;
+    r = ((r & 0x00FF00FFull) << 8) | ((r >> 8) & 0x00FF00FFull);
+    r = ((r & 0x0F0F0F0Full) << 4) | ((r >> 4) & 0x0F0F0F0Full);
+    r = ((r & 0x33333333ull) << 2) | ((r >> 2) & 0x33333333ull);
+    r = ((r & 0x55555555ull) << 1) | ((r >> 1) & 0x55555555ull);
     return (double)r * (1.0 / 4294967296.0);
 }
 

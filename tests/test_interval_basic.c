@@ -260,6 +260,7 @@ static void tightness_basic_ops(void)
 /* The pair path and the scalar path give the same intervals
    (test_interval_gen.h; IV_FAST builds run it too). */
 static void pair_path_matches_scalar(void) { ig_pair_matches_scalar(); }
+static void arrays_match_per_call(void) { ig_arrays_match_per_call(); }
 
 /* Named edge cases of the outward step in + - * (both paths): each end
    is on the right side of the exact result and at most one double beyond
@@ -368,6 +369,7 @@ int main(int argc, char **argv)
         T_CASE(tightness_basic_ops),
         T_CASE(outward_step_both_paths),
         T_CASE(pair_path_matches_scalar),
+        T_CASE(arrays_match_per_call),
         T_CASE(step_edge_cases),
     };
     return T_RUN(argc, argv, cases);

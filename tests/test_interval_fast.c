@@ -7,6 +7,7 @@
 #include "test_interval_gen.h"
 
 static void fast_pair_matches_scalar(void) { ig_pair_matches_scalar(); }
+static void fast_arrays_match_per_call(void) { ig_arrays_match_per_call(); }
 
 /* Point operations give exactly the double operation's result. */
 static void fast_endpoints_round_to_nearest(void)
@@ -56,6 +57,7 @@ int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(fast_pair_matches_scalar),
+        T_CASE(fast_arrays_match_per_call),
         T_CASE(fast_endpoints_round_to_nearest),
         T_CASE(fast_misses_exact_values),
     };
