@@ -177,10 +177,11 @@ typedef enum re_layout_t {
     RE_LAYOUT_FAST = 0, /* default: sphere centres stored as doubles, the
                            kd-tree split for query time */
     RE_LAYOUT_COMPACT   /* sphere centres solved at query time from three face
-                           planes (24 bytes less per sphere), a shallower
-                           kd-tree; 74-87 instead of 90-118 bytes per rounded
-                           edge on the benchmark scenes, about 1.5x the
-                           instructions of a query that reaches the kd-tree */
+                           planes (24 bytes less per sphere), one-byte
+                           detection radii, 16-bit sphere distances, a
+                           shallower kd-tree; 55-64 instead of 72-96 bytes
+                           per rounded edge on the benchmark scenes, 1.1-1.5x
+                           the instructions of re_query */
 } re_layout_t;
 
 typedef struct re_scene_desc_t {
@@ -578,10 +579,10 @@ typedef struct re__cyl_t {
    on the left leaving the edge's lower vertex, p[1] leaving the upper);
    s[0], the sphere at the lower vertex, grows with the cylinder id (edges
    are numbered by their lower vertex), so it is packed apart
-   (re__object_t.c_s0), and s[1] is kept as s[1] - s[0] in 16 bits
-   (re__object_t.ds1): spheres are numbered in vertex order, and an edge's
-   vertices seldom lie 65535 spheres apart; those that do are listed in
-   xs1 (re__cyl_s1). */
+   (re__object_t.c_s0). The fast layout keeps s[1] whole (s1w); the
+   compact one as s[1] - s[0] in 16 bits (re__object_t.ds1): spheres are
+   numbered in vertex order, and an edge's vertices seldom lie 65535
+   spheres apart; those that do are listed in xs1 (re__cyl_s1). */
 typedef struct re__ecyl_t {
     unsigned p[2];
 } re__ecyl_t;
@@ -693,7 +694,8 @@ typedef struct re__object_t {
     const unsigned *xsid; /* compact layout: the stored spheres, ascending */
     const double *xsph; /* 3 per stored sphere centre (every one in the fast layout) */
     const re__ecyl_t *cyls;   /* edge cylinders [0, n_edge_cyls) */
-    const unsigned short *ds1; /* per edge cylinder: s[1] - s[0], or RE__DS1_FAR */
+    const unsigned *s1w;      /* fast layout: per edge cylinder, s[1] */
+    const unsigned short *ds1; /* compact layout: per edge cylinder, s[1] - s[0], or RE__DS1_FAR */
     const unsigned *xs1;      /* 2 per far cylinder, ascending: its id, its s[1] */
     unsigned n_xs1;
     const re__xcyl_t *xcyls;  /* extra cylinders [n_edge_cyls, n_cyls) */
@@ -2504,8 +2506,11 @@ static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
     return b + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
            (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(sizeof(unsigned short) * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_xsph) : 0) +
            RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
-           RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) +
-           RE__ALIGN(sizeof(unsigned) * 2 * (size_t)F->n_xs1) + RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
+           RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls) +
+           (an->desc->layout == RE_LAYOUT_COMPACT
+                ? RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned) * 2 * (size_t)F->n_xs1)
+                : RE__ALIGN(sizeof(unsigned) * F->n_edge_cyls)) +
+           RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
            (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(2 * (size_t)F->n_edge_cyls) : RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls)) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
            RE__ALIGN(sizeof(unsigned) * F->n_refs) + RE__ALIGN(sizeof(re__node_t) * F->kd.n_nodes) +
@@ -2564,17 +2569,25 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
         for (c = 0; c < F->n_edge_cyls; c++) ec[c].p[0] = F->cyls[c].p[0], ec[c].p[1] = F->cyls[c].p[1];
         o->cyls = ec;
         at += RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls);
+        o->s1w = NULL, o->ds1 = NULL, o->xs1 = NULL, o->n_xs1 = 0;
+        if (!o->compact) {
+            unsigned *w = (unsigned *)at;
+            for (c = 0; c < F->n_edge_cyls; c++) w[c] = F->cyls[c].s[1];
+            o->s1w = w;
+            at += RE__ALIGN(sizeof(unsigned) * F->n_edge_cyls);
+        }
         ds = (unsigned short *)at;
-        at += RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls);
-        xs = (unsigned *)at;
-        for (c = 0; c < F->n_edge_cyls; c++) {
+        xs = (unsigned *)(at + RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls));
+        for (c = 0; o->compact && c < F->n_edge_cyls; c++) {
             unsigned d = F->cyls[c].s[1] - F->cyls[c].s[0];
             ds[c] = (unsigned short)(F->cyls[c].s[1] > F->cyls[c].s[0] && d <= RE__DS1_SPAN ? d : RE__DS1_FAR);
             if (ds[c] == RE__DS1_FAR) xs[2 * nx] = c, xs[2 * nx + 1] = F->cyls[c].s[1], nx++;
         }
-        RE_ASSERT(nx == F->n_xs1);
-        at += RE__ALIGN(sizeof(unsigned) * 2 * (size_t)nx);
-        o->ds1 = ds, o->xs1 = xs, o->n_xs1 = nx;
+        if (o->compact) {
+            RE_ASSERT(nx == F->n_xs1);
+            at += RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned) * 2 * (size_t)nx);
+            o->ds1 = ds, o->xs1 = xs, o->n_xs1 = nx;
+        }
     }
     o->xcyls = (const re__xcyl_t *)re__put(&at, F->xcyls, sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls));
     o->det = NULL, o->det8 = NULL, o->det_e0 = F->det_e0;
@@ -2950,7 +2963,9 @@ static unsigned re__s_corner(const re__object_t *o, unsigned s) { return re__pk_
 /* s[1] of edge cylinder c, whose s[0] is s0 (re__ecyl_t). */
 static unsigned re__cyl_s1(const re__object_t *o, unsigned c, unsigned s0)
 {
-    unsigned d = o->ds1[c], lo = 0, hi = o->n_xs1;
+    unsigned d, lo = 0, hi = o->n_xs1;
+    if (!o->compact) return o->s1w[c];
+    d = o->ds1[c];
     if (d != RE__DS1_FAR) return s0 + d;
     while (hi - lo > 1) {
         unsigned mid = lo + (hi - lo) / 2;
@@ -2962,8 +2977,9 @@ static unsigned re__cyl_s1(const re__object_t *o, unsigned c, unsigned s0)
    the corner's own. */
 static unsigned re__far_sphere(const re__object_t *o, unsigned ref)
 {
-    unsigned c = ref >> 1, s0 = re__pk_id(&o->c_s0, c);
-    return ref & 1u ? re__cyl_s1(o, c, s0) : s0;
+    unsigned c = ref >> 1;
+    if (!o->compact && (ref & 1u)) return o->s1w[c];
+    return ref & 1u ? re__cyl_s1(o, c, re__pk_id(&o->c_s0, c)) : re__pk_id(&o->c_s0, c);
 }
 static double re__k_radius(const re__object_t *o, unsigned k) { return o->radii[re__pk_id(&o->k_rid, k)]; }
 static unsigned re__k_xfirst(const re__object_t *o, unsigned k) { return re__pk_id(&o->k_xfirst, k); }
