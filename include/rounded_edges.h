@@ -575,7 +575,7 @@ typedef struct re__cyl_t {
     unsigned s[2]; /* spheres at the axis ends */
     unsigned p[2]; /* the two offset planes it joins */
 } re__cyl_t;
-/* An edge cylinder as stored, 10 bytes: its planes here (p[0] is the face
+/* An edge cylinder as stored: its planes here, 8 bytes (p[0] is the face
    on the left leaving the edge's lower vertex, p[1] leaving the upper);
    s[0], the sphere at the lower vertex, grows with the cylinder id (edges
    are numbered by their lower vertex), so it is packed apart
