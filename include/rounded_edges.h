@@ -179,7 +179,7 @@ typedef enum re_layout_t {
     RE_LAYOUT_COMPACT   /* sphere centres solved at query time from three face
                            planes (24 bytes less per sphere), one-byte
                            detection radii, 16-bit sphere distances, a
-                           shallower kd-tree; 55-64 instead of 72-96 bytes
+                           shallower kd-tree; 54-64 instead of 73-96 bytes
                            per rounded edge on the benchmark scenes, 1.1-1.5x
                            the instructions of re_query */
 } re_layout_t;
@@ -977,6 +977,11 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     return RE_OK;
 }
 
+static int re__cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
 static int re__cmp_u64(const void *a, const void *b)
 {
     unsigned long long x = *(const unsigned long long *)a, y = *(const unsigned long long *)b;
@@ -2208,7 +2213,7 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
 static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
                               re__final_t *F)
 {
-    unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, ns = 0, ncyl = 0, nref = 0, nco = 0;
+    unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, *prid, ns = 0, ncyl = 0, nref = 0, nco = 0, npatch = 0;
     unsigned qslot[RE_MAX_CORNER_PLANES];
     size_t kd_mark;
     double *box, *reach, *dmax, lo[3], hi[3];
@@ -2216,6 +2221,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(sbase, unsigned, an->nc + 1);
     RE__TAKE(xbase, unsigned, an->nc + 1);
     RE__TAKE(rmap, unsigned, an->nc + 1);
+    RE__TAKE(prid, unsigned, an->nc + 1);
     RE__TAKE(ecyl, unsigned, an->E + 1);
     RE__TAKE(pmap, unsigned, an->n_planes + 1);
     for (i = 0; i < an->n_planes; i++) pmap[i] = RE__NONE;
@@ -2235,7 +2241,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         ncyl += an->c_nx[c];
         nref += (unsigned)an->c_np[c];
         p = re__uf_find(uf, c);
-        if (rmap[p] == RE__NONE) rmap[p] = F->n_radii++;
+        if (rmap[p] == RE__NONE) rmap[p] = npatch++;
         for (j = 0; j < an->c_np[c]; j++) {
             unsigned q = an->c_planes[an->c_pfirst[c] + j];
             pmap[q] = 0; /* used; numbered below, in triangle order (re__pk_t) */
@@ -2277,8 +2283,30 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     F->n_xsph = 0;
     F->n_cyls = ncyl;
     F->n_refs = nref;
+    /* radii are shared between patches of equal radius (one-radius objects
+       need no radius ids: re__k_radius); ascending, prid[patch] = its id */
+    {
+        double *pr;
+        RE__TAKE(pr, double, npatch + 1);
+        for (c = 0; c < an->nc; c++)
+            if (fc[c] != RE__NONE) pr[rmap[re__uf_find(uf, c)]] = patch_r[re__uf_find(uf, c)];
+        RE__TAKE(F->radii, double, npatch + 1);
+        memcpy(F->radii, pr, sizeof(double) * npatch);
+        qsort(F->radii, npatch, sizeof(double), re__cmp_double);
+        for (i = 0; i < npatch; i++)
+            if (F->n_radii == 0 || F->radii[F->n_radii - 1] != F->radii[i]) F->radii[F->n_radii++] = F->radii[i];
+        for (i = 0; i < npatch; i++) {
+            unsigned rl = 0, rh = F->n_radii;
+            while (rh - rl > 1) {
+                unsigned mid = rl + (rh - rl) / 2;
+                if (F->radii[mid] <= pr[i]) rl = mid; else rh = mid;
+            }
+            prid[i] = rl;
+        }
+    }
     F->pk_n[RE__PKA_TRI_PLANE] = an->T;
-    F->pk_n[RE__PKA_CVERTEX] = F->pk_n[RE__PKA_K_FIRST] = F->pk_n[RE__PKA_K_SFIRST] = F->pk_n[RE__PKA_K_RID] = nco;
+    F->pk_n[RE__PKA_CVERTEX] = F->pk_n[RE__PKA_K_FIRST] = F->pk_n[RE__PKA_K_SFIRST] = nco;
+    F->pk_n[RE__PKA_K_RID] = F->n_radii > 1 ? nco : 0u;
     F->pk_n[RE__PKA_K_XFIRST] = ncyl > F->n_edge_cyls ? nco : 0u;
     F->pk_n[RE__PKA_S_CORNER] = ns;
     F->pk_n[RE__PKA_X_CORNER] = ncyl - F->n_edge_cyls;
@@ -2295,7 +2323,6 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->det8, unsigned char, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->corners, re__corner_t, nco);
-    RE__TAKE(F->radii, double, F->n_radii);
     RE__TAKE(F->refs, unsigned, nref);
     RE__TAKE(reach, double, nco + 1);
     RE__TAKE(dmax, double, nco + 1);
@@ -2313,8 +2340,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         K = &F->corners[fc[c]];
         v = an->pos + 3 * (size_t)an->c_vertex[c];
         r = patch_r[re__uf_find(uf, c)];
-        F->pk[RE__PKA_K_RID][fc[c]] = rmap[re__uf_find(uf, c)];
-        F->radii[rmap[re__uf_find(uf, c)]] = r;
+        if (F->pk_n[RE__PKA_K_RID]) F->pk[RE__PKA_K_RID][fc[c]] = prid[rmap[re__uf_find(uf, c)]];
         F->pk[RE__PKA_CVERTEX][fc[c]] = an->c_vertex[c];
         F->pk[RE__PKA_K_FIRST][fc[c]] = nref;
         F->pk[RE__PKA_K_SFIRST][fc[c]] = sbase[c];
@@ -2981,7 +3007,10 @@ static unsigned re__far_sphere(const re__object_t *o, unsigned ref)
     if (!o->compact && (ref & 1u)) return o->s1w[c];
     return ref & 1u ? re__cyl_s1(o, c, re__pk_id(&o->c_s0, c)) : re__pk_id(&o->c_s0, c);
 }
-static double re__k_radius(const re__object_t *o, unsigned k) { return o->radii[re__pk_id(&o->k_rid, k)]; }
+static double re__k_radius(const re__object_t *o, unsigned k)
+{
+    return o->radii[o->n_radii == 1 ? 0u : re__pk_id(&o->k_rid, k)];
+}
 static unsigned re__k_xfirst(const re__object_t *o, unsigned k) { return re__pk_id(&o->k_xfirst, k); }
 
 
