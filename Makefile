@@ -125,8 +125,9 @@ $(B)/bench/%: bench/%.cpp $(TEST_DEPS) $(wildcard bench/*.h examples/*/*.h) $(EX
 
 # BENCH=rounded runs only the benchmarks whose name contains "rounded".
 # Each benchmark's stdout goes to out/bench/<name>.txt; stderr shows its wall
-# time and the load average at its start. With BENCH set, a plot whose CSV was
-# not written by this run is skipped.
+# time and the load average at its start. Plots are drawn into a temporary
+# directory and moved to docs/img/ only when gnuplot succeeds, so with BENCH
+# set a plot whose CSV this run did not write is skipped and its old SVG kept.
 BENCH_RUN = $(strip $(if $(BENCH),$(foreach b,$(BENCHES),$(if $(findstring $(BENCH),$(notdir $(b))),$(b))),$(BENCHES)))
 bench: deps-bench
 	@$(if $(BENCH_RUN),,echo "no benchmark matches BENCH=$(BENCH)" >&2; exit 1)
@@ -136,7 +137,9 @@ bench: deps-bench
 	  echo "== $$n (load $$(cut -d' ' -f1 /proc/loadavg), $$(date -u '+%F %T') UTC)" >&2; \
 	  s=$$(date +%s); $$b out/bench > out/bench/$$n.txt; cat out/bench/$$n.txt; \
 	  echo "== $$n took $$(( $$(date +%s) - s )) s" >&2; done
-	@set -e; for g in $(wildcard bench/*.gp); do gnuplot -e "dir='out/bench'; img='docs/img'" $$g $(if $(BENCH),2>/dev/null || echo "skipped plot $$g" >&2); done
+	@set -e; tmp=$$(mktemp -d); for g in $(wildcard bench/*.gp); do \
+	  if gnuplot -e "dir='out/bench'; img='$$tmp'" $$g $(if $(BENCH),2>/dev/null); then mv $$tmp/* docs/img/ 2>/dev/null || true; \
+	  else rm -f $$tmp/*; $(if $(BENCH),echo "skipped plot $$g" >&2,exit 1); fi; done; rmdir $$tmp
 	@echo "tables in out/bench/*.csv, plots in docs/img/"
 
 # ---------------------------------------------------------------- fuzzing
