@@ -463,9 +463,13 @@ FR_DEF fr_result_t fr_parse(const char *text, size_t len, const fr_parse_desc_t 
    Quadratics, cubics and quartics first try closed-form estimates that must
    certify themselves (the discriminant's sign with an error bound fixes the
    number of distinct real roots; each estimate must converge under a
-   compensated third-order polish; all must be distinct), which is 6-23x
-   faster than gsl_poly_complex_solve on random quartics; anything uncertain
-   takes the general path above. */
+   compensated third-order polish; all must be distinct), which is 6-28x
+   faster than gsl_poly_complex_solve on random quartics; cubics and
+   quartics whose roots are spread so far that the coefficients' Newton
+   polygon splits them into groups are solved group by group, every root
+   certified by a sign change; anything uncertain takes the general path
+   above, with its breakpoints from the fast path on the highest
+   derivative that certifies. */
 
 #define FR_POLY_MAX_DEGREE 16 /* at most 16: fr__ceil_div has a table per divisor */
 
@@ -3463,6 +3467,12 @@ done:
 #include <limits.h>
 #include <string.h>
 
+#if defined(__GNUC__) || defined(__clang__)
+#define FR__HOT_INLINE __attribute__((always_inline)) inline /* hot loops specialised per call site */
+#else
+#define FR__HOT_INLINE inline
+#endif
+
 /* Unit roundoff of double, 2^-53. */
 #define FR__U 1.1102230246251565404e-16
 /* A value within FR__ZERO_K n^2 u^2 sum|c_i||t|^i of zero has no certain sign
@@ -3799,19 +3809,28 @@ static int fr__estimate_roots(const double *c, int n, double *est)
 
 /* Where p, with p'(e) = 0 and value v at the critical point e, meets zero on
    the side `side` (+1 right, -1 left) if it is the parabola
-   v + p''(e) (x - e)^2 / 2 there: e + side sqrt(-v / (p''(e)/2)). NaN when
-   the curvature does not bend p towards zero. */
-static double fr__parabola_root(const double *hi, int n, double e, double v, int side)
+   v + p''(e) (x - e)^2 / 2 there (order 2): e + side sqrt(-v / (p''(e)/2));
+   NaN when the curvature does not bend p towards zero. Order 3 is the
+   same for the cubic v + p'''(e) (x - e)^3 / 6, for a critical point that
+   is (nearly) a double root of p' too, where p'' vanishes: a triple root
+   that rounding split (ODM's case 15), whose real root sits ~u^(1/3) from
+   the critical point, where the parabola is far off. */
+static double fr__critical_end_start(const double *hi, int n, double e, double v, int side, int order)
 {
-    double h2 = 0.0, d = 0.0, p = hi[n], w;
+    double h3 = 0.0, h2 = 0.0, d = 0.0, p = hi[n], w;
     int i;
-    for (i = n - 1; i >= 0; i--) { /* p''/2, p', p by Horner */
+    for (i = n - 1; i >= 0; i--) { /* p'''/6, p''/2, p', p by Horner */
+        h3 = h3 * e + h2;
         h2 = h2 * e + d;
         d = d * e + p;
         p = p * e + hi[i];
     }
-    w = -v / h2;
-    return w > 0 ? e + (side > 0 ? sqrt(w) : -sqrt(w)) : (double)NAN;
+    if (order == 2) {
+        w = -v / h2;
+        return w > 0 ? e + (side > 0 ? sqrt(w) : -sqrt(w)) : (double)NAN;
+    }
+    w = -v / h3; /* v + h3 t^3 = 0: t = cbrt(w), on the side's sign */
+    return (w > 0) == (side > 0) && w != 0 ? e + (side > 0 ? 1.0 : -1.0) * fr__cbrt_est(fabs(w)) : (double)NAN;
 }
 
 /* |p(x)| / sum |c_i| |x|^i by plain Horner: how close x is to a root, in
@@ -3848,20 +3867,23 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
         if (!(xr > xl)) continue;
         sr = fr__sign_at(hi, lo, n, xr, &vr);
         if (sl * sr < 0) {
-            double start = xl, best = HUGE_VAL, cand[2]; /* none: regula falsi */
+            double start = xl, best = HUGE_VAL; /* none: regula falsi */
             for (k = 0; k < nest; k++)
                 if (est[k] > xl && est[k] < xr) {
                     double v = fr__abs_value_ratio(hi, n, est[k]);
                     if (v < best) { best = v; start = est[k]; }
                 }
             if (n >= 2 && !(best <= 64.0 * n * FR__U)) { /* no closed form at rounding level: the parabolas */
-                cand[0] = j > 0 ? fr__parabola_root(hi, n, xl, vl, 1) : (double)NAN;    /* xl = bp[j - 1] */
-                cand[1] = j < nbp ? fr__parabola_root(hi, n, xr, vr, -1) : (double)NAN; /* xr = bp[j] */
-                for (k = 0; k < 2; k++)
-                    if (cand[k] > xl && cand[k] < xr) {
-                        double v = fr__abs_value_ratio(hi, n, cand[k]);
-                        if (v < best) { best = v; start = cand[k]; }
+                for (k = 0; k < 4; k++) { /* the parabolas, then the cubics if neither is at rounding level */
+                    int order = k < 2 ? 2 : 3, left = !(k & 1); /* the critical end xl = bp[j - 1], or xr = bp[j] */
+                    double x;
+                    if ((left ? j == 0 : j == nbp) || (order == 3 && best <= 64.0 * n * FR__U)) continue;
+                    x = left ? fr__critical_end_start(hi, n, xl, vl, 1, order) : fr__critical_end_start(hi, n, xr, vr, -1, order);
+                    if (x > xl && x < xr) {
+                        double v = fr__abs_value_ratio(hi, n, x);
+                        if (v < best) { best = v; start = x; }
                     }
+                }
             }
             out[cnt++] = fr__root_in_piece(hi, lo, n, xl, xr, vl, vr, sl, start, tiny);
         }
@@ -3890,19 +3912,19 @@ static int fr__roots_between(const double *hi, const double *lo, int n, double y
    lanes (structure of arrays, one AVX vector), so the CPU overlaps their
    dependency chains. Returns 0 when a root does not settle or is not
    finite (the caller then falls back). */
-static int fr__polish_all(const double *q, int n, double *x, int k)
+static FR__HOT_INLINE int fr__polish_lanes(const double *q, const double *lo, int n, double *x, int k)
 {
     /* unused lanes repeat root 0 */
     double X[4], S[4], E[4], D[4], H[4], T[4], DX[4], ERR[4];
     int it, i, j, left;
     for (j = 0; j < 4; j++) X[j] = x[j < k ? j : 0];
     for (it = 0; it < FR__FAST_POLISH_ITERS; it++) {
-        for (j = 0; j < 4; j++) { S[j] = q[n]; E[j] = 0.0; D[j] = 0.0; H[j] = 0.0; T[j] = 0.0; }
+        for (j = 0; j < 4; j++) { S[j] = q[n]; E[j] = lo ? lo[n] : 0.0; D[j] = 0.0; H[j] = 0.0; T[j] = 0.0; }
         for (i = n - 1; i >= 0; i--)
             for (j = 0; j < 4; j++) {
                 double p = S[j] * X[j], pe = fma(S[j], X[j], -p), t = p + q[i], z = t - p;
                 double te = (p - (t - z)) + (q[i] - z);
-                E[j] = E[j] * X[j] + (pe + te);
+                E[j] = E[j] * X[j] + (pe + te + (lo ? lo[i] : 0.0));
                 T[j] = T[j] * X[j] + H[j]; /* third derivative / 6 */
                 H[j] = H[j] * X[j] + D[j]; /* second derivative / 2 */
                 D[j] = D[j] * X[j] + S[j]; /* first derivative */
@@ -3926,13 +3948,20 @@ static int fr__polish_all(const double *q, int n, double *x, int k)
     return it < FR__FAST_POLISH_ITERS;
 }
 
+/* fr__polish_lanes without lo (the fast paths on p itself, where every
+   cycle counts) and with it (derivative levels), each compiled for its case. */
+static int fr__polish_all(const double *q, const double *lo, int n, double *x, int k)
+{
+    return lo ? fr__polish_lanes(q, lo, n, x, k) : fr__polish_lanes(q, NULL, n, x, k);
+}
+
 /* The common tail of the certified fast paths: polish the k estimates,
    sort them, and demand that they be distinct (64 ulps apart), so each
    stands for its own root of the certified count; -1 otherwise. */
-static int fr__fast_finish(const double *q, int n, double *x, int k)
+static int fr__fast_finish(const double *q, const double *lo, int n, double *x, int k)
 {
     int i;
-    if (!fr__polish_all(q, n, x, k)) return -1;
+    if (!fr__polish_all(q, lo, n, x, k)) return -1;
     for (i = 1; i < k; i++) {
         double v = x[i];
         int j = i;
@@ -3952,17 +3981,17 @@ static int fr__fast_finish(const double *q, int n, double *x, int k)
    its sign is certain outside that band; the cancellation-free formula
    q = -(b + sign(b) sqrt(D)) / 2, roots q/a and c/q, then a compensated
    polish. -1 (near-double roots, no convergence) falls back. */
-static int fr__quadratic_fast(const double *q, double *out)
+static int fr__quadratic_fast(const double *q, const double *lo, double *out)
 {
     double a = q[2], b = q[1], c = q[0], p = b * b, dp = fma(b, b, -p), f = 4.0 * a * c, df = fma(4.0 * a, c, -f);
-    double D = (p - f) + (dp - df), h;
-    if (!(fabs(D) > 8.0 * FR__U * FR__U * (p + fabs(f)) + FR__UNDERFLOW_SLACK)) return -1;
+    double D = (p - f) + (dp - df), h, tol = (lo ? 3.0 * FR__U : 8.0 * FR__U * FR__U) * (p + fabs(f));
+    if (!(fabs(D) > tol + FR__UNDERFLOW_SLACK)) return -1;
     if (D < 0) return 0;
     h = -0.5 * (b + (b < 0 ? -sqrt(D) : sqrt(D)));
     if (h == 0) return -1;
     out[0] = h / a;
     out[1] = c / h;
-    return fr__fast_finish(q, 2, out, 2);
+    return fr__fast_finish(q, lo, 2, out, 2);
 }
 
 /* Sum of t[0..7] and of their magnitudes, as a balanced tree: 3 additions
@@ -3975,25 +4004,90 @@ static double fr__sum8(const double *t, double *abs_sum)
     return ((t[0] + t[1]) + (t[2] + t[3])) + ((t[4] + t[5]) + (t[6] + t[7]));
 }
 
+/* Second chance for a fast path whose closed-form estimates est[0..ne-1]
+   did not give the certified number want of distinct real roots, or did
+   not converge: where the roots' magnitudes are spread, the closed forms
+   lose the small roots to cancellation (and may turn a complex pair into
+   two real estimates), while the same formulas on the reversed polynomial
+   x^n p(1/x) lose the large ones instead. The candidates from both are
+   ranked by |p(x)| / sum |c_i||x|^i, and the want best that are 1e-6 apart
+   (relative) and at most 1e-4 (a closed form's, not noise) are polished
+   and certified by fr__fast_finish like the first ones; -1 otherwise. When
+   all n roots are real and one is still missing (a middle root of roots
+   spread both ways, which neither direction resolves), it is the product
+   of the roots, (-1)^n c_0 / c_n, divided by the others': no cancellation.
+   When a quartic's two middle roots are missing, x^2 - S x + P, their
+   factor, follows from the two found, r and s, by the coefficients of x^2
+   and x: e2 = P + S (r + s) + r s and e3 = P (r + s) + S r s (e_k the
+   elementary symmetric functions, c_4 e2 = c_2, c_4 e3 = -c_1), a 2x2
+   system with determinant r^2 + r s + s^2 > 0, well conditioned when r
+   and s are the extreme roots. Only the starting points differ, so the
+   certificate is the fast path's own. */
+static int fr__fast_retry(const double *q, const double *lo, int n, int want, const double *est, int ne, double *out)
+{
+    double cand[8], rank[8], rev[5], er[4];
+    int nc = 0, i, j, k = 0, nr;
+    for (i = 0; i < ne; i++) cand[nc++] = est[i];
+    for (i = 0; i <= n; i++) rev[i] = q[n - i];
+    nr = fr__estimate_roots(rev, n, er);
+    for (i = 0; i < nr; i++)
+        if (er[i] != 0) cand[nc++] = 1.0 / er[i];
+    for (i = 0; i < nc; i++) rank[i] = fr__abs_value_ratio(q, n, cand[i]);
+    while (k < want) {
+        int b = -1;
+        for (i = 0; i < nc; i++)
+            if (rank[i] <= 1e-4 && (b < 0 || rank[i] < rank[b])) b = i; /* NaN and used (2) never */
+        if (b < 0) break;
+        rank[b] = 2.0;
+        for (j = 0; j < k && !(fabs(cand[b] - out[j]) <= 1e-6 * fabs(cand[b])); j++) continue;
+        if (j == k) out[k++] = cand[b];
+    }
+    if (k == n - 1 && want == n) {
+        double prod = out[0];
+        for (i = 1; i < k; i++) prod *= out[i];
+        out[k++] = ((n & 1) ? -q[0] : q[0]) / q[n] / prod;
+    } else if (k == 2 && want == 4 && n == 4) {
+        double r = out[0], t = out[1], rs = r * t, sum = r + t, det = sum * sum - rs;
+        double b1 = q[2] / q[4] - rs, e3 = -q[1] / q[4], S = (b1 * sum - e3) / det, P = (sum * e3 - rs * b1) / det;
+        double disc = S * S - 4.0 * P, h;
+        if (!(disc >= 0) || !(det > 0)) return -1;
+        h = 0.5 * (S + (S < 0 ? -sqrt(disc) : sqrt(disc))); /* no cancellation; the other is P / h */
+        if (h == 0) return -1;
+        out[k++] = h;
+        out[k++] = P / h;
+    }
+    if (k < want) return -1;
+    return fr__fast_finish(q, lo, n, out, want);
+}
+
+/* The fast paths' common end: the n estimates est[] must be the certified
+   number want of roots and certify, else fr__fast_retry. */
+static int fr__fast_certify(const double *q, const double *lo, int n, int want, const double *est, int ne, double *out)
+{
+    int i;
+    for (i = 0; i < ne; i++) out[i] = est[i];
+    if (ne == want && fr__fast_finish(q, lo, n, out, want) == want) return want;
+    return fr__fast_retry(q, lo, n, want, est, ne, out);
+}
+
 /* The same certified fast path for cubics: the discriminant
    18abcd - 4b^3 d + b^2 c^2 - 4ac^3 - 27a^2 d^2 is > 0 for three distinct
    real roots and < 0 for one. Each term carries at most 5 roundings and
    their (pairwise) sum 3 more, so 32 u sum|terms| bounds the error and outside it the
    sign is certain. Cardano's (or the trigonometric) estimates must give
    that many roots, and fr__fast_finish must certify them. */
-static int fr__cubic_fast(const double *q, double *out)
+static int fr__cubic_fast(const double *q, const double *lo, double *out)
 {
-    double a = q[3], b = q[2], c = q[1], d = q[0], b2 = b * b, c2 = c * c, t[5], D, S;
+    double a = q[3], b = q[2], c = q[1], d = q[0], b2 = b * b, c2 = c * c, t[5], D, S, est[3];
     int n, want;
     t[0] = 18.0 * a * b * c * d; t[1] = -4.0 * b2 * b * d; t[2] = b2 * c2;
     t[3] = -4.0 * a * c2 * c;    t[4] = -27.0 * a * a * d * d;
     D = ((t[0] + t[1]) + (t[2] + t[3])) + t[4];
     S = ((fabs(t[0]) + fabs(t[1])) + (fabs(t[2]) + fabs(t[3]))) + fabs(t[4]);
-    if (!(fabs(D) > 32.0 * FR__U * S + FR__UNDERFLOW_SLACK)) return -1;
+    if (!(fabs(D) > (lo ? 37.0 : 32.0) * FR__U * S + FR__UNDERFLOW_SLACK)) return -1;
     want = D > 0 ? 3 : 1;
-    n = fr__estimate_roots(q, 3, out);
-    if (n != want) return -1;
-    return fr__fast_finish(q, 3, out, n);
+    n = fr__estimate_roots(q, 3, est);
+    return fr__fast_certify(q, lo, 3, want, est, n, out);
 }
 
 /* Four real roots certified one by one, where the discriminant's sign is
@@ -4006,7 +4100,7 @@ static int fr__cubic_fast(const double *q, double *out)
    1e-5 relative: near-multiple roots, which rounding splits by about u^(1/2)
    or u^(1/3), do not certify, and polishing them costs more than the
    derivative sequence. */
-static int fr__quartic_brackets(const double *q, double *out)
+static int fr__quartic_brackets(const double *q, const double *lo, double *out)
 {
     double v, der[1], prev = -HUGE_VAL;
     int i, j, sa, sb;
@@ -4016,19 +4110,19 @@ static int fr__quartic_brackets(const double *q, double *out)
     for (i = 1; i < 4; i++)
         if (!(out[i] - out[i - 1] > 1e-5 * (fabs(out[i]) > fabs(out[i - 1]) ? fabs(out[i]) : fabs(out[i - 1]))))
             return -1;
-    if (fr__fast_finish(q, 4, out, 4) != 4) return -1;
+    if (fr__fast_finish(q, lo, 4, out, 4) != 4) return -1;
     for (j = 0; j < 4; j++) {
         double dlt;
         /* one more Newton step on the compensated value: where the roots
            crowd, fr__polish_all's plain p' is off in its sixth digit and
            its early stop leaves a root a few ulps out (cluster 2, 2.001,
            2.002, 2.003: 7 ulps) */
-        if (fr__sign_comp(q, NULL, 4, out[j], &v, der) != 0 && der[0] != 0) out[j] -= v / der[0];
+        if (fr__sign_comp(q, lo, 4, out[j], &v, der) != 0 && der[0] != 0) out[j] -= v / der[0];
         dlt = 2.0 * FR__U * fabs(out[j]);
         if (!(out[j] - dlt > prev)) return -1; /* brackets disjoint, in order */
         prev = out[j] + dlt;
-        sa = fr__sign_comp(q, NULL, 4, out[j] - dlt, &v, der);
-        sb = fr__sign_comp(q, NULL, 4, prev, &v, der);
+        sa = fr__sign_comp(q, lo, 4, out[j] - dlt, &v, der);
+        sb = fr__sign_comp(q, lo, 4, prev, &v, der);
         if (sa == 0 || sb == 0 || sa == sb) return -1;
     }
     return 4;
@@ -4043,9 +4137,9 @@ static int fr__quartic_brackets(const double *q, double *out)
    Newton to an ulp, and they must be distinct; otherwise -1 sends the
    quartic to the derivative sequence. Near-multiple roots, where the
    discriminant's sign is uncertain, always take the general path. */
-static int fr__quartic_fast(const double *q, double *out)
+static int fr__quartic_fast(const double *q, const double *lo, double *out)
 {
-    double a = q[4], b = q[3], c = q[2], d = q[1], e = q[0], t[16], D, S, P, SP, L, SL;
+    double a = q[4], b = q[3], c = q[2], d = q[1], e = q[0], t[16], D, S, P, SP, L, SL, est[4];
     double a2 = a * a, b2 = b * b, c2 = c * c, d2 = d * d, e2 = e * e;
     int n, want;
     t[0] = 256 * a2 * a * e2 * e;       t[1] = -192 * a2 * b * d * e2;
@@ -4061,30 +4155,51 @@ static int fr__quartic_fast(const double *q, double *out)
         D = fr__sum8(t, &S) + fr__sum8(t + 8, &S2);
         S += S2;
     }
-    if (!(fabs(D) > 64.0 * FR__U * S + FR__UNDERFLOW_SLACK)) return fr__quartic_brackets(q, out); /* each term has < 8 roundings, the sum 4 */
+    /* each term has < 8 roundings, the sum 4; lo: see fr__solve_fast */
+    if (!(fabs(D) > (lo ? 71.0 : 64.0) * FR__U * S + FR__UNDERFLOW_SLACK)) return fr__quartic_brackets(q, lo, out);
     if (D < 0) want = 2;
     else {
         P = 8 * a * c - 3 * b2; SP = 8 * fabs(a * c) + 3 * b2;
         L = 64 * a2 * a * e - 16 * a2 * c2 + 16 * a * b2 * c - 16 * a2 * b * d - 3 * b2 * b2;
         SL = 64 * fabs(a2 * a * e) + 16 * a2 * c2 + 16 * fabs(a * b2 * c) + 16 * fabs(a2 * b * d) + 3 * b2 * b2;
-        if (!(fabs(P) > 16.0 * FR__U * SP + FR__UNDERFLOW_SLACK) || !(fabs(L) > 32.0 * FR__U * SL + FR__UNDERFLOW_SLACK))
-            return fr__quartic_brackets(q, out);
+        if (!(fabs(P) > (lo ? 19.0 : 16.0) * FR__U * SP + FR__UNDERFLOW_SLACK) ||
+            !(fabs(L) > (lo ? 37.0 : 32.0) * FR__U * SL + FR__UNDERFLOW_SLACK))
+            return fr__quartic_brackets(q, lo, out);
         want = P < 0 && L < 0 ? 4 : 0;
     }
     if (want == 0) return 0;
-    n = fr__estimate_roots(q, 4, out);
-    if (n != want) return -1;
-    return fr__fast_finish(q, 4, out, n);
+    n = fr__estimate_roots(q, 4, est);
+    return fr__fast_certify(q, lo, 4, want, est, n, out);
 }
 
-/* The certified fast path of degree n (2..4, q[n] != 0), or -1. */
-static int fr__solve_fast(const double *q, int n, double *out)
+/* The certified fast path of degree n (2..4, q[n] != 0), or -1, for the
+   polynomial q + lo (lo NULL or |lo[i]| <= u |q[i]|: a derivative level's
+   exact split). The discriminants are taken from q alone; a term of degree
+   g in the coefficients then differs from the exact polynomial's by at
+   most ((1 + u)^g - 1) |term| < (g + 1) u |term|, which the sign tests'
+   bounds add (g = 2 for b^2 - 4ac, 4 for the cubic's, 6 for the quartic's,
+   2 and 4 for Lazard's P and D); the polish and the brackets use q + lo. */
+static int fr__solve_fast(const double *q, const double *lo, int n, double *out)
 {
     if (q[n] == 0) return -1;
-    if (n == 2) return fr__quadratic_fast(q, out);
-    if (n == 3) return fr__cubic_fast(q, out);
-    if (n == 4) return fr__quartic_fast(q, out);
+    if (n == 2) return fr__quadratic_fast(q, lo, out);
+    if (n == 3) return fr__cubic_fast(q, lo, out);
+    if (n == 4) return fr__quartic_fast(q, lo, out);
     return -1;
+}
+
+/* The derivative level D_k = p^(k)/k! of q (degree n): coefficients
+   q[i+k] C(i+k, k), i = 0..n-k, each product split exactly into hi + lo by
+   fma, so every level is evaluated as accurately as p itself. */
+static void fr__derivative_level(const double *q, int n, int k, double *hi, double *lo)
+{
+    double binom = 1.0; /* C(i + k, k), exact */
+    int i;
+    for (i = 0; i <= n - k; i++) {
+        if (i > 0) binom = binom * (double)(i + k) / (double)i;
+        hi[i] = q[i + k] * binom;
+        lo[i] = fma(q[i + k], binom, -hi[i]);
+    }
 }
 
 /* Roots of c (degree n, c[0] != 0) with x in [xa, xb], a band inside
@@ -4099,7 +4214,7 @@ static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo,
     double q[FR_POLY_MAX_DEGREE + 1] = {0}, hi[FR_POLY_MAX_DEGREE + 1], lo[FR_POLY_MAX_DEGREE + 1];
     double bp[FR_POLY_MAX_DEGREE + 1], cur[FR_POLY_MAX_DEGREE + 1];
     double ya = fr__ldexp(xa, -K), yb = fr__ldexp(xb, -K);
-    int i, k, nbp = 0, ncur = 0, M = INT_MIN;
+    int i, k, k0, nbp = 0, ncur = 0, M = INT_MIN;
     if (ya < -1.0) ya = -1.0;
     if (yb > 1.0) yb = 1.0;
     if (!(ya <= yb)) return 0;
@@ -4111,20 +4226,28 @@ static int fr__solve_band(const double *c, const int *ex, int n, int K, int Elo,
         if (y >= ya && y <= yb) { out[0] = fr__ldexp(y, K); return 1; }
         return 0;
     }
-    if (try_fast && (ncur = fr__solve_fast(q, n, cur)) >= 0) {
+    if (try_fast && (ncur = fr__solve_fast(q, NULL, n, cur)) >= 0) {
         for (i = k = 0; i < ncur; i++)
             if (cur[i] >= ya && cur[i] <= yb) out[k++] = fr__ldexp(cur[i], K);
         return k;
     }
-    for (k = n - 1; k >= 0; k--) {
-        int m = n - k;
-        double binom = 1.0; /* C(i + k, k), exact */
-        for (i = 0; i <= m; i++) {
-            if (i > 0) binom = binom * (double)(i + k) / (double)i;
-            hi[i] = q[i + k] * binom;
-            lo[i] = fma(q[i + k], binom, -hi[i]);
+    /* The highest derivative level of degree 2..4 whose fast path certifies
+       its real roots supplies the breakpoints, and the levels above it are
+       skipped (for a quartic, p' by the cubic fast path instead of p''',
+       p'' and p' by the sequence); a level whose fast path fails (multiple
+       critical points) hands over to the next lower degree. */
+    for (k0 = n - 1, k = n - 4 > 1 ? n - 4 : 1; k <= n - 2; k++) {
+        fr__derivative_level(q, n, k, hi, lo);
+        if ((ncur = fr__solve_fast(hi, lo, n - k, cur)) >= 0) {
+            for (i = 0; i < ncur; i++)
+                if (cur[i] > ya && cur[i] < yb) bp[nbp++] = cur[i];
+            k0 = k - 1;
+            break;
         }
-        ncur = fr__roots_between(hi, lo, m, ya, yb, bp, nbp, fr__ldexp(1.0, Elo - K), cur);
+    }
+    for (k = k0; k >= 0; k--) {
+        fr__derivative_level(q, n, k, hi, lo);
+        ncur = fr__roots_between(hi, lo, n - k, ya, yb, bp, nbp, fr__ldexp(1.0, Elo - K), cur);
         for (i = 0; i < ncur; i++) bp[i] = cur[i];
         nbp = ncur;
     }
@@ -4145,6 +4268,104 @@ static int fr__ceil_div(int a, int b)
         0x15555556ull, 0x13B13B14ull, 0x12492493ull, 0x11111112ull, 0x10000000ull};
     const unsigned long long off = 1441440;
     return (int)(((unsigned long long)(a + b - 1) + off) * m[b] >> 32) - (int)(off * m[b] >> 32);
+}
+
+/* Widest gap, in bits, between the Newton polygon's groups of root
+   magnitudes at which fr__split_solve cuts p into truncated polynomials:
+   the terms it drops are then below 2^-FR__SPLIT_GAP of the kept ones in
+   the group's annulus, so the truncated roots start the polish ~1e-6 off. */
+#define FR__SPLIT_GAP 20
+
+/* The root near x of d (degree m, d[0] != 0, exponents ex[]), polished and
+   certified in its own power-of-two scaling x = 2^K y, |y| in [1/2, 1):
+   the terms that balance at the root then stay far from overflow and
+   underflow, whatever the other roots' magnitudes. *root gets the root and
+   1 is returned when the polish converges and the compensated value
+   changes sign, certainly, across y -+ 2u|y| (the root is within 2u|x|). */
+static int fr__certified_root_near(const double *d, const int *ex, int m, double x, double *root)
+{
+    double q[5], y, v, der;
+    int i, K = fr__ilogb(x) + 1, M = INT_MIN, sa, sb;
+    for (i = 0; i <= m; i++)
+        if (ex[i] != INT_MIN && ex[i] + K * i > M) M = ex[i] + K * i;
+    for (i = 0; i <= m; i++) q[i] = ex[i] != INT_MIN ? fr__ldexp(d[i], K * i - M) : 0.0;
+    y = fr__ldexp(x, -K);
+    if (!fr__polish_all(q, NULL, m, &y, 1)) return 0;
+    v = 2.0 * FR__U * fabs(y);
+    sa = fr__sign_comp(q, NULL, m, y - v, &v, &der);
+    v = 2.0 * FR__U * fabs(y);
+    sb = fr__sign_comp(q, NULL, m, y + v, &v, &der);
+    *root = fr__ldexp(y, K);
+    return sa != 0 && sb != 0 && sa != sb;
+}
+
+/* Roots of spread magnitudes, split by the Newton polygon (degree m of 3
+   or 4, d[0], d[m] != 0, coefficient exponents ex[], INT_MIN for a zero).
+   A cut after coefficient k at radius 2^s, where every other term is below
+   2^-FR__SPLIT_GAP of |d_k| 2^(k s), also satisfies Pellet's theorem: k
+   roots lie inside |x| < 2^s and the rest outside. Between consecutive cuts
+   the group's roots are those of the truncated polynomial d_l + ... + d_h
+   x^(h-l) (its closed form, in its own scaling), up to the dropped terms.
+   They are only starting points: each is polished on p and certified by a
+   sign change across x -+ 2u|x| (fr__certified_root_near); m disjoint such
+   brackets hold all of p's roots. Anything else (no cut, a group whose
+   truncated roots are complex, closer than 1e-5 relative (near-multiple:
+   they would not certify) or do not certify) returns -1, for the
+   derivative sequence; every group's estimates are checked before any
+   root is polished, so a failure costs little. ODM's cases 22 and 24 (roots 1, 10, 1e152, 1e154;
+   -1e30, 1e-30, 1, 1e30) take this path. */
+static int fr__split_solve(const double *d, const int *ex, int m, double *out)
+{
+    int cut[5], ncut = 1, k, i, g, cnt = 0;
+    double est[4];
+    cut[0] = 0;
+    for (k = 1; k < m; k++) {
+        int lo = INT_MIN, hi = INT_MAX;
+        if (ex[k] == INT_MIN) continue;
+        /* necessary, from the neighbours alone: 2 ex[k] - ex[k-1] - ex[k+1] >= 2 (gap + 1) */
+        if (ex[k - 1] != INT_MIN && ex[k + 1] != INT_MIN && 2 * ex[k] - ex[k - 1] - ex[k + 1] < 2 * FR__SPLIT_GAP + 2)
+            continue;
+        for (i = 0; i <= m; i++) {
+            int num;
+            if (i == k || ex[i] == INT_MIN) continue;
+            num = ex[i] - ex[k] + 1 + FR__SPLIT_GAP; /* ex[k] + k s >= ex[i] + 1 + i s + gap */
+            if (i < k) { int b = fr__ceil_div(num, k - i); if (b > lo) lo = b; }
+            else { int b = -fr__ceil_div(num, i - k); if (b < hi) hi = b; } /* s <= floor(-num / (i - k)) */
+        }
+        if (lo <= hi) cut[ncut++] = k;
+    }
+    if (ncut == 1) return -1;
+    cut[ncut] = m;
+    for (g = 0; g < ncut; g++) {
+        int l = cut[g], h = cut[g + 1], n = h - l, K, M = INT_MIN, ne;
+        double t[5], *e = est + cnt;
+        /* the truncated polynomial, scaled to its roots' geometric mean */
+        K = -fr__ceil_div(ex[h] - ex[l], n); /* floor((ex[l] - ex[h]) / n) */
+        for (i = l; i <= h; i++)
+            if (ex[i] != INT_MIN && ex[i] + K * (i - l) > M) M = ex[i] + K * (i - l);
+        for (i = l; i <= h; i++) t[i - l] = ex[i] != INT_MIN ? fr__ldexp(d[i], K * (i - l) - M) : 0.0;
+        if (n == 1) { e[0] = -t[0] / t[1]; ne = 1; }
+        else ne = fr__estimate_roots(t, n, e);
+        if (ne != n) return -1; /* complex, or lost: not for this path */
+        for (i = 0; i < n; i++) {
+            for (k = 0; k < i; k++)
+                if (!(fabs(e[i] - e[k]) > 1e-5 * fabs(e[i]))) return -1;
+            if (!(e[i] != 0)) return -1;
+            e[i] = fr__ldexp(e[i], K);
+        }
+        cnt += n;
+    }
+    for (i = 0; i < m; i++)
+        if (!fr__certified_root_near(d, ex, m, est[i], &out[i])) return -1;
+    for (i = 1; i < m; i++) { /* sorted, brackets disjoint */
+        double v = out[i];
+        int j = i;
+        while (j > 0 && out[j - 1] > v) { out[j] = out[j - 1]; j--; }
+        out[j] = v;
+    }
+    for (i = 1; i < m; i++)
+        if (!(out[i] - 2.0 * FR__U * fabs(out[i]) > out[i - 1] + 2.0 * FR__U * fabs(out[i - 1]))) return -1;
+    return m;
 }
 
 /* Exponents with 2^lo < |x| < 2^hi for every root x (Fujiwara's bound
@@ -4182,7 +4403,7 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
 {
     double buf[FR_POLY_MAX_DEGREE + 1];
     const double *d;
-    int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = INT_MIN, direct, ex[FR_POLY_MAX_DEGREE + 1] = {0};
+    int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = INT_MIN, direct, split, ex[FR_POLY_MAX_DEGREE + 1] = {0};
     if (!c || !r || degree < 0 || degree > FR_POLY_MAX_DEGREE || !(t0 <= t1)) return -1;
     for (i = 0; i <= degree; i++)
         if (!(c[i] - c[i] == 0)) return -1; /* NaN or infinite */
@@ -4205,9 +4426,11 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
        scaling below cost a quarter of a quartic solve. */
     /* -2: not tried; -1: tried and not certified, which the band's exact
        scaling would not change, so the band skips the fast path */
-    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, m, buf) : -2;
+    direct = z == 0 && m >= 2 && m <= 4 && emax <= FR__DIRECT_EXP ? fr__solve_fast(d, NULL, m, buf) : -2;
     if (direct >= 0) {
         cnt = direct; /* certified; filtered below */
+    } else if (z == 0 && (m == 3 || m == 4) && (split = fr__split_solve(d, ex, m, buf)) >= 0) {
+        cnt = split; /* roots of spread magnitudes, certified; filtered below */
     } else if (z == 0 && m == 1 && emax <= FR__DIRECT_EXP) {
         /* a plane's leaf in analytic CSG: the band below would scale by
            powers of two and divide, the same correctly rounded quotient
@@ -4443,12 +4666,6 @@ static int fr__tpoly_const_op(const fr_instr_t *in, double a, double b, double *
     default: return 0;
     }
 }
-
-#if defined(__GNUC__) || defined(__clang__)
-#define FR__HOT_INLINE __attribute__((always_inline)) inline /* per-slot steps of hot loops */
-#else
-#define FR__HOT_INLINE inline
-#endif
 
 /* c = a^n truncated (n >= 0), c distinct from a; returns the degree or -1. */
 static FR__HOT_INLINE int fr__tpoly_powi(const double *a, int da, int n, double *c)

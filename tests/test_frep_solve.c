@@ -228,6 +228,157 @@ static void quartic_roots_1e154_1e152_10_1(void)
     check_roots("1e154", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
 }
 
+/* ---------------------------------------------------------------- the certified shortcuts */
+
+/* Exponents of c for the internal paths (INT_MIN for a zero coefficient). */
+static void exponents(const double *c, int m, int *ex)
+{
+    int i;
+    for (i = 0; i <= m; i++) ex[i] = c[i] != 0 ? fr__ilogb(c[i]) : INT_MIN;
+}
+
+/* fr__split_solve: roots spread so far that the Newton polygon cuts p into
+   groups, each group's truncated closed form polished in its own scaling and
+   certified by a sign change. Each case must take the path (it returns all m
+   roots) and the public solver must agree with the oracle to 4e-16. */
+static void split_path_spread_roots(void)
+{
+    static const double r4[4][4] = {{-2e60, -1e-40, 3, 7e25},  /* four groups, both signs */
+                                    {-1e30, 1e-30, 1, 1e30},   /* ODM case 24's roots */
+                                    {1, 10, 1e152, 1e154},     /* ODM case 22's: two groups of two */
+                                    {1e-20, -5e-9, 4e9, -1e25}};
+    static const double r3[2][3] = {{1e-30, 1, 1e30}, {-3e-100, 2e-50, 5e80}};
+    double c[5], out[4];
+    int ex[5], k;
+    for (k = 0; k < 4; k++) {
+        from_roots(c, r4[k], 4, NULL, 0, 1);
+        exponents(c, 4, ex);
+        T_INT_EQ(fr__split_solve(c, ex, 4, out), 4);
+        check_roots("split quartic", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    }
+    for (k = 0; k < 2; k++) {
+        from_roots(c, r3[k], 3, NULL, 0, 1);
+        exponents(c, 3, ex);
+        T_INT_EQ(fr__split_solve(c, ex, 3, out), 3);
+        check_roots("split cubic", c, 3, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    }
+}
+
+/* The split's fallback: a group it cannot certify (a complex pair, or a
+   near-double pair whose truncated estimates are too close) returns -1, and
+   the derivative sequence still finds every real root to 4e-16, none
+   spurious. */
+static void split_path_falls_back(void)
+{
+    static const double re1[2] = {1, 1e50}, pair1[1][2] = {{1e25, 1e24}};
+    static const double re2[4] = {1, 1e20, 1e20 * (1 + 1e-12), 1e40};
+    static const double re3[2] = {-1e-30, 1e30}, pair3[1][2] = {{1, 1e-3}};
+    double c[5], out[4];
+    int ex[5];
+    from_roots(c, re1, 2, pair1, 1, 1);
+    exponents(c, 4, ex);
+    T_INT_EQ(fr__split_solve(c, ex, 4, out), -1);
+    check_roots("split fallback, complex group", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    from_roots(c, re2, 4, NULL, 0, 1);
+    exponents(c, 4, ex);
+    T_INT_EQ(fr__split_solve(c, ex, 4, out), -1);
+    check_roots("split fallback, near-double group", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 1e-10);
+    from_roots(c, re3, 2, pair3, 1, 1);
+    exponents(c, 4, ex);
+    T_INT_EQ(fr__split_solve(c, ex, 4, out), -1);
+    check_roots("split fallback, complex middle", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+}
+
+/* fr__fast_retry: the closed forms miss roots of spread magnitudes (Ferrari
+   gives 2 of 4, or a complex pair's real part twice), the discriminant's
+   count stands, and the candidates of the reversed polynomial, the product
+   of the roots and the middle pair's factor supply the rest. Each case's
+   first estimates must fail (so the retry is what is tested), the fast
+   path must then certify, and the roots match the oracle to 4e-16. */
+static void fast_retry_spread_roots(void)
+{
+    static const double re[5][4] = {{1e14, 2, 1, -1}, /* ODM case 4 */
+                                    {1e-6, 1, 2, 1e6}, {-1e-7, 3, 4, 1e7}, {1e-9, 1e-3, 1e3, 1e9}, {-3e7, 1e-2, 2, 5e6}};
+    static const double re8[2] = {11, 1e8}, pair8[1][2] = {{1e3, 1}}; /* ODM case 8 */
+    double c[5], est[4], out[4];
+    int k;
+    for (k = 0; k < 5; k++) {
+        double x[4];
+        int ne, first;
+        from_roots(c, re[k], 4, NULL, 0, 1);
+        ne = fr__estimate_roots(c, 4, est);
+        for (first = 0; first < ne; first++) x[first] = est[first];
+        first = ne == 4 ? fr__fast_finish(c, NULL, 4, x, 4) : -1;
+        if (k < 4) T_INT_EQ(first, -1); /* the closed forms alone do not certify */
+        T_INT_EQ(fr__fast_retry(c, NULL, 4, 4, est, ne, out), 4);
+        check_roots("fast retry", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    }
+    from_roots(c, re8, 2, pair8, 1, 1);
+    /* 2 real roots; Ferrari gives 4 real estimates under -O2 (the retry
+       picks 2 by residual), 2 under the sanitizer build's -O1 */
+    T_INT_EQ(fr__solve_fast(c, NULL, 4, out), 2);
+    check_roots("fast retry, complex pair between", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+}
+
+/* Breakpoints from a derivative level's fast path (hi + lo: the rounded
+   binomial products' exact parts): the critical points of a quintic with
+   five real roots and of quartics with a (near-)double root amid spread
+   ones (ODM's 19-21 kind) come from the quartic and cubic fast paths. The
+   derivative level's certified roots must be those of the exact derivative
+   (checked in __float128 by a sign change of it across each, +-4 ulps), and
+   the polynomial's roots match the oracle. */
+static void derivative_level_fast_breakpoints(void)
+{
+    static const double r5[5] = {-3, 0.5, 1, 2.5, 7};
+    static const double r4[3][4] = {{1, 1e7, 1e7 * (1 + 3e-9), 1e15}, {-2, 1e-3, 5, 5 * (1 + 1e-10)},
+                                    {1e-5, 0.3, 0.3 * (1 + 1e-9), 4e4}};
+    double c[6], hi[6], lo[6], bp[5];
+    int k, j, nb;
+    from_roots(c, r5, 5, NULL, 0, 1);
+    for (k = 1; k <= 2; k++) {
+        fr__derivative_level(c, 5, k, hi, lo);
+        nb = fr__solve_fast(hi, lo, 5 - k, bp);
+        T_INT_EQ(nb, 5 - k);
+        for (j = 0; j < nb; j++) { /* a sign change of the exact level across bp -+ 4 ulps */
+            __float128 v[2];
+            int s, i;
+            for (s = 0; s < 2; s++) {
+                __float128 x = (__float128)bp[j] * (1 + (s ? 8 : -8) * (__float128)1.1102230246251565e-16), acc = 0;
+                for (i = 5 - k; i >= 0; i--) acc = acc * x + ((__float128)hi[i] + lo[i]);
+                v[s] = acc;
+            }
+            T_CHECK(v[0] * v[1] < 0);
+        }
+    }
+    check_roots("quintic", c, 5, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    for (k = 0; k < 3; k++) {
+        from_roots(c, r4[k], 4, NULL, 0, 1);
+        check_roots("near-double amid spread", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
+    }
+}
+
+/* The cubic start at a critical end that is nearly a double root of p'
+   (a triple root split by rounding: one real root ~u^(1/3) away, or three):
+   (x - a)^3 (x - b) for a spread of a and b, every root to 4e-16 against
+   the oracle (roots within 1e-4 relative may come back once). The a are
+   not exact in binary, so rounding splits the triple root by ~u^(1/3),
+   which the quad oracle resolves (an exact triple root it cannot: see
+   exact_multiple_roots). */
+static void near_triple_roots(void)
+{
+    static const double ab[6][2] = {{1000.1, 3.552713678800501e-15}, {1.1, -2}, {-7.3, 1e-9}, {3.3e5 + 0.1, 2.5},
+                                    {1.1e-3, 1e3}, {0.1, 0.1000001}};
+    double c[5];
+    int k;
+    for (k = 0; k < 6; k++) {
+        double re[4];
+        re[0] = re[1] = re[2] = ab[k][0];
+        re[3] = ab[k][1];
+        from_roots(c, re, 4, NULL, 0, 1);
+        check_roots("near triple", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 1e-4);
+    }
+}
+
 /* Orellana & De Michele 2020, Table 1 (tests/test_frep_solve_odm.h): the
    Flocke and Strobach quartics on which Cardano/Ferrari solvers lose
    everything. Every real root to 4e-16 relative (the issue asks 1e-9), none
@@ -449,6 +600,11 @@ int main(int argc, char **argv)
         T_CASE(tiny_leading_coefficient),
         T_CASE(coefficient_scales_1e150_and_1e_minus150),
         T_CASE(quartic_roots_1e154_1e152_10_1),
+        T_CASE(split_path_spread_roots),
+        T_CASE(split_path_falls_back),
+        T_CASE(fast_retry_spread_roots),
+        T_CASE(derivative_level_fast_breakpoints),
+        T_CASE(near_triple_roots),
         T_CASE(odm_2020_cases_1_to_24),
         T_CASE(odm_remark_family_biquadratic),
         T_CASE(odm_remark_family_random_draws),
