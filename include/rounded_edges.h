@@ -177,10 +177,11 @@ typedef enum re_layout_t {
     RE_LAYOUT_FAST = 0, /* default: sphere centres stored as doubles, the
                            kd-tree split for query time */
     RE_LAYOUT_COMPACT   /* sphere centres solved at query time from three face
-                           planes (24 bytes less per sphere), a shallower
-                           kd-tree; 74-87 instead of 90-118 bytes per rounded
-                           edge on the benchmark scenes, about 1.5x the
-                           instructions of a query that reaches the kd-tree */
+                           planes (24 bytes less per sphere), one-byte
+                           detection radii, 16-bit sphere distances, a
+                           shallower kd-tree; 55-64 instead of 72-96 bytes
+                           per rounded edge on the benchmark scenes, 1.1-1.5x
+                           the instructions of re_query */
 } re_layout_t;
 
 typedef struct re_scene_desc_t {
@@ -574,6 +575,18 @@ typedef struct re__cyl_t {
     unsigned s[2]; /* spheres at the axis ends */
     unsigned p[2]; /* the two offset planes it joins */
 } re__cyl_t;
+/* An edge cylinder as stored: its planes here, 8 bytes (p[0] is the face
+   on the left leaving the edge's lower vertex, p[1] leaving the upper);
+   s[0], the sphere at the lower vertex, grows with the cylinder id (edges
+   are numbered by their lower vertex), so it is packed apart
+   (re__object_t.c_s0). The fast layout keeps s[1] whole (s1w); the
+   compact one as s[1] - s[0] in 16 bits (re__object_t.ds1): spheres are
+   numbered in vertex order, and an edge's vertices seldom lie 65535
+   spheres apart; those that do are listed in xs1 (re__cyl_s1). */
+typedef struct re__ecyl_t {
+    unsigned p[2];
+} re__ecyl_t;
+#define RE__DS1_FAR 0xFFFFu
 
 /* An extra (exact-corner) cylinder, 4 bytes (its corner is in
    re__object_t.x_corner): both ends are spheres of one corner and both
@@ -587,8 +600,9 @@ typedef struct re__xcyl_t {
 /* A rounded mesh vertex, 8 bytes; its monotone ids are packed apart
    (re__object_t: k_first, k_sfirst, k_rid; its vertex id in cvertex).
    refs[first ...]: np edge cylinders (cylinder j joins planes j and j+1),
-   then, when nx > 0, the first of its nx consecutive extra cylinders; its
-   ns spheres are sfirst ...; its radius radii[rid]. The mesh vertex itself
+   each as id << 1 | (1 if the corner is the edge's lower vertex);
+   its nx extra cylinders are xfirst ... (packed, only in objects that have
+   extra cylinders); its ns spheres are sfirst ...; its radius radii[rid]. The mesh vertex itself
    is not stored: every test that needs it uses the first sphere centre with
    a radius widened by their distance (docs/rounded_edges.md, "Memory"). */
 typedef struct re__corner_t {
@@ -604,9 +618,9 @@ typedef struct re__corner_t {
    data = the smallest edge cylinder id of the leaf, its base; the list
    leaf16[first ...] is its count n, then n ids as offsets from the base
    (2 bytes a reference: a leaf's edges are neighbours in space, and their
-   ids seldom span 65536). A leaf that does not fit (count or span beyond
-   16 bits) has data = RE__NONE and keeps each id and the count as two
-   16-bit halves, low first (re__kd_narrow). */
+   ids seldom span 65536). A list that does not fit is cut into runs that
+   do: bit 15 of a run's count says another run follows, starting with its
+   own base in two 16-bit halves (re__kd_narrow). */
 typedef struct re__node_t {
     unsigned info, data;
 } re__node_t;
@@ -619,6 +633,23 @@ typedef struct re__node_t {
    base = RE__PK_FULL | its offset in `full`. */
 #define RE__PK_BLOCK 32u
 #define RE__PK_FULL 0x80000000u
+/* Largest span of a block kept as bytes (254: 255 is RE__NONE), the
+   largest span of a kd leaf run (re__kd_narrow), the plane slots a solved
+   sphere centre may use (5 bits, re__object_t.sinfo) and the largest
+   sphere distance of an edge cylinder's ends kept in 16 bits. Tests lower
+   them to run the fallbacks (tests/test_rounded_packing.c). */
+#ifndef RE__PK_SPAN
+#define RE__PK_SPAN 254u
+#endif
+#ifndef RE__LEAF_RUN_SPAN
+#define RE__LEAF_RUN_SPAN 0xFFFFu
+#endif
+#ifndef RE__SOLVED_SLOTS
+#define RE__SOLVED_SLOTS 32u
+#endif
+#ifndef RE__DS1_SPAN /* largest s[1] - s[0] kept in 16 bits (re__ecyl_t) */
+#define RE__DS1_SPAN 0xFFFEu
+#endif
 typedef struct re__pk_t {
     const unsigned *base;
     const unsigned char *off;
@@ -634,6 +665,14 @@ static inline unsigned re__pk_get(const re__pk_t *p, unsigned i)
     return d == 255u ? RE__NONE : b + d;
 }
 
+/* re__pk_get for arrays that never hold RE__NONE (monotone ids). */
+static inline unsigned re__pk_id(const re__pk_t *p, unsigned i)
+{
+    unsigned b = p->base[i / RE__PK_BLOCK];
+    if (b & RE__PK_FULL) return p->full[(b & ~RE__PK_FULL) + i % RE__PK_BLOCK];
+    return b + p->off[i];
+}
+
 typedef struct re__object_t {
     unsigned n_tris, n_planes, n_spheres, n_xsph, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leaf16, n_radii;
     int compact; /* RE_LAYOUT_COMPACT: sphere centres solved (re__cptr) */
@@ -642,7 +681,8 @@ typedef struct re__object_t {
     double origin[3]; /* kd splits are floats relative to this (bounding-box centre) */
     re__pk_t tri_plane; /* per triangle: plane id, RE__NONE if not rounded nearby */
     re__pk_t cvertex;   /* per corner: its mesh vertex (enumeration only) */
-    re__pk_t k_first, k_sfirst, k_rid; /* per corner: re__corner_t */
+    re__pk_t k_first, k_sfirst, k_rid, k_xfirst; /* per corner: re__corner_t */
+    re__pk_t c_s0;      /* per edge cylinder: re__ecyl_t */
     re__pk_t s_corner;  /* per sphere: its corner */
     re__pk_t x_corner;  /* per extra cylinder: its corner */
     const unsigned char *bands; /* 4 per triangle, in units of 1/RE__BAND_STEPS,
@@ -653,12 +693,18 @@ typedef struct re__object_t {
     const unsigned short *sinfo; /* compact layout: per sphere (RE__SPH_STORED) */
     const unsigned *xsid; /* compact layout: the stored spheres, ascending */
     const double *xsph; /* 3 per stored sphere centre (every one in the fast layout) */
-    const re__cyl_t *cyls;    /* edge cylinders [0, n_edge_cyls) */
+    const re__ecyl_t *cyls;   /* edge cylinders [0, n_edge_cyls) */
+    const unsigned *s1w;      /* fast layout: per edge cylinder, s[1] */
+    const unsigned short *ds1; /* compact layout: per edge cylinder, s[1] - s[0], or RE__DS1_FAR */
+    const unsigned *xs1;      /* 2 per far cylinder, ascending: its id, its s[1] */
+    unsigned n_xs1;
     const re__xcyl_t *xcyls;  /* extra cylinders [n_edge_cyls, n_cyls) */
-    const unsigned short *det; /* 2 per edge cylinder, as the upper halves of
-                          floats rounded up (re__det): detection radius
-                          around the mesh edge's line, and the reach past
-                          its end spheres along the axis (query step 1) */
+    const unsigned short *det; /* fast layout: 2 per edge cylinder, as the upper
+                          halves of floats rounded up (re__det): detection
+                          radius around the mesh edge's line, and the reach
+                          past its end spheres along the axis (query step 1) */
+    const unsigned char *det8; /* compact layout: the same in one byte each (re__det8) */
+    unsigned det_e0;           /* compact layout: re__det8's exponent base */
     const re__corner_t *corners;
     const double *radii; /* one per rounded patch */
     const unsigned *refs;
@@ -1713,32 +1759,38 @@ leaf:
    keeps its precision at coordinates near 1e6. The build (re__finish) and
    the query (re__centre) both call this, on the same stored planes. */
 /* The leaves' lists in 16-bit form (re__node_t), written to nodes16 and
-   out when they are not NULL; returns the number of 16-bit entries. */
+   out when they are not NULL; returns the number of 16-bit entries. A list
+   is cut, in its order, into runs whose ids span at most 65535 and that
+   hold at most 32767 ids: the first run's base is the node's data, each
+   further run starts with its base in two halves, low first. */
 static size_t re__kd_narrow(const re__kd_t *kd, re__node_t *nodes16, unsigned short *out)
 {
     size_t at = 0;
-    unsigned id, i;
+    unsigned id, i, j;
     for (id = 0; id < kd->n_nodes; id++) {
         const re__node_t *nd = &kd->nodes[id];
         const unsigned *l = kd->leafrefs + (nd->info >> 2);
-        unsigned n = nd->data, lo = RE__NONE, hi = 0;
+        unsigned n = nd->data;
         if ((nd->info & 3u) != 3u) continue;
-        for (i = 0; i < n; i++) lo = l[i] < lo ? l[i] : lo, hi = l[i] > hi ? l[i] : hi;
-        if (nodes16) nodes16[id].info = 3u | (unsigned)(at << 2);
-        if (n <= 0xFFFFu && (n == 0 || hi - lo <= 0xFFFFu)) {
-            if (nodes16) nodes16[id].data = n ? lo : 0;
-            if (out) {
-                out[at] = (unsigned short)n;
-                for (i = 0; i < n; i++) out[at + 1 + i] = (unsigned short)(l[i] - lo);
+        if (nodes16) nodes16[id].info = 3u | (unsigned)(at << 2), nodes16[id].data = 0;
+        for (i = 0, j = 0; i == 0 || i < n; i = j) {
+            unsigned lo = n ? l[i] : 0, hi = lo;
+            for (j = i; j < n && j - i < 0x7FFFu; j++) {
+                unsigned nlo = l[j] < lo ? l[j] : lo, nhi = l[j] > hi ? l[j] : hi;
+                if (nhi - nlo > RE__LEAF_RUN_SPAN) break;
+                lo = nlo, hi = nhi;
             }
-            at += 1 + (size_t)n;
-        } else {
-            if (nodes16) nodes16[id].data = RE__NONE;
+            if (i > 0) {
+                if (out) out[at] = (unsigned short)(lo & 0xFFFFu), out[at + 1] = (unsigned short)(lo >> 16);
+                at += 2;
+            } else if (nodes16) nodes16[id].data = lo;
             if (out) {
-                out[at] = (unsigned short)(n & 0xFFFFu), out[at + 1] = (unsigned short)(n >> 16);
-                for (i = 0; i < n; i++) out[at + 2 + 2 * i] = (unsigned short)(l[i] & 0xFFFFu), out[at + 3 + 2 * i] = (unsigned short)(l[i] >> 16);
+                unsigned q;
+                out[at] = (unsigned short)((j - i) | (j < n ? 0x8000u : 0u));
+                for (q = i; q < j; q++) out[at + 1 + q - i] = (unsigned short)(l[q] - lo);
             }
-            at += 2 + 2 * (size_t)n;
+            at += 1 + (size_t)(j - i);
+            if (j == 0) break; /* an empty leaf: one empty run */
         }
     }
     return at;
@@ -1768,7 +1820,7 @@ static int re__pk_block(const unsigned *ids, unsigned n, unsigned b, unsigned *b
     for (i = b * RE__PK_BLOCK; i < n && i < (b + 1) * RE__PK_BLOCK; i++)
         if (ids[i] != RE__NONE) lo = ids[i] < lo ? ids[i] : lo, hi = ids[i] > hi ? ids[i] : hi;
     *base = lo == RE__NONE ? 0 : lo;
-    return lo == RE__NONE || (hi - lo < 255u && hi < RE__PK_FULL);
+    return lo == RE__NONE || (hi - lo <= RE__PK_SPAN && hi < RE__PK_FULL);
 }
 static unsigned re__pk_full_blocks(const unsigned *ids, unsigned n)
 {
@@ -1811,7 +1863,10 @@ static re__pk_t re__pk_put(unsigned char **at, const unsigned *ids, unsigned n, 
 /* ---- Step 7: final arrays, packed into one block ------------------------------ */
 
 /* The packed id arrays of an object (re__pk_t), in re__final_t.pk. */
-enum { RE__PKA_TRI_PLANE, RE__PKA_CVERTEX, RE__PKA_K_FIRST, RE__PKA_K_SFIRST, RE__PKA_K_RID, RE__PKA_S_CORNER, RE__PKA_X_CORNER, RE__PKA_N };
+enum {
+    RE__PKA_TRI_PLANE, RE__PKA_CVERTEX, RE__PKA_K_FIRST, RE__PKA_K_SFIRST, RE__PKA_K_RID, RE__PKA_K_XFIRST,
+    RE__PKA_S_CORNER, RE__PKA_X_CORNER, RE__PKA_C_S0, RE__PKA_N
+};
 
 typedef struct re__final_t {
     unsigned n_corners, n_spheres, n_cyls, n_edge_cyls, n_planes, n_refs, n_radii;
@@ -1826,6 +1881,9 @@ typedef struct re__final_t {
     re__cyl_t *cyls;
     re__xcyl_t *xcyls;
     unsigned short *det;
+    unsigned char *det8;
+    unsigned det_e0;
+    unsigned n_xs1; /* edge cylinders whose s[1] - s[0] does not fit 16 bits */
     re__corner_t *corners;
     double *radii;
     unsigned *refs;
@@ -1855,6 +1913,38 @@ static unsigned short re__det_up(double x)
 static double re__det(unsigned short h)
 {
     unsigned b = (unsigned)h << 16;
+    float f;
+    memcpy(&f, &b, sizeof f);
+    return (double)f;
+}
+/* The compact layout's detection radii: one byte, a 4-bit exponent above
+   the object's base e0 (a float's biased exponent) and a 4-bit mantissa,
+   rounded up (at most 6.25% too large; below 2^(e0 - 127) they become that
+   value). e0 is chosen so the largest radius of the object fits. */
+static unsigned re__det8_exp(double x)
+{
+    float f = re__float_up(x);
+    unsigned b, ex, m;
+    memcpy(&b, &f, sizeof b);
+    ex = b >> 23, m = (b >> 19) & 15u;
+    if (b & 0x7FFFFu) m++;
+    return m == 16u ? ex + 1u : ex;
+}
+static unsigned char re__det8_up(double x, unsigned e0)
+{
+    float f = re__float_up(x);
+    unsigned b, ex, m;
+    memcpy(&b, &f, sizeof b);
+    ex = b >> 23, m = (b >> 19) & 15u;
+    if (b & 0x7FFFFu) m++;
+    if (m == 16u) m = 0, ex++;
+    if (ex < e0) return 0;
+    RE_ASSERT(ex - e0 <= 15u);
+    return (unsigned char)((ex - e0) << 4 | m);
+}
+static double re__det8(unsigned char h, unsigned e0)
+{
+    unsigned b = (e0 + (unsigned)(h >> 4)) << 23 | (unsigned)(h & 15u) << 19;
     float f;
     memcpy(&f, &b, sizeof f);
     return (double)f;
@@ -2143,7 +2233,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         ns += an->c_ns[c];
         xbase[c] = ncyl;
         ncyl += an->c_nx[c];
-        nref += (unsigned)an->c_np[c] + (an->c_nx[c] ? 1u : 0u);
+        nref += (unsigned)an->c_np[c];
         p = re__uf_find(uf, c);
         if (rmap[p] == RE__NONE) rmap[p] = F->n_radii++;
         for (j = 0; j < an->c_np[c]; j++) {
@@ -2189,8 +2279,10 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     F->n_refs = nref;
     F->pk_n[RE__PKA_TRI_PLANE] = an->T;
     F->pk_n[RE__PKA_CVERTEX] = F->pk_n[RE__PKA_K_FIRST] = F->pk_n[RE__PKA_K_SFIRST] = F->pk_n[RE__PKA_K_RID] = nco;
+    F->pk_n[RE__PKA_K_XFIRST] = ncyl > F->n_edge_cyls ? nco : 0u;
     F->pk_n[RE__PKA_S_CORNER] = ns;
     F->pk_n[RE__PKA_X_CORNER] = ncyl - F->n_edge_cyls;
+    F->pk_n[RE__PKA_C_S0] = F->n_edge_cyls;
     for (i = 0; i < RE__PKA_N; i++) RE__TAKE(F->pk[i], unsigned, F->pk_n[i]);
     RE__TAKE(F->planes, re__plane_t, F->n_planes);
     RE__TAKE(F->sph, double, 3 * (size_t)ns);
@@ -2201,6 +2293,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
     RE__TAKE(F->xcyls, re__xcyl_t, ncyl - F->n_edge_cyls);
     RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
+    RE__TAKE(F->det8, unsigned char, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->corners, re__corner_t, nco);
     RE__TAKE(F->radii, double, F->n_radii);
     RE__TAKE(F->refs, unsigned, nref);
@@ -2229,7 +2322,10 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         K->ns = an->c_ns[c];
         K->nx = an->c_nx[c];
         K->pad_ = 0;
-        for (j = 0; j < K->np; j++) F->refs[nref++] = ecyl[an->c_edges[pf + j]];
+        for (j = 0; j < K->np; j++) {
+            const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
+            F->refs[nref++] = ecyl[an->c_edges[pf + j]] << 1 | (e->v[0] == an->c_vertex[c] ? 1u : 0u);
+        }
         /* the query numbers a corner's planes by its edges (re__corner_plane:
            plane j is the face whose half-edge of edge j leaves the corner);
            qslot maps the fan slots of c_planes to those */
@@ -2246,8 +2342,8 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
             F->pk[RE__PKA_S_CORNER][sbase[c] + j] = fc[c];
             *sr = RE__SPH_STORED;
-            if (tri != RE__NONE && an->desc->layout == RE_LAYOUT_COMPACT && qslot[tri & 255u] < 32u &&
-                qslot[tri >> 8 & 255u] < 32u && qslot[tri >> 16] < 32u) {
+            if (tri != RE__NONE && an->desc->layout == RE_LAYOUT_COMPACT && qslot[tri & 255u] < RE__SOLVED_SLOTS &&
+                qslot[tri >> 8 & 255u] < RE__SOLVED_SLOTS && qslot[tri >> 16] < RE__SOLVED_SLOTS) {
                 double tol = RE__SPHERE_SOLVE_REL * r + 64 * 2.220446049250313e-16 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
                 re__solve3(&an->planes[an->c_planes[pf + (tri & 255u)]], &an->planes[an->c_planes[pf + (tri >> 8 & 255u)]],
                            &an->planes[an->c_planes[pf + (tri >> 16)]], r, an->origin, x);
@@ -2292,7 +2388,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         dmax[fc[c]] = dm;
         /* the walk measures from the first sphere, not from v: widen by |s - v| */
         K->walk = re__float_up((reach[fc[c]] + r + dm) * (1 + 1e-6));
-        if (K->nx) F->refs[nref++] = xbase[c];
+        if (F->pk_n[RE__PKA_K_XFIRST]) F->pk[RE__PKA_K_XFIRST][fc[c]] = xbase[c];
         for (j = 0; j < K->nx; j++) {
             const unsigned *x = an->c_x + 4 * (size_t)(an->c_xfirst[c] + j);
             re__xcyl_t *xc = &F->xcyls[xbase[c] + j - F->n_edge_cyls];
@@ -2304,7 +2400,6 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
     }
     RE_ASSERT(an->desc->layout == RE_LAYOUT_COMPACT || F->n_xsph == ns); /* re__cptr reads xsph by sphere id */
-    for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
         re__cyl_t *cy;
@@ -2325,7 +2420,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             cy->p[0] = pmap[an->tplane[h0 / 3]];
             cy->p[1] = pmap[an->tplane[h1 / 3]];
         }
+        F->pk[RE__PKA_C_S0][ecyl[i]] = cy->s[0];
     }
+    F->n_xs1 = 0;
+    for (i = 0; i < F->n_edge_cyls; i++)
+        F->n_xs1 += F->cyls[i].s[1] > F->cyls[i].s[0] && F->cyls[i].s[1] - F->cyls[i].s[0] <= RE__DS1_SPAN ? 0u : 1u;
+    for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
     /* Detection (§3.1): the removed zone on a face lies within g, the larger
        face reach of the edge's two corners, of the mesh edge. The query
        tests the distance to the edge's line (from the two face planes, so
@@ -2343,13 +2443,21 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     kd_mark = ar->used; /* the boxes and the partition lists are scratch of the tree build only */
     RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls + 1);
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
+    F->det_e0 = 1;
+    for (i = 0; i < F->n_edge_cyls; i++) { /* the largest m fits re__det8 */
+        unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
+        unsigned ex = re__det8_exp((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
+        F->det_e0 = ex > 16u && ex - 15u > F->det_e0 ? ex - 15u : F->det_e0;
+    }
     for (i = 0; i < F->n_edge_cyls; i++) {
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
         unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]], a;
         double g, m, u[3], L, e0[3], e1[3];
         F->det[2 * i] = re__det_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6));
         F->det[2 * i + 1] = re__det_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
-        g = re__det(F->det[2 * i + 1]);
+        F->det8[2 * i] = re__det8_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6), F->det_e0);
+        F->det8[2 * i + 1] = re__det8_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6), F->det_e0);
+        g = an->desc->layout == RE_LAYOUT_COMPACT ? re__det8(F->det8[2 * i + 1], F->det_e0) : re__det(F->det[2 * i + 1]);
         m = g;
         re__sub(s1, s0, u);
         L = re__len(u);
@@ -2398,8 +2506,12 @@ static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
     return b + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
            (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(sizeof(unsigned short) * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_xsph) : 0) +
            RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
-           RE__ALIGN(sizeof(re__cyl_t) * F->n_edge_cyls) + RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
-           RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls) +
+           RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls) +
+           (an->desc->layout == RE_LAYOUT_COMPACT
+                ? RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned) * 2 * (size_t)F->n_xs1)
+                : RE__ALIGN(sizeof(unsigned) * F->n_edge_cyls)) +
+           RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
+           (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(2 * (size_t)F->n_edge_cyls) : RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls)) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
            RE__ALIGN(sizeof(unsigned) * F->n_refs) + RE__ALIGN(sizeof(re__node_t) * F->kd.n_nodes) +
            RE__ALIGN(sizeof(unsigned short) * F->n_leaf16);
@@ -2437,6 +2549,8 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     RE__PUT_PK(k_first, RE__PKA_K_FIRST);
     RE__PUT_PK(k_sfirst, RE__PKA_K_SFIRST);
     RE__PUT_PK(k_rid, RE__PKA_K_RID);
+    RE__PUT_PK(k_xfirst, RE__PKA_K_XFIRST);
+    RE__PUT_PK(c_s0, RE__PKA_C_S0);
     RE__PUT_PK(s_corner, RE__PKA_S_CORNER);
     RE__PUT_PK(x_corner, RE__PKA_X_CORNER);
 #undef RE__PUT_PK
@@ -2448,9 +2562,39 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
         o->xsid = (const unsigned *)re__put(&at, F->xsid, sizeof(unsigned) * F->n_xsph);
     }
     o->xsph = (const double *)re__put(&at, F->xsph, sizeof(double) * 3 * F->n_xsph);
-    o->cyls = (const re__cyl_t *)re__put(&at, F->cyls, sizeof(re__cyl_t) * F->n_edge_cyls);
+    {
+        re__ecyl_t *ec = (re__ecyl_t *)at;
+        unsigned short *ds;
+        unsigned *xs, nx = 0;
+        for (c = 0; c < F->n_edge_cyls; c++) ec[c].p[0] = F->cyls[c].p[0], ec[c].p[1] = F->cyls[c].p[1];
+        o->cyls = ec;
+        at += RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls);
+        o->s1w = NULL, o->ds1 = NULL, o->xs1 = NULL, o->n_xs1 = 0;
+        if (!o->compact) {
+            unsigned *w = (unsigned *)at;
+            for (c = 0; c < F->n_edge_cyls; c++) w[c] = F->cyls[c].s[1];
+            o->s1w = w;
+            at += RE__ALIGN(sizeof(unsigned) * F->n_edge_cyls);
+        }
+        ds = (unsigned short *)at;
+        xs = (unsigned *)(at + RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls));
+        for (c = 0; o->compact && c < F->n_edge_cyls; c++) {
+            unsigned d = F->cyls[c].s[1] - F->cyls[c].s[0];
+            ds[c] = (unsigned short)(F->cyls[c].s[1] > F->cyls[c].s[0] && d <= RE__DS1_SPAN ? d : RE__DS1_FAR);
+            if (ds[c] == RE__DS1_FAR) xs[2 * nx] = c, xs[2 * nx + 1] = F->cyls[c].s[1], nx++;
+        }
+        if (o->compact) {
+            RE_ASSERT(nx == F->n_xs1);
+            at += RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned) * 2 * (size_t)nx);
+            o->ds1 = ds, o->xs1 = xs, o->n_xs1 = nx;
+        }
+    }
     o->xcyls = (const re__xcyl_t *)re__put(&at, F->xcyls, sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls));
-    o->det = (const unsigned short *)re__put(&at, F->det, sizeof(unsigned short) * 2 * F->n_edge_cyls);
+    o->det = NULL, o->det8 = NULL, o->det_e0 = F->det_e0;
+    if (o->compact)
+        o->det8 = (const unsigned char *)re__put(&at, F->det8, 2 * (size_t)F->n_edge_cyls);
+    else
+        o->det = (const unsigned short *)re__put(&at, F->det, sizeof(unsigned short) * 2 * F->n_edge_cyls);
     o->corners = (const re__corner_t *)re__put(&at, F->corners, sizeof(re__corner_t) * F->n_corners);
     o->radii = (const double *)re__put(&at, F->radii, sizeof(double) * F->n_radii);
     o->refs = (const unsigned *)re__put(&at, F->refs, sizeof(unsigned) * F->n_refs);
@@ -2798,10 +2942,11 @@ static double re__dist2_halfline(const double p[3], const double a[3], const dou
     return re__dot(q, q);
 }
 
-/* A corner with its packed ids read (re__corner_t). */
+/* A corner with the packed ids most uses need (re__corner_t); its radius
+   and first extra cylinder are read where they are used
+   (re__k_radius, re__k_xfirst). */
 typedef struct re__kv_t {
     unsigned k, first, sfirst, np, ns, nx;
-    double r, walk;
 } re__kv_t;
 
 static re__kv_t re__kview(const re__object_t *o, unsigned k)
@@ -2809,23 +2954,44 @@ static re__kv_t re__kview(const re__object_t *o, unsigned k)
     re__kv_t v;
     const re__corner_t *K = &o->corners[k];
     v.k = k;
-    v.first = re__pk_get(&o->k_first, k);
-    v.sfirst = re__pk_get(&o->k_sfirst, k);
+    v.first = re__pk_id(&o->k_first, k);
+    v.sfirst = re__pk_id(&o->k_sfirst, k);
     v.np = K->np, v.ns = K->ns, v.nx = K->nx;
-    v.r = o->radii[re__pk_get(&o->k_rid, k)];
-    v.walk = (double)K->walk;
     return v;
 }
-static unsigned re__s_corner(const re__object_t *o, unsigned s) { return re__pk_get(&o->s_corner, s); }
-static double re__k_radius(const re__object_t *o, unsigned k) { return o->radii[re__pk_get(&o->k_rid, k)]; }
+static unsigned re__s_corner(const re__object_t *o, unsigned s) { return re__pk_id(&o->s_corner, s); }
+/* s[1] of edge cylinder c, whose s[0] is s0 (re__ecyl_t). */
+static unsigned re__cyl_s1(const re__object_t *o, unsigned c, unsigned s0)
+{
+    unsigned d, lo = 0, hi = o->n_xs1;
+    if (!o->compact) return o->s1w[c];
+    d = o->ds1[c];
+    if (d != RE__DS1_FAR) return s0 + d;
+    while (hi - lo > 1) {
+        unsigned mid = lo + (hi - lo) / 2;
+        if (o->xs1[2 * mid] <= c) lo = mid; else hi = mid;
+    }
+    return o->xs1[2 * lo + 1];
+}
+/* The end sphere of a corner's reference (re__corner_t.refs) that is not
+   the corner's own. */
+static unsigned re__far_sphere(const re__object_t *o, unsigned ref)
+{
+    unsigned c = ref >> 1;
+    if (!o->compact && (ref & 1u)) return o->s1w[c];
+    return ref & 1u ? re__cyl_s1(o, c, re__pk_id(&o->c_s0, c)) : re__pk_id(&o->c_s0, c);
+}
+static double re__k_radius(const re__object_t *o, unsigned k) { return o->radii[re__pk_id(&o->k_rid, k)]; }
+static unsigned re__k_xfirst(const re__object_t *o, unsigned k) { return re__pk_id(&o->k_xfirst, k); }
+
 
 /* Face plane j < np of a corner: the one on the left of its edge cylinder j
    leaving the corner (re__finish orders each cylinder's planes so), which
    lists every plane of the corner once. */
 static unsigned re__corner_plane(const re__object_t *o, const re__kv_t *K, unsigned j)
 {
-    const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
-    return cy->p[cy->s[0] - K->sfirst < K->ns ? 0 : 1];
+    unsigned ref = o->refs[K->first + j];
+    return o->cyls[ref >> 1].p[ref & 1u ? 0 : 1];
 }
 
 /* Index in xsph of a stored centre (compact layout): its rank in xsid. */
@@ -2851,7 +3017,7 @@ static void re__centre(const re__object_t *o, unsigned s, double x[3])
     info = o->sinfo[s];
     K = re__kview(o, re__s_corner(o, s));
     re__solve3(&o->planes[re__corner_plane(o, &K, info & 31u)], &o->planes[re__corner_plane(o, &K, info >> 5 & 31u)],
-               &o->planes[re__corner_plane(o, &K, info >> 10 & 31u)], K.r, o->origin, x);
+               &o->planes[re__corner_plane(o, &K, info >> 10 & 31u)], re__k_radius(o, K.k), o->origin, x);
 }
 
 /* Global sphere ids of cylinder c's axis ends (edge or extra). */
@@ -2859,9 +3025,9 @@ static void re__cyl_spheres(const re__object_t *o, unsigned c, unsigned s[2])
 {
     const re__xcyl_t *x;
     unsigned sf;
-    if (c < o->n_edge_cyls) { s[0] = o->cyls[c].s[0], s[1] = o->cyls[c].s[1]; return; }
+    if (c < o->n_edge_cyls) { s[0] = re__pk_id(&o->c_s0, c), s[1] = re__cyl_s1(o, c, s[0]); return; }
     x = &o->xcyls[c - o->n_edge_cyls];
-    sf = re__pk_get(&o->k_sfirst, re__pk_get(&o->x_corner, c - o->n_edge_cyls));
+    sf = re__pk_id(&o->k_sfirst, re__pk_id(&o->x_corner, c - o->n_edge_cyls));
     s[0] = sf + x->s[0], s[1] = sf + x->s[1];
 }
 
@@ -2872,9 +3038,12 @@ static re__cyl_t re__cyl(const re__object_t *o, unsigned c)
     const re__xcyl_t *x;
     re__kv_t K;
     unsigned i;
-    if (c < o->n_edge_cyls) return o->cyls[c];
+    if (c < o->n_edge_cyls) {
+        cy.s[0] = re__pk_id(&o->c_s0, c), cy.s[1] = re__cyl_s1(o, c, cy.s[0]), cy.p[0] = o->cyls[c].p[0], cy.p[1] = o->cyls[c].p[1];
+        return cy;
+    }
     x = &o->xcyls[c - o->n_edge_cyls];
-    K = re__kview(o, re__pk_get(&o->x_corner, c - o->n_edge_cyls));
+    K = re__kview(o, re__pk_id(&o->x_corner, c - o->n_edge_cyls));
     for (i = 0; i < 2; i++) cy.s[i] = K.sfirst + x->s[i], cy.p[i] = re__corner_plane(o, &K, x->p[i]);
     return cy;
 }
@@ -2922,7 +3091,7 @@ static int re__on_flat_part(const re__object_t *o, const re__set_t *S, unsigned 
     unsigned i, j;
     for (i = 0; i < S->n; i++) {
         re__kv_t K = re__kview(o, S->c[i]);
-        double q[3], mag, r = K.r;
+        double q[3], mag, r = re__k_radius(o, K.k);
         re__madd(I, -r, pf->n, q);
         mag = fabs(q[0]) + fabs(q[1]) + fabs(q[2]);
         for (j = 0; j < K.np; j++) {
@@ -3005,10 +3174,10 @@ static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const
     for (i = 0; i < S->n; i++) {
         re__kv_t K = re__kview(o, S->c[i]);
         const unsigned *ref = o->refs + K.first;
-        double r = K.r;
+        double r = re__k_radius(o, K.k);
         for (j = 0; j < K.ns; j++) re__try_sphere(o, K.sfirst + j, r, I, d, b);
         for (j = 0; j < K.np; j++) {
-            unsigned c = ref[j], far = o->cyls[c].s[o->cyls[c].s[0] - K.sfirst < K.ns ? 1 : 0];
+            unsigned c = ref[j] >> 1, far = re__far_sphere(o, ref[j]);
             unsigned q = re__set_find(S, re__s_corner(o, far));
             /* each feature once: an edge between two corners of the set is
                tried from the first of them, and the far end sphere only when
@@ -3018,7 +3187,7 @@ static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const
             re__try_cyl(o, c, r, I, d, b);
             if (q == S->n) re__try_sphere(o, far, r, I, d, b);
         }
-        for (j = 0; j < K.nx; j++) re__try_cyl(o, ref[K.np] + j, r, I, d, b);
+        for (j = 0; j < K.nx; j++) re__try_cyl(o, re__k_xfirst(o, K.k) + j, r, I, d, b);
     }
 }
 
@@ -3084,6 +3253,50 @@ static int re__band_flat(const re__object_t *o, unsigned triangle, double u, dou
     return l0 > (double)b[0] && l1 > (double)b[1] && l2 > (double)b[2] && l0 < cap && l1 < cap && l2 < cap;
 }
 
+/* Query step 1 for edge cylinder c of I's kd leaf: is I within its
+   detection cylinder? Adds the corners that have plane f to S, and sets
+   *c0 when f is one of the edge's own faces; returns 1 if detected. */
+static inline unsigned re__detect(const re__object_t *o, unsigned c, const double I[3], unsigned f, re__set_t *S,
+                                  re__best_t *best, unsigned *c0)
+{
+    const re__ecyl_t *cy = &o->cyls[c];
+    const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
+    double g = o->compact ? re__det8(o->det8[2 * c], o->det_e0) : re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
+    const double *s0, *s1;
+    unsigned ka, kb, si0, si1;
+    re__kv_t Ka, Kb;
+    /* across first: distance to the mesh edge's line, from the two face
+       planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1 cos) / sin^2.
+       It rejects most of a leaf's edges, and the face planes are shared by
+       many edges (warm in cache) where the end spheres are not: the render
+       profile showed the loop waiting on the sphere loads. */
+    a0 = re__dot(P0->n, I) - P0->c;
+    a1 = re__dot(P1->n, I) - P1->c;
+    cs = re__dot(P0->n, P1->n);
+    if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) return 0;
+    /* along the axis: within m of the end spheres */
+    m = o->compact ? re__det8(o->det8[2 * c + 1], o->det_e0) : re__det(o->det[2 * c + 1]);
+    si0 = re__pk_id(&o->c_s0, c);
+    si1 = re__cyl_s1(o, c, si0);
+    re__cpair(o, best, si0, si1, &s0, &s1, keep);
+    re__sub(s1, s0, u);
+    re__sub(I, s0, w);
+    L2 = re__dot(u, u);
+    t = re__dot(w, u);
+    if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) return 0;
+    ka = re__s_corner(o, si0), kb = re__s_corner(o, si1);
+    if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
+        re__set_add(S, ka);
+        re__set_add(S, kb);
+        *c0 = c;
+        return 1;
+    }
+    Ka = re__kview(o, ka), Kb = re__kview(o, kb);
+    if (re__corner_has_plane(o, &Ka, f)) re__set_add(S, ka);
+    if (re__corner_has_plane(o, &Kb, f)) re__set_add(S, kb);
+    return 1;
+}
+
 static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
                                unsigned triangle, double t_host, const double *uv, re_hit_t *out)
 {
@@ -3112,7 +3325,7 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
     best.cvalid = 0;
     {
         const unsigned short *leaf;
-        unsigned cnt, base, wide;
+        unsigned base;
         double Ir[3];
         re__sub(I, o->origin, Ir); /* the splits' frame (see re__kd_build) */
         for (node = 0; (o->nodes[node].info & 3u) != 3u;) {
@@ -3123,47 +3336,13 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
         }
         leaf = o->leaf16 + (o->nodes[node].info >> 2);
         base = o->nodes[node].data;
-        wide = base == RE__NONE;
-        cnt = wide ? leaf[0] | (unsigned)leaf[1] << 16 : leaf[0];
-        leaf += wide ? 2 : 1;
-        for (i = 0; i < cnt; i++) {
-            unsigned c = wide ? leaf[2 * i] | (unsigned)leaf[2 * i + 1] << 16 : base + leaf[i];
-            const re__cyl_t *cy = &o->cyls[c];
-            const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
-            double g = re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
-            const double *s0, *s1;
-            unsigned ka, kb;
-            /* across first: distance to the mesh edge's line, from the two
-               face planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1
-               cos) / sin^2. It rejects most of a leaf's edges, and the face
-               planes are shared by many edges (warm in cache) where the end
-               spheres are not: the render profile showed the loop waiting
-               on the sphere loads. */
-            a0 = re__dot(P0->n, I) - P0->c;
-            a1 = re__dot(P1->n, I) - P1->c;
-            cs = re__dot(P0->n, P1->n);
-            if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) continue;
-            /* along the axis: within m of the end spheres */
-            m = re__det(o->det[2 * c + 1]);
-            re__cpair(o, &best, cy->s[0], cy->s[1], &s0, &s1, keep);
-            re__sub(s1, s0, u);
-            re__sub(I, s0, w);
-            L2 = re__dot(u, u);
-            t = re__dot(w, u);
-            if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) continue;
-            ka = re__s_corner(o, cy->s[0]), kb = re__s_corner(o, cy->s[1]);
-            ndet++;
-            if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
-                re__set_add(&S, ka);
-                re__set_add(&S, kb);
-                c0 = c;
-                continue;
-            }
-            {
-                re__kv_t Ka = re__kview(o, ka), Kb = re__kview(o, kb);
-                if (re__corner_has_plane(o, &Ka, f)) re__set_add(&S, ka);
-                if (re__corner_has_plane(o, &Kb, f)) re__set_add(&S, kb);
-            }
+        for (;;) {
+            unsigned cnt = leaf[0] & 0x7FFFu, more = leaf[0] >> 15;
+            for (i = 0; i < cnt; i++) ndet += re__detect(o, base + leaf[1 + i], I, f, &S, &best, &c0);
+            leaf += 1 + cnt;
+            if (!more) break;
+            base = leaf[0] | (unsigned)leaf[1] << 16;
+            leaf += 2;
         }
     }
     if (!S.n || re__on_flat_part(o, &S, f, I)) return RE_UNCHANGED;
@@ -3174,7 +3353,7 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
        before coming within walk reach of either corner, that is the answer;
        else the general search below decides. */
     if (ndet == 1 && c0 != RE__NONE && S.n == 2) {
-        const re__cyl_t *cy = &o->cyls[c0];
+        const re__ecyl_t *cy = &o->cyls[c0];
         double P[3], IP[3], inv_l2, nd0, nd1, e0 = HUGE_VAL, e1 = HUGE_VAL, sc;
         const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
         best.s = HUGE_VAL;
@@ -3194,7 +3373,7 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
             inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
             for (i = 0; i < 2; i++) {
                 double wk = (double)o->corners[S.c[i]].walk;
-                if (re__dist2_segment(re__cptr(o, &best, re__pk_get(&o->k_sfirst, S.c[i])), I, IP, inv_l2) <= wk * wk) break;
+                if (re__dist2_segment(re__cptr(o, &best, re__pk_id(&o->k_sfirst, S.c[i])), I, IP, inv_l2) <= wk * wk) break;
             }
             if (i == 2) goto answer;
         }
@@ -3217,8 +3396,7 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
         for (i = 0; i < S.n && S.n < RE__MAX_WALK; i++) {
             re__kv_t K = re__kview(o, S.c[i]);
             for (j = 0; j < K.np; j++) {
-                const re__cyl_t *cy = &o->cyls[o->refs[K.first + j]];
-                unsigned w = re__s_corner(o, cy->s[cy->s[0] - K.sfirst < K.ns ? 1 : 0]);
+                unsigned w = re__s_corner(o, re__far_sphere(o, o->refs[K.first + j]));
                 double g, d2;
                 const double *wc;
                 /* a corner already in the set is skipped before its record and
@@ -3229,7 +3407,7 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within the face reach of its corner: `walk` bounds both, from
                    the corner's first sphere */
-                wc = re__cptr(o, &best, re__pk_get(&o->k_sfirst, w));
+                wc = re__cptr(o, &best, re__pk_id(&o->k_sfirst, w));
                 g = (double)o->corners[w].walk;
                 d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
                 if (d2 <= g * g && re__set_add(&S, w)) grown = 1;
