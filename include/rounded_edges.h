@@ -177,10 +177,11 @@ typedef enum re_layout_t {
     RE_LAYOUT_FAST = 0, /* default: sphere centres stored as doubles, the
                            kd-tree split for query time */
     RE_LAYOUT_COMPACT   /* sphere centres solved at query time from three face
-                           planes (24 bytes less per sphere), a shallower
-                           kd-tree; 74-87 instead of 90-118 bytes per rounded
-                           edge on the benchmark scenes, about 1.5x the
-                           instructions of a query that reaches the kd-tree */
+                           planes (24 bytes less per sphere), one-byte
+                           detection radii, 16-bit sphere distances, a
+                           shallower kd-tree; 54-64 instead of 73-96 bytes
+                           per rounded edge on the benchmark scenes, 1.1-1.5x
+                           the instructions of re_query */
 } re_layout_t;
 
 typedef struct re_scene_desc_t {
@@ -553,57 +554,73 @@ typedef struct re__plane_t {
     double c;    /* n.x = c on the face; n.x <= c inside */
 } re__plane_t;
 
-/* A rounding sphere, 8 bytes: its corner, and where its centre comes from.
-   Most centres are the point where three of the corner's face planes,
-   shifted inward by r, meet (a vertex of the eroded polytope, "Memory" in
-   docs/rounded_edges.md): `info` holds the three plane slots (bits 0-7,
-   8-15, 16-23) and re__centre() solves for it at query time. A centre that
-   is not such a triple point (a vertex inside a straight edge, k = 2), or
-   whose triple point the build could not reproduce within
-   RE__SPHERE_SOLVE_REL, is stored: info = RE__SPH_STORED | its index in
-   `xsph`. */
-typedef struct re__sph_t {
-    unsigned corner, info;
-} re__sph_t;
-#define RE__SPH_STORED 0x80000000u
+/* A rounding sphere is its corner (re__object_t.s_corner) and, in the
+   compact layout, 2 bytes saying where its centre comes from
+   (re__object_t.sinfo). Most centres are the point where three of the
+   corner's face planes, shifted inward by r, meet (a vertex of the eroded
+   polytope, "Memory" in docs/rounded_edges.md): the info holds the three
+   plane slots (bits 0-4, 5-9, 10-14) and re__centre() solves for it at
+   query time. A centre that is not such a triple point (a vertex inside a
+   straight edge, k = 2), whose slots do not fit 5 bits (corners of more
+   than 32 planes), or whose triple point the build could not reproduce
+   within RE__SPHERE_SOLVE_REL, is stored: info = RE__SPH_STORED, centre in
+   `xsph` at its rank in the ascending list `xsid`. The fast layout stores
+   every centre, xsph in sphere order. */
+#define RE__SPH_STORED 0x8000u
 
 /* A rounding cylinder between two sphere centres; its corners are the
-   spheres' (re__sph_t.corner). Cylinders [0, n_edge_cyls) round mesh edges, the
+   spheres' (re__object_t.s_corner). Cylinders [0, n_edge_cyls) round mesh edges, the
    rest are extra (exact-corner) cylinders inside one corner. */
 typedef struct re__cyl_t {
     unsigned s[2]; /* spheres at the axis ends */
     unsigned p[2]; /* the two offset planes it joins */
 } re__cyl_t;
+/* An edge cylinder as stored: its planes here, 8 bytes (p[0] is the face
+   on the left leaving the edge's lower vertex, p[1] leaving the upper);
+   s[0], the sphere at the lower vertex, grows with the cylinder id (edges
+   are numbered by their lower vertex), so it is packed apart
+   (re__object_t.c_s0). The fast layout keeps s[1] whole (s1w); the
+   compact one as s[1] - s[0] in 16 bits (re__object_t.ds1): spheres are
+   numbered in vertex order, and an edge's vertices seldom lie 65535
+   spheres apart; those that do are listed in xs1 (re__cyl_s1). */
+typedef struct re__ecyl_t {
+    unsigned p[2];
+} re__ecyl_t;
+#define RE__DS1_FAR 0xFFFFu
 
-/* An extra (exact-corner) cylinder, 8 bytes: both ends are spheres of one
-   corner and both planes are its own, so it keeps local slots: spheres
-   sph[sfirst + s[i]], planes re__corner_plane(p[i]). A corner's extra
-   cylinders are numbered consecutively, so its reference list holds only
-   the first (re__corner_t). */
+/* An extra (exact-corner) cylinder, 4 bytes (its corner is in
+   re__object_t.x_corner): both ends are spheres of one corner and both
+   planes are its own, so it keeps local slots: spheres sfirst + s[i],
+   planes re__corner_plane(p[i]). A corner's extra cylinders are numbered
+   consecutively, so its reference list holds only the first. */
 typedef struct re__xcyl_t {
-    unsigned corner;
     unsigned char p[2], s[2];
 } re__xcyl_t;
 
-/* A rounded mesh vertex, 20 bytes (its vertex id is in re__object_t.cvertex). refs[first ...]: np edge cylinders
-   (cylinder j joins planes j and j+1), then, when nx > 0, the first of its
-   nx consecutive extra cylinders; its ns
-   spheres are sph[sfirst ...]. The mesh vertex itself is not stored: every
-   test that needs it uses the first sphere centre with a radius widened by
-   their distance (docs/rounded_edges.md, "Memory"). */
+/* A rounded mesh vertex, 8 bytes; its monotone ids are packed apart
+   (re__object_t: k_first, k_sfirst, k_rid; its vertex id in cvertex).
+   refs[first ...]: np edge cylinders (cylinder j joins planes j and j+1),
+   each as id << 1 | (1 if the corner is the edge's lower vertex);
+   its nx extra cylinders are xfirst ... (packed, only in objects that have
+   extra cylinders); its ns spheres are sfirst ...; its radius radii[rid]. The mesh vertex itself
+   is not stored: every test that needs it uses the first sphere centre with
+   a radius widened by their distance (docs/rounded_edges.md, "Memory"). */
 typedef struct re__corner_t {
     float walk;    /* adjacency walk (query step 4): a removed point near this
-                      corner lies within `walk` of sph[sfirst] (face reach + r +
+                      corner lies within `walk` of sphere sfirst (face reach + r +
                       |sphere - vertex|, rounded up to float) */
-    unsigned rid;  /* radius of its patch: radii[rid] */
-    unsigned first, sfirst;
     unsigned char np, ns, nx, pad_;
 } re__corner_t;
 
 /* kd-tree node (§3.2), 8 bytes. Inner node: info = axis | right child << 2
    (the left child follows the node), data = the split as a float bit
    pattern, relative to the object's origin. Leaf: info = 3 | first << 2,
-   data = count of references leafrefs[first ...]. */
+   data = the smallest edge cylinder id of the leaf, its base; the list
+   leaf16[first ...] is its count n, then n ids as offsets from the base
+   (2 bytes a reference: a leaf's edges are neighbours in space, and their
+   ids seldom span 65536). A list that does not fit is cut into runs that
+   do: bit 15 of a run's count says another run follows, starting with its
+   own base in two 16-bit halves (re__kd_narrow). */
 typedef struct re__node_t {
     unsigned info, data;
 } re__node_t;
@@ -616,6 +633,23 @@ typedef struct re__node_t {
    base = RE__PK_FULL | its offset in `full`. */
 #define RE__PK_BLOCK 32u
 #define RE__PK_FULL 0x80000000u
+/* Largest span of a block kept as bytes (254: 255 is RE__NONE), the
+   largest span of a kd leaf run (re__kd_narrow), the plane slots a solved
+   sphere centre may use (5 bits, re__object_t.sinfo) and the largest
+   sphere distance of an edge cylinder's ends kept in 16 bits. Tests lower
+   them to run the fallbacks (tests/test_rounded_packing.c). */
+#ifndef RE__PK_SPAN
+#define RE__PK_SPAN 254u
+#endif
+#ifndef RE__LEAF_RUN_SPAN
+#define RE__LEAF_RUN_SPAN 0xFFFFu
+#endif
+#ifndef RE__SOLVED_SLOTS
+#define RE__SOLVED_SLOTS 32u
+#endif
+#ifndef RE__DS1_SPAN /* largest s[1] - s[0] kept in 16 bits (re__ecyl_t) */
+#define RE__DS1_SPAN 0xFFFEu
+#endif
 typedef struct re__pk_t {
     const unsigned *base;
     const unsigned char *off;
@@ -631,32 +665,51 @@ static inline unsigned re__pk_get(const re__pk_t *p, unsigned i)
     return d == 255u ? RE__NONE : b + d;
 }
 
+/* re__pk_get for arrays that never hold RE__NONE (monotone ids). */
+static inline unsigned re__pk_id(const re__pk_t *p, unsigned i)
+{
+    unsigned b = p->base[i / RE__PK_BLOCK];
+    if (b & RE__PK_FULL) return p->full[(b & ~RE__PK_FULL) + i % RE__PK_BLOCK];
+    return b + p->off[i];
+}
+
 typedef struct re__object_t {
-    unsigned n_tris, n_planes, n_spheres, n_xsph, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leafrefs, n_radii;
+    unsigned n_tris, n_planes, n_spheres, n_xsph, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leaf16, n_radii;
     int compact; /* RE_LAYOUT_COMPACT: sphere centres solved (re__cptr) */
     double size; /* bounding-box diagonal: the object's length scale */
     double rmax;
     double origin[3]; /* kd splits are floats relative to this (bounding-box centre) */
     re__pk_t tri_plane; /* per triangle: plane id, RE__NONE if not rounded nearby */
     re__pk_t cvertex;   /* per corner: its mesh vertex (enumeration only) */
+    re__pk_t k_first, k_sfirst, k_rid, k_xfirst; /* per corner: re__corner_t */
+    re__pk_t c_s0;      /* per edge cylinder: re__ecyl_t */
+    re__pk_t s_corner;  /* per sphere: its corner */
+    re__pk_t x_corner;  /* per extra cylinder: its corner */
     const unsigned char *bands; /* 4 per triangle, in units of 1/RE__BAND_STEPS,
                                    rounded up: the barycentric band along the
                                    edge opposite corner k (k < 3), and the cap
                                    at the corners (3); query step 0 */
     const re__plane_t *planes;
-    const re__sph_t *sph;
-    const double *xsph; /* 3 per stored sphere centre (RE__SPH_STORED) */
-    const re__cyl_t *cyls;    /* edge cylinders [0, n_edge_cyls) */
+    const unsigned short *sinfo; /* compact layout: per sphere (RE__SPH_STORED) */
+    const unsigned *xsid; /* compact layout: the stored spheres, ascending */
+    const double *xsph; /* 3 per stored sphere centre (every one in the fast layout) */
+    const re__ecyl_t *cyls;   /* edge cylinders [0, n_edge_cyls) */
+    const unsigned *s1w;      /* fast layout: per edge cylinder, s[1] */
+    const unsigned short *ds1; /* compact layout: per edge cylinder, s[1] - s[0], or RE__DS1_FAR */
+    const unsigned *xs1;      /* 2 per far cylinder, ascending: its id, its s[1] */
+    unsigned n_xs1;
     const re__xcyl_t *xcyls;  /* extra cylinders [n_edge_cyls, n_cyls) */
-    const unsigned short *det; /* 2 per edge cylinder, as the upper halves of
-                          floats rounded up (re__det): detection radius
-                          around the mesh edge's line, and the reach past
-                          its end spheres along the axis (query step 1) */
+    const unsigned short *det; /* fast layout: 2 per edge cylinder, as the upper
+                          halves of floats rounded up (re__det): detection
+                          radius around the mesh edge's line, and the reach
+                          past its end spheres along the axis (query step 1) */
+    const unsigned char *det8; /* compact layout: the same in one byte each (re__det8) */
+    unsigned det_e0;           /* compact layout: re__det8's exponent base */
     const re__corner_t *corners;
     const double *radii; /* one per rounded patch */
     const unsigned *refs;
     const re__node_t *nodes;
-    const unsigned *leafrefs;
+    const unsigned short *leaf16; /* kd leaf lists (re__node_t) */
     re_stats_t stats;
     void *block; /* RE_MALLOC'd storage (re_build) or NULL */
 } re__object_t;
@@ -710,7 +763,7 @@ typedef struct re__an_t {
     unsigned obj;
     re_diag_t *diag;
     unsigned V, T, E;
-    double *pos;
+    const double *pos; /* 3 per vertex: the caller's array itself when it is packed doubles */
     unsigned *tri, *tsrc, *tplane;
     double *tn, *tarea;
     unsigned char *tbad;
@@ -725,12 +778,12 @@ typedef struct re__an_t {
     unsigned char *c_np, *c_ns, *c_nx;
     unsigned *c_planes, *c_edges; /* fan-ordered planes / crossing edges */
     unsigned *c_x;                /* extra cylinders: pairs of plane slots */
-    unsigned *c_start;            /* per plane slot j: sphere (local) where edge j starts */
+    unsigned char *c_start;       /* per plane slot j: sphere (local, < 64) where edge j starts */
     double *su;                   /* unit-radius sphere offsets, 3 per sphere */
     unsigned *s_tri;              /* per sphere: the plane slots it solves from
-                                     (re__sph_t.info), RE__NONE if none */
+                                     (re__object_t.sinfo), RE__NONE if none */
     unsigned ns_total, nx_total, np_total;
-    unsigned *edge_end; /* 2 per edge: local sphere index at v[0], v[1] side */
+    unsigned char *edge_end; /* 2 per edge: local sphere index (< 64) at the v[0], v[1] side; 255 = none */
     unsigned n_planes;
     re__plane_t *planes;
     unsigned *plane_used;
@@ -833,27 +886,35 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     unsigned t = 0, f, nf, base = 0, i, k;
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     char msg[128];
-    RE__TAKE(an->pos, double, 3 * (size_t)an->V);
+    if (m->position_type == RE_FLOAT64 && (m->position_stride == 0 || m->position_stride == 3 * sizeof(double)))
+        an->pos = (const double *)m->positions; /* no copy: fewer fresh scratch pages */
+    else {
+        double *pos;
+        RE__TAKE(pos, double, 3 * (size_t)an->V);
+        for (i = 0; i < an->V; i++) re__read_pos(m, i, pos + 3 * (size_t)i);
+        an->pos = pos;
+    }
     RE__TAKE(an->tri, unsigned, 3 * (size_t)an->T);
-    RE__TAKE(an->tsrc, unsigned, 3 * (size_t)an->T);
+    if (m->edge_radius) RE__TAKE(an->tsrc, unsigned, 3 * (size_t)an->T); /* read by re__edge_request only */
     RE__TAKE(an->tn, double, 3 * (size_t)an->T);
     RE__TAKE(an->tarea, double, an->T);
     RE__TAKE(an->tbad, unsigned char, an->T);
-    for (i = 0; i < an->V; i++) re__read_pos(m, i, an->pos + 3 * (size_t)i);
     nf = m->face_sizes ? m->face_count : an->T;
     for (f = 0; f < nf; f++) {
         unsigned n = m->face_sizes ? m->face_sizes[f] : 3u, j;
         for (j = 1; j + 1 < n; j++, t++) {
-            unsigned *tr = an->tri + 3 * (size_t)t, *src = an->tsrc + 3 * (size_t)t;
+            unsigned *tr = an->tri + 3 * (size_t)t;
             double e1[3], e2[3], e3[3], cr[3], len, lmax;
             int bad = 0;
             tr[0] = m->indices[base];
             tr[1] = m->indices[base + j];
             tr[2] = m->indices[base + j + 1];
-            /* index positions of the polygon's own edges (fan diagonals have none) */
-            src[0] = j == 1 ? base : RE__NONE;
-            src[1] = base + j;
-            src[2] = j + 2 == n ? base + j + 1 : RE__NONE;
+            if (an->tsrc) { /* index positions of the polygon's own edges (fan diagonals have none) */
+                unsigned *src = an->tsrc + 3 * (size_t)t;
+                src[0] = j == 1 ? base : RE__NONE;
+                src[1] = base + j;
+                src[2] = j + 2 == n ? base + j + 1 : RE__NONE;
+            }
             an->tbad[t] = 0;
             for (k = 0; k < 3; k++)
                 if (tr[k] >= an->V) {
@@ -916,6 +977,11 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     return RE_OK;
 }
 
+static int re__cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
 static int re__cmp_u64(const void *a, const void *b)
 {
     unsigned long long x = *(const unsigned long long *)a, y = *(const unsigned long long *)b;
@@ -953,8 +1019,8 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
     /* cnt[i] is now the end of bucket i; bucket i starts at cnt[i-1] */
     for (i = 0; i < V; i++) {
         unsigned s = i ? cnt[i - 1] : 0, e = cnt[i], j;
-        if (e - s > 16) qsort(key + s, e - s, sizeof *key, re__cmp_u64);
-        else { /* typical vertex degree: insertion sort beats qsort's calls */
+        if (e - s > 64) qsort(key + s, e - s, sizeof *key, re__cmp_u64);
+        else { /* up to a 24-gon fan's apex (47): insertion sort beats qsort's calls; the keys are unique, so the order is the same */
             unsigned x, y;
             for (x = s + 1; x < e; x++)
                 for (y = x; y > s && key[y - 1] > key[y]; y--) {
@@ -1089,7 +1155,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     const unsigned *ed = an->c_edges + an->c_pfirst[c];
     double *su = an->su + 3 * (size_t)an->c_sfirst[c];
     unsigned *stri = an->s_tri + an->c_sfirst[c];
-    unsigned *start = an->c_start + an->c_pfirst[c];
+    unsigned char *start = an->c_start + an->c_pfirst[c];
     unsigned *xs = an->c_x + 4 * (size_t)an->c_xfirst[c];
     unsigned cap = k; /* a k-plane corner has at most k - 2 eroded vertices (k = 2: one) */
     unsigned long long mask[RE_MAX_CORNER_PLANES];
@@ -1160,8 +1226,8 @@ static int re__erode_corner(re__an_t *an, unsigned c)
                 if (pr < bp) bp = pr, best = i;
             }
         if (best == RE__NONE) return 0;
-        start[j] = best;
-        an->edge_end[2 * ed[j] + (e->v[0] == an->c_vertex[c] ? 0u : 1u)] = best;
+        start[j] = (unsigned char)best;
+        an->edge_end[2 * ed[j] + (e->v[0] == an->c_vertex[c] ? 0u : 1u)] = (unsigned char)best;
     }
     /* extra cylinders: finite eroded edges between non-neighbouring planes */
     for (i = 0; i < k; i++)
@@ -1203,7 +1269,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->vinc, unsigned, 2 * (size_t)E + 1);
     RE__TAKE(an->vstate, unsigned char, V);
     RE__TAKE(an->vcorner, unsigned, V);
-    RE__TAKE(an->edge_end, unsigned, 2 * (size_t)E + 1);
+    RE__TAKE(an->edge_end, unsigned char, 2 * (size_t)E + 1);
     memset(an->voff, 0, sizeof(unsigned) * ((size_t)V + 1));
     for (i = 0; i < E; i++) an->voff[an->edges[i].v[0] + 1]++, an->voff[an->edges[i].v[1] + 1]++;
     for (v = 0; v < V; v++) an->voff[v + 1] += an->voff[v];
@@ -1211,7 +1277,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
         unsigned a = an->edges[i].v[0], b = an->edges[i].v[1];
         an->vinc[an->voff[a]++] = i;
         an->vinc[an->voff[b]++] = i;
-        an->edge_end[2 * i] = an->edge_end[2 * i + 1] = RE__NONE;
+        an->edge_end[2 * i] = an->edge_end[2 * i + 1] = 255;
     }
     for (v = V; v > 0; v--) an->voff[v] = an->voff[v - 1];
     an->voff[0] = 0;
@@ -1247,7 +1313,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->c_nx, unsigned char, an->nc);
     RE__TAKE(an->c_planes, unsigned, an->np_total);
     RE__TAKE(an->c_edges, unsigned, an->np_total);
-    RE__TAKE(an->c_start, unsigned, an->np_total);
+    RE__TAKE(an->c_start, unsigned char, an->np_total);
     RE__TAKE(an->su, double, 3 * (size_t)an->np_total);
     RE__TAKE(an->s_tri, unsigned, an->np_total);
     RE__TAKE(an->c_x, unsigned, 4 * (size_t)an->np_total);
@@ -1255,18 +1321,24 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     RE__TAKE(tfan, unsigned, an->T + 1);
     RE__TAKE(hfan, unsigned, an->T + 1);
     {
-        unsigned off = 0;
+        /* The slot arrays are sized by the vertex degrees (an upper bound);
+           each corner takes only what it uses: k plane slots, ns spheres, nx
+           extra cylinders (its erosion may write up to k of each, past the
+           end, before the next corner overwrites them). The used prefix is
+           dense, so the build touches (and page-faults in) about half the
+           memory of degree-sized slots; the fresh pages cost more than the
+           arithmetic on them. */
+        unsigned poff = 0, soff = 0, xoff = 0;
         for (v = 0; v < V; v++) {
             unsigned c = an->vcorner[v], deg, m = 0, h, i0, k = 0, j, ok = 1, too_many = 0;
             if (c == RE__NONE) continue;
             deg = an->voff[v + 1] - an->voff[v];
             an->c_vertex[c] = v;
-            an->c_pfirst[c] = off;
-            an->c_sfirst[c] = off;
-            an->c_xfirst[c] = off;
+            an->c_pfirst[c] = poff;
+            an->c_sfirst[c] = soff;
+            an->c_xfirst[c] = xoff;
             an->c_np[c] = 0;
             an->c_ns[c] = an->c_nx[c] = 0;
-            off += deg;
             /* walk the fan: in triangle t, cross the edge prev -> v */
             t = an->edges[an->vinc[an->voff[v]]].he[0] / 3;
             do {
@@ -1320,6 +1392,9 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
                          "left sharp", v, k);
                 re__report(an, RE_REPORT_UNROUNDABLE_CORNER, v, -1, (double)k, msg);
             }
+            poff += k;
+            soff += an->c_ns[c];
+            xoff += an->c_nx[c];
         }
     }
     ar->used = mark;
@@ -1503,14 +1578,20 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
                 if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = v, lim1[p] = w;
             }
             for (g = 0; g < an->c_np[cw]; g++) {
-                const re__plane_t *pl = &an->planes[an->c_planes[an->c_pfirst[cw] + g]];
-                double b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
+                unsigned pi = an->c_planes[an->c_pfirst[cw] + g];
+                const re__plane_t *pl = &an->planes[pi];
+                double b, amax = 0;
+                /* a plane of c itself, or one seen from another neighbour
+                   already (it would give the same bound again) */
+                if (pmark[pi] == c + 1) continue;
+                pmark[pi] = c + 1;
+                b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
                 if (b < 0 || b >= skip) continue; /* not locally convex, or too far to matter */
-                if (pmark[an->c_planes[an->c_pfirst[cw] + g]] == c + 1) continue; /* a plane of c itself */
-                for (s = 0; s < an->c_ns[c]; s++) {
-                    double a = re__dot(pl->n, an->su + 3 * (size_t)(an->c_sfirst[c] + s)) + 1.0;
-                    if (a > 0 && b / a < rmax[p]) rmax[p] = b / a, lim0[p] = v, lim1[p] = -1;
-                }
+                /* b / a decreases with a (and so does its rounding), so the
+                   sphere that leans farthest into the plane bounds r */
+                for (s = 0; s < an->c_ns[c]; s++)
+                    amax = re__max(amax, re__dot(pl->n, an->su + 3 * (size_t)(an->c_sfirst[c] + s)) + 1.0);
+                if (amax > 0 && b / amax < rmax[p]) rmax[p] = b / amax, lim0[p] = v, lim1[p] = -1;
             }
         }
     }
@@ -1682,6 +1763,44 @@ leaf:
    rule), solved relative to org (the object's bounding-box centre) so it
    keeps its precision at coordinates near 1e6. The build (re__finish) and
    the query (re__centre) both call this, on the same stored planes. */
+/* The leaves' lists in 16-bit form (re__node_t), written to nodes16 and
+   out when they are not NULL; returns the number of 16-bit entries. A list
+   is cut, in its order, into runs whose ids span at most 65535 and that
+   hold at most 32767 ids: the first run's base is the node's data, each
+   further run starts with its base in two halves, low first. */
+static size_t re__kd_narrow(const re__kd_t *kd, re__node_t *nodes16, unsigned short *out)
+{
+    size_t at = 0;
+    unsigned id, i, j;
+    for (id = 0; id < kd->n_nodes; id++) {
+        const re__node_t *nd = &kd->nodes[id];
+        const unsigned *l = kd->leafrefs + (nd->info >> 2);
+        unsigned n = nd->data;
+        if ((nd->info & 3u) != 3u) continue;
+        if (nodes16) nodes16[id].info = 3u | (unsigned)(at << 2), nodes16[id].data = 0;
+        for (i = 0, j = 0; i == 0 || i < n; i = j) {
+            unsigned lo = n ? l[i] : 0, hi = lo;
+            for (j = i; j < n && j - i < 0x7FFFu; j++) {
+                unsigned nlo = l[j] < lo ? l[j] : lo, nhi = l[j] > hi ? l[j] : hi;
+                if (nhi - nlo > RE__LEAF_RUN_SPAN) break;
+                lo = nlo, hi = nhi;
+            }
+            if (i > 0) {
+                if (out) out[at] = (unsigned short)(lo & 0xFFFFu), out[at + 1] = (unsigned short)(lo >> 16);
+                at += 2;
+            } else if (nodes16) nodes16[id].data = lo;
+            if (out) {
+                unsigned q;
+                out[at] = (unsigned short)((j - i) | (j < n ? 0x8000u : 0u));
+                for (q = i; q < j; q++) out[at + 1 + q - i] = (unsigned short)(l[q] - lo);
+            }
+            at += 1 + (size_t)(j - i);
+            if (j == 0) break; /* an empty leaf: one empty run */
+        }
+    }
+    return at;
+}
+
 static void re__solve3(const re__plane_t *A, const re__plane_t *B, const re__plane_t *C, double r, const double org[3],
                        double x[3])
 {
@@ -1706,7 +1825,7 @@ static int re__pk_block(const unsigned *ids, unsigned n, unsigned b, unsigned *b
     for (i = b * RE__PK_BLOCK; i < n && i < (b + 1) * RE__PK_BLOCK; i++)
         if (ids[i] != RE__NONE) lo = ids[i] < lo ? ids[i] : lo, hi = ids[i] > hi ? ids[i] : hi;
     *base = lo == RE__NONE ? 0 : lo;
-    return lo == RE__NONE || (hi - lo < 255u && hi < RE__PK_FULL);
+    return lo == RE__NONE || (hi - lo <= RE__PK_SPAN && hi < RE__PK_FULL);
 }
 static unsigned re__pk_full_blocks(const unsigned *ids, unsigned n)
 {
@@ -1748,22 +1867,33 @@ static re__pk_t re__pk_put(unsigned char **at, const unsigned *ids, unsigned n, 
 
 /* ---- Step 7: final arrays, packed into one block ------------------------------ */
 
+/* The packed id arrays of an object (re__pk_t), in re__final_t.pk. */
+enum {
+    RE__PKA_TRI_PLANE, RE__PKA_CVERTEX, RE__PKA_K_FIRST, RE__PKA_K_SFIRST, RE__PKA_K_RID, RE__PKA_K_XFIRST,
+    RE__PKA_S_CORNER, RE__PKA_X_CORNER, RE__PKA_C_S0, RE__PKA_N
+};
+
 typedef struct re__final_t {
     unsigned n_corners, n_spheres, n_cyls, n_edge_cyls, n_planes, n_refs, n_radii;
-    unsigned *tri_plane, *cvertex, n_tp_full, n_cv_full;
+    unsigned *pk[RE__PKA_N], pk_n[RE__PKA_N], pk_full[RE__PKA_N]; /* ids, count, full blocks */
     unsigned char *bands;
     re__plane_t *planes;
     double *sph; /* 3 per sphere: the centres the query will compute */
-    re__sph_t *srec;
+    unsigned short *sinfo;
+    unsigned *xsid;
     double *xsph;
     unsigned n_xsph;
     re__cyl_t *cyls;
     re__xcyl_t *xcyls;
     unsigned short *det;
+    unsigned char *det8;
+    unsigned det_e0;
+    unsigned n_xs1; /* edge cylinders whose s[1] - s[0] does not fit 16 bits */
     re__corner_t *corners;
     double *radii;
     unsigned *refs;
     re__kd_t kd;
+    size_t n_leaf16; /* 16-bit entries of the leaf lists (re__kd_narrow) */
 } re__final_t;
 
 /* x rounded up to a float: the stored detection radii only ever err large */
@@ -1788,6 +1918,38 @@ static unsigned short re__det_up(double x)
 static double re__det(unsigned short h)
 {
     unsigned b = (unsigned)h << 16;
+    float f;
+    memcpy(&f, &b, sizeof f);
+    return (double)f;
+}
+/* The compact layout's detection radii: one byte, a 4-bit exponent above
+   the object's base e0 (a float's biased exponent) and a 4-bit mantissa,
+   rounded up (at most 6.25% too large; below 2^(e0 - 127) they become that
+   value). e0 is chosen so the largest radius of the object fits. */
+static unsigned re__det8_exp(double x)
+{
+    float f = re__float_up(x);
+    unsigned b, ex, m;
+    memcpy(&b, &f, sizeof b);
+    ex = b >> 23, m = (b >> 19) & 15u;
+    if (b & 0x7FFFFu) m++;
+    return m == 16u ? ex + 1u : ex;
+}
+static unsigned char re__det8_up(double x, unsigned e0)
+{
+    float f = re__float_up(x);
+    unsigned b, ex, m;
+    memcpy(&b, &f, sizeof b);
+    ex = b >> 23, m = (b >> 19) & 15u;
+    if (b & 0x7FFFFu) m++;
+    if (m == 16u) m = 0, ex++;
+    if (ex < e0) return 0;
+    RE_ASSERT(ex - e0 <= 15u);
+    return (unsigned char)((ex - e0) << 4 | m);
+}
+static double re__det8(unsigned char h, unsigned e0)
+{
+    unsigned b = (e0 + (unsigned)(h >> 4)) << 23 | (unsigned)(h & 15u) << 19;
     float f;
     memcpy(&f, &b, sizeof f);
     return (double)f;
@@ -2051,7 +2213,7 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
 static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
                               re__final_t *F)
 {
-    unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, ns = 0, ncyl = 0, nref = 0, nco = 0;
+    unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, *prid, ns = 0, ncyl = 0, nref = 0, nco = 0, npatch = 0;
     unsigned qslot[RE_MAX_CORNER_PLANES];
     size_t kd_mark;
     double *box, *reach, *dmax, lo[3], hi[3];
@@ -2059,6 +2221,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(sbase, unsigned, an->nc + 1);
     RE__TAKE(xbase, unsigned, an->nc + 1);
     RE__TAKE(rmap, unsigned, an->nc + 1);
+    RE__TAKE(prid, unsigned, an->nc + 1);
     RE__TAKE(ecyl, unsigned, an->E + 1);
     RE__TAKE(pmap, unsigned, an->n_planes + 1);
     for (i = 0; i < an->n_planes; i++) pmap[i] = RE__NONE;
@@ -2076,9 +2239,9 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         ns += an->c_ns[c];
         xbase[c] = ncyl;
         ncyl += an->c_nx[c];
-        nref += (unsigned)an->c_np[c] + (an->c_nx[c] ? 1u : 0u);
+        nref += (unsigned)an->c_np[c];
         p = re__uf_find(uf, c);
-        if (rmap[p] == RE__NONE) rmap[p] = F->n_radii++;
+        if (rmap[p] == RE__NONE) rmap[p] = npatch++;
         for (j = 0; j < an->c_np[c]; j++) {
             unsigned q = an->c_planes[an->c_pfirst[c] + j];
             pmap[q] = 0; /* used; numbered below, in triangle order (re__pk_t) */
@@ -2120,23 +2283,51 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     F->n_xsph = 0;
     F->n_cyls = ncyl;
     F->n_refs = nref;
-    RE__TAKE(F->tri_plane, unsigned, an->T);
-    RE__TAKE(F->cvertex, unsigned, nco);
+    /* radii are shared between patches of equal radius (one-radius objects
+       need no radius ids: re__k_radius); ascending, prid[patch] = its id */
+    {
+        double *pr;
+        RE__TAKE(pr, double, npatch + 1);
+        for (c = 0; c < an->nc; c++)
+            if (fc[c] != RE__NONE) pr[rmap[re__uf_find(uf, c)]] = patch_r[re__uf_find(uf, c)];
+        RE__TAKE(F->radii, double, npatch + 1);
+        memcpy(F->radii, pr, sizeof(double) * npatch);
+        qsort(F->radii, npatch, sizeof(double), re__cmp_double);
+        for (i = 0; i < npatch; i++)
+            if (F->n_radii == 0 || F->radii[F->n_radii - 1] != F->radii[i]) F->radii[F->n_radii++] = F->radii[i];
+        for (i = 0; i < npatch; i++) {
+            unsigned rl = 0, rh = F->n_radii;
+            while (rh - rl > 1) {
+                unsigned mid = rl + (rh - rl) / 2;
+                if (F->radii[mid] <= pr[i]) rl = mid; else rh = mid;
+            }
+            prid[i] = rl;
+        }
+    }
+    F->pk_n[RE__PKA_TRI_PLANE] = an->T;
+    F->pk_n[RE__PKA_CVERTEX] = F->pk_n[RE__PKA_K_FIRST] = F->pk_n[RE__PKA_K_SFIRST] = nco;
+    F->pk_n[RE__PKA_K_RID] = F->n_radii > 1 ? nco : 0u;
+    F->pk_n[RE__PKA_K_XFIRST] = ncyl > F->n_edge_cyls ? nco : 0u;
+    F->pk_n[RE__PKA_S_CORNER] = ns;
+    F->pk_n[RE__PKA_X_CORNER] = ncyl - F->n_edge_cyls;
+    F->pk_n[RE__PKA_C_S0] = F->n_edge_cyls;
+    for (i = 0; i < RE__PKA_N; i++) RE__TAKE(F->pk[i], unsigned, F->pk_n[i]);
     RE__TAKE(F->planes, re__plane_t, F->n_planes);
     RE__TAKE(F->sph, double, 3 * (size_t)ns);
-    RE__TAKE(F->srec, re__sph_t, ns);
-    RE__TAKE(F->xsph, double, 3 * (size_t)ns);
+    RE__TAKE(F->sinfo, unsigned short, ns);
+    RE__TAKE(F->xsid, unsigned, ns);
+    if (an->desc->layout == RE_LAYOUT_COMPACT) RE__TAKE(F->xsph, double, 3 * (size_t)ns);
+    else F->xsph = F->sph; /* every centre stored, in sphere order: the same array */
     RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
     RE__TAKE(F->xcyls, re__xcyl_t, ncyl - F->n_edge_cyls);
     RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
+    RE__TAKE(F->det8, unsigned char, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->corners, re__corner_t, nco);
-    RE__TAKE(F->radii, double, F->n_radii);
     RE__TAKE(F->refs, unsigned, nref);
     RE__TAKE(reach, double, nco + 1);
     RE__TAKE(dmax, double, nco + 1);
     for (i = 0; i < an->T; i++)
-        F->tri_plane[i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
-    F->n_tp_full = re__pk_full_blocks(F->tri_plane, an->T);
+        F->pk[RE__PKA_TRI_PLANE][i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
     for (i = 0; i < an->n_planes; i++)
         if (pmap[i] != RE__NONE) F->planes[pmap[i]] = an->planes[i];
     nref = 0;
@@ -2149,16 +2340,18 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         K = &F->corners[fc[c]];
         v = an->pos + 3 * (size_t)an->c_vertex[c];
         r = patch_r[re__uf_find(uf, c)];
-        K->rid = rmap[re__uf_find(uf, c)];
-        F->radii[K->rid] = r;
-        F->cvertex[fc[c]] = an->c_vertex[c];
-        K->first = nref;
-        K->sfirst = sbase[c];
+        if (F->pk_n[RE__PKA_K_RID]) F->pk[RE__PKA_K_RID][fc[c]] = prid[rmap[re__uf_find(uf, c)]];
+        F->pk[RE__PKA_CVERTEX][fc[c]] = an->c_vertex[c];
+        F->pk[RE__PKA_K_FIRST][fc[c]] = nref;
+        F->pk[RE__PKA_K_SFIRST][fc[c]] = sbase[c];
         K->np = an->c_np[c];
         K->ns = an->c_ns[c];
         K->nx = an->c_nx[c];
         K->pad_ = 0;
-        for (j = 0; j < K->np; j++) F->refs[nref++] = ecyl[an->c_edges[pf + j]];
+        for (j = 0; j < K->np; j++) {
+            const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
+            F->refs[nref++] = ecyl[an->c_edges[pf + j]] << 1 | (e->v[0] == an->c_vertex[c] ? 1u : 0u);
+        }
         /* the query numbers a corner's planes by its edges (re__corner_plane:
            plane j is the face whose half-edge of edge j leaves the corner);
            qslot maps the fan slots of c_planes to those */
@@ -2171,23 +2364,25 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         for (j = 0; j < K->ns; j++) {
             double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3], x[3];
             unsigned tri = an->s_tri[an->c_sfirst[c] + j];
-            re__sph_t *sr = &F->srec[sbase[c] + j];
+            unsigned short *sr = &F->sinfo[sbase[c] + j];
             re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
-            sr->corner = fc[c];
-            sr->info = RE__SPH_STORED;
-            if (tri != RE__NONE && an->desc->layout == RE_LAYOUT_COMPACT) {
+            F->pk[RE__PKA_S_CORNER][sbase[c] + j] = fc[c];
+            *sr = RE__SPH_STORED;
+            if (tri != RE__NONE && an->desc->layout == RE_LAYOUT_COMPACT && qslot[tri & 255u] < RE__SOLVED_SLOTS &&
+                qslot[tri >> 8 & 255u] < RE__SOLVED_SLOTS && qslot[tri >> 16] < RE__SOLVED_SLOTS) {
                 double tol = RE__SPHERE_SOLVE_REL * r + 64 * 2.220446049250313e-16 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
                 re__solve3(&an->planes[an->c_planes[pf + (tri & 255u)]], &an->planes[an->c_planes[pf + (tri >> 8 & 255u)]],
                            &an->planes[an->c_planes[pf + (tri >> 16)]], r, an->origin, x);
                 re__sub(x, sp, dd);
                 if (fabs(dd[0]) <= tol && fabs(dd[1]) <= tol && fabs(dd[2]) <= tol) {
                     sp[0] = x[0], sp[1] = x[1], sp[2] = x[2];
-                    sr->info = qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 8 | qslot[tri >> 16] << 16;
+                    *sr = (unsigned short)(qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 5 | qslot[tri >> 16] << 10);
                 }
             }
-            if (sr->info == RE__SPH_STORED) {
-                sr->info |= F->n_xsph;
-                memcpy(F->xsph + 3 * (size_t)F->n_xsph++, sp, 3 * sizeof(double));
+            if (*sr == RE__SPH_STORED) {
+                F->xsid[F->n_xsph] = sbase[c] + j;
+                if (F->xsph != F->sph) memcpy(F->xsph + 3 * (size_t)F->n_xsph, sp, 3 * sizeof(double));
+                F->n_xsph++;
             }
             re__sub(sp, v, dd);
             dm = re__max(dm, re__len(dd));
@@ -2219,11 +2414,11 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         dmax[fc[c]] = dm;
         /* the walk measures from the first sphere, not from v: widen by |s - v| */
         K->walk = re__float_up((reach[fc[c]] + r + dm) * (1 + 1e-6));
-        if (K->nx) F->refs[nref++] = xbase[c];
+        if (F->pk_n[RE__PKA_K_XFIRST]) F->pk[RE__PKA_K_XFIRST][fc[c]] = xbase[c];
         for (j = 0; j < K->nx; j++) {
             const unsigned *x = an->c_x + 4 * (size_t)(an->c_xfirst[c] + j);
             re__xcyl_t *xc = &F->xcyls[xbase[c] + j - F->n_edge_cyls];
-            xc->corner = fc[c];
+            F->pk[RE__PKA_X_CORNER][xbase[c] + j - F->n_edge_cyls] = fc[c];
             xc->p[0] = (unsigned char)qslot[x[0]];
             xc->p[1] = (unsigned char)qslot[x[1]];
             xc->s[0] = (unsigned char)x[2];
@@ -2231,7 +2426,6 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
     }
     RE_ASSERT(an->desc->layout == RE_LAYOUT_COMPACT || F->n_xsph == ns); /* re__cptr reads xsph by sphere id */
-    F->n_cv_full = re__pk_full_blocks(F->cvertex, nco);
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
         re__cyl_t *cy;
@@ -2252,7 +2446,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             cy->p[0] = pmap[an->tplane[h0 / 3]];
             cy->p[1] = pmap[an->tplane[h1 / 3]];
         }
+        F->pk[RE__PKA_C_S0][ecyl[i]] = cy->s[0];
     }
+    F->n_xs1 = 0;
+    for (i = 0; i < F->n_edge_cyls; i++)
+        F->n_xs1 += F->cyls[i].s[1] > F->cyls[i].s[0] && F->cyls[i].s[1] - F->cyls[i].s[0] <= RE__DS1_SPAN ? 0u : 1u;
+    for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
     /* Detection (§3.1): the removed zone on a face lies within g, the larger
        face reach of the edge's two corners, of the mesh edge. The query
        tests the distance to the edge's line (from the two face planes, so
@@ -2270,13 +2469,21 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     kd_mark = ar->used; /* the boxes and the partition lists are scratch of the tree build only */
     RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls + 1);
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
+    F->det_e0 = 1;
+    for (i = 0; i < F->n_edge_cyls; i++) { /* the largest m fits re__det8 */
+        unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
+        unsigned ex = re__det8_exp((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
+        F->det_e0 = ex > 16u && ex - 15u > F->det_e0 ? ex - 15u : F->det_e0;
+    }
     for (i = 0; i < F->n_edge_cyls; i++) {
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
-        unsigned ka = F->srec[F->cyls[i].s[0]].corner, kb = F->srec[F->cyls[i].s[1]].corner, a;
+        unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]], a;
         double g, m, u[3], L, e0[3], e1[3];
         F->det[2 * i] = re__det_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6));
         F->det[2 * i + 1] = re__det_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
-        g = re__det(F->det[2 * i + 1]);
+        F->det8[2 * i] = re__det8_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6), F->det_e0);
+        F->det8[2 * i + 1] = re__det8_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6), F->det_e0);
+        g = an->desc->layout == RE_LAYOUT_COMPACT ? re__det8(F->det8[2 * i + 1], F->det_e0) : re__det(F->det[2 * i + 1]);
         m = g;
         re__sub(s1, s0, u);
         L = re__len(u);
@@ -2301,6 +2508,8 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     F->kd.box = NULL;
     F->kd.tmp = NULL;
     ar->used = kd_mark;
+    F->n_leaf16 = re__kd_narrow(&F->kd, NULL, NULL);
+    if (F->n_leaf16 >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
     {
         re_result_t rc = re__bands(an, ar, fc, patch_r, uf, reach, F);
         if (rc != RE_OK) return rc;
@@ -2317,13 +2526,21 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
 
 static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
 {
-    return re__pk_bytes(an->T, F->n_tp_full) + re__pk_bytes(F->n_corners, F->n_cv_full) + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
-           RE__ALIGN(sizeof(re__sph_t) * F->n_spheres) + RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
-           RE__ALIGN(sizeof(re__cyl_t) * F->n_edge_cyls) + RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
-           RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls) +
+    size_t b = 0;
+    unsigned i;
+    for (i = 0; i < RE__PKA_N; i++) b += re__pk_bytes(F->pk_n[i], F->pk_full[i]);
+    return b + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
+           (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(sizeof(unsigned short) * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_xsph) : 0) +
+           RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
+           RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls) +
+           (an->desc->layout == RE_LAYOUT_COMPACT
+                ? RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned) * 2 * (size_t)F->n_xs1)
+                : RE__ALIGN(sizeof(unsigned) * F->n_edge_cyls)) +
+           RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
+           (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(2 * (size_t)F->n_edge_cyls) : RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls)) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
            RE__ALIGN(sizeof(unsigned) * F->n_refs) + RE__ALIGN(sizeof(re__node_t) * F->kd.n_nodes) +
-           RE__ALIGN(sizeof(unsigned) * F->kd.n_leafrefs);
+           RE__ALIGN(sizeof(unsigned short) * F->n_leaf16);
 }
 
 static void *re__put(unsigned char **at, const void *src, size_t bytes)
@@ -2348,24 +2565,69 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->n_corners = F->n_corners;
     o->n_refs = F->n_refs;
     o->n_nodes = F->kd.n_nodes;
-    o->n_leafrefs = F->kd.n_leafrefs;
+    o->n_leaf16 = (unsigned)F->n_leaf16;
     o->n_radii = F->n_radii;
     o->size = an->size;
     for (c = 0; c < 3; c++) o->origin[c] = an->origin[c];
-    o->tri_plane = re__pk_put(&at, F->tri_plane, an->T, F->n_tp_full);
-    o->cvertex = re__pk_put(&at, F->cvertex, F->n_corners, F->n_cv_full);
+#define RE__PUT_PK(field, a) o->field = re__pk_put(&at, F->pk[a], F->pk_n[a], F->pk_full[a])
+    RE__PUT_PK(tri_plane, RE__PKA_TRI_PLANE);
+    RE__PUT_PK(cvertex, RE__PKA_CVERTEX);
+    RE__PUT_PK(k_first, RE__PKA_K_FIRST);
+    RE__PUT_PK(k_sfirst, RE__PKA_K_SFIRST);
+    RE__PUT_PK(k_rid, RE__PKA_K_RID);
+    RE__PUT_PK(k_xfirst, RE__PKA_K_XFIRST);
+    RE__PUT_PK(c_s0, RE__PKA_C_S0);
+    RE__PUT_PK(s_corner, RE__PKA_S_CORNER);
+    RE__PUT_PK(x_corner, RE__PKA_X_CORNER);
+#undef RE__PUT_PK
     o->bands = (const unsigned char *)re__put(&at, F->bands, 4 * (size_t)an->T);
     o->planes = (const re__plane_t *)re__put(&at, F->planes, sizeof(re__plane_t) * F->n_planes);
-    o->sph = (const re__sph_t *)re__put(&at, F->srec, sizeof(re__sph_t) * F->n_spheres);
+    o->sinfo = NULL, o->xsid = NULL;
+    if (o->compact) {
+        o->sinfo = (const unsigned short *)re__put(&at, F->sinfo, sizeof(unsigned short) * F->n_spheres);
+        o->xsid = (const unsigned *)re__put(&at, F->xsid, sizeof(unsigned) * F->n_xsph);
+    }
     o->xsph = (const double *)re__put(&at, F->xsph, sizeof(double) * 3 * F->n_xsph);
-    o->cyls = (const re__cyl_t *)re__put(&at, F->cyls, sizeof(re__cyl_t) * F->n_edge_cyls);
+    {
+        re__ecyl_t *ec = (re__ecyl_t *)at;
+        unsigned short *ds;
+        unsigned *xs, nx = 0;
+        for (c = 0; c < F->n_edge_cyls; c++) ec[c].p[0] = F->cyls[c].p[0], ec[c].p[1] = F->cyls[c].p[1];
+        o->cyls = ec;
+        at += RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls);
+        o->s1w = NULL, o->ds1 = NULL, o->xs1 = NULL, o->n_xs1 = 0;
+        if (!o->compact) {
+            unsigned *w = (unsigned *)at;
+            for (c = 0; c < F->n_edge_cyls; c++) w[c] = F->cyls[c].s[1];
+            o->s1w = w;
+            at += RE__ALIGN(sizeof(unsigned) * F->n_edge_cyls);
+        }
+        ds = (unsigned short *)at;
+        xs = (unsigned *)(at + RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls));
+        for (c = 0; o->compact && c < F->n_edge_cyls; c++) {
+            unsigned d = F->cyls[c].s[1] - F->cyls[c].s[0];
+            ds[c] = (unsigned short)(F->cyls[c].s[1] > F->cyls[c].s[0] && d <= RE__DS1_SPAN ? d : RE__DS1_FAR);
+            if (ds[c] == RE__DS1_FAR) xs[2 * nx] = c, xs[2 * nx + 1] = F->cyls[c].s[1], nx++;
+        }
+        if (o->compact) {
+            RE_ASSERT(nx == F->n_xs1);
+            at += RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned) * 2 * (size_t)nx);
+            o->ds1 = ds, o->xs1 = xs, o->n_xs1 = nx;
+        }
+    }
     o->xcyls = (const re__xcyl_t *)re__put(&at, F->xcyls, sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls));
-    o->det = (const unsigned short *)re__put(&at, F->det, sizeof(unsigned short) * 2 * F->n_edge_cyls);
+    o->det = NULL, o->det8 = NULL, o->det_e0 = F->det_e0;
+    if (o->compact)
+        o->det8 = (const unsigned char *)re__put(&at, F->det8, 2 * (size_t)F->n_edge_cyls);
+    else
+        o->det = (const unsigned short *)re__put(&at, F->det, sizeof(unsigned short) * 2 * F->n_edge_cyls);
     o->corners = (const re__corner_t *)re__put(&at, F->corners, sizeof(re__corner_t) * F->n_corners);
     o->radii = (const double *)re__put(&at, F->radii, sizeof(double) * F->n_radii);
     o->refs = (const unsigned *)re__put(&at, F->refs, sizeof(unsigned) * F->n_refs);
     o->nodes = (const re__node_t *)re__put(&at, F->kd.nodes, sizeof(re__node_t) * F->kd.n_nodes);
-    o->leafrefs = (const unsigned *)re__put(&at, F->kd.leafrefs, sizeof(unsigned) * F->kd.n_leafrefs);
+    o->leaf16 = (const unsigned short *)at;
+    re__kd_narrow(&F->kd, (re__node_t *)o->nodes, (unsigned short *)at);
+    at += RE__ALIGN(sizeof(unsigned short) * F->n_leaf16);
     o->rmax = 0;
     for (c = 0; c < F->n_radii; c++) o->rmax = re__max(o->rmax, F->radii[c]);
 }
@@ -2706,27 +2968,85 @@ static double re__dist2_halfline(const double p[3], const double a[3], const dou
     return re__dot(q, q);
 }
 
+/* A corner with the packed ids most uses need (re__corner_t); its radius
+   and first extra cylinder are read where they are used
+   (re__k_radius, re__k_xfirst). */
+typedef struct re__kv_t {
+    unsigned k, first, sfirst, np, ns, nx;
+} re__kv_t;
+
+static re__kv_t re__kview(const re__object_t *o, unsigned k)
+{
+    re__kv_t v;
+    const re__corner_t *K = &o->corners[k];
+    v.k = k;
+    v.first = re__pk_id(&o->k_first, k);
+    v.sfirst = re__pk_id(&o->k_sfirst, k);
+    v.np = K->np, v.ns = K->ns, v.nx = K->nx;
+    return v;
+}
+static unsigned re__s_corner(const re__object_t *o, unsigned s) { return re__pk_id(&o->s_corner, s); }
+/* s[1] of edge cylinder c, whose s[0] is s0 (re__ecyl_t). */
+static unsigned re__cyl_s1(const re__object_t *o, unsigned c, unsigned s0)
+{
+    unsigned d, lo = 0, hi = o->n_xs1;
+    if (!o->compact) return o->s1w[c];
+    d = o->ds1[c];
+    if (d != RE__DS1_FAR) return s0 + d;
+    while (hi - lo > 1) {
+        unsigned mid = lo + (hi - lo) / 2;
+        if (o->xs1[2 * mid] <= c) lo = mid; else hi = mid;
+    }
+    return o->xs1[2 * lo + 1];
+}
+/* The end sphere of a corner's reference (re__corner_t.refs) that is not
+   the corner's own. */
+static unsigned re__far_sphere(const re__object_t *o, unsigned ref)
+{
+    unsigned c = ref >> 1;
+    if (!o->compact && (ref & 1u)) return o->s1w[c];
+    return ref & 1u ? re__cyl_s1(o, c, re__pk_id(&o->c_s0, c)) : re__pk_id(&o->c_s0, c);
+}
+static double re__k_radius(const re__object_t *o, unsigned k)
+{
+    return o->radii[o->n_radii == 1 ? 0u : re__pk_id(&o->k_rid, k)];
+}
+static unsigned re__k_xfirst(const re__object_t *o, unsigned k) { return re__pk_id(&o->k_xfirst, k); }
+
+
 /* Face plane j < np of a corner: the one on the left of its edge cylinder j
    leaving the corner (re__finish orders each cylinder's planes so), which
    lists every plane of the corner once. */
-static unsigned re__corner_plane(const re__object_t *o, const re__corner_t *K, unsigned j)
+static unsigned re__corner_plane(const re__object_t *o, const re__kv_t *K, unsigned j)
 {
-    const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
-    return cy->p[cy->s[0] - K->sfirst < K->ns ? 0 : 1];
+    unsigned ref = o->refs[K->first + j];
+    return o->cyls[ref >> 1].p[ref & 1u ? 0 : 1];
+}
+
+/* Index in xsph of a stored centre (compact layout): its rank in xsid. */
+static unsigned re__xsph_rank(const re__object_t *o, unsigned s)
+{
+    unsigned lo = 0, hi = o->n_xsph;
+    while (hi - lo > 1) {
+        unsigned mid = lo + (hi - lo) / 2;
+        if (o->xsid[mid] <= s) lo = mid; else hi = mid;
+    }
+    return lo;
 }
 
 /* Centre of sphere s: stored, or solved from its three plane slots. */
 static void re__centre(const re__object_t *o, unsigned s, double x[3])
 {
-    const re__sph_t *sp = &o->sph[s];
-    const re__corner_t *K;
-    if (sp->info & RE__SPH_STORED) {
-        memcpy(x, o->xsph + 3 * (size_t)(sp->info & ~RE__SPH_STORED), 3 * sizeof(double));
+    unsigned info;
+    re__kv_t K;
+    if (!o->compact || (o->sinfo[s] & RE__SPH_STORED)) {
+        memcpy(x, o->xsph + 3 * (size_t)(o->compact ? re__xsph_rank(o, s) : s), 3 * sizeof(double));
         return;
     }
-    K = &o->corners[sp->corner];
-    re__solve3(&o->planes[re__corner_plane(o, K, sp->info & 255u)], &o->planes[re__corner_plane(o, K, sp->info >> 8 & 255u)],
-               &o->planes[re__corner_plane(o, K, sp->info >> 16 & 255u)], o->radii[K->rid], o->origin, x);
+    info = o->sinfo[s];
+    K = re__kview(o, re__s_corner(o, s));
+    re__solve3(&o->planes[re__corner_plane(o, &K, info & 31u)], &o->planes[re__corner_plane(o, &K, info >> 5 & 31u)],
+               &o->planes[re__corner_plane(o, &K, info >> 10 & 31u)], re__k_radius(o, K.k), o->origin, x);
 }
 
 /* Global sphere ids of cylinder c's axis ends (edge or extra). */
@@ -2734,9 +3054,9 @@ static void re__cyl_spheres(const re__object_t *o, unsigned c, unsigned s[2])
 {
     const re__xcyl_t *x;
     unsigned sf;
-    if (c < o->n_edge_cyls) { s[0] = o->cyls[c].s[0], s[1] = o->cyls[c].s[1]; return; }
+    if (c < o->n_edge_cyls) { s[0] = re__pk_id(&o->c_s0, c), s[1] = re__cyl_s1(o, c, s[0]); return; }
     x = &o->xcyls[c - o->n_edge_cyls];
-    sf = o->corners[x->corner].sfirst;
+    sf = re__pk_id(&o->k_sfirst, re__pk_id(&o->x_corner, c - o->n_edge_cyls));
     s[0] = sf + x->s[0], s[1] = sf + x->s[1];
 }
 
@@ -2745,16 +3065,19 @@ static re__cyl_t re__cyl(const re__object_t *o, unsigned c)
 {
     re__cyl_t cy;
     const re__xcyl_t *x;
-    const re__corner_t *K;
+    re__kv_t K;
     unsigned i;
-    if (c < o->n_edge_cyls) return o->cyls[c];
+    if (c < o->n_edge_cyls) {
+        cy.s[0] = re__pk_id(&o->c_s0, c), cy.s[1] = re__cyl_s1(o, c, cy.s[0]), cy.p[0] = o->cyls[c].p[0], cy.p[1] = o->cyls[c].p[1];
+        return cy;
+    }
     x = &o->xcyls[c - o->n_edge_cyls];
-    K = &o->corners[x->corner];
-    for (i = 0; i < 2; i++) cy.s[i] = K->sfirst + x->s[i], cy.p[i] = re__corner_plane(o, K, x->p[i]);
+    K = re__kview(o, re__pk_id(&o->x_corner, c - o->n_edge_cyls));
+    for (i = 0; i < 2; i++) cy.s[i] = K.sfirst + x->s[i], cy.p[i] = re__corner_plane(o, &K, x->p[i]);
     return cy;
 }
 
-static int re__corner_has_plane(const re__object_t *o, const re__corner_t *K, unsigned f)
+static int re__corner_has_plane(const re__object_t *o, const re__kv_t *K, unsigned f)
 {
     unsigned j;
     for (j = 0; j < K->np; j++)
@@ -2796,12 +3119,12 @@ static int re__on_flat_part(const re__object_t *o, const re__set_t *S, unsigned 
     const re__plane_t *pf = &o->planes[f];
     unsigned i, j;
     for (i = 0; i < S->n; i++) {
-        const re__corner_t *K = &o->corners[S->c[i]];
-        double q[3], mag, r = o->radii[K->rid];
+        re__kv_t K = re__kview(o, S->c[i]);
+        double q[3], mag, r = re__k_radius(o, K.k);
         re__madd(I, -r, pf->n, q);
         mag = fabs(q[0]) + fabs(q[1]) + fabs(q[2]);
-        for (j = 0; j < K->np; j++) {
-            unsigned gi = re__corner_plane(o, K, j);
+        for (j = 0; j < K.np; j++) {
+            unsigned gi = re__corner_plane(o, &K, j);
             const re__plane_t *g = &o->planes[gi];
             if (gi == f) continue;
             if (re__dot(g->n, q) - (g->c - r) > RE__SIDE_ULPS * (fabs(g->c) + mag + r)) return 0;
@@ -2834,7 +3157,7 @@ static inline const double *re__cptr(const re__object_t *o, re__best_t *b, unsig
 {
     unsigned k;
     if (!o->compact) return o->xsph + 3 * (size_t)s;
-    if (o->sph[s].info & RE__SPH_STORED) return o->xsph + 3 * (size_t)(o->sph[s].info & ~RE__SPH_STORED);
+    if (o->sinfo[s] & RE__SPH_STORED) return o->xsph + 3 * (size_t)re__xsph_rank(o, s);
     k = s & (RE__CC - 1u);
     if (!(b->cvalid >> k & 1u) || b->cid[k] != s) b->cvalid |= 1u << k, b->cid[k] = s, re__centre(o, s, b->cx[k]);
     return b->cx[k];
@@ -2843,7 +3166,7 @@ static inline void re__cpair(const re__object_t *o, re__best_t *b, unsigned s0, 
                              double keep[3])
 {
     *p0 = re__cptr(o, b, s0);
-    if (o->compact && !((s0 ^ s1) & (RE__CC - 1u)) && !(o->sph[s0].info & RE__SPH_STORED))
+    if (o->compact && !((s0 ^ s1) & (RE__CC - 1u)) && !(o->sinfo[s0] & RE__SPH_STORED))
         keep[0] = (*p0)[0], keep[1] = (*p0)[1], keep[2] = (*p0)[2], *p0 = keep;
     *p1 = re__cptr(o, b, s1);
 }
@@ -2878,13 +3201,13 @@ static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const
     b->index = 0;
     b->h = 0;
     for (i = 0; i < S->n; i++) {
-        const re__corner_t *K = &o->corners[S->c[i]];
-        const unsigned *ref = o->refs + K->first;
-        double r = o->radii[K->rid];
-        for (j = 0; j < K->ns; j++) re__try_sphere(o, K->sfirst + j, r, I, d, b);
-        for (j = 0; j < K->np; j++) {
-            unsigned c = ref[j], far = o->cyls[c].s[o->sph[o->cyls[c].s[0]].corner == S->c[i] ? 1 : 0];
-            unsigned q = re__set_find(S, o->sph[far].corner);
+        re__kv_t K = re__kview(o, S->c[i]);
+        const unsigned *ref = o->refs + K.first;
+        double r = re__k_radius(o, K.k);
+        for (j = 0; j < K.ns; j++) re__try_sphere(o, K.sfirst + j, r, I, d, b);
+        for (j = 0; j < K.np; j++) {
+            unsigned c = ref[j] >> 1, far = re__far_sphere(o, ref[j]);
+            unsigned q = re__set_find(S, re__s_corner(o, far));
             /* each feature once: an edge between two corners of the set is
                tried from the first of them, and the far end sphere only when
                its corner is not in the set (else it is one of that
@@ -2893,7 +3216,7 @@ static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const
             re__try_cyl(o, c, r, I, d, b);
             if (q == S->n) re__try_sphere(o, far, r, I, d, b);
         }
-        for (j = 0; j < K->nx; j++) re__try_cyl(o, ref[K->np] + j, r, I, d, b);
+        for (j = 0; j < K.nx; j++) re__try_cyl(o, re__k_xfirst(o, K.k) + j, r, I, d, b);
     }
 }
 
@@ -2906,9 +3229,9 @@ static double re__exit(const re__object_t *o, const re__set_t *S, const double I
     unsigned i, j;
     *plane = RE__NONE;
     for (i = 0; i < S->n; i++) {
-        const re__corner_t *K = &o->corners[S->c[i]];
-        for (j = 0; j < K->np; j++) {
-            unsigned gi = re__corner_plane(o, K, j);
+        re__kv_t K = re__kview(o, S->c[i]);
+        for (j = 0; j < K.np; j++) {
+            unsigned gi = re__corner_plane(o, &K, j);
             const re__plane_t *g = &o->planes[gi];
             double nd = re__dot(g->n, d), num;
             if (!(nd > 0)) continue;
@@ -2959,6 +3282,50 @@ static int re__band_flat(const re__object_t *o, unsigned triangle, double u, dou
     return l0 > (double)b[0] && l1 > (double)b[1] && l2 > (double)b[2] && l0 < cap && l1 < cap && l2 < cap;
 }
 
+/* Query step 1 for edge cylinder c of I's kd leaf: is I within its
+   detection cylinder? Adds the corners that have plane f to S, and sets
+   *c0 when f is one of the edge's own faces; returns 1 if detected. */
+static inline unsigned re__detect(const re__object_t *o, unsigned c, const double I[3], unsigned f, re__set_t *S,
+                                  re__best_t *best, unsigned *c0)
+{
+    const re__ecyl_t *cy = &o->cyls[c];
+    const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
+    double g = o->compact ? re__det8(o->det8[2 * c], o->det_e0) : re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
+    const double *s0, *s1;
+    unsigned ka, kb, si0, si1;
+    re__kv_t Ka, Kb;
+    /* across first: distance to the mesh edge's line, from the two face
+       planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1 cos) / sin^2.
+       It rejects most of a leaf's edges, and the face planes are shared by
+       many edges (warm in cache) where the end spheres are not: the render
+       profile showed the loop waiting on the sphere loads. */
+    a0 = re__dot(P0->n, I) - P0->c;
+    a1 = re__dot(P1->n, I) - P1->c;
+    cs = re__dot(P0->n, P1->n);
+    if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) return 0;
+    /* along the axis: within m of the end spheres */
+    m = o->compact ? re__det8(o->det8[2 * c + 1], o->det_e0) : re__det(o->det[2 * c + 1]);
+    si0 = re__pk_id(&o->c_s0, c);
+    si1 = re__cyl_s1(o, c, si0);
+    re__cpair(o, best, si0, si1, &s0, &s1, keep);
+    re__sub(s1, s0, u);
+    re__sub(I, s0, w);
+    L2 = re__dot(u, u);
+    t = re__dot(w, u);
+    if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) return 0;
+    ka = re__s_corner(o, si0), kb = re__s_corner(o, si1);
+    if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
+        re__set_add(S, ka);
+        re__set_add(S, kb);
+        *c0 = c;
+        return 1;
+    }
+    Ka = re__kview(o, ka), Kb = re__kview(o, kb);
+    if (re__corner_has_plane(o, &Ka, f)) re__set_add(S, ka);
+    if (re__corner_has_plane(o, &Kb, f)) re__set_add(S, kb);
+    return 1;
+}
+
 static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
                                unsigned triangle, double t_host, const double *uv, re_hit_t *out)
 {
@@ -2986,8 +3353,8 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
        exact corners) */
     best.cvalid = 0;
     {
-        const unsigned *leaf;
-        unsigned cnt;
+        const unsigned short *leaf;
+        unsigned base;
         double Ir[3];
         re__sub(I, o->origin, Ir); /* the splits' frame (see re__kd_build) */
         for (node = 0; (o->nodes[node].info & 3u) != 3u;) {
@@ -2996,43 +3363,15 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
             memcpy(&sp, &nd->data, sizeof sp);
             node = Ir[nd->info & 3u] <= (double)sp ? node + 1 : nd->info >> 2;
         }
-        leaf = o->leafrefs + (o->nodes[node].info >> 2);
-        cnt = o->nodes[node].data;
-        for (i = 0; i < cnt; i++) {
-            unsigned c = leaf[i];
-            const re__cyl_t *cy = &o->cyls[c];
-            const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
-            double g = re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
-            const double *s0, *s1;
-            unsigned ka, kb;
-            /* across first: distance to the mesh edge's line, from the two
-               face planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1
-               cos) / sin^2. It rejects most of a leaf's edges, and the face
-               planes are shared by many edges (warm in cache) where the end
-               spheres are not: the render profile showed the loop waiting
-               on the sphere loads. */
-            a0 = re__dot(P0->n, I) - P0->c;
-            a1 = re__dot(P1->n, I) - P1->c;
-            cs = re__dot(P0->n, P1->n);
-            if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) continue;
-            /* along the axis: within m of the end spheres */
-            m = re__det(o->det[2 * c + 1]);
-            re__cpair(o, &best, cy->s[0], cy->s[1], &s0, &s1, keep);
-            re__sub(s1, s0, u);
-            re__sub(I, s0, w);
-            L2 = re__dot(u, u);
-            t = re__dot(w, u);
-            if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) continue;
-            ka = o->sph[cy->s[0]].corner, kb = o->sph[cy->s[1]].corner;
-            ndet++;
-            if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
-                re__set_add(&S, ka);
-                re__set_add(&S, kb);
-                c0 = c;
-                continue;
-            }
-            if (re__corner_has_plane(o, &o->corners[ka], f)) re__set_add(&S, ka);
-            if (re__corner_has_plane(o, &o->corners[kb], f)) re__set_add(&S, kb);
+        leaf = o->leaf16 + (o->nodes[node].info >> 2);
+        base = o->nodes[node].data;
+        for (;;) {
+            unsigned cnt = leaf[0] & 0x7FFFu, more = leaf[0] >> 15;
+            for (i = 0; i < cnt; i++) ndet += re__detect(o, base + leaf[1 + i], I, f, &S, &best, &c0);
+            leaf += 1 + cnt;
+            if (!more) break;
+            base = leaf[0] | (unsigned)leaf[1] << 16;
+            leaf += 2;
         }
     }
     if (!S.n || re__on_flat_part(o, &S, f, I)) return RE_UNCHANGED;
@@ -3043,14 +3382,14 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
        before coming within walk reach of either corner, that is the answer;
        else the general search below decides. */
     if (ndet == 1 && c0 != RE__NONE && S.n == 2) {
-        const re__cyl_t *cy = &o->cyls[c0];
+        const re__ecyl_t *cy = &o->cyls[c0];
         double P[3], IP[3], inv_l2, nd0, nd1, e0 = HUGE_VAL, e1 = HUGE_VAL, sc;
         const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
         best.s = HUGE_VAL;
         best.kind = RE_FEATURE_FACE;
         best.index = 0;
         best.h = 0;
-        re__try_cyl(o, c0, o->radii[o->corners[S.c[0]].rid], I, dir, &best);
+        re__try_cyl(o, c0, re__k_radius(o, S.c[0]), I, dir, &best);
         nd0 = re__dot(P0->n, dir), nd1 = re__dot(P1->n, dir);
         if (nd0 > 0) e0 = re__max(0.0, P0->c - re__dot(P0->n, I)) / nd0;
         if (nd1 > 0) e1 = re__max(0.0, P1->c - re__dot(P1->n, I)) / nd1;
@@ -3062,9 +3401,8 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
             re__sub(P, I, IP);
             inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
             for (i = 0; i < 2; i++) {
-                const re__corner_t *K = &o->corners[S.c[i]];
-                double wk = (double)K->walk;
-                if (re__dist2_segment(re__cptr(o, &best, K->sfirst), I, IP, inv_l2) <= wk * wk) break;
+                double wk = (double)o->corners[S.c[i]].walk;
+                if (re__dist2_segment(re__cptr(o, &best, re__pk_id(&o->k_sfirst, S.c[i])), I, IP, inv_l2) <= wk * wk) break;
             }
             if (i == 2) goto answer;
         }
@@ -3085,11 +3423,9 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
         re__sub(P, I, IP);
         inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
         for (i = 0; i < S.n && S.n < RE__MAX_WALK; i++) {
-            const re__corner_t *K = &o->corners[S.c[i]];
-            for (j = 0; j < K->np; j++) {
-                const re__cyl_t *cy = &o->cyls[o->refs[K->first + j]];
-                unsigned ka = o->sph[cy->s[0]].corner, kb = o->sph[cy->s[1]].corner;
-                unsigned w = ka == S.c[i] ? kb : ka;
+            re__kv_t K = re__kview(o, S.c[i]);
+            for (j = 0; j < K.np; j++) {
+                unsigned w = re__s_corner(o, re__far_sphere(o, o->refs[K.first + j]));
                 double g, d2;
                 const double *wc;
                 /* a corner already in the set is skipped before its record and
@@ -3100,7 +3436,7 @@ static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], cons
                    (below a flat point the ball of radius r is solid), and that
                    zone lies within the face reach of its corner: `walk` bounds both, from
                    the corner's first sphere */
-                wc = re__cptr(o, &best, o->corners[w].sfirst);
+                wc = re__cptr(o, &best, re__pk_id(&o->k_sfirst, w));
                 g = (double)o->corners[w].walk;
                 d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
                 if (d2 <= g * g && re__set_add(&S, w)) grown = 1;
@@ -3158,12 +3494,12 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
         S.n = 0;
         S.bloom = 0;
         if (hit->feature == RE_FEATURE_SPHERE && hit->feature_index < o->n_spheres) {
-            re__set_add(&S, o->sph[hit->feature_index].corner);
+            re__set_add(&S, re__s_corner(o, hit->feature_index));
         } else if (hit->feature == RE_FEATURE_CYLINDER && hit->feature_index < o->n_cyls) {
             unsigned sp[2];
             re__cyl_spheres(o, hit->feature_index, sp);
-            re__set_add(&S, o->sph[sp[0]].corner);
-            re__set_add(&S, o->sph[sp[1]].corner);
+            re__set_add(&S, re__s_corner(o, sp[0]));
+            re__set_add(&S, re__s_corner(o, sp[1]));
         }
         s = re__exit(o, &S, hit->point, dir, &plane);
         if (s < HUGE_VAL) {
@@ -3186,13 +3522,11 @@ RE_DEF unsigned re_cylinder_count(const re_scene_t *scene, unsigned object)
 RE_DEF int re_get_sphere(const re_scene_t *scene, unsigned object, unsigned i, re_sphere_t *out)
 {
     const re__object_t *o;
-    const re__corner_t *K;
     if (!scene || !out || object >= scene->n_objects || i >= scene->objects[object].n_spheres) return 0;
     o = &scene->objects[object];
-    K = &o->corners[o->sph[i].corner];
     re__centre(o, i, out->center);
-    out->radius = o->radii[K->rid];
-    out->vertex = re__pk_get(&o->cvertex, o->sph[i].corner);
+    out->radius = re__k_radius(o, re__s_corner(o, i));
+    out->vertex = re__pk_get(&o->cvertex, re__s_corner(o, i));
     return 1;
 }
 RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i, re_cylinder_t *out)
@@ -3210,11 +3544,11 @@ RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i,
         out->n0[a] = o->planes[cy->p[0]].n[a];
         out->n1[a] = o->planes[cy->p[1]].n[a];
     }
-    out->radius = o->radii[o->corners[o->sph[cy->s[0]].corner].rid];
+    out->radius = re__k_radius(o, re__s_corner(o, cy->s[0]));
     out->sa = cy->s[0];
     out->sb = cy->s[1];
-    out->edge_v0 = i >= o->n_edge_cyls ? -1 : (long long)re__pk_get(&o->cvertex, o->sph[cy->s[0]].corner);
-    out->edge_v1 = i >= o->n_edge_cyls ? -1 : (long long)re__pk_get(&o->cvertex, o->sph[cy->s[1]].corner);
+    out->edge_v0 = i >= o->n_edge_cyls ? -1 : (long long)re__pk_get(&o->cvertex, re__s_corner(o, cy->s[0]));
+    out->edge_v1 = i >= o->n_edge_cyls ? -1 : (long long)re__pk_get(&o->cvertex, re__s_corner(o, cy->s[1]));
     return 1;
 }
 
@@ -3267,9 +3601,16 @@ static double re__bv_seed_unit(unsigned seed, unsigned long long stream)
 /* Van der Corput radical inverse in base 2 (the Hammersley second coordinate). */
 static double re__bv_radical_inverse(unsigned i)
 {
-    unsigned long long v = i & 0xFFFFFFFFull, r = 0;
-    int k;
-    for (k = 0; k < 32; k++) { r = (r << 1) | (v & 1u); v >>= 1; }
+    /* the 32 bits reversed by swapping halves, bytes, nibbles, pairs and
+       bits (a bit-by-bit loop cost the 4-sample bevel ~900 instructions a
+       shading point, a quarter of its own work, where a renderer reads a
+       table) */
+    unsigned long long r = i & 0xFFFFFFFFull;
+    r = ((r >> 16) | (r << 16)) & 0xFFFFFFFFull;
+    r = ((r & 0x00FF00FFull) << 8) | ((r >> 8) & 0x00FF00FFull);
+    r = ((r & 0x0F0F0F0Full) << 4) | ((r >> 4) & 0x0F0F0F0Full);
+    r = ((r & 0x33333333ull) << 2) | ((r >> 2) & 0x33333333ull);
+    r = ((r & 0x55555555ull) << 1) | ((r >> 1) & 0x55555555ull);
     return (double)r * (1.0 / 4294967296.0);
 }
 

@@ -8,7 +8,7 @@
      build/examples/rounded_edges --scene cornell --mode tess-5 --spp 64
      build/examples/rounded_edges --demo out        (the gallery)
 
-   Modes: sharp, rounded, bevel-blog-N, bevel-cycles-N, tess-N (N >= 1).
+   Modes: sharp, rounded, rounded-compact (RE_LAYOUT_COMPACT), bevel-blog-N, bevel-cycles-N, tess-N (N >= 1).
    Scenes: article (the bevel-shader post's cube and icosphere), blocks
    (play blocks with knobs, ~258k triangles), cornell (a Cornell box). */
 #define RE_IMPLEMENTATION
@@ -203,7 +203,7 @@ int main(int argc, char **argv)
     extra[0].help = "multiply every rounding radius (default 1)";
     memset(&spec, 0, sizeof spec);
     spec.summary = "rounded edges (rounded_edges.h) beside sharp, bevel-shader and tessellated renders; "
-                   "modes: sharp, rounded, bevel-blog-N, bevel-cycles-N, tess-N";
+                   "modes: sharp, rounded, rounded-compact, bevel-blog-N, bevel-cycles-N, tess-N";
     spec.scenes = scenes;
     spec.extra = extra;
     spec.nextra = 1;
@@ -212,7 +212,7 @@ int main(int argc, char **argv)
     if (a.selftest) return selftest() ? 1 : 0;
     if (a.demo_dir) return demo(&a, radius_scale) ? 1 : 0;
     if (rx_mode_parse(a.mode, &m))
-        ex_fail(2, "unknown mode '%s' (sharp, rounded, bevel-blog-N, bevel-cycles-N, tess-N with N >= 1)", a.mode);
+        ex_fail(2, "unknown mode '%s' (sharp, rounded, rounded-compact, bevel-blog-N, bevel-cycles-N, tess-N with N >= 1)", a.mode);
     snprintf(file, sizeof file, "rounded_edges_%s_%s.png", a.scene, a.mode);
     ex_args_output(&a, file, path, sizeof path);
     if (rx_scene_make(&s, a.scene, radius_scale)) return 1;

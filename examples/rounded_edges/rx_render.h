@@ -31,10 +31,10 @@ extern "C" {
 typedef enum rx_mode_kind_t { RX_SHARP, RX_ROUNDED, RX_BLOG, RX_CYCLES, RX_TESS } rx_mode_kind_t;
 typedef struct rx_mode_t {
     rx_mode_kind_t kind;
-    int n; /* probe rays (blog), samples (cycles), level (tess); else 0 */
+    int n; /* probe rays (blog), samples (cycles), level (tess); 1 for rounded-compact (RE_LAYOUT_COMPACT); else 0 */
 } rx_mode_t;
 
-/* "sharp", "rounded", "bevel-blog-N", "bevel-cycles-N", "tess-N" -> *m; 0 or -1. */
+/* "sharp", "rounded", "rounded-compact", "bevel-blog-N", "bevel-cycles-N", "tess-N" -> *m; 0 or -1. */
 int rx_mode_parse(const char *s, rx_mode_t *m);
 /* The same names back. Returns buf. */
 const char *rx_mode_name(rx_mode_t m, char *buf, size_t size);
@@ -97,6 +97,7 @@ int rx_mode_parse(const char *s, rx_mode_t *m)
     memset(m, 0, sizeof *m);
     if (!strcmp(s, "sharp")) { m->kind = RX_SHARP; return 0; }
     if (!strcmp(s, "rounded")) { m->kind = RX_ROUNDED; return 0; }
+    if (!strcmp(s, "rounded-compact")) { m->kind = RX_ROUNDED; m->n = 1; return 0; }
     if (!strncmp(s, "bevel-blog-", 11)) { m->kind = RX_BLOG; num = s + 11; }
     else if (!strncmp(s, "bevel-cycles-", 13)) { m->kind = RX_CYCLES; num = s + 13; }
     else if (!strncmp(s, "tess-", 5)) { m->kind = RX_TESS; num = s + 5; }
@@ -111,7 +112,7 @@ const char *rx_mode_name(rx_mode_t m, char *buf, size_t size)
 {
     switch (m.kind) {
     case RX_SHARP: snprintf(buf, size, "sharp"); break;
-    case RX_ROUNDED: snprintf(buf, size, "rounded"); break;
+    case RX_ROUNDED: snprintf(buf, size, m.n ? "rounded-compact" : "rounded"); break;
     case RX_BLOG: snprintf(buf, size, "bevel-blog-%d", m.n); break;
     case RX_CYCLES: snprintf(buf, size, "bevel-cycles-%d", m.n); break;
     case RX_TESS: snprintf(buf, size, "tess-%d", m.n); break;
@@ -162,6 +163,7 @@ static int rx__build_round(rx_world_t *w)
     desc.object_count = (unsigned)n;
     desc.report = rx__count_report;
     desc.report_user = &w->concave_reports;
+    desc.layout = w->mode.kind == RX_ROUNDED && w->mode.n == 1 ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
     rc = re_build(&desc, &w->round, &diag);
     free(meshes);
     if (rc != RE_OK) {
