@@ -1139,14 +1139,25 @@ static inline void iv__op_n(int op, iv_t *out, const iv_t *a, const iv_t *b, siz
 IV_DEF void iv_add_n(iv_t *out, const iv_t *a, const iv_t *b, size_t n) { iv__op_n(IV__N_ADD, out, a, b, n); }
 IV_DEF void iv_sub_n(iv_t *out, const iv_t *a, const iv_t *b, size_t n) { iv__op_n(IV__N_SUB, out, a, b, n); }
 IV_DEF void iv_mul_n(iv_t *out, const iv_t *a, const iv_t *b, size_t n) { iv__op_n(IV__N_MUL, out, a, b, n); }
+/* intervals [from, to) of the structure-of-arrays forms one call at a time:
+   the tail, and a block with a NaN lane */
+static inline void iv__op_soa_each(int op, double *out_lo, double *out_hi, const double *a_lo, const double *a_hi,
+                                   const double *b_lo, const double *b_hi, size_t from, size_t to)
+{
+    size_t k;
+    for (k = from; k < to; k++) {
+        iv_t r = iv__op_one(op, iv__raw(a_lo[k], a_hi[k]), iv__raw(b_lo[k], b_hi[k]));
+        out_lo[k] = r.lo;
+        out_hi[k] = r.hi;
+    }
+}
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
 static inline void iv__op_soa(int op, double *out_lo, double *out_hi, const double *a_lo, const double *a_hi,
                               const double *b_lo, const double *b_hi, size_t n)
 {
-    size_t i = 0, k;
-    iv_t r;
+    size_t i = 0;
 #ifdef IV__W
     size_t blocks = n - n % (2 * IV__W);
     for (; i < blocks; i += 2 * IV__W) {
@@ -1155,22 +1166,14 @@ static inline void iv__op_soa(int op, double *out_lo, double *out_hi, const doub
         iv__w_op_soa(op, iv__w_loadd(a_lo + i), iv__w_loadd(a_hi + i), iv__w_loadd(b_lo + i), iv__w_loadd(b_hi + i), &lo,
                      &hi, &bad);
         if (bad) {
-            for (k = i; k < i + 2 * IV__W; k++) {
-                r = iv__op_one(op, iv__raw(a_lo[k], a_hi[k]), iv__raw(b_lo[k], b_hi[k]));
-                out_lo[k] = r.lo;
-                out_hi[k] = r.hi;
-            }
+            iv__op_soa_each(op, out_lo, out_hi, a_lo, a_hi, b_lo, b_hi, i, i + 2 * IV__W);
             continue;
         }
         iv__w_stored(out_lo + i, lo);
         iv__w_stored(out_hi + i, hi);
     }
 #endif
-    for (k = i; k < n; k++) {
-        r = iv__op_one(op, iv__raw(a_lo[k], a_hi[k]), iv__raw(b_lo[k], b_hi[k]));
-        out_lo[k] = r.lo;
-        out_hi[k] = r.hi;
-    }
+    iv__op_soa_each(op, out_lo, out_hi, a_lo, a_hi, b_lo, b_hi, i, n);
 }
 IV_DEF void iv_add_soa(double *out_lo, double *out_hi, const double *a_lo, const double *a_hi, const double *b_lo,
                        const double *b_hi, size_t n)
