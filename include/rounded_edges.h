@@ -1651,6 +1651,13 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
 #define RE__KD_STEP 1.0
 #define RE__KD_STEP_COMPACT 4.0
 #define RE__KD_DUP 2u     /* leaf references at most this times the boxes (memory) */
+/* RE_LAYOUT_FAST spends bytes for speed on small objects: this many leaf
+   references on top of RE__KD_DUP per box. On an object of a few hundred
+   edges whose detection boxes overlap (the example's icosphere of 120
+   edges) the budget, not the cost, stopped the splits, and a query tested
+   21 candidates; with these 8 (docs/rounded_edges.md, "Query cost"). A
+   large object's tree, and its build time, are as before. */
+#define RE__KD_DUP_EXTRA 256u
 #define RE__KD_SAMPLE 64u
 
 typedef struct re__kd_t {
@@ -2460,7 +2467,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
        |sphere - vertex| of the vertices. Both are rounded up (bfloat16). The
        kd box holds that set: the axis extended by m at both ends, widened
        by g + (m - g) (the edge line is that close to the axis). */
-    F->kd.cap_leafrefs = RE__KD_DUP * F->n_edge_cyls + 64;
+    F->kd.cap_leafrefs = (RE__KD_DUP * F->n_edge_cyls + (an->desc->layout == RE_LAYOUT_COMPACT ? 0u : RE__KD_DUP_EXTRA)) + 64;
     F->kd.cap_nodes = 2 * F->kd.cap_leafrefs;
     F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
     if (F->kd.cap_nodes >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
@@ -2503,7 +2510,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->kd.tmp, unsigned, F->kd.cap_tmp);
     for (i = 0; i < F->n_edge_cyls; i++) F->kd.tmp[i] = i;
     F->kd.n_tmp = F->n_edge_cyls;
-    if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, RE__KD_DUP * F->n_edge_cyls, 0) == RE__NONE)
+    if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, (RE__KD_DUP * F->n_edge_cyls + (an->desc->layout == RE_LAYOUT_COMPACT ? 0u : RE__KD_DUP_EXTRA)), 0) == RE__NONE)
         return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "kd-tree scratch too small");
     F->kd.box = NULL;
     F->kd.tmp = NULL;
