@@ -1734,11 +1734,20 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
     }
     if (!bk) goto leaf;
     split = (float)(lo[axis] + len * bk / RE__KD_BINS);
-    /* one pass: the left list from n_tmp, the right one from n_tmp + n */
-    for (i = 0; i < n; i++) {
-        const double *bx = kd->box + 6 * list[i];
-        if (bx[axis] <= (double)split) kd->tmp[kd->n_tmp + nl++] = list[i];
-        if (bx[3 + axis] >= (double)split) kd->tmp[kd->n_tmp + n + nr++] = list[i];
+    /* one pass: the left list from n_tmp, the right one from n_tmp + n;
+       each id is written to both and kept where it belongs (no branch to
+       mispredict: which side a box goes to is as good as random) */
+    {
+        unsigned *tl = kd->tmp + kd->n_tmp, *tr = tl + n;
+        const double s = (double)split;
+        for (i = 0; i < n; i++) {
+            unsigned id_i = list[i];
+            const double *bx = kd->box + 6 * (size_t)id_i;
+            tl[nl] = id_i;
+            nl += bx[axis] <= s;
+            tr[nr] = id_i;
+            nr += bx[3 + axis] >= s;
+        }
     }
     /* no progress, or over the memory budget for duplicates */
     if (nl == n || nr == n || nl + nr > budget) goto leaf;
@@ -2027,7 +2036,7 @@ static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, c
 {
     const re__plane_t *P = &an->planes[fi];
     double cs = re__dot(G->n, P->n), lim = G->c - r * (1 - cs), sn;
-    unsigned qh = 0, qt = 0, k, t0 = he / 3, ke = he % 3, m0 = (ke + 2) % 3;
+    unsigned qh = 0, qt = 0, t0 = he / 3, ke = he % 3, m0 = (ke + 2) % 3;
     if (own) {
         /* the strip's width over the altitude from the opposite corner m0;
            tan(theta/2) = (1 - cos) / sin */
@@ -2042,43 +2051,50 @@ static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, c
     B->stamp[t0] = B->st;
     B->queue[qt++] = t0;
     while (qh < qt) {
-        unsigned tt = B->queue[qh++], n_out = 0, a;
+        /* unrolled over the three corners (k, k + 1 mod 3): the same
+           operations in the same order as a loop, without its index
+           arithmetic; this walk is a third of a blocks build */
+        unsigned tt = B->queue[qh++];
+        const unsigned *tv = an->tri + 3 * (size_t)tt, *nb = B->nb + 3 * (size_t)tt;
         double sd[3], need[4];
-        for (k = 0; k < 3; k++) {
-            sd[k] = re__dot(G->n, an->pos + 3 * (size_t)an->tri[3 * tt + k]) - lim;
-            if (sd[k] > 0) n_out++;
-        }
-        if (tt == t0) goto next;
-        if (!n_out) continue; /* not cut (cannot happen: it shares an outside corner) */
-        /* the cut-off polygon: the outside corners and the crossings of the
-           edges that change sign, in barycentric coordinates; need[a] is
-           its largest lambda_a, and the cap needs 1 - its smallest lambda_a
-           when one corner a alone is outside (else the cap cannot hold it) */
-        for (a = 0; a < 3; a++) need[a] = sd[a] > 0 ? 1.0 : 0.0;
-        need[3] = 1;
-        for (k = 0; k < 3; k++) {
-            unsigned k2 = (k + 1) % 3;
-            if ((sd[k] > 0) != (sd[k2] > 0)) {
-                double tau = sd[k] / (sd[k] - sd[k2]); /* lambda_k = 1 - tau, lambda_k2 = tau */
-                need[k] = re__max(need[k], 1 - tau);
-                need[k2] = re__max(need[k2], tau);
+        int o0, o1, o2;
+        sd[0] = re__dot(G->n, an->pos + 3 * (size_t)tv[0]) - lim;
+        sd[1] = re__dot(G->n, an->pos + 3 * (size_t)tv[1]) - lim;
+        sd[2] = re__dot(G->n, an->pos + 3 * (size_t)tv[2]) - lim;
+        o0 = sd[0] > 0, o1 = sd[1] > 0, o2 = sd[2] > 0;
+        if (tt != t0) {
+            if (!(o0 | o1 | o2)) continue; /* not cut (cannot happen: it shares an outside corner) */
+            /* the cut-off polygon: the outside corners and the crossings of
+               the edges that change sign, in barycentric coordinates;
+               need[a] is its largest lambda_a, and the cap needs 1 - its
+               smallest lambda_a when one corner a alone is outside (else
+               the cap cannot hold it) */
+            need[0] = o0 ? 1.0 : 0.0, need[1] = o1 ? 1.0 : 0.0, need[2] = o2 ? 1.0 : 0.0, need[3] = 1;
+            if (o0 != o1) { /* lambda_k = 1 - tau, lambda_k2 = tau */
+                double tau = sd[0] / (sd[0] - sd[1]);
+                need[0] = re__max(need[0], 1 - tau), need[1] = re__max(need[1], tau);
             }
+            if (o1 != o2) {
+                double tau = sd[1] / (sd[1] - sd[2]);
+                need[1] = re__max(need[1], 1 - tau), need[2] = re__max(need[2], tau);
+            }
+            if (o2 != o0) {
+                double tau = sd[2] / (sd[2] - sd[0]);
+                need[2] = re__max(need[2], 1 - tau), need[0] = re__max(need[0], tau);
+            }
+            if (o0 + o1 + o2 == 1) {
+                unsigned a0 = o0 ? 0u : o1 ? 1u : 2u, ap = (a0 + 2) % 3, an2 = (a0 + 1) % 3;
+                /* crossings on the edges (a0, an2) and (ap, a0): lambda_a0 = 1 - tau there */
+                double ta = sd[a0] / (sd[a0] - sd[an2]), tb = sd[ap] / (sd[ap] - sd[a0]);
+                need[3] = re__max(ta, 1 - tb);
+            }
+            re__band_take(B->beta + 4 * (size_t)tt, need);
         }
-        if (n_out == 1) {
-            unsigned a0 = sd[0] > 0 ? 0u : sd[1] > 0 ? 1u : 2u, ap = (a0 + 2) % 3, an2 = (a0 + 1) % 3;
-            /* crossings on the edges (a0, an2) and (ap, a0): lambda_a0 = 1 - tau there */
-            double ta = sd[a0] / (sd[a0] - sd[an2]), tb = sd[ap] / (sd[ap] - sd[a0]);
-            need[3] = re__max(ta, 1 - tb);
-        }
-        re__band_take(B->beta + 4 * (size_t)tt, need);
-    next:
         /* on across the face's flat edges that the cut-off part reaches (an
            edge with a corner outside H_g) */
-        for (k = 0; k < 3; k++) {
-            unsigned o2 = B->nb[3 * (size_t)tt + k];
-            if (o2 == RE__NONE || !(sd[k] > 0 || sd[(k + 1) % 3] > 0)) continue;
-            if (B->stamp[o2] != B->st) B->stamp[o2] = B->st, B->queue[qt++] = o2;
-        }
+        if (nb[0] != RE__NONE && (o0 | o1) && B->stamp[nb[0]] != B->st) B->stamp[nb[0]] = B->st, B->queue[qt++] = nb[0];
+        if (nb[1] != RE__NONE && (o1 | o2) && B->stamp[nb[1]] != B->st) B->stamp[nb[1]] = B->st, B->queue[qt++] = nb[1];
+        if (nb[2] != RE__NONE && (o2 | o0) && B->stamp[nb[2]] != B->st) B->stamp[nb[2]] = B->st, B->queue[qt++] = nb[2];
     }
 }
 
@@ -2319,24 +2335,33 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     F->pk_n[RE__PKA_X_CORNER] = ncyl - F->n_edge_cyls;
     F->pk_n[RE__PKA_C_S0] = F->n_edge_cyls;
     for (i = 0; i < RE__PKA_N; i++) RE__TAKE(F->pk[i], unsigned, F->pk_n[i]);
-    RE__TAKE(F->planes, re__plane_t, F->n_planes);
-    RE__TAKE(F->sph, double, 3 * (size_t)ns);
+    /* Fewer fresh scratch pages (each first touch is a page fault, which
+       costs as much as thousands of instructions): where every plane is
+       used, pmap is the identity (both number in triangle order) and the
+       planes are the analysis' own array; the centres overwrite the unit
+       offsets they come from (sbase[c] <= c_sfirst[c], both ascending, and
+       nothing reads su after the corner loop below). */
+    for (i = 0; i < an->n_planes && pmap[i] == i; i++) {}
+    if (i == an->n_planes) F->planes = an->planes;
+    else RE__TAKE(F->planes, re__plane_t, F->n_planes);
+    F->sph = an->su;
     RE__TAKE(F->sinfo, unsigned short, ns);
     RE__TAKE(F->xsid, unsigned, ns);
     if (an->desc->layout == RE_LAYOUT_COMPACT) RE__TAKE(F->xsph, double, 3 * (size_t)ns);
     else F->xsph = F->sph; /* every centre stored, in sphere order: the same array */
     RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
     RE__TAKE(F->xcyls, re__xcyl_t, ncyl - F->n_edge_cyls);
-    RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
-    RE__TAKE(F->det8, unsigned char, 2 * (size_t)F->n_edge_cyls);
+    if (an->desc->layout == RE_LAYOUT_COMPACT) RE__TAKE(F->det8, unsigned char, 2 * (size_t)F->n_edge_cyls);
+    else RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->corners, re__corner_t, nco);
     RE__TAKE(F->refs, unsigned, nref);
     RE__TAKE(reach, double, nco + 1);
     RE__TAKE(dmax, double, nco + 1);
     for (i = 0; i < an->T; i++)
         F->pk[RE__PKA_TRI_PLANE][i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
-    for (i = 0; i < an->n_planes; i++)
-        if (pmap[i] != RE__NONE) F->planes[pmap[i]] = an->planes[i];
+    if (F->planes != an->planes)
+        for (i = 0; i < an->n_planes; i++)
+            if (pmap[i] != RE__NONE) F->planes[pmap[i]] = an->planes[i];
     nref = 0;
     for (c = 0; c < an->nc; c++) {
         re__corner_t *K;
@@ -2486,11 +2511,16 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
         unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]], a;
         double g, m, u[3], L, e0[3], e1[3];
-        F->det[2 * i] = re__det_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6));
-        F->det[2 * i + 1] = re__det_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
-        F->det8[2 * i] = re__det8_up(re__max(reach[ka], reach[kb]) * (1 + 1e-6), F->det_e0);
-        F->det8[2 * i + 1] = re__det8_up((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6), F->det_e0);
-        g = an->desc->layout == RE_LAYOUT_COMPACT ? re__det8(F->det8[2 * i + 1], F->det_e0) : re__det(F->det[2 * i + 1]);
+        double gr = re__max(reach[ka], reach[kb]) * (1 + 1e-6), mr = (re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6);
+        if (F->det8) {
+            F->det8[2 * i] = re__det8_up(gr, F->det_e0);
+            F->det8[2 * i + 1] = re__det8_up(mr, F->det_e0);
+            g = re__det8(F->det8[2 * i + 1], F->det_e0);
+        } else {
+            F->det[2 * i] = re__det_up(gr);
+            F->det[2 * i + 1] = re__det_up(mr);
+            g = re__det(F->det[2 * i + 1]);
+        }
         m = g;
         re__sub(s1, s0, u);
         L = re__len(u);
