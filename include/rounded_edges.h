@@ -3337,7 +3337,12 @@ static inline unsigned re__detect(const re__object_t *o, unsigned c, const doubl
        many edges (warm in cache) where the end spheres are not: the render
        profile showed the loop waiting on the sphere loads. */
     a0 = re__dot(P0->n, I) - P0->c;
+    /* the line lies in both planes, so it is at least |a0| and |a1| away:
+       (a0^2 + a1^2 - 2 a0 a1 cos) - a0^2 sin^2 = (a1 - a0 cos)^2 >= 0. Most
+       candidates fail on one plane, before the other plane and cos are read */
+    if (a0 * a0 > g * g) return 0;
     a1 = re__dot(P1->n, I) - P1->c;
+    if (a1 * a1 > g * g) return 0;
     cs = re__dot(P0->n, P1->n);
     if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) return 0;
     /* along the axis: within m of the end spheres */
