@@ -5529,7 +5529,8 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         const fr_tape_t *tp;
         iv_t range, dg;
         fr_result_t e;
-        double tl;
+        double tl, ga = 0.0, gb = 0.0;
+        int have_ends = 0; /* ga, gb hold g at the segment's ends */
         R->iters++;
         if (prune && s.depth % FR__PRUNE_EVERY == 0 && s.depth > 0 && lvl < FR__PRUNE_LEVELS) {
             iv_t box[3];
@@ -5559,7 +5560,9 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
             dg = fr__poly_range_of(R, R->dc, R->dm, R->pdeg - 1, R->mdeg - 1, R->drho, R->dgam, s.a, s.b, &share);
             R->evals++;
             if (!iv_is_empty(dg) && !iv_contains(dg, 0.0)) {
-                double ga = fr__g(R, s.a), gb = fr__g(R, s.b);
+                ga = fr__g(R, s.a);
+                gb = fr__g(R, s.b);
+                have_ends = 1;
                 if (ga == 0 || gb == 0 || fr__opposite(ga, gb)) {
                     *found = 1;
                     *t_err = 0.5 * R->tol;
@@ -5595,8 +5598,9 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
                of this one is excluded (depth-first, left first), so a sign
                change here brackets the first root, or with several roots
                inside the segment one of them. */
-            double ga = fr__g(R, s.a), gb = fr__g(R, s.b);
-            int change = ga == 0 || gb == 0 || fr__opposite(ga, gb);
+            int change;
+            if (!have_ends) { ga = fr__g(R, s.a); gb = fr__g(R, s.b); }
+            change = ga == 0 || gb == 0 || fr__opposite(ga, gb);
             if (change || (s.b - s.a <= tl && (s.b - s.a <= tl * FR__TOUCH_SCALE || s.depth >= FR__TRACE_MAX_DEPTH))) {
                 *found = 1;
                 *t_hit = ga == 0 ? s.a : gb == 0 && !fr__opposite(ga, gb) ? s.b : 0.5 * (s.a + s.b);
