@@ -884,7 +884,7 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
 {
     const re_mesh_t *m = an->m;
     unsigned t = 0, f, nf, base = 0, i, k;
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    double lo[3], hi[3], l0 = HUGE_VAL, l1 = HUGE_VAL, l2 = HUGE_VAL, h0 = -HUGE_VAL, h1 = -HUGE_VAL, h2 = -HUGE_VAL;
     char msg[128];
     if (m->position_type == RE_FLOAT64 && (m->position_stride == 0 || m->position_stride == 3 * sizeof(double)))
         an->pos = (const double *)m->positions; /* no copy: fewer fresh scratch pages */
@@ -952,11 +952,8 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
                     an->tarea[t] = len;
                     for (k = 0; k < 3; k++) {
                         const double *p = an->pos + 3 * (size_t)tr[k];
-                        int a;
-                        for (a = 0; a < 3; a++) {
-                            lo[a] = re__min(lo[a], p[a]);
-                            hi[a] = re__max(hi[a], p[a]);
-                        }
+                        l0 = re__min(l0, p[0]), l1 = re__min(l1, p[1]), l2 = re__min(l2, p[2]);
+                        h0 = re__max(h0, p[0]), h1 = re__max(h1, p[1]), h2 = re__max(h2, p[2]);
                     }
                 }
             }
@@ -968,6 +965,7 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
         base += n;
     }
     an->size = 0;
+    lo[0] = l0, lo[1] = l1, lo[2] = l2, hi[0] = h0, hi[1] = h1, hi[2] = h2;
     if (lo[0] <= hi[0]) {
         double dd[3];
         re__sub(hi, lo, dd);
@@ -1694,13 +1692,16 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
     if (n <= RE__KD_LEAF || depth >= RE__KD_DEPTH || kd->n_tmp + 2 * n > kd->cap_tmp || kd->n_nodes + 3 > kd->cap_nodes)
         goto leaf;
     /* the cell shrunk to the boxes it holds */
-    for (a = 0; a < 3; a++) lo[a] = HUGE_VAL, hi[a] = -HUGE_VAL;
-    for (i = 0; i < n; i += step)
-        for (a = 0; a < 3; a++) {
-            lo[a] = re__min(lo[a], kd->box[6 * list[i] + a]);
-            hi[a] = re__max(hi[a], kd->box[6 * list[i] + 3 + a]);
+    {
+        double l0 = HUGE_VAL, l1 = HUGE_VAL, l2 = HUGE_VAL, h0 = -HUGE_VAL, h1 = -HUGE_VAL, h2 = -HUGE_VAL;
+        for (i = 0; i < n; i += step) {
+            const double *bx = kd->box + 6 * (size_t)list[i];
+            l0 = re__min(l0, bx[0]), l1 = re__min(l1, bx[1]), l2 = re__min(l2, bx[2]);
+            h0 = re__max(h0, bx[3]), h1 = re__max(h1, bx[4]), h2 = re__max(h2, bx[5]);
         }
-    for (a = 0; a < 3; a++) lo[a] = re__max(lo[a], lo_in[a]), hi[a] = re__min(hi[a], hi_in[a]);
+        lo[0] = re__max(l0, lo_in[0]), lo[1] = re__max(l1, lo_in[1]), lo[2] = re__max(l2, lo_in[2]);
+        hi[0] = re__min(h0, hi_in[0]), hi[1] = re__min(h1, hi_in[1]), hi[2] = re__min(h2, hi_in[2]);
+    }
     for (a = 1; a < 3; a++)
         if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
     len = hi[axis] - lo[axis];
@@ -1909,7 +1910,12 @@ typedef struct re__final_t {
 static float re__float_up(double x)
 {
     float f = (float)x;
-    if ((double)f < x) f = nextafterf(f, HUGE_VALF);
+    if ((double)f < x) { /* nextafterf(f, HUGE_VALF) by the bits: it was 1% of a build */
+        unsigned b;
+        memcpy(&b, &f, sizeof b);
+        b = f == 0 ? 1u : f > 0 ? b + 1u : b - 1u;
+        memcpy(&f, &b, sizeof f);
+    }
     return f;
 }
 
