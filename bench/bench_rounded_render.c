@@ -14,9 +14,15 @@
 
    Render time is the CPU time of the process (user + system, all render
    threads) during the render, not wall time: the benchmark machine is shared
-   and wall times swing by 2x with its load, CPU time much less. sharp and
-   rounded are timed RX_BENCH_REPEAT times, alternating, and the fastest run
-   is kept, so the overhead ratio is not a scheduling accident.
+   and wall times swing by 2x with its load, CPU time much less. sharp,
+   rounded and rounded-compact are built once and rendered in
+   RX_BENCH_ROUNDS rounds, the three in turn in every round (the order
+   rotating from round to round); each round gives one overhead per layout
+   (its rounded time over its own sharp time), and the table prints the
+   median of those and their range, beside each mode's fastest time. A
+   drift of the machine's speed then moves a round's three renders
+   together instead of one mode's figure. The environment variable
+   RX_BENCH_ROUNDS overrides the default of 9 rounds.
 
    Usage: build/bench/bench_rounded_render OUTDIR   (table on stdout, CSV
    OUTDIR/rounded_render.csv, progress on stderr). */
@@ -39,7 +45,8 @@
 #include "ex_image.h"
 #include "ex_timer.h"
 
-#define RX_BENCH_REPEAT 3
+#define RX_BENCH_ROUNDS 9
+#define RX_BENCH_MAX_ROUNDS 64
 #define RX_BENCH_W 320
 #define RX_BENCH_H 200
 
@@ -76,28 +83,68 @@ static double cpu_seconds(void)
            1e-6 * (double)u.ru_stime.tv_usec;
 }
 
-/* Renders scene s in `mode`; fills *r and returns the tone-mapped image (caller frees). */
+/* Renders the built world w once; fills *r (the mode's figures and this
+   render's CPU time) and returns the tone-mapped image (caller frees). */
+static float *render_world(rx_world_t *w, const char *mode, int spp, row_t *r)
+{
+    float *rgb = (float *)malloc(sizeof(float) * 3 * RX_BENCH_W * RX_BENCH_H);
+    double secs;
+    if (!rgb) return NULL;
+    secs = cpu_seconds();
+    if (rx_world_render(w, spp, 0, 1, 1, rgb) < 0) { free(rgb); return NULL; }
+    secs = cpu_seconds() - secs;
+    snprintf(r->mode, sizeof r->mode, "%s", mode);
+    r->tris = w->triangles;
+    r->build = w->build_seconds;
+    r->round_build = w->round_seconds;
+    r->mem_mb = (double)(w->embree_bytes + (long long)w->round_bytes) / 1048576.0;
+    r->render = secs;
+    r->chamfer = w->rays ? 100.0 * (double)w->chamfer_rays / (double)w->rays : 0;
+    ex_image_tonemap(rgb, RX_BENCH_W, RX_BENCH_H, 0);
+    return rgb;
+}
+
+/* Renders scene s in `mode` (built for this one render); fills *r and
+   returns the tone-mapped image (caller frees). */
 static float *run(const rx_scene_t *s, const char *mode, int spp, row_t *r)
 {
     rx_world_t w;
     rx_mode_t m;
-    float *rgb = (float *)malloc(sizeof(float) * 3 * RX_BENCH_W * RX_BENCH_H);
-    double secs;
-    if (!rgb || rx_mode_parse(mode, &m) || rx_world_build(&w, s, m, RX_BENCH_W, RX_BENCH_H)) { free(rgb); return NULL; }
-    secs = cpu_seconds();
-    if (rx_world_render(&w, spp, 0, 1, 1, rgb) < 0) secs = -1;
-    else secs = cpu_seconds() - secs;
-    if (secs < 0) { rx_world_free(&w); free(rgb); return NULL; }
-    snprintf(r->mode, sizeof r->mode, "%s", mode);
-    r->tris = w.triangles;
-    r->build = w.build_seconds;
-    r->round_build = w.round_seconds;
-    r->mem_mb = (double)(w.embree_bytes + (long long)w.round_bytes) / 1048576.0;
-    r->render = secs;
-    r->chamfer = w.rays ? 100.0 * (double)w.chamfer_rays / (double)w.rays : 0;
+    float *rgb;
+    if (rx_mode_parse(mode, &m) || rx_world_build(&w, s, m, RX_BENCH_W, RX_BENCH_H)) return NULL;
+    rgb = render_world(&w, mode, spp, r);
     rx_world_free(&w);
-    ex_image_tonemap(rgb, RX_BENCH_W, RX_BENCH_H, 0);
     return rgb;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The overheads of one layout over the rounds: median, smallest, largest. */
+typedef struct spread_t {
+    double median, lo, hi;
+} spread_t;
+
+static spread_t spread_of(const double *v, int n)
+{
+    double w[RX_BENCH_MAX_ROUNDS];
+    spread_t sp;
+    memcpy(w, v, sizeof(double) * (size_t)n);
+    qsort(w, (size_t)n, sizeof w[0], cmp_double);
+    sp.median = n % 2 ? w[n / 2] : 0.5 * (w[n / 2 - 1] + w[n / 2]);
+    sp.lo = w[0];
+    sp.hi = w[n - 1];
+    return sp;
+}
+
+static int bench_rounds(void)
+{
+    const char *e = getenv("RX_BENCH_ROUNDS");
+    int n = e ? atoi(e) : RX_BENCH_ROUNDS;
+    return n < 1 ? 1 : n > RX_BENCH_MAX_ROUNDS ? RX_BENCH_MAX_ROUNDS : n;
 }
 
 int main(int argc, char **argv)
@@ -108,12 +155,12 @@ int main(int argc, char **argv)
                                             {"blocks", 8, NULL, modes_matched, 0.44, "blocks-r0.44"}};
     char path[4096];
     FILE *csv;
-    int si;
+    int si, rounds = bench_rounds();
     if (argc != 2) { fprintf(stderr, "usage: %s OUTDIR\n", argv[0]); return 2; }
     if (mkdir(argv[1], 0777) && errno != EEXIST) { fprintf(stderr, "%s: cannot create %s: %s\n", argv[0], argv[1], strerror(errno)); return 1; }
     snprintf(path, sizeof path, "%s/rounded_render.csv", argv[1]);
     if (!(csv = fopen(path, "w"))) { fprintf(stderr, "%s: cannot write %s: %s\n", argv[0], path, strerror(errno)); return 1; }
-    fprintf(csv, "scene,mode,triangles,build_s,rounding_or_tess_build_s,memory_mb,render_cpu_s,overhead_vs_sharp,chamfer_ray_pct,rmse_vs_reference,reference,spp,width,height\n");
+    fprintf(csv, "scene,mode,triangles,build_s,rounding_or_tess_build_s,memory_mb,render_cpu_s,overhead_vs_sharp,chamfer_ray_pct,rmse_vs_reference,reference,spp,width,height,overhead_median,overhead_min,overhead_max,rounds\n");
     printf("Rendering %dx%d, path tracing (3 bounces), same random streams in every mode; RMSE of tone-mapped RGB\n",
            RX_BENCH_W, RX_BENCH_H);
     for (si = 0; si < 4; si++) {
@@ -121,7 +168,9 @@ int main(int argc, char **argv)
         rx_scene_t s;
         row_t ref, rows[16], best[3];
         float *ref_img, *img;
-        int n = 0, i, k;
+        double over[2][RX_BENCH_MAX_ROUNDS];
+        spread_t sp[2];
+        int n = 0, i, k, q;
         if (rx_scene_make(&s, b->name, b->radius_scale)) return 1;
         memset(&ref, 0, sizeof ref);
         ref_img = NULL;
@@ -129,16 +178,34 @@ int main(int argc, char **argv)
             fprintf(stderr, "%s: reference %s\n", b->label, b->reference);
             if (!(ref_img = run(&s, b->reference, b->spp, &ref))) return 1;
         }
-        /* sharp, rounded and rounded-compact: alternate, keep the fastest of each */
-        for (k = 0; k < RX_BENCH_REPEAT; k++)
+        /* sharp, rounded and rounded-compact: built once, rendered in turn in
+           every round (the order rotating), each keeping its fastest time;
+           each round's overheads are rounded / sharp of that round */
+        {
+            rx_world_t wd[3];
+            double t[3];
             for (i = 0; i < 3; i++) {
-                row_t r;
-                fprintf(stderr, "%s: %s (run %d)\n", b->label, b->modes[i], k + 1);
-                if (!(img = run(&s, b->modes[i], b->spp, &r))) return 1;
-                r.rmse = ref_img ? ex_image_rmse(img, ref_img, RX_BENCH_W, RX_BENCH_H) : 0;
-                if (k == 0 || r.render < best[i].render) best[i] = r;
-                free(img);
+                rx_mode_t m;
+                if (rx_mode_parse(b->modes[i], &m) || rx_world_build(&wd[i], &s, m, RX_BENCH_W, RX_BENCH_H)) return 1;
             }
+            for (k = 0; k < rounds; k++) {
+                for (q = 0; q < 3; q++) {
+                    row_t r;
+                    i = (q + k) % 3;
+                    fprintf(stderr, "%s: %s (round %d of %d)\n", b->label, b->modes[i], k + 1, rounds);
+                    if (!(img = render_world(&wd[i], b->modes[i], b->spp, &r))) return 1;
+                    r.rmse = ref_img ? ex_image_rmse(img, ref_img, RX_BENCH_W, RX_BENCH_H) : 0;
+                    if (k == 0 || r.render < best[i].render) best[i] = r;
+                    t[i] = r.render;
+                    free(img);
+                }
+                over[0][k] = t[1] / t[0] - 1;
+                over[1][k] = t[2] / t[0] - 1;
+            }
+            for (i = 0; i < 3; i++) rx_world_free(&wd[i]);
+            sp[0] = spread_of(over[0], rounds);
+            sp[1] = spread_of(over[1], rounds);
+        }
         rows[n++] = best[0];
         rows[n++] = best[1];
         rows[n++] = best[2];
@@ -161,16 +228,22 @@ int main(int argc, char **argv)
             printf("  %-16s %10zu %9.3f %10.2f %9.3f %8.3fx %8.2f%% %9.5f %8.2fx\n", rows[i].mode, rows[i].tris,
                    rows[i].build, rows[i].mem_mb, rows[i].render, rows[i].render / rows[0].render, rows[i].chamfer,
                    rows[i].rmse, rows[1].rmse > 0 ? rows[i].rmse / rows[1].rmse : 0.0);
-            fprintf(csv, "%s,%s,%zu,%.6f,%.6f,%.4f,%.6f,%.5f,%.4f,%.6f,%s,%d,%d,%d\n", b->label, rows[i].mode, rows[i].tris,
+            fprintf(csv, "%s,%s,%zu,%.6f,%.6f,%.4f,%.6f,%.5f,%.4f,%.6f,%s,%d,%d,%d", b->label, rows[i].mode, rows[i].tris,
                     rows[i].build, rows[i].round_build, rows[i].mem_mb, rows[i].render, rows[i].render / rows[0].render,
                     rows[i].chamfer, rows[i].rmse, b->reference ? b->reference : "none", b->spp, RX_BENCH_W, RX_BENCH_H);
+            if (i == 1 || i == 2)
+                fprintf(csv, ",%.5f,%.5f,%.5f,%d\n", sp[i - 1].median, sp[i - 1].lo, sp[i - 1].hi, rounds);
+            else
+                fprintf(csv, ",,,,\n");
         }
         {
             const row_t *c4 = NULL;
             for (i = 0; i < n; i++)
                 if (!strcmp(rows[i].mode, "bevel-cycles-4")) c4 = &rows[i];
             for (k = 1; k <= 2; k++) {
-                printf("  %s vs sharp: +%.1f%% time at %.2f%% chamfer rays; vs bevel-cycles-4: %.2fx faster", rows[k].mode,
+                printf("  %s vs sharp: %+.1f%% time (median of %d rounds; range %+.1f%% .. %+.1f%%; fastest runs %+.1f%%) at "
+                       "%.2f%% chamfer rays; vs bevel-cycles-4: %.2fx faster",
+                       rows[k].mode, 100 * sp[k - 1].median, rounds, 100 * sp[k - 1].lo, 100 * sp[k - 1].hi,
                        100 * (rows[k].render / rows[0].render - 1), rows[k].chamfer, c4 ? c4->render / rows[k].render : 0);
                 if (b->reference) printf(", RMSE %.2fx lower", c4 && rows[k].rmse > 0 ? c4->rmse / rows[k].rmse : 0);
                 printf("\n");

@@ -1649,6 +1649,13 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
 #define RE__KD_STEP 1.0
 #define RE__KD_STEP_COMPACT 4.0
 #define RE__KD_DUP 2u     /* leaf references at most this times the boxes (memory) */
+/* RE_LAYOUT_FAST spends bytes for speed on small objects: this many leaf
+   references on top of RE__KD_DUP per box. On an object of a few hundred
+   edges whose detection boxes overlap (the example's icosphere of 120
+   edges) the budget, not the cost, stopped the splits, and a query tested
+   21 candidates; with these 8 (docs/rounded_edges.md, "Query cost"). A
+   large object's tree, and its build time, are as before. */
+#define RE__KD_DUP_EXTRA 256u
 #define RE__KD_SAMPLE 64u
 
 typedef struct re__kd_t {
@@ -2491,7 +2498,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
        |sphere - vertex| of the vertices. Both are rounded up (bfloat16). The
        kd box holds that set: the axis extended by m at both ends, widened
        by g + (m - g) (the edge line is that close to the axis). */
-    F->kd.cap_leafrefs = RE__KD_DUP * F->n_edge_cyls + 64;
+    F->kd.cap_leafrefs = (RE__KD_DUP * F->n_edge_cyls + (an->desc->layout == RE_LAYOUT_COMPACT ? 0u : RE__KD_DUP_EXTRA)) + 64;
     F->kd.cap_nodes = 2 * F->kd.cap_leafrefs;
     F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
     if (F->kd.cap_nodes >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
@@ -2539,7 +2546,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->kd.tmp, unsigned, F->kd.cap_tmp);
     for (i = 0; i < F->n_edge_cyls; i++) F->kd.tmp[i] = i;
     F->kd.n_tmp = F->n_edge_cyls;
-    if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, RE__KD_DUP * F->n_edge_cyls, 0) == RE__NONE)
+    if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, (RE__KD_DUP * F->n_edge_cyls + (an->desc->layout == RE_LAYOUT_COMPACT ? 0u : RE__KD_DUP_EXTRA)), 0) == RE__NONE)
         return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "kd-tree scratch too small");
     F->kd.box = NULL;
     F->kd.tmp = NULL;
@@ -3362,28 +3369,41 @@ static inline unsigned re__detect(const re__object_t *o, unsigned c, const doubl
     return 1;
 }
 
-static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
-                               unsigned triangle, double t_host, const double *uv, re_hit_t *out)
+/* What re_query and re_query_uv do before detection: out becomes the
+   answer "unchanged" with I and, on a face of a rounded patch, its plane's
+   normal. Returns the object when detection must decide (*f its face
+   plane), NULL when the answer is final. It is inlined into both entry
+   points, so the common flat hit of re_query_uv (query step 0) returns
+   without the call into re__query_kd. A finite I = o + t_host dir implies a
+   finite dir (inf * 0 and inf * t are not finite), so dir is not tested. */
+static inline const re__object_t *re__query_start(const re_scene_t *scene, const double o3[3], const double dir[3],
+                                                  unsigned object, unsigned triangle, double t_host, re_hit_t *out,
+                                                  double I[3], unsigned *f)
 {
     const re__object_t *o;
-    re__set_t S;
-    unsigned f, node, i, j, iter, exit_plane, ndet = 0, c0 = RE__NONE;
-    double I[3];
-    re__best_t best;
-    double s_exit;
-    if (!out) return RE_UNCHANGED;
     re__unchanged(out, object, triangle, t_host);
-    if (!scene || !o3 || !dir || object >= scene->n_objects) return RE_UNCHANGED;
+    if (!scene || !o3 || !dir || object >= scene->n_objects) return NULL;
     re__madd(o3, t_host, dir, I);
     out->point[0] = I[0], out->point[1] = I[1], out->point[2] = I[2];
     o = &scene->objects[object];
-    if (triangle >= o->n_tris || !re__finite3(I) || !re__finite3(dir) || !o->n_nodes) return RE_UNCHANGED;
-    f = re__pk_get(&o->tri_plane, triangle);
-    if (f == RE__NONE) return RE_UNCHANGED;
+    if (triangle >= o->n_tris || !re__finite3(I) || !o->n_nodes) return NULL;
+    *f = re__pk_get(&o->tri_plane, triangle);
+    if (*f == RE__NONE) return NULL;
+    out->normal[0] = o->planes[*f].n[0], out->normal[1] = o->planes[*f].n[1], out->normal[2] = o->planes[*f].n[2];
+    return o;
+}
+
+/* Query steps 1-5 for a hit I on face plane f of object o (out holds the
+   answer "unchanged" from re__query_start). */
+static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const double I[3], const double dir[3], double t_host,
+                                  re_hit_t *out)
+{
+    re__set_t S;
+    unsigned node, i, j, iter, exit_plane, ndet = 0, c0 = RE__NONE;
+    re__best_t best;
+    double s_exit;
     S.n = 0;
     S.bloom = 0;
-    out->normal[0] = o->planes[f].n[0], out->normal[1] = o->planes[f].n[1], out->normal[2] = o->planes[f].n[2];
-    if (uv && re__band_flat(o, triangle, uv[0], uv[1])) return RE_UNCHANGED;
     /* detection: the kd-tree leaf holding I, then the corners whose rounded
        zone can reach I (paper §3.1 detection cylinders, widened to cover the
        exact corners) */
@@ -3501,15 +3521,24 @@ answer:
 RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
                               unsigned triangle, double t_host, re_hit_t *out)
 {
-    return re__query(scene, o3, dir, object, triangle, t_host, NULL, out);
+    const re__object_t *o;
+    double I[3];
+    unsigned f = 0;
+    if (!out) return RE_UNCHANGED;
+    o = re__query_start(scene, o3, dir, object, triangle, t_host, out, I, &f);
+    return o ? re__query_kd(o, f, I, dir, t_host, out) : RE_UNCHANGED;
 }
 
 RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
                                  unsigned triangle, double t_host, double u, double v, re_hit_t *out)
 {
-    double uv[2];
-    uv[0] = u, uv[1] = v;
-    return re__query(scene, o3, dir, object, triangle, t_host, uv, out);
+    const re__object_t *o;
+    double I[3];
+    unsigned f = 0;
+    if (!out) return RE_UNCHANGED;
+    o = re__query_start(scene, o3, dir, object, triangle, t_host, out, I, &f);
+    if (!o || re__band_flat(o, triangle, u, v)) return RE_UNCHANGED;
+    return re__query_kd(o, f, I, dir, t_host, out);
 }
 
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
