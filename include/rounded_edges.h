@@ -2244,6 +2244,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
 {
     unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, *prid, ns = 0, ncyl = 0, nref = 0, nco = 0, npatch = 0;
     unsigned qslot[RE_MAX_CORNER_PLANES];
+    int pm_id, fc_id;
     size_t kd_mark;
     double *box, *reach, *dmax, lo[3], hi[3];
     RE__TAKE(fc, unsigned, an->nc + 1);
@@ -2340,19 +2341,36 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     F->pk_n[RE__PKA_S_CORNER] = ns;
     F->pk_n[RE__PKA_X_CORNER] = ncyl - F->n_edge_cyls;
     F->pk_n[RE__PKA_C_S0] = F->n_edge_cyls;
-    for (i = 0; i < RE__PKA_N; i++) RE__TAKE(F->pk[i], unsigned, F->pk_n[i]);
     /* Fewer fresh scratch pages (each first touch is a page fault, which
-       costs as much as thousands of instructions): where every plane is
-       used, pmap is the identity (both number in triangle order) and the
-       planes are the analysis' own array; the centres overwrite the unit
-       offsets they come from (sbase[c] <= c_sfirst[c], both ascending, and
-       nothing reads su after the corner loop below). */
+       costs as much as thousands of instructions):
+       - where every plane is used, pmap is the identity (both number in
+         triangle order): the planes and the triangles' plane ids are the
+         analysis' own arrays;
+       - where every candidate corner is rounded, fc is the identity: the
+         corners' vertices, first references (c_pfirst, the prefix sums of
+         their plane counts) and first spheres are the analysis' arrays;
+       - the centres overwrite the unit offsets they come from (sbase[c] <=
+         c_sfirst[c], both ascending, and nothing reads su after the corner
+         loop below);
+       - sphere infos and stored ids only in the compact layout, which
+         stores them. */
     for (i = 0; i < an->n_planes && pmap[i] == i; i++) {}
-    if (i == an->n_planes) F->planes = an->planes;
+    pm_id = i == an->n_planes;
+    fc_id = nco == an->nc; /* fc[c] = c: numbered in order */
+    for (i = 0; i < RE__PKA_N; i++) {
+        if (pm_id && i == RE__PKA_TRI_PLANE) F->pk[i] = an->tplane;
+        else if (fc_id && i == RE__PKA_CVERTEX) F->pk[i] = an->c_vertex;
+        else if (fc_id && i == RE__PKA_K_FIRST) F->pk[i] = an->c_pfirst;
+        else if (fc_id && i == RE__PKA_K_SFIRST) F->pk[i] = sbase;
+        else RE__TAKE(F->pk[i], unsigned, F->pk_n[i]);
+    }
+    if (pm_id) F->planes = an->planes;
     else RE__TAKE(F->planes, re__plane_t, F->n_planes);
     F->sph = an->su;
-    RE__TAKE(F->sinfo, unsigned short, ns);
-    RE__TAKE(F->xsid, unsigned, ns);
+    if (an->desc->layout == RE_LAYOUT_COMPACT) {
+        RE__TAKE(F->sinfo, unsigned short, ns);
+        RE__TAKE(F->xsid, unsigned, ns);
+    }
     if (an->desc->layout == RE_LAYOUT_COMPACT) RE__TAKE(F->xsph, double, 3 * (size_t)ns);
     else F->xsph = F->sph; /* every centre stored, in sphere order: the same array */
     RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
@@ -2363,9 +2381,9 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->refs, unsigned, nref);
     RE__TAKE(reach, double, nco + 1);
     RE__TAKE(dmax, double, nco + 1);
-    for (i = 0; i < an->T; i++)
+    for (i = 0; i < an->T && !pm_id; i++)
         F->pk[RE__PKA_TRI_PLANE][i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
-    if (F->planes != an->planes)
+    if (!pm_id)
         for (i = 0; i < an->n_planes; i++)
             if (pmap[i] != RE__NONE) F->planes[pmap[i]] = an->planes[i];
     nref = 0;
@@ -2379,9 +2397,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         v = an->pos + 3 * (size_t)an->c_vertex[c];
         r = patch_r[re__uf_find(uf, c)];
         if (F->pk_n[RE__PKA_K_RID]) F->pk[RE__PKA_K_RID][fc[c]] = prid[rmap[re__uf_find(uf, c)]];
-        F->pk[RE__PKA_CVERTEX][fc[c]] = an->c_vertex[c];
-        F->pk[RE__PKA_K_FIRST][fc[c]] = nref;
-        F->pk[RE__PKA_K_SFIRST][fc[c]] = sbase[c];
+        RE_ASSERT(!fc_id || (fc[c] == c && an->c_pfirst[c] == nref));
+        if (!fc_id) {
+            F->pk[RE__PKA_CVERTEX][fc[c]] = an->c_vertex[c];
+            F->pk[RE__PKA_K_FIRST][fc[c]] = nref;
+            F->pk[RE__PKA_K_SFIRST][fc[c]] = sbase[c];
+        }
         K->np = an->c_np[c];
         K->ns = an->c_ns[c];
         K->nx = an->c_nx[c];
@@ -2402,10 +2423,9 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         for (j = 0; j < K->ns; j++) {
             double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3], x[3];
             unsigned tri = an->s_tri[an->c_sfirst[c] + j];
-            unsigned short *sr = &F->sinfo[sbase[c] + j];
+            unsigned short info = RE__SPH_STORED;
             re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
             F->pk[RE__PKA_S_CORNER][sbase[c] + j] = fc[c];
-            *sr = RE__SPH_STORED;
             if (tri != RE__NONE && an->desc->layout == RE_LAYOUT_COMPACT && qslot[tri & 255u] < RE__SOLVED_SLOTS &&
                 qslot[tri >> 8 & 255u] < RE__SOLVED_SLOTS && qslot[tri >> 16] < RE__SOLVED_SLOTS) {
                 double tol = RE__SPHERE_SOLVE_REL * r + 64 * 2.220446049250313e-16 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
@@ -2414,11 +2434,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
                 re__sub(x, sp, dd);
                 if (fabs(dd[0]) <= tol && fabs(dd[1]) <= tol && fabs(dd[2]) <= tol) {
                     sp[0] = x[0], sp[1] = x[1], sp[2] = x[2];
-                    *sr = (unsigned short)(qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 5 | qslot[tri >> 16] << 10);
+                    info = (unsigned short)(qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 5 | qslot[tri >> 16] << 10);
                 }
             }
-            if (*sr == RE__SPH_STORED) {
-                F->xsid[F->n_xsph] = sbase[c] + j;
+            if (F->sinfo) F->sinfo[sbase[c] + j] = info;
+            if (info == RE__SPH_STORED) {
+                if (F->xsid) F->xsid[F->n_xsph] = sbase[c] + j;
                 if (F->xsph != F->sph) memcpy(F->xsph + 3 * (size_t)F->n_xsph, sp, 3 * sizeof(double));
                 F->n_xsph++;
             }
