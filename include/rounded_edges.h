@@ -884,7 +884,7 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
 {
     const re_mesh_t *m = an->m;
     unsigned t = 0, f, nf, base = 0, i, k;
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    double lo[3], hi[3], l0 = HUGE_VAL, l1 = HUGE_VAL, l2 = HUGE_VAL, h0 = -HUGE_VAL, h1 = -HUGE_VAL, h2 = -HUGE_VAL;
     char msg[128];
     if (m->position_type == RE_FLOAT64 && (m->position_stride == 0 || m->position_stride == 3 * sizeof(double)))
         an->pos = (const double *)m->positions; /* no copy: fewer fresh scratch pages */
@@ -952,11 +952,8 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
                     an->tarea[t] = len;
                     for (k = 0; k < 3; k++) {
                         const double *p = an->pos + 3 * (size_t)tr[k];
-                        int a;
-                        for (a = 0; a < 3; a++) {
-                            lo[a] = re__min(lo[a], p[a]);
-                            hi[a] = re__max(hi[a], p[a]);
-                        }
+                        l0 = re__min(l0, p[0]), l1 = re__min(l1, p[1]), l2 = re__min(l2, p[2]);
+                        h0 = re__max(h0, p[0]), h1 = re__max(h1, p[1]), h2 = re__max(h2, p[2]);
                     }
                 }
             }
@@ -968,6 +965,7 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
         base += n;
     }
     an->size = 0;
+    lo[0] = l0, lo[1] = l1, lo[2] = l2, hi[0] = h0, hi[1] = h1, hi[2] = h2;
     if (lo[0] <= hi[0]) {
         double dd[3];
         re__sub(hi, lo, dd);
@@ -1701,13 +1699,16 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
     if (n <= RE__KD_LEAF || depth >= RE__KD_DEPTH || kd->n_tmp + 2 * n > kd->cap_tmp || kd->n_nodes + 3 > kd->cap_nodes)
         goto leaf;
     /* the cell shrunk to the boxes it holds */
-    for (a = 0; a < 3; a++) lo[a] = HUGE_VAL, hi[a] = -HUGE_VAL;
-    for (i = 0; i < n; i += step)
-        for (a = 0; a < 3; a++) {
-            lo[a] = re__min(lo[a], kd->box[6 * list[i] + a]);
-            hi[a] = re__max(hi[a], kd->box[6 * list[i] + 3 + a]);
+    {
+        double l0 = HUGE_VAL, l1 = HUGE_VAL, l2 = HUGE_VAL, h0 = -HUGE_VAL, h1 = -HUGE_VAL, h2 = -HUGE_VAL;
+        for (i = 0; i < n; i += step) {
+            const double *bx = kd->box + 6 * (size_t)list[i];
+            l0 = re__min(l0, bx[0]), l1 = re__min(l1, bx[1]), l2 = re__min(l2, bx[2]);
+            h0 = re__max(h0, bx[3]), h1 = re__max(h1, bx[4]), h2 = re__max(h2, bx[5]);
         }
-    for (a = 0; a < 3; a++) lo[a] = re__max(lo[a], lo_in[a]), hi[a] = re__min(hi[a], hi_in[a]);
+        lo[0] = re__max(l0, lo_in[0]), lo[1] = re__max(l1, lo_in[1]), lo[2] = re__max(l2, lo_in[2]);
+        hi[0] = re__min(h0, hi_in[0]), hi[1] = re__min(h1, hi_in[1]), hi[2] = re__min(h2, hi_in[2]);
+    }
     for (a = 1; a < 3; a++)
         if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
     len = hi[axis] - lo[axis];
@@ -1916,7 +1917,12 @@ typedef struct re__final_t {
 static float re__float_up(double x)
 {
     float f = (float)x;
-    if ((double)f < x) f = nextafterf(f, HUGE_VALF);
+    if ((double)f < x) { /* nextafterf(f, HUGE_VALF) by the bits: it was 1% of a build */
+        unsigned b;
+        memcpy(&b, &f, sizeof b);
+        b = f == 0 ? 1u : f > 0 ? b + 1u : b - 1u;
+        memcpy(&f, &b, sizeof f);
+    }
     return f;
 }
 
@@ -2238,6 +2244,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
 {
     unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, *prid, ns = 0, ncyl = 0, nref = 0, nco = 0, npatch = 0;
     unsigned qslot[RE_MAX_CORNER_PLANES];
+    int pm_id, fc_id;
     size_t kd_mark;
     double *box, *reach, *dmax, lo[3], hi[3];
     RE__TAKE(fc, unsigned, an->nc + 1);
@@ -2334,19 +2341,36 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     F->pk_n[RE__PKA_S_CORNER] = ns;
     F->pk_n[RE__PKA_X_CORNER] = ncyl - F->n_edge_cyls;
     F->pk_n[RE__PKA_C_S0] = F->n_edge_cyls;
-    for (i = 0; i < RE__PKA_N; i++) RE__TAKE(F->pk[i], unsigned, F->pk_n[i]);
     /* Fewer fresh scratch pages (each first touch is a page fault, which
-       costs as much as thousands of instructions): where every plane is
-       used, pmap is the identity (both number in triangle order) and the
-       planes are the analysis' own array; the centres overwrite the unit
-       offsets they come from (sbase[c] <= c_sfirst[c], both ascending, and
-       nothing reads su after the corner loop below). */
+       costs as much as thousands of instructions):
+       - where every plane is used, pmap is the identity (both number in
+         triangle order): the planes and the triangles' plane ids are the
+         analysis' own arrays;
+       - where every candidate corner is rounded, fc is the identity: the
+         corners' vertices, first references (c_pfirst, the prefix sums of
+         their plane counts) and first spheres are the analysis' arrays;
+       - the centres overwrite the unit offsets they come from (sbase[c] <=
+         c_sfirst[c], both ascending, and nothing reads su after the corner
+         loop below);
+       - sphere infos and stored ids only in the compact layout, which
+         stores them. */
     for (i = 0; i < an->n_planes && pmap[i] == i; i++) {}
-    if (i == an->n_planes) F->planes = an->planes;
+    pm_id = i == an->n_planes;
+    fc_id = nco == an->nc; /* fc[c] = c: numbered in order */
+    for (i = 0; i < RE__PKA_N; i++) {
+        if (pm_id && i == RE__PKA_TRI_PLANE) F->pk[i] = an->tplane;
+        else if (fc_id && i == RE__PKA_CVERTEX) F->pk[i] = an->c_vertex;
+        else if (fc_id && i == RE__PKA_K_FIRST) F->pk[i] = an->c_pfirst;
+        else if (fc_id && i == RE__PKA_K_SFIRST) F->pk[i] = sbase;
+        else RE__TAKE(F->pk[i], unsigned, F->pk_n[i]);
+    }
+    if (pm_id) F->planes = an->planes;
     else RE__TAKE(F->planes, re__plane_t, F->n_planes);
     F->sph = an->su;
-    RE__TAKE(F->sinfo, unsigned short, ns);
-    RE__TAKE(F->xsid, unsigned, ns);
+    if (an->desc->layout == RE_LAYOUT_COMPACT) {
+        RE__TAKE(F->sinfo, unsigned short, ns);
+        RE__TAKE(F->xsid, unsigned, ns);
+    }
     if (an->desc->layout == RE_LAYOUT_COMPACT) RE__TAKE(F->xsph, double, 3 * (size_t)ns);
     else F->xsph = F->sph; /* every centre stored, in sphere order: the same array */
     RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
@@ -2357,9 +2381,9 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     RE__TAKE(F->refs, unsigned, nref);
     RE__TAKE(reach, double, nco + 1);
     RE__TAKE(dmax, double, nco + 1);
-    for (i = 0; i < an->T; i++)
+    for (i = 0; i < an->T && !pm_id; i++)
         F->pk[RE__PKA_TRI_PLANE][i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
-    if (F->planes != an->planes)
+    if (!pm_id)
         for (i = 0; i < an->n_planes; i++)
             if (pmap[i] != RE__NONE) F->planes[pmap[i]] = an->planes[i];
     nref = 0;
@@ -2373,9 +2397,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         v = an->pos + 3 * (size_t)an->c_vertex[c];
         r = patch_r[re__uf_find(uf, c)];
         if (F->pk_n[RE__PKA_K_RID]) F->pk[RE__PKA_K_RID][fc[c]] = prid[rmap[re__uf_find(uf, c)]];
-        F->pk[RE__PKA_CVERTEX][fc[c]] = an->c_vertex[c];
-        F->pk[RE__PKA_K_FIRST][fc[c]] = nref;
-        F->pk[RE__PKA_K_SFIRST][fc[c]] = sbase[c];
+        RE_ASSERT(!fc_id || (fc[c] == c && an->c_pfirst[c] == nref));
+        if (!fc_id) {
+            F->pk[RE__PKA_CVERTEX][fc[c]] = an->c_vertex[c];
+            F->pk[RE__PKA_K_FIRST][fc[c]] = nref;
+            F->pk[RE__PKA_K_SFIRST][fc[c]] = sbase[c];
+        }
         K->np = an->c_np[c];
         K->ns = an->c_ns[c];
         K->nx = an->c_nx[c];
@@ -2396,10 +2423,9 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         for (j = 0; j < K->ns; j++) {
             double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3], x[3];
             unsigned tri = an->s_tri[an->c_sfirst[c] + j];
-            unsigned short *sr = &F->sinfo[sbase[c] + j];
+            unsigned short info = RE__SPH_STORED;
             re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
             F->pk[RE__PKA_S_CORNER][sbase[c] + j] = fc[c];
-            *sr = RE__SPH_STORED;
             if (tri != RE__NONE && an->desc->layout == RE_LAYOUT_COMPACT && qslot[tri & 255u] < RE__SOLVED_SLOTS &&
                 qslot[tri >> 8 & 255u] < RE__SOLVED_SLOTS && qslot[tri >> 16] < RE__SOLVED_SLOTS) {
                 double tol = RE__SPHERE_SOLVE_REL * r + 64 * 2.220446049250313e-16 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
@@ -2408,11 +2434,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
                 re__sub(x, sp, dd);
                 if (fabs(dd[0]) <= tol && fabs(dd[1]) <= tol && fabs(dd[2]) <= tol) {
                     sp[0] = x[0], sp[1] = x[1], sp[2] = x[2];
-                    *sr = (unsigned short)(qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 5 | qslot[tri >> 16] << 10);
+                    info = (unsigned short)(qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 5 | qslot[tri >> 16] << 10);
                 }
             }
-            if (*sr == RE__SPH_STORED) {
-                F->xsid[F->n_xsph] = sbase[c] + j;
+            if (F->sinfo) F->sinfo[sbase[c] + j] = info;
+            if (info == RE__SPH_STORED) {
+                if (F->xsid) F->xsid[F->n_xsph] = sbase[c] + j;
                 if (F->xsph != F->sph) memcpy(F->xsph + 3 * (size_t)F->n_xsph, sp, 3 * sizeof(double));
                 F->n_xsph++;
             }
