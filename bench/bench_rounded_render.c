@@ -15,14 +15,17 @@
    Render time is the CPU time of the process (user + system, all render
    threads) during the render, not wall time: the benchmark machine is shared
    and wall times swing by 2x with its load, CPU time much less. sharp,
-   rounded and rounded-compact are built once and rendered in
-   RX_BENCH_ROUNDS rounds, the three in turn in every round (the order
-   rotating from round to round); each round gives one overhead per layout
-   (its rounded time over its own sharp time), and the table prints the
-   median of those and their range, beside each mode's fastest time. A
-   drift of the machine's speed then moves a round's three renders
-   together instead of one mode's figure. The environment variable
-   RX_BENCH_ROUNDS overrides the default of 9 rounds.
+   rounded and rounded-compact are built once, rendered once in full (the
+   image, its error and the chamfer rate), then timed in RX_BENCH_ROUNDS
+   rounds: a round renders the scene's samples one at a time, each sample
+   by the three modes in turn (the order rotating), so a change of the
+   machine's speed lasting longer than one sample pass (about 0.02-0.1 s)
+   slows the three alike. Each round gives one overhead per layout (its
+   CPU time over sharp's in that round); the table prints their median and
+   range, and each mode's mean time per full render. The environment
+   variable RX_BENCH_ROUNDS overrides the default of 9 rounds;
+   RX_BENCH_ONLY=article (a substring of the scenes' labels) runs only the
+   scenes it names.
 
    Usage: build/bench/bench_rounded_render OUTDIR   (table on stdout, CSV
    OUTDIR/rounded_render.csv, progress on stderr). */
@@ -165,12 +168,14 @@ int main(int argc, char **argv)
            RX_BENCH_W, RX_BENCH_H);
     for (si = 0; si < 4; si++) {
         const bench_scene_t *b = &scenes[si];
+        const char *only = getenv("RX_BENCH_ONLY");
         rx_scene_t s;
         row_t ref, rows[16], best[3];
         float *ref_img, *img;
         double over[2][RX_BENCH_MAX_ROUNDS];
         spread_t sp[2];
         int n = 0, i, k, q;
+        if (only && !strstr(b->label, only)) continue;
         if (rx_scene_make(&s, b->name, b->radius_scale)) return 1;
         memset(&ref, 0, sizeof ref);
         ref_img = NULL;
@@ -178,31 +183,40 @@ int main(int argc, char **argv)
             fprintf(stderr, "%s: reference %s\n", b->label, b->reference);
             if (!(ref_img = run(&s, b->reference, b->spp, &ref))) return 1;
         }
-        /* sharp, rounded and rounded-compact: built once, rendered in turn in
-           every round (the order rotating), each keeping its fastest time;
-           each round's overheads are rounded / sharp of that round */
+        /* sharp, rounded and rounded-compact: built once and rendered in
+           full once (image, error, chamfer rate); then the rounds, each
+           sample pass by the three in turn (the order rotating) */
         {
             rx_world_t wd[3];
-            double t[3];
+            double t[3], total[3] = {0, 0, 0};
+            float *pass = (float *)malloc(sizeof(float) * 3 * RX_BENCH_W * RX_BENCH_H);
+            int p;
+            if (!pass) return 1;
             for (i = 0; i < 3; i++) {
                 rx_mode_t m;
+                fprintf(stderr, "%s: %s\n", b->label, b->modes[i]);
                 if (rx_mode_parse(b->modes[i], &m) || rx_world_build(&wd[i], &s, m, RX_BENCH_W, RX_BENCH_H)) return 1;
+                if (!(img = render_world(&wd[i], b->modes[i], b->spp, &best[i]))) return 1;
+                best[i].rmse = ref_img ? ex_image_rmse(img, ref_img, RX_BENCH_W, RX_BENCH_H) : 0;
+                free(img);
             }
+            fprintf(stderr, "%s: %d rounds of %d sample passes x 3 modes\n", b->label, rounds, b->spp);
             for (k = 0; k < rounds; k++) {
-                for (q = 0; q < 3; q++) {
-                    row_t r;
-                    i = (q + k) % 3;
-                    fprintf(stderr, "%s: %s (round %d of %d)\n", b->label, b->modes[i], k + 1, rounds);
-                    if (!(img = render_world(&wd[i], b->modes[i], b->spp, &r))) return 1;
-                    r.rmse = ref_img ? ex_image_rmse(img, ref_img, RX_BENCH_W, RX_BENCH_H) : 0;
-                    if (k == 0 || r.render < best[i].render) best[i] = r;
-                    t[i] = r.render;
-                    free(img);
-                }
+                t[0] = t[1] = t[2] = 0;
+                for (p = 0; p < b->spp; p++)
+                    for (q = 0; q < 3; q++) {
+                        double c;
+                        i = (q + p + k) % 3;
+                        c = cpu_seconds();
+                        if (rx_world_render(&wd[i], 1, 0, (unsigned long long)(2 + p + k * b->spp), 1, pass) < 0) return 1;
+                        t[i] += cpu_seconds() - c;
+                    }
                 over[0][k] = t[1] / t[0] - 1;
                 over[1][k] = t[2] / t[0] - 1;
+                for (i = 0; i < 3; i++) total[i] += t[i];
             }
-            for (i = 0; i < 3; i++) rx_world_free(&wd[i]);
+            free(pass);
+            for (i = 0; i < 3; i++) best[i].render = total[i] / rounds, rx_world_free(&wd[i]);
             sp[0] = spread_of(over[0], rounds);
             sp[1] = spread_of(over[1], rounds);
         }
@@ -241,7 +255,7 @@ int main(int argc, char **argv)
             for (i = 0; i < n; i++)
                 if (!strcmp(rows[i].mode, "bevel-cycles-4")) c4 = &rows[i];
             for (k = 1; k <= 2; k++) {
-                printf("  %s vs sharp: %+.1f%% time (median of %d rounds; range %+.1f%% .. %+.1f%%; fastest runs %+.1f%%) at "
+                printf("  %s vs sharp: %+.1f%% time (median of %d rounds; range %+.1f%% .. %+.1f%%; all rounds %+.1f%%) at "
                        "%.2f%% chamfer rays; vs bevel-cycles-4: %.2fx faster",
                        rows[k].mode, 100 * sp[k - 1].median, rounds, 100 * sp[k - 1].lo, 100 * sp[k - 1].hi,
                        100 * (rows[k].render / rows[0].render - 1), rows[k].chamfer, c4 ? c4->render / rows[k].render : 0);

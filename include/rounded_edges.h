@@ -1653,8 +1653,8 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
    references on top of RE__KD_DUP per box. On an object of a few hundred
    edges whose detection boxes overlap (the example's icosphere of 120
    edges) the budget, not the cost, stopped the splits, and a query tested
-   21 candidates; with these 8 (docs/rounded_edges.md, "Query cost"). A
-   large object's tree, and its build time, are as before. */
+   21 candidates; with these 7 (docs/rounded_edges.md, construction step
+   8). A large object's tree, and its build time, are as before. */
 #define RE__KD_DUP_EXTRA 256u
 #define RE__KD_SAMPLE 64u
 
