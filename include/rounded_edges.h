@@ -2421,7 +2421,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             qslot[k] = j;
         }
         for (j = 0; j < K->ns; j++) {
-            double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3], x[3];
+            double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3], x[3], ldd;
             unsigned tri = an->s_tri[an->c_sfirst[c] + j];
             unsigned short info = RE__SPH_STORED;
             re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
@@ -2444,13 +2444,14 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
                 F->n_xsph++;
             }
             re__sub(sp, v, dd);
-            dm = re__max(dm, re__len(dd));
+            ldd = re__len(dd);
+            dm = re__max(dm, ldd);
             /* on a face g through s, the corner zone is the hull of v and the
                eroded vertices seen from above: their tangential offsets */
             for (k = 0; k < K->np; k++) {
                 const double *n = an->planes[an->c_planes[pf + k]].n;
                 double h = re__dot(n, dd), tg[3];
-                if (fabs(h + r) > RE__CORNER_EPS * re__max(r, re__len(dd))) continue;
+                if (fabs(h + r) > RE__CORNER_EPS * re__max(r, ldd)) continue;
                 re__madd(dd, -h, n, tg);
                 freach = re__max(freach, re__len(tg));
             }
