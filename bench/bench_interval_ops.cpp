@@ -96,7 +96,9 @@
 #define iv__min F_iv__min
 #define iv__mul0 F_iv__mul0
 #define iv__mul1 F_iv__mul1
+#define iv__mul1_bounded F_iv__mul1_bounded
 #define iv__mul2 F_iv__mul2
+#define iv__mul_bounded F_iv__mul_bounded
 #define iv__mul_d1 F_iv__mul_d1
 #define iv__mul_d2 F_iv__mul_d2
 #define iv__mul_slow F_iv__mul_slow
@@ -105,6 +107,7 @@
 #define iv__next_down_bits F_iv__next_down_bits
 #define iv__next_down_fma F_iv__next_down_fma
 #define iv__next_up F_iv__next_up
+#define iv__op_lane1 F_iv__op_lane1
 #define iv__op_n F_iv__op_n
 #define iv__op_one F_iv__op_one
 #define iv__op_soa F_iv__op_soa
@@ -293,7 +296,9 @@
 #undef iv__min
 #undef iv__mul0
 #undef iv__mul1
+#undef iv__mul1_bounded
 #undef iv__mul2
+#undef iv__mul_bounded
 #undef iv__mul_d1
 #undef iv__mul_d2
 #undef iv__mul_slow
@@ -302,6 +307,7 @@
 #undef iv__next_down_bits
 #undef iv__next_down_fma
 #undef iv__next_up
+#undef iv__op_lane1
 #undef iv__op_n
 #undef iv__op_one
 #undef iv__op_soa
