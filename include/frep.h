@@ -3616,6 +3616,20 @@ static void fr__sign_comp4(const double *hi, const double *lo, int n, const doub
     fr__sign_comp_lanes(hi, 0, lo, n, x, sign, value, deriv);
 }
 
+/* Plain Horner value of p(x) and, in *bound, sum |c_i| |x|^i: the scale of
+   the value's rounding error (gamma_2n times it, Higham 2002 eq. 5.3). */
+static double fr__horner_bound(const double *c, int n, double x, double *bound)
+{
+    double v = c[n], a = fabs(c[n]), ax = fabs(x);
+    int i;
+    for (i = n - 1; i >= 0; i--) {
+        v = v * x + c[i];
+        a = a * ax + fabs(c[i]);
+    }
+    *bound = a;
+    return v;
+}
+
 /* Sign of p(x) as -1, 0, +1, where 0 means "zero within what compensated
    evaluation can resolve" (a root, possibly multiple, at x). Plain Horner
    decides first when its value exceeds its error bound gamma_2n sum|c_i||x|^i
@@ -3623,12 +3637,7 @@ static void fr__sign_comp4(const double *hi, const double *lo, int n, const doub
    only runs near a root. */
 static int fr__sign_at(const double *hi, const double *lo, int n, double x, double *value)
 {
-    double a = fabs(hi[n]), v = hi[n], ax = fabs(x), d;
-    int i;
-    for (i = n - 1; i >= 0; i--) {
-        v = v * x + hi[i];
-        a = a * ax + fabs(hi[i]);
-    }
+    double a, v = fr__horner_bound(hi, n, x, &a), d;
     if (fabs(v) > (2.0 * n + 2.0) * FR__U * a) {
         *value = v;
         return v > 0 ? 1 : -1;
@@ -3907,12 +3916,7 @@ static double fr__critical_end_start(const double *hi, int n, double e, double v
    units of what rounding alone can resolve (2n u, Higham 2002 eq. 5.3). */
 static double fr__abs_value_ratio(const double *hi, int n, double x)
 {
-    double v = hi[n], a = fabs(hi[n]), ax = fabs(x);
-    int i;
-    for (i = n - 1; i >= 0; i--) {
-        v = v * x + hi[i];
-        a = a * ax + fabs(hi[i]);
-    }
+    double a, v = fr__horner_bound(hi, n, x, &a);
     return a > 0 ? fabs(v) / a : 0.0;
 }
 
@@ -5139,7 +5143,7 @@ typedef struct fr__ray_t {
     int mono;         /* pc set and g' available: monotone segments hand over (fr__trace_interval) */
     double gam, dgam; /* gamma_{2n+2} for g's and g''s degrees n (fr__poly_range_of) */
     const fr_prepared_t *prep; /* desc->prepared, if made for this tape */
-    double inv[3];    /* 1 / d[k] (0 where d[k] = 0), when have_inv: from fr__clip_padded */
+    double inv[3];    /* 1 / d[k] (0 where d[k] = 0), when have_inv: from fr__ray_inv */
     double tpad;      /* and max_k 8u |o[k]| |inv[k]|: o's rounding in t (fr__slab_meets) */
     int have_inv;
     void *eval;
@@ -5525,7 +5529,8 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         const fr_tape_t *tp;
         iv_t range, dg;
         fr_result_t e;
-        double tl;
+        double tl, ga = 0.0, gb = 0.0;
+        int have_ends = 0; /* ga, gb hold g at the segment's ends */
         R->iters++;
         if (prune && s.depth % FR__PRUNE_EVERY == 0 && s.depth > 0 && lvl < FR__PRUNE_LEVELS) {
             iv_t box[3];
@@ -5555,7 +5560,9 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
             dg = fr__poly_range_of(R, R->dc, R->dm, R->pdeg - 1, R->mdeg - 1, R->drho, R->dgam, s.a, s.b, &share);
             R->evals++;
             if (!iv_is_empty(dg) && !iv_contains(dg, 0.0)) {
-                double ga = fr__g(R, s.a), gb = fr__g(R, s.b);
+                ga = fr__g(R, s.a);
+                gb = fr__g(R, s.b);
+                have_ends = 1;
                 if (ga == 0 || gb == 0 || fr__opposite(ga, gb)) {
                     *found = 1;
                     *t_err = 0.5 * R->tol;
@@ -5591,8 +5598,9 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
                of this one is excluded (depth-first, left first), so a sign
                change here brackets the first root, or with several roots
                inside the segment one of them. */
-            double ga = fr__g(R, s.a), gb = fr__g(R, s.b);
-            int change = ga == 0 || gb == 0 || fr__opposite(ga, gb);
+            int change;
+            if (!have_ends) { ga = fr__g(R, s.a); gb = fr__g(R, s.b); }
+            change = ga == 0 || gb == 0 || fr__opposite(ga, gb);
             if (change || (s.b - s.a <= tl && (s.b - s.a <= tl * FR__TOUCH_SCALE || s.depth >= FR__TRACE_MAX_DEPTH))) {
                 *found = 1;
                 *t_hit = ga == 0 ? s.a : gb == 0 && !fr__opposite(ga, gb) ? s.b : 0.5 * (s.a + s.b);
@@ -6077,32 +6085,43 @@ static int fr__clip_box(fr__ray_t *R, const double *b)
 
 /* ---------------------------------------------------------------- prepared models */
 
+/* The reciprocal directions and o's rounding pad in t for slab tests
+   (fr__slab_meets), computed once per ray. */
+static void fr__ray_inv(fr__ray_t *R)
+{
+    int k;
+    if (R->have_inv) return;
+    R->tpad = 0.0;
+    for (k = 0; k < 3; k++) {
+        double op = 8.0 * FR__U * fabs(R->o[k]);
+        R->inv[k] = R->d[k] != 0 ? 1.0 / R->d[k] : 0.0;
+        if (op * fabs(R->inv[k]) > R->tpad) R->tpad = op * fabs(R->inv[k]);
+    }
+    R->have_inv = 1;
+}
+
 /* fr__clip_box with a box padded beforehand (fr__box_pad_set): only the
-   ray's own rounding is added, to the box's bounds in t. */
+   ray's own rounding (fr__ray_inv's pad) is added, to the box's bounds in t. */
 static int fr__clip_padded(fr__ray_t *R, const double *b)
 {
-    double A = -HUGE_VAL, Z = HUGE_VAL, tp = 0.0;
+    double A = -HUGE_VAL, Z = HUGE_VAL;
     int k;
+    fr__ray_inv(R);
     for (k = 0; k < 3; k++) {
-        double op = 8.0 * FR__U * fabs(R->o[k]), inv, ta, tb;
+        double ta, tb;
         if (R->d[k] == 0) {
+            double op = 8.0 * FR__U * fabs(R->o[k]);
             if (!(R->o[k] >= b[k] - op && R->o[k] <= b[k + 3] + op)) return 0;
-            R->inv[k] = 0.0;
             continue;
         }
-        inv = 1.0 / R->d[k];
-        R->inv[k] = inv;
-        ta = (b[k] - R->o[k]) * inv;
-        tb = (b[k + 3] - R->o[k]) * inv;
+        ta = (b[k] - R->o[k]) * R->inv[k];
+        tb = (b[k + 3] - R->o[k]) * R->inv[k];
         if (ta > tb) { double x = ta; ta = tb; tb = x; }
         if (ta > A) A = ta;
         if (tb < Z) Z = tb;
-        if (op * fabs(inv) > tp) tp = op * fabs(inv);
     }
-    R->have_inv = 1;
-    R->tpad = tp;
-    A -= 4.0 * FR__U * fabs(A) + tp;
-    Z += 4.0 * FR__U * fabs(Z) + tp;
+    A -= 4.0 * FR__U * fabs(A) + R->tpad;
+    Z += 4.0 * FR__U * fabs(Z) + R->tpad;
     if (A < R->t0) A = R->t0;
     if (Z > R->t1) Z = R->t1;
     if (!(A <= Z)) return 0;
@@ -6624,20 +6643,6 @@ FR_DEF void fr_prepared_free(fr_prepared_t *p)
     memset(p, 0, sizeof *p);
 }
 
-/* The reciprocal directions and o's rounding pad in t for slab tests
-   (fr__slab_meets), unless fr__clip_padded left them. */
-static void fr__ray_inv(fr__ray_t *R)
-{
-    int k;
-    if (R->have_inv) return;
-    R->tpad = 0.0;
-    for (k = 0; k < 3; k++) {
-        double op = 8.0 * FR__U * fabs(R->o[k]);
-        R->inv[k] = R->d[k] != 0 ? 1.0 / R->d[k] : 0.0;
-        if (op * fabs(R->inv[k]) > R->tpad) R->tpad = op * fabs(R->inv[k]);
-    }
-    R->have_inv = 1;
-}
 /* Does o + t d, t in [a, z], meet the box b (padded at fr_prepare as
    fr__clip_box pads)? The slab test of fr__clip_box with the clip's
    reciprocals (fr__ray_inv); the products' rounding (4u relative,
