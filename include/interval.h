@@ -81,8 +81,9 @@
      iv_add_n / iv_sub_n / iv_mul_n (iv_t arrays) and iv_add_soa /
      iv_sub_soa / iv_mul_soa (separate lo and hi arrays) do the pair
      path's steps for four to eight intervals per AVX-512 instruction (two
-     to four with AVX2) and give the per-call results bit for bit; they
-     are what reaches the throughput figures of docs/interval.md.
+     to four with AVX2; the portable code in vectorisable blocks) and give
+     the per-call results bit for bit; they are what reaches the
+     throughput figures of docs/interval.md.
 
    CONVENTIONS
      See docs/conventions.md: results are iv_result_t codes with IV_OK = 0,
@@ -647,10 +648,12 @@ static __attribute__((noinline, unused)) __m128d iv__slow2(int op, __m128d a, __
 #endif
 /* Array forms: out[i] = a[i] op b[i] for i < n, exactly the intervals of
    iv_add, iv_sub and iv_mul (tested), several intervals per instruction
-   where the target has AVX2 (two per register) or AVX-512 F/DQ/VL (four),
-   one at a time elsewhere. They are how the throughput figures of
-   docs/interval.md for arrays are reached: a call to iv_mul has a fixed
-   cost in instructions per interval that a loop over calls cannot spread.
+   where the target has AVX2 (two per register) or AVX-512 F/DQ/VL (four);
+   without the pair path, blocks of 8 of the scalar code that compilers
+   vectorise where there is a hardware fma, one at a time otherwise. They
+   are how the throughput figures of docs/interval.md for arrays are
+   reached: a call to iv_mul has a fixed cost in instructions per interval
+   that a loop over calls cannot spread.
    out may be a or b (element i is read before it is written); otherwise
    the arrays must not overlap. n = 0 does nothing. */
 IV_DEF void iv_add_n(iv_t *out, const iv_t *a, const iv_t *b, size_t n);
