@@ -96,7 +96,9 @@
 #define iv__min F_iv__min
 #define iv__mul0 F_iv__mul0
 #define iv__mul1 F_iv__mul1
+#define iv__mul1_bounded F_iv__mul1_bounded
 #define iv__mul2 F_iv__mul2
+#define iv__mul_bounded F_iv__mul_bounded
 #define iv__mul_d1 F_iv__mul_d1
 #define iv__mul_d2 F_iv__mul_d2
 #define iv__mul_slow F_iv__mul_slow
@@ -105,9 +107,11 @@
 #define iv__next_down_bits F_iv__next_down_bits
 #define iv__next_down_fma F_iv__next_down_fma
 #define iv__next_up F_iv__next_up
+#define iv__op_lane1 F_iv__op_lane1
 #define iv__op_n F_iv__op_n
 #define iv__op_one F_iv__op_one
 #define iv__op_soa F_iv__op_soa
+#define iv__op_soa_each F_iv__op_soa_each
 #define iv__ordered F_iv__ordered
 #define iv__out F_iv__out
 #define iv__out_exact F_iv__out_exact
@@ -136,20 +140,16 @@
 #define iv__unvec F_iv__unvec
 #define iv__up F_iv__up
 #define iv__vec F_iv__vec
-#define iv__w_abs_max F_iv__w_abs_max
 #define iv__w_any_nan F_iv__w_any_nan
 #define iv__w_blendv F_iv__w_blendv
-#define iv__w_dup_hi F_iv__w_dup_hi
-#define iv__w_dup_lo F_iv__w_dup_lo
 #define iv__w_floor_normal F_iv__w_floor_normal
 #define iv__w_load F_iv__w_load
 #define iv__w_loadd F_iv__w_loadd
 #define iv__w_mag_floor F_iv__w_mag_floor
-#define iv__w_mul_v F_iv__w_mul_v
+#define iv__w_mul_pairs F_iv__w_mul_pairs
 #define iv__w_op F_iv__w_op
 #define iv__w_op_soa F_iv__w_op_soa
 #define iv__w_out_exact F_iv__w_out_exact
-#define iv__w_out_pair F_iv__w_out_pair
 #define iv__w_pairs F_iv__w_pairs
 #define iv__w_store F_iv__w_store
 #define iv__w_stored F_iv__w_stored
@@ -296,7 +296,9 @@
 #undef iv__min
 #undef iv__mul0
 #undef iv__mul1
+#undef iv__mul1_bounded
 #undef iv__mul2
+#undef iv__mul_bounded
 #undef iv__mul_d1
 #undef iv__mul_d2
 #undef iv__mul_slow
@@ -305,9 +307,11 @@
 #undef iv__next_down_bits
 #undef iv__next_down_fma
 #undef iv__next_up
+#undef iv__op_lane1
 #undef iv__op_n
 #undef iv__op_one
 #undef iv__op_soa
+#undef iv__op_soa_each
 #undef iv__ordered
 #undef iv__out
 #undef iv__out_exact
@@ -336,20 +340,16 @@
 #undef iv__unvec
 #undef iv__up
 #undef iv__vec
-#undef iv__w_abs_max
 #undef iv__w_any_nan
 #undef iv__w_blendv
-#undef iv__w_dup_hi
-#undef iv__w_dup_lo
 #undef iv__w_floor_normal
 #undef iv__w_load
 #undef iv__w_loadd
 #undef iv__w_mag_floor
-#undef iv__w_mul_v
+#undef iv__w_mul_pairs
 #undef iv__w_op
 #undef iv__w_op_soa
 #undef iv__w_out_exact
-#undef iv__w_out_pair
 #undef iv__w_pairs
 #undef iv__w_store
 #undef iv__w_stored

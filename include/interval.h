@@ -81,8 +81,9 @@
      iv_add_n / iv_sub_n / iv_mul_n (iv_t arrays) and iv_add_soa /
      iv_sub_soa / iv_mul_soa (separate lo and hi arrays) do the pair
      path's steps for four to eight intervals per AVX-512 instruction (two
-     to four with AVX2) and give the per-call results bit for bit; they
-     are what reaches the throughput figures of docs/interval.md.
+     to four with AVX2; the portable code in vectorisable blocks) and give
+     the per-call results bit for bit; they are what reaches the
+     throughput figures of docs/interval.md.
 
    CONVENTIONS
      See docs/conventions.md: results are iv_result_t codes with IV_OK = 0,
@@ -439,17 +440,25 @@ static inline iv_t iv_sub_d(iv_t x, double d) { return iv_add(x, iv_point(-d)); 
    be inlined everywhere). */
 IV_DEF iv_t iv__mul_slow(iv_t a, iv_t b);
 /* Bounded inputs (the common case, one predictable branch) need no 0*inf
-   repair and no empty test: NaN endpoints fail the comparisons. */
-static inline iv_t iv__mul1(iv_t a, iv_t b)
+   repair and no empty test: NaN endpoints fail the comparisons. The test
+   is written twice: with && here (gcc 12 makes it two compare-and-branch
+   pairs per factor; with & it built four setae and two tests, 3 more
+   instructions per call) and with & in iv__mul_bounded, for the array
+   forms' blocks (with && gcc did not vectorise them). */
+static inline iv_t iv__mul1_bounded(iv_t a, iv_t b)
 {
-    double p1, p2, p3, p4;
-    if (!(a.lo > -HUGE_VAL && a.hi < HUGE_VAL && b.lo > -HUGE_VAL && b.hi < HUGE_VAL)) return iv__mul_slow(a, b);
-    p1 = a.lo * b.lo;
-    p2 = a.lo * b.hi;
-    p3 = a.hi * b.lo;
-    p4 = a.hi * b.hi;
+    double p1 = a.lo * b.lo, p2 = a.lo * b.hi, p3 = a.hi * b.lo, p4 = a.hi * b.hi;
     return iv__raw(iv__down(iv__min(iv__min(p1, p2), iv__min(p3, p4))),
                    iv__up(iv__max(iv__max(p1, p2), iv__max(p3, p4))));
+}
+static inline iv_t iv__mul1(iv_t a, iv_t b)
+{
+    if (!(a.lo > -HUGE_VAL && a.hi < HUGE_VAL && b.lo > -HUGE_VAL && b.hi < HUGE_VAL)) return iv__mul_slow(a, b);
+    return iv__mul1_bounded(a, b);
+}
+static inline int iv__mul_bounded(iv_t a, iv_t b)
+{
+    return (a.lo > -HUGE_VAL) & (a.hi < HUGE_VAL) & (b.lo > -HUGE_VAL) & (b.hi < HUGE_VAL);
 }
 #ifdef IV__PAIR
 /* |max(p, q)|: one instruction with AVX-512DQ/VL (vrangepd, max with the
@@ -639,10 +648,12 @@ static __attribute__((noinline, unused)) __m128d iv__slow2(int op, __m128d a, __
 #endif
 /* Array forms: out[i] = a[i] op b[i] for i < n, exactly the intervals of
    iv_add, iv_sub and iv_mul (tested), several intervals per instruction
-   where the target has AVX2 (two per register) or AVX-512 F/DQ/VL (four),
-   one at a time elsewhere. They are how the throughput figures of
-   docs/interval.md for arrays are reached: a call to iv_mul has a fixed
-   cost in instructions per interval that a loop over calls cannot spread.
+   where the target has AVX2 (two per register) or AVX-512 F/DQ/VL (four);
+   without the pair path, blocks of 8 of the scalar code that compilers
+   vectorise where there is a hardware fma, one at a time otherwise. They
+   are how the throughput figures of docs/interval.md for arrays are
+   reached: a call to iv_mul has a fixed cost in instructions per interval
+   that a loop over calls cannot spread.
    out may be a or b (element i is read before it is written); otherwise
    the arrays must not overlap. n = 0 does nothing. */
 IV_DEF void iv_add_n(iv_t *out, const iv_t *a, const iv_t *b, size_t n);
@@ -972,13 +983,17 @@ IV_DEF iv_t iv__mul_slow(iv_t a, iv_t b)
     return iv__raw(empty ? NAN : lo, empty ? NAN : hi);
 }
 enum { IV__N_ADD, IV__N_SUB, IV__N_MUL };
-/* The array forms. Each 128-bit half of a wide register holds one
-   interval [lo, hi] and goes through the pair path's own steps (iv__mul_v,
-   iv__out_exact), written once below over the iv__w_ operations of the
-   widest register the target has; a block with a NaN lane is redone one
-   interval at a time by iv_add / iv_sub / iv_mul, so the results are
-   theirs bit for bit. Two registers per iteration keep both multiply pipes
-   busy (measured: 2.7x the double loop against 3.0x with one). */
+/* The array forms, written once below over the iv__w_ operations of the
+   widest register the target has. iv_add_n and iv_sub_n keep one
+   interval [lo, hi] per 128-bit half of a register and take the pair
+   path's own step (iv__out_exact). iv_mul_n splits two registers of
+   intervals into one of lower and one of upper ends (two in-lane unpacks
+   per operand), runs the structure-of-arrays product (iv__w_op_soa) and
+   joins the ends again (two more): 6 shuffles per 2 IV__W intervals
+   instead of the pair form's dup, dup, swap, two sign flips and two
+   blends per register, measured 3.2x -> 2.4x the double loop (docs/
+   interval.md). A block with a NaN lane is redone one interval at a time
+   by iv_add / iv_sub / iv_mul, so the results are theirs bit for bit. */
 /* gcc 12's AVX-512 intrinsics start from _mm512_undefined_pd(), which its
    C++ front end reports as maybe-uninitialized once inlined here */
 #if defined(__GNUC__) && !defined(__clang__)
@@ -996,11 +1011,7 @@ static inline void iv__w_stored(double *x, iv__wv v) { _mm512_storeu_pd(x, v); }
 /* max(|v|, 2^-1022), the step's X for any rounded result (see iv__out) */
 static inline iv__wv iv__w_mag_floor(iv__wv v) { return _mm512_range_pd(v, _mm512_set1_pd(2.2250738585072014e-308), 11); }
 static inline iv__wv iv__w_swap(iv__wv v) { return _mm512_shuffle_pd(v, v, 0x55); }
-static inline iv__wv iv__w_dup_lo(iv__wv v) { return _mm512_unpacklo_pd(v, v); }
-static inline iv__wv iv__w_dup_hi(iv__wv v) { return _mm512_unpackhi_pd(v, v); }
 static inline iv__wv iv__w_blendv(iv__wv a, iv__wv b, iv__wv m) { return _mm512_mask_blend_pd(_mm512_movepi64_mask(_mm512_castpd_si512(m)), a, b); }
-static inline iv__wv iv__w_abs_max(iv__wv p, iv__wv q) { return _mm512_range_pd(p, q, 9); }
-static inline iv__wv iv__w_floor_normal(iv__wv m) { return _mm512_castsi512_pd(_mm512_max_epi32(_mm512_castpd_si512(m), _mm512_set1_epi64(0x0010000080000000LL))); }
 static inline int iv__w_any_nan(iv__wv a, iv__wv b) { return _mm512_cmp_pd_mask(a, b, _CMP_UNORD_Q) != 0; }
 #  define IV__W_OP(op) _mm512_##op##_pd
 #elif defined(IV__PAIR) && defined(__AVX2__)
@@ -1012,13 +1023,18 @@ static inline iv__wv iv__w_pairs(__m128d v) { return _mm256_broadcast_pd(&v); }
 static inline iv__wv iv__w_loadd(const double *x) { return _mm256_loadu_pd(x); }
 static inline void iv__w_stored(double *x, iv__wv v) { _mm256_storeu_pd(x, v); }
 static inline iv__wv iv__w_swap(iv__wv v) { return _mm256_permute_pd(v, 5); }
-static inline iv__wv iv__w_dup_lo(iv__wv v) { return _mm256_unpacklo_pd(v, v); }
-static inline iv__wv iv__w_dup_hi(iv__wv v) { return _mm256_unpackhi_pd(v, v); }
+/* gcc 12 computes the 256-bit blendv's mask again with a compare against
+   0 (vpcmpgtq, one more instruction per blend); the asm keeps the sign
+   bits as the mask (the AVX2 product 2.8x the double loop, not 3.05x) */
+#  if defined(__clang__)
 static inline iv__wv iv__w_blendv(iv__wv a, iv__wv b, iv__wv m) { return _mm256_blendv_pd(a, b, m); }
-#  if defined(__AVX512DQ__) && defined(__AVX512VL__)
-static inline iv__wv iv__w_abs_max(iv__wv p, iv__wv q) { return _mm256_range_pd(p, q, 9); }
 #  else
-static inline iv__wv iv__w_abs_max(iv__wv p, iv__wv q) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), _mm256_max_pd(p, q)); }
+static inline iv__wv iv__w_blendv(iv__wv a, iv__wv b, iv__wv m)
+{
+    iv__wv r;
+    __asm__("vblendvpd %3, %2, %1, %0" : "=x"(r) : "x"(a), "x"(b), "x"(m));
+    return r;
+}
 #  endif
 static inline iv__wv iv__w_floor_normal(iv__wv m) { return _mm256_castsi256_pd(_mm256_max_epi32(_mm256_castpd_si256(m), _mm256_set1_epi64x(0x0010000080000000LL))); }
 #  if defined(__AVX512DQ__) && defined(__AVX512VL__)
@@ -1034,36 +1050,20 @@ static inline int iv__w_any_nan(iv__wv a, iv__wv b) { return _mm256_movemask_pd(
 #  define IV__W_OP(op) _mm256_##op##_pd
 #endif
 #ifdef IV__W
-/* the pair path's steps, lane pair by lane pair (see iv__out_exact,
-   iv__out_pair and iv__mul_v) */
+/* the pair path's step for + and -, lane pair by lane pair (see
+   iv__out_exact) */
 #  ifdef IV_FAST
 static inline iv__wv iv__w_out_exact(iv__wv v) { return v; }
-static inline iv__wv iv__w_out_pair(iv__wv v, iv__wv m) { (void)m; return IV__W_OP(xor)(v, iv__w_pairs(iv__sign_lo())); }
 #  else
 static inline iv__wv iv__w_out_exact(iv__wv v)
 {
     return IV__W_OP(fmadd)(iv__w_pairs(iv__q()), IV__W_OP(andnot)(iv__w_pairs(_mm_set1_pd(-0.0)), v), v);
 }
-static inline iv__wv iv__w_out_pair(iv__wv v, iv__wv m) { return IV__W_OP(fmaddsub)(iv__w_pairs(iv__q()), iv__w_floor_normal(m), v); }
 #  endif
-static inline iv__wv iv__w_mul_v(iv__wv av, iv__wv bv, iv__wv *p)
-{
-    iv__wv bs = iv__w_swap(bv), sg = iv__w_pairs(iv__sign_lo());
-    iv__wv al = iv__w_dup_lo(av), ah = iv__w_dup_hi(av);
-    iv__wv q = IV__W_OP(mul)(IV__W_OP(xor)(ah, sg), iv__w_blendv(bv, bs, ah));
-    *p = IV__W_OP(mul)(IV__W_OP(xor)(al, sg), iv__w_blendv(bv, bs, al));
-    return iv__w_out_pair(IV__W_OP(max)(*p, q), iv__w_abs_max(*p, q));
-}
-/* one register of intervals through op; *bad: a NaN lane */
+/* one register of intervals through + or -; *bad: a NaN lane */
 static inline iv__wv iv__w_op(int op, iv__wv av, iv__wv bv, int *bad)
 {
-    iv__wv p, r;
-    if (op == IV__N_MUL) {
-        r = iv__w_mul_v(av, bv, &p);
-        *bad = iv__w_any_nan(p, r);
-        return r;
-    }
-    r = iv__w_out_exact(op == IV__N_ADD ? IV__W_OP(add)(av, bv) : IV__W_OP(sub)(av, iv__w_swap(bv)));
+    iv__wv r = iv__w_out_exact(op == IV__N_ADD ? IV__W_OP(add)(av, bv) : IV__W_OP(sub)(av, iv__w_swap(bv)));
     *bad = iv__w_any_nan(r, r);
     return r;
 }
@@ -1106,11 +1106,47 @@ static inline void iv__w_op_soa(int op, iv__wv al, iv__wv ah, iv__wv bl, iv__wv 
     *hi = h;
     *bad = iv__w_any_nan(c1, c3) | iv__w_any_nan(l, h);
 }
+/* 2 IV__W intervals of iv_t arrays (a0 the first IV__W, a1 the next)
+   through the product above. unpacklo/unpackhi work inside each 128-bit
+   lane: with a0 = [l0 h0 l1 h1 ..] and a1 = [l4 h4 l5 h5 ..] (AVX-512)
+   they give [l0 l4 l1 l5 ..] and [h0 h4 h1 h5 ..], b in the same order, so
+   lane k of the ends belongs to one interval; the same two unpacks of the
+   results give back [l0 h0 l1 h1 ..] and [l4 h4 ..] (for AVX2 likewise
+   with two intervals per register). */
+static inline void iv__w_mul_pairs(iv__wv a0, iv__wv a1, iv__wv b0, iv__wv b1, iv__wv *r0, iv__wv *r1, int *bad)
+{
+    iv__wv lo, hi;
+    /* one load per operand: gcc 12 otherwise folds each load into both of
+       its unpacks as a memory operand */
+    __asm__("" : "+v"(a0), "+v"(a1), "+v"(b0), "+v"(b1));
+    iv__w_op_soa(IV__N_MUL, IV__W_OP(unpacklo)(a0, a1), IV__W_OP(unpackhi)(a0, a1), IV__W_OP(unpacklo)(b0, b1),
+                 IV__W_OP(unpackhi)(b0, b1), &lo, &hi, bad);
+    *r0 = IV__W_OP(unpacklo)(lo, hi);
+    *r1 = IV__W_OP(unpackhi)(lo, hi);
+}
 #endif
 static inline iv_t iv__op_one(int op, iv_t a, iv_t b)
 {
     return op == IV__N_MUL ? iv_mul(a, b) : op == IV__N_ADD ? iv_add(a, b) : iv_sub(a, b);
 }
+#if !defined(IV__PAIR) && (defined(FP_FAST_FMA) || defined(__FMA__))
+/* The portable array forms: blocks of IV__B intervals through the scalar
+   code without its branch (iv__mul1_bounded; + and - have none) into a
+   local array, which the compiler may vectorise (gcc 12 -O2 does, with
+   the fused step: IV_NO_SIMD -march=native mul_n 13.9x -> 5.7x the double
+   loop, mul_soa 12x -> 3.8x); a block with an unbounded or empty factor
+   is redone by iv_mul, so the results are the per-call ones. *ok: cleared
+   by such a factor. Without a hardware fma the step is the bit path,
+   which gcc did not vectorise (8 more instructions per interval): those
+   targets keep the loop of calls. */
+#  define IV__B 8
+static inline iv_t iv__op_lane1(int op, iv_t a, iv_t b, int *ok)
+{
+    if (op != IV__N_MUL) return op == IV__N_ADD ? iv__add1(a, b) : iv__sub1(a, b);
+    *ok &= iv__mul_bounded(a, b);
+    return iv__mul1_bounded(a, b);
+}
+#endif
 /* op is a constant at every call; forced inline (where the compiler has
    the attribute), each array form compiles to its own loop. A block with
    a NaN lane is redone interval by interval. */
@@ -1123,15 +1159,32 @@ static inline void iv__op_n(int op, iv_t *out, const iv_t *a, const iv_t *b, siz
 #ifdef IV__W
     size_t blocks = n - n % (2 * IV__W);
     for (; i < blocks; i += 2 * IV__W) {
-        int bad0, bad1;
-        iv__wv r0 = iv__w_op(op, iv__w_load(a + i), iv__w_load(b + i), &bad0);
-        iv__wv r1 = iv__w_op(op, iv__w_load(a + i + IV__W), iv__w_load(b + i + IV__W), &bad1);
+        int bad0, bad1 = 0;
+        iv__wv r0, r1;
+        if (op == IV__N_MUL) {
+            iv__w_mul_pairs(iv__w_load(a + i), iv__w_load(a + i + IV__W), iv__w_load(b + i), iv__w_load(b + i + IV__W), &r0,
+                            &r1, &bad0);
+        } else {
+            r0 = iv__w_op(op, iv__w_load(a + i), iv__w_load(b + i), &bad0);
+            r1 = iv__w_op(op, iv__w_load(a + i + IV__W), iv__w_load(b + i + IV__W), &bad1);
+        }
         if (bad0 | bad1) {
             for (k = i; k < i + 2 * IV__W; k++) out[k] = iv__op_one(op, a[k], b[k]);
             continue;
         }
         iv__w_store(out + i, r0);
         iv__w_store(out + i + IV__W, r1);
+    }
+#elif defined(IV__B)
+    for (; i + IV__B <= n; i += IV__B) {
+        iv_t r[IV__B];
+        int ok = 1;
+        for (k = 0; k < IV__B; k++) r[k] = iv__op_lane1(op, a[i + k], b[i + k], &ok);
+        if (!ok) {
+            for (k = i; k < i + IV__B; k++) out[k] = iv__op_one(op, a[k], b[k]);
+            continue;
+        }
+        memcpy(out + i, r, sizeof r);
     }
 #endif
     for (k = i; k < n; k++) out[k] = iv__op_one(op, a[k], b[k]);
@@ -1171,6 +1224,23 @@ static inline void iv__op_soa(int op, double *out_lo, double *out_hi, const doub
         }
         iv__w_stored(out_lo + i, lo);
         iv__w_stored(out_hi + i, hi);
+    }
+#elif defined(IV__B)
+    for (; i + IV__B <= n; i += IV__B) {
+        double lo[IV__B], hi[IV__B];
+        int ok = 1;
+        size_t k;
+        for (k = 0; k < IV__B; k++) {
+            iv_t r = iv__op_lane1(op, iv__raw(a_lo[i + k], a_hi[i + k]), iv__raw(b_lo[i + k], b_hi[i + k]), &ok);
+            lo[k] = r.lo;
+            hi[k] = r.hi;
+        }
+        if (!ok) {
+            iv__op_soa_each(op, out_lo, out_hi, a_lo, a_hi, b_lo, b_hi, i, i + IV__B);
+            continue;
+        }
+        memcpy(out_lo + i, lo, sizeof lo);
+        memcpy(out_hi + i, hi, sizeof hi);
     }
 #endif
     iv__op_soa_each(op, out_lo, out_hi, a_lo, a_hi, b_lo, b_hi, i, n);

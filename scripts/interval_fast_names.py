@@ -5,11 +5,15 @@ The bench includes interval.h a second time in IV_FAST mode; its names
 (functions, types, enum constants: not macros) are renamed to F_... for that
 inclusion. Run after adding or removing a name in include/interval.h:
     python3 scripts/interval_fast_names.py
+With --check it only compares (make test runs it): prints `1 passed, 0
+failed` when the block is current, else names the stale file and fails.
 """
 import re
 import sys
 
-root = sys.argv[1] if len(sys.argv) > 1 else '.'
+check = '--check' in sys.argv[1:]
+args = [a for a in sys.argv[1:] if a != '--check']
+root = args[0] if args else '.'
 header = open(root + '/include/interval.h').read()
 code = re.sub(r'/\*.*?\*/', '', header, flags=re.S)
 names = set(re.findall(r'\b(iv__?\w+)\s*\(', code))
@@ -21,7 +25,7 @@ names -= set(re.findall(r'#\s*define\s+(\w+)', code))
 names = sorted(n for n in names if n.startswith(('iv_', 'IV_')))
 
 path = root + '/bench/bench_interval_ops.cpp'
-bench = open(path).read()
+bench = old = open(path).read()
 head = '#define IV_FAST\n'
 s = bench.index(head) + len(head)
 e = bench.index('#include "interval.h"\n/* end of the renaming')
@@ -30,5 +34,13 @@ head = '/* end of the renaming: plain names are the rigorous copy again */\n'
 s = bench.index(head) + len(head)
 e = bench.index('\ntypedef boost::numeric::interval<double> biv_t;')
 bench = bench[:s] + ''.join('#undef %s\n' % n for n in names) + bench[e:]
+if check:
+    if bench == old:
+        print('1 passed, 0 failed')
+        sys.exit(0)
+    print('%s: the IV_FAST renaming block is stale (a name was added to or removed from interval.h);'
+          ' run python3 scripts/interval_fast_names.py' % path)
+    print('0 passed, 1 failed')
+    sys.exit(1)
 open(path, 'w').write(bench)
 print('%d names' % len(names))
