@@ -120,6 +120,61 @@ static void icosphere(mesh_t *out, int level, double ox, double oy, double oz, d
     free(cur.v), free(cur.idx);
 }
 
+/* a box [0, 10] x [0, 1]^2 whose four long edges are split into n segments
+   (straight chains: vertices where only two planes meet), its long faces
+   strips of quads, as fine grids and CAD exports split straight edges */
+static void rod(mesh_t *m, unsigned n)
+{
+    static const double yz[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}; /* counter-clockwise seen from +x */
+    unsigned i, c, b = m->nv;
+    for (i = 0; i <= n; i++)
+        for (c = 0; c < 4; c++) vert(m, 10.0 * i / n, yz[c][0], yz[c][1]);
+    for (i = 0; i < n; i++)
+        for (c = 0; c < 4; c++) {
+            unsigned c1 = (c + 1) % 4;
+            quad(m, b + 4 * i + c, b + 4 * i + c1, b + 4 * (i + 1) + c1, b + 4 * (i + 1) + c);
+        }
+    quad(m, b + 0, b + 3, b + 2, b + 1);
+    quad(m, b + 4 * n, b + 4 * n + 1, b + 4 * n + 2, b + 4 * n + 3);
+}
+
+/* ns per re_query() for rays at the rod's long faces within 4 r of their
+   edges, at random slants, the host hit given exactly (its triangle from
+   the rod's layout: face c of segment i is quad(4i + c), split along its
+   diagonal) */
+static double now(void);
+static double rod_query_ns(const re_scene_t *s, unsigned n, double *sink)
+{
+    static const double yz[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    unsigned long long rng = 99;
+    int q, nq = 300000;
+    double t0 = now();
+    for (q = 0; q < nq; q++) {
+        unsigned c, c1, i, tri;
+        double x, sp, tp, o[3], d[3], p[3], e[2], nin[2];
+        re_hit_t h;
+        rng = rng * 6364136223846793005ull + 1442695040888963407ull;
+        c = (unsigned)(rng >> 62), c1 = (c + 1) % 4;
+        x = 10.0 * (double)((rng >> 11) & 0xFFFFF) / 1048576.0;
+        sp = 0.2 * (double)((rng >> 31) & 0xFFFF) / 65536.0;
+        if (rng & 1) sp = 1 - sp;
+        i = (unsigned)(x / 10.0 * n);
+        if (i >= n) i = n - 1;
+        tp = x * n / 10.0 - i;
+        tri = 2 * (4 * i + c) + (sp >= tp ? 0u : 1u);
+        e[0] = yz[c1][0] - yz[c][0], e[1] = yz[c1][1] - yz[c][1];
+        nin[0] = -e[1], nin[1] = e[0]; /* the ring is counter-clockwise seen from +x: inward is to the left */
+        p[0] = x, p[1] = yz[c][0] + sp * e[0], p[2] = yz[c][1] + sp * e[1];
+        d[0] = 0.7 * (double)((int)((rng >> 3) & 127) - 64) / 64.0;
+        d[1] = nin[0] + 0.5 * e[0] * (double)((int)((rng >> 10) & 127) - 64) / 64.0;
+        d[2] = nin[1] + 0.5 * e[1] * (double)((int)((rng >> 10) & 127) - 64) / 64.0;
+        o[0] = p[0] - d[0], o[1] = p[1] - d[1], o[2] = p[2] - d[2];
+        re_query(s, o, d, 0, tri, 1.0, &h);
+        *sink += h.t;
+    }
+    return (now() - t0) / nq * 1e9;
+}
+
 /* thread CPU time: the build is single-threaded, and this stays fair on a
    machine shared with other jobs */
 static double now(void)
@@ -245,6 +300,48 @@ int main(int argc, char **argv)
         if (sink == 12345.678) printf(" ");
         re_free(s);
         free(sc[k].m.v), free(sc[k].m.idx);
+    }
+    if (csv) fclose(csv);
+    /* Build time against chain length: linear since 2026-12-04 (each chain's
+       strips and inner spheres are walked once; from every segment they
+       were quadratic: 2.5 s at n = 4000, 39 s at 16000), and the query near
+       the split edges (rod_query_ns). */
+    snprintf(path, sizeof path, "%s/rounded_build_chains.csv", dir);
+    csv = fopen(path, "w");
+    if (csv) fprintf(csv, "segments,triangles,rounded_edges,build_ms,ns_per_triangle,query_ns\n");
+    printf("\nstraight chains: a 10 x 1 x 1 box whose 4 long edges are split into n segments (r = 0.05), re_build()\n");
+    printf("%10s %10s %10s %10s %12s %10s\n", "segments", "triangles", "rounded", "build ms", "ns/triangle", "query ns");
+    for (k = 0; k < 4; k++) {
+        unsigned n = 1000u << (2 * k);
+        mesh_t m;
+        re_mesh_t mesh;
+        re_scene_desc_t desc;
+        re_scene_t *s = NULL;
+        re_diag_t dg;
+        re_stats_t st;
+        double best = HUGE_VAL, tq, sink = 0;
+        int rep;
+        memset(&m, 0, sizeof m);
+        rod(&m, n);
+        memset(&mesh, 0, sizeof mesh);
+        memset(&desc, 0, sizeof desc);
+        mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.radius = 0.05;
+        desc.objects = &mesh, desc.object_count = 1;
+        fprintf(stderr, "  chains: %u segments\n", n);
+        for (rep = 0; rep < 3; rep++) {
+            double t0 = now();
+            if (re_build(&desc, &s, &dg) != RE_OK) { fprintf(stderr, "build failed: %s\n", dg.message); return 1; }
+            t0 = now() - t0;
+            if (t0 < best) best = t0;
+            if (rep < 2) re_free(s);
+        }
+        re_get_stats(s, &st);
+        tq = rod_query_ns(s, n, &sink);
+        re_free(s);
+        printf("%10u %10u %10llu %10.1f %12.0f %10.0f\n", n, m.ni / 3, st.rounded_edges, best * 1e3, best * 1e9 / (m.ni / 3), tq);
+        if (csv) fprintf(csv, "%u,%u,%llu,%.3f,%.1f,%.1f\n", n, m.ni / 3, st.rounded_edges, best * 1e3, best * 1e9 / (m.ni / 3), tq);
+        free(m.v), free(m.idx);
+        if (sink == 12345.678) printf(" ");
     }
     if (csv) fclose(csv);
     return 0;

@@ -324,7 +324,11 @@ typedef struct re_cylinder_t {
     double radius;
     double n0[3], n1[3]; /* unit normals of the two faces it joins */
     unsigned sa, sb;     /* sphere indices */
-    long long edge_v0, edge_v1; /* the mesh edge, or -1 for an extra cylinder */
+    long long edge_v0, edge_v1; /* the mesh edge, or -1 for an extra cylinder.
+                                   A straight edge split by vertices where only
+                                   its two faces meet is one cylinder: each of
+                                   its segments gives that whole cylinder, with
+                                   the chain's end vertices here */
 } re_cylinder_t;
 
 RE_DEF unsigned re_object_count(const re_scene_t *scene);
@@ -2009,6 +2013,7 @@ static double re__det8(unsigned char h, unsigned e0)
    rounded up to 1/RE__BAND_STEPS, plus RE__BAND_MARGIN for a float host's
    u, v. */
 #define RE__BAND_STEPS 255.0
+#define RE__IN_CHAIN 4u /* re__bandwork_t.cover: the edge is one segment of a straight chain */
 #define RE__BAND_MARGIN 1e-6
 /* Share of the triangle's area behind band a of width b: an edge band
    1 - (1 - b)^2, the three corner caps 3 b^2. */
@@ -2030,7 +2035,26 @@ typedef struct re__bandwork_t {
     double *ih;   /* 3 per triangle: 1 / its altitude from corner k */
     double *beta;
     unsigned *stamp, *queue, st;
+    /* with straight chains (vertices where only two planes meet) only:
+       chain[e] links rounded edge e to the rest of its chain (union-find,
+       the root its first edge), cover[e] says which sides of e a walk of
+       its chain has reached (bit h: the face of half-edge he[h]) */
+    unsigned *chain;
+    unsigned char *cover;
 } re__bandwork_t;
+
+/* The collinear segments of a straight chain share their two planes and
+   radius, hence their strips: the chain's first edge walks them, and marks
+   the sides of the chain's edges that its walk reaches on triangle t. */
+static void re__chain_cover(const re__an_t *an, re__bandwork_t *B, unsigned t, unsigned root)
+{
+    unsigned k;
+    for (k = 0; k < 3; k++) {
+        unsigned e = an->he_edge[3 * t + k];
+        if (e != RE__NONE && an->edges[e].rounded && re__uf_find(B->chain, e) == root)
+            B->cover[e] |= (unsigned char)(an->edges[e].he[0] == 3 * t + k ? 1u : 2u);
+    }
+}
 
 /* The strip of face f (plane fi) outside H_g, from the triangle of
    half-edge he on (the edge between f and g). On that triangle the strip
@@ -2038,7 +2062,7 @@ typedef struct re__bandwork_t {
    the angle between the normals) over the altitude: no piece. Beyond it,
    across the face's flat edges, the cut-off polygons are pieces. */
 static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, const re__plane_t *G, double r, unsigned he,
-                           int own)
+                           int own, unsigned chain_root)
 {
     const re__plane_t *P = &an->planes[fi];
     double cs = re__dot(G->n, P->n), lim = G->c - r * (1 - cs), sn;
@@ -2068,7 +2092,8 @@ static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, c
         sd[1] = re__dot(G->n, an->pos + 3 * (size_t)tv[1]) - lim;
         sd[2] = re__dot(G->n, an->pos + 3 * (size_t)tv[2]) - lim;
         o0 = sd[0] > 0, o1 = sd[1] > 0, o2 = sd[2] > 0;
-        if (tt != t0) {
+        if (chain_root != RE__NONE) re__chain_cover(an, B, tt, chain_root);
+        if (tt != t0 || chain_root != RE__NONE) {
             if (!(o0 | o1 | o2)) continue; /* not cut (cannot happen: it shares an outside corner) */
             /* the cut-off polygon: the outside corners and the crossings of
                the edges that change sign, in barycentric coordinates;
@@ -2165,6 +2190,25 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
     RE__TAKE(B.stamp, unsigned, (size_t)T + 1);
     RE__TAKE(B.queue, unsigned, (size_t)T + 1);
     B.st = 0;
+    B.chain = NULL;
+    B.cover = NULL;
+    for (c = 0; c < an->nc && an->c_np[c] != 2; c++) {}
+    if (c < an->nc) {
+        /* straight chains: their edges joined at the vertices inside them,
+           which have two rounded edges (re__chain_end's steps) */
+        RE__TAKE(B.chain, unsigned, (size_t)an->E + 1);
+        RE__TAKE(B.cover, unsigned char, (size_t)an->E + 1);
+        for (i = 0; i < an->E; i++) B.chain[i] = i, B.cover[i] = 0;
+        for (; c < an->nc; c++) {
+            unsigned v = an->c_vertex[c], e0 = RE__NONE, e1 = RE__NONE;
+            if (an->c_np[c] != 2) continue;
+            for (j = an->voff[v]; j < an->voff[v + 1]; j++)
+                if (an->edges[an->vinc[j]].rounded) { if (e0 == RE__NONE) e0 = an->vinc[j]; else e1 = an->vinc[j]; }
+            if (e1 == RE__NONE) continue;
+            re__uf_join(B.chain, e0, e1);
+            B.cover[e0] |= RE__IN_CHAIN, B.cover[e1] |= RE__IN_CHAIN;
+        }
+    }
     for (t = 0; t < 4 * T; t++) B.beta[t] = 0;
     for (t = 0; t < T; t++) B.stamp[t] = 0;
     /* the strips of each rounded edge, on both its faces: first every
@@ -2175,13 +2219,18 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
     for (own = 1; own >= 0; own--)
         for (i = 0; i < an->E; i++) {
             const re__edge_t *e = &an->edges[i];
-            unsigned t0, t1;
+            unsigned t0, t1, root = RE__NONE, h;
             double r;
             if (!e->rounded) continue;
             r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
             t0 = e->he[0] / 3, t1 = e->he[1] / 3;
-            re__band_strip(an, &B, an->tplane[t0], &an->planes[an->tplane[t1]], r, e->he[0], own);
-            re__band_strip(an, &B, an->tplane[t1], &an->planes[an->tplane[t0]], r, e->he[1], own);
+            /* a straight chain's strips are walked once, by its first edge
+               (walking them from every segment was quadratic in its length) */
+            if (!own && B.cover && (B.cover[i] & RE__IN_CHAIN) && re__uf_find(B.chain, i) == i) root = i;
+            for (h = 0; h < 2; h++) {
+                if (!own && root == RE__NONE && B.cover && (B.cover[i] & (1u << h))) continue; /* its chain's walk reached it */
+                re__band_strip(an, &B, an->tplane[h ? t1 : t0], &an->planes[an->tplane[h ? t0 : t1]], r, e->he[h], own, root);
+            }
         }
     /* caps at corners with planes that are not edge neighbours */
     for (c = 0; c < an->nc; c++) {
@@ -2239,10 +2288,57 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
     return RE_OK;
 }
 
+/* The spheres of the vertices inside the straight chain that leaves corner
+   ca by edge first and ends at corner cb by edge last (cb = RE__NONE: it
+   has no far corner). Each sits on the chain's axis; one that lies beyond
+   the span of the chain's end spheres (a short first segment) is moved to
+   the nearer of them. */
+static void re__chain_spheres(re__an_t *an, const unsigned *fc, const unsigned *sbase, const double *patch_r, unsigned *uf,
+                              unsigned ca, unsigned first, unsigned cb, unsigned last, unsigned *csph)
+{
+    unsigned v = an->c_vertex[ca], e = first, steps = 0, sa = RE__NONE, sb = RE__NONE;
+    /* the chain's end spheres, for its segments' cylinders (csph) */
+    if (cb != RE__NONE && cb != ca && fc[ca] != RE__NONE && fc[cb] != RE__NONE) {
+        sa = sbase[ca] + an->edge_end[2 * first + (an->edges[first].v[0] == an->c_vertex[ca] ? 0u : 1u)];
+        sb = sbase[cb] + an->edge_end[2 * last + (an->edges[last].v[0] == an->c_vertex[cb] ? 0u : 1u)];
+    }
+    for (;;) {
+        const re__edge_t *ed = &an->edges[e];
+        unsigned w = ed->v[0] == v ? ed->v[1] : ed->v[0], c = an->vcorner[w], q, nx = RE__NONE, e0 = RE__NONE, e1 = RE__NONE;
+        if (sa != RE__NONE) csph[2 * e] = ed->v[0] == v ? sa : sb, csph[2 * e + 1] = ed->v[0] == v ? sb : sa;
+        if (an->c_np[c] != 2 || ++steps > an->V) return;
+        for (q = an->voff[w]; q < an->voff[w + 1]; q++)
+            if (an->edges[an->vinc[q]].rounded) {
+                if (an->vinc[q] != e) nx = an->vinc[q];
+                if (e0 == RE__NONE) e0 = an->vinc[q]; else e1 = an->vinc[q];
+            }
+        if (fc[c] != RE__NONE && e1 != RE__NONE && cb != RE__NONE) {
+            /* the chain's ends as seen from c: by its first rounded edge e0,
+               then by its second (c was entered by e, from ca) */
+            unsigned x0 = e0 == e ? ca : cb, l0 = e0 == e ? first : last, x1 = e0 == e ? cb : ca, l1 = e0 == e ? last : first, a;
+            double r = patch_r[re__uf_find(uf, c)], pa[3], pb[3], pc[3], ab[3], t, L2;
+            re__madd(an->pos + 3 * (size_t)an->c_vertex[x0], r, re__edge_su(an, x0, l0), pa);
+            re__madd(an->pos + 3 * (size_t)an->c_vertex[x1], r, re__edge_su(an, x1, l1), pb);
+            re__madd(an->pos + 3 * (size_t)w, r, an->su + 3 * (size_t)an->c_sfirst[c], pc);
+            re__sub(pb, pa, ab);
+            L2 = re__dot(ab, ab);
+            re__sub(pc, pa, pc);
+            t = L2 > 0 ? re__dot(pc, ab) / L2 : -1; /* ends at one point (the largest radius): there */
+            if (!(t >= 0 && t <= 1))
+                for (a = 0; a < 3; a++)
+                    an->su[3 * (size_t)an->c_sfirst[c] + a] = ((t < 0 ? pa[a] : pb[a]) - an->pos[3 * (size_t)w + a]) / r;
+        }
+        if (nx == RE__NONE) return;
+        v = w, e = nx;
+    }
+}
+
 static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
                               re__final_t *F)
 {
     unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, *prid, ns = 0, ncyl = 0, nref = 0, nco = 0, npatch = 0;
+    unsigned *csph = NULL; /* with straight chains: each segment's chain end spheres, 2 per edge */
+    unsigned char *cshort = NULL; /* with straight chains: per edge cylinder, its box's ends at split vertices */
     unsigned qslot[RE_MAX_CORNER_PLANES];
     int pm_id, fc_id;
     size_t kd_mark;
@@ -2280,28 +2376,29 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     /* A vertex inside a straight edge (k = 2) has its sphere on the chain's
        axis; where the chain's end spheres are set back past it (a short
        first segment), it is moved along the axis into their span, which
-       leaves the union of capsules unchanged and keeps it inside. */
-    for (c = 0; c < an->nc; c++) {
-        unsigned v = an->c_vertex[c], q, e0 = RE__NONE, e1 = RE__NONE, l0, l1, ca, cb, a;
-        double r, pa[3], pb[3], pc[3], ab[3], t, L2;
-        if (fc[c] == RE__NONE || an->c_np[c] != 2) continue;
-        for (q = an->voff[v]; q < an->voff[v + 1]; q++)
-            if (an->edges[an->vinc[q]].rounded) { if (e0 == RE__NONE) e0 = an->vinc[q]; else e1 = an->vinc[q]; }
-        if (e1 == RE__NONE) continue;
-        ca = re__chain_end(an, c, e0, &l0);
-        cb = re__chain_end(an, c, e1, &l1);
-        if (ca == RE__NONE || cb == RE__NONE) continue;
-        r = patch_r[re__uf_find(uf, c)];
-        re__madd(an->pos + 3 * (size_t)an->c_vertex[ca], r, re__edge_su(an, ca, l0), pa);
-        re__madd(an->pos + 3 * (size_t)an->c_vertex[cb], r, re__edge_su(an, cb, l1), pb);
-        re__madd(an->pos + 3 * (size_t)v, r, an->su + 3 * (size_t)an->c_sfirst[c], pc);
-        re__sub(pb, pa, ab);
-        L2 = re__dot(ab, ab);
-        re__sub(pc, pa, pc);
-        t = L2 > 0 ? re__dot(pc, ab) / L2 : -1; /* ends at one point (the largest radius): there */
-        if (t >= 0 && t <= 1) continue;
-        for (a = 0; a < 3; a++)
-            an->su[3 * (size_t)an->c_sfirst[c] + a] = ((t < 0 ? pa[a] : pb[a]) - an->pos[3 * (size_t)v + a]) / r;
+       leaves the union of capsules unchanged and keeps it inside. Each chain
+       is walked from one of its end corners, twice (once to find the far
+       end, once for the vertices inside): linear in its length, where
+       walking to both ends from every vertex inside was quadratic (a box
+       whose faces are fine grids). */
+    for (c = 0; c < an->nc && an->c_np[c] != 2; c++) {}
+    if (c < an->nc) {
+        RE__TAKE(csph, unsigned, 2 * (size_t)an->E + 1);
+        for (i = 0; i < 2 * an->E; i++) csph[i] = RE__NONE;
+    }
+    for (c = 0; c < an->nc && csph; c++) {
+        unsigned v = an->c_vertex[c], q;
+        if (an->c_np[c] == 2) continue;
+        for (q = an->voff[v]; q < an->voff[v + 1]; q++) {
+            unsigned e = an->vinc[q], w, last, cb;
+            if (!an->edges[e].rounded) continue;
+            w = an->edges[e].v[0] == v ? an->edges[e].v[1] : an->edges[e].v[0];
+            if (an->c_np[an->vcorner[w]] != 2) continue;
+            cb = re__chain_end(an, c, e, &last);
+            /* once per chain: from its lower end, or from its only end */
+            if (cb != RE__NONE && (cb < c || (cb == c && last < e))) continue;
+            re__chain_spheres(an, fc, sbase, patch_r, uf, c, e, cb, last, csph);
+        }
     }
     for (i = 0; i < an->T; i++) {
         unsigned q = an->tplane[i];
@@ -2535,6 +2632,20 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         unsigned ex = re__det8_exp((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
         F->det_e0 = ex > 16u && ex - 15u > F->det_e0 ? ex - 15u : F->det_e0;
     }
+    /* a segment inside a straight chain (below: its cylinder spans the
+       chain) is detected only along its own span, and the segments' boxes
+       join along the chain: at a split vertex the box is not extended by m,
+       and it is the tight box of the cylinder of radius m around the axis
+       (a box widened by m along the axis too held a point of a finely
+       split edge in hundreds of segments' boxes) */
+    if (csph) {
+        RE__TAKE(cshort, unsigned char, F->n_edge_cyls + 1);
+        for (i = 0; i < F->n_edge_cyls; i++) cshort[i] = 0;
+        for (i = 0; i < an->E; i++)
+            if (ecyl[i] != RE__NONE && csph[2 * i] != RE__NONE)
+                cshort[ecyl[i]] = (unsigned char)(4u | (an->c_np[an->vcorner[an->edges[i].v[0]]] == 2 ? 1u : 0u) |
+                                                  (an->c_np[an->vcorner[an->edges[i].v[1]]] == 2 ? 2u : 0u));
+    }
     for (i = 0; i < F->n_edge_cyls; i++) {
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
         unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]], a;
@@ -2553,11 +2664,13 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         re__sub(s1, s0, u);
         L = re__len(u);
         if (L > 0) u[0] /= L, u[1] /= L, u[2] /= L;
-        re__madd(s0, -m, u, e0);
-        re__madd(s1, m, u, e1);
+        re__madd(s0, cshort && (cshort[i] & 1u) ? 0.0 : -m, u, e0);
+        re__madd(s1, cshort && (cshort[i] & 2u) ? 0.0 : m, u, e1);
         for (a = 0; a < 3; a++) {
-            box[6 * i + a] = re__min(e0[a], e1[a]) - g - an->origin[a];
-            box[6 * i + 3 + a] = re__max(e0[a], e1[a]) + g - an->origin[a];
+            /* across the axis only, for a chain's segment; rounded up */
+            double wa = cshort && cshort[i] ? g * sqrt(re__max(0.0, 1 - u[a] * u[a])) * (1 + 1e-9) + 1e-12 * g : g;
+            box[6 * i + a] = re__min(e0[a], e1[a]) - wa - an->origin[a];
+            box[6 * i + 3 + a] = re__max(e0[a], e1[a]) + wa - an->origin[a];
             lo[a] = re__min(lo[a], box[6 * i + a]);
             hi[a] = re__max(hi[a], box[6 * i + 3 + a]);
         }
@@ -2575,6 +2688,24 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     ar->used = kd_mark;
     F->n_leaf16 = re__kd_narrow(&F->kd, NULL, NULL);
     if (F->n_leaf16 >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
+    /* A straight chain is one rounding cylinder between its end corners (its
+       inner spheres lie on the axis, inside it): each segment's cylinder
+       spans the whole chain, so a query near the chain meets its two end
+       corners, not every split vertex on the way, and its walk crosses the
+       chain in one step. Detection stays local: the kd boxes and detection
+       radii above come from the segment's own spheres. */
+    if (csph) {
+        for (i = 0; i < an->E; i++) {
+            if (ecyl[i] == RE__NONE || csph[2 * i] == RE__NONE) continue;
+            F->cyls[ecyl[i]].s[0] = csph[2 * i];
+            F->cyls[ecyl[i]].s[1] = csph[2 * i + 1];
+            F->pk[RE__PKA_C_S0][ecyl[i]] = csph[2 * i];
+        }
+        F->n_xs1 = 0;
+        for (i = 0; i < F->n_edge_cyls; i++)
+            F->n_xs1 += F->cyls[i].s[1] > F->cyls[i].s[0] && F->cyls[i].s[1] - F->cyls[i].s[0] <= RE__DS1_SPAN ? 0u : 1u;
+        F->pk_full[RE__PKA_C_S0] = re__pk_full_blocks(F->pk[RE__PKA_C_S0], F->pk_n[RE__PKA_C_S0]);
+    }
     {
         re_result_t rc = re__bands(an, ar, fc, patch_r, uf, reach, F);
         if (rc != RE_OK) return rc;

@@ -93,7 +93,9 @@ done
 
 echo "== short fuzz runs (${FILIGREE_FUZZ_SECONDS:-20} s each)" >&2
 for f in "$build"/../fuzz/fuzz_*; do
-  [ -x "$f" ] || continue
+  # the fuzzers only: their corpus folders (fuzz_*.corpus, from an earlier
+  # run) are executable too
+  [ -f "$f" ] && [ -x "$f" ] || continue
   n=$(basename "$f"); corpus=build/fuzz/$n.corpus; mkdir -p "$corpus"
   seeds=""; [ -d tests/corpus/$n ] && seeds=tests/corpus/$n
   if "$f" -max_total_time="${FILIGREE_FUZZ_SECONDS:-20}" -print_final_stats=0 "$corpus" $seeds > "$log/$n.log" 2>&1; then

@@ -328,10 +328,34 @@ static void rays_grazing_a_face(void)
     tm_free(&m);
 }
 
-/* A 10-long box whose long edges are split into 20 segments (k = 2 corners
-   all along them). Rays nearly parallel to a long edge run inside its
-   removed volume for several segments before they meet the cylinder: the
-   query must follow the adjacency graph from corner to corner (§3.1). */
+/* A box [0, L] x [-h, h]^2 whose four long edges are split into n segments
+   (k = 2 corners all along them), its long faces strips of quads; b is the
+   rounded box it stands for. */
+static void rod_mesh(tm_mesh_t *m, int n, double L, double h, double r, rbox_t *b)
+{
+    /* the four long edges, counter-clockwise seen from +x: (y,z) corners */
+    static const double cy[4] = {-0.5, 0.5, 0.5, -0.5}, cz[4] = {-0.5, -0.5, 0.5, 0.5};
+    unsigned rows[4], i;
+    int e;
+    for (e = 0; e < 4; e++) {
+        rows[e] = m->nv;
+        for (i = 0; i <= (unsigned)n; i++) tm_vert(m, L * i / n, cy[e] * 2 * h, cz[e] * 2 * h);
+    }
+    for (e = 0; e < 4; e++) /* long faces as strips between edge e and e+1 */
+        for (i = 0; i < (unsigned)n; i++) {
+            unsigned a0 = rows[e] + i, b0 = rows[(e + 1) % 4] + i;
+            tm_quad(m, a0, a0 + 1, b0 + 1, b0);
+        }
+    tm_quad(m, rows[0], rows[3], rows[2], rows[1]);                   /* x = 0 */
+    tm_quad(m, rows[0] + n, rows[1] + n, rows[2] + n, rows[3] + n);   /* x = L */
+    tm_orient_outward(m);
+    b->c[0] = L / 2, b->c[1] = 0, b->c[2] = 0, b->half[0] = L / 2, b->half[1] = h, b->half[2] = h, b->r = r;
+}
+
+/* A 10-long box whose long edges are split into 20 segments. Rays nearly
+   parallel to a long edge run inside its removed volume for several
+   segments before they meet the cylinder: the query must follow the
+   adjacency graph from corner to corner (§3.1). */
 static void grazing_along_a_subdivided_edge(void)
 {
     const int n = 20;
@@ -341,24 +365,9 @@ static void grazing_along_a_subdivided_edge(void)
     re_scene_t *s;
     re_diag_t dg;
     t_rng_t rng = {12};
-    unsigned rows[4], i;
     long k, far = 0, n_round = 0, n_pass = 0;
-    int a, e;
-    /* the four long edges, counter-clockwise seen from +x: (y,z) corners */
-    static const double cy[4] = {-0.5, 0.5, 0.5, -0.5}, cz[4] = {-0.5, -0.5, 0.5, 0.5};
-    for (e = 0; e < 4; e++) {
-        rows[e] = m.nv;
-        for (i = 0; i <= (unsigned)n; i++) tm_vert(&m, L * i / n, cy[e] * 2 * h, cz[e] * 2 * h);
-    }
-    for (e = 0; e < 4; e++) /* long faces as strips between edge e and e+1 */
-        for (i = 0; i < (unsigned)n; i++) {
-            unsigned a0 = rows[e] + i, b0 = rows[(e + 1) % 4] + i;
-            tm_quad(&m, a0, a0 + 1, b0 + 1, b0);
-        }
-    tm_quad(&m, rows[0], rows[3], rows[2], rows[1]);                       /* x = 0 */
-    tm_quad(&m, rows[0] + n, rows[1] + n, rows[2] + n, rows[3] + n);       /* x = L */
-    tm_orient_outward(&m);
-    b.c[0] = L / 2, b.c[1] = 0, b.c[2] = 0, b.half[0] = L / 2, b.half[1] = h, b.half[2] = h, b.r = r;
+    int a;
+    rod_mesh(&m, n, L, h, r, &b);
     s = build1(&m, r, &dg);
     if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
     for (k = 0; k < t_count(4000); k++) {
@@ -382,6 +391,50 @@ static void grazing_along_a_subdivided_edge(void)
     }
     T_GT(far, t_count(4000) / 10); /* many hits lie two or more segments beyond the entry */
     T_GT(n_round, t_count(4000) / 4);
+    re_free(s);
+    tm_free(&m);
+}
+
+/* The same box with its long edges split into 16 000 segments each
+   (128 016 triangles; segments of r / 80), as a fine grid or a CAD export
+   splits straight edges. The build walks each straight chain once (its
+   strips for the per-triangle bands, its inner spheres): walked from every
+   segment, as before 2026-12-04, this mesh took 39 s to build. Each
+   segment's cylinder spans its whole chain, so a query near the edge meets
+   the chain's two end corners; when every split vertex was a corner on the
+   way, the query's 64-corner set overflowed (32 failed checks at 4 000
+   segments, 55 at 16 000 with a set of 256). Rays at the long faces near
+   their edges, all along the box, through re_query and re_query_uv (which
+   answers flat hits from the bands the chains' walks laid), against the
+   analytic rounded box. */
+static void long_straight_chains(void)
+{
+    const int n = 16000;
+    const double L = 10, h = 0.5, r = 0.05;
+    tm_mesh_t m = {0};
+    rbox_t b;
+    re_scene_t *s;
+    re_diag_t dg;
+    re_stats_t st;
+    t_rng_t rng = {77};
+    long k, n_round = 0, n_pass = 0, nr = t_count(1500);
+    rod_mesh(&m, n, L, h, r, &b);
+    s = build1(&m, r, &dg);
+    if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
+    re_get_stats(s, &st);
+    T_INT_EQ(st.rounded_edges, 4 * n + 8);
+    for (k = 0; k < nr; k++) {
+        /* a point on long face f, w from its edge (within 4 r: the strips),
+           hit from outside at a random slant */
+        unsigned f = (unsigned)t_rng_range(&rng, 0, 4) & 3u, ax = 1 + (f & 1u);
+        double x = t_rng_range(&rng, 0, L), w = t_rng_range(&rng, 0, 4 * r), sg = f < 2 ? -1.0 : 1.0, p[3], d[3], o[3];
+        int a;
+        p[0] = x, p[ax] = sg * h, p[3 - ax] = (t_rng_range(&rng, 0, 1) < 0.5 ? -1 : 1) * (h - w);
+        d[0] = t_rng_range(&rng, -0.7, 0.7), d[ax] = -sg, d[3 - ax] = t_rng_range(&rng, -0.7, 0.7);
+        for (a = 0; a < 3; a++) o[a] = p[a] - d[a];
+        check_box_ray(s, &m, &b, o, d, 1e-9, 1.0, &n_round, &n_pass);
+    }
+    T_GT(n_round, nr / 6); /* the chamfers are reached all along */
     re_free(s);
     tm_free(&m);
 }
@@ -504,6 +557,7 @@ int main(int argc, char **argv)
         T_CASE(rays_exactly_through_edges_and_vertices),
         T_CASE(rays_grazing_a_face),
         T_CASE(grazing_along_a_subdivided_edge),
+        T_CASE(long_straight_chains),
         T_CASE(float_icosphere_rotated_translated),
         T_CASE(float_icosphere_random_motions),
         T_CASE(compact_layout_coordinates_offset_1e6),
