@@ -508,6 +508,8 @@ static void compact_layout_coordinates_offset_1e6(void) { with_compact_layout(co
 static void compact_layout_tiny_radius_1e6_of_size_hull(void) { with_compact_layout(tiny_radius_1e6_of_size_hull); }
 static void float_icosphere_random_motions(void);
 static void compact_layout_float_icosphere_random_motions(void) { with_compact_layout(float_icosphere_random_motions); }
+static void compact_layout_long_straight_chains(void) { with_compact_layout(long_straight_chains); }
+static void compact_layout_grazing_along_a_subdivided_edge(void) { with_compact_layout(grazing_along_a_subdivided_edge); }
 
 /* the example author's repro: rotation 0.3 about y, moved by (1.3, 1, 0.2) */
 static void float_icosphere_rotated_translated(void)
@@ -563,6 +565,8 @@ int main(int argc, char **argv)
         T_CASE(compact_layout_coordinates_offset_1e6),
         T_CASE(compact_layout_tiny_radius_1e6_of_size_hull),
         T_CASE(compact_layout_float_icosphere_random_motions),
+        T_CASE(compact_layout_long_straight_chains),
+        T_CASE(compact_layout_grazing_along_a_subdivided_edge),
     };
     return T_RUN(argc, argv, cases);
 }
