@@ -378,6 +378,117 @@ static void input_variants_agree(void)
     tm_free(&m);
 }
 
+/* re_build()'s huge-page advice (MEMORY, at the header's top) covers the
+   whole 2 MiB pages inside a block and never a byte outside it; blocks
+   under two huge pages are left alone. */
+static void huge_page_range_inside_the_block(void)
+{
+    const size_t H = (size_t)2 << 20;
+    t_rng_t rng = {77};
+    long i, n_bad = 0, n_advised = 0;
+    for (i = 0; i < t_count(200000); i++) {
+        size_t p = (size_t)(t_rng_u64(&rng) >> 24) * 16, n = (size_t)(t_rng_u64(&rng) % (24ull << 20)), a, b;
+        if (i % 4 == 1) p = (p / H) * H;                   /* aligned starts */
+        if (i % 8 == 2) n = 2 * H - 1 + (size_t)(i % 3);  /* around the smallest advised size */
+        if (i % 16 == 3) p = (size_t)-1 - n / 2;           /* would wrap */
+        re__huge_range(p, n, &a, &b);
+        if (n < 2 * H || p > (size_t)-1 - n) n_bad += a != b;
+        else {
+            n_advised++;
+            n_bad += !(b > a && a % H == 0 && b % H == 0 && a >= p && b <= p + n && a - p < H && p + n - b < H);
+        }
+    }
+    T_INT_EQ(n_bad, 0);
+    T_GT(n_advised, t_count(200000) / 2);
+}
+
+/* The kernel's flags of the mapping holding address a (Linux), or "". */
+static void mapping_flags(size_t a, char *flags, size_t cap)
+{
+    FILE *f = fopen("/proc/self/smaps", "r");
+    char line[512];
+    int in = 0;
+    flags[0] = 0;
+    if (!f) return;
+    while (fgets(line, sizeof line, f)) {
+        unsigned long long lo, hi;
+        if (sscanf(line, "%llx-%llx ", &lo, &hi) == 2 && strchr(line, '-') < strchr(line, ' ')) in = lo <= a && a < hi;
+        else if (in && !strncmp(line, "VmFlags:", 8)) {
+            size_t n = strlen(line + 8);
+            if (n >= cap) n = cap - 1;
+            memcpy(flags, line + 8, n);
+            flags[n] = 0;
+            break;
+        }
+    }
+    fclose(f);
+}
+
+/* A scene whose blocks get the huge-page advice: re_build() answers as
+   re_build_into() does into plain buffers, feature for feature, and on a
+   Linux kernel with transparent huge pages the scene block's mapping
+   carries the advice (VmFlags "hg"). */
+static void large_build_with_huge_pages_matches_into(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+    re_scene_t *s0 = NULL, *s1 = NULL;
+    re_sizes_t sz;
+    re_diag_t dg;
+    re_stats_t a, b;
+    void *mem, *scratch;
+    unsigned i, n_diff = 0;
+    for (i = 0; i < 7000; i++) {
+        double lo[3], hi[3];
+        lo[0] = (i % 100) * 1.5, lo[1] = (i / 100) * 1.5, lo[2] = 0;
+        hi[0] = lo[0] + 1, hi[1] = lo[1] + 0.7, hi[2] = 0.5;
+        tm_box(&m, lo, hi);
+    }
+    mesh = mesh_of(&m, 0.02);
+    memset(&desc, 0, sizeof desc);
+    desc.objects = &mesh, desc.object_count = 1;
+    T_INT_EQ(re_build(&desc, &s0, &dg), RE_OK);
+    T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_OK);
+    T_GT(sz.scene_bytes, 4u << 20);
+    mem = malloc(sz.scene_bytes), scratch = malloc(sz.scratch_bytes);
+    T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes, &s1, &dg), RE_OK);
+    if (!s0 || !s1) goto done;
+    re_get_stats(s0, &a), re_get_stats(s1, &b);
+    T_INT_EQ(a.spheres, b.spheres);
+    T_INT_EQ(a.cylinders, b.cylinders);
+    T_INT_EQ(a.rounded_edges, 7000 * 12);
+    for (i = 0; i < re_sphere_count(s0, 0); i++) {
+        re_sphere_t p, q;
+        re_get_sphere(s0, 0, i, &p), re_get_sphere(s1, 0, i, &q);
+        n_diff += memcmp(p.center, q.center, sizeof p.center) != 0 || p.radius != q.radius || p.vertex != q.vertex;
+    }
+    for (i = 0; i < re_cylinder_count(s0, 0); i++) {
+        re_cylinder_t p, q;
+        re_get_cylinder(s0, 0, i, &p), re_get_cylinder(s1, 0, i, &q);
+        n_diff += memcmp(p.a, q.a, sizeof p.a) != 0 || memcmp(p.b, q.b, sizeof p.b) != 0 || p.sa != q.sa || p.sb != q.sb;
+    }
+    T_INT_EQ(n_diff, 0);
+#if defined(RE__HUGEPAGES)
+    {
+        FILE *thp = fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");
+        if (thp) {
+            size_t lo, hi;
+            char flags[256];
+            fclose(thp);
+            re__huge_range((size_t)s0->objects[0].block, s0->objects[0].stats.bytes, &lo, &hi);
+            T_CHECK(hi > lo);
+            mapping_flags(lo, flags, sizeof flags);
+            if (!strstr(flags, " hg")) T_FAIL("scene block at %#zx: VmFlags '%s' lack hg (no huge-page advice)", lo, flags);
+        }
+    }
+#endif
+done:
+    re_free(s0);
+    free(mem), free(scratch);
+    tm_free(&m);
+}
+
 /* two boxes in one object with their own radii; a third box where one edge
    asks for less: its patch takes the smallest (reported) */
 static void per_edge_radius(void)
@@ -595,7 +706,8 @@ int main(int argc, char **argv)
         T_CASE(out_of_range_index), T_CASE(duplicate_vertices_make_a_seam), T_CASE(non_manifold_edge_left_sharp),
         T_CASE(open_mesh_left_sharp), T_CASE(inconsistent_winding), T_CASE(bad_polygon_sizes), T_CASE(bad_radius),
         T_CASE(null_and_junk_arguments), T_CASE(empty_scene), T_CASE(result_strings), T_CASE(query_guards),
-        T_CASE(input_variants_agree), T_CASE(per_edge_radius), T_CASE(concave_edges_and_mixed_vertices_reported),
+        T_CASE(input_variants_agree), T_CASE(huge_page_range_inside_the_block),
+        T_CASE(large_build_with_huge_pages_matches_into), T_CASE(per_edge_radius), T_CASE(concave_edges_and_mixed_vertices_reported),
         T_CASE(secondary_origin_on_the_sharp_mesh), T_CASE(enumeration_of_box_features),
         T_CASE(random_soups_do_not_crash),
     };
