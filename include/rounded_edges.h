@@ -1754,28 +1754,36 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
         lo[0] = re__max(l0, lo_in[0]), lo[1] = re__max(l1, lo_in[1]), lo[2] = re__max(l2, lo_in[2]);
         hi[0] = re__min(h0, hi_in[0]), hi[1] = re__min(h1, hi_in[1]), hi[2] = re__min(h2, hi_in[2]);
     }
-    for (a = 1; a < 3; a++)
-        if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
-    len = hi[axis] - lo[axis];
-    if (!(len > 0)) goto leaf;
-    /* binned cost: cl[b] boxes start in bin b, ch[b] end in it */
-    w = RE__KD_BINS / len;
-    memset(cl, 0, sizeof cl);
-    memset(ch, 0, sizeof ch);
-    for (i = 0; i < n; i += step) {
-        double x0 = (kd->box[6 * list[i] + axis] - lo[axis]) * w, x1 = (kd->box[6 * list[i] + 3 + axis] - lo[axis]) * w;
-        cl[x0 <= 0 ? 0u : x0 >= RE__KD_BINS - 1 ? RE__KD_BINS - 1u : (unsigned)x0]++;
-        ch[x1 <= 0 ? 0u : x1 >= RE__KD_BINS - 1 ? RE__KD_BINS - 1u : (unsigned)x1]++;
-    }
-    scale = (double)n / (double)((n + step - 1) / step);
+    /* the longest axis first (§3.2); when no plane across it pays (every
+       box spans the cell that way, as along one edge split into many
+       segments) the next longest, so such a cell is not left a leaf */
     {
-        unsigned sl = 0, sh = 0, ns = (n + step - 1) / step;
-        for (k = 1; k < RE__KD_BINS; k++) {
-            double c;
-            sl += cl[k - 1]; /* boxes starting left of plane k: on the left */
-            sh += ch[k - 1]; /* boxes ending left of plane k: not on the right */
-            c = step_cost + scale * ((double)k * sl + (double)(RE__KD_BINS - k) * (ns - sh)) / RE__KD_BINS;
-            if (c < best) best = c, bk = k;
+        unsigned order[3] = {0, 1, 2}, o, ns = (n + step - 1) / step;
+        for (a = 0; a < 2; a++)
+            for (o = a + 1; o < 3; o++)
+                if (hi[order[o]] - lo[order[o]] > hi[order[a]] - lo[order[a]]) k = order[a], order[a] = order[o], order[o] = k;
+        scale = (double)n / (double)ns;
+        for (o = 0; o < 3 && !bk; o++) {
+            unsigned sl = 0, sh = 0;
+            axis = order[o];
+            len = hi[axis] - lo[axis];
+            if (!(len > 0)) break;
+            /* binned cost: cl[b] boxes start in bin b, ch[b] end in it */
+            w = RE__KD_BINS / len;
+            memset(cl, 0, sizeof cl);
+            memset(ch, 0, sizeof ch);
+            for (i = 0; i < n; i += step) {
+                double x0 = (kd->box[6 * list[i] + axis] - lo[axis]) * w, x1 = (kd->box[6 * list[i] + 3 + axis] - lo[axis]) * w;
+                cl[x0 <= 0 ? 0u : x0 >= RE__KD_BINS - 1 ? RE__KD_BINS - 1u : (unsigned)x0]++;
+                ch[x1 <= 0 ? 0u : x1 >= RE__KD_BINS - 1 ? RE__KD_BINS - 1u : (unsigned)x1]++;
+            }
+            for (k = 1; k < RE__KD_BINS; k++) {
+                double c;
+                sl += cl[k - 1]; /* boxes starting left of plane k: on the left */
+                sh += ch[k - 1]; /* boxes ending left of plane k: not on the right */
+                c = step_cost + scale * ((double)k * sl + (double)(RE__KD_BINS - k) * (ns - sh)) / RE__KD_BINS;
+                if (c < best) best = c, bk = k;
+            }
         }
     }
     if (!bk) goto leaf;

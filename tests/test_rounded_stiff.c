@@ -435,6 +435,11 @@ static void long_straight_chains(void)
         check_box_ray(s, &m, &b, o, d, 1e-9, 1.0, &n_round, &n_pass);
     }
     T_GT(n_round, nr / 6); /* the chamfers are reached all along */
+    /* the kd-tree cuts along the split edges too: when every segment's box
+       spans a cell across (the longest axis there), the next axis is tried.
+       With the longest axis only, the leaves held 600 references each (280
+       in the compact layout, whose nodes cost more); now 3 and 9 */
+    T_LE((double)st.kd_leaf_refs / (double)st.kd_leaves, 16.0);
     re_free(s);
     tm_free(&m);
 }
