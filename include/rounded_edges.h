@@ -1183,6 +1183,188 @@ static re_result_t re__planes(re__an_t *an, re__arena_t *ar)
     return RE_OK;
 }
 
+/* Eroded-corner helpers (re__erode_corner). The planes are a corner's k
+   face planes in fan order, N(s) = planes[pl[s]].n; u is per unit radius. */
+#define RE__N(s) (an->planes[pl[s]].n)
+
+/* u where the planes of slots i < j < l, shifted inward by 1, meet
+   (Cramer's rule); 0 when they are near parallel. */
+static int re__erode_solve(const re__an_t *an, const unsigned *pl, unsigned i, unsigned j, unsigned l, double u[3])
+{
+    double a[3], b[3], cc[3], det;
+    unsigned q;
+    re__cross(RE__N(j), RE__N(l), a);
+    det = re__dot(RE__N(i), a);
+    if (fabs(det) <= RE__PARALLEL_DET) return 0;
+    re__cross(RE__N(l), RE__N(i), b);
+    re__cross(RE__N(i), RE__N(j), cc);
+    for (q = 0; q < 3; q++) u[q] = -(a[q] + b[q] + cc[q]) / det;
+    return 1;
+}
+
+/* Is u inside every shifted plane, to RE__CORNER_EPS? Then *mk holds the
+   planes through it (to the same tolerance) and *worst its largest
+   violation. */
+static int re__erode_feasible(const re__an_t *an, const unsigned *pl, unsigned k, const double u[3], unsigned long long *mk,
+                              double *worst)
+{
+    double tol = RE__CORNER_EPS * re__max(1.0, re__len(u));
+    unsigned g;
+    *mk = 0;
+    *worst = -HUGE_VAL;
+    for (g = 0; g < k; g++) {
+        double sg = re__dot(RE__N(g), u) + 1.0;
+        *worst = re__max(*worst, sg);
+        if (sg > tol) return 0;
+        if (sg > -tol) *mk |= 1ull << g;
+    }
+    return 1;
+}
+
+/* Add the feasible vertex u of triple tri (i | j << 8 | l << 16) to the
+   corner's *ns vertices, or merge it into one within RE__CORNER_MERGE (a
+   near-concurrent cluster: the union of the planes through them, the most
+   feasible point). 0 when a new vertex would pass cap. */
+static int re__erode_keep(double *su, unsigned *stri, double *viol, unsigned long long *mask, unsigned *ns, unsigned cap,
+                          const double u[3], unsigned long long mk, double worst, unsigned tri)
+{
+    double lim = RE__CORNER_MERGE * re__max(1.0, re__len(u));
+    unsigned q;
+    for (q = 0; q < *ns; q++) {
+        double dd[3];
+        re__sub(su + 3 * q, u, dd);
+        if (re__len(dd) <= lim) break;
+    }
+    if (q < *ns) {
+        mask[q] |= mk;
+        if (worst < viol[q]) su[3 * q] = u[0], su[3 * q + 1] = u[1], su[3 * q + 2] = u[2], viol[q] = worst, stri[q] = tri;
+        return 1;
+    }
+    if (*ns == cap) return 0;
+    su[3 * q] = u[0], su[3 * q + 1] = u[1], su[3 * q + 2] = u[2];
+    stri[q] = tri, viol[q] = worst, mask[q] = mk;
+    (*ns)++;
+    return 1;
+}
+
+/* Every plane triple, O(k^4): the reference method, and the fallback of
+   re__erode_walk. Returns the vertex count, 0 if none or over cap. */
+static unsigned re__erode_triples(const re__an_t *an, const unsigned *pl, unsigned k, double *su, unsigned *stri, double *viol,
+                                  unsigned long long *mask, unsigned cap)
+{
+    unsigned i, j, l, ns = 0;
+    for (i = 0; i < k; i++)
+        for (j = i + 1; j < k; j++)
+            for (l = j + 1; l < k; l++) {
+                double u[3], worst;
+                unsigned long long mk;
+                if (!re__erode_solve(an, pl, i, j, l, u) || !re__erode_feasible(an, pl, k, u, &mk, &worst)) continue;
+                if (!re__erode_keep(su, stri, viol, mask, &ns, cap, u, mk, worst, i | j << 8 | l << 16)) return 0;
+            }
+    return ns;
+}
+
+/* The plane among slots a+1 .. b-1 (cyclic, the far side of the diagonal
+   a-b) that a point moving from w along d meets first, or RE__NONE. The
+   shifted plane g is met at s = (-1 - n_g.w) / (n_g.d) when n_g.d > 0. */
+static unsigned re__erode_next(const re__an_t *an, const unsigned *pl, unsigned k, unsigned a, unsigned b, const double w[3],
+                               const double d[3])
+{
+    unsigned g, best = RE__NONE;
+    double bs = HUGE_VAL;
+    for (g = (a + 1) % k; g != b; g = (g + 1) % k) {
+        double nd = re__dot(RE__N(g), d), sg;
+        if (!(nd > 0)) continue;
+        sg = (-1.0 - re__dot(RE__N(g), w)) / nd;
+        if (sg < bs) bs = sg, best = g;
+    }
+    return best;
+}
+
+/* The same vertices in O(k^2) for up to RE__WALK_PLANES planes. The
+   normals of a convex corner, in fan order, are a convex spherical
+   polygon; the eroded vertices are the triangles of its triangulation
+   whose points violate no other plane (its spherical Delaunay
+   triangulation), and the triangulation's dual is a tree. So walk it:
+   along the eroded edge of planes 0 and 1 (outward along the mesh edge
+   between them), the first other plane met closes the first triangle;
+   across each of its sides that is a diagonal, the eroded edge of the
+   side's two planes leads away from the triangle's third plane to the
+   next triangle, the first plane met on the far side of the diagonal
+   (re__erode_next). The k - 2 triples are then solved and checked as in
+   re__erode_triples, in its order; 0 (use re__erode_triples) when a
+   plane is missing, a solve is near parallel or a point fails the check:
+   near-degenerate corners keep the reference method. Within a cluster
+   of near-concurrent planes the two methods may keep different points of
+   it (RE__CORNER_MERGE apart at most). */
+#define RE__WALK_PLANES 16
+static unsigned re__erode_walk(const re__an_t *an, const unsigned *pl, unsigned k, const double out0[3], double *su,
+                               unsigned *stri, double *viol, unsigned long long *mask, unsigned cap)
+{
+    /* tasks (x, y, z): the diagonal x -> y (fan order) of a triangle found,
+       whose third plane z lies outside x+1 .. y-1 */
+    unsigned tri[RE__WALK_PLANES], task[RE__WALK_PLANES][3], nt = 0, sp = 0, i, j, ns = 0, c = RE__NONE;
+    double w[3], d[3], p[3], cs = re__dot(RE__N(0), RE__N(1));
+    /* the eroded edge of planes 0 and 1 runs through p along the mesh edge
+       between them (out0): s >= (-1 - n_g.p) / (n_g.d) for every other g */
+    re__cross(RE__N(0), RE__N(1), d);
+    if (re__dot(d, out0) < 0) d[0] = -d[0], d[1] = -d[1], d[2] = -d[2];
+    for (i = 0; i < 3; i++) p[i] = -(RE__N(0)[i] + RE__N(1)[i]) / (1 + cs);
+    {
+        double bs = -HUGE_VAL;
+        for (i = 2; i < k; i++) {
+            double nd = re__dot(RE__N(i), d), sg;
+            if (!(nd < 0)) continue;
+            sg = (-1.0 - re__dot(RE__N(i), p)) / nd;
+            if (sg > bs) bs = sg, c = i;
+        }
+    }
+    if (c == RE__NONE) return 0;
+    tri[nt++] = 0u | 1u << 8 | c << 16;
+    if (c > 2) task[sp][0] = 1, task[sp][1] = c, task[sp++][2] = 0;
+    if (c < k - 1) task[sp][0] = c, task[sp][1] = 0, task[sp++][2] = 1;
+    while (sp) {
+        unsigned x, y, z, m, t[3];
+        sp--;
+        x = task[sp][0], y = task[sp][1], z = task[sp][2];
+        t[0] = x, t[1] = y, t[2] = z; /* sorted for the solve */
+        for (i = 0; i < 2; i++)
+            for (j = 0; j < 2 - i; j++)
+                if (t[j] > t[j + 1]) m = t[j], t[j] = t[j + 1], t[j + 1] = m;
+        if (!re__erode_solve(an, pl, t[0], t[1], t[2], w)) return 0;
+        /* along the eroded edge of x and y, away from z's plane */
+        re__cross(RE__N(x), RE__N(y), d);
+        if (re__dot(RE__N(z), d) > 0) d[0] = -d[0], d[1] = -d[1], d[2] = -d[2];
+        m = re__erode_next(an, pl, k, x, y, w, d);
+        if (m == RE__NONE || nt == k - 2 || sp + 2 > RE__WALK_PLANES) return 0;
+        t[0] = x < m ? x : m, t[2] = x < m ? m : x; /* sorted (x, m, y) */
+        t[1] = y < t[0] ? t[0] : y > t[2] ? t[2] : y;
+        t[0] = y < t[0] ? y : t[0], t[2] = y > t[2] ? y : t[2];
+        tri[nt++] = t[0] | t[1] << 8 | t[2] << 16;
+        if ((x + 1) % k != m) task[sp][0] = x, task[sp][1] = m, task[sp++][2] = y;
+        if ((m + 1) % k != y) task[sp][0] = m, task[sp][1] = y, task[sp++][2] = x;
+    }
+    if (nt != k - 2) return 0;
+    /* the triples method's order: ascending triples */
+    for (i = 1; i < nt; i++) {
+        unsigned x = tri[i], key = (x & 255u) << 16 | (x >> 8 & 255u) << 8 | x >> 16;
+        for (j = i; j > 0; j--) {
+            unsigned y = tri[j - 1], ky = (y & 255u) << 16 | (y >> 8 & 255u) << 8 | y >> 16;
+            if (ky <= key) break;
+            tri[j] = y;
+        }
+        tri[j] = x;
+    }
+    for (i = 0; i < nt; i++) {
+        double u[3], worst;
+        unsigned long long mk;
+        if (!re__erode_solve(an, pl, tri[i] & 255u, tri[i] >> 8 & 255u, tri[i] >> 16, u) ||
+            !re__erode_feasible(an, pl, k, u, &mk, &worst) || !re__erode_keep(su, stri, viol, mask, &ns, cap, u, mk, worst, tri[i]))
+            return 0;
+    }
+    return ns;
+}
+
 /* The eroded corner at unit radius (issue item 1, exact corners). With the
    k face planes n_i.(x - v) = 0 around v shifted inward by 1, the local
    eroded polytope E_v = {u : n_i.u <= -1} has finite vertices where three
@@ -1190,10 +1372,11 @@ static re_result_t re__planes(re__an_t *an, re__arena_t *ar)
    between non-neighbouring planes (the extra cylinders); the edges between
    fan neighbours i, i+1 are rays along the mesh edges (the paper's cylinder
    axes, v + d*H, §3). Every plane passes through v, so E_v scales with r:
-   spheres sit at v + r*u. Brute force over plane triples, O(k^4), k <= 64. */
+   spheres sit at v + r*u. A walk over the triangulation of the normals
+   (re__erode_walk), or all plane triples (re__erode_triples), k <= 64. */
 static int re__erode_corner(re__an_t *an, unsigned c)
 {
-    unsigned k = an->c_np[c], i, j, l, ns = 0, nx = 0;
+    unsigned k = an->c_np[c], i, j, ns = 0, nx = 0;
     const unsigned *pl = an->c_planes + an->c_pfirst[c];
     const unsigned *ed = an->c_edges + an->c_pfirst[c];
     double *su = an->su + 3 * (size_t)an->c_sfirst[c];
@@ -1204,7 +1387,6 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     unsigned long long mask[RE_MAX_CORNER_PLANES];
     double viol[RE_MAX_CORNER_PLANES]; /* worst plane violation of each kept vertex */
     const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
-#define RE__N(s) (an->planes[pl[s]].n)
     if (k == 2) {
         /* a vertex inside a straight convex edge: no corner, one sphere on the
            axis (at v + d*H) so the two cylinders meet */
@@ -1214,45 +1396,13 @@ static int re__erode_corner(re__an_t *an, unsigned c)
         mask[0] = 3ull;
         ns = 1;
     } else {
-        for (i = 0; i < k; i++)
-            for (j = i + 1; j < k; j++)
-                for (l = j + 1; l < k; l++) {
-                    double a[3], b[3], cc[3], u[3], det, tol, un, worst = -HUGE_VAL;
-                    unsigned g, q;
-                    unsigned long long mk = 0;
-                    int ok = 1;
-                    re__cross(RE__N(j), RE__N(l), a);
-                    det = re__dot(RE__N(i), a);
-                    if (fabs(det) <= RE__PARALLEL_DET) continue;
-                    re__cross(RE__N(l), RE__N(i), b);
-                    re__cross(RE__N(i), RE__N(j), cc);
-                    for (q = 0; q < 3; q++) u[q] = -(a[q] + b[q] + cc[q]) / det;
-                    un = re__len(u);
-                    tol = RE__CORNER_EPS * re__max(1.0, un);
-                    for (g = 0; g < k && ok; g++) {
-                        double s = re__dot(RE__N(g), u) + 1.0;
-                        worst = re__max(worst, s);
-                        if (s > tol) ok = 0;
-                        else if (s > -tol) mk |= 1ull << g;
-                    }
-                    if (!ok) continue;
-                    for (q = 0; q < ns; q++) {
-                        double dd[3];
-                        re__sub(su + 3 * q, u, dd);
-                        if (re__len(dd) <= RE__CORNER_MERGE * re__max(1.0, un)) break;
-                    }
-                    if (q < ns) { /* one vertex of a near-concurrent cluster: keep the most feasible point */
-                        mask[q] |= mk;
-                        if (worst < viol[q])
-                            su[3 * q] = u[0], su[3 * q + 1] = u[1], su[3 * q + 2] = u[2], viol[q] = worst, stri[q] = i | j << 8 | l << 16;
-                        continue;
-                    }
-                    if (ns == cap) return 0;
-                    su[3 * ns] = u[0], su[3 * ns + 1] = u[1], su[3 * ns + 2] = u[2];
-                    stri[ns] = i | j << 8 | l << 16;
-                    viol[ns] = worst;
-                    mask[ns++] = mk;
-                }
+        /* the walk needs the outward direction of the mesh edge between
+           planes 0 and 1 (edge ed[0]) */
+        const re__edge_t *e0 = &an->edges[ed[0]];
+        double out0[3];
+        re__sub(an->pos + 3 * (size_t)(e0->v[0] == an->c_vertex[c] ? e0->v[1] : e0->v[0]), v, out0);
+        ns = k <= RE__WALK_PLANES ? re__erode_walk(an, pl, k, out0, su, stri, viol, mask, cap) : 0;
+        if (!ns) ns = re__erode_triples(an, pl, k, su, stri, viol, mask, cap);
         if (!ns) return 0;
     }
     /* where each mesh-edge cylinder starts: the eroded vertex on planes j and

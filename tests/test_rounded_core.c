@@ -54,7 +54,7 @@ static void apex_case(int k, double r)
 {
     tm_mesh_t m = {0};
     static tm_poly_t P;
-    double p[12][3];
+    double p[17][3];
     int i;
     char what[32];
     for (i = 0; i < k; i++) p[i][0] = cos(2 * M_PI * i / k + 0.1 * sin(3.0 * i)), p[i][1] = sin(2 * M_PI * i / k + 0.1 * sin(3.0 * i)), p[i][2] = 0;
@@ -84,6 +84,97 @@ static void apex_degree_5(void) { apex_case(5, 0.05); }
 static void apex_degree_6(void) { apex_case(6, 0.05); }
 static void apex_degree_7(void) { apex_case(7, 0.04); }
 static void apex_degree_8(void) { apex_case(8, 0.03); }
+/* beyond the test hulls' degrees: the apex's erosion walk (re__erode_walk)
+   at 12 planes and at its limit of 16 */
+static void apex_degree_12(void) { apex_case(12, 0.02); }
+static void apex_degree_16(void) { apex_case(16, 0.015); }
+
+/* The eroded corner's O(k^2) walk over the triangulation of the normals
+   (re__erode_walk) against all plane triples (re__erode_triples, the
+   reference) on random convex corners of 3 to 16 planes: normals through
+   points of an ellipse in the plane z = 1 (convex position, kept by the
+   gnomonic projection), from nearly flat corners to sharp ones, a fifth
+   of them on a circle perturbed by 1e-9 (near-concurrent clusters). The
+   same vertices (within RE__CORNER_MERGE) and, away from clusters, the
+   same planes through each; the walk answers at least 90% of them. */
+static void erosion_walk_matches_triples(void)
+{
+    t_rng_t rng = {2026};
+    re__an_t an;
+    re__plane_t planes[RE__WALK_PLANES];
+    unsigned pl[RE__WALK_PLANES];
+    long it, nit = t_count(20000), n_walk = 0, n_bad = 0, n_masks = 0, n_triples_fail = 0;
+    memset(&an, 0, sizeof an);
+    an.planes = planes;
+    for (it = 0; it < nit; it++) {
+        unsigned k = 3 + (unsigned)(it % (RE__WALK_PLANES - 2)), i, j, nw, nt;
+        double ang[RE__WALK_PLANES], out0[3], sw[3 * RE__WALK_PLANES], st[3 * RE__WALK_PLANES], vw[RE__WALK_PLANES],
+            vt[RE__WALK_PLANES], scale = exp(t_rng_range(&rng, log(0.02), log(3.0))), ea = t_rng_range(&rng, 0.5, 1.5),
+            cx = t_rng_range(&rng, -0.3, 0.3) * scale, cy = t_rng_range(&rng, -0.3, 0.3) * scale, rot = t_rng_range(&rng, 0, 6.3);
+        unsigned tw[RE__WALK_PLANES], tt[RE__WALK_PLANES];
+        unsigned long long mw[RE__WALK_PLANES], mt[RE__WALK_PLANES];
+        int circle = it % 5 == 0;
+        for (i = 0; i < k; i++) ang[i] = t_rng_range(&rng, 0, 2 * M_PI);
+        for (i = 1; i < k; i++) /* sorted: fan order */
+            for (j = i; j > 0 && ang[j - 1] > ang[j]; j--) { double x = ang[j]; ang[j] = ang[j - 1], ang[j - 1] = x; }
+        for (i = 0; i < k; i++) {
+            double a = ang[(i + (unsigned)it) % k], x = scale * (circle ? 1.0 : ea) * cos(a), y = scale * sin(a), l;
+            if (circle) x *= 1 + 1e-9 * t_rng_range(&rng, -1, 1), y *= 1 + 1e-9 * t_rng_range(&rng, -1, 1);
+            planes[i].n[0] = cos(rot) * x - sin(rot) * y + cx, planes[i].n[1] = sin(rot) * x + cos(rot) * y + cy, planes[i].n[2] = 1;
+            l = sqrt(planes[i].n[0] * planes[i].n[0] + planes[i].n[1] * planes[i].n[1] + 1);
+            for (j = 0; j < 3; j++) planes[i].n[j] /= l;
+            pl[i] = i;
+        }
+        /* the mesh edge between planes 0 and 1 leaves the corner below the others */
+        tm_cross(planes[0].n, planes[1].n, out0);
+        if (tm_dot(planes[2 % k].n, out0) > 0) for (j = 0; j < 3; j++) out0[j] = -out0[j];
+        nw = re__erode_walk(&an, pl, k, out0, sw, tw, vw, mw, k);
+        nt = re__erode_triples(&an, pl, k, st, tt, vt, mt, k);
+        if (!nt) { /* more tolerance-feasible points than a k-plane corner has vertices: sharp before the walk */
+            n_triples_fail++;
+            n_bad += !nw;
+            continue;
+        }
+        if (!nw) continue;
+        n_walk++;
+        for (i = 0; i < nw + nt; i++) {
+            /* each walk vertex is one of the triples' (both keep the feasible
+               triples, merged within RE__CORNER_MERGE); a triples vertex the
+               walk lacks is a feasible-within-tolerance point of a cluster of
+               near-concurrent planes, next to the walk's exact ones */
+            int own_walk = i < nw;
+            const double *u = own_walk ? sw + 3 * i : st + 3 * (i - nw), *other = own_walk ? st : sw, *own = own_walk ? sw : st;
+            unsigned no = own_walk ? nt : nw, nn = own_walk ? nw : nt, me = own_walk ? i : i - nw, best = 0, q;
+            double bd = HUGE_VAL, nearest_own = HUGE_VAL, lim = (own_walk ? 2 * RE__CORNER_MERGE : 1e-4) * (1 + tm_len(u));
+            for (q = 0; q < no; q++) {
+                double dd[3];
+                tm_sub(other + 3 * q, u, dd);
+                if (tm_len(dd) < bd) bd = tm_len(dd), best = q;
+            }
+            for (q = 0; q < nn; q++) {
+                double dd[3];
+                if (q == me) continue;
+                tm_sub(own + 3 * q, u, dd);
+                if (tm_len(dd) < nearest_own) nearest_own = tm_len(dd);
+            }
+            if (bd > lim) {
+                if (n_bad++ < 5) T_FAIL("corner %ld (k=%u): a %s vertex %g from the other method's", it, k, own_walk ? "walk" : "triples", bd);
+                continue;
+            }
+            if (own_walk && nearest_own > 1e-5 * (1 + tm_len(u)) && bd < 1e-12 * (1 + tm_len(u))) {
+                /* an isolated vertex: the same planes through it */
+                n_masks++;
+                if (mw[i] != mt[best] && n_bad++ < 5) T_FAIL("corner %ld (k=%u): planes %llx against %llx", it, k, mw[i], mt[best]);
+            }
+        }
+    }
+    T_INT_EQ(n_bad, 0);
+    T_GE(n_walk, nit * 9 / 10);
+    T_GT(n_masks, nit);
+    T_LE(n_triples_fail, nit / 100);
+    printf("    %ld of %ld corners by the walk, %ld isolated vertices with the same planes; the triples' cap exceeded on %ld\n",
+           n_walk, nit, n_masks, n_triples_fail);
+}
 
 /* C1: normals are Lipschitz with constant 1/r across face/cylinder/sphere
    seams. Pairs of parallel rays 1e-3 r apart: |n1 - n2| <= |P1 - P2| / r
@@ -240,6 +331,7 @@ int main(int argc, char **argv)
         T_CASE(random_convex_polyhedra_vs_eroded),
         T_CASE(apex_degree_3), T_CASE(apex_degree_4), T_CASE(apex_degree_5),
         T_CASE(apex_degree_6), T_CASE(apex_degree_7), T_CASE(apex_degree_8),
+        T_CASE(apex_degree_12), T_CASE(apex_degree_16), T_CASE(erosion_walk_matches_triples),
         T_CASE(compact_layout_box_exact_vs_analytic),
         T_CASE(compact_layout_random_convex_polyhedra_vs_eroded),
         T_CASE(compact_layout_apex_degrees_4_to_8),
