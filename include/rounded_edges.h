@@ -1281,7 +1281,7 @@ static unsigned re__erode_next(const re__an_t *an, const unsigned *pl, unsigned 
     return best;
 }
 
-/* The same vertices in O(k^2) for up to RE__WALK_PLANES planes. The
+/* The same vertices in O(k^2), for any k <= RE_MAX_CORNER_PLANES. The
    normals of a convex corner, in fan order, are a convex spherical
    polygon; the eroded vertices are the triangles of its triangulation
    whose points violate no other plane (its spherical Delaunay
@@ -1297,13 +1297,12 @@ static unsigned re__erode_next(const re__an_t *an, const unsigned *pl, unsigned 
    near-degenerate corners keep the reference method. Within a cluster
    of near-concurrent planes the two methods may keep different points of
    it (RE__CORNER_MERGE apart at most). */
-#define RE__WALK_PLANES 16
 static unsigned re__erode_walk(const re__an_t *an, const unsigned *pl, unsigned k, const double out0[3], double *su,
                                unsigned *stri, double *viol, unsigned long long *mask, unsigned cap)
 {
     /* tasks (x, y, z): the diagonal x -> y (fan order) of a triangle found,
        whose third plane z lies outside x+1 .. y-1 */
-    unsigned tri[RE__WALK_PLANES], task[RE__WALK_PLANES][3], nt = 0, sp = 0, i, j, ns = 0, c = RE__NONE;
+    unsigned tri[RE_MAX_CORNER_PLANES], task[RE_MAX_CORNER_PLANES][3], nt = 0, sp = 0, i, j, ns = 0, c = RE__NONE;
     double w[3], d[3], p[3], cs = re__dot(RE__N(0), RE__N(1));
     /* the eroded edge of planes 0 and 1 runs through p along the mesh edge
        between them (out0): s >= (-1 - n_g.p) / (n_g.d) for every other g */
@@ -1336,7 +1335,7 @@ static unsigned re__erode_walk(const re__an_t *an, const unsigned *pl, unsigned 
         re__cross(RE__N(x), RE__N(y), d);
         if (re__dot(RE__N(z), d) > 0) d[0] = -d[0], d[1] = -d[1], d[2] = -d[2];
         m = re__erode_next(an, pl, k, x, y, w, d);
-        if (m == RE__NONE || nt == k - 2 || sp + 2 > RE__WALK_PLANES) return 0;
+        if (m == RE__NONE || nt == k - 2 || sp + 2 > RE_MAX_CORNER_PLANES) return 0;
         t[0] = x < m ? x : m, t[2] = x < m ? m : x; /* sorted (x, m, y) */
         t[1] = y < t[0] ? t[0] : y > t[2] ? t[2] : y;
         t[0] = y < t[0] ? y : t[0], t[2] = y > t[2] ? y : t[2];
@@ -1401,7 +1400,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
         const re__edge_t *e0 = &an->edges[ed[0]];
         double out0[3];
         re__sub(an->pos + 3 * (size_t)(e0->v[0] == an->c_vertex[c] ? e0->v[1] : e0->v[0]), v, out0);
-        ns = k <= RE__WALK_PLANES ? re__erode_walk(an, pl, k, out0, su, stri, viol, mask, cap) : 0;
+        ns = re__erode_walk(an, pl, k, out0, su, stri, viol, mask, cap);
         if (!ns) ns = re__erode_triples(an, pl, k, su, stri, viol, mask, cap);
         if (!ns) return 0;
     }

@@ -54,10 +54,13 @@ static void apex_case(int k, double r)
 {
     tm_mesh_t m = {0};
     static tm_poly_t P;
-    double p[17][3];
+    double p[49][3];
     int i;
     char what[32];
-    for (i = 0; i < k; i++) p[i][0] = cos(2 * M_PI * i / k + 0.1 * sin(3.0 * i)), p[i][1] = sin(2 * M_PI * i / k + 0.1 * sin(3.0 * i)), p[i][2] = 0;
+    /* the base stays a convex polygon: its corners move by less than half
+       their spacing */
+    double jit = k > 16 ? 0.1 * 16.0 / k : 0.1;
+    for (i = 0; i < k; i++) p[i][0] = cos(2 * M_PI * i / k + jit * sin(3.0 * i)), p[i][1] = sin(2 * M_PI * i / k + jit * sin(3.0 * i)), p[i][2] = 0;
     p[k][0] = 0.23, p[k][1] = -0.11, p[k][2] = 0.9;
     /* the base is one plane: tm_hull would list it k-2 times; build by hand */
     for (i = 0; i <= k; i++) tm_vert(&m, p[i][0], p[i][1], p[i][2]);
@@ -88,6 +91,7 @@ static void apex_degree_8(void) { apex_case(8, 0.03); }
    at 12 planes and at its limit of 16 */
 static void apex_degree_12(void) { apex_case(12, 0.02); }
 static void apex_degree_16(void) { apex_case(16, 0.015); }
+static void apex_degree_48(void) { apex_case(48, 0.005); }
 
 /* The eroded corner's O(k^2) walk over the triangulation of the normals
    (re__erode_walk) against all plane triples (re__erode_triples, the
@@ -101,18 +105,19 @@ static void erosion_walk_matches_triples(void)
 {
     t_rng_t rng = {2026};
     re__an_t an;
-    re__plane_t planes[RE__WALK_PLANES];
-    unsigned pl[RE__WALK_PLANES];
+    re__plane_t planes[RE_MAX_CORNER_PLANES];
+    unsigned pl[RE_MAX_CORNER_PLANES];
+    static const unsigned big_k[4] = {24, 32, 48, 64};
     long it, nit = t_count(20000), n_walk = 0, n_bad = 0, n_masks = 0, n_triples_fail = 0;
     memset(&an, 0, sizeof an);
     an.planes = planes;
     for (it = 0; it < nit; it++) {
-        unsigned k = 3 + (unsigned)(it % (RE__WALK_PLANES - 2)), i, j, nw, nt;
-        double ang[RE__WALK_PLANES], out0[3], sw[3 * RE__WALK_PLANES], st[3 * RE__WALK_PLANES], vw[RE__WALK_PLANES],
-            vt[RE__WALK_PLANES], scale = exp(t_rng_range(&rng, log(0.02), log(3.0))), ea = t_rng_range(&rng, 0.5, 1.5),
+        unsigned k = it % 200 == 7 ? big_k[(it / 200) % 4] : 3 + (unsigned)(it % 14), i, j, nw, nt;
+        double ang[RE_MAX_CORNER_PLANES], out0[3], sw[3 * RE_MAX_CORNER_PLANES], st[3 * RE_MAX_CORNER_PLANES], vw[RE_MAX_CORNER_PLANES],
+            vt[RE_MAX_CORNER_PLANES], scale = exp(t_rng_range(&rng, log(0.02), log(3.0))), ea = t_rng_range(&rng, 0.5, 1.5),
             cx = t_rng_range(&rng, -0.3, 0.3) * scale, cy = t_rng_range(&rng, -0.3, 0.3) * scale, rot = t_rng_range(&rng, 0, 6.3);
-        unsigned tw[RE__WALK_PLANES], tt[RE__WALK_PLANES];
-        unsigned long long mw[RE__WALK_PLANES], mt[RE__WALK_PLANES];
+        unsigned tw[RE_MAX_CORNER_PLANES], tt[RE_MAX_CORNER_PLANES];
+        unsigned long long mw[RE_MAX_CORNER_PLANES], mt[RE_MAX_CORNER_PLANES];
         int circle = it % 5 == 0;
         for (i = 0; i < k; i++) ang[i] = t_rng_range(&rng, 0, 2 * M_PI);
         for (i = 1; i < k; i++) /* sorted: fan order */
@@ -331,7 +336,7 @@ int main(int argc, char **argv)
         T_CASE(random_convex_polyhedra_vs_eroded),
         T_CASE(apex_degree_3), T_CASE(apex_degree_4), T_CASE(apex_degree_5),
         T_CASE(apex_degree_6), T_CASE(apex_degree_7), T_CASE(apex_degree_8),
-        T_CASE(apex_degree_12), T_CASE(apex_degree_16), T_CASE(erosion_walk_matches_triples),
+        T_CASE(apex_degree_12), T_CASE(apex_degree_16), T_CASE(apex_degree_48), T_CASE(erosion_walk_matches_triples),
         T_CASE(compact_layout_box_exact_vs_analytic),
         T_CASE(compact_layout_random_convex_polyhedra_vs_eroded),
         T_CASE(compact_layout_apex_degrees_4_to_8),
