@@ -164,8 +164,6 @@ static long minor_faults(void)
     return 0;
 #endif
 }
-/* what one fresh 4 KiB page costs on this machine: touch 64 MiB that was
-   just mapped (the first touch of each page faults it in) */
 /* memory no process has touched yet: an anonymous mapping on Linux (malloc
    may hand back pages it kept from an earlier free) */
 static void *fresh_pages(size_t n)
@@ -185,6 +183,8 @@ static void fresh_free(void *p, size_t n)
     (void)n, free(p);
 #endif
 }
+/* what one fresh 4 KiB page costs on this machine: touch 64 MiB that was
+   just mapped (the first touch of each page faults it in) */
 static double fault_us_per_page(void)
 {
     size_t n = (size_t)64 << 20, i;

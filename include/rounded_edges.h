@@ -1286,8 +1286,9 @@ static unsigned re__erode_next(const re__an_t *an, const unsigned *pl, unsigned 
    polygon; the eroded vertices are the triangles of its triangulation
    whose points violate no other plane (its spherical Delaunay
    triangulation), and the triangulation's dual is a tree. So walk it:
-   along the eroded edge of planes 0 and 1 (outward along the mesh edge
-   between them), the first other plane met closes the first triangle;
+   coming back toward the corner along the eroded edge of planes 0 and 1
+   (parallel to the mesh edge between them), the first other plane met
+   closes the first triangle;
    across each of its sides that is a diagonal, the eroded edge of the
    side's two planes leads away from the triangle's third plane to the
    next triangle, the first plane met on the far side of the diagonal
@@ -1297,68 +1298,65 @@ static unsigned re__erode_next(const re__an_t *an, const unsigned *pl, unsigned 
    near-degenerate corners keep the reference method. Within a cluster
    of near-concurrent planes the two methods may keep different points of
    it (RE__CORNER_MERGE apart at most). */
+/* The triple of plane slots x, y, z as a key that orders triples as the
+   triples method visits them: smallest << 16 | middle << 8 | largest. */
+static unsigned re__triple_key(unsigned x, unsigned y, unsigned z)
+{
+    unsigned lo = x < y ? x : y, hi = x < y ? y : x;
+    if (z < lo) return z << 16 | lo << 8 | hi;
+    if (z > hi) return lo << 16 | hi << 8 | z;
+    return lo << 16 | z << 8 | hi;
+}
+
 static unsigned re__erode_walk(const re__an_t *an, const unsigned *pl, unsigned k, const double out0[3], double *su,
                                unsigned *stri, double *viol, unsigned long long *mask, unsigned cap)
 {
-    /* tasks (x, y, z): the diagonal x -> y (fan order) of a triangle found,
-       whose third plane z lies outside x+1 .. y-1 */
-    unsigned tri[RE_MAX_CORNER_PLANES], task[RE_MAX_CORNER_PLANES][3], nt = 0, sp = 0, i, j, ns = 0, c = RE__NONE;
-    double w[3], d[3], p[3], cs = re__dot(RE__N(0), RE__N(1));
+    /* triangle t: its triple's key and point; tasks (x, y, z, t): the
+       diagonal x -> y (fan order) of triangle t, whose third plane z lies
+       outside x+1 .. y-1 */
+    unsigned key[RE_MAX_CORNER_PLANES], order[RE_MAX_CORNER_PLANES], task[RE_MAX_CORNER_PLANES][4], nt = 0, sp = 0, i, j, ns = 0;
+    double tu[RE_MAX_CORNER_PLANES][3], d[3], p[3], cs = re__dot(RE__N(0), RE__N(1));
+    unsigned c;
     /* the eroded edge of planes 0 and 1 runs through p along the mesh edge
-       between them (out0): s >= (-1 - n_g.p) / (n_g.d) for every other g */
+       between them (out0); coming back along it toward the corner, the
+       first other plane met closes the first triangle */
     re__cross(RE__N(0), RE__N(1), d);
-    if (re__dot(d, out0) < 0) d[0] = -d[0], d[1] = -d[1], d[2] = -d[2];
+    if (re__dot(d, out0) >= 0) d[0] = -d[0], d[1] = -d[1], d[2] = -d[2];
     for (i = 0; i < 3; i++) p[i] = -(RE__N(0)[i] + RE__N(1)[i]) / (1 + cs);
-    {
-        double bs = -HUGE_VAL;
-        for (i = 2; i < k; i++) {
-            double nd = re__dot(RE__N(i), d), sg;
-            if (!(nd < 0)) continue;
-            sg = (-1.0 - re__dot(RE__N(i), p)) / nd;
-            if (sg > bs) bs = sg, c = i;
-        }
-    }
+    c = re__erode_next(an, pl, k, 1, 0, p, d);
     if (c == RE__NONE) return 0;
-    tri[nt++] = 0u | 1u << 8 | c << 16;
-    if (c > 2) task[sp][0] = 1, task[sp][1] = c, task[sp++][2] = 0;
-    if (c < k - 1) task[sp][0] = c, task[sp][1] = 0, task[sp++][2] = 1;
+    key[nt] = re__triple_key(0, 1, c);
+    if (!re__erode_solve(an, pl, 0, 1, c, tu[nt])) return 0;
+    if (c > 2) task[sp][0] = 1, task[sp][1] = c, task[sp][2] = 0, task[sp++][3] = nt;
+    if (c < k - 1) task[sp][0] = c, task[sp][1] = 0, task[sp][2] = 1, task[sp++][3] = nt;
+    nt++;
     while (sp) {
-        unsigned x, y, z, m, t[3];
+        unsigned x, y, z, m, t;
         sp--;
-        x = task[sp][0], y = task[sp][1], z = task[sp][2];
-        t[0] = x, t[1] = y, t[2] = z; /* sorted for the solve */
-        for (i = 0; i < 2; i++)
-            for (j = 0; j < 2 - i; j++)
-                if (t[j] > t[j + 1]) m = t[j], t[j] = t[j + 1], t[j + 1] = m;
-        if (!re__erode_solve(an, pl, t[0], t[1], t[2], w)) return 0;
+        x = task[sp][0], y = task[sp][1], z = task[sp][2], t = task[sp][3];
         /* along the eroded edge of x and y, away from z's plane */
         re__cross(RE__N(x), RE__N(y), d);
         if (re__dot(RE__N(z), d) > 0) d[0] = -d[0], d[1] = -d[1], d[2] = -d[2];
-        m = re__erode_next(an, pl, k, x, y, w, d);
+        m = re__erode_next(an, pl, k, x, y, tu[t], d);
         if (m == RE__NONE || nt == k - 2 || sp + 2 > RE_MAX_CORNER_PLANES) return 0;
-        t[0] = x < m ? x : m, t[2] = x < m ? m : x; /* sorted (x, m, y) */
-        t[1] = y < t[0] ? t[0] : y > t[2] ? t[2] : y;
-        t[0] = y < t[0] ? y : t[0], t[2] = y > t[2] ? y : t[2];
-        tri[nt++] = t[0] | t[1] << 8 | t[2] << 16;
-        if ((x + 1) % k != m) task[sp][0] = x, task[sp][1] = m, task[sp++][2] = y;
-        if ((m + 1) % k != y) task[sp][0] = m, task[sp][1] = y, task[sp++][2] = x;
+        key[nt] = re__triple_key(x, m, y);
+        if (!re__erode_solve(an, pl, key[nt] >> 16, key[nt] >> 8 & 255u, key[nt] & 255u, tu[nt])) return 0;
+        if ((x + 1) % k != m) task[sp][0] = x, task[sp][1] = m, task[sp][2] = y, task[sp++][3] = nt;
+        if ((m + 1) % k != y) task[sp][0] = m, task[sp][1] = y, task[sp][2] = x, task[sp++][3] = nt;
+        nt++;
     }
     if (nt != k - 2) return 0;
-    /* the triples method's order: ascending triples */
-    for (i = 1; i < nt; i++) {
-        unsigned x = tri[i], key = (x & 255u) << 16 | (x >> 8 & 255u) << 8 | x >> 16;
-        for (j = i; j > 0; j--) {
-            unsigned y = tri[j - 1], ky = (y & 255u) << 16 | (y >> 8 & 255u) << 8 | y >> 16;
-            if (ky <= key) break;
-            tri[j] = y;
-        }
-        tri[j] = x;
+    /* checked and kept in the triples method's order */
+    for (i = 0; i < nt; i++) {
+        for (j = i; j > 0 && key[order[j - 1]] > key[i]; j--) order[j] = order[j - 1];
+        order[j] = i;
     }
     for (i = 0; i < nt; i++) {
-        double u[3], worst;
+        unsigned t = order[i], kt = key[t];
+        double worst;
         unsigned long long mk;
-        if (!re__erode_solve(an, pl, tri[i] & 255u, tri[i] >> 8 & 255u, tri[i] >> 16, u) ||
-            !re__erode_feasible(an, pl, k, u, &mk, &worst) || !re__erode_keep(su, stri, viol, mask, &ns, cap, u, mk, worst, tri[i]))
+        if (!re__erode_feasible(an, pl, k, tu[t], &mk, &worst) ||
+            !re__erode_keep(su, stri, viol, mask, &ns, cap, tu[t], mk, worst, kt >> 16 | (kt >> 8 & 255u) << 8 | (kt & 255u) << 16))
             return 0;
     }
     return ns;
@@ -1907,10 +1905,10 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
        box spans the cell that way, as along one edge split into many
        segments) the next longest, so such a cell is not left a leaf */
     {
-        unsigned order[3] = {0, 1, 2}, o, ns = (n + step - 1) / step;
-        for (a = 0; a < 2; a++)
+        unsigned order[3] = {0, 1, 2}, o, swap, ns = (n + step - 1) / step;
+        for (a = 0; a < 2; a++) /* by extent, longest first; ties keep x, y, z */
             for (o = a + 1; o < 3; o++)
-                if (hi[order[o]] - lo[order[o]] > hi[order[a]] - lo[order[a]]) k = order[a], order[a] = order[o], order[o] = k;
+                if (hi[order[o]] - lo[order[o]] > hi[order[a]] - lo[order[a]]) swap = order[a], order[a] = order[o], order[o] = swap;
         scale = (double)n / (double)ns;
         for (o = 0; o < 3 && !bk; o++) {
             unsigned sl = 0, sh = 0;

@@ -88,15 +88,35 @@ static void apex_degree_6(void) { apex_case(6, 0.05); }
 static void apex_degree_7(void) { apex_case(7, 0.04); }
 static void apex_degree_8(void) { apex_case(8, 0.03); }
 /* beyond the test hulls' degrees: the apex's erosion walk (re__erode_walk)
-   at 12 planes and at its limit of 16 */
+   at 12, 16 and 48 planes */
 static void apex_degree_12(void) { apex_case(12, 0.02); }
 static void apex_degree_16(void) { apex_case(16, 0.015); }
 static void apex_degree_48(void) { apex_case(48, 0.005); }
 
+/* The distance from u to the nearest of the n points pts (3 each), point
+   skip left out; its index in *at when at is not NULL. */
+static double nearest_point(const double *pts, unsigned n, const double u[3], unsigned skip, unsigned *at)
+{
+    double bd = HUGE_VAL;
+    unsigned q;
+    if (at) *at = 0;
+    for (q = 0; q < n; q++) {
+        double dd[3];
+        if (q == skip) continue;
+        tm_sub(pts + 3 * q, u, dd);
+        if (tm_len(dd) < bd) {
+            bd = tm_len(dd);
+            if (at) *at = q;
+        }
+    }
+    return bd;
+}
+
 /* The eroded corner's O(k^2) walk over the triangulation of the normals
    (re__erode_walk) against all plane triples (re__erode_triples, the
-   reference) on random convex corners of 3 to 16 planes: normals through
-   points of an ellipse in the plane z = 1 (convex position, kept by the
+   reference) on random convex corners of 3 to 16 planes (and of 24 to 64
+   on one in 200): normals through points of an ellipse in the plane
+   z = 1 (convex position, kept by the
    gnomonic projection), from nearly flat corners to sharp ones, a fifth
    of them on a circle perturbed by 1e-9 (near-concurrent clusters). The
    same vertices (within RE__CORNER_MERGE) and, away from clusters, the
@@ -148,20 +168,11 @@ static void erosion_walk_matches_triples(void)
                walk lacks is a feasible-within-tolerance point of a cluster of
                near-concurrent planes, next to the walk's exact ones */
             int own_walk = i < nw;
-            const double *u = own_walk ? sw + 3 * i : st + 3 * (i - nw), *other = own_walk ? st : sw, *own = own_walk ? sw : st;
-            unsigned no = own_walk ? nt : nw, nn = own_walk ? nw : nt, me = own_walk ? i : i - nw, best = 0, q;
-            double bd = HUGE_VAL, nearest_own = HUGE_VAL, lim = (own_walk ? 2 * RE__CORNER_MERGE : 1e-4) * (1 + tm_len(u));
-            for (q = 0; q < no; q++) {
-                double dd[3];
-                tm_sub(other + 3 * q, u, dd);
-                if (tm_len(dd) < bd) bd = tm_len(dd), best = q;
-            }
-            for (q = 0; q < nn; q++) {
-                double dd[3];
-                if (q == me) continue;
-                tm_sub(own + 3 * q, u, dd);
-                if (tm_len(dd) < nearest_own) nearest_own = tm_len(dd);
-            }
+            unsigned me = own_walk ? i : i - nw, best;
+            const double *u = (own_walk ? sw : st) + 3 * me;
+            double bd = nearest_point(own_walk ? st : sw, own_walk ? nt : nw, u, RE__NONE, &best),
+                   nearest_own = nearest_point(own_walk ? sw : st, own_walk ? nw : nt, u, me, NULL),
+                   lim = (own_walk ? 2 * RE__CORNER_MERGE : 1e-4) * (1 + tm_len(u));
             if (bd > lim) {
                 if (n_bad++ < 5) T_FAIL("corner %ld (k=%u): a %s vertex %g from the other method's", it, k, own_walk ? "walk" : "triples", bd);
                 continue;
