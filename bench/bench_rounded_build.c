@@ -382,9 +382,10 @@ int main(int argc, char **argv)
        the split edges (rod_query_ns). */
     snprintf(path, sizeof path, "%s/rounded_build_chains.csv", dir);
     csv = fopen(path, "w");
-    if (csv) fprintf(csv, "segments,triangles,rounded_edges,build_ms,ns_per_triangle,query_ns\n");
+    if (csv) fprintf(csv, "segments,triangles,rounded_edges,spheres,build_ms,ns_per_triangle,query_ns,bytes_per_rounded_edge,compact_bytes_per_rounded_edge\n");
     printf("\nstraight chains: a 10 x 1 x 1 box whose 4 long edges are split into n segments (r = 0.05), re_build()\n");
-    printf("%10s %10s %10s %10s %12s %10s\n", "segments", "triangles", "rounded", "build ms", "ns/triangle", "query ns");
+    printf("%10s %10s %10s %8s %10s %12s %10s %8s %8s\n", "segments", "triangles", "rounded", "spheres", "build ms", "ns/triangle", "query ns",
+           "B/edge", "compact");
     for (k = 0; k < 4; k++) {
         unsigned n = 1000u << (2 * k);
         mesh_t m;
@@ -393,7 +394,7 @@ int main(int argc, char **argv)
         re_scene_t *s = NULL;
         re_diag_t dg;
         re_stats_t st;
-        double best = HUGE_VAL, tq, sink = 0;
+        double best = HUGE_VAL, tq, sink = 0, compact_bpe;
         int rep;
         memset(&m, 0, sizeof m);
         rod(&m, n);
@@ -412,8 +413,19 @@ int main(int argc, char **argv)
         re_get_stats(s, &st);
         tq = rod_query_ns(s, n, &sink);
         re_free(s);
-        printf("%10u %10u %10llu %10.1f %12.0f %10.0f\n", n, m.ni / 3, st.rounded_edges, best * 1e3, best * 1e9 / (m.ni / 3), tq);
-        if (csv) fprintf(csv, "%u,%u,%llu,%.3f,%.1f,%.1f\n", n, m.ni / 3, st.rounded_edges, best * 1e3, best * 1e9 / (m.ni / 3), tq);
+        {
+            re_stats_t stc;
+            desc.layout = RE_LAYOUT_COMPACT;
+            if (re_build(&desc, &s, &dg) != RE_OK) { fprintf(stderr, "compact build failed: %s\n", dg.message); return 1; }
+            re_get_stats(s, &stc);
+            re_free(s);
+            compact_bpe = (double)stc.bytes / (double)stc.rounded_edges;
+        }
+        printf("%10u %10u %10llu %8llu %10.1f %12.0f %10.0f %8.1f %8.1f\n", n, m.ni / 3, st.rounded_edges, st.spheres, best * 1e3,
+               best * 1e9 / (m.ni / 3), tq, (double)st.bytes / (double)st.rounded_edges, compact_bpe);
+        if (csv)
+            fprintf(csv, "%u,%u,%llu,%llu,%.3f,%.1f,%.1f,%.2f,%.2f\n", n, m.ni / 3, st.rounded_edges, st.spheres, best * 1e3,
+                    best * 1e9 / (m.ni / 3), tq, (double)st.bytes / (double)st.rounded_edges, compact_bpe);
         free(m.v), free(m.idx);
         if (sink == 12345.678) printf(" ");
     }

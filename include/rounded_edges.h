@@ -225,7 +225,9 @@ typedef struct re_stats_t {
     unsigned long long flat_edges, convex_edges, concave_edges, boundary_edges,
         nonmanifold_edges;
     unsigned long long rounded_edges;      /* convex edges that got a cylinder */
-    unsigned long long rounded_corners;    /* mesh vertices with a rounded corner */
+    unsigned long long rounded_corners;    /* mesh vertices with a rounded corner (a vertex
+                                              inside a straight chain, on its cylinder, has
+                                              none: see re_cylinder_t) */
     unsigned long long mixed_vertices;
     unsigned long long spheres, cylinders; /* cylinders include the extra ones */
     unsigned long long extra_cylinders;    /* exact-corner cylinders (degree >= 4) */
@@ -338,7 +340,8 @@ typedef struct re_cylinder_t {
                                    A straight edge split by vertices where only
                                    its two faces meet is one cylinder: each of
                                    its segments gives that whole cylinder, with
-                                   the chain's end vertices here */
+                                   the chain's end vertices here, and the
+                                   vertices inside the chain have no sphere */
 } re_cylinder_t;
 
 RE_DEF unsigned re_object_count(const re_scene_t *scene);
@@ -2529,6 +2532,89 @@ static void re__chain_spheres(re__an_t *an, const unsigned *fc, const unsigned *
     }
 }
 
+/* Drops the corners inside straight chains once every cylinder of their
+   chain spans it (re__finish: csph): their spheres lie on the chain's axis,
+   inside its cylinder, and no cylinder, reference or walk reaches them any
+   more, yet each cost a corner record, two references and a stored centre
+   (about 55 bytes a segment: a finely split edge took 79-84 bytes per
+   rounded edge, over the 64 of the compact layout's budget). Only corners
+   of two planes none of whose spheres an edge cylinder ends at go; the
+   kept corners and spheres are renumbered in order, in place (a new index
+   never exceeds the old one), after every step that reads the analysis'
+   per-corner arrays, which some of these alias (re__finish: fc_id). A
+   scene without such corners is left bit for bit as it was. */
+static re_result_t re__drop_chain_corners(re__an_t *an, re__arena_t *ar, re__final_t *F)
+{
+    unsigned *newc, *news, k, s, i, nk = 0, nsph = 0, nref = 0, nx = 0, ndrop = 0;
+    unsigned char *used;
+    RE__TAKE(used, unsigned char, F->n_spheres);
+    memset(used, 0, F->n_spheres);
+    for (i = 0; i < F->n_edge_cyls; i++) used[F->cyls[i].s[0]] = used[F->cyls[i].s[1]] = 1;
+    for (k = 0; k < F->n_corners; k++) {
+        const re__corner_t *K = &F->corners[k];
+        unsigned sf = F->pk[RE__PKA_K_SFIRST][k], reached = 0;
+        for (s = 0; s < K->ns; s++) reached |= used[sf + s];
+        ndrop += K->np == 2 && K->nx == 0 && !reached;
+    }
+    if (!ndrop) return RE_OK;
+    RE__TAKE(newc, unsigned, F->n_corners);
+    RE__TAKE(news, unsigned, F->n_spheres);
+    for (k = 0; k < F->n_corners; k++) {
+        re__corner_t K = F->corners[k];
+        unsigned sf = F->pk[RE__PKA_K_SFIRST][k], rf = F->pk[RE__PKA_K_FIRST][k], reached = 0;
+        for (s = 0; s < K.ns; s++) reached |= used[sf + s];
+        if (K.np == 2 && K.nx == 0 && !reached) {
+            newc[k] = RE__NONE;
+            for (s = 0; s < K.ns; s++) news[sf + s] = RE__NONE;
+            continue;
+        }
+        newc[k] = nk;
+        F->corners[nk] = K;
+        F->pk[RE__PKA_CVERTEX][nk] = F->pk[RE__PKA_CVERTEX][k];
+        F->pk[RE__PKA_K_FIRST][nk] = nref;
+        F->pk[RE__PKA_K_SFIRST][nk] = nsph;
+        if (F->pk_n[RE__PKA_K_RID]) F->pk[RE__PKA_K_RID][nk] = F->pk[RE__PKA_K_RID][k];
+        if (F->pk_n[RE__PKA_K_XFIRST]) F->pk[RE__PKA_K_XFIRST][nk] = F->pk[RE__PKA_K_XFIRST][k];
+        for (i = 0; i < K.np; i++) F->refs[nref++] = F->refs[rf + i];
+        for (s = 0; s < K.ns; s++) {
+            news[sf + s] = nsph;
+            F->pk[RE__PKA_S_CORNER][nsph] = nk;
+            if (F->sinfo) F->sinfo[nsph] = F->sinfo[sf + s];
+            if (F->xsph == F->sph) memmove(F->sph + 3 * (size_t)nsph, F->sph + 3 * (size_t)(sf + s), 3 * sizeof(double));
+            nsph++;
+        }
+        nk++;
+    }
+    /* the stored centres: every sphere's in the fast layout (moved above),
+       the listed ones in the compact layout */
+    if (F->xsph != F->sph) {
+        for (i = 0; i < F->n_xsph; i++) {
+            if (news[F->xsid[i]] == RE__NONE) continue;
+            F->xsid[nx] = news[F->xsid[i]];
+            memmove(F->xsph + 3 * (size_t)nx, F->xsph + 3 * (size_t)i, 3 * sizeof(double));
+            nx++;
+        }
+        F->n_xsph = nx;
+    } else {
+        F->n_xsph = nsph;
+    }
+    for (i = 0; i < F->n_edge_cyls; i++) {
+        F->cyls[i].s[0] = news[F->cyls[i].s[0]], F->cyls[i].s[1] = news[F->cyls[i].s[1]];
+        F->pk[RE__PKA_C_S0][i] = F->cyls[i].s[0];
+    }
+    for (i = 0; i < F->pk_n[RE__PKA_X_CORNER]; i++) F->pk[RE__PKA_X_CORNER][i] = newc[F->pk[RE__PKA_X_CORNER][i]];
+    F->n_corners = nk, F->n_spheres = nsph, F->n_refs = nref;
+    F->pk_n[RE__PKA_CVERTEX] = F->pk_n[RE__PKA_K_FIRST] = F->pk_n[RE__PKA_K_SFIRST] = nk;
+    if (F->pk_n[RE__PKA_K_RID]) F->pk_n[RE__PKA_K_RID] = nk;
+    if (F->pk_n[RE__PKA_K_XFIRST]) F->pk_n[RE__PKA_K_XFIRST] = nk;
+    F->pk_n[RE__PKA_S_CORNER] = nsph;
+    F->n_xs1 = 0;
+    for (i = 0; i < F->n_edge_cyls; i++)
+        F->n_xs1 += F->cyls[i].s[1] > F->cyls[i].s[0] && F->cyls[i].s[1] - F->cyls[i].s[0] <= RE__DS1_SPAN ? 0u : 1u;
+    for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
+    return RE_OK;
+}
+
 static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
                               re__final_t *F)
 {
@@ -2905,9 +2991,10 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     {
         re_result_t rc = re__bands(an, ar, fc, patch_r, uf, reach, F);
         if (rc != RE_OK) return rc;
+        if (csph && (rc = re__drop_chain_corners(an, ar, F)) != RE_OK) return rc;
     }
-    an->st.rounded_corners += nco;
-    an->st.spheres += ns;
+    an->st.rounded_corners += F->n_corners;
+    an->st.spheres += F->n_spheres;
     an->st.cylinders += ncyl;
     an->st.extra_cylinders += ncyl - F->n_edge_cyls;
     an->st.kd_nodes += F->kd.n_nodes;

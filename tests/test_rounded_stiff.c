@@ -352,6 +352,19 @@ static void rod_mesh(tm_mesh_t *m, int n, double L, double h, double r, rbox_t *
     b->c[0] = L / 2, b->c[1] = 0, b->c[2] = 0, b->half[0] = L / 2, b->half[1] = h, b->half[2] = h, b->r = r;
 }
 
+/* A ray o + t d (t = 1 on the face) at a point of the rod's long face f
+   (random), within 4 r of one of its edges (the strips), hit from outside
+   at a random slant. */
+static void rod_edge_ray(t_rng_t *rng, double L, double h, double r, double o[3], double d[3])
+{
+    unsigned f = (unsigned)t_rng_range(rng, 0, 4) & 3u, ax = 1 + (f & 1u);
+    double x = t_rng_range(rng, 0, L), w = t_rng_range(rng, 0, 4 * r), sg = f < 2 ? -1.0 : 1.0, p[3];
+    int a;
+    p[0] = x, p[ax] = sg * h, p[3 - ax] = (t_rng_range(rng, 0, 1) < 0.5 ? -1 : 1) * (h - w);
+    d[0] = t_rng_range(rng, -0.7, 0.7), d[ax] = -sg, d[3 - ax] = t_rng_range(rng, -0.7, 0.7);
+    for (a = 0; a < 3; a++) o[a] = p[a] - d[a];
+}
+
 /* A 10-long box whose long edges are split into 20 segments. Rays nearly
    parallel to a long edge run inside its removed volume for several
    segments before they meet the cylinder: the query must follow the
@@ -423,15 +436,16 @@ static void long_straight_chains(void)
     if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
     re_get_stats(s, &st);
     T_INT_EQ(st.rounded_edges, 4 * n + 8);
+    /* the corners inside the chains are not stored (their spheres lie on the
+       chain's cylinder's axis): 8 box corners, one sphere each, and at most
+       the 64 bytes per rounded edge of issue 6 (79-84 when every split
+       vertex kept its corner) */
+    T_INT_EQ(st.spheres, 8);
+    T_INT_EQ(st.rounded_corners, 8);
+    T_LE((double)st.bytes / (double)st.rounded_edges, 64.0);
     for (k = 0; k < nr; k++) {
-        /* a point on long face f, w from its edge (within 4 r: the strips),
-           hit from outside at a random slant */
-        unsigned f = (unsigned)t_rng_range(&rng, 0, 4) & 3u, ax = 1 + (f & 1u);
-        double x = t_rng_range(&rng, 0, L), w = t_rng_range(&rng, 0, 4 * r), sg = f < 2 ? -1.0 : 1.0, p[3], d[3], o[3];
-        int a;
-        p[0] = x, p[ax] = sg * h, p[3 - ax] = (t_rng_range(&rng, 0, 1) < 0.5 ? -1 : 1) * (h - w);
-        d[0] = t_rng_range(&rng, -0.7, 0.7), d[ax] = -sg, d[3 - ax] = t_rng_range(&rng, -0.7, 0.7);
-        for (a = 0; a < 3; a++) o[a] = p[a] - d[a];
+        double o[3], d[3];
+        rod_edge_ray(&rng, L, h, r, o, d);
         check_box_ray(s, &m, &b, o, d, 1e-9, 1.0, &n_round, &n_pass);
     }
     T_GT(n_round, nr / 6); /* the chamfers are reached all along */
@@ -442,6 +456,110 @@ static void long_straight_chains(void)
     T_LE((double)st.kd_leaf_refs / (double)st.kd_leaves, 16.0);
     re_free(s);
     tm_free(&m);
+}
+
+/* Dropping the chains' inner corners renumbers every corner and sphere
+   after them. One object: a rod whose long edges are split into 40
+   segments (radius 0.05), then a level-2 icosphere (degree-5/6 corners with
+   extra cylinders, radius 0.06) and a 40-sided pyramid (its apex has more
+   planes than the compact layout's 5-bit slots: stored centres, listed by
+   sphere id; radius 0.005), the radii through edge_radius, so corners
+   carry radius ids. Rays at the rod match the analytic rounded box; rays
+   at each other part match, in kind, feature kind, t and normal, the part
+   built alone (whose numbering nothing shifted); the counts add up. Both
+   layouts. */
+static void pyramid_mesh(tm_mesh_t *m, int k)
+{
+    int i;
+    for (i = 0; i < k; i++) tm_vert(m, cos(2 * M_PI * i / k), sin(2 * M_PI * i / k), 0);
+    tm_vert(m, 0.23, -0.11, 0.9);
+    for (i = 0; i < k; i++) tm_tri(m, (unsigned)i, (unsigned)((i + 1) % k), (unsigned)k);
+    for (i = 1; i + 1 < k; i++) tm_tri(m, 0, (unsigned)(i + 1), (unsigned)i);
+}
+static void chain_corners_dropped_renumber_the_rest(void)
+{
+    const int n = 40;
+    const double L = 4, h = 0.5, r1 = 0.05, rp[2] = {0.06, 0.005}, X[2] = {8, 12};
+    int layout, q;
+    for (layout = 0; layout < 2; layout++) {
+        tm_mesh_t m = {0}, part[2] = {{0}, {0}};
+        rbox_t b;
+        re_mesh_t mesh;
+        re_scene_desc_t desc;
+        re_scene_t *s = NULL, *sp[2];
+        re_diag_t dg;
+        re_stats_t st, stp[2];
+        t_rng_t rng = {91};
+        double *er;
+        unsigned k, first_tri[2];
+        long i, n_round = 0, n_pass = 0, nr = t_count(3000);
+        g_layout = layout ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
+        rod_mesh(&m, n, L, h, r1, &b);
+        tm_icosphere(&part[0], 2, 1.0);
+        pyramid_mesh(&part[1], 40);
+        er = (double *)malloc(sizeof(double) * (m.ni + part[0].ni + part[1].ni));
+        for (k = 0; k < m.ni; k++) er[k] = r1;
+        for (q = 0; q < 2; q++) {
+            unsigned base = m.nv;
+            first_tri[q] = m.ni / 3;
+            for (k = 0; k < part[q].nv; k++) tm_vert(&m, part[q].v[3 * k] + X[q], part[q].v[3 * k + 1], part[q].v[3 * k + 2]);
+            for (k = 0; k < part[q].ni; k += 3) {
+                er[m.ni] = er[m.ni + 1] = er[m.ni + 2] = rp[q];
+                tm_tri(&m, base + part[q].idx[k], base + part[q].idx[k + 1], base + part[q].idx[k + 2]);
+            }
+        }
+        memset(&mesh, 0, sizeof mesh);
+        memset(&desc, 0, sizeof desc);
+        mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.edge_radius = er;
+        desc.layout = g_layout, desc.objects = &mesh, desc.object_count = 1;
+        sp[0] = build1(&part[0], rp[0], &dg);
+        sp[1] = build1(&part[1], rp[1], &dg);
+        if (!T_CHECK(re_build(&desc, &s, &dg) == RE_OK && sp[0] && sp[1])) { fprintf(stderr, "%s\n", dg.message); break; }
+        re_get_stats(s, &st);
+        re_get_stats(sp[0], &stp[0]);
+        re_get_stats(sp[1], &stp[1]);
+        T_GT(stp[0].extra_cylinders, 0);
+        T_INT_EQ(st.spheres, 8 + stp[0].spheres + stp[1].spheres);
+        T_INT_EQ(st.rounded_corners, 8 + stp[0].rounded_corners + stp[1].rounded_corners);
+        T_INT_EQ(st.cylinders, 4 * (unsigned long long)n + 8 + stp[0].cylinders + stp[1].cylinders);
+        if (layout) T_GT(s->objects[0].n_xsph, 0); /* the apex's centres are stored */
+        for (i = 0; i < nr; i++) { /* the rod */
+            double o[3], d[3];
+            rod_edge_ray(&rng, L, h, r1, o, d);
+            check_box_ray(s, &m, &b, o, d, 1e-9, 1.0, &n_round, &n_pass);
+        }
+        T_GT(n_round, nr / 6);
+        for (q = 0; q < 2; q++) {
+            long n_part_round = 0;
+            for (i = 0; i < nr; i++) { /* toward a vertex (every other ray the last: the apex), within 3 r */
+                const double *vx = part[q].v + 3 * (i % 2 ? part[q].nv - 1 : t_rng_u64(&rng) % part[q].nv);
+                double o[3], d[3], tgt[3], u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), t_host, bu, bv;
+                unsigned tri;
+                re_hit_t h1, h2;
+                int a;
+                for (a = 0; a < 3; a++) tgt[a] = vx[a] + t_rng_range(&rng, -3, 3) * rp[q];
+                o[0] = tgt[0] + 3 * sqrt(1 - v * v) * cos(u), o[1] = tgt[1] + 3 * sqrt(1 - v * v) * sin(u), o[2] = tgt[2] + 3 * v;
+                tm_sub(tgt, o, d);
+                if (!tm_hit_uv(&part[q], o, d, &t_host, &tri, &bu, &bv)) continue;
+                re_query(sp[q], o, d, 0, tri, t_host, &h2);
+                o[0] += X[q];
+                re_query(s, o, d, 0, first_tri[q] + tri, t_host, &h1);
+                n_part_round += h2.kind == RE_HIT_ROUNDED;
+                if (!T_INT_EQ(h1.kind, h2.kind) || !T_INT_EQ(h1.feature, h2.feature)) continue;
+                T_NEAR(h1.t, h2.t, 1e-12 * 3);
+                for (a = 0; a < 3; a++) T_NEAR(h1.normal[a], h2.normal[a], 1e-9);
+            }
+            T_GT(n_part_round, nr / 20);
+        }
+        re_free(s);
+        re_free(sp[0]);
+        re_free(sp[1]);
+        free(er);
+        tm_free(&m);
+        tm_free(&part[0]);
+        tm_free(&part[1]);
+    }
+    g_layout = RE_LAYOUT_FAST;
 }
 
 /* The examples' float icosphere (level 1: 42 vertices, 80 triangles, 120
@@ -565,6 +683,7 @@ int main(int argc, char **argv)
         T_CASE(rays_grazing_a_face),
         T_CASE(grazing_along_a_subdivided_edge),
         T_CASE(long_straight_chains),
+        T_CASE(chain_corners_dropped_renumber_the_rest),
         T_CASE(float_icosphere_rotated_translated),
         T_CASE(float_icosphere_random_motions),
         T_CASE(compact_layout_coordinates_offset_1e6),
