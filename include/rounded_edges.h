@@ -1382,6 +1382,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     unsigned *xs = an->c_x + 4 * (size_t)an->c_xfirst[c];
     unsigned cap = k; /* a k-plane corner has at most k - 2 eroded vertices (k = 2: one) */
     unsigned long long mask[RE_MAX_CORNER_PLANES];
+    unsigned long long on[RE_MAX_CORNER_PLANES]; /* per plane: the kept vertices on it (bit i: vertex i; ns <= k <= 64) */
     double viol[RE_MAX_CORNER_PLANES]; /* worst plane violation of each kept vertex */
     const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
     if (k == 2) {
@@ -1402,16 +1403,21 @@ static int re__erode_corner(re__an_t *an, unsigned c)
         if (!ns) ns = re__erode_triples(an, pl, k, su, stri, viol, mask, cap);
         if (!ns) return 0;
     }
+    /* the masks transposed, for the pair tests below: a plane pair's
+       vertices are then one AND */
+    for (j = 0; j < k; j++) on[j] = 0;
+    for (i = 0; i < ns; i++)
+        for (j = 0; j < k; j++) on[j] |= (mask[i] >> j & 1u) << i;
     /* where each mesh-edge cylinder starts: the eroded vertex on planes j and
        j+1 nearest to v along the edge */
     for (j = 0; j < k; j++) {
         const re__edge_t *e = &an->edges[ed[j]];
         unsigned other = e->v[0] == an->c_vertex[c] ? e->v[1] : e->v[0], best = RE__NONE;
-        unsigned long long need = (1ull << j) | (1ull << ((j + 1) % k));
+        unsigned long long both = on[j] & on[(j + 1) % k];
         double dir[3], bp = HUGE_VAL;
         re__sub(an->pos + 3 * (size_t)other, v, dir);
         for (i = 0; i < ns; i++)
-            if ((mask[i] & need) == need) {
+            if (both >> i & 1u) {
                 double pr = re__dot(su + 3 * i, dir);
                 if (pr < bp) bp = pr, best = i;
             }
@@ -1422,13 +1428,14 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     /* extra cylinders: finite eroded edges between non-neighbouring planes */
     for (i = 0; i < k; i++)
         for (j = i + 2; j < k; j++) {
-            unsigned long long need = (1ull << i) | (1ull << j);
+            unsigned long long both = on[i] & on[j];
             unsigned lo = RE__NONE, hi = RE__NONE, q;
             double ax[3], plo = HUGE_VAL, phi = -HUGE_VAL, dd[3];
             if (i == 0 && j == k - 1) continue; /* neighbours through the wrap */
+            if (!(both & (both - 1))) continue; /* fewer than two vertices on both planes: no edge (most pairs) */
             re__cross(RE__N(i), RE__N(j), ax);
             for (q = 0; q < ns; q++)
-                if ((mask[q] & need) == need) {
+                if (both >> q & 1u) {
                     double pr = re__dot(su + 3 * q, ax);
                     if (pr < plo) plo = pr, lo = q;
                     if (pr > phi) phi = pr, hi = q;
