@@ -1743,7 +1743,8 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     }
     for (c = 0; c < nc; c++) {
         unsigned v = an->c_vertex[c], p, q, s, g;
-        double umax = 0, skip;
+        double umax = 0, skip, spread = 0, slack;
+        const double *u0 = an->su + 3 * (size_t)an->c_sfirst[c];
         /* a vertex inside a straight edge: its sphere ends up between the
            chain's end spheres (re__finish), which are checked */
         if (an->vstate[v] != RE__V_CORNER || an->c_np[c] == 2) continue;
@@ -1751,8 +1752,16 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         /* a plane farther than req (1 + |u|) from v cannot bound the radius
            below the request (n.u + 1 <= |u| + 1), so it cannot clamp it:
            skipped before its plane and sphere loops */
-        for (s = 0; s < an->c_ns[c]; s++) umax = re__max(umax, re__len(an->su + 3 * (size_t)(an->c_sfirst[c] + s)));
+        for (s = 0; s < an->c_ns[c]; s++) {
+            double du[3];
+            umax = re__max(umax, re__len(u0 + 3 * (size_t)s));
+            re__sub(u0 + 3 * (size_t)s, u0, du);
+            spread = re__max(spread, re__len(du));
+        }
         skip = req[p] * (umax + 1) * (1 + 1e-9);
+        /* every n.u + 1 below is at most n.u0 + 1 + spread (|n| = 1), up to
+           the rounding of the dot products (RE__SIDE_ULPS of the magnitudes) */
+        slack = RE__SIDE_ULPS * (2 + umax + spread);
         for (s = 0; s < an->c_np[c]; s++) pmark[an->c_planes[an->c_pfirst[c] + s]] = c + 1;
         for (q = an->voff[v]; q < an->voff[v + 1]; q++) {
             const re__edge_t *e = &an->edges[an->vinc[q]];
@@ -1784,6 +1793,11 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
                 pmark[pi] = c + 1;
                 b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
                 if (b < 0 || b >= skip) continue; /* not locally convex, or too far to matter */
+                /* nor does a plane whose bound b / amax is at least the
+                   request by the bound on amax from the first sphere (on a
+                   fine mesh nearly every one: the corner's spheres lie
+                   close together, and the plane barely leans in) */
+                if (b >= req[p] * (re__dot(pl->n, u0) + 1 + spread + slack) * (1 + 1e-9)) continue;
                 /* b / a decreases with a (and so does its rounding), so the
                    sphere that leans farthest into the plane bounds r */
                 for (s = 0; s < an->c_ns[c]; s++)
