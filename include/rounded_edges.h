@@ -2056,14 +2056,26 @@ static void re__solve3(const re__plane_t *A, const re__plane_t *B, const re__pla
 
 #define RE__ALIGN(x) (((x) + 15u) & ~(size_t)15u)
 
-/* Packing of id arrays (re__pk_t): the block's smallest id is its base. */
+/* Packing of id arrays (re__pk_t): the block's smallest id is its base.
+   RE__NONE is the largest unsigned, so the smallest id needs no test for
+   it, and the largest is taken plus one, where RE__NONE wraps to 0: no
+   branch, and a whole block's loop (a constant count) vectorises. */
+static void re__pk_range(const unsigned *ids, unsigned m, unsigned *lo, unsigned *hi1)
+{
+    unsigned i, l = RE__NONE, h = 0;
+    for (i = 0; i < m; i++) {
+        l = ids[i] < l ? ids[i] : l;
+        h = ids[i] + 1u > h ? ids[i] + 1u : h;
+    }
+    *lo = l, *hi1 = h;
+}
 static int re__pk_block(const unsigned *ids, unsigned n, unsigned b, unsigned *base)
 {
-    unsigned i, lo = RE__NONE, hi = 0;
-    for (i = b * RE__PK_BLOCK; i < n && i < (b + 1) * RE__PK_BLOCK; i++)
-        if (ids[i] != RE__NONE) lo = ids[i] < lo ? ids[i] : lo, hi = ids[i] > hi ? ids[i] : hi;
+    unsigned lo, hi1, m = n - b * RE__PK_BLOCK;
+    if (m >= RE__PK_BLOCK) re__pk_range(ids + b * RE__PK_BLOCK, RE__PK_BLOCK, &lo, &hi1);
+    else re__pk_range(ids + b * RE__PK_BLOCK, m, &lo, &hi1);
     *base = lo == RE__NONE ? 0 : lo;
-    return lo == RE__NONE || (hi - lo <= RE__PK_SPAN && hi < RE__PK_FULL);
+    return lo == RE__NONE || (hi1 - 1u - lo <= RE__PK_SPAN && hi1 - 1u < RE__PK_FULL);
 }
 static unsigned re__pk_full_blocks(const unsigned *ids, unsigned n)
 {
