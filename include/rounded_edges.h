@@ -2288,22 +2288,15 @@ static void re__chain_cover(const re__an_t *an, re__bandwork_t *B, unsigned t, u
 /* The strip of face f (plane fi) outside H_g, from the triangle of
    half-edge he on (the edge between f and g). On that triangle the strip
    runs along its own edge, so it is a band of width r tan(theta/2) (theta
-   the angle between the normals) over the altitude: no piece. Beyond it,
-   across the face's flat edges, the cut-off polygons are pieces. */
+   the angle between the normals) over the altitude: no piece (re__bands
+   sets it). Beyond it, across the face's flat edges, the cut-off polygons
+   are pieces. */
 static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, const re__plane_t *G, double r, unsigned he,
-                           int own, unsigned chain_root)
+                           unsigned chain_root)
 {
     const re__plane_t *P = &an->planes[fi];
-    double cs = re__dot(G->n, P->n), lim = G->c - r * (1 - cs), sn;
-    unsigned qh = 0, qt = 0, t0 = he / 3, ke = he % 3, m0 = (ke + 2) % 3;
-    if (own) {
-        /* the strip's width over the altitude from the opposite corner m0;
-           tan(theta/2) = (1 - cos) / sin */
-        sn = sqrt(re__max(0.0, 1 - cs * cs));
-        B->beta[4 * (size_t)t0 + m0] =
-            re__max(B->beta[4 * (size_t)t0 + m0], sn > 0 ? r * (1 - cs) / sn * B->ih[3 * (size_t)t0 + m0] : 1.0);
-        return;
-    }
+    double cs = re__dot(G->n, P->n), lim = G->c - r * (1 - cs);
+    unsigned qh = 0, qt = 0, t0 = he / 3;
     if (B->nb[3 * (size_t)t0] == RE__NONE && B->nb[3 * (size_t)t0 + 1] == RE__NONE && B->nb[3 * (size_t)t0 + 2] == RE__NONE)
         return; /* alone on its face: nothing beyond the own band */
     B->st++;
@@ -2395,7 +2388,6 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
                              const double *reach, re__final_t *F)
 {
     unsigned T = an->T, c, j, i, t, k, n_flat = 0;
-    int own;
     size_t mark;
     re__bandwork_t B;
     RE__TAKE(F->bands, unsigned char, 4 * (size_t)T);
@@ -2446,25 +2438,41 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
        assigned at once to the band that loses the least area (the own
        bands, the widest, are in place by then, so a corner piece joins
        one of them or the cap) */
-    /* without flat edges (every face one triangle, as on an icosphere) no
-       strip reaches past its own triangle: the second pass would find every
-       triangle alone on its face */
-    for (own = 1; own >= (n_flat ? 0 : 1); own--)
-        for (i = 0; i < an->E; i++) {
-            const re__edge_t *e = &an->edges[i];
-            unsigned t0, t1, root = RE__NONE, h;
-            double r;
-            if (!e->rounded) continue;
-            r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
-            t0 = e->he[0] / 3, t1 = e->he[1] / 3;
-            /* a straight chain's strips are walked once, by its first edge
-               (walking them from every segment was quadratic in its length) */
-            if (!own && B.cover && (B.cover[i] & RE__IN_CHAIN) && re__uf_find(B.chain, i) == i) root = i;
-            for (h = 0; h < 2; h++) {
-                if (!own && root == RE__NONE && B.cover && (B.cover[i] & (1u << h))) continue; /* its chain's walk reached it */
-                re__band_strip(an, &B, an->tplane[h ? t1 : t0], &an->planes[an->tplane[h ? t0 : t1]], r, e->he[h], own, root);
-            }
+    for (i = 0; i < an->E; i++) {
+        const re__edge_t *e = &an->edges[i];
+        unsigned h;
+        double r, cs, sn, w;
+        if (!e->rounded) continue;
+        r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
+        /* the strip's width over the altitude from the corner opposite the
+           edge, on both faces alike: r tan(theta/2), tan(theta/2) =
+           (1 - cos) / sin */
+        cs = re__dot(an->planes[an->tplane[e->he[1] / 3]].n, an->planes[an->tplane[e->he[0] / 3]].n);
+        sn = sqrt(re__max(0.0, 1 - cs * cs));
+        w = sn > 0 ? r * (1 - cs) / sn : 0.0;
+        for (h = 0; h < 2; h++) {
+            unsigned t0 = e->he[h] / 3, m0 = (e->he[h] % 3 + 2) % 3;
+            B.beta[4 * (size_t)t0 + m0] = re__max(B.beta[4 * (size_t)t0 + m0], sn > 0 ? w * B.ih[3 * (size_t)t0 + m0] : 1.0);
         }
+    }
+    /* without flat edges (every face one triangle, as on an icosphere) no
+       strip reaches past its own triangle: every triangle is alone on its
+       face */
+    for (i = 0; i < an->E && n_flat; i++) {
+        const re__edge_t *e = &an->edges[i];
+        unsigned t0, t1, root = RE__NONE, h;
+        double r;
+        if (!e->rounded) continue;
+        r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
+        t0 = e->he[0] / 3, t1 = e->he[1] / 3;
+        /* a straight chain's strips are walked once, by its first edge
+           (walking them from every segment was quadratic in its length) */
+        if (B.cover && (B.cover[i] & RE__IN_CHAIN) && re__uf_find(B.chain, i) == i) root = i;
+        for (h = 0; h < 2; h++) {
+            if (root == RE__NONE && B.cover && (B.cover[i] & (1u << h))) continue; /* its chain's walk reached it */
+            re__band_strip(an, &B, an->tplane[h ? t1 : t0], &an->planes[an->tplane[h ? t0 : t1]], r, e->he[h], root);
+        }
+    }
     /* caps at corners with planes that are not edge neighbours */
     for (c = 0; c < an->nc; c++) {
         unsigned v = an->c_vertex[c], np = an->c_np[c];
