@@ -2751,13 +2751,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
         /* the query numbers a corner's planes by its edges (re__corner_plane:
            plane j is the face whose half-edge of edge j leaves the corner);
-           qslot maps the fan slots of c_planes to those */
-        for (j = 0; j < K->np; j++) {
-            const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
-            unsigned hq = an->tri[e->he[0]] == an->c_vertex[c] ? e->he[0] : e->he[1];
-            for (k = 0; k < K->np && an->c_planes[pf + k] != an->tplane[hq / 3]; k++) {}
-            qslot[k] = j;
-        }
+           qslot maps the fan slots of c_planes to those. That face is fan
+           slot j + 1's: re__corners walks the fan across each edge from the
+           triangle whose half-edge arrives at v (slot j, whose plane ends
+           there) to the one whose half-edge leaves it, the first of the
+           next plane (slot j + 1, the first slot's after the last) */
+        for (j = 0; j < K->np; j++) qslot[j + 1 < K->np ? j + 1 : 0] = j;
         for (j = 0; j < K->ns; j++) {
             double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3], x[3], ldd;
             unsigned tri = an->s_tri[an->c_sfirst[c] + j];
