@@ -2387,7 +2387,7 @@ static double re__point_tri_dist(const re__an_t *an, unsigned t, const double p[
 static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, const double *patch_r, unsigned *uf,
                              const double *reach, re__final_t *F)
 {
-    unsigned T = an->T, c, j, i, t, k, n_flat = 0;
+    unsigned T = an->T, c, j, i, t, k, any_flat = 0;
     size_t mark;
     re__bandwork_t B;
     RE__TAKE(F->bands, unsigned char, 4 * (size_t)T);
@@ -2398,7 +2398,7 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
             unsigned e = an->he_edge[3 * t + k];
             B.nb[3 * (size_t)t + k] = e == RE__NONE || an->edges[e].cls != RE__E_FLAT ? RE__NONE
                                       : an->edges[e].he[0] / 3 == t ? an->edges[e].he[1] / 3 : an->edges[e].he[0] / 3;
-            n_flat += B.nb[3 * (size_t)t + k] != RE__NONE;
+            any_flat |= B.nb[3 * (size_t)t + k] != RE__NONE;
         }
     RE__TAKE(B.beta, double, 4 * (size_t)T + 1);
     RE__TAKE(B.ih, double, 3 * (size_t)T + 1);
@@ -2458,7 +2458,7 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
     /* without flat edges (every face one triangle, as on an icosphere) no
        strip reaches past its own triangle: every triangle is alone on its
        face */
-    for (i = 0; i < an->E && n_flat; i++) {
+    for (i = 0; i < an->E && any_flat; i++) {
         const re__edge_t *e = &an->edges[i];
         unsigned t0, t1, root = RE__NONE, h;
         double r;
