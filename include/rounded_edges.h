@@ -1385,6 +1385,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     unsigned *xs = an->c_x + 4 * (size_t)an->c_xfirst[c];
     unsigned cap = k; /* a k-plane corner has at most k - 2 eroded vertices (k = 2: one) */
     unsigned long long mask[RE_MAX_CORNER_PLANES];
+    unsigned long long on[RE_MAX_CORNER_PLANES]; /* per plane: the kept vertices on it (bit i: vertex i; ns <= k <= 64) */
     double viol[RE_MAX_CORNER_PLANES]; /* worst plane violation of each kept vertex */
     const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
     if (k == 2) {
@@ -1405,16 +1406,21 @@ static int re__erode_corner(re__an_t *an, unsigned c)
         if (!ns) ns = re__erode_triples(an, pl, k, su, stri, viol, mask, cap);
         if (!ns) return 0;
     }
+    /* the masks transposed, for the pair tests below: a plane pair's
+       vertices are then one AND */
+    for (j = 0; j < k; j++) on[j] = 0;
+    for (i = 0; i < ns; i++)
+        for (j = 0; j < k; j++) on[j] |= (mask[i] >> j & 1u) << i;
     /* where each mesh-edge cylinder starts: the eroded vertex on planes j and
        j+1 nearest to v along the edge */
     for (j = 0; j < k; j++) {
         const re__edge_t *e = &an->edges[ed[j]];
         unsigned other = e->v[0] == an->c_vertex[c] ? e->v[1] : e->v[0], best = RE__NONE;
-        unsigned long long need = (1ull << j) | (1ull << ((j + 1) % k));
+        unsigned long long both = on[j] & on[(j + 1) % k];
         double dir[3], bp = HUGE_VAL;
         re__sub(an->pos + 3 * (size_t)other, v, dir);
         for (i = 0; i < ns; i++)
-            if ((mask[i] & need) == need) {
+            if (both >> i & 1u) {
                 double pr = re__dot(su + 3 * i, dir);
                 if (pr < bp) bp = pr, best = i;
             }
@@ -1425,13 +1431,14 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     /* extra cylinders: finite eroded edges between non-neighbouring planes */
     for (i = 0; i < k; i++)
         for (j = i + 2; j < k; j++) {
-            unsigned long long need = (1ull << i) | (1ull << j);
+            unsigned long long both = on[i] & on[j];
             unsigned lo = RE__NONE, hi = RE__NONE, q;
             double ax[3], plo = HUGE_VAL, phi = -HUGE_VAL, dd[3];
             if (i == 0 && j == k - 1) continue; /* neighbours through the wrap */
+            if (!(both & (both - 1))) continue; /* fewer than two vertices on both planes: no edge (most pairs) */
             re__cross(RE__N(i), RE__N(j), ax);
             for (q = 0; q < ns; q++)
-                if ((mask[q] & need) == need) {
+                if (both >> q & 1u) {
                     double pr = re__dot(su + 3 * q, ax);
                     if (pr < plo) plo = pr, lo = q;
                     if (pr > phi) phi = pr, hi = q;
@@ -1739,7 +1746,8 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     }
     for (c = 0; c < nc; c++) {
         unsigned v = an->c_vertex[c], p, q, s, g;
-        double umax = 0, skip;
+        double umax = 0, skip, spread = 0, slack;
+        const double *u0 = an->su + 3 * (size_t)an->c_sfirst[c];
         /* a vertex inside a straight edge: its sphere ends up between the
            chain's end spheres (re__finish), which are checked */
         if (an->vstate[v] != RE__V_CORNER || an->c_np[c] == 2) continue;
@@ -1747,8 +1755,16 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         /* a plane farther than req (1 + |u|) from v cannot bound the radius
            below the request (n.u + 1 <= |u| + 1), so it cannot clamp it:
            skipped before its plane and sphere loops */
-        for (s = 0; s < an->c_ns[c]; s++) umax = re__max(umax, re__len(an->su + 3 * (size_t)(an->c_sfirst[c] + s)));
+        for (s = 0; s < an->c_ns[c]; s++) {
+            double du[3];
+            umax = re__max(umax, re__len(u0 + 3 * (size_t)s));
+            re__sub(u0 + 3 * (size_t)s, u0, du);
+            spread = re__max(spread, re__len(du));
+        }
         skip = req[p] * (umax + 1) * (1 + 1e-9);
+        /* every n.u + 1 below is at most n.u0 + 1 + spread (|n| = 1), up to
+           the rounding of the dot products (RE__SIDE_ULPS of the magnitudes) */
+        slack = RE__SIDE_ULPS * (2 + umax + spread);
         for (s = 0; s < an->c_np[c]; s++) pmark[an->c_planes[an->c_pfirst[c] + s]] = c + 1;
         for (q = an->voff[v]; q < an->voff[v + 1]; q++) {
             const re__edge_t *e = &an->edges[an->vinc[q]];
@@ -1780,6 +1796,11 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
                 pmark[pi] = c + 1;
                 b = pl->c - re__dot(pl->n, an->pos + 3 * (size_t)v);
                 if (b < 0 || b >= skip) continue; /* not locally convex, or too far to matter */
+                /* nor does a plane whose bound b / amax is at least the
+                   request by the bound on amax from the first sphere (on a
+                   fine mesh nearly every one: the corner's spheres lie
+                   close together, and the plane barely leans in) */
+                if (b >= req[p] * (re__dot(pl->n, u0) + 1 + spread + slack) * (1 + 1e-9)) continue;
                 /* b / a decreases with a (and so does its rounding), so the
                    sphere that leans farthest into the plane bounds r */
                 for (s = 0; s < an->c_ns[c]; s++)
@@ -2038,14 +2059,26 @@ static void re__solve3(const re__plane_t *A, const re__plane_t *B, const re__pla
 
 #define RE__ALIGN(x) (((x) + 15u) & ~(size_t)15u)
 
-/* Packing of id arrays (re__pk_t): the block's smallest id is its base. */
+/* Packing of id arrays (re__pk_t): the block's smallest id is its base.
+   RE__NONE is the largest unsigned, so the smallest id needs no test for
+   it, and the largest is taken plus one, where RE__NONE wraps to 0: no
+   branch, and a whole block's loop (a constant count) vectorises. */
+static void re__pk_range(const unsigned *ids, unsigned m, unsigned *lo, unsigned *hi1)
+{
+    unsigned i, l = RE__NONE, h = 0;
+    for (i = 0; i < m; i++) {
+        l = ids[i] < l ? ids[i] : l;
+        h = ids[i] + 1u > h ? ids[i] + 1u : h;
+    }
+    *lo = l, *hi1 = h;
+}
 static int re__pk_block(const unsigned *ids, unsigned n, unsigned b, unsigned *base)
 {
-    unsigned i, lo = RE__NONE, hi = 0;
-    for (i = b * RE__PK_BLOCK; i < n && i < (b + 1) * RE__PK_BLOCK; i++)
-        if (ids[i] != RE__NONE) lo = ids[i] < lo ? ids[i] : lo, hi = ids[i] > hi ? ids[i] : hi;
+    unsigned lo, hi1, m = n - b * RE__PK_BLOCK;
+    if (m >= RE__PK_BLOCK) re__pk_range(ids + b * RE__PK_BLOCK, RE__PK_BLOCK, &lo, &hi1);
+    else re__pk_range(ids + b * RE__PK_BLOCK, m, &lo, &hi1);
     *base = lo == RE__NONE ? 0 : lo;
-    return lo == RE__NONE || (hi - lo <= RE__PK_SPAN && hi < RE__PK_FULL);
+    return lo == RE__NONE || (hi1 - 1u - lo <= RE__PK_SPAN && hi1 - 1u < RE__PK_FULL);
 }
 static unsigned re__pk_full_blocks(const unsigned *ids, unsigned n)
 {
@@ -2258,22 +2291,15 @@ static void re__chain_cover(const re__an_t *an, re__bandwork_t *B, unsigned t, u
 /* The strip of face f (plane fi) outside H_g, from the triangle of
    half-edge he on (the edge between f and g). On that triangle the strip
    runs along its own edge, so it is a band of width r tan(theta/2) (theta
-   the angle between the normals) over the altitude: no piece. Beyond it,
-   across the face's flat edges, the cut-off polygons are pieces. */
+   the angle between the normals) over the altitude: no piece (re__bands
+   sets it). Beyond it, across the face's flat edges, the cut-off polygons
+   are pieces. */
 static void re__band_strip(const re__an_t *an, re__bandwork_t *B, unsigned fi, const re__plane_t *G, double r, unsigned he,
-                           int own, unsigned chain_root)
+                           unsigned chain_root)
 {
     const re__plane_t *P = &an->planes[fi];
-    double cs = re__dot(G->n, P->n), lim = G->c - r * (1 - cs), sn;
-    unsigned qh = 0, qt = 0, t0 = he / 3, ke = he % 3, m0 = (ke + 2) % 3;
-    if (own) {
-        /* the strip's width over the altitude from the opposite corner m0;
-           tan(theta/2) = (1 - cos) / sin */
-        sn = sqrt(re__max(0.0, 1 - cs * cs));
-        B->beta[4 * (size_t)t0 + m0] =
-            re__max(B->beta[4 * (size_t)t0 + m0], sn > 0 ? r * (1 - cs) / sn * B->ih[3 * (size_t)t0 + m0] : 1.0);
-        return;
-    }
+    double cs = re__dot(G->n, P->n), lim = G->c - r * (1 - cs);
+    unsigned qh = 0, qt = 0, t0 = he / 3;
     if (B->nb[3 * (size_t)t0] == RE__NONE && B->nb[3 * (size_t)t0 + 1] == RE__NONE && B->nb[3 * (size_t)t0 + 2] == RE__NONE)
         return; /* alone on its face: nothing beyond the own band */
     B->st++;
@@ -2364,8 +2390,7 @@ static double re__point_tri_dist(const re__an_t *an, unsigned t, const double p[
 static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, const double *patch_r, unsigned *uf,
                              const double *reach, re__final_t *F)
 {
-    unsigned T = an->T, c, j, i, t, k;
-    int own;
+    unsigned T = an->T, c, j, i, t, k, any_flat = 0;
     size_t mark;
     re__bandwork_t B;
     RE__TAKE(F->bands, unsigned char, 4 * (size_t)T);
@@ -2376,6 +2401,7 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
             unsigned e = an->he_edge[3 * t + k];
             B.nb[3 * (size_t)t + k] = e == RE__NONE || an->edges[e].cls != RE__E_FLAT ? RE__NONE
                                       : an->edges[e].he[0] / 3 == t ? an->edges[e].he[1] / 3 : an->edges[e].he[0] / 3;
+            any_flat |= B.nb[3 * (size_t)t + k] != RE__NONE;
         }
     RE__TAKE(B.beta, double, 4 * (size_t)T + 1);
     RE__TAKE(B.ih, double, 3 * (size_t)T + 1);
@@ -2415,22 +2441,41 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
        assigned at once to the band that loses the least area (the own
        bands, the widest, are in place by then, so a corner piece joins
        one of them or the cap) */
-    for (own = 1; own >= 0; own--)
-        for (i = 0; i < an->E; i++) {
-            const re__edge_t *e = &an->edges[i];
-            unsigned t0, t1, root = RE__NONE, h;
-            double r;
-            if (!e->rounded) continue;
-            r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
-            t0 = e->he[0] / 3, t1 = e->he[1] / 3;
-            /* a straight chain's strips are walked once, by its first edge
-               (walking them from every segment was quadratic in its length) */
-            if (!own && B.cover && (B.cover[i] & RE__IN_CHAIN) && re__uf_find(B.chain, i) == i) root = i;
-            for (h = 0; h < 2; h++) {
-                if (!own && root == RE__NONE && B.cover && (B.cover[i] & (1u << h))) continue; /* its chain's walk reached it */
-                re__band_strip(an, &B, an->tplane[h ? t1 : t0], &an->planes[an->tplane[h ? t0 : t1]], r, e->he[h], own, root);
-            }
+    for (i = 0; i < an->E; i++) {
+        const re__edge_t *e = &an->edges[i];
+        unsigned h;
+        double r, cs, sn, w;
+        if (!e->rounded) continue;
+        r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
+        /* the strip's width over the altitude from the corner opposite the
+           edge, on both faces alike: r tan(theta/2), tan(theta/2) =
+           (1 - cos) / sin */
+        cs = re__dot(an->planes[an->tplane[e->he[1] / 3]].n, an->planes[an->tplane[e->he[0] / 3]].n);
+        sn = sqrt(re__max(0.0, 1 - cs * cs));
+        w = sn > 0 ? r * (1 - cs) / sn : 0.0;
+        for (h = 0; h < 2; h++) {
+            unsigned t0 = e->he[h] / 3, m0 = (e->he[h] % 3 + 2) % 3;
+            B.beta[4 * (size_t)t0 + m0] = re__max(B.beta[4 * (size_t)t0 + m0], sn > 0 ? w * B.ih[3 * (size_t)t0 + m0] : 1.0);
         }
+    }
+    /* without flat edges (every face one triangle, as on an icosphere) no
+       strip reaches past its own triangle: every triangle is alone on its
+       face */
+    for (i = 0; i < an->E && any_flat; i++) {
+        const re__edge_t *e = &an->edges[i];
+        unsigned t0, t1, root = RE__NONE, h;
+        double r;
+        if (!e->rounded) continue;
+        r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
+        t0 = e->he[0] / 3, t1 = e->he[1] / 3;
+        /* a straight chain's strips are walked once, by its first edge
+           (walking them from every segment was quadratic in its length) */
+        if (B.cover && (B.cover[i] & RE__IN_CHAIN) && re__uf_find(B.chain, i) == i) root = i;
+        for (h = 0; h < 2; h++) {
+            if (root == RE__NONE && B.cover && (B.cover[i] & (1u << h))) continue; /* its chain's walk reached it */
+            re__band_strip(an, &B, an->tplane[h ? t1 : t0], &an->planes[an->tplane[h ? t0 : t1]], r, e->he[h], root);
+        }
+    }
     /* caps at corners with planes that are not edge neighbours */
     for (c = 0; c < an->nc; c++) {
         unsigned v = an->c_vertex[c], np = an->c_np[c];
@@ -2792,13 +2837,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
         /* the query numbers a corner's planes by its edges (re__corner_plane:
            plane j is the face whose half-edge of edge j leaves the corner);
-           qslot maps the fan slots of c_planes to those */
-        for (j = 0; j < K->np; j++) {
-            const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
-            unsigned hq = an->tri[e->he[0]] == an->c_vertex[c] ? e->he[0] : e->he[1];
-            for (k = 0; k < K->np && an->c_planes[pf + k] != an->tplane[hq / 3]; k++) {}
-            qslot[k] = j;
-        }
+           qslot maps the fan slots of c_planes to those. That face is fan
+           slot j + 1's: re__corners walks the fan across each edge from the
+           triangle whose half-edge arrives at v (slot j, whose plane ends
+           there) to the one whose half-edge leaves it, the first of the
+           next plane (slot j + 1, the first slot's after the last) */
+        for (j = 0; j < K->np; j++) qslot[j + 1 < K->np ? j + 1 : 0] = j;
         for (j = 0; j < K->ns; j++) {
             double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3], x[3], ldd;
             unsigned tri = an->s_tri[an->c_sfirst[c] + j];
