@@ -492,7 +492,7 @@ static void chain_corners_dropped_renumber_the_rest(void)
         t_rng_t rng = {91};
         double *er;
         unsigned k, first_tri[2];
-        long i, n_round = 0, n_pass = 0, nr = t_count(3000);
+        long i, n_round = 0, n_pass = 0, nr = t_count(3000) < 600 ? 600 : t_count(3000);
         g_layout = layout ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
         rod_mesh(&m, n, L, h, r1, &b);
         tm_icosphere(&part[0], 2, 1.0);
@@ -549,6 +549,9 @@ static void chain_corners_dropped_renumber_the_rest(void)
                 T_NEAR(h1.t, h2.t, 1e-12 * 3);
                 for (a = 0; a < 3; a++) T_NEAR(h1.normal[a], h2.normal[a], 1e-9);
             }
+            /* not vacuous: 8% (icosphere) and 12% (pyramid) of these rays
+               reach the rounded surface; at least 600 rays even under the
+               sanitizers' reduced counts, where 150 left too few for 5% */
             T_GT(n_part_round, nr / 20);
         }
         re_free(s);
