@@ -2577,6 +2577,26 @@ static void re__chain_spheres(re__an_t *an, const unsigned *fc, const unsigned *
     }
 }
 
+/* Does the compact layout store edge cylinder cy's second sphere as a
+   16-bit step from its first (re__object_t.ds1), or in the list xs1? */
+static int re__s1_near(const re__cyl_t *cy) { return cy->s[1] > cy->s[0] && cy->s[1] - cy->s[0] <= RE__DS1_SPAN; }
+static unsigned re__count_xs1(const re__final_t *F)
+{
+    unsigned i, n = 0;
+    for (i = 0; i < F->n_edge_cyls; i++) n += re__s1_near(&F->cyls[i]) ? 0u : 1u;
+    return n;
+}
+
+/* A corner that re__drop_chain_corners leaves out: two planes, and no edge
+   cylinder ends at its sphere (used: per sphere, one does). */
+static int re__chain_inner(const re__final_t *F, const unsigned char *used, unsigned k)
+{
+    const re__corner_t *K = &F->corners[k];
+    unsigned s, sf = F->pk[RE__PKA_K_SFIRST][k], reached = 0;
+    for (s = 0; s < K->ns; s++) reached |= used[sf + s];
+    return K->np == 2 && K->nx == 0 && !reached;
+}
+
 /* Drops the corners inside straight chains once every cylinder of their
    chain spans it (re__finish: csph): their spheres lie on the chain's axis,
    inside its cylinder, and no cylinder, reference or walk reaches them any
@@ -2595,20 +2615,14 @@ static re_result_t re__drop_chain_corners(re__an_t *an, re__arena_t *ar, re__fin
     RE__TAKE(used, unsigned char, F->n_spheres);
     memset(used, 0, F->n_spheres);
     for (i = 0; i < F->n_edge_cyls; i++) used[F->cyls[i].s[0]] = used[F->cyls[i].s[1]] = 1;
-    for (k = 0; k < F->n_corners; k++) {
-        const re__corner_t *K = &F->corners[k];
-        unsigned sf = F->pk[RE__PKA_K_SFIRST][k], reached = 0;
-        for (s = 0; s < K->ns; s++) reached |= used[sf + s];
-        ndrop += K->np == 2 && K->nx == 0 && !reached;
-    }
+    for (k = 0; k < F->n_corners; k++) ndrop += (unsigned)re__chain_inner(F, used, k);
     if (!ndrop) return RE_OK;
     RE__TAKE(newc, unsigned, F->n_corners);
     RE__TAKE(news, unsigned, F->n_spheres);
     for (k = 0; k < F->n_corners; k++) {
         re__corner_t K = F->corners[k];
-        unsigned sf = F->pk[RE__PKA_K_SFIRST][k], rf = F->pk[RE__PKA_K_FIRST][k], reached = 0;
-        for (s = 0; s < K.ns; s++) reached |= used[sf + s];
-        if (K.np == 2 && K.nx == 0 && !reached) {
+        unsigned sf = F->pk[RE__PKA_K_SFIRST][k], rf = F->pk[RE__PKA_K_FIRST][k];
+        if (re__chain_inner(F, used, k)) {
             newc[k] = RE__NONE;
             for (s = 0; s < K.ns; s++) news[sf + s] = RE__NONE;
             continue;
@@ -2653,9 +2667,7 @@ static re_result_t re__drop_chain_corners(re__an_t *an, re__arena_t *ar, re__fin
     if (F->pk_n[RE__PKA_K_RID]) F->pk_n[RE__PKA_K_RID] = nk;
     if (F->pk_n[RE__PKA_K_XFIRST]) F->pk_n[RE__PKA_K_XFIRST] = nk;
     F->pk_n[RE__PKA_S_CORNER] = nsph;
-    F->n_xs1 = 0;
-    for (i = 0; i < F->n_edge_cyls; i++)
-        F->n_xs1 += F->cyls[i].s[1] > F->cyls[i].s[0] && F->cyls[i].s[1] - F->cyls[i].s[0] <= RE__DS1_SPAN ? 0u : 1u;
+    F->n_xs1 = re__count_xs1(F);
     for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
     return RE_OK;
 }
@@ -2931,9 +2943,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
         F->pk[RE__PKA_C_S0][ecyl[i]] = cy->s[0];
     }
-    F->n_xs1 = 0;
-    for (i = 0; i < F->n_edge_cyls; i++)
-        F->n_xs1 += F->cyls[i].s[1] > F->cyls[i].s[0] && F->cyls[i].s[1] - F->cyls[i].s[0] <= RE__DS1_SPAN ? 0u : 1u;
+    F->n_xs1 = re__count_xs1(F);
     for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
     /* Detection (§3.1): the removed zone on a face lies within g, the larger
        face reach of the edge's two corners, of the mesh edge. The query
@@ -3027,9 +3037,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             F->cyls[ecyl[i]].s[1] = csph[2 * i + 1];
             F->pk[RE__PKA_C_S0][ecyl[i]] = csph[2 * i];
         }
-        F->n_xs1 = 0;
-        for (i = 0; i < F->n_edge_cyls; i++)
-            F->n_xs1 += F->cyls[i].s[1] > F->cyls[i].s[0] && F->cyls[i].s[1] - F->cyls[i].s[0] <= RE__DS1_SPAN ? 0u : 1u;
+        F->n_xs1 = re__count_xs1(F);
         F->pk_full[RE__PKA_C_S0] = re__pk_full_blocks(F->pk[RE__PKA_C_S0], F->pk_n[RE__PKA_C_S0]);
     }
     {
@@ -3128,8 +3136,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
         ds = (unsigned short *)at;
         xs = (unsigned *)(at + RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls));
         for (c = 0; o->compact && c < F->n_edge_cyls; c++) {
-            unsigned d = F->cyls[c].s[1] - F->cyls[c].s[0];
-            ds[c] = (unsigned short)(F->cyls[c].s[1] > F->cyls[c].s[0] && d <= RE__DS1_SPAN ? d : RE__DS1_FAR);
+            ds[c] = (unsigned short)(re__s1_near(&F->cyls[c]) ? F->cyls[c].s[1] - F->cyls[c].s[0] : RE__DS1_FAR);
             if (ds[c] == RE__DS1_FAR) xs[2 * nx] = c, xs[2 * nx + 1] = F->cyls[c].s[1], nx++;
         }
         if (o->compact) {
