@@ -30,9 +30,12 @@ extern "C" {
 /* Tessellates object `re_obj` of `rs` (built from `sharp`) at `level` >= 1
    into *out (zeroed on entry; free out->pos and out->idx with free()). *first_round is the
    number of flat-face triangles, which come first. Returns 0; 1 when some
-   vertex of the object got no rounding sphere (the build left it sharp and
-   reported why): the shrunk-face construction needs every corner rounded,
-   so *out is then a copy of the sharp mesh; -1 when out of memory. */
+   vertex of the object is neither a rounded corner (it has a sphere) nor
+   inside a straight chain (an edge split by vertices where only its two
+   faces meet: the chain's one cylinder, enumerated by each of its
+   segments, is tessellated once): the build left it sharp and reported
+   why, and the shrunk-face construction needs every corner rounded, so
+   *out is then a copy of the sharp mesh; -1 when out of memory. */
 int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp, int level, ex_mesh_t *out,
                    size_t *first_round);
 
@@ -51,7 +54,8 @@ typedef struct rx_flat_t {
     double *lines;       /* 4 per polygon edge: inward in-plane unit normal m, offset m.a */
 } rx_flat_t;
 
-/* 0; 1 when some vertex has no sphere (f stays empty); -1 out of memory. */
+/* 0; 1 when some vertex is not rounded, as for rx_tess_object (f stays
+   empty); -1 out of memory. */
 int rx_flat_build(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp, rx_flat_t *f);
 void rx_flat_free(rx_flat_t *f);
 /* 1 when p (on triangle tri) lies inside its face's flat part by more than `margin`. */
@@ -226,9 +230,34 @@ static int rx__faces_build(const re_sphere_t *sp, unsigned nsp, const ex_mesh_t 
     return 0;
 }
 
-/* Every vertex of the sharp mesh has a sphere (the shrunk-face construction
-   needs every corner rounded). */
-static int rx__all_corners_rounded(const re_sphere_t *sp, unsigned ns, const ex_mesh_t *sharp)
+/* On the segment between mesh vertices i and j, strictly inside it (float
+   positions: to RX__ON_SEGMENT times the object's size). */
+#define RX__ON_SEGMENT 1e-6
+
+static int rx__inside_segment(const ex_mesh_t *m, size_t v, long long i, long long j, double size)
+{
+    ex_v3_t a, b, p, ab, ap;
+    double l2, t;
+    if (i < 0 || j < 0 || (size_t)i >= m->nverts || (size_t)j >= m->nverts || (size_t)i == v || (size_t)j == v) return 0;
+    a = ex_v3(m->pos[3 * i], m->pos[3 * i + 1], m->pos[3 * i + 2]);
+    b = ex_v3(m->pos[3 * j], m->pos[3 * j + 1], m->pos[3 * j + 2]);
+    p = ex_v3(m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2]);
+    ab = ex_sub(b, a);
+    ap = ex_sub(p, a);
+    l2 = ex_dot(ab, ab);
+    if (!(l2 > 0)) return 0;
+    t = ex_dot(ap, ab) / l2;
+    return t > 0 && t < 1 && ex_len(ex_sub(ap, ex_scale(ab, t))) <= RX__ON_SEGMENT * size;
+}
+
+/* Every vertex of the sharp mesh is rounded (the shrunk-face construction
+   needs every corner rounded): it has a sphere, or it lies inside a
+   straight chain, an edge split by vertices where only its two faces meet,
+   which the library rounds with one cylinder between the chain's end
+   vertices and no sphere inside. Returns at the first vertex that is
+   neither, so objects with sharp corners cost one pass over the cylinders. */
+static int rx__all_corners_rounded(const re_sphere_t *sp, unsigned ns, const re_cylinder_t *cy, unsigned nc,
+                                   const ex_mesh_t *sharp, double size)
 {
     unsigned char *has = (unsigned char *)calloc(sharp->nverts + 1, 1);
     size_t v;
@@ -237,10 +266,32 @@ static int rx__all_corners_rounded(const re_sphere_t *sp, unsigned ns, const ex_
     if (!has) return -1;
     for (i = 0; i < ns; i++)
         if (sp[i].vertex < sharp->nverts) has[sp[i].vertex] = 1;
-    for (v = 0; v < sharp->nverts; v++)
-        if (!has[v]) all = 0;
+    for (v = 0; v < sharp->nverts && all; v++) {
+        if (has[v]) continue;
+        for (i = 0; i < nc; i++)
+            if (rx__inside_segment(sharp, v, cy[i].edge_v0, cy[i].edge_v1, size)) break;
+        if (i == nc) all = 0;
+    }
     free(has);
     return all;
+}
+
+/* The enumerated cylinders, each once: every segment of a straight chain
+   enumerates the chain's whole cylinder (re_cylinder_t), the same
+   sphere pair. Returns the count kept at the front of cy. */
+static int rx__cmp_cyl(const void *x, const void *y)
+{
+    const re_cylinder_t *a = (const re_cylinder_t *)x, *b = (const re_cylinder_t *)y;
+    if (a->sa != b->sa) return a->sa < b->sa ? -1 : 1;
+    return a->sb < b->sb ? -1 : a->sb > b->sb;
+}
+static unsigned rx__unique_cylinders(re_cylinder_t *cy, unsigned nc)
+{
+    unsigned i, n = 0;
+    qsort(cy, nc, sizeof *cy, rx__cmp_cyl);
+    for (i = 0; i < nc; i++)
+        if (!n || cy[i].sa != cy[n - 1].sa || cy[i].sb != cy[n - 1].sb) cy[n++] = cy[i];
+    return n;
 }
 
 static double rx__mesh_size(const ex_mesh_t *m)
@@ -273,17 +324,21 @@ static int rx__tess_faces(rx__tb_t *b, const re_sphere_t *sp, unsigned nsp, cons
 
 int rx_flat_build(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp, rx_flat_t *out)
 {
-    unsigned ns = re_sphere_count(rs, re_obj), i;
+    unsigned ns = re_sphere_count(rs, re_obj), nc = re_cylinder_count(rs, re_obj), i;
     re_sphere_t *sp = (re_sphere_t *)malloc(sizeof *sp * (ns + 1));
+    re_cylinder_t *cy = (re_cylinder_t *)malloc(sizeof *cy * (nc + 1));
     rx__faces_t f;
     size_t g, k, ne;
+    double size = rx__mesh_size(sharp);
     int all;
     memset(out, 0, sizeof *out);
-    if (!sp) return -1;
+    if (!sp || !cy) { free(sp); free(cy); return -1; }
     for (i = 0; i < ns; i++) re_get_sphere(rs, re_obj, i, &sp[i]);
-    all = rx__all_corners_rounded(sp, ns, sharp);
+    for (i = 0; i < nc; i++) re_get_cylinder(rs, re_obj, i, &cy[i]);
+    all = rx__all_corners_rounded(sp, ns, cy, nc, sharp, size);
+    free(cy);
     if (all != 1) { free(sp); return all < 0 ? -1 : 1; }
-    if (rx__faces_build(sp, ns, sharp, rx__mesh_size(sharp), &f)) { free(sp); return -1; }
+    if (rx__faces_build(sp, ns, sharp, size, &f)) { free(sp); return -1; }
     free(sp);
     ne = f.first[f.n];
     out->tri_lines = (size_t *)malloc(sizeof(size_t) * 2 * (sharp->ntris + 1));
@@ -431,9 +486,11 @@ int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp
     if (!sp || !cy || level < 1) { free(sp); free(cy); return -1; }
     for (i = 0; i < ns; i++) re_get_sphere(rs, re_obj, i, &sp[i]);
     for (i = 0; i < nc; i++) re_get_cylinder(rs, re_obj, i, &cy[i]);
+    size = rx__mesh_size(sharp);
+    nc = rx__unique_cylinders(cy, nc);
     {
-        /* every vertex needs a sphere, else fall back to the sharp mesh */
-        int all = rx__all_corners_rounded(sp, ns, sharp);
+        /* every vertex needs a sphere or a chain, else fall back to the sharp mesh */
+        int all = rx__all_corners_rounded(sp, ns, cy, nc, sharp, size);
         if (all != 1) {
             free(sp); free(cy);
             if (all < 0) return -1;
@@ -448,7 +505,6 @@ int rx_tess_object(const re_scene_t *rs, unsigned re_obj, const ex_mesh_t *sharp
             return 1;
         }
     }
-    size = rx__mesh_size(sharp);
     if (rx__tess_faces(&b, sp, ns, sharp, size)) rc = -1;
     *first_round = out->ntris;
     for (i = 0; rc == 0 && i < nc; i++) rx__tess_cylinder(&b, &cy[i], level);
