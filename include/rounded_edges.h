@@ -41,6 +41,12 @@
      RE_ASSERT(c)       internal-invariant check (default assert)
      RE_MALLOC(sz,ctx) / RE_FREE(p,ctx)   allocator hooks (default malloc/free)
      RE_NO_HUGEPAGES    do not ask for huge pages (below)
+     RE_NO_BANDS        no per-triangle bands: re_query_uv() then answers as
+                        re_query() does, through the kd-tree on every hit; the
+                        build skips their step and the scene their 4 bytes per
+                        triangle (for hosts that only call re_query())
+     RE_NO_BASELINES    leave out the bevel-shader baselines (re_bevel_blog,
+                        re_bevel_cycles and their types)
    MEMORY
      re_build() and re_build_sizes() allocate their scratch and scene blocks
      with RE_MALLOC. On Linux, with the default allocator, they ask the
@@ -384,6 +390,7 @@ static inline double re__len(const double a[3]) { return sqrt(re__dot(a, a)); }
 
 
 /* ==== [section: baselines] (owned by the baselines/example helper) ==== */
+#ifndef RE_NO_BASELINES
 /* ---- Bevel-shader baselines (issue 6, item 3) --------------------------
    Two normal-only "bevel" shaders that the rounded-edge method is compared
    with. They do not change the geometry: they return a shading normal for a
@@ -459,6 +466,7 @@ RE_DEF re_result_t re_bevel_blog(const re_bevel_blog_desc_t *desc, const double 
 RE_DEF re_result_t re_bevel_cycles(const re_bevel_cycles_desc_t *desc, const double p[3],
                                    const double n[3], unsigned object, re_trace_fn trace,
                                    void *user, re_bevel_result_t *out);
+#endif /* RE_NO_BASELINES */
 /* ==== [end section: baselines] ==== */
 
 #ifdef __cplusplus
@@ -2220,6 +2228,16 @@ static double re__det8(unsigned char h, unsigned e0)
    1e-7 r. */
 #define RE__SPHERE_SOLVE_REL 1e-9
 
+/* Per-triangle bands (query step 0): 4 bytes per triangle, widths in units
+   of 1 / RE__BAND_STEPS; none with RE_NO_BANDS. */
+#define RE__BAND_STEPS 255.0
+#ifdef RE_NO_BANDS
+#define RE__BAND_BYTES 0u
+#else
+#define RE__BAND_BYTES 4u
+#endif
+
+#ifndef RE_NO_BANDS
 /* Query step 0: per-triangle bands. The flat part of face f is the face
    shrunk by the half-planes H_g = {x : n_g.x <= c_g - r (1 - n_g.n_f)} of
    the planes g of its corners (the offset of the eroded face; query step 2
@@ -2244,7 +2262,6 @@ static double re__det8(unsigned char h, unsigned e0)
    Bands err only wide:
    rounded up to 1/RE__BAND_STEPS, plus RE__BAND_MARGIN for a float host's
    u, v. */
-#define RE__BAND_STEPS 255.0
 #define RE__IN_CHAIN 4u /* re__bandwork_t.cover: the edge is one segment of a straight chain */
 #define RE__BAND_MARGIN 1e-6
 /* Share of the triangle's area behind band a of width b: an edge band
@@ -2531,6 +2548,8 @@ static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, 
     ar->used = mark;
     return RE_OK;
 }
+
+#endif /* RE_NO_BANDS */
 
 /* The spheres of the vertices inside the straight chain that leaves corner
    ca by edge first and ends at corner cb by edge last (cb = RE__NONE: it
@@ -3041,8 +3060,10 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         F->pk_full[RE__PKA_C_S0] = re__pk_full_blocks(F->pk[RE__PKA_C_S0], F->pk_n[RE__PKA_C_S0]);
     }
     {
-        re_result_t rc = re__bands(an, ar, fc, patch_r, uf, reach, F);
-        if (rc != RE_OK) return rc;
+        re_result_t rc = RE_OK;
+#ifndef RE_NO_BANDS
+        if ((rc = re__bands(an, ar, fc, patch_r, uf, reach, F)) != RE_OK) return rc;
+#endif
         if (csph && (rc = re__drop_chain_corners(an, ar, F)) != RE_OK) return rc;
     }
     an->st.rounded_corners += F->n_corners;
@@ -3060,7 +3081,7 @@ static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
     size_t b = 0;
     unsigned i;
     for (i = 0; i < RE__PKA_N; i++) b += re__pk_bytes(F->pk_n[i], F->pk_full[i]);
-    return b + RE__ALIGN(4 * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
+    return b + RE__ALIGN(RE__BAND_BYTES * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
            (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(sizeof(unsigned short) * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_xsph) : 0) +
            RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
            RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls) +
@@ -3111,7 +3132,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     RE__PUT_PK(s_corner, RE__PKA_S_CORNER);
     RE__PUT_PK(x_corner, RE__PKA_X_CORNER);
 #undef RE__PUT_PK
-    o->bands = (const unsigned char *)re__put(&at, F->bands, 4 * (size_t)an->T);
+    o->bands = RE__BAND_BYTES ? (const unsigned char *)re__put(&at, F->bands, RE__BAND_BYTES * (size_t)an->T) : NULL;
     o->planes = (const re__plane_t *)re__put(&at, F->planes, sizeof(re__plane_t) * F->n_planes);
     o->sinfo = NULL, o->xsid = NULL;
     if (o->compact) {
@@ -3806,13 +3827,18 @@ static void re__unchanged(re_hit_t *out, unsigned object, unsigned triangle, dou
 }
 
 /* Query step 0: every barycentric coordinate beyond its band (re__bands):
-   the hit is on the flat part of its face. */
+   the hit is on the flat part of its face. Never, without bands. */
 static int re__band_flat(const re__object_t *o, unsigned triangle, double u, double v)
 {
+#ifdef RE_NO_BANDS
+    (void)o, (void)triangle, (void)u, (void)v;
+    return 0;
+#else
     const unsigned char *b = o->bands + 4 * (size_t)triangle;
     double l0 = (1 - u - v) * RE__BAND_STEPS, l1 = u * RE__BAND_STEPS, l2 = v * RE__BAND_STEPS,
            cap = RE__BAND_STEPS - (double)b[3];
     return l0 > (double)b[0] && l1 > (double)b[1] && l2 > (double)b[2] && l0 < cap && l1 < cap && l2 < cap;
+#endif
 }
 
 /* Query step 1 for edge cylinder c of I's kd leaf: is I within its
@@ -4114,6 +4140,7 @@ RE_DEF int re_get_cylinder(const re_scene_t *scene, unsigned object, unsigned i,
 
 
 /* ==== [section: baselines] (owned by the baselines/example helper) ==== */
+#ifndef RE_NO_BASELINES
 /* ---- Bevel-shader baselines: implementation ---------------------------- */
 
 #define RE__BV_PI 3.14159265358979323846
@@ -4333,6 +4360,7 @@ RE_DEF re_result_t re_bevel_cycles(const re_bevel_cycles_desc_t *desc, const dou
     out->hits = hits;
     return RE_OK;
 }
+#endif /* RE_NO_BASELINES */
 /* ==== [end section: baselines] ==== */
 
 #ifdef __cplusplus
