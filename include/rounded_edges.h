@@ -47,6 +47,8 @@
                         triangle (for hosts that only call re_query())
      RE_NO_BASELINES    leave out the bevel-shader baselines (re_bevel_blog,
                         re_bevel_cycles and their types)
+     RE_NO_COMPACT      leave out RE_LAYOUT_COMPACT (re_build() then rejects
+                        it): the query loses its layout tests
    MEMORY
      re_build() and re_build_sizes() allocate their scratch and scene blocks
      with RE_MALLOC. On Linux, with the default allocator, they ask the
@@ -703,6 +705,16 @@ static inline unsigned re__pk_id(const re__pk_t *p, unsigned i)
     if (b & RE__PK_FULL) return p->full[(b & ~RE__PK_FULL) + i % RE__PK_BLOCK];
     return b + p->off[i];
 }
+
+/* Whether object o / the build uses RE_LAYOUT_COMPACT: a constant 0 with
+   RE_NO_COMPACT, so the compiler drops that layout's branches. */
+#ifdef RE_NO_COMPACT
+#define RE__COMPACT(o) 0
+#define RE__WANT_COMPACT(desc) 0
+#else
+#define RE__COMPACT(o) ((o)->compact)
+#define RE__WANT_COMPACT(desc) ((desc)->layout == RE_LAYOUT_COMPACT)
+#endif
 
 typedef struct re__object_t {
     unsigned n_tris, n_planes, n_spheres, n_xsph, n_cyls, n_edge_cyls, n_corners, n_refs, n_nodes, n_leaf16, n_radii;
@@ -1912,7 +1924,7 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
                              unsigned budget, int depth)
 {
     const unsigned *list = kd->tmp + list_at;
-    double lo[3], hi[3], len, best = (double)n, w, scale, step_cost = kd->compact ? RE__KD_STEP_COMPACT : RE__KD_STEP;
+    double lo[3], hi[3], len, best = (double)n, w, scale, step_cost = RE__COMPACT(kd) ? RE__KD_STEP_COMPACT : RE__KD_STEP;
     unsigned i, a, axis = 0, nl = 0, nr = 0, id, mark = kd->n_tmp, k, bk = 0;
     /* the cost is estimated from at most ~RE__KD_SAMPLE boxes (the
        partition itself is exact), so a level costs one pass over the boxes */
@@ -2822,15 +2834,15 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     if (pm_id) F->planes = an->planes;
     else RE__TAKE(F->planes, re__plane_t, F->n_planes);
     F->sph = an->su;
-    if (an->desc->layout == RE_LAYOUT_COMPACT) {
+    if (RE__WANT_COMPACT(an->desc)) {
         RE__TAKE(F->sinfo, unsigned short, ns);
         RE__TAKE(F->xsid, unsigned, ns);
     }
-    if (an->desc->layout == RE_LAYOUT_COMPACT) RE__TAKE(F->xsph, double, 3 * (size_t)ns);
+    if (RE__WANT_COMPACT(an->desc)) RE__TAKE(F->xsph, double, 3 * (size_t)ns);
     else F->xsph = F->sph; /* every centre stored, in sphere order: the same array */
     RE__TAKE(F->cyls, re__cyl_t, F->n_edge_cyls);
     RE__TAKE(F->xcyls, re__xcyl_t, ncyl - F->n_edge_cyls);
-    if (an->desc->layout == RE_LAYOUT_COMPACT) RE__TAKE(F->det8, unsigned char, 2 * (size_t)F->n_edge_cyls);
+    if (RE__WANT_COMPACT(an->desc)) RE__TAKE(F->det8, unsigned char, 2 * (size_t)F->n_edge_cyls);
     else RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->corners, re__corner_t, nco);
     RE__TAKE(F->refs, unsigned, nref);
@@ -2880,7 +2892,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             unsigned short info = RE__SPH_STORED;
             re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
             F->pk[RE__PKA_S_CORNER][sbase[c] + j] = fc[c];
-            if (tri != RE__NONE && an->desc->layout == RE_LAYOUT_COMPACT && qslot[tri & 255u] < RE__SOLVED_SLOTS &&
+            if (tri != RE__NONE && RE__WANT_COMPACT(an->desc) && qslot[tri & 255u] < RE__SOLVED_SLOTS &&
                 qslot[tri >> 8 & 255u] < RE__SOLVED_SLOTS && qslot[tri >> 16] < RE__SOLVED_SLOTS) {
                 double tol = RE__SPHERE_SOLVE_REL * r + 64 * 2.220446049250313e-16 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
                 re__solve3(&an->planes[an->c_planes[pf + (tri & 255u)]], &an->planes[an->c_planes[pf + (tri >> 8 & 255u)]],
@@ -2939,7 +2951,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             xc->s[1] = (unsigned char)x[3];
         }
     }
-    RE_ASSERT(an->desc->layout == RE_LAYOUT_COMPACT || F->n_xsph == ns); /* re__cptr reads xsph by sphere id */
+    RE_ASSERT(RE__WANT_COMPACT(an->desc) || F->n_xsph == ns); /* re__cptr reads xsph by sphere id */
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
         re__cyl_t *cy;
@@ -2972,7 +2984,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
        |sphere - vertex| of the vertices. Both are rounded up (bfloat16). The
        kd box holds that set: the axis extended by m at both ends, widened
        by g + (m - g) (the edge line is that close to the axis). */
-    F->kd.cap_leafrefs = (RE__KD_DUP * F->n_edge_cyls + (an->desc->layout == RE_LAYOUT_COMPACT ? 0u : RE__KD_DUP_EXTRA)) + 64;
+    F->kd.cap_leafrefs = (RE__KD_DUP * F->n_edge_cyls + (RE__WANT_COMPACT(an->desc) ? 0u : RE__KD_DUP_EXTRA)) + 64;
     F->kd.cap_nodes = 2 * F->kd.cap_leafrefs;
     F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
     if (F->kd.cap_nodes >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
@@ -3031,12 +3043,12 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         }
     }
     F->kd.box = box;
-    F->kd.compact = an->desc->layout == RE_LAYOUT_COMPACT;
+    F->kd.compact = RE__WANT_COMPACT(an->desc);
     F->kd.n_nodes = F->kd.n_leafrefs = F->kd.n_leaves = 0;
     RE__TAKE(F->kd.tmp, unsigned, F->kd.cap_tmp);
     for (i = 0; i < F->n_edge_cyls; i++) F->kd.tmp[i] = i;
     F->kd.n_tmp = F->n_edge_cyls;
-    if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, (RE__KD_DUP * F->n_edge_cyls + (an->desc->layout == RE_LAYOUT_COMPACT ? 0u : RE__KD_DUP_EXTRA)), 0) == RE__NONE)
+    if (re__kd_build(&F->kd, 0, F->n_edge_cyls, lo, hi, (RE__KD_DUP * F->n_edge_cyls + (RE__WANT_COMPACT(an->desc) ? 0u : RE__KD_DUP_EXTRA)), 0) == RE__NONE)
         return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "kd-tree scratch too small");
     F->kd.box = NULL;
     F->kd.tmp = NULL;
@@ -3082,14 +3094,14 @@ static size_t re__object_bytes(const re__an_t *an, const re__final_t *F)
     unsigned i;
     for (i = 0; i < RE__PKA_N; i++) b += re__pk_bytes(F->pk_n[i], F->pk_full[i]);
     return b + RE__ALIGN(RE__BAND_BYTES * (size_t)an->T) + RE__ALIGN(sizeof(re__plane_t) * F->n_planes) +
-           (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(sizeof(unsigned short) * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_xsph) : 0) +
+           (RE__WANT_COMPACT(an->desc) ? RE__ALIGN(sizeof(unsigned short) * F->n_spheres) + RE__ALIGN(sizeof(unsigned) * F->n_xsph) : 0) +
            RE__ALIGN(sizeof(double) * 3 * F->n_xsph) +
            RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls) +
-           (an->desc->layout == RE_LAYOUT_COMPACT
+           (RE__WANT_COMPACT(an->desc)
                 ? RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned) * 2 * (size_t)F->n_xs1)
                 : RE__ALIGN(sizeof(unsigned) * F->n_edge_cyls)) +
            RE__ALIGN(sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls)) +
-           (an->desc->layout == RE_LAYOUT_COMPACT ? RE__ALIGN(2 * (size_t)F->n_edge_cyls) : RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls)) +
+           (RE__WANT_COMPACT(an->desc) ? RE__ALIGN(2 * (size_t)F->n_edge_cyls) : RE__ALIGN(sizeof(unsigned short) * 2 * F->n_edge_cyls)) +
            RE__ALIGN(sizeof(re__corner_t) * F->n_corners) + RE__ALIGN(sizeof(double) * F->n_radii) +
            RE__ALIGN(sizeof(unsigned) * F->n_refs) + RE__ALIGN(sizeof(re__node_t) * F->kd.n_nodes) +
            RE__ALIGN(sizeof(unsigned short) * F->n_leaf16);
@@ -3111,7 +3123,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->n_planes = F->n_planes;
     o->n_spheres = F->n_spheres;
     o->n_xsph = F->n_xsph;
-    o->compact = an->desc->layout == RE_LAYOUT_COMPACT;
+    o->compact = RE__WANT_COMPACT(an->desc);
     o->n_cyls = F->n_cyls;
     o->n_edge_cyls = F->n_edge_cyls;
     o->n_corners = F->n_corners;
@@ -3135,7 +3147,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->bands = RE__BAND_BYTES ? (const unsigned char *)re__put(&at, F->bands, RE__BAND_BYTES * (size_t)an->T) : NULL;
     o->planes = (const re__plane_t *)re__put(&at, F->planes, sizeof(re__plane_t) * F->n_planes);
     o->sinfo = NULL, o->xsid = NULL;
-    if (o->compact) {
+    if (RE__COMPACT(o)) {
         o->sinfo = (const unsigned short *)re__put(&at, F->sinfo, sizeof(unsigned short) * F->n_spheres);
         o->xsid = (const unsigned *)re__put(&at, F->xsid, sizeof(unsigned) * F->n_xsph);
     }
@@ -3148,7 +3160,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
         o->cyls = ec;
         at += RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls);
         o->s1w = NULL, o->ds1 = NULL, o->xs1 = NULL, o->n_xs1 = 0;
-        if (!o->compact) {
+        if (!RE__COMPACT(o)) {
             unsigned *w = (unsigned *)at;
             for (c = 0; c < F->n_edge_cyls; c++) w[c] = F->cyls[c].s[1];
             o->s1w = w;
@@ -3156,11 +3168,11 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
         }
         ds = (unsigned short *)at;
         xs = (unsigned *)(at + RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls));
-        for (c = 0; o->compact && c < F->n_edge_cyls; c++) {
+        for (c = 0; RE__COMPACT(o) && c < F->n_edge_cyls; c++) {
             ds[c] = (unsigned short)(re__s1_near(&F->cyls[c]) ? F->cyls[c].s[1] - F->cyls[c].s[0] : RE__DS1_FAR);
             if (ds[c] == RE__DS1_FAR) xs[2 * nx] = c, xs[2 * nx + 1] = F->cyls[c].s[1], nx++;
         }
-        if (o->compact) {
+        if (RE__COMPACT(o)) {
             RE_ASSERT(nx == F->n_xs1);
             at += RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned) * 2 * (size_t)nx);
             o->ds1 = ds, o->xs1 = xs, o->n_xs1 = nx;
@@ -3168,7 +3180,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     }
     o->xcyls = (const re__xcyl_t *)re__put(&at, F->xcyls, sizeof(re__xcyl_t) * (F->n_cyls - F->n_edge_cyls));
     o->det = NULL, o->det8 = NULL, o->det_e0 = F->det_e0;
-    if (o->compact)
+    if (RE__COMPACT(o))
         o->det8 = (const unsigned char *)re__put(&at, F->det8, 2 * (size_t)F->n_edge_cyls);
     else
         o->det = (const unsigned short *)re__put(&at, F->det, sizeof(unsigned short) * 2 * F->n_edge_cyls);
@@ -3277,6 +3289,15 @@ static re_result_t re__check_desc(const re_scene_desc_t *desc, re_diag_t *diag)
         }
         return RE_ERR_INVALID_ARG;
     }
+#ifdef RE_NO_COMPACT
+    if (desc->layout == RE_LAYOUT_COMPACT) {
+        if (diag) {
+            diag->result = RE_ERR_INVALID_ARG;
+            snprintf(diag->message, sizeof diag->message, "RE_LAYOUT_COMPACT is compiled out (RE_NO_COMPACT)");
+        }
+        return RE_ERR_INVALID_ARG;
+    }
+#endif
     return RE_OK;
 }
 
@@ -3544,7 +3565,7 @@ static unsigned re__s_corner(const re__object_t *o, unsigned s) { return re__pk_
 static unsigned re__cyl_s1(const re__object_t *o, unsigned c, unsigned s0)
 {
     unsigned d, lo = 0, hi = o->n_xs1;
-    if (!o->compact) return o->s1w[c];
+    if (!RE__COMPACT(o)) return o->s1w[c];
     d = o->ds1[c];
     if (d != RE__DS1_FAR) return s0 + d;
     while (hi - lo > 1) {
@@ -3558,7 +3579,7 @@ static unsigned re__cyl_s1(const re__object_t *o, unsigned c, unsigned s0)
 static unsigned re__far_sphere(const re__object_t *o, unsigned ref)
 {
     unsigned c = ref >> 1;
-    if (!o->compact && (ref & 1u)) return o->s1w[c];
+    if (!RE__COMPACT(o) && (ref & 1u)) return o->s1w[c];
     return ref & 1u ? re__cyl_s1(o, c, re__pk_id(&o->c_s0, c)) : re__pk_id(&o->c_s0, c);
 }
 static double re__k_radius(const re__object_t *o, unsigned k)
@@ -3593,8 +3614,8 @@ static void re__centre(const re__object_t *o, unsigned s, double x[3])
 {
     unsigned info;
     re__kv_t K;
-    if (!o->compact || (o->sinfo[s] & RE__SPH_STORED)) {
-        memcpy(x, o->xsph + 3 * (size_t)(o->compact ? re__xsph_rank(o, s) : s), 3 * sizeof(double));
+    if (!RE__COMPACT(o) || (o->sinfo[s] & RE__SPH_STORED)) {
+        memcpy(x, o->xsph + 3 * (size_t)(RE__COMPACT(o) ? re__xsph_rank(o, s) : s), 3 * sizeof(double));
         return;
     }
     info = o->sinfo[s];
@@ -3710,7 +3731,7 @@ typedef struct re__best_t {
 static inline const double *re__cptr(const re__object_t *o, re__best_t *b, unsigned s)
 {
     unsigned k;
-    if (!o->compact) return o->xsph + 3 * (size_t)s;
+    if (!RE__COMPACT(o)) return o->xsph + 3 * (size_t)s;
     if (o->sinfo[s] & RE__SPH_STORED) return o->xsph + 3 * (size_t)re__xsph_rank(o, s);
     k = s & (RE__CC - 1u);
     if (!(b->cvalid >> k & 1u) || b->cid[k] != s) b->cvalid |= 1u << k, b->cid[k] = s, re__centre(o, s, b->cx[k]);
@@ -3720,7 +3741,7 @@ static inline void re__cpair(const re__object_t *o, re__best_t *b, unsigned s0, 
                              double keep[3])
 {
     *p0 = re__cptr(o, b, s0);
-    if (o->compact && !((s0 ^ s1) & (RE__CC - 1u)) && !(o->sinfo[s0] & RE__SPH_STORED))
+    if (RE__COMPACT(o) && !((s0 ^ s1) & (RE__CC - 1u)) && !(o->sinfo[s0] & RE__SPH_STORED))
         keep[0] = (*p0)[0], keep[1] = (*p0)[1], keep[2] = (*p0)[2], *p0 = keep;
     *p1 = re__cptr(o, b, s1);
 }
@@ -3849,7 +3870,7 @@ static inline unsigned re__detect(const re__object_t *o, unsigned c, const doubl
 {
     const re__ecyl_t *cy = &o->cyls[c];
     const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
-    double g = o->compact ? re__det8(o->det8[2 * c], o->det_e0) : re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
+    double g = RE__COMPACT(o) ? re__det8(o->det8[2 * c], o->det_e0) : re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
     const double *s0, *s1;
     unsigned ka, kb, si0, si1;
     re__kv_t Ka, Kb;
@@ -3868,7 +3889,7 @@ static inline unsigned re__detect(const re__object_t *o, unsigned c, const doubl
     cs = re__dot(P0->n, P1->n);
     if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) return 0;
     /* along the axis: within m of the end spheres */
-    m = o->compact ? re__det8(o->det8[2 * c + 1], o->det_e0) : re__det(o->det[2 * c + 1]);
+    m = RE__COMPACT(o) ? re__det8(o->det8[2 * c + 1], o->det_e0) : re__det(o->det[2 * c + 1]);
     si0 = re__pk_id(&o->c_s0, c);
     si1 = re__cyl_s1(o, c, si0);
     re__cpair(o, best, si0, si1, &s0, &s1, keep);

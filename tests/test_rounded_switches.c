@@ -1,12 +1,14 @@
 /* tests/test_rounded_switches.c — rounded_edges.h built with its feature
-   switches RE_NO_BANDS and RE_NO_BASELINES (the header compile matrix
-   compiles every combination; this runs one). Without bands re_query_uv()
-   answers through the kd-tree on every hit: the box and hull batteries
-   still hold against their independent oracles, in both layouts, with
+   switches RE_NO_BANDS, RE_NO_BASELINES and RE_NO_COMPACT (the header
+   compile matrix compiles every combination; this runs one). Without
+   bands re_query_uv() answers through the kd-tree on every hit: the box
+   and hull batteries still hold against their independent oracles, with
    re_query_uv() equal to re_query() bit for bit and never skipping the
-   tree; the scene keeps no bands and re_build_sizes() still sizes it. */
+   tree; the scene keeps no bands and re_build_sizes() still sizes it; the
+   compact layout is refused by name. */
 #define RE_NO_BANDS
 #define RE_NO_BASELINES
+#define RE_NO_COMPACT
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 #include "test.h"
@@ -23,11 +25,8 @@ static void no_bands_box_exact_vs_analytic(void)
 {
     double lo[3] = {-0.5, -0.3, -0.2}, hi[3] = {0.5, 0.3, 0.2};
     g_uv_skipped = g_uv_calls = 0;
-    box_rays(lo, hi, 0.05, t_count(20000), 1e-9, 11);
-    g_layout = RE_LAYOUT_COMPACT;
-    box_rays(lo, hi, 0.05, t_count(20000), 1e-9, 12);
-    g_layout = RE_LAYOUT_FAST;
-    T_GT(g_uv_calls, t_count(20000));
+    box_rays(lo, hi, 0.05, t_count(40000), 1e-9, 11);
+    T_GT(g_uv_calls, t_count(40000) / 2);
     T_INT_EQ(g_uv_skipped, 0);
 }
 
@@ -55,7 +54,8 @@ static void no_bands_hulls_vs_eroded(void)
     T_INT_EQ(g_uv_skipped, 0);
 }
 
-/* No bands in the block, and the size query agrees with the build. */
+/* No bands in the block, and the size query agrees with the build; no
+   compact layout. */
 static void no_bands_scene_holds_none(void)
 {
     tm_mesh_t m = {0};
@@ -84,6 +84,12 @@ static void no_bands_scene_holds_none(void)
     }
     free(mem), free(scratch);
     re_free(s);
+    /* RE_NO_COMPACT: the layout is refused, and the message says why */
+    desc.layout = RE_LAYOUT_COMPACT;
+    s = NULL;
+    T_INT_EQ(re_build(&desc, &s, &dg), RE_ERR_INVALID_ARG);
+    T_CHECK(s == NULL && strstr(dg.message, "RE_NO_COMPACT") != NULL);
+    T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_ERR_INVALID_ARG);
     tm_free(&m);
 }
 
