@@ -1851,6 +1851,22 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
             re__report(an, RE_REPORT_RADIUS_CLAMPED, lim0[c], lim1[c], r[c], msg);
         }
     }
+    /* a patch where no radius fits (largest 0: a neighbouring face plane
+       through the corner itself, as on a dented or spiked mesh) stays
+       sharp, every corner and edge of it, rather than rounded with r = 0 */
+    for (c = 0; c < nc; c++) {
+        unsigned p = re__uf_find(uf, c);
+        if (req[p] == HUGE_VAL || r[p] > 0 || an->vstate[an->c_vertex[c]] != RE__V_CORNER) continue;
+        an->vstate[an->c_vertex[c]] = RE__V_SHARP;
+    }
+    for (i = 0; i < an->E; i++) {
+        re__edge_t *e = &an->edges[i];
+        if (!e->rounded || an->vstate[e->v[0]] == RE__V_CORNER) continue;
+        e->rounded = 0;
+        an->st.rounded_edges--;
+        snprintf(msg, sizeof msg, "convex edge %u-%u left sharp: no radius above 0 fits its patch", e->v[0], e->v[1]);
+        re__report(an, RE_REPORT_SHARP_PATCH_EDGE, e->v[0], e->v[1], 0.0, msg);
+    }
     *patch_r_out = r;
     *uf_out = uf;
     ar->used = mark;

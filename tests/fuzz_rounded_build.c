@@ -1,0 +1,295 @@
+/* libFuzzer target for rounded_edges.h's builder and queries (make fuzz; a
+   short run in make test). The input is read as a base solid and a list of
+   edits, so most inputs are nearly valid meshes that reach the deep steps
+   (erosion, chains, bands, kd-tree) and the rest are the bad input of
+   issue 6 (NaN and huge coordinates, out-of-range and repeated indices,
+   flipped and duplicated triangles, open and non-manifold edges):
+     byte 0  flags: layout, bad-input policy, radius policy, float positions,
+             per-edge radii; base solid (box, icosahedron, prism, pyramid)
+     byte 1  radius 2^(b % 32 - 24)
+     then    edits of three bytes each (op, a, b), at most RFZ_MAX_EDITS
+     then    queries of six bytes each, at most RFZ_MAX_QUERIES
+   Every input must build or fail with a result code and a message, never
+   crash or read out of bounds (ASan, UBSan). A built scene must enumerate
+   its features, agree with re_build_sizes() + re_build_into(), and answer
+   every front-face host hit with a valid kind; a rounded hit or
+   pass-through lies no earlier than the host's t (up to the float-host
+   slack) and a rounded hit has a unit normal. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#define RE_IMPLEMENTATION
+#include "rounded_edges.h"
+
+/* A failed check: abort for libFuzzer; tests/test_rounded_fuzz_replay.c
+   counts it instead (every use is followed by a return or is safe to go
+   on from). */
+#ifndef RFZ_FAIL
+#define RFZ_FAIL() abort()
+#endif
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+#define RFZ_MAX_V 256
+#define RFZ_MAX_T 512
+#define RFZ_MAX_EDITS 48
+#define RFZ_MAX_QUERIES 24
+
+typedef struct rfz_in_t { const uint8_t *p; size_t n, at; } rfz_in_t;
+static unsigned rfz_byte(rfz_in_t *in) { return in->at < in->n ? in->p[in->at++] : 0u; }
+
+typedef struct rfz_mesh_t {
+    double v[3 * RFZ_MAX_V];
+    unsigned idx[3 * RFZ_MAX_T];
+    unsigned nv, nt;
+} rfz_mesh_t;
+
+static unsigned rfz_vert(rfz_mesh_t *m, double x, double y, double z)
+{
+    if (m->nv == RFZ_MAX_V) return 0;
+    m->v[3 * m->nv] = x, m->v[3 * m->nv + 1] = y, m->v[3 * m->nv + 2] = z;
+    return m->nv++;
+}
+static void rfz_tri(rfz_mesh_t *m, unsigned a, unsigned b, unsigned c)
+{
+    if (m->nt == RFZ_MAX_T) return;
+    m->idx[3 * m->nt] = a, m->idx[3 * m->nt + 1] = b, m->idx[3 * m->nt + 2] = c;
+    m->nt++;
+}
+
+/* Closed convex bases, counter-clockwise from outside. */
+static void rfz_base(rfz_mesh_t *m, unsigned kind, unsigned sides)
+{
+    unsigned i;
+    if (kind == 0) { /* box */
+        static const unsigned q[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+        for (i = 0; i < 8; i++) rfz_vert(m, i & 1 ? 1.0 : -1.0, i & 2 ? 0.6 : -0.6, i & 4 ? 0.4 : -0.4);
+        for (i = 0; i < 6; i++) rfz_tri(m, q[i][0], q[i][1], q[i][2]), rfz_tri(m, q[i][0], q[i][2], q[i][3]);
+    } else if (kind == 1) { /* icosahedron, stretched so its corners are exact */
+        static const unsigned f[20][3] = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                          {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                                          {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+        const double g = 1.6180339887498949;
+        static const double s[12][3] = {{-1, 1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, -1, 0}, {0, -1, 1}, {0, 1, 1},
+                                        {0, -1, -1}, {0, 1, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, -1}, {-1, 0, 1}};
+        for (i = 0; i < 12; i++) {
+            double x = s[i][0] * (i < 4 ? 1 : i < 8 ? 0 : g), y = s[i][1] * (i < 4 ? g : i < 8 ? 1 : 0), z = s[i][2] * (i < 4 ? 0 : i < 8 ? g : 1);
+            rfz_vert(m, x, 0.8 * y, 1.25 * z);
+        }
+        for (i = 0; i < 20; i++) rfz_tri(m, f[i][0], f[i][1], f[i][2]);
+    } else { /* prism (kind 2) or pyramid (kind 3) over a regular n-gon */
+        unsigned n = 3 + sides % 30, top, bot;
+        for (i = 0; i < n; i++) {
+            double a = 6.283185307179586 * i / n;
+            rfz_vert(m, cos(a), sin(a), -0.5);
+            if (kind == 2) rfz_vert(m, cos(a), sin(a), 0.5);
+        }
+        if (kind == 2) {
+            for (i = 0; i < n; i++) {
+                unsigned j = (i + 1) % n;
+                rfz_tri(m, 2 * i, 2 * j, 2 * j + 1), rfz_tri(m, 2 * i, 2 * j + 1, 2 * i + 1);
+            }
+            for (i = 1; i + 1 < n; i++) rfz_tri(m, 0, 2 * (i + 1), 2 * i), rfz_tri(m, 1, 2 * i + 1, 2 * (i + 1) + 1);
+        } else {
+            top = rfz_vert(m, 0.2, -0.1, 0.9); /* off-centre apex: its offset planes miss one point */
+            for (i = 0; i < n; i++) rfz_tri(m, i, (i + 1) % n, top);
+            bot = 0;
+            for (i = 1; i + 1 < n; i++) rfz_tri(m, bot, i + 1, i);
+        }
+    }
+}
+
+static const double rfz_special[8] = {NAN, INFINITY, -INFINITY, 1e300, -0.0, 4.9e-324, 1e6, 1e-12};
+
+static void rfz_edit(rfz_mesh_t *m, unsigned op, unsigned a, unsigned b)
+{
+    unsigned i;
+    if (!m->nv || !m->nt) return;
+    switch (op % 9) {
+    case 0: /* nudge a vertex coordinate (non-planar faces, near-degenerate ones) */
+        m->v[3 * (a % m->nv) + b % 3] += ((double)(b >> 2) - 32.0) * (b & 128 ? 1e-9 : 1.0 / 64);
+        break;
+    case 1: /* a special coordinate */
+        m->v[3 * (a % m->nv) + b % 3] = rfz_special[(b >> 2) % 8];
+        break;
+    case 2: { /* flip a triangle */
+        unsigned t = a % m->nt, s = m->idx[3 * t + 1];
+        m->idx[3 * t + 1] = m->idx[3 * t + 2], m->idx[3 * t + 2] = s;
+        break;
+    }
+    case 3: /* an index replaced, sometimes out of range */
+        m->idx[3 * (a % m->nt) + b % 3] = (b >> 2) % (m->nv + 2);
+        break;
+    case 4: /* a triangle repeated (non-manifold edges) */
+        rfz_tri(m, m->idx[3 * (a % m->nt)], m->idx[3 * (a % m->nt) + 1], m->idx[3 * (a % m->nt) + 2]);
+        break;
+    case 5: { /* a triangle removed (open mesh) */
+        unsigned t = a % m->nt;
+        m->nt--;
+        for (i = 0; i < 3; i++) m->idx[3 * t + i] = m->idx[3 * m->nt + i];
+        break;
+    }
+    case 6: { /* a triangle split at a point raised above it (higher vertex degrees, small dihedrals) */
+        unsigned t = a % m->nt, p0 = m->idx[3 * t], p1 = m->idx[3 * t + 1], p2 = m->idx[3 * t + 2], c, k;
+        double q[3], e1[3], e2[3], n[3], h = (double)(b % 16) / 64.0;
+        if (p0 >= m->nv || p1 >= m->nv || p2 >= m->nv || m->nt + 2 > RFZ_MAX_T) break;
+        for (k = 0; k < 3; k++) {
+            q[k] = (m->v[3 * p0 + k] + m->v[3 * p1 + k] + m->v[3 * p2 + k]) / 3;
+            e1[k] = m->v[3 * p1 + k] - m->v[3 * p0 + k], e2[k] = m->v[3 * p2 + k] - m->v[3 * p0 + k];
+        }
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        c = rfz_vert(m, q[0] + h * n[0], q[1] + h * n[1], q[2] + h * n[2]);
+        m->idx[3 * t + 2] = c;
+        rfz_tri(m, p1, p2, c), rfz_tri(m, p2, p0, c);
+        break;
+    }
+    case 7: /* the whole object moved far from the origin */
+        for (i = 0; i < 3 * m->nv; i++) m->v[i] += (double)(a % 8) * 1e5 * (b & 1 ? -1 : 1);
+        break;
+    default: { /* a straight edge split in two at its midpoint (a chain vertex) */
+        unsigned t = a % m->nt, k = b % 3, p = m->idx[3 * t + k], q = m->idx[3 * t + (k + 1) % 3], o, mid, j;
+        if (p >= m->nv || q >= m->nv || m->nt + 2 > RFZ_MAX_T) break;
+        mid = rfz_vert(m, (m->v[3 * p] + m->v[3 * q]) / 2, (m->v[3 * p + 1] + m->v[3 * q + 1]) / 2,
+                       (m->v[3 * p + 2] + m->v[3 * q + 2]) / 2);
+        /* both triangles on the edge (p, q) are split at mid */
+        for (j = 0; j < m->nt; j++)
+            for (o = 0; o < 3; o++) {
+                unsigned x = m->idx[3 * j + o], y = m->idx[3 * j + (o + 1) % 3], z = m->idx[3 * j + (o + 2) % 3];
+                if ((x == p && y == q) || (x == q && y == p)) {
+                    m->idx[3 * j + (o + 1) % 3] = mid;
+                    rfz_tri(m, mid, y, z);
+                    break;
+                }
+            }
+        break;
+    }
+    }
+}
+
+static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *in)
+{
+    unsigned i, q, ns = re_sphere_count(s, 0), nc = re_cylinder_count(s, 0);
+    for (i = 0; i < ns; i++) {
+        re_sphere_t sp;
+        if (!re_get_sphere(s, 0, i, &sp) || !(sp.radius > 0)) RFZ_FAIL();
+    }
+    for (i = 0; i < nc; i++) {
+        re_cylinder_t cy;
+        if (!re_get_cylinder(s, 0, i, &cy) || cy.sa >= ns || cy.sb >= ns) RFZ_FAIL();
+    }
+    if (re_get_sphere(s, 0, ns, NULL) || re_get_cylinder(s, 0, nc, NULL)) RFZ_FAIL();
+    for (q = 0; q < RFZ_MAX_QUERIES && in->at + 6 <= in->n; q++) {
+        unsigned t = rfz_byte(in) % (m->nt ? m->nt : 1), k;
+        double u = rfz_byte(in) / 255.0, v = rfz_byte(in) / 255.0, d[3], o[3], P[3], e1[3], e2[3], n[3], th, ph, dist, dn;
+        const double *a, *b, *c;
+        re_hit_t h, h2;
+        re_hit_kind_t kind;
+        th = rfz_byte(in) * (3.141592653589793 / 255), ph = rfz_byte(in) * (6.283185307179586 / 255);
+        dist = 0.01 + rfz_byte(in) / 16.0;
+        if (!m->nt || m->idx[3 * t] >= m->nv || m->idx[3 * t + 1] >= m->nv || m->idx[3 * t + 2] >= m->nv) continue;
+        if (u + v > 1) u = 1 - u, v = 1 - v;
+        a = m->v + 3 * m->idx[3 * t], b = m->v + 3 * m->idx[3 * t + 1], c = m->v + 3 * m->idx[3 * t + 2];
+        for (k = 0; k < 3; k++) P[k] = (1 - u - v) * a[k] + u * b[k] + v * c[k], e1[k] = b[k] - a[k], e2[k] = c[k] - a[k];
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        d[0] = sin(th) * cos(ph), d[1] = sin(th) * sin(ph), d[2] = cos(th);
+        dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+        if (!(dn == dn)) continue;
+        if (dn > 0) d[0] = -d[0], d[1] = -d[1], d[2] = -d[2]; /* a front-face hit */
+        for (k = 0; k < 3; k++) o[k] = P[k] - dist * d[k];
+        kind = re_query(s, o, d, 0, t, dist, &h);
+        re_query_uv(s, o, d, 0, t, dist, u, v, &h2);
+        if (kind != RE_UNCHANGED && kind != RE_HIT_ROUNDED && kind != RE_PASS_THROUGH) RFZ_FAIL();
+        if (h2.kind != kind || h.kind != kind) RFZ_FAIL();
+        if (kind == RE_UNCHANGED) continue;
+        if (!isfinite(h.t) || h.t < dist - 1e-5 * dist - 1e-300) RFZ_FAIL();
+        if (kind == RE_HIT_ROUNDED) {
+            double len = sqrt(h.normal[0] * h.normal[0] + h.normal[1] * h.normal[1] + h.normal[2] * h.normal[2]), org[3];
+            if (!(fabs(len - 1) < 1e-6)) RFZ_FAIL();
+            if (h.feature_index >= (h.feature == RE_FEATURE_SPHERE ? ns : nc)) RFZ_FAIL();
+            re_secondary_origin(s, &h, d, org);
+        }
+    }
+}
+
+/* The input read as a mesh and a build description (see the top); the
+   queries' bytes stay in *in. vf and radii are the caller's buffers. */
+typedef struct rfz_case_t {
+    rfz_mesh_t m;
+    float vf[3 * RFZ_MAX_V];
+    double radii[3 * RFZ_MAX_T];
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+} rfz_case_t;
+
+static void rfz_decode(const uint8_t *data, size_t size, rfz_case_t *k, rfz_in_t *in)
+{
+    unsigned flags, e, i;
+    rfz_mesh_t *m = &k->m;
+    in->p = data, in->n = size, in->at = 0;
+    memset(k, 0, sizeof *k);
+    flags = rfz_byte(in);
+    rfz_base(m, flags >> 6, flags);
+    k->mesh.radius = ldexp(1.0, (int)(rfz_byte(in) % 32) - 24);
+    for (e = 0; e < RFZ_MAX_EDITS && in->at + 3 <= in->n; e++) {
+        unsigned op = rfz_byte(in), a = rfz_byte(in), b = rfz_byte(in);
+        if (op == 255) break; /* the queries start */
+        rfz_edit(m, op, a, b);
+    }
+    if (flags & 8) {
+        /* the queries' host hits come from m->v: the same (float) vertices */
+        for (i = 0; i < 3 * m->nv; i++) k->vf[i] = (float)m->v[i], m->v[i] = (double)k->vf[i];
+        k->mesh.positions = k->vf, k->mesh.position_type = RE_FLOAT32;
+    } else
+        k->mesh.positions = m->v;
+    k->mesh.vertex_count = m->nv;
+    k->mesh.indices = m->idx;
+    k->mesh.index_count = 3 * m->nt;
+    if (flags & 16) {
+        for (i = 0; i < 3 * m->nt; i++) k->radii[i] = i % 5 == 0 ? k->mesh.radius * 0.5 : i % 7 == 0 ? -1.0 : k->mesh.radius;
+        k->mesh.edge_radius = k->radii;
+    }
+    k->desc.objects = &k->mesh;
+    k->desc.object_count = 1;
+    k->desc.layout = flags & 1 ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
+    k->desc.bad_input = flags & 2 ? RE_BAD_INPUT_SKIP : RE_BAD_INPUT_REJECT;
+    k->desc.radius_policy = flags & 4 ? RE_RADIUS_REJECT : RE_RADIUS_CLAMP;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static rfz_case_t k;
+    rfz_in_t in;
+    re_scene_t *s = NULL, *s2 = NULL;
+    re_diag_t dg;
+    re_sizes_t sz;
+    re_result_t rc;
+    void *mem, *scratch;
+    rfz_decode(data, size, &k, &in);
+    rc = re_build(&k.desc, &s, &dg);
+    if (rc != RE_OK) {
+        /* a failed build names what failed */
+        if (s || dg.result != rc || !dg.message[0] || !re_result_string(rc)) RFZ_FAIL();
+        return 0;
+    }
+    /* the size query and caller buffers give the same scene */
+    if (re_build_sizes(&k.desc, &sz, &dg) != RE_OK) {
+        RFZ_FAIL();
+        re_free(s);
+        return 0;
+    }
+    mem = malloc(sz.scene_bytes), scratch = malloc(sz.scratch_bytes ? sz.scratch_bytes : 1);
+    if (mem && scratch && re_build_into(&k.desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes, &s2, &dg) == RE_OK) {
+        re_stats_t a, b;
+        re_get_stats(s, &a);
+        re_get_stats(s2, &b);
+        if (a.bytes != b.bytes || a.bytes != sz.scene_bytes || a.spheres != b.spheres || a.cylinders != b.cylinders)
+            RFZ_FAIL();
+    } else
+        RFZ_FAIL();
+    free(scratch);
+    free(mem);
+    rfz_check_scene(s, &k.m, &in);
+    re_free(s);
+    return 0;
+}
