@@ -8,7 +8,9 @@
              per-edge radii; base solid (box, icosahedron, prism, pyramid)
      byte 1  radius 2^(b % 32 - 24)
      then    edits of three bytes each (op, a, b), at most RFZ_MAX_EDITS
-     then    queries of six bytes each, at most RFZ_MAX_QUERIES
+     then    queries of six bytes each, at most RFZ_MAX_QUERIES (a first
+             byte of 254: a junk query, ids and t out of range, NaN or
+             infinite directions)
    Every input must build or fail with a result code and a message, never
    crash or read out of bounds (ASan, UBSan). A built scene must enumerate
    its features, agree with re_build_sizes() + re_build_into(), and answer
@@ -180,13 +182,26 @@ static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *
     }
     if (re_get_sphere(s, 0, ns, NULL) || re_get_cylinder(s, 0, nc, NULL)) RFZ_FAIL();
     for (q = 0; q < RFZ_MAX_QUERIES && in->at + 6 <= in->n; q++) {
-        unsigned t = rfz_byte(in) % (m->nt ? m->nt : 1), k;
+        unsigned traw = rfz_byte(in), t = traw % (m->nt ? m->nt : 1), k;
         double u = rfz_byte(in) / 255.0, v = rfz_byte(in) / 255.0, d[3], o[3], P[3], e1[3], e2[3], n[3], th, ph, dist, dn;
         const double *a, *b, *c;
         re_hit_t h, h2;
         re_hit_kind_t kind;
         th = rfz_byte(in) * (3.141592653589793 / 255), ph = rfz_byte(in) * (6.283185307179586 / 255);
         dist = 0.01 + rfz_byte(in) / 16.0;
+        if (traw == 254) {
+            /* junk: any object and triangle id, a t and a direction that
+               are not finite or not positive; a valid kind, no crash */
+            static const double tj[4] = {NAN, -1.0, INFINITY, 0.0}, dj[4] = {0.0, NAN, 1e300, -INFINITY};
+            unsigned obj = (unsigned)(u * 255) % 3, tri = (unsigned)(v * 255) + m->nt - 128;
+            double jo[3] = {0.0, 0.0, 0.0}, jd[3];
+            jd[0] = dj[(unsigned)(th * 4) % 4], jd[1] = 1.0, jd[2] = dj[(unsigned)(ph * 4) % 4];
+            kind = re_query(s, jo, jd, obj, tri, tj[(unsigned)dist % 4], &h);
+            if (kind != RE_UNCHANGED && kind != RE_HIT_ROUNDED && kind != RE_PASS_THROUGH) RFZ_FAIL();
+            kind = re_query_uv(s, jo, jd, obj, tri, tj[(unsigned)dist % 4], u, v, &h);
+            if (kind != RE_UNCHANGED && kind != RE_HIT_ROUNDED && kind != RE_PASS_THROUGH) RFZ_FAIL();
+            continue;
+        }
         if (!m->nt || m->idx[3 * t] >= m->nv || m->idx[3 * t + 1] >= m->nv || m->idx[3 * t + 2] >= m->nv) continue;
         if (u + v > 1) u = 1 - u, v = 1 - v;
         a = m->v + 3 * m->idx[3 * t], b = m->v + 3 * m->idx[3 * t + 1], c = m->v + 3 * m->idx[3 * t + 2];
