@@ -1852,8 +1852,10 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         }
     }
     /* a patch where no radius fits (largest 0: a neighbouring face plane
-       through the corner itself, as on a dented or spiked mesh) stays
-       sharp, every corner and edge of it, rather than rounded with r = 0 */
+       through the corner itself, e.g. where the coordinates' rounding far
+       from the origin tilted the coplanar pieces of a face against each
+       other) stays sharp, every corner and edge of it, rather than rounded
+       with r = 0 (docs: construction step 7) */
     for (c = 0; c < nc; c++) {
         unsigned p = re__uf_find(uf, c);
         if (req[p] == HUGE_VAL || r[p] > 0 || an->vstate[an->c_vertex[c]] != RE__V_CORNER) continue;
