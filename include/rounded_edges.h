@@ -542,6 +542,17 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    modelled dihedral (179.9 degrees is 1.7e-3), far above the rounding of
    normals computed from float coordinates near 1e6. */
 #define RE__FLAT_SIN 1e-9
+/* Far from the origin the coordinates' own rounding tilts the coplanar
+   pieces of a face against each other: moving a vertex by one rounding
+   (DBL_EPSILON * M, M its largest coordinate magnitude) tilts its triangle
+   by up to DBL_EPSILON * M / h, h the triangle's smallest altitude. Two
+   faces whose tilt is within RE__FLAT_ROUNDINGS of that, summed over both
+   triangles, are coplanar too (at 3e5, pieces 0.06 across tilt by up to
+   ~2e-9 and would meet at convex edges of no visible angle whose patch no
+   radius fits), but never above RE__FLAT_SIN_MAX (an angle of 1e-6 rad:
+   below anything modelled, 1.7e-3 for 179.9 degrees). */
+#define RE__FLAT_ROUNDINGS 4.0
+#define RE__FLAT_SIN_MAX 1e-6
 /* A triangle is degenerate when |cross(e1, e2)| <= this * (longest edge)^2,
    i.e. its smallest angle is below about 1e-12 rad. */
 #define RE__DEGENERATE_REL 1e-12
@@ -1056,6 +1067,26 @@ static int re__cmp_u64(const void *a, const void *b)
 
 /* Step 2: edges from half-edges (bucketed by the smaller vertex), and their
    class from the two face normals. */
+/* The sine below which the faces of triangles t0 and t1 count as coplanar
+   (RE__FLAT_SIN, widened by their vertices' rounding: RE__FLAT_ROUNDINGS). */
+static double re__flat_sin(const re__an_t *an, unsigned t0, unsigned t1)
+{
+    double tilt = 0;
+    unsigned q, k, a;
+    for (q = 0; q < 2; q++) {
+        unsigned t = q ? t1 : t0;
+        double m = 0, l2 = 0, d[3];
+        for (k = 0; k < 3; k++) {
+            const double *p = an->pos + 3 * (size_t)an->tri[3 * t + k];
+            re__sub(an->pos + 3 * (size_t)an->tri[3 * t + (k + 1) % 3], p, d);
+            l2 = re__max(l2, re__dot(d, d));
+            for (a = 0; a < 3; a++) m = re__max(m, fabs(p[a]));
+        }
+        tilt += m * sqrt(l2) / an->tarea[t]; /* M / h: tarea is twice the area */
+    }
+    return re__min(RE__FLAT_SIN_MAX, re__max(RE__FLAT_SIN, RE__FLAT_ROUNDINGS * 2.220446049250313e-16 * tilt));
+}
+
 static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
 {
     unsigned V = an->V, T = an->T, t, k, i, E = 0;
@@ -1124,11 +1155,12 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
                     ed->cls = RE__E_NONMANIFOLD;
                 } else {
                     const double *na = an->tn + 3 * (size_t)t0, *nb = an->tn + 3 * (size_t)t1;
-                    double cr[3], e3[3];
+                    double cr[3], e3[3], sn;
                     re__cross(na, nb, cr);
                     /* the edge as triangle t0 runs it */
                     re__sub(an->pos + 3 * (size_t)an->tri[3 * t0 + (h0 % 3 + 1) % 3], an->pos + 3 * (size_t)a0, e3);
-                    if (re__len(cr) <= RE__FLAT_SIN)
+                    sn = re__len(cr);
+                    if (sn <= RE__FLAT_SIN || (sn <= RE__FLAT_SIN_MAX && sn <= re__flat_sin(an, t0, t1)))
                         ed->cls = re__dot(na, nb) > 0 ? RE__E_FLAT : RE__E_CONCAVE; /* folded back: sharp */
                     else
                         ed->cls = re__dot(cr, e3) > 0 ? RE__E_CONVEX : RE__E_CONCAVE;

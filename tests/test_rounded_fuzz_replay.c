@@ -14,18 +14,35 @@ static long g_rfz_fail;
 /* The stretched icosahedron with its edges split again and again (chain
    vertices, faces cut into coplanar pieces), one vertex nudged by 3e-8 and
    the mesh moved to -3e5, where the doubles' rounding (6e-11) tilts the
-   pieces of a face against each other by up to ~1e-7: they meet at convex
-   edges of almost no angle, and at vertex 2 such a neighbouring piece's
-   plane passes through the corner itself, so the largest valid radius of
-   the patch is 0. Found 2026-12-04: the build clamped the patch to r = 0
-   and "rounded" its 48 edges with zero-radius spheres and cylinders. */
-static const unsigned char k_zero_radius_patch[] = {
+   pieces of a face against each other by up to 2e-9. Found 2026-12-04:
+   they met at convex edges of no visible angle, at vertex 2 such a
+   piece's plane passed through the corner itself, the largest valid radius
+   was 0, and the patch was "rounded" with zero-radius spheres. Now those
+   pieces are coplanar (RE__FLAT_ROUNDINGS) and the solid is rounded. */
+static const unsigned char k_tilted_coplanar_pieces[] = {
     0x43, 0xb3, 0xb3, 0xb3, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb,
     0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb,
     0xfb, 0x1c, 0x00, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0x3b, 0xec, 0xfb,
     0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb,
     0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb,
     0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xfb, 0xb3, 0xb2, 0xb3, 0xb3, 0xb3};
+
+/* A 29-sided prism with per-edge radii, moved to -8e6 (rounding 1.9e-9)
+   and its edges split again and again: a patch whose largest valid radius
+   is still 0 (a neighbouring face plane through vertex 3). It stays sharp,
+   each of its edges reported, instead of being rounded with r = 0 (found
+   by the fuzzer once coplanar pieces were merged, 2026-12-04). */
+static const unsigned char k_zero_radius_patch[] = {
+    0xb0, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85,
+    0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85,
+    0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0x85, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3,
+    0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3,
+    0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3,
+    0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0x30, 0xb3, 0xb3, 0xb3, 0xb3,
+    0xb3, 0xb1, 0xb4, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3,
+    0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3,
+    0x27, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3,
+    0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0x3b, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0x36};
 
 static long g_sharp_reports, g_clamp_reports;
 static void count_reports(void *user, const re_report_t *r)
@@ -35,39 +52,67 @@ static void count_reports(void *user, const re_report_t *r)
     if (r->kind == RE_REPORT_RADIUS_CLAMPED && r->value == 0) g_clamp_reports++;
 }
 
-/* No radius above 0 fits: the patch stays sharp, every edge of it is
-   reported, and the target's checks pass (no zero-radius sphere). */
+/* Replays an input through the fuzz target (its checks must all pass) and
+   builds it again with reports counted; *s is the scene (or NULL). */
+static void replay(const unsigned char *in_bytes, size_t n, rfz_case_t *k, re_scene_t **s, re_stats_t *st)
+{
+    rfz_in_t in;
+    re_diag_t dg;
+    g_rfz_fail = 0;
+    LLVMFuzzerTestOneInput(in_bytes, n);
+    T_INT_EQ(g_rfz_fail, 0);
+    rfz_decode(in_bytes, n, k, &in);
+    k->desc.report = count_reports;
+    g_sharp_reports = g_clamp_reports = 0;
+    *s = NULL;
+    if (T_INT_EQ(re_build(&k->desc, s, &dg), RE_OK)) re_get_stats(*s, st);
+}
+
+static void tilted_coplanar_pieces_are_flat(void)
+{
+    static rfz_case_t k;
+    re_scene_t *s;
+    re_stats_t st;
+    re_diag_t dg;
+    replay(k_tilted_coplanar_pieces, sizeof k_tilted_coplanar_pieces, &k, &s, &st);
+    if (!s) return;
+    T_INT_EQ(st.convex_edges, 46); /* the icosahedron's 30 edges, 16 of them split */
+    T_INT_EQ(st.rounded_edges, 46);
+    T_INT_EQ(st.spheres, 32);
+    T_INT_EQ(st.clamped, 0);
+    T_INT_EQ(g_sharp_reports, 0);
+    re_free(s);
+    k.desc.radius_policy = RE_RADIUS_REJECT;
+    T_INT_EQ(re_build(&k.desc, &s, &dg), RE_OK);
+    re_free(s);
+}
+
 static void zero_radius_patch_left_sharp(void)
 {
     static rfz_case_t k;
-    rfz_in_t in;
-    re_scene_t *s = NULL;
-    re_diag_t dg;
+    re_scene_t *s;
     re_stats_t st;
-    g_rfz_fail = 0;
-    LLVMFuzzerTestOneInput(k_zero_radius_patch, sizeof k_zero_radius_patch);
-    T_INT_EQ(g_rfz_fail, 0);
-    rfz_decode(k_zero_radius_patch, sizeof k_zero_radius_patch, &k, &in);
-    k.desc.report = count_reports;
-    g_sharp_reports = g_clamp_reports = 0;
-    if (!T_INT_EQ(re_build(&k.desc, &s, &dg), RE_OK)) return;
-    re_get_stats(s, &st);
-    T_INT_EQ(st.convex_edges, 48);
+    re_diag_t dg;
+    replay(k_zero_radius_patch, sizeof k_zero_radius_patch, &k, &s, &st);
+    if (!s) return;
+    T_INT_EQ(st.convex_edges, 112);
     T_INT_EQ(st.rounded_edges, 0);
     T_INT_EQ(st.spheres, 0);
     T_INT_EQ(st.clamped, 1);
     T_INT_EQ(g_clamp_reports, 1);
-    T_INT_EQ(g_sharp_reports, 48);
+    T_INT_EQ(g_sharp_reports, 112);
     re_free(s);
     /* with RE_RADIUS_REJECT the same input fails, naming the vertex */
     k.desc.radius_policy = RE_RADIUS_REJECT;
+    s = NULL;
     T_INT_EQ(re_build(&k.desc, &s, &dg), RE_ERR_RADIUS_TOO_LARGE);
-    T_CHECK(strstr(dg.message, "vertex 2") != NULL);
+    T_CHECK(s == NULL && strstr(dg.message, "vertex 3") != NULL);
 }
 
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
+        T_CASE(tilted_coplanar_pieces_are_flat),
         T_CASE(zero_radius_patch_left_sharp),
     };
     return T_RUN(argc, argv, cases);

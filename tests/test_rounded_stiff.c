@@ -242,6 +242,74 @@ static void coordinates_offset_1e6(void)
     g_t_conditioned = 0;
 }
 
+/* A box whose faces are 24 x 24 grids of quads, turned (generic planes),
+   built at the origin and moved to (3e5, -2e5, 1e5) plus fractions: there
+   each vertex is rounded to 6e-11, which tilts the coplanar pieces (0.03
+   high) of a face against each other by up to ~2e-9, above RE__FLAT_SIN.
+   They must stay flat (RE__FLAT_ROUNDINGS): the same edge classes,
+   corners and spheres as at the origin, nothing clamped. Before, those
+   pieces met at convex edges of no visible angle (and a patch with such an
+   edge through a corner's own plane got no radius at all). */
+static unsigned grid_vert(tm_mesh_t *m, unsigned *map, int n, const int g[3], const double off[3])
+{
+    const double ext[3] = {1.0, 0.6, 0.4}, ca = cos(0.3), sa = sin(0.3), cb = cos(0.2), sb = sin(0.2);
+    unsigned *slot = map + ((size_t)g[0] * (size_t)(n + 1) + (size_t)g[1]) * (size_t)(n + 1) + (size_t)g[2];
+    double p[3], q[3];
+    int a;
+    if (*slot) return *slot - 1;
+    for (a = 0; a < 3; a++) p[a] = ext[a] * g[a] / n;
+    /* turned about z by 0.3 and about x by 0.2, then moved */
+    q[0] = ca * p[0] - sa * p[1], q[1] = sa * p[0] + ca * p[1], q[2] = p[2];
+    *slot = tm_vert(m, q[0] + off[0], cb * q[1] - sb * q[2] + off[1], sb * q[1] + cb * q[2] + off[2]) + 1;
+    return *slot - 1;
+}
+static void grid_box(tm_mesh_t *m, int n, const double off[3])
+{
+    unsigned *map = (unsigned *)calloc((size_t)(n + 1) * (size_t)(n + 1) * (size_t)(n + 1), sizeof(unsigned));
+    int f, i, j;
+    for (f = 0; f < 6; f++) {
+        int ax = f / 2, u = (ax + 1) % 3, w = (ax + 2) % 3, side = f % 2;
+        for (i = 0; i < n; i++)
+            for (j = 0; j < n; j++) {
+                int g[4][3], k;
+                unsigned v[4];
+                for (k = 0; k < 4; k++) g[k][ax] = side ? n : 0;
+                g[0][u] = i, g[0][w] = j, g[1][u] = i + 1, g[1][w] = j;
+                g[2][u] = i + 1, g[2][w] = j + 1, g[3][u] = i, g[3][w] = j + 1;
+                for (k = 0; k < 4; k++) v[k] = grid_vert(m, map, n, g[k], off);
+                /* counter-clockwise from outside: u then w is +ax */
+                if (side) tm_quad(m, v[0], v[1], v[2], v[3]);
+                else tm_quad(m, v[0], v[3], v[2], v[1]);
+            }
+    }
+    free(map);
+}
+static void coplanar_pieces_far_from_origin_stay_flat(void)
+{
+    const double at0[3] = {0, 0, 0}, far[3] = {3e5 + 0.1234, -2e5 + 0.5678, 1e5 + 0.9101};
+    re_stats_t st[2];
+    int k;
+    for (k = 0; k < 2; k++) {
+        tm_mesh_t m = {0};
+        re_scene_t *s;
+        re_diag_t dg;
+        grid_box(&m, 24, k ? far : at0);
+        s = build1(&m, 0.05, &dg);
+        if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
+        re_get_stats(s, &st[k]);
+        re_free(s);
+        tm_free(&m);
+    }
+    T_INT_EQ(st[0].convex_edges, 12 * 24); /* the box's 12 edges, in 24 segments each */
+    T_INT_EQ(st[1].convex_edges, st[0].convex_edges);
+    T_INT_EQ(st[1].flat_edges, st[0].flat_edges);
+    T_INT_EQ(st[1].concave_edges, 0);
+    T_INT_EQ(st[1].rounded_edges, st[0].rounded_edges);
+    T_INT_EQ(st[1].rounded_corners, st[0].rounded_corners);
+    T_INT_EQ(st[1].spheres, st[0].spheres);
+    T_INT_EQ(st[1].clamped, 0);
+}
+
 /* rays aimed exactly at the box's vertices and edge midpoints */
 static void rays_exactly_through_edges_and_vertices(void)
 {
@@ -678,6 +746,7 @@ int main(int argc, char **argv)
         T_CASE(radius_above_largest_is_rejected),
         T_CASE(short_edge_is_named),
         T_CASE(thin_slab_with_subdivided_walls),
+        T_CASE(coplanar_pieces_far_from_origin_stay_flat),
         T_CASE(dihedral_179_9_degrees),
         T_CASE(dihedral_1_degree),
         T_CASE(icosphere_level1),
