@@ -7,7 +7,11 @@
      byte 0  flags: layout, bad-input policy, radius policy, float positions,
              per-edge radii; base solid (box, icosahedron, prism, pyramid)
      byte 1  radius 2^(b % 32 - 24)
-     then    edits of three bytes each (op, a, b), at most RFZ_MAX_EDITS
+     then    edits of three bytes each (op, a, b), at most RFZ_MAX_EDITS; op
+             255 ends them, its a: bit 0 hands the mesh over as polygons
+             (each pair of triangles (a, b, c), (a, c, d) as the quad
+             (a, b, c, d): the same fan triangles), bit 1 builds it as two
+             objects
      then    queries of six bytes each, at most RFZ_MAX_QUERIES (a first
              byte of 254: a junk query, ids and t out of range, NaN or
              infinite directions)
@@ -171,7 +175,7 @@ static void rfz_edit(rfz_mesh_t *m, unsigned op, unsigned a, unsigned b)
 
 static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *in)
 {
-    unsigned i, q, ns = re_sphere_count(s, 0), nc = re_cylinder_count(s, 0);
+    unsigned i, q, obj, ns = re_sphere_count(s, 0), nc = re_cylinder_count(s, 0);
     for (i = 0; i < ns; i++) {
         re_sphere_t sp;
         if (!re_get_sphere(s, 0, i, &sp) || !(sp.radius > 0)) RFZ_FAIL();
@@ -212,8 +216,9 @@ static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *
         if (!(dn == dn)) continue;
         if (dn > 0) d[0] = -d[0], d[1] = -d[1], d[2] = -d[2]; /* a front-face hit */
         for (k = 0; k < 3; k++) o[k] = P[k] - dist * d[k];
-        kind = re_query(s, o, d, 0, t, dist, &h);
-        re_query_uv(s, o, d, 0, t, dist, u, v, &h2);
+        obj = re_object_count(s) > 1 ? q & 1u : 0u;
+        kind = re_query(s, o, d, obj, t, dist, &h);
+        re_query_uv(s, o, d, obj, t, dist, u, v, &h2);
         if (kind != RE_UNCHANGED && kind != RE_HIT_ROUNDED && kind != RE_PASS_THROUGH) RFZ_FAIL();
         if (h2.kind != kind || h.kind != kind) RFZ_FAIL();
         if (kind == RE_UNCHANGED) continue;
@@ -233,39 +238,65 @@ typedef struct rfz_case_t {
     rfz_mesh_t m;
     float vf[3 * RFZ_MAX_V];
     double radii[3 * RFZ_MAX_T];
-    re_mesh_t mesh;
+    unsigned poly[3 * RFZ_MAX_T], sizes[RFZ_MAX_T];
+    re_mesh_t mesh[2];
     re_scene_desc_t desc;
 } rfz_case_t;
 
+/* The triangles as polygons: (a, b, c), (a, c, d) becomes (a, b, c, d),
+   whose fan split gives the same two triangles in the same order. */
+static void rfz_polygons(rfz_case_t *k)
+{
+    const unsigned *x = k->m.idx;
+    unsigned t = 0, n = 0, f = 0, j;
+    while (t < k->m.nt) {
+        unsigned q = t + 1 < k->m.nt && x[3 * t + 3] == x[3 * t] && x[3 * t + 4] == x[3 * t + 2] ? 4u : 3u;
+        for (j = 0; j < 3; j++) k->poly[n++] = x[3 * t + j];
+        if (q == 4) k->poly[n++] = x[3 * t + 5];
+        k->sizes[f++] = q;
+        t += q - 2;
+    }
+    k->mesh[0].indices = k->poly;
+    k->mesh[0].index_count = n;
+    k->mesh[0].face_sizes = k->sizes;
+    k->mesh[0].face_count = f;
+}
+
 static void rfz_decode(const uint8_t *data, size_t size, rfz_case_t *k, rfz_in_t *in)
 {
-    unsigned flags, e, i;
+    unsigned flags, e, i, ext = 0;
     rfz_mesh_t *m = &k->m;
+    re_mesh_t *mesh = &k->mesh[0];
     in->p = data, in->n = size, in->at = 0;
     memset(k, 0, sizeof *k);
     flags = rfz_byte(in);
     rfz_base(m, flags >> 6, flags);
-    k->mesh.radius = ldexp(1.0, (int)(rfz_byte(in) % 32) - 24);
+    mesh->radius = ldexp(1.0, (int)(rfz_byte(in) % 32) - 24);
     for (e = 0; e < RFZ_MAX_EDITS && in->at + 3 <= in->n; e++) {
         unsigned op = rfz_byte(in), a = rfz_byte(in), b = rfz_byte(in);
-        if (op == 255) break; /* the queries start */
+        if (op == 255) { /* the queries start */
+            ext = a;
+            break;
+        }
         rfz_edit(m, op, a, b);
     }
     if (flags & 8) {
         /* the queries' host hits come from m->v: the same (float) vertices */
         for (i = 0; i < 3 * m->nv; i++) k->vf[i] = (float)m->v[i], m->v[i] = (double)k->vf[i];
-        k->mesh.positions = k->vf, k->mesh.position_type = RE_FLOAT32;
+        mesh->positions = k->vf, mesh->position_type = RE_FLOAT32;
     } else
-        k->mesh.positions = m->v;
-    k->mesh.vertex_count = m->nv;
-    k->mesh.indices = m->idx;
-    k->mesh.index_count = 3 * m->nt;
+        mesh->positions = m->v;
+    mesh->vertex_count = m->nv;
+    mesh->indices = m->idx;
+    mesh->index_count = 3 * m->nt;
     if (flags & 16) {
-        for (i = 0; i < 3 * m->nt; i++) k->radii[i] = i % 5 == 0 ? k->mesh.radius * 0.5 : i % 7 == 0 ? -1.0 : k->mesh.radius;
-        k->mesh.edge_radius = k->radii;
+        for (i = 0; i < 3 * m->nt; i++) k->radii[i] = i % 5 == 0 ? mesh->radius * 0.5 : i % 7 == 0 ? -1.0 : mesh->radius;
+        mesh->edge_radius = k->radii;
     }
-    k->desc.objects = &k->mesh;
-    k->desc.object_count = 1;
+    if (ext & 1) rfz_polygons(k);
+    k->mesh[1] = k->mesh[0];
+    k->desc.objects = k->mesh;
+    k->desc.object_count = ext & 2 ? 2u : 1u;
     k->desc.layout = flags & 1 ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
     k->desc.bad_input = flags & 2 ? RE_BAD_INPUT_SKIP : RE_BAD_INPUT_REJECT;
     k->desc.radius_policy = flags & 4 ? RE_RADIUS_REJECT : RE_RADIUS_CLAMP;
