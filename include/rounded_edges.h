@@ -539,6 +539,9 @@ static double re__min(double a, double b) { return a < b ? a : b; }
 
 /* ---- Tolerances (all relative; see docs/rounded_edges.md "Tolerances") ---- */
 
+/* DBL_EPSILON: the unit of the rounding-scaled tolerances below. */
+#define RE__DBL_EPS 2.220446049250313e-16
+
 /* Two faces are coplanar (their edge is "flat", e.g. a quad diagonal) when
    the sine of the angle between their normals is below this: far below any
    modelled dihedral (179.9 degrees is 1.7e-3), far above the rounding of
@@ -546,8 +549,8 @@ static double re__min(double a, double b) { return a < b ? a : b; }
 #define RE__FLAT_SIN 1e-9
 /* Far from the origin the coordinates' own rounding tilts the coplanar
    pieces of a face against each other: moving a vertex by one rounding
-   (DBL_EPSILON * M, M its largest coordinate magnitude) tilts its triangle
-   by up to DBL_EPSILON * M / h, h the triangle's smallest altitude. Two
+   (RE__DBL_EPS * M, M its largest coordinate magnitude) tilts its triangle
+   by up to RE__DBL_EPS * M / h, h the triangle's smallest altitude. Two
    faces whose tilt is within RE__FLAT_ROUNDINGS of that, summed over both
    triangles, are coplanar too (at 3e5, pieces 0.06 across tilt by up to
    ~2e-9 and would meet at convex edges of no visible angle whose patch no
@@ -580,7 +583,7 @@ static double re__min(double a, double b) { return a < b ? a : b; }
 #define RE__RADIUS_SLACK 1e-9
 /* Rounding slack of a plane-side test n.x - c, in units of the magnitudes
    that enter it (|c| + |x|): a few ulps of the inputs. */
-#define RE__SIDE_ULPS (64.0 * 2.220446049250313e-16)
+#define RE__SIDE_ULPS (64.0 * RE__DBL_EPS)
 /* A host that traces in float reports t late or early by ~1e-7 relative;
    when its hit point lands just inside a rounding capsule (next to the
    tangent line), the capsule entry up to this fraction of t_host before
@@ -1087,7 +1090,7 @@ static double re__flat_sin(const re__an_t *an, unsigned t0, unsigned t1)
         }
         tilt += m * sqrt(l2) / an->tarea[t]; /* M / h: tarea is twice the area */
     }
-    return re__min(RE__FLAT_SIN_MAX, re__max(RE__FLAT_SIN, RE__FLAT_ROUNDINGS * 2.220446049250313e-16 * tilt));
+    return re__min(RE__FLAT_SIN_MAX, re__max(RE__FLAT_SIN, RE__FLAT_ROUNDINGS * RE__DBL_EPS * tilt));
 }
 
 static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
@@ -2960,7 +2963,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             F->pk[RE__PKA_S_CORNER][sbase[c] + j] = fc[c];
             if (tri != RE__NONE && RE__WANT_COMPACT(an->desc) && qslot[tri & 255u] < RE__SOLVED_SLOTS &&
                 qslot[tri >> 8 & 255u] < RE__SOLVED_SLOTS && qslot[tri >> 16] < RE__SOLVED_SLOTS) {
-                double tol = RE__SPHERE_SOLVE_REL * r + 64 * 2.220446049250313e-16 * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
+                double tol = RE__SPHERE_SOLVE_REL * r + 64 * RE__DBL_EPS * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
                 re__solve3(&an->planes[an->c_planes[pf + (tri & 255u)]], &an->planes[an->c_planes[pf + (tri >> 8 & 255u)]],
                            &an->planes[an->c_planes[pf + (tri >> 16)]], r, an->origin, x);
                 re__sub(x, sp, dd);

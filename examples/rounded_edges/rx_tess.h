@@ -276,15 +276,16 @@ static int rx__all_corners_rounded(const re_sphere_t *sp, unsigned ns, const re_
     return all;
 }
 
-/* The enumerated cylinders, each once: every segment of a straight chain
-   enumerates the chain's whole cylinder (re_cylinder_t), the same
-   sphere pair. Returns the count kept at the front of cy. */
+/* Cylinders ordered by their sphere pair. */
 static int rx__cmp_cyl(const void *x, const void *y)
 {
     const re_cylinder_t *a = (const re_cylinder_t *)x, *b = (const re_cylinder_t *)y;
     if (a->sa != b->sa) return a->sa < b->sa ? -1 : 1;
     return a->sb < b->sb ? -1 : a->sb > b->sb;
 }
+/* The enumerated cylinders, each once: every segment of a straight chain
+   enumerates the chain's whole cylinder (re_cylinder_t), the same
+   sphere pair. Returns the count kept at the front of cy. */
 static unsigned rx__unique_cylinders(re_cylinder_t *cy, unsigned nc)
 {
     unsigned i, n = 0;
