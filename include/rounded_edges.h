@@ -552,7 +552,7 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    (RE__DBL_EPS * M, M its largest coordinate magnitude) tilts its triangle
    by up to RE__DBL_EPS * M / h, h the triangle's smallest altitude. Two
    faces whose tilt is within RE__FLAT_ROUNDINGS of that, summed over both
-   triangles, are coplanar too (at 3e5, pieces 0.06 across tilt by up to
+   triangles, are coplanar too (at 3e5, pieces 0.03 high tilt by up to
    ~2e-9 and would meet at convex edges of no visible angle whose patch no
    radius fits), but never above RE__FLAT_SIN_MAX (an angle of 1e-6 rad:
    below anything modelled, 1.7e-3 for 179.9 degrees). */
@@ -1754,7 +1754,7 @@ static const double *re__edge_su(const re__an_t *an, unsigned c, unsigned e)
      neighbouring corners (a slab thinner than 2r, a short prism). */
 static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out, unsigned **uf_out)
 {
-    unsigned *uf, i, c, *pmark;
+    unsigned *uf, i, c, *pmark, zeroed = 0;
     double *req, *rmax, *r;
     long long *lim0, *lim1;
     unsigned char *mism;
@@ -1898,8 +1898,9 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         unsigned p = re__uf_find(uf, c);
         if (req[p] == HUGE_VAL || r[p] > 0 || an->vstate[an->c_vertex[c]] != RE__V_CORNER) continue;
         an->vstate[an->c_vertex[c]] = RE__V_SHARP;
+        zeroed = 1;
     }
-    for (i = 0; i < an->E; i++) {
+    for (i = 0; i < an->E && zeroed; i++) {
         re__edge_t *e = &an->edges[i];
         if (!e->rounded || an->vstate[e->v[0]] == RE__V_CORNER) continue;
         e->rounded = 0;
@@ -2478,7 +2479,7 @@ static double re__point_tri_dist(const re__an_t *an, unsigned t, const double p[
 static re_result_t re__bands_take(re__an_t *an, re__arena_t *ar, re__final_t *F, re__bandwork_t *B, size_t *mark)
 {
     unsigned c;
-    RE__TAKE(F->bands, unsigned char, 4 * (size_t)an->T);
+    RE__TAKE(F->bands, unsigned char, RE__BAND_BYTES * (size_t)an->T);
     *mark = ar->used;
     RE__TAKE(B->nb, unsigned, 3 * (size_t)an->T + 1);
     RE__TAKE(B->beta, double, 4 * (size_t)an->T + 1);

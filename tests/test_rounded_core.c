@@ -21,18 +21,13 @@ static void random_convex_polyhedra_vs_eroded(void)
     int it, nit = (int)t_count(30), deg_hist[16] = {0};
     unsigned long long extra = 0;
     for (it = 0; it < nit; it++) {
-        double p[14][3];
         int n = 8 + (int)(t_rng_u64(&rng) % 7), i;
         tm_mesh_t m = {0};
         static tm_poly_t P;
         re_scene_t *s;
         re_diag_t dg;
         re_stats_t st;
-        for (i = 0; i < n; i++) {
-            double u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v), R = t_rng_range(&rng, 0.8, 1.2);
-            p[i][0] = R * w * cos(u), p[i][1] = R * w * sin(u), p[i][2] = R * v;
-        }
-        tm_hull((const double(*)[3])p, n, &m, &P);
+        tm_random_hull(&rng, n, 0.8, 1.2, &m, &P);
         for (i = 0; i < n; i++) {
             unsigned k, d = 0;
             for (k = 0; k < m.ni; k++) d += m.idx[k] == (unsigned)i;

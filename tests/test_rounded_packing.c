@@ -44,17 +44,12 @@ static void packing_fallbacks_hulls(void)
     int it, nit = (int)t_count(8);
     unsigned full = 0, runs = 0, far = 0, stored = 0;
     for (it = 0; it < nit; it++) {
-        double p[40][3];
-        int n = 24 + (int)(t_rng_u64(&rng) % 16), i;
+        int n = 24 + (int)(t_rng_u64(&rng) % 16);
         tm_mesh_t m = {0};
         static tm_poly_t P;
         re_scene_t *s;
         re_diag_t dg;
-        for (i = 0; i < n; i++) {
-            double u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v), R = t_rng_range(&rng, 0.9, 1.1);
-            p[i][0] = R * w * cos(u), p[i][1] = R * w * sin(u), p[i][2] = R * v;
-        }
-        tm_hull((const double(*)[3])p, n, &m, &P);
+        tm_random_hull(&rng, n, 0.9, 1.1, &m, &P);
         s = build1(&m, 0.02, &dg);
         T_CHECK(s != NULL);
         if (s) count_fallbacks(s, &full, &runs, &far, &stored), re_free(s);

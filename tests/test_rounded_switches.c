@@ -38,15 +38,9 @@ static void no_bands_hulls_vs_eroded(void)
     int it, nit = (int)t_count(6);
     g_uv_skipped = g_uv_calls = 0;
     for (it = 0; it < nit; it++) {
-        double p[12][3];
-        int i;
         tm_mesh_t m = {0};
         static tm_poly_t P;
-        for (i = 0; i < 12; i++) {
-            double u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v), R = t_rng_range(&rng, 0.8, 1.2);
-            p[i][0] = R * w * cos(u), p[i][1] = R * w * sin(u), p[i][2] = R * v;
-        }
-        tm_hull((const double(*)[3])p, 12, &m, &P);
+        tm_random_hull(&rng, 12, 0.8, 1.2, &m, &P);
         poly_rays(&m, &P, 0.03, t_count(1500), 1e-7, 300 + (unsigned long long)it, "hull without bands");
         tm_free(&m);
     }

@@ -221,6 +221,22 @@ static double tm_eroded_sdf(const void *ctx, const double x[3])
 
 /* Convex hull of points (brute force over triples; points in general
    position), as an outward-wound triangle mesh plus its planes. */
+static void tm_hull(const double (*p)[3], int n, tm_mesh_t *m, tm_poly_t *P);
+
+/* n <= 64 points on a jittered sphere (radius rmin..rmax, uniform in
+   direction) and their hull: convex polyhedra with vertices of degree 3
+   to 8 whose offset planes miss one common point. Include after test.h. */
+static void tm_random_hull(t_rng_t *rng, int n, double rmin, double rmax, tm_mesh_t *m, tm_poly_t *P)
+{
+    double p[64][3];
+    int i;
+    for (i = 0; i < n && i < 64; i++) {
+        double u = t_rng_range(rng, 0, 2 * M_PI), v = t_rng_range(rng, -1, 1), w = sqrt(1 - v * v), R = t_rng_range(rng, rmin, rmax);
+        p[i][0] = R * w * cos(u), p[i][1] = R * w * sin(u), p[i][2] = R * v;
+    }
+    tm_hull((const double(*)[3])p, i, m, P);
+}
+
 static void tm_hull(const double (*p)[3], int n, tm_mesh_t *m, tm_poly_t *P)
 {
     int i, j, k, q;
