@@ -139,7 +139,27 @@ typedef struct re_mesh_t {
                                    one radius, so every rounded patch (edges
                                    linked through rounded corners) takes the
                                    smallest radius asked along it (reported). */
+    double flat_sin;            /* 0 (default): automatic. Else the sine of the
+                                   angle between two faces' normals at or below
+                                   which their edge is flat (the faces are one
+                                   plane, like a quad's diagonal), in
+                                   (0, RE_FLAT_SIN_LIMIT].
+                                   Automatic is the positions' own rounding: a
+                                   few units in the last place of the float or
+                                   double coordinates over the triangles'
+                                   heights, at most 1e-3 for RE_FLOAT32 and
+                                   1e-6 for RE_FLOAT64. Set it for doubles that
+                                   carry coarser rounding (a turned box read
+                                   from an OBJ file with 6 decimals tilts its
+                                   quads' halves by up to 2e-6: 1e-5 joins
+                                   them; docs/rounded_edges.md, construction
+                                   step 2). */
 } re_mesh_t;
+
+/* The largest re_mesh_t.flat_sin accepted (0.57 degrees): above it, faces
+   joined into one plane would be creases and the rounding would be tangent
+   to a plane the mesh does not have. */
+#define RE_FLAT_SIN_LIMIT 1e-2
 
 typedef enum re_radius_policy_t {
     RE_RADIUS_CLAMP = 0, /* default: lower a too-large radius to the largest
@@ -539,25 +559,34 @@ static double re__min(double a, double b) { return a < b ? a : b; }
 
 /* ---- Tolerances (all relative; see docs/rounded_edges.md "Tolerances") ---- */
 
-/* DBL_EPSILON: the unit of the rounding-scaled tolerances below. */
+/* DBL_EPSILON and FLT_EPSILON: the units of the rounding-scaled tolerances
+   below (for the flat test the positions' own type decides which). */
 #define RE__DBL_EPS 2.220446049250313e-16
+#define RE__FLT_EPS 1.1920928955078125e-07
 
 /* Two faces are coplanar (their edge is "flat", e.g. a quad diagonal) when
-   the sine of the angle between their normals is below this: far below any
-   modelled dihedral (179.9 degrees is 1.7e-3), far above the rounding of
-   normals computed from float coordinates near 1e6. */
+   the sine of the angle between their normals is below this (far below any
+   modelled dihedral: 179.9 degrees is 1.7e-3), or below what the rounding of
+   their vertices can tilt them by. Moving a vertex by one rounding of its
+   coordinates (eps * M: eps the positions' type's epsilon, M its largest
+   coordinate magnitude) tilts its triangle by up to eps * M / h, h the
+   triangle's smallest altitude; two faces whose tilt is within
+   RE__FLAT_ROUNDINGS of that, summed over both triangles, are coplanar too.
+   Float positions need it everywhere: a rotated float box's quads are not
+   planar (their halves tilt by ~1e-7 at the origin, 1e-4 at 1e3 sizes from
+   it) and their diagonals would be concave edges that leave every corner
+   sharp; doubles need it far from the origin (at 3e5, pieces 0.03 high
+   tilt by ~2e-9 and would meet at convex edges no radius fits). The
+   widening is capped (slivers' h would flatten real creases): at
+   RE__FLAT_SIN_MAX for doubles (1e-6 rad, below anything modelled), at
+   RE__FLAT_SIN_MAX_F32 for floats (1e-3 rad: below the 1.7e-3 of 179.9
+   degrees; float data cannot place a crease finer than its rounding
+   allows, and rounding or not an edge of that angle moves the surface by
+   r * 1.3e-7). re_mesh_t.flat_sin replaces all of this by one value. */
 #define RE__FLAT_SIN 1e-9
-/* Far from the origin the coordinates' own rounding tilts the coplanar
-   pieces of a face against each other: moving a vertex by one rounding
-   (RE__DBL_EPS * M, M its largest coordinate magnitude) tilts its triangle
-   by up to RE__DBL_EPS * M / h, h the triangle's smallest altitude. Two
-   faces whose tilt is within RE__FLAT_ROUNDINGS of that, summed over both
-   triangles, are coplanar too (at 3e5, pieces 0.03 high tilt by up to
-   ~2e-9 and would meet at convex edges of no visible angle whose patch no
-   radius fits), but never above RE__FLAT_SIN_MAX (an angle of 1e-6 rad:
-   below anything modelled, 1.7e-3 for 179.9 degrees). */
 #define RE__FLAT_ROUNDINGS 4.0
 #define RE__FLAT_SIN_MAX 1e-6
+#define RE__FLAT_SIN_MAX_F32 1e-3
 /* A triangle is degenerate when |cross(e1, e2)| <= this * (longest edge)^2,
    i.e. its smallest angle is below about 1e-12 rad. */
 #define RE__DEGENERATE_REL 1e-12
@@ -1073,12 +1102,18 @@ static int re__cmp_u64(const void *a, const void *b)
 
 /* Step 2: edges from half-edges (bucketed by the smaller vertex), and their
    class from the two face normals. */
-/* The sine below which the faces of triangles t0 and t1 count as coplanar
-   (RE__FLAT_SIN, widened by their vertices' rounding: RE__FLAT_ROUNDINGS). */
-static double re__flat_sin(const re__an_t *an, unsigned t0, unsigned t1)
+/* Whether the faces of triangles t0 and t1, whose normals' cross product
+   has length sn, are coplanar: re_mesh_t.flat_sin when set, else
+   RE__FLAT_SIN widened by their vertices' rounding (RE__FLAT_ROUNDINGS in
+   units of the positions' type) up to that type's cap. */
+static int re__coplanar(const re__an_t *an, unsigned t0, unsigned t1, double sn)
 {
-    double tilt = 0;
+    int f32 = an->m->position_type == RE_FLOAT32;
+    double tilt = 0, eps = f32 ? RE__FLT_EPS : RE__DBL_EPS;
     unsigned q, k, a;
+    if (an->m->flat_sin > 0) return sn <= an->m->flat_sin;
+    if (sn <= RE__FLAT_SIN) return 1;
+    if (sn > (f32 ? RE__FLAT_SIN_MAX_F32 : RE__FLAT_SIN_MAX)) return 0;
     for (q = 0; q < 2; q++) {
         unsigned t = q ? t1 : t0;
         double m = 0, l2 = 0, d[3];
@@ -1090,7 +1125,7 @@ static double re__flat_sin(const re__an_t *an, unsigned t0, unsigned t1)
         }
         tilt += m * sqrt(l2) / an->tarea[t]; /* M / h: tarea is twice the area */
     }
-    return re__min(RE__FLAT_SIN_MAX, re__max(RE__FLAT_SIN, RE__FLAT_ROUNDINGS * RE__DBL_EPS * tilt));
+    return sn <= RE__FLAT_ROUNDINGS * eps * tilt;
 }
 
 static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
@@ -1166,7 +1201,7 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
                     /* the edge as triangle t0 runs it */
                     re__sub(an->pos + 3 * (size_t)an->tri[3 * t0 + (h0 % 3 + 1) % 3], an->pos + 3 * (size_t)a0, e3);
                     sn = re__len(cr);
-                    if (sn <= RE__FLAT_SIN || (sn <= RE__FLAT_SIN_MAX && sn <= re__flat_sin(an, t0, t1)))
+                    if (re__coplanar(an, t0, t1, sn))
                         ed->cls = re__dot(na, nb) > 0 ? RE__E_FLAT : RE__E_CONCAVE; /* folded back: sharp */
                     else
                         ed->cls = re__dot(cr, e3) > 0 ? RE__E_CONVEX : RE__E_CONCAVE;
@@ -3307,6 +3342,10 @@ static re_result_t re__analyze(const re_scene_desc_t *desc, unsigned obj, int si
         return re__fail(an, RE_ERR_BAD_RADIUS, -1, msg);
     }
     if (!isfinite(m->radius)) return re__fail(an, RE_ERR_BAD_RADIUS, -1, "radius is not finite");
+    if (!(m->flat_sin >= 0 && m->flat_sin <= RE_FLAT_SIN_LIMIT)) {
+        snprintf(msg, sizeof msg, "flat_sin %g must be 0 (automatic) or in (0, %g]", m->flat_sin, RE_FLAT_SIN_LIMIT);
+        return re__fail(an, RE_ERR_INVALID_ARG, -1, msg);
+    }
     rc = re__count_tris(m, &an->T, &bad);
     if (rc == RE_ERR_BAD_FACE) {
         if (bad >= 0) snprintf(msg, sizeof msg, "polygon %lld has fewer than 3 corners", bad);

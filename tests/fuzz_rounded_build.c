@@ -11,7 +11,8 @@
              255 ends them, its a: bit 0 hands the mesh over as polygons
              (each pair of triangles (a, b, c), (a, c, d) as the quad
              (a, b, c, d): the same fan triangles), bit 1 builds it as two
-             objects
+             objects, bit 2 sets re_mesh_t.flat_sin to RE_FLAT_SIN_LIMIT
+             2^-(a >> 3)
      then    queries of six bytes each, at most RFZ_MAX_QUERIES (a first
              byte of 254: a junk query, ids and t out of range, NaN or
              infinite directions)
@@ -293,6 +294,7 @@ static void rfz_decode(const uint8_t *data, size_t size, rfz_case_t *k, rfz_in_t
         for (i = 0; i < 3 * m->nt; i++) k->radii[i] = i % 5 == 0 ? mesh->radius * 0.5 : i % 7 == 0 ? -1.0 : mesh->radius;
         mesh->edge_radius = k->radii;
     }
+    if (ext & 4) mesh->flat_sin = ldexp(RE_FLAT_SIN_LIMIT, -(int)(ext >> 3));
     if (ext & 1) rfz_polygons(k);
     k->mesh[1] = k->mesh[0];
     k->desc.objects = k->mesh;

@@ -241,6 +241,65 @@ static void bad_radius(void)
     tm_free(&m);
 }
 
+/* re_mesh_t.flat_sin: 0 or in (0, RE_FLAT_SIN_LIMIT], else refused by name */
+static void bad_flat_sin(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_diag_t dg;
+    const double bad[4] = {-1e-6, NAN, 2 * RE_FLAT_SIN_LIMIT, INFINITY};
+    int i;
+    tm_box(&m, LO, HI);
+    mesh = mesh_of(&m, 0.05);
+    for (i = 0; i < 4; i++) {
+        mesh.flat_sin = bad[i];
+        T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, NULL), RE_ERR_INVALID_ARG);
+        T_CHECK(strstr(dg.message, "flat_sin") != NULL);
+    }
+    mesh.flat_sin = RE_FLAT_SIN_LIMIT;
+    T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, NULL), RE_OK);
+    tm_free(&m);
+}
+
+/* Doubles that carry a coarser rounding than their own: a turned box
+   written with 6 decimals (an OBJ file's %f). Its quads' halves tilt by
+   ~1e-6, above what doubles' rounding explains, so the automatic test
+   leaves the diagonals convex or concave (documented: docs/rounded_edges.md,
+   construction step 2); re_mesh_t.flat_sin = 1e-5 joins them and rounds
+   the box. */
+static void flat_sin_for_coarsely_rounded_doubles(void)
+{
+    const double c = cos(0.7), s = sin(0.7), cb = cos(0.4), sb = sin(0.4);
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_scene_t *sc;
+    re_diag_t dg;
+    re_stats_t st;
+    unsigned k;
+    tm_box(&m, LO, HI);
+    for (k = 0; k < m.nv; k++) {
+        double *p = m.v + 3 * k, x = c * p[0] - s * p[1], y = s * p[0] + c * p[1], z = p[2];
+        p[0] = round(1e6 * x) / 1e6, p[1] = round(1e6 * (cb * y - sb * z)) / 1e6, p[2] = round(1e6 * (sb * y + cb * z)) / 1e6;
+    }
+    mesh = mesh_of(&m, 0.05);
+    if (T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, &sc), RE_OK)) {
+        re_get_stats(sc, &st);
+        T_LT(st.flat_edges, 6); /* the automatic test sees creases */
+        T_LT(st.rounded_edges, 12);
+        re_free(sc);
+    }
+    mesh.flat_sin = 1e-5;
+    if (T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, &sc), RE_OK)) {
+        re_get_stats(sc, &st);
+        T_INT_EQ(st.flat_edges, 6);
+        T_INT_EQ(st.concave_edges, 0);
+        T_INT_EQ(st.rounded_edges, 12);
+        T_INT_EQ(st.spheres, 8);
+        re_free(sc);
+    }
+    tm_free(&m);
+}
+
 static void null_and_junk_arguments(void)
 {
     re_scene_desc_t desc;
@@ -704,7 +763,7 @@ int main(int argc, char **argv)
         T_CASE(nan_position), T_CASE(inf_position), T_CASE(nan_in_unused_vertex_is_ignored),
         T_CASE(degenerate_repeated_index), T_CASE(zero_area_collinear), T_CASE(zero_length_edge),
         T_CASE(out_of_range_index), T_CASE(duplicate_vertices_make_a_seam), T_CASE(non_manifold_edge_left_sharp),
-        T_CASE(open_mesh_left_sharp), T_CASE(inconsistent_winding), T_CASE(bad_polygon_sizes), T_CASE(bad_radius),
+        T_CASE(open_mesh_left_sharp), T_CASE(inconsistent_winding), T_CASE(bad_polygon_sizes), T_CASE(bad_radius), T_CASE(bad_flat_sin), T_CASE(flat_sin_for_coarsely_rounded_doubles),
         T_CASE(null_and_junk_arguments), T_CASE(empty_scene), T_CASE(result_strings), T_CASE(query_guards),
         T_CASE(input_variants_agree), T_CASE(huge_page_range_inside_the_block),
         T_CASE(large_build_with_huge_pages_matches_into), T_CASE(per_edge_radius), T_CASE(concave_edges_and_mixed_vertices_reported),

@@ -21,14 +21,24 @@ static void with_compact_layout(void (*test)(void))
     g_layout = RE_LAYOUT_FAST;
 }
 
-static re_scene_t *build1(const tm_mesh_t *m, double r, re_diag_t *dg)
+/* One object of m, radius r, in g_layout; its positions as doubles or
+   rounded to float (RE_FLOAT32). NULL when the build fails (dg says why). */
+static re_scene_t *build1_as(const tm_mesh_t *m, double r, int as_float, re_diag_t *dg)
 {
     re_mesh_t mesh;
     re_scene_desc_t desc;
     re_scene_t *s = NULL;
+    float *pos = NULL;
+    unsigned k;
     memset(&mesh, 0, sizeof mesh);
     memset(&desc, 0, sizeof desc);
-    mesh.positions = m->v;
+    if (as_float) {
+        pos = (float *)malloc(sizeof(float) * 3 * (m->nv ? m->nv : 1));
+        for (k = 0; k < 3 * m->nv; k++) pos[k] = (float)m->v[k];
+        mesh.positions = pos;
+        mesh.position_type = RE_FLOAT32;
+    } else
+        mesh.positions = m->v;
     mesh.vertex_count = m->nv;
     mesh.indices = m->idx;
     mesh.index_count = m->ni;
@@ -36,9 +46,12 @@ static re_scene_t *build1(const tm_mesh_t *m, double r, re_diag_t *dg)
     desc.layout = g_layout;
     desc.objects = &mesh;
     desc.object_count = 1;
-    if (re_build(&desc, &s, dg) != RE_OK) return NULL;
+    if (re_build(&desc, &s, dg) != RE_OK) s = NULL;
+    free(pos);
     return s;
 }
+static re_scene_t *build1(const tm_mesh_t *m, double r, re_diag_t *dg) { return build1_as(m, r, 0, dg); }
+static re_scene_t *build1_float(const tm_mesh_t *m, double r, re_diag_t *dg) { return build1_as(m, r, 1, dg); }
 
 /* re_query_uv() gives re_query()'s answer, bit for bit, whether or not its
    per-triangle bands let it skip the kd-tree (query step 0). */

@@ -204,6 +204,13 @@ static void dihedral_179_9_degrees(void)
         T_INT_EQ(st.rounded_edges, 15); /* 5 + 5 + 5: the ridge is rounded, not merged as flat */
         re_free(s);
     }
+    /* in float positions too (RE__FLAT_SIN_MAX_F32 = 1e-3 < 1.7e-3) */
+    s = build1_float(&m, 0.05, &dg);
+    if (T_CHECK(s != NULL)) {
+        re_get_stats(s, &st);
+        T_INT_EQ(st.rounded_edges, 15);
+        re_free(s);
+    }
     poly_rays(&m, &P, 0.05, t_count(8000), 1e-7, 6, "179.9 ridge");
     tm_free(&m);
 }
@@ -250,20 +257,28 @@ static void coordinates_offset_1e6(void)
    corners and spheres as at the origin, nothing clamped. Before, those
    pieces met at convex edges of no visible angle (and a patch with such an
    edge through a corner's own plane got no radius at all). */
-static unsigned grid_vert(tm_mesh_t *m, unsigned *map, int n, const int g[3], const double off[3])
+typedef struct grid_frame_t { double R[3][3], off[3]; } grid_frame_t; /* x -> R x + off */
+static const double GRID_EXT[3] = {1.0, 0.6, 0.4};                     /* the box [0, GRID_EXT] */
+/* turned about z by 0.3 and about x by 0.2, then moved by off */
+static grid_frame_t grid_frame_turned(const double off[3])
 {
-    const double ext[3] = {1.0, 0.6, 0.4}, ca = cos(0.3), sa = sin(0.3), cb = cos(0.2), sb = sin(0.2);
+    const double ca = cos(0.3), sa = sin(0.3), cb = cos(0.2), sb = sin(0.2);
+    grid_frame_t F = {{{ca, -sa, 0}, {cb * sa, cb * ca, -sb}, {sb * sa, sb * ca, cb}}, {0, 0, 0}};
+    memcpy(F.off, off, sizeof F.off);
+    return F;
+}
+static unsigned grid_vert(tm_mesh_t *m, unsigned *map, int n, const int g[3], const grid_frame_t *F)
+{
     unsigned *slot = map + ((size_t)g[0] * (size_t)(n + 1) + (size_t)g[1]) * (size_t)(n + 1) + (size_t)g[2];
     double p[3], q[3];
     int a;
     if (*slot) return *slot - 1;
-    for (a = 0; a < 3; a++) p[a] = ext[a] * g[a] / n;
-    /* turned about z by 0.3 and about x by 0.2, then moved */
-    q[0] = ca * p[0] - sa * p[1], q[1] = sa * p[0] + ca * p[1], q[2] = p[2];
-    *slot = tm_vert(m, q[0] + off[0], cb * q[1] - sb * q[2] + off[1], sb * q[1] + cb * q[2] + off[2]) + 1;
+    for (a = 0; a < 3; a++) p[a] = GRID_EXT[a] * g[a] / n;
+    for (a = 0; a < 3; a++) q[a] = F->R[a][0] * p[0] + F->R[a][1] * p[1] + F->R[a][2] * p[2] + F->off[a];
+    *slot = tm_vert(m, q[0], q[1], q[2]) + 1;
     return *slot - 1;
 }
-static void grid_box(tm_mesh_t *m, int n, const double off[3])
+static void grid_box(tm_mesh_t *m, int n, const grid_frame_t *F)
 {
     unsigned *map = (unsigned *)calloc((size_t)(n + 1) * (size_t)(n + 1) * (size_t)(n + 1), sizeof(unsigned));
     int f, i, j;
@@ -276,7 +291,7 @@ static void grid_box(tm_mesh_t *m, int n, const double off[3])
                 for (k = 0; k < 4; k++) g[k][ax] = side ? n : 0;
                 g[0][u] = i, g[0][w] = j, g[1][u] = i + 1, g[1][w] = j;
                 g[2][u] = i + 1, g[2][w] = j + 1, g[3][u] = i, g[3][w] = j + 1;
-                for (k = 0; k < 4; k++) v[k] = grid_vert(m, map, n, g[k], off);
+                for (k = 0; k < 4; k++) v[k] = grid_vert(m, map, n, g[k], F);
                 /* counter-clockwise from outside: u then w is +ax */
                 if (side) tm_quad(m, v[0], v[1], v[2], v[3]);
                 else tm_quad(m, v[0], v[3], v[2], v[1]);
@@ -293,7 +308,8 @@ static void coplanar_pieces_far_from_origin_stay_flat(void)
         tm_mesh_t m = {0};
         re_scene_t *s;
         re_diag_t dg;
-        grid_box(&m, 24, k ? far : at0);
+        grid_frame_t F = grid_frame_turned(k ? far : at0);
+        grid_box(&m, 24, &F);
         s = build1(&m, 0.05, &dg);
         if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
         re_get_stats(s, &st[k]);
@@ -696,9 +712,141 @@ static void float_icosphere_case(double sc, const double axis[3], double angle, 
     ex_mesh_free(&em);
 }
 
+/* A rotated box in float positions: its quads are not planar (the halves
+   of each tilt against each other by about FLT_EPSILON times the distance
+   to the origin over their height: 1e-7 at the origin, 1e-4 at 1e3 sizes
+   from it), and the diagonals and grid lines between them must still be
+   flat (construction step 2, the float units of RE__FLAT_ROUNDINGS).
+   Before, they were convex or concave edges that left every corner mixed:
+   nothing rounded on 193 of 200 rotated unit cubes. The oracle is the exact
+   rounded box the float mesh rounds to: each answer's point lies within
+   delta of its surface, the ray does not go deeper than 2 delta into it
+   before that point (so grazing rays need no slack in t), a pass-through
+   never goes that deep, and normals agree within delta / r (the tilt delta makes on the rounding),
+   delta a few float roundings of the coordinates, per face piece. */
+typedef struct rbox_deep_t { rbox_t b; double depth; } rbox_deep_t;
+static double rbox_sdf_deep(const void *ctx, const double p[3])
+{
+    const rbox_deep_t *q = (const rbox_deep_t *)ctx;
+    return tm_rbox_sdf(q->b.c, q->b.half, q->b.r, p) + q->depth;
+}
+static void float_box_case(int n, const grid_frame_t *F, long nrays, unsigned long long seed, const char *what)
+{
+    tm_mesh_t m = {0}, mf = {0};
+    re_scene_t *s;
+    re_diag_t dg;
+    re_stats_t st;
+    rbox_t b;
+    rbox_deep_t deep;
+    t_rng_t rng;
+    double M = 0, delta, r, worst = 0, worst_n = 0;
+    long i, n_round = 0, bad = 0;
+    unsigned k;
+    int a;
+    grid_box(&m, n, F);
+    /* the float positions, exactly, for the host's mesh */
+    for (k = 0; k < m.nv; k++) tm_vert(&mf, (float)m.v[3 * k], (float)m.v[3 * k + 1], (float)m.v[3 * k + 2]);
+    for (k = 0; k < 3 * mf.nv; k++) M = fmax(M, fabs(mf.v[k]));
+    for (k = 0; k < m.ni; k += 3) tm_tri(&mf, m.idx[k], m.idx[k + 1], m.idx[k + 2]);
+    s = build1_float(&mf, 0.08, &dg);
+    if (!T_CHECK(s != NULL)) { fprintf(stderr, "%s: %s\n", what, dg.message); goto done; }
+    re_get_stats(s, &st);
+    T_INT_EQ(st.convex_edges, 12 * n);
+    T_INT_EQ(st.concave_edges, 0);
+    T_INT_EQ(st.flat_edges, 6 * (2 * n * (n - 1) + n * n)); /* grid lines and diagonals */
+    if (!T_INT_EQ(st.rounded_edges, 12 * n)) fprintf(stderr, "%s: %llu of %d edges rounded\n", what, st.rounded_edges, 12 * n);
+    T_INT_EQ(st.mixed_vertices, 0);
+    T_INT_EQ(st.spheres, 8);
+    r = re_object_radius(s, 0);
+    T_EQ(r, 0.08);
+    /* the box in its own frame: [0, GRID_EXT] */
+    for (a = 0; a < 3; a++) b.c[a] = b.half[a] = GRID_EXT[a] / 2;
+    b.r = r;
+    delta = 2.0 * 1.1920928955078125e-07 * M + 1e-9; /* a few of the mesh's own roundings (measured: up to 0.5) */
+    deep.b = b, deep.depth = 2 * delta;
+    rng.s = seed;
+    for (i = 0; i < nrays; i++) {
+        double o[3], d[3], tgt[3], l[3], u, v, w, t_host, bu, bv, t_in, xl[3], nl[3], nr[3], dn[3], ol[3], dl[3];
+        unsigned tri;
+        re_hit_t h;
+        /* aimed at a corner or along an edge of the box, within 2 r of it */
+        for (a = 0; a < 3; a++) l[a] = (t_rng_u64(&rng) & 1) ? GRID_EXT[a] : 0;
+        a = (int)(t_rng_u64(&rng) % 3);
+        l[a] = i % 3 ? t_rng_unit(&rng) * GRID_EXT[a] : l[a];
+        for (a = 0; a < 3; a++) l[a] += t_rng_range(&rng, -2, 2) * r;
+        for (a = 0; a < 3; a++) tgt[a] = F->R[a][0] * l[0] + F->R[a][1] * l[1] + F->R[a][2] * l[2] + F->off[a];
+        u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+        o[0] = tgt[0] + 3 * w * cos(u), o[1] = tgt[1] + 3 * w * sin(u), o[2] = tgt[2] + 3 * v;
+        tm_sub(tgt, o, d);
+        if (!tm_hit_uv(&mf, o, d, &t_host, &tri, &bu, &bv)) continue;
+        re_query(s, o, d, 0, tri, t_host, &h);
+        check_query_uv(s, o, d, tri, t_host, bu, bv, &h);
+        /* the ray in the box's frame (R is orthonormal: R^T undoes it) */
+        for (a = 0; a < 3; a++) {
+            ol[a] = F->R[0][a] * (o[0] - F->off[0]) + F->R[1][a] * (o[1] - F->off[1]) + F->R[2][a] * (o[2] - F->off[2]);
+            dl[a] = F->R[0][a] * d[0] + F->R[1][a] * d[1] + F->R[2][a] * d[2];
+        }
+        t_in = tm_trace(rbox_sdf_deep, &deep, ol, dl, 10.0, 1.0); /* 2 delta inside the exact box */
+        if (h.kind == RE_PASS_THROUGH) {
+            if (t_in != HUGE_VAL) { bad++; if (bad < 5) T_FAIL("%s ray %ld: pass-through, but 2 delta inside the box at t %.17g", what, i, t_in); }
+            continue;
+        }
+        if (h.kind == RE_HIT_ROUNDED) n_round++;
+        for (a = 0; a < 3; a++) xl[a] = ol[a] + h.t * dl[a];
+        {
+            double sd = tm_rbox_sdf(b.c, b.half, b.r, xl);
+            tm_rbox_normal(b.c, b.half, b.r, xl, nl);
+            for (a = 0; a < 3; a++) nr[a] = F->R[a][0] * nl[0] + F->R[a][1] * nl[1] + F->R[a][2] * nl[2];
+            tm_sub(h.normal, nr, dn);
+            worst = fmax(worst, fabs(sd));
+            worst_n = fmax(worst_n, tm_len(dn));
+            if (!(fabs(sd) <= delta) || t_in < h.t || !(tm_len(dn) <= delta / r)) {
+                bad++;
+                if (bad < 5) T_FAIL("%s ray %ld: kind %d t %.17g: %g off the surface, entered at %.17g, normal off by %g (delta %g)", what, i, (int)h.kind, h.t, sd, t_in, tm_len(dn), delta);
+            }
+        }
+    }
+    T_INT_EQ(bad, 0);
+    T_GT(n_round, nrays / 20);
+    if (getenv("FLOAT_BOX_VERBOSE")) fprintf(stderr, "%s: worst %g of delta %g, normal %g of %g, %ld rounded\n", what, worst, delta, worst_n, delta / r, n_round);
+    re_free(s);
+done:
+    tm_free(&m);
+    tm_free(&mf);
+}
+
+/* 40 random rotations, offsets from 0.1 to 1e3 box sizes; faces of one quad
+   and of 3 x 3 quads */
+static void float_boxes_rotated_keep_quads_flat(void)
+{
+    t_rng_t rng = {47};
+    int it;
+    for (it = 0; it < 40; it++) {
+        grid_frame_t F;
+        double ax[3], dir[3], c, sn, off, angle = t_rng_range(&rng, 0, 2 * M_PI);
+        double u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+        char what[64];
+        int a, b;
+        ax[0] = w * cos(u), ax[1] = w * sin(u), ax[2] = v;
+        u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
+        dir[0] = w * cos(u), dir[1] = w * sin(u), dir[2] = v;
+        off = it == 39 ? 1e3 : pow(10.0, t_rng_range(&rng, -1, 3)); /* the box is about 1 across */
+        c = cos(angle), sn = sin(angle);
+        for (a = 0; a < 3; a++) /* Rodrigues: R = c I + sn [ax]x + (1 - c) ax ax^T */
+            for (b = 0; b < 3; b++) F.R[a][b] = (a == b ? c : 0) + (1 - c) * ax[a] * ax[b];
+        F.R[0][1] -= sn * ax[2], F.R[1][0] += sn * ax[2];
+        F.R[0][2] += sn * ax[1], F.R[2][0] -= sn * ax[1];
+        F.R[1][2] -= sn * ax[0], F.R[2][1] += sn * ax[0];
+        for (a = 0; a < 3; a++) F.off[a] = off * dir[a];
+        snprintf(what, sizeof what, "float box %d (offset %.3g, %d x %d quads a face)", it, off, 1 + 2 * (it & 1), 1 + 2 * (it & 1));
+        float_box_case(1 + 2 * (it & 1), &F, t_count(1500) < 300 ? 300 : t_count(1500), 200 + (unsigned long long)it, what);
+    }
+}
+
 /* RE_LAYOUT_COMPACT (sphere centres solved at query time, relative to the
    object's centre) on the cases where that precision matters */
 static void compact_layout_coordinates_offset_1e6(void) { with_compact_layout(coordinates_offset_1e6); }
+static void compact_layout_float_boxes_rotated_keep_quads_flat(void) { with_compact_layout(float_boxes_rotated_keep_quads_flat); }
 static void compact_layout_tiny_radius_1e6_of_size_hull(void) { with_compact_layout(tiny_radius_1e6_of_size_hull); }
 static void float_icosphere_random_motions(void);
 static void compact_layout_float_icosphere_random_motions(void) { with_compact_layout(float_icosphere_random_motions); }
@@ -758,9 +906,11 @@ int main(int argc, char **argv)
         T_CASE(chain_corners_dropped_renumber_the_rest),
         T_CASE(float_icosphere_rotated_translated),
         T_CASE(float_icosphere_random_motions),
+        T_CASE(float_boxes_rotated_keep_quads_flat),
         T_CASE(compact_layout_coordinates_offset_1e6),
         T_CASE(compact_layout_tiny_radius_1e6_of_size_hull),
         T_CASE(compact_layout_float_icosphere_random_motions),
+        T_CASE(compact_layout_float_boxes_rotated_keep_quads_flat),
         T_CASE(compact_layout_long_straight_chains),
         T_CASE(compact_layout_grazing_along_a_subdivided_edge),
     };
