@@ -139,6 +139,17 @@ typedef struct re_mesh_t {
                                    one radius, so every rounded patch (edges
                                    linked through rounded corners) takes the
                                    smallest radius asked along it (reported). */
+    int weld;                   /* 0 (default): vertices are matched by index.
+                                   1: vertices at the same position (exactly,
+                                   after conversion to double; -0 = +0) are one
+                                   for the build, so a mesh split at every
+                                   face for its normals or UVs (a game asset's
+                                   24-vertex cube) rounds as if welded. Costs
+                                   a hash table of 2-4 ints per vertex during
+                                   the build; nothing in the scene. Triangle
+                                   ids, and what the host traces, do not
+                                   change. Reports name the first vertex at
+                                   a position. */
     double flat_sin;            /* 0 (default): automatic. Else the sine of the
                                    angle between two faces' normals at or below
                                    which their edge is flat (the faces are one
@@ -993,12 +1004,59 @@ static void re__read_pos(const re_mesh_t *m, unsigned i, double out[3])
     }
 }
 
+/* Step 1a (re_mesh_t.weld): each vertex's first vertex at the same position
+   (exact in double, -0 = +0, NaN and infinities never match: they are
+   reported as themselves), through open addressing at load <= 1/2. */
+static unsigned long long re__pos_hash(const double p[3])
+{
+    unsigned long long h = 0x243F6A8885A308D3ull, x;
+    unsigned a;
+    for (a = 0; a < 3; a++) {
+        double c = p[a] + 0.0; /* -0 -> +0 */
+        memcpy(&x, &c, sizeof x);
+        h = (h ^ x) * 0x9E3779B97F4A7C15ull;
+        h ^= h >> 29;
+    }
+    return h;
+}
+static re_result_t re__weld_map(re__an_t *an, re__arena_t *ar, unsigned **map_out)
+{
+    unsigned V = an->V, i, *map, *slot;
+    size_t cap = 16, mask, j;
+    while (cap < 2 * (size_t)V) cap <<= 1;
+    mask = cap - 1;
+    RE__TAKE(map, unsigned, V);
+    RE__TAKE(slot, unsigned, cap);
+    for (j = 0; j < cap; j++) slot[j] = RE__NONE;
+    for (i = 0; i < V; i++) {
+        const double *p = an->pos + 3 * (size_t)i;
+        map[i] = i;
+        if (!re__finite3(p)) continue;
+        for (j = (size_t)re__pos_hash(p) & mask;; j = (j + 1) & mask) {
+            const double *q;
+            if (slot[j] == RE__NONE) {
+                slot[j] = i;
+                break;
+            }
+            q = an->pos + 3 * (size_t)slot[j];
+            if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2]) {
+                map[i] = slot[j];
+                break;
+            }
+        }
+    }
+    *map_out = map;
+    return RE_OK;
+}
+
 /* Step 1: fan-split polygons, validate, face normals. */
 static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
 {
     const re_mesh_t *m = an->m;
-    unsigned t = 0, f, nf, base = 0, i, k;
+    unsigned t = 0, f, nf, base = 0, i, k, *weld = NULL;
     double lo[3], hi[3], l0 = HUGE_VAL, l1 = HUGE_VAL, l2 = HUGE_VAL, h0 = -HUGE_VAL, h1 = -HUGE_VAL, h2 = -HUGE_VAL;
+    size_t mark;
+    re_result_t rc;
     char msg[128];
     if (m->position_type == RE_FLOAT64 && (m->position_stride == 0 || m->position_stride == 3 * sizeof(double)))
         an->pos = (const double *)m->positions; /* no copy: fewer fresh scratch pages */
@@ -1013,6 +1071,8 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     RE__TAKE(an->tn, double, 3 * (size_t)an->T);
     RE__TAKE(an->tarea, double, an->T);
     RE__TAKE(an->tbad, unsigned char, an->T);
+    mark = ar->used;
+    if (m->weld && (rc = re__weld_map(an, ar, &weld)) != RE_OK) return rc;
     nf = m->face_sizes ? m->face_count : an->T;
     for (f = 0; f < nf; f++) {
         unsigned n = m->face_sizes ? m->face_sizes[f] : 3u, j;
@@ -1037,6 +1097,8 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
                     if (an->desc->bad_input != RE_BAD_INPUT_SKIP)
                         return re__fail(an, RE_ERR_INDEX_OUT_OF_RANGE, t, msg);
                 }
+            if (!bad && weld)
+                for (k = 0; k < 3; k++) tr[k] = weld[tr[k]];
             if (!bad)
                 for (k = 0; k < 3; k++)
                     if (!re__finite3(an->pos + 3 * (size_t)tr[k])) {
@@ -1078,6 +1140,7 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
         }
         base += n;
     }
+    ar->used = mark; /* the weld map */
     an->size = 0;
     lo[0] = l0, lo[1] = l1, lo[2] = l2, hi[0] = h0, hi[1] = h1, hi[2] = h2;
     if (lo[0] <= hi[0]) {
@@ -1225,7 +1288,8 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
             break;
         case RE__E_BOUNDARY:
             an->st.boundary_edges++;
-            snprintf(msg, sizeof msg, "edge %u-%u is a boundary (open mesh): left sharp", ed->v[0], ed->v[1]);
+            snprintf(msg, sizeof msg, "edge %u-%u is a boundary (open mesh%s): left sharp", ed->v[0], ed->v[1],
+                     an->m->weld ? "" : ", or vertices repeated per face: see re_mesh_t.weld");
             re__report(an, RE_REPORT_BOUNDARY_EDGE, ed->v[0], ed->v[1], 0.0, msg);
             break;
         default:

@@ -12,7 +12,8 @@
              (each pair of triangles (a, b, c), (a, c, d) as the quad
              (a, b, c, d): the same fan triangles), bit 1 builds it as two
              objects, bit 2 sets re_mesh_t.flat_sin to RE_FLAT_SIN_LIMIT
-             2^-(a >> 3)
+             2^-(a >> 4), bit 3 gives every triangle corner its own vertex
+             and builds with re_mesh_t.weld
      then    queries of six bytes each, at most RFZ_MAX_QUERIES (a first
              byte of 254: a junk query, ids and t out of range, NaN or
              infinite directions)
@@ -40,6 +41,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 #define RFZ_MAX_V 256
 #define RFZ_MAX_T 512
+#define RFZ_MAX_VU (RFZ_MAX_V + 3 * RFZ_MAX_T) /* room for rfz_unweld's copies */
 #define RFZ_MAX_EDITS 48
 #define RFZ_MAX_QUERIES 24
 
@@ -47,7 +49,7 @@ typedef struct rfz_in_t { const uint8_t *p; size_t n, at; } rfz_in_t;
 static unsigned rfz_byte(rfz_in_t *in) { return in->at < in->n ? in->p[in->at++] : 0u; }
 
 typedef struct rfz_mesh_t {
-    double v[3 * RFZ_MAX_V];
+    double v[3 * RFZ_MAX_VU];
     unsigned idx[3 * RFZ_MAX_T];
     unsigned nv, nt;
 } rfz_mesh_t;
@@ -237,7 +239,7 @@ static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *
    queries' bytes stay in *in. vf and radii are the caller's buffers. */
 typedef struct rfz_case_t {
     rfz_mesh_t m;
-    float vf[3 * RFZ_MAX_V];
+    float vf[3 * RFZ_MAX_VU];
     double radii[3 * RFZ_MAX_T];
     unsigned poly[3 * RFZ_MAX_T], sizes[RFZ_MAX_T];
     re_mesh_t mesh[2];
@@ -246,6 +248,19 @@ typedef struct rfz_case_t {
 
 /* The triangles as polygons: (a, b, c), (a, c, d) becomes (a, b, c, d),
    whose fan split gives the same two triangles in the same order. */
+/* Every triangle corner its own copy of its vertex, as a renderer's
+   per-face vertices (normals, UVs) are; re_mesh_t.weld joins them again.
+   Out-of-range indices stay as they are. */
+static void rfz_unweld(rfz_mesh_t *m)
+{
+    unsigned i, n = m->nv, a;
+    for (i = 0; i < 3 * m->nt; i++)
+        if (m->idx[i] < n) {
+            for (a = 0; a < 3; a++) m->v[3 * m->nv + a] = m->v[3 * m->idx[i] + a];
+            m->idx[i] = m->nv++;
+        }
+}
+
 static void rfz_polygons(rfz_case_t *k)
 {
     const unsigned *x = k->m.idx;
@@ -281,6 +296,7 @@ static void rfz_decode(const uint8_t *data, size_t size, rfz_case_t *k, rfz_in_t
         }
         rfz_edit(m, op, a, b);
     }
+    if (ext & 8) rfz_unweld(m), mesh->weld = 1;
     if (flags & 8) {
         /* the queries' host hits come from m->v: the same (float) vertices */
         for (i = 0; i < 3 * m->nv; i++) k->vf[i] = (float)m->v[i], m->v[i] = (double)k->vf[i];
@@ -294,7 +310,7 @@ static void rfz_decode(const uint8_t *data, size_t size, rfz_case_t *k, rfz_in_t
         for (i = 0; i < 3 * m->nt; i++) k->radii[i] = i % 5 == 0 ? mesh->radius * 0.5 : i % 7 == 0 ? -1.0 : mesh->radius;
         mesh->edge_radius = k->radii;
     }
-    if (ext & 4) mesh->flat_sin = ldexp(RE_FLAT_SIN_LIMIT, -(int)(ext >> 3));
+    if (ext & 4) mesh->flat_sin = ldexp(RE_FLAT_SIN_LIMIT, -(int)(ext >> 4));
     if (ext & 1) rfz_polygons(k);
     k->mesh[1] = k->mesh[0];
     k->desc.objects = k->mesh;
