@@ -145,8 +145,9 @@ typedef struct re_mesh_t {
                                    for the build, so a mesh split at every
                                    face for its normals or UVs (a game asset's
                                    24-vertex cube) rounds as if welded. Costs
-                                   a hash table of 2-4 ints per vertex during
-                                   the build; nothing in the scene. Triangle
+                                   3-5 ints per vertex (a map and a hash
+                                   table) during step 1 of the build; nothing
+                                   in the scene. Triangle
                                    ids, and what the host traces, do not
                                    change. Reports name the first vertex at
                                    a position. */
@@ -159,7 +160,9 @@ typedef struct re_mesh_t {
                                    few units in the last place of the float or
                                    double coordinates over the triangles'
                                    heights, at most 1e-3 for RE_FLOAT32 and
-                                   1e-6 for RE_FLOAT64. Set it for doubles that
+                                   1e-6 for RE_FLOAT64 (a curved group this
+                                   joins takes 1e-9: construction step 2b).
+                                   Set it for doubles that
                                    carry coarser rounding (a turned box read
                                    from an OBJ file with 6 decimals tilts its
                                    quads' halves by up to 2e-6: 1e-5 joins
@@ -591,13 +594,19 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    widening is capped (slivers' h would flatten real creases): at
    RE__FLAT_SIN_MAX for doubles (1e-6 rad, below anything modelled), at
    RE__FLAT_SIN_MAX_F32 for floats (1e-3 rad: below the 1.7e-3 of 179.9
-   degrees; float data cannot place a crease finer than its rounding
-   allows, and rounding or not an edge of that angle moves the surface by
-   r * 1.3e-7). re_mesh_t.flat_sin replaces all of this by one value. */
+   degrees; enough for pieces down to about 1/1 000 of their distance to
+   the origin; tessellations whose creases fall under it are caught by
+   re__flat_chains). re_mesh_t.flat_sin replaces all of this by one
+   value. */
 #define RE__FLAT_SIN 1e-9
 #define RE__FLAT_ROUNDINGS 4.0
 #define RE__FLAT_SIN_MAX 1e-6
 #define RE__FLAT_SIN_MAX_F32 1e-3
+/* A group of faces joined by flat edges whose normals spread by more than
+   this times the cap is a curved surface, not one noisy plane
+   (re__flat_chains): a noisy plane's pieces tilt by at most about the cap
+   each, from either side. */
+#define RE__FLAT_CHAIN 2.0
 /* A triangle is degenerate when |cross(e1, e2)| <= this * (longest edge)^2,
    i.e. its smallest angle is below about 1e-12 rad. */
 #define RE__DEGENERATE_REL 1e-12
@@ -1165,18 +1174,29 @@ static int re__cmp_u64(const void *a, const void *b)
 
 /* Step 2: edges from half-edges (bucketed by the smaller vertex), and their
    class from the two face normals. */
+/* The largest sine re__coplanar(widen = 1) can call flat for this object:
+   re_mesh_t.flat_sin when set, else the positions' type's cap. */
+static double re__flat_cap(const re__an_t *an)
+{
+    if (an->m->flat_sin > 0) return an->m->flat_sin;
+    return an->m->position_type == RE_FLOAT32 ? RE__FLAT_SIN_MAX_F32 : RE__FLAT_SIN_MAX;
+}
+
 /* Whether the faces of triangles t0 and t1, whose normals' cross product
-   has length sn, are coplanar: re_mesh_t.flat_sin when set, else
-   RE__FLAT_SIN widened by their vertices' rounding (RE__FLAT_ROUNDINGS in
-   units of the positions' type) up to that type's cap. */
-static int re__coplanar(const re__an_t *an, unsigned t0, unsigned t1, double sn)
+   has length sn, are coplanar. Strict (widen = 0): sn <= RE__FLAT_SIN (or
+   the smaller re_mesh_t.flat_sin). Widened: re_mesh_t.flat_sin when set,
+   else RE__FLAT_SIN widened by their vertices' rounding
+   (RE__FLAT_ROUNDINGS in units of the positions' type) up to that type's
+   cap. */
+static int re__coplanar(const re__an_t *an, unsigned t0, unsigned t1, double sn, int widen)
 {
     int f32 = an->m->position_type == RE_FLOAT32;
     double tilt = 0, eps = f32 ? RE__FLT_EPS : RE__DBL_EPS;
     unsigned q, k, a;
+    if (sn <= re__min(RE__FLAT_SIN, an->m->flat_sin > 0 ? an->m->flat_sin : RE__FLAT_SIN)) return 1;
+    if (!widen) return 0;
     if (an->m->flat_sin > 0) return sn <= an->m->flat_sin;
-    if (sn <= RE__FLAT_SIN) return 1;
-    if (sn > (f32 ? RE__FLAT_SIN_MAX_F32 : RE__FLAT_SIN_MAX)) return 0;
+    if (sn > re__flat_cap(an)) return 0;
     for (q = 0; q < 2; q++) {
         unsigned t = q ? t1 : t0;
         double m = 0, l2 = 0, d[3];
@@ -1191,9 +1211,83 @@ static int re__coplanar(const re__an_t *an, unsigned t0, unsigned t1, double sn)
     return sn <= RE__FLAT_ROUNDINGS * eps * tilt;
 }
 
+/* The class of a two-triangle edge from their normals: flat (re__coplanar;
+   *wide set when only the widened test says so), convex or concave (also
+   when folded back flat). */
+static unsigned char re__fold_class(const re__an_t *an, const re__edge_t *ed, int widen, int *wide)
+{
+    unsigned h0 = ed->he[0], h1 = ed->he[1], t0 = h0 / 3, t1 = h1 / 3;
+    const double *na = an->tn + 3 * (size_t)t0, *nb = an->tn + 3 * (size_t)t1;
+    double cr[3], e3[3], sn;
+    re__cross(na, nb, cr);
+    /* the edge as triangle t0 runs it */
+    re__sub(an->pos + 3 * (size_t)an->tri[3 * t0 + (h0 % 3 + 1) % 3], an->pos + 3 * (size_t)an->tri[3 * t0 + h0 % 3], e3);
+    sn = re__len(cr);
+    if (re__coplanar(an, t0, t1, sn, 0) || (widen && (*wide = re__coplanar(an, t0, t1, sn, 1)) != 0))
+        return re__dot(na, nb) > 0 ? RE__E_FLAT : RE__E_CONCAVE; /* folded back: sharp */
+    return re__dot(cr, e3) > 0 ? RE__E_CONVEX : RE__E_CONCAVE;
+}
+
+/* Triangles joined by flat edges, as union-find roots in uf, and per root
+   its group's largest triangle in best (the best-conditioned normal). */
+static void re__flat_groups(const re__an_t *an, unsigned *uf, unsigned *best)
+{
+    unsigned T = an->T, t, i;
+    for (t = 0; t < T; t++) uf[t] = t, best[t] = RE__NONE;
+    for (i = 0; i < an->E; i++)
+        if (an->edges[i].cls == RE__E_FLAT) re__uf_join(uf, an->edges[i].he[0] / 3, an->edges[i].he[1] / 3);
+    for (t = 0; t < T; t++) {
+        unsigned r;
+        if (an->tbad[t]) continue;
+        r = re__uf_find(uf, t);
+        if (best[r] == RE__NONE || an->tarea[t] > an->tarea[best[r]]) best[r] = t;
+    }
+}
+
+/* Step 2b: faces joined by widened flat edges must stay one plane. A curved
+   surface tessellated more finely than the widened tolerance (float
+   positions: a cylinder of 8 000 sides creases by 7.9e-4 rad, under the
+   1e-3 cap) would chain through its "flat" creases into one plane, which
+   step 3 gives one normal (its largest triangle's): the 8 000-gon got 32
+   spheres instead of 16 000, its rims rounded against a few normals. A
+   group of triangles joined by flat edges whose normals spread (the
+   largest sine between a member's normal and that normal) by more than
+   RE__FLAT_CHAIN times the cap is such a surface, not one noisy plane: all
+   its widened flat edges take the strict test, which leaves it as it was
+   without the widening (exact where the facets are exactly planar; sharp
+   and reported where the rounding folds pieces concave). Groups of a few
+   facets within the limit stay joined (their planes differ by less than
+   twice the cap). Runs only when some edge is flat by the widening. */
+static re_result_t re__flat_chains(re__an_t *an, re__arena_t *ar)
+{
+    unsigned T = an->T, E = an->E, t, i, *uf, *best;
+    unsigned char *curved;
+    double limit = RE__FLAT_CHAIN * re__flat_cap(an);
+    size_t mark = ar->used;
+    RE__TAKE(uf, unsigned, T);
+    RE__TAKE(best, unsigned, T);
+    RE__TAKE(curved, unsigned char, T);
+    re__flat_groups(an, uf, best);
+    for (t = 0; t < T; t++) curved[t] = 0;
+    for (t = 0; t < T; t++) {
+        unsigned r;
+        double cr[3];
+        if (an->tbad[t]) continue;
+        r = re__uf_find(uf, t);
+        re__cross(an->tn + 3 * (size_t)t, an->tn + 3 * (size_t)best[r], cr);
+        if (re__len(cr) > limit) curved[r] = 1;
+    }
+    for (i = 0; i < E; i++) {
+        re__edge_t *ed = &an->edges[i];
+        if (ed->cls == RE__E_FLAT && curved[re__uf_find(uf, ed->he[0] / 3)]) ed->cls = re__fold_class(an, ed, 0, NULL);
+    }
+    ar->used = mark;
+    return RE_OK;
+}
+
 static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
 {
-    unsigned V = an->V, T = an->T, t, k, i, E = 0;
+    unsigned V = an->V, T = an->T, t, k, i, E = 0, widened = 0;
     unsigned *cnt;
     unsigned long long *key;
     char msg[160];
@@ -1258,16 +1352,9 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
                         return re__fail(an, RE_ERR_INCONSISTENT_WINDING, t1, msg);
                     ed->cls = RE__E_NONMANIFOLD;
                 } else {
-                    const double *na = an->tn + 3 * (size_t)t0, *nb = an->tn + 3 * (size_t)t1;
-                    double cr[3], e3[3], sn;
-                    re__cross(na, nb, cr);
-                    /* the edge as triangle t0 runs it */
-                    re__sub(an->pos + 3 * (size_t)an->tri[3 * t0 + (h0 % 3 + 1) % 3], an->pos + 3 * (size_t)a0, e3);
-                    sn = re__len(cr);
-                    if (re__coplanar(an, t0, t1, sn))
-                        ed->cls = re__dot(na, nb) > 0 ? RE__E_FLAT : RE__E_CONCAVE; /* folded back: sharp */
-                    else
-                        ed->cls = re__dot(cr, e3) > 0 ? RE__E_CONVEX : RE__E_CONCAVE;
+                    int wide = 0;
+                    ed->cls = re__fold_class(an, ed, 1, &wide);
+                    widened += (unsigned)wide;
                 }
             }
             E++;
@@ -1276,6 +1363,10 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
     }
     an->E = E;
     an->st.edges += E;
+    if (widened) {
+        re_result_t rc = re__flat_chains(an, ar);
+        if (rc != RE_OK) return rc;
+    }
     for (i = 0; i < E; i++) {
         const re__edge_t *ed = &an->edges[i];
         switch (ed->cls) {
@@ -1309,22 +1400,14 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
    product). */
 static re_result_t re__planes(re__an_t *an, re__arena_t *ar)
 {
-    unsigned T = an->T, t, i, *uf, *best;
+    unsigned T = an->T, t, *uf, *best;
     size_t mark;
     RE__TAKE(an->tplane, unsigned, T);
     RE__TAKE(an->planes, re__plane_t, T);
     mark = ar->used;
     RE__TAKE(uf, unsigned, T);
     RE__TAKE(best, unsigned, T);
-    for (t = 0; t < T; t++) uf[t] = t, best[t] = RE__NONE;
-    for (i = 0; i < an->E; i++)
-        if (an->edges[i].cls == RE__E_FLAT) re__uf_join(uf, an->edges[i].he[0] / 3, an->edges[i].he[1] / 3);
-    for (t = 0; t < T; t++) {
-        unsigned r;
-        if (an->tbad[t]) continue;
-        r = re__uf_find(uf, t);
-        if (best[r] == RE__NONE || an->tarea[t] > an->tarea[best[r]]) best[r] = t;
-    }
+    re__flat_groups(an, uf, best);
     an->n_planes = 0;
     for (t = 0; t < T; t++) an->tplane[t] = RE__NONE;
     for (t = 0; t < T; t++)
