@@ -159,11 +159,11 @@ typedef struct re_mesh_t {
                                    Automatic is the positions' own rounding: a
                                    few units in the last place of the float or
                                    double coordinates over the triangles'
-                                   heights, at most 1e-3 for RE_FLOAT32 and
-                                   1e-6 for RE_FLOAT64 (a curved group this
-                                   joins takes 1e-9: construction step 2b).
-                                   Set it for doubles that
-                                   carry coarser rounding (a turned box read
+                                   heights, at most RE_FLAT_SIN_LIMIT. Faces
+                                   this joins into a curved group take 1e-9
+                                   instead (construction step 2b). Set it for
+                                   doubles that carry coarser rounding (a
+                                   turned box read
                                    from an OBJ file with 6 decimals tilts its
                                    quads' halves by up to 2e-6: 1e-5 joins
                                    them; docs/rounded_edges.md, construction
@@ -579,33 +579,33 @@ static double re__min(double a, double b) { return a < b ? a : b; }
 #define RE__FLT_EPS 1.1920928955078125e-07
 
 /* Two faces are coplanar (their edge is "flat", e.g. a quad diagonal) when
-   the sine of the angle between their normals is below this (far below any
-   modelled dihedral: 179.9 degrees is 1.7e-3), or below what the rounding of
-   their vertices can tilt them by. Moving a vertex by one rounding of its
-   coordinates (eps * M: eps the positions' type's epsilon, M its largest
-   coordinate magnitude) tilts its triangle by up to eps * M / h, h the
-   triangle's smallest altitude; two faces whose tilt is within
-   RE__FLAT_ROUNDINGS of that, summed over both triangles, are coplanar too.
-   Float positions need it everywhere: a rotated float box's quads are not
-   planar (their halves tilt by ~1e-7 at the origin, 1e-4 at 1e3 sizes from
-   it) and their diagonals would be concave edges that leave every corner
-   sharp; doubles need it far from the origin (at 3e5, pieces 0.03 high
-   tilt by ~2e-9 and would meet at convex edges no radius fits). The
-   widening is capped (slivers' h would flatten real creases): at
-   RE__FLAT_SIN_MAX for doubles (1e-6 rad, below anything modelled), at
-   RE__FLAT_SIN_MAX_F32 for floats (1e-3 rad: below the 1.7e-3 of 179.9
-   degrees; enough for pieces down to about 1/1 000 of their distance to
-   the origin; tessellations whose creases fall under it are caught by
-   re__flat_chains). re_mesh_t.flat_sin replaces all of this by one
-   value. */
+   the sine of the angle between their normals is below RE__FLAT_SIN (far
+   below any modelled dihedral: 179.9 degrees is 1.7e-3), or below what the
+   rounding of their vertices can tilt them by. Moving a vertex by one
+   rounding of its coordinates (eps * M: eps the positions' type's epsilon,
+   M its largest coordinate magnitude) tilts its triangle by up to
+   eps * M / h, h the triangle's smallest altitude; two faces whose tilt is
+   within RE__FLAT_ROUNDINGS of that, summed over both triangles, are
+   coplanar too, up to RE__FLAT_SIN_WIDE. Float positions need it
+   everywhere: a rotated float box's quads are not planar (their halves
+   tilt by ~1e-7 at the origin, 1e-4 at 1e3 sizes from it), and the thin
+   triangles of an n-gon's fan far more; their edges would be concave and
+   leave every corner sharp. Doubles need it far from the origin (at 3e5,
+   pieces 0.03 high tilt by ~2e-9 and would meet at convex edges no radius
+   fits). Thin triangles widen it most, so a finely tessellated curved
+   surface could chain into one "plane": re__flat_chains (step 2b) sends
+   such groups back to RE__FLAT_SIN. re_mesh_t.flat_sin replaces all of
+   this by one value. */
 #define RE__FLAT_SIN 1e-9
 #define RE__FLAT_ROUNDINGS 4.0
-#define RE__FLAT_SIN_MAX 1e-6
-#define RE__FLAT_SIN_MAX_F32 1e-3
+/* The largest widened sine (0.57 degrees, RE_FLAT_SIN_LIMIT): no rounding
+   makes creases above it. */
+#define RE__FLAT_SIN_WIDE RE_FLAT_SIN_LIMIT
 /* A group of faces joined by flat edges whose normals spread by more than
-   this times the cap is a curved surface, not one noisy plane
-   (re__flat_chains): a noisy plane's pieces tilt by at most about the cap
-   each, from either side. */
+   this times the largest tolerance of its triangles (their rounding's
+   tilt, or re_mesh_t.flat_sin) is a curved surface, not one noisy plane
+   (re__flat_chains): a noisy plane's pieces each tilt by at most their
+   tolerance, so two of them by at most twice the largest. */
 #define RE__FLAT_CHAIN 2.0
 /* A triangle is degenerate when |cross(e1, e2)| <= this * (longest edge)^2,
    i.e. its smallest angle is below about 1e-12 rad. */
@@ -924,6 +924,7 @@ typedef struct re__an_t {
     re_stats_t st;
     double size;
     double origin[3]; /* bounding-box centre */
+    double flat_k;    /* RE__FLAT_ROUNDINGS eps M L of the object (re__coplanar) */
 } re__an_t;
 
 static re_result_t re__fail(re__an_t *an, re_result_t r, long long element, const char *msg)
@@ -1174,41 +1175,32 @@ static int re__cmp_u64(const void *a, const void *b)
 
 /* Step 2: edges from half-edges (bucketed by the smaller vertex), and their
    class from the two face normals. */
-/* The largest sine re__coplanar(widen = 1) can call flat for this object:
-   re_mesh_t.flat_sin when set, else the positions' type's cap. */
-static double re__flat_cap(const re__an_t *an)
+/* The tilt the rounding of triangle t's coordinates can give its normal:
+   RE__FLAT_ROUNDINGS * eps * M / h (eps the positions' type's epsilon, M
+   its largest coordinate magnitude, h its smallest altitude). */
+static double re__tilt_bound(const re__an_t *an, unsigned t)
 {
-    if (an->m->flat_sin > 0) return an->m->flat_sin;
-    return an->m->position_type == RE_FLOAT32 ? RE__FLAT_SIN_MAX_F32 : RE__FLAT_SIN_MAX;
+    double m = 0, l2 = 0, d[3], eps = an->m->position_type == RE_FLOAT32 ? RE__FLT_EPS : RE__DBL_EPS;
+    unsigned k, a;
+    for (k = 0; k < 3; k++) {
+        const double *p = an->pos + 3 * (size_t)an->tri[3 * t + k];
+        re__sub(an->pos + 3 * (size_t)an->tri[3 * t + (k + 1) % 3], p, d);
+        l2 = re__max(l2, re__dot(d, d));
+        for (a = 0; a < 3; a++) m = re__max(m, fabs(p[a]));
+    }
+    return RE__FLAT_ROUNDINGS * eps * m * sqrt(l2) / an->tarea[t]; /* M / h: tarea is twice the area */
 }
-
-/* Whether the faces of triangles t0 and t1, whose normals' cross product
-   has length sn, are coplanar. Strict (widen = 0): sn <= RE__FLAT_SIN (or
-   the smaller re_mesh_t.flat_sin). Widened: re_mesh_t.flat_sin when set,
-   else RE__FLAT_SIN widened by their vertices' rounding
-   (RE__FLAT_ROUNDINGS in units of the positions' type) up to that type's
-   cap. */
 static int re__coplanar(const re__an_t *an, unsigned t0, unsigned t1, double sn, int widen)
 {
-    int f32 = an->m->position_type == RE_FLOAT32;
-    double tilt = 0, eps = f32 ? RE__FLT_EPS : RE__DBL_EPS;
-    unsigned q, k, a;
+    double a0 = an->tarea[t0], a1 = an->tarea[t1];
     if (sn <= re__min(RE__FLAT_SIN, an->m->flat_sin > 0 ? an->m->flat_sin : RE__FLAT_SIN)) return 1;
     if (!widen) return 0;
     if (an->m->flat_sin > 0) return sn <= an->m->flat_sin;
-    if (sn > re__flat_cap(an)) return 0;
-    for (q = 0; q < 2; q++) {
-        unsigned t = q ? t1 : t0;
-        double m = 0, l2 = 0, d[3];
-        for (k = 0; k < 3; k++) {
-            const double *p = an->pos + 3 * (size_t)an->tri[3 * t + k];
-            re__sub(an->pos + 3 * (size_t)an->tri[3 * t + (k + 1) % 3], p, d);
-            l2 = re__max(l2, re__dot(d, d));
-            for (a = 0; a < 3; a++) m = re__max(m, fabs(p[a]));
-        }
-        tilt += m * sqrt(l2) / an->tarea[t]; /* M / h: tarea is twice the area */
-    }
-    return sn <= RE__FLAT_ROUNDINGS * eps * tilt;
+    /* above the object-wide bound (an->flat_k / (twice the area), each
+       triangle: its M and longest edge at most the object's) nothing is
+       flat: the common case of real creases skips the two bounds below */
+    if (sn > RE__FLAT_SIN_WIDE || sn * a0 * a1 > an->flat_k * (a0 + a1)) return 0;
+    return sn <= re__tilt_bound(an, t0) + re__tilt_bound(an, t1);
 }
 
 /* The class of a two-triangle edge from their normals: flat (re__coplanar;
@@ -1245,41 +1237,46 @@ static void re__flat_groups(const re__an_t *an, unsigned *uf, unsigned *best)
 }
 
 /* Step 2b: faces joined by widened flat edges must stay one plane. A curved
-   surface tessellated more finely than the widened tolerance (float
-   positions: a cylinder of 8 000 sides creases by 7.9e-4 rad, under the
-   1e-3 cap) would chain through its "flat" creases into one plane, which
-   step 3 gives one normal (its largest triangle's): the 8 000-gon got 32
-   spheres instead of 16 000, its rims rounded against a few normals. A
+   surface tessellated about as finely as its triangles' rounding tolerance
+   (float positions: a cylinder of 8 000 sides creases by 7.9e-4 rad, and
+   its facets' tolerance is about that) would chain through its "flat"
+   creases into one plane, which step 3 gives one normal (its largest
+   triangle's): the 8 000-gon got 32 spheres instead of 16 000, its rims
+   rounded against a few normals, its radius clamped to 0.0032 of 0.05. A
    group of triangles joined by flat edges whose normals spread (the
    largest sine between a member's normal and that normal) by more than
-   RE__FLAT_CHAIN times the cap is such a surface, not one noisy plane: all
-   its widened flat edges take the strict test, which leaves it as it was
-   without the widening (exact where the facets are exactly planar; sharp
-   and reported where the rounding folds pieces concave). Groups of a few
-   facets within the limit stay joined (their planes differ by less than
-   twice the cap). Runs only when some edge is flat by the widening. */
+   RE__FLAT_CHAIN times its members' largest tolerance is such a surface,
+   not one noisy plane: all its widened flat edges take the strict test,
+   which leaves it as it was without the widening (exact where the facets
+   are exactly planar; sharp and reported where the rounding folds pieces
+   concave). Groups of a few facets within the limit stay joined. Runs only
+   when some edge is flat by the widening. */
 static re_result_t re__flat_chains(re__an_t *an, re__arena_t *ar)
 {
     unsigned T = an->T, E = an->E, t, i, *uf, *best;
-    unsigned char *curved;
-    double limit = RE__FLAT_CHAIN * re__flat_cap(an);
+    double *spread, *bound;
     size_t mark = ar->used;
     RE__TAKE(uf, unsigned, T);
     RE__TAKE(best, unsigned, T);
-    RE__TAKE(curved, unsigned char, T);
+    RE__TAKE(spread, double, T);
+    RE__TAKE(bound, double, T);
     re__flat_groups(an, uf, best);
-    for (t = 0; t < T; t++) curved[t] = 0;
+    for (t = 0; t < T; t++) spread[t] = bound[t] = 0;
     for (t = 0; t < T; t++) {
         unsigned r;
         double cr[3];
         if (an->tbad[t]) continue;
         r = re__uf_find(uf, t);
         re__cross(an->tn + 3 * (size_t)t, an->tn + 3 * (size_t)best[r], cr);
-        if (re__len(cr) > limit) curved[r] = 1;
+        spread[r] = re__max(spread[r], re__len(cr));
+        bound[r] = re__max(bound[r], an->m->flat_sin > 0 ? an->m->flat_sin : re__min(RE__FLAT_SIN_WIDE, re__tilt_bound(an, t)));
     }
     for (i = 0; i < E; i++) {
         re__edge_t *ed = &an->edges[i];
-        if (ed->cls == RE__E_FLAT && curved[re__uf_find(uf, ed->he[0] / 3)]) ed->cls = re__fold_class(an, ed, 0, NULL);
+        unsigned r;
+        if (ed->cls != RE__E_FLAT) continue;
+        r = re__uf_find(uf, ed->he[0] / 3);
+        if (spread[r] > RE__FLAT_CHAIN * bound[r]) ed->cls = re__fold_class(an, ed, 0, NULL);
     }
     ar->used = mark;
     return RE_OK;
@@ -1292,6 +1289,10 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
     unsigned long long *key;
     char msg[160];
     size_t mark;
+    double M = 0;
+    for (k = 0; k < 3; k++) M = re__max(M, fabs(an->origin[k]));
+    an->flat_k = RE__FLAT_ROUNDINGS * (an->m->position_type == RE_FLOAT32 ? RE__FLT_EPS : RE__DBL_EPS) *
+                 (M + 0.5 * an->size) * an->size;
     RE__TAKE(an->he_edge, unsigned, 3 * (size_t)T);
     RE__TAKE(an->edges, re__edge_t, 3 * (size_t)T);
     mark = ar->used; /* the buckets are scratch of this step only */

@@ -204,7 +204,7 @@ static void dihedral_179_9_degrees(void)
         T_INT_EQ(st.rounded_edges, 15); /* 5 + 5 + 5: the ridge is rounded, not merged as flat */
         re_free(s);
     }
-    /* in float positions too (RE__FLAT_SIN_MAX_F32 = 1e-3 < 1.7e-3) */
+    /* in float positions too (its triangles' rounding tilts them by ~1e-6) */
     s = build1_float(&m, 0.05, &dg);
     if (T_CHECK(s != NULL)) {
         re_get_stats(s, &st);
@@ -849,8 +849,8 @@ done:
 }
 
 /* Finely tessellated cylinders whose creases fall under the widened flat
-   tolerance: 8 000 sides in float positions (7.9e-4 rad, under the 1e-3
-   cap) and 1 000 sides in doubles with re_mesh_t.flat_sin =
+   tolerance: 8 000 sides in float positions (7.9e-4 rad, about their thin
+   facets' rounding tolerance) and 1 000 sides in doubles with re_mesh_t.flat_sin =
    RE_FLAT_SIN_LIMIT (6.3e-3 rad, under 1e-2). Chained through those "flat"
    creases, their sides became one plane (32 spheres instead of 16 000)
    and their rims were rounded against that one normal; re__flat_chains
@@ -955,6 +955,71 @@ static void fine_cylinders_do_not_chain_into_one_plane(void)
     fine_cylinder_case(1000, 0, RE_FLAT_SIN_LIMIT, 1);
 }
 
+/* n-gon prisms with their caps fanned from a rim corner (how triangulated
+   n-gons usually come), in float positions, turned and moved up to 100
+   times their size from the origin: the fan's thin triangles (altitude
+   2e-3 of a 0.48 wide cap at 48 sides, 2.5e-5 at 256) have normals that
+   the coordinates' rounding tilts far more than a box's quads, and their
+   edges must still be flat (construction step 2: their own tolerance, no
+   fixed cap): every edge rounded, one sphere per rim corner. With a fixed
+   1e-3 cap (earlier on 2026-12-04) 131 of 200 48-gons at 100 sizes stayed
+   sharp. */
+static void float_fanned_prisms_far_from_origin(void)
+{
+    static const int sides[3] = {12, 48, 256};
+    t_rng_t rng = {71};
+    int it, bad = 0;
+    for (it = 0; it < 60; it++) {
+        const int n = sides[it % 3];
+        const double R = 0.24, H = 0.35;
+        grid_frame_t F;
+        tm_mesh_t m = {0};
+        re_scene_t *s;
+        re_diag_t dg;
+        re_stats_t st;
+        double ax[3], c, sn, angle = t_rng_range(&rng, 0, 2 * M_PI), u = t_rng_range(&rng, 0, 2 * M_PI);
+        double v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v), off = pow(10.0, t_rng_range(&rng, -1, 1.7));
+        int k, a, b;
+        if (n == 256) off = fmin(off, 3.0); /* its fan's thinnest triangles tilt by up to 0.01 there */
+        if (it == 58) off = 50;              /* a 48-gon at the far end, always */
+        ax[0] = w * cos(u), ax[1] = w * sin(u), ax[2] = v;
+        c = cos(angle), sn = sin(angle);
+        for (a = 0; a < 3; a++) /* Rodrigues, as in float_boxes_rotated_keep_quads_flat */
+            for (b = 0; b < 3; b++) F.R[a][b] = (a == b ? c : 0) + (1 - c) * ax[a] * ax[b];
+        F.R[0][1] -= sn * ax[2], F.R[1][0] += sn * ax[2];
+        F.R[0][2] += sn * ax[1], F.R[2][0] -= sn * ax[1];
+        F.R[1][2] -= sn * ax[0], F.R[2][1] += sn * ax[0];
+        for (a = 0; a < 3; a++) F.off[a] = off * (t_rng_unit(&rng) * 2 - 1);
+        for (k = 0; k < n; k++)
+            for (a = 0; a < 2; a++) {
+                double l[3], q[3];
+                l[0] = R * cos(2 * M_PI * k / n), l[1] = R * sin(2 * M_PI * k / n), l[2] = a ? H : 0;
+                for (b = 0; b < 3; b++) q[b] = F.R[b][0] * l[0] + F.R[b][1] * l[1] + F.R[b][2] * l[2] + F.off[b];
+                tm_vert(&m, q[0], q[1], q[2]);
+            }
+        for (k = 0; k < n; k++) {
+            unsigned j = (unsigned)((k + 1) % n), i2 = 2u * (unsigned)k;
+            tm_tri(&m, i2, 2 * j, 2 * j + 1), tm_tri(&m, i2, 2 * j + 1, i2 + 1);
+        }
+        for (k = 1; k + 1 < n; k++) {
+            unsigned i2 = 2u * (unsigned)k;
+            tm_tri(&m, 0, i2 + 2, i2), tm_tri(&m, 1, i2 + 1, i2 + 3);
+        }
+        s = build1_float(&m, 0.025, &dg);
+        if (!T_CHECK(s != NULL)) { fprintf(stderr, "prism %d: %s\n", it, dg.message); tm_free(&m); continue; }
+        re_get_stats(s, &st);
+        if (st.rounded_edges != 3ull * (unsigned)n || st.concave_edges || st.spheres != 2ull * (unsigned)n) {
+            bad++;
+            if (bad < 5)
+                T_FAIL("prism %d (%d sides, offset %.3g): %llu of %d edges rounded, %llu concave, %llu spheres", it, n, off,
+                       st.rounded_edges, 3 * n, st.concave_edges, st.spheres);
+        }
+        re_free(s);
+        tm_free(&m);
+    }
+    T_INT_EQ(bad, 0);
+}
+
 /* 40 random rotations, offsets from 0.1 to 1e3 box sizes; faces of one quad
    and of 3 x 3 quads */
 static void float_boxes_rotated_keep_quads_flat(void)
@@ -1048,6 +1113,7 @@ int main(int argc, char **argv)
         T_CASE(float_icosphere_random_motions),
         T_CASE(float_boxes_rotated_keep_quads_flat),
         T_CASE(fine_cylinders_do_not_chain_into_one_plane),
+        T_CASE(float_fanned_prisms_far_from_origin),
         T_CASE(compact_layout_coordinates_offset_1e6),
         T_CASE(compact_layout_tiny_radius_1e6_of_size_hull),
         T_CASE(compact_layout_float_icosphere_random_motions),
