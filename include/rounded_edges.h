@@ -1190,17 +1190,22 @@ static double re__tilt_bound(const re__an_t *an, unsigned t)
     }
     return RE__FLAT_ROUNDINGS * eps * m * sqrt(l2) / an->tarea[t]; /* M / h: tarea is twice the area */
 }
+/* Whether the faces of triangles t0 and t1, whose normals' cross product
+   has length sn, are coplanar: 1 by the strict test (RE__FLAT_SIN, or the
+   smaller re_mesh_t.flat_sin), 2 only by the widened one (widen = 1:
+   re_mesh_t.flat_sin when set, else both triangles' rounding tolerance,
+   re__tilt_bound, up to RE__FLAT_SIN_WIDE), 0 if not. */
 static int re__coplanar(const re__an_t *an, unsigned t0, unsigned t1, double sn, int widen)
 {
-    double a0 = an->tarea[t0], a1 = an->tarea[t1];
-    if (sn <= re__min(RE__FLAT_SIN, an->m->flat_sin > 0 ? an->m->flat_sin : RE__FLAT_SIN)) return 1;
+    double fs = an->m->flat_sin, a0 = an->tarea[t0], a1 = an->tarea[t1];
+    if (sn <= (fs > 0 && fs < RE__FLAT_SIN ? fs : RE__FLAT_SIN)) return 1;
     if (!widen) return 0;
-    if (an->m->flat_sin > 0) return sn <= an->m->flat_sin;
+    if (fs > 0) return sn <= fs ? 2 : 0;
     /* above the object-wide bound (an->flat_k / (twice the area), each
        triangle: its M and longest edge at most the object's) nothing is
        flat: the common case of real creases skips the two bounds below */
     if (sn > RE__FLAT_SIN_WIDE || sn * a0 * a1 > an->flat_k * (a0 + a1)) return 0;
-    return sn <= re__tilt_bound(an, t0) + re__tilt_bound(an, t1);
+    return sn <= re__tilt_bound(an, t0) + re__tilt_bound(an, t1) ? 2 : 0;
 }
 
 /* The class of a two-triangle edge from their normals: flat (re__coplanar;
@@ -1210,13 +1215,14 @@ static unsigned char re__fold_class(const re__an_t *an, const re__edge_t *ed, in
 {
     unsigned h0 = ed->he[0], h1 = ed->he[1], t0 = h0 / 3, t1 = h1 / 3;
     const double *na = an->tn + 3 * (size_t)t0, *nb = an->tn + 3 * (size_t)t1;
-    double cr[3], e3[3], sn;
+    double cr[3], e3[3];
+    int flat;
     re__cross(na, nb, cr);
     /* the edge as triangle t0 runs it */
     re__sub(an->pos + 3 * (size_t)an->tri[3 * t0 + (h0 % 3 + 1) % 3], an->pos + 3 * (size_t)an->tri[3 * t0 + h0 % 3], e3);
-    sn = re__len(cr);
-    if (re__coplanar(an, t0, t1, sn, 0) || (widen && (*wide = re__coplanar(an, t0, t1, sn, 1)) != 0))
-        return re__dot(na, nb) > 0 ? RE__E_FLAT : RE__E_CONCAVE; /* folded back: sharp */
+    flat = re__coplanar(an, t0, t1, re__len(cr), widen);
+    if (wide) *wide = flat == 2;
+    if (flat) return re__dot(na, nb) > 0 ? RE__E_FLAT : RE__E_CONCAVE; /* folded back: sharp */
     return re__dot(cr, e3) > 0 ? RE__E_CONVEX : RE__E_CONCAVE;
 }
 

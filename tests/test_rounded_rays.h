@@ -22,8 +22,9 @@ static void with_compact_layout(void (*test)(void))
 }
 
 /* One object of m, radius r, in g_layout; its positions as doubles or
-   rounded to float (RE_FLOAT32). NULL when the build fails (dg says why). */
-static re_scene_t *build1_as(const tm_mesh_t *m, double r, int as_float, re_diag_t *dg)
+   rounded to float (RE_FLOAT32); re_mesh_t.flat_sin = flat_sin. NULL when
+   the build fails (dg says why). */
+static re_scene_t *build1_as(const tm_mesh_t *m, double r, int as_float, double flat_sin, re_diag_t *dg)
 {
     re_mesh_t mesh;
     re_scene_desc_t desc;
@@ -43,6 +44,7 @@ static re_scene_t *build1_as(const tm_mesh_t *m, double r, int as_float, re_diag
     mesh.indices = m->idx;
     mesh.index_count = m->ni;
     mesh.radius = r;
+    mesh.flat_sin = flat_sin;
     desc.layout = g_layout;
     desc.objects = &mesh;
     desc.object_count = 1;
@@ -50,8 +52,8 @@ static re_scene_t *build1_as(const tm_mesh_t *m, double r, int as_float, re_diag
     free(pos);
     return s;
 }
-static re_scene_t *build1(const tm_mesh_t *m, double r, re_diag_t *dg) { return build1_as(m, r, 0, dg); }
-static re_scene_t *build1_float(const tm_mesh_t *m, double r, re_diag_t *dg) { return build1_as(m, r, 1, dg); }
+static re_scene_t *build1(const tm_mesh_t *m, double r, re_diag_t *dg) { return build1_as(m, r, 0, 0, dg); }
+static re_scene_t *build1_float(const tm_mesh_t *m, double r, re_diag_t *dg) { return build1_as(m, r, 1, 0, dg); }
 
 /* re_query_uv() gives re_query()'s answer, bit for bit, whether or not its
    per-triangle bands let it skip the kd-tree (query step 0). */

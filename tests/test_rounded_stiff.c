@@ -874,17 +874,13 @@ static void fine_cylinder_case(int n, int as_float, double flat_sin, int with_ra
     const grid_frame_t F = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0.3, -0.2, 0.1}};
     rcyl_t cyl;
     tm_mesh_t m = {0};
-    re_mesh_t mesh;
-    re_scene_desc_t desc;
-    re_scene_t *s = NULL;
+    re_scene_t *s;
     re_diag_t dg;
     re_stats_t st;
     t_rng_t rng = {61};
-    float *fp = NULL;
     double delta, worst = 0, worst_n = 0;
     long i, bad = 0, n_round = 0, nrays = !with_rays ? 0 : t_count(2000) < 300 ? 300 : t_count(2000);
     int k, a;
-    unsigned q;
     cyl.F = &F, cyl.R = 1, cyl.H = 1, cyl.r = 0.05;
     for (k = 0; k < n; k++)
         for (a = 0; a < 2; a++) {
@@ -900,17 +896,8 @@ static void fine_cylinder_case(int n, int as_float, double flat_sin, int with_ra
         unsigned i2 = 2u * (unsigned)k;
         tm_tri(&m, 0, i2 + 2, i2), tm_tri(&m, 1, i2 + 1, i2 + 3);
     }
-    memset(&mesh, 0, sizeof mesh);
-    memset(&desc, 0, sizeof desc);
-    mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.radius = cyl.r;
-    if (as_float) {
-        fp = (float *)malloc(sizeof(float) * 3 * m.nv);
-        for (q = 0; q < 3 * m.nv; q++) fp[q] = (float)m.v[q];
-        mesh.positions = fp, mesh.position_type = RE_FLOAT32;
-    }
-    mesh.flat_sin = flat_sin;
-    desc.layout = g_layout, desc.objects = &mesh, desc.object_count = 1;
-    if (!T_INT_EQ(re_build(&desc, &s, &dg), RE_OK)) { fprintf(stderr, "fine cylinder: %s\n", dg.message); free(fp); tm_free(&m); return; }
+    s = build1_as(&m, cyl.r, as_float, flat_sin, &dg);
+    if (!T_CHECK(s != NULL)) { fprintf(stderr, "fine cylinder: %s\n", dg.message); tm_free(&m); return; }
     re_get_stats(s, &st);
     if (with_rays) { /* the creases and both rims */
         T_INT_EQ(st.convex_edges, 3 * n);
@@ -942,7 +929,6 @@ static void fine_cylinder_case(int n, int as_float, double flat_sin, int with_ra
     if (with_rays) T_GT(n_round, nrays / 20);
     if (getenv("FLOAT_BOX_VERBOSE")) fprintf(stderr, "fine cylinder: worst %g of delta %g, normal %g, %ld rounded\n", worst, delta, worst_n, n_round);
     re_free(s);
-    free(fp);
     tm_free(&m);
 }
 static void fine_cylinders_do_not_chain_into_one_plane(void)
