@@ -17,15 +17,22 @@
    page is a fault: the line above the table gives its cost here); into ms
    = re_build_into() into reused buffers (no faults: the arithmetic alone).
    speedup = paper ms / build ms.
+   Threads table (CSV rounded_build_threads.csv): the same scenes with one
+   object per solid (box, block, sphere), re_build() on one thread and with
+   desc.parallel on the machine's cores (FILIGREE_BENCH_THREADS overrides),
+   wall clock, the three builds in turn, best of 7; gain = 1 thread /
+   threads; speedup 1 / n = paper ms / one object / threads.
    query ns = one re_query_uv() (the host passes its barycentrics, so a hit
    on a face's flat part is answered by the per-triangle bands). */
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
+#include "ex_render.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 #if defined(__linux__)
 #include <sys/mman.h>
 #include <sys/resource.h>
@@ -248,7 +255,82 @@ typedef struct scene_t {
     double paper_s; /* the paper's cylinder generation time for its scene of this size */
     mesh_t m;
     double r;
+    unsigned n_parts, part_ni[4000]; /* index count at the end of each solid */
 } scene_t;
+
+/* the solid just added ends here: one object when the scene is built as
+   one object per solid (a Blender scene holds each block or sphere so) */
+static void end_part(scene_t *s) { s->part_ni[s->n_parts++] = s->m.ni; }
+
+/* ---- the build on the host's threads (re_scene_desc_t.parallel) ---------- */
+
+/* the host's parallel-for: the examples' (one thread per task) */
+static void host_parallel(void *user, unsigned count, re_task_fn task, void *task_ctx)
+{
+    (void)user;
+    ex_parallel_for(count, task, task_ctx);
+}
+static double wall(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+/* wall-clock ms of one re_build() */
+static double build_wall_ms(const re_scene_desc_t *desc)
+{
+    re_scene_t *s = NULL;
+    re_diag_t dg;
+    double t0 = wall();
+    if (re_build(desc, &s, &dg) != RE_OK) {
+        fprintf(stderr, "build failed: %s\n", dg.message);
+        exit(1);
+    }
+    t0 = wall() - t0;
+    re_free(s);
+    return t0 * 1e3;
+}
+/* One object, one object per solid on one thread, and one object per solid
+   on `threads` threads, in turn for 7 rounds (best of each): wall clock. */
+static void threads_row(const scene_t *sc, unsigned threads, FILE *csv)
+{
+    re_mesh_t one, *parts = (re_mesh_t *)calloc(sc->n_parts, sizeof *parts);
+    unsigned **idx = (unsigned **)calloc(sc->n_parts, sizeof *idx), p, j;
+    re_scene_desc_t d1, dn, dp;
+    double best[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+    int rep, mode;
+    memset(&one, 0, sizeof one);
+    one.positions = sc->m.v, one.vertex_count = sc->m.nv, one.indices = sc->m.idx, one.index_count = sc->m.ni, one.radius = sc->r;
+    for (p = 0; p < sc->n_parts; p++) { /* each solid's own vertices, indices from its first */
+        unsigned i0 = p ? sc->part_ni[p - 1] : 0, n = sc->part_ni[p] - i0, vlo = ~0u, vhi = 0;
+        for (j = 0; j < n; j++) {
+            unsigned v = sc->m.idx[i0 + j];
+            vlo = v < vlo ? v : vlo, vhi = v > vhi ? v : vhi;
+        }
+        idx[p] = (unsigned *)malloc(sizeof(unsigned) * n);
+        for (j = 0; j < n; j++) idx[p][j] = sc->m.idx[i0 + j] - vlo;
+        parts[p].positions = sc->m.v + 3 * (size_t)vlo, parts[p].vertex_count = vhi - vlo + 1;
+        parts[p].indices = idx[p], parts[p].index_count = n, parts[p].radius = sc->r;
+    }
+    memset(&d1, 0, sizeof d1);
+    d1.objects = &one, d1.object_count = 1;
+    dn = d1, dn.objects = parts, dn.object_count = sc->n_parts;
+    dp = dn, dp.parallel = host_parallel, dp.threads = threads;
+    for (rep = 0; rep < 7; rep++)
+        for (mode = 0; mode < 3; mode++) {
+            int m = (mode + rep) % 3;
+            double t = build_wall_ms(m == 0 ? &d1 : m == 1 ? &dn : &dp);
+            if (t < best[m]) best[m] = t;
+        }
+    printf("%-20s %8u %12.1f %12.1f %12.1f %9.2fx %9.0fx %9.0fx\n", sc->name, sc->n_parts, best[0], best[1], best[2], best[1] / best[2],
+           sc->paper_s * 1e3 / best[0], sc->paper_s * 1e3 / best[2]);
+    fflush(stdout);
+    if (csv)
+        fprintf(csv, "%s,%u,%u,%.3f,%.3f,%.3f,%.3f,%.1f,%.1f\n", sc->name, sc->n_parts, threads, best[0], best[1], best[2], best[1] / best[2],
+                sc->paper_s * 1e3 / best[0], sc->paper_s * 1e3 / best[2]);
+    for (p = 0; p < sc->n_parts; p++) free(idx[p]);
+    free(idx), free(parts);
+}
 
 int main(int argc, char **argv)
 {
@@ -260,17 +342,17 @@ int main(int argc, char **argv)
     memset(sc, 0, sizeof sc);
     /* like Scene 1 (42k triangles): many small boxes */
     sc[0].name = "boxes-42k", sc[0].paper_s = 1.5, sc[0].r = 0.02;
-    for (i = 0; i < 3500; i++) box(&sc[0].m, (i % 70) * 1.5, (i / 70) * 1.5, 0, (i % 70) * 1.5 + 1, (i / 70) * 1.5 + 0.7, 0.5);
+    for (i = 0; i < 3500; i++) box(&sc[0].m, (i % 70) * 1.5, (i / 70) * 1.5, 0, (i % 70) * 1.5 + 1, (i / 70) * 1.5 + 0.7, 0.5), end_part(&sc[0]);
     /* like Scene 2 (103k): five level-5 icospheres (vertices of degree 5-6: exact corners everywhere) */
     sc[1].name = "icospheres-102k", sc[1].paper_s = 3.6, sc[1].r = 0.004;
-    for (i = 0; i < 5; i++) icosphere(&sc[1].m, 5, 3.0 * i, 0, 0, 1);
+    for (i = 0; i < 5; i++) icosphere(&sc[1].m, 5, 3.0 * i, 0, 0, 1), end_part(&sc[1]);
     /* like Scene 3 (252k): play blocks mixed with icospheres */
     sc[2].name = "blocks+spheres-252k", sc[2].paper_s = 9.7, sc[2].r = 0.01;
-    for (i = 0; i < 200; i++) block(&sc[2].m, (i % 20) * 3.6, (i / 20) * 2.0, 0);
-    for (i = 0; i < 5; i++) icosphere(&sc[2].m, 5, 3.0 * i, -5, 0, 1);
+    for (i = 0; i < 200; i++) block(&sc[2].m, (i % 20) * 3.6, (i / 20) * 2.0, 0), end_part(&sc[2]);
+    for (i = 0; i < 5; i++) icosphere(&sc[2].m, 5, 3.0 * i, -5, 0, 1), end_part(&sc[2]);
     /* like Blocks (276k): 2x4 play blocks, 8 knobs of 24 segments each */
     sc[3].name = "blocks-276k", sc[3].paper_s = 9.5, sc[3].r = 0.02;
-    for (i = 0; i < 369; i++) block(&sc[3].m, (i % 24) * 3.6, (i / 24) * 2.0, 0);
+    for (i = 0; i < 369; i++) block(&sc[3].m, (i % 24) * 3.6, (i / 24) * 2.0, 0), end_part(&sc[3]);
     snprintf(path, sizeof path, "%s/rounded_build.csv", dir);
     csv = fopen(path, "w");
     if (csv) fprintf(csv, "scene,triangles,rounded_edges,spheres,cylinders,extra_cylinders,build_ms,build_faults,fresh_4k_ms,into_ms,paper_ms,speedup,bytes,bytes_per_rounded_edge,compact_bytes_per_rounded_edge,query_ns,kd_leaves,kd_refs_per_leaf\n");
@@ -373,9 +455,26 @@ int main(int argc, char **argv)
                     st.kd_leaves ? (double)st.kd_leaf_refs / (double)st.kd_leaves : 0.0);
         if (sink == 12345.678) printf(" ");
         re_free(s);
-        free(sc[k].m.v), free(sc[k].m.idx);
     }
     if (csv) fclose(csv);
+    /* The same scenes with one object per solid, built on the host's threads
+       (re_scene_desc_t.parallel): wall clock, since the work is spread. */
+    {
+        const char *env = getenv("FILIGREE_BENCH_THREADS");
+        long nt = env ? atol(env) : sysconf(_SC_NPROCESSORS_ONLN);
+        unsigned threads = nt < 2 ? 2u : nt > RE_MAX_BUILD_TASKS ? (unsigned)RE_MAX_BUILD_TASKS : (unsigned)nt;
+        snprintf(path, sizeof path, "%s/rounded_build_threads.csv", dir);
+        csv = fopen(path, "w");
+        if (csv) fprintf(csv, "scene,objects,threads,one_object_ms,objects_1_thread_ms,objects_threads_ms,thread_gain,speedup_one_object,speedup_threads\n");
+        printf("\nbuild on the host's threads: re_build() wall-clock ms, best of 7 rounds (the three in turn); one object per solid, %u threads\n", threads);
+        printf("%-20s %8s %12s %12s %12s %10s %10s %10s\n", "scene", "objects", "one object", "1 thread", "threads", "gain", "speedup 1", "speedup n");
+        for (k = 0; k < 4; k++) {
+            fprintf(stderr, "  %s: threads\n", sc[k].name);
+            threads_row(&sc[k], threads, csv);
+            free(sc[k].m.v), free(sc[k].m.idx);
+        }
+        if (csv) fclose(csv);
+    }
     /* Build time against chain length: linear since 2026-12-04 (each chain's
        strips and inner spheres are walked once; from every segment they
        were quadratic: 2.5 s at n = 4000, 39 s at 16000), and the query near

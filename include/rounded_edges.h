@@ -58,6 +58,21 @@
      2 MiB, not one per 4 KiB. Nothing else changes; the kernel may decline.
      With RE_NO_HUGEPAGES, a user RE_MALLOC, or re_build_into() the memory
      is left as it comes.
+   THREADS
+     Queries are const and thread-safe. A build runs on the calling thread
+     unless desc.parallel is set with desc.threads >= 2: re_build() and
+     re_build_sizes() then hand the objects to that many tasks (largest
+     first, each to the task with the fewest triangles so far) and the host
+     runs them on its threads. Each object is built by one task, so one big
+     object gains nothing; many objects gain up to the thread count. The
+     scene is the same, byte for byte, as built on one thread. Then:
+     RE_MALLOC/RE_FREE and desc.report are called from the host's threads,
+     at the same time (they must be thread-safe; the reports of different
+     objects interleave, each object's own come in order); every task holds
+     its own scratch (peak memory up to `threads` objects' scratch); a
+     failure reports the lowest-numbered failing object, as on one thread,
+     though later objects may have been built (and reported) before the
+     build returns. re_build_into() always runs on the calling thread.
    CONVENTIONS
      See docs/conventions.md: results are re_result_t codes with RE_OK = 0,
      zero-initialised config structs mean defaults, queries are const,
@@ -236,6 +251,16 @@ typedef enum re_layout_t {
                            the instructions of re_query */
 } re_layout_t;
 
+/* Building objects on the host's threads (THREADS at the top). The host
+   calls task(task_ctx, i) once for every i in [0, count), on its own
+   threads, in any order and at the same time if it likes, and returns when
+   every call has returned: a thread pool's parallel-for. */
+typedef void (*re_task_fn)(void *task_ctx, unsigned i);
+typedef void (*re_parallel_fn)(void *user, unsigned count, re_task_fn task, void *task_ctx);
+
+/* Tasks a build is split into, at most. */
+#define RE_MAX_BUILD_TASKS 64
+
 typedef struct re_scene_desc_t {
     const re_mesh_t *objects;
     unsigned object_count;
@@ -245,6 +270,15 @@ typedef struct re_scene_desc_t {
     void *report_user;
     void *alloc_ctx;                  /* passed to RE_MALLOC/RE_FREE */
     re_layout_t layout;               /* default RE_LAYOUT_FAST */
+    re_parallel_fn parallel;          /* optional: re_build() and
+                                         re_build_sizes() split the objects
+                                         into `threads` tasks run by it;
+                                         NULL: all on the calling thread */
+    void *parallel_user;              /* passed to parallel */
+    unsigned threads;                 /* tasks (the host's threads); 0 or 1:
+                                         the calling thread; more than the
+                                         objects or RE_MAX_BUILD_TASKS count
+                                         as that many */
 } re_scene_desc_t;
 
 /* The diagnostic filled when a build fails (docs/conventions.md). */
@@ -290,15 +324,18 @@ typedef struct re_scene_t re_scene_t; /* opaque; lives in one block */
 /* Exact sizes for re_build_into(). Runs the analysis once, in working
    memory taken from RE_MALLOC (desc->alloc_ctx) and freed before returning,
    all but the per-triangle bands (their size is fixed; their working memory
-   is counted): it costs about 0.7-0.85 of a build. */
+   is counted): it costs about 0.7-0.85 of a build. On the host's threads
+   with desc.parallel (THREADS). */
 RE_DEF re_result_t re_build_sizes(const re_scene_desc_t *desc, re_sizes_t *sizes,
                                   re_diag_t *diag);
 /* Build into caller buffers (sizes from re_build_sizes(); `scene_mem` aligned
-   to 16 bytes). *scene points into scene_mem; nothing to free. */
+   to 16 bytes). *scene points into scene_mem; nothing to free. Runs on the
+   calling thread (desc.parallel is not used). */
 RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem,
                                  size_t scene_bytes, void *scratch, size_t scratch_bytes,
                                  re_scene_t **scene, re_diag_t *diag);
-/* Build with RE_MALLOC (desc->alloc_ctx); release with re_free(). */
+/* Build with RE_MALLOC (desc->alloc_ctx); release with re_free(). On the
+   host's threads with desc.parallel (THREADS). */
 RE_DEF re_result_t re_build(const re_scene_desc_t *desc, re_scene_t **scene,
                             re_diag_t *diag);
 RE_DEF void re_free(re_scene_t *scene);
@@ -3573,36 +3610,166 @@ static re_result_t re__check_desc(const re_scene_desc_t *desc, re_diag_t *diag)
 
 static size_t re__header_bytes(unsigned n) { return RE__ALIGN(sizeof(re_scene_t)) + RE__ALIGN(sizeof(re__object_t) * n); }
 
+/* One task of re_build() or re_build_sizes() (THREADS): the objects it
+   owns, in increasing order, through one scratch buffer of its own. */
+typedef struct re__task_t {
+    re_result_t rc;
+    unsigned failed;     /* the object that failed (rc != RE_OK) */
+    re_diag_t diag;
+    size_t total, high;  /* sizing: the objects' bytes, the largest scratch use */
+} re__task_t;
+
+typedef struct re__tasks_t {
+    const re_scene_desc_t *desc;
+    re_scene_t *S;          /* the scene to fill; NULL: sizes only */
+    const unsigned char *owner; /* each object's task; NULL: one task */
+    re__task_t *task;
+} re__tasks_t;
+
+/* The allocator returned NULL: there is no element to name. */
+static re_result_t re__out_of_memory(re_diag_t *diag, long long object)
+{
+    if (diag) {
+        diag->result = RE_ERR_OUT_OF_MEMORY;
+        diag->element = -1;
+        diag->object = object < 0 ? 0u : (unsigned)object;
+        if (object < 0) snprintf(diag->message, sizeof diag->message, "out of memory");
+        else snprintf(diag->message, sizeof diag->message, "object %u: out of memory", (unsigned)object);
+    }
+    return RE_ERR_OUT_OF_MEMORY;
+}
+
+static int re__owns(const re__tasks_t *J, unsigned w, unsigned i) { return !J->owner || J->owner[i] == w; }
+
+/* Analyse object i in the task's scratch (grown and retried when its bound
+   was short) and, when building, pack it into a block of its own. */
+static re_result_t re__build_object(const re__tasks_t *J, re__task_t *W, unsigned i, void **scratch, size_t *cap)
+{
+    const re_scene_desc_t *desc = J->desc;
+    re__an_t an;
+    re__final_t F;
+    re__arena_t ar;
+    re_result_t rc;
+    size_t need;
+    for (;;) {
+        if (!*scratch && !(*scratch = RE_MALLOC(*cap, desc->alloc_ctx))) return RE_ERR_OUT_OF_MEMORY;
+        re__advise_huge(*scratch, *cap);
+        ar.base = (unsigned char *)*scratch;
+        ar.cap = *cap;
+        ar.used = ar.high = 0;
+        rc = re__analyze(desc, i, !J->S, &ar, &W->diag, &an, &F);
+        if (rc != RE_ERR_BUFFER_TOO_SMALL) break;
+        RE_FREE(*scratch, desc->alloc_ctx); /* the bound was short: grow, retry */
+        *scratch = NULL;
+        *cap *= 2;
+    }
+    if (rc != RE_OK) return rc;
+    need = re__object_bytes(&an, &F);
+    if (!J->S) {
+        W->total += need;
+        if (ar.high + 16 > W->high) W->high = ar.high + 16;
+        return RE_OK;
+    }
+    J->S->objects[i].block = need ? RE_MALLOC(need, desc->alloc_ctx) : NULL;
+    if (need && !J->S->objects[i].block) return RE_ERR_OUT_OF_MEMORY;
+    re__advise_huge(J->S->objects[i].block, need);
+    re__pack(&an, &F, (unsigned char *)J->S->objects[i].block, &J->S->objects[i]);
+    an.st.bytes = need;
+    J->S->objects[i].stats = an.st;
+    return RE_OK;
+}
+
+/* re_task_fn: task w builds (or sizes) its objects; it stops at its first
+   failure, which is then the lowest-numbered failing object it owns. */
+static void re__run_task(void *ctx, unsigned w)
+{
+    const re__tasks_t *J = (const re__tasks_t *)ctx;
+    const re_scene_desc_t *desc = J->desc;
+    re__task_t *W = &J->task[w];
+    void *scratch = NULL;
+    size_t cap = 0;
+    unsigned i;
+    for (i = 0; i < desc->object_count; i++) {
+        size_t b = re__owns(J, w, i) ? re__scratch_bound(&desc->objects[i]) : 0;
+        if (b > cap) cap = b;
+    }
+    for (i = 0; i < desc->object_count && W->rc == RE_OK; i++)
+        if (re__owns(J, w, i) && (W->rc = re__build_object(J, W, i, &scratch, &cap)) != RE_OK) W->failed = i;
+    if (scratch) RE_FREE(scratch, desc->alloc_ctx);
+}
+
+/* The objects' tasks: largest first (by index count, ties by number), each
+   to the task with the least so far (ties to the lowest task), so that
+   equal objects share the tasks evenly. */
+static re_result_t re__assign_tasks(const re_scene_desc_t *desc, unsigned k, unsigned char *owner)
+{
+    unsigned long long *key, load[RE_MAX_BUILD_TASKS];
+    unsigned i, w, n = desc->object_count;
+    if (!(key = (unsigned long long *)RE_MALLOC(sizeof *key * n, desc->alloc_ctx))) return RE_ERR_OUT_OF_MEMORY;
+    for (i = 0; i < n; i++) key[i] = ((unsigned long long)(0xFFFFFFFFu - desc->objects[i].index_count) << 28) | i;
+    qsort(key, n, sizeof *key, re__cmp_u64);
+    memset(load, 0, sizeof load);
+    for (i = 0; i < n; i++) {
+        unsigned o = (unsigned)(key[i] & 0x0FFFFFFFu), best = 0;
+        for (w = 1; w < k; w++)
+            if (load[w] < load[best]) best = w;
+        owner[o] = (unsigned char)best;
+        load[best] += (unsigned long long)desc->objects[o].index_count + 1;
+    }
+    RE_FREE(key, desc->alloc_ctx);
+    return RE_OK;
+}
+
+/* Run the build (S) or the sizing (S NULL) of every object, on the host's
+   threads when desc asks for it; on failure, the lowest failing object's
+   diagnostic goes to diag. Sizing sums into *total and *high. */
+static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_diag_t *diag, size_t *total, size_t *high)
+{
+    re__tasks_t J;
+    re__task_t one, *task = &one;
+    unsigned char *owner = NULL;
+    unsigned k = desc->parallel ? desc->threads : 1, w, first = 0;
+    re_result_t rc = RE_OK;
+    if (k > desc->object_count) k = desc->object_count;
+    if (k > RE_MAX_BUILD_TASKS) k = RE_MAX_BUILD_TASKS;
+    if (k > 1) {
+        size_t tb = RE__ALIGN(sizeof(re__task_t) * k);
+        if (!(task = (re__task_t *)RE_MALLOC(tb + desc->object_count, desc->alloc_ctx))) return re__out_of_memory(diag, -1);
+        owner = (unsigned char *)task + tb;
+        if ((rc = re__assign_tasks(desc, k, owner)) != RE_OK) {
+            RE_FREE(task, desc->alloc_ctx);
+            return re__out_of_memory(diag, -1);
+        }
+    } else k = 1;
+    memset(task, 0, sizeof *task * k);
+    J.desc = desc, J.S = S, J.owner = owner, J.task = task;
+    if (k > 1) desc->parallel(desc->parallel_user, k, re__run_task, &J);
+    else re__run_task(&J, 0);
+    for (w = 0; w < k; w++) {
+        if (task[w].rc != RE_OK && (rc == RE_OK || task[w].failed < first)) {
+            rc = task[w].rc;
+            first = task[w].failed;
+            *diag = task[w].diag;
+        }
+        *total += task[w].total;
+        if (task[w].high > *high) *high = task[w].high;
+    }
+    if (rc == RE_ERR_OUT_OF_MEMORY) re__out_of_memory(diag, first);
+    if (task != &one) RE_FREE(task, desc->alloc_ctx);
+    return rc;
+}
+
 RE_DEF re_result_t re_build_sizes(const re_scene_desc_t *desc, re_sizes_t *sizes, re_diag_t *diag)
 {
     re_result_t rc = re__check_desc(desc, diag);
-    size_t total, high = 0, cap = 0;
-    unsigned i;
-    void *scratch = NULL;
+    re_diag_t dg;
+    size_t total = 0, high = 0;
     if (rc != RE_OK) return rc;
     if (!sizes) return RE_ERR_INVALID_ARG;
-    total = re__header_bytes(desc->object_count);
-    for (i = 0; i < desc->object_count; i++) cap = cap > re__scratch_bound(&desc->objects[i]) ? cap : re__scratch_bound(&desc->objects[i]);
-    if (cap && !(scratch = RE_MALLOC(cap, desc->alloc_ctx))) return RE_ERR_OUT_OF_MEMORY;
-    re__advise_huge(scratch, cap);
-    for (i = 0; i < desc->object_count; i++) {
-        re__an_t an;
-        re__final_t F;
-        re__arena_t ar;
-        ar.base = (unsigned char *)scratch;
-        ar.cap = cap;
-        ar.used = ar.high = 0;
-        rc = re__analyze(desc, i, 1, &ar, diag, &an, &F);
-        if (rc != RE_OK) break;
-        total += re__object_bytes(&an, &F);
-        if (ar.high + 16 > high) high = ar.high + 16;
-    }
-    if (scratch) RE_FREE(scratch, desc->alloc_ctx);
-    if (rc == RE_OK) {
-        sizes->scene_bytes = total;
-        sizes->scratch_bytes = high;
-    }
-    return rc;
+    if ((rc = re__run_tasks(desc, NULL, diag ? diag : &dg, &total, &high)) != RE_OK) return rc;
+    sizes->scene_bytes = re__header_bytes(desc->object_count) + total;
+    sizes->scratch_bytes = high;
+    return RE_OK;
 }
 
 RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem, size_t scene_bytes,
@@ -3658,64 +3825,27 @@ RE_DEF void re_free(re_scene_t *scene)
 RE_DEF re_result_t re_build(const re_scene_desc_t *desc, re_scene_t **scene, re_diag_t *diag)
 {
     re_result_t rc = re__check_desc(desc, diag);
-    size_t cap = 0, hb;
+    re_diag_t dg;
+    size_t hb, total = 0, high = 0;
     unsigned i;
-    void *scratch = NULL;
     re_scene_t *S;
     if (rc != RE_OK) return rc;
     if (!scene) return RE_ERR_INVALID_ARG;
     *scene = NULL;
     hb = re__header_bytes(desc->object_count);
     S = (re_scene_t *)RE_MALLOC(hb, desc->alloc_ctx);
-    if (!S) return RE_ERR_OUT_OF_MEMORY;
+    if (!S) return re__out_of_memory(diag, -1);
     memset(S, 0, hb);
     S->n_objects = desc->object_count;
     S->objects = (re__object_t *)((unsigned char *)S + RE__ALIGN(sizeof(re_scene_t)));
     S->alloc_ctx = desc->alloc_ctx;
     S->owned = 1;
     S->stats.bytes = hb;
-    for (i = 0; i < desc->object_count; i++) {
-        size_t b = re__scratch_bound(&desc->objects[i]);
-        if (b > cap) cap = b;
-    }
-    for (i = 0; i < desc->object_count && rc == RE_OK; i++) {
-        re__an_t an;
-        re__final_t F;
-        re__arena_t ar;
-        size_t need;
-        for (;;) {
-            if (!scratch && !(scratch = RE_MALLOC(cap, desc->alloc_ctx))) {
-                rc = RE_ERR_OUT_OF_MEMORY;
-                break;
-            }
-            re__advise_huge(scratch, cap);
-            ar.base = (unsigned char *)scratch;
-            ar.cap = cap;
-            ar.used = ar.high = 0;
-            rc = re__analyze(desc, i, 0, &ar, diag, &an, &F);
-            if (rc != RE_ERR_BUFFER_TOO_SMALL) break;
-            RE_FREE(scratch, desc->alloc_ctx); /* the bound was short: grow, retry */
-            scratch = NULL;
-            cap *= 2;
-        }
-        if (rc != RE_OK) break;
-        need = re__object_bytes(&an, &F);
-        S->objects[i].block = need ? RE_MALLOC(need, desc->alloc_ctx) : NULL;
-        re__advise_huge(S->objects[i].block, need);
-        if (need && !S->objects[i].block) {
-            rc = RE_ERR_OUT_OF_MEMORY;
-            break;
-        }
-        re__pack(&an, &F, (unsigned char *)S->objects[i].block, &S->objects[i]);
-        an.st.bytes = need;
-        S->objects[i].stats = an.st;
-        re__add_stats(&S->stats, &an.st);
-    }
-    if (scratch) RE_FREE(scratch, desc->alloc_ctx);
-    if (rc != RE_OK) {
+    if ((rc = re__run_tasks(desc, S, diag ? diag : &dg, &total, &high)) != RE_OK) {
         re_free(S);
         return rc;
     }
+    for (i = 0; i < desc->object_count; i++) re__add_stats(&S->stats, &S->objects[i].stats);
     *scene = S;
     return RE_OK;
 }

@@ -11,7 +11,7 @@
              255 ends them, its a: bit 0 hands the mesh over as polygons
              (each pair of triangles (a, b, c), (a, c, d) as the quad
              (a, b, c, d): the same fan triangles), bit 1 builds it as two
-             objects, bit 2 sets re_mesh_t.flat_sin to RE_FLAT_SIN_LIMIT
+             objects (and again in two tasks, which must agree), bit 2 sets re_mesh_t.flat_sin to RE_FLAT_SIN_LIMIT
              2^-(a >> 4), bit 3 gives every triangle corner its own vertex
              and builds with re_mesh_t.weld
      then    queries of six bytes each, at most RFZ_MAX_QUERIES (a first
@@ -320,6 +320,33 @@ static void rfz_decode(const uint8_t *data, size_t size, rfz_case_t *k, rfz_in_t
     k->desc.radius_policy = flags & 4 ? RE_RADIUS_REJECT : RE_RADIUS_CLAMP;
 }
 
+/* A host's parallel-for that runs the tasks on this thread, last first. */
+static void rfz_reversed(void *user, unsigned count, re_task_fn task, void *task_ctx)
+{
+    (void)user;
+    while (count-- > 0) task(task_ctx, count);
+}
+
+/* Two objects built in two tasks (run last first) give the one-thread
+   build's result, diagnostic and counts. */
+static void rfz_check_tasks(const rfz_case_t *k, re_result_t rc, const re_diag_t *dg, const re_scene_t *s)
+{
+    re_scene_desc_t d = k->desc;
+    re_scene_t *p = NULL;
+    re_diag_t dp;
+    d.parallel = rfz_reversed, d.threads = 2;
+    if (re_build(&d, &p, &dp) != rc) RFZ_FAIL();
+    else if (rc != RE_OK) {
+        if (dp.result != dg->result || dp.object != dg->object || dp.element != dg->element || strcmp(dp.message, dg->message)) RFZ_FAIL();
+    } else if (p && s) {
+        re_stats_t a, b;
+        re_get_stats(s, &a);
+        re_get_stats(p, &b);
+        if (memcmp(&a, &b, sizeof a)) RFZ_FAIL();
+    }
+    re_free(p);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static rfz_case_t k;
@@ -331,6 +358,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     void *mem, *scratch;
     rfz_decode(data, size, &k, &in);
     rc = re_build(&k.desc, &s, &dg);
+    if (k.desc.object_count > 1) rfz_check_tasks(&k, rc, &dg, s);
     if (rc != RE_OK) {
         /* a failed build names what failed */
         if (s || dg.result != rc || !dg.message[0] || !re_result_string(rc)) RFZ_FAIL();

@@ -29,6 +29,38 @@ int ex_cpu_count(void)
     return n < 1 ? 1 : n > 1024 ? 1024 : (int)n;
 }
 
+typedef struct ex__call_t {
+    void (*fn)(void *ctx, unsigned i);
+    void *ctx;
+    unsigned i;
+} ex__call_t;
+
+static void *ex__call(void *p)
+{
+    ex__call_t *c = (ex__call_t *)p;
+    c->fn(c->ctx, c->i);
+    return NULL;
+}
+
+void ex_parallel_for(unsigned count, void (*fn)(void *ctx, unsigned i), void *ctx)
+{
+    pthread_t *th = count > 1 ? (pthread_t *)malloc(sizeof(pthread_t) * count) : NULL;
+    ex__call_t *call = count > 1 ? (ex__call_t *)malloc(sizeof(ex__call_t) * count) : NULL;
+    unsigned char *started = count > 1 ? (unsigned char *)calloc(count, 1) : NULL;
+    unsigned i;
+    for (i = 1; i < count; i++) {
+        if (th && call && started) {
+            call[i].fn = fn, call[i].ctx = ctx, call[i].i = i;
+            started[i] = pthread_create(&th[i], NULL, ex__call, &call[i]) == 0;
+        }
+        if (!started || !started[i]) fn(ctx, i);
+    }
+    if (count) fn(ctx, 0);
+    for (i = 1; i < count; i++)
+        if (started && started[i]) pthread_join(th[i], NULL);
+    free(th), free(call), free(started);
+}
+
 static void ex__render_tile(ex__render_job_t *job, int t)
 {
     const ex_render_desc_t *d = job->desc;

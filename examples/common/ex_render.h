@@ -39,6 +39,12 @@ int ex_render(const ex_render_desc_t *desc, ex_pixel_fn fn, void *user, float *r
 /* Number of online cores (at least 1). */
 int ex_cpu_count(void);
 
+/* Calls fn(ctx, i) once for each i in [0, count): i = 0 on this thread,
+   the others on threads of their own (on this thread when one cannot be
+   started); returns when every call has returned. A parallel-for for
+   libraries that take one (rounded_edges.h's re_scene_desc_t.parallel). */
+void ex_parallel_for(unsigned count, void (*fn)(void *ctx, unsigned i), void *ctx);
+
 #ifdef __cplusplus
 }
 #endif

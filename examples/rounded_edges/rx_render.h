@@ -127,11 +127,20 @@ static bool rx__memory_monitor(void *user, ssize_t bytes, bool post)
     return true;
 }
 
+/* Called from the build's threads (rx__build_round): counts atomically. */
 static void rx__count_report(void *user, const re_report_t *r)
 {
     if (r->kind == RE_REPORT_CONCAVE_EDGE || r->kind == RE_REPORT_MIXED_VERTEX ||
         r->kind == RE_REPORT_SHARP_PATCH_EDGE || r->kind == RE_REPORT_BOUNDARY_EDGE)
-        (*(long long *)user)++;
+        __atomic_add_fetch((long long *)user, 1, __ATOMIC_RELAXED);
+}
+
+/* re_parallel_fn over the examples' parallel-for: the objects are built on
+   every core. */
+static void rx__parallel(void *user, unsigned count, re_task_fn task, void *task_ctx)
+{
+    (void)user;
+    ex_parallel_for(count, task, task_ctx);
 }
 
 /* The rounding structure over the scene's rounded objects (float positions,
@@ -164,6 +173,8 @@ static int rx__build_round(rx_world_t *w)
     desc.report = rx__count_report;
     desc.report_user = &w->concave_reports;
     desc.layout = w->mode.kind == RX_ROUNDED && w->mode.n == 1 ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
+    desc.parallel = rx__parallel;
+    desc.threads = (unsigned)ex_cpu_count();
     rc = re_build(&desc, &w->round, &diag);
     free(meshes);
     if (rc != RE_OK) {
