@@ -21,7 +21,9 @@
    object per solid (box, block, sphere), re_build() on one thread and with
    desc.parallel on the machine's cores (FILIGREE_BENCH_THREADS overrides),
    wall clock, the three builds in turn, best of 7; gain = 1 thread /
-   threads; speedup 1 / n = paper ms / one object / threads.
+   threads; speedup 1 / n = paper ms / one object / threads; B/edge 1 / n
+   = bytes per rounded edge as one object / one object per solid (default
+   layout: every object has a header and its arrays' alignment).
    query ns = one re_query_uv() (the host passes its barycentrics, so a hit
    on a face's flat part is answered by the per-triangle bands). */
 #define RE_IMPLEMENTATION
@@ -297,7 +299,7 @@ static void threads_row(const scene_t *sc, unsigned threads, FILE *csv)
     re_mesh_t one, *parts = (re_mesh_t *)calloc(sc->n_parts, sizeof *parts);
     unsigned **idx = (unsigned **)calloc(sc->n_parts, sizeof *idx), p, j;
     re_scene_desc_t d1, dn, dp;
-    double best[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+    double best[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, bpe[2];
     int rep, mode;
     memset(&one, 0, sizeof one);
     one.positions = sc->m.v, one.vertex_count = sc->m.nv, one.indices = sc->m.idx, one.index_count = sc->m.ni, one.radius = sc->r;
@@ -322,12 +324,20 @@ static void threads_row(const scene_t *sc, unsigned threads, FILE *csv)
             double t = build_wall_ms(m == 0 ? &d1 : m == 1 ? &dn : &dp);
             if (t < best[m]) best[m] = t;
         }
-    printf("%-20s %8u %12.1f %12.1f %12.1f %9.2fx %9.0fx %9.0fx\n", sc->name, sc->n_parts, best[0], best[1], best[2], best[1] / best[2],
-           sc->paper_s * 1e3 / best[0], sc->paper_s * 1e3 / best[2]);
+    { /* the memory of many small objects: each has its header and its own arrays' alignment */
+        re_scene_t *s1 = NULL, *sn = NULL;
+        re_stats_t a, b;
+        if (re_build(&d1, &s1, NULL) != RE_OK || re_build(&dn, &sn, NULL) != RE_OK) exit(1);
+        re_get_stats(s1, &a), re_get_stats(sn, &b);
+        re_free(s1), re_free(sn);
+        bpe[0] = (double)a.bytes / (double)a.rounded_edges, bpe[1] = (double)b.bytes / (double)b.rounded_edges;
+    }
+    printf("%-20s %8u %12.1f %12.1f %12.1f %9.2fx %9.0fx %9.0fx %8.1f %8.1f\n", sc->name, sc->n_parts, best[0], best[1], best[2], best[1] / best[2],
+           sc->paper_s * 1e3 / best[0], sc->paper_s * 1e3 / best[2], bpe[0], bpe[1]);
     fflush(stdout);
     if (csv)
-        fprintf(csv, "%s,%u,%u,%.3f,%.3f,%.3f,%.3f,%.1f,%.1f\n", sc->name, sc->n_parts, threads, best[0], best[1], best[2], best[1] / best[2],
-                sc->paper_s * 1e3 / best[0], sc->paper_s * 1e3 / best[2]);
+        fprintf(csv, "%s,%u,%u,%.3f,%.3f,%.3f,%.3f,%.1f,%.1f,%.2f,%.2f\n", sc->name, sc->n_parts, threads, best[0], best[1], best[2], best[1] / best[2],
+                sc->paper_s * 1e3 / best[0], sc->paper_s * 1e3 / best[2], bpe[0], bpe[1]);
     for (p = 0; p < sc->n_parts; p++) free(idx[p]);
     free(idx), free(parts);
 }
@@ -465,9 +475,9 @@ int main(int argc, char **argv)
         unsigned threads = nt < 2 ? 2u : nt > RE_MAX_BUILD_TASKS ? (unsigned)RE_MAX_BUILD_TASKS : (unsigned)nt;
         snprintf(path, sizeof path, "%s/rounded_build_threads.csv", dir);
         csv = fopen(path, "w");
-        if (csv) fprintf(csv, "scene,objects,threads,one_object_ms,objects_1_thread_ms,objects_threads_ms,thread_gain,speedup_one_object,speedup_threads\n");
+        if (csv) fprintf(csv, "scene,objects,threads,one_object_ms,objects_1_thread_ms,objects_threads_ms,thread_gain,speedup_one_object,speedup_threads,bytes_per_rounded_edge_one_object,bytes_per_rounded_edge_objects\n");
         printf("\nbuild on the host's threads: re_build() wall-clock ms, best of 7 rounds (the three in turn); one object per solid, %u threads\n", threads);
-        printf("%-20s %8s %12s %12s %12s %10s %10s %10s\n", "scene", "objects", "one object", "1 thread", "threads", "gain", "speedup 1", "speedup n");
+        printf("%-20s %8s %12s %12s %12s %10s %10s %10s %8s %8s\n", "scene", "objects", "one object", "1 thread", "threads", "gain", "speedup 1", "speedup n", "B/edge 1", "B/edge n");
         for (k = 0; k < 4; k++) {
             fprintf(stderr, "  %s: threads\n", sc[k].name);
             threads_row(&sc[k], threads, csv);

@@ -254,7 +254,8 @@ typedef enum re_layout_t {
 /* Building objects on the host's threads (THREADS at the top). The host
    calls task(task_ctx, i) once for every i in [0, count), on its own
    threads, in any order and at the same time if it likes, and returns when
-   every call has returned: a thread pool's parallel-for. */
+   every call has returned: a thread pool's parallel-for. A task it skips
+   fails the build (RE_ERR_INVALID_ARG names it). */
 typedef void (*re_task_fn)(void *task_ctx, unsigned i);
 typedef void (*re_parallel_fn)(void *user, unsigned count, re_task_fn task, void *task_ctx);
 
@@ -3614,6 +3615,7 @@ static size_t re__header_bytes(unsigned n) { return RE__ALIGN(sizeof(re_scene_t)
    owns, in increasing order, through one scratch buffer of its own. */
 typedef struct re__task_t {
     re_result_t rc;
+    int ran;             /* the host called it */
     unsigned failed;     /* the object that failed (rc != RE_OK) */
     re_diag_t diag;
     size_t total, high;  /* sizing: the objects' bytes, the largest scratch use */
@@ -3689,6 +3691,7 @@ static void re__run_task(void *ctx, unsigned w)
     void *scratch = NULL;
     size_t cap = 0;
     unsigned i;
+    W->ran = 1;
     for (i = 0; i < desc->object_count; i++) {
         size_t b = re__owns(J, w, i) ? re__scratch_bound(&desc->objects[i]) : 0;
         if (b > cap) cap = b;
@@ -3745,6 +3748,15 @@ static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_
     J.desc = desc, J.S = S, J.owner = owner, J.task = task;
     if (k > 1) desc->parallel(desc->parallel_user, k, re__run_task, &J);
     else re__run_task(&J, 0);
+    for (w = 0; w < k; w++)
+        if (!task[w].ran) { /* a host parallel-for that skipped a task: its objects are missing */
+            if (task != &one) RE_FREE(task, desc->alloc_ctx);
+            diag->result = RE_ERR_INVALID_ARG;
+            diag->element = -1;
+            diag->object = 0;
+            snprintf(diag->message, sizeof diag->message, "desc.parallel returned without running task %u of %u", w, k);
+            return RE_ERR_INVALID_ARG;
+        }
     for (w = 0; w < k; w++) {
         if (task[w].rc != RE_OK && (rc == RE_OK || task[w].failed < first)) {
             rc = task[w].rc;

@@ -57,6 +57,7 @@ static void tp_free(void *p, void *ctx)
 typedef struct tp_host_t {
     int reverse;     /* run the tasks one after another, last first */
     unsigned count;  /* the count the build asked for */
+    int skip;        /* a broken host: never runs task skip - 1 */
 } tp_host_t;
 
 typedef struct tp_call_t {
@@ -81,7 +82,8 @@ static void tp_parallel(void *user, unsigned count, re_task_fn task, void *task_
     unsigned i;
     h->count = count;
     if (h->reverse) {
-        for (i = count; i-- > 0;) task(task_ctx, i);
+        for (i = count; i-- > 0;)
+            if ((int)i + 1 != h->skip) task(task_ctx, i);
         return;
     }
     for (i = 0; i < count; i++) {
@@ -227,7 +229,7 @@ static void parallel_build_equals_serial(void)
     if (!T_INT_EQ(re_build(&d, &s0, &dg), RE_OK)) { tp_scene_free(&S); return; }
     T_GT(s0->stats.rounded_edges, 1000);
     for (k = 0; k < sizeof threads / sizeof *threads; k++) {
-        tp_host_t host = {0, 0};
+        tp_host_t host = {0, 0, 0};
         tp_alloc_t *al = tp_alloc_new(0);
         re_scene_t *s1 = NULL;
         host.reverse = k == 4;
@@ -241,7 +243,7 @@ static void parallel_build_equals_serial(void)
     }
     /* threads 0 or 1, or no parallel hook: the calling thread */
     {
-        tp_host_t host = {0, 0};
+        tp_host_t host = {0, 0, 0};
         re_scene_t *s1 = NULL;
         d = tp_desc(S.mesh, TP_OBJECTS, &host, 1, NULL);
         T_INT_EQ(re_build(&d, &s1, &dg), RE_OK);
@@ -264,7 +266,7 @@ static void parallel_reports_match_serial(void)
     re_diag_t dg;
     int i, n_same = 0;
     unsigned objects_reported[TP_OBJECTS] = {0}, n_objects = 0;
-    tp_host_t host = {0, 0};
+    tp_host_t host = {0, 0, 0};
     tp_scene(&S);
     pthread_mutex_init(&R0.mu, NULL), pthread_mutex_init(&R1.mu, NULL);
     R0.n = R1.n = 0;
@@ -317,7 +319,7 @@ static void parallel_failure_names_lowest_object(void)
     T_INT_EQ(d0.object, 5);
     T_INT_EQ(d0.element, 2);
     for (k = 2; k <= 6; k += 2) {
-        tp_host_t host = {0, 0};
+        tp_host_t host = {0, 0, 0};
         tp_alloc_t *al = tp_alloc_new(0);
         re_sizes_t sz;
         host.reverse = k == 6;
@@ -338,6 +340,29 @@ static void parallel_failure_names_lowest_object(void)
     tp_scene_free(&S);
 }
 
+/* A host parallel-for that returns without running a task fails the build
+   and the size query by name, and leaves nothing allocated. */
+static void parallel_skipped_task_fails(void)
+{
+    static tp_scene_t S;
+    re_scene_desc_t d;
+    re_scene_t *s = NULL;
+    re_sizes_t sz;
+    re_diag_t dg;
+    tp_host_t host = {1, 0, 2};
+    tp_alloc_t *al = tp_alloc_new(0);
+    tp_scene(&S);
+    d = tp_desc(S.mesh, TP_OBJECTS, &host, 3, al);
+    T_INT_EQ(re_build(&d, &s, &dg), RE_ERR_INVALID_ARG);
+    T_CHECK(s == NULL);
+    T_CHECK(strstr(dg.message, "without running task 1 of 3") != NULL);
+    T_INT_EQ(re_build_sizes(&d, &sz, &dg), RE_ERR_INVALID_ARG);
+    T_INT_EQ(dg.result, RE_ERR_INVALID_ARG);
+    T_INT_EQ(al->live, 0);
+    free(al);
+    tp_scene_free(&S);
+}
+
 /* re_build_sizes() on threads gives the serial sizes, and re_build_into()
    with them the same scene. */
 static void parallel_sizes_equal_serial(void)
@@ -347,7 +372,7 @@ static void parallel_sizes_equal_serial(void)
     re_sizes_t z0, z1;
     re_scene_t *s0 = NULL, *s1 = NULL;
     re_diag_t dg;
-    tp_host_t host = {0, 0};
+    tp_host_t host = {0, 0, 0};
     void *mem, *scratch;
     tp_scene(&S);
     d = tp_desc(S.mesh, TP_OBJECTS, NULL, 0, NULL);
@@ -437,7 +462,7 @@ static void parallel_out_of_memory_leaves_nothing(void)
     tp_alloc_t *count = tp_alloc_new(0);
     re_scene_t *s = NULL;
     re_diag_t dg;
-    tp_host_t host = {0, 0};
+    tp_host_t host = {0, 0, 0};
     tp_scene(&S);
     d = tp_desc(S.mesh, 6, &host, 3, count);
     T_INT_EQ(re_build(&d, &s, &dg), RE_OK);
@@ -473,6 +498,7 @@ int main(int argc, char **argv)
         T_CASE(parallel_build_equals_serial),
         T_CASE(parallel_reports_match_serial),
         T_CASE(parallel_failure_names_lowest_object),
+        T_CASE(parallel_skipped_task_fails),
         T_CASE(parallel_sizes_equal_serial),
         T_CASE(parallel_tasks_share_the_objects_evenly),
         T_CASE(parallel_out_of_memory_leaves_nothing),
