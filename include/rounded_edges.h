@@ -856,8 +856,8 @@ typedef struct re__object_t {
     const unsigned *refs;
     const re__node_t *nodes;
     const unsigned short *leaf16; /* kd leaf lists (re__node_t) */
-    re_stats_t stats;
-    void *block; /* RE_MALLOC'd storage (re_build) or NULL */
+    size_t bytes; /* the block's size (the scene's stats hold the counts) */
+    void *block;  /* RE_MALLOC'd storage (re_build) or NULL */
 } re__object_t;
 
 struct re_scene_t {
@@ -3618,7 +3618,8 @@ typedef struct re__task_t {
     int ran;             /* the host called it */
     unsigned failed;     /* the object that failed (rc != RE_OK) */
     re_diag_t diag;
-    size_t total, high;  /* sizing: the objects' bytes, the largest scratch use */
+    re_stats_t st;       /* its objects' counts and bytes, summed */
+    size_t high;         /* sizing: the largest scratch use */
 } re__task_t;
 
 typedef struct re__tasks_t {
@@ -3667,8 +3668,9 @@ static re_result_t re__build_object(const re__tasks_t *J, re__task_t *W, unsigne
     }
     if (rc != RE_OK) return rc;
     need = re__object_bytes(&an, &F);
+    an.st.bytes = need;
+    re__add_stats(&W->st, &an.st);
     if (!J->S) {
-        W->total += need;
         if (ar.high + 16 > W->high) W->high = ar.high + 16;
         return RE_OK;
     }
@@ -3676,8 +3678,7 @@ static re_result_t re__build_object(const re__tasks_t *J, re__task_t *W, unsigne
     if (need && !J->S->objects[i].block) return RE_ERR_OUT_OF_MEMORY;
     re__advise_huge(J->S->objects[i].block, need);
     re__pack(&an, &F, (unsigned char *)J->S->objects[i].block, &J->S->objects[i]);
-    an.st.bytes = need;
-    J->S->objects[i].stats = an.st;
+    J->S->objects[i].bytes = need;
     return RE_OK;
 }
 
@@ -3725,8 +3726,9 @@ static re_result_t re__assign_tasks(const re_scene_desc_t *desc, unsigned k, uns
 
 /* Run the build (S) or the sizing (S NULL) of every object, on the host's
    threads when desc asks for it; on failure, the lowest failing object's
-   diagnostic goes to diag. Sizing sums into *total and *high. */
-static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_diag_t *diag, size_t *total, size_t *high)
+   diagnostic goes to diag. The objects' stats are added to *st; sizing
+   keeps the largest scratch use in *high. */
+static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_diag_t *diag, re_stats_t *st, size_t *high)
 {
     re__tasks_t J;
     re__task_t one, *task = &one;
@@ -3763,7 +3765,7 @@ static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_
             first = task[w].failed;
             *diag = task[w].diag;
         }
-        *total += task[w].total;
+        re__add_stats(st, &task[w].st);
         if (task[w].high > *high) *high = task[w].high;
     }
     if (rc == RE_ERR_OUT_OF_MEMORY) re__out_of_memory(diag, first);
@@ -3775,11 +3777,13 @@ RE_DEF re_result_t re_build_sizes(const re_scene_desc_t *desc, re_sizes_t *sizes
 {
     re_result_t rc = re__check_desc(desc, diag);
     re_diag_t dg;
-    size_t total = 0, high = 0;
+    re_stats_t st;
+    size_t high = 0;
     if (rc != RE_OK) return rc;
     if (!sizes) return RE_ERR_INVALID_ARG;
-    if ((rc = re__run_tasks(desc, NULL, diag ? diag : &dg, &total, &high)) != RE_OK) return rc;
-    sizes->scene_bytes = re__header_bytes(desc->object_count) + total;
+    memset(&st, 0, sizeof st);
+    if ((rc = re__run_tasks(desc, NULL, diag ? diag : &dg, &st, &high)) != RE_OK) return rc;
+    sizes->scene_bytes = re__header_bytes(desc->object_count) + st.bytes;
     sizes->scratch_bytes = high;
     return RE_OK;
 }
@@ -3817,7 +3821,7 @@ RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem, s
         re__pack(&an, &F, at, &S->objects[i]);
         at += need;
         an.st.bytes = need;
-        S->objects[i].stats = an.st;
+        S->objects[i].bytes = need;
         re__add_stats(&S->stats, &an.st);
     }
     S->stats.bytes = (size_t)(at - (unsigned char *)scene_mem);
@@ -3838,8 +3842,7 @@ RE_DEF re_result_t re_build(const re_scene_desc_t *desc, re_scene_t **scene, re_
 {
     re_result_t rc = re__check_desc(desc, diag);
     re_diag_t dg;
-    size_t hb, total = 0, high = 0;
-    unsigned i;
+    size_t hb, high = 0;
     re_scene_t *S;
     if (rc != RE_OK) return rc;
     if (!scene) return RE_ERR_INVALID_ARG;
@@ -3853,11 +3856,10 @@ RE_DEF re_result_t re_build(const re_scene_desc_t *desc, re_scene_t **scene, re_
     S->alloc_ctx = desc->alloc_ctx;
     S->owned = 1;
     S->stats.bytes = hb;
-    if ((rc = re__run_tasks(desc, S, diag ? diag : &dg, &total, &high)) != RE_OK) {
+    if ((rc = re__run_tasks(desc, S, diag ? diag : &dg, &S->stats, &high)) != RE_OK) {
         re_free(S);
         return rc;
     }
-    for (i = 0; i < desc->object_count; i++) re__add_stats(&S->stats, &S->objects[i].stats);
     *scene = S;
     return RE_OK;
 }

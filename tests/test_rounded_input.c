@@ -646,7 +646,7 @@ static void large_build_with_huge_pages_matches_into(void)
             size_t lo, hi;
             char flags[256];
             fclose(thp);
-            re__huge_range((size_t)s0->objects[0].block, s0->objects[0].stats.bytes, &lo, &hi);
+            re__huge_range((size_t)s0->objects[0].block, s0->objects[0].bytes, &lo, &hi);
             T_CHECK(hi > lo);
             mapping_flags(lo, flags, sizeof flags);
             if (!strstr(flags, " hg")) T_FAIL("scene block at %#zx: VmFlags '%s' lack hg (no huge-page advice)", lo, flags);
