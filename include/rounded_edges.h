@@ -3579,6 +3579,20 @@ static void re__add_stats(re_stats_t *a, const re_stats_t *b)
     a->bytes += b->bytes;
 }
 
+/* A failure of the build as a whole, or of one object with no element to
+   name (object < 0: none): the diagnostic, and the code to return. */
+static re_result_t re__build_fail(re_diag_t *diag, re_result_t r, long long object, const char *msg)
+{
+    if (diag) {
+        diag->result = r;
+        diag->element = -1;
+        diag->object = object < 0 ? 0u : (unsigned)object;
+        if (object < 0) snprintf(diag->message, sizeof diag->message, "%s", msg);
+        else snprintf(diag->message, sizeof diag->message, "object %u: %.140s", (unsigned)object, msg);
+    }
+    return r;
+}
+
 static re_result_t re__check_desc(const re_scene_desc_t *desc, re_diag_t *diag)
 {
     if (diag) {
@@ -3590,21 +3604,11 @@ static re_result_t re__check_desc(const re_scene_desc_t *desc, re_diag_t *diag)
     if (!desc || (desc->object_count && !desc->objects) || desc->object_count >= 0x10000000u ||
         (desc->radius_policy != RE_RADIUS_CLAMP && desc->radius_policy != RE_RADIUS_REJECT) ||
         (desc->bad_input != RE_BAD_INPUT_REJECT && desc->bad_input != RE_BAD_INPUT_SKIP) ||
-        (desc->layout != RE_LAYOUT_FAST && desc->layout != RE_LAYOUT_COMPACT)) {
-        if (diag) {
-            diag->result = RE_ERR_INVALID_ARG;
-            snprintf(diag->message, sizeof diag->message, "NULL desc/objects or an unknown policy or layout value");
-        }
-        return RE_ERR_INVALID_ARG;
-    }
+        (desc->layout != RE_LAYOUT_FAST && desc->layout != RE_LAYOUT_COMPACT))
+        return re__build_fail(diag, RE_ERR_INVALID_ARG, -1, "NULL desc/objects or an unknown policy or layout value");
 #ifdef RE_NO_COMPACT
-    if (desc->layout == RE_LAYOUT_COMPACT) {
-        if (diag) {
-            diag->result = RE_ERR_INVALID_ARG;
-            snprintf(diag->message, sizeof diag->message, "RE_LAYOUT_COMPACT is compiled out (RE_NO_COMPACT)");
-        }
-        return RE_ERR_INVALID_ARG;
-    }
+    if (desc->layout == RE_LAYOUT_COMPACT)
+        return re__build_fail(diag, RE_ERR_INVALID_ARG, -1, "RE_LAYOUT_COMPACT is compiled out (RE_NO_COMPACT)");
 #endif
     return RE_OK;
 }
@@ -3628,19 +3632,6 @@ typedef struct re__tasks_t {
     const unsigned char *owner; /* each object's task; NULL: one task */
     re__task_t *task;
 } re__tasks_t;
-
-/* The allocator returned NULL: there is no element to name. */
-static re_result_t re__out_of_memory(re_diag_t *diag, long long object)
-{
-    if (diag) {
-        diag->result = RE_ERR_OUT_OF_MEMORY;
-        diag->element = -1;
-        diag->object = object < 0 ? 0u : (unsigned)object;
-        if (object < 0) snprintf(diag->message, sizeof diag->message, "out of memory");
-        else snprintf(diag->message, sizeof diag->message, "object %u: out of memory", (unsigned)object);
-    }
-    return RE_ERR_OUT_OF_MEMORY;
-}
 
 static int re__owns(const re__tasks_t *J, unsigned w, unsigned i) { return !J->owner || J->owner[i] == w; }
 
@@ -3739,11 +3730,11 @@ static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_
     if (k > RE_MAX_BUILD_TASKS) k = RE_MAX_BUILD_TASKS;
     if (k > 1) {
         size_t tb = RE__ALIGN(sizeof(re__task_t) * k);
-        if (!(task = (re__task_t *)RE_MALLOC(tb + desc->object_count, desc->alloc_ctx))) return re__out_of_memory(diag, -1);
+        if (!(task = (re__task_t *)RE_MALLOC(tb + desc->object_count, desc->alloc_ctx))) return re__build_fail(diag, RE_ERR_OUT_OF_MEMORY, -1, "out of memory");
         owner = (unsigned char *)task + tb;
         if ((rc = re__assign_tasks(desc, k, owner)) != RE_OK) {
             RE_FREE(task, desc->alloc_ctx);
-            return re__out_of_memory(diag, -1);
+            return re__build_fail(diag, RE_ERR_OUT_OF_MEMORY, -1, "out of memory");
         }
     } else k = 1;
     memset(task, 0, sizeof *task * k);
@@ -3752,12 +3743,10 @@ static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_
     else re__run_task(&J, 0);
     for (w = 0; w < k; w++)
         if (!task[w].ran) { /* a host parallel-for that skipped a task: its objects are missing */
+            char msg[80];
+            snprintf(msg, sizeof msg, "desc.parallel returned without running task %u of %u", w, k);
             if (task != &one) RE_FREE(task, desc->alloc_ctx);
-            diag->result = RE_ERR_INVALID_ARG;
-            diag->element = -1;
-            diag->object = 0;
-            snprintf(diag->message, sizeof diag->message, "desc.parallel returned without running task %u of %u", w, k);
-            return RE_ERR_INVALID_ARG;
+            return re__build_fail(diag, RE_ERR_INVALID_ARG, -1, msg);
         }
     for (w = 0; w < k; w++) {
         if (task[w].rc != RE_OK && (rc == RE_OK || task[w].failed < first)) {
@@ -3768,7 +3757,7 @@ static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_
         re__add_stats(st, &task[w].st);
         if (task[w].high > *high) *high = task[w].high;
     }
-    if (rc == RE_ERR_OUT_OF_MEMORY) re__out_of_memory(diag, first);
+    if (rc == RE_ERR_OUT_OF_MEMORY) re__build_fail(diag, rc, first, "out of memory");
     if (task != &one) RE_FREE(task, desc->alloc_ctx);
     return rc;
 }
@@ -3849,7 +3838,7 @@ RE_DEF re_result_t re_build(const re_scene_desc_t *desc, re_scene_t **scene, re_
     *scene = NULL;
     hb = re__header_bytes(desc->object_count);
     S = (re_scene_t *)RE_MALLOC(hb, desc->alloc_ctx);
-    if (!S) return re__out_of_memory(diag, -1);
+    if (!S) return re__build_fail(diag, RE_ERR_OUT_OF_MEMORY, -1, "out of memory");
     memset(S, 0, hb);
     S->n_objects = desc->object_count;
     S->objects = (re__object_t *)((unsigned char *)S + RE__ALIGN(sizeof(re_scene_t)));
