@@ -965,15 +965,22 @@ typedef struct re__an_t {
     double flat_k;    /* RE__FLAT_ROUNDINGS eps M L of the object (re__coplanar) */
 } re__an_t;
 
-static re_result_t re__fail(re__an_t *an, re_result_t r, long long element, const char *msg)
+/* Fill the diagnostic (if any) and return r: object < 0 for the build as a
+   whole (the message as it is), element -1 when there is none to name. */
+static re_result_t re__diag_fail(re_diag_t *diag, re_result_t r, long long object, long long element, const char *msg)
 {
-    if (an->diag) {
-        an->diag->result = r;
-        an->diag->element = element;
-        an->diag->object = an->obj;
-        snprintf(an->diag->message, sizeof an->diag->message, "object %u: %.138s", an->obj, msg);
+    if (diag) {
+        diag->result = r;
+        diag->element = element;
+        diag->object = object < 0 ? 0u : (unsigned)object;
+        if (object < 0) snprintf(diag->message, sizeof diag->message, "%s", msg);
+        else snprintf(diag->message, sizeof diag->message, "object %u: %.138s", (unsigned)object, msg);
     }
     return r;
+}
+static re_result_t re__fail(re__an_t *an, re_result_t r, long long element, const char *msg)
+{
+    return re__diag_fail(an->diag, r, an->obj, element, msg);
 }
 
 static void re__report(re__an_t *an, re_report_kind_t kind, long long e1, long long e2,
@@ -3579,20 +3586,6 @@ static void re__add_stats(re_stats_t *a, const re_stats_t *b)
     a->bytes += b->bytes;
 }
 
-/* A failure of the build as a whole, or of one object with no element to
-   name (object < 0: none): the diagnostic, and the code to return. */
-static re_result_t re__build_fail(re_diag_t *diag, re_result_t r, long long object, const char *msg)
-{
-    if (diag) {
-        diag->result = r;
-        diag->element = -1;
-        diag->object = object < 0 ? 0u : (unsigned)object;
-        if (object < 0) snprintf(diag->message, sizeof diag->message, "%s", msg);
-        else snprintf(diag->message, sizeof diag->message, "object %u: %.140s", (unsigned)object, msg);
-    }
-    return r;
-}
-
 static re_result_t re__check_desc(const re_scene_desc_t *desc, re_diag_t *diag)
 {
     if (diag) {
@@ -3605,10 +3598,10 @@ static re_result_t re__check_desc(const re_scene_desc_t *desc, re_diag_t *diag)
         (desc->radius_policy != RE_RADIUS_CLAMP && desc->radius_policy != RE_RADIUS_REJECT) ||
         (desc->bad_input != RE_BAD_INPUT_REJECT && desc->bad_input != RE_BAD_INPUT_SKIP) ||
         (desc->layout != RE_LAYOUT_FAST && desc->layout != RE_LAYOUT_COMPACT))
-        return re__build_fail(diag, RE_ERR_INVALID_ARG, -1, "NULL desc/objects or an unknown policy or layout value");
+        return re__diag_fail(diag, RE_ERR_INVALID_ARG, -1, -1, "NULL desc/objects or an unknown policy or layout value");
 #ifdef RE_NO_COMPACT
     if (desc->layout == RE_LAYOUT_COMPACT)
-        return re__build_fail(diag, RE_ERR_INVALID_ARG, -1, "RE_LAYOUT_COMPACT is compiled out (RE_NO_COMPACT)");
+        return re__diag_fail(diag, RE_ERR_INVALID_ARG, -1, -1, "RE_LAYOUT_COMPACT is compiled out (RE_NO_COMPACT)");
 #endif
     return RE_OK;
 }
@@ -3646,8 +3639,10 @@ static re_result_t re__build_object(const re__tasks_t *J, re__task_t *W, unsigne
     re_result_t rc;
     size_t need;
     for (;;) {
-        if (!*scratch && !(*scratch = RE_MALLOC(*cap, desc->alloc_ctx))) return RE_ERR_OUT_OF_MEMORY;
-        re__advise_huge(*scratch, *cap);
+        if (!*scratch) { /* fresh (advised once), else the previous object's */
+            if (!(*scratch = RE_MALLOC(*cap, desc->alloc_ctx))) return RE_ERR_OUT_OF_MEMORY;
+            re__advise_huge(*scratch, *cap);
+        }
         ar.base = (unsigned char *)*scratch;
         ar.cap = *cap;
         ar.used = ar.high = 0;
@@ -3730,11 +3725,11 @@ static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_
     if (k > RE_MAX_BUILD_TASKS) k = RE_MAX_BUILD_TASKS;
     if (k > 1) {
         size_t tb = RE__ALIGN(sizeof(re__task_t) * k);
-        if (!(task = (re__task_t *)RE_MALLOC(tb + desc->object_count, desc->alloc_ctx))) return re__build_fail(diag, RE_ERR_OUT_OF_MEMORY, -1, "out of memory");
+        if (!(task = (re__task_t *)RE_MALLOC(tb + desc->object_count, desc->alloc_ctx))) return re__diag_fail(diag, RE_ERR_OUT_OF_MEMORY, -1, -1, "out of memory");
         owner = (unsigned char *)task + tb;
         if ((rc = re__assign_tasks(desc, k, owner)) != RE_OK) {
             RE_FREE(task, desc->alloc_ctx);
-            return re__build_fail(diag, RE_ERR_OUT_OF_MEMORY, -1, "out of memory");
+            return re__diag_fail(diag, RE_ERR_OUT_OF_MEMORY, -1, -1, "out of memory");
         }
     } else k = 1;
     memset(task, 0, sizeof *task * k);
@@ -3746,7 +3741,7 @@ static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_
             char msg[80];
             snprintf(msg, sizeof msg, "desc.parallel returned without running task %u of %u", w, k);
             if (task != &one) RE_FREE(task, desc->alloc_ctx);
-            return re__build_fail(diag, RE_ERR_INVALID_ARG, -1, msg);
+            return re__diag_fail(diag, RE_ERR_INVALID_ARG, -1, -1, msg);
         }
     for (w = 0; w < k; w++) {
         if (task[w].rc != RE_OK && (rc == RE_OK || task[w].failed < first)) {
@@ -3757,7 +3752,7 @@ static re_result_t re__run_tasks(const re_scene_desc_t *desc, re_scene_t *S, re_
         re__add_stats(st, &task[w].st);
         if (task[w].high > *high) *high = task[w].high;
     }
-    if (rc == RE_ERR_OUT_OF_MEMORY) re__build_fail(diag, rc, first, "out of memory");
+    if (rc == RE_ERR_OUT_OF_MEMORY) re__diag_fail(diag, rc, first, -1, "out of memory");
     if (task != &one) RE_FREE(task, desc->alloc_ctx);
     return rc;
 }
@@ -3838,7 +3833,7 @@ RE_DEF re_result_t re_build(const re_scene_desc_t *desc, re_scene_t **scene, re_
     *scene = NULL;
     hb = re__header_bytes(desc->object_count);
     S = (re_scene_t *)RE_MALLOC(hb, desc->alloc_ctx);
-    if (!S) return re__build_fail(diag, RE_ERR_OUT_OF_MEMORY, -1, "out of memory");
+    if (!S) return re__diag_fail(diag, RE_ERR_OUT_OF_MEMORY, -1, -1, "out of memory");
     memset(S, 0, hb);
     S->n_objects = desc->object_count;
     S->objects = (re__object_t *)((unsigned char *)S + RE__ALIGN(sizeof(re_scene_t)));
