@@ -8,7 +8,9 @@
    (and their offsets miss one common point) the corner gets the spheres and
    short extra cylinders of the local eroded polytope, not one cracked sphere.
    Concave edges, open boundaries and mixed vertices stay sharp and are
-   reported. Details, limits and measurements: docs/rounded_edges.md.
+   reported. Solids that touch at a shared vertex or edge (voxel art,
+   welded parts) are rounded each on its own. Details, limits and
+   measurements: docs/rounded_edges.md.
 
    INTEGRATION WITH A HOST RAY TRACER
      1. Build once: fill re_mesh_t per object (the same vertices/triangles the
@@ -165,7 +167,9 @@ typedef struct re_mesh_t {
                                    in the scene. Triangle
                                    ids, and what the host traces, do not
                                    change. Reports name the first vertex at
-                                   a position. */
+                                   a position. Solids that then share a
+                                   vertex or an edge round each on its own
+                                   (docs: construction, step 2a). */
     double flat_sin;            /* 0 (default): automatic. Else the sine of the
                                    angle between two faces' normals at or below
                                    which their edge is flat (the faces are one
@@ -302,9 +306,10 @@ typedef struct re_stats_t {
     unsigned long long flat_edges, convex_edges, concave_edges, boundary_edges,
         nonmanifold_edges;
     unsigned long long rounded_edges;      /* convex edges that got a cylinder */
-    unsigned long long rounded_corners;    /* mesh vertices with a rounded corner (a vertex
-                                              inside a straight chain, on its cylinder, has
-                                              none: see re_cylinder_t) */
+    unsigned long long rounded_corners;    /* mesh vertices with a rounded corner, once per
+                                              solid where solids touch (a vertex inside a
+                                              straight chain, on its cylinder, has none: see
+                                              re_cylinder_t) */
     unsigned long long mixed_vertices;
     unsigned long long spheres, cylinders; /* cylinders include the extra ones */
     unsigned long long extra_cylinders;    /* exact-corner cylinders (degree >= 4) */
@@ -410,7 +415,8 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit,
 typedef struct re_sphere_t {
     double center[3];
     double radius;
-    unsigned vertex; /* mesh vertex of the corner it belongs to */
+    unsigned vertex; /* mesh vertex of the corner it belongs to (where solids
+                        touch at a vertex, each solid's corner names it) */
 } re_sphere_t;
 
 typedef struct re_cylinder_t {
@@ -935,6 +941,12 @@ typedef struct re__an_t {
     int sizing; /* re_build_sizes(): steps whose output has a fixed size only take their scratch */
     re_diag_t *diag;
     unsigned V, T, E;
+    unsigned V0;            /* the mesh's vertex count: ids from V0 on are fans split off (step 2a) */
+    const unsigned *vorig;  /* per split-off vertex (id - V0): the mesh vertex it was, NULL if none */
+    int fins;               /* some edge has more than two triangles (step 2) */
+    int fans_split;         /* step 2a ran */
+    int fans_wanted;        /* step 4 found a vertex with several fans before step 2a ran */
+    unsigned char *vwhy;    /* per vertex: why step 4 left it sharp (RE__WHY_*), reported by re__corner_reports */
     const double *pos; /* 3 per vertex: the caller's array itself when it is packed doubles */
     unsigned *tri, *tsrc, *tplane;
     double *tn, *tarea;
@@ -964,6 +976,10 @@ typedef struct re__an_t {
     double origin[3]; /* bounding-box centre */
     double flat_k;    /* RE__FLAT_ROUNDINGS eps M L of the object (re__coplanar) */
 } re__an_t;
+
+/* The mesh's id of analysis vertex v (step 2a splits vertices): every
+   report, diagnostic and enumeration names mesh vertices. */
+static unsigned re__vid(const re__an_t *an, unsigned v) { return v < an->V0 ? v : an->vorig[v - an->V0]; }
 
 /* Fill the diagnostic (if any) and return r: object < 0 for the build as a
    whole (the message as it is), element -1 when there is none to name. */
@@ -1393,13 +1409,14 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
                 ed->cls = RE__E_BOUNDARY;
             } else if (ed->count > 2) {
                 ed->cls = RE__E_NONMANIFOLD;
+                an->fins = 1;
             } else {
                 unsigned h0 = ed->he[0], h1 = ed->he[1];
                 unsigned t0 = h0 / 3, t1 = h1 / 3;
                 unsigned a0 = an->tri[3 * t0 + h0 % 3], a1 = an->tri[3 * t1 + h1 % 3];
                 if (a0 == a1) {
                     snprintf(msg, sizeof msg, "triangles %u and %u run through edge %u-%u the same way (inconsistent winding)",
-                             t0, t1, i, hi);
+                             t0, t1, re__vid(an, i), re__vid(an, hi));
                     if (an->desc->bad_input != RE_BAD_INPUT_SKIP)
                         return re__fail(an, RE_ERR_INCONSISTENT_WINDING, t1, msg);
                     ed->cls = RE__E_NONMANIFOLD;
@@ -1414,37 +1431,195 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
         }
     }
     an->E = E;
-    an->st.edges += E;
-    if (widened) {
-        re_result_t rc = re__flat_chains(an, ar);
-        if (rc != RE_OK) return rc;
-    }
-    for (i = 0; i < E; i++) {
+    ar->used = mark;
+    if (widened) return re__flat_chains(an, ar);
+    return RE_OK;
+}
+
+/* Step 2's counts and reports, once the edges are final (after step 2a). */
+static void re__edge_reports(re__an_t *an)
+{
+    unsigned i;
+    char msg[160];
+    an->st.edges += an->E;
+    for (i = 0; i < an->E; i++) {
         const re__edge_t *ed = &an->edges[i];
+        unsigned a = re__vid(an, ed->v[0]), b = re__vid(an, ed->v[1]);
         switch (ed->cls) {
         case RE__E_FLAT: an->st.flat_edges++; break;
         case RE__E_CONVEX: an->st.convex_edges++; break;
         case RE__E_CONCAVE:
             an->st.concave_edges++;
-            snprintf(msg, sizeof msg, "edge %u-%u is concave: left sharp", ed->v[0], ed->v[1]);
-            re__report(an, RE_REPORT_CONCAVE_EDGE, ed->v[0], ed->v[1], 0.0, msg);
+            snprintf(msg, sizeof msg, "edge %u-%u is concave: left sharp", a, b);
+            re__report(an, RE_REPORT_CONCAVE_EDGE, a, b, 0.0, msg);
             break;
         case RE__E_BOUNDARY:
             an->st.boundary_edges++;
-            snprintf(msg, sizeof msg, "edge %u-%u is a boundary (open mesh%s): left sharp", ed->v[0], ed->v[1],
+            snprintf(msg, sizeof msg, "edge %u-%u is a boundary (open mesh%s): left sharp", a, b,
                      an->m->weld ? "" : ", or vertices repeated per face: see re_mesh_t.weld");
-            re__report(an, RE_REPORT_BOUNDARY_EDGE, ed->v[0], ed->v[1], 0.0, msg);
+            re__report(an, RE_REPORT_BOUNDARY_EDGE, a, b, 0.0, msg);
             break;
         default:
             an->st.nonmanifold_edges++;
             snprintf(msg, sizeof msg, "edge %u-%u is non-manifold (%u triangles) or inconsistently wound: left sharp",
-                     ed->v[0], ed->v[1], ed->count);
-            re__report(an, RE_REPORT_NONMANIFOLD_EDGE, ed->v[0], ed->v[1], 0.0, msg);
+                     a, b, ed->count);
+            re__report(an, RE_REPORT_NONMANIFOLD_EDGE, a, b, 0.0, msg);
             break;
         }
     }
+}
+
+/* Step 2a: one vertex per fan. Solids that touch at a vertex (voxel art's
+   diagonal neighbours; touching parts welded with re_mesh_t.weld) share it,
+   and a vertex with several fans has no corner: it would stay sharp, and
+   with it (step 5) both solids' whole patches. A vertex whose triangles
+   form several fans, each closed, becomes one vertex per fan: the fan of
+   its first triangle corner keeps the id, the others get ids from V on,
+   which re__vid() maps back to it. The fans are the classes of the
+   vertex's triangle corners joined across its manifold edges and across
+   the pairs re__pair_fins() finds on edges of more than two triangles
+   (solids touching along an edge). A fan is closed when each of its
+   corners' two edges at the vertex is manifold or paired; the edges
+   paired up are manifold once their ends are split (step 2 runs
+   again). A vertex with an open fan (an open mesh, a fin) stays as it
+   is. Runs only when there is something to find:
+   after step 2 when an edge has more than two triangles, else when step 4
+   walks a fan that does not go all around its vertex (free for the common
+   mesh, which has neither; step 4 then runs again). */
+static unsigned re__corner_at(const re__an_t *an, unsigned t, unsigned v)
+{
+    const unsigned *tr = an->tri + 3 * (size_t)t;
+    return 3 * t + (tr[0] == v ? 0u : tr[1] == v ? 1u : 2u);
+}
+static int re__joins_fans(const re__edge_t *ed) { return ed->count == 2 && ed->cls != RE__E_NONMANIFOLD; }
+enum { RE__FANS_ONE, RE__FANS_SPLIT, RE__FANS_OPEN }; /* per vertex in re__split_fans */
+
+/* Step 2a on an edge of more than two triangles (solids touching along
+   it): its triangles, in angle order around it, pair up as the solids they
+   bound, and the corners of each pair are joined at both its ends as if
+   the pair were the edge's only triangles. Around a closed solid's edge
+   its two triangles run it opposite ways, and seen along the edge (v[0]
+   to v[1]) the one running it forward has its solid turning clockwise
+   from it: its partner is the one before it. An edge whose triangles do
+   not alternate (a fin, a book) or lie at one angle pairs nothing. The
+   half-edges paired are marked in `paired`. */
+#define RE__MAX_FIN 64 /* triangles on one edge, at most, for the pairing */
+static void re__pair_fin(const re__an_t *an, unsigned *uf, unsigned char *paired, const unsigned *list, unsigned n)
+{
+    const re__edge_t *ed = &an->edges[an->he_edge[list[0]]];
+    const double *a = an->pos + 3 * (size_t)ed->v[0], *b = an->pos + 3 * (size_t)ed->v[1];
+    double e[3], u1[3], u2[3], ax[3] = {0, 0, 0}, ang[RE__MAX_FIN];
+    unsigned h[RE__MAX_FIN], i, j, k;
+    if (n % 2 || n > RE__MAX_FIN) return;
+    re__sub(b, a, e);
+    k = fabs(e[0]) <= fabs(e[1]) && fabs(e[0]) <= fabs(e[2]) ? 0u : fabs(e[1]) <= fabs(e[2]) ? 1u : 2u;
+    ax[k] = 1;
+    re__cross(e, ax, u1);
+    re__cross(e, u1, u2);
+    for (i = 0; i < n; i++) { /* insertion sort by the angle of the third corner around the edge */
+        unsigned hh = list[i], t = hh / 3;
+        const double *c = an->pos + 3 * (size_t)an->tri[3 * t + (hh % 3 + 2) % 3];
+        double w[3], x;
+        re__sub(c, a, w);
+        x = atan2(re__dot(w, u2), re__dot(w, u1));
+        for (j = i; j > 0 && ang[j - 1] > x; j--) ang[j] = ang[j - 1], h[j] = h[j - 1];
+        ang[j] = x, h[j] = hh;
+    }
+    for (i = 0; i < n; i++) {
+        int fwd = an->tri[h[i]] == ed->v[0], prev_fwd = an->tri[h[(i + n - 1) % n]] == ed->v[0];
+        if (fwd == prev_fwd || ang[i] == ang[(i + n - 1) % n]) return;
+    }
+    for (i = 0; i < n; i++) {
+        unsigned p = h[(i + n - 1) % n];
+        if (an->tri[h[i]] != ed->v[0]) continue;
+        for (k = 0; k < 2; k++) re__uf_join(uf, re__corner_at(an, h[i] / 3, ed->v[k]), re__corner_at(an, p / 3, ed->v[k]));
+        paired[h[i]] = paired[p] = 1;
+    }
+}
+/* re__pair_fin() on every edge of more than two triangles, its half-edges
+   bucketed by edge. */
+static re_result_t re__pair_fins(re__an_t *an, re__arena_t *ar, unsigned *uf, unsigned char *paired)
+{
+    unsigned N = 3 * an->T, E = an->E, c, i, *off, *list;
+    size_t mark = ar->used;
+    RE__TAKE(off, unsigned, (size_t)E + 1);
+    memset(off, 0, sizeof(unsigned) * ((size_t)E + 1));
+    for (c = 0; c < N; c++)
+        if (!an->tbad[c / 3] && an->edges[an->he_edge[c]].count > 2) off[an->he_edge[c] + 1]++;
+    for (i = 0; i < E; i++) off[i + 1] += off[i];
+    RE__TAKE(list, unsigned, off[E]);
+    for (c = 0; c < N; c++)
+        if (!an->tbad[c / 3] && an->edges[an->he_edge[c]].count > 2) list[off[an->he_edge[c]]++] = c;
+    for (i = 0; i < E; i++) /* off[i] is now the end of edge i's half-edges, which start at the end of i - 1's */
+        if (an->edges[i].count > 2) re__pair_fin(an, uf, paired, list + (i ? off[i - 1] : 0), an->edges[i].count);
     ar->used = mark;
     return RE_OK;
+}
+
+static re_result_t re__split_fans(re__an_t *an, re__arena_t *ar)
+{
+    unsigned T = an->T, V = an->V, N = 3 * T, c, i, j, n_split = 0, n_new = 0, *uf, *first, *fan_id, *vorig;
+    unsigned char *state, *paired;
+    double *pos;
+    size_t mark = ar->used;
+    re_result_t rc;
+    an->fans_split = 1;
+    RE__TAKE(uf, unsigned, N);
+    for (c = 0; c < N; c++) uf[c] = c;
+    for (i = 0; i < an->E; i++) {
+        const re__edge_t *ed = &an->edges[i];
+        if (!re__joins_fans(ed)) continue;
+        for (j = 0; j < 2; j++)
+            re__uf_join(uf, re__corner_at(an, ed->he[0] / 3, ed->v[j]), re__corner_at(an, ed->he[1] / 3, ed->v[j]));
+    }
+    RE__TAKE(paired, unsigned char, N);
+    memset(paired, 0, N);
+    if (an->fins && (rc = re__pair_fins(an, ar, uf, paired)) != RE_OK) return rc;
+    RE__TAKE(first, unsigned, V);
+    RE__TAKE(state, unsigned char, V);
+    memset(first, 0xFF, sizeof(unsigned) * V);
+    memset(state, RE__FANS_ONE, V);
+    for (c = 0; c < N; c++) {
+        unsigned v = an->tri[c], r;
+        if (an->tbad[c / 3]) continue;
+        r = re__uf_find(uf, c);
+        if (first[v] == RE__NONE) first[v] = r;
+        else if (first[v] != r && state[v] == RE__FANS_ONE) state[v] = RE__FANS_SPLIT, n_split++;
+    }
+    if (!n_split) {
+        ar->used = mark;
+        return RE_OK;
+    }
+    for (c = 0; c < N; c++) { /* closed: both half-edges of every corner joined to a neighbour */
+        unsigned v = an->tri[c], q;
+        if (an->tbad[c / 3] || state[v] != RE__FANS_SPLIT) continue;
+        for (q = 0; q < 2; q++) { /* the half-edge leaving v, the one arriving */
+            unsigned h = q ? (c % 3 ? c - 1 : c + 2) : c;
+            if (!re__joins_fans(&an->edges[an->he_edge[h]]) && !paired[h]) state[v] = RE__FANS_OPEN;
+        }
+    }
+    RE__TAKE(fan_id, unsigned, N);
+    RE__TAKE(vorig, unsigned, N);
+    for (c = 0; c < N; c++) {
+        unsigned v = an->tri[c], r;
+        if (an->tbad[c / 3] || state[v] != RE__FANS_SPLIT) continue;
+        r = re__uf_find(uf, c);
+        if (r == first[v]) continue;
+        if (r == c) { /* a fan's lowest corner is its root (re__uf_join keeps the lower) */
+            if ((unsigned long long)V + n_new >= 0x7FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many vertices");
+            vorig[n_new] = v;
+            fan_id[c] = V + n_new++;
+        }
+        an->tri[c] = fan_id[r];
+    }
+    if (!n_new) return RE_OK;
+    RE__TAKE(pos, double, 3 * ((size_t)V + n_new));
+    memcpy(pos, an->pos, sizeof(double) * 3 * (size_t)V);
+    for (i = 0; i < n_new; i++) memcpy(pos + 3 * ((size_t)V + i), an->pos + 3 * (size_t)vorig[i], sizeof(double) * 3);
+    an->pos = pos;
+    an->vorig = vorig;
+    an->V = V + n_new;
+    return re__edges(an, ar); /* the same edges, their ends split (the step's scratch stays taken) */
 }
 
 /* Step 3: face planes = groups of triangles joined by flat edges; the
@@ -1748,19 +1923,47 @@ static int re__erode_corner(re__an_t *an, unsigned c)
     return 1;
 }
 
+/* Why step 4 left a vertex sharp (re__an_t.vwhy). */
+enum { RE__WHY_NONE, RE__WHY_MIXED, RE__WHY_FANS, RE__WHY_COMPLEX, RE__WHY_NOT_SIMPLE, RE__WHY_ERODE };
+
+/* The fan around vertex v (deg edges) from the first triangle of its
+   first edge, crossing in each triangle t the edge that arrives at v: its
+   size, 0 when it reaches an edge of other than two triangles or runs
+   past deg. Its triangles and those half-edges go to tfan and hfan when
+   they are not NULL. */
+static unsigned re__walk_fan(const re__an_t *an, unsigned v, unsigned deg, unsigned *tfan, unsigned *hfan)
+{
+    unsigned t0 = an->edges[an->vinc[an->voff[v]]].he[0] / 3, t = t0, m = 0;
+    do {
+        const unsigned *tr = an->tri + 3 * (size_t)t;
+        unsigned h = 3 * t + (tr[0] == v ? 2u : tr[1] == v ? 0u : 1u);
+        const re__edge_t *ed = &an->edges[an->he_edge[h]];
+        if (m == deg || ed->count != 2) return 0;
+        if (tfan) tfan[m] = t, hfan[m] = h;
+        m++;
+        t = (ed->he[0] == h ? ed->he[1] : ed->he[0]) / 3;
+    } while (t != t0);
+    return m;
+}
+
 /* Step 4: vertices. A corner candidate has only flat and convex edges, at
    least one convex, and a single closed fan; its distinct planes in fan
-   order are eroded by re__erode_corner(). Mixed vertices stay sharp. */
+   order are eroded by re__erode_corner(). Mixed vertices stay sharp. A
+   vertex with convex edges whose first fan is closed but does not go all
+   around it has several fans: before step 2a has run, the step stops there
+   with fans_wanted set (the caller splits the fans and runs it again).
+   Reports wait for re__corner_reports(), so that a stopped run has made
+   none. */
 static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
 {
     size_t mark;
-    unsigned V = an->V, E = an->E, i, v, t;
+    unsigned V = an->V, E = an->E, i, v;
     unsigned *tfan, *hfan;
-    char msg[160];
     RE__TAKE(an->voff, unsigned, (size_t)V + 1);
     RE__TAKE(an->vinc, unsigned, 2 * (size_t)E + 1);
     RE__TAKE(an->vstate, unsigned char, V);
     RE__TAKE(an->vcorner, unsigned, V);
+    RE__TAKE(an->vwhy, unsigned char, V);
     RE__TAKE(an->edge_end, unsigned char, 2 * (size_t)E + 1);
     memset(an->voff, 0, sizeof(unsigned) * ((size_t)V + 1));
     for (i = 0; i < E; i++) an->voff[an->edges[i].v[0] + 1]++, an->voff[an->edges[i].v[1] + 1]++;
@@ -1780,16 +1983,20 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
         unsigned conv = 0, bad = 0, deg = an->voff[v + 1] - an->voff[v];
         an->vstate[v] = RE__V_NONE;
         an->vcorner[v] = RE__NONE;
+        an->vwhy[v] = RE__WHY_NONE;
         for (i = an->voff[v]; i < an->voff[v + 1]; i++) {
             unsigned cl = an->edges[an->vinc[i]].cls;
             if (cl == RE__E_CONVEX) conv++;
             else if (cl != RE__E_FLAT) bad++;
         }
         if (conv && bad) {
+            unsigned m = an->fans_split ? deg : re__walk_fan(an, v, deg, NULL, NULL);
+            if (m && m != deg) {
+                an->fans_wanted = 1; /* a fan of its own may round once split */
+                return RE_OK;
+            }
             an->vstate[v] = RE__V_SHARP;
-            an->st.mixed_vertices++;
-            snprintf(msg, sizeof msg, "vertex %u joins convex and concave/boundary/non-manifold edges: left sharp", v);
-            re__report(an, RE_REPORT_MIXED_VERTEX, v, -1, 0.0, msg);
+            an->vwhy[v] = RE__WHY_MIXED;
         } else if (conv) {
             an->vstate[v] = RE__V_CORNER;
             an->vcorner[v] = an->nc++;
@@ -1822,7 +2029,7 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
            arithmetic on them. */
         unsigned poff = 0, soff = 0, xoff = 0;
         for (v = 0; v < V; v++) {
-            unsigned c = an->vcorner[v], deg, m = 0, h, i0, k = 0, j, ok = 1, too_many = 0;
+            unsigned c = an->vcorner[v], deg, m, i0, k = 0, j, ok = 1, too_many = 0;
             if (c == RE__NONE) continue;
             deg = an->voff[v + 1] - an->voff[v];
             an->c_vertex[c] = v;
@@ -1831,23 +2038,14 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
             an->c_xfirst[c] = xoff;
             an->c_np[c] = 0;
             an->c_ns[c] = an->c_nx[c] = 0;
-            /* walk the fan: in triangle t, cross the edge prev -> v */
-            t = an->edges[an->vinc[an->voff[v]]].he[0] / 3;
-            do {
-                unsigned s = an->tri[3 * t] == v ? 0u : an->tri[3 * t + 1] == v ? 1u : 2u, e, o;
-                h = 3 * t + (s + 2) % 3;
-                if (m == deg) { ok = 0; break; }
-                tfan[m] = t;
-                hfan[m++] = h;
-                e = an->he_edge[h];
-                o = an->edges[e].he[0] == h ? an->edges[e].he[1] : an->edges[e].he[0];
-                t = o / 3;
-            } while (t != tfan[0]);
-            if (!ok || m != deg) {
+            m = re__walk_fan(an, v, deg, tfan, hfan);
+            if (m != deg) {
+                if (!an->fans_split) {
+                    an->fans_wanted = 1;
+                    return RE_OK;
+                }
                 an->vstate[v] = RE__V_SHARP;
-                an->st.mixed_vertices++;
-                snprintf(msg, sizeof msg, "vertex %u is non-manifold (its triangles form more than one fan): left sharp", v);
-                re__report(an, RE_REPORT_MIXED_VERTEX, v, -1, 0.0, msg);
+                an->vwhy[v] = RE__WHY_FANS;
                 continue;
             }
             for (i0 = 0; i0 < m; i0++)
@@ -1869,20 +2067,13 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
             an->c_np[c] = (unsigned char)(k > 255 ? 255 : k);
             if (too_many) {
                 an->vstate[v] = RE__V_SHARP;
-                snprintf(msg, sizeof msg, "vertex %u: corner too complex to round (more than %d face planes): left sharp", v,
-                         RE_MAX_CORNER_PLANES);
-                re__report(an, RE_REPORT_COMPLEX_CORNER, v, -1, (double)k, msg);
+                an->vwhy[v] = RE__WHY_COMPLEX;
             } else if (!ok || k < 2) {
                 an->vstate[v] = RE__V_SHARP;
-                snprintf(msg, sizeof msg,
-                         "vertex %u: its %u face planes do not form a simple convex fan: left sharp", v, k);
-                re__report(an, RE_REPORT_UNROUNDABLE_CORNER, v, -1, (double)k, msg);
+                an->vwhy[v] = RE__WHY_NOT_SIMPLE;
             } else if (!re__erode_corner(an, c)) {
                 an->vstate[v] = RE__V_SHARP;
-                snprintf(msg, sizeof msg,
-                         "vertex %u: eroded corner of its %u face planes could not be resolved numerically (ill-conditioned plane triples): "
-                         "left sharp", v, k);
-                re__report(an, RE_REPORT_UNROUNDABLE_CORNER, v, -1, (double)k, msg);
+                an->vwhy[v] = RE__WHY_ERODE;
             }
             poff += k;
             soff += an->c_ns[c];
@@ -1891,6 +2082,47 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     }
     ar->used = mark;
     return RE_OK;
+}
+
+/* Step 4's counts and reports, in vertex order. */
+static void re__corner_reports(re__an_t *an)
+{
+    unsigned v;
+    char msg[192];
+    for (v = 0; v < an->V; v++) {
+        unsigned id, k;
+        if (an->vwhy[v] == RE__WHY_NONE) continue;
+        id = re__vid(an, v);
+        k = an->vcorner[v] == RE__NONE ? 0u : an->c_np[an->vcorner[v]];
+        switch (an->vwhy[v]) {
+        case RE__WHY_MIXED:
+            an->st.mixed_vertices++;
+            snprintf(msg, sizeof msg, "vertex %u joins convex and concave/boundary/non-manifold edges: left sharp", id);
+            re__report(an, RE_REPORT_MIXED_VERTEX, id, -1, 0.0, msg);
+            break;
+        case RE__WHY_FANS:
+            an->st.mixed_vertices++;
+            snprintf(msg, sizeof msg, "vertex %u is non-manifold (its triangles form more than one fan): left sharp", id);
+            re__report(an, RE_REPORT_MIXED_VERTEX, id, -1, 0.0, msg);
+            break;
+        case RE__WHY_COMPLEX:
+            snprintf(msg, sizeof msg, "vertex %u: corner too complex to round (more than %d face planes): left sharp", id,
+                     RE_MAX_CORNER_PLANES);
+            re__report(an, RE_REPORT_COMPLEX_CORNER, id, -1, (double)k, msg);
+            break;
+        case RE__WHY_NOT_SIMPLE:
+            snprintf(msg, sizeof msg, "vertex %u: its %u face planes do not form a simple convex fan: left sharp", id, k);
+            re__report(an, RE_REPORT_UNROUNDABLE_CORNER, id, -1, (double)k, msg);
+            break;
+        case RE__WHY_ERODE:
+            snprintf(msg, sizeof msg,
+                     "vertex %u: eroded corner of its %u face planes could not be resolved numerically (ill-conditioned plane triples): "
+                     "left sharp", id, k);
+            re__report(an, RE_REPORT_UNROUNDABLE_CORNER, id, -1, (double)k, msg);
+            break;
+        default: break;
+        }
+    }
 }
 
 /* Step 5: a convex edge is rounded when both ends are corners; a corner
@@ -1931,8 +2163,8 @@ static re_result_t re__propagate(re__an_t *an, re__arena_t *ar)
         e->rounded = an->vstate[e->v[0]] == RE__V_CORNER && an->vstate[e->v[1]] == RE__V_CORNER;
         if (!e->rounded) {
             snprintf(msg, sizeof msg, "convex edge %u-%u left sharp: a corner of its patch is mixed, open or too complex",
-                     e->v[0], e->v[1]);
-            re__report(an, RE_REPORT_SHARP_PATCH_EDGE, e->v[0], e->v[1], 0.0, msg);
+                     re__vid(an, e->v[0]), re__vid(an, e->v[1]));
+            re__report(an, RE_REPORT_SHARP_PATCH_EDGE, re__vid(an, e->v[0]), re__vid(an, e->v[1]), 0.0, msg);
         } else
             an->st.rounded_edges++;
     }
@@ -2012,8 +2244,8 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         if (!e->rounded) continue;
         rq = re__edge_request(an, e);
         if (!(rq > 0) || !isfinite(rq)) {
-            snprintf(msg, sizeof msg, "edge %u-%u has radius %g (must be finite and > 0)", e->v[0], e->v[1], rq);
-            return re__fail(an, RE_ERR_BAD_RADIUS, e->v[0], msg);
+            snprintf(msg, sizeof msg, "edge %u-%u has radius %g (must be finite and > 0)", re__vid(an, e->v[0]), re__vid(an, e->v[1]), rq);
+            return re__fail(an, RE_ERR_BAD_RADIUS, re__vid(an, e->v[0]), msg);
         }
         re__uf_join(uf, an->vcorner[e->v[0]], an->vcorner[e->v[1]]);
     }
@@ -2034,7 +2266,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         re__sub(an->su + 3 * (size_t)(an->c_sfirst[ca] + an->edge_end[2 * i]),
                 an->su + 3 * (size_t)(an->c_sfirst[cb] + an->edge_end[2 * i + 1]), du);
         den = re__dot(du, dir) / L;
-        if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = e->v[0], lim1[p] = e->v[1];
+        if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = re__vid(an, e->v[0]), lim1[p] = re__vid(an, e->v[1]);
     }
     for (c = 0; c < nc; c++) {
         unsigned v = an->c_vertex[c], p, q, s, g;
@@ -2076,7 +2308,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
                 L = re__len(dir);
                 re__sub(re__edge_su(an, c, an->vinc[q]), re__edge_su(an, cb, last), du);
                 den = re__dot(du, dir) / L;
-                if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = v, lim1[p] = w;
+                if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = re__vid(an, v), lim1[p] = re__vid(an, w);
             }
             for (g = 0; g < an->c_np[cw]; g++) {
                 unsigned pi = an->c_planes[an->c_pfirst[cw] + g];
@@ -2097,7 +2329,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
                    sphere that leans farthest into the plane bounds r */
                 for (s = 0; s < an->c_ns[c]; s++)
                     amax = re__max(amax, re__dot(pl->n, an->su + 3 * (size_t)(an->c_sfirst[c] + s)) + 1.0);
-                if (amax > 0 && b / amax < rmax[p]) rmax[p] = b / amax, lim0[p] = v, lim1[p] = -1;
+                if (amax > 0 && b / amax < rmax[p]) rmax[p] = b / amax, lim0[p] = re__vid(an, v), lim1[p] = -1;
             }
         }
     }
@@ -2106,8 +2338,8 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         if (uf[c] != c || req[c] == HUGE_VAL) continue;
         r[c] = req[c];
         if (mism[c]) {
-            snprintf(msg, sizeof msg, "unequal edge radii meet in the patch of vertex %u: all use %g", an->c_vertex[c], req[c]);
-            re__report(an, RE_REPORT_RADIUS_MISMATCH, an->c_vertex[c], -1, req[c], msg);
+            snprintf(msg, sizeof msg, "unequal edge radii meet in the patch of vertex %u: all use %g", re__vid(an, an->c_vertex[c]), req[c]);
+            re__report(an, RE_REPORT_RADIUS_MISMATCH, re__vid(an, an->c_vertex[c]), -1, req[c], msg);
         }
         if (req[c] > rmax[c] * (1 + RE__RADIUS_SLACK)) {
             if (lim1[c] >= 0)
@@ -2139,8 +2371,8 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         if (!e->rounded || an->vstate[e->v[0]] == RE__V_CORNER) continue;
         e->rounded = 0;
         an->st.rounded_edges--;
-        snprintf(msg, sizeof msg, "convex edge %u-%u left sharp: no radius above 0 fits its patch", e->v[0], e->v[1]);
-        re__report(an, RE_REPORT_SHARP_PATCH_EDGE, e->v[0], e->v[1], 0.0, msg);
+        snprintf(msg, sizeof msg, "convex edge %u-%u left sharp: no radius above 0 fits its patch", re__vid(an, e->v[0]), re__vid(an, e->v[1]));
+        re__report(an, RE_REPORT_SHARP_PATCH_EDGE, re__vid(an, e->v[0]), re__vid(an, e->v[1]), 0.0, msg);
     }
     *patch_r_out = r;
     *uf_out = uf;
@@ -3130,7 +3362,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     fc_id = nco == an->nc; /* fc[c] = c: numbered in order */
     for (i = 0; i < RE__PKA_N; i++) {
         if (pm_id && i == RE__PKA_TRI_PLANE) F->pk[i] = an->tplane;
-        else if (fc_id && i == RE__PKA_CVERTEX) F->pk[i] = an->c_vertex;
+        else if (fc_id && !an->vorig && i == RE__PKA_CVERTEX) F->pk[i] = an->c_vertex; /* else mesh ids: re__vid */
         else if (fc_id && i == RE__PKA_K_FIRST) F->pk[i] = an->c_pfirst;
         else if (fc_id && i == RE__PKA_K_SFIRST) F->pk[i] = sbase;
         else RE__TAKE(F->pk[i], unsigned, F->pk_n[i]);
@@ -3169,8 +3401,8 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         r = patch_r[re__uf_find(uf, c)];
         if (F->pk_n[RE__PKA_K_RID]) F->pk[RE__PKA_K_RID][fc[c]] = prid[rmap[re__uf_find(uf, c)]];
         RE_ASSERT(!fc_id || (fc[c] == c && an->c_pfirst[c] == nref));
+        if (F->pk[RE__PKA_CVERTEX] != an->c_vertex) F->pk[RE__PKA_CVERTEX][fc[c]] = re__vid(an, an->c_vertex[c]);
         if (!fc_id) {
-            F->pk[RE__PKA_CVERTEX][fc[c]] = an->c_vertex[c];
             F->pk[RE__PKA_K_FIRST][fc[c]] = nref;
             F->pk[RE__PKA_K_SFIRST][fc[c]] = sbase[c];
         }
@@ -3552,13 +3784,17 @@ static re_result_t re__analyze(const re_scene_desc_t *desc, unsigned obj, int si
         return re__fail(an, rc, bad, msg);
     }
     if (rc != RE_OK) return re__fail(an, rc, -1, "too many triangles");
-    an->V = m->vertex_count;
+    an->V = an->V0 = m->vertex_count;
     if (an->V >= 0x7FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many vertices");
     an->st.triangles = an->T;
     if ((rc = re__triangles(an, ar)) != RE_OK) return rc;
     if ((rc = re__edges(an, ar)) != RE_OK) return rc;
-    if ((rc = re__planes(an, ar)) != RE_OK) return rc;
+    if (an->fins && (rc = re__split_fans(an, ar)) != RE_OK) return rc;
+    if ((rc = re__planes(an, ar)) != RE_OK) return rc; /* per triangle: the same after step 2a */
     if ((rc = re__corners(an, ar)) != RE_OK) return rc;
+    if (an->fans_wanted && ((rc = re__split_fans(an, ar)) != RE_OK || (rc = re__corners(an, ar)) != RE_OK)) return rc;
+    re__edge_reports(an);
+    re__corner_reports(an);
     if ((rc = re__propagate(an, ar)) != RE_OK) return rc;
     if ((rc = re__radii(an, ar, &patch_r, &uf)) != RE_OK) return rc;
     return re__finish(an, ar, patch_r, uf, F);

@@ -7,7 +7,9 @@
      byte 0  flags: layout, bad-input policy, radius policy, float positions,
              per-edge radii; base solid (box, icosahedron, prism, pyramid)
      byte 1  radius 2^(b % 32 - 24)
-     then    edits of three bytes each (op, a, b), at most RFZ_MAX_EDITS; op
+     then    edits of three bytes each (op, a, b), at most RFZ_MAX_EDITS (op
+             253 and 254 add a copy touching the mesh along an edge or at
+             a vertex, sharing them: rfz_touch); op
              255 ends them, its a: bit 0 hands the mesh over as polygons
              (each pair of triangles (a, b, c), (a, c, d) as the quad
              (a, b, c, d): the same fan triangles), bit 1 builds it as two
@@ -111,10 +113,43 @@ static void rfz_base(rfz_mesh_t *m, unsigned kind, unsigned sides)
 
 static const double rfz_special[8] = {NAN, INFINITY, -INFINITY, 1e300, -0.0, 4.9e-324, 1e6, 1e-12};
 
+/* A copy of the mesh so far touching it (construction step 2a): turned
+   half a turn about the line through vertices p and q (an edge: a convex
+   solid's copy touches it along that edge), or mirrored through p when
+   q == p (a corner: they touch at p, and the mirror flips the winding).
+   Vertices the map leaves in place are shared, as a welded mesh would. */
+static void rfz_touch(rfz_mesh_t *m, unsigned p, unsigned q)
+{
+    unsigned i, k, nv = m->nv, nt = m->nt, map[RFZ_MAX_V];
+    const double *P = m->v + 3 * p, *Q = m->v + 3 * q;
+    double e[3], ee = 0;
+    if (nv > RFZ_MAX_V / 2 || nt > RFZ_MAX_T / 2) return;
+    for (k = 0; k < 3; k++) e[k] = Q[k] - P[k], ee += e[k] * e[k];
+    for (i = 0; i < nv; i++) {
+        const double *x = m->v + 3 * i;
+        double y[3], s = 0;
+        for (k = 0; k < 3; k++) s += (x[k] - P[k]) * e[k];
+        s = ee > 0 ? s / ee : 0;
+        for (k = 0; k < 3; k++) y[k] = 2 * (P[k] + s * e[k]) - x[k];
+        map[i] = y[0] == x[0] && y[1] == x[1] && y[2] == x[2] ? i : rfz_vert(m, y[0], y[1], y[2]);
+    }
+    for (i = 0; i < nt; i++) {
+        unsigned a = m->idx[3 * i], b = m->idx[3 * i + 1], c = m->idx[3 * i + 2];
+        a = a < nv ? map[a] : a, b = b < nv ? map[b] : b, c = c < nv ? map[c] : c;
+        if (q == p) rfz_tri(m, a, c, b);
+        else rfz_tri(m, a, b, c);
+    }
+}
+
 static void rfz_edit(rfz_mesh_t *m, unsigned op, unsigned a, unsigned b)
 {
     unsigned i;
     if (!m->nv || !m->nt) return;
+    if (op >= 253) { /* 253: touching along edge b % 3 of triangle a; 254: at vertex a */
+        unsigned t = a % m->nt, p = op == 254 ? a % m->nv : m->idx[3 * t + b % 3], q = op == 254 ? p : m->idx[3 * t + (b + 1) % 3];
+        if (p < m->nv && q < m->nv) rfz_touch(m, p, q);
+        return;
+    }
     switch (op % 9) {
     case 0: /* nudge a vertex coordinate (non-planar faces, near-degenerate ones) */
         m->v[3 * (a % m->nv) + b % 3] += ((double)(b >> 2) - 32.0) * (b & 128 ? 1e-9 : 1.0 / 64);
