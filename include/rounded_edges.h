@@ -1481,8 +1481,9 @@ static void re__edge_reports(re__an_t *an)
    (solids touching along an edge). A fan is closed when each of its
    corners' two edges at the vertex is manifold or paired; the edges
    paired up are manifold once their ends are split (step 2 runs
-   again). A vertex with an open fan (an open mesh, a fin) stays as it
-   is. Runs only when there is something to find:
+   again). Open fans (an open mesh's, a loose triangle's, a fin's) keep
+   the vertex between them, and each closed fan gets its own: a closed
+   solid touching open geometry at a vertex is rounded too. Runs only when there is something to find:
    after step 2 when an edge has more than two triangles, else when step 4
    walks a fan that does not go all around its vertex (free for the common
    mesh, which has neither; step 4 then runs again). */
@@ -1492,7 +1493,7 @@ static unsigned re__corner_at(const re__an_t *an, unsigned t, unsigned v)
     return 3 * t + (tr[0] == v ? 0u : tr[1] == v ? 1u : 2u);
 }
 static int re__joins_fans(const re__edge_t *ed) { return ed->count == 2 && ed->cls != RE__E_NONMANIFOLD; }
-enum { RE__FANS_ONE, RE__FANS_SPLIT, RE__FANS_OPEN }; /* per vertex in re__split_fans */
+enum { RE__FANS_ONE, RE__FANS_SPLIT, RE__FANS_SPLIT_OPEN }; /* per vertex in re__split_fans: one fan, several, some open */
 
 /* Step 2a on an edge of more than two triangles (solids touching along
    it): its triangles, in angle order around it, pair up as the solids they
@@ -1559,7 +1560,7 @@ static re_result_t re__pair_fins(re__an_t *an, re__arena_t *ar, unsigned *uf, un
 static re_result_t re__split_fans(re__an_t *an, re__arena_t *ar)
 {
     unsigned T = an->T, V = an->V, N = 3 * T, c, i, j, n_split = 0, n_new = 0, *uf, *first, *fan_id, *vorig;
-    unsigned char *state, *paired;
+    unsigned char *state, *paired, *fan_open;
     double *pos;
     size_t mark = ar->used;
     re_result_t rc;
@@ -1590,21 +1591,24 @@ static re_result_t re__split_fans(re__an_t *an, re__arena_t *ar)
         ar->used = mark;
         return RE_OK;
     }
-    for (c = 0; c < N; c++) { /* closed: both half-edges of every corner joined to a neighbour */
+    RE__TAKE(fan_open, unsigned char, N);
+    memset(fan_open, 0, N);
+    for (c = 0; c < N; c++) { /* open: a corner's half-edge joined to no neighbour */
         unsigned v = an->tri[c], q;
-        if (an->tbad[c / 3] || state[v] != RE__FANS_SPLIT) continue;
+        if (an->tbad[c / 3] || state[v] == RE__FANS_ONE) continue;
         for (q = 0; q < 2; q++) { /* the half-edge leaving v, the one arriving */
             unsigned h = q ? (c % 3 ? c - 1 : c + 2) : c;
-            if (!re__joins_fans(&an->edges[an->he_edge[h]]) && !paired[h]) state[v] = RE__FANS_OPEN;
+            if (!re__joins_fans(&an->edges[an->he_edge[h]]) && !paired[h])
+                fan_open[re__uf_find(uf, c)] = 1, state[v] = RE__FANS_SPLIT_OPEN;
         }
     }
     RE__TAKE(fan_id, unsigned, N);
     RE__TAKE(vorig, unsigned, N);
     for (c = 0; c < N; c++) {
         unsigned v = an->tri[c], r;
-        if (an->tbad[c / 3] || state[v] != RE__FANS_SPLIT) continue;
+        if (an->tbad[c / 3] || state[v] == RE__FANS_ONE) continue;
         r = re__uf_find(uf, c);
-        if (r == first[v]) continue;
+        if (state[v] == RE__FANS_SPLIT_OPEN ? fan_open[r] : r == first[v]) continue; /* keeps v */
         if (r == c) { /* a fan's lowest corner is its root (re__uf_join keeps the lower) */
             if ((unsigned long long)V + n_new >= 0x7FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many vertices");
             vorig[n_new] = v;
@@ -1926,32 +1930,56 @@ static int re__erode_corner(re__an_t *an, unsigned c)
 /* Why step 4 left a vertex sharp (re__an_t.vwhy). */
 enum { RE__WHY_NONE, RE__WHY_MIXED, RE__WHY_FANS, RE__WHY_COMPLEX, RE__WHY_NOT_SIMPLE, RE__WHY_ERODE };
 
-/* The fan around vertex v (deg edges) from the first triangle of its
-   first edge, crossing in each triangle t the edge that arrives at v: its
-   size, 0 when it reaches an edge of other than two triangles or runs
-   past deg. Its triangles and those half-edges go to tfan and hfan when
-   they are not NULL. */
+/* From triangle t around vertex v, across the edge that arrives at v
+   (forward) or the one that leaves it: the next triangle, RE__NONE at an
+   edge of other than two triangles; *h is the half-edge crossed. */
+static unsigned re__fan_step(const re__an_t *an, unsigned v, unsigned t, int forward, unsigned *h)
+{
+    const unsigned *tr = an->tri + 3 * (size_t)t;
+    unsigned s = tr[0] == v ? 0u : tr[1] == v ? 1u : 2u;
+    const re__edge_t *ed;
+    *h = 3 * t + (forward ? (s + 2) % 3 : s);
+    ed = &an->edges[an->he_edge[*h]];
+    return ed->count != 2 ? RE__NONE : (ed->he[0] == *h ? ed->he[1] : ed->he[0]) / 3;
+}
+/* The first triangle of v's first edge: where its fan walks start. */
+static unsigned re__fan_start(const re__an_t *an, unsigned v) { return an->edges[an->vinc[an->voff[v]]].he[0] / 3; }
+
+/* The closed fan around vertex v (deg edges) forward from re__fan_start:
+   its size, its triangles in tfan and the half-edges crossed in hfan; 0
+   when it is open or runs past deg. */
 static unsigned re__walk_fan(const re__an_t *an, unsigned v, unsigned deg, unsigned *tfan, unsigned *hfan)
 {
-    unsigned t0 = an->edges[an->vinc[an->voff[v]]].he[0] / 3, t = t0, m = 0;
+    unsigned t0 = re__fan_start(an, v), t = t0, m = 0, h, next;
     do {
-        const unsigned *tr = an->tri + 3 * (size_t)t;
-        unsigned h = 3 * t + (tr[0] == v ? 2u : tr[1] == v ? 0u : 1u);
-        const re__edge_t *ed = &an->edges[an->he_edge[h]];
-        if (m == deg || ed->count != 2) return 0;
-        if (tfan) tfan[m] = t, hfan[m] = h;
-        m++;
-        t = (ed->he[0] == h ? ed->he[1] : ed->he[0]) / 3;
+        next = re__fan_step(an, v, t, 1, &h);
+        if (m == deg || next == RE__NONE) return 0;
+        tfan[m] = t, hfan[m++] = h;
+        t = next;
     } while (t != t0);
     return m;
+}
+/* Whether the ntri triangles around v (its edges of at most two) form
+   more than one fan: the fan through re__fan_start, walked both ways,
+   holds fewer. */
+static int re__several_fans(const re__an_t *an, unsigned v, unsigned ntri)
+{
+    unsigned t0 = re__fan_start(an, v), m = 1, h, t, dir;
+    for (dir = 0; dir < 2; dir++) {
+        for (t = t0; (t = re__fan_step(an, v, t, !dir, &h)) != RE__NONE && t != t0 && m <= ntri;) m++;
+        if (t == t0) break; /* closed */
+    }
+    return m != ntri;
 }
 
 /* Step 4: vertices. A corner candidate has only flat and convex edges, at
    least one convex, and a single closed fan; its distinct planes in fan
    order are eroded by re__erode_corner(). Mixed vertices stay sharp. A
-   vertex with convex edges whose first fan is closed but does not go all
-   around it has several fans: before step 2a has run, the step stops there
-   with fans_wanted set (the caller splits the fans and runs it again).
+   vertex with convex edges whose triangles form several fans (a candidate's
+   fan walk, which the step does anyway, falls short; a mixed vertex is
+   walked for it, re__several_fans): before step 2a has run, the step stops
+   there with fans_wanted set (the caller splits the fans and runs it
+   again).
    Reports wait for re__corner_reports(), so that a stopped run has made
    none. */
 static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
@@ -1980,18 +2008,18 @@ static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
     an->nc = 0;
     an->np_total = 0;
     for (v = 0; v < V; v++) {
-        unsigned conv = 0, bad = 0, deg = an->voff[v + 1] - an->voff[v];
+        unsigned conv = 0, bad = 0, ends = 0, deg = an->voff[v + 1] - an->voff[v];
         an->vstate[v] = RE__V_NONE;
         an->vcorner[v] = RE__NONE;
         an->vwhy[v] = RE__WHY_NONE;
         for (i = an->voff[v]; i < an->voff[v + 1]; i++) {
-            unsigned cl = an->edges[an->vinc[i]].cls;
-            if (cl == RE__E_CONVEX) conv++;
-            else if (cl != RE__E_FLAT) bad++;
+            const re__edge_t *ed = &an->edges[an->vinc[i]];
+            if (ed->cls == RE__E_CONVEX) conv++;
+            else if (ed->cls != RE__E_FLAT) bad++;
+            ends += ed->count; /* two per triangle at v */
         }
         if (conv && bad) {
-            unsigned m = an->fans_split ? deg : re__walk_fan(an, v, deg, NULL, NULL);
-            if (m && m != deg) {
+            if (!an->fans_split && re__several_fans(an, v, ends / 2)) {
                 an->fans_wanted = 1; /* a fan of its own may round once split */
                 return RE_OK;
             }

@@ -327,26 +327,68 @@ static void mixed_apex_touching_a_cube(void)
 }
 
 /* A closed fan and an open one at a vertex (a cube and a loose triangle
-   touching its corner): not split (the open fan has no corner to give),
-   so the cube stays sharp as before, reported by its mesh vertex. */
-static void open_fan_at_a_vertex_stays_sharp(void)
+   touching its corner): the cube's fan gets a vertex of its own and the
+   cube rounds; the triangle keeps the vertex, its edges boundaries. With
+   the triangle's vertices numbered first, step 4's fan walk at the
+   vertex starts in the open fan (re__several_fans walks it both ways). */
+static void open_fan_at_a_vertex_splits_off_the_solid(void)
+{
+    int order;
+    for (order = 0; order < 2; order++) {
+        tm_mesh_t m = {0};
+        re_scene_t *s;
+        reports_t rep;
+        re_stats_t st;
+        const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+        unsigned v, a = 0, b = 1;
+        if (order == 1) tm_vert(&m, 2, 1.5, 1.5), tm_vert(&m, 1.5, 2, 1.5);
+        box_into(&m, lo, hi, 1);
+        if (order == 0) a = tm_vert(&m, 2, 1.5, 1.5), b = tm_vert(&m, 1.5, 2, 1.5);
+        v = vert_at(&m, 1, 1, 1, 1);
+        tm_tri(&m, v, a, b);
+        s = build(&m, 0.1, 0, RE_LAYOUT_FAST, &rep);
+        if (!s) continue;
+        re_get_stats(s, &st);
+        T_INT_EQ(st.rounded_edges, 12);
+        T_INT_EQ(st.spheres, 8);
+        T_INT_EQ(st.boundary_edges, 3);
+        T_INT_EQ(st.mixed_vertices, 0);
+        T_INT_EQ(rep.n[RE_REPORT_BOUNDARY_EDGE], 3);
+        T_INT_EQ(rep.n_mixed, 0);
+        T_INT_EQ(spheres_at(s, v, m.nv), 1);
+        T_LT(rep.max_vertex, (long long)m.nv);
+        re_free(s);
+        tm_free(&m);
+    }
+}
+
+/* Open fans keep their vertex together: a cube with a fin on its edge
+   5-7 (three triangles there, none paired: the cube's fan and the fin's
+   are open at vertex 5) and a second cube touching the first at vertex 5
+   (closed). Only the second cube's fan is split off: it rounds, and the
+   fin's edge stays one non-manifold edge, the first cube sharp. Had the
+   open fans been split apart too, the first cube's half of the edge
+   would have become an edge of its own. */
+static void open_fans_keep_their_vertex(void)
 {
     tm_mesh_t m = {0};
     re_scene_t *s;
     reports_t rep;
     re_stats_t st;
-    const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-    unsigned v;
+    const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, lo2[3] = {1, -1, 1}, hi2[3] = {2, 0, 2};
+    unsigned v5, v7;
     box_into(&m, lo, hi, 1);
-    v = vert_at(&m, 1, 1, 1, 1);
-    tm_tri(&m, v, tm_vert(&m, 2, 1.5, 1.5), tm_vert(&m, 1.5, 2, 1.5));
+    v5 = vert_at(&m, 1, 0, 1, 1), v7 = vert_at(&m, 1, 1, 1, 1);
+    tm_tri(&m, v5, v7, tm_vert(&m, 1.6, 0.5, 1.4));
+    box_into(&m, lo2, hi2, 1);
+    T_INT_EQ(vert_at(&m, 1, 0, 1, 1), v5);
     s = build(&m, 0.1, 0, RE_LAYOUT_FAST, &rep);
     if (!s) return;
     re_get_stats(s, &st);
-    T_INT_EQ(st.rounded_edges, 0);
-    T_INT_EQ(st.boundary_edges, 3);
-    T_INT_EQ(rep.n_mixed, 1);
-    T_INT_EQ(rep.mixed[0], v);
+    T_INT_EQ(st.rounded_edges, 12); /* the second cube */
+    T_INT_EQ(st.spheres, 8);
+    T_INT_EQ(st.nonmanifold_edges, 1);
+    T_INT_EQ(spheres_at(s, v5, m.nv), 1);
     T_LT(rep.max_vertex, (long long)m.nv);
     re_free(s);
     tm_free(&m);
@@ -356,7 +398,8 @@ int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(boxes_sharing_a_corner_round_each), T_CASE(boxes_sharing_an_edge_round_each),
-        T_CASE(checkerboard_cubes_round_each), T_CASE(mixed_apex_touching_a_cube), T_CASE(open_fan_at_a_vertex_stays_sharp),
+        T_CASE(checkerboard_cubes_round_each), T_CASE(mixed_apex_touching_a_cube), T_CASE(open_fan_at_a_vertex_splits_off_the_solid),
+        T_CASE(open_fans_keep_their_vertex),
     };
     return T_RUN(argc, argv, cases);
 }
