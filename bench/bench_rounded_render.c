@@ -114,7 +114,7 @@ static float *run(const rx_scene_t *s, const char *mode, int spp, row_t *r)
     rx_world_t w;
     rx_mode_t m;
     float *rgb;
-    if (rx_mode_parse(mode, &m) || rx_world_build(&w, s, m, RX_BENCH_W, RX_BENCH_H)) return NULL;
+    if (rx_mode_parse(mode, &m) || rx_world_build(&w, s, m, RX_BENCH_W, RX_BENCH_H, 0)) return NULL;
     rgb = render_world(&w, mode, spp, r);
     rx_world_free(&w);
     return rgb;
@@ -195,7 +195,7 @@ int main(int argc, char **argv)
             for (i = 0; i < 3; i++) {
                 rx_mode_t m;
                 fprintf(stderr, "%s: %s\n", b->label, b->modes[i]);
-                if (rx_mode_parse(b->modes[i], &m) || rx_world_build(&wd[i], &s, m, RX_BENCH_W, RX_BENCH_H)) return 1;
+                if (rx_mode_parse(b->modes[i], &m) || rx_world_build(&wd[i], &s, m, RX_BENCH_W, RX_BENCH_H, 0)) return 1;
                 if (!(img = render_world(&wd[i], b->modes[i], b->spp, &best[i]))) return 1;
                 best[i].rmse = ref_img ? ex_image_rmse(img, ref_img, RX_BENCH_W, RX_BENCH_H) : 0;
                 free(img);

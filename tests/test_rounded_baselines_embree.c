@@ -97,7 +97,7 @@ static void fixture_init(fixture_t *f)
     f->s.eye = ex_v3(0, 3, 6); f->s.at = ex_v3(0, 0.5, 0); f->s.up = ex_v3(0, 1, 0);
     f->s.vfov = 40; f->s.scale = 2; f->s.name = "test";
     rx_mode_parse("rounded", &m);
-    f->ok = rx_world_build(&f->w, &f->s, m, 8, 8) == 0;
+    f->ok = rx_world_build(&f->w, &f->s, m, 8, 8, 0) == 0;
     T_CHECK(f->ok);
 }
 static void fixture_free(fixture_t *f)

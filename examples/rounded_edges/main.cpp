@@ -37,7 +37,7 @@ static int render_one(const rx_scene_t *s, rx_mode_t m, const ex_args_t *a, cons
     char name[64];
     float *rgb;
     double t0 = ex_now(), secs;
-    if (rx_world_build(&w, s, m, a->width, a->height)) return -1;
+    if (rx_world_build(&w, s, m, a->width, a->height, a->threads)) return -1;
     rgb = (float *)malloc(sizeof(float) * 3 * (size_t)a->width * (size_t)a->height);
     if (!rgb) { rx_world_free(&w); fprintf(stderr, "out of memory\n"); return -1; }
     secs = rx_world_render(&w, a->spp, a->threads, 1, 0, rgb);
@@ -167,7 +167,7 @@ static int selftest(void)
             float rgb[3 * 48 * 30];
             int ok;
             rx_mode_parse(k ? "tess-1" : "rounded", &m);
-            ok = !rx_world_build(&w, &s, m, 48, 30);
+            ok = !rx_world_build(&w, &s, m, 48, 30, 0);
             if (ok) {
                 ok = rx_world_render(&w, 2, 0, 1, 1, rgb) >= 0 && w.chamfer_rays > 0;
                 rx_world_free(&w);

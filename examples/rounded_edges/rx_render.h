@@ -64,9 +64,10 @@ typedef struct rx_world_t {
     long long embree_mem_live;  /* device memory monitor */
 } rx_world_t;
 
-/* Builds everything mode `m` needs for scene s and a width x height camera.
-   0, or -1 after printing one line. */
-int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, int height);
+/* Builds everything mode `m` needs for scene s and a width x height camera,
+   the rounding on `threads` threads (0: every core). 0, or -1 after
+   printing one line. */
+int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, int height, int threads);
 void rx_world_free(rx_world_t *w);
 /* Renders spp samples per pixel into rgb (width*height*3). Returns the
    seconds spent, or a negative value after printing one line. */
@@ -135,8 +136,7 @@ static void rx__count_report(void *user, const re_report_t *r)
         __atomic_add_fetch((long long *)user, 1, __ATOMIC_RELAXED);
 }
 
-/* re_parallel_fn over the examples' parallel-for: the objects are built on
-   every core. */
+/* re_parallel_fn over the examples' parallel-for: one thread per task. */
 static void rx__parallel(void *user, unsigned count, re_task_fn task, void *task_ctx)
 {
     (void)user;
@@ -145,7 +145,7 @@ static void rx__parallel(void *user, unsigned count, re_task_fn task, void *task
 
 /* The rounding structure over the scene's rounded objects (float positions,
    the same triangles Embree traces). */
-static int rx__build_round(rx_world_t *w)
+static int rx__build_round(rx_world_t *w, int threads)
 {
     const rx_scene_t *s = w->scene;
     re_mesh_t *meshes = (re_mesh_t *)calloc((size_t)s->nobj + 1, sizeof *meshes);
@@ -174,7 +174,7 @@ static int rx__build_round(rx_world_t *w)
     desc.report_user = &w->concave_reports;
     desc.layout = w->mode.kind == RX_ROUNDED && w->mode.n == 1 ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
     desc.parallel = rx__parallel;
-    desc.threads = (unsigned)ex_cpu_count();
+    desc.threads = (unsigned)(threads > 0 ? threads : ex_cpu_count());
     rc = re_build(&desc, &w->round, &diag);
     free(meshes);
     if (rc != RE_OK) {
@@ -186,7 +186,7 @@ static int rx__build_round(rx_world_t *w)
     return 0;
 }
 
-int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, int height)
+int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, int height, int threads)
 {
     double t0 = ex_now(), t1;
     int i;
@@ -201,7 +201,7 @@ int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, i
     w->rtc = rtcNewScene(w->dev);
     /* rounded mode hides exit faces with an intersect-context filter */
     if (m.kind == RX_ROUNDED) rtcSetSceneFlags(w->rtc, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
-    if ((m.kind == RX_ROUNDED || m.kind == RX_TESS) && rx__build_round(w)) { rx_world_free(w); return -1; }
+    if ((m.kind == RX_ROUNDED || m.kind == RX_TESS) && rx__build_round(w, threads)) { rx_world_free(w); return -1; }
     t1 = ex_now();
     for (i = 0; i < s->nobj; i++) {
         const rx_object_t *o = &s->obj[i];
