@@ -144,7 +144,16 @@ static void tp_scene(tp_scene_t *S)
         switch (i % 5) {
         case 0: tm_icosphere(m, 1 + i % 3, 1.0), r = 0.01; break;
         case 1: tm_random_hull(&rng, 10 + 4 * (i % 4), 0.8, 1.2, m, &tp_poly); break;
-        case 2: tm_box(m, lo, hi), r = i == 7 ? 0.5 : 0.05; break; /* object 7: radius clamped, reported */
+        case 2:
+            tm_box(m, lo, hi), r = i == 7 ? 0.5 : 0.05; /* object 7: radius clamped, reported */
+            if (i == 12) { /* a second box sharing the first one's corner: split per solid (construction step 2a) */
+                double hi2[3] = {2 * hi[0] - lo[0], 2 * hi[1] - lo[1], 2 * hi[2] - lo[2]};
+                unsigned b = m->nv, i0 = m->ni, j;
+                tm_box(m, hi, hi2);
+                for (j = i0; j < m->ni; j++)
+                    if (m->idx[j] == b) m->idx[j] = 7;
+            }
+            break;
         case 3: /* an open box (no top): boundary edges and mixed vertices, reported */
             tm_box(m, lo, hi), m->ni -= 6;
             break;
@@ -227,6 +236,7 @@ static void parallel_build_equals_serial(void)
     d = tp_desc(S.mesh, TP_OBJECTS, NULL, 0, NULL);
     if (!T_INT_EQ(re_build(&d, &s0, &dg), RE_OK)) { tp_scene_free(&S); return; }
     T_GT(s0->stats.rounded_edges, 1000);
+    T_INT_EQ(re_sphere_count(s0, 12), 16); /* both boxes of object 12, split at their common corner */
     for (k = 0; k < sizeof threads / sizeof *threads; k++) {
         tp_host_t host = {0, 0, 0};
         tp_alloc_t *al = tp_alloc_new(0);
