@@ -145,12 +145,12 @@ static void rays_against_boxes(const tm_mesh_t *m, const tm_mesh_t *apart, const
             T_EQ(t_ref, HUGE_VAL);
             continue;
         }
-        n_near += tm_rbox_sdf(at, (const double[3]){0.3, 0.3, 0.3}, 0, (const double[3]){o[0] + h.t * d[0], o[1] + h.t * d[1], o[2] + h.t * d[2]}) < 0;
+        for (a = 0; a < 3; a++) p[a] = o[a] + h.t * d[a];
+        n_near += fabs(p[0] - at[0]) < 0.3 && fabs(p[1] - at[1]) < 0.3 && fabs(p[2] - at[2]) < 0.3;
         T_INT_EQ(h.kind, ha.kind);
         T_NEAR(h.t, ha.t, 1e-12 * (1 + fabs(ha.t)));
         for (a = 0; a < 3; a++) T_NEAR(h.normal[a], ha.normal[a], 1e-12);
         if (!T_NEAR(h.t, t_ref, 1e-9 * (1 + t_ref))) continue;
-        for (a = 0; a < 3; a++) p[a] = o[a] + h.t * d[a];
         if (h.kind == RE_HIT_ROUNDED) {
             n_round++;
             boxes_normal(b, p, n);
