@@ -947,6 +947,8 @@ typedef struct re__an_t {
     int fans_split;         /* step 2a ran */
     int fans_wanted;        /* step 4 found a vertex with several fans before step 2a ran */
     unsigned char *vwhy;    /* per vertex: why step 4 left it sharp (RE__WHY_*), reported by re__corner_reports */
+    unsigned long long reports, report_skip; /* reports made; the first report_skip were delivered by an
+                                                earlier attempt (re__build_object) and are not repeated */
     const double *pos; /* 3 per vertex: the caller's array itself when it is packed doubles */
     unsigned *tri, *tsrc, *tplane;
     double *tn, *tarea;
@@ -1003,7 +1005,7 @@ static void re__report(re__an_t *an, re_report_kind_t kind, long long e1, long l
                        double value, const char *msg)
 {
     re_report_t rep;
-    if (!an->desc->report) return;
+    if (an->reports++ < an->report_skip || !an->desc->report) return;
     rep.kind = kind;
     rep.object = an->obj;
     rep.element = e1;
@@ -3767,16 +3769,25 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
 
 /* ---- Per-object driver --------------------------------------------------------- */
 
+/* re_build()'s first scratch size for an object; when it is short the
+   build doubles it and analyses the object again. Tests lower the bound
+   to run that retry (tests/test_rounded_packing.c). */
+#ifndef RE__SCRATCH_PER_TRIANGLE
+#define RE__SCRATCH_PER_TRIANGLE 1800u
+#endif
+#ifndef RE__SCRATCH_BASE
+#define RE__SCRATCH_BASE 65536u
+#endif
 static size_t re__scratch_bound(const re_mesh_t *m)
 {
     unsigned T = 0;
     long long bad;
     if (re__count_tris(m, &T, &bad) != RE_OK) T = 0;
-    return 128u * (size_t)m->vertex_count + 1800u * (size_t)T + 65536u;
+    return 128u * (size_t)m->vertex_count + RE__SCRATCH_PER_TRIANGLE * (size_t)T + RE__SCRATCH_BASE;
 }
 
 static re_result_t re__analyze(const re_scene_desc_t *desc, unsigned obj, int sizing, re__arena_t *ar,
-                               re_diag_t *diag, re__an_t *an, re__final_t *F)
+                               re_diag_t *diag, re__an_t *an, re__final_t *F, unsigned long long report_skip)
 {
     const re_mesh_t *m = &desc->objects[obj];
     re_result_t rc;
@@ -3791,6 +3802,7 @@ static re_result_t re__analyze(const re_scene_desc_t *desc, unsigned obj, int si
     an->obj = obj;
     an->sizing = sizing;
     an->diag = diag;
+    an->report_skip = report_skip;
     if ((m->vertex_count && !m->positions) || (m->index_count && !m->indices) ||
         (m->position_type != RE_FLOAT64 && m->position_type != RE_FLOAT32))
         return re__fail(an, RE_ERR_INVALID_ARG, -1, "NULL positions/indices or unknown position_type");
@@ -3902,6 +3914,7 @@ static re_result_t re__build_object(const re__tasks_t *J, re__task_t *W, unsigne
     re__arena_t ar;
     re_result_t rc;
     size_t need;
+    unsigned long long made = 0;
     for (;;) {
         if (!*scratch) { /* fresh (advised once), else the previous object's */
             if (!(*scratch = RE_MALLOC(*cap, desc->alloc_ctx))) return RE_ERR_OUT_OF_MEMORY;
@@ -3910,8 +3923,9 @@ static re_result_t re__build_object(const re__tasks_t *J, re__task_t *W, unsigne
         ar.base = (unsigned char *)*scratch;
         ar.cap = *cap;
         ar.used = ar.high = 0;
-        rc = re__analyze(desc, i, !J->S, &ar, &W->diag, &an, &F);
+        rc = re__analyze(desc, i, !J->S, &ar, &W->diag, &an, &F, made);
         if (rc != RE_ERR_BUFFER_TOO_SMALL) break;
+        made = an.reports; /* delivered: the next attempt makes them again, silently */
         RE_FREE(*scratch, desc->alloc_ctx); /* the bound was short: grow, retry */
         *scratch = NULL;
         *cap *= 2;
@@ -4061,7 +4075,7 @@ RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem, s
         ar.base = (unsigned char *)scratch;
         ar.cap = scratch_bytes;
         ar.used = ar.high = 0;
-        rc = re__analyze(desc, i, 0, &ar, diag, &an, &F);
+        rc = re__analyze(desc, i, 0, &ar, diag, &an, &F, 0);
         if (rc != RE_OK) return rc;
         need = re__object_bytes(&an, &F);
         if ((size_t)(at - (unsigned char *)scene_mem) + need > scene_bytes) return RE_ERR_BUFFER_TOO_SMALL;

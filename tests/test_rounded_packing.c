@@ -6,7 +6,11 @@
    (re__cyl_s1) and every sphere centre whose plane slots reach 3 is
    stored and found by rank (re__xsph_rank). The exactness batteries must still hold: the box
    against the analytic rounded box, random hulls against the eroded
-   polytope, in both layouts. */
+   polytope, in both layouts. re_build()'s first scratch guess is cut to
+   almost nothing, so every object is analysed again with twice the
+   scratch until it fits (re__build_object); the reports must not repeat. */
+#define RE__SCRATCH_PER_TRIANGLE 8u
+#define RE__SCRATCH_BASE 64u
 #define RE__PK_SPAN 2u
 #define RE__LEAF_RUN_SPAN 3u
 #define RE__SOLVED_SLOTS 3u
@@ -29,6 +33,66 @@ static void count_fallbacks(const re_scene_t *s, unsigned *full, unsigned *runs,
         if ((o->nodes[n].info & 3u) == 3u) *runs += o->leaf16[o->nodes[n].info >> 2] >> 15;
     *far += o->n_xs1;
     *stored += o->compact ? o->n_xsph : 0u;
+}
+
+/* The reports of re_build() (short scratch: retried) and re_build_sizes()
+   (retried too) against re_build_into() with exact buffers (never
+   retried): the same sequence, once each. An open box (boundary edges,
+   mixed vertices, its convex edges left sharp) and a thin box whose
+   radius is clamped: reports from steps 2, 4, 5 and 7 of the build. */
+typedef struct rep_log_t {
+    int n;
+    char line[64][200];
+} rep_log_t;
+static void log_report(void *u, const re_report_t *r)
+{
+    rep_log_t *l = (rep_log_t *)u;
+    if (l->n < 64) snprintf(l->line[l->n], sizeof l->line[0], "%d %lld %lld %.17g %s", (int)r->kind, r->element, r->element2, r->value, r->message);
+    l->n++;
+}
+static void scratch_retries_repeat_no_report(void)
+{
+    tm_mesh_t m = {0};
+    double lo[3] = {-0.5, -0.3, -0.2}, hi[3] = {0.5, 0.3, 0.2}, lo2[3] = {2, 0, 0}, hi2[3] = {3, 1, 0.04};
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    re_sizes_t sz;
+    re_diag_t dg;
+    static rep_log_t want, got;
+    void *mem, *scratch;
+    int i;
+    tm_box(&m, lo, hi);
+    m.ni -= 6; /* open: no x+ face */
+    tm_box(&m, lo2, hi2);
+    memset(&mesh, 0, sizeof mesh);
+    memset(&desc, 0, sizeof desc);
+    mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.radius = 0.05;
+    desc.objects = &mesh, desc.object_count = 1, desc.report = log_report;
+    desc.report_user = &got;
+    T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_OK);
+    T_GT(sz.scratch_bytes, 4 * (128u * m.nv + RE__SCRATCH_PER_TRIANGLE * m.ni / 3 + RE__SCRATCH_BASE)); /* at least two retries */
+    mem = malloc(sz.scene_bytes), scratch = malloc(sz.scratch_bytes);
+    desc.report_user = &want, want.n = 0;
+    T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes, &s, &dg), RE_OK);
+    T_GT(want.n, 8);
+    T_LE(want.n, 64);
+    for (i = 0; i < 2; i++) {
+        got.n = 0;
+        desc.report_user = &got;
+        if (i == 0) {
+            re_scene_t *s2 = NULL;
+            T_INT_EQ(re_build(&desc, &s2, &dg), RE_OK);
+            re_free(s2);
+        } else
+            T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_OK);
+        if (T_INT_EQ(got.n, want.n)) {
+            int k;
+            for (k = 0; k < want.n && k < 64; k++) T_CHECK(strcmp(got.line[k], want.line[k]) == 0);
+        }
+    }
+    free(mem), free(scratch);
+    tm_free(&m);
 }
 
 static void packing_fallbacks_box(void)
@@ -68,7 +132,7 @@ static void compact_layout_packing_fallbacks_hulls(void) { with_compact_layout(p
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
-        T_CASE(packing_fallbacks_box),
+        T_CASE(scratch_retries_repeat_no_report), T_CASE(packing_fallbacks_box),
         T_CASE(packing_fallbacks_hulls),
         T_CASE(compact_layout_packing_fallbacks_box),
         T_CASE(compact_layout_packing_fallbacks_hulls),
