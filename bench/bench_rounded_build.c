@@ -60,12 +60,17 @@ static void tri(mesh_t *m, unsigned a, unsigned b, unsigned c)
 }
 static void quad(mesh_t *m, unsigned a, unsigned b, unsigned c, unsigned d) { tri(m, a, b, c), tri(m, a, c, d); }
 
+/* the six faces of a box whose corner i (bit 0: x, 1: y, 2: z high) is vertex b[i] */
+static void box_faces(mesh_t *m, const unsigned b[8])
+{
+    quad(m, b[0], b[2], b[3], b[1]), quad(m, b[4], b[5], b[7], b[6]), quad(m, b[0], b[1], b[5], b[4]);
+    quad(m, b[2], b[6], b[7], b[3]), quad(m, b[0], b[4], b[6], b[2]), quad(m, b[1], b[3], b[7], b[5]);
+}
 static void box(mesh_t *m, double x0, double y0, double z0, double x1, double y1, double z1)
 {
-    unsigned b = m->nv, i;
-    for (i = 0; i < 8; i++) vert(m, i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
-    quad(m, b, b + 2, b + 3, b + 1), quad(m, b + 4, b + 5, b + 7, b + 6), quad(m, b, b + 1, b + 5, b + 4);
-    quad(m, b + 2, b + 6, b + 7, b + 3), quad(m, b, b + 4, b + 6, b + 2), quad(m, b + 1, b + 3, b + 7, b + 5);
+    unsigned b[8], i;
+    for (i = 0; i < 8; i++) b[i] = vert(m, i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
+    box_faces(m, b);
 }
 /* a closed cylinder (knob) of n segments standing on z = z0 */
 static void knob(mesh_t *m, double cx, double cy, double z0, double rad, double h, int n)
@@ -298,8 +303,7 @@ static void voxels(mesh_t *m, int n, int share)
                     if (!share || *g == ~0u) *g = vert(m, cx, cy, cz);
                     b[k] = *g;
                 }
-                quad(m, b[0], b[2], b[3], b[1]), quad(m, b[4], b[5], b[7], b[6]), quad(m, b[0], b[1], b[5], b[4]);
-                quad(m, b[2], b[6], b[7], b[3]), quad(m, b[0], b[4], b[6], b[2]), quad(m, b[1], b[3], b[7], b[5]);
+                box_faces(m, b);
             }
     free(grid);
 }

@@ -1471,29 +1471,31 @@ static void re__edge_reports(re__an_t *an)
     }
 }
 
-/* Step 2a: one vertex per fan. Solids that touch at a vertex (voxel art's
-   diagonal neighbours; touching parts welded with re_mesh_t.weld) share it,
-   and a vertex with several fans has no corner: it would stay sharp, and
-   with it (step 5) both solids' whole patches. A vertex whose triangles
-   form several fans, each closed, becomes one vertex per fan: the fan of
-   its first triangle corner keeps the id, the others get ids from V on,
-   which re__vid() maps back to it. The fans are the classes of the
-   vertex's triangle corners joined across its manifold edges and across
-   the pairs re__pair_fins() finds on edges of more than two triangles
-   (solids touching along an edge). A fan is closed when each of its
-   corners' two edges at the vertex is manifold or paired; the edges
-   paired up are manifold once their ends are split (step 2 runs
-   again). Open fans (an open mesh's, a loose triangle's, a fin's) keep
-   the vertex between them, and each closed fan gets its own: a closed
-   solid touching open geometry at a vertex is rounded too. Runs only when there is something to find:
-   after step 2 when an edge has more than two triangles, else when step 4
-   walks a fan that does not go all around its vertex (free for the common
-   mesh, which has neither; step 4 then runs again). */
+/* Step 2a: one vertex per closed fan. Solids that touch at a vertex
+   (voxel art's diagonal neighbours; touching parts welded with
+   re_mesh_t.weld) share it, and a vertex with several fans has no corner:
+   it would stay sharp, and with it (step 5) both solids' whole patches.
+   The fans are the classes of the vertex's triangle corners joined across
+   its manifold edges and across the pairs re__pair_fins() finds on edges
+   of more than two triangles (solids touching along an edge). A fan is
+   closed when each of its corners' two edges at the vertex is manifold or
+   paired. Where a vertex has several fans, each closed fan gets a vertex
+   of its own (ids from V on, which re__vid() maps back to it) and the open
+   ones (an open mesh's, a loose triangle's, a fin's) keep it between them;
+   where all are closed, the fan of its first triangle corner keeps it.
+   The paired edges are manifold once their ends are split: step 2 runs
+   again. Runs only when there is something to find: after step 2 when an
+   edge has more than two triangles, else when step 4 finds a vertex with
+   convex edges and several fans (free for the common mesh, which has
+   neither; step 4 then runs again). */
 static unsigned re__corner_at(const re__an_t *an, unsigned t, unsigned v)
 {
     const unsigned *tr = an->tri + 3 * (size_t)t;
     return 3 * t + (tr[0] == v ? 0u : tr[1] == v ? 1u : 2u);
 }
+/* The half-edge arriving at corner c's vertex (a half-edge's id is its
+   start corner's, so the one leaving it is c itself). */
+static unsigned re__he_arriving(unsigned c) { return c % 3 ? c - 1 : c + 2; }
 static int re__joins_fans(const re__edge_t *ed) { return ed->count == 2 && ed->cls != RE__E_NONMANIFOLD; }
 enum { RE__FANS_ONE, RE__FANS_SPLIT, RE__FANS_SPLIT_OPEN }; /* per vertex in re__split_fans: one fan, several, some open */
 
@@ -1520,8 +1522,8 @@ static void re__pair_fin(const re__an_t *an, unsigned *uf, unsigned char *paired
     re__cross(e, ax, u1);
     re__cross(e, u1, u2);
     for (i = 0; i < n; i++) { /* insertion sort by the angle of the third corner around the edge */
-        unsigned hh = list[i], t = hh / 3;
-        const double *c = an->pos + 3 * (size_t)an->tri[3 * t + (hh % 3 + 2) % 3];
+        unsigned hh = list[i];
+        const double *c = an->pos + 3 * (size_t)an->tri[re__he_arriving(hh)];
         double w[3], x;
         re__sub(c, a, w);
         x = atan2(re__dot(w, u2), re__dot(w, u1));
@@ -1599,7 +1601,7 @@ static re_result_t re__split_fans(re__an_t *an, re__arena_t *ar)
         unsigned v = an->tri[c], q;
         if (an->tbad[c / 3] || state[v] == RE__FANS_ONE) continue;
         for (q = 0; q < 2; q++) { /* the half-edge leaving v, the one arriving */
-            unsigned h = q ? (c % 3 ? c - 1 : c + 2) : c;
+            unsigned h = q ? re__he_arriving(c) : c;
             if (!re__joins_fans(&an->edges[an->he_edge[h]]) && !paired[h])
                 fan_open[re__uf_find(uf, c)] = 1, state[v] = RE__FANS_SPLIT_OPEN;
         }
@@ -1937,10 +1939,9 @@ enum { RE__WHY_NONE, RE__WHY_MIXED, RE__WHY_FANS, RE__WHY_COMPLEX, RE__WHY_NOT_S
    edge of other than two triangles; *h is the half-edge crossed. */
 static unsigned re__fan_step(const re__an_t *an, unsigned v, unsigned t, int forward, unsigned *h)
 {
-    const unsigned *tr = an->tri + 3 * (size_t)t;
-    unsigned s = tr[0] == v ? 0u : tr[1] == v ? 1u : 2u;
+    unsigned c = re__corner_at(an, t, v);
     const re__edge_t *ed;
-    *h = 3 * t + (forward ? (s + 2) % 3 : s);
+    *h = forward ? re__he_arriving(c) : c;
     ed = &an->edges[an->he_edge[*h]];
     return ed->count != 2 ? RE__NONE : (ed->he[0] == *h ? ed->he[1] : ed->he[0]) / 3;
 }
@@ -1981,9 +1982,8 @@ static int re__several_fans(const re__an_t *an, unsigned v, unsigned ntri)
    fan walk, which the step does anyway, falls short; a mixed vertex is
    walked for it, re__several_fans): before step 2a has run, the step stops
    there with fans_wanted set (the caller splits the fans and runs it
-   again).
-   Reports wait for re__corner_reports(), so that a stopped run has made
-   none. */
+   again). Reports wait for re__corner_reports(), so that a stopped run
+   has made none. */
 static re_result_t re__corners(re__an_t *an, re__arena_t *ar)
 {
     size_t mark;

@@ -47,8 +47,7 @@ static void box_into(tm_mesh_t *m, const double lo[3], const double hi[3], int s
 {
     unsigned b[8], i;
     for (i = 0; i < 8; i++) b[i] = vert_at(m, i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2], share);
-    tm_quad(m, b[0], b[2], b[3], b[1]), tm_quad(m, b[4], b[5], b[7], b[6]), tm_quad(m, b[0], b[1], b[5], b[4]);
-    tm_quad(m, b[2], b[6], b[7], b[3]), tm_quad(m, b[0], b[4], b[6], b[2]), tm_quad(m, b[1], b[3], b[7], b[5]);
+    tm_box_faces(m, b);
 }
 /* every triangle corner its own vertex (per-face normals or UVs) */
 static void unshare(const tm_mesh_t *m, tm_mesh_t *u)

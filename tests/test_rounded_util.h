@@ -28,17 +28,23 @@ static void tm_tri(tm_mesh_t *m, unsigned a, unsigned b, unsigned c)
 /* quad a b c d counter-clockwise from outside, split along a-c */
 static void tm_quad(tm_mesh_t *m, unsigned a, unsigned b, unsigned c, unsigned d) { tm_tri(m, a, b, c); tm_tri(m, a, c, d); }
 
+/* the six faces of a box whose corner i (bit 0: x, 1: y, 2: z at the
+   high side) is vertex b[i], wound outward */
+static void tm_box_faces(tm_mesh_t *m, const unsigned b[8])
+{
+    tm_quad(m, b[0], b[2], b[3], b[1]); /* z- */
+    tm_quad(m, b[4], b[5], b[7], b[6]); /* z+ */
+    tm_quad(m, b[0], b[1], b[5], b[4]); /* y- */
+    tm_quad(m, b[2], b[6], b[7], b[3]); /* y+ */
+    tm_quad(m, b[0], b[4], b[6], b[2]); /* x- */
+    tm_quad(m, b[1], b[3], b[7], b[5]); /* x+ */
+}
 /* axis-aligned box [lo, hi] */
 static void tm_box(tm_mesh_t *m, const double lo[3], const double hi[3])
 {
-    unsigned b = m->nv, i;
-    for (i = 0; i < 8; i++) tm_vert(m, i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]);
-    tm_quad(m, b + 0, b + 2, b + 3, b + 1); /* z- */
-    tm_quad(m, b + 4, b + 5, b + 7, b + 6); /* z+ */
-    tm_quad(m, b + 0, b + 1, b + 5, b + 4); /* y- */
-    tm_quad(m, b + 2, b + 6, b + 7, b + 3); /* y+ */
-    tm_quad(m, b + 0, b + 4, b + 6, b + 2); /* x- */
-    tm_quad(m, b + 1, b + 3, b + 7, b + 5); /* x+ */
+    unsigned b[8], i;
+    for (i = 0; i < 8; i++) b[i] = tm_vert(m, i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]);
+    tm_box_faces(m, b);
 }
 
 static void tm_sub(const double a[3], const double b[3], double o[3]) { o[0] = a[0] - b[0], o[1] = a[1] - b[1], o[2] = a[2] - b[2]; }
