@@ -30,6 +30,12 @@
         shadow the rounded point.
    Rays starting inside an object (refraction) are not supported: the query
    assumes the host hit is where the ray enters the sharp mesh.
+   INSTANCES: build one object per prototype mesh and query in its space:
+   map the ray there with the instance's inverse (o' = A^-1 (o - T),
+   d' = A^-1 d, in double; t is unchanged) and map the answer back
+   (point A p + T, normal A^-T n normalised; re_secondary_origin() in the
+   prototype's space too). Radii are in the prototype's units: a
+   non-uniform scale stretches the rounding with the mesh.
 
    USAGE
      In exactly one C or C++ file:

@@ -122,7 +122,9 @@ static void tm_rbox_normal(const double c[3], const double half[3], double r, co
 }
 
 /* Sphere tracing of an exact distance (1-Lipschitz), then the residual.
-   Returns the first t with sdf <= eps*scale, or HUGE_VAL beyond tmax. */
+   Returns the first t with sdf <= eps*scale, or where the step no longer
+   moves t (a long d: the distance is then below t's ulp times |d|), or
+   HUGE_VAL beyond tmax. */
 typedef double (*tm_sdf_fn)(const void *ctx, const double p[3]);
 static double tm_trace(tm_sdf_fn f, const void *ctx, const double o[3], const double d[3], double tmax, double scale)
 {
@@ -132,7 +134,7 @@ static double tm_trace(tm_sdf_fn f, const void *ctx, const double o[3], const do
         double s;
         p[0] = o[0] + t * d[0], p[1] = o[1] + t * d[1], p[2] = o[2] + t * d[2];
         s = f(ctx, p);
-        if (s <= 1e-15 * scale) return t;
+        if (s <= 1e-15 * scale || t + s / dl == t) return t;
         t += s / dl;
         if (t > tmax) return HUGE_VAL;
     }
