@@ -28,8 +28,9 @@
      3. Secondary rays from a rounded hit start at re_secondary_origin()
         (paper §4, I''), on the sharp mesh, so the host's geometry does not
         shadow the rounded point.
-   Rays starting inside an object (refraction) are not supported: the query
-   assumes the host hit is where the ray enters the sharp mesh.
+     4. Rays from inside (refraction): a back-face hit goes to
+        re_query_exit() / re_query_exit_uv(), which say where the ray
+        leaves the rounded solid (or that it runs outside it there).
    INSTANCES: build one object per prototype mesh and query in its space:
    map the ray there with the instance's inverse (o' = A^-1 (o - T),
    d' = A^-1 d, in double; t is unchanged) and map the answer back
@@ -402,6 +403,30 @@ RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o[3],
 RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o[3],
                                  const double dir[3], unsigned object, unsigned triangle,
                                  double t_host, double u, double v, re_hit_t *out);
+
+/* Rays from inside (refraction: a ray that entered the rounded solid and
+   now leaves it). The host found the ray leaving the sharp mesh through
+   `triangle` of `object` at t_host (a back-face hit, dir . normal > 0). The
+   query asks the ray reversed at that face, which enters there:
+     RE_UNCHANGED     the ray leaves through the flat face at t_host (normal:
+                      the face's, outward; zero if the face has no rounding);
+     RE_HIT_ROUNDED   it leaves through the rounding earlier, at h.t in
+                      [0, t_host]: h.point, outward h.normal, feature;
+     RE_PASS_THROUGH  near this face the ray runs outside the rounded solid
+                      (its origin lies in the removed volume, not inside it):
+                      h.t = t_host, trace on past the face, skipping it.
+   The answer is the last crossing of the rounded surface before the face,
+   so it is the exit when the origin lies inside the rounded solid. From an
+   origin in the removed volume, RE_HIT_ROUNDED only says that the segment
+   meets the rounded solid (h.t is where it leaves it): an occlusion
+   answer. Pure, const, allocation-free, thread-safe. */
+RE_DEF re_hit_kind_t re_query_exit(const re_scene_t *scene, const double o[3],
+                                   const double dir[3], unsigned object, unsigned triangle,
+                                   double t_host, re_hit_t *out);
+/* re_query_exit() with the back-face hit's barycentrics (as re_query_uv). */
+RE_DEF re_hit_kind_t re_query_exit_uv(const re_scene_t *scene, const double o[3],
+                                      const double dir[3], unsigned object, unsigned triangle,
+                                      double t_host, double u, double v, re_hit_t *out);
 
 /* Origin on the sharp mesh (I'' of paper §4) for a secondary ray leaving a
    RE_HIT_ROUNDED hit along `dir` (dir . hit->normal > 0): where that ray
@@ -4763,6 +4788,50 @@ RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], co
     o = re__query_start(scene, o3, dir, object, triangle, t_host, out, I, &f);
     if (!o || re__band_flat(o, triangle, u, v)) return RE_UNCHANGED;
     return re__query_kd(o, f, I, dir, t_host, out);
+}
+
+/* re_query_exit and re_query_exit_uv: the query of the ray reversed at the
+   exit face (it enters there), its answer turned back into the forward
+   ray's t. */
+static re_hit_kind_t re__query_exit(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                                    unsigned triangle, double t_host, int with_uv, double u, double v, re_hit_t *out)
+{
+    const re__object_t *o;
+    double I[3], back[3];
+    unsigned f = 0;
+    re_hit_t face;
+    if (!out) return RE_UNCHANGED;
+    o = re__query_start(scene, o3, dir, object, triangle, t_host, out, I, &f);
+    if (!o || (with_uv && re__band_flat(o, triangle, u, v))) return RE_UNCHANGED;
+    face = *out;
+    back[0] = -dir[0], back[1] = -dir[1], back[2] = -dir[2];
+    switch (re__query_kd(o, f, I, back, t_host, out)) {
+    case RE_UNCHANGED: return RE_UNCHANGED;
+    case RE_HIT_ROUNDED: {
+        double t = t_host - (out->t - t_host); /* out->t = t_host + s along the reversed ray */
+        if (t >= 0) {
+            out->t = t;
+            return RE_HIT_ROUNDED;
+        }
+        break; /* met behind the origin: the ray starts outside the rounded solid */
+    }
+    case RE_PASS_THROUGH: break;
+    }
+    *out = face;
+    out->kind = RE_PASS_THROUGH;
+    return RE_PASS_THROUGH;
+}
+
+RE_DEF re_hit_kind_t re_query_exit(const re_scene_t *scene, const double o[3], const double dir[3], unsigned object,
+                                   unsigned triangle, double t_host, re_hit_t *out)
+{
+    return re__query_exit(scene, o, dir, object, triangle, t_host, 0, 0, 0, out);
+}
+
+RE_DEF re_hit_kind_t re_query_exit_uv(const re_scene_t *scene, const double o[3], const double dir[3], unsigned object,
+                                      unsigned triangle, double t_host, double u, double v, re_hit_t *out)
+{
+    return re__query_exit(scene, o, dir, object, triangle, t_host, 1, u, v, out);
 }
 
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])

@@ -211,6 +211,30 @@ static void rfz_edit(rfz_mesh_t *m, unsigned op, unsigned a, unsigned b)
     }
 }
 
+/* The same face left from inside: the ray -d from dist behind P. The exit
+   query's answer is a valid kind, the same with u, v, and a leaving point
+   between the origin and the face (or the face itself). */
+static void rfz_exit_query(const re_scene_t *s, const double P[3], const double d[3], unsigned obj, unsigned t, double dist,
+                           double u, double v, unsigned ns, unsigned nc)
+{
+    double o[3], back[3];
+    re_hit_t h, h2;
+    re_hit_kind_t kind;
+    unsigned k;
+    for (k = 0; k < 3; k++) o[k] = P[k] + dist * d[k], back[k] = -d[k];
+    kind = re_query_exit(s, o, back, obj, t, dist, &h);
+    re_query_exit_uv(s, o, back, obj, t, dist, u, v, &h2);
+    if (kind != RE_UNCHANGED && kind != RE_HIT_ROUNDED && kind != RE_PASS_THROUGH) RFZ_FAIL();
+    if (h2.kind != kind || h.kind != kind || h2.t != h.t) RFZ_FAIL();
+    if (kind == RE_PASS_THROUGH && h.t != dist) RFZ_FAIL();
+    if (kind == RE_HIT_ROUNDED) {
+        double len = sqrt(h.normal[0] * h.normal[0] + h.normal[1] * h.normal[1] + h.normal[2] * h.normal[2]);
+        if (!(h.t >= 0 && h.t <= dist * (1 + 1e-5))) RFZ_FAIL();
+        if (!(fabs(len - 1) < 1e-6)) RFZ_FAIL();
+        if (h.feature_index >= (h.feature == RE_FEATURE_SPHERE ? ns : nc)) RFZ_FAIL();
+    }
+}
+
 static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *in)
 {
     unsigned i, q, obj, ns = re_sphere_count(s, 0), nc = re_cylinder_count(s, 0);
@@ -242,6 +266,8 @@ static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *
             if (kind != RE_UNCHANGED && kind != RE_HIT_ROUNDED && kind != RE_PASS_THROUGH) RFZ_FAIL();
             kind = re_query_uv(s, jo, jd, obj, tri, tj[(unsigned)dist % 4], u, v, &h);
             if (kind != RE_UNCHANGED && kind != RE_HIT_ROUNDED && kind != RE_PASS_THROUGH) RFZ_FAIL();
+            kind = re_query_exit_uv(s, jo, jd, obj, tri, tj[(unsigned)dist % 4], u, v, &h);
+            if (kind != RE_UNCHANGED && kind != RE_HIT_ROUNDED && kind != RE_PASS_THROUGH) RFZ_FAIL();
             continue;
         }
         if (!m->nt || m->idx[3 * t] >= m->nv || m->idx[3 * t + 1] >= m->nv || m->idx[3 * t + 2] >= m->nv) continue;
@@ -259,6 +285,7 @@ static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *
         re_query_uv(s, o, d, obj, t, dist, u, v, &h2);
         if (kind != RE_UNCHANGED && kind != RE_HIT_ROUNDED && kind != RE_PASS_THROUGH) RFZ_FAIL();
         if (h2.kind != kind || h.kind != kind) RFZ_FAIL();
+        rfz_exit_query(s, P, d, obj, t, dist, u, v, ns, nc);
         if (kind == RE_UNCHANGED) continue;
         if (!isfinite(h.t) || h.t < dist - 1e-5 * dist - 1e-300) RFZ_FAIL();
         if (kind == RE_HIT_ROUNDED) {

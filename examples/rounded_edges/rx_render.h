@@ -371,27 +371,14 @@ static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, do
     return h;
 }
 
-/* A ray o + t d that leaves object obj's sharp mesh through triangle prim
-   at t, asked about in reverse (the query takes rays from outside): from
-   *back = just past the exit, toward o. */
-static re_hit_kind_t rx__query_back(const rx_world_t *w, const double o[3], const double d[3], unsigned obj, unsigned prim,
-                                    double t, double u, double v, double *back, re_hit_t *q)
-{
-    double o2[3], d2[3];
-    int a;
-    *back = rx__next_t(w, t);
-    for (a = 0; a < 3; a++) o2[a] = o[a] + d[a] * *back, d2[a] = -d[a];
-    return re_query_uv(w->round, o2, d2, obj, prim, *back - t, u, v, q);
-}
-
 /* Shadow rays in one occlusion traversal. The filter decides each candidate
    hit on its own, so Embree may visit them in any order: a hit of the skipped
    geometry before skip_t is ignored; a hit on an object that is not rounded
    blocks; a front-face hit blocks when re_query_uv finds the flat face or a
    rounding before tmax, and is ignored on a pass-through; a back-face hit of
-   a rounded object (the ray leaves it) asks the reversed ray, as rx__trace
-   does: it blocks when that ray meets the rounded solid (or the flat face)
-   before reaching the origin. Each answer is whether the segment meets that
+   a rounded object (the ray leaves it) asks re_query_exit_uv, as rx__trace
+   does: it blocks unless the segment misses the rounded solid there
+   (RE_PASS_THROUGH). Each answer is whether the segment meets that
    object's rounded solid around this face, which is what occlusion asks. */
 typedef struct rx__occ_ctx_t {
     rx__ctx_t skip; /* first (its ctx is first): Embree passes its address to the filter */
@@ -422,10 +409,8 @@ static void rx__occlude_filter(const struct RTCFilterFunctionNArguments *args)
         if (nd < 0) {
             k = re_query_uv(w->round, c->o, c->d, (unsigned)obj, prim[i], t, uu[i], vv[i], &q);
             if (k == RE_PASS_THROUGH || (k == RE_HIT_ROUNDED && q.t >= c->tmax)) args->valid[i] = 0;
-        } else {
-            double back;
-            k = rx__query_back(w, c->o, c->d, (unsigned)obj, prim[i], t, uu[i], vv[i], &back, &q);
-            if (!(k == RE_UNCHANGED || (k == RE_HIT_ROUNDED && q.t < back))) args->valid[i] = 0;
+        } else if (re_query_exit_uv(w->round, c->o, c->d, (unsigned)obj, prim[i], t, uu[i], vv[i], &q) == RE_PASS_THROUGH) {
+            args->valid[i] = 0;
         }
     }
 }
@@ -525,23 +510,21 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
                    in the removed volume (a secondary ray from a rounded hit,
                    whose origin is I' pushed out along the rounded normal, or a
                    ray from another surface lying under a chamfer, such as the
-                   floor under a cube's rounded bottom edge). The query only
-                   takes rays from outside, so ask it about the reversed ray,
-                   which enters k at this exit face: if that ray meets the
-                   rounded solid before reaching our origin (or meets the flat
-                   face, the solid itself), the segment crosses the rounded
-                   solid; otherwise the exit is the paper's I'' and we go on. */
-                double back;
+                   floor under a cube's rounded bottom edge). re_query_exit_uv
+                   asks about the ray reversed at this exit face: if the
+                   segment meets the rounded solid (through its rounding or
+                   its flat face) it says where it leaves it; otherwise the
+                   exit is the paper's I'' and we go on. */
                 o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
                 d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
-                k = rx__query_back(w, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, h.u, h.v, &back, &q);
+                k = re_query_exit_uv(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, h.u, h.v, &q);
                 if (k == RE_UNCHANGED) break; /* through the flat face: the solid blocks it here */
-                if (k == RE_HIT_ROUNDED && q.t < back) {
+                if (k == RE_HIT_ROUNDED) {
                     /* exact for visibility (shadow rays); as a hit it is where
                        the ray leaves the rounded solid, which only a ray born
                        under a chamfer can produce */
                     chamfer = 1;
-                    s->t = back - q.t;
+                    s->t = q.t;
                     s->p = ex_v3(q.point[0], q.point[1], q.point[2]);
                     s->n = s->ng = ex_v3(q.normal[0], q.normal[1], q.normal[2]);
                     break;
@@ -549,7 +532,7 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
                 found = 0;
                 if (skip_geom != RTC_INVALID_GEOMETRY_ID) tnear = skip_t; /* earlier skips are behind */
                 skip_geom = h.geom_id;
-                skip_t = back;
+                skip_t = rx__next_t(w, h.t);
                 continue;
             }
             /* Embree's barycentrics let the query recognise the flat part
