@@ -417,9 +417,10 @@ RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o[3],
                       h.t = t_host, trace on past the face, skipping it.
    The answer is the last crossing of the rounded surface before the face,
    so it is the exit when the origin lies inside the rounded solid. From an
-   origin in the removed volume, RE_HIT_ROUNDED only says that the segment
-   meets the rounded solid (h.t is where it leaves it): an occlusion
-   answer. Pure, const, allocation-free, thread-safe. */
+   origin in the removed volume, RE_UNCHANGED and RE_HIT_ROUNDED say that
+   the segment meets the rounded solid and where it leaves it, not where it
+   enters it: an occlusion answer. Pure, const, allocation-free,
+   thread-safe. */
 RE_DEF re_hit_kind_t re_query_exit(const re_scene_t *scene, const double o[3],
                                    const double dir[3], unsigned object, unsigned triangle,
                                    double t_host, re_hit_t *out);
