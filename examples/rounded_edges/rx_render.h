@@ -469,6 +469,9 @@ static void rx__spawn_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, unsigned *
     tol = 1e-4 * w->scene->scale;
     p = ex_v3(sp->hit.point[0], sp->hit.point[1], sp->hit.point[2]);
     if (ex_dot(ex_sub(o, p), ex_sub(o, p)) > tol * tol) return;
+    /* a ray into the solid (refracted) hides nothing: its next hit is the
+       face it leaves by, from inside (rx__trace asks re_query_exit_uv) */
+    if (d.x * sp->hit.normal[0] + d.y * sp->hit.normal[1] + d.z * sp->hit.normal[2] <= 0) return;
     dir[0] = d.x; dir[1] = d.y; dir[2] = d.z;
     re_secondary_origin(w->round, &sp->hit, dir, org);
     e = ex_sub(ex_v3(org[0], org[1], org[2]), o);
