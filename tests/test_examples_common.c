@@ -492,6 +492,55 @@ static void lambert_sampling_weight_is_albedo(void)
     T_INT_EQ(bad, 0);
 }
 
+/* Glass (ex_material_t.ior): refraction obeys Snell's law in the plane of
+   incidence, reflection is the mirror direction, and the share of
+   reflections is the Fresnel reflectance: 0.04 at normal incidence for
+   index 1.5, only the s-part (rp = 0) at Brewster's angle, 1 beyond the
+   critical angle from inside. */
+static void dielectric_obeys_snell_and_fresnel(void)
+{
+    static const double eta_in[2] = {1 / 1.5, 1.5};
+    ex_rng_t rng = ex_rng_for_sample(5, 6, 7, 8);
+    ex_v3_t n = ex_normalize(ex_v3(0.2, 1, 0.3));
+    int i, k, bad = 0;
+    for (k = 0; k < 2; k++)
+        for (i = 0; i < 4000; i++) {
+            double a = acos(ex_rng_unit(&rng)), sin_i = sin(a), eta = eta_in[k];
+            ex_v3_t t, b, wo, wi;
+            int through;
+            ex_onb(n, &t, &b);
+            wo = ex_normalize(ex_add(ex_scale(n, cos(a)), ex_scale(t, sin_i)));
+            wi = ex__shade_dielectric(n, wo, eta, &rng, &through);
+            bad += fabs(ex_len(wi) - 1) > 1e-12 || fabs(ex_dot(wi, b)) > 1e-12; /* unit, in the plane of n and wo */
+            if (through) {
+                double sin_t = ex_len(ex_sub(wi, ex_scale(n, ex_dot(wi, n))));
+                bad += ex_dot(wi, n) >= 0 || fabs(sin_t - eta * sin_i) > 1e-12 || eta * sin_i > 1;
+            } else
+                bad += fabs(ex_dot(wi, n) - ex_dot(wo, n)) > 1e-12 || /* the mirror: wi + wo along n */
+                       ex_len(ex_sub(ex_add(wi, wo), ex_scale(n, ex_dot(ex_add(wi, wo), n)))) > 1e-12;
+        }
+    T_INT_EQ(bad, 0);
+    {
+        /* shares of reflection against the closed forms, 200 000 draws each */
+        double brewster = atan(1.5), critical = asin(1 / 1.5), cases[3][3] = {{0, 1 / 1.5, 0.04}, {brewster, 1 / 1.5, 0}, {critical + 0.05, 1.5, 1}};
+        double cb = cos(brewster), ct = cos(asin(sin(brewster) / 1.5)), rs = (cb / 1.5 - ct) / (cb / 1.5 + ct);
+        cases[1][2] = 0.5 * rs * rs; /* rp = 0 there */
+        for (k = 0; k < 3; k++) {
+            ex_v3_t t, b, wo;
+            long refl = 0, m = 200000, j;
+            double p = cases[k][2], sd = sqrt(p * (1 - p) / (double)m);
+            ex_onb(n, &t, &b);
+            wo = ex_normalize(ex_add(ex_scale(n, cos(cases[k][0])), ex_scale(t, sin(cases[k][0]))));
+            for (j = 0; j < m; j++) {
+                int through;
+                ex__shade_dielectric(n, wo, cases[k][1], &rng, &through);
+                refl += !through;
+            }
+            T_NEAR((double)refl / (double)m, p, 5 * sd + 1e-12);
+        }
+    }
+}
+
 /* The sampling density integrates to at most 1 over the sphere (exactly 1
    minus what GGX sends under the horizon); checked by uniform sphere
    quadrature, and the sampled-weight estimate of the albedo matches the
@@ -655,6 +704,7 @@ int main(int argc, char **argv)
         T_CASE(args_bad_input_exits_2_and_help_exits_0),
         T_CASE(lambert_sampling_weight_is_albedo),
         T_CASE(glossy_pdf_and_weights_are_consistent),
+        T_CASE(dielectric_obeys_snell_and_fresnel),
         T_CASE(rect_light_hit_and_front_side_only),
         T_CASE(direct_light_matches_the_irradiance_integral),
     };

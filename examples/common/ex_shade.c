@@ -226,6 +226,24 @@ static ex_v3_t ex__shade_accumulate(ex_v3_t L, ex_v3_t beta, ex_v3_t c, int dept
     return ex_add(L, term);
 }
 
+/* A smooth dielectric: wo reflected or refracted across n (n faces wo; eta
+   = index on wo's side / index beyond), chosen at random in proportion to
+   the exact Fresnel reflectance, so the path's weight stays 1. *through is
+   set when it refracts. */
+static ex_v3_t ex__shade_dielectric(ex_v3_t n, ex_v3_t wo, double eta, ex_rng_t *rng, int *through)
+{
+    double c = ex_dot(n, wo), k = 1 - eta * eta * (1 - c * c), ct = 0, F = 1;
+    if (k > 0) {
+        double rs, rp;
+        ct = sqrt(k);
+        rs = (eta * c - ct) / (eta * c + ct);
+        rp = (c - eta * ct) / (c + eta * ct);
+        F = 0.5 * (rs * rs + rp * rp);
+    }
+    *through = ex_rng_unit(rng) >= F;
+    return *through ? ex_normalize(ex_madd(ex_scale(wo, -eta), n, eta * c - ct)) : ex_sub(ex_scale(n, 2 * c), wo);
+}
+
 ex_v3_t ex_radiance(const ex_world_t *w, const ex_ray_t *camera_ray, ex_rng_t *rng)
 {
     double limit = w->indirect_clamp == 0 ? 8.0 : w->indirect_clamp;
@@ -236,12 +254,21 @@ ex_v3_t ex_radiance(const ex_world_t *w, const ex_ray_t *camera_ray, ex_rng_t *r
     for (depth = 0;; depth++) {
         ex_surface_t s;
         ex_v3_t wo, wi, weight;
-        int hit = w->intersect(w->user, &ray, INFINITY, &s);
+        int hit = w->intersect(w->user, &ray, INFINITY, &s), outside;
         L = ex__shade_accumulate(L, beta, ex__shade_emitters(w, ray.o, ray.d, hit ? s.t : INFINITY, !hit, pdf_b),
                                  depth > 1 ? depth : 0, limit);
         if (!hit || depth > bounces) break;
         wo = ex_neg(ray.d);
+        outside = ex_dot(s.ng, wo) > 0;
         ex__shade_orient(&s, wo);
+        if (s.mat->ior > 0) { /* glass: no direct light, the ray goes on */
+            int through;
+            ray.d = ex__shade_dielectric(s.n, wo, outside ? 1 / s.mat->ior : s.mat->ior, rng, &through);
+            ray.o = ex_madd(s.p, s.ng, through ? -ex__shade_eps(w, s.p) : ex__shade_eps(w, s.p));
+            ray.has_differentials = 0;
+            pdf_b = 0; /* a specular bounce: emitters seen next count in full */
+            continue;
+        }
         L = ex__shade_accumulate(L, beta, s.mat->emission, depth, limit);
         L = ex__shade_accumulate(L, beta, ex_direct_light(w, &s, wo, rng), depth, limit);
         if (depth == bounces && w->nlights == 0 && ex_max_comp(w->env.zenith) <= 0 &&

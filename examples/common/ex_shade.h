@@ -36,6 +36,9 @@ typedef struct ex_material_t {
                             exponent = 2/alpha² - 2 */
     ex_lobe_t lobe;      /* default (0) GGX */
     ex_v3_t emission;    /* emitted radiance, usually 0 */
+    double ior;          /* > 0: smooth clear dielectric of this index (glass ~1.5), which
+                            reflects or refracts by the Fresnel equations; diffuse, specular
+                            and roughness are then unused. 0 = opaque */
 } ex_material_t;
 
 /* Emits `radiance` from the parallelogram corner + a·edge_u + b·edge_v,

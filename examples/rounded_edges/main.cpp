@@ -9,8 +9,10 @@
      build/examples/rounded_edges --demo out        (the gallery)
 
    Modes: sharp, rounded, rounded-compact (RE_LAYOUT_COMPACT), bevel-blog-N, bevel-cycles-N, tess-N (N >= 1).
-   Scenes: article (the bevel-shader post's cube and icosphere), blocks
-   (play blocks with knobs, ~258k triangles), cornell (a Cornell box). */
+   Scenes: article (the bevel-shader post's cube and icosphere), glass (the
+   same with a glass cube: rays refract through its rounded edges, in and
+   out), blocks (play blocks with knobs, ~258k triangles), cornell (a
+   Cornell box). */
 #define RE_IMPLEMENTATION
 #define RX_SCENE_IMPLEMENTATION
 #define RX_TESS_IMPLEMENTATION
@@ -85,11 +87,11 @@ static void blit(float *dst, int dw, int dx, const float *src, int sw, int cx, i
 /* The gallery: every scene sharp and rounded, and the baselines side by side. */
 static int demo(const ex_args_t *base, double radius_scale)
 {
-    static const char *const scenes[3] = {"article", "blocks", "cornell"};
-    static const int spp[3] = {16, 8, 16};
+    static const char *const scenes[4] = {"article", "glass", "blocks", "cornell"};
+    static const int spp[4] = {16, 64, 8, 16};
     char path[4096], file[128];
     int i;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < 4; i++) {
         rx_scene_t s;
         ex_args_t a = *base;
         rx_mode_t m;
@@ -149,7 +151,7 @@ static int demo(const ex_args_t *base, double radius_scale)
 static int selftest(void)
 {
     static const char *const modes[] = {"sharp", "rounded", "bevel-blog-8", "bevel-cycles-4", "tess-3"};
-    static const char *const scenes[] = {"article", "blocks", "cornell"};
+    static const char *const scenes[] = {"article", "glass", "blocks", "cornell"};
     int fails = 0, i, k;
     for (i = 0; i < 5; i++) {
         rx_mode_t m;
@@ -158,7 +160,7 @@ static int selftest(void)
         printf("%s mode name %s round-trips\n", ok ? "ok  " : "FAIL", modes[i]);
         fails += !ok;
     }
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < 4; i++) {
         rx_scene_t s;
         if (rx_scene_make(&s, scenes[i], 1.0)) { printf("FAIL scene %s builds\n", scenes[i]); fails++; continue; }
         for (k = 0; k < 2; k++) {
@@ -183,7 +185,7 @@ static int selftest(void)
 
 int main(int argc, char **argv)
 {
-    static const char *const scenes[] = {"article", "blocks", "cornell", NULL};
+    static const char *const scenes[] = {"article", "glass", "blocks", "cornell", NULL};
     ex_args_t a;
     ex_args_spec_t spec;
     double radius_scale = 1.0;

@@ -58,6 +58,7 @@ typedef struct rx_world_t {
     re_stats_t round_stats;
     long long concave_reports;  /* build reports of edges/vertices left sharp */
     int tess_sharp_objects;     /* tess mode: objects left sharp (a corner without sphere) */
+    int glass;                  /* rounded mode: some rounded object is glass (rx__glass) */
     /* counters, updated atomically during rendering */
     long long rays;             /* path rays (camera and bounce; shadow rays not counted) */
     long long chamfer_rays;     /* of those, the ones the rounding changed */
@@ -202,6 +203,7 @@ int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, i
     /* rounded mode hides exit faces with an intersect-context filter */
     if (m.kind == RX_ROUNDED) rtcSetSceneFlags(w->rtc, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     if ((m.kind == RX_ROUNDED || m.kind == RX_TESS) && rx__build_round(w, threads)) { rx_world_free(w); return -1; }
+    for (i = 0; i < s->nobj; i++) w->glass |= m.kind == RX_ROUNDED && s->obj[i].radius > 0 && s->mats[s->obj[i].material].ior > 0;
     t1 = ex_now();
     for (i = 0; i < s->nobj; i++) {
         const rx_object_t *o = &s->obj[i];
@@ -453,6 +455,12 @@ typedef struct rx__spawn_t {
     const rx_world_t *w; /* NULL: the last hit was not on a rounding */
     unsigned geom;
     re_hit_t hit;
+    /* the last hit on a rounded glass object (ex_material_t.ior > 0), flat
+       or rounded: a ray that starts there and goes into the object
+       (refracted) starts inside it */
+    const rx_world_t *in_w; /* NULL: none */
+    unsigned in_geom;
+    ex_v3_t in_p, in_n; /* point, outward normal */
 } rx__spawn_t;
 static RX_THREAD_LOCAL rx__spawn_t rx__spawn;
 
@@ -484,8 +492,8 @@ static void rx__spawn_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, unsigned *
 /* The closest hit of the mode's surface along ray, (0, tmax), hiding
    geometry skip_geom0's hits up to skip_t0 (RTC_INVALID_GEOMETRY_ID: none).
    *chamfer is set when the rounding (or bevel, or tessellated rounding)
-   changed it; *rounded (when not NULL) gets the rounded hit and *geom its
-   geometry, if that is what it returns. */
+   changed it; *rounded (when not NULL) gets the rounded hit, if that is
+   what it returns, and *geom the geometry it returns. */
 static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned skip_geom0, double skip_t0, ex_surface_t *s,
                      int *chamfer_out, re_hit_t *rounded, unsigned *geom)
 {
@@ -503,6 +511,7 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
         front = ex_dot(h.ng, ray->d) < 0;
         rx__surface_from_hit(w, ray, &h, s);
         found = 1;
+        if (geom) *geom = h.geom_id;
         if (!(ob->radius > 0)) break;
         if (w->mode.kind == RX_ROUNDED) {
             double o[3], d[3];
@@ -545,7 +554,7 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
             k = re_query_uv(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, h.u, h.v, &q);
             if (k == RE_HIT_ROUNDED) {
                 chamfer = 1;
-                if (rounded) *rounded = q, *geom = h.geom_id;
+                if (rounded) *rounded = q;
                 s->t = q.t;
                 s->p = ex_v3(q.point[0], q.point[1], q.point[2]);
                 s->n = s->ng = ex_v3(q.normal[0], q.normal[1], q.normal[2]);
@@ -595,6 +604,87 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
     return found;
 }
 
+/* The rounded object ray starts inside (refracted into it at this thread's
+   last hit), or RTC_INVALID_GEOMETRY_ID. */
+static unsigned rx__inside(const rx_world_t *w, const ex_ray_t *ray)
+{
+    const rx__spawn_t *sp = &rx__spawn;
+    double tol = 1e-4 * w->scene->scale;
+    ex_v3_t e;
+    if (sp->in_w != w) return RTC_INVALID_GEOMETRY_ID;
+    e = ex_sub(ray->o, sp->in_p);
+    if (ex_dot(e, e) > tol * tol || ex_dot(ray->d, sp->in_n) >= 0) return RTC_INVALID_GEOMETRY_ID;
+    return sp->in_geom;
+}
+
+/* Embree context that sees one geometry only (rx__exit_first). */
+typedef struct rx__only_ctx_t {
+    struct RTCIntersectContext ctx; /* first: Embree passes its address to the filter */
+    unsigned geom;
+} rx__only_ctx_t;
+static void rx__only_filter(const struct RTCFilterFunctionNArguments *args)
+{
+    const rx__only_ctx_t *c = (const rx__only_ctx_t *)args->context;
+    const unsigned *geom = (const unsigned *)args->hit + 6 * args->N; /* as rx__skip_filter */
+    unsigned i;
+    for (i = 0; i < args->N; i++)
+        if (args->valid[i] == -1 && geom[i] != c->geom) args->valid[i] = 0;
+}
+
+/* A ray inside rounded object g leaves its rounded solid before it meets
+   anything else, but a surface lying in the removed volume under a
+   rounding (the floor under a resting glass cube's bottom edge) comes
+   before g's exit face, so the trace found it without asking the exit
+   query. Trace g alone to just past that hit; where the ray leaves g there
+   and re_query_exit_uv puts the exit on a rounding first, the exit becomes
+   the hit (returns 1). */
+static int rx__exit_first(const rx_world_t *w, const ex_ray_t *ray, unsigned g, ex_surface_t *s, int *chamfer)
+{
+    rx__only_ctx_t c;
+    struct RTCRayHit rh;
+    double o[3], d[3];
+    re_hit_t q;
+    memset(&rh, 0, sizeof rh);
+    rtcInitIntersectContext(&c.ctx);
+    c.ctx.filter = rx__only_filter;
+    c.geom = g;
+    rx__rtc_ray(&rh.ray, ray->o, ray->d, 0, rx__next_t(w, s->t));
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(w->rtc, &c.ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
+    if (rh.hit.Ng_x * ray->d.x + rh.hit.Ng_y * ray->d.y + rh.hit.Ng_z * ray->d.z <= 0) return 0; /* not leaving g */
+    o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
+    d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
+    if (re_query_exit_uv(w->round, o, d, (unsigned)w->re_object[g], rh.hit.primID, rh.ray.tfar, rh.hit.u, rh.hit.v, &q) !=
+            RE_HIT_ROUNDED ||
+        !(q.t < s->t))
+        return 0;
+    s->t = q.t;
+    s->p = ex_v3(q.point[0], q.point[1], q.point[2]);
+    s->n = s->ng = ex_v3(q.normal[0], q.normal[1], q.normal[2]);
+    s->mat = &w->scene->mats[w->scene->obj[g].material];
+    *chamfer = 1;
+    return 1;
+}
+
+/* Glass (ex_material_t.ior > 0), rounded mode, after the trace: a ray that
+   started inside a rounded glass object leaves it first (rx__exit_first);
+   then this hit is remembered if it is on one. Out of line: scenes without
+   glass never call it (rx_world_t.glass), and keep rx__intersect lean. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void rx__glass(const rx_world_t *w, const ex_ray_t *ray, int found, unsigned *geom, ex_surface_t *s, int *chamfer,
+                      re_hit_t *q)
+{
+    unsigned inside = rx__inside(w, ray);
+    if (found && inside != RTC_INVALID_GEOMETRY_ID && *geom != inside && rx__exit_first(w, ray, inside, s, chamfer))
+        *geom = inside, q->kind = RE_UNCHANGED; /* an exit: nothing for rx__spawn_skip to hide */
+    rx__spawn.in_w = found && w->scene->obj[*geom].radius > 0 && s->mat->ior > 0 ? w : NULL;
+    if (rx__spawn.in_w) rx__spawn.in_geom = *geom, rx__spawn.in_p = s->p, rx__spawn.in_n = s->ng;
+}
+
 static int rx__intersect(void *user, const ex_ray_t *ray, double tmax, ex_surface_t *s)
 {
     rx_world_t *w = (rx_world_t *)user;
@@ -607,6 +697,7 @@ static int rx__intersect(void *user, const ex_ray_t *ray, double tmax, ex_surfac
     q.kind = RE_UNCHANGED;
     found = rx__trace(w, ray, tmax, skip_geom, skip_t, s, &chamfer, &q, &geom);
     if (w->mode.kind == RX_ROUNDED) {
+        if (w->glass) rx__glass(w, ray, found, &geom, s, &chamfer, &q);
         rx__spawn.w = found && q.kind == RE_HIT_ROUNDED ? w : NULL;
         if (rx__spawn.w) rx__spawn.geom = geom, rx__spawn.hit = q;
     }

@@ -41,7 +41,7 @@ typedef struct rx_scene_t {
 /* Scene names accepted by rx_scene_make, NULL-terminated. */
 extern const char *const rx_scene_names[];
 
-/* Builds scene `name` ("article", "blocks", "cornell") into *s. `radius_scale`
+/* Builds scene `name` ("article", "glass", "blocks", "cornell") into *s. `radius_scale`
    multiplies every rounding radius (1 = the scene's default). 0, or -1 when
    the name is unknown or memory runs out (after printing one line). */
 int rx_scene_make(rx_scene_t *s, const char *name, double radius_scale);
@@ -61,7 +61,7 @@ size_t rx_scene_triangles(const rx_scene_t *s);
 #include <stdlib.h>
 #include <string.h>
 
-const char *const rx_scene_names[] = {"article", "blocks", "cornell", NULL};
+const char *const rx_scene_names[] = {"article", "glass", "blocks", "cornell", NULL};
 
 static ex_material_t rx__mat(double r, double g, double b, double spec, double rough)
 {
@@ -182,6 +182,16 @@ static int rx__article(rx_scene_t *s, double rs)
     return 0;
 }
 
+/* The article's scene with a glass cube (index 1.5): rays refract in
+   through its rounded edges and out through them (re_query_exit_uv). */
+static int rx__glass(rx_scene_t *s, double rs)
+{
+    if (rx__article(s, rs)) return -1;
+    s->mats[1] = rx__mat(0, 0, 0, 0, 0);
+    s->mats[1].ior = 1.5;
+    return 0;
+}
+
 /* Play blocks like the paper's "Blocks" (Fig. 8d, 276k triangles): 2x4
    bricks, each a box and eight 48-sided knobs (separate convex objects; the
    knobs are sunk into the brick so the crease stays sharp, as moulded),
@@ -282,9 +292,10 @@ int rx_scene_make(rx_scene_t *s, const char *name, double radius_scale)
     int rc;
     memset(s, 0, sizeof *s);
     if (!strcmp(name, "article")) rc = rx__article(s, radius_scale);
+    else if (!strcmp(name, "glass")) rc = rx__glass(s, radius_scale);
     else if (!strcmp(name, "blocks")) rc = rx__blocks(s, radius_scale);
     else if (!strcmp(name, "cornell")) rc = rx__cornell(s, radius_scale);
-    else { fprintf(stderr, "unknown scene '%s' (article, blocks, cornell)\n", name); return -1; }
+    else { fprintf(stderr, "unknown scene '%s' (article, glass, blocks, cornell)\n", name); return -1; }
     if (rc) { fprintf(stderr, "out of memory building scene '%s'\n", name); rx_scene_free(s); return -1; }
     s->name = name;
     return 0;
