@@ -344,24 +344,18 @@ static void rx__rtc_ray(struct RTCRay *r, ex_v3_t o, ex_v3_t d, double tnear, do
     r->mask = 0xFFFFFFFFu;
 }
 
-/* ex_embree_intersect, hiding geometry skip_geom's hits at t <= skip_t. */
-static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, double tnear, double tfar,
-                                   unsigned skip_geom, double skip_t)
+/* The closest hit in [tnear, tfar] that the filter of ctx lets through. */
+static ex_hit_t rx__intersect_in(const rx_world_t *w, struct RTCIntersectContext *ctx, ex_v3_t o, ex_v3_t d, double tnear,
+                                 double tfar)
 {
-    rx__ctx_t c;
     struct RTCRayHit rh;
     ex_hit_t h;
-    if (skip_geom == RTC_INVALID_GEOMETRY_ID) return ex_embree_intersect(w->rtc, o, d, tnear, tfar);
     memset(&h, 0, sizeof h);
     memset(&rh, 0, sizeof rh);
-    rtcInitIntersectContext(&c.ctx);
-    c.ctx.filter = rx__skip_filter;
-    c.skip_geom = skip_geom;
-    c.skip_t = (float)skip_t;
     rx__rtc_ray(&rh.ray, o, d, tnear, tfar);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(w->rtc, &c.ctx, &rh);
+    rtcIntersect1(w->rtc, ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
     h.hit = 1;
     h.t = rh.ray.tfar;
@@ -371,6 +365,19 @@ static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, do
     h.u = rh.hit.u;
     h.v = rh.hit.v;
     return h;
+}
+
+/* ex_embree_intersect, hiding geometry skip_geom's hits at t <= skip_t. */
+static ex_hit_t rx__intersect_skip(const rx_world_t *w, ex_v3_t o, ex_v3_t d, double tnear, double tfar,
+                                   unsigned skip_geom, double skip_t)
+{
+    rx__ctx_t c;
+    if (skip_geom == RTC_INVALID_GEOMETRY_ID) return ex_embree_intersect(w->rtc, o, d, tnear, tfar);
+    rtcInitIntersectContext(&c.ctx);
+    c.ctx.filter = rx__skip_filter;
+    c.skip_geom = skip_geom;
+    c.skip_t = (float)skip_t;
+    return rx__intersect_in(w, &c.ctx, o, d, tnear, tfar);
 }
 
 /* Shadow rays in one occlusion traversal. The filter decides each candidate
@@ -641,23 +648,17 @@ static void rx__only_filter(const struct RTCFilterFunctionNArguments *args)
 static int rx__exit_first(const rx_world_t *w, const ex_ray_t *ray, unsigned g, ex_surface_t *s, int *chamfer)
 {
     rx__only_ctx_t c;
-    struct RTCRayHit rh;
+    ex_hit_t h;
     double o[3], d[3];
     re_hit_t q;
-    memset(&rh, 0, sizeof rh);
     rtcInitIntersectContext(&c.ctx);
     c.ctx.filter = rx__only_filter;
     c.geom = g;
-    rx__rtc_ray(&rh.ray, ray->o, ray->d, 0, rx__next_t(w, s->t));
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(w->rtc, &c.ctx, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
-    if (rh.hit.Ng_x * ray->d.x + rh.hit.Ng_y * ray->d.y + rh.hit.Ng_z * ray->d.z <= 0) return 0; /* not leaving g */
+    h = rx__intersect_in(w, &c.ctx, ray->o, ray->d, 0, rx__next_t(w, s->t));
+    if (!h.hit || ex_dot(h.ng, ray->d) <= 0) return 0; /* no hit, or not leaving g */
     o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
     d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
-    if (re_query_exit_uv(w->round, o, d, (unsigned)w->re_object[g], rh.hit.primID, rh.ray.tfar, rh.hit.u, rh.hit.v, &q) !=
-            RE_HIT_ROUNDED ||
+    if (re_query_exit_uv(w->round, o, d, (unsigned)w->re_object[g], h.prim_id, h.t, h.u, h.v, &q) != RE_HIT_ROUNDED ||
         !(q.t < s->t))
         return 0;
     s->t = q.t;
