@@ -411,7 +411,9 @@ RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o[3],
      RE_UNCHANGED     the ray leaves through the flat face at t_host (normal:
                       the face's, outward; zero if the face has no rounding);
      RE_HIT_ROUNDED   it leaves through the rounding earlier, at h.t in
-                      [0, t_host]: h.point, outward h.normal, feature;
+                      [0, t_host] (a float host's late t_host may put it
+                      just beyond, as in re_query): h.point, outward
+                      h.normal, feature;
      RE_PASS_THROUGH  near this face the ray runs outside the rounded solid
                       (its origin lies in the removed volume, not inside it):
                       h.t = t_host, trace on past the face, skipping it.
