@@ -278,6 +278,15 @@ static void rx__surface_from_hit(const rx_world_t *w, const ex_ray_t *ray, const
     s->mat = &w->scene->mats[w->scene->obj[h->geom_id].material];
 }
 
+/* The surface of a rounded-edges answer (a rounded hit or exit): its t,
+   point and normal, as the shading normal too. */
+static void rx__surface_from_answer(const re_hit_t *q, ex_surface_t *s)
+{
+    s->t = q->t;
+    s->p = ex_v3(q->point[0], q->point[1], q->point[2]);
+    s->n = s->ng = ex_v3(q->normal[0], q->normal[1], q->normal[2]);
+}
+
 /* Host trace callback for the bevel baselines: Embree, object = geometry id. */
 static int rx__bevel_trace(void *user, const double o[3], const double d[3], double tmin, double tmax,
                            re_trace_hit_t *hit)
@@ -524,6 +533,8 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
             double o[3], d[3];
             re_hit_t q;
             re_hit_kind_t k;
+            o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
+            d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
             if (!front) {
                 /* The ray leaves object k's sharp mesh from inside: it started
                    in the removed volume (a secondary ray from a rounded hit,
@@ -534,8 +545,6 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
                    segment meets the rounded solid (through its rounding or
                    its flat face) it says where it leaves it; otherwise the
                    exit is the paper's I'' and we go on. */
-                o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
-                d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
                 k = re_query_exit_uv(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, h.u, h.v, &q);
                 if (k == RE_UNCHANGED) break; /* through the flat face: the solid blocks it here */
                 if (k == RE_HIT_ROUNDED) {
@@ -543,9 +552,7 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
                        the ray leaves the rounded solid, which only a ray born
                        under a chamfer can produce */
                     chamfer = 1;
-                    s->t = q.t;
-                    s->p = ex_v3(q.point[0], q.point[1], q.point[2]);
-                    s->n = s->ng = ex_v3(q.normal[0], q.normal[1], q.normal[2]);
+                    rx__surface_from_answer(&q, s);
                     break;
                 }
                 found = 0;
@@ -556,15 +563,11 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
             }
             /* Embree's barycentrics let the query recognise the flat part
                of a face from three per-triangle bands (query step 0) */
-            o[0] = ray->o.x; o[1] = ray->o.y; o[2] = ray->o.z;
-            d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
             k = re_query_uv(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, h.u, h.v, &q);
             if (k == RE_HIT_ROUNDED) {
                 chamfer = 1;
                 if (rounded) *rounded = q;
-                s->t = q.t;
-                s->p = ex_v3(q.point[0], q.point[1], q.point[2]);
-                s->n = s->ng = ex_v3(q.normal[0], q.normal[1], q.normal[2]);
+                rx__surface_from_answer(&q, s);
                 break;
             }
             if (k == RE_PASS_THROUGH) {
@@ -661,9 +664,7 @@ static int rx__exit_first(const rx_world_t *w, const ex_ray_t *ray, unsigned g, 
     if (re_query_exit_uv(w->round, o, d, (unsigned)w->re_object[g], h.prim_id, h.t, h.u, h.v, &q) != RE_HIT_ROUNDED ||
         !(q.t < s->t))
         return 0;
-    s->t = q.t;
-    s->p = ex_v3(q.point[0], q.point[1], q.point[2]);
-    s->n = s->ng = ex_v3(q.normal[0], q.normal[1], q.normal[2]);
+    rx__surface_from_answer(&q, s);
     s->mat = &w->scene->mats[w->scene->obj[g].material];
     *chamfer = 1;
     return 1;
