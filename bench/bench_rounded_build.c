@@ -17,12 +17,14 @@
    page is a fault: the line above the table gives its cost here); into ms
    = re_build_into() into reused buffers (no faults: the arithmetic alone).
    speedup = paper ms / build ms.
-   Threads table (CSV rounded_build_threads.csv): the same scenes with one
-   object per solid (box, block, sphere), re_build() on one thread and with
-   desc.parallel on the machine's cores (FILIGREE_BENCH_THREADS overrides),
-   wall clock, the three builds in turn, best of 7; gain = 1 thread /
-   threads; speedup 1 / n = paper ms / one object / threads; B/edge 1 / n
-   = bytes per rounded edge as one object / one object per solid (default
+   Threads table (CSV rounded_build_threads.csv): the same scenes as one
+   object and with one object per solid (box, block, sphere), re_build() on
+   one thread and with desc.parallel on the machine's cores
+   (FILIGREE_BENCH_THREADS overrides; one object: its longest steps split,
+   many: the objects spread), wall clock, the four builds in turn, best of
+   7; gain = 1 thread / threads; speedup 1 / split / objects n = paper ms /
+   one object on one thread / split / objects on threads; B/edge 1 / n =
+   bytes per rounded edge as one object / one object per solid (default
    layout: every object has a header and its arrays' alignment).
    query ns = one re_query_uv() (the host passes its barycentrics, so a hit
    on a face's flat part is answered by the per-triangle bands). */
@@ -322,14 +324,15 @@ static double build_wall_ms(const re_scene_desc_t *desc)
     re_free(s);
     return t0 * 1e3;
 }
-/* One object, one object per solid on one thread, and one object per solid
-   on `threads` threads, in turn for 7 rounds (best of each): wall clock. */
+/* One object on one thread and with its steps split on `threads` threads,
+   and one object per solid on one thread and on `threads` threads, in turn
+   for 7 rounds (best of each): wall clock. */
 static void threads_row(const scene_t *sc, unsigned threads, FILE *csv)
 {
     re_mesh_t one, *parts = (re_mesh_t *)calloc(sc->n_parts, sizeof *parts);
     unsigned **idx = (unsigned **)calloc(sc->n_parts, sizeof *idx), p, j;
-    re_scene_desc_t d1, dn, dp;
-    double best[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, bpe[2];
+    re_scene_desc_t d1, d1p, dn, dp;
+    double best[4] = {HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL}, bpe[2];
     int rep, mode;
     memset(&one, 0, sizeof one);
     one.positions = sc->m.v, one.vertex_count = sc->m.nv, one.indices = sc->m.idx, one.index_count = sc->m.ni, one.radius = sc->r;
@@ -346,12 +349,13 @@ static void threads_row(const scene_t *sc, unsigned threads, FILE *csv)
     }
     memset(&d1, 0, sizeof d1);
     d1.objects = &one, d1.object_count = 1;
+    d1p = d1, d1p.parallel = host_parallel, d1p.threads = threads; /* one object: its steps split */
     dn = d1, dn.objects = parts, dn.object_count = sc->n_parts;
     dp = dn, dp.parallel = host_parallel, dp.threads = threads;
     for (rep = 0; rep < 7; rep++)
-        for (mode = 0; mode < 3; mode++) {
-            int m = (mode + rep) % 3;
-            double t = build_wall_ms(m == 0 ? &d1 : m == 1 ? &dn : &dp);
+        for (mode = 0; mode < 4; mode++) {
+            int m = (mode + rep) % 4;
+            double t = build_wall_ms(m == 0 ? &d1 : m == 1 ? &dn : m == 2 ? &dp : &d1p);
             if (t < best[m]) best[m] = t;
         }
     { /* the memory of many small objects: each has its header and its own arrays' alignment */
@@ -362,12 +366,14 @@ static void threads_row(const scene_t *sc, unsigned threads, FILE *csv)
         re_free(s1), re_free(sn);
         bpe[0] = (double)a.bytes / (double)a.rounded_edges, bpe[1] = (double)b.bytes / (double)b.rounded_edges;
     }
-    printf("%-20s %8u %12.1f %12.1f %12.1f %9.2fx %9.0fx %9.0fx %8.1f %8.1f\n", sc->name, sc->n_parts, best[0], best[1], best[2], best[1] / best[2],
-           sc->paper_s * 1e3 / best[0], sc->paper_s * 1e3 / best[2], bpe[0], bpe[1]);
+    printf("%-20s %8u %12.1f %12.1f %9.2fx %12.1f %12.1f %9.2fx %9.0fx %9.0fx %9.0fx %8.1f %8.1f\n", sc->name, sc->n_parts, best[0], best[3],
+           best[0] / best[3], best[1], best[2], best[1] / best[2], sc->paper_s * 1e3 / best[0], sc->paper_s * 1e3 / best[3],
+           sc->paper_s * 1e3 / best[2], bpe[0], bpe[1]);
     fflush(stdout);
     if (csv)
-        fprintf(csv, "%s,%u,%u,%.3f,%.3f,%.3f,%.3f,%.1f,%.1f,%.2f,%.2f\n", sc->name, sc->n_parts, threads, best[0], best[1], best[2], best[1] / best[2],
-                sc->paper_s * 1e3 / best[0], sc->paper_s * 1e3 / best[2], bpe[0], bpe[1]);
+        fprintf(csv, "%s,%u,%u,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.1f,%.1f,%.1f,%.2f,%.2f\n", sc->name, sc->n_parts, threads, best[0], best[3],
+                best[0] / best[3], best[1], best[2], best[1] / best[2], sc->paper_s * 1e3 / best[0], sc->paper_s * 1e3 / best[3],
+                sc->paper_s * 1e3 / best[2], bpe[0], bpe[1]);
     for (p = 0; p < sc->n_parts; p++) free(idx[p]);
     free(idx), free(parts);
 }
@@ -497,17 +503,20 @@ int main(int argc, char **argv)
         re_free(s);
     }
     if (csv) fclose(csv);
-    /* The same scenes with one object per solid, built on the host's threads
-       (re_scene_desc_t.parallel): wall clock, since the work is spread. */
+    /* The same scenes built on the host's threads (re_scene_desc_t.parallel),
+       as one object and as one object per solid: wall clock, since the work
+       is spread. */
     {
         const char *env = getenv("FILIGREE_BENCH_THREADS");
         long nt = env ? atol(env) : sysconf(_SC_NPROCESSORS_ONLN);
         unsigned threads = nt < 2 ? 2u : nt > RE_MAX_BUILD_TASKS ? (unsigned)RE_MAX_BUILD_TASKS : (unsigned)nt;
         snprintf(path, sizeof path, "%s/rounded_build_threads.csv", dir);
         csv = fopen(path, "w");
-        if (csv) fprintf(csv, "scene,objects,threads,one_object_ms,objects_1_thread_ms,objects_threads_ms,thread_gain,speedup_one_object,speedup_threads,bytes_per_rounded_edge_one_object,bytes_per_rounded_edge_objects\n");
-        printf("\nbuild on the host's threads: re_build() wall-clock ms, best of 7 rounds (the three in turn); one object per solid, %u threads\n", threads);
-        printf("%-20s %8s %12s %12s %12s %10s %10s %10s %8s %8s\n", "scene", "objects", "one object", "1 thread", "threads", "gain", "speedup 1", "speedup n", "B/edge 1", "B/edge n");
+        if (csv) fprintf(csv, "scene,objects,threads,one_object_ms,one_object_threads_ms,one_object_gain,objects_1_thread_ms,objects_threads_ms,objects_gain,speedup_one_object,speedup_one_object_threads,speedup_objects_threads,bytes_per_rounded_edge_one_object,bytes_per_rounded_edge_objects\n");
+        printf("\nbuild on the host's threads: re_build() wall-clock ms, best of 7 rounds (the four in turn), %u threads: the scene as one object\n"
+               "(on one thread; its steps split on the threads) and as one object per solid (on one thread; the objects on the threads)\n", threads);
+        printf("%-20s %8s %12s %12s %10s %12s %12s %10s %10s %10s %10s %8s %8s\n", "scene", "objects", "one object", "1 obj split", "gain", "objects 1 t",
+               "objects n t", "gain", "speedup 1", "split", "objects n", "B/edge 1", "B/edge n");
         for (k = 0; k < 4; k++) {
             fprintf(stderr, "  %s: threads\n", sc[k].name);
             threads_row(&sc[k], threads, csv);

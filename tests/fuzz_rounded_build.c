@@ -29,6 +29,15 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+/* the build's steps split on threads from the smallest mesh on (THREADS;
+   rfz_check_tasks) */
+#define RE__SPAN_MIN_SLOTS 1u
+#define RE__SPAN_MIN_CORNERS 1u
+#define RE__KD_SPLIT_MIN 1u
+/* zeroed blocks, so that two scenes compare byte for byte (a block's
+   alignment padding is not written) */
+#define RE_MALLOC(sz, ctx) ((void)(ctx), calloc(1, (size_t)(sz) + 1))
+#define RE_FREE(p, ctx) ((void)(ctx), free(p))
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 
@@ -389,22 +398,28 @@ static void rfz_reversed(void *user, unsigned count, re_task_fn task, void *task
     while (count-- > 0) task(task_ctx, count);
 }
 
-/* Two objects built in two tasks (run last first) give the one-thread
-   build's result, diagnostic and counts. */
+/* Two objects built in two tasks, or one object whose steps are split
+   into three (both run last first), give the one-thread build's result,
+   diagnostic, counts and bytes. */
 static void rfz_check_tasks(const rfz_case_t *k, re_result_t rc, const re_diag_t *dg, const re_scene_t *s)
 {
     re_scene_desc_t d = k->desc;
     re_scene_t *p = NULL;
     re_diag_t dp;
-    d.parallel = rfz_reversed, d.threads = 2;
+    d.parallel = rfz_reversed, d.threads = d.object_count > 1 ? 2u : 3u;
     if (re_build(&d, &p, &dp) != rc) RFZ_FAIL();
     else if (rc != RE_OK) {
         if (dp.result != dg->result || dp.object != dg->object || dp.element != dg->element || strcmp(dp.message, dg->message)) RFZ_FAIL();
     } else if (p && s) {
         re_stats_t a, b;
+        unsigned o;
         re_get_stats(s, &a);
         re_get_stats(p, &b);
         if (memcmp(&a, &b, sizeof a)) RFZ_FAIL();
+        for (o = 0; o < s->n_objects; o++)
+            if (s->objects[o].bytes != p->objects[o].bytes ||
+                (s->objects[o].bytes && memcmp(s->objects[o].block, p->objects[o].block, s->objects[o].bytes)))
+                RFZ_FAIL();
     }
     re_free(p);
 }
@@ -420,7 +435,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     void *mem, *scratch;
     rfz_decode(data, size, &k, &in);
     rc = re_build(&k.desc, &s, &dg);
-    if (k.desc.object_count > 1) rfz_check_tasks(&k, rc, &dg, s);
+    rfz_check_tasks(&k, rc, &dg, s);
     if (rc != RE_OK) {
         /* a failed build names what failed */
         if (s || dg.result != rc || !dg.message[0] || !re_result_string(rc)) RFZ_FAIL();

@@ -1,5 +1,6 @@
 /* tests/test_rounded_parallel.c — rounded_edges.h's build on the host's
-   threads (re_scene_desc_t.parallel, THREADS in the header): the scene
+   threads (re_scene_desc_t.parallel, THREADS in the header), objects
+   spread over tasks and one object's steps split into tasks: the scene
    is the serial build's byte for byte, whatever the task count and the
    order the host runs them in; reports are the same per object; a failure
    names the same object, element and message as on one thread; the sizes
@@ -47,6 +48,11 @@ static void tp_free(void *p, void *ctx)
 
 #define RE_MALLOC(sz, ctx) tp_malloc((sz), (ctx))
 #define RE_FREE(p, ctx) tp_free((p), (ctx))
+/* The kd-tree's node capacity, when not 0 (one_object_kd_near_capacity):
+   a tree built on threads then runs into it and is built again on one
+   thread. */
+static unsigned tp_node_cap;
+#define RE__KD_NODE_CAP(refs) (tp_node_cap ? tp_node_cap : 2u * (refs))
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 #include "test.h"
@@ -349,19 +355,18 @@ static void parallel_failure_names_lowest_object(void)
     tp_scene_free(&S);
 }
 
-/* A host parallel-for that returns without running a task fails the build
-   and the size query by name, and leaves nothing allocated. */
-static void parallel_skipped_task_fails(void)
+/* A host parallel-for that returns without running task 1 of 3 fails the
+   build of S's first n objects and the size query by name, and leaves
+   nothing allocated. */
+static void tp_skipped_task_fails(const tp_scene_t *S, unsigned n)
 {
-    static tp_scene_t S;
     re_scene_desc_t d;
     re_scene_t *s = NULL;
     re_sizes_t sz;
     re_diag_t dg;
     tp_host_t host = {1, 0, 2};
     tp_alloc_t *al = tp_alloc_new(0);
-    tp_scene(&S);
-    d = tp_desc(S.mesh, TP_OBJECTS, &host, 3, al);
+    d = tp_desc(S->mesh, n, &host, 3, al);
     T_INT_EQ(re_build(&d, &s, &dg), RE_ERR_INVALID_ARG);
     T_CHECK(s == NULL);
     T_CHECK(strstr(dg.message, "without running task 1 of 3") != NULL);
@@ -369,6 +374,14 @@ static void parallel_skipped_task_fails(void)
     T_INT_EQ(dg.result, RE_ERR_INVALID_ARG);
     T_INT_EQ(al->live, 0);
     free(al);
+}
+
+/* Objects spread over the tasks. */
+static void parallel_skipped_task_fails(void)
+{
+    static tp_scene_t S;
+    tp_scene(&S);
+    tp_skipped_task_fails(&S, TP_OBJECTS);
     tp_scene_free(&S);
 }
 
@@ -462,30 +475,28 @@ static void parallel_tasks_share_the_objects_evenly(void)
     T_INT_EQ(n_bound, 200);
 }
 
-/* Every allocation of a parallel build and size query failing in turn:
-   out of memory, a diagnostic that says so, nothing left allocated. */
-static void parallel_out_of_memory_leaves_nothing(void)
+/* Every allocation of a build of S's first n objects on 3 threads, and of
+   its size query, failing in turn: out of memory, a diagnostic that says
+   so, nothing left allocated. Returns how many allocations there were. */
+static long tp_each_allocation_fails(const tp_scene_t *S, unsigned n)
 {
-    static tp_scene_t S;
     re_scene_desc_t d;
-    long at, n_calls, n_oom = 0, n_runs = 0;
+    long at, n_calls, n_oom = 0;
     tp_alloc_t *count = tp_alloc_new(0);
     re_scene_t *s = NULL;
     re_diag_t dg;
     tp_host_t host = {0, 0, 0};
-    tp_scene(&S);
-    d = tp_desc(S.mesh, 6, &host, 3, count);
+    d = tp_desc(S->mesh, n, &host, 3, count);
     T_INT_EQ(re_build(&d, &s, &dg), RE_OK);
     re_free(s), s = NULL;
     n_calls = count->calls;
-    T_GT(n_calls, 6);
+    free(count);
     for (at = 1; at <= n_calls; at++) {
         tp_alloc_t *al = tp_alloc_new(at);
         re_sizes_t sz;
         re_result_t rc;
-        d = tp_desc(S.mesh, 6, &host, 3, al);
+        d = tp_desc(S->mesh, n, &host, 3, al);
         rc = re_build(&d, &s, &dg);
-        n_runs++;
         if (rc == RE_ERR_OUT_OF_MEMORY) n_oom += s == NULL && dg.result == RE_ERR_OUT_OF_MEMORY && strstr(dg.message, "out of memory") != NULL;
         else {
             re_free(s);
@@ -497,8 +508,173 @@ static void parallel_out_of_memory_leaves_nothing(void)
         if (al->live) T_FAIL("allocation %ld failing: %ld blocks left", at, al->live);
         free(al);
     }
-    T_INT_EQ(n_oom, n_runs);
-    free(count);
+    T_INT_EQ(n_oom, n_calls);
+    return n_calls;
+}
+
+/* Six objects on three tasks. */
+static void parallel_out_of_memory_leaves_nothing(void)
+{
+    static tp_scene_t S;
+    tp_scene(&S);
+    T_GT(tp_each_allocation_fails(&S, 6), 6);
+    tp_scene_free(&S);
+}
+
+/* ---- one object split into tasks (THREADS) --------------------------------- */
+
+/* One object with work enough to split: an icosphere of `level` (its
+   corners, radii and kd-tree go to tasks), then, later in vertex order so
+   in the last span of corners, two boxes sharing a corner (step 4 stops
+   inside a task and runs again after step 2a), an open box (mixed
+   vertices, reported) and a slab thinner than 2r (clamped, reported). */
+static void tp_big(tp_scene_t *S, int level)
+{
+    tm_mesh_t *m = &S->m[0];
+    double lo[3] = {2, -0.5, -0.5}, hi[3] = {3, 0.5, 0.5}, lo2[3] = {-3, -0.5, -0.5}, hi2[3] = {-2, 0.5, 0.5};
+    double lo3[3] = {-1, -3, 0}, hi3[3] = {1, -2, 0.006};
+    unsigned b, i0, j;
+    memset(S, 0, sizeof *S);
+    tm_icosphere(m, level, 1.0);
+    b = m->nv;
+    tm_box(m, lo, hi);
+    i0 = m->ni;
+    tm_box(m, hi, (double[3]){4, 1.5, 1.5});
+    for (j = i0; j < m->ni; j++)
+        if (m->idx[j] == b + 8) m->idx[j] = b + 7; /* the second box's low corner is the first one's high corner */
+    tm_box(m, lo2, hi2), m->ni -= 6;
+    tm_box(m, lo3, hi3);
+    memset(&S->mesh[0], 0, sizeof S->mesh[0]);
+    S->mesh[0].positions = m->v, S->mesh[0].vertex_count = m->nv;
+    S->mesh[0].indices = m->idx, S->mesh[0].index_count = m->ni, S->mesh[0].radius = 0.004;
+}
+
+/* Levels 4 and 5, each on 2, 3, 8 and 100 tasks on threads and 5 run last
+   first on one thread: the serial scene byte for byte, its reports in its
+   order, its sizes. */
+static void one_object_split_equals_serial(void)
+{
+    static tp_scene_t S;
+    static tp_reps_t R0, R1;
+    static const unsigned threads[] = {2, 3, 8, 100, 5};
+    int level;
+    pthread_mutex_init(&R0.mu, NULL), pthread_mutex_init(&R1.mu, NULL);
+    for (level = 4; level <= 5; level++) {
+        re_scene_desc_t d;
+        re_scene_t *s0 = NULL;
+        re_sizes_t z0;
+        re_diag_t dg;
+        unsigned k;
+        tp_big(&S, level);
+        R0.n = 0;
+        d = tp_desc(S.mesh, 1, NULL, 0, NULL);
+        d.report = tp_report, d.report_user = &R0;
+        if (!T_INT_EQ(re_build(&d, &s0, &dg), RE_OK)) { tp_scene_free(&S); return; }
+        d.report = NULL;
+        T_INT_EQ(re_build_sizes(&d, &z0, &dg), RE_OK);
+        T_GT(s0->stats.rounded_corners, 2500);
+        T_GT(s0->stats.mixed_vertices, 0);
+        T_GT(s0->stats.clamped, 0);
+        T_GT(R0.n, 4);
+        for (k = 0; k < sizeof threads / sizeof *threads; k++) {
+            tp_host_t host = {0, 0, 0};
+            tp_alloc_t *al = tp_alloc_new(0);
+            re_scene_t *s1 = NULL;
+            re_sizes_t z1;
+            int i, n_same = 0;
+            host.reverse = k == 4;
+            R1.n = 0;
+            d = tp_desc(S.mesh, 1, &host, threads[k], al);
+            d.report = tp_report, d.report_user = &R1;
+            T_INT_EQ(re_build(&d, &s1, &dg), RE_OK);
+            T_GE(host.count, 2); /* split */
+            tp_same_scene(s0, s1, &S, 60 + k);
+            if (T_INT_EQ(R1.n, R0.n))
+                for (i = 0; i < R0.n; i++) n_same += !memcmp(&R1.r[i], &R0.r[i], sizeof R0.r[i]);
+            T_INT_EQ(n_same, R0.n);
+            T_INT_EQ(re_build_sizes(&d, &z1, &dg), RE_OK);
+            T_INT_EQ(z1.scene_bytes, z0.scene_bytes);
+            T_INT_EQ(z1.scratch_bytes, z0.scratch_bytes);
+            re_free(s1);
+            T_INT_EQ(al->live, 0);
+            free(al);
+        }
+        re_free(s0);
+        tp_scene_free(&S);
+    }
+}
+
+/* A split step of one object. */
+static void one_object_skipped_task_fails(void)
+{
+    static tp_scene_t S;
+    tp_big(&S, 4);
+    tp_skipped_task_fails(&S, 1);
+    tp_scene_free(&S);
+}
+
+/* One object whose steps split in three. */
+static void one_object_out_of_memory_leaves_nothing(void)
+{
+    static tp_scene_t S;
+    tp_big(&S, 4);
+    T_GE(tp_each_allocation_fails(&S, 1), 5); /* scratch, the spans' fans, the plane marks, the kd-tree's right half, the block */
+    tp_scene_free(&S);
+}
+
+/* The kd-tree's node capacity just above the tree's size and a little
+   below it (cells left leaves where it runs out): the halves built on
+   threads then need more nodes than the capacity allows together, and the
+   tree is built again on one thread. The scene is the serial one wherever
+   that fits (capacities where the serial tree cannot end are skipped: the
+   serial build fails there). */
+static void one_object_kd_near_capacity(void)
+{
+    static tp_scene_t S;
+    static const int below[] = {2, 0, -1, -2, -4, -5, -6, -8, -12, -13};
+    re_scene_desc_t d;
+    re_scene_t *s0 = NULL;
+    re_sizes_t z;
+    re_diag_t dg;
+    unsigned long long N;
+    void *mem = NULL, *scratch = NULL;
+    unsigned k, n_cut = 0, n_fit = 0;
+    tp_big(&S, 4);
+    tp_node_cap = 0;
+    d = tp_desc(S.mesh, 1, NULL, 0, NULL);
+    if (!T_INT_EQ(re_build(&d, &s0, &dg), RE_OK) || !T_INT_EQ(re_build_sizes(&d, &z, &dg), RE_OK)) goto done;
+    N = s0->stats.kd_nodes;
+    re_free(s0), s0 = NULL;
+    mem = malloc(z.scene_bytes + 16), scratch = malloc(z.scratch_bytes);
+    for (k = 0; k < sizeof below / sizeof *below; k++) {
+        int j;
+        tp_node_cap = (unsigned)((long long)N + below[k]);
+        /* probed into the buffers of the real capacity (a smaller tree
+           needs less): re_build() would retry with more scratch where the
+           tree cannot end */
+        if (re_build_into(&d, mem, z.scene_bytes, scratch, z.scratch_bytes, &s0, &dg) != RE_OK) continue;
+        n_fit++;
+        n_cut += s0->stats.kd_nodes < N;
+        s0 = NULL;
+        if (!T_INT_EQ(re_build(&d, &s0, &dg), RE_OK)) continue;
+        for (j = 0; j < 2; j++) {
+            tp_host_t host = {j, 0, 0};
+            tp_scene_t *one = &S;
+            re_scene_desc_t dp = tp_desc(S.mesh, 1, &host, 2 + (unsigned)j, NULL);
+            re_scene_t *s1 = NULL;
+            if (!T_INT_EQ(re_build(&dp, &s1, &dg), RE_OK)) continue;
+            T_INT_EQ(host.count, 2); /* the last step split: the kd-tree, in two */
+            tp_same_scene(s0, s1, one, 80 + k);
+            re_free(s1);
+        }
+        re_free(s0), s0 = NULL;
+    }
+    T_GE(n_fit, 6);
+    T_GE(n_cut, 4); /* trees the capacity cut, built alike */
+done:
+    tp_node_cap = 0;
+    free(mem), free(scratch);
+    re_free(s0);
     tp_scene_free(&S);
 }
 
@@ -512,6 +688,10 @@ int main(int argc, char **argv)
         T_CASE(parallel_sizes_equal_serial),
         T_CASE(parallel_tasks_share_the_objects_evenly),
         T_CASE(parallel_out_of_memory_leaves_nothing),
+        T_CASE(one_object_split_equals_serial),
+        T_CASE(one_object_kd_near_capacity),
+        T_CASE(one_object_skipped_task_fails),
+        T_CASE(one_object_out_of_memory_leaves_nothing),
     };
     return T_RUN(argc, argv, cases);
 }
