@@ -2674,9 +2674,12 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
    8). A large object's tree, and its build time, are as before. */
 #define RE__KD_DUP_EXTRA 256u
 #define RE__KD_SAMPLE 64u
-/* Nodes the tree may take, from its reference capacity (past it, cells
-   become leaves); test_rounded_parallel lowers it so that a tree built on
-   threads meets it (re__kd_build_top) */
+/* Nodes the tree may take, from its reference capacity. Not reached: a
+   split puts every box on at least one side and needs both sides smaller,
+   so every leaf holds a box and there are fewer than 2 x references nodes
+   (and the budget keeps the references within their capacity).
+   test_rounded_parallel lowers it so that a tree built on threads meets it
+   (re__kd_build_top). */
 #ifndef RE__KD_NODE_CAP
 #define RE__KD_NODE_CAP(refs) (2 * (refs))
 #endif
