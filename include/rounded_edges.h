@@ -2130,37 +2130,62 @@ static void re__slide(void *arr, size_t size, unsigned from, unsigned to, unsign
     if (from != to && n) memmove((unsigned char *)arr + size * to, (unsigned char *)arr + size * from, size * n);
 }
 
+/* Spans of about equal degree sums (the work is about linear in it): span
+   w starts at vertex J->v[w], corner J->c[w] and slot J->base[w] (the
+   degree sum of the corners before it). */
+static void re__span_layout(const re__an_t *an, unsigned n, re__span_job_t *J)
+{
+    unsigned v, c, w, q, slots = 0;
+    for (v = 0, c = 0, w = 0; w < n; v++) {
+        /* span w starts at the first vertex whose slots before it reach w / n of all (empty spans at the end) */
+        while (w < n && (v == an->V || (unsigned long long)slots * n >= (unsigned long long)an->np_total * w)) {
+            J->v[w] = v, J->c[w] = c, J->ran[w] = J->whole[w] = 0;
+            for (q = 0; q < 3; q++) J->off[w][q] = J->base[w][q] = slots;
+            w++;
+        }
+        if (v < an->V && an->vcorner[v] != RE__NONE) slots += an->voff[v + 1] - an->voff[v], c++;
+    }
+    J->v[n] = an->V, J->c[n] = an->nc;
+}
+
+/* Each span's slots moved down to follow the previous span's, and its
+   corners' first slots with them. */
+static void re__span_close(re__an_t *an, unsigned n, const re__span_job_t *J)
+{
+    unsigned w, c, q, dense[3] = {0, 0, 0};
+    for (w = 0; w < n; w++) {
+        unsigned used[3];
+        for (q = 0; q < 3; q++) used[q] = J->off[w][q] - J->base[w][q];
+        re__slide(an->c_planes, sizeof *an->c_planes, J->base[w][0], dense[0], used[0]);
+        re__slide(an->c_edges, sizeof *an->c_edges, J->base[w][0], dense[0], used[0]);
+        re__slide(an->c_start, sizeof *an->c_start, J->base[w][0], dense[0], used[0]);
+        re__slide(an->su, 3 * sizeof *an->su, J->base[w][1], dense[1], used[1]);
+        re__slide(an->s_tri, sizeof *an->s_tri, J->base[w][1], dense[1], used[1]);
+        re__slide(an->c_x, 4 * sizeof *an->c_x, J->base[w][2], dense[2], used[2]);
+        for (c = J->c[w]; c < J->c[w + 1]; c++) {
+            an->c_pfirst[c] -= J->base[w][0] - dense[0];
+            an->c_sfirst[c] -= J->base[w][1] - dense[1];
+            an->c_xfirst[c] -= J->base[w][2] - dense[2];
+        }
+        for (q = 0; q < 3; q++) dense[q] += used[q];
+    }
+}
+
 static re_result_t re__corner_spans(re__an_t *an, unsigned *fan0, unsigned fan_cap)
 {
     re__span_job_t J;
-    unsigned n = an->inner, w, v, c, slots = 0, dense[3] = {0, 0, 0}, q;
+    unsigned n = an->inner, w, off[3] = {0, 0, 0};
     re_result_t rc;
     if (n > an->np_total / RE__SPAN_MIN_SLOTS) n = an->np_total / RE__SPAN_MIN_SLOTS;
     if (n < 2) { /* on this thread */
-        if (!re__corner_span(an, 0, an->V, fan0, fan0 + fan_cap, dense)) an->fans_wanted = 1;
+        if (!re__corner_span(an, 0, an->V, fan0, fan0 + fan_cap, off)) an->fans_wanted = 1;
         return RE_OK;
     }
     J.an = an;
     J.fan_cap = fan_cap;
     if (!(J.fan = (unsigned *)RE_MALLOC(sizeof(unsigned) * 2 * (size_t)fan_cap * n, an->desc->alloc_ctx)))
         return re__fail(an, RE_ERR_OUT_OF_MEMORY, -1, "out of memory");
-    /* spans of about equal degree sums (the work is about linear in it) */
-    for (v = 0, c = 0, w = 0; v < an->V && w < n; v++) {
-        while (w < n && (unsigned long long)slots * n >= (unsigned long long)an->np_total * w) {
-            J.v[w] = v, J.c[w] = c;
-            J.off[w][0] = J.off[w][1] = J.off[w][2] = slots;
-            J.base[w][0] = J.base[w][1] = J.base[w][2] = slots;
-            J.ran[w] = J.whole[w] = 0;
-            w++;
-        }
-        if (an->vcorner[v] != RE__NONE) slots += an->voff[v + 1] - an->voff[v], c++;
-    }
-    for (; w < n; w++) { /* empty spans at the end */
-        J.v[w] = an->V, J.c[w] = an->nc;
-        J.off[w][0] = J.off[w][1] = J.off[w][2] = J.base[w][0] = J.base[w][1] = J.base[w][2] = an->np_total;
-        J.ran[w] = J.whole[w] = 0;
-    }
-    J.v[n] = an->V, J.c[n] = an->nc;
+    re__span_layout(an, n, &J);
     rc = re__run_split(an, n, re__span_task, &J, J.ran);
     RE_FREE(J.fan, an->desc->alloc_ctx);
     if (rc != RE_OK) return rc;
@@ -2169,23 +2194,7 @@ static re_result_t re__corner_spans(re__an_t *an, unsigned *fan0, unsigned fan_c
             an->fans_wanted = 1;
             return RE_OK;
         }
-    /* each span's slots moved down to follow the previous span's */
-    for (w = 0; w < n; w++) {
-        unsigned used[3];
-        for (q = 0; q < 3; q++) used[q] = J.off[w][q] - J.base[w][q];
-        re__slide(an->c_planes, sizeof *an->c_planes, J.base[w][0], dense[0], used[0]);
-        re__slide(an->c_edges, sizeof *an->c_edges, J.base[w][0], dense[0], used[0]);
-        re__slide(an->c_start, sizeof *an->c_start, J.base[w][0], dense[0], used[0]);
-        re__slide(an->su, 3 * sizeof *an->su, J.base[w][1], dense[1], used[1]);
-        re__slide(an->s_tri, sizeof *an->s_tri, J.base[w][1], dense[1], used[1]);
-        re__slide(an->c_x, 4 * sizeof *an->c_x, J.base[w][2], dense[2], used[2]);
-        for (c = J.c[w]; c < J.c[w + 1]; c++) {
-            an->c_pfirst[c] -= J.base[w][0] - dense[0];
-            an->c_sfirst[c] -= J.base[w][1] - dense[1];
-            an->c_xfirst[c] -= J.base[w][2] - dense[2];
-        }
-        for (q = 0; q < 3; q++) dense[q] += used[q];
-    }
+    re__span_close(an, n, &J);
     return RE_OK;
 }
 
@@ -2788,6 +2797,24 @@ static int re__kd_split(const re__kd_t *kd, unsigned list_at, unsigned n, const 
     return 1;
 }
 
+/* The left child's share of a split node's reference budget: its boxes
+   and, of the duplicates the budget allows, its part in proportion. */
+static unsigned re__kd_left_budget(unsigned budget, unsigned nl, unsigned nr)
+{
+    return nl + (unsigned)((double)(budget - nl - nr) * nl / (nl + nr));
+}
+
+/* A split node (its right child's id is filled in later); its children's
+   lists (n + nr entries at kd->n_tmp, re__kd_split) are kept. */
+static unsigned re__kd_inner(re__kd_t *kd, unsigned axis, float split, unsigned n, unsigned nr)
+{
+    unsigned id = kd->n_nodes++;
+    kd->n_tmp += n + nr;
+    kd->nodes[id].info = axis;
+    memcpy(&kd->nodes[id].data, &split, sizeof split);
+    return id;
+}
+
 /* `list` lives in kd->tmp; children's lists are pushed after it and popped.
    [lo, hi] is the node's cell; its leaves may hold at most `budget` >= n
    references in all, shared between the children in proportion to their
@@ -2800,12 +2827,9 @@ static unsigned re__kd_build(re__kd_t *kd, unsigned list_at, unsigned n, const d
     if (kd->n_nodes + 1 > kd->cap_nodes) return RE__NONE;
     if (re__kd_split(kd, list_at, n, lo_in, hi_in, budget, depth, &axis, &split, &nl, &nr)) {
         unsigned left_at = kd->n_tmp, right_at = kd->n_tmp + n, r;
-        unsigned bl = nl + (unsigned)((double)(budget - nl - nr) * nl / (nl + nr));
+        unsigned bl = re__kd_left_budget(budget, nl, nr);
         double clo[3], chi[3];
-        kd->n_tmp += n + nr;
-        id = kd->n_nodes++;
-        kd->nodes[id].info = axis;
-        memcpy(&kd->nodes[id].data, &split, sizeof split);
+        id = re__kd_inner(kd, axis, split, n, nr);
         for (a = 0; a < 3; a++) clo[a] = lo_in[a], chi[a] = hi_in[a];
         chi[axis] = (double)split;
         if (re__kd_build(kd, left_at, nl, clo, chi, bl, depth + 1) == RE__NONE) return RE__NONE;
@@ -2874,18 +2898,13 @@ static re_result_t re__kd_build_top(re__an_t *an, re__kd_t *kd, unsigned n, cons
     void *mem;
     re_result_t rc;
     *root = RE__NONE;
-    if (an->inner < 2 || n < RE__KD_SPLIT_MIN || kd->cap_nodes < 3 ||
-        !re__kd_split(kd, 0, n, lo, hi, budget, 0, &axis, &split, &nl, &nr)) {
+    if (an->inner < 2 || n < RE__KD_SPLIT_MIN || !re__kd_split(kd, 0, n, lo, hi, budget, 0, &axis, &split, &nl, &nr)) {
         *root = re__kd_build(kd, 0, n, lo, hi, budget, 0);
         return RE_OK;
     }
-    /* the root, as re__kd_build makes it */
-    kd->n_nodes = 1;
-    kd->nodes[0].info = axis;
-    memcpy(&kd->nodes[0].data, &split, sizeof split);
-    kd->n_tmp = 2 * n + nr;
+    re__kd_inner(kd, axis, split, n, nr); /* the root, as re__kd_build makes it */
     J.at[0] = n, J.at[1] = 2 * n, J.n[0] = nl, J.n[1] = nr;
-    J.budget[0] = nl + (unsigned)((double)(budget - nl - nr) * nl / (nl + nr));
+    J.budget[0] = re__kd_left_budget(budget, nl, nr);
     J.budget[1] = budget - J.budget[0];
     for (a = 0; a < 3; a++) J.lo[0][a] = J.lo[1][a] = lo[a], J.hi[0][a] = J.hi[1][a] = hi[a];
     J.hi[0][axis] = J.lo[1][axis] = (double)split;
