@@ -74,11 +74,14 @@
      first, each to the task with the fewest triangles so far) and the host
      runs them on its threads; many objects gain up to the thread count. A
      scene of one object splits that object's three longest steps instead
-     (its corners, their radius bounds and the kd-tree's two halves, about
-     half of its build) into up to `threads` tasks each, run by the host
-     one step after another (the benchmark's icospheres, 102k triangles,
-     build 1.1-1.3x faster on two threads, its blocks 1.1-1.2x). The scene
-     is the same, byte for byte, as built on one thread. Then:
+     (its corners, their radius bounds and the kd-tree's two halves, a
+     third to a half of its build) into up to `threads` tasks each, run by
+     the host one step after another (the benchmark's icospheres, 102k
+     triangles, build 1.1-1.3x faster on two threads, its blocks
+     1.1-1.2x); those steps take up to 64 bytes per rounded edge more
+     memory for the kd-tree's second half, and a mark per face plane per
+     task. The scene is the same, byte for byte, as built on one thread.
+     Then:
      RE_MALLOC/RE_FREE and desc.report are called from the host's threads,
      at the same time (they must be thread-safe; the reports of different
      objects interleave, each object's own come in order); every task holds
