@@ -3000,6 +3000,13 @@ static void re__solve3(const re__plane_t *A, const re__plane_t *B, const re__pla
 }
 
 #define RE__ALIGN(x) (((x) + 15u) & ~(size_t)15u)
+/* Past an array of `bytes` written at *at: its alignment padding zeroed,
+   so that a block's bytes are the same whatever memory it was given. */
+static void re__skip(unsigned char **at, size_t bytes)
+{
+    memset(*at + bytes, 0, RE__ALIGN(bytes) - bytes);
+    *at += RE__ALIGN(bytes);
+}
 
 /* Packing of id arrays (re__pk_t): the block's smallest id is its base.
    RE__NONE is the largest unsigned, so the smallest id needs no test for
@@ -3040,6 +3047,10 @@ static re__pk_t re__pk_put(unsigned char **at, const unsigned *ids, unsigned n, 
     unsigned *base = (unsigned *)*at, b, i, nf = 0, nb = (n + RE__PK_BLOCK - 1) / RE__PK_BLOCK;
     unsigned char *off = *at + RE__ALIGN(sizeof(unsigned) * nb);
     unsigned *full = (unsigned *)(off + RE__ALIGN(n));
+    unsigned char *pad = *at;
+    re__skip(&pad, sizeof(unsigned) * nb);
+    re__skip(&pad, n);
+    re__skip(&pad, sizeof(unsigned) * RE__PK_BLOCK * (size_t)n_full);
     for (b = 0; b < nb; b++) {
         unsigned lo;
         if (re__pk_block(ids, n, b, &lo)) {
@@ -4057,7 +4068,7 @@ static void *re__put(unsigned char **at, const void *src, size_t bytes)
 {
     void *dst = *at;
     if (bytes) memcpy(dst, src, bytes);
-    *at += RE__ALIGN(bytes);
+    re__skip(at, bytes);
     return dst;
 }
 
@@ -4104,13 +4115,13 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
         unsigned *xs, nx = 0;
         for (c = 0; c < F->n_edge_cyls; c++) ec[c].p[0] = F->cyls[c].p[0], ec[c].p[1] = F->cyls[c].p[1];
         o->cyls = ec;
-        at += RE__ALIGN(sizeof(re__ecyl_t) * F->n_edge_cyls);
+        re__skip(&at, sizeof(re__ecyl_t) * F->n_edge_cyls);
         o->s1w = NULL, o->ds1 = NULL, o->xs1 = NULL, o->n_xs1 = 0;
         if (!RE__COMPACT(o)) {
             unsigned *w = (unsigned *)at;
             for (c = 0; c < F->n_edge_cyls; c++) w[c] = F->cyls[c].s[1];
             o->s1w = w;
-            at += RE__ALIGN(sizeof(unsigned) * F->n_edge_cyls);
+            re__skip(&at, sizeof(unsigned) * F->n_edge_cyls);
         }
         ds = (unsigned short *)at;
         xs = (unsigned *)(at + RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls));
@@ -4120,7 +4131,8 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
         }
         if (RE__COMPACT(o)) {
             RE_ASSERT(nx == F->n_xs1);
-            at += RE__ALIGN(sizeof(unsigned short) * F->n_edge_cyls) + RE__ALIGN(sizeof(unsigned) * 2 * (size_t)nx);
+            re__skip(&at, sizeof(unsigned short) * F->n_edge_cyls);
+            re__skip(&at, sizeof(unsigned) * 2 * (size_t)nx);
             o->ds1 = ds, o->xs1 = xs, o->n_xs1 = nx;
         }
     }
@@ -4136,7 +4148,7 @@ static void re__pack(const re__an_t *an, const re__final_t *F, unsigned char *me
     o->nodes = (const re__node_t *)re__put(&at, F->kd.nodes, sizeof(re__node_t) * F->kd.n_nodes);
     o->leaf16 = (const unsigned short *)at;
     re__kd_narrow(&F->kd, (re__node_t *)o->nodes, (unsigned short *)at);
-    at += RE__ALIGN(sizeof(unsigned short) * F->n_leaf16);
+    re__skip(&at, sizeof(unsigned short) * F->n_leaf16);
     o->rmax = 0;
     for (c = 0; c < F->n_radii; c++) o->rmax = re__max(o->rmax, F->radii[c]);
 }

@@ -8,13 +8,27 @@
    against the analytic rounded box, random hulls against the eroded
    polytope, in both layouts. re_build()'s first scratch guess is cut to
    almost nothing, so every object is analysed again with twice the
-   scratch until it fits (re__build_object); the reports must not repeat. */
+   scratch until it fits (re__build_object); the reports must not repeat.
+   And a block's bytes, alignment padding included, do not depend on what
+   the memory held before (the allocator here fills every block with
+   g_fill). */
 #define RE__SCRATCH_PER_TRIANGLE 8u
 #define RE__SCRATCH_BASE 64u
 #define RE__PK_SPAN 2u
 #define RE__LEAF_RUN_SPAN 3u
 #define RE__SOLVED_SLOTS 3u
 #define RE__DS1_SPAN 2u
+#include <stdlib.h>
+#include <string.h>
+static int g_fill = 0xA5;
+static void *fill_malloc(size_t n)
+{
+    void *p = malloc(n ? n : 1);
+    if (p) memset(p, g_fill, n);
+    return p;
+}
+#define RE_MALLOC(sz, ctx) ((void)(ctx), fill_malloc(sz))
+#define RE_FREE(p, ctx) ((void)(ctx), free(p))
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 #include "test.h"
@@ -129,6 +143,59 @@ static void packing_fallbacks_hulls(void)
 static void compact_layout_packing_fallbacks_box(void) { with_compact_layout(packing_fallbacks_box); }
 static void compact_layout_packing_fallbacks_hulls(void) { with_compact_layout(packing_fallbacks_hulls); }
 
+/* The same mesh built into memory that held 0x00 and 0xFF before: every
+   block the same bytes (re_build()), and the packed part of the caller's
+   buffer the same (re_build_into()), in both layouts: a box, a random hull
+   and an icosphere, with the fallbacks above (many arrays, many gaps). */
+static void blocks_do_not_depend_on_fresh_memory(void)
+{
+    t_rng_t rng = {41};
+    tm_mesh_t m[3];
+    static tm_poly_t P;
+    double lo[3] = {-0.5, -0.3, -0.2}, hi[3] = {0.5, 0.3, 0.2};
+    unsigned k, lay, n_same = 0, n_into = 0;
+    memset(m, 0, sizeof m);
+    tm_box(&m[0], lo, hi);
+    tm_random_hull(&rng, 30, 0.9, 1.1, &m[1], &P);
+    tm_icosphere(&m[2], 2, 1.0);
+    for (lay = 0; lay < 2; lay++)
+        for (k = 0; k < 3; k++) {
+            re_mesh_t mesh;
+            re_scene_desc_t d;
+            re_scene_t *s[2] = {NULL, NULL};
+            re_sizes_t z;
+            re_diag_t dg;
+            unsigned char *mem[2], *scr[2];
+            int f;
+            memset(&mesh, 0, sizeof mesh);
+            memset(&d, 0, sizeof d);
+            mesh.positions = m[k].v, mesh.vertex_count = m[k].nv, mesh.indices = m[k].idx, mesh.index_count = m[k].ni, mesh.radius = 0.03;
+            d.objects = &mesh, d.object_count = 1, d.layout = lay ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
+            for (f = 0; f < 2; f++) {
+                g_fill = f ? 0xFF : 0x00;
+                T_INT_EQ(re_build(&d, &s[f], &dg), RE_OK);
+            }
+            g_fill = 0xA5;
+            if (s[0] && s[1] && T_INT_EQ(s[0]->objects[0].bytes, s[1]->objects[0].bytes))
+                n_same += memcmp(s[0]->objects[0].block, s[1]->objects[0].block, s[0]->objects[0].bytes) == 0;
+            re_free(s[0]), re_free(s[1]);
+            if (!T_INT_EQ(re_build_sizes(&d, &z, &dg), RE_OK)) continue;
+            for (f = 0; f < 2; f++) {
+                mem[f] = (unsigned char *)malloc(z.scene_bytes), scr[f] = (unsigned char *)malloc(z.scratch_bytes + 1);
+                memset(mem[f], f ? 0xFF : 0x00, z.scene_bytes), memset(scr[f], f ? 0xFF : 0x00, z.scratch_bytes + 1);
+                T_INT_EQ(re_build_into(&d, mem[f], z.scene_bytes, scr[f], z.scratch_bytes, &s[f], &dg), RE_OK);
+            }
+            {
+                size_t h = re__header_bytes(1);
+                n_into += memcmp(mem[0] + h, mem[1] + h, z.scene_bytes - h) == 0;
+            }
+            for (f = 0; f < 2; f++) free(mem[f]), free(scr[f]);
+        }
+    T_INT_EQ(n_same, 6);
+    T_INT_EQ(n_into, 6);
+    for (k = 0; k < 3; k++) tm_free(&m[k]);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -136,6 +203,7 @@ int main(int argc, char **argv)
         T_CASE(packing_fallbacks_hulls),
         T_CASE(compact_layout_packing_fallbacks_box),
         T_CASE(compact_layout_packing_fallbacks_hulls),
+        T_CASE(blocks_do_not_depend_on_fresh_memory),
     };
     return T_RUN(argc, argv, cases);
 }
