@@ -3999,7 +3999,9 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         re_result_t rc = re__kd_build_top(an, &F->kd, F->n_edge_cyls, lo, hi,
                                           RE__KD_DUP * F->n_edge_cyls + (RE__WANT_COMPACT(an->desc) ? 0u : RE__KD_DUP_EXTRA), &root);
         if (rc != RE_OK) return rc;
-        if (root == RE__NONE) return re__fail(an, RE_ERR_BUFFER_TOO_SMALL, -1, "kd-tree scratch too small");
+        /* past its capacities (not with the real ones, RE__KD_NODE_CAP):
+           not a scratch shortage, which re_build() would retry */
+        if (root == RE__NONE) return re__fail(an, RE_ERR_TOO_LARGE, -1, "kd-tree past its node capacity");
     }
     F->kd.box = NULL;
     F->kd.tmp = NULL;
