@@ -188,7 +188,10 @@ typedef struct re_mesh_t {
                                    angle between two faces' normals at or below
                                    which their edge is flat (the faces are one
                                    plane, like a quad's diagonal), in
-                                   (0, RE_FLAT_SIN_LIMIT].
+                                   (0, RE_FLAT_SIN_LIMIT]; it raises the
+                                   automatic value, never lowers it (an angle
+                                   within the positions' rounding is noise,
+                                   not a crease).
                                    Automatic is the positions' own rounding: a
                                    few units in the last place of the float or
                                    double coordinates over the triangles'
@@ -680,8 +683,8 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    pieces 0.03 high tilt by ~2e-9 and would meet at convex edges no radius
    fits). Thin triangles widen it most, so a finely tessellated curved
    surface could chain into one "plane": re__flat_chains (step 2b) sends
-   such groups back to RE__FLAT_SIN. re_mesh_t.flat_sin replaces all of
-   this by one value. */
+   such groups back to RE__FLAT_SIN. re_mesh_t.flat_sin raises this to one
+   value where it is larger. */
 #define RE__FLAT_SIN 1e-9
 #define RE__FLAT_ROUNDINGS 4.0
 /* The largest widened sine (0.57 degrees, RE_FLAT_SIN_LIMIT): no rounding
@@ -1298,15 +1301,19 @@ static double re__tilt_bound(const re__an_t *an, unsigned t)
 }
 /* Whether the faces of triangles t0 and t1, whose normals' cross product
    has length sn, are coplanar: 1 by the strict test (RE__FLAT_SIN, or the
-   smaller re_mesh_t.flat_sin), 2 only by the widened one (widen = 1:
-   re_mesh_t.flat_sin when set, else both triangles' rounding tolerance,
-   re__tilt_bound, up to RE__FLAT_SIN_WIDE), 0 if not. */
+   smaller re_mesh_t.flat_sin), 2 only by the widened one (widen = 1: both
+   triangles' rounding tolerance, re__tilt_bound, up to RE__FLAT_SIN_WIDE,
+   or re_mesh_t.flat_sin when that is larger), 0 if not. A flat_sin below
+   the rounding does not make its noise a crease: two planes that far
+   within their vertices' rounding of each other cross anywhere along the
+   face (the angle 1e-7, the offset 1e-8: 0.1 away), so the query's
+   flat-part test and the bands would disagree there. */
 static int re__coplanar(const re__an_t *an, unsigned t0, unsigned t1, double sn, int widen)
 {
     double fs = an->m->flat_sin, a0 = an->tarea[t0], a1 = an->tarea[t1];
     if (sn <= (fs > 0 && fs < RE__FLAT_SIN ? fs : RE__FLAT_SIN)) return 1;
     if (!widen) return 0;
-    if (fs > 0) return sn <= fs ? 2 : 0;
+    if (fs > 0 && sn <= fs) return 2;
     /* above the object-wide bound (an->flat_k / (twice the area), each
        triangle: its M and longest edge at most the object's) nothing is
        flat: the common case of real creases skips the two bounds below */
@@ -1381,7 +1388,7 @@ static re_result_t re__flat_chains(re__an_t *an, re__arena_t *ar)
         r = re__uf_find(uf, t);
         re__cross(an->tn + 3 * (size_t)t, an->tn + 3 * (size_t)best[r], cr);
         spread[r] = re__max(spread[r], re__len(cr));
-        bound[r] = re__max(bound[r], an->m->flat_sin > 0 ? an->m->flat_sin : re__min(RE__FLAT_SIN_WIDE, re__tilt_bound(an, t)));
+        bound[r] = re__max(bound[r], re__max(an->m->flat_sin, re__min(RE__FLAT_SIN_WIDE, re__tilt_bound(an, t))));
     }
     for (i = 0; i < E; i++) {
         re__edge_t *ed = &an->edges[i];

@@ -44,6 +44,23 @@ static const unsigned char k_zero_radius_patch[] = {
     0x27, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3,
     0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0x3b, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0xb3, 0x36};
 
+/* The stretched icosahedron with a vertex moved and edges split, float
+   positions, welded, as polygons, per-edge radii, two objects, and
+   re_mesh_t.flat_sin = 3e-7: below the float positions' own rounding
+   (about 1e-5 here). Found 2026-12-05: two of its faces met at 1.3e-7 rad,
+   a "crease" the user's flat_sin let through; their planes, each within
+   its vertices' rounding, crossed 0.12 away from their common edge, so a
+   hit 0.14 from that edge was in the removed volume for re_query()'s
+   flat-part test (a rounded hit 0.031 further on) and on the flat part
+   for the bands (re_query_uv(): unchanged). A flat_sin below the rounding
+   no longer makes creases of the noise. */
+static const unsigned char k_noise_crease[] = {
+    0x5f, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0x01, 0x07, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7,
+    0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xd7, 0xd7, 0xd7,
+    0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0xff, 0xff, 0xff, 0xff, 0x31, 0x00, 0x00, 0x00, 0xff, 0xff,
+    0x70, 0x70, 0x70, 0x71, 0x70, 0x70, 0x70, 0x70, 0x70, 0x00, 0x00, 0x00, 0x00, 0x0c, 0x00, 0xff, 0xed, 0xd7,
+    0xfb, 0x40, 0x3d, 0x13, 0x40, 0x13, 0x08, 0x03, 0xeb, 0xfb, 0xfb, 0x01, 0xfb, 0x08};
+
 static long g_sharp_reports, g_clamp_reports;
 static void count_reports(void *user, const re_report_t *r)
 {
@@ -109,11 +126,35 @@ static void zero_radius_patch_left_sharp(void)
     T_CHECK(s == NULL && strstr(dg.message, "vertex 3") != NULL);
 }
 
+static void noise_crease_under_a_low_flat_sin_is_flat(void)
+{
+    static rfz_case_t k;
+    re_scene_t *s;
+    re_stats_t st;
+    re_hit_t h, h2;
+    const double P[3] = {1.1454265416837206, 0.48476139610888913, 1.0833195616217222},
+                 d[3] = {-0.60928547660590016, -0.30808636337035, -0.73065313295869316};
+    double o[3], dist = 4.01;
+    unsigned i;
+    replay(k_noise_crease, sizeof k_noise_crease, &k, &s, &st);
+    if (!s) return;
+    T_NEAR(k.mesh[0].flat_sin, ldexp(RE_FLAT_SIN_LIMIT, -15), 0); /* the fuzzer's choice, 3.05e-7 */
+    T_INT_EQ(st.convex_edges, 76);                   /* 78 when the noise crease counted, once per object */
+    T_INT_EQ(st.rounded_edges, 76);
+    T_INT_EQ(st.flat_edges, 50);
+    /* the query that disagreed: both now say the hit stands */
+    for (i = 0; i < 3; i++) o[i] = P[i] - dist * d[i];
+    T_INT_EQ(re_query(s, o, d, 0, 5, dist, &h), RE_UNCHANGED);
+    T_INT_EQ(re_query_uv(s, o, d, 0, 5, dist, 0.015686274509803977, 0.74901960784313726, &h2), RE_UNCHANGED);
+    re_free(s);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(tilted_coplanar_pieces_are_flat),
         T_CASE(zero_radius_patch_left_sharp),
+        T_CASE(noise_crease_under_a_low_flat_sin_is_flat),
     };
     return T_RUN(argc, argv, cases);
 }
