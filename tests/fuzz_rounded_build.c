@@ -34,18 +34,10 @@
 #define RE__SPAN_MIN_SLOTS 1u
 #define RE__SPAN_MIN_CORNERS 1u
 #define RE__KD_SPLIT_MIN 1u
-/* blocks filled with rfz_fill: the split build (rfz_check_tasks) gets
-   other bytes than the first one, and its blocks must still be the same,
-   alignment padding included */
-static int rfz_fill;
-static void *rfz_malloc(size_t n)
-{
-    void *p = malloc(n ? n : 1);
-    if (p) memset(p, rfz_fill, n);
-    return p;
-}
-#define RE_MALLOC(sz, ctx) ((void)(ctx), rfz_malloc(sz))
-#define RE_FREE(p, ctx) ((void)(ctx), free(p))
+/* filled blocks: the split build (rfz_check_tasks) gets other bytes than
+   the first one, and its blocks must still be the same, alignment padding
+   included */
+#include "test_fill_alloc.h"
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 
@@ -416,9 +408,9 @@ static void rfz_check_tasks(const rfz_case_t *k, re_result_t rc, const re_diag_t
     re_diag_t dp;
     re_result_t rc2;
     d.parallel = rfz_reversed, d.threads = d.object_count > 1 ? 2u : 3u;
-    rfz_fill = 0xFF;
+    test_fill_byte = 0xFF;
     rc2 = re_build(&d, &p, &dp);
-    rfz_fill = 0;
+    test_fill_byte = 0xA5;
     if (rc2 != rc) RFZ_FAIL();
     else if (rc != RE_OK) {
         if (dp.result != dg->result || dp.object != dg->object || dp.element != dg->element || strcmp(dp.message, dg->message)) RFZ_FAIL();

@@ -11,24 +11,14 @@
    scratch until it fits (re__build_object); the reports must not repeat.
    And a block's bytes, alignment padding included, do not depend on what
    the memory held before (the allocator here fills every block with
-   g_fill). */
+   test_fill_byte, tests/test_fill_alloc.h). */
 #define RE__SCRATCH_PER_TRIANGLE 8u
 #define RE__SCRATCH_BASE 64u
 #define RE__PK_SPAN 2u
 #define RE__LEAF_RUN_SPAN 3u
 #define RE__SOLVED_SLOTS 3u
 #define RE__DS1_SPAN 2u
-#include <stdlib.h>
-#include <string.h>
-static int g_fill = 0xA5;
-static void *fill_malloc(size_t n)
-{
-    void *p = malloc(n ? n : 1);
-    if (p) memset(p, g_fill, n);
-    return p;
-}
-#define RE_MALLOC(sz, ctx) ((void)(ctx), fill_malloc(sz))
-#define RE_FREE(p, ctx) ((void)(ctx), free(p))
+#include "test_fill_alloc.h"
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 #include "test.h"
@@ -172,10 +162,10 @@ static void blocks_do_not_depend_on_fresh_memory(void)
             mesh.positions = m[k].v, mesh.vertex_count = m[k].nv, mesh.indices = m[k].idx, mesh.index_count = m[k].ni, mesh.radius = 0.03;
             d.objects = &mesh, d.object_count = 1, d.layout = lay ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
             for (f = 0; f < 2; f++) {
-                g_fill = f ? 0xFF : 0x00;
+                test_fill_byte = f ? 0xFF : 0x00;
                 T_INT_EQ(re_build(&d, &s[f], &dg), RE_OK);
             }
-            g_fill = 0xA5;
+            test_fill_byte = 0xA5;
             if (s[0] && s[1] && T_INT_EQ(s[0]->objects[0].bytes, s[1]->objects[0].bytes))
                 n_same += memcmp(s[0]->objects[0].block, s[1]->objects[0].block, s[0]->objects[0].bytes) == 0;
             re_free(s[0]), re_free(s[1]);
