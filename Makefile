@@ -64,9 +64,13 @@ test: deps-test
 	@tests/run_all.sh $(B)/tests $(B)/san $(T)
 
 # libFuzzer targets (clang): a short run inside make test, a long one in make fuzz.
-$(B)/fuzz/%: tests/%.c $(HEADERS)
+# fuzz_interval_ops: the pair path (-march=native, as the tests) and the
+# __float128 references (GCC's quadmath.h, after clang's own headers).
+FUZZ_FLAGS_fuzz_interval_ops := -march=native -idirafter $(shell gcc -print-file-name=include)
+FUZZ_LIBS_fuzz_interval_ops  := -lquadmath
+$(B)/fuzz/%: tests/%.c $(TEST_DEPS)
 	@mkdir -p $(dir $@)
-	clang -std=gnu11 -O1 -g -Iinclude -Itests -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all $< -o $@ -lm
+	clang -std=gnu11 -O1 -g -Iinclude -Itests $(FUZZ_FLAGS_$*) -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all $< -o $@ $(FUZZ_LIBS_$*) -lm
 
 check-headers:
 	@tests/check_headers.sh

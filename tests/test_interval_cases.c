@@ -16,11 +16,6 @@ static void check_tight(iv_t z, q_t flo, q_t fhi, long long ulps)
     T_LE(gap(ig_ru(fhi), z.hi), ulps);
 }
 
-/* Guaranteed bound for the libm-based functions: libm's value y is at most
-   IV_LIBM_ULPS from f, so y is at most IV_LIBM_ULPS + 1 doubles beyond the
-   correctly rounded end, plus our 2*IV_LIBM_ULPS outward steps. */
-#define LIBM_BOUND (3 * IV_LIBM_ULPS + 1)
-
 static void sin_cos_at_1e15(void)
 {
     double a = 1e15, b = 1e15 + 1;

@@ -12,6 +12,11 @@
 
 typedef __float128 q_t;
 
+/* Guaranteed bound for the libm-based functions: libm's value y is at most
+   IV_LIBM_ULPS from f, so y is at most IV_LIBM_ULPS + 1 doubles beyond the
+   correctly rounded end, plus our 2*IV_LIBM_ULPS outward steps. */
+#define LIBM_BOUND (3 * IV_LIBM_ULPS + 1)
+
 /* A random finite double from one of the magnitude classes. */
 static double ig_value(t_rng_t *r)
 {

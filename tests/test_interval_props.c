@@ -3,7 +3,7 @@
    affine cases per normal run, over every operation, with the input classes
    of test_interval_gen.h. Zero violations allowed. */
 #define IV_IMPLEMENTATION
-#include "test_interval_gen.h"
+#include "test_interval_oracle.h"
 /* cases per property (test_interval_props_nosimd.c runs fewer) */
 #ifndef IV_PROPS_CASES
 #define IV_PROPS_CASES 10000000
@@ -36,77 +36,6 @@ static void run_jobs(void *(*fn)(void *), long n, unsigned long long seed, job_t
         for (m = 0; m < 32; m++) out->per_op[m] += j[k].per_op[m];
     }
     free(j);
-}
-
-enum {
-    OP_ADD, OP_SUB, OP_MUL, OP_DIV, OP_NEG, OP_RECIP, OP_SQR, OP_SQRT, OP_ABS,
-    OP_MIN, OP_MAX, OP_ADD_D, OP_MUL_D, OP_EXP, OP_LOG, OP_SIN, OP_COS, OP_TAN,
-    OP_ATAN, OP_POW, OP_HYPOT, OP_POW_N, OP_COUNT
-};
-static const char *op_name[OP_COUNT] = {
-    "add", "sub", "mul", "div", "neg", "recip", "sqr", "sqrt", "abs", "min", "max", "add_d", "mul_d",
-    "exp", "log", "sin", "cos", "tan", "atan", "pow", "hypot", "pow_n"};
-static const int pow_ns[] = {-5, -3, -2, -1, 2, 3, 4, 5, 7, 10, 33};
-
-/* f(x, y) in quad; NaN when (x, y) is outside f's domain. */
-static q_t ref(int op, q_t x, q_t y, int n)
-{
-    switch (op) {
-    case OP_ADD: case OP_ADD_D: return x + y;
-    case OP_SUB: return x - y;
-    case OP_MUL: case OP_MUL_D: return x * y;
-    case OP_DIV: return y == 0 ? (q_t)NAN : x / y;
-    case OP_NEG: return -x;
-    case OP_RECIP: return x == 0 ? (q_t)NAN : 1 / x;
-    case OP_SQR: return x * x;
-    case OP_SQRT: return x < 0 ? (q_t)NAN : sqrtq(x);
-    case OP_ABS: return fabsq(x);
-    case OP_MIN: return x < y ? x : y;
-    case OP_MAX: return x > y ? x : y;
-    case OP_EXP: return expq(x);
-    case OP_LOG: return x <= 0 ? (q_t)NAN : logq(x);
-    case OP_SIN: return sinq(x);
-    case OP_COS: return cosq(x);
-    case OP_TAN: return tanq(x);
-    case OP_ATAN: return atanq(x);
-    case OP_POW: return (x < 0 || (x == 0 && y <= 0)) ? (q_t)NAN : powq(x, y);
-    case OP_HYPOT: return sqrtq(x * x + y * y);
-    default: return (x == 0 && n < 0) ? (q_t)NAN : powq(x, (q_t)n);
-    }
-}
-
-static int is_binary(int op)
-{
-    return op == OP_ADD || op == OP_SUB || op == OP_MUL || op == OP_DIV || op == OP_MIN || op == OP_MAX ||
-           op == OP_ADD_D || op == OP_MUL_D || op == OP_POW || op == OP_HYPOT;
-}
-
-static iv_t eval_iv(int op, iv_t a, iv_t b, int n)
-{
-    switch (op) {
-    case OP_ADD: return iv_add(a, b);
-    case OP_SUB: return iv_sub(a, b);
-    case OP_MUL: return iv_mul(a, b);
-    case OP_DIV: return iv_div(a, b);
-    case OP_NEG: return iv_neg(a);
-    case OP_RECIP: return iv_recip(a);
-    case OP_SQR: return iv_sqr(a);
-    case OP_SQRT: return iv_sqrt(a);
-    case OP_ABS: return iv_abs(a);
-    case OP_MIN: return iv_min(a, b);
-    case OP_MAX: return iv_max(a, b);
-    case OP_ADD_D: return iv_add_d(a, b.lo);
-    case OP_MUL_D: return iv_mul_d(a, b.lo);
-    case OP_EXP: return iv_exp(a);
-    case OP_LOG: return iv_log(a);
-    case OP_SIN: return iv_sin(a);
-    case OP_COS: return iv_cos(a);
-    case OP_TAN: return iv_tan(a);
-    case OP_ATAN: return iv_atan(a);
-    case OP_POW: return iv_pow(a, b);
-    case OP_HYPOT: return iv_hypot(a, b);
-    default: return iv_pow_n(a, n);
-    }
 }
 
 /* Inputs biased toward each operation's interesting region. */
@@ -177,50 +106,6 @@ static iv_affine_t rand_form(t_rng_t *r)
     f.e = (t_rng_u64(r) % 3) ? 0.0 : s * t_rng_unit(r) * 0.3;
     return f;
 }
-
-/* method: which linearisation the non-affine operations use (Taylor,
-   Chebyshev, min-range or the default per-range choice), so that every
-   one of them is checked; the public functions use the default. */
-static iv_affine_t eval_aff(int op, iv_affine_t a, iv_affine_t b, double d, int n, int method)
-{
-    switch (op) {
-    case OP_EXP: return iv__aff_unary(a, IV__F_EXP, 0, method);
-    case OP_LOG: return iv__aff_unary(a, IV__F_LOG, 0, method);
-    case OP_SQRT: return iv__aff_unary(a, IV__F_SQRT, 0, method);
-    case OP_RECIP: return iv__aff_unary(a, IV__F_RECIP, -1, method);
-    case OP_ATAN: return iv__aff_unary(a, IV__F_ATAN, 0, method);
-    case OP_POW_N: if (n != 1 && n != 2 && n != 0 && n != -1) return iv__aff_unary(a, IV__F_POWN, n, method); break;
-    default: break;
-    }
-    if (method != IV__LIN_DEFAULT) return eval_aff(op, a, b, d, n, IV__LIN_DEFAULT);
-    switch (op) {
-    case OP_ADD: return iv_affine_add(a, b);
-    case OP_SUB: return iv_affine_sub(a, b);
-    case OP_MUL: return iv_affine_mul(a, b);
-    case OP_DIV: return iv_affine_div(a, b);
-    case OP_NEG: return iv_affine_neg(a);
-    case OP_RECIP: return iv_affine_recip(a);
-    case OP_SQR: return iv_affine_sqr(a);
-    case OP_SQRT: return iv_affine_sqrt(a);
-    case OP_ABS: return iv_affine_abs(a);
-    case OP_MIN: return iv_affine_min(a, b);
-    case OP_MAX: return iv_affine_max(a, b);
-    case OP_ADD_D: return iv_affine_add_d(a, d);
-    case OP_MUL_D: return iv_affine_mul_d(a, d);
-    case OP_EXP: return iv_affine_exp(a);
-    case OP_LOG: return iv_affine_log(a);
-    case OP_SIN: return iv_affine_sin(a);
-    case OP_COS: return iv_affine_cos(a);
-    case OP_TAN: return iv_affine_tan(a);
-    case OP_ATAN: return iv_affine_atan(a);
-    case OP_POW: return iv_affine_pow(a, b);
-    case OP_HYPOT: return iv_affine_hypot(a, b);
-    default: return iv_affine_pow_n(a, n);
-    }
-}
-
-/* The value of form f at eps_t = et, eps_x = ex, exactly in quad. */
-static q_t form_at(iv_affine_t f, q_t et, q_t ex) { return (q_t)f.c + (q_t)f.t * et + (q_t)f.e * ex; }
 
 /* The affine claim is stronger than range containment: for every input
    point (eps_t, eps_a, eps_b), f(a, b) differs from z.c + z.t*eps_t (the

@@ -124,13 +124,15 @@ static void tm_rbox_normal(const double c[3], const double half[3], double r, co
 /* Sphere tracing of an exact distance (1-Lipschitz), then the residual.
    Returns the first t with sdf <= eps*scale, or where the step no longer
    moves t (a long d: the distance is then below t's ulp times |d|), or
-   HUGE_VAL beyond tmax. */
+   HUGE_VAL beyond tmax; after max_steps steps (a ray grazing the surface
+   for long) NAN. */
 typedef double (*tm_sdf_fn)(const void *ctx, const double p[3]);
-static double tm_trace(tm_sdf_fn f, const void *ctx, const double o[3], const double d[3], double tmax, double scale)
+static double tm_trace_n(tm_sdf_fn f, const void *ctx, const double o[3], const double d[3], double tmax, double scale,
+                         long max_steps)
 {
     double t = 0, dl = tm_len(d), p[3];
-    int it;
-    for (it = 0; it < 2000000; it++) {
+    long it;
+    for (it = 0; it < max_steps; it++) {
         double s;
         p[0] = o[0] + t * d[0], p[1] = o[1] + t * d[1], p[2] = o[2] + t * d[2];
         s = f(ctx, p);
@@ -138,7 +140,12 @@ static double tm_trace(tm_sdf_fn f, const void *ctx, const double o[3], const do
         t += s / dl;
         if (t > tmax) return HUGE_VAL;
     }
-    return HUGE_VAL;
+    return NAN;
+}
+static double tm_trace(tm_sdf_fn f, const void *ctx, const double o[3], const double d[3], double tmax, double scale)
+{
+    double t = tm_trace_n(f, ctx, o, d, tmax, scale, 2000000);
+    return t == t ? t : HUGE_VAL;
 }
 
 /* ---- Oracle 2: distance to the eroded polytope E = {x : n_i.x <= c_i - r}.
@@ -195,36 +202,63 @@ static void tm_erode(tm_poly_t *P, double r)
             if ((P->nv <= 64 || two) && P->ne < 8192) P->e[P->ne][0] = i, P->e[P->ne][1] = j, P->ne++;
         }
 }
-static double tm_seg_dist(const double p[3], const double a[3], const double b[3])
+/* The point of segment ab nearest to p in q; returns its distance. */
+static double tm_seg_nearest(const double p[3], const double a[3], const double b[3], double q[3])
 {
-    double ab[3], ap[3], t, q[3];
+    double ab[3], ap[3], t, dq[3];
     tm_sub(b, a, ab); tm_sub(p, a, ap);
     t = tm_dot(ab, ab) > 0 ? tm_dot(ap, ab) / tm_dot(ab, ab) : 0;
     t = t < 0 ? 0 : t > 1 ? 1 : t;
-    q[0] = a[0] + t * ab[0] - p[0], q[1] = a[1] + t * ab[1] - p[1], q[2] = a[2] + t * ab[2] - p[2];
-    return tm_len(q);
+    q[0] = a[0] + t * ab[0], q[1] = a[1] + t * ab[1], q[2] = a[2] + t * ab[2];
+    tm_sub(q, p, dq);
+    return tm_len(dq);
 }
 typedef struct tm_eroded_t { const tm_poly_t *P; double r; } tm_eroded_t;
-static double tm_eroded_sdf(const void *ctx, const double x[3])
+/* The signed distance to the rounded solid E (+) ball(r) at x, and in y the
+   point of E nearest to x (x itself inside E), so that outside E the
+   outward normal is (x - y) / |x - y|. A facet's foot counts when it lies
+   within foot_tol of the other planes: the tests' 1e-10 may only
+   underestimate the distance, near a crease of sine sin by about
+   (foot_tol / sin)^2 / r, and turn the normal by foot_tol / (r sin); 0
+   takes the edges' and vertices' distance there instead (exact when they
+   are all listed, as they are up to 64 vertices). */
+static double tm_eroded_nearest_tol(const tm_eroded_t *E, const double x[3], double y[3], double foot_tol)
 {
-    const tm_eroded_t *E = (const tm_eroded_t *)ctx;
     const tm_poly_t *P = E->P;
-    double best = HUGE_VAL, inside = -HUGE_VAL;
-    int g, q;
+    double best = HUGE_VAL, inside = -HUGE_VAL, q[3];
+    int g, k;
     for (g = 0; g < P->np; g++) inside = fmax(inside, tm_dot(P->n[g], x) - (P->c[g] - E->r));
+    memcpy(y, x, 3 * sizeof(double));
     if (inside <= 0) return inside - E->r;
     for (g = 0; g < P->np; g++) {
-        double h = tm_dot(P->n[g], x) - (P->c[g] - E->r), y[3];
+        double h = tm_dot(P->n[g], x) - (P->c[g] - E->r);
         int ok = 1;
         if (h <= 0 || h >= best) continue;
-        y[0] = x[0] - h * P->n[g][0], y[1] = x[1] - h * P->n[g][1], y[2] = x[2] - h * P->n[g][2];
-        for (q = 0; q < P->np && ok; q++)
-            if (q != g && tm_dot(P->n[q], y) - (P->c[q] - E->r) > 1e-10) ok = 0; /* lenient: may only underestimate */
-        if (ok) best = h;
+        q[0] = x[0] - h * P->n[g][0], q[1] = x[1] - h * P->n[g][1], q[2] = x[2] - h * P->n[g][2];
+        for (k = 0; k < P->np && ok; k++)
+            if (k != g && tm_dot(P->n[k], q) - (P->c[k] - E->r) > foot_tol) ok = 0;
+        if (ok) best = h, memcpy(y, q, sizeof q);
     }
-    for (q = 0; q < P->ne; q++) best = fmin(best, tm_seg_dist(x, P->v[P->e[q][0]], P->v[P->e[q][1]]));
-    for (q = 0; q < P->nv; q++) { double dd[3]; tm_sub(x, P->v[q], dd); best = fmin(best, tm_len(dd)); }
+    for (k = 0; k < P->ne; k++) {
+        double s = tm_seg_nearest(x, P->v[P->e[k][0]], P->v[P->e[k][1]], q);
+        if (s < best) best = s, memcpy(y, q, sizeof q);
+    }
+    for (k = 0; k < P->nv; k++) {
+        double dd[3], s;
+        tm_sub(x, P->v[k], dd);
+        s = tm_len(dd);
+        if (s < best) best = s, memcpy(y, P->v[k], sizeof q);
+    }
     return best - E->r;
+}
+static double tm_eroded_nearest(const tm_eroded_t *E, const double x[3], double y[3])
+{
+    return tm_eroded_nearest_tol(E, x, y, 1e-10);
+}
+static double tm_eroded_sdf(const void *ctx, const double x[3])
+{
+    double y[3];
+    return tm_eroded_nearest((const tm_eroded_t *)ctx, x, y);
 }
 
 /* Convex hull of points (brute force over triples; points in general

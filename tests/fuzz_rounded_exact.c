@@ -1,0 +1,272 @@
+/* libFuzzer target for the exactness of rounded_edges.h on convex
+   polyhedra (make fuzz; a short run in make test). fuzz_rounded_build
+   checks that any mesh builds or fails cleanly and that answers are valid;
+   this one checks that they are right: the input is a convex hull and rays
+   at it, and every answer is compared with the independent reference of
+   the exactness tests (test_rounded_util.h: sphere tracing of the distance
+   to the eroded polytope, minus r), so the fuzzer hunts for the
+   polyhedra, radii and rays where the exact corners are not exact.
+     byte 0  point count 4 + b % 13
+     byte 1  requested radius 2^-(b % 26) (clamped by the build to the
+             largest valid one: RE_RADIUS_CLAMP, one patch on a hull)
+     byte 2  flags: bit 0 RE_LAYOUT_COMPACT, bit 1 positions rounded to
+             float and built as RE_FLOAT32
+     then    the points, 6 bytes each (three 16-bit coordinates in [-1, 1])
+     then    rays, 7 bytes each, at most FX_MAX_RAYS: two vertex ids and a
+             fraction (the aim point on the chord between them), a jitter
+             of the aim point (two angles and a length in radii), and the
+             direction (two angles)
+   Inputs whose hull is not a closed 2-manifold (coplanar points), or has
+   edges shorter than FX_MIN_EDGE or creases flatter than FX_MIN_SIN (where
+   the build may call two faces one plane and the reference does not), are
+   skipped. Every rounded edge is rounded, and for every ray that hits the
+   sharp hull the answer agrees with the reference to FX_TOL of the size:
+   the answer's point lies on the rounded surface, and the ray does not go
+   deeper than FX_TOL into the rounded solid before it (so a ray grazing
+   the surface within the tolerance may be answered either way); a
+   rounded hit's normal points away from the eroded polytope's nearest
+   point; re_query_uv gives re_query's answer. A failed check aborts after printing the case. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#define RE_IMPLEMENTATION
+#include "rounded_edges.h"
+#include "test.h"
+#include "test_rounded_util.h"
+#include "fuzz_check.h"
+
+#define FX_MAX_RAYS 24
+#define FX_TOL 1e-7      /* of the hull's size: the exactness tests' bound */
+#define FX_MIN_EDGE 1e-3 /* of the size */
+#define FX_MIN_SIN 1e-3  /* sine of the smallest crease angle kept */
+
+
+static double fx_coord(const uint8_t *b) { return (double)(b[0] | b[1] << 8) / 32767.5 - 1.0; }
+static double fx_angle(uint8_t b) { return b * (2 * M_PI / 256); }
+static void fx_dir(double th, double z, double out[3])
+{
+    double w = sqrt(fmax(0.0, 1 - z * z));
+    out[0] = w * cos(th), out[1] = w * sin(th), out[2] = z;
+}
+
+/* A closed 2-manifold (each directed edge once, its reverse once, V - E + F
+   = 2 over the used vertices) with edges of at least min_edge and creases
+   of sine at least FX_MIN_SIN. */
+static int fx_hull_ok(const tm_mesh_t *m, double min_edge)
+{
+    unsigned nt = m->ni / 3, t, u, k, j, used = 0, ne = 0;
+    unsigned char seen[16] = {0};
+    for (t = 0; t < nt; t++)
+        for (k = 0; k < 3; k++) {
+            unsigned a = m->idx[3 * t + k], b = m->idx[3 * t + (k + 1) % 3], fwd = 0, rev = 0;
+            double e[3];
+            tm_sub(m->v + 3 * b, m->v + 3 * a, e);
+            if (tm_len(e) < min_edge) return 0;
+            if (a < 16) seen[a] = 1;
+            for (u = 0; u < nt; u++)
+                for (j = 0; j < 3; j++) {
+                    unsigned c = m->idx[3 * u + j], d = m->idx[3 * u + (j + 1) % 3];
+                    fwd += c == a && d == b;
+                    if (c == b && d == a) {
+                        /* the crease between t and u */
+                        double n1[3], n2[3], x[3], e1[3], e2[3];
+                        rev++;
+                        tm_sub(m->v + 3 * m->idx[3 * t + 1], m->v + 3 * m->idx[3 * t], e1);
+                        tm_sub(m->v + 3 * m->idx[3 * t + 2], m->v + 3 * m->idx[3 * t], e2);
+                        tm_cross(e1, e2, n1);
+                        tm_sub(m->v + 3 * m->idx[3 * u + 1], m->v + 3 * m->idx[3 * u], e1);
+                        tm_sub(m->v + 3 * m->idx[3 * u + 2], m->v + 3 * m->idx[3 * u], e2);
+                        tm_cross(e1, e2, n2);
+                        tm_norm(n1), tm_norm(n2);
+                        tm_cross(n1, n2, x);
+                        if (!(tm_len(x) >= FX_MIN_SIN)) return 0;
+                    }
+                }
+            if (fwd != 1 || rev != 1) return 0;
+            ne++;
+        }
+    for (k = 0; k < 16; k++) used += seen[k];
+    return nt >= 4 && (int)used - (int)(ne / 2) + (int)nt == 2;
+}
+
+/* tm_erode keeps every pair of the eroded polytope's vertices as a
+   candidate segment (all lie in it); the distance needs only its edges,
+   the pairs on two common planes, and the fuzzer runs ~5x faster with
+   them. An edge missed by the planes' tolerance is shorter than it, so
+   the distance moves by less than that. */
+static void fx_keep_true_edges(tm_poly_t *P)
+{
+    int q, ne = 0;
+    for (q = 0; q < P->ne; q++) {
+        int i = P->e[q][0], j = P->e[q][1];
+        unsigned long long a0 = P->mask[i][0] & P->mask[j][0], a1 = P->mask[i][1] & P->mask[j][1];
+        if ((a0 && a1) || (a0 & (a0 - 1)) || (a1 & (a1 - 1))) P->e[ne][0] = i, P->e[ne][1] = j, ne++;
+    }
+    P->ne = ne;
+}
+
+/* The reference's distance with facet feet strictly inside the eroded
+   polytope (tm_eroded_nearest_tol: the tests' 1e-10 leniency turns
+   normals by up to 1e-10 / (r sin) at shallow creases and tiny radii,
+   which the fuzzer finds); the true edges are all listed. */
+static double fx_sdf(const void *ctx, const double x[3])
+{
+    double y[3];
+    return tm_eroded_nearest_tol((const tm_eroded_t *)ctx, x, y, 0);
+}
+
+static void fx_at(const double o[3], const double d[3], double t, double p[3])
+{
+    p[0] = o[0] + t * d[0], p[1] = o[1] + t * d[1], p[2] = o[2] + t * d[2];
+}
+
+/* The deepest the ray goes into the rounded solid over [t0, t1] (the most
+   negative distance), sampled finely and refined around the minimum. */
+static double fx_deepest(const tm_eroded_t *E, const double o[3], const double d[3], double t0, double t1)
+{
+    double best = HUGE_VAL, bt = t0, p[3], lo, hi;
+    int i, it;
+    for (i = 0; i <= 400; i++) {
+        double t = t0 + (t1 - t0) * i / 400, s;
+        fx_at(o, d, t, p);
+        s = fx_sdf(E, p);
+        if (s < best) best = s, bt = t;
+    }
+    /* the distance along a line is convex inside the solid's neighbourhood
+       of a convex set: golden-section search around the best sample */
+    lo = fmax(t0, bt - (t1 - t0) / 400), hi = fmin(t1, bt + (t1 - t0) / 400);
+    for (it = 0; it < 80; it++) {
+        double a = lo + 0.382 * (hi - lo), b = lo + 0.618 * (hi - lo), sa, sb;
+        fx_at(o, d, a, p);
+        sa = fx_sdf(E, p);
+        fx_at(o, d, b, p);
+        sb = fx_sdf(E, p);
+        if (sa < sb) hi = b; else lo = a;
+        best = fmin(best, fmin(sa, sb));
+    }
+    return best;
+}
+
+/* A rounded hit's outward normal: away from the eroded polytope's nearest
+   point (both rounded: about 1e-16 of the size over r). */
+static void fx_normal(const tm_eroded_t *E, const double p[3], const re_hit_t *h, double scale, int ray)
+{
+    double y[3], g[3], gl, tol_n = 1e-7 + 1e-13 * scale / E->r;
+    tm_eroded_nearest_tol(E, p, y, 0);
+    tm_sub(p, y, g);
+    gl = tm_len(g);
+    FUZZ_CHECK(fabs(g[0] / gl - h->normal[0]) + fabs(g[1] / gl - h->normal[1]) + fabs(g[2] / gl - h->normal[2]) <= tol_n,
+               "ray %d: rounded hit (feature %d %u) at t %.17g, normal (%.12f %.12f %.12f), the reference's (%.12f %.12f "
+               "%.12f), r %.9g", ray, (int)h->feature, h->feature_index, h->t, h->normal[0], h->normal[1], h->normal[2],
+               g[0] / gl, g[1] / gl, g[2] / gl, E->r);
+}
+
+/* One ray: the host's hit on the sharp hull, the query, the reference. */
+static void fx_ray(const re_scene_t *s, const tm_mesh_t *m, const tm_eroded_t *E, const uint8_t *b, double scale,
+                   int ray)
+{
+    const double *vx = m->v + 3 * (b[0] % m->nv), *vy = m->v + 3 * (b[1] % m->nv);
+    double f = b[2] / 255.0, jit[3], dir[3], tgt[3], o[3], t_host, bu, bv, t_ref, tol = FX_TOL * scale, p[3], deep;
+    unsigned tri, a;
+    re_hit_t h, hu;
+    fx_dir(fx_angle(b[3]), b[4] / 127.5 - 1, jit);
+    fx_dir(fx_angle(b[5]), b[6] / 127.5 - 1, dir);
+    for (a = 0; a < 3; a++) tgt[a] = vx[a] + f * (vy[a] - vx[a]) + (b[4] & 7) * E->r * jit[a];
+    for (a = 0; a < 3; a++) o[a] = tgt[a] - 3 * scale * dir[a];
+    if (!tm_hit_uv(m, o, dir, &t_host, &tri, &bu, &bv)) return;
+    re_query(s, o, dir, 0, tri, t_host, &h);
+    re_query_uv(s, o, dir, 0, tri, t_host, bu, bv, &hu);
+    FUZZ_CHECK(hu.kind == h.kind && hu.t == h.t && hu.normal[0] == h.normal[0] && hu.normal[1] == h.normal[1] &&
+                   hu.normal[2] == h.normal[2],
+               "ray %d: re_query_uv kind %d t %.17g, re_query kind %d t %.17g", ray, (int)hu.kind, hu.t, (int)h.kind, h.t);
+    if (h.kind != RE_PASS_THROUGH) {
+        /* the answer's point is on the rounded surface ... */
+        fx_at(o, dir, h.t, p);
+        FUZZ_CHECK(fabs(fx_sdf(E, p)) <= tol, "ray %d: kind %d feature %d at t %.17g is %.3g off the rounded surface "
+                   "(host t %.17g, r %.17g)", ray, (int)h.kind, (int)h.feature, h.t, fx_sdf(E, p), t_host, E->r);
+        if (h.kind == RE_HIT_ROUNDED) fx_normal(E, p, &h, scale, ray);
+    }
+    /* ... and the first one, up to a graze within the tolerance (a ray
+       grazing the rounded surface for long the reference cannot follow in
+       a fuzzer's time: the exactness tests trace up to 2e6 steps) */
+    t_ref = tm_trace_n(fx_sdf, E, o, dir, 10.0, scale, 20000);
+    if (t_ref != t_ref || t_ref == HUGE_VAL) return;
+    if (h.kind == RE_PASS_THROUGH) {
+        /* the rounded solid missed, or only grazed, up to the face the ray
+           leaves the sharp hull by */
+        deep = fx_deepest(E, o, dir, t_ref, t_ref + 4 * scale);
+        FUZZ_CHECK(deep >= -tol, "ray %d: pass-through, but the ray goes %.3g deep into the rounded solid from t %.17g "
+                   "(host t %.17g, r %.17g)", ray, -deep, t_ref, t_host, E->r);
+    } else if (t_ref < h.t - tol) {
+        deep = fx_deepest(E, o, dir, t_ref, h.t);
+        FUZZ_CHECK(deep >= -tol, "ray %d: kind %d feature %d at t %.17g, but the ray is %.3g deep in the rounded solid "
+                   "from t %.17g (host %.17g, r %.17g)", ray, (int)h.kind, (int)h.feature, h.t, -deep, t_ref, t_host, E->r);
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    double pts[16][3], lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, scale, r_req;
+    int n, i, a, ray;
+    float *pos32 = NULL;
+    size_t at;
+    tm_mesh_t m = {0};
+    static tm_poly_t P;
+    tm_eroded_t E;
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    re_diag_t dg;
+    re_stats_t st;
+    re_result_t rc;
+    if (size < 3) return 0;
+    n = 4 + data[0] % 13;
+    r_req = ldexp(1.0, -(data[1] % 26));
+    if (size < 3 + 6 * (size_t)n) return 0;
+    for (i = 0; i < n; i++)
+        for (a = 0; a < 3; a++) {
+            pts[i][a] = fx_coord(data + 3 + 6 * i + 2 * a);
+            if (data[2] & 2) pts[i][a] = (float)pts[i][a];
+        }
+    memset(&P, 0, sizeof P);
+    tm_hull((const double(*)[3])pts, n, &m, &P);
+    for (i = 0; i < n; i++)
+        for (a = 0; a < 3; a++) lo[a] = fmin(lo[a], pts[i][a]), hi[a] = fmax(hi[a], pts[i][a]);
+    scale = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    if (!(scale > 0) || !fx_hull_ok(&m, FX_MIN_EDGE * scale)) { tm_free(&m); return 0; }
+    memset(&mesh, 0, sizeof mesh);
+    memset(&desc, 0, sizeof desc);
+    if (data[2] & 2) {
+        pos32 = (float *)malloc(sizeof(float) * 3 * m.nv);
+        for (i = 0; i < (int)(3 * m.nv); i++) pos32[i] = (float)m.v[i];
+        mesh.positions = pos32;
+        mesh.position_type = RE_FLOAT32;
+    } else
+        mesh.positions = m.v;
+    mesh.vertex_count = m.nv;
+    mesh.indices = m.idx;
+    mesh.index_count = m.ni;
+    mesh.radius = r_req * scale;
+    desc.objects = &mesh;
+    desc.object_count = 1;
+    desc.layout = (data[2] & 1) ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
+    rc = re_build(&desc, &s, &dg);
+    FUZZ_CHECK(rc == RE_OK, "a convex hull of %d points (%u triangles) fails to build: %s", n, m.ni / 3, dg.message);
+    re_get_stats(s, &st);
+    FUZZ_CHECK(st.rounded_edges == st.convex_edges && st.convex_edges == m.ni / 2 && st.concave_edges == 0,
+               "a convex hull of %u edges: %llu convex, %llu rounded, %llu concave", m.ni / 2, st.convex_edges, st.rounded_edges,
+               st.concave_edges);
+    E.P = &P;
+    E.r = re_object_radius(s, 0);
+    FUZZ_CHECK(E.r > 0 && E.r <= mesh.radius, "radius %.17g for a requested %.17g", E.r, mesh.radius);
+    tm_erode(&P, E.r);
+    fx_keep_true_edges(&P);
+    for (ray = 0, at = 3 + 6 * (size_t)n; ray < FX_MAX_RAYS && at + 7 <= size; ray++, at += 7)
+        fx_ray(s, &m, &E, data + at, scale, ray);
+    re_free(s);
+    free(pos32);
+    tm_free(&m);
+    return 0;
+}
