@@ -10,22 +10,24 @@
      byte 1  requested radius 2^-(b % 26) (clamped by the build to the
              largest valid one: RE_RADIUS_CLAMP, one patch on a hull)
      byte 2  flags: bit 0 RE_LAYOUT_COMPACT, bit 1 positions rounded to
-             float and built as RE_FLOAT32
+             float and built as RE_FLOAT32, bit 2 the points offset by
+             1e6 (1e3 in float)
      then    the points, 6 bytes each (three 16-bit coordinates in [-1, 1])
      then    rays, 7 bytes each, at most FX_MAX_RAYS: two vertex ids and a
              fraction (the aim point on the chord between them), a jitter
              of the aim point (two angles and a length in radii), and the
              direction (two angles)
    Inputs whose hull is not a closed 2-manifold (coplanar points), or has
-   edges shorter than FX_MIN_EDGE or creases flatter than FX_MIN_SIN (where
-   the build may call two faces one plane and the reference does not), are
-   skipped. Every rounded edge is rounded, and for every ray that hits the
+   edges shorter than FX_MIN_EDGE or creases flatter than FX_MIN_SIN or
+   than the positions' rounding could make them (where the build may call
+   two faces one plane and the reference does not), are skipped. Every rounded edge is rounded, and for every ray that hits the
    sharp hull the answer agrees with the reference to FX_TOL of the size:
    the answer's point lies on the rounded surface, and the ray does not go
    deeper than FX_TOL into the rounded solid before it (so a ray grazing
    the surface within the tolerance may be answered either way); a
    rounded hit's normal points away from the eroded polytope's nearest
-   point; re_query_uv gives re_query's answer. A failed check aborts after printing the case. */
+   point (to the rounding noise, amplified at tangent contacts: fx_normal);
+   re_query_uv gives re_query's answer. A failed check aborts after printing the case. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -51,10 +53,29 @@ static void fx_dir(double th, double z, double out[3])
     out[0] = w * cos(th), out[1] = w * sin(th), out[2] = z;
 }
 
+/* Triangle t's unit normal, and its flat test's tilt bound (the angle its
+   plane can turn by when its vertices, up to mag in size, move by their
+   rounding eps: RE__FLAT_ROUNDINGS eps mag times its longest edge over
+   twice its area, as rounded_edges.h's construction step 2 bounds it). */
+static double fx_tri(const tm_mesh_t *m, unsigned t, double eps_mag, double n[3])
+{
+    double e1[3], e2[3], e3[3], a2, l2;
+    tm_sub(m->v + 3 * m->idx[3 * t + 1], m->v + 3 * m->idx[3 * t], e1);
+    tm_sub(m->v + 3 * m->idx[3 * t + 2], m->v + 3 * m->idx[3 * t], e2);
+    tm_sub(m->v + 3 * m->idx[3 * t + 2], m->v + 3 * m->idx[3 * t + 1], e3);
+    tm_cross(e1, e2, n);
+    a2 = tm_len(n);
+    tm_norm(n);
+    l2 = fmax(tm_dot(e1, e1), fmax(tm_dot(e2, e2), tm_dot(e3, e3)));
+    return RE__FLAT_ROUNDINGS * eps_mag * sqrt(l2) / a2;
+}
+
 /* A closed 2-manifold (each directed edge once, its reverse once, V - E + F
    = 2 over the used vertices) with edges of at least min_edge and creases
-   of sine at least FX_MIN_SIN. */
-static int fx_hull_ok(const tm_mesh_t *m, double min_edge)
+   that the build cannot call flat: of sine at least FX_MIN_SIN and twice
+   their triangles' tilt bounds (up to RE_FLAT_SIN_LIMIT, where the widened
+   flat test stops). */
+static int fx_hull_ok(const tm_mesh_t *m, double min_edge, double eps_mag)
 {
     unsigned nt = m->ni / 3, t, u, k, j, used = 0, ne = 0;
     unsigned char seen[16] = {0};
@@ -69,19 +90,11 @@ static int fx_hull_ok(const tm_mesh_t *m, double min_edge)
                 for (j = 0; j < 3; j++) {
                     unsigned c = m->idx[3 * u + j], d = m->idx[3 * u + (j + 1) % 3];
                     fwd += c == a && d == b;
-                    if (c == b && d == a) {
-                        /* the crease between t and u */
-                        double n1[3], n2[3], x[3], e1[3], e2[3];
+                    if (c == b && d == a) { /* the crease between t and u */
+                        double n1[3], n2[3], x[3], tilt = fx_tri(m, t, eps_mag, n1) + fx_tri(m, u, eps_mag, n2);
                         rev++;
-                        tm_sub(m->v + 3 * m->idx[3 * t + 1], m->v + 3 * m->idx[3 * t], e1);
-                        tm_sub(m->v + 3 * m->idx[3 * t + 2], m->v + 3 * m->idx[3 * t], e2);
-                        tm_cross(e1, e2, n1);
-                        tm_sub(m->v + 3 * m->idx[3 * u + 1], m->v + 3 * m->idx[3 * u], e1);
-                        tm_sub(m->v + 3 * m->idx[3 * u + 2], m->v + 3 * m->idx[3 * u], e2);
-                        tm_cross(e1, e2, n2);
-                        tm_norm(n1), tm_norm(n2);
                         tm_cross(n1, n2, x);
-                        if (!(tm_len(x) >= FX_MIN_SIN)) return 0;
+                        if (!(tm_len(x) >= fmax(FX_MIN_SIN, 2 * fmin(tilt, RE_FLAT_SIN_LIMIT)))) return 0;
                     }
                 }
             if (fwd != 1 || rev != 1) return 0;
@@ -150,57 +163,75 @@ static double fx_deepest(const tm_eroded_t *E, const double o[3], const double d
 }
 
 /* A rounded hit's outward normal: away from the eroded polytope's nearest
-   point (both rounded: about 1e-16 of the size over r). */
-static void fx_normal(const tm_eroded_t *E, const double p[3], const re_hit_t *h, double scale, int ray)
+   point. Both points carry rounding noise e (45 ulps of the coordinates'
+   magnitude mag), which turns the normal by e / r, and by e / (r cos) for
+   a ray at cos to the surface; at a tangent contact (a ray grazing a face)
+   the contact point itself is fixed only to sqrt(e r): sqrt(2 e / r). */
+static void fx_normal(const tm_eroded_t *E, const double p[3], const double dir[3], const re_hit_t *h, double mag, int ray)
 {
-    double y[3], g[3], gl, tol_n = 1e-7 + 1e-13 * scale / E->r;
+    double y[3], g[3], gl, e = 1e-14 * mag, cs, tol_n;
     tm_eroded_nearest_tol(E, p, y, 0);
     tm_sub(p, y, g);
     gl = tm_len(g);
+    cs = fabs(tm_dot(g, dir)) / (gl * tm_len(dir));
+    tol_n = 1e-7 + fmin(sqrt(2 * e / E->r), e / (E->r * fmax(cs, 1e-300)));
     FUZZ_CHECK(fabs(g[0] / gl - h->normal[0]) + fabs(g[1] / gl - h->normal[1]) + fabs(g[2] / gl - h->normal[2]) <= tol_n,
                "ray %d: rounded hit (feature %d %u) at t %.17g, normal (%.12f %.12f %.12f), the reference's (%.12f %.12f "
-               "%.12f), r %.9g", ray, (int)h->feature, h->feature_index, h->t, h->normal[0], h->normal[1], h->normal[2],
-               g[0] / gl, g[1] / gl, g[2] / gl, E->r);
+               "%.12f), r %.9g, cos %.3g", ray, (int)h->feature, h->feature_index, h->t, h->normal[0], h->normal[1],
+               h->normal[2], g[0] / gl, g[1] / gl, g[2] / gl, E->r, cs);
 }
 
+/* One case: the scene built from the hull in world coordinates (mw, the
+   local hull offset by off), and the reference in local ones (m, E), where
+   its absolute tolerances hold; a world point minus off is exact there. */
+typedef struct fx_case_t {
+    const re_scene_t *s;
+    const tm_mesh_t *mw;
+    const tm_eroded_t *E;
+    double off[3], scale;
+} fx_case_t;
+
 /* One ray: the host's hit on the sharp hull, the query, the reference. */
-static void fx_ray(const re_scene_t *s, const tm_mesh_t *m, const tm_eroded_t *E, const uint8_t *b, double scale,
-                   int ray)
+static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
 {
-    const double *vx = m->v + 3 * (b[0] % m->nv), *vy = m->v + 3 * (b[1] % m->nv);
-    double f = b[2] / 255.0, jit[3], dir[3], tgt[3], o[3], t_host, bu, bv, t_ref, tol = FX_TOL * scale, p[3], deep;
+    const tm_mesh_t *m = C->mw;
+    const tm_eroded_t *E = C->E;
+    const double *vx = m->v + 3 * (b[0] % m->nv), *vy = m->v + 3 * (b[1] % m->nv), scale = C->scale;
+    double f = b[2] / 255.0, jit[3], dir[3], tgt[3], o[3], ol[3], t_host, bu, bv, t_ref, tol = FX_TOL * scale, p[3], pw[3],
+           deep;
     unsigned tri, a;
     re_hit_t h, hu;
     fx_dir(fx_angle(b[3]), b[4] / 127.5 - 1, jit);
     fx_dir(fx_angle(b[5]), b[6] / 127.5 - 1, dir);
     for (a = 0; a < 3; a++) tgt[a] = vx[a] + f * (vy[a] - vx[a]) + (b[4] & 7) * E->r * jit[a];
-    for (a = 0; a < 3; a++) o[a] = tgt[a] - 3 * scale * dir[a];
+    for (a = 0; a < 3; a++) o[a] = tgt[a] - 3 * scale * dir[a], ol[a] = o[a] - C->off[a];
     if (!tm_hit_uv(m, o, dir, &t_host, &tri, &bu, &bv)) return;
-    re_query(s, o, dir, 0, tri, t_host, &h);
-    re_query_uv(s, o, dir, 0, tri, t_host, bu, bv, &hu);
+    re_query(C->s, o, dir, 0, tri, t_host, &h);
+    re_query_uv(C->s, o, dir, 0, tri, t_host, bu, bv, &hu);
     FUZZ_CHECK(hu.kind == h.kind && hu.t == h.t && hu.normal[0] == h.normal[0] && hu.normal[1] == h.normal[1] &&
                    hu.normal[2] == h.normal[2],
                "ray %d: re_query_uv kind %d t %.17g, re_query kind %d t %.17g", ray, (int)hu.kind, hu.t, (int)h.kind, h.t);
     if (h.kind != RE_PASS_THROUGH) {
         /* the answer's point is on the rounded surface ... */
-        fx_at(o, dir, h.t, p);
+        fx_at(o, dir, h.t, pw);
+        for (a = 0; a < 3; a++) p[a] = pw[a] - C->off[a];
         FUZZ_CHECK(fabs(fx_sdf(E, p)) <= tol, "ray %d: kind %d feature %d at t %.17g is %.3g off the rounded surface "
                    "(host t %.17g, r %.17g)", ray, (int)h.kind, (int)h.feature, h.t, fx_sdf(E, p), t_host, E->r);
-        if (h.kind == RE_HIT_ROUNDED) fx_normal(E, p, &h, scale, ray);
+        if (h.kind == RE_HIT_ROUNDED) fx_normal(E, p, dir, &h, scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), ray);
     }
     /* ... and the first one, up to a graze within the tolerance (a ray
        grazing the rounded surface for long the reference cannot follow in
        a fuzzer's time: the exactness tests trace up to 2e6 steps) */
-    t_ref = tm_trace_n(fx_sdf, E, o, dir, 10.0, scale, 20000);
+    t_ref = tm_trace_n(fx_sdf, E, ol, dir, 10.0, scale, 20000);
     if (t_ref != t_ref || t_ref == HUGE_VAL) return;
     if (h.kind == RE_PASS_THROUGH) {
         /* the rounded solid missed, or only grazed, up to the face the ray
            leaves the sharp hull by */
-        deep = fx_deepest(E, o, dir, t_ref, t_ref + 4 * scale);
+        deep = fx_deepest(E, ol, dir, t_ref, t_ref + 4 * scale);
         FUZZ_CHECK(deep >= -tol, "ray %d: pass-through, but the ray goes %.3g deep into the rounded solid from t %.17g "
                    "(host t %.17g, r %.17g)", ray, -deep, t_ref, t_host, E->r);
     } else if (t_ref < h.t - tol) {
-        deep = fx_deepest(E, o, dir, t_ref, h.t);
+        deep = fx_deepest(E, ol, dir, t_ref, h.t);
         FUZZ_CHECK(deep >= -tol, "ray %d: kind %d feature %d at t %.17g, but the ray is %.3g deep in the rounded solid "
                    "from t %.17g (host %.17g, r %.17g)", ray, (int)h.kind, (int)h.feature, h.t, -deep, t_ref, t_host, E->r);
     }
@@ -208,13 +239,14 @@ static void fx_ray(const re_scene_t *s, const tm_mesh_t *m, const tm_eroded_t *E
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    double pts[16][3], lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, scale, r_req;
+    double pts[16][3], lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, r_req, off;
     int n, i, a, ray;
     float *pos32 = NULL;
     size_t at;
-    tm_mesh_t m = {0};
+    tm_mesh_t m = {0}, mw = {0};
     static tm_poly_t P;
     tm_eroded_t E;
+    fx_case_t C;
     re_mesh_t mesh;
     re_scene_desc_t desc;
     re_scene_t *s = NULL;
@@ -224,31 +256,41 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (size < 3) return 0;
     n = 4 + data[0] % 13;
     r_req = ldexp(1.0, -(data[1] % 26));
+    off = !(data[2] & 4) ? 0.0 : (data[2] & 2) ? 1e3 : 1e6; /* float positions are 6e-5 apart at 1e3 */
+    C.off[0] = off, C.off[1] = -off, C.off[2] = off;
     if (size < 3 + 6 * (size_t)n) return 0;
+    /* the world points (as floats: those the float build gets), and the
+       local ones, the world minus the offset (exact) */
     for (i = 0; i < n; i++)
         for (a = 0; a < 3; a++) {
-            pts[i][a] = fx_coord(data + 3 + 6 * i + 2 * a);
-            if (data[2] & 2) pts[i][a] = (float)pts[i][a];
+            double w = fx_coord(data + 3 + 6 * i + 2 * a) + C.off[a];
+            if (data[2] & 2) w = (float)w;
+            pts[i][a] = w - C.off[a];
         }
     memset(&P, 0, sizeof P);
     tm_hull((const double(*)[3])pts, n, &m, &P);
     for (i = 0; i < n; i++)
         for (a = 0; a < 3; a++) lo[a] = fmin(lo[a], pts[i][a]), hi[a] = fmax(hi[a], pts[i][a]);
-    scale = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
-    if (!(scale > 0) || !fx_hull_ok(&m, FX_MIN_EDGE * scale)) { tm_free(&m); return 0; }
+    C.scale = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    if (!(C.scale > 0) || !fx_hull_ok(&m, FX_MIN_EDGE * C.scale, ((data[2] & 2) ? RE__FLT_EPS : RE__DBL_EPS) * (off + 1))) {
+        tm_free(&m);
+        return 0;
+    }
+    for (i = 0; i < (int)m.nv; i++) tm_vert(&mw, m.v[3 * i] + C.off[0], m.v[3 * i + 1] + C.off[1], m.v[3 * i + 2] + C.off[2]);
+    for (i = 0; i < (int)m.ni; i += 3) tm_tri(&mw, m.idx[i], m.idx[i + 1], m.idx[i + 2]);
     memset(&mesh, 0, sizeof mesh);
     memset(&desc, 0, sizeof desc);
     if (data[2] & 2) {
-        pos32 = (float *)malloc(sizeof(float) * 3 * m.nv);
-        for (i = 0; i < (int)(3 * m.nv); i++) pos32[i] = (float)m.v[i];
+        pos32 = (float *)malloc(sizeof(float) * 3 * mw.nv);
+        for (i = 0; i < (int)(3 * mw.nv); i++) pos32[i] = (float)mw.v[i];
         mesh.positions = pos32;
         mesh.position_type = RE_FLOAT32;
     } else
-        mesh.positions = m.v;
-    mesh.vertex_count = m.nv;
-    mesh.indices = m.idx;
-    mesh.index_count = m.ni;
-    mesh.radius = r_req * scale;
+        mesh.positions = mw.v;
+    mesh.vertex_count = mw.nv;
+    mesh.indices = mw.idx;
+    mesh.index_count = mw.ni;
+    mesh.radius = r_req * C.scale;
     desc.objects = &mesh;
     desc.object_count = 1;
     desc.layout = (data[2] & 1) ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
@@ -263,10 +305,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK(E.r > 0 && E.r <= mesh.radius, "radius %.17g for a requested %.17g", E.r, mesh.radius);
     tm_erode(&P, E.r);
     fx_keep_true_edges(&P);
-    for (ray = 0, at = 3 + 6 * (size_t)n; ray < FX_MAX_RAYS && at + 7 <= size; ray++, at += 7)
-        fx_ray(s, &m, &E, data + at, scale, ray);
+    C.s = s, C.mw = &mw, C.E = &E;
+    for (ray = 0, at = 3 + 6 * (size_t)n; ray < FX_MAX_RAYS && at + 7 <= size; ray++, at += 7) fx_ray(&C, data + at, ray);
     re_free(s);
     free(pos32);
     tm_free(&m);
+    tm_free(&mw);
     return 0;
 }

@@ -412,6 +412,64 @@ static void rays_grazing_a_face(void)
     tm_free(&m);
 }
 
+/* Rays lying exactly in the top or bottom face's plane, entering through
+   the side x = lo at its edge, so tangent to the rounding of that edge and
+   to the flat part they run along (found by fuzz_rounded_exact on a hull):
+   whatever the answer, its point is on the rounded box, a pass-through
+   never enters it, and a rounded hit's normal is the analytic one to 1e-6.
+   The ray-cylinder discriminant taken from I a size away could not tell
+   such a tangent ray from one meeting the cylinder, and took its normal
+   up to 0.011 off at r = 1e-6 (re__quadric_roots). */
+static void rays_lying_in_a_face_plane_case(double r)
+{
+    tm_mesh_t m = {0};
+    rbox_t b;
+    re_scene_t *s;
+    re_diag_t dg;
+    t_rng_t rng = {5};
+    long i, n = t_count(6000), n_in_plane = 0;
+    int a;
+    tm_box(&m, BOX_LO, BOX_HI);
+    for (a = 0; a < 3; a++) b.c[a] = 0, b.half[a] = BOX_HI[a];
+    b.r = r;
+    s = build1(&m, r, &dg);
+    if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
+    for (i = 0; i < n; i++) {
+        double phi = t_rng_range(&rng, -1.4, 1.4), d[3], o[3], t_host, nref[3];
+        unsigned tri;
+        re_hit_t h;
+        d[0] = cos(phi), d[1] = sin(phi), d[2] = 0;
+        o[0] = BOX_LO[0] - 2 * d[0], o[1] = t_rng_range(&rng, BOX_LO[1], BOX_HI[1]) - 2 * d[1];
+        o[2] = i % 2 ? BOX_LO[2] : BOX_HI[2];
+        if (!tm_hit(&m, o, d, &t_host, &tri)) continue;
+        n_in_plane++;
+        re_query(s, o, d, 0, tri, t_host, &h);
+        if (h.kind == RE_PASS_THROUGH) {
+            int k;
+            for (k = 0; k <= 64; k++) { /* never inside the rounded box up to where the host goes on */
+                double p[3], tt = t_host + (h.t - t_host) * k / 64.0;
+                for (a = 0; a < 3; a++) p[a] = o[a] + tt * d[a];
+                if (!T_GT(tm_rbox_sdf(b.c, b.half, b.r, p), -1e-12)) break;
+            }
+            continue;
+        }
+        T_NEAR(tm_rbox_sdf(b.c, b.half, b.r, h.point), 0.0, 1e-12);
+        if (h.kind == RE_HIT_ROUNDED) {
+            tm_rbox_normal(b.c, b.half, b.r, h.point, nref);
+            T_LE(fabs(nref[0] - h.normal[0]) + fabs(nref[1] - h.normal[1]) + fabs(nref[2] - h.normal[2]), 1e-6);
+        }
+    }
+    T_GT(n_in_plane, n / 2);
+    re_free(s);
+    tm_free(&m);
+}
+static void rays_lying_in_a_face_plane(void)
+{
+    rays_lying_in_a_face_plane_case(1e-6);
+    rays_lying_in_a_face_plane_case(1e-4);
+    rays_lying_in_a_face_plane_case(0.05);
+}
+
 /* A box [0, L] x [-h, h]^2 whose four long edges are split into n segments
    (k = 2 corners all along them), its long faces strips of quads; b is the
    rounded box it stands for. */
@@ -1092,6 +1150,7 @@ int main(int argc, char **argv)
         T_CASE(coordinates_offset_1e6),
         T_CASE(rays_exactly_through_edges_and_vertices),
         T_CASE(rays_grazing_a_face),
+        T_CASE(rays_lying_in_a_face_plane),
         T_CASE(grazing_along_a_subdivided_edge),
         T_CASE(long_straight_chains),
         T_CASE(chain_corners_dropped_renumber_the_rest),
