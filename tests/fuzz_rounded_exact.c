@@ -16,7 +16,10 @@
      then    rays, 7 bytes each, at most FX_MAX_RAYS: two vertex ids and a
              fraction (the aim point on the chord between them), a jitter
              of the aim point (two angles and a length in radii), and the
-             direction (two angles)
+             direction (two angles); with bit 3 of the fifth byte the ray
+             starts inside instead, on the way from the hull's middle to
+             the aim point (the fourth byte the fraction), and goes through
+             re_query_exit (fx_exit_ray)
    Inputs whose hull is not a closed 2-manifold (coplanar points), or has
    edges shorter than FX_MIN_EDGE or creases flatter than FX_MIN_SIN or
    than the positions' rounding could make them (where the build may call
@@ -188,8 +191,41 @@ typedef struct fx_case_t {
     const re_scene_t *s;
     const tm_mesh_t *mw;
     const tm_eroded_t *E;
-    double off[3], scale;
+    double off[3], scale, mid[3]; /* mid: the vertices' mean (world) */
 } fx_case_t;
+
+/* A ray from inside the rounded solid (a point between the hull's middle
+   and the aim point, inside the rounded solid by more than the tolerance)
+   leaving through the back face the host finds (the first front face of
+   the ray reversed from far beyond): re_query_exit must say where it
+   leaves the rounded solid, on its surface, at t in [0, t_host], as
+   re_query_exit_uv does. A line leaves a convex solid once, so a point on
+   the surface past an inside origin is the exit. */
+static void fx_exit_ray(const fx_case_t *C, const double tgt[3], double f, const double dir[3], int ray)
+{
+    const tm_eroded_t *E = C->E;
+    double o[3], ol[3], far = 4 * C->scale, o2[3], d2[3], t2, t_host, bu, bv, p[3], pw[3], tol = FX_TOL * C->scale;
+    unsigned tri, a;
+    re_hit_t h, hu;
+    for (a = 0; a < 3; a++) o[a] = C->mid[a] + f * (tgt[a] - C->mid[a]), ol[a] = o[a] - C->off[a];
+    if (!(fx_sdf(E, ol) < -tol)) return;
+    for (a = 0; a < 3; a++) o2[a] = o[a] + far * dir[a], d2[a] = -dir[a];
+    if (!tm_hit_uv(C->mw, o2, d2, &t2, &tri, &bu, &bv)) return;
+    t_host = far - t2;
+    re_query_exit(C->s, o, dir, 0, tri, t_host, &h);
+    re_query_exit_uv(C->s, o, dir, 0, tri, t_host, bu, bv, &hu);
+    FUZZ_CHECK(hu.kind == h.kind && hu.t == h.t && hu.normal[0] == h.normal[0] && hu.normal[1] == h.normal[1] &&
+                   hu.normal[2] == h.normal[2],
+               "exit ray %d: re_query_exit_uv kind %d t %.17g, re_query_exit kind %d t %.17g", ray, (int)hu.kind, hu.t,
+               (int)h.kind, h.t);
+    FUZZ_CHECK(h.kind != RE_PASS_THROUGH && h.t >= 0 && h.t <= t_host,
+               "exit ray %d from inside: kind %d at t %.17g (host's exit face at %.17g)", ray, (int)h.kind, h.t, t_host);
+    fx_at(o, dir, h.t, pw);
+    for (a = 0; a < 3; a++) p[a] = pw[a] - C->off[a];
+    FUZZ_CHECK(fabs(fx_sdf(E, p)) <= tol, "exit ray %d: kind %d feature %d at t %.17g is %.3g off the rounded surface "
+               "(host's exit face at %.17g, r %.17g)", ray, (int)h.kind, (int)h.feature, h.t, fx_sdf(E, p), t_host, E->r);
+    if (h.kind == RE_HIT_ROUNDED) fx_normal(E, p, dir, &h, C->scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), ray);
+}
 
 /* One ray: the host's hit on the sharp hull, the query, the reference. */
 static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
@@ -204,6 +240,10 @@ static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
     fx_dir(fx_angle(b[3]), b[4] / 127.5 - 1, jit);
     fx_dir(fx_angle(b[5]), b[6] / 127.5 - 1, dir);
     for (a = 0; a < 3; a++) tgt[a] = vx[a] + f * (vy[a] - vx[a]) + (b[4] & 7) * E->r * jit[a];
+    if (b[4] & 8) { /* from inside, toward the aim point: the exit query */
+        fx_exit_ray(C, tgt, b[3] / 255.0, dir, ray);
+        return;
+    }
     for (a = 0; a < 3; a++) o[a] = tgt[a] - 3 * scale * dir[a], ol[a] = o[a] - C->off[a];
     if (!tm_hit_uv(m, o, dir, &t_host, &tri, &bu, &bv)) return;
     re_query(C->s, o, dir, 0, tri, t_host, &h);
@@ -306,6 +346,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     tm_erode(&P, E.r);
     fx_keep_true_edges(&P);
     C.s = s, C.mw = &mw, C.E = &E;
+    for (a = 0; a < 3; a++) {
+        C.mid[a] = 0;
+        for (i = 0; i < (int)mw.nv; i++) C.mid[a] += mw.v[3 * i + a] / mw.nv;
+    }
     for (ray = 0, at = 3 + 6 * (size_t)n; ray < FX_MAX_RAYS && at + 7 <= size; ray++, at += 7) fx_ray(&C, data + at, ray);
     re_free(s);
     free(pos32);
