@@ -23,14 +23,15 @@
    Inputs whose hull is not a closed 2-manifold (coplanar points), or has
    edges shorter than FX_MIN_EDGE or creases flatter than FX_MIN_SIN or
    than the positions' rounding could make them (where the build may call
-   two faces one plane and the reference does not), are skipped. Every rounded edge is rounded, and for every ray that hits the
-   sharp hull the answer agrees with the reference to FX_TOL of the size:
-   the answer's point lies on the rounded surface, and the ray does not go
-   deeper than FX_TOL into the rounded solid before it (so a ray grazing
-   the surface within the tolerance may be answered either way); a
-   rounded hit's normal points away from the eroded polytope's nearest
-   point (to the rounding noise, amplified at tangent contacts: fx_normal);
-   re_query_uv gives re_query's answer. A failed check aborts after printing the case. */
+   two faces one plane and the reference does not), are skipped. Every
+   convex edge is rounded, and for every ray that hits the sharp hull the
+   answer agrees with the reference to FX_TOL of the size: the answer's
+   point lies on the rounded surface, and the ray does not go deeper than
+   FX_TOL into the rounded solid before it (so a ray grazing the surface
+   within the tolerance may be answered either way); a rounded hit's
+   normal points away from the eroded polytope's nearest point (to the
+   rounding noise, amplified at tangent contacts: fx_normal); re_query_uv
+   gives re_query's answer. A failed check aborts after printing the case. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -46,7 +47,6 @@
 #define FX_TOL 1e-7      /* of the hull's size: the exactness tests' bound */
 #define FX_MIN_EDGE 1e-3 /* of the size */
 #define FX_MIN_SIN 1e-3  /* sine of the smallest crease angle kept */
-
 
 static double fx_coord(const uint8_t *b) { return (double)(b[0] | b[1] << 8) / 32767.5 - 1.0; }
 static double fx_angle(uint8_t b) { return b * (2 * M_PI / 256); }
