@@ -11,14 +11,14 @@
              largest valid one: RE_RADIUS_CLAMP, one patch on a hull)
      byte 2  flags: bit 0 RE_LAYOUT_COMPACT, bit 1 positions rounded to
              float and built as RE_FLOAT32, bit 2 the points offset by
-             1e6 (1e3 in float)
+             1e6 (1e3 in float), bit 3 odd rays start inside
      then    the points, 6 bytes each (three 16-bit coordinates in [-1, 1])
      then    rays, 7 bytes each, at most FX_MAX_RAYS: two vertex ids and a
              fraction (the aim point on the chord between them), a jitter
              of the aim point (two angles and a length in radii), and the
-             direction (two angles); with bit 3 of the fifth byte the ray
-             starts inside instead, on the way from the hull's middle to
-             the aim point (the fourth byte the fraction), and goes through
+             direction (two angles); a ray that starts inside (flags bit
+             3, odd rays) starts on the way from the hull's middle to the
+             aim point (the fourth byte the fraction) and goes through
              re_query_exit (fx_exit_ray)
    Inputs whose hull is not a closed 2-manifold (coplanar points), or has
    edges shorter than FX_MIN_EDGE or creases flatter than FX_MIN_SIN or
@@ -77,8 +77,9 @@ static double fx_tri(const tm_mesh_t *m, unsigned t, double eps_mag, double n[3]
    = 2 over the used vertices) with edges of at least min_edge and creases
    that the build cannot call flat: of sine at least FX_MIN_SIN and twice
    their triangles' tilt bounds (up to RE_FLAT_SIN_LIMIT, where the widened
-   flat test stops). */
-static int fx_hull_ok(const tm_mesh_t *m, double min_edge, double eps_mag)
+   flat test stops). *smin: the smallest crease sine (kept as it was when
+   larger). */
+static int fx_hull_ok(const tm_mesh_t *m, double min_edge, double eps_mag, double *smin)
 {
     unsigned nt = m->ni / 3, t, u, k, j, used = 0, ne = 0;
     unsigned char seen[16] = {0};
@@ -98,6 +99,7 @@ static int fx_hull_ok(const tm_mesh_t *m, double min_edge, double eps_mag)
                         rev++;
                         tm_cross(n1, n2, x);
                         if (!(tm_len(x) >= fmax(FX_MIN_SIN, 2 * fmin(tilt, RE_FLAT_SIN_LIMIT)))) return 0;
+                        *smin = fmin(*smin, tm_len(x));
                     }
                 }
             if (fwd != 1 || rev != 1) return 0;
@@ -166,16 +168,19 @@ static double fx_deepest(const tm_eroded_t *E, const double o[3], const double d
 }
 
 /* A rounded hit's outward normal: away from the eroded polytope's nearest
-   point, to 1e-6 (the exactness tests' bound) and the rounding noise: both
-   points carry some e (450 ulps of the coordinates' magnitude mag: the
-   compact layout's sphere centres, solved from three planes at query time,
-   were found 1.1e-12 off at a shallow corner), which turns the normal by
-   e / r, and by e / (r cos) for a ray at cos to the surface; at a tangent
-   contact (a ray grazing a face) the contact point itself is fixed only to
-   sqrt(e r): sqrt(2 e / r). */
-static void fx_normal(const tm_eroded_t *E, const double p[3], const double dir[3], const re_hit_t *h, double mag, int ray)
+   point, to 1e-6 (the exactness tests' bound) and the rounding noise: the
+   features both sides place (sphere centres, axes, eroded vertices) come
+   from planes crossing at the hull's creases, so they carry some e = 45
+   ulps of the coordinates' magnitude mag over the smallest crease sine
+   smin (found: 1.1e-12 for the compact layout's solved centres at a
+   crease of sine 1.3e-3, and 1.5e-12 between gcc's and clang's reference
+   at 1.5e-3), which turns the normal by e / r, and by e / (r cos) for a
+   ray at cos to the surface; at a tangent contact (a ray grazing a face)
+   the contact point itself is fixed only to sqrt(e r): sqrt(2 e / r). */
+static void fx_normal(const tm_eroded_t *E, const double p[3], const double dir[3], const re_hit_t *h, double mag,
+                      double smin, int ray)
 {
-    double y[3], g[3], gl, e = 1e-13 * mag, cs, tol_n;
+    double y[3], g[3], gl, e = 1e-14 * mag / smin, cs, tol_n;
     tm_eroded_nearest_tol(E, p, y, 0);
     tm_sub(p, y, g);
     gl = tm_len(g);
@@ -195,6 +200,8 @@ typedef struct fx_case_t {
     const tm_mesh_t *mw;
     const tm_eroded_t *E;
     double off[3], scale, mid[3]; /* mid: the vertices' mean (world) */
+    double smin;                  /* the hull's smallest crease sine */
+    int exits;                    /* odd rays start inside (re_query_exit) */
 } fx_case_t;
 
 /* A ray from inside the rounded solid (a point between the hull's middle
@@ -227,7 +234,8 @@ static void fx_exit_ray(const fx_case_t *C, const double tgt[3], double f, const
     for (a = 0; a < 3; a++) p[a] = pw[a] - C->off[a];
     FUZZ_CHECK(fabs(fx_sdf(E, p)) <= tol, "exit ray %d: kind %d feature %d at t %.17g is %.3g off the rounded surface "
                "(host's exit face at %.17g, r %.17g)", ray, (int)h.kind, (int)h.feature, h.t, fx_sdf(E, p), t_host, E->r);
-    if (h.kind == RE_HIT_ROUNDED) fx_normal(E, p, dir, &h, C->scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), ray);
+    if (h.kind == RE_HIT_ROUNDED)
+        fx_normal(E, p, dir, &h, C->scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), C->smin, ray);
 }
 
 /* One ray: the host's hit on the sharp hull, the query, the reference. */
@@ -243,7 +251,7 @@ static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
     fx_dir(fx_angle(b[3]), b[4] / 127.5 - 1, jit);
     fx_dir(fx_angle(b[5]), b[6] / 127.5 - 1, dir);
     for (a = 0; a < 3; a++) tgt[a] = vx[a] + f * (vy[a] - vx[a]) + (b[4] & 7) * E->r * jit[a];
-    if (b[4] & 8) { /* from inside, toward the aim point: the exit query */
+    if (C->exits && (ray & 1)) { /* from inside, toward the aim point: the exit query */
         fx_exit_ray(C, tgt, b[3] / 255.0, dir, ray);
         return;
     }
@@ -260,7 +268,7 @@ static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
         for (a = 0; a < 3; a++) p[a] = pw[a] - C->off[a];
         FUZZ_CHECK(fabs(fx_sdf(E, p)) <= tol, "ray %d: kind %d feature %d at t %.17g is %.3g off the rounded surface "
                    "(host t %.17g, r %.17g)", ray, (int)h.kind, (int)h.feature, h.t, fx_sdf(E, p), t_host, E->r);
-        if (h.kind == RE_HIT_ROUNDED) fx_normal(E, p, dir, &h, scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), ray);
+        if (h.kind == RE_HIT_ROUNDED) fx_normal(E, p, dir, &h, scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), C->smin, ray);
     }
     /* ... and the first one, up to a graze within the tolerance (a ray
        grazing the rounded surface for long the reference cannot follow in
@@ -315,7 +323,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (i = 0; i < n; i++)
         for (a = 0; a < 3; a++) lo[a] = fmin(lo[a], pts[i][a]), hi[a] = fmax(hi[a], pts[i][a]);
     C.scale = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
-    if (!(C.scale > 0) || !fx_hull_ok(&m, FX_MIN_EDGE * C.scale, ((data[2] & 2) ? RE__FLT_EPS : RE__DBL_EPS) * (off + 1))) {
+    C.smin = 1;
+    if (!(C.scale > 0) ||
+        !fx_hull_ok(&m, FX_MIN_EDGE * C.scale, ((data[2] & 2) ? RE__FLT_EPS : RE__DBL_EPS) * (off + 1), &C.smin)) {
         tm_free(&m);
         return 0;
     }
@@ -348,7 +358,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK(E.r > 0 && E.r <= mesh.radius, "radius %.17g for a requested %.17g", E.r, mesh.radius);
     tm_erode(&P, E.r);
     fx_keep_true_edges(&P);
-    C.s = s, C.mw = &mw, C.E = &E;
+    C.s = s, C.mw = &mw, C.E = &E, C.exits = (data[2] & 8) != 0;
     for (a = 0; a < 3; a++) {
         C.mid[a] = 0;
         for (i = 0; i < (int)mw.nv; i++) C.mid[a] += mw.v[3 * i + a] / mw.nv;

@@ -72,7 +72,9 @@ static int tm_hit_uv(const tm_mesh_t *m, const double o[3], const double d[3], d
         tm_sub(b, a, e1);
         tm_sub(c, a, e2);
         tm_cross(e1, e2, n);
-        if (tm_dot(n, d) >= 0) continue; /* back face */
+        /* a back face, or a ray in the face's plane (within rounding: its
+           det would be noise, and so t, u, v; fuzz_rounded_exact) */
+        if (tm_dot(n, d) >= -1e-12 * tm_len(n) * tm_len(d)) continue;
         tm_cross(d, e2, p);
         det = tm_dot(e1, p);
         if (det == 0) continue;
