@@ -170,17 +170,19 @@ static double fx_deepest(const tm_eroded_t *E, const double o[3], const double d
 /* A rounded hit's outward normal: away from the eroded polytope's nearest
    point, to 1e-6 (the exactness tests' bound) and the rounding noise: the
    features both sides place (sphere centres, axes, eroded vertices) come
-   from planes crossing at the hull's creases, so they carry some e = 45
-   ulps of the coordinates' magnitude mag over the smallest crease sine
-   smin (found: 1.1e-12 for the compact layout's solved centres at a
-   crease of sine 1.3e-3, and 1.5e-12 between gcc's and clang's reference
-   at 1.5e-3), which turns the normal by e / r, and by e / (r cos) for a
-   ray at cos to the surface; at a tangent contact (a ray grazing a face)
-   the contact point itself is fixed only to sqrt(e r): sqrt(2 e / r). */
+   from planes crossing at the hull's creases and corners, so they carry
+   some e = 450 ulps of the coordinates' magnitude mag over the smallest
+   crease sine smin (found: 1.1e-12 for the compact layout's solved
+   centres at a crease of sine 1.3e-3, 1.5e-12 between gcc's and clang's
+   reference at 1.5e-3, 7e-12 between the library's sphere and the
+   reference's vertex in a cluster of eroded vertices 1e-11..1e-8 apart),
+   which turns the normal by e / r, and by e / (r cos) for a ray at cos to
+   the surface; at a tangent contact (a ray grazing a face) the contact
+   point itself is fixed only to sqrt(e r): sqrt(2 e / r). */
 static void fx_normal(const tm_eroded_t *E, const double p[3], const double dir[3], const re_hit_t *h, double mag,
                       double smin, int ray)
 {
-    double y[3], g[3], gl, e = 1e-14 * mag / smin, cs, tol_n;
+    double y[3], g[3], gl, e = 1e-13 * mag / smin, cs, tol_n;
     tm_eroded_nearest_tol(E, p, y, 0);
     tm_sub(p, y, g);
     gl = tm_len(g);
