@@ -206,6 +206,30 @@ typedef struct fx_case_t {
     int exits;                    /* odd rays start inside (re_query_exit) */
 } fx_case_t;
 
+/* The _uv form's answer is the plain one's, bit for bit. */
+static void fx_same_answer(const re_hit_t *h, const re_hit_t *hu, const char *what, int ray)
+{
+    FUZZ_CHECK(hu->kind == h->kind && hu->t == h->t && hu->normal[0] == h->normal[0] && hu->normal[1] == h->normal[1] &&
+                   hu->normal[2] == h->normal[2],
+               "%s ray %d: the _uv query kind %d t %.17g, the plain one kind %d t %.17g", what, ray, (int)hu->kind, hu->t,
+               (int)h->kind, h->t);
+}
+
+/* An answer that is not a pass-through: its point on the rounded surface,
+   and a rounded hit's normal the reference's (fx_normal). */
+static void fx_on_surface(const fx_case_t *C, const double o[3], const double dir[3], const re_hit_t *h, double t_host,
+                          const char *what, int ray)
+{
+    double p[3], pw[3], tol = FX_TOL * C->scale;
+    unsigned a;
+    fx_at(o, dir, h->t, pw);
+    for (a = 0; a < 3; a++) p[a] = pw[a] - C->off[a];
+    FUZZ_CHECK(fabs(fx_sdf(C->E, p)) <= tol, "%s ray %d: kind %d feature %d at t %.17g is %.3g off the rounded surface "
+               "(host t %.17g, r %.17g)", what, ray, (int)h->kind, (int)h->feature, h->t, fx_sdf(C->E, p), t_host, C->E->r);
+    if (h->kind == RE_HIT_ROUNDED)
+        fx_normal(C->E, p, dir, h, C->scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), C->smin, ray);
+}
+
 /* A ray from inside the rounded solid (a point between the hull's middle
    and the aim point, inside the rounded solid by more than the tolerance)
    leaving through the back face the host finds (the first front face of
@@ -216,7 +240,7 @@ typedef struct fx_case_t {
 static void fx_exit_ray(const fx_case_t *C, const double tgt[3], double f, const double dir[3], int ray)
 {
     const tm_eroded_t *E = C->E;
-    double o[3], ol[3], far = 4 * C->scale, o2[3], d2[3], t2, t_host, bu, bv, p[3], pw[3], tol = FX_TOL * C->scale;
+    double o[3], ol[3], far = 4 * C->scale, o2[3], d2[3], t2, t_host, bu, bv, tol = FX_TOL * C->scale;
     unsigned tri, a;
     re_hit_t h, hu;
     for (a = 0; a < 3; a++) o[a] = C->mid[a] + f * (tgt[a] - C->mid[a]), ol[a] = o[a] - C->off[a];
@@ -226,18 +250,10 @@ static void fx_exit_ray(const fx_case_t *C, const double tgt[3], double f, const
     t_host = far - t2;
     re_query_exit(C->s, o, dir, 0, tri, t_host, &h);
     re_query_exit_uv(C->s, o, dir, 0, tri, t_host, bu, bv, &hu);
-    FUZZ_CHECK(hu.kind == h.kind && hu.t == h.t && hu.normal[0] == h.normal[0] && hu.normal[1] == h.normal[1] &&
-                   hu.normal[2] == h.normal[2],
-               "exit ray %d: re_query_exit_uv kind %d t %.17g, re_query_exit kind %d t %.17g", ray, (int)hu.kind, hu.t,
-               (int)h.kind, h.t);
+    fx_same_answer(&h, &hu, "exit", ray);
     FUZZ_CHECK(h.kind != RE_PASS_THROUGH && h.t >= 0 && h.t <= t_host + tol, /* rounding at a tangent line */
                "exit ray %d from inside: kind %d at t %.17g (host's exit face at %.17g)", ray, (int)h.kind, h.t, t_host);
-    fx_at(o, dir, h.t, pw);
-    for (a = 0; a < 3; a++) p[a] = pw[a] - C->off[a];
-    FUZZ_CHECK(fabs(fx_sdf(E, p)) <= tol, "exit ray %d: kind %d feature %d at t %.17g is %.3g off the rounded surface "
-               "(host's exit face at %.17g, r %.17g)", ray, (int)h.kind, (int)h.feature, h.t, fx_sdf(E, p), t_host, E->r);
-    if (h.kind == RE_HIT_ROUNDED)
-        fx_normal(E, p, dir, &h, C->scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), C->smin, ray);
+    fx_on_surface(C, o, dir, &h, t_host, "exit", ray);
 }
 
 /* One ray: the host's hit on the sharp hull, the query, the reference. */
@@ -246,8 +262,7 @@ static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
     const tm_mesh_t *m = C->mw;
     const tm_eroded_t *E = C->E;
     const double *vx = m->v + 3 * (b[0] % m->nv), *vy = m->v + 3 * (b[1] % m->nv), scale = C->scale;
-    double f = b[2] / 255.0, jit[3], dir[3], tgt[3], o[3], ol[3], t_host, bu, bv, t_ref, tol = FX_TOL * scale, p[3], pw[3],
-           deep;
+    double f = b[2] / 255.0, jit[3], dir[3], tgt[3], o[3], ol[3], t_host, bu, bv, t_ref, tol = FX_TOL * scale, deep;
     unsigned tri, a;
     re_hit_t h, hu;
     fx_dir(fx_angle(b[3]), b[4] / 127.5 - 1, jit);
@@ -261,17 +276,9 @@ static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
     if (!tm_hit_uv(m, o, dir, &t_host, &tri, &bu, &bv)) return;
     re_query(C->s, o, dir, 0, tri, t_host, &h);
     re_query_uv(C->s, o, dir, 0, tri, t_host, bu, bv, &hu);
-    FUZZ_CHECK(hu.kind == h.kind && hu.t == h.t && hu.normal[0] == h.normal[0] && hu.normal[1] == h.normal[1] &&
-                   hu.normal[2] == h.normal[2],
-               "ray %d: re_query_uv kind %d t %.17g, re_query kind %d t %.17g", ray, (int)hu.kind, hu.t, (int)h.kind, h.t);
-    if (h.kind != RE_PASS_THROUGH) {
-        /* the answer's point is on the rounded surface ... */
-        fx_at(o, dir, h.t, pw);
-        for (a = 0; a < 3; a++) p[a] = pw[a] - C->off[a];
-        FUZZ_CHECK(fabs(fx_sdf(E, p)) <= tol, "ray %d: kind %d feature %d at t %.17g is %.3g off the rounded surface "
-                   "(host t %.17g, r %.17g)", ray, (int)h.kind, (int)h.feature, h.t, fx_sdf(E, p), t_host, E->r);
-        if (h.kind == RE_HIT_ROUNDED) fx_normal(E, p, dir, &h, scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), C->smin, ray);
-    }
+    fx_same_answer(&h, &hu, "host", ray);
+    /* the answer's point is on the rounded surface ... */
+    if (h.kind != RE_PASS_THROUGH) fx_on_surface(C, o, dir, &h, t_host, "host", ray);
     /* ... and the first one, up to a graze within the tolerance (a ray
        grazing the rounded surface for long the reference cannot follow in
        a fuzzer's time: the exactness tests trace up to 2e6 steps) */
