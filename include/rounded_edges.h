@@ -4538,8 +4538,9 @@ RE_DEF double re_object_radius(const re_scene_t *scene, unsigned object)
 
 /* ---- Query ------------------------------------------------------------------------ */
 
-/* The roots s0 <= s1 of |w + s dp|^2 = r^2 (A = |dp|^2 > 0, B = dp.w);
-   0 when the ray misses. They are taken from the ray's closest approach
+/* The roots s0 <= s1 of |w + s dp|^2 = r^2 (A = |dp|^2, B = dp.w); 0
+   when the ray misses, or A is 0 (for a cylinder: parallel to the axis,
+   where only the spheres matter) or not a number. They are taken from the ray's closest approach
    sc = -B/A: the offset there, w + sc dp, is at most about r long where
    the ray meets the surface, so r^2 minus its square is exact to ulps of
    r^2, where the usual discriminant B^2 - A (|w|^2 - r^2) carries ulps of
@@ -4550,7 +4551,9 @@ RE_DEF double re_object_radius(const re_scene_t *scene, unsigned object)
    tangent contact is placed to sqrt(ulps r). One division, not two. */
 static inline int re__quadric_roots(const double w[3], const double dp[3], double A, double B, double r, double *s0, double *s1)
 {
-    double ia = 1 / A, sc = -B * ia, m[3], h;
+    double ia, sc, m[3], h;
+    if (!(A > 0)) return 0;
+    ia = 1 / A, sc = -B * ia;
     re__madd(w, sc, dp, m);
     h = (r * r - re__dot(m, m)) * ia;
     if (!(h >= 0)) return 0;
@@ -4565,7 +4568,7 @@ static double re__sphere_entry(const double I[3], const double d[3], const doubl
 {
     double w[3], A = re__dot(d, d), s0, s1;
     re__sub(I, c, w);
-    if (!(A > 0) || !re__quadric_roots(w, d, A, re__dot(d, w), r, &s0, &s1)) return HUGE_VAL;
+    if (!re__quadric_roots(w, d, A, re__dot(d, w), r, &s0, &s1)) return HUGE_VAL;
     return s1 < smin ? HUGE_VAL : re__max(s0, smin);
 }
 
@@ -4588,8 +4591,7 @@ static double re__cyl_entry(const double I[3], const double d[3], const double a
     re__madd(d, -du * inv, u, dp);
     re__madd(w, -wu * inv, u, wp);
     A = re__dot(dp, dp);
-    /* parallel to the axis: only the spheres matter */
-    if (!(A > 0) || !re__quadric_roots(wp, dp, A, re__dot(dp, wp), r, &s0, &s1) || s1 < smin) return HUGE_VAL;
+    if (!re__quadric_roots(wp, dp, A, re__dot(dp, wp), r, &s0, &s1) || s1 < smin) return HUGE_VAL;
     s0 = re__max(s0, smin);
     hh = wu + s0 * du;
     if (hh < 0 || hh > L2) return HUGE_VAL; /* beyond the span: a sphere cap */

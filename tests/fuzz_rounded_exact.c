@@ -247,14 +247,12 @@ static void fx_on_surface(const fx_case_t *C, const double o[3], const double di
 static void fx_exit_ray(const fx_case_t *C, const double tgt[3], double f, const double dir[3], int ray)
 {
     const tm_eroded_t *E = C->E;
-    double o[3], ol[3], far = 4 * C->scale, o2[3], d2[3], t2, t_host, bu, bv, tol = FX_TOL * C->scale;
+    double o[3], ol[3], t_host, bu, bv, tol = FX_TOL * C->scale;
     unsigned tri, a;
     re_hit_t h, hu;
     for (a = 0; a < 3; a++) o[a] = C->mid[a] + f * (tgt[a] - C->mid[a]), ol[a] = o[a] - C->off[a];
     if (!(fx_sdf(E, ol) < -tol)) return;
-    for (a = 0; a < 3; a++) o2[a] = o[a] + far * dir[a], d2[a] = -dir[a];
-    if (!tm_hit_uv(C->mw, o2, d2, &t2, &tri, &bu, &bv)) return;
-    t_host = far - t2;
+    if (!tm_exit_uv(C->mw, o, dir, 4 * C->scale, &t_host, &tri, &bu, &bv)) return;
     re_query_exit(C->s, o, dir, 0, tri, t_host, &h);
     re_query_exit_uv(C->s, o, dir, 0, tri, t_host, bu, bv, &hu);
     fx_same_answer(&h, &hu, "exit", ray);

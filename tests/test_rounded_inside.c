@@ -66,12 +66,7 @@ static double trace_exit(const solid_t *S, const double o[3], const double d[3])
    first front face of the ray reversed from far beyond it), t and u, v. */
 static int host_exit(const solid_t *S, const double o[3], const double d[3], double *t, unsigned *tri, double *u, double *v)
 {
-    double far = 4 * S->size / tm_len(d), o2[3], d2[3], t2;
-    int a;
-    for (a = 0; a < 3; a++) o2[a] = o[a] + far * d[a], d2[a] = -d[a];
-    if (!tm_hit_uv(&S->m, o2, d2, &t2, tri, u, v)) return 0;
-    *t = far - t2;
-    return 1;
+    return tm_exit_uv(&S->m, o, d, 4 * S->size / tm_len(d), t, tri, u, v);
 }
 
 /* re_query_exit and re_query_exit_uv agree bit for bit */

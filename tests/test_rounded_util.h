@@ -96,6 +96,20 @@ static int tm_hit(const tm_mesh_t *m, const double o[3], const double d[3], doub
     return tm_hit_uv(m, o, d, t_out, tri_out, &u, &v);
 }
 
+/* The host for a ray from inside: the face where it leaves the sharp mesh
+   (the first front face of the ray reversed from far beyond it, `far` in
+   units of d), its t and u, v. */
+static int tm_exit_uv(const tm_mesh_t *m, const double o[3], const double d[3], double far, double *t_out,
+                      unsigned *tri_out, double *u_out, double *v_out)
+{
+    double o2[3], d2[3], t2;
+    int a;
+    for (a = 0; a < 3; a++) o2[a] = o[a] + far * d[a], d2[a] = -d[a];
+    if (!tm_hit_uv(m, o2, d2, &t2, tri_out, u_out, v_out)) return 0;
+    *t_out = far - t2;
+    return 1;
+}
+
 /* ---- Oracle 1: the analytic rounded box (inner box (+) ball) ---- */
 static double tm_rbox_sdf(const double c[3], const double half[3], double r, const double p[3])
 {
