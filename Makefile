@@ -1,7 +1,8 @@
 # filigree — header-only C toolkit. GNU make.
 #
 #   make demo            render the gallery into out/ (installs Debian packages as root)
-#   make test            header matrix + every test, normal and under ASan+UBSan
+#   make test            header matrix + every test, normal and under ASan+UBSan;
+#                        also builds the examples and the benchmarks (not run)
 #   make check-headers   the header compile matrix only
 #   make bench           error-against-time tables, CSV in out/bench, plots in docs/img
 #   make fuzz            long libFuzzer runs (FUZZ_SECONDS=600)
@@ -47,7 +48,7 @@ EXAMPLES := $(addprefix $(B)/examples/,$(EX_NAMES))
 EX_COMMON:= $(wildcard examples/common/*.c examples/common/*.cpp)
 EX_COMMON_OBJ := $(patsubst examples/common/%,$(B)/examples/common/%.o,$(EX_COMMON))
 
-.PHONY: all test tests check-headers demo bench fuzz install clean deps-test deps-demo deps-bench examples
+.PHONY: all test tests benches check-headers demo bench fuzz install clean deps-test deps-demo deps-bench examples
 .DELETE_ON_ERROR:
 # the examples/common objects are shared by every example and bench: keep them
 .SECONDARY: $(EX_COMMON_OBJ)
@@ -58,9 +59,11 @@ all: tests examples
 deps-test:
 	@scripts/deps.sh test
 tests: $(TESTS) $(SAN_TESTS) $(FUZZERS)
+# built by make test so that a bench that no longer compiles fails CI
+benches: $(BENCHES)
 
 test: deps-test
-	@$(MAKE) --no-print-directory -j$(NPROC) tests examples
+	@$(MAKE) --no-print-directory -j$(NPROC) tests examples benches
 	@tests/run_all.sh $(B)/tests $(B)/san $(T)
 
 # libFuzzer targets (clang): a short run inside make test, a long one in make fuzz.

@@ -58,7 +58,7 @@ typedef struct rx_world_t {
     re_stats_t round_stats;
     long long concave_reports;  /* build reports of edges/vertices left sharp */
     int tess_sharp_objects;     /* tess mode: objects left sharp (a corner without sphere) */
-    int glass;                  /* rounded mode: some rounded object is glass (rx__glass) */
+    int glass;                  /* rounded mode: some rounded object is glass (rx__glass_hit) */
     /* counters, updated atomically during rendering */
     long long rays;             /* path rays (camera and bounce; shadow rays not counted) */
     long long chamfer_rays;     /* of those, the ones the rounding changed */
@@ -677,7 +677,7 @@ static int rx__exit_first(const rx_world_t *w, const ex_ray_t *ray, unsigned g, 
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-static void rx__glass(const rx_world_t *w, const ex_ray_t *ray, int found, unsigned *geom, ex_surface_t *s, int *chamfer,
+static void rx__glass_hit(const rx_world_t *w, const ex_ray_t *ray, int found, unsigned *geom, ex_surface_t *s, int *chamfer,
                       re_hit_t *q)
 {
     unsigned inside = rx__inside(w, ray);
@@ -699,7 +699,7 @@ static int rx__intersect(void *user, const ex_ray_t *ray, double tmax, ex_surfac
     q.kind = RE_UNCHANGED;
     found = rx__trace(w, ray, tmax, skip_geom, skip_t, s, &chamfer, &q, &geom);
     if (w->mode.kind == RX_ROUNDED) {
-        if (w->glass) rx__glass(w, ray, found, &geom, s, &chamfer, &q);
+        if (w->glass) rx__glass_hit(w, ray, found, &geom, s, &chamfer, &q);
         rx__spawn.w = found && q.kind == RE_HIT_ROUNDED ? w : NULL;
         if (rx__spawn.w) rx__spawn.geom = geom, rx__spawn.hit = q;
     }
