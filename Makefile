@@ -1,7 +1,8 @@
 # filigree — header-only C toolkit. GNU make.
 #
 #   make demo            render the gallery into out/ (installs Debian packages as root)
-#   make test            header matrix + every test, normal and under ASan+UBSan;
+#   make test            header matrix + every test, normal and under ASan+UBSan,
+#                        the interval and rounded-edge tests again built by clang;
 #                        also builds the examples and the benchmarks (not run)
 #   make check-headers   the header compile matrix only
 #   make bench           error-against-time tables, CSV in out/bench, plots in docs/img
@@ -35,6 +36,12 @@ TEST_CPP := $(wildcard tests/test_*.cpp)
 TESTS    := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_C)) $(patsubst tests/%.cpp,$(B)/tests/%,$(TEST_CPP))
 SAN_TESTS:= $(patsubst $(B)/tests/%,$(B)/san/%,$(TESTS))
 FUZZERS  := $(patsubst tests/%.c,$(B)/fuzz/%,$(wildcard tests/fuzz_*.c))
+# the interval and rounded-edge tests again, built by clang: their exactness
+# bounds must hold under its code generation and fma contraction too
+CLANG_TESTS := $(patsubst tests/%.c,$(B)/clang/%,$(wildcard tests/test_interval*.c tests/test_rounded*.c))
+# GCC's own headers (quadmath.h for the __float128 references), searched
+# after clang's
+GCC_INCLUDE := $(shell gcc -print-file-name=include)
 TEST_DEPS:= $(HEADERS) $(wildcard tests/*.h)
 
 BENCH_C  := $(wildcard bench/bench_*.c)
@@ -58,7 +65,7 @@ all: tests examples
 # ---------------------------------------------------------------- tests
 deps-test:
 	@scripts/deps.sh test
-tests: $(TESTS) $(SAN_TESTS) $(FUZZERS)
+tests: $(TESTS) $(SAN_TESTS) $(FUZZERS) $(CLANG_TESTS)
 # built by make test so that a bench that no longer compiles fails CI
 benches: $(BENCHES)
 
@@ -69,7 +76,7 @@ test: deps-test
 # libFuzzer targets (clang): a short run inside make test, a long one in make fuzz.
 # fuzz_interval_ops: the pair path (-march=native, as the tests) and the
 # __float128 references (GCC's quadmath.h, after clang's own headers).
-FUZZ_FLAGS_fuzz_interval_ops := -march=native -idirafter $(shell gcc -print-file-name=include)
+FUZZ_FLAGS_fuzz_interval_ops := -march=native -idirafter $(GCC_INCLUDE)
 FUZZ_LIBS_fuzz_interval_ops  := -lquadmath
 $(B)/fuzz/%: tests/%.c $(TEST_DEPS)
 	@mkdir -p $(dir $@)
@@ -84,6 +91,9 @@ $(B)/tests/%: tests/%.c $(TEST_DEPS)
 $(B)/tests/%: tests/%.cpp $(TEST_DEPS)
 	@mkdir -p $(dir $@)
 	$(CXX) $(TEST_CXXFLAGS) $< -o $@ $(LDLIBS_ALL)
+$(B)/clang/%: tests/%.c $(TEST_DEPS)
+	@mkdir -p $(dir $@)
+	clang $(TEST_CFLAGS) -idirafter $(GCC_INCLUDE) $< -o $@ $(LDLIBS_ALL)
 $(B)/san/%: tests/%.c $(TEST_DEPS)
 	@mkdir -p $(dir $@)
 	$(CC) $(TEST_CFLAGS) -O1 $(SAN_FLAGS) $< -o $@ $(LDLIBS_ALL)

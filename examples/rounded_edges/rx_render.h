@@ -678,7 +678,7 @@ static int rx__exit_first(const rx_world_t *w, const ex_ray_t *ray, unsigned g, 
 __attribute__((noinline))
 #endif
 static void rx__glass_hit(const rx_world_t *w, const ex_ray_t *ray, int found, unsigned *geom, ex_surface_t *s, int *chamfer,
-                      re_hit_t *q)
+                          re_hit_t *q)
 {
     unsigned inside = rx__inside(w, ray);
     if (found && inside != RTC_INVALID_GEOMETRY_ID && *geom != inside && rx__exit_first(w, ray, inside, s, chamfer))
