@@ -4118,7 +4118,7 @@ static double fr__sum8(const double *t, double *abs_sum)
    certificate is the fast path's own. */
 static int fr__fast_retry(const double *q, const double *lo, int n, int want, const double *est, int ne, double *out)
 {
-    double cand[8], rank[8], rev[5], er[4];
+    double cand[8], rank[8], rev[5], er[4] = {0, 0, 0, 0}; /* zeroed for gcc -O3's -Wmaybe-uninitialized */
     int nc = 0, i, j, k = 0, nr;
     for (i = 0; i < ne; i++) cand[nc++] = est[i];
     for (i = 0; i <= n; i++) rev[i] = q[n - i];

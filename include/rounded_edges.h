@@ -4186,8 +4186,8 @@ static re_result_t re__analyze(const re_scene_desc_t *desc, unsigned obj, int si
 {
     const re_mesh_t *m = &desc->objects[obj];
     re_result_t rc;
-    double *patch_r;
-    unsigned *uf;
+    double *patch_r = NULL; /* set by re__radii (initialised for gcc's -O1/-O3 -Wmaybe-uninitialized) */
+    unsigned *uf = NULL;
     long long bad;
     char msg[128];
     memset(an, 0, sizeof *an);

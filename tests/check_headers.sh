@@ -2,7 +2,8 @@
 # The header compile matrix (make check-headers).
 # For gcc and clang, as C99, C11 and C++17, under -Werror with our warning set:
 #   - each header alone: declarations only; included twice; with the
-#     implementation (included twice, before and after); with XX_STATIC;
+#     implementation (included twice, before and after; also optimised at
+#     -O2, and with gcc at -O1 and -O3); with XX_STATIC;
 #     and with the implementation for every combination of its XX_NO_* switches;
 #   - all four headers together, with and without the implementations.
 # XX_NO_* switches are found by grepping the header, so new ones are covered
@@ -65,6 +66,11 @@ for c in "${cases[@]}"; do
   # the full implementation units also build optimised: some warnings
   # (clang's -Wpass-failed, gcc's -Wmaybe-uninitialized) only appear there
   opt=""; case "$c" in *_impl|all_impl) opt="-O2" ;; esac
+  # and gcc's -Wmaybe-uninitialized differs between levels: -O1 and -O3
+  # found warnings that -O2 did not (rounded_edges.h, frep.h, 2026-12-05)
+  if [ -n "$opt" ] && command -v gcc >/dev/null; then
+    for o in -O1 -O3; do echo "gcc -std=c99 $o $cwarn -Iinclude -c $out/$c.c -o /dev/null" >> "$joblist"; done
+  fi
   for cc in "${compilers[@]}"; do
     cxx=g++; [ "$cc" = clang ] && cxx=clang++
     echo "$cc -std=c99 $opt $cwarn -Iinclude -c $out/$c.c -o /dev/null" >> "$joblist"
