@@ -722,6 +722,19 @@ static double re__min(double a, double b) { return a < b ? a : b; }
 /* Rounding slack of a plane-side test n.x - c, in units of the magnitudes
    that enter it (|c| + |x|): a few ulps of the inputs. */
 #define RE__SIDE_ULPS (64.0 * RE__DBL_EPS)
+/* The flat-part test's slack (query step 2), in the same units: the
+   rounding of evaluating n.q - (c - r) with q = I - r n_f, |n_i| <= 1, is
+   at most 6 u (|q|_1 + |c| + r) (q's madd 2 u |q|_1, the dot product
+   gamma_3 |q|_1, c - r and the difference u each; u = DBL_EPS / 2), so
+   4 DBL_EPS covers it and calls flat every point the exact test calls
+   flat (the bands of query step 0 stay inside what this test calls
+   flat). Why not RE__SIDE_ULPS: a point outside a shifted plane by less
+   than the slack is called flat, and along the face that band is the
+   slack over the sine between the two faces; at coordinates of 1e6 and
+   r of 5e-8, 64 ulps were 1.2 r, and a host hit 5 r inside the removed
+   volume beside a sharp corner (faces at sine 0.32) came back unchanged
+   (fuzz_rounded_exact). */
+#define RE__FLAT_ULPS (4.0 * RE__DBL_EPS)
 /* A host that traces in float reports t late or early by ~1e-7 relative;
    when its hit point lands just inside a rounding capsule (next to the
    tangent line), the capsule entry up to this fraction of t_host before
@@ -4782,7 +4795,7 @@ static int re__on_flat_part(const re__object_t *o, const re__set_t *S, unsigned 
             unsigned gi = re__corner_plane(o, &K, j);
             const re__plane_t *g = &o->planes[gi];
             if (gi == f) continue;
-            if (re__dot(g->n, q) - (g->c - r) > RE__SIDE_ULPS * (fabs(g->c) + mag + r)) return 0;
+            if (re__dot(g->n, q) - (g->c - r) > RE__FLAT_ULPS * (fabs(g->c) + mag + r)) return 0;
         }
     }
     return 1;

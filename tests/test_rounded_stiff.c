@@ -470,6 +470,90 @@ static void rays_lying_in_a_face_plane(void)
     rays_lying_in_a_face_plane_case(0.05);
 }
 
+/* Host hits beside a sharp corner far from the origin, with a tiny radius
+   (found by fuzz_rounded_exact): five points whose hull has a degree-4
+   corner v3 with faces at sine 0.30-0.74, moved to (1e6, -1e6, 1e6), r =
+   2^-25 of the size (5.2e-8). There the flat-part test's slack (query step
+   2) was 64 ulps of magnitudes near 4e6, 1.2 r, so a hit 0.8 r outside one
+   shifted plane counted as flat and came back unchanged, 4.8 r (2.5e-7)
+   off the rounded surface; the slack is now the test's own rounding
+   (RE__FLAT_ULPS). Rays from every side at points up to 8 r from the
+   corner toward the other vertices: an answer that is not a pass-through
+   lies on the rounded surface (the eroded polytope's distance minus r, in
+   local coordinates) to 1e-7 of the size, and for a pass-through the
+   reference's trace misses the rounded solid. */
+static void flat_test_beside_a_sharp_corner_far_out(void)
+{
+    static const double q[5][3] = {{-0.8370031281374395, -0.6744335087714717, -0.5215381094021723},
+                                   {-1.0, -1.0, -1.0},
+                                   {-0.32030212867539376, -0.36717784393113106, -0.06883344775997102},
+                                   {-0.2888990616193041, -0.45137712673749775, 0.7469443808076903},
+                                   {-0.6577096207765862, -0.7367818722268566, -0.7031204699305817}};
+    static const double off[3] = {1e6, -1e6, 1e6};
+    static tm_poly_t P;
+    tm_mesh_t m = {0}, mw = {0};
+    tm_eroded_t E;
+    re_scene_t *s;
+    re_diag_t dg;
+    t_rng_t rng;
+    double scale = 0, r, worst = 0;
+    long i, n_checked = 0, n_pass = 0, n_bad = 0;
+    unsigned k, c3 = 3;
+    int a;
+    rng.s = 11;
+    tm_hull(q, 5, &m, &P);
+    for (k = 0; k < m.nv; k++) tm_vert(&mw, m.v[3 * k] + off[0], m.v[3 * k + 1] + off[1], m.v[3 * k + 2] + off[2]);
+    for (k = 0; k < m.ni; k += 3) tm_tri(&mw, m.idx[k], m.idx[k + 1], m.idx[k + 2]);
+    for (a = 0; a < 3; a++) scale = fmax(scale, q[1][a] < q[3][a] ? q[3][a] - q[1][a] : q[1][a] - q[3][a]);
+    for (k = 0; k < m.nv; k++) /* the hull's vertex at q[3] */
+        if (m.v[3 * k] == q[3][0] && m.v[3 * k + 1] == q[3][1] && m.v[3 * k + 2] == q[3][2]) c3 = k;
+    s = build1(&mw, ldexp(scale, -25), &dg);
+    if (!T_CHECK(s != NULL)) { fprintf(stderr, "sharp corner far out: %s\n", dg.message); return; }
+    r = re_object_radius(s, 0);
+    T_NEAR(r, ldexp(scale, -25), 1e-12 * r);
+    E.P = &P, E.r = r;
+    tm_erode(&P, r);
+    for (i = 0; i < t_count(20000); i++) {
+        double tgt[3], o[3], d[3], x[3], t_host, bu, bv, u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1),
+               w = sqrt(1 - v * v), sd;
+        unsigned tri;
+        re_hit_t h;
+        const double *vo = mw.v + 3 * (t_rng_u64(&rng) % mw.nv); /* toward another vertex: inside the hull */
+        double in[3], rho = t_rng_range(&rng, 0, 8) * r;
+        tm_sub(vo, mw.v + 3 * c3, in);
+        if (!(tm_len(in) > 0)) continue;
+        tm_norm(in);
+        for (a = 0; a < 3; a++) tgt[a] = mw.v[3 * c3 + a] + rho * in[a] + t_rng_range(&rng, -1, 1) * r;
+        o[0] = tgt[0] + 3 * w * cos(u), o[1] = tgt[1] + 3 * w * sin(u), o[2] = tgt[2] + 3 * v;
+        tm_sub(tgt, o, d);
+        if (!tm_hit_uv(&mw, o, d, &t_host, &tri, &bu, &bv)) continue;
+        re_query(s, o, d, 0, tri, t_host, &h);
+        check_query_uv(s, o, d, tri, t_host, bu, bv, &h);
+        n_checked++;
+        if (h.kind == RE_PASS_THROUGH) { /* the reference misses the rounded solid too */
+            double ol[3], t_ref;
+            for (a = 0; a < 3; a++) ol[a] = o[a] - off[a];
+            t_ref = tm_trace(tm_eroded_sdf, &E, ol, d, 10.0, scale);
+            n_pass++;
+            if (!(t_ref == HUGE_VAL) && n_bad++ < 5) T_FAIL("ray %ld: pass-through, the reference hits at %.17g", i, t_ref);
+            continue;
+        }
+        for (a = 0; a < 3; a++) x[a] = o[a] + h.t * d[a] - off[a];
+        sd = tm_eroded_sdf(&E, x);
+        worst = fmax(worst, fabs(sd));
+        if (!(fabs(sd) <= 1e-7 * scale) && n_bad++ < 5)
+            T_FAIL("ray %ld: kind %d at t %.17g is %.3g off the rounded surface (r %.3g)", i, (int)h.kind, h.t, sd, r);
+    }
+    T_INT_EQ(n_bad, 0);
+    T_GT(n_checked, t_count(20000) / 4);
+    T_GT(n_checked - n_pass, t_count(20000) / 400);
+    fprintf(stderr, "  sharp corner far out: %ld answers (%ld pass-throughs), worst %.3g of the size off the rounded surface\n",
+            n_checked, n_pass, worst / scale);
+    re_free(s);
+    tm_free(&m);
+    tm_free(&mw);
+}
+
 /* A box [0, L] x [-h, h]^2 whose four long edges are split into n segments
    (k = 2 corners all along them), its long faces strips of quads; b is the
    rounded box it stands for. */
@@ -1151,6 +1235,7 @@ int main(int argc, char **argv)
         T_CASE(rays_exactly_through_edges_and_vertices),
         T_CASE(rays_grazing_a_face),
         T_CASE(rays_lying_in_a_face_plane),
+        T_CASE(flat_test_beside_a_sharp_corner_far_out),
         T_CASE(grazing_along_a_subdivided_edge),
         T_CASE(long_straight_chains),
         T_CASE(chain_corners_dropped_renumber_the_rest),
