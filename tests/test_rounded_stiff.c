@@ -504,7 +504,11 @@ static void flat_test_beside_a_sharp_corner_far_out(void)
     tm_hull(q, 5, &m, &P);
     for (k = 0; k < m.nv; k++) tm_vert(&mw, m.v[3 * k] + off[0], m.v[3 * k + 1] + off[1], m.v[3 * k + 2] + off[2]);
     for (k = 0; k < m.ni; k += 3) tm_tri(&mw, m.idx[k], m.idx[k + 1], m.idx[k + 2]);
-    for (a = 0; a < 3; a++) scale = fmax(scale, q[1][a] < q[3][a] ? q[3][a] - q[1][a] : q[1][a] - q[3][a]);
+    for (a = 0; a < 3; a++) { /* the size: the largest extent */
+        double lo = HUGE_VAL, hi = -HUGE_VAL;
+        for (k = 0; k < 5; k++) lo = fmin(lo, q[k][a]), hi = fmax(hi, q[k][a]);
+        scale = fmax(scale, hi - lo);
+    }
     for (k = 0; k < m.nv; k++) /* the hull's vertex at q[3] */
         if (m.v[3 * k] == q[3][0] && m.v[3 * k + 1] == q[3][1] && m.v[3 * k + 2] == q[3][2]) c3 = k;
     s = build1(&mw, ldexp(scale, -25), &dg);
