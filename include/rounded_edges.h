@@ -712,9 +712,12 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    perturbed them by ~1e-7 of the coordinates) give plane triples whose
    points all pass the feasibility test, yet lie 1e-9..1e-8 apart; merged
    only within RE__CORNER_EPS they outnumbered the k - 2 vertices a k-plane
-   corner can have, and the corner was left sharp. Merging moves the rounded
-   surface by at most this times r (1e-7 r), far below any visible or
-   tested error; the relative form scales with r and with |u|. */
+   corner can have, and the corner was left sharp. Merging drops vertices,
+   moving the rounded surface by at most 1e-7 r max(1, |u|) (|u| reaches
+   tens of thousands at nearly flat corners): far below a pixel, though
+   where a cylinder or sphere meets a face tangentially a move of e turns
+   the normal by up to sqrt(2 e / r) (docs: Limits). The relative form
+   scales with r and with |u|, as the solve's rounding does. */
 #define RE__CORNER_MERGE 1e-7
 /* A requested radius up to r_max * (1 + this) counts as valid (the largest
    valid radius is then used as is, with zero-length cylinders). */
@@ -3190,7 +3193,7 @@ static double re__det8(unsigned char h, unsigned e0)
    point is used when it lies within this times r (plus 64 ulp of the
    vertex's coordinates) of v + r*u, the centre the erosion found; else the
    centre is stored. RE__CORNER_MERGE already moves the surface by up to
-   1e-7 r. */
+   1e-7 r max(1, |u|). */
 #define RE__SPHERE_SOLVE_REL 1e-9
 
 /* Per-triangle bands (query step 0): 4 bytes per triangle, widths in units
