@@ -330,7 +330,7 @@ static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    double pts[16][3], lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, r_req, off;
+    double pts[16][3], r_req, off;
     int n, i, a, ray;
     float *pos32 = NULL;
     size_t at;
@@ -360,9 +360,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     memset(&P, 0, sizeof P);
     tm_hull((const double(*)[3])pts, n, &m, &P);
-    for (i = 0; i < n; i++)
-        for (a = 0; a < 3; a++) lo[a] = fmin(lo[a], pts[i][a]), hi[a] = fmax(hi[a], pts[i][a]);
-    C.scale = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    C.scale = tm_size(pts[0], (unsigned)n);
     C.smin = 1;
     if (!(C.scale > 0) ||
         !fx_hull_ok(&m, FX_MIN_EDGE * C.scale, ((data[2] & 2) ? RE__FLT_EPS : RE__DBL_EPS) * (off + 1), &C.smin)) {

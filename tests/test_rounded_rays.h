@@ -198,9 +198,8 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
     re_stats_t st;
     tm_eroded_t E;
     t_rng_t rng;
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, scale, r;
+    double scale, r;
     long i, n_round = 0, n_pass = 0, bad = 0;
-    unsigned k;
     int a;
     rng.s = seed;
     s = build1(m, r_req, &dg);
@@ -209,9 +208,7 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
     r = re_object_radius(s, 0);
     T_GT(r, 0.0);
     T_INT_EQ(st.rounded_edges, st.convex_edges); /* a convex hull rounds every convex edge */
-    for (k = 0; k < m->nv; k++)
-        for (a = 0; a < 3; a++) lo[a] = fmin(lo[a], m->v[3 * k + a]), hi[a] = fmax(hi[a], m->v[3 * k + a]);
-    scale = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    scale = tm_size(m->v, m->nv);
     E.P = P;
     E.r = r;
     tm_erode(P, r);

@@ -496,7 +496,7 @@ static void flat_test_beside_a_sharp_corner_far_out(void)
     re_scene_t *s;
     re_diag_t dg;
     t_rng_t rng;
-    double scale = 0, r, worst = 0;
+    double scale, r, worst = 0;
     long i, n_checked = 0, n_pass = 0, n_bad = 0;
     unsigned k, c3 = 3;
     int a;
@@ -504,11 +504,7 @@ static void flat_test_beside_a_sharp_corner_far_out(void)
     tm_hull(q, 5, &m, &P);
     for (k = 0; k < m.nv; k++) tm_vert(&mw, m.v[3 * k] + off[0], m.v[3 * k + 1] + off[1], m.v[3 * k + 2] + off[2]);
     for (k = 0; k < m.ni; k += 3) tm_tri(&mw, m.idx[k], m.idx[k + 1], m.idx[k + 2]);
-    for (a = 0; a < 3; a++) { /* the size: the largest extent */
-        double lo = HUGE_VAL, hi = -HUGE_VAL;
-        for (k = 0; k < 5; k++) lo = fmin(lo, q[k][a]), hi = fmax(hi, q[k][a]);
-        scale = fmax(scale, hi - lo);
-    }
+    scale = tm_size(q[0], 5);
     for (k = 0; k < m.nv; k++) /* the hull's vertex at q[3] */
         if (m.v[3 * k] == q[3][0] && m.v[3 * k + 1] == q[3][1] && m.v[3 * k + 2] == q[3][2]) c3 = k;
     s = build1(&mw, ldexp(scale, -25), &dg);

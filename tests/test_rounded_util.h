@@ -57,6 +57,15 @@ static void tm_cross(const double a[3], const double b[3], double o[3])
 }
 static double tm_len(const double a[3]) { return sqrt(tm_dot(a, a)); }
 static void tm_norm(double a[3]) { double l = tm_len(a); a[0] /= l, a[1] /= l, a[2] /= l; }
+/* The size of n points (x, y, z each): their largest extent along an axis. */
+static double tm_size(const double *v, unsigned n)
+{
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    unsigned k, a;
+    for (k = 0; k < n; k++)
+        for (a = 0; a < 3; a++) lo[a] = fmin(lo[a], v[3 * k + a]), hi[a] = fmax(hi[a], v[3 * k + a]);
+    return fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+}
 
 /* Brute-force nearest front-face hit (Moller-Trumbore in double), with its
    barycentric coordinates u, v (point = (1-u-v) p0 + u p1 + v p2). */
