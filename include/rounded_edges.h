@@ -444,7 +444,9 @@ RE_DEF re_hit_kind_t re_query_exit_uv(const re_scene_t *scene, const double o[3]
 
 /* Origin on the sharp mesh (I'' of paper §4) for a secondary ray leaving a
    RE_HIT_ROUNDED hit along `dir` (dir . hit->normal > 0): where that ray
-   leaves the sharp mesh, pushed out along the crossed face's normal by
+   leaves the sharp mesh (among the planes of the hit feature's corners and
+   of the corners the query's walk reaches along the ray; the rounded patch
+   is convex), pushed out along the crossed face's normal by
    RE_ORIGIN_OFFSET_REL times the object's size so the host's own
    self-intersection guard is not needed. For other kinds: hit->point pushed
    out the same way. */
@@ -5007,6 +5009,43 @@ static inline unsigned re__detect(const re__object_t *o, unsigned c, const doubl
     return 1;
 }
 
+/* The walk (paper section 3.1, grazing rays): add to S the corners next to
+   its own in the adjacency graph whose reach comes within the segment
+   I -> I + s dir, or the whole half-line when s is HUGE_VAL (nothing found
+   yet: the ray runs along the edges, out of reach of the set's faces).
+   1 when the set grew. */
+static int re__walk_grow(const re__object_t *o, re__set_t *S, re__best_t *b, const double I[3], const double dir[3],
+                         double s)
+{
+    double P[3], IP[3], inv_l2;
+    unsigned i, j;
+    int grown = 0;
+    re__madd(I, s < HUGE_VAL ? s : 0.0, dir, P);
+    re__sub(P, I, IP);
+    inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
+    for (i = 0; i < S->n && S->n < RE__MAX_WALK; i++) {
+        re__kv_t K = re__kview(o, S->c[i]);
+        for (j = 0; j < K.np; j++) {
+            unsigned w = re__s_corner(o, re__far_sphere(o, o->refs[K.first + j]));
+            double g, d2;
+            const double *wc;
+            /* a corner already in the set is skipped before its record and
+               sphere are loaded (cache misses were most of the walk's cost
+               in the render profile; the set is small) */
+            if (re__set_find(S, w) < S->n) continue;
+            /* removed points lie within r of the removed zone on the faces
+               (below a flat point the ball of radius r is solid), and that
+               zone lies within the face reach of its corner: `walk` bounds
+               both, from the corner's first sphere */
+            wc = re__cptr(o, b, re__pk_id(&o->k_sfirst, w));
+            g = (double)o->corners[w].walk;
+            d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
+            if (d2 <= g * g && re__set_add(S, w)) grown = 1;
+        }
+    }
+    return grown;
+}
+
 /* What re_query and re_query_uv do before detection: out becomes the
    answer "unchanged" with I and, on a face of a rounded patch, its plane's
    normal. Returns the object when detection must decide (*f its face
@@ -5037,7 +5076,7 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
                                   re_hit_t *out)
 {
     re__set_t S;
-    unsigned node, i, j, iter, exit_plane, ndet = 0, c0 = RE__NONE;
+    unsigned node, i, iter, exit_plane, ndet = 0, c0 = RE__NONE;
     re__best_t best;
     double s_exit;
     S.n = 0;
@@ -5105,38 +5144,9 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
        adjacency graph (cylinder -> corner) while the ray runs toward corners
        not yet in the set (grazing rays, §3.1) */
     for (iter = 0;; iter++) {
-        double P[3], IP[3], inv_l2, s;
-        int grown = 0;
         re__nearest_feature(o, &S, I, dir, &best);
         s_exit = re__exit(o, &S, I, dir, &exit_plane);
-        s = re__min(best.s, s_exit);
-        if (iter == RE__MAX_WALK) break;
-        /* nothing found yet (the ray runs along the edges, out of reach of
-           the set's faces): walk along the whole half-line */
-        re__madd(I, s < HUGE_VAL ? s : 0.0, dir, P);
-        re__sub(P, I, IP);
-        inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
-        for (i = 0; i < S.n && S.n < RE__MAX_WALK; i++) {
-            re__kv_t K = re__kview(o, S.c[i]);
-            for (j = 0; j < K.np; j++) {
-                unsigned w = re__s_corner(o, re__far_sphere(o, o->refs[K.first + j]));
-                double g, d2;
-                const double *wc;
-                /* a corner already in the set is skipped before its record and
-                   sphere are loaded (cache misses were most of the walk's cost
-                   in the render profile; the set is small) */
-                if (re__set_find(&S, w) < S.n) continue;
-                /* removed points lie within r of the removed zone on the faces
-                   (below a flat point the ball of radius r is solid), and that
-                   zone lies within the face reach of its corner: `walk` bounds both, from
-                   the corner's first sphere */
-                wc = re__cptr(o, &best, re__pk_id(&o->k_sfirst, w));
-                g = (double)o->corners[w].walk;
-                d2 = s < HUGE_VAL ? re__dist2_segment(wc, I, IP, inv_l2) : re__dist2_halfline(wc, I, dir);
-                if (d2 <= g * g && re__set_add(&S, w)) grown = 1;
-            }
-        }
-        if (!grown) break;
+        if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &best, I, dir, re__min(best.s, s_exit))) break;
     }
 answer:
     if (best.s <= s_exit && best.s < HUGE_VAL) {
@@ -5227,7 +5237,8 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
 {
     const re__object_t *o;
     re__set_t S;
-    unsigned plane;
+    re__best_t b;
+    unsigned plane, iter;
     double s, push;
     const double *nrm;
     if (!origin) return;
@@ -5248,7 +5259,11 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
             re__set_add(&S, re__s_corner(o, sp[0]));
             re__set_add(&S, re__s_corner(o, sp[1]));
         }
-        s = re__exit(o, &S, hit->point, dir, &plane);
+        b.cvalid = 0;
+        for (iter = 0;; iter++) { /* the planes the ray may leave by: the walk, as in the query */
+            s = re__exit(o, &S, hit->point, dir, &plane);
+            if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &b, hit->point, dir, s)) break;
+        }
         if (s < HUGE_VAL) {
             re__madd(hit->point, s, dir, origin);
             nrm = o->planes[plane].n;

@@ -239,6 +239,39 @@ static void fx_normal(const fx_case_t *C, const double p[3], const re_hit_t *h, 
                h->normal[2], g[0] / d_ref, g[1] / d_ref, g[2] / d_ref, r, e);
 }
 
+/* The origin for a secondary ray from a rounded hit (re_secondary_origin,
+   I'' of paper section 4), the ray reflected about the normal or, leaving
+   outward already, the ray itself: where that ray leaves the sharp hull,
+   pushed out along the face it crosses by RE_ORIGIN_OFFSET_REL of the
+   hull's diagonal (between 1 and sqrt(3) times the size). So it lies
+   outside the hull by that push, and off the ray by at most the push, up
+   to the rounding of the world coordinates (a few ulps of their
+   magnitude mag: 8 DBL_EPSILON mag). The hull is the reference's, all
+   its planes (the library looks among the planes of the corners its walk
+   reaches; until 2026-12-05 of the hit feature's corners only, which put
+   origins up to 120 sizes past the hull or left them inside it). */
+static void fx_secondary(const fx_case_t *C, const double dir[3], const re_hit_t *h, int ray)
+{
+    const tm_poly_t *P = C->E->P;
+    double d2[3], org[3], q[3], st[3], w[3], x[3], dn = tm_dot(dir, h->normal), out = -HUGE_VAL, mag, tol, off_line,
+           lo = RE_ORIGIN_OFFSET_REL * C->scale, hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * C->scale;
+    unsigned a;
+    int g;
+    for (a = 0; a < 3; a++) d2[a] = dn < 0 ? dir[a] - 2 * dn * h->normal[a] : dir[a];
+    re_secondary_origin(C->s, h, d2, org);
+    mag = C->scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2]);
+    tol = 8 * RE__DBL_EPS * mag;
+    for (a = 0; a < 3; a++) q[a] = org[a] - C->off[a], st[a] = h->point[a] - C->off[a];
+    for (g = 0; g < P->np; g++) out = fmax(out, tm_dot(P->n[g], q) - P->c[g]);
+    tm_sub(q, st, w);
+    tm_cross(w, d2, x);
+    off_line = tm_len(x) / tm_len(d2);
+    FUZZ_CHECK(out >= lo - tol && out <= hi + tol && off_line <= hi + tol,
+               "ray %d: secondary origin of a rounded hit (feature %d %u) is %.3g outside the sharp hull (the push: "
+               "%.3g..%.3g, tolerance %.3g) and %.3g off its ray", ray, (int)h->feature, h->feature_index, out, lo, hi,
+               tol, off_line);
+}
+
 /* The _uv form's answer is the plain one's, bit for bit. */
 static void fx_same_answer(const re_hit_t *h, const re_hit_t *hu, const char *what, int ray)
 {
@@ -259,8 +292,10 @@ static void fx_on_surface(const fx_case_t *C, const double o[3], const double di
     for (a = 0; a < 3; a++) p[a] = pw[a] - C->off[a];
     FUZZ_CHECK(fabs(fx_sdf(C->E, p)) <= tol, "%s ray %d: kind %d feature %d at t %.17g is %.3g off the rounded surface "
                "(host t %.17g, r %.17g)", what, ray, (int)h->kind, (int)h->feature, h->t, fx_sdf(C->E, p), t_host, C->E->r);
-    if (h->kind == RE_HIT_ROUNDED)
+    if (h->kind == RE_HIT_ROUNDED) {
         fx_normal(C, p, h, C->scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), ray);
+        fx_secondary(C, dir, h, ray);
+    }
 }
 
 /* A ray from inside the rounded solid (a point between the hull's middle

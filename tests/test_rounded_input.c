@@ -783,6 +783,67 @@ static void secondary_origin_on_the_sharp_mesh(void)
     tm_free(&m);
 }
 
+/* re_secondary_origin() on random convex hulls of 4 to 12 points, radii
+   from 1e-3 of the size to the largest valid one (the eroded polytope then
+   a point or a segment, every corner's sphere in one place): rays reflected
+   at rounded hits, some grazing a face for long, must start on the sharp
+   hull, outside it by the push (RE_ORIGIN_OFFSET_REL of the diagonal,
+   between 1 and sqrt(3) times the size) and on their ray to the push, up
+   to a few ulps of the coordinates. Until 2026-12-05 the exit took the
+   planes of the hit feature's corners only: 19 origins of 18 205 rounded
+   hits were past the hull's true exit (up to 0.4 of the size out, the ray
+   leaving through a neighbouring corner's face first) or left inside it
+   (no plane of the corner ahead of the ray). */
+static void secondary_origin_on_random_hulls(void)
+{
+    t_rng_t rng = {77};
+    long hull, i, n_hits = 0, n_bad = 0;
+    double worst = 0;
+    for (hull = 0; hull < t_count(300); hull++) {
+        static tm_poly_t P;
+        tm_mesh_t m = {0};
+        re_mesh_t mesh;
+        re_scene_t *s = NULL;
+        re_diag_t dg;
+        double scale, lo, hi;
+        tm_random_hull(&rng, 4 + (int)(hull % 9), 0.3, 1.0, &m, &P);
+        scale = tm_size(m.v, m.nv);
+        lo = RE_ORIGIN_OFFSET_REL * scale, hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * scale;
+        mesh = mesh_of(&m, hull % 3 == 0 ? 10 * scale : scale * t_rng_range(&rng, 1e-3, 0.1));
+        if (!T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, &s), RE_OK)) {
+            tm_free(&m);
+            continue;
+        }
+        for (i = 0; i < 410; i++) {
+            double dir[3], tgt[3], o[3], t, d2[3], org[3], w[3], x[3], dn, out = -HUGE_VAL, off_line, tol;
+            const double *vx = m.v + 3 * (size_t)(t_rng_u64(&rng) % m.nv);
+            unsigned tri, a;
+            int g;
+            re_hit_t h;
+            tm_rand_dir(&rng, dir);
+            tm_rand_dir(&rng, w);
+            for (a = 0; a < 3; a++) tgt[a] = vx[a] + 0.2 * scale * t_rng_unit(&rng) * w[a], o[a] = tgt[a] - 3 * scale * dir[a];
+            if (!tm_hit(&m, o, dir, &t, &tri) || re_query(s, o, dir, 0, tri, t, &h) != RE_HIT_ROUNDED) continue;
+            dn = tm_dot(dir, h.normal);
+            for (a = 0; a < 3; a++) d2[a] = dir[a] - 2 * dn * h.normal[a];
+            re_secondary_origin(s, &h, d2, org);
+            for (g = 0; g < P.np; g++) out = fmax(out, tm_dot(P.n[g], org) - P.c[g]);
+            tm_sub(org, h.point, w);
+            tm_cross(w, d2, x);
+            off_line = tm_len(x);
+            tol = 8 * DBL_EPSILON * (scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2]));
+            n_hits++;
+            if (!(out >= lo - tol && out <= hi + tol && off_line <= hi + tol)) n_bad++;
+            worst = fmax(worst, fmax(fabs(out - 0.5 * (lo + hi)), off_line) / scale);
+        }
+        re_free(s);
+        tm_free(&m);
+    }
+    fprintf(stderr, "  secondary origins: %ld of %ld off the sharp hull or their ray (worst %.3g of the size)\n", n_bad, n_hits, worst);
+    T_INT_EQ(n_bad, 0);
+    T_GT(n_hits, t_count(300) * 50);
+}
+
 /* the enumeration a tessellator reads: the box's inner box corners as
    spheres, its 12 edges as cylinders between them, arcs between face normals */
 static void enumeration_of_box_features(void)
@@ -878,7 +939,7 @@ int main(int argc, char **argv)
         T_CASE(null_and_junk_arguments), T_CASE(empty_scene), T_CASE(result_strings), T_CASE(query_guards),
         T_CASE(input_variants_agree), T_CASE(unwelded_mesh_rounds_with_weld), T_CASE(huge_page_range_inside_the_block),
         T_CASE(large_build_with_huge_pages_matches_into), T_CASE(per_edge_radius), T_CASE(concave_edges_and_mixed_vertices_reported),
-        T_CASE(secondary_origin_on_the_sharp_mesh), T_CASE(enumeration_of_box_features),
+        T_CASE(secondary_origin_on_the_sharp_mesh), T_CASE(secondary_origin_on_random_hulls), T_CASE(enumeration_of_box_features),
         T_CASE(random_soups_do_not_crash),
     };
     return T_RUN(argc, argv, cases);

@@ -295,6 +295,12 @@ static double tm_eroded_sdf(const void *ctx, const double x[3])
    position), as an outward-wound triangle mesh plus its planes. */
 static void tm_hull(const double (*p)[3], int n, tm_mesh_t *m, tm_poly_t *P);
 
+/* A random unit vector, uniform on the sphere. */
+static void tm_rand_dir(t_rng_t *rng, double out[3])
+{
+    double u = t_rng_range(rng, 0, 2 * M_PI), v = t_rng_range(rng, -1, 1), w = sqrt(1 - v * v);
+    out[0] = w * cos(u), out[1] = w * sin(u), out[2] = v;
+}
 /* n <= 64 points on a jittered sphere (radius rmin..rmax, uniform in
    direction) and their hull: convex polyhedra with vertices of degree 3
    to 8 whose offset planes miss one common point. Include after test.h. */
