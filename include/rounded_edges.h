@@ -814,7 +814,11 @@ typedef struct re__corner_t {
     float walk;    /* adjacency walk (query step 4): a removed point near this
                       corner lies within `walk` of sphere sfirst (face reach + r +
                       |sphere - vertex|, rounded up to float) */
-    unsigned char np, ns, nx, pad_;
+    unsigned char np, ns, nx;
+    unsigned char clear; /* re_secondary_origin's gate: within walk times
+                            re__clear_radius(clear) of sphere sfirst, a point
+                            on one of the corner's faces is inside every face
+                            bordering it (re__exit_clearance) */
 } re__corner_t;
 
 /* kd-tree node (§3.2), 8 bytes. Inner node: info = axis | right child << 2
@@ -3674,6 +3678,100 @@ static re_result_t re__drop_chain_corners(re__an_t *an, re__arena_t *ar, re__fin
     return RE_OK;
 }
 
+/* The gate's radius as a fraction of walk in one byte, logarithmic:
+   code q > 0 stands for 2^((q - 128) / 16) (2^-8 .. 2^8 in steps of
+   4.4%), 0 for none; the code rounds down, so the radius only errs small. */
+static double re__clear_frac(unsigned i)
+{
+    /* 2^(i/16), rounded down in the 7th digit */
+    static const double frac[16] = {1.0,      1.044273, 1.090507, 1.138788, 1.189207, 1.241857, 1.296839, 1.354255,
+                                     1.414213, 1.476826, 1.542210, 1.610490, 1.681792, 1.756252, 1.834008, 1.915206};
+    return frac[i & 15u];
+}
+static double re__clear_radius(unsigned q)
+{
+    int e = (int)q - 128;
+    return q ? ldexp(re__clear_frac((unsigned)e), e >> 4) : 0.0; /* e >> 4 floors: e = 16 (e >> 4) + (e & 15) */
+}
+static unsigned char re__clear_code(double ratio)
+{
+    int e, q;
+    double m;
+    if (!(ratio > 0)) return 0;
+    m = 2 * frexp(ratio, &e), e--; /* ratio = m 2^e, m in [1, 2) */
+    if (e >= 8) return 255;
+    if (e < -8) return 0;
+    for (q = 15; q > 0 && re__clear_frac((unsigned)q) > m; q--) {} /* the largest 2^(q/16) <= m */
+    q += 128 + 16 * e;
+    return (unsigned char)(q < 1 ? 0 : q);
+}
+
+/* Each corner's gate for re_secondary_origin (re__corner_t.clear): D, the
+   smallest distance, within one of the corner's face planes g, from the
+   first sphere's foot on g to a line where g meets a plane h that borders
+   it (across an edge of g's polygon) and is not one of the corner's own
+   planes, relative to walk (re__clear_code), rounded down. A point X on g
+   that lies inside the corner's own planes and within D of that foot lies
+   inside every face bordering g, so on face g of the convex patch (a
+   convex polygon is the intersection of its edges' half-planes): where a
+   ray from inside leaves the sharp mesh. Faces border across edge
+   cylinders (within a patch every polygon edge is a rounded convex
+   edge). Measured in the plane, not from the sphere in space: a plane h
+   at a shallow crease to g passes close to the sphere, yet cuts g one
+   edge farther away. */
+static re_result_t re__exit_clearance(re__an_t *an, re__arena_t *ar, re__final_t *F)
+{
+    unsigned *start, *adj, *owner, i, k, j, q, own[RE_MAX_CORNER_PLANES];
+    size_t mark = ar->used;
+    RE__TAKE(start, unsigned, F->n_planes + 2);
+    RE__TAKE(adj, unsigned, 2 * (size_t)F->n_edge_cyls);
+    RE__TAKE(owner, unsigned, F->n_planes + 1); /* plane p is corner k's own when owner[p] == k + 1 */
+    memset(start, 0, sizeof(unsigned) * (F->n_planes + 2));
+    memset(owner, 0, sizeof(unsigned) * (F->n_planes + 1));
+    for (i = 0; i < F->n_edge_cyls; i++) start[F->cyls[i].p[0] + 2]++, start[F->cyls[i].p[1] + 2]++;
+    for (i = 2; i < F->n_planes + 2; i++) start[i] += start[i - 1];
+    for (i = 0; i < F->n_edge_cyls; i++) { /* plane p's neighbours: adj[start[p] .. start[p + 1]) */
+        unsigned p0 = F->cyls[i].p[0], p1 = F->cyls[i].p[1];
+        adj[start[p0 + 1]++] = p1;
+        adj[start[p1 + 1]++] = p0;
+    }
+    /* each neighbour once: the segments of a straight chain (construction
+       step 7) are cylinders between the same two planes, 64 000 of them on
+       a finely split edge, and every corner on the chain reads the list */
+    for (i = 0, j = 0, q = 0; i < F->n_planes; i++) {
+        unsigned end = start[i + 1];
+        start[i] = j;
+        for (; q < end; q++)
+            if (owner[adj[q]] != i + 1) owner[adj[q]] = i + 1, adj[j++] = adj[q];
+    }
+    start[F->n_planes] = j;
+    memset(owner, 0, sizeof(unsigned) * (F->n_planes + 1));
+    for (k = 0; k < F->n_corners; k++) {
+        re__corner_t *K = &F->corners[k];
+        const unsigned *ref = F->refs + F->pk[RE__PKA_K_FIRST][k];
+        const double *c0 = F->sph + 3 * (size_t)F->pk[RE__PKA_K_SFIRST][k];
+        double D = HUGE_VAL;
+        for (j = 0; j < K->np; j++) own[j] = F->cyls[ref[j] >> 1].p[ref[j] & 1u ? 0 : 1], owner[own[j]] = k + 1;
+        for (j = 0; j < K->np; j++) {
+            const re__plane_t *g = &F->planes[own[j]];
+            double c0g[3];
+            re__madd(c0, g->c - re__dot(g->n, c0), g->n, c0g); /* the sphere seen on face g */
+            for (q = start[own[j]]; q < start[own[j] + 1]; q++) {
+                const re__plane_t *h = &F->planes[adj[q]];
+                double cs, sn;
+                if (owner[adj[q]] == k + 1) continue;
+                /* in plane g, the line where h cuts it lies (c_h - n_h.c0g) / sin
+                   from c0g: a point of g closer than that is inside h */
+                cs = re__dot(g->n, h->n), sn = sqrt(re__max(0.0, 1 - cs * cs));
+                if (sn > 0) D = re__min(D, re__max(0.0, h->c - re__dot(h->n, c0g)) / sn);
+            }
+        }
+        K->clear = re__clear_code(D / (double)K->walk);
+    }
+    ar->used = mark;
+    return RE_OK;
+}
+
 static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
                               re__final_t *F)
 {
@@ -3844,7 +3942,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         K->np = an->c_np[c];
         K->ns = an->c_ns[c];
         K->nx = an->c_nx[c];
-        K->pad_ = 0;
+        K->clear = 0;
         for (j = 0; j < K->np; j++) {
             const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
             F->refs[nref++] = ecyl[an->c_edges[pf + j]] << 1 | (e->v[0] == an->c_vertex[c] ? 1u : 0u);
@@ -3947,6 +4045,10 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     }
     F->n_xs1 = re__count_xs1(F);
     for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
+    {
+        re_result_t rc = re__exit_clearance(an, ar, F);
+        if (rc != RE_OK) return rc;
+    }
     /* Detection (§3.1): the removed zone on a face lies within g, the larger
        face reach of the edge's two corners, of the mesh edge. The query
        tests the distance to the edge's line (from the two face planes, so
@@ -5233,6 +5335,31 @@ RE_DEF re_hit_kind_t re_query_exit_uv(const re_scene_t *scene, const double o[3]
     return re__query_exit(scene, o, dir, object, triangle, t_host, 1, u, v, out);
 }
 
+/* Is I + s dir, on plane `plane` of a corner of S and inside all of S's
+   planes, surely on that face of the sharp mesh (within the corner's gate
+   of its first sphere's foot on the face, re__exit_clearance)? Then no
+   walk can find an earlier exit. */
+static int re__exit_on_face(const re__object_t *o, const re__set_t *S, re__best_t *b, const double I[3],
+                            const double dir[3], double s, unsigned plane)
+{
+    double X[3], d[3], g;
+    unsigned q;
+    if (!(s < HUGE_VAL)) return 0;
+    re__madd(I, s, dir, X);
+    for (q = 0; q < S->n; q++) {
+        re__kv_t K = re__kview(o, S->c[q]);
+        const re__plane_t *pg = &o->planes[plane];
+        const double *c0;
+        if (!re__corner_has_plane(o, &K, plane)) continue;
+        g = (double)o->corners[K.k].walk * re__clear_radius(o->corners[K.k].clear);
+        c0 = re__cptr(o, b, K.sfirst);
+        re__sub(X, c0, d);
+        re__madd(d, re__dot(pg->n, c0) - pg->c, pg->n, d); /* from the sphere's foot on the face */
+        if (re__dot(d, d) <= g * g) return 1;
+    }
+    return 0;
+}
+
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
 {
     const re__object_t *o;
@@ -5262,6 +5389,7 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
         b.cvalid = 0;
         for (iter = 0;; iter++) { /* the planes the ray may leave by: the walk, as in the query */
             s = re__exit(o, &S, hit->point, dir, &plane);
+            if (!iter && re__exit_on_face(o, &S, &b, hit->point, dir, s, plane)) break;
             if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &b, hit->point, dir, s)) break;
         }
         if (s < HUGE_VAL) {
