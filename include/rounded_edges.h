@@ -5342,13 +5342,13 @@ RE_DEF re_hit_kind_t re_query_exit_uv(const re_scene_t *scene, const double o[3]
 static int re__exit_on_face(const re__object_t *o, const re__set_t *S, re__best_t *b, const double I[3],
                             const double dir[3], double s, unsigned plane)
 {
+    const re__plane_t *pg = &o->planes[plane];
     double X[3], d[3], g;
     unsigned q;
     if (!(s < HUGE_VAL)) return 0;
     re__madd(I, s, dir, X);
     for (q = 0; q < S->n; q++) {
         re__kv_t K = re__kview(o, S->c[q]);
-        const re__plane_t *pg = &o->planes[plane];
         const double *c0;
         if (!re__corner_has_plane(o, &K, plane)) continue;
         g = (double)o->corners[K.k].walk * re__clear_radius(o->corners[K.k].clear);

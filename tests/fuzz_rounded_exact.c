@@ -252,21 +252,14 @@ static void fx_normal(const fx_case_t *C, const double p[3], const re_hit_t *h, 
    origins up to 120 sizes past the hull or left them inside it). */
 static void fx_secondary(const fx_case_t *C, const double dir[3], const re_hit_t *h, int ray)
 {
-    const tm_poly_t *P = C->E->P;
-    double d2[3], org[3], q[3], st[3], w[3], x[3], dn = tm_dot(dir, h->normal), out = -HUGE_VAL, mag, tol, off_line,
+    double d2[3], org[3], q[3], st[3], dn = tm_dot(dir, h->normal), out, tol, off_line,
            lo = RE_ORIGIN_OFFSET_REL * C->scale, hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * C->scale;
     unsigned a;
-    int g;
     for (a = 0; a < 3; a++) d2[a] = dn < 0 ? dir[a] - 2 * dn * h->normal[a] : dir[a];
     re_secondary_origin(C->s, h, d2, org);
-    mag = C->scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2]);
-    tol = 8 * RE__DBL_EPS * mag;
+    tol = 8 * RE__DBL_EPS * (C->scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2]));
     for (a = 0; a < 3; a++) q[a] = org[a] - C->off[a], st[a] = h->point[a] - C->off[a];
-    for (g = 0; g < P->np; g++) out = fmax(out, tm_dot(P->n[g], q) - P->c[g]);
-    tm_sub(q, st, w);
-    tm_cross(w, d2, x);
-    off_line = tm_len(x) / tm_len(d2);
-    FUZZ_CHECK(out >= lo - tol && out <= hi + tol && off_line <= hi + tol,
+    FUZZ_CHECK(tm_origin_ok(C->E->P, q, st, d2, lo, hi, tol, &out, &off_line),
                "ray %d: secondary origin of a rounded hit (feature %d %u) is %.3g outside the sharp hull (the push: "
                "%.3g..%.3g, tolerance %.3g) and %.3g off its ray", ray, (int)h->feature, h->feature_index, out, lo, hi,
                tol, off_line);

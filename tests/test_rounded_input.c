@@ -815,10 +815,9 @@ static void secondary_origin_on_random_hulls(void)
             continue;
         }
         for (i = 0; i < 410; i++) {
-            double dir[3], tgt[3], o[3], t, d2[3], org[3], w[3], x[3], dn, out = -HUGE_VAL, off_line, tol;
+            double dir[3], tgt[3], o[3], t, d2[3], org[3], w[3], dn, out, off_line, tol;
             const double *vx = m.v + 3 * (size_t)(t_rng_u64(&rng) % m.nv);
             unsigned tri, a;
-            int g;
             re_hit_t h;
             tm_rand_dir(&rng, dir);
             tm_rand_dir(&rng, w);
@@ -827,13 +826,9 @@ static void secondary_origin_on_random_hulls(void)
             dn = tm_dot(dir, h.normal);
             for (a = 0; a < 3; a++) d2[a] = dir[a] - 2 * dn * h.normal[a];
             re_secondary_origin(s, &h, d2, org);
-            for (g = 0; g < P.np; g++) out = fmax(out, tm_dot(P.n[g], org) - P.c[g]);
-            tm_sub(org, h.point, w);
-            tm_cross(w, d2, x);
-            off_line = tm_len(x);
             tol = 8 * DBL_EPSILON * (scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2]));
             n_hits++;
-            if (!(out >= lo - tol && out <= hi + tol && off_line <= hi + tol)) n_bad++;
+            if (!tm_origin_ok(&P, org, h.point, d2, lo, hi, tol, &out, &off_line)) n_bad++;
             worst = fmax(worst, fmax(fabs(out - 0.5 * (lo + hi)), off_line) / scale);
         }
         re_free(s);

@@ -232,6 +232,22 @@ static void tm_erode(tm_poly_t *P, double r)
             if ((P->nv <= 64 || two) && P->ne < 8192) P->e[P->ne][0] = i, P->e[P->ne][1] = j, P->ne++;
         }
 }
+/* A secondary-ray origin org for the ray start + t d leaving the hull of
+   planes P: whether it lies outside the hull by between push_lo - tol and
+   push_hi + tol (*out, its largest plane side) and within push_hi + tol of
+   the ray's line (*off_line). */
+static int tm_origin_ok(const tm_poly_t *P, const double org[3], const double start[3], const double d[3], double push_lo,
+                        double push_hi, double tol, double *out, double *off_line)
+{
+    double w[3], x[3];
+    int g;
+    *out = -HUGE_VAL;
+    for (g = 0; g < P->np; g++) *out = fmax(*out, tm_dot(P->n[g], org) - P->c[g]);
+    tm_sub(org, start, w);
+    tm_cross(w, d, x);
+    *off_line = tm_len(x) / tm_len(d);
+    return *out >= push_lo - tol && *out <= push_hi + tol && *off_line <= push_hi + tol;
+}
 /* The point of segment ab nearest to p in q; returns its distance. */
 static double tm_seg_nearest(const double p[3], const double a[3], const double b[3], double q[3])
 {
