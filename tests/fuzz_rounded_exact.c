@@ -265,6 +265,27 @@ static void fx_secondary(const fx_case_t *C, const double dir[3], const re_hit_t
                tol, off_line);
 }
 
+/* A rounded hit names its feature (re_get_cylinder, re_get_sphere): the
+   hit point pw (world) lies on it, at the radius from the sphere's centre
+   or from the cylinder's axis segment (tm_capsule_point: the foot not past
+   its ends), and the normal points from there to pw, up to the rounding
+   of world coordinates of magnitude mag over the radius (at an offset of
+   1e6 and r = 1e-6 of the size that alone is 1e-4 rad). */
+static void fx_feature(const fx_case_t *C, const double pw[3], const re_hit_t *h, double mag, int ray)
+{
+    double dist = -1, dn = HUGE_VAL, rad = -1, tol_n;
+    re_sphere_t sp;
+    re_cylinder_t cy;
+    if (h->feature == RE_FEATURE_SPHERE && re_get_sphere(C->s, 0, h->feature_index, &sp))
+        tm_capsule_point(pw, h->normal, sp.center, sp.center, &dist, &dn), rad = sp.radius;
+    else if (h->feature == RE_FEATURE_CYLINDER && re_get_cylinder(C->s, 0, h->feature_index, &cy))
+        tm_capsule_point(pw, h->normal, cy.a, cy.b, &dist, &dn), rad = cy.radius;
+    tol_n = 1e-9 + 16 * RE__DBL_EPS * mag / rad;
+    FUZZ_CHECK(rad > 0 && fabs(dist - rad) <= FX_TOL * C->scale && dn <= tol_n,
+               "ray %d: rounded hit at t %.17g lies %.17g from its feature %d %u (radius %.17g), normal %.3g off the "
+               "feature's (tolerance %.3g)", ray, h->t, dist, (int)h->feature, h->feature_index, rad, dn, tol_n);
+}
+
 /* The _uv form's answer is the plain one's, bit for bit. */
 static void fx_same_answer(const re_hit_t *h, const re_hit_t *hu, const char *what, int ray)
 {
@@ -287,8 +308,25 @@ static void fx_on_surface(const fx_case_t *C, const double o[3], const double di
                "(host t %.17g, r %.17g)", what, ray, (int)h->kind, (int)h->feature, h->t, fx_sdf(C->E, p), t_host, C->E->r);
     if (h->kind == RE_HIT_ROUNDED) {
         fx_normal(C, p, h, C->scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), ray);
+        fx_feature(C, pw, h, C->scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), ray);
         fx_secondary(C, dir, h, ray);
     }
+}
+
+/* A pass-through: the ray leaves the sharp hull at h.t ("the host
+   continues from there"), through the face whose normal the answer gives
+   (tm_hull_exit_ok, against all the reference hull's planes). */
+static void fx_pass_exit(const fx_case_t *C, const double o[3], const double dir[3], const re_hit_t *h, double t_host,
+                         int ray)
+{
+    double pw[3], p[3], side = 0, dn = 0, tol = FX_TOL * C->scale;
+    unsigned a;
+    fx_at(o, dir, h->t, pw);
+    for (a = 0; a < 3; a++) p[a] = pw[a] - C->off[a];
+    FUZZ_CHECK(h->t >= t_host && tm_hull_exit_ok(C->E->P, p, h->normal, tol, &side, &dn),
+               "ray %d: pass-through at t %.17g (host %.17g), %.3g outside the sharp hull (tolerance %.3g), normal (%.12f "
+               "%.12f %.12f) %.3g from the nearest face's through it (r %.17g)", ray, h->t, t_host, side, tol,
+               h->normal[0], h->normal[1], h->normal[2], dn, C->E->r);
 }
 
 /* A ray from inside the rounded solid (a point between the hull's middle
@@ -338,6 +376,7 @@ static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
     fx_same_answer(&h, &hu, "host", ray);
     /* the answer's point is on the rounded surface ... */
     if (h.kind != RE_PASS_THROUGH) fx_on_surface(C, o, dir, &h, t_host, "host", ray);
+    else fx_pass_exit(C, o, dir, &h, t_host, ray);
     /* ... and the first one, up to a graze within the tolerance (a ray
        grazing the rounded surface for long the reference cannot follow in
        a fuzzer's time: the exactness tests trace up to 2e6 steps) */

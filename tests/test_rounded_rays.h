@@ -56,13 +56,21 @@ static re_scene_t *build1(const tm_mesh_t *m, double r, re_diag_t *dg) { return 
 static re_scene_t *build1_float(const tm_mesh_t *m, double r, re_diag_t *dg) { return build1_as(m, r, 1, 0, dg); }
 
 /* re_query_uv() gives re_query()'s answer, bit for bit, whether or not its
-   per-triangle bands let it skip the kd-tree (query step 0). */
+   per-triangle bands let it skip the kd-tree (query step 0); and the
+   answer's point is o + t d (to a few ulps of the coordinates). */
 static long g_uv_skipped, g_uv_calls;
 static void check_query_uv(const re_scene_t *s, const double o[3], const double d[3], unsigned tri, double t_host,
                            double u, double v, const re_hit_t *want)
 {
     re_hit_t h;
     const re__object_t *ob = &s->objects[0];
+    double off = 0, mag = 0;
+    int a;
+    for (a = 0; a < 3; a++) {
+        double x = o[a] + want->t * d[a];
+        off = fmax(off, fabs(want->point[a] - x)), mag += fabs(o[a]) + fabs(want->t * d[a]);
+    }
+    if (!(off <= 8 * RE__DBL_EPS * mag)) T_FAIL("the answer's point is %.3g off o + t d (t %.17g)", off, want->t);
     g_uv_calls++;
     if (tri < ob->n_tris && re__pk_get(&ob->tri_plane, tri) != RE__NONE && re__band_flat(ob, tri, u, v)) g_uv_skipped++;
     re_query_uv(s, o, d, 0, tri, t_host, u, v, &h);
@@ -79,6 +87,26 @@ static double rbox_sdf(const void *ctx, const double p[3])
 {
     const rbox_t *b = (const rbox_t *)ctx;
     return tm_rbox_sdf(b->c, b->half, b->r, p);
+}
+
+/* A rounded hit names its feature: the hit point lies at the feature's
+   radius (within tol) from the sphere's centre or the cylinder's axis
+   segment, and the normal points from there to it (to 1e-9 plus the
+   coordinates' rounding over the radius). */
+static int check_feature(const re_scene_t *s, const re_hit_t *h, double tol)
+{
+    double dist = -1, dn = HUGE_VAL, rad = -1, tol_n, mag = fabs(h->point[0]) + fabs(h->point[1]) + fabs(h->point[2]);
+    re_sphere_t sp;
+    re_cylinder_t cy;
+    if (h->feature == RE_FEATURE_SPHERE && re_get_sphere(s, h->object, h->feature_index, &sp))
+        tm_capsule_point(h->point, h->normal, sp.center, sp.center, &dist, &dn), rad = sp.radius;
+    else if (h->feature == RE_FEATURE_CYLINDER && re_get_cylinder(s, h->object, h->feature_index, &cy))
+        tm_capsule_point(h->point, h->normal, cy.a, cy.b, &dist, &dn), rad = cy.radius;
+    tol_n = 1e-9 + 16 * RE__DBL_EPS * (1 + mag) / rad;
+    if (rad > 0 && fabs(dist - rad) <= tol && dn <= tol_n) return 1;
+    T_FAIL("rounded hit at t %.17g lies %.17g from its feature %d %u (radius %.17g), normal %.3g off the feature's", h->t,
+           dist, (int)h->feature, h->feature_index, rad, dn);
+    return 0;
 }
 
 /* One ray against the sharp mesh + query, compared with the rounded-box
@@ -116,12 +144,20 @@ static int check_box_ray(const re_scene_t *s, const tm_mesh_t *m, const rbox_t *
             T_NEAR(h.normal[0], n_ref[0], 1e3 * rel);
             T_NEAR(h.normal[1], n_ref[1], 1e3 * rel);
             T_NEAR(h.normal[2], n_ref[2], 1e3 * rel);
+            check_feature(s, &h, rel * scale);
             (*n_round)++;
         }
     } else {
-        /* pass-through: the rounded box is missed entirely */
+        /* pass-through: the rounded box is missed entirely, and the host
+           continues from where the ray leaves the sharp box */
+        double side = 0, dn = 0, p[3], mag;
+        p[0] = o[0] + h.t * d[0], p[1] = o[1] + h.t * d[1], p[2] = o[2] + h.t * d[2];
+        mag = fabs(p[0]) + fabs(p[1]) + fabs(p[2]);
         T_EQ(t_ref, HUGE_VAL);
         T_GE(h.t, t_host);
+        if (!tm_box_exit_ok(b->c, b->half, p, h.normal, rel * scale + 8 * RE__DBL_EPS * mag, &side, &dn))
+            T_FAIL("pass-through at t %.17g (host %.17g) is %.3g outside the sharp box, normal %.3g off its face's", h.t,
+                   t_host, side, dn);
         (*n_pass)++;
     }
     return h.kind != RE_UNCHANGED;
@@ -228,10 +264,19 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
         check_query_uv(s, o, d, tri, t_host, bu, bv, &h);
         t_ref = tm_trace(tm_eroded_sdf, &E, o, d, 10.0, scale);
         if (h.kind == RE_PASS_THROUGH) {
+            double side = 0, dn = 0, p[3];
             n_pass++;
             if (t_ref != HUGE_VAL) { bad++; if (bad < 5) T_FAIL("%s ray %ld: pass-through but reference hits at %.17g", what, i, t_ref); }
+            /* the host continues from where the ray leaves the sharp hull */
+            for (a = 0; a < 3; a++) p[a] = o[a] + h.t * d[a];
+            if (!(h.t >= t_host && tm_hull_exit_ok(P, p, h.normal, tol_rel * scale, &side, &dn))) {
+                bad++;
+                if (bad < 5) T_FAIL("%s ray %ld: pass-through at t %.17g (host %.17g) is %.3g outside the sharp hull, normal %.3g "
+                                    "off its face's", what, i, h.t, t_host, side, dn);
+            }
         } else {
             if (h.kind == RE_HIT_ROUNDED) n_round++;
+            if (h.kind == RE_HIT_ROUNDED && !check_feature(s, &h, tol_rel * scale)) bad++;
             if (!(fabs(h.t - t_ref) <= tol_rel * scale)) {
                 bad++;
                 if (bad < 5) T_FAIL("%s ray %ld: kind %d feature %d t %.17g, reference %.17g (host %.17g)", what, i, (int)h.kind,

@@ -119,6 +119,24 @@ static int tm_exit_uv(const tm_mesh_t *m, const double o[3], const double d[3], 
     return 1;
 }
 
+/* tm_hull_exit_ok for the box of centre c and half sizes half: p lies
+   within tol of its boundary (*side, the largest of |p - c| - half) and a
+   face within tol of p has normal n (*dn, the smallest L1 difference). */
+static int tm_box_exit_ok(const double c[3], const double half[3], const double p[3], const double n[3], double tol,
+                          double *side, double *dn)
+{
+    int a;
+    *side = -HUGE_VAL, *dn = HUGE_VAL;
+    for (a = 0; a < 3; a++) {
+        double s = fabs(p[a] - c[a]) - half[a];
+        *side = fmax(*side, s);
+        if (fabs(s) <= tol) /* face a on p's side: normal +-e_a */
+            *dn = fmin(*dn, fabs(n[0] - (a == 0 ? copysign(1.0, p[a] - c[a]) : 0.0)) +
+                                fabs(n[1] - (a == 1 ? copysign(1.0, p[a] - c[a]) : 0.0)) +
+                                fabs(n[2] - (a == 2 ? copysign(1.0, p[a] - c[a]) : 0.0)));
+    }
+    return fabs(*side) <= tol && *dn <= 1e-6;
+}
 /* ---- Oracle 1: the analytic rounded box (inner box (+) ball) ---- */
 static double tm_rbox_sdf(const double c[3], const double half[3], double r, const double p[3])
 {
@@ -232,6 +250,21 @@ static void tm_erode(tm_poly_t *P, double r)
             if ((P->nv <= 64 || two) && P->ne < 8192) P->e[P->ne][0] = i, P->e[P->ne][1] = j, P->ne++;
         }
 }
+/* A pass-through's exit point p and normal n on the hull of planes P: p
+   lies within tol of the hull's boundary (*side, its largest plane side)
+   and some face within tol of p has normal n (*dn, the smallest L1
+   difference). A line meets a convex hull's boundary at its entry and its
+   exit only, so past the entry such a point is the exit. */
+static int tm_hull_exit_ok(const tm_poly_t *P, const double p[3], const double n[3], double tol, double *side, double *dn)
+{
+    int g;
+    *side = -HUGE_VAL, *dn = HUGE_VAL;
+    for (g = 0; g < P->np; g++) *side = fmax(*side, tm_dot(P->n[g], p) - P->c[g]);
+    for (g = 0; g < P->np; g++)
+        if (fabs(tm_dot(P->n[g], p) - P->c[g]) <= tol)
+            *dn = fmin(*dn, fabs(P->n[g][0] - n[0]) + fabs(P->n[g][1] - n[1]) + fabs(P->n[g][2] - n[2]));
+    return fabs(*side) <= tol && *dn <= 1e-6;
+}
 /* A secondary-ray origin org for the ray start + t d leaving the hull of
    planes P: whether it lies outside the hull by between push_lo - tol and
    push_hi + tol (*out, its largest plane side) and within push_hi + tol of
@@ -258,6 +291,18 @@ static double tm_seg_nearest(const double p[3], const double a[3], const double 
     q[0] = a[0] + t * ab[0], q[1] = a[1] + t * ab[1], q[2] = a[2] + t * ab[2];
     tm_sub(q, p, dq);
     return tm_len(dq);
+}
+/* A point p with normal n on the surface around segment ab (a sphere when
+   a == b): *dist its distance from the segment, *dn the L1 difference
+   between n and the direction from the segment's nearest point to p. */
+static void tm_capsule_point(const double p[3], const double n[3], const double a[3], const double b[3], double *dist,
+                             double *dn)
+{
+    double q[3], w[3];
+    int k;
+    *dist = tm_seg_nearest(p, a, b, q);
+    tm_sub(p, q, w);
+    for (*dn = 0, k = 0; k < 3; k++) *dn += fabs(w[k] / *dist - n[k]);
 }
 typedef struct tm_eroded_t { const tm_poly_t *P; double r; } tm_eroded_t;
 /* The signed distance to the rounded solid E (+) ball(r) at x, and in y the
