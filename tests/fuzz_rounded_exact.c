@@ -41,6 +41,7 @@
 #include "rounded_edges.h"
 #include "test.h"
 #include "test_rounded_util.h"
+#include "test_rounded_checks.h"
 #include "fuzz_check.h"
 
 #define FX_MAX_RAYS 24
@@ -265,95 +266,15 @@ static void fx_secondary(const fx_case_t *C, const double dir[3], const re_hit_t
                tol, off_line);
 }
 
-/* A rounded hit names its feature (re_get_cylinder, re_get_sphere): the
-   hit point pw (world) lies on it, at the radius from the sphere's centre
-   or from the cylinder's axis segment (tm_capsule_point: the foot not past
-   its ends), and the normal points from there to pw, up to the rounding
-   of world coordinates of magnitude mag over the radius (at an offset of
-   1e6 and r = 1e-6 of the size that alone is 1e-4 rad). */
-static void fx_feature(const fx_case_t *C, const double pw[3], const re_hit_t *h, double mag, int ray)
-{
-    double dist = -1, dn = HUGE_VAL, rad = -1, tol_n;
-    re_sphere_t sp;
-    re_cylinder_t cy;
-    if (h->feature == RE_FEATURE_SPHERE && re_get_sphere(C->s, 0, h->feature_index, &sp))
-        tm_capsule_point(pw, h->normal, sp.center, sp.center, &dist, &dn), rad = sp.radius;
-    else if (h->feature == RE_FEATURE_CYLINDER && re_get_cylinder(C->s, 0, h->feature_index, &cy))
-        tm_capsule_point(pw, h->normal, cy.a, cy.b, &dist, &dn), rad = cy.radius;
-    tol_n = 1e-9 + 16 * RE__DBL_EPS * mag / rad;
-    FUZZ_CHECK(rad > 0 && fabs(dist - rad) <= FX_TOL * C->scale && dn <= tol_n,
-               "ray %d: rounded hit at t %.17g lies %.17g from its feature %d %u (radius %.17g), normal %.3g off the "
-               "feature's (tolerance %.3g)", ray, h->t, dist, (int)h->feature, h->feature_index, rad, dn, tol_n);
-}
-
-/* The plane of P with unit normal n (L1 within 1e-9; only creases of sine
-   above FX_MIN_SIN are kept, so two faces' normals differ by more), or -1. */
-static int fx_plane_of(const tm_poly_t *P, const double n[3])
-{
-    int g;
-    for (g = 0; g < P->np; g++)
-        if (fabs(P->n[g][0] - n[0]) + fabs(P->n[g][1] - n[1]) + fabs(P->n[g][2] - n[2]) <= 1e-9) return g;
-    return -1;
-}
-
-/* The build's features as re_get_sphere() and re_get_cylinder() list them,
-   against the reference hull (local coordinates, each polytope within e of
-   the true one, e' with the build's merge: fx_normal): every sphere has
-   the object's radius and its centre on the eroded polytope, inside every
-   face plane by r and on at least three of them, to e'; every cylinder
-   runs from its sphere sa's centre to sb's, joins two hull faces (n0, n1
-   their normals) whose planes lie r from its axis ends, and names a mesh
-   edge on both faces, or none (-1, an extra cylinder of an exact corner). */
+/* The build's features against the reference hull, once per input
+   (rc_features_ok), each polytope within e' of the truth (fx_normal: the
+   noise plus the build's merge) and the world coordinates' rounding. */
 static void fx_features(const fx_case_t *C)
 {
-    const tm_poly_t *P = C->E->P;
+    char why[256];
     double r = C->E->r, mag = C->scale + fabs(C->off[0]) + fabs(C->off[1]) + fabs(C->off[2]),
            e = fx_noise(mag, C->smin, r, C->dmax) + RE__CORNER_MERGE * fmax(r, C->dmax) + 8 * RE__DBL_EPS * mag;
-    unsigned i, ns = re_sphere_count(C->s, 0), nc = re_cylinder_count(C->s, 0), a;
-    int g;
-    for (i = 0; i < ns; i++) {
-        re_sphere_t sp;
-        double c[3], side = -HUGE_VAL;
-        int on = 0;
-        re_get_sphere(C->s, 0, i, &sp);
-        for (a = 0; a < 3; a++) c[a] = sp.center[a] - C->off[a];
-        for (g = 0; g < P->np; g++) {
-            double h = tm_dot(P->n[g], c) - P->c[g] + r;
-            side = fmax(side, h), on += fabs(h) <= e;
-        }
-        FUZZ_CHECK(sp.radius == r && side <= e && on >= 3,
-                   "sphere %u (vertex %u): radius %.17g (the object's %.17g), %.3g outside the eroded polytope, on %d of "
-                   "its planes (e %.3g)", i, sp.vertex, sp.radius, r, side, on, e);
-    }
-    for (i = 0; i < nc; i++) {
-        re_cylinder_t cy;
-        re_sphere_t sa, sb;
-        int g0, g1, ok, end;
-        re_get_cylinder(C->s, 0, i, &cy);
-        re_get_sphere(C->s, 0, cy.sa, &sa);
-        re_get_sphere(C->s, 0, cy.sb, &sb);
-        g0 = fx_plane_of(P, cy.n0), g1 = fx_plane_of(P, cy.n1);
-        ok = cy.radius == r && !memcmp(cy.a, sa.center, sizeof cy.a) && !memcmp(cy.b, sb.center, sizeof cy.b) && g0 >= 0 &&
-             g1 >= 0 && g0 != g1;
-        for (end = 0; end < 2 && ok; end++) { /* both axis ends r inside both faces */
-            const double *x = end ? cy.b : cy.a;
-            double q[3];
-            for (a = 0; a < 3; a++) q[a] = x[a] - C->off[a];
-            ok = fabs(tm_dot(P->n[g0], q) - P->c[g0] + r) <= e && fabs(tm_dot(P->n[g1], q) - P->c[g1] + r) <= e;
-        }
-        if (ok && cy.edge_v0 >= 0) { /* its mesh edge lies on both faces */
-            const double *v0 = C->mw->v + 3 * cy.edge_v0, *v1 = C->mw->v + 3 * cy.edge_v1;
-            double w0[3], w1[3];
-            for (a = 0; a < 3; a++) w0[a] = v0[a] - C->off[a], w1[a] = v1[a] - C->off[a];
-            ok = cy.edge_v1 >= 0 && cy.edge_v0 != cy.edge_v1;
-            for (g = 0; g < 2 && ok; g++) {
-                int pg = g ? g1 : g0;
-                ok = fabs(tm_dot(P->n[pg], w0) - P->c[pg]) <= e && fabs(tm_dot(P->n[pg], w1) - P->c[pg]) <= e;
-            }
-        }
-        FUZZ_CHECK(ok, "cylinder %u (spheres %u %u, edge %lld-%lld): not on the reference's faces (planes %d %d, e %.3g)",
-                   i, cy.sa, cy.sb, cy.edge_v0, cy.edge_v1, g0, g1, e);
-    }
+    FUZZ_CHECK(rc_features_ok(C->s, 0, C->E->P, C->mw->v, C->off, r, e, why, sizeof why), "%s", why);
 }
 
 /* The _uv form's answer is the plain one's, bit for bit. */
@@ -378,7 +299,8 @@ static void fx_on_surface(const fx_case_t *C, const double o[3], const double di
                "(host t %.17g, r %.17g)", what, ray, (int)h->kind, (int)h->feature, h->t, fx_sdf(C->E, p), t_host, C->E->r);
     if (h->kind == RE_HIT_ROUNDED) {
         fx_normal(C, p, h, C->scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), ray);
-        fx_feature(C, pw, h, C->scale + fabs(pw[0]) + fabs(pw[1]) + fabs(pw[2]), ray);
+        char why[256];
+        FUZZ_CHECK(rc_feature_ok(C->s, h, FX_TOL * C->scale, C->scale, why, sizeof why), "%s ray %d: %s", what, ray, why);
         fx_secondary(C, dir, h, ray);
     }
 }

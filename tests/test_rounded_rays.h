@@ -4,6 +4,7 @@
    rounded_edges.h and test_rounded_util.h. */
 #ifndef TEST_ROUNDED_RAYS_H
 #define TEST_ROUNDED_RAYS_H
+#include "test_rounded_checks.h"
 
 /* set by a test whose coordinates are large: compare t within the error
    the positions' own rounding allows, rel * scale / |cos(ray, normal)| */
@@ -89,23 +90,12 @@ static double rbox_sdf(const void *ctx, const double p[3])
     return tm_rbox_sdf(b->c, b->half, b->r, p);
 }
 
-/* A rounded hit names its feature: the hit point lies at the feature's
-   radius (within tol) from the sphere's centre or the cylinder's axis
-   segment, and the normal points from there to it (to 1e-9 plus the
-   coordinates' rounding over the radius). */
-static int check_feature(const re_scene_t *s, const re_hit_t *h, double tol)
+/* rc_feature_ok, counted as a failed check. */
+static int check_feature(const re_scene_t *s, const re_hit_t *h, double tol, double scale)
 {
-    double dist = -1, dn = HUGE_VAL, rad = -1, tol_n, mag = fabs(h->point[0]) + fabs(h->point[1]) + fabs(h->point[2]);
-    re_sphere_t sp;
-    re_cylinder_t cy;
-    if (h->feature == RE_FEATURE_SPHERE && re_get_sphere(s, h->object, h->feature_index, &sp))
-        tm_capsule_point(h->point, h->normal, sp.center, sp.center, &dist, &dn), rad = sp.radius;
-    else if (h->feature == RE_FEATURE_CYLINDER && re_get_cylinder(s, h->object, h->feature_index, &cy))
-        tm_capsule_point(h->point, h->normal, cy.a, cy.b, &dist, &dn), rad = cy.radius;
-    tol_n = 1e-9 + 16 * RE__DBL_EPS * (1 + mag) / rad;
-    if (rad > 0 && fabs(dist - rad) <= tol && dn <= tol_n) return 1;
-    T_FAIL("rounded hit at t %.17g lies %.17g from its feature %d %u (radius %.17g), normal %.3g off the feature's", h->t,
-           dist, (int)h->feature, h->feature_index, rad, dn);
+    char why[256];
+    if (rc_feature_ok(s, h, tol, scale, why, sizeof why)) return 1;
+    T_FAIL("%s", why);
     return 0;
 }
 
@@ -144,7 +134,7 @@ static int check_box_ray(const re_scene_t *s, const tm_mesh_t *m, const rbox_t *
             T_NEAR(h.normal[0], n_ref[0], 1e3 * rel);
             T_NEAR(h.normal[1], n_ref[1], 1e3 * rel);
             T_NEAR(h.normal[2], n_ref[2], 1e3 * rel);
-            check_feature(s, &h, rel * scale);
+            check_feature(s, &h, rel * scale, scale);
             (*n_round)++;
         }
     } else {
@@ -248,6 +238,11 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
     E.P = P;
     E.r = r;
     tm_erode(P, r);
+    {
+        const double zero[3] = {0, 0, 0};
+        char why[256];
+        if (!T_CHECK(rc_features_ok(s, 0, P, m->v, zero, r, tol_rel * scale, why, sizeof why))) T_FAIL("%s: %s", what, why);
+    }
     for (i = 0; i < nrays; i++) {
         double o[3], d[3], tgt[3], u, v, w, t_host, t_ref, bu, bv;
         unsigned tri;
@@ -276,7 +271,7 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
             }
         } else {
             if (h.kind == RE_HIT_ROUNDED) n_round++;
-            if (h.kind == RE_HIT_ROUNDED && !check_feature(s, &h, tol_rel * scale)) bad++;
+            if (h.kind == RE_HIT_ROUNDED && !check_feature(s, &h, tol_rel * scale, scale)) bad++;
             if (!(fabs(h.t - t_ref) <= tol_rel * scale)) {
                 bad++;
                 if (bad < 5) T_FAIL("%s ray %ld: kind %d feature %d t %.17g, reference %.17g (host %.17g)", what, i, (int)h.kind,
