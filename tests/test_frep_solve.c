@@ -616,6 +616,28 @@ static void random_cubics_against_oracle(void)
     }
 }
 
+/* fr_solve_cubic, the named entry point: (t - 1)(t - 2)(t - 3) exactly,
+   ascending; one real root of t^3 + t + 10 (t = -2); and on the random
+   cubics above, fr_solve_poly's roots bit for bit. */
+static void cubic_entry_point(void)
+{
+    const double c3[4] = {-6, 11, -6, 1}, c1[4] = {10, 1, 0, 1};
+    double r[3], q[3], c[4];
+    t_rng_t g = {777};
+    int k, n;
+    long i;
+    T_INT_EQ(fr_solve_cubic(c3, r), 3);
+    T_EQ(r[0], 1.0), T_EQ(r[1], 2.0), T_EQ(r[2], 3.0);
+    T_INT_EQ(fr_solve_cubic(c1, r), 1);
+    T_EQ(r[0], -2.0);
+    for (i = 0; i < 200; i++) {
+        for (k = 0; k < 4; k++) c[k] = t_rng_range(&g, -10, 10);
+        n = fr_solve_cubic(c, r);
+        if (!T_INT_EQ(n, fr_solve_poly(c, 3, -HUGE_VAL, HUGE_VAL, q))) continue;
+        for (k = 0; k < n; k++) T_EQ(r[k], q[k]);
+    }
+}
+
 /* Degree 5..10 with real roots and pairs, on a sub-interval [t0, t1]. */
 static void random_degree_5_to_10_on_interval(void)
 {
@@ -675,6 +697,7 @@ int main(int argc, char **argv)
         T_CASE(invalid_input_returns_minus_one),
         T_CASE(random_quartics_against_oracle),
         T_CASE(random_cubics_against_oracle),
+        T_CASE(cubic_entry_point),
         T_CASE(random_degree_5_to_10_on_interval),
         T_CASE(wilkinson_degree_10),
     };
