@@ -24,7 +24,8 @@
    its features, agree with re_build_sizes() + re_build_into(), and answer
    every front-face host hit with a valid kind; a rounded hit or
    pass-through lies no earlier than the host's t (up to the float-host
-   slack) and a rounded hit has a unit normal. */
+   slack) and a rounded hit has a unit normal and lies on the feature it
+   names (rc_feature_ok, 1e-9 of the coordinates' magnitude). */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -40,6 +41,9 @@
 #include "test_fill_alloc.h"
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
+#include "test.h"
+#include "test_rounded_util.h"
+#include "test_rounded_checks.h"
 
 /* A failed check: abort for libFuzzer; tests/test_rounded_fuzz_replay.c
    counts it instead (every use is followed by a return or is safe to go
@@ -298,9 +302,13 @@ static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *
         if (kind == RE_UNCHANGED) continue;
         if (!isfinite(h.t) || h.t < dist - 1e-5 * dist - 1e-300) RFZ_FAIL();
         if (kind == RE_HIT_ROUNDED) {
-            double len = sqrt(h.normal[0] * h.normal[0] + h.normal[1] * h.normal[1] + h.normal[2] * h.normal[2]), org[3];
+            double len = sqrt(h.normal[0] * h.normal[0] + h.normal[1] * h.normal[1] + h.normal[2] * h.normal[2]), org[3],
+                   mag = fabs(o[0]) + fabs(o[1]) + fabs(o[2]) + h.t;
+            char why[256];
             if (!(fabs(len - 1) < 1e-6)) RFZ_FAIL();
             if (h.feature_index >= (h.feature == RE_FEATURE_SPHERE ? ns : nc)) RFZ_FAIL();
+            /* on the feature it names, whatever the mesh (rc_feature_ok) */
+            if (!rc_feature_ok(s, &h, 1e-9 * mag, mag, why, sizeof why)) RFZ_FAIL();
             re_secondary_origin(s, &h, d, org);
         }
     }
