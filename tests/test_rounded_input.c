@@ -319,6 +319,17 @@ static void null_and_junk_arguments(void)
     T_INT_EQ(re_build_sizes(&desc, NULL, &dg), RE_ERR_INVALID_ARG);
     desc.radius_policy = (re_radius_policy_t)7;
     T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_ERR_INVALID_ARG);
+    desc.radius_policy = RE_RADIUS_CLAMP;
+    {   /* a stride shorter than one vertex, double and float, named */
+        static const double pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        static const unsigned idx[3] = {0, 1, 2};
+        mesh.positions = pos, mesh.indices = idx, mesh.position_stride = 2 * sizeof(double);
+        T_INT_EQ(re_build(&desc, &s, &dg), RE_ERR_INVALID_ARG);
+        T_CHECK(strstr(dg.message, "position_stride") != NULL);
+        mesh.position_type = RE_FLOAT32, mesh.position_stride = 2 * sizeof(float);
+        T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_ERR_INVALID_ARG);
+        T_CHECK(strstr(dg.message, "position_stride") != NULL);
+    }
     T_CHECK(s == NULL);
     re_free(NULL);
 }
@@ -370,8 +381,9 @@ static void query_guards(void)
     tm_free(&m);
 }
 
-/* same box four ways: doubles, floats with a stride, quads as polygons,
-   caller buffers. Queries must agree. */
+/* same box five ways: doubles, floats with a stride, quads as polygons,
+   doubles with a stride (positions interleaved with normals), caller
+   buffers. Queries must agree. */
 static void input_variants_agree(void)
 {
     tm_mesh_t m = {0};
@@ -381,11 +393,13 @@ static void input_variants_agree(void)
     re_sizes_t sz;
     re_diag_t dg;
     float fpos[8][4];
+    double dpos[8][6];
     unsigned quads[24], sizes[6], i, k;
     void *mem, *scratch;
     t_rng_t rng = {5};
     tm_box(&m, LO, HI);
     for (i = 0; i < 8; i++) for (k = 0; k < 3; k++) fpos[i][k] = (float)m.v[3 * i + k];
+    for (i = 0; i < 8; i++) for (k = 0; k < 6; k++) dpos[i][k] = k < 3 ? m.v[3 * i + k] : -7.0;
     for (i = 0; i < 6; i++) { /* the quad a b c d behind triangles (a b c), (a c d) */
         quads[4 * i] = m.idx[6 * i], quads[4 * i + 1] = m.idx[6 * i + 1], quads[4 * i + 2] = m.idx[6 * i + 2], quads[4 * i + 3] = m.idx[6 * i + 5];
         sizes[i] = 4;
@@ -395,8 +409,10 @@ static void input_variants_agree(void)
     mesh[1].positions = fpos, mesh[1].position_type = RE_FLOAT32, mesh[1].position_stride = sizeof fpos[0];
     mesh[2] = mesh[0];
     mesh[2].indices = quads, mesh[2].index_count = 24, mesh[2].face_sizes = sizes, mesh[2].face_count = 6;
+    mesh[3] = mesh[0];
+    mesh[3].positions = dpos, mesh[3].position_stride = sizeof dpos[0];
     memset(&desc, 0, sizeof desc);
-    desc.objects = mesh, desc.object_count = 3;
+    desc.objects = mesh, desc.object_count = 4;
     T_INT_EQ(re_build(&desc, &s[0], &dg), RE_OK);
     T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_OK);
     mem = malloc(sz.scene_bytes), scratch = malloc(sz.scratch_bytes);
@@ -409,8 +425,8 @@ static void input_variants_agree(void)
         re_get_stats(s[0], &a);
         re_get_stats(s[1], &b);
         T_INT_EQ(a.bytes, b.bytes - 0); /* one block or several, same payload */
-        T_INT_EQ(a.rounded_edges, 36);
-        T_INT_EQ(b.spheres, 24);
+        T_INT_EQ(a.rounded_edges, 48);
+        T_INT_EQ(b.spheres, 32);
     }
     for (i = 0; i < (unsigned)t_count(5000); i++) {
         double o[3], d[3], tgt[3], t;
@@ -421,12 +437,13 @@ static void input_variants_agree(void)
         tm_sub(tgt, o, d);
         if (!tm_hit(&m, o, d, &t, &tri)) continue;
         re_query(s[0], o, d, 0, tri, t, &h0);
-        for (obj = 0; obj < 3; obj++) {
+        for (obj = 0; obj < 4; obj++) {
             /* float positions round 0.3 and 0.2 by ~1e-8 */
             double tol = obj == 1 ? 1e-6 : 1e-15;
             re_query(s[0], o, d, obj, tri, t, &h);
             if (obj != 1) T_INT_EQ(h.kind, h0.kind);
             T_NEAR(h.t, h0.t, tol);
+            if (obj == 3) T_EQ(h.t, h0.t); /* the same doubles, read through the stride */
             re_query(s[1], o, d, obj, tri, t, &h);
             if (obj != 1) T_INT_EQ(h.kind, h0.kind);
             T_NEAR(h.t, h0.t, tol);

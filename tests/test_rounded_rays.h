@@ -213,6 +213,11 @@ static void box_rays(const double lo[3], const double hi[3], double r, long nray
     tm_free(&m);
 }
 
+/* poly_rays' aim points: a vertex or a point on a chord, moved by up to
+   this many radii along each axis (a test may narrow it to look closely
+   at the vertices) */
+static double g_poly_jitter = 3.0;
+
 /* Rays at a convex polyhedron (hull mesh + planes), compared with sphere
    tracing of dist(x, eroded polytope) - r. Returns rays that hit a corner
    feature of a vertex with degree >= 4 planes. */
@@ -250,7 +255,7 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
         const double *vx = m->v + 3 * (t_rng_u64(&rng) % m->nv);
         const double *vy = m->v + 3 * (t_rng_u64(&rng) % m->nv);
         double f = i % 2 ? 0 : t_rng_unit(&rng); /* a vertex, or along a chord toward another */
-        for (a = 0; a < 3; a++) tgt[a] = vx[a] + f * (vy[a] - vx[a]) + t_rng_range(&rng, -3, 3) * r;
+        for (a = 0; a < 3; a++) tgt[a] = vx[a] + f * (vy[a] - vx[a]) + t_rng_range(&rng, -g_poly_jitter, g_poly_jitter) * r;
         u = t_rng_range(&rng, 0, 2 * M_PI), v = t_rng_range(&rng, -1, 1), w = sqrt(1 - v * v);
         o[0] = tgt[0] + 3 * scale * w * cos(u), o[1] = tgt[1] + 3 * scale * w * sin(u), o[2] = tgt[2] + 3 * scale * v;
         tm_sub(tgt, o, d);
