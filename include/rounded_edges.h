@@ -165,8 +165,10 @@ typedef struct re_mesh_t {
     const double *edge_radius;  /* optional, index_count entries: radius of the
                                    edge from indices[j] to the next corner of its
                                    polygon (either of the two half-edges; the
-                                   smaller wins). A value <= 0 falls back to
-                                   `radius`. Corners join cylinders C1 only with
+                                   smaller wins). A value <= 0, NaN or
+                                   infinite falls back to `radius` (with none:
+                                   RE_ERR_BAD_RADIUS naming a vertex of the
+                                   edge). Corners join cylinders C1 only with
                                    one radius, so every rounded patch (edges
                                    linked through rounded corners) takes the
                                    smallest radius asked along it (reported). */
@@ -231,12 +233,14 @@ typedef enum re_report_kind_t {
     RE_REPORT_MIXED_VERTEX,      /* convex and concave/boundary edges meet: the
                                     vertex and its edges stay sharp */
     RE_REPORT_SHARP_PATCH_EDGE,  /* convex edge left sharp because a corner of
-                                    its patch is mixed (see docs: limits) */
+                                    its patch is mixed, complex or
+                                    unroundable (see docs: limits) */
     RE_REPORT_RADIUS_CLAMPED,    /* value = new radius */
     RE_REPORT_RADIUS_MISMATCH,   /* unequal edge radii met at a corner; value = radius kept */
     RE_REPORT_SKIPPED_TRIANGLE,  /* RE_BAD_INPUT_SKIP dropped this triangle */
     RE_REPORT_COMPLEX_CORNER,    /* more than RE_MAX_CORNER_PLANES face planes
-                                    meet: the vertex stays sharp */
+                                    meet: the vertex and its patch stay
+                                    sharp */
     RE_REPORT_UNROUNDABLE_CORNER /* a corner within the plane limit whose fan
                                     or eroded corner could not be built (a
                                     face plane recurs around it, or plane

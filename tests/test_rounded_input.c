@@ -706,7 +706,58 @@ static void per_edge_radius(void)
         T_INT_EQ(cn.n[RE_REPORT_RADIUS_MISMATCH], 1);
         re_free(s);
     }
+    /* an edge whose radius is not given (<= 0, NaN; infinite counts as
+       none) with no object radius to fall back to: RE_ERR_BAD_RADIUS
+       naming one of the edge's vertices */
+    {
+        static const double bad[3] = {-1.0, NAN, INFINITY};
+        for (i = 0; i < 3; i++) {
+            unsigned k, t = 12; /* box 2's first triangle: its edge 0 is a box edge */
+            er[3 * t] = bad[i];
+            for (k = 0; k < m.ni; k++)
+                if (k != 3 * t && m.idx[k] == m.idx[3 * t + 1] && m.idx[k % 3 == 2 ? k - 2 : k + 1] == m.idx[3 * t])
+                    er[k] = bad[i]; /* the edge's other half-edge too */
+            T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, &cn, &dg, &s), RE_ERR_BAD_RADIUS);
+            T_CHECK(dg.element == (long long)m.idx[3 * t] || dg.element == (long long)m.idx[3 * t + 1]);
+            T_CHECK(strstr(dg.message, "radius") != NULL);
+            for (k = 0; k < m.ni; k++) er[k] = k < 36 ? 0.05 : k < 72 ? 0.1 : 0.2;
+        }
+    }
     free(er);
+    tm_free(&m);
+}
+
+/* A pyramid over a 70-gon: its apex has 70 face planes, more than
+   RE_MAX_CORNER_PLANES. It stays sharp and is reported once as a complex
+   corner, with a message; the rounded patch it belongs to (every edge of
+   the pyramid: they are linked through the base corners) stays sharp, each
+   edge reported, and nothing is stored. */
+static void corner_over_the_plane_limit_reported(void)
+{
+    tm_mesh_t m = {0};
+    re_mesh_t mesh;
+    re_scene_t *s;
+    re_diag_t dg;
+    re_stats_t st;
+    counts_t cn;
+    unsigned i, k = 70, apex;
+    T_CHECK(k > RE_MAX_CORNER_PLANES);
+    for (i = 0; i < k; i++) tm_vert(&m, cos(2 * M_PI * i / k), sin(2 * M_PI * i / k), 0);
+    apex = tm_vert(&m, 0.1, 0.05, 0.8);
+    for (i = 0; i < k; i++) tm_tri(&m, i, (i + 1) % k, apex);
+    for (i = 1; i + 1 < k; i++) tm_tri(&m, 0, i + 1, i);
+    mesh = mesh_of(&m, 0.01);
+    if (T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, &cn, &dg, &s), RE_OK)) {
+        re_get_stats(s, &st);
+        T_INT_EQ(cn.n[RE_REPORT_COMPLEX_CORNER], 1);
+        T_INT_EQ(cn.n[RE_REPORT_SHARP_PATCH_EDGE], 2 * (int)k);
+        T_INT_EQ(cn.n[15], 0); /* every report has a message */
+        T_INT_EQ(st.convex_edges, 2 * k);
+        T_INT_EQ(st.rounded_edges, 0);
+        T_INT_EQ(re_sphere_count(s, 0), 0);
+        T_INT_EQ(re_cylinder_count(s, 0), 0);
+        re_free(s);
+    }
     tm_free(&m);
 }
 
@@ -950,7 +1001,8 @@ int main(int argc, char **argv)
         T_CASE(open_mesh_left_sharp), T_CASE(inconsistent_winding), T_CASE(bad_polygon_sizes), T_CASE(bad_radius), T_CASE(bad_flat_sin), T_CASE(flat_sin_for_coarsely_rounded_doubles),
         T_CASE(null_and_junk_arguments), T_CASE(empty_scene), T_CASE(result_strings), T_CASE(query_guards),
         T_CASE(input_variants_agree), T_CASE(unwelded_mesh_rounds_with_weld), T_CASE(huge_page_range_inside_the_block),
-        T_CASE(large_build_with_huge_pages_matches_into), T_CASE(per_edge_radius), T_CASE(concave_edges_and_mixed_vertices_reported),
+        T_CASE(large_build_with_huge_pages_matches_into), T_CASE(per_edge_radius), T_CASE(corner_over_the_plane_limit_reported),
+        T_CASE(concave_edges_and_mixed_vertices_reported),
         T_CASE(secondary_origin_on_the_sharp_mesh), T_CASE(secondary_origin_on_random_hulls), T_CASE(enumeration_of_box_features),
         T_CASE(random_soups_do_not_crash),
     };
