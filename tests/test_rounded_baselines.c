@@ -197,6 +197,35 @@ static void flat_face_returns_face_normal_exactly(void)
     }
 }
 
+/* A host whose traces never hit (a point on a surface the host cannot see
+   again, or a trace that fails): both bevels return the given normal, made
+   unit, with no hits, instead of a zero or NaN normal. */
+static int miss_trace(void *user, const double o[3], const double d[3], double tmin, double tmax, re_trace_hit_t *hit)
+{
+    (void)o, (void)d, (void)tmin, (void)tmax, (void)hit;
+    ++*(int *)user;
+    return 0;
+}
+static void no_hits_keep_the_normal(void)
+{
+    double p[3] = {0.1, -0.2, 1.0}, n[3] = {0, 0.6, 0.8}, n2[3] = {0, 1.5, 2.0};
+    re_bevel_blog_desc_t bd;
+    re_bevel_cycles_desc_t cd;
+    re_bevel_result_t r;
+    int calls = 0;
+    memset(&bd, 0, sizeof bd);
+    memset(&cd, 0, sizeof cd);
+    bd.delta = 0.1;
+    cd.radius = 0.1, cd.samples = 8;
+    T_INT_EQ(re_bevel_blog(&bd, p, n, miss_trace, &calls, &r), RE_OK);
+    T_INT_EQ(r.hits, 0), T_GT(r.rays, 0);
+    T_NEAR(r.normal[0], 0, 1e-15), T_NEAR(r.normal[1], 0.6, 1e-15), T_NEAR(r.normal[2], 0.8, 1e-15);
+    T_INT_EQ(re_bevel_cycles(&cd, p, n2, 0, miss_trace, &calls, &r), RE_OK);
+    T_INT_EQ(r.hits, 0), T_GT(r.rays, 0);
+    T_NEAR(r.normal[0], 0, 1e-15), T_NEAR(r.normal[1], 0.6, 1e-15), T_NEAR(r.normal[2], 0.8, 1e-15);
+    T_GT(calls, 0);
+}
+
 /* The same on a rotated box: exact up to the rounding of the sums. */
 #define FLAT_ROTATED_TOL (16 * 2.220446049250313e-16)
 static void flat_face_rotated_box(void)
@@ -445,6 +474,7 @@ int main(int argc, char **argv)
         T_CASE(cycles_ignores_other_objects),
         T_CASE(blog_thin_wall_behaviour),
         T_CASE(rejects_bad_arguments),
+        T_CASE(no_hits_keep_the_normal),
     };
     return T_RUN(argc, argv, cases);
 }
