@@ -124,19 +124,23 @@ static long long tight_gap(int op, iv_t a, iv_t b, iv_t z)
 #ifndef IV_NO_AFFINE
 /* method: which linearisation the non-affine operations use (Taylor,
    Chebyshev, min-range or the default per-range choice), so that every
-   one of them is checked; the public functions use the default. */
+   one of them is checked; the default goes through the public functions
+   (iv_affine_atan and the general iv_affine_pow_n had been reached only
+   through iv__aff_unary, never themselves). */
 static iv_affine_t eval_aff(int op, iv_affine_t a, iv_affine_t b, double d, int n, int method)
 {
-    switch (op) {
-    case OP_EXP: return iv__aff_unary(a, IV__F_EXP, 0, method);
-    case OP_LOG: return iv__aff_unary(a, IV__F_LOG, 0, method);
-    case OP_SQRT: return iv__aff_unary(a, IV__F_SQRT, 0, method);
-    case OP_RECIP: return iv__aff_unary(a, IV__F_RECIP, -1, method);
-    case OP_ATAN: return iv__aff_unary(a, IV__F_ATAN, 0, method);
-    case OP_POW_N: if (n != 1 && n != 2 && n != 0 && n != -1) return iv__aff_unary(a, IV__F_POWN, n, method); break;
-    default: break;
+    if (method != IV__LIN_DEFAULT) {
+        switch (op) {
+        case OP_EXP: return iv__aff_unary(a, IV__F_EXP, 0, method);
+        case OP_LOG: return iv__aff_unary(a, IV__F_LOG, 0, method);
+        case OP_SQRT: return iv__aff_unary(a, IV__F_SQRT, 0, method);
+        case OP_RECIP: return iv__aff_unary(a, IV__F_RECIP, -1, method);
+        case OP_ATAN: return iv__aff_unary(a, IV__F_ATAN, 0, method);
+        case OP_POW_N: if (n != 1 && n != 2 && n != 0 && n != -1) return iv__aff_unary(a, IV__F_POWN, n, method); break;
+        default: break;
+        }
+        return eval_aff(op, a, b, d, n, IV__LIN_DEFAULT); /* an affine or fixed-method operation */
     }
-    if (method != IV__LIN_DEFAULT) return eval_aff(op, a, b, d, n, IV__LIN_DEFAULT);
     switch (op) {
     case OP_ADD: return iv_affine_add(a, b);
     case OP_SUB: return iv_affine_sub(a, b);
