@@ -839,6 +839,53 @@ static void batch_matches_point(void)
     fr_tape_free(&t);
 }
 
+/* Every opcode through the batch evaluator, each in a tape of its own (a
+   sum would let a NaN of one hide another's error): the batch loop has
+   its own switch over the opcodes, and NEG, ATAN, MIN, MAX, POWC, the
+   callback and others had never gone through it in a test. */
+static int g_op;
+static fr_node_t b_one_op(fr_builder_t *b, fr_p3_t X)
+{
+    fr_node_t a = fr_sub(b, fr_add(b, X.x, fr_mul(b, fr_const(b, 0.7), X.y)), fr_mul(b, fr_const(b, 0.2), X.z));
+    fr_node_t c = fr_sub(b, fr_mul(b, X.y, X.z), fr_mul(b, fr_const(b, 0.3), X.x));
+    fr_node_t pos = fr_add(b, fr_unary(b, FR_OP_SQR, a), fr_const(b, 0.5)); /* > 0: sqrt, log, powc */
+    switch (g_op) {
+    case FR_OP_SQRT: case FR_OP_LOG: return fr_unary(b, (fr_op_t)g_op, pos);
+    case FR_OP_POWI: return fr_add(b, fr_powi(b, a, 3), fr_powi(b, pos, -2));
+    case FR_OP_POWC: return fr_powc(b, pos, 1.7);
+    case FR_OP_RUNI: return fr_add(b, fr_union(b, a, c, 0.5), fr_union(b, a, c, 1.0));
+    case FR_OP_RINT: return fr_add(b, fr_intersect(b, a, c, 0.5), fr_intersect(b, a, c, 1.0));
+    case FR_OP_SMAX: return fr_smooth_union(b, a, c, 0.3);
+    case FR_OP_SMIN: return fr_smooth_intersect(b, a, c, 0.3);
+    case FR_OP_NOISE: return b_noise(b, X);
+    case FR_OP_CALL: return b_cb_point_only(b, X);
+    default: return g_op < FR_OP_ADD ? fr_unary(b, (fr_op_t)g_op, a) : fr_binary(b, (fr_op_t)g_op, a, c);
+    }
+}
+static void batch_matches_point_every_opcode(void)
+{
+    size_t n = 300 + 5, i;
+    double x[305], y[305], z[305], out[305];
+    t_rng_t r = {81};
+    for (i = 0; i < n; i++) x[i] = t_rng_range(&r, -2, 2), y[i] = t_rng_range(&r, -2, 2), z[i] = t_rng_range(&r, -2, 2);
+    for (g_op = FR_OP_NEG; g_op < FR_OP_COUNT_; g_op++) {
+        fr_tape_t t = compile(b_one_op);
+        void *sb = malloc(fr_scratch_size(&t, FR_EVAL_BATCH)), *sp = malloc(fr_scratch_size(&t, FR_EVAL_POINT));
+        long bad = 0;
+        unsigned k, seen = 0;
+        for (k = 0; k < t.n_code; k++) seen |= t.code[k].op == (unsigned)g_op;
+        T_CHECK(seen); /* the tape holds the opcode under test */
+        fr_eval_batch(&t, n, x, y, z, out, sb);
+        for (i = 0; i < n; i++) {
+            double p[3] = {x[i], y[i], z[i]}, v = fr_eval(&t, p, sp);
+            if (!(fabs(v - out[i]) <= 1e-13 * (fabs(v) + 1))) bad++;
+        }
+        if (!T_INT_EQ(bad, 0)) fprintf(stderr, "    opcode %d: %ld of %zu points differ\n", g_op, bad, n);
+        free(sb), free(sp);
+        fr_tape_free(&t);
+    }
+}
+
 /* ------------------------------------------------------------ builder */
 static void builder_rejects_bad_parameters_with_message(void)
 {
@@ -929,7 +976,7 @@ int main(int argc, char **argv)
         T_CASE(affine_maps_closed_form), T_CASE(twist_taper_stretch_bend_closed_form),
         T_CASE(elementary_ops_closed_form), T_CASE(callback_point_only_reports_no_interval),
         T_CASE(callback_with_interval_and_gradient), T_CASE(attributes_evaluated_with_shape),
-        T_CASE(sdf_wrap_and_lipschitz_flag), T_CASE(batch_matches_point),
+        T_CASE(sdf_wrap_and_lipschitz_flag), T_CASE(batch_matches_point), T_CASE(batch_matches_point_every_opcode),
         T_CASE(builder_rejects_bad_parameters_with_message), T_CASE(builder_limit_and_dead_code),
     };
     return T_RUN(argc, argv, cases);
