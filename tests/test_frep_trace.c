@@ -70,6 +70,67 @@ static void ray_poly_reports_non_polynomial_tape(void)
     model_free(&m);
 }
 
+/* fr_ray_poly through each opcode it accepts, in a tape of its own: the
+   polynomial ones on a = x + 0.7y - 0.2z and c = yz - 0.3x (POWI at 0, 3
+   and the squaring path's 4; DIV by a constant), and every operation it
+   takes on a slot that is constant along the ray (y and z for a ray along
+   x: sqrt, abs, exp, log, sin, cos, atan, powc, min, max, never run by a
+   test before). The polynomial at t must give fr_eval at o + t d; with a
+   direction that moves y and z those tapes are FR_ERR_NOT_POLYNOMIAL. */
+static int g_poly_case;
+static fr_node_t b_poly_case(fr_builder_t *b, fr_p3_t X)
+{
+    fr_node_t a = fr_sub(b, fr_add(b, X.x, fr_mul(b, fr_const(b, 0.7), X.y)), fr_mul(b, fr_const(b, 0.2), X.z));
+    fr_node_t c = fr_sub(b, fr_mul(b, X.y, X.z), fr_mul(b, fr_const(b, 0.3), X.x));
+    fr_node_t yz = fr_add(b, fr_add(b, fr_unary(b, FR_OP_SQR, X.y), fr_unary(b, FR_OP_SQR, X.z)), fr_const(b, 0.5));
+    static const fr_op_t const_ops[7] = {FR_OP_SQRT, FR_OP_ABS, FR_OP_EXP, FR_OP_LOG, FR_OP_SIN, FR_OP_COS, FR_OP_ATAN};
+    switch (g_poly_case) {
+    case 0: return fr_unary(b, FR_OP_NEG, a);
+    case 1: return fr_unary(b, FR_OP_SQR, c);
+    case 2: return fr_add(b, a, c);
+    case 3: return fr_sub(b, a, c);
+    case 4: return fr_mul(b, a, c);
+    case 5: return fr_add(b, fr_add(b, fr_powi(b, a, 3), fr_powi(b, c, 4)), fr_powi(b, a, 0));
+    case 6: return fr_div(b, c, fr_const(b, 2.5));
+    case 7: return fr_add(b, a, fr_powc(b, yz, 1.7));
+    case 8: return fr_add(b, a, fr_binary(b, FR_OP_MIN, X.y, X.z));
+    case 9: return fr_add(b, a, fr_binary(b, FR_OP_MAX, X.y, X.z));
+    default: return fr_add(b, a, fr_unary(b, const_ops[g_poly_case - 10], yz));
+    }
+}
+static void ray_poly_every_accepted_opcode(void)
+{
+    double o[3] = {0.3, -1.7, 2.2}, along_x[3] = {0.9, 0, 0}, d[3] = {0.5, 0.25, -0.8}, coef[FR_POLY_MAX_DEGREE + 1], t;
+    int deg;
+    for (g_poly_case = 0; g_poly_case < 17; g_poly_case++) {
+        fr_builder_t b;
+        fr_tape_t tape;
+        fr_diag_t dg;
+        void *s, *sp;
+        int k, constant_op = g_poly_case >= 7; /* constant along x only */
+        fr_builder_init(&b, NULL);
+        if (!T_INT_EQ(fr_builder_finish(&b, b_poly_case(&b, fr_coords(&b)), NULL, 0, &tape, &dg), FR_OK)) {
+            fr_builder_free(&b);
+            continue;
+        }
+        fr_builder_free(&b);
+        s = malloc(fr_ray_poly_scratch_size(&tape)), sp = malloc(fr_scratch_size(&tape, FR_EVAL_POINT));
+        for (k = 0; k < 2; k++) {
+            const double *dir = k ? d : along_x;
+            fr_result_t rc = fr_ray_poly(&tape, o, dir, s, coef, &deg);
+            if (k && constant_op) { T_INT_EQ(rc, FR_ERR_NOT_POLYNOMIAL); continue; }
+            if (!T_INT_EQ(rc, FR_OK)) continue;
+            for (t = -3; t <= 3; t += 0.37) {
+                double p[3] = {o[0] + t * dir[0], o[1] + t * dir[1], o[2] + t * dir[2]};
+                double a, v = fr_poly_eval_compensated(coef, deg, t, &a);
+                T_LE(fabs(v - fr_eval(&tape, p, sp)), 1e-13 * a + 1e-15);
+            }
+        }
+        free(s), free(sp);
+        fr_tape_free(&tape);
+    }
+}
+
 /* ---------------------------------------------------------------- stability cases */
 
 /* A ray 1e-10 inside the silhouette of a unit sphere (two roots 2.8e-5
@@ -612,6 +673,7 @@ int main(int argc, char **argv)
     static const t_case_t cases[] = {
         T_CASE(ray_poly_matches_point_evaluation),
         T_CASE(ray_poly_reports_non_polynomial_tape),
+        T_CASE(ray_poly_every_accepted_opcode),
         T_CASE(grazing_ray_sphere),
         T_CASE(grazing_ray_torus),
         T_CASE(ray_along_torus_axis_misses),
