@@ -532,6 +532,70 @@ static void prepared_poly_agrees_on_random_rays(void)
     model_free(&to);
 }
 
+/* The prepared program's own kernels and AD rules (fr__prog_normal), one
+   model each: a product by a constant on either side, a general product,
+   odd, even and fourth powers, a division by a constant, and operations
+   on constants (sqrt, exp, atan, min), all on a closed degree-4 solid.
+   Prepared and unprepared analytic traces agree on hit, t and normal
+   (gcov: no test had taken MULK, the general product, POWI, DIV or the
+   constant operations through the program). */
+static fr_node_t prep_case(fr_builder_t *b, int which)
+{
+    fr_p3_t X = fr_coords(b);
+    fr_node_t r2 = fr_add(b, fr_add(b, fr_unary(b, FR_OP_SQR, X.x), fr_unary(b, FR_OP_SQR, X.y)), fr_unary(b, FR_OP_SQR, X.z));
+    fr_node_t q = fr_unary(b, FR_OP_SQR, r2); /* |p|^4: closes the solid */
+    fr_node_t k = fr_const(b, 0.3), term;
+    switch (which) {
+    case 0: term = fr_mul(b, X.x, k); break;                                     /* by a constant, right */
+    case 1: term = fr_mul(b, k, fr_sub(b, X.y, X.z)); break;                     /* by a constant, left */
+    case 2: term = fr_mul(b, fr_add(b, X.x, k), fr_sub(b, X.y, k)); break;       /* two slots */
+    case 3: term = fr_add(b, fr_powi(b, X.x, 3), fr_powi(b, X.y, 2)); break;
+    case 4: term = fr_mul(b, k, fr_powi(b, fr_add(b, X.z, k), 4)); break;
+    case 5: term = fr_div(b, fr_add(b, X.x, X.y), fr_const(b, 2.5)); break;
+    default: { /* operations on constants, as a factor and as a term */
+        fr_node_t c = fr_add(b, fr_add(b, fr_unary(b, FR_OP_SQRT, k), fr_unary(b, FR_OP_EXP, k)),
+                             fr_add(b, fr_unary(b, FR_OP_ATAN, k), fr_binary(b, FR_OP_MIN, k, fr_const(b, 0.1))));
+        term = fr_add(b, fr_mul(b, c, X.x), fr_sub(b, c, fr_const(b, 1.9)));
+        break;
+    }
+    }
+    return fr_sub(b, fr_sub(b, fr_const(b, 1.0), q), term);
+}
+static void prepared_poly_program_kernels(void)
+{
+    int which, k;
+    long i, n = t_count(400);
+    for (which = 0; which < 7; which++) {
+        model_t m;
+        fr_builder_t b;
+        fr_prepared_t pp;
+        t_rng_t g = {(unsigned long long)(31 + which)};
+        long hits = 0;
+        fr_builder_init(&b, NULL);
+        model_finish(&m, &b, prep_case(&b, which));
+        if (!T_INT_EQ(fr_prepare(&m.tape, NULL, &pp), FR_OK)) { model_free(&m); continue; }
+        T_INT_EQ(pp.kind, FR_PREPARED_POLY);
+        for (i = 0; i < n; i++) {
+            fr_trace_desc_t an = method(FR_METHOD_ANALYTIC, 0), anp;
+            double o[3], d[3];
+            fr_hit_t a, ap;
+            for (k = 0; k < 3; k++) o[k] = t_rng_range(&g, -4, 4), d[k] = t_rng_range(&g, -0.8, 0.8) - o[k];
+            anp = an;
+            anp.prepared = &pp;
+            a = trace(&m, o, d, 0, 2, an);
+            ap = trace(&m, o, d, 0, 2, anp);
+            T_INT_EQ(ap.hit, a.hit);
+            if (!(a.hit && ap.hit)) continue;
+            hits++;
+            T_NEAR(ap.t, a.t, 1e-12 * (1 + fabs(a.t)));
+            T_GE(ap.normal[0] * a.normal[0] + ap.normal[1] * a.normal[1] + ap.normal[2] * a.normal[2], 1 - 1e-12);
+        }
+        T_GT(hits, n / 4);
+        fr_prepared_free(&pp);
+        model_free(&m);
+    }
+}
+
 /* A slab 2e-5 thick, far thinner than any step: interval bisection through
    the prepared program still finds it (the monotone hand-over never drops
    a segment that holds a root), at the closed-form entry within tol. */
@@ -572,6 +636,7 @@ int main(int argc, char **argv)
         T_CASE(prepared_csg_shadow_rays_and_fd_normals),
         T_CASE(prepared_csg_many_leaves_agree),
         T_CASE(prepared_poly_agrees_on_random_rays),
+        T_CASE(prepared_poly_program_kernels),
         T_CASE(prepared_interval_thin_feature),
     };
     return T_RUN(argc, argv, cases);
