@@ -134,6 +134,23 @@ static void quartic_roots_spread_1e_minus9_to_1e9(void)
     check_roots("spread quartic", c, 4, -HUGE_VAL, HUGE_VAL, 4e-16, 0);
 }
 
+/* Root magnitudes spread over more bits than one scaling holds (FR__BAND_BITS
+   / degree: 150 bits at degree 6): the solver takes them in bands, negative
+   side first; roots from 1e-25 to 1e25 on both sides, with a complex pair
+   (gcov: no test had reached the banded path). */
+static void roots_spread_over_several_bands(void)
+{
+    static const double roots[6] = {-1e25, -3e10, 1e-25, 2, 5e12, 1e24};
+    static const double roots8[6] = {-4e-30, -1e-5, 7e-22, 3e18, 2e28, 1e30};
+    static const double pair[1][2] = {{1e5, 3e4}};
+    double c[9];
+    from_roots(c, roots, 6, NULL, 0, 1);
+    check_roots("degree 6, roots 1e-25 to 1e25", c, 6, -HUGE_VAL, HUGE_VAL, 1e-15, 0);
+    from_roots(c, roots8, 6, pair, 1, 1);
+    check_roots("degree 8, roots 4e-30 to 1e30 and a pair", c, 8, -HUGE_VAL, HUGE_VAL, 1e-15, 0);
+    check_roots("degree 8 on [-1, 1e20]", c, 8, -1, 1e20, 1e-15, 0);
+}
+
 static void quartic_cluster_2_2001_2002_2003(void)
 {
     static const double roots[4] = {2, 2.001, 2.002, 2.003};
@@ -675,6 +692,7 @@ int main(int argc, char **argv)
         T_CASE(quadratic_roots_1e_minus9_and_1e9),
         T_CASE(quartic_roots_spread_1e_minus9_to_1e9),
         T_CASE(quartic_cluster_2_2001_2002_2003),
+        T_CASE(roots_spread_over_several_bands),
         T_CASE(quartic_cluster_within_1e_minus8),
         T_CASE(exact_multiple_roots),
         T_CASE(near_double_roots_tangent),
