@@ -748,6 +748,43 @@ static void t_dispatch(void)
     }
 }
 
+/* gr_query with line samples on a footprint that §4 first cuts into parts
+   (§4.2 oversampling: long along a curved groove) and whose parts then
+   meet the path's end: the answer must be gr_query_lines()'s, bit for bit
+   (gcov: no test had reached this hand-over after oversampling). The
+   quadratic parabola of test_grooves_representation, footprints long
+   along it near each end (found by a search over such footprints). */
+static void t_dispatch_after_oversampling(void)
+{
+#ifndef GR_NO_CURVES
+    static const double a = 0.01, sec[6] = {-a, 0, 0, -a, a, 0}, quad[6] = {0.3, 0.2, 0.5, 0.8, 0.7, 0.2};
+    static const double fp[2][6] = {{0.302498, 0.208713, 0.007939, 0.085651, -0.004979, 0.000461},
+                                    {0.674067, 0.260911, 0.001673, 0.071463, -0.004999, 0.000117}};
+    gr_groove_desc_t g;
+    gr_grid_desc_t d;
+    gr_grid_t *grid = NULL;
+    int c, k;
+    memset(&g, 0, sizeof g);
+    memset(&d, 0, sizeof d);
+    g.points = quad, g.point_count = 3, g.section = sec, g.section_count = 3, g.kind = GR_PATH_QUADRATIC;
+    d.grooves = &g, d.groove_count = 1, d.no_wrap = 1;
+    if (!T_CHECK(gr_grid_build(&d, &grid, NULL) == GR_OK)) return;
+    for (c = 0; c < 2; c++) {
+        gr_query_t q = gt_query(fp[c][0], fp[c][1], 0, 0, 0, 1);
+        gr_facet_list_t a1, b1;
+        q.footprint.axis1[0] = fp[c][2], q.footprint.axis1[1] = fp[c][3];
+        q.footprint.axis2[0] = fp[c][4], q.footprint.axis2[1] = fp[c][5];
+        q.line_samples = 2;
+        if (!gt_run(grid, &q, &a1) || !run_lines(grid, &q, &b1, NULL)) break;
+        T_CHECK(b1.flags & GR_LIST_PATH_END);
+        T_INT_EQ(a1.count, b1.count);
+        T_CHECK(a1.flags == b1.flags);
+        for (k = 0; k < a1.count && k < b1.count; k++) T_CHECK(!memcmp(&a1.facets[k], &b1.facets[k], sizeof a1.facets[k]));
+    }
+    gr_grid_free(grid);
+#endif
+}
+
 /* Named stiff cases of line samples. */
 
 /* a scene scaled about (0.5, 0.5) by k: paths and sections */
@@ -944,7 +981,7 @@ int main(int argc, char **argv)
         T_CASE(t_isolated_equals_query), T_CASE(t_crossings_vs_raster), T_CASE(t_oblique_crossings_vs_oracle),
         T_CASE(t_self_crossing_vs_oracle),
         T_CASE(t_weighting),
-        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_stiff_scale), T_CASE(t_stiff_grazing),
+        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_dispatch_after_oversampling), T_CASE(t_stiff_scale), T_CASE(t_stiff_grazing),
         T_CASE(t_stiff_degenerate_footprint), T_CASE(t_stiff_many_grooves), T_CASE(t_bad_input),
     };
     return T_RUN(argc, argv, cases);
