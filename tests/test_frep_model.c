@@ -886,6 +886,18 @@ static void batch_matches_point_every_opcode(void)
     }
 }
 
+/* fr_result_string: a distinct name per code, "unknown result" beyond them */
+static void result_strings(void)
+{
+    int i, j;
+    for (i = 0; i < FR_RESULT_COUNT_; i++) {
+        T_CHECK(strcmp(fr_result_string((fr_result_t)i), "unknown result") != 0);
+        for (j = 0; j < i; j++) T_CHECK(strcmp(fr_result_string((fr_result_t)i), fr_result_string((fr_result_t)j)) != 0);
+    }
+    T_CHECK(strcmp(fr_result_string(FR_RESULT_COUNT_), "unknown result") == 0);
+    T_CHECK(strcmp(fr_result_string((fr_result_t)999), "unknown result") == 0);
+}
+
 /* ------------------------------------------------------------ builder */
 static void builder_rejects_bad_parameters_with_message(void)
 {
@@ -976,7 +988,7 @@ int main(int argc, char **argv)
         T_CASE(affine_maps_closed_form), T_CASE(twist_taper_stretch_bend_closed_form),
         T_CASE(elementary_ops_closed_form), T_CASE(callback_point_only_reports_no_interval),
         T_CASE(callback_with_interval_and_gradient), T_CASE(attributes_evaluated_with_shape),
-        T_CASE(sdf_wrap_and_lipschitz_flag), T_CASE(batch_matches_point), T_CASE(batch_matches_point_every_opcode),
+        T_CASE(sdf_wrap_and_lipschitz_flag), T_CASE(batch_matches_point), T_CASE(batch_matches_point_every_opcode), T_CASE(result_strings),
         T_CASE(builder_rejects_bad_parameters_with_message), T_CASE(builder_limit_and_dead_code),
     };
     return T_RUN(argc, argv, cases);
