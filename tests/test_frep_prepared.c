@@ -464,6 +464,59 @@ static void prepared_csg_many_leaves_agree(void)
     model_free(&m);
 }
 
+/* CSG leaves written with the operations the quadric form takes that no
+   other test uses (gcov): a sphere divided by a constant, a plane from a
+   zeroth power, a first power and the power of a constant; rays at random
+   and along y and z, parallel to the plane leaf, which is then constant
+   along the ray. Prepared against plain. */
+static void prepared_csg_leaf_forms(void)
+{
+    fr_builder_t b;
+    fr_p3_t p;
+    model_t m;
+    fr_prepared_t pr;
+    t_rng_t g = {99};
+    static const double c0[3] = {0.1, 0.2, -0.1}, lo[3] = {-3, -3, -3}, hi[3] = {3, 3, 3};
+    double box[6];
+    long n = t_count(3000), i, hits = 0, off = 0;
+    int k;
+    fr_node_t sph, plane, slab, f;
+    fr_trace_desc_t pl = method(FR_METHOD_AUTO, 0), fa;
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    sph = fr_div(&b, fr_sphere(&b, p, c0, 1.0), fr_const(&b, 2.5));
+    plane = fr_sub(&b, fr_powi(&b, p.y, 0), fr_add(&b, p.x, fr_const(&b, 0.5))); /* x < 0.5 */
+    slab = fr_sub(&b, fr_powi(&b, fr_const(&b, 0.9), 3), fr_unary(&b, FR_OP_SQR, fr_powi(&b, p.z, 1))); /* |z| < 0.854 */
+    f = fr_union(&b, fr_intersect(&b, sph, plane, 1.0), fr_intersect(&b, slab, fr_sphere(&b, p, c0, 1.4), 0.0), 1.0);
+    model_finish(&m, &b, f);
+    T_INT_EQ(fr_bound_box(&m.tape, lo, hi, 7, m.scratch, box, box + 3), FR_OK);
+    if (!T_INT_EQ(fr_prepare(&m.tape, box, &pr), FR_OK)) { model_free(&m); return; }
+    T_INT_EQ(pr.kind, FR_PREPARED_CSG);
+    T_INT_EQ(pr.n_quadrics, pr.n_leaves);
+    pl.bounds = box;
+    fa = pl;
+    fa.prepared = &pr;
+    for (i = 0; i < n; i++) {
+        double o[3], d[3];
+        fr_hit_t a, h;
+        for (k = 0; k < 3; k++) o[k] = t_rng_range(&g, -2.5, 2.5), d[k] = t_rng_range(&g, -1, 1) - o[k];
+        if (i % 3) { /* along y or z: parallel to the plane leaf */
+            int ax = i % 3;
+            for (k = 0; k < 3; k++) d[k] = k == ax ? -o[k] : 0;
+        }
+        a = trace(&m, o, d, 0, 2, pl);
+        h = trace(&m, o, d, 0, 2, fa);
+        if (a.hit != h.hit || (a.hit && fabs(a.t - h.t) > 1e-10 * (1 + fabs(a.t)))) { off++; continue; }
+        if (!a.hit) continue;
+        hits++;
+        T_GE(a.normal[0] * h.normal[0] + a.normal[1] * h.normal[1] + a.normal[2] * h.normal[2], 1 - 1e-9);
+    }
+    T_GT(hits, n / 5);
+    T_INT_EQ(off, 0);
+    fr_prepared_free(&pr);
+    model_free(&m);
+}
+
 /* ---------------------------------------------------------------- polynomial tapes */
 
 /* g(t) of the quartic torus in __float128 (the tangle cube's: test_frep_ref_models.h) */
@@ -637,6 +690,7 @@ int main(int argc, char **argv)
         T_CASE(prepared_csg_many_leaves_agree),
         T_CASE(prepared_poly_agrees_on_random_rays),
         T_CASE(prepared_poly_program_kernels),
+        T_CASE(prepared_csg_leaf_forms),
         T_CASE(prepared_interval_thin_feature),
     };
     return T_RUN(argc, argv, cases);
