@@ -7,6 +7,7 @@
 #   make check-headers   the header compile matrix only
 #   make bench           error-against-time tables, CSV in out/bench, plots in docs/img
 #   make fuzz            long libFuzzer runs (FUZZ_SECONDS=600)
+#   make coverage        the header lines no test runs (gcc --coverage; MODULES=rounded ...)
 #   make install PREFIX=/usr/local    headers + filigree.pc
 #   make clean
 #
@@ -55,7 +56,7 @@ EXAMPLES := $(addprefix $(B)/examples/,$(EX_NAMES))
 EX_COMMON:= $(wildcard examples/common/*.c examples/common/*.cpp)
 EX_COMMON_OBJ := $(patsubst examples/common/%,$(B)/examples/common/%.o,$(EX_COMMON))
 
-.PHONY: all test tests benches check-headers demo bench fuzz install clean deps-test deps-demo deps-bench examples
+.PHONY: all test tests benches check-headers demo bench fuzz coverage install clean deps-test deps-demo deps-bench examples
 .DELETE_ON_ERROR:
 # the examples/common objects are shared by every example and bench: keep them
 .SECONDARY: $(EX_COMMON_OBJ)
@@ -166,6 +167,12 @@ fuzz:
 	@$(MAKE) --no-print-directory $(FUZZERS)
 	@set -e; for f in $(FUZZERS); do n=$$(basename $$f); mkdir -p $$f.corpus; \
 	  $$f -max_total_time=$(FUZZ_SECONDS) $$f.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
+
+# ---------------------------------------------------------------- coverage
+MODULES ?=
+coverage:
+	@scripts/deps.sh test
+	@python3 scripts/coverage.py $(MODULES)
 
 # ---------------------------------------------------------------- install
 install:
