@@ -2161,12 +2161,17 @@ static void gr__list_add(gr_facet_list_t *list, const gr__mfacet_t *m, double ra
             f->groove = m->groove;
             f->facet = m->facet;
         } else {
-            /* full: fold into the closest orientation (prefer the same id) */
+            /* full: fold into the closest orientation, the same id only
+               breaking ties (an id bonus larger than any normal distance, as
+               this once had, folded a V-groove's second wall into its first
+               and averaged the two into the flat normal) */
+            int best_same = 0;
             for (e = 0; e < list->count; e++) {
                 const gr_facet_t *g = &list->facets[e];
                 double dd = (g->normal[0] - m->n[0]) * (g->normal[0] - m->n[0]) + (g->normal[1] - m->n[1]) * (g->normal[1] - m->n[1]) +
-                            (g->normal[2] - m->n[2]) * (g->normal[2] - m->n[2]) + (g->reflectance == m->refl ? 0 : 8);
-                if (dd < bestd) { bestd = dd; best = e; }
+                            (g->normal[2] - m->n[2]) * (g->normal[2] - m->n[2]);
+                int same = g->reflectance == m->refl;
+                if (dd < bestd || (dd == bestd && same && !best_same)) { bestd = dd; best = e; best_same = same; }
             }
             e = best;
             list->flags |= GR_LIST_APPROX_MERGE;

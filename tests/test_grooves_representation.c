@@ -119,6 +119,51 @@ static void parallel_grooves_and_mirrored_path(void)
     gr_grid_free(grid);
 }
 
+/* More distinct facets than the list holds: 20 parallel grooves along v,
+   each with its own reflectance id, so their 40 walls and the ground are 41
+   entries for GR_MAX_FACETS = 32 places. The extra ones fold into the
+   closest orientation (GR_LIST_APPROX_MERGE), which here is always the
+   same wall normal of another groove: no normal is averaged, and each
+   orientation keeps its closed-form share from above, 20 a / 2r (gcov: no
+   test had filled the list; this found the fold preferring the same
+   reflectance id over any normal, which averaged groove 4's two walls
+   into the flat normal: 1 entry off, each wall share 0.01 short). */
+static void facet_list_overflow_folds_into_equal_normals(void)
+{
+    const double a = 0.005, D = 0.01, sec[6] = {-a, 0, 0, -D, a, 0};
+    static double pts[20][4];
+    gr_groove_desc_t g[20];
+    gr_grid_t *grid;
+    gr_query_t q = gt_query(0.5, 0.5, 0.25, 0, 0, 1);
+    gr_facet_list_t l;
+    double wall[2] = {0, 0}, ground = 0, sum = 0;
+    int i, other = 0;
+    for (i = 0; i < 20; i++) {
+        pts[i][0] = pts[i][2] = 0.31 + 0.02 * i, pts[i][1] = 0, pts[i][3] = 1;
+        g[i] = groove(pts[i], 2, sec, 3);
+        g[i].reflectance = 10 + i;
+    }
+    grid = build(g, 20, 0);
+    if (!grid || !gt_run(grid, &q, &l)) return;
+    T_CHECK(l.flags & GR_LIST_APPROX_MERGE);
+    T_INT_EQ(l.count, GR_MAX_FACETS);
+    for (i = 0; i < l.count; i++) {
+        const gr_facet_t *f = &l.facets[i];
+        double h = hypot(a, D);
+        sum += f->ratio;
+        if (f->normal[0] == 0 && f->normal[1] == 0 && f->normal[2] == 1) ground += f->ratio;
+        else if (fabs(fabs(f->normal[0]) - D / h) <= 1e-15 && f->normal[1] == 0 && fabs(f->normal[2] - a / h) <= 1e-15)
+            wall[f->normal[0] > 0] += f->ratio;
+        else other++;
+    }
+    T_INT_EQ(other, 0); /* every entry one of the three orientations: nothing averaged */
+    T_NEAR(sum, 1, 1e-12);
+    T_NEAR(wall[0], 20 * a / 0.5, 1e-12);
+    T_NEAR(wall[1], 20 * a / 0.5, 1e-12);
+    T_NEAR(ground, 1 - 40 * a / 0.5, 1e-12);
+    gr_grid_free(grid);
+}
+
 /* An asymmetric section (-a,0) (0,-D) (2a,0) on a path running -v: there
    B = (+1, 0), so b lies toward +u: the steep facet 0 spans u in
    [0.5 - a, 0.5], the shallow facet 1 [0.5, 0.5 + 2a]. From above:
@@ -702,6 +747,7 @@ int main(int argc, char **argv)
     static const t_case_t cases[] = {
         T_CASE(bounds_and_blockers),
         T_CASE(parallel_grooves_and_mirrored_path),
+        T_CASE(facet_list_overflow_folds_into_equal_normals),
         T_CASE(asymmetric_section_backward_path),
         T_CASE(protruding_ridge_shadows_ground),
         T_CASE(straight_beziers_match_segment),
