@@ -22,7 +22,7 @@ LIBS = ["-lembree3", "-lquadmath", "-lpthread", "-lm"]
 
 
 def build_and_run(module, out):
-    srcs = sorted(glob.glob("tests/test_%s*.c" % module))
+    srcs = sorted(glob.glob("tests/test_%s*.c" % module)) + ["tests/test_harness.c"] # the harness includes every header
     for i, src in enumerate(srcs):
         exe = os.path.join(out, os.path.basename(src)[:-2])
         sys.stderr.write("[%d/%d] %s\n" % (i + 1, len(srcs), src))

@@ -45,6 +45,19 @@ typedef struct t_state_t {
 static t_state_t t_state_ = {0, 0, 20, 0, "?"};
 
 #define T_CASE(fn) {#fn, fn}
+/* A module's xx_result_string(): every code below count has a name of its
+   own, never NULL nor "unknown result", which the count and beyond get. */
+#define T_RESULT_NAMES(fn, type, count)                                                        \
+    do {                                                                                       \
+        int i_, j_;                                                                            \
+        for (i_ = 0; i_ < (int)(count); i_++) {                                                \
+            T_CHECK(fn((type)i_) != NULL);                                                     \
+            T_CHECK(strcmp(fn((type)i_), "unknown result") != 0);                              \
+            for (j_ = 0; j_ < i_; j_++) T_CHECK(strcmp(fn((type)i_), fn((type)j_)) != 0);      \
+        }                                                                                      \
+        T_CHECK(strcmp(fn((type)(count)), "unknown result") == 0);                             \
+        T_CHECK(strcmp(fn((type)999), "unknown result") == 0);                                 \
+    } while (0)
 #define T_RUN(argc, argv, cases) t_main((argc), (argv), (cases), (int)(sizeof(cases) / sizeof((cases)[0])))
 
 static void t_report_(const char *file, int line, const char *expr, const char *detail)

@@ -886,17 +886,8 @@ static void batch_matches_point_every_opcode(void)
     }
 }
 
-/* fr_result_string: a distinct name per code, "unknown result" beyond them */
-static void result_strings(void)
-{
-    int i, j;
-    for (i = 0; i < FR_RESULT_COUNT_; i++) {
-        T_CHECK(strcmp(fr_result_string((fr_result_t)i), "unknown result") != 0);
-        for (j = 0; j < i; j++) T_CHECK(strcmp(fr_result_string((fr_result_t)i), fr_result_string((fr_result_t)j)) != 0);
-    }
-    T_CHECK(strcmp(fr_result_string(FR_RESULT_COUNT_), "unknown result") == 0);
-    T_CHECK(strcmp(fr_result_string((fr_result_t)999), "unknown result") == 0);
-}
+/* fr_result_string (T_RESULT_NAMES) */
+static void result_strings(void) { T_RESULT_NAMES(fr_result_string, fr_result_t, FR_RESULT_COUNT_); }
 
 /* ------------------------------------------------------------ builder */
 static void builder_rejects_bad_parameters_with_message(void)

@@ -371,6 +371,20 @@ static void prepared_csg_shadow_rays_and_fd_normals(void)
    path's hits, t within 1e-10 (1 + |t|) and normals within 1e-9, but for
    at most 0.1% of rays (grazing an edge where the two paths' roundings
    may decide differently). */
+/* One ray through the plain tape (pl) and the prepared model (fa): 0 when
+   they disagree on the hit or on t beyond 1e-10 relative, else 1 (and
+   *hits counts a shared hit, whose normals must agree to 1e-9). */
+static int prepared_ray_agrees(model_t *m, fr_trace_desc_t pl, fr_trace_desc_t fa, const double o[3], const double d[3],
+                               long *hits)
+{
+    fr_hit_t a = trace(m, o, d, 0, 2, pl), h = trace(m, o, d, 0, 2, fa);
+    if (a.hit != h.hit || (a.hit && fabs(a.t - h.t) > 1e-10 * (1 + fabs(a.t)))) return 0;
+    if (!a.hit) return 1;
+    ++*hits;
+    T_GE(a.normal[0] * h.normal[0] + a.normal[1] * h.normal[1] + a.normal[2] * h.normal[2], 1 - 1e-9);
+    return 1;
+}
+
 static void prepared_csg_many_leaves_agree(void)
 {
     fr_builder_t b;
@@ -449,14 +463,8 @@ static void prepared_csg_many_leaves_agree(void)
     fa.prepared = &pr;
     for (i = 0; i < n; i++) {
         double o[3], d[3];
-        fr_hit_t a, h;
         for (k = 0; k < 3; k++) { o[k] = t_rng_range(&g, -4, 4); d[k] = t_rng_range(&g, box[k], box[k + 3]) - o[k]; }
-        a = trace(&m, o, d, 0, 2, pl);
-        h = trace(&m, o, d, 0, 2, fa);
-        if (a.hit != h.hit || (a.hit && fabs(a.t - h.t) > 1e-10 * (1 + fabs(a.t)))) { off++; continue; }
-        if (!a.hit) continue;
-        hits++;
-        T_GE(a.normal[0] * h.normal[0] + a.normal[1] * h.normal[1] + a.normal[2] * h.normal[2], 1 - 1e-9);
+        off += !prepared_ray_agrees(&m, pl, fa, o, d, &hits);
     }
     T_GT(hits, n / 5);
     T_LE(off, n / 1000);
@@ -498,18 +506,12 @@ static void prepared_csg_leaf_forms(void)
     fa.prepared = &pr;
     for (i = 0; i < n; i++) {
         double o[3], d[3];
-        fr_hit_t a, h;
         for (k = 0; k < 3; k++) o[k] = t_rng_range(&g, -2.5, 2.5), d[k] = t_rng_range(&g, -1, 1) - o[k];
         if (i % 3) { /* along y or z: parallel to the plane leaf */
             int ax = i % 3;
             for (k = 0; k < 3; k++) d[k] = k == ax ? -o[k] : 0;
         }
-        a = trace(&m, o, d, 0, 2, pl);
-        h = trace(&m, o, d, 0, 2, fa);
-        if (a.hit != h.hit || (a.hit && fabs(a.t - h.t) > 1e-10 * (1 + fabs(a.t)))) { off++; continue; }
-        if (!a.hit) continue;
-        hits++;
-        T_GE(a.normal[0] * h.normal[0] + a.normal[1] * h.normal[1] + a.normal[2] * h.normal[2], 1 - 1e-9);
+        off += !prepared_ray_agrees(&m, pl, fa, o, d, &hits);
     }
     T_GT(hits, n / 5);
     T_INT_EQ(off, 0);
