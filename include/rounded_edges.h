@@ -2455,7 +2455,7 @@ static double re__corner_bound(const re__an_t *an, unsigned c, double req, unsig
     const double *u0 = an->su + 3 * (size_t)an->c_sfirst[c];
     lim[0] = lim[1] = -1;
     /* a vertex inside a straight edge: its sphere ends up between the
-       chain's end spheres (re__finish), which are checked */
+       chain's end spheres (re__chain_axes), which are checked */
     if (an->vstate[v] != RE__V_CORNER || an->c_np[c] == 2) return best;
     /* a plane farther than req (1 + |u|) from v cannot bound the radius
        below the request (n.u + 1 <= |u| + 1), so it cannot clamp it:
@@ -2975,10 +2975,6 @@ static re_result_t re__kd_build_top(re__an_t *an, re__kd_t *kd, unsigned n, cons
     return rc;
 }
 
-/* The point where the three planes, shifted inward by r, meet (Cramer's
-   rule), solved relative to org (the object's bounding-box centre) so it
-   keeps its precision at coordinates near 1e6. The build (re__finish) and
-   the query (re__centre) both call this, on the same stored planes. */
 /* The leaves' lists in 16-bit form (re__node_t), written to nodes16 and
    out when they are not NULL; returns the number of 16-bit entries. A list
    is cut, in its order, into runs whose ids span at most 65535 and that
@@ -3017,6 +3013,10 @@ static size_t re__kd_narrow(const re__kd_t *kd, re__node_t *nodes16, unsigned sh
     return at;
 }
 
+/* The point where the three planes, shifted inward by r, meet (Cramer's
+   rule), solved relative to org (the object's bounding-box centre) so it
+   keeps its precision at coordinates near 1e6. The build (re__final_spheres) and
+   the query (re__centre) both call this, on the same stored planes. */
 static void re__solve3(const re__plane_t *A, const re__plane_t *B, const re__plane_t *C, double r, const double org[3],
                        double x[3])
 {
@@ -3405,131 +3405,171 @@ static re_result_t re__bands_take(re__an_t *an, re__arena_t *ar, re__final_t *F,
     return RE_OK;
 }
 
-static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, const double *patch_r, unsigned *uf,
-                             const double *reach, re__final_t *F)
+/* Per triangle: its neighbour across each flat edge (B->nb, RE__NONE
+   across any other) and 1 / its altitude from each corner (B->ih). Returns
+   whether any edge is flat. */
+static unsigned re__band_tables(const re__an_t *an, re__bandwork_t *B)
 {
-    unsigned T = an->T, c, j, i, t, k, any_flat = 0;
-    size_t mark;
-    re__bandwork_t B;
-    re_result_t rc = re__bands_take(an, ar, F, &B, &mark);
-    if (rc != RE_OK) return rc;
-    for (t = 0; t < T; t++)
+    unsigned t, k, any_flat = 0;
+    for (t = 0; t < an->T; t++)
         for (k = 0; k < 3; k++) {
             unsigned e = an->he_edge[3 * t + k];
-            B.nb[3 * (size_t)t + k] = e == RE__NONE || an->edges[e].cls != RE__E_FLAT ? RE__NONE
-                                      : an->edges[e].he[0] / 3 == t ? an->edges[e].he[1] / 3 : an->edges[e].he[0] / 3;
-            any_flat |= B.nb[3 * (size_t)t + k] != RE__NONE;
+            B->nb[3 * (size_t)t + k] = e == RE__NONE || an->edges[e].cls != RE__E_FLAT ? RE__NONE
+                                       : an->edges[e].he[0] / 3 == t ? an->edges[e].he[1] / 3 : an->edges[e].he[0] / 3;
+            any_flat |= B->nb[3 * (size_t)t + k] != RE__NONE;
         }
-    for (t = 0; t < T; t++)
+    for (t = 0; t < an->T; t++)
         for (k = 0; k < 3; k++) {
             double ed[3];
-            if (an->tbad[t]) { B.ih[3 * (size_t)t + k] = 0; continue; }
+            if (an->tbad[t]) { B->ih[3 * (size_t)t + k] = 0; continue; }
             re__sub(an->pos + 3 * (size_t)an->tri[3 * t + (k + 2) % 3], an->pos + 3 * (size_t)an->tri[3 * t + (k + 1) % 3], ed);
-            B.ih[3 * (size_t)t + k] = re__len(ed) / an->tarea[t]; /* 1 / the altitude from corner k */
+            B->ih[3 * (size_t)t + k] = re__len(ed) / an->tarea[t]; /* 1 / the altitude from corner k */
         }
-    B.st = 0;
-    if (B.chain) {
-        /* straight chains: their edges joined at the vertices inside them,
-           which have two rounded edges (re__chain_end's steps) */
-        for (i = 0; i < an->E; i++) B.chain[i] = i, B.cover[i] = 0;
-        for (c = 0; c < an->nc; c++) {
-            unsigned v = an->c_vertex[c], e0 = RE__NONE, e1 = RE__NONE;
-            if (an->c_np[c] != 2) continue;
-            for (j = an->voff[v]; j < an->voff[v + 1]; j++)
-                if (an->edges[an->vinc[j]].rounded) { if (e0 == RE__NONE) e0 = an->vinc[j]; else e1 = an->vinc[j]; }
-            if (e1 == RE__NONE) continue;
-            re__uf_join(B.chain, e0, e1);
-            B.cover[e0] |= RE__IN_CHAIN, B.cover[e1] |= RE__IN_CHAIN;
-        }
+    return any_flat;
+}
+
+/* Straight chains (B->chain): their edges joined at the vertices inside
+   them, which have two rounded edges (re__chain_end's steps). */
+static void re__band_chains(const re__an_t *an, re__bandwork_t *B)
+{
+    unsigned i, c, j;
+    for (i = 0; i < an->E; i++) B->chain[i] = i, B->cover[i] = 0;
+    for (c = 0; c < an->nc; c++) {
+        unsigned v = an->c_vertex[c], e0 = RE__NONE, e1 = RE__NONE;
+        if (an->c_np[c] != 2) continue;
+        for (j = an->voff[v]; j < an->voff[v + 1]; j++)
+            if (an->edges[an->vinc[j]].rounded) { if (e0 == RE__NONE) e0 = an->vinc[j]; else e1 = an->vinc[j]; }
+        if (e1 == RE__NONE) continue;
+        re__uf_join(B->chain, e0, e1);
+        B->cover[e0] |= RE__IN_CHAIN, B->cover[e1] |= RE__IN_CHAIN;
     }
-    for (t = 0; t < 4 * T; t++) B.beta[t] = 0;
-    for (t = 0; t < T; t++) B.stamp[t] = 0;
-    /* the strips of each rounded edge, on both its faces: first every
-       edge's band on its own triangles, then the pieces beyond them, each
-       assigned at once to the band that loses the least area (the own
-       bands, the widest, are in place by then, so a corner piece joins
-       one of them or the cap) */
+}
+
+/* The band each rounded edge's strip needs on its own two triangles: the
+   strip's width over the altitude from the corner opposite the edge, on
+   both faces alike: r tan(theta/2), tan(theta/2) = (1 - cos) / sin. */
+static void re__own_strips(const re__an_t *an, re__bandwork_t *B, const double *patch_r, unsigned *uf)
+{
+    unsigned i, h;
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
-        unsigned h;
         double r, cs, sn, w;
         if (!e->rounded) continue;
         r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
-        /* the strip's width over the altitude from the corner opposite the
-           edge, on both faces alike: r tan(theta/2), tan(theta/2) =
-           (1 - cos) / sin */
         cs = re__dot(an->planes[an->tplane[e->he[1] / 3]].n, an->planes[an->tplane[e->he[0] / 3]].n);
         sn = sqrt(re__max(0.0, 1 - cs * cs));
         w = sn > 0 ? r * (1 - cs) / sn : 0.0;
         for (h = 0; h < 2; h++) {
             unsigned t0 = e->he[h] / 3, m0 = (e->he[h] % 3 + 2) % 3;
-            B.beta[4 * (size_t)t0 + m0] = re__max(B.beta[4 * (size_t)t0 + m0], sn > 0 ? w * B.ih[3 * (size_t)t0 + m0] : 1.0);
+            B->beta[4 * (size_t)t0 + m0] = re__max(B->beta[4 * (size_t)t0 + m0], sn > 0 ? w * B->ih[3 * (size_t)t0 + m0] : 1.0);
         }
     }
-    /* without flat edges (every face one triangle, as on an icosphere) no
-       strip reaches past its own triangle: every triangle is alone on its
-       face */
-    for (i = 0; i < an->E && any_flat; i++) {
+}
+
+/* The pieces of the strips beyond their own triangles (re__band_strip), on
+   faces of several triangles. */
+static void re__far_strips(const re__an_t *an, re__bandwork_t *B, const double *patch_r, unsigned *uf)
+{
+    unsigned i, h;
+    for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
-        unsigned t0, t1, root = RE__NONE, h;
+        unsigned t0, t1, root = RE__NONE;
         double r;
         if (!e->rounded) continue;
         r = patch_r[re__uf_find(uf, an->vcorner[e->v[0]])];
         t0 = e->he[0] / 3, t1 = e->he[1] / 3;
         /* a straight chain's strips are walked once, by its first edge
            (walking them from every segment was quadratic in its length) */
-        if (B.cover && (B.cover[i] & RE__IN_CHAIN) && re__uf_find(B.chain, i) == i) root = i;
+        if (B->cover && (B->cover[i] & RE__IN_CHAIN) && re__uf_find(B->chain, i) == i) root = i;
         for (h = 0; h < 2; h++) {
-            if (root == RE__NONE && B.cover && (B.cover[i] & (1u << h))) continue; /* its chain's walk reached it */
-            re__band_strip(an, &B, an->tplane[h ? t1 : t0], &an->planes[an->tplane[h ? t0 : t1]], r, e->he[h], root);
+            if (root == RE__NONE && B->cover && (B->cover[i] & (1u << h))) continue; /* its chain's walk reached it */
+            re__band_strip(an, B, an->tplane[h ? t1 : t0], &an->planes[an->tplane[h ? t0 : t1]], r, e->he[h], root);
         }
     }
-    /* caps at corners with planes that are not edge neighbours */
+}
+
+/* The cap of triangle tt at its corner kv (vertex v): the disc of radius
+   rho around v, within rho / h_m of the two edges through it (h_m the
+   altitude from corner m, twice the area over the opposite edge), and of
+   corner kv itself. The face's other triangles within rho that do not
+   touch v are always queried (bands 1). */
+static void re__corner_cap(const re__an_t *an, re__bandwork_t *B, unsigned v, unsigned tt, unsigned kv, double rho)
+{
+    unsigned qh = 0, qt = 0, m, k;
+    double need[4];
+    for (m = 0; m < 3; m++) need[m] = m == kv ? 1.0 : rho * B->ih[3 * (size_t)tt + m];
+    need[3] = rho * B->ih[3 * (size_t)tt + kv];
+    re__band_take(B->beta + 4 * (size_t)tt, need);
+    if (B->nb[3 * (size_t)tt] == RE__NONE && B->nb[3 * (size_t)tt + 1] == RE__NONE && B->nb[3 * (size_t)tt + 2] == RE__NONE)
+        return; /* alone on its face */
+    B->st++;
+    B->stamp[tt] = B->st;
+    B->queue[qt++] = tt;
+    while (qh < qt) {
+        unsigned t2 = B->queue[qh++];
+        for (k = 0; k < 3; k++) {
+            unsigned o2 = B->nb[3 * (size_t)t2 + k];
+            if (o2 == RE__NONE || B->stamp[o2] == B->st) continue;
+            B->stamp[o2] = B->st;
+            if (an->tri[3 * o2] == v || an->tri[3 * o2 + 1] == v || an->tri[3 * o2 + 2] == v) {
+                B->queue[qt++] = o2; /* a fan triangle of v: its own cap */
+                continue;
+            }
+            if (re__point_tri_dist(an, o2, an->pos + 3 * (size_t)v) > rho) continue;
+            B->beta[4 * (size_t)o2] = B->beta[4 * (size_t)o2 + 1] = B->beta[4 * (size_t)o2 + 2] = 1;
+            B->queue[qt++] = o2;
+        }
+    }
+}
+
+/* Caps at corners with planes that are not edge neighbours (4 or more),
+   of radius the corner's face reach (without detection's margin), on each
+   triangle at the corner once: the one whose half-edge leaves v. */
+static void re__corner_caps(const re__an_t *an, re__bandwork_t *B, const unsigned *fc, const double *reach)
+{
+    unsigned c, j, h;
     for (c = 0; c < an->nc; c++) {
-        unsigned v = an->c_vertex[c], np = an->c_np[c];
+        unsigned v = an->c_vertex[c];
         double rho;
-        if (fc[c] == RE__NONE || np < 4) continue;
+        if (fc[c] == RE__NONE || an->c_np[c] < 4) continue;
         rho = reach[fc[c]] / 1.5;
         for (j = an->voff[v]; j < an->voff[v + 1]; j++) {
             const re__edge_t *e = &an->edges[an->vinc[j]];
-            unsigned h;
             for (h = 0; h < 2 && h < e->count; h++) {
-                unsigned tt = e->he[h] / 3, kv = e->he[h] % 3, qh = 0, qt = 0, m;
-                double need[4];
-                /* each triangle at v once: the one whose half-edge leaves v */
+                unsigned tt = e->he[h] / 3;
                 if (an->tri[e->he[h]] != v || an->tplane[tt] == RE__NONE) continue;
-                /* the disc of radius rho around corner kv: within rho / h_m
-                   of the two edges through it (h_m the altitude from corner
-                   m, twice the area over the opposite edge), and of corner
-                   kv itself */
-                for (m = 0; m < 3; m++) need[m] = m == kv ? 1.0 : rho * B.ih[3 * (size_t)tt + m];
-                need[3] = rho * B.ih[3 * (size_t)tt + kv];
-                re__band_take(B.beta + 4 * (size_t)tt, need);
-                if (B.nb[3 * (size_t)tt] == RE__NONE && B.nb[3 * (size_t)tt + 1] == RE__NONE &&
-                    B.nb[3 * (size_t)tt + 2] == RE__NONE)
-                    continue; /* alone on its face */
-                /* the face's triangles within rho that do not touch v: always queried */
-                B.st++;
-                B.stamp[tt] = B.st;
-                B.queue[qt++] = tt;
-                while (qh < qt) {
-                    unsigned t2 = B.queue[qh++];
-                    for (k = 0; k < 3; k++) {
-                        unsigned o2 = B.nb[3 * (size_t)t2 + k];
-                        if (o2 == RE__NONE || B.stamp[o2] == B.st) continue;
-                        B.stamp[o2] = B.st;
-                        if (an->tri[3 * o2] == v || an->tri[3 * o2 + 1] == v || an->tri[3 * o2 + 2] == v) {
-                            B.queue[qt++] = o2; /* a fan triangle of v: its own cap */
-                            continue;
-                        }
-                        if (re__point_tri_dist(an, o2, an->pos + 3 * (size_t)v) > rho) continue;
-                        B.beta[4 * (size_t)o2] = B.beta[4 * (size_t)o2 + 1] = B.beta[4 * (size_t)o2 + 2] = 1;
-                        B.queue[qt++] = o2;
-                    }
-                }
+                re__corner_cap(an, B, v, tt, e->he[h] % 3, rho);
             }
         }
     }
+}
+
+/* Query step 0's bands (docs: "Per-triangle bands"): per triangle, the
+   barycentric band along each edge that the rounding can reach and a cap
+   at the corners, rounded up to 1/RE__BAND_STEPS, into F->bands. */
+static re_result_t re__bands(re__an_t *an, re__arena_t *ar, const unsigned *fc, const double *patch_r, unsigned *uf,
+                             const double *reach, re__final_t *F)
+{
+    unsigned T = an->T, t, k, any_flat;
+    size_t mark;
+    re__bandwork_t B;
+    re_result_t rc = re__bands_take(an, ar, F, &B, &mark);
+    if (rc != RE_OK) return rc;
+    any_flat = re__band_tables(an, &B);
+    B.st = 0;
+    if (B.chain) re__band_chains(an, &B);
+    for (t = 0; t < 4 * T; t++) B.beta[t] = 0;
+    for (t = 0; t < T; t++) B.stamp[t] = 0;
+    /* the strips of each rounded edge, on both its faces: first every
+       edge's band on its own triangles, then the pieces beyond them, each
+       assigned at once to the band that loses the least area (the own
+       bands, the widest, are in place by then, so a corner piece joins
+       one of them or the cap). Without flat edges (every face one
+       triangle, as on an icosphere) no strip reaches past its own
+       triangle: every triangle is alone on its face */
+    re__own_strips(an, &B, patch_r, uf);
+    if (any_flat) re__far_strips(an, &B, patch_r, uf);
+    re__corner_caps(an, &B, fc, reach);
     for (t = 0; t < T; t++)
         for (k = 0; k < 4; k++) {
             double b = B.beta[4 * t + k];
@@ -3608,7 +3648,7 @@ static int re__chain_inner(const re__final_t *F, const unsigned char *used, unsi
 }
 
 /* Drops the corners inside straight chains once every cylinder of their
-   chain spans it (re__finish: csph): their spheres lie on the chain's axis,
+   chain spans it (re__chain_respan): their spheres lie on the chain's axis,
    inside its cylinder, and no cylinder, reference or walk reaches them any
    more, yet each cost a corner record, two references and a stored centre
    (about 55 bytes a segment: a finely split edge took 79-84 bytes per
@@ -3616,7 +3656,7 @@ static int re__chain_inner(const re__final_t *F, const unsigned char *used, unsi
    of two planes none of whose spheres an edge cylinder ends at go; the
    kept corners and spheres are renumbered in order, in place (a new index
    never exceeds the old one), after every step that reads the analysis'
-   per-corner arrays, which some of these alias (re__finish: fc_id). A
+   per-corner arrays, which some of these alias (re__numbering_t.fc_id). A
    scene without such corners is left bit for bit as it was. */
 static re_result_t re__drop_chain_corners(re__an_t *an, re__arena_t *ar, re__final_t *F)
 {
@@ -3776,60 +3816,78 @@ static re_result_t re__exit_clearance(re__an_t *an, re__arena_t *ar, re__final_t
     return RE_OK;
 }
 
-static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf,
-                              re__final_t *F)
+/* What the steps of re__finish pass on to each other: where the analysis'
+   rounded corners, spheres, cylinders, planes and patches go in the scene's
+   arrays, and each corner's detection reach. */
+typedef struct re__numbering_t {
+    unsigned *fc;    /* per analysis corner: its corner id, RE__NONE when it is not rounded */
+    unsigned *sbase; /* per analysis corner: its first sphere */
+    unsigned *xbase; /* per analysis corner: its first extra cylinder */
+    unsigned *rmap;  /* per patch root (re__uf_find): the patch's number */
+    unsigned *prid;  /* per patch: its radius id in F->radii */
+    unsigned *ecyl;  /* per edge: its cylinder, RE__NONE when it is not rounded */
+    unsigned *pmap;  /* per analysis plane: its id, RE__NONE when no corner uses it */
+    unsigned *csph;  /* with straight chains: each segment's chain end spheres, 2 per edge; else NULL */
+    double *reach;   /* per corner: its face reach with margin (detection, bands) */
+    double *dmax;    /* per corner: the largest |sphere centre - vertex| */
+    unsigned npatch;
+    int pm_id, fc_id; /* pmap, fc are the identity: the analysis' arrays serve */
+} re__numbering_t;
+
+/* Numbers the rounded corners in vertex order, their spheres, references,
+   edge and extra cylinders, and their patches; marks the planes they use. */
+static re_result_t re__number_features(re__an_t *an, re__arena_t *ar, unsigned *uf, re__final_t *F, re__numbering_t *N)
 {
-    unsigned c, i, j, k, *fc, *sbase, *xbase, *ecyl, *pmap, *rmap, *prid, ns = 0, ncyl = 0, nref = 0, nco = 0, npatch = 0;
-    unsigned *csph = NULL; /* with straight chains: each segment's chain end spheres, 2 per edge */
-    unsigned char *cshort = NULL; /* with straight chains: per edge cylinder, its box's ends at split vertices */
-    unsigned qslot[RE_MAX_CORNER_PLANES];
-    int pm_id, fc_id;
-    size_t kd_mark;
-    double *box, *reach, *dmax, lo[3], hi[3];
-    RE__TAKE(fc, unsigned, an->nc + 1);
-    RE__TAKE(sbase, unsigned, an->nc + 1);
-    RE__TAKE(xbase, unsigned, an->nc + 1);
-    RE__TAKE(rmap, unsigned, an->nc + 1);
-    RE__TAKE(prid, unsigned, an->nc + 1);
-    RE__TAKE(ecyl, unsigned, an->E + 1);
-    RE__TAKE(pmap, unsigned, an->n_planes + 1);
-    for (i = 0; i < an->n_planes; i++) pmap[i] = RE__NONE;
-    for (i = 0; i < an->E; i++) ecyl[i] = an->edges[i].rounded ? ncyl++ : RE__NONE;
+    unsigned c, i, j, ns = 0, ncyl = 0, nref = 0, nco = 0;
+    RE__TAKE(N->fc, unsigned, an->nc + 1);
+    RE__TAKE(N->sbase, unsigned, an->nc + 1);
+    RE__TAKE(N->xbase, unsigned, an->nc + 1);
+    RE__TAKE(N->rmap, unsigned, an->nc + 1);
+    RE__TAKE(N->prid, unsigned, an->nc + 1);
+    RE__TAKE(N->ecyl, unsigned, an->E + 1);
+    RE__TAKE(N->pmap, unsigned, an->n_planes + 1);
+    for (i = 0; i < an->n_planes; i++) N->pmap[i] = RE__NONE;
+    for (i = 0; i < an->E; i++) N->ecyl[i] = an->edges[i].rounded ? ncyl++ : RE__NONE;
     F->n_edge_cyls = ncyl;
-    F->n_planes = 0;
-    F->n_radii = 0;
-    for (c = 0; c < an->nc; c++) rmap[c] = RE__NONE;
+    for (c = 0; c < an->nc; c++) N->rmap[c] = RE__NONE;
     for (c = 0; c < an->nc; c++) {
         unsigned p;
-        fc[c] = RE__NONE;
+        N->fc[c] = RE__NONE;
         if (an->vstate[an->c_vertex[c]] != RE__V_CORNER) continue;
-        fc[c] = nco++;
-        sbase[c] = ns;
+        N->fc[c] = nco++;
+        N->sbase[c] = ns;
         ns += an->c_ns[c];
-        xbase[c] = ncyl;
+        N->xbase[c] = ncyl;
         ncyl += an->c_nx[c];
         nref += (unsigned)an->c_np[c];
         p = re__uf_find(uf, c);
-        if (rmap[p] == RE__NONE) rmap[p] = npatch++;
-        for (j = 0; j < an->c_np[c]; j++) {
-            unsigned q = an->c_planes[an->c_pfirst[c] + j];
-            pmap[q] = 0; /* used; numbered below, in triangle order (re__pk_t) */
-        }
+        if (N->rmap[p] == RE__NONE) N->rmap[p] = N->npatch++;
+        for (j = 0; j < an->c_np[c]; j++) N->pmap[an->c_planes[an->c_pfirst[c] + j]] = 0; /* used; re__number_planes */
     }
-    /* A vertex inside a straight edge (k = 2) has its sphere on the chain's
-       axis; where the chain's end spheres are set back past it (a short
-       first segment), it is moved along the axis into their span, which
-       leaves the union of capsules unchanged and keeps it inside. Each chain
-       is walked from one of its end corners, twice (once to find the far
-       end, once for the vertices inside): linear in its length, where
-       walking to both ends from every vertex inside was quadratic (a box
-       whose faces are fine grids). */
+    F->n_corners = nco;
+    F->n_spheres = ns;
+    F->n_xsph = 0;
+    F->n_cyls = ncyl;
+    F->n_refs = nref;
+    return RE_OK;
+}
+
+/* A vertex inside a straight edge (k = 2) has its sphere on the chain's
+   axis; where the chain's end spheres are set back past it (a short first
+   segment), it is moved along the axis into their span, which leaves the
+   union of capsules unchanged and keeps it inside. Each chain is walked
+   from one of its end corners, twice (once to find the far end, once for
+   the vertices inside): linear in its length, where walking to both ends
+   from every vertex inside was quadratic (a box whose faces are fine
+   grids). N->csph stays NULL without such vertices. */
+static re_result_t re__chain_axes(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf, re__numbering_t *N)
+{
+    unsigned c, i;
     for (c = 0; c < an->nc && an->c_np[c] != 2; c++) {}
-    if (c < an->nc) {
-        RE__TAKE(csph, unsigned, 2 * (size_t)an->E + 1);
-        for (i = 0; i < 2 * an->E; i++) csph[i] = RE__NONE;
-    }
-    for (c = 0; c < an->nc && csph; c++) {
+    if (c == an->nc) return RE_OK;
+    RE__TAKE(N->csph, unsigned, 2 * (size_t)an->E + 1);
+    for (i = 0; i < 2 * an->E; i++) N->csph[i] = RE__NONE;
+    for (c = 0; c < an->nc; c++) {
         unsigned v = an->c_vertex[c], q;
         if (an->c_np[c] == 2) continue;
         for (q = an->voff[v]; q < an->voff[v + 1]; q++) {
@@ -3840,40 +3898,57 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             cb = re__chain_end(an, c, e, &last);
             /* once per chain: from its lower end, or from its only end */
             if (cb != RE__NONE && (cb < c || (cb == c && last < e))) continue;
-            re__chain_spheres(an, fc, sbase, patch_r, uf, c, e, cb, last, csph);
+            re__chain_spheres(an, N->fc, N->sbase, patch_r, uf, c, e, cb, last, N->csph);
         }
     }
+    return RE_OK;
+}
+
+/* The planes the corners use, numbered in triangle order (re__pk_t). */
+static void re__number_planes(const re__an_t *an, re__final_t *F, unsigned *pmap)
+{
+    unsigned i;
+    F->n_planes = 0;
     for (i = 0; i < an->T; i++) {
         unsigned q = an->tplane[i];
         if (q != RE__NONE && pmap[q] == 0) pmap[q] = RE__PK_FULL | F->n_planes++;
     }
     for (i = 0; i < an->n_planes; i++) pmap[i] = pmap[i] == RE__NONE ? RE__NONE : pmap[i] & ~RE__PK_FULL;
-    F->n_corners = nco;
-    F->n_spheres = ns;
-    F->n_xsph = 0;
-    F->n_cyls = ncyl;
-    F->n_refs = nref;
-    /* radii are shared between patches of equal radius (one-radius objects
-       need no radius ids: re__k_radius); ascending, prid[patch] = its id */
-    {
-        double *pr;
-        RE__TAKE(pr, double, npatch + 1);
-        for (c = 0; c < an->nc; c++)
-            if (fc[c] != RE__NONE) pr[rmap[re__uf_find(uf, c)]] = patch_r[re__uf_find(uf, c)];
-        RE__TAKE(F->radii, double, npatch + 1);
-        memcpy(F->radii, pr, sizeof(double) * npatch);
-        qsort(F->radii, npatch, sizeof(double), re__cmp_double);
-        for (i = 0; i < npatch; i++)
-            if (F->n_radii == 0 || F->radii[F->n_radii - 1] != F->radii[i]) F->radii[F->n_radii++] = F->radii[i];
-        for (i = 0; i < npatch; i++) {
-            unsigned rl = 0, rh = F->n_radii;
-            while (rh - rl > 1) {
-                unsigned mid = rl + (rh - rl) / 2;
-                if (F->radii[mid] <= pr[i]) rl = mid; else rh = mid;
-            }
-            prid[i] = rl;
+}
+
+/* Radii are shared between patches of equal radius (one-radius objects
+   need no radius ids: re__k_radius): F->radii ascending, N->prid[patch]
+   its id. */
+static re_result_t re__patch_radii(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf, re__final_t *F,
+                                   re__numbering_t *N)
+{
+    double *pr;
+    unsigned c, i;
+    RE__TAKE(pr, double, N->npatch + 1);
+    for (c = 0; c < an->nc; c++)
+        if (N->fc[c] != RE__NONE) pr[N->rmap[re__uf_find(uf, c)]] = patch_r[re__uf_find(uf, c)];
+    RE__TAKE(F->radii, double, N->npatch + 1);
+    memcpy(F->radii, pr, sizeof(double) * N->npatch);
+    qsort(F->radii, N->npatch, sizeof(double), re__cmp_double);
+    F->n_radii = 0;
+    for (i = 0; i < N->npatch; i++)
+        if (F->n_radii == 0 || F->radii[F->n_radii - 1] != F->radii[i]) F->radii[F->n_radii++] = F->radii[i];
+    for (i = 0; i < N->npatch; i++) {
+        unsigned rl = 0, rh = F->n_radii;
+        while (rh - rl > 1) {
+            unsigned mid = rl + (rh - rl) / 2;
+            if (F->radii[mid] <= pr[i]) rl = mid; else rh = mid;
         }
+        N->prid[i] = rl;
     }
+    return RE_OK;
+}
+
+/* The scene's arrays, in scratch (re__pack copies them into the block), and
+   the planes and the triangles' plane ids in their final numbering. */
+static re_result_t re__take_final(re__an_t *an, re__arena_t *ar, re__final_t *F, re__numbering_t *N)
+{
+    unsigned i, nco = F->n_corners, ns = F->n_spheres, ncyl = F->n_cyls;
     F->pk_n[RE__PKA_TRI_PLANE] = an->T;
     F->pk_n[RE__PKA_CVERTEX] = F->pk_n[RE__PKA_K_FIRST] = F->pk_n[RE__PKA_K_SFIRST] = nco;
     F->pk_n[RE__PKA_K_RID] = F->n_radii > 1 ? nco : 0u;
@@ -3891,20 +3966,20 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
          their plane counts) and first spheres are the analysis' arrays;
        - the centres overwrite the unit offsets they come from (sbase[c] <=
          c_sfirst[c], both ascending, and nothing reads su after the corner
-         loop below);
+         loop of re__final_corners);
        - sphere infos and stored ids only in the compact layout, which
          stores them. */
-    for (i = 0; i < an->n_planes && pmap[i] == i; i++) {}
-    pm_id = i == an->n_planes;
-    fc_id = nco == an->nc; /* fc[c] = c: numbered in order */
+    for (i = 0; i < an->n_planes && N->pmap[i] == i; i++) {}
+    N->pm_id = i == an->n_planes;
+    N->fc_id = nco == an->nc; /* fc[c] = c: numbered in order */
     for (i = 0; i < RE__PKA_N; i++) {
-        if (pm_id && i == RE__PKA_TRI_PLANE) F->pk[i] = an->tplane;
-        else if (fc_id && !an->vorig && i == RE__PKA_CVERTEX) F->pk[i] = an->c_vertex; /* else mesh ids: re__vid */
-        else if (fc_id && i == RE__PKA_K_FIRST) F->pk[i] = an->c_pfirst;
-        else if (fc_id && i == RE__PKA_K_SFIRST) F->pk[i] = sbase;
+        if (N->pm_id && i == RE__PKA_TRI_PLANE) F->pk[i] = an->tplane;
+        else if (N->fc_id && !an->vorig && i == RE__PKA_CVERTEX) F->pk[i] = an->c_vertex; /* else mesh ids: re__vid */
+        else if (N->fc_id && i == RE__PKA_K_FIRST) F->pk[i] = an->c_pfirst;
+        else if (N->fc_id && i == RE__PKA_K_SFIRST) F->pk[i] = N->sbase;
         else RE__TAKE(F->pk[i], unsigned, F->pk_n[i]);
     }
-    if (pm_id) F->planes = an->planes;
+    if (N->pm_id) F->planes = an->planes;
     else RE__TAKE(F->planes, re__plane_t, F->n_planes);
     F->sph = an->su;
     if (RE__WANT_COMPACT(an->desc)) {
@@ -3918,30 +3993,108 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
     if (RE__WANT_COMPACT(an->desc)) RE__TAKE(F->det8, unsigned char, 2 * (size_t)F->n_edge_cyls);
     else RE__TAKE(F->det, unsigned short, 2 * (size_t)F->n_edge_cyls);
     RE__TAKE(F->corners, re__corner_t, nco);
-    RE__TAKE(F->refs, unsigned, nref);
-    RE__TAKE(reach, double, nco + 1);
-    RE__TAKE(dmax, double, nco + 1);
-    for (i = 0; i < an->T && !pm_id; i++)
-        F->pk[RE__PKA_TRI_PLANE][i] = an->tplane[i] == RE__NONE ? RE__NONE : pmap[an->tplane[i]];
-    if (!pm_id)
+    RE__TAKE(F->refs, unsigned, F->n_refs);
+    RE__TAKE(N->reach, double, nco + 1);
+    RE__TAKE(N->dmax, double, nco + 1);
+    for (i = 0; i < an->T && !N->pm_id; i++)
+        F->pk[RE__PKA_TRI_PLANE][i] = an->tplane[i] == RE__NONE ? RE__NONE : N->pmap[an->tplane[i]];
+    if (!N->pm_id)
         for (i = 0; i < an->n_planes; i++)
-            if (pmap[i] != RE__NONE) F->planes[pmap[i]] = an->planes[i];
-    nref = 0;
+            if (N->pmap[i] != RE__NONE) F->planes[N->pmap[i]] = an->planes[i];
+    return RE_OK;
+}
+
+/* Corner c's sphere centres (radius r, vertex v) into F, each either
+   stored or, in the compact layout, marked as solved from three of its
+   face planes (the query's qslot numbering) when that gives the same point
+   to RE__SPHERE_SOLVE_REL. Returns the largest |centre - v| and, in
+   *freach, the corner zone's reach on its faces: on a face g through a
+   centre, the zone is the hull of v and the eroded vertices seen from
+   above, their tangential offsets. */
+static double re__final_spheres(const re__an_t *an, re__final_t *F, const re__numbering_t *N, unsigned c, double r,
+                                const unsigned *qslot, double *freach)
+{
+    const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
+    unsigned pf = an->c_pfirst[c], j, k, kid = N->fc[c];
+    double dm = 0;
+    for (j = 0; j < an->c_ns[c]; j++) {
+        unsigned sid = N->sbase[c] + j, tri = an->s_tri[an->c_sfirst[c] + j];
+        double *sp = F->sph + 3 * (size_t)sid, dd[3], x[3], ldd;
+        unsigned short info = RE__SPH_STORED;
+        re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
+        F->pk[RE__PKA_S_CORNER][sid] = kid;
+        if (tri != RE__NONE && RE__WANT_COMPACT(an->desc) && qslot[tri & 255u] < RE__SOLVED_SLOTS &&
+            qslot[tri >> 8 & 255u] < RE__SOLVED_SLOTS && qslot[tri >> 16] < RE__SOLVED_SLOTS) {
+            double tol = RE__SPHERE_SOLVE_REL * r + 64 * RE__DBL_EPS * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
+            re__solve3(&an->planes[an->c_planes[pf + (tri & 255u)]], &an->planes[an->c_planes[pf + (tri >> 8 & 255u)]],
+                       &an->planes[an->c_planes[pf + (tri >> 16)]], r, an->origin, x);
+            re__sub(x, sp, dd);
+            if (fabs(dd[0]) <= tol && fabs(dd[1]) <= tol && fabs(dd[2]) <= tol) {
+                sp[0] = x[0], sp[1] = x[1], sp[2] = x[2];
+                info = (unsigned short)(qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 5 | qslot[tri >> 16] << 10);
+            }
+        }
+        if (F->sinfo) F->sinfo[sid] = info;
+        if (info == RE__SPH_STORED) {
+            if (F->xsid) F->xsid[F->n_xsph] = sid;
+            if (F->xsph != F->sph) memcpy(F->xsph + 3 * (size_t)F->n_xsph, sp, 3 * sizeof(double));
+            F->n_xsph++;
+        }
+        re__sub(sp, v, dd);
+        ldd = re__len(dd);
+        dm = re__max(dm, ldd);
+        for (k = 0; k < an->c_np[c]; k++) {
+            const double *n = an->planes[an->c_planes[pf + k]].n;
+            double h = re__dot(n, dd), tg[3];
+            if (fabs(h + r) > RE__CORNER_EPS * re__max(r, ldd)) continue;
+            re__madd(dd, -h, n, tg);
+            *freach = re__max(*freach, re__len(tg));
+        }
+    }
+    return dm;
+}
+
+/* Along each edge of corner c the strip between the edge and the tangent
+   line is sqrt(d^2 - r^2) wide, d = distance from the axis to the edge:
+   freach widened to cover it. */
+static double re__strip_reach(const re__an_t *an, const re__final_t *F, const re__numbering_t *N, unsigned c, double r,
+                              double freach)
+{
+    const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
+    unsigned pf = an->c_pfirst[c], j;
+    for (j = 0; j < an->c_np[c]; j++) {
+        const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
+        const double *sp = F->sph + 3 * (size_t)(N->sbase[c] + an->c_start[pf + j]);
+        double dd[3], ed[3], cr[3], dist;
+        unsigned o2 = e->v[0] == an->c_vertex[c] ? e->v[1] : e->v[0];
+        re__sub(sp, v, dd);
+        re__sub(an->pos + 3 * (size_t)o2, v, ed);
+        re__cross(dd, ed, cr);
+        dist = re__len(cr) / re__len(ed);
+        freach = re__max(freach, sqrt(re__max(dist * dist - r * r, 0.0)));
+    }
+    return freach;
+}
+
+/* Each rounded corner's record, references, sphere centres, reaches and
+   extra cylinders, in its final numbering. */
+static void re__final_corners(re__an_t *an, re__final_t *F, re__numbering_t *N, const double *patch_r, unsigned *uf)
+{
+    unsigned c, j, nref = 0, qslot[RE_MAX_CORNER_PLANES];
     for (c = 0; c < an->nc; c++) {
         re__corner_t *K;
-        const double *v;
-        double r, freach = 0, dm = 0;
-        unsigned pf = an->c_pfirst[c];
-        if (fc[c] == RE__NONE) continue;
-        K = &F->corners[fc[c]];
-        v = an->pos + 3 * (size_t)an->c_vertex[c];
-        r = patch_r[re__uf_find(uf, c)];
-        if (F->pk_n[RE__PKA_K_RID]) F->pk[RE__PKA_K_RID][fc[c]] = prid[rmap[re__uf_find(uf, c)]];
-        RE_ASSERT(!fc_id || (fc[c] == c && an->c_pfirst[c] == nref));
-        if (F->pk[RE__PKA_CVERTEX] != an->c_vertex) F->pk[RE__PKA_CVERTEX][fc[c]] = re__vid(an, an->c_vertex[c]);
-        if (!fc_id) {
-            F->pk[RE__PKA_K_FIRST][fc[c]] = nref;
-            F->pk[RE__PKA_K_SFIRST][fc[c]] = sbase[c];
+        double r, freach = 0, dm;
+        unsigned pf = an->c_pfirst[c], kid = N->fc[c], root;
+        if (kid == RE__NONE) continue;
+        K = &F->corners[kid];
+        root = re__uf_find(uf, c);
+        r = patch_r[root];
+        if (F->pk_n[RE__PKA_K_RID]) F->pk[RE__PKA_K_RID][kid] = N->prid[N->rmap[root]];
+        RE_ASSERT(!N->fc_id || (kid == c && an->c_pfirst[c] == nref));
+        if (F->pk[RE__PKA_CVERTEX] != an->c_vertex) F->pk[RE__PKA_CVERTEX][kid] = re__vid(an, an->c_vertex[c]);
+        if (!N->fc_id) {
+            F->pk[RE__PKA_K_FIRST][kid] = nref;
+            F->pk[RE__PKA_K_SFIRST][kid] = N->sbase[c];
         }
         K->np = an->c_np[c];
         K->ns = an->c_ns[c];
@@ -3949,7 +4102,7 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
         K->clear = 0;
         for (j = 0; j < K->np; j++) {
             const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
-            F->refs[nref++] = ecyl[an->c_edges[pf + j]] << 1 | (e->v[0] == an->c_vertex[c] ? 1u : 0u);
+            F->refs[nref++] = N->ecyl[an->c_edges[pf + j]] << 1 | (e->v[0] == an->c_vertex[c] ? 1u : 0u);
         }
         /* the query numbers a corner's planes by its edges (re__corner_plane:
            plane j is the face whose half-edge of edge j leaves the corner);
@@ -3959,142 +4112,93 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
            there) to the one whose half-edge leaves it, the first of the
            next plane (slot j + 1, the first slot's after the last) */
         for (j = 0; j < K->np; j++) qslot[j + 1 < K->np ? j + 1 : 0] = j;
-        for (j = 0; j < K->ns; j++) {
-            double *sp = F->sph + 3 * (size_t)(sbase[c] + j), dd[3], x[3], ldd;
-            unsigned tri = an->s_tri[an->c_sfirst[c] + j];
-            unsigned short info = RE__SPH_STORED;
-            re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
-            F->pk[RE__PKA_S_CORNER][sbase[c] + j] = fc[c];
-            if (tri != RE__NONE && RE__WANT_COMPACT(an->desc) && qslot[tri & 255u] < RE__SOLVED_SLOTS &&
-                qslot[tri >> 8 & 255u] < RE__SOLVED_SLOTS && qslot[tri >> 16] < RE__SOLVED_SLOTS) {
-                double tol = RE__SPHERE_SOLVE_REL * r + 64 * RE__DBL_EPS * (fabs(v[0]) + fabs(v[1]) + fabs(v[2]));
-                re__solve3(&an->planes[an->c_planes[pf + (tri & 255u)]], &an->planes[an->c_planes[pf + (tri >> 8 & 255u)]],
-                           &an->planes[an->c_planes[pf + (tri >> 16)]], r, an->origin, x);
-                re__sub(x, sp, dd);
-                if (fabs(dd[0]) <= tol && fabs(dd[1]) <= tol && fabs(dd[2]) <= tol) {
-                    sp[0] = x[0], sp[1] = x[1], sp[2] = x[2];
-                    info = (unsigned short)(qslot[tri & 255u] | qslot[tri >> 8 & 255u] << 5 | qslot[tri >> 16] << 10);
-                }
-            }
-            if (F->sinfo) F->sinfo[sbase[c] + j] = info;
-            if (info == RE__SPH_STORED) {
-                if (F->xsid) F->xsid[F->n_xsph] = sbase[c] + j;
-                if (F->xsph != F->sph) memcpy(F->xsph + 3 * (size_t)F->n_xsph, sp, 3 * sizeof(double));
-                F->n_xsph++;
-            }
-            re__sub(sp, v, dd);
-            ldd = re__len(dd);
-            dm = re__max(dm, ldd);
-            /* on a face g through s, the corner zone is the hull of v and the
-               eroded vertices seen from above: their tangential offsets */
-            for (k = 0; k < K->np; k++) {
-                const double *n = an->planes[an->c_planes[pf + k]].n;
-                double h = re__dot(n, dd), tg[3];
-                if (fabs(h + r) > RE__CORNER_EPS * re__max(r, ldd)) continue;
-                re__madd(dd, -h, n, tg);
-                freach = re__max(freach, re__len(tg));
-            }
-        }
-        /* along an edge the strip between the edge and the tangent line is
-           sqrt(d^2 - r^2) wide, d = distance from the axis to the edge */
-        for (j = 0; j < K->np; j++) {
-            const re__edge_t *e = &an->edges[an->c_edges[pf + j]];
-            const double *sp = F->sph + 3 * (size_t)(sbase[c] + an->c_start[pf + j]);
-            double dd[3], ed[3], cr[3], dist;
-            unsigned o2 = e->v[0] == an->c_vertex[c] ? e->v[1] : e->v[0];
-            re__sub(sp, v, dd);
-            re__sub(an->pos + 3 * (size_t)o2, v, ed);
-            re__cross(dd, ed, cr);
-            dist = re__len(cr) / re__len(ed);
-            freach = re__max(freach, sqrt(re__max(dist * dist - r * r, 0.0)));
-        }
+        dm = re__final_spheres(an, F, N, c, r, qslot, &freach);
+        freach = re__strip_reach(an, F, N, c, r, freach);
         /* 1.5: margin over the bound (0.7 fails the exactness tests) */
-        reach[fc[c]] = 1.5 * freach;
-        dmax[fc[c]] = dm;
+        N->reach[kid] = 1.5 * freach;
+        N->dmax[kid] = dm;
         /* the walk measures from the first sphere, not from v: widen by |s - v| */
-        K->walk = re__float_up((reach[fc[c]] + r + dm) * (1 + 1e-6));
-        if (F->pk_n[RE__PKA_K_XFIRST]) F->pk[RE__PKA_K_XFIRST][fc[c]] = xbase[c];
+        K->walk = re__float_up((N->reach[kid] + r + dm) * (1 + 1e-6));
+        if (F->pk_n[RE__PKA_K_XFIRST]) F->pk[RE__PKA_K_XFIRST][kid] = N->xbase[c];
         for (j = 0; j < K->nx; j++) {
             const unsigned *x = an->c_x + 4 * (size_t)(an->c_xfirst[c] + j);
-            re__xcyl_t *xc = &F->xcyls[xbase[c] + j - F->n_edge_cyls];
-            F->pk[RE__PKA_X_CORNER][xbase[c] + j - F->n_edge_cyls] = fc[c];
+            re__xcyl_t *xc = &F->xcyls[N->xbase[c] + j - F->n_edge_cyls];
+            F->pk[RE__PKA_X_CORNER][N->xbase[c] + j - F->n_edge_cyls] = kid;
             xc->p[0] = (unsigned char)qslot[x[0]];
             xc->p[1] = (unsigned char)qslot[x[1]];
             xc->s[0] = (unsigned char)x[2];
             xc->s[1] = (unsigned char)x[3];
         }
     }
-    RE_ASSERT(RE__WANT_COMPACT(an->desc) || F->n_xsph == ns); /* re__cptr reads xsph by sphere id */
+    RE_ASSERT(RE__WANT_COMPACT(an->desc) || F->n_xsph == F->n_spheres); /* re__cptr reads xsph by sphere id */
+}
+
+/* Each rounded edge's cylinder: its end spheres and its two faces. */
+static void re__final_edge_cyls(const re__an_t *an, re__final_t *F, const re__numbering_t *N)
+{
+    unsigned i;
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
         re__cyl_t *cy;
-        unsigned ca, cb;
-        if (ecyl[i] == RE__NONE) continue;
-        cy = &F->cyls[ecyl[i]];
-        ca = an->vcorner[e->v[0]];
-        cb = an->vcorner[e->v[1]];
-        cy->s[0] = sbase[ca] + an->edge_end[2 * i];
-        cy->s[1] = sbase[cb] + an->edge_end[2 * i + 1];
+        unsigned h0, h1;
+        if (N->ecyl[i] == RE__NONE) continue;
+        cy = &F->cyls[N->ecyl[i]];
+        cy->s[0] = N->sbase[an->vcorner[e->v[0]]] + an->edge_end[2 * i];
+        cy->s[1] = N->sbase[an->vcorner[e->v[1]]] + an->edge_end[2 * i + 1];
         /* p[0]: the face whose triangle runs v[0] -> v[1], on the left of
            the edge leaving v[0] (seen from outside); p[1] is on the left
            leaving v[1]. Around a corner every face plane is on the left of
            exactly one of its edges, so the query reads each once. */
-        {
-            unsigned h0 = an->tri[e->he[0]] == e->v[0] ? e->he[0] : e->he[1];
-            unsigned h1 = h0 == e->he[0] ? e->he[1] : e->he[0];
-            cy->p[0] = pmap[an->tplane[h0 / 3]];
-            cy->p[1] = pmap[an->tplane[h1 / 3]];
-        }
-        F->pk[RE__PKA_C_S0][ecyl[i]] = cy->s[0];
+        h0 = an->tri[e->he[0]] == e->v[0] ? e->he[0] : e->he[1];
+        h1 = h0 == e->he[0] ? e->he[1] : e->he[0];
+        cy->p[0] = N->pmap[an->tplane[h0 / 3]];
+        cy->p[1] = N->pmap[an->tplane[h1 / 3]];
+        F->pk[RE__PKA_C_S0][N->ecyl[i]] = cy->s[0];
     }
-    F->n_xs1 = re__count_xs1(F);
-    for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
-    {
-        re_result_t rc = re__exit_clearance(an, ar, F);
-        if (rc != RE_OK) return rc;
-    }
-    /* Detection (§3.1): the removed zone on a face lies within g, the larger
-       face reach of the edge's two corners, of the mesh edge. The query
-       tests the distance to the edge's line (from the two face planes, so
-       the vertices need not be stored) and the axial position along the
-       rounding axis, whose end spheres lie within m - g = the larger
-       |sphere - vertex| of the vertices. Both are rounded up (bfloat16). The
-       kd box holds that set: the axis extended by m at both ends, widened
-       by g + (m - g) (the edge line is that close to the axis). */
-    F->kd.cap_leafrefs = (RE__KD_DUP * F->n_edge_cyls + (RE__WANT_COMPACT(an->desc) ? 0u : RE__KD_DUP_EXTRA)) + 64;
-    F->kd.cap_nodes = RE__KD_NODE_CAP(F->kd.cap_leafrefs);
-    F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
-    if (F->kd.cap_nodes >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
-    RE__TAKE(F->kd.nodes, re__node_t, F->kd.cap_nodes);
-    RE__TAKE(F->kd.leafrefs, unsigned, F->kd.cap_leafrefs);
-    kd_mark = ar->used; /* the boxes and the partition lists are scratch of the tree build only */
-    RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls + 1);
+}
+
+/* Detection (§3.1): the removed zone on a face lies within g, the larger
+   face reach of the edge's two corners, of the mesh edge. The query tests
+   the distance to the edge's line (from the two face planes, so the
+   vertices need not be stored) and the axial position along the rounding
+   axis, whose end spheres lie within m - g = the larger |sphere - vertex|
+   of the vertices. Both are rounded up (bfloat16, or one byte on a shared
+   exponent in the compact layout). The kd box (relative to the origin,
+   box[6 i ..], and their hull [lo, hi]) holds that set: the axis extended
+   by m at both ends, widened by g + (m - g) (the edge line is that close
+   to the axis). */
+static re_result_t re__detection_boxes(re__an_t *an, re__arena_t *ar, re__final_t *F, const re__numbering_t *N, double *box,
+                                       double lo[3], double hi[3])
+{
+    unsigned char *cshort = NULL; /* with straight chains: per edge cylinder, its box's ends at split vertices */
+    unsigned i, a;
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
     F->det_e0 = 1;
     for (i = 0; i < F->n_edge_cyls; i++) { /* the largest m fits re__det8 */
         unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
-        unsigned ex = re__det8_exp((re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6));
+        unsigned ex = re__det8_exp((re__max(N->reach[ka], N->reach[kb]) + re__max(N->dmax[ka], N->dmax[kb])) * (1 + 1e-6));
         F->det_e0 = ex > 16u && ex - 15u > F->det_e0 ? ex - 15u : F->det_e0;
     }
-    /* a segment inside a straight chain (below: its cylinder spans the
-       chain) is detected only along its own span, and the segments' boxes
-       join along the chain: at a split vertex the box is not extended by m,
-       and it is the tight box of the cylinder of radius m around the axis
-       (a box widened by m along the axis too held a point of a finely
-       split edge in hundreds of segments' boxes) */
-    if (csph) {
+    /* a segment inside a straight chain (re__chain_respan: its cylinder
+       spans the chain) is detected only along its own span, and the
+       segments' boxes join along the chain: at a split vertex the box is
+       not extended by m, and it is the tight box of the cylinder of radius
+       m around the axis (a box widened by m along the axis too held a point
+       of a finely split edge in hundreds of segments' boxes) */
+    if (N->csph) {
         RE__TAKE(cshort, unsigned char, F->n_edge_cyls + 1);
         for (i = 0; i < F->n_edge_cyls; i++) cshort[i] = 0;
         for (i = 0; i < an->E; i++)
-            if (ecyl[i] != RE__NONE && csph[2 * i] != RE__NONE)
-                cshort[ecyl[i]] = (unsigned char)(4u | (an->c_np[an->vcorner[an->edges[i].v[0]]] == 2 ? 1u : 0u) |
-                                                  (an->c_np[an->vcorner[an->edges[i].v[1]]] == 2 ? 2u : 0u));
+            if (N->ecyl[i] != RE__NONE && N->csph[2 * i] != RE__NONE)
+                cshort[N->ecyl[i]] = (unsigned char)(4u | (an->c_np[an->vcorner[an->edges[i].v[0]]] == 2 ? 1u : 0u) |
+                                                     (an->c_np[an->vcorner[an->edges[i].v[1]]] == 2 ? 2u : 0u));
     }
     for (i = 0; i < F->n_edge_cyls; i++) {
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
-        unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]], a;
+        unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
         double g, m, u[3], L, e0[3], e1[3];
-        double gr = re__max(reach[ka], reach[kb]) * (1 + 1e-6), mr = (re__max(reach[ka], reach[kb]) + re__max(dmax[ka], dmax[kb])) * (1 + 1e-6);
+        double gr = re__max(N->reach[ka], N->reach[kb]) * (1 + 1e-6),
+               mr = (re__max(N->reach[ka], N->reach[kb]) + re__max(N->dmax[ka], N->dmax[kb])) * (1 + 1e-6);
         if (F->det8) {
             F->det8[2 * i] = re__det8_up(gr, F->det_e0);
             F->det8[2 * i + 1] = re__det8_up(mr, F->det_e0);
@@ -4119,59 +4223,99 @@ static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch
             hi[a] = re__max(hi[a], box[6 * i + 3 + a]);
         }
     }
+    return RE_OK;
+}
+
+/* The detection radii and the kd-tree over the edge cylinders' boxes
+   (§3.2), its leaf lists narrowed to 16 bits; the boxes and partition
+   lists are scratch of this step only. */
+static re_result_t re__detection_tree(re__an_t *an, re__arena_t *ar, re__final_t *F, const re__numbering_t *N)
+{
+    double *box, lo[3], hi[3];
+    unsigned i, root, budget = RE__KD_DUP * F->n_edge_cyls + (RE__WANT_COMPACT(an->desc) ? 0u : RE__KD_DUP_EXTRA);
+    size_t kd_mark;
+    re_result_t rc;
+    F->kd.cap_leafrefs = budget + 64;
+    F->kd.cap_nodes = RE__KD_NODE_CAP(F->kd.cap_leafrefs);
+    F->kd.cap_tmp = 6 * F->n_edge_cyls + 64;
+    if (F->kd.cap_nodes >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
+    RE__TAKE(F->kd.nodes, re__node_t, F->kd.cap_nodes);
+    RE__TAKE(F->kd.leafrefs, unsigned, F->kd.cap_leafrefs);
+    kd_mark = ar->used;
+    RE__TAKE(box, double, 6 * (size_t)F->n_edge_cyls + 1);
+    if ((rc = re__detection_boxes(an, ar, F, N, box, lo, hi)) != RE_OK) return rc;
     F->kd.box = box;
     F->kd.compact = RE__WANT_COMPACT(an->desc);
     F->kd.n_nodes = F->kd.n_leafrefs = F->kd.n_leaves = 0;
     RE__TAKE(F->kd.tmp, unsigned, F->kd.cap_tmp);
     for (i = 0; i < F->n_edge_cyls; i++) F->kd.tmp[i] = i;
     F->kd.n_tmp = F->n_edge_cyls;
-    {
-        unsigned root;
-        re_result_t rc = re__kd_build_top(an, &F->kd, F->n_edge_cyls, lo, hi,
-                                          RE__KD_DUP * F->n_edge_cyls + (RE__WANT_COMPACT(an->desc) ? 0u : RE__KD_DUP_EXTRA), &root);
-        if (rc != RE_OK) return rc;
-        /* past its capacities (not with the real ones, RE__KD_NODE_CAP):
-           not a scratch shortage, which re_build() would retry */
-        if (root == RE__NONE) return re__fail(an, RE_ERR_TOO_LARGE, -1, "kd-tree past its node capacity");
-    }
+    if ((rc = re__kd_build_top(an, &F->kd, F->n_edge_cyls, lo, hi, budget, &root)) != RE_OK) return rc;
+    /* past its capacities (not with the real ones, RE__KD_NODE_CAP): not a
+       scratch shortage, which re_build() would retry */
+    if (root == RE__NONE) return re__fail(an, RE_ERR_TOO_LARGE, -1, "kd-tree past its node capacity");
     F->kd.box = NULL;
     F->kd.tmp = NULL;
     ar->used = kd_mark;
     F->n_leaf16 = re__kd_narrow(&F->kd, NULL, NULL);
     if (F->n_leaf16 >= 0x3FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many rounded edges for the kd-tree");
-    /* A straight chain is one rounding cylinder between its end corners (its
-       inner spheres lie on the axis, inside it): each segment's cylinder
-       spans the whole chain, so a query near the chain meets its two end
-       corners, not every split vertex on the way, and its walk crosses the
-       chain in one step. Detection stays local: the kd boxes and detection
-       radii above come from the segment's own spheres. */
-    if (csph) {
-        for (i = 0; i < an->E; i++) {
-            if (ecyl[i] == RE__NONE || csph[2 * i] == RE__NONE) continue;
-            F->cyls[ecyl[i]].s[0] = csph[2 * i];
-            F->cyls[ecyl[i]].s[1] = csph[2 * i + 1];
-            F->pk[RE__PKA_C_S0][ecyl[i]] = csph[2 * i];
-        }
-        F->n_xs1 = re__count_xs1(F);
-        F->pk_full[RE__PKA_C_S0] = re__pk_full_blocks(F->pk[RE__PKA_C_S0], F->pk_n[RE__PKA_C_S0]);
+    return RE_OK;
+}
+
+/* A straight chain is one rounding cylinder between its end corners (its
+   inner spheres lie on the axis, inside it): each segment's cylinder spans
+   the whole chain, so a query near the chain meets its two end corners,
+   not every split vertex on the way, and its walk crosses the chain in one
+   step. Detection stays local: the kd boxes and detection radii come from
+   the segment's own spheres (re__detection_boxes, before this). */
+static void re__chain_respan(const re__an_t *an, re__final_t *F, const re__numbering_t *N)
+{
+    unsigned i;
+    for (i = 0; i < an->E; i++) {
+        unsigned c = N->ecyl[i];
+        if (c == RE__NONE || N->csph[2 * i] == RE__NONE) continue;
+        F->cyls[c].s[0] = N->csph[2 * i];
+        F->cyls[c].s[1] = N->csph[2 * i + 1];
+        F->pk[RE__PKA_C_S0][c] = N->csph[2 * i];
     }
-    {
-        re_result_t rc = RE_OK;
+    F->n_xs1 = re__count_xs1(F);
+    F->pk_full[RE__PKA_C_S0] = re__pk_full_blocks(F->pk[RE__PKA_C_S0], F->pk_n[RE__PKA_C_S0]);
+}
+
+/* The scene's arrays for one object from its analysis (docs: construction,
+   steps 7-9): numbering, corners and spheres, cylinders, the exit gate,
+   detection and its kd-tree, straight chains, bands. */
+static re_result_t re__finish(re__an_t *an, re__arena_t *ar, const double *patch_r, unsigned *uf, re__final_t *F)
+{
+    re__numbering_t N;
+    re_result_t rc;
+    unsigned i;
+    memset(&N, 0, sizeof N);
+    if ((rc = re__number_features(an, ar, uf, F, &N)) != RE_OK || (rc = re__chain_axes(an, ar, patch_r, uf, &N)) != RE_OK)
+        return rc;
+    re__number_planes(an, F, N.pmap);
+    if ((rc = re__patch_radii(an, ar, patch_r, uf, F, &N)) != RE_OK || (rc = re__take_final(an, ar, F, &N)) != RE_OK)
+        return rc;
+    re__final_corners(an, F, &N, patch_r, uf);
+    re__final_edge_cyls(an, F, &N);
+    F->n_xs1 = re__count_xs1(F);
+    for (i = 0; i < RE__PKA_N; i++) F->pk_full[i] = re__pk_full_blocks(F->pk[i], F->pk_n[i]);
+    if ((rc = re__exit_clearance(an, ar, F)) != RE_OK || (rc = re__detection_tree(an, ar, F, &N)) != RE_OK) return rc;
+    if (N.csph) re__chain_respan(an, F, &N);
 #ifndef RE_NO_BANDS
-        if (an->sizing) { /* the bands' bytes are 4 per triangle: only their scratch counts */
-            re__bandwork_t B;
-            size_t mark;
-            if ((rc = re__bands_take(an, ar, F, &B, &mark)) != RE_OK) return rc;
-            ar->used = mark;
-        } else if ((rc = re__bands(an, ar, fc, patch_r, uf, reach, F)) != RE_OK)
-            return rc;
+    if (an->sizing) { /* the bands' bytes are 4 per triangle: only their scratch counts */
+        re__bandwork_t B;
+        size_t mark;
+        if ((rc = re__bands_take(an, ar, F, &B, &mark)) != RE_OK) return rc;
+        ar->used = mark;
+    } else if ((rc = re__bands(an, ar, N.fc, patch_r, uf, N.reach, F)) != RE_OK)
+        return rc;
 #endif
-        if (csph && (rc = re__drop_chain_corners(an, ar, F)) != RE_OK) return rc;
-    }
+    if (N.csph && (rc = re__drop_chain_corners(an, ar, F)) != RE_OK) return rc;
     an->st.rounded_corners += F->n_corners;
     an->st.spheres += F->n_spheres;
-    an->st.cylinders += ncyl;
-    an->st.extra_cylinders += ncyl - F->n_edge_cyls;
+    an->st.cylinders += F->n_cyls;
+    an->st.extra_cylinders += F->n_cyls - F->n_edge_cyls;
     an->st.kd_nodes += F->kd.n_nodes;
     an->st.kd_leaves += F->kd.n_leaves;
     an->st.kd_leaf_refs += F->kd.n_leafrefs;
@@ -4794,7 +4938,7 @@ static unsigned re__k_xfirst(const re__object_t *o, unsigned k) { return re__pk_
 
 
 /* Face plane j < np of a corner: the one on the left of its edge cylinder j
-   leaving the corner (re__finish orders each cylinder's planes so), which
+   leaving the corner (re__final_edge_cyls orders each cylinder's planes so), which
    lists every plane of the corner once. */
 static unsigned re__corner_plane(const re__object_t *o, const re__kv_t *K, unsigned j)
 {
