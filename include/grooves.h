@@ -2649,36 +2649,21 @@ static int gr__self_in_box(const gr_grid_t *grid, int g, const double *box, cons
 #  define GR__LINES_WANTED(query) 0
 #endif
 
-/* One footprint: gather, approximate, merge, project, clip, mask, shadow
-   (§4.1-4.4), adding weight x ratios to the list. With allow_split it
-   returns the oversampling count needed (> 1: nothing was added). With
-   divert, a footprint that a non-parallel groove, a path end (the flags
-   GR_LIST_NONPARALLEL, GR_LIST_PATH_END) or a groove's self-crossing
-   reaches returns GR__DIVERT right after the search (§4.1-4.2) and the
-   oversampling count, before any profile work: line samples will answer
-   it (a footprint to be oversampled is left to its parts' flags, as §4's
-   answer always was, unless a self-crossing reaches it). */
-static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_footprint_t *fp, double weight,
-                         const gr__scratch_t *s, gr_facet_list_t *list, int allow_split, int divert, double split_t[2])
+/* §4.1: the footprint's box around f (its centre, in the tile when the
+   grid wraps), enlarged by w, and by h tan θ toward the viewer and each
+   light (eq. 1) when something protrudes. Returns the largest tan θ of the
+   view and the lights above the horizon; *radius is the footprint's. */
+static double gr__query_box(const gr_grid_t *grid, const gr__qset_t *qs, const gr_footprint_t *fp, const double f[2],
+                            double box[4], double *radius)
 {
     const double *e = fp->view;
-    double f[2], box[4], ext_u, ext_v, radius, tanmax, bref[2], eb, ew, sq0, sq1, pm, pn, beta, half, margin;
-    double maxhalf = 0;
-    int n, k, ref = -1, np = 0, nf, npar = 0, i, point, nl = qs->light_count, self_cross = 0;
-    gr__mfacet_t ground;
-    f[0] = fp->center[0];
-    f[1] = fp->center[1];
-    if (grid->wrap) { /* the centre's image in the tile */
-        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
-        f[0] -= floor((f[0] - grid->domain[0]) / wu) * wu;
-        f[1] -= floor((f[1] - grid->domain[1]) / wv) * wv;
-    }
-    /* §4.1: the footprint's box, enlarged by w, and by h tan θ toward the
-       viewer and each light (eq. 1) when something protrudes */
+    double ext_u, ext_v, tanmax;
+    int k;
     gr__footprint_box(grid, fp, f, &ext_u, &ext_v, box);
+    *radius = sqrt(ext_u * ext_u + ext_v * ext_v);
     tanmax = gr__tan(e);
     if (grid->h > 0) {
-        for (k = -1; k < nl; k++) {
+        for (k = -1; k < qs->light_count; k++) {
             const double *dir = k < 0 ? e : qs->lights + 3 * k;
             double su, sv;
             if (!(dir[2] > 0)) continue;
@@ -2689,10 +2674,20 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (sv < 0) box[1] += sv; else box[3] += sv;
         }
     }
-    n = gr__gather(grid, box, s->seen, s->ids, s->visited);
-    radius = sqrt(ext_u * ext_u + ext_v * ext_v);
-    /* §4.2: each groove's nearest point, tangent and distance; keep those
-       that can reach the footprint */
+    return tanmax;
+}
+
+/* §4.2: the grooves of the box whose section can reach the footprint,
+   each with its nearest point, tangent, distance and perturbation, into
+   s->cand; flags path ends in the list, and *self_cross when (with
+   divert) a groove's self-crossing lies in the box. Returns their count,
+   *ref the nearest one (-1: none). */
+static int gr__nearby_grooves(const gr_grid_t *grid, const gr__qset_t *qs, const gr_footprint_t *fp, const gr__scratch_t *s,
+                              gr_facet_list_t *list, const double f[2], const double box[4], double radius, double tanmax,
+                              int divert, int *ref, int *self_cross)
+{
+    int n = gr__gather(grid, box, s->seen, s->ids, s->visited), k, npar = 0;
+    *ref = -1;
     for (k = 0; k < n; k++) {
         gr__cand_t *c = &s->cand[npar];
         const gr__groove_t *rec = &grid->grooves_[s->ids[k]];
@@ -2714,63 +2709,79 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             if (to_end < gr__extent(fp, c->t)) list->flags |= GR_LIST_PATH_END;
         }
 #ifndef GR_NO_LINE_SAMPLES
-        if (divert && gr__self_in_box(grid, c->groove, box, f)) self_cross = 1;
+        if (divert && gr__self_in_box(grid, c->groove, box, f)) *self_cross = 1;
+#else
+        (void)divert, (void)self_cross;
 #endif
         c->f = gr__perturb(rec, c->param);
         c->dfds = rec->perturb && qs->perturb_normals ? gr__perturb_slope(rec, c->dtds, c->param, gr__extent(fp, c->t)) : 0;
-        if (ref < 0 || fabs(c->d) < fabs(s->cand[ref].d)) ref = npar;
+        if (*ref < 0 || fabs(c->d) < fabs(s->cand[*ref].d)) *ref = npar;
         npar++;
     }
-    /* parallel to the nearest groove (§4.2); the others are intersections */
-    if (ref >= 0) {
-        gr__cand_t rc = s->cand[ref];
-        int m = 0;
-        for (k = 0; k < npar; k++) {
-            gr__cand_t *c = &s->cand[k];
-            double cr = c->t[0] * rc.t[1] - c->t[1] * rc.t[0], dt = c->t[0] * rc.t[0] + c->t[1] * rc.t[1];
-            if (fabs(cr) > qs->parallel_sin || dt == 0) { list->flags |= GR_LIST_NONPARALLEL; continue; }
-            c->sigma = dt > 0 ? 1 : -1;
-            s->cand[m++] = *c;
-        }
-        npar = m;
-        bref[0] = -rc.t[1];
-        bref[1] = rc.t[0];
-    } else {
+    return npar;
+}
+
+/* §4.2: keeps the candidates parallel to the nearest one (ref; the others
+   are intersections, flagged), each with its orientation sigma relative to
+   it; bref = its B (the x axis without candidates). Returns their count. */
+static int gr__keep_parallel(const gr__qset_t *qs, const gr__scratch_t *s, gr_facet_list_t *list, int npar, int ref,
+                             double bref[2])
+{
+    gr__cand_t rc;
+    int k, m = 0;
+    if (ref < 0) {
         bref[0] = 1;
         bref[1] = 0;
+        return npar;
     }
-#ifndef GR_NO_OVERSAMPLE
-    if (allow_split && qs->oversample_tol > 0 && qs->max_oversample > 1) {
-        int need = 1;
-        for (k = 0; k < npar; k++) {
-            int nk = gr__oversample_need(grid, &s->cand[k], fp, qs->oversample_tol);
-            if (nk > need) { need = nk; split_t[0] = s->cand[k].t[0]; split_t[1] = s->cand[k].t[1]; }
-        }
-        if (need > 1 && !(divert && self_cross))
-            return need > GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE ? GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE : need;
+    rc = s->cand[ref];
+    for (k = 0; k < npar; k++) {
+        gr__cand_t *c = &s->cand[k];
+        double cr = c->t[0] * rc.t[1] - c->t[1] * rc.t[0], dt = c->t[0] * rc.t[0] + c->t[1] * rc.t[1];
+        if (fabs(cr) > qs->parallel_sin || dt == 0) { list->flags |= GR_LIST_NONPARALLEL; continue; }
+        c->sigma = dt > 0 ? 1 : -1;
+        s->cand[m++] = *c;
     }
-#else
-    (void)allow_split;
-    (void)split_t;
-#endif
-    /* an oversampled footprint's parts decide by their own flags (the
-       caller); a self-crossing diverts at once */
-    if (divert && (self_cross || (list->flags & (GR_LIST_NONPARALLEL | GR_LIST_PATH_END)))) return GR__DIVERT;
-    /* the footprint across the groove: §4.2's segment S = [-pm, pm] from the
-       larger axis projection, widened by the smaller one pn into the
-       parallelogram's trapezoid density (gr__xmass) on [-half, half] */
-    pm = fabs(fp->axis1[0] * bref[0] + fp->axis1[1] * bref[1]);
-    pn = fabs(fp->axis2[0] * bref[0] + fp->axis2[1] * bref[1]);
+    bref[0] = -rc.t[1];
+    bref[1] = rc.t[0];
+    return m;
+}
+
+/* The footprint across the grooves (direction bref): §4.2's segment
+   S = [-pm, pm] from the larger axis projection, widened by the smaller
+   one pn into the parallelogram's trapezoid density (gr__xmass) on
+   [-half, half], or the ellipse's semicircle; a footprint narrower than
+   GR__POINT_FOOTPRINT_REL of the groove width is a point. */
+typedef struct gr__across_t {
+    double pm, half, beta; /* gr__xmass's big (before the E_w scale) and beta */
+    int point;
+} gr__across_t;
+static gr__across_t gr__footprint_across(const gr_grid_t *grid, const gr__qset_t *qs, const gr_footprint_t *fp,
+                                         const double bref[2])
+{
+    gr__across_t a;
+    double pm = fabs(fp->axis1[0] * bref[0] + fp->axis1[1] * bref[1]), pn = fabs(fp->axis2[0] * bref[0] + fp->axis2[1] * bref[1]);
     if (pn > pm) { double t = pm; pm = pn; pn = t; }
-    half = pm + pn;
-    point = pm <= GR__POINT_FOOTPRINT_REL * grid->w;
-    beta = point ? 0 : pn / pm;
+    a.half = pm + pn;
+    a.point = pm <= GR__POINT_FOOTPRINT_REL * grid->w;
+    a.beta = a.point ? 0 : pn / pm;
     if (qs->ellipse) { /* the semicircle of radius |(p1, p2)| (gr__xmass) */
-        pm = half = sqrt(pm * pm + pn * pn);
-        if (!point) beta = -1;
+        pm = a.half = sqrt(pm * pm + pn * pn);
+        if (!a.point) a.beta = -1;
     }
-    /* the merged cross-section (§4.2, Figure 5b): sections shifted by d_P,
-       mirrored when their tangent is opposite, sorted, ground in between */
+    a.pm = pm;
+    return a;
+}
+
+/* The merged cross-section (§4.2, Figure 5b) into s->x, s->w and s->mf:
+   the sections shifted by d_P, mirrored when their tangent is opposite,
+   sorted, ground in between and beyond [-half, half]. Returns its point
+   count; flags overlapping sections. */
+static int gr__merge_sections(const gr_grid_t *grid, const gr__scratch_t *s, gr_facet_list_t *list, int npar, double half)
+{
+    gr__mfacet_t ground;
+    double maxhalf = 0, margin;
+    int k, i, np = 0;
     for (k = 0; k < npar; k++) {
         gr__cand_t *c = &s->cand[k];
         const gr__groove_t *rec = &grid->grooves_[c->groove];
@@ -2820,33 +2831,48 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
     s->x[np] = (s->x[np - 1] > half ? s->x[np - 1] : half) + margin;
     s->pc[np] = -1;
     s->w[np++] = 0;
-    nf = np - 1;
-    if (list->grooves < npar) list->grooves = npar;
-    /* projection with the signed tan θ' (§4.2), scaled by E_w so grazing
-       views stay finite: q = E_w proj = E_w x - E_b w (each groove point
-       where the view ray reaching it meets the groove, gr__project) */
-    eb = e[0] * bref[0] + e[1] * bref[1];
-    ew = e[2];
+    return np;
+}
+
+/* The visible part [va, vb] of each of the nf = np - 1 facets in the
+   view's projection (§4.2), scaled by E_w so grazing views stay finite:
+   q = E_w proj = E_w x - E_b w (each groove point where the view ray
+   reaching it meets the groove, gr__project), masked (eq. 4) and clipped
+   to the footprint (eq. 3; a point footprint keeps the facet under its
+   centre, [0, 0]). Returns E_w's scale, the unit of va, vb. */
+static double gr__visible_parts(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int np, const double e[3],
+                                const double bref[2], const gr__across_t *a)
+{
+    double eb = e[0] * bref[0] + e[1] * bref[1], ew = e[2], sq0, sq1;
+    int i;
     gr__grazing_scale(&eb, &ew);
     gr__project(grid, qs, s, np, e, eb, ew, 1, 0, s->qe);
-    gr__sweep(s->qe, np, eb > 0, s->lo, s->hi);    /* masking, eq. 4 */
-    sq0 = -half * ew;
-    sq1 = half * ew;
-    for (i = 0; i < nf; i++) {                      /* clipping, eq. 3 */
-        double a = s->lo[i], b = s->hi[i];
-        if (point) {
-            if (a <= 0 && 0 < b) { s->va[i] = 0; s->vb[i] = 0; }
+    gr__sweep(s->qe, np, eb > 0, s->lo, s->hi); /* masking, eq. 4 */
+    sq0 = -a->half * ew;
+    sq1 = a->half * ew;
+    for (i = 0; i < np - 1; i++) { /* clipping, eq. 3 */
+        double lo = s->lo[i], hi = s->hi[i];
+        if (a->point) {
+            if (lo <= 0 && 0 < hi) { s->va[i] = 0; s->vb[i] = 0; }
             else s->va[i] = s->vb[i] = HUGE_VAL;
             continue;
         }
-        if (a < sq0) a = sq0;
-        if (b > sq1) b = sq1;
-        s->va[i] = a;
-        s->vb[i] = b;
+        if (lo < sq0) lo = sq0;
+        if (hi > sq1) hi = sq1;
+        s->va[i] = lo;
+        s->vb[i] = hi;
     }
-    /* shadowing: the same projection and masking per light (§4.3), then
-       intersected with the visible part in the facet's own parameter */
-    for (k = 0; k < nl; k++) {
+    return ew;
+}
+
+/* Shadowing (§4.3): the same projection and masking per light, intersected
+   with each facet's visible part in the facet's own parameter and weighted
+   by the footprint's density across (big = pm E_w), into s->lit. */
+static void gr__shadow_lights(const gr_grid_t *grid, const gr__qset_t *qs, const gr__scratch_t *s, int np, const double e[3],
+                              const double bref[2], const gr__across_t *a, double big)
+{
+    int k, i, nf = np - 1;
+    for (k = 0; k < qs->light_count; k++) {
         const double *l = qs->lights + 3 * k;
         double lb = l[0] * bref[0] + l[1] * bref[1], lw = l[2], inv_m = 1 / (fabs(lb) > lw ? fabs(lb) : lw);
         if (!(l[2] > 0)) { /* at or below the horizon */
@@ -2858,7 +2884,7 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
         gr__sweep(s->q, np, lb > 0, s->lo, s->hi);
         for (i = 0; i < nf; i++) {
             double de, sa, sb, la, lbb, dl, ov, v;
-            if (!(s->vb[i] > s->va[i]) && !(point && s->va[i] == 0)) continue;
+            if (!(s->vb[i] > s->va[i]) && !(a->point && s->va[i] == 0)) continue;
             de = s->qe[i + 1] - s->qe[i];
             sa = (s->va[i] - s->qe[i]) / de;
             sb = (s->vb[i] - s->qe[i]) / de;
@@ -2866,32 +2892,170 @@ static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_f
             dl = s->q[i + 1] - s->q[i];
             la = (s->lo[i] - s->q[i]) / dl;
             lbb = (s->hi[i] - s->q[i]) / dl;
-            if (point || !(sb > sa)) v = la <= sa && sa <= lbb;
+            if (a->point || !(sb > sa)) v = la <= sa && sa <= lbb;
             else {
                 /* the lit part of the visible interval, back in view
                    projection, weighted by the footprint density */
                 double oa = sa > la ? sa : la, ob = sb < lbb ? sb : lbb, qv = s->qe[i];
-                double wv = gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta);
+                double wv = gr__xmass(s->va[i], s->vb[i] - s->va[i], big, a->beta);
                 ov = ob - oa;
                 if (!(ov > 0)) v = 0;
-                else if (wv > 0) v = gr__xmass(qv + oa * de, ov * de, pm * ew, beta) / wv;
+                else if (wv > 0) v = gr__xmass(qv + oa * de, ov * de, big, a->beta) / wv;
                 else v = ov / (sb - sa);
             }
             s->lit[(size_t)i * GR_MAX_LIGHTS + k] = v;
         }
     }
-    /* ratios r_i (§4.4) into the list */
-    for (i = 0; i < nf; i++) {
+}
+
+/* One footprint: gather, approximate, merge, project, clip, mask, shadow
+   (§4.1-4.4), adding weight x ratios to the list. With allow_split it
+   returns the oversampling count needed (> 1: nothing was added). With
+   divert, a footprint that a non-parallel groove, a path end (the flags
+   GR_LIST_NONPARALLEL, GR_LIST_PATH_END) or a groove's self-crossing
+   reaches returns GR__DIVERT right after the search (§4.1-4.2) and the
+   oversampling count, before any profile work: line samples will answer
+   it (a footprint to be oversampled is left to its parts' flags, as §4's
+   answer always was, unless a self-crossing reaches it). */
+static int gr__query_one(const gr_grid_t *grid, const gr__qset_t *qs, const gr_footprint_t *fp, double weight,
+                         const gr__scratch_t *s, gr_facet_list_t *list, int allow_split, int divert, double split_t[2])
+{
+    double f[2], box[4], radius, tanmax, bref[2], ew;
+    int k, ref, np, npar, i, self_cross = 0;
+    gr__across_t a;
+    f[0] = fp->center[0];
+    f[1] = fp->center[1];
+    if (grid->wrap) { /* the centre's image in the tile */
+        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
+        f[0] -= floor((f[0] - grid->domain[0]) / wu) * wu;
+        f[1] -= floor((f[1] - grid->domain[1]) / wv) * wv;
+    }
+    tanmax = gr__query_box(grid, qs, fp, f, box, &radius);
+    npar = gr__nearby_grooves(grid, qs, fp, s, list, f, box, radius, tanmax, divert, &ref, &self_cross);
+    npar = gr__keep_parallel(qs, s, list, npar, ref, bref);
+#ifndef GR_NO_OVERSAMPLE
+    if (allow_split && qs->oversample_tol > 0 && qs->max_oversample > 1) {
+        int need = 1;
+        for (k = 0; k < npar; k++) {
+            int nk = gr__oversample_need(grid, &s->cand[k], fp, qs->oversample_tol);
+            if (nk > need) { need = nk; split_t[0] = s->cand[k].t[0]; split_t[1] = s->cand[k].t[1]; }
+        }
+        if (need > 1 && !(divert && self_cross))
+            return need > GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE ? GR__LIMIT_MAX_OVERSAMPLE * GR__LIMIT_MAX_OVERSAMPLE : need;
+    }
+#else
+    (void)allow_split;
+    (void)split_t;
+    (void)k;
+#endif
+    /* an oversampled footprint's parts decide by their own flags (the
+       caller); a self-crossing diverts at once */
+    if (divert && (self_cross || (list->flags & (GR_LIST_NONPARALLEL | GR_LIST_PATH_END)))) return GR__DIVERT;
+    a = gr__footprint_across(grid, qs, fp, bref);
+    np = gr__merge_sections(grid, s, list, npar, a.half);
+    if (list->grooves < npar) list->grooves = npar;
+    ew = gr__visible_parts(grid, qs, s, np, fp->view, bref, &a);
+    gr__shadow_lights(grid, qs, s, np, fp->view, bref, &a, a.pm * ew);
+    for (i = 0; i < np - 1; i++) { /* ratios r_i (§4.4) into the list */
         double r;
-        if (point) r = s->va[i] == 0 ? 1 : 0;
-        else r = s->vb[i] > s->va[i] ? gr__xmass(s->va[i], s->vb[i] - s->va[i], pm * ew, beta) : 0;
+        if (a.point) r = s->va[i] == 0 ? 1 : 0;
+        else r = s->vb[i] > s->va[i] ? gr__xmass(s->va[i], s->vb[i] - s->va[i], a.pm * ew, a.beta) : 0;
         if (r > 0) {
             gr__mfacet_t m = s->mf[i];
-            if (m.cand >= 0 && qs->perturb_normals) gr__hit_normal(grid, s, fp, i, point, &m);
-            gr__list_add(list, &m, weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, nl);
+            if (m.cand >= 0 && qs->perturb_normals) gr__hit_normal(grid, s, fp, i, a.point, &m);
+            gr__list_add(list, &m, weight * r, s->lit + (size_t)i * GR_MAX_LIGHTS, qs->light_count);
         }
     }
     return 1;
+}
+
+/* The query's settings with their defaults (gr_query_t), after checking
+   that its numbers are finite (its light count is checked):
+   GR_ERR_NOT_FINITE or GR_OK. */
+static gr_result_t gr__query_settings(const gr_query_t *query, gr__qset_t *qs)
+{
+    const gr_footprint_t *fp = &query->footprint;
+    int k;
+    if (!gr__finite_n(fp->center, 2) || !gr__finite_n(fp->axis1, 2) || !gr__finite_n(fp->axis2, 2) ||
+        !gr__finite_n(fp->view, 3) || !gr__finite(query->oversample_tol) || !gr__finite(query->parallel_tol))
+        return GR_ERR_NOT_FINITE;
+    for (k = 0; k < 3 * query->light_count; k++)
+        if (!gr__finite(query->lights[k])) return GR_ERR_NOT_FINITE;
+    qs->lights = query->lights;
+    qs->light_count = query->light_count;
+    qs->oversample_tol = query->oversample_tol == 0 ? GR__DEFAULT_OVERSAMPLE_TOL : query->oversample_tol;
+    qs->max_oversample = query->max_oversample <= 0 ? GR__DEFAULT_MAX_OVERSAMPLE : query->max_oversample;
+    if (qs->max_oversample > GR__LIMIT_MAX_OVERSAMPLE) qs->max_oversample = GR__LIMIT_MAX_OVERSAMPLE;
+    qs->perturb_normals = query->perturb_normals >= 0;
+    qs->ray_profile = query->straight_occlusion == 0;
+    qs->ellipse = query->ellipse != 0;
+    qs->parallel_sin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
+    return GR_OK;
+}
+
+/* §4.2 oversampling of an ellipse: slabs across its axis a most along the
+   groove (extents p along it), taken as parallelograms of the slab's area
+   (weight) and mean chord (the other axis): an approximation. */
+static void gr__oversample_ellipse(const gr_grid_t *grid, const gr__qset_t *qs, const gr_footprint_t *fp, const gr__scratch_t *s,
+                                   gr_facet_list_t *list, int need, const double p[2], double t[2])
+{
+    gr_footprint_t sub = *fp;
+    gr__qset_t qsub = *qs;
+    int a = p[0] >= p[1] ? 0 : 1, k;
+    const double *ax = a ? fp->axis2 : fp->axis1, *other = a ? fp->axis1 : fp->axis2;
+    double *sa = a ? sub.axis2 : sub.axis1, *so = a ? sub.axis1 : sub.axis2;
+    qsub.ellipse = 0;
+    if (need > qs->max_oversample) need = qs->max_oversample;
+    sa[0] = ax[0] / need;
+    sa[1] = ax[1] / need;
+    for (k = 0; k < need; k++) {
+        double o = (2.0 * k + 1) / need - 1, a0 = -1 + 2.0 * k / need, a1 = a0 + 2.0 / need, wk, hbar;
+        wk = gr__disc_cdf(a1) - gr__disc_cdf(a0);
+        hbar = GR__PI * wk / (2 * (a1 - a0)); /* slab area / (2 width), unit disc */
+        so[0] = other[0] * hbar;
+        so[1] = other[1] * hbar;
+        sub.center[0] = fp->center[0] + o * ax[0];
+        sub.center[1] = fp->center[1] + o * ax[1];
+        gr__query_one(grid, &qsub, &sub, wk, s, list, 0, 0, t);
+    }
+    list->subfootprints = need;
+}
+
+/* §4.2 oversampling of a parallelogram: into n1 x n2 parallelograms
+   (exact weights), each axis cut in proportion to its own extent p[k]
+   along the groove, so every part spans 1/need of the extent: an axis
+   oblique to the groove runs along it too, and cutting only the other
+   would leave that part of the extent whole (the answer would not
+   converge as the tolerance shrinks). Past max_oversample parts, the
+   split that makes the parts' extent p1/n1 + p2/n2 least with
+   n1 n2 <= max_oversample. */
+static void gr__oversample_parallelogram(const gr_grid_t *grid, const gr__qset_t *qs, const gr_footprint_t *fp,
+                                         const gr__scratch_t *s, gr_facet_list_t *list, int need, const double p[2], double t[2])
+{
+    gr_footprint_t sub = *fp;
+    int n[2], k, j1, j2;
+    for (k = 0; k < 2; k++) {
+        n[k] = (int)ceil(need * p[k] / (p[0] + p[1]) - 1e-9);
+        if (n[k] < 1) n[k] = 1;
+    }
+    if (n[0] * n[1] > qs->max_oversample) {
+        int m = qs->max_oversample;
+        n[0] = p[1] > 0 ? (int)floor(sqrt(m * p[0] / p[1]) + 0.5) : m;
+        n[0] = n[0] < 1 ? 1 : n[0] > m ? m : n[0];
+        n[1] = m / n[0];
+    }
+    sub.axis1[0] = fp->axis1[0] / n[0];
+    sub.axis1[1] = fp->axis1[1] / n[0];
+    sub.axis2[0] = fp->axis2[0] / n[1];
+    sub.axis2[1] = fp->axis2[1] / n[1];
+    for (j1 = 0; j1 < n[0]; j1++)
+        for (j2 = 0; j2 < n[1]; j2++) {
+            double o1 = (2.0 * j1 + 1) / n[0] - 1, o2 = (2.0 * j2 + 1) / n[1] - 1;
+            sub.center[0] = fp->center[0] + o1 * fp->axis1[0] + o2 * fp->axis2[0];
+            sub.center[1] = fp->center[1] + o1 * fp->axis1[1] + o2 * fp->axis2[1];
+            gr__query_one(grid, qs, &sub, 1.0 / (n[0] * n[1]), s, list, 0, 0, t);
+        }
+    list->subfootprints = n[0] * n[1];
 }
 
 GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void *scratch, size_t scratch_bytes,
@@ -2901,7 +3065,8 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     gr__scratch_t s;
     const gr_footprint_t *fp;
     double el, t[2] = {0, 1};
-    int k, need;
+    int need;
+    gr_result_t r;
     if (!grid || !query || !scratch || !list) return GR_ERR_INVALID_ARG;
     list->count = 0;
     list->flags = 0;
@@ -2910,21 +3075,8 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     if (query->light_count < 0 || query->light_count > GR_MAX_LIGHTS || (query->light_count > 0 && !query->lights))
         return GR_ERR_INVALID_ARG;
     if (scratch_bytes < gr_query_scratch_bytes(grid)) return GR_ERR_BUFFER_TOO_SMALL;
+    if ((r = gr__query_settings(query, &qs)) != GR_OK) return r;
     fp = &query->footprint;
-    if (!gr__finite_n(fp->center, 2) || !gr__finite_n(fp->axis1, 2) || !gr__finite_n(fp->axis2, 2) ||
-        !gr__finite_n(fp->view, 3) || !gr__finite(query->oversample_tol) || !gr__finite(query->parallel_tol))
-        return GR_ERR_NOT_FINITE;
-    for (k = 0; k < 3 * query->light_count; k++)
-        if (!gr__finite(query->lights[k])) return GR_ERR_NOT_FINITE;
-    qs.lights = query->lights;
-    qs.light_count = query->light_count;
-    qs.oversample_tol = query->oversample_tol == 0 ? GR__DEFAULT_OVERSAMPLE_TOL : query->oversample_tol;
-    qs.max_oversample = query->max_oversample <= 0 ? GR__DEFAULT_MAX_OVERSAMPLE : query->max_oversample;
-    if (qs.max_oversample > GR__LIMIT_MAX_OVERSAMPLE) qs.max_oversample = GR__LIMIT_MAX_OVERSAMPLE;
-    qs.perturb_normals = query->perturb_normals >= 0;
-    qs.ray_profile = query->straight_occlusion == 0;
-    qs.ellipse = query->ellipse != 0;
-    qs.parallel_sin = sin(fabs(query->parallel_tol == 0 ? GR__DEFAULT_PARALLEL_TOL : query->parallel_tol));
     el = sqrt(gr__dot3(fp->view, fp->view));
     if (!(fp->view[2] > 0) || !(el > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
     gr__scratch_layout(grid, scratch, &s);
@@ -2943,71 +3095,16 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     if (need == GR__DIVERT) return gr_query_lines(grid, query, scratch, scratch_bytes, list, NULL);
 #endif
     if (need > 1) {
-        /* §4.2 oversampling: the footprint's extent along the groove is cut
-           `need` times, each part with its own straight approximation */
-        gr_footprint_t sub = *fp;
-        gr__qset_t qsub = qs;
+        /* §4.2 oversampling: the footprint's extent along the groove (t) is
+           cut `need` times, each part with its own straight approximation */
         double p[2];
-        int n[2], j1, j2;
         p[0] = fabs(fp->axis1[0] * t[0] + fp->axis1[1] * t[1]);
         p[1] = fabs(fp->axis2[0] * t[0] + fp->axis2[1] * t[1]);
         list->count = 0;
         list->flags = 0;
         list->grooves = 0;
-        qsub.ellipse = 0;
-        if (qs.ellipse) {
-            /* an ellipse's slabs across its axis most along the groove,
-               taken as parallelograms of the slab's area (weight) and mean
-               chord (the other axis): an approximation */
-            int a = p[0] >= p[1] ? 0 : 1;
-            if (need > qs.max_oversample) need = qs.max_oversample;
-            const double *ax = a ? fp->axis2 : fp->axis1, *other = a ? fp->axis1 : fp->axis2;
-            double *sa = a ? sub.axis2 : sub.axis1, *so = a ? sub.axis1 : sub.axis2;
-            sa[0] = ax[0] / need;
-            sa[1] = ax[1] / need;
-            for (k = 0; k < need; k++) {
-                double o = (2.0 * k + 1) / need - 1, a0 = -1 + 2.0 * k / need, a1 = a0 + 2.0 / need, wk, hbar;
-                wk = gr__disc_cdf(a1) - gr__disc_cdf(a0);
-                hbar = GR__PI * wk / (2 * (a1 - a0)); /* slab area / (2 width), unit disc */
-                so[0] = other[0] * hbar;
-                so[1] = other[1] * hbar;
-                sub.center[0] = fp->center[0] + o * ax[0];
-                sub.center[1] = fp->center[1] + o * ax[1];
-                gr__query_one(grid, &qsub, &sub, wk, &s, list, 0, 0, t);
-            }
-            list->subfootprints = need;
-        } else {
-            /* a parallelogram into n1 x n2 parallelograms (exact weights),
-               each axis cut in proportion to its own extent along the
-               groove, so every part spans 1/need of the extent: an axis
-               oblique to the groove runs along it too, and cutting only
-               the other would leave that part of the extent whole (the
-               answer would not converge as the tolerance shrinks). Past
-               max_oversample parts, the split that makes the parts'
-               extent p1/n1 + p2/n2 least with n1 n2 <= max_oversample */
-            for (k = 0; k < 2; k++) {
-                n[k] = (int)ceil(need * p[k] / (p[0] + p[1]) - 1e-9);
-                if (n[k] < 1) n[k] = 1;
-            }
-            if (n[0] * n[1] > qs.max_oversample) {
-                int m = qs.max_oversample;
-                n[0] = p[1] > 0 ? (int)floor(sqrt(m * p[0] / p[1]) + 0.5) : m;
-                n[0] = n[0] < 1 ? 1 : n[0] > m ? m : n[0];
-                n[1] = m / n[0];
-            }
-            sub.axis1[0] = fp->axis1[0] / n[0];
-            sub.axis1[1] = fp->axis1[1] / n[0];
-            sub.axis2[0] = fp->axis2[0] / n[1];
-            sub.axis2[1] = fp->axis2[1] / n[1];
-            for (j1 = 0; j1 < n[0]; j1++)
-                for (j2 = 0; j2 < n[1]; j2++) {
-                    double o1 = (2.0 * j1 + 1) / n[0] - 1, o2 = (2.0 * j2 + 1) / n[1] - 1;
-                    sub.center[0] = fp->center[0] + o1 * fp->axis1[0] + o2 * fp->axis2[0];
-                    sub.center[1] = fp->center[1] + o1 * fp->axis1[1] + o2 * fp->axis2[1];
-                    gr__query_one(grid, &qsub, &sub, 1.0 / (n[0] * n[1]), &s, list, 0, 0, t);
-                }
-            list->subfootprints = n[0] * n[1];
-        }
+        if (qs.ellipse) gr__oversample_ellipse(grid, &qs, fp, &s, list, need, p, t);
+        else gr__oversample_parallelogram(grid, &qs, fp, &s, list, need, p, t);
     }
 #ifndef GR_NO_LINE_SAMPLES
     /* an oversampled footprint's parts may still flag them */
@@ -5584,18 +5681,17 @@ typedef char gr__lg_fits_cache[sizeof(gr__lg_t) <= 16 * sizeof(double) ? 1 : -1]
 
 static void gr__edge_list(gr__lscene_t *sc);
 
-static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh,
-                           int tight, gr_line_cache_t *cache, const double *lights, int nl)
+/* The UV box the sheet's rays can see grooves in: both ends of the sheet
+   from entry to tmax, widened by w, and quad, the swept region's points
+   and their shadow casters toward the lights (§5.1's w_L), which the box
+   also holds. */
+static void gr__sheet_box(const gr_grid_t *grid, const gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl,
+                          double box[4], gr__region_t *quad)
 {
-    double box[4] = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, c[2], reach, seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
-    gr__region_t quad;
+    double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
     int i, k, e;
-    sc->grid = grid;
-    sc->top = grid->h;
-    sc->bottom = -grid->d;
-    sc->scale = grid->w + grid->h + grid->d;
-    sc->nlg = 0;
-    sc->flags = 0;
+    box[0] = box[1] = HUGE_VAL;
+    box[2] = box[3] = -HUGE_VAL;
     for (e = -1; e <= 1; e += 2) {
         double o[3], tmax;
         for (k = 0; k < 3; k++) o[k] = sh->o[k] + e * sh->a[k];
@@ -5609,37 +5705,47 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
         }
     }
     for (k = 0; k < 4; k++) box[k] += k < 2 ? -grid->w : grid->w;
-    quad.n = 0;
+    quad->n = 0;
     for (e = 0; e < 4; e++) { /* the swept region's points (UV), for pruning */
         double o[3], tq, x[3];
         int l;
         for (k = 0; k < 3; k++) o[k] = sh->o[k] + (e & 1 ? 1 : -1) * sh->a[k];
         tq = e & 2 ? gr__ray_tmax(sc, o, sh->d, seglen) : 0;
         for (k = 0; k < 3; k++) x[k] = o[k] + tq * sh->d[k];
-        quad.p[2 * quad.n] = x[0];
-        quad.p[2 * quad.n + 1] = x[1];
-        quad.n++;
+        quad->p[2 * quad->n] = x[0];
+        quad->p[2 * quad->n + 1] = x[1];
+        quad->n++;
         for (l = 0; l < nl; l++) {
             const double *L = lights + 3 * l;
             double tl;
             if (!(L[2] > 0)) continue;
             tl = x[2] < sc->top ? (sc->top - x[2]) / L[2] : 0;
-            quad.p[2 * quad.n] = x[0] + tl * L[0];
-            quad.p[2 * quad.n + 1] = x[1] + tl * L[1];
-            quad.n++;
+            quad->p[2 * quad->n] = x[0] + tl * L[0];
+            quad->p[2 * quad->n + 1] = x[1] + tl * L[1];
+            quad->n++;
         }
     }
-    for (e = 0; e < quad.n; e++) { /* §5.1's w_L: shadow casters toward the lights */
-        if (quad.p[2 * e] - grid->w < box[0]) box[0] = quad.p[2 * e] - grid->w;
-        if (quad.p[2 * e] + grid->w > box[2]) box[2] = quad.p[2 * e] + grid->w;
-        if (quad.p[2 * e + 1] - grid->w < box[1]) box[1] = quad.p[2 * e + 1] - grid->w;
-        if (quad.p[2 * e + 1] + grid->w > box[3]) box[3] = quad.p[2 * e + 1] + grid->w;
+    for (e = 0; e < quad->n; e++) { /* §5.1's w_L: shadow casters toward the lights */
+        if (quad->p[2 * e] - grid->w < box[0]) box[0] = quad->p[2 * e] - grid->w;
+        if (quad->p[2 * e] + grid->w > box[2]) box[2] = quad->p[2 * e] + grid->w;
+        if (quad->p[2 * e + 1] - grid->w < box[1]) box[1] = quad->p[2 * e + 1] - grid->w;
+        if (quad->p[2 * e + 1] + grid->w > box[3]) box[3] = quad->p[2 * e + 1] + grid->w;
     }
-    memcpy(sc->box, box, sizeof box);
-    c[0] = 0.5 * (box[0] + box[2]);
-    c[1] = 0.5 * (box[1] + box[3]);
-    reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
-    if (cache) { /* §5.6: reuse the grooves found around a neighbour */
+}
+
+/* The grooves within reach of c that the box holds (pruned by quad when
+   it is not NULL) into sc->ls.lg, in groove order: from the grid, or
+   (§5.6) from the cache of a neighbour's grooves, refilled over a grown
+   box when this box leaves it. */
+static void gr__line_grooves(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const double box[4],
+                             const double c[2], double reach, const gr__region_t *quad, gr_line_cache_t *cache)
+{
+    double b[4]; /* gr__line_gather moves its box into the tile */
+    int i, k;
+    memcpy(b, box, sizeof b);
+    if (!cache) {
+        gr__line_gather(grid, s, sc, b, c, reach, quad, NULL);
+    } else {
         int hit = cache->valid && cache->grid == grid && box[0] >= cache->box[0] && box[1] >= cache->box[1] &&
                   box[2] <= cache->box[2] && box[3] <= cache->box[3];
         if (!hit) {
@@ -5661,19 +5767,100 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
             for (k = 0; k < cache->count; k++) {
                 gr__lg_t g;
                 memcpy(&g, cache->store_ + 16 * k, sizeof g);
-                gr__lg_keep(sc, &g, c, reach, tight ? &quad : NULL);
+                gr__lg_keep(sc, &g, c, reach, quad);
             }
         } else {
-            gr__line_gather(grid, s, sc, box, c, reach, tight ? &quad : NULL, NULL);
+            gr__line_gather(grid, s, sc, b, c, reach, quad, NULL);
         }
-    } else {
-        gr__line_gather(grid, s, sc, box, c, reach, tight ? &quad : NULL, NULL);
     }
     for (i = 1; i < sc->nlg; i++) { /* in groove order, however they were found (cache or grid) */
         gr__lg_t x = sc->ls.lg[i];
         for (k = i; k > 0 && sc->ls.lg[k - 1].groove > x.groove; k--) sc->ls.lg[k] = sc->ls.lg[k - 1];
         sc->ls.lg[k] = x;
     }
+}
+
+/* The planes of groove i's facets (§3), out of the material. */
+static void gr__facet_planes(gr__lscene_t *sc, int i)
+{
+    const gr__lg_t *g = &sc->ls.lg[i];
+    int k;
+    for (k = 0; k + 1 < g->nsec; k++) {
+        gr__plane_t *p = &sc->ls.pl[sc->npl];
+        double db, dw, len, nb, nw, q[3];
+        gr__sec_pt(g, k, p->c0);
+        gr__sec_pt(g, k + 1, p->c1);
+        db = p->c1[0] - p->c0[0];
+        dw = p->c1[1] - p->c0[1];
+        len = sqrt(db * db + dw * dw);
+        if (!(len > 0)) continue;
+        if (sc->npl == GR__LINE_MAX_PLANES) { sc->flags |= GR_LIST_LINE_APPROX; return; }
+        nb = -dw / len; /* (-Δw, Δb)/|.|: out of the material (§3) */
+        nw = db / len;
+        p->n[0] = nb * g->bn[0];
+        p->n[1] = nb * g->bn[1];
+        p->n[2] = nw;
+        q[0] = g->p[0] + p->c0[0] * g->bn[0];
+        q[1] = g->p[1] + p->c0[0] * g->bn[1];
+        q[2] = p->c0[1];
+        p->h = gr__dot3(p->n, q);
+        p->lg = i;
+        p->facet = k;
+        p->refl = sc->grid->facet_refl_[g->first_facet + k];
+        p->cap = 0;
+        sc->npl++;
+    }
+}
+
+/* Groove i's path ends within reach of c: flat walls across the path (§5,
+   Figure 7c, with the section's shape), facing into a cut groove (out of
+   a protrusion); facet index section_count - 1 (first end) or
+   section_count (last end). */
+static void gr__end_planes(gr__lscene_t *sc, int i, const double c[2], double reach)
+{
+    const gr__lg_t *g = &sc->ls.lg[i];
+    int k, j;
+    for (k = 0; k < 2; k++) {
+        double at = k ? g->hi : g->lo, sgn = k ? 1 : -1, wmin = 0, cb;
+        gr__plane_t *p = &sc->ls.pl[sc->npl];
+        if (!(fabs(at - (g->t[0] * (c[0] - g->p[0]) + g->t[1] * (c[1] - g->p[1]))) <= reach + g->reach)) continue;
+        if (sc->npl == GR__LINE_MAX_PLANES) { sc->flags |= GR_LIST_LINE_APPROX; return; }
+        for (j = 0; j < g->nsec; j++)
+            if (g->sec[2 * j + 1] < wmin) wmin = g->sec[2 * j + 1];
+        cb = wmin < 0 ? -sgn : sgn;
+        memset(p, 0, sizeof *p);
+        p->n[0] = cb * g->t[0];
+        p->n[1] = cb * g->t[1];
+        p->h = p->n[0] * (g->p[0] + at * g->t[0]) + p->n[1] * (g->p[1] + at * g->t[1]);
+        p->lg = i;
+        p->facet = g->nsec - 1 + k;
+        p->refl = sc->grid->facet_refl_[g->first_facet];
+        p->cap = 1;
+        sc->npl++;
+    }
+}
+
+/* The scene a sheet of line samples sees (§5.6): its box, the grooves
+   within reach (tight: pruned to the swept region), and their planes
+   after the ground's, then the edge list. */
+static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const gr__sheet_t *sh,
+                           int tight, gr_line_cache_t *cache, const double *lights, int nl)
+{
+    double box[4], c[2], reach;
+    gr__region_t quad;
+    int i;
+    sc->grid = grid;
+    sc->top = grid->h;
+    sc->bottom = -grid->d;
+    sc->scale = grid->w + grid->h + grid->d;
+    sc->nlg = 0;
+    sc->flags = 0;
+    gr__sheet_box(grid, sc, sh, lights, nl, box, &quad);
+    memcpy(sc->box, box, sizeof box);
+    c[0] = 0.5 * (box[0] + box[2]);
+    c[1] = 0.5 * (box[1] + box[3]);
+    reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
+    gr__line_grooves(grid, s, sc, box, c, reach, tight ? &quad : NULL, cache);
     /* planes: the ground, then every facet of every groove (§3) */
     memset(&sc->ls.pl[0], 0, sizeof sc->ls.pl[0]);
     sc->ls.pl[0].n[2] = 1;
@@ -5683,55 +5870,8 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
     sc->ls.pl[0].cap = 0;
     sc->npl = 1;
     for (i = 0; i < sc->nlg; i++) {
-        const gr__lg_t *g = &sc->ls.lg[i];
-        for (k = 0; k + 1 < g->nsec; k++) {
-            gr__plane_t *p = &sc->ls.pl[sc->npl];
-            double db, dw, len, nb, nw, q[3];
-            gr__sec_pt(g, k, p->c0);
-            gr__sec_pt(g, k + 1, p->c1);
-            db = p->c1[0] - p->c0[0];
-            dw = p->c1[1] - p->c0[1];
-            len = sqrt(db * db + dw * dw);
-            if (!(len > 0)) continue;
-            if (sc->npl == GR__LINE_MAX_PLANES) { sc->flags |= GR_LIST_LINE_APPROX; break; }
-            nb = -dw / len; /* (-Δw, Δb)/|.|: out of the material (§3) */
-            nw = db / len;
-            p->n[0] = nb * g->bn[0];
-            p->n[1] = nb * g->bn[1];
-            p->n[2] = nw;
-            q[0] = g->p[0] + p->c0[0] * g->bn[0];
-            q[1] = g->p[1] + p->c0[0] * g->bn[1];
-            q[2] = p->c0[1];
-            p->h = gr__dot3(p->n, q);
-            p->lg = i;
-            p->facet = k;
-            p->refl = sc->grid->facet_refl_[g->first_facet + k];
-            p->cap = 0;
-            sc->npl++;
-        }
-        /* path ends near the box: flat walls across the path (§5, Figure
-           7c, with the section's shape), facing into a cut groove (out of
-           a protrusion); facet index section_count - 1 (first end) or
-           section_count (last end) */
-        for (k = 0; k < 2; k++) {
-            double at = k ? g->hi : g->lo, sgn = k ? 1 : -1, wmin = 0, cb;
-            gr__plane_t *p = &sc->ls.pl[sc->npl];
-            int j;
-            if (!(fabs(at - (g->t[0] * (c[0] - g->p[0]) + g->t[1] * (c[1] - g->p[1]))) <= reach + g->reach)) continue;
-            if (sc->npl == GR__LINE_MAX_PLANES) { sc->flags |= GR_LIST_LINE_APPROX; break; }
-            for (j = 0; j < g->nsec; j++)
-                if (g->sec[2 * j + 1] < wmin) wmin = g->sec[2 * j + 1];
-            cb = wmin < 0 ? -sgn : sgn;
-            memset(p, 0, sizeof *p);
-            p->n[0] = cb * g->t[0];
-            p->n[1] = cb * g->t[1];
-            p->h = p->n[0] * (g->p[0] + at * g->t[0]) + p->n[1] * (g->p[1] + at * g->t[1]);
-            p->lg = i;
-            p->facet = g->nsec - 1 + k;
-            p->refl = sc->grid->facet_refl_[g->first_facet];
-            p->cap = 1;
-            sc->npl++;
-        }
+        gr__facet_planes(sc, i);
+        gr__end_planes(sc, i, c, reach);
     }
     gr__edge_list(sc);
 }
