@@ -6425,7 +6425,6 @@ static void fr__prepare_decides(fr__leaf_t *L, unsigned int nl, const fr__csg_no
 }
 
 #ifndef FR_NO_INTERVAL
-/* The nodes' solid boxes, for nodes small enough to cull (fr__leaf_box_set). */
 /* The masks of the boxed nodes (fr__csg_node_t.bit, leaf_mask,
    node_mask): what a ray that misses a node's box may skip is what only
    that node reaches, that is what the shape reaches from below it but not
@@ -6463,6 +6462,7 @@ static void fr__prepare_masks(fr__csg_node_t *N, unsigned int nn, unsigned int n
     }
 }
 
+/* The nodes' solid boxes, for nodes small enough to cull (fr__leaf_box_set). */
 static void fr__prepare_nodes(const fr_tape_t *t, const double *box, fr__csg_node_t *N, unsigned int nn,
                               unsigned char *work)
 {
@@ -6478,12 +6478,140 @@ static void fr__prepare_nodes(const fr_tape_t *t, const double *box, fr__csg_nod
 }
 #endif
 
+/* fr_prepare's scratch: generic degrees, marks, indices; then 10 doubles
+   per slot for quadric forms, or a compacted sub-tape with its interval
+   scratch. */
+static size_t fr__prepare_work_bytes(const fr_tape_t *t)
+{
+    size_t n = t->n_code, bytes = fr__align8(n * sizeof(int)) + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int));
+    size_t a = 10 * n * sizeof(double) + 3 * n * sizeof(unsigned int), b = fr__align8(n) + fr__align8(2 * n * sizeof(unsigned int)) +
+                                             fr__align8(n * sizeof(fr_instr_t)) + fr__eval_scratch_max(t);
+    return bytes + (a > b ? a : b);
+}
+
+/* The kind of prepared model the tape allows, from the shape slot `outs`
+   down: a polynomial in the coordinates (FR_PREPARED_POLY), a CSG tree of
+   polynomial leaves under min, max, R-functions and negation
+   (FR_PREPARED_CSG), or neither. need[i]: 1 for a slot the analysis
+   reaches, 2 for one in the Taylor program too (gdeg: generic degrees). */
+static fr_prepared_kind_t fr__prepare_kind(const fr_tape_t *t, const int *gdeg, unsigned int outs, unsigned char *need)
+{
+    fr_prepared_kind_t kind = gdeg[outs] >= 0 ? FR_PREPARED_POLY : FR_PREPARED_CSG;
+    unsigned int i;
+    memset(need, 0, t->n_code);
+    need[outs] = 1;
+    for (i = outs + 1; i-- > 0;) {
+        const fr_instr_t *in = &t->code[i];
+        if (!need[i]) continue;
+        if (gdeg[i] >= 0) { /* a polynomial slot: in the program, with its operands */
+            int ar = fr__arity(in->op);
+            if (kind == FR_PREPARED_POLY || need[i] == 2) {
+                need[i] = 2;
+                if (ar >= 1) need[in->a] = 2;
+                if (ar >= 2) need[in->b] = 2;
+            }
+            continue;
+        }
+        switch ((fr_op_t)in->op) { /* a CSG node */
+        case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
+            if (!need[in->b]) need[in->b] = 1;
+            /* fallthrough */
+        case FR_OP_NEG:
+            if (!need[in->a]) need[in->a] = 1;
+            break;
+        default: return FR_PREPARED_NONE;
+        }
+    }
+    return kind;
+}
+
+/* The CSG tree's leaves (polynomial slots) and nodes in slot order, their
+   operands as tree indices (idx: per slot, its leaf or nl + its node). */
+static void fr__prepare_tree(const fr_tape_t *t, const int *gdeg, const unsigned char *need, unsigned int outs, unsigned int nl,
+                             unsigned int *idx, fr__leaf_t *L, fr__csg_node_t *N)
+{
+    unsigned int i, jl = 0, jn = 0;
+    for (i = 0; i <= outs; i++) {
+        const fr_instr_t *in = &t->code[i];
+        if (!need[i]) continue;
+        if (gdeg[i] >= 0) {
+            memset(&L[jl], 0, sizeof L[jl]);
+            L[jl].slot = i;
+            L[jl].degree = gdeg[i];
+            jl++;
+            continue;
+        }
+        N[jn].op = in->op == FR_OP_NEG ? FR__CSG_NEG : in->op == FR_OP_MIN || in->op == FR_OP_RINT ? FR__CSG_MIN : FR__CSG_MAX;
+        N[jn].a = idx[in->a];
+        N[jn].b = in->op == FR_OP_NEG ? 0 : idx[in->b];
+        N[jn].slot = i;
+        N[jn].boxed = 0;
+        N[jn].bit = N[jn].leaf_mask = N[jn].node_mask = 0;
+        idx[i] = nl + jn;
+        jn++;
+    }
+}
+
+/* The CSG model's leaves (quadric forms, boxes) and nodes (boxes, masks,
+   what each leaf decides), then the non-quadric leaves' subtrees marked
+   for the program (need 2). w: the scratch past need and idx. */
+static void fr__prepare_csg(const fr_tape_t *t, const int *gdeg, unsigned int outs, fr_prepared_t *out, fr__leaf_t *L,
+                            fr__csg_node_t *N, unsigned char *need, unsigned char *w)
+{
+    unsigned int i, j, nl = out->n_leaves, nn = out->n_nodes;
+    if (out->has_box) {
+        fr__prepare_leaves(t, gdeg, out->box, L, nl, w);
+#ifndef FR_NO_INTERVAL
+        fr__prepare_nodes(t, out->box, N, nn, w);
+        fr__prepare_masks(N, nn, nl, w);
+        for (j = 0; j < nn; j++) ((fr__prep_head_t *)out->mem)->n_boxed_nodes += N[j].bit != 0;
+#endif
+    }
+    fr__prepare_decides(L, nl, N, nn, (unsigned int *)(void *)w);
+    for (j = 0; j < nl; j++) {
+        if (L[j].quadric) { out->n_quadrics++; continue; }
+        need[L[j].slot] = 2;
+    }
+    for (i = outs + 1; i-- > 0;) {
+        const fr_instr_t *in = &t->code[i];
+        int ar;
+        if (need[i] != 2) continue;
+        ar = fr__arity(in->op);
+        if (ar >= 1) need[in->a] = 2;
+        if (ar >= 2) need[in->b] = 2;
+    }
+}
+
+/* The Taylor program: each slot marked 2, in slot order, with its kernel
+   for the operands' degrees. Returns its length. */
+static unsigned int fr__prepare_program(const fr_tape_t *t, const int *gdeg, const unsigned char *need, unsigned int outs,
+                                        fr__tp_t *P)
+{
+    unsigned int i, np = 0;
+    for (i = 0; i <= outs; i++) {
+        const fr_instr_t *in = &t->code[i];
+        if (need[i] != 2) continue;
+        P[np].slot = i;
+        P[np].dc = (unsigned char)gdeg[i];
+        P[np].da = (unsigned char)(fr__arity(in->op) >= 1 && gdeg[in->a] > 0 ? gdeg[in->a] : 0);
+        P[np].db = (unsigned char)(fr__arity(in->op) >= 2 && gdeg[in->b] > 0 ? gdeg[in->b] : 0);
+        P[np].kernel = fr__prog_kernel(in, P[np].da, P[np].db);
+        P[np].a = fr__arity(in->op) >= 1 ? in->a : 0;
+        P[np].b = fr__arity(in->op) >= 2 ? in->b : 0;
+        P[np].oc = i * FR__TAYLOR_N;
+        P[np].oa = P[np].a * FR__TAYLOR_N;
+        P[np].ob = P[np].b * FR__TAYLOR_N;
+        np++;
+    }
+    return np;
+}
+
 FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepared_t *out)
 {
-    size_t n, work_bytes;
+    size_t n;
     unsigned char *work, *need;
     int *gdeg;
-    unsigned int *idx, i, outs, nl = 0, nn = 0, np = 0, j;
+    unsigned int *idx, i, outs, nl = 0, nn = 0, np = 0;
     fr__leaf_t *L;
     fr__csg_node_t *N;
     fr__tp_t *P;
@@ -6500,15 +6628,7 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
         out->has_box = 1;
     }
     n = t->n_code;
-    /* work: generic degrees, marks, indices; then 10 doubles per slot for
-       quadric forms, or a compacted sub-tape with its interval scratch */
-    work_bytes = fr__align8(n * sizeof(int)) + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int));
-    {
-        size_t a = 10 * n * sizeof(double) + 3 * n * sizeof(unsigned int), b = fr__align8(n) + fr__align8(2 * n * sizeof(unsigned int)) +
-                                                 fr__align8(n * sizeof(fr_instr_t)) + fr__eval_scratch_max(t);
-        work_bytes += a > b ? a : b;
-    }
-    work = (unsigned char *)FR_MALLOC(work_bytes, t->alloc_ctx);
+    work = (unsigned char *)FR_MALLOC(fr__prepare_work_bytes(t), t->alloc_ctx);
     if (!work) return FR_ERR_OUT_OF_MEMORY;
     gdeg = (int *)(void *)work;
     need = work + fr__align8(n * sizeof(int));
@@ -6518,35 +6638,10 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
         gdeg[i] = fr__tpoly_degree(in, i > 0 ? gdeg[in->a] : -1, i > 0 ? gdeg[in->b] : -1, 1);
     }
     outs = t->outputs[0];
-    /* need: 1 shape slot the analysis reaches, 2 in the Taylor program too */
-    memset(need, 0, n);
-    need[outs] = 1;
-    out->kind = gdeg[outs] >= 0 ? FR_PREPARED_POLY : FR_PREPARED_CSG;
-    for (i = outs + 1; i-- > 0 && out->kind != FR_PREPARED_NONE;) {
-        const fr_instr_t *in = &t->code[i];
-        if (!need[i]) continue;
-        if (gdeg[i] >= 0) { /* a polynomial slot: in the program, with its operands */
-            int ar = fr__arity(in->op);
-            if (out->kind == FR_PREPARED_POLY || need[i] == 2) {
-                need[i] = 2;
-                if (ar >= 1) need[in->a] = 2;
-                if (ar >= 2) need[in->b] = 2;
-            }
-            continue;
-        }
-        switch ((fr_op_t)in->op) { /* a CSG node */
-        case FR_OP_MIN: case FR_OP_MAX: case FR_OP_RUNI: case FR_OP_RINT:
-            if (!need[in->b]) need[in->b] = 1;
-            /* fallthrough */
-        case FR_OP_NEG:
-            if (!need[in->a]) need[in->a] = 1;
-            break;
-        default: out->kind = FR_PREPARED_NONE; break;
-        }
-    }
+    out->kind = fr__prepare_kind(t, gdeg, outs, need);
     if (out->kind == FR_PREPARED_NONE) { FR_FREE(work, t->alloc_ctx); return FR_OK; }
     /* leaves and nodes of the CSG tree; leaves that are not quadrics, or all
-       of them without a box, join the program (second pass below) */
+       of them without a box, join the program (fr__prepare_csg) */
     if (out->kind == FR_PREPARED_CSG)
         for (i = 0; i <= outs; i++) {
             if (!need[i]) continue;
@@ -6566,72 +6661,12 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
         fr__box_pad_set(out->box, out->box + 3, out->box, h->box);
     }
     if (out->kind == FR_PREPARED_CSG) {
-        unsigned int jl = 0, jn = 0;
-        for (i = 0; i <= outs; i++) {
-            const fr_instr_t *in = &t->code[i];
-            if (!need[i]) continue;
-            if (gdeg[i] >= 0) {
-                memset(&L[jl], 0, sizeof L[jl]);
-                L[jl].slot = i;
-                L[jl].degree = gdeg[i];
-                jl++;
-                continue;
-            }
-            N[jn].op = in->op == FR_OP_NEG ? FR__CSG_NEG : in->op == FR_OP_MIN || in->op == FR_OP_RINT ? FR__CSG_MIN
-                                                                                                     : FR__CSG_MAX;
-            N[jn].a = idx[in->a];
-            N[jn].b = in->op == FR_OP_NEG ? 0 : idx[in->b];
-            N[jn].slot = i;
-            N[jn].boxed = 0;
-            N[jn].bit = N[jn].leaf_mask = N[jn].node_mask = 0;
-            idx[i] = nl + jn;
-            jn++;
-        }
+        fr__prepare_tree(t, gdeg, need, outs, nl, idx, L, N);
         out->n_leaves = nl;
         out->n_nodes = nn;
-        {
-            unsigned char *w = need + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int));
-            if (out->has_box) {
-                fr__prepare_leaves(t, gdeg, out->box, L, nl, w);
-#ifndef FR_NO_INTERVAL
-                fr__prepare_nodes(t, out->box, N, nn, w);
-                fr__prepare_masks(N, nn, nl, w);
-                for (j = 0; j < nn; j++) ((fr__prep_head_t *)out->mem)->n_boxed_nodes += N[j].bit != 0;
-#endif
-            }
-            fr__prepare_decides(L, nl, N, nn, (unsigned int *)(void *)w);
-        }
-        /* non-quadric leaves: their subtrees make the program */
-        for (j = 0; j < nl; j++) {
-            if (L[j].quadric) { out->n_quadrics++; continue; }
-            need[L[j].slot] = 2;
-        }
-        for (i = outs + 1; i-- > 0;) {
-            const fr_instr_t *in = &t->code[i];
-            int ar;
-            if (need[i] != 2) continue;
-            ar = fr__arity(in->op);
-            if (ar >= 1) need[in->a] = 2;
-            if (ar >= 2) need[in->b] = 2;
-        }
+        fr__prepare_csg(t, gdeg, outs, out, L, N, need, need + 2 * fr__align8(n) + fr__align8(n * sizeof(unsigned int)));
     }
-    np = 0;
-    for (i = 0; i <= outs; i++) {
-        const fr_instr_t *in = &t->code[i];
-        if (need[i] != 2) continue;
-        P[np].slot = i;
-        P[np].dc = (unsigned char)gdeg[i];
-        P[np].da = (unsigned char)(fr__arity(in->op) >= 1 && gdeg[in->a] > 0 ? gdeg[in->a] : 0);
-        P[np].db = (unsigned char)(fr__arity(in->op) >= 2 && gdeg[in->b] > 0 ? gdeg[in->b] : 0);
-        P[np].kernel = fr__prog_kernel(in, P[np].da, P[np].db);
-        P[np].a = fr__arity(in->op) >= 1 ? in->a : 0;
-        P[np].b = fr__arity(in->op) >= 2 ? in->b : 0;
-        P[np].oc = i * FR__TAYLOR_N;
-        P[np].oa = P[np].a * FR__TAYLOR_N;
-        P[np].ob = P[np].b * FR__TAYLOR_N;
-        np++;
-    }
-    out->n_prog = np;
+    out->n_prog = fr__prepare_program(t, gdeg, need, outs, P);
     FR_FREE(work, t->alloc_ctx);
     return FR_OK;
 }
@@ -6877,6 +6912,116 @@ static int fr__quadric_normal(const fr__leaf_t *L, int orient, const double p[3]
     return 1;
 }
 
+/* fr_trace's arguments: FR_OK when they make a ray query (a NULL desc
+   stands for the zero one), else FR_ERR_INVALID_ARG. */
+static fr_result_t fr__trace_args(const double o[3], const double d[3], double t0, double t1, const fr_trace_desc_t *desc)
+{
+    /* x - x is 0 for finite x, NaN for infinities and NaN: one test for all six */
+    if (!((o[0] - o[0]) + (o[1] - o[1]) + (o[2] - o[2]) + (d[0] - d[0]) + (d[1] - d[1]) + (d[2] - d[2]) == 0))
+        return FR_ERR_INVALID_ARG;
+    if (!(t0 <= t1) || (d[0] == 0 && d[1] == 0 && d[2] == 0) || (unsigned int)desc->method >= (unsigned int)FR_METHOD_COUNT_)
+        return FR_ERR_INVALID_ARG;
+    return FR_OK;
+}
+
+/* Clips R's segment to the solid's box: desc->bounds, the prepared model's
+   box, or the prepared model's padded box when it is the same box (or the
+   only one). 0 when the ray misses the box: rays that miss cost only this. */
+static int fr__trace_clip(fr__ray_t *R, const fr_trace_desc_t *desc)
+{
+    const double *b = desc->bounds;
+    if (R->prep && R->prep->has_box &&
+        (!b || (b[0] == R->prep->box[0] && b[1] == R->prep->box[1] && b[2] == R->prep->box[2] && b[3] == R->prep->box[3] &&
+                b[4] == R->prep->box[4] && b[5] == R->prep->box[5])))
+        return fr__clip_padded(R, ((const fr__prep_head_t *)R->prep->mem)->box);
+    if (b && !fr__clip_box(R, b)) return 0;
+    return !(R->prep && R->prep->has_box && !fr__clip_box(R, R->prep->box));
+}
+
+/* R's iteration cap, t tolerance (desc->tol, see fr_trace_desc_t),
+   footprint and the rest of its state, for every method but the prepared
+   CSG path. */
+static void fr__trace_settings(fr__ray_t *R, const fr_trace_desc_t *desc, double t0, double t1)
+{
+    R->max_iters = desc->max_iters ? desc->max_iters : FR__TRACE_MAX_ITERS;
+    if (desc->tol > 0) R->tol = desc->tol;
+    else if (desc->tol < 0) R->tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
+    else R->tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + fabs(t0));
+    if (!(R->tol > 0)) R->tol = FR__U;
+    R->footprint = desc->footprint > 0 && desc->footprint < HUGE_VAL ? desc->footprint : 0.0;
+    R->pc = R->pm = NULL;
+    R->pdeg = R->mdeg = -1;
+    R->ts = R->rho = R->drho = 0.0;
+    R->newton = R->mono = 0;
+    R->gam = R->dgam = 0.0;
+    R->any_hit = desc->any_hit;
+}
+
+#ifndef FR_NO_INTERVAL
+/* INTERVAL on a polynomial tape: the ray polynomial g(ts + s) with its
+   rounding bounds (the centred form of g, fr__poly_range) and, for degree
+   1 and up, g' for the monotone hand-over and interval Newton. Leaves
+   R->pc NULL when the tape is not a polynomial in t or too long for the
+   bound to stay useful. */
+static void fr__interval_poly_form(fr__ray_t *R, fr__trace_mem_t *mem, const fr_trace_desc_t *desc)
+{
+    const fr_tape_t *t = R->tape;
+    double nr = 160.0 * (double)t->n_code; /* roundings per coefficient, see fr__poly_range */
+    unsigned int out = t->outputs[0];
+    int k;
+    if (!(nr * FR__U < 1e-3)) return;
+    R->ts = fr__analytic_expand(R, mem, 1);
+    if (mem->deg[out] < 0) return;
+    R->pc = mem->taylor + (size_t)out * FR__TAYLOR_N;
+    R->pm = mem->taylor_mag + (size_t)out * FR__TAYLOR_N;
+    R->pdeg = mem->deg[out];
+    R->mdeg = mem->deg_mag[out];
+    R->rho = 2.0 * fr__gamma(nr);
+    if (R->mdeg < R->pdeg) R->pc = NULL; /* cannot happen; stay safe */
+    if (R->pc) R->gam = fr__gamma(2.0 * R->mdeg + 2.0);
+    if (R->pc && R->mdeg >= 1) {
+        /* g' = sum (k+1) c_{k+1} s^k; the products by k+1 round once more */
+        for (k = 0; k < R->mdeg; k++) {
+            R->dc[k] = k + 1 <= R->pdeg ? (double)(k + 1) * R->pc[k + 1] : 0.0;
+            R->dm[k] = (double)(k + 1) * R->pm[k + 1];
+        }
+        R->drho = R->rho + 4.0 * FR__U;
+        R->dgam = fr__gamma(2.0 * (R->mdeg - 1) + 2.0);
+        R->newton = desc->interval_newton;
+        R->mono = 1;
+    }
+}
+#endif
+
+/* The hit record of ray (o, d) traced as R: the point o + t d and, on a
+   hit, the normal (the prepared model's closed forms where they apply,
+   else desc->normal's mode); leaf and orient name the prepared CSG leaf
+   hit (orient 0: none). */
+static void fr__trace_answer(fr__ray_t *R, const fr__trace_mem_t *mem, const fr_trace_desc_t *desc, const double o[3],
+                             const double d[3], fr_method_t m, int found, double t_hit, double t_err, unsigned int leaf,
+                             int orient, fr_hit_t *hit)
+{
+    int k;
+    hit->hit = found;
+    hit->method = m;
+    hit->t = found ? t_hit : 0.0;
+    hit->t_err = found ? t_err : 0.0;
+    for (k = 0; k < 3; k++) { hit->point[k] = found ? o[k] + t_hit * d[k] : 0.0; hit->normal[k] = 0.0; }
+    if (found) {
+        fr__leaf_t *lv = NULL;
+        if (orient) fr__prep_layout(R->prep->n_leaves, R->prep->n_nodes, R->prep->n_prog, &lv, NULL, NULL, R->prep->mem);
+        if (orient && desc->normal == FR_NORMAL_AD && fr__quadric_normal(&lv[leaf], orient, hit->point, hit->normal))
+            R->evals++;
+        else if (R->prep && R->prep->kind == FR_PREPARED_POLY && desc->normal == FR_NORMAL_AD &&
+                 fr__prog_normal(R->tape, R->prep, hit->point, (double *)mem->eval, hit->normal))
+            R->evals++;
+        else
+            fr__normal(R, desc, hit->point, hit->normal);
+    }
+    hit->evals = R->evals;
+    hit->iterations = R->iters;
+}
+
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
 {
@@ -6896,11 +7041,7 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
         for (zi = 0; zi < sizeof zero_desc; zi++) z[zi] = 0;
         desc = &zero_desc;
     }
-    /* x - x is 0 for finite x, NaN for infinities and NaN: one test for all six */
-    if (!((o[0] - o[0]) + (o[1] - o[1]) + (o[2] - o[2]) + (d[0] - d[0]) + (d[1] - d[1]) + (d[2] - d[2]) == 0))
-        return FR_ERR_INVALID_ARG;
-    if (!(t0 <= t1) || (d[0] == 0 && d[1] == 0 && d[2] == 0) || (unsigned int)desc->method >= (unsigned int)FR_METHOD_COUNT_)
-        return FR_ERR_INVALID_ARG;
+    if ((e = fr__trace_args(o, d, t0, t1, desc)) != FR_OK) return e;
     hit->hit = 0;
     hit->method = m = desc->method;
     hit->t = hit->t_err = 0.0;
@@ -6909,18 +7050,8 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     for (k = 0; k < 3; k++) { R.o[k] = o[k]; R.d[k] = d[k]; }
     R.t0 = t0; R.t1 = t1;
     R.have_inv = 0;
-    /* clip first: rays that miss the solid's box cost only this (a prepared
-       model's box clips too when desc->bounds does not) */
     R.prep = desc->prepared && desc->prepared->tape == t && desc->prepared->kind != FR_PREPARED_NONE ? desc->prepared : NULL;
-    if (R.prep && R.prep->has_box &&
-        (!desc->bounds || (desc->bounds[0] == R.prep->box[0] && desc->bounds[1] == R.prep->box[1] &&
-                           desc->bounds[2] == R.prep->box[2] && desc->bounds[3] == R.prep->box[3] &&
-                           desc->bounds[4] == R.prep->box[4] && desc->bounds[5] == R.prep->box[5]))) {
-        if (!fr__clip_padded(&R, ((const fr__prep_head_t *)R.prep->mem)->box)) return FR_OK;
-    } else {
-        if (desc->bounds && !fr__clip_box(&R, desc->bounds)) return FR_OK; /* the ray misses the solid's box */
-        if (R.prep && R.prep->has_box && !fr__clip_box(&R, R.prep->box)) return FR_OK;
-    }
+    if (!fr__trace_clip(&R, desc)) return FR_OK;
     fr__trace_layout(t, scratch, &mem);
     R.tape = t;
     R.eval = mem.eval;
@@ -6934,18 +7065,7 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
         found = 0;
         orient = 0;
     }
-    R.max_iters = desc->max_iters ? desc->max_iters : FR__TRACE_MAX_ITERS;
-    if (desc->tol > 0) R.tol = desc->tol;
-    else if (desc->tol < 0) R.tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
-    else R.tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + fabs(t0));
-    if (!(R.tol > 0)) R.tol = FR__U;
-    R.footprint = desc->footprint > 0 && desc->footprint < HUGE_VAL ? desc->footprint : 0.0;
-    R.pc = R.pm = NULL;
-    R.pdeg = R.mdeg = -1;
-    R.ts = R.rho = R.drho = 0.0;
-    R.newton = R.mono = 0;
-    R.gam = R.dgam = 0.0;
-    R.any_hit = desc->any_hit;
+    fr__trace_settings(&R, desc, t0, t1);
     step = desc->step;
     L = desc->lipschitz > 0 ? desc->lipschitz : t->lipschitz;
     R.prep = R.prep && R.prep->kind == FR_PREPARED_POLY ? R.prep : NULL;
@@ -6974,33 +7094,7 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
 #ifndef FR_NO_INTERVAL
         if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
         if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
-        if (!desc->plain_intervals && !desc->no_poly_range) { /* polynomial tape: the centred form of g */
-            double nr = 160.0 * (double)t->n_code; /* roundings per coefficient, see fr__poly_range */
-            unsigned int out = t->outputs[0];
-            if (nr * FR__U < 1e-3) {
-                R.ts = fr__analytic_expand(&R, &mem, 1);
-                if (mem.deg[out] >= 0) {
-                    R.pc = mem.taylor + (size_t)out * FR__TAYLOR_N;
-                    R.pm = mem.taylor_mag + (size_t)out * FR__TAYLOR_N;
-                    R.pdeg = mem.deg[out];
-                    R.mdeg = mem.deg_mag[out];
-                    R.rho = 2.0 * fr__gamma(nr);
-                    if (R.mdeg < R.pdeg) R.pc = NULL; /* cannot happen; stay safe */
-                    if (R.pc) R.gam = fr__gamma(2.0 * R.mdeg + 2.0);
-                    if (R.pc && R.mdeg >= 1) {
-                        /* g' = sum (k+1) c_{k+1} s^k; the products by k+1 round once more */
-                        for (k = 0; k < R.mdeg; k++) {
-                            R.dc[k] = k + 1 <= R.pdeg ? (double)(k + 1) * R.pc[k + 1] : 0.0;
-                            R.dm[k] = (double)(k + 1) * R.pm[k + 1];
-                        }
-                        R.drho = R.rho + 4.0 * FR__U;
-                        R.dgam = fr__gamma(2.0 * (R.mdeg - 1) + 2.0);
-                        R.newton = desc->interval_newton;
-                        R.mono = 1;
-                    }
-                }
-            }
-        }
+        if (!desc->plain_intervals && !desc->no_poly_range) fr__interval_poly_form(&R, &mem, desc);
         e = fr__trace_interval(&R, desc->plain_intervals, !desc->no_prune && !R.pc, mem.prune, &found, &t_hit, &t_err);
         break;
 #else
@@ -7015,24 +7109,7 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     }
 done:
     if (e != FR_OK) return e;
-    hit->hit = found;
-    hit->method = m;
-    hit->t = found ? t_hit : 0.0;
-    hit->t_err = found ? t_err : 0.0;
-    for (k = 0; k < 3; k++) { hit->point[k] = found ? o[k] + t_hit * d[k] : 0.0; hit->normal[k] = 0.0; }
-    if (found) {
-        fr__leaf_t *lv = NULL;
-        if (orient) fr__prep_layout(R.prep->n_leaves, R.prep->n_nodes, R.prep->n_prog, &lv, NULL, NULL, R.prep->mem);
-        if (orient && desc->normal == FR_NORMAL_AD && fr__quadric_normal(&lv[leaf], orient, hit->point, hit->normal))
-            R.evals++;
-        else if (R.prep && R.prep->kind == FR_PREPARED_POLY && desc->normal == FR_NORMAL_AD &&
-                 fr__prog_normal(t, R.prep, hit->point, (double *)mem.eval, hit->normal))
-            R.evals++;
-        else
-            fr__normal(&R, desc, hit->point, hit->normal);
-    }
-    hit->evals = R.evals;
-    hit->iterations = R.iters;
+    fr__trace_answer(&R, &mem, desc, o, d, m, found, t_hit, t_err, leaf, orient, hit);
     return FR_OK;
 }
 
