@@ -1195,11 +1195,58 @@ static re_result_t re__weld_map(re__an_t *an, re__arena_t *ar, unsigned **map_ou
 }
 
 /* Step 1: fan-split polygons, validate, face normals. */
+/* Triangle t (its indices in an->tri) checked and measured: RE_OK with
+   its unit normal and doubled area, and the box lo, hi grown by its
+   vertices; else the error that names it (msg, *elem: the triangle, or the
+   vertex with a NaN), its indices mapped through weld (NULL: none) when
+   they are in range. */
+static re_result_t re__measure_triangle(re__an_t *an, unsigned t, const unsigned *weld, double lo[3], double hi[3], char *msg,
+                                        size_t msg_size, long long *elem)
+{
+    unsigned *tr = an->tri + 3 * (size_t)t, k;
+    double e1[3], e2[3], e3[3], cr[3], len, lmax;
+    *elem = t;
+    for (k = 0; k < 3; k++)
+        if (tr[k] >= an->V) {
+            snprintf(msg, msg_size, "triangle %u has vertex index %u >= vertex_count %u", t, tr[k], an->V);
+            return RE_ERR_INDEX_OUT_OF_RANGE;
+        }
+    if (weld)
+        for (k = 0; k < 3; k++) tr[k] = weld[tr[k]];
+    for (k = 0; k < 3; k++)
+        if (!re__finite3(an->pos + 3 * (size_t)tr[k])) {
+            snprintf(msg, msg_size, "triangle %u uses vertex %u, which has a NaN or infinite coordinate", t, tr[k]);
+            *elem = tr[k];
+            return RE_ERR_NAN_VERTEX;
+        }
+    re__sub(an->pos + 3 * (size_t)tr[1], an->pos + 3 * (size_t)tr[0], e1);
+    re__sub(an->pos + 3 * (size_t)tr[2], an->pos + 3 * (size_t)tr[0], e2);
+    re__sub(an->pos + 3 * (size_t)tr[2], an->pos + 3 * (size_t)tr[1], e3);
+    re__cross(e1, e2, cr);
+    len = re__len(cr);
+    lmax = re__max(re__dot(e1, e1), re__max(re__dot(e2, e2), re__dot(e3, e3)));
+    if (!(len > RE__DEGENERATE_REL * lmax)) {
+        snprintf(msg, msg_size, "triangle %u (vertices %u %u %u) is degenerate (zero area or zero-length edge)", t, tr[0], tr[1],
+                 tr[2]);
+        return RE_ERR_DEGENERATE_TRIANGLE;
+    }
+    an->tn[3 * (size_t)t] = cr[0] / len;
+    an->tn[3 * (size_t)t + 1] = cr[1] / len;
+    an->tn[3 * (size_t)t + 2] = cr[2] / len;
+    an->tarea[t] = len;
+    for (k = 0; k < 3; k++) {
+        const double *p = an->pos + 3 * (size_t)tr[k];
+        lo[0] = re__min(lo[0], p[0]), lo[1] = re__min(lo[1], p[1]), lo[2] = re__min(lo[2], p[2]);
+        hi[0] = re__max(hi[0], p[0]), hi[1] = re__max(hi[1], p[1]), hi[2] = re__max(hi[2], p[2]);
+    }
+    return RE_OK;
+}
+
 static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
 {
     const re_mesh_t *m = an->m;
     unsigned t = 0, f, nf, base = 0, i, k, *weld = NULL;
-    double lo[3], hi[3], l0 = HUGE_VAL, l1 = HUGE_VAL, l2 = HUGE_VAL, h0 = -HUGE_VAL, h1 = -HUGE_VAL, h2 = -HUGE_VAL;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     size_t mark;
     re_result_t rc;
     char msg[128];
@@ -1221,10 +1268,9 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     nf = m->face_sizes ? m->face_count : an->T;
     for (f = 0; f < nf; f++) {
         unsigned n = m->face_sizes ? m->face_sizes[f] : 3u, j;
-        for (j = 1; j + 1 < n; j++, t++) {
+        for (j = 1; j + 1 < n; j++, t++) { /* the polygon as a fan */
             unsigned *tr = an->tri + 3 * (size_t)t;
-            double e1[3], e2[3], e3[3], cr[3], len, lmax;
-            int bad = 0;
+            long long elem;
             tr[0] = m->indices[base];
             tr[1] = m->indices[base + j];
             tr[2] = m->indices[base + j + 1];
@@ -1235,59 +1281,15 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
                 src[2] = j + 2 == n ? base + j + 1 : RE__NONE;
             }
             an->tbad[t] = 0;
-            for (k = 0; k < 3; k++)
-                if (tr[k] >= an->V) {
-                    snprintf(msg, sizeof msg, "triangle %u has vertex index %u >= vertex_count %u", t, tr[k], an->V);
-                    bad = 1;
-                    if (an->desc->bad_input != RE_BAD_INPUT_SKIP)
-                        return re__fail(an, RE_ERR_INDEX_OUT_OF_RANGE, t, msg);
-                }
-            if (!bad && weld)
-                for (k = 0; k < 3; k++) tr[k] = weld[tr[k]];
-            if (!bad)
-                for (k = 0; k < 3; k++)
-                    if (!re__finite3(an->pos + 3 * (size_t)tr[k])) {
-                        snprintf(msg, sizeof msg, "triangle %u uses vertex %u, which has a NaN or infinite coordinate", t, tr[k]);
-                        bad = 1;
-                        if (an->desc->bad_input != RE_BAD_INPUT_SKIP)
-                            return re__fail(an, RE_ERR_NAN_VERTEX, tr[k], msg);
-                        break;
-                    }
-            if (!bad) {
-                re__sub(an->pos + 3 * (size_t)tr[1], an->pos + 3 * (size_t)tr[0], e1);
-                re__sub(an->pos + 3 * (size_t)tr[2], an->pos + 3 * (size_t)tr[0], e2);
-                re__sub(an->pos + 3 * (size_t)tr[2], an->pos + 3 * (size_t)tr[1], e3);
-                re__cross(e1, e2, cr);
-                len = re__len(cr);
-                lmax = re__max(re__dot(e1, e1), re__max(re__dot(e2, e2), re__dot(e3, e3)));
-                if (!(len > RE__DEGENERATE_REL * lmax)) {
-                    snprintf(msg, sizeof msg, "triangle %u (vertices %u %u %u) is degenerate (zero area or zero-length edge)",
-                             t, tr[0], tr[1], tr[2]);
-                    bad = 1;
-                    if (an->desc->bad_input != RE_BAD_INPUT_SKIP)
-                        return re__fail(an, RE_ERR_DEGENERATE_TRIANGLE, t, msg);
-                } else {
-                    an->tn[3 * (size_t)t] = cr[0] / len;
-                    an->tn[3 * (size_t)t + 1] = cr[1] / len;
-                    an->tn[3 * (size_t)t + 2] = cr[2] / len;
-                    an->tarea[t] = len;
-                    for (k = 0; k < 3; k++) {
-                        const double *p = an->pos + 3 * (size_t)tr[k];
-                        l0 = re__min(l0, p[0]), l1 = re__min(l1, p[1]), l2 = re__min(l2, p[2]);
-                        h0 = re__max(h0, p[0]), h1 = re__max(h1, p[1]), h2 = re__max(h2, p[2]);
-                    }
-                }
-            }
-            if (bad) {
-                an->tbad[t] = 1;
-                re__report(an, RE_REPORT_SKIPPED_TRIANGLE, t, -1, 0.0, msg);
-            }
+            if ((rc = re__measure_triangle(an, t, weld, lo, hi, msg, sizeof msg, &elem)) == RE_OK) continue;
+            if (an->desc->bad_input != RE_BAD_INPUT_SKIP) return re__fail(an, rc, elem, msg);
+            an->tbad[t] = 1;
+            re__report(an, RE_REPORT_SKIPPED_TRIANGLE, t, -1, 0.0, msg);
         }
         base += n;
     }
     ar->used = mark; /* the weld map */
     an->size = 0;
-    lo[0] = l0, lo[1] = l1, lo[2] = l2, hi[0] = h0, hi[1] = h1, hi[2] = h2;
     if (lo[0] <= hi[0]) {
         double dd[3];
         re__sub(hi, lo, dd);
@@ -2573,28 +2575,23 @@ static re_result_t re__corner_bounds(re__an_t *an, re__bound_job_t *J, unsigned 
      from s_a to s_b must not turn over);
    - a corner's spheres must stay inside the shifted planes of the
      neighbouring corners (a slab thinner than 2r, a short prism). */
-static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out, unsigned **uf_out)
-{
-    unsigned *uf, i, c, *pmark, *patch, zeroed = 0;
-    re__bound_job_t job;
-    re_result_t rc;
-    double *req, *rmax, *r;
-    long long *lim0, *lim1;
+/* Per patch (indexed by its root corner in uf): the radius asked (the
+   smallest along it), whether edges asked different ones, and the largest
+   radius that fits with the corners or edge that limit it. */
+typedef struct re__patch_limits_t {
+    double *req, *rmax;
+    long long *lim0, *lim1; /* the limiting edge's vertices, or the vertex and -1 */
     unsigned char *mism;
+} re__patch_limits_t;
+
+/* Joins each rounded edge's corners into patches (uf), and gathers each
+   patch's request and the bound its edges put on it: an edge no longer
+   than its two set-backs (edges of straight chains are bounded from the
+   chain's ends, by re__corner_bounds). */
+static re_result_t re__patch_requests(re__an_t *an, unsigned *uf, re__patch_limits_t *P)
+{
+    unsigned i;
     char msg[160];
-    unsigned nc = an->nc;
-    size_t mark;
-    RE__TAKE(uf, unsigned, nc + 1);
-    RE__TAKE(r, double, nc + 1);
-    mark = ar->used; /* the rest is scratch of this step only */
-    RE__TAKE(req, double, nc + 1);
-    RE__TAKE(rmax, double, nc + 1);
-    RE__TAKE(lim0, long long, nc + 1);
-    RE__TAKE(lim1, long long, nc + 1);
-    RE__TAKE(mism, unsigned char, nc + 1);
-    RE__TAKE(pmark, unsigned, an->n_planes + 1);
-    memset(pmark, 0, sizeof(unsigned) * (an->n_planes + 1));
-    for (c = 0; c < nc; c++) uf[c] = c, req[c] = HUGE_VAL, rmax[c] = HUGE_VAL, mism[c] = 0, lim0[c] = lim1[c] = -1;
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
         double rq;
@@ -2615,55 +2612,62 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         cb = an->vcorner[e->v[1]];
         p = re__uf_find(uf, ca);
         rq = re__edge_request(an, e);
-        if (req[p] != HUGE_VAL && req[p] != rq) mism[p] = 1;
-        req[p] = re__min(req[p], rq);
-        if (an->c_np[ca] == 2 || an->c_np[cb] == 2) continue; /* part of a chain: bounded from its ends below */
+        if (P->req[p] != HUGE_VAL && P->req[p] != rq) P->mism[p] = 1;
+        P->req[p] = re__min(P->req[p], rq);
+        if (an->c_np[ca] == 2 || an->c_np[cb] == 2) continue; /* part of a chain: bounded from its ends */
         re__sub(an->pos + 3 * (size_t)e->v[1], an->pos + 3 * (size_t)e->v[0], dir);
         L = re__len(dir);
         re__sub(an->su + 3 * (size_t)(an->c_sfirst[ca] + an->edge_end[2 * i]),
                 an->su + 3 * (size_t)(an->c_sfirst[cb] + an->edge_end[2 * i + 1]), du);
         den = re__dot(du, dir) / L;
-        if (den > 0 && L / den < rmax[p]) rmax[p] = L / den, lim0[p] = re__vid(an, e->v[0]), lim1[p] = re__vid(an, e->v[1]);
+        if (den > 0 && L / den < P->rmax[p])
+            P->rmax[p] = L / den, P->lim0[p] = re__vid(an, e->v[0]), P->lim1[p] = re__vid(an, e->v[1]);
     }
-    RE__TAKE(patch, unsigned, nc + 1);
-    RE__TAKE(job.bound, double, nc + 1);
-    RE__TAKE(job.lim, long long, 2 * (size_t)nc + 1);
-    for (c = 0; c < nc; c++) patch[c] = re__uf_find(uf, c); /* the tasks only read them */
-    job.an = an, job.req = req, job.patch = patch;
-    if ((rc = re__corner_bounds(an, &job, pmark)) != RE_OK) return rc;
-    /* the first smallest bound of each patch, in corner order as before */
-    for (c = 0; c < nc; c++) {
-        unsigned q = patch[c];
-        if (job.bound[c] < rmax[q]) rmax[q] = job.bound[c], lim0[q] = job.lim[2 * c], lim1[q] = job.lim[2 * c + 1];
-    }
-    for (c = 0; c < nc; c++) {
+    return RE_OK;
+}
+
+/* Each patch's radius r[root] (0 elsewhere): its request, reported when
+   its edges asked for different ones, and clamped to what fits (reported)
+   or rejected, as the radius policy says, when it is larger. */
+static re_result_t re__patch_radius(re__an_t *an, const unsigned *uf, const re__patch_limits_t *P, double *r)
+{
+    unsigned c;
+    char msg[160];
+    for (c = 0; c < an->nc; c++) {
         r[c] = 0;
-        if (uf[c] != c || req[c] == HUGE_VAL) continue;
-        r[c] = req[c];
-        if (mism[c]) {
-            snprintf(msg, sizeof msg, "unequal edge radii meet in the patch of vertex %u: all use %g", re__vid(an, an->c_vertex[c]), req[c]);
-            re__report(an, RE_REPORT_RADIUS_MISMATCH, re__vid(an, an->c_vertex[c]), -1, req[c], msg);
+        if (uf[c] != c || P->req[c] == HUGE_VAL) continue;
+        r[c] = P->req[c];
+        if (P->mism[c]) {
+            snprintf(msg, sizeof msg, "unequal edge radii meet in the patch of vertex %u: all use %g", re__vid(an, an->c_vertex[c]),
+                     P->req[c]);
+            re__report(an, RE_REPORT_RADIUS_MISMATCH, re__vid(an, an->c_vertex[c]), -1, P->req[c], msg);
         }
-        if (req[c] > rmax[c] * (1 + RE__RADIUS_SLACK)) {
-            if (lim1[c] >= 0)
+        if (P->req[c] > P->rmax[c] * (1 + RE__RADIUS_SLACK)) {
+            if (P->lim1[c] >= 0)
                 snprintf(msg, sizeof msg, "radius %g too large: edge %lld-%lld is shorter than its two set-backs (largest %.17g)",
-                         req[c], lim0[c], lim1[c], rmax[c]);
+                         P->req[c], P->lim0[c], P->lim1[c], P->rmax[c]);
             else
                 snprintf(msg, sizeof msg, "radius %g too large at vertex %lld: the solid is thinner than 2r there (largest %.17g)",
-                         req[c], lim0[c], rmax[c]);
-            if (an->desc->radius_policy == RE_RADIUS_REJECT)
-                return re__fail(an, RE_ERR_RADIUS_TOO_LARGE, lim0[c], msg);
-            r[c] = rmax[c];
+                         P->req[c], P->lim0[c], P->rmax[c]);
+            if (an->desc->radius_policy == RE_RADIUS_REJECT) return re__fail(an, RE_ERR_RADIUS_TOO_LARGE, P->lim0[c], msg);
+            r[c] = P->rmax[c];
             an->st.clamped++;
-            re__report(an, RE_REPORT_RADIUS_CLAMPED, lim0[c], lim1[c], r[c], msg);
+            re__report(an, RE_REPORT_RADIUS_CLAMPED, P->lim0[c], P->lim1[c], r[c], msg);
         }
     }
-    /* a patch where no radius fits (largest 0: a neighbouring face plane
-       through the corner itself, e.g. where the coordinates' rounding far
-       from the origin tilted the coplanar pieces of a face against each
-       other) stays sharp, every corner and edge of it, rather than rounded
-       with r = 0 (docs: construction step 7) */
-    for (c = 0; c < nc; c++) {
+    return RE_OK;
+}
+
+/* A patch where no radius fits (largest 0: a neighbouring face plane
+   through the corner itself, e.g. where the coordinates' rounding far from
+   the origin tilted the coplanar pieces of a face against each other)
+   stays sharp, every corner and edge of it, rather than rounded with r = 0
+   (docs: construction step 7). */
+static void re__sharpen_unroundable(re__an_t *an, unsigned *uf, const double *req, const double *r)
+{
+    unsigned c, i, zeroed = 0;
+    char msg[160];
+    for (c = 0; c < an->nc; c++) {
         unsigned p = re__uf_find(uf, c);
         if (req[p] == HUGE_VAL || r[p] > 0 || an->vstate[an->c_vertex[c]] != RE__V_CORNER) continue;
         an->vstate[an->c_vertex[c]] = RE__V_SHARP;
@@ -2674,9 +2678,45 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         if (!e->rounded || an->vstate[e->v[0]] == RE__V_CORNER) continue;
         e->rounded = 0;
         an->st.rounded_edges--;
-        snprintf(msg, sizeof msg, "convex edge %u-%u left sharp: no radius above 0 fits its patch", re__vid(an, e->v[0]), re__vid(an, e->v[1]));
+        snprintf(msg, sizeof msg, "convex edge %u-%u left sharp: no radius above 0 fits its patch", re__vid(an, e->v[0]),
+                 re__vid(an, e->v[1]));
         re__report(an, RE_REPORT_SHARP_PATCH_EDGE, re__vid(an, e->v[0]), re__vid(an, e->v[1]), 0.0, msg);
     }
+}
+
+static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out, unsigned **uf_out)
+{
+    unsigned *uf, c, *pmark, *patch, nc = an->nc;
+    re__bound_job_t job;
+    re__patch_limits_t P;
+    re_result_t rc;
+    double *r;
+    size_t mark;
+    RE__TAKE(uf, unsigned, nc + 1);
+    RE__TAKE(r, double, nc + 1);
+    mark = ar->used; /* the rest is scratch of this step only */
+    RE__TAKE(P.req, double, nc + 1);
+    RE__TAKE(P.rmax, double, nc + 1);
+    RE__TAKE(P.lim0, long long, nc + 1);
+    RE__TAKE(P.lim1, long long, nc + 1);
+    RE__TAKE(P.mism, unsigned char, nc + 1);
+    RE__TAKE(pmark, unsigned, an->n_planes + 1);
+    memset(pmark, 0, sizeof(unsigned) * (an->n_planes + 1));
+    for (c = 0; c < nc; c++) uf[c] = c, P.req[c] = HUGE_VAL, P.rmax[c] = HUGE_VAL, P.mism[c] = 0, P.lim0[c] = P.lim1[c] = -1;
+    if ((rc = re__patch_requests(an, uf, &P)) != RE_OK) return rc;
+    RE__TAKE(patch, unsigned, nc + 1);
+    RE__TAKE(job.bound, double, nc + 1);
+    RE__TAKE(job.lim, long long, 2 * (size_t)nc + 1);
+    for (c = 0; c < nc; c++) patch[c] = re__uf_find(uf, c); /* the tasks only read them */
+    job.an = an, job.req = P.req, job.patch = patch;
+    if ((rc = re__corner_bounds(an, &job, pmark)) != RE_OK) return rc;
+    /* the first smallest bound of each patch, in corner order as before */
+    for (c = 0; c < nc; c++) {
+        unsigned q = patch[c];
+        if (job.bound[c] < P.rmax[q]) P.rmax[q] = job.bound[c], P.lim0[q] = job.lim[2 * c], P.lim1[q] = job.lim[2 * c + 1];
+    }
+    if ((rc = re__patch_radius(an, uf, &P, r)) != RE_OK) return rc;
+    re__sharpen_unroundable(an, uf, P.req, r);
     *patch_r_out = r;
     *uf_out = uf;
     ar->used = mark;

@@ -9,12 +9,16 @@
 
 static const double LO[3] = {-0.5, -0.3, -0.2}, HI[3] = {0.5, 0.3, 0.2};
 
-typedef struct counts_t { int n[16]; } counts_t;
+typedef struct counts_t {
+    int n[16];
+    char skipped[160]; /* the last skipped triangle's message */
+} counts_t;
 static void count_reports(void *u, const re_report_t *r)
 {
     counts_t *c = (counts_t *)u;
     if ((int)r->kind < 16) c->n[r->kind]++;
     if (!r->message || !r->message[0]) c->n[15] = -1000; /* every report has a message */
+    else if (r->kind == RE_REPORT_SKIPPED_TRIANGLE) snprintf(c->skipped, sizeof c->skipped, "%s", r->message);
 }
 
 static re_mesh_t mesh_of(const tm_mesh_t *m, double r)
@@ -71,7 +75,8 @@ static void nan_in_unused_vertex_is_ignored(void)
 }
 
 /* the box plus one bad triangle (index 12): rejected naming it, or skipped
-   with a report while the box still rounds all 12 edges */
+   with a report that names the same, while the box still rounds all 12
+   edges */
 static void box_plus_triangle(unsigned a, unsigned b, unsigned c, re_result_t rc, const char *needle)
 {
     tm_mesh_t m = {0};
@@ -92,6 +97,7 @@ static void box_plus_triangle(unsigned a, unsigned b, unsigned c, re_result_t rc
     T_CHECK(strstr(dg.message, needle) != NULL);
     T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_SKIP, &cn, &dg, &s), RE_OK);
     T_INT_EQ(cn.n[RE_REPORT_SKIPPED_TRIANGLE], 1);
+    T_CHECK(strstr(cn.skipped, needle) != NULL);
     if (s) {
         re_get_stats(s, &st);
         T_INT_EQ(st.rounded_edges, 12);
@@ -103,6 +109,8 @@ static void degenerate_repeated_index(void) { box_plus_triangle(8, 8, 9, RE_ERR_
 static void zero_area_collinear(void) { box_plus_triangle(8, 9, 10, RE_ERR_DEGENERATE_TRIANGLE, "degenerate"); }
 static void zero_length_edge(void) { box_plus_triangle(8, 11, 9, RE_ERR_DEGENERATE_TRIANGLE, "zero-length"); }
 static void out_of_range_index(void) { box_plus_triangle(8, 9, 99, RE_ERR_INDEX_OUT_OF_RANGE, "index 99"); }
+/* both policies name the first bad index (skipping named the last) */
+static void two_out_of_range_indices(void) { box_plus_triangle(8, 99, 98, RE_ERR_INDEX_OUT_OF_RANGE, "index 99"); }
 
 /* the top face built from its own copies of the corners: the mesh is open
    along the copies (edges match by index). Documented: boundary edges and
@@ -997,7 +1005,7 @@ int main(int argc, char **argv)
     static const t_case_t cases[] = {
         T_CASE(nan_position), T_CASE(inf_position), T_CASE(nan_in_unused_vertex_is_ignored),
         T_CASE(degenerate_repeated_index), T_CASE(zero_area_collinear), T_CASE(zero_length_edge),
-        T_CASE(out_of_range_index), T_CASE(duplicate_vertices_make_a_seam), T_CASE(non_manifold_edge_left_sharp),
+        T_CASE(out_of_range_index), T_CASE(two_out_of_range_indices), T_CASE(duplicate_vertices_make_a_seam), T_CASE(non_manifold_edge_left_sharp),
         T_CASE(open_mesh_left_sharp), T_CASE(inconsistent_winding), T_CASE(bad_polygon_sizes), T_CASE(bad_radius), T_CASE(bad_flat_sin), T_CASE(flat_sin_for_coarsely_rounded_doubles),
         T_CASE(null_and_junk_arguments), T_CASE(empty_scene), T_CASE(result_strings), T_CASE(query_guards),
         T_CASE(input_variants_agree), T_CASE(unwelded_mesh_rounds_with_weld), T_CASE(huge_page_range_inside_the_block),
