@@ -8,6 +8,7 @@
 #   make bench           error-against-time tables, CSV in out/bench, plots in docs/img
 #   make fuzz            long libFuzzer runs (FUZZ_SECONDS=600)
 #   make coverage        the header lines no test runs (gcc --coverage; MODULES=rounded ...)
+#   make fingerprint     every header's answers hashed bit for bit: diff before/after a refactor
 #   make install PREFIX=/usr/local    headers + filigree.pc
 #   make clean
 #
@@ -56,7 +57,7 @@ EXAMPLES := $(addprefix $(B)/examples/,$(EX_NAMES))
 EX_COMMON:= $(wildcard examples/common/*.c examples/common/*.cpp)
 EX_COMMON_OBJ := $(patsubst examples/common/%,$(B)/examples/common/%.o,$(EX_COMMON))
 
-.PHONY: all test tests benches check-headers demo bench fuzz coverage install clean deps-test deps-demo deps-bench examples
+.PHONY: all test tests benches fingerprints fingerprint check-headers demo bench fuzz coverage install clean deps-test deps-demo deps-bench examples
 .DELETE_ON_ERROR:
 # the examples/common objects are shared by every example and bench: keep them
 .SECONDARY: $(EX_COMMON_OBJ)
@@ -69,9 +70,13 @@ deps-test:
 tests: $(TESTS) $(SAN_TESTS) $(FUZZERS) $(CLANG_TESTS)
 # built by make test so that a bench that no longer compiles fails CI
 benches: $(BENCHES)
+# the same for the fingerprint programs (scripts/fingerprint, make fingerprint)
+FP_NAMES := interval rounded grooves frep
+FINGERPRINTS := $(addprefix $(B)/fingerprint/fp_,$(FP_NAMES))
+fingerprints: $(FINGERPRINTS)
 
 test: deps-test
-	@$(MAKE) --no-print-directory -j$(NPROC) tests examples benches
+	@$(MAKE) --no-print-directory -j$(NPROC) tests examples benches fingerprints
 	@tests/run_all.sh $(B)/tests $(B)/san $(T)
 
 # libFuzzer targets (clang): a short run inside make test, a long one in make fuzz.
@@ -173,6 +178,18 @@ MODULES ?=
 coverage:
 	@scripts/deps.sh test
 	@python3 scripts/coverage.py $(MODULES)
+
+# ---------------------------------------------------------------- fingerprint
+# each header's answers hashed (docs/conventions.md): run on the old tree and
+# on the new one, the outputs must be equal for a change meant to keep them
+fingerprint: deps-test
+	@$(MAKE) --no-print-directory -j$(NPROC) fingerprints
+	@set -e; for p in $(FP_NAMES); do $(B)/fingerprint/fp_$$p; done
+
+$(B)/fingerprint/fp_%: scripts/fingerprint/fp_%.c scripts/fingerprint/fp.h $(TEST_DEPS) $(wildcard examples/*/*.h) $(EX_COMMON_OBJ)
+	@mkdir -p $(dir $@)
+	$(CC) $(TEST_CFLAGS) -c $< -o $@.o
+	$(CXX) -o $@ $@.o $(EX_COMMON_OBJ) $(BENCH_LDLIBS)
 
 # ---------------------------------------------------------------- install
 install:

@@ -1,0 +1,127 @@
+/* scripts/fingerprint/fp_frep.c — frep.h's ray answers, hashed: fr_trace
+   with 16 method and option sets (every method; Newton, Brent and
+   bisection refinement; plain intervals; tol -1; interval Newton; bounds;
+   footprint; any-hit; no pruning with FD normals; prepared models) on rays
+   at the example's models (examples/models, run from the repository root)
+   and eight written here (CSG of quadrics, a torus, the tangle polynomial,
+   a blend, a superellipsoid, noise). */
+#define IV_IMPLEMENTATION
+#include "interval.h"
+#define FR_IMPLEMENTATION
+#include "frep.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "test.h"
+#include "fp.h"
+
+static const char *const fp_files[] = {"barth_sextic.hf", "blended_cylinders.hf", "cup.hf",
+                                       "metamorphosis.hf", "noise_hole.hf", "tangle_cube.hf"};
+static const char *const fp_models[] = {
+    "m(x[3], a[1]) { array c[3]; c = [0, 0, 0]; m = hfSphere(x, c, 0.8) | hfCylinderZ(x, c, 0.3) & ~hfBlock(x, c, 1, 0.8, 0.6) \\ hfCylinderZ(x, c, 0.3); }",
+    "m(x[3], a[1]) { array c[3], d[3]; c = [0, 0, 0]; d = [0.5, 0.2, 0.1]; m = hfSphere(x, c, 0.8) | hfSphere(x, d, 0.6) & hfEllipsoid(x, c, 0.9, 0.6, 0.4); }",
+    "m(x[3], a[1]) { array c[3]; c = [0, 0, 0]; m = hfTorusZ(x, c, 0.7, 0.2); }",
+    "m(x[3], a[1]) { m = x[1]^4 - 5*x[1]^2 + x[2]^4 - 5*x[2]^2 + x[3]^4 - 5*x[3]^2 + 11.8; }",
+    "m(x[3], a[1]) { array c[3]; c = [0, 0, 0]; m = hfBlendUni(hfSphere(x, c, 0.8), hfCylinderZ(x, c, 0.3), 0.3, 0.5, 0.7); }",
+    "m(x[3], a[1]) { m = 1 - x[1]*x[1] - 2*x[2]*x[2] - 0.5*x[3]*x[3] + 0.3*x[1]*x[2]; }",
+    "m(x[3], a[1]) { array c[3]; c = [0.1, -0.2, 0]; m = hfSuperEll(x, c, 0.8, 0.6, 0.5, 0.5, 0.8); }",
+    "m(x[3], a[1]) { array c[3]; c = [0, 0, 0]; m = hfNoiseG(x, 2.5, 0.7, 1.4) + hfSphere(x, c, 0.9); }",
+};
+
+static char *fp_read(const char *path, size_t *n)
+{
+    FILE *f = fopen(path, "rb");
+    char *b;
+    long m;
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    m = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    b = (char *)malloc((size_t)m + 1);
+    *n = b ? fread(b, 1, (size_t)m, f) : 0;
+    fclose(f);
+    return b;
+}
+
+/* Option set v of 16 (see the top). */
+static fr_trace_desc_t fp_desc(int v, const double *bounds, const fr_prepared_t *prep)
+{
+    fr_trace_desc_t D;
+    memset(&D, 0, sizeof D);
+    D.method = v < 5 ? (fr_method_t)v : v % 2 ? FR_METHOD_INTERVAL : FR_METHOD_STEP;
+    if (v == 5) D.refine = FR_REFINE_NEWTON;
+    if (v == 6) D.plain_intervals = 1;
+    if (v == 7) D.refine = FR_REFINE_BRENT;
+    if (v == 8) D.tol = -1;
+    if (v == 9) D.interval_newton = 1;
+    if (v == 10) D.bounds = bounds, D.refine = FR_REFINE_BISECT;
+    if (v == 11) D.no_poly_range = 1, D.footprint = 1e-3;
+    if (v == 12) D.any_hit = 1, D.method = FR_METHOD_AUTO;
+    if (v == 13) D.no_prune = 1, D.normal = FR_NORMAL_FD;
+    if (v == 14) D.method = FR_METHOD_AUTO, D.prepared = prep;
+    if (v == 15) D.method = FR_METHOD_ANALYTIC, D.prepared = prep, D.normal = FR_NORMAL_NONE;
+    return D;
+}
+
+static unsigned long long fp_tape(const fr_tape_t *tape, int nrays, unsigned long long seed, long *hits)
+{
+    static const double bounds[6] = {-3, -3, -3, 3, 3, 3};
+    unsigned long long h = FP_START;
+    fr_prepared_t prep;
+    int have_prep = fr_prepare(tape, bounds, &prep) == FR_OK, q, v, k;
+    t_rng_t rng;
+    rng.s = seed;
+    for (q = 0; q < nrays; q++) {
+        double o[3], d[3], len = 0;
+        for (k = 0; k < 3; k++) o[k] = 4 * (2 * t_rng_unit(&rng) - 1), d[k] = 1.2 * (2 * t_rng_unit(&rng) - 1) - o[k];
+        for (k = 0; k < 3; k++) len += d[k] * d[k];
+        for (k = 0; k < 3; k++) d[k] /= sqrt(len);
+        for (v = 0; v < 16; v++) {
+            fr_trace_desc_t D = fp_desc(v, bounds, have_prep ? &prep : NULL);
+            fr_hit_t hit;
+            fr_result_t r;
+            void *scratch = malloc(fr_trace_scratch_size(tape, &D));
+            memset(&hit, 0, sizeof hit);
+            r = fr_trace(tape, o, d, 0.0, 10.0, &D, scratch, &hit);
+            free(scratch);
+            h = fp_hash(h, &r, sizeof r);
+            if (r == FR_OK) h = fp_hash(h, &hit, sizeof hit), *hits += hit.hit;
+        }
+    }
+    if (have_prep) fr_prepared_free(&prep);
+    return h;
+}
+
+int main(int argc, char **argv)
+{
+    int nrays = argc > 1 ? atoi(argv[1]) : 300;
+    unsigned i, nf = sizeof fp_files / sizeof *fp_files, nm = sizeof fp_models / sizeof *fp_models;
+    for (i = 0; i < nf + nm; i++) {
+        fr_tape_t tape;
+        fr_diag_t dg;
+        size_t n = 0;
+        char path[256], name[64], *text;
+        long hits = 0;
+        unsigned long long h;
+        if (i < nf) {
+            snprintf(path, sizeof path, "examples/models/%s", fp_files[i]);
+            snprintf(name, sizeof name, "%s", fp_files[i]);
+            text = fp_read(path, &n);
+        } else {
+            n = strlen(fp_models[i - nf]);
+            snprintf(name, sizeof name, "model %u", i - nf);
+            text = (char *)malloc(n + 1);
+            if (text) memcpy(text, fp_models[i - nf], n + 1);
+        }
+        if (!text || fr_parse(text, n, NULL, &tape, &dg) != FR_OK) {
+            printf("frep      %-22s cannot read or parse\n", name);
+            free(text);
+            continue;
+        }
+        h = fp_tape(&tape, nrays, 77 + i, &hits);
+        printf("frep      %-22s %016llx  (%ld hits)\n", name, h, hits);
+        fr_tape_free(&tape);
+        free(text);
+    }
+    return 0;
+}

@@ -1,0 +1,108 @@
+/* scripts/fingerprint/fp_grooves.c — grooves.h's answers, hashed: on each
+   of the example's scenes, with and without wrapping, random footprints
+   (sizes 1e-4 to 0.05 of the tile, aspect down to 1/20, skewed, a fifth of
+   the views grazing) through gr_query in five settings (default, §4.4's
+   normals, ellipse, straight occlusion, no oversampling or lights),
+   gr_query_lines, and gr_query_lines_cached on three neighbouring
+   footprints (the cache's hits and misses too). */
+#define GR_IMPLEMENTATION
+#include "grooves.h"
+#include "../../examples/grooves/gx_scene.h"
+#include "test.h"
+#include "fp.h"
+
+#define FP_PI 3.14159265358979323846
+#define FP_SETTINGS 6 /* gr_query in five settings, gr_query_lines */
+
+static unsigned long long fp_list(unsigned long long h, gr_result_t r, const gr_facet_list_t *L)
+{
+    h = fp_hash(h, &r, sizeof r);
+    if (r != GR_OK) return h;
+    h = fp_hash(h, &L->count, sizeof L->count);
+    h = fp_hash(h, &L->flags, sizeof L->flags);
+    h = fp_hash(h, &L->grooves, sizeof L->grooves);
+    h = fp_hash(h, &L->subfootprints, sizeof L->subfootprints);
+    return fp_hash(h, L->facets, sizeof L->facets[0] * (size_t)L->count);
+}
+
+static gr_query_t fp_footprint(t_rng_t *rng, const gx_scene_t *s)
+{
+    gr_query_t Q;
+    double size = exp(log(1e-4) + (log(0.05) - log(1e-4)) * t_rng_unit(rng)), a = 2 * FP_PI * t_rng_unit(rng);
+    double asp = 0.05 + 0.95 * t_rng_unit(rng), el = t_rng_unit(rng) < 0.2 ? 1e-3 + 0.05 * t_rng_unit(rng) : asin(t_rng_unit(rng));
+    double az = 2 * FP_PI * t_rng_unit(rng), skew = 0.3 * (t_rng_unit(rng) - 0.5);
+    memset(&Q, 0, sizeof Q);
+    Q.footprint.center[0] = t_rng_unit(rng);
+    Q.footprint.center[1] = t_rng_unit(rng);
+    Q.footprint.axis1[0] = size * cos(a), Q.footprint.axis1[1] = size * sin(a);
+    Q.footprint.axis2[0] = -size * asp * sin(a + skew), Q.footprint.axis2[1] = size * asp * cos(a + skew);
+    Q.footprint.view[0] = cos(el) * cos(az), Q.footprint.view[1] = cos(el) * sin(az), Q.footprint.view[2] = sin(el);
+    Q.lights = &s->light[0][0];
+    Q.light_count = s->nlights;
+    return Q;
+}
+
+static void fp_grid(const gx_scene_t *s, int wrap, int nq, unsigned long long seed)
+{
+    static gr_line_cache_t cache;
+    gr_grid_desc_t gd;
+    gr_grid_t *grid = NULL;
+    gr_diag_t diag;
+    unsigned long long h[FP_SETTINGS + 1];
+    size_t sb;
+    void *scratch;
+    t_rng_t rng;
+    int q, v, j;
+    memset(&gd, 0, sizeof gd);
+    gd.grooves = s->desc, gd.groove_count = s->ngrooves, gd.no_wrap = !wrap;
+    if (gr_grid_build(&gd, &grid, &diag) != GR_OK) { printf("grooves   %-13s grid failed: %s\n", s->name, diag.message); return; }
+    sb = gr_query_scratch_bytes(grid);
+    scratch = malloc(sb);
+    memset(&cache, 0, sizeof cache);
+    for (v = 0; v <= FP_SETTINGS; v++) h[v] = FP_START;
+    rng.s = seed;
+    for (q = 0; q < nq; q++) {
+        gr_query_t Q = fp_footprint(&rng, s);
+        gr_facet_list_t L;
+        for (v = 0; v < FP_SETTINGS; v++) {
+            gr_query_t V = Q;
+            gr_result_t r;
+            if (v == 1) V.perturb_normals = -1;
+            if (v == 2) V.ellipse = 1;
+            if (v == 3) V.straight_occlusion = 1;
+            if (v == 4) V.oversample_tol = -1, V.light_count = 0;
+            if (v == 5) V.line_samples = 2;
+            memset(&L, 0, sizeof L);
+            r = v == 5 ? gr_query_lines(grid, &V, scratch, sb, &L, NULL) : gr_query(grid, &V, scratch, sb, &L);
+            h[v] = fp_list(h[v], r, &L);
+        }
+        for (j = 0; j < 3; j++) { /* neighbours through the cache */
+            gr_query_t V = Q;
+            V.line_samples = 2 + j;
+            V.footprint.center[0] += 0.3 * j * V.footprint.axis1[0];
+            V.footprint.center[1] += 0.3 * j * V.footprint.axis1[1];
+            memset(&L, 0, sizeof L);
+            h[FP_SETTINGS] = fp_list(h[FP_SETTINGS], gr_query_lines_cached(grid, &V, &cache, scratch, sb, &L, NULL), &L);
+        }
+    }
+    h[FP_SETTINGS] = fp_hash(h[FP_SETTINGS], &cache.hits, sizeof cache.hits);
+    h[FP_SETTINGS] = fp_hash(h[FP_SETTINGS], &cache.misses, sizeof cache.misses);
+    printf("grooves   %-13s wrap %d ", s->name, wrap);
+    for (v = 0; v <= FP_SETTINGS; v++) printf(" %016llx", h[v]);
+    printf("\n");
+    free(scratch);
+    gr_grid_free(grid);
+}
+
+int main(int argc, char **argv)
+{
+    int i, wrap, nq = argc > 1 ? atoi(argv[1]) : 3000;
+    for (i = 0; gx_scene_names[i]; i++) {
+        gx_scene_t s;
+        memset(&s, 0, sizeof s);
+        if (gx_scene_make(&s, gx_scene_names[i])) { printf("grooves   %s: scene failed\n", gx_scene_names[i]); continue; }
+        for (wrap = 0; wrap < 2; wrap++) fp_grid(&s, wrap, nq, 1234 + (unsigned long long)i);
+        gx_scene_free(&s);
+    }
+    return 0;
+}
