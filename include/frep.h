@@ -5513,6 +5513,82 @@ static fr_result_t fr__g_range(fr__ray_t *R, const fr_tape_t *tp, double a, doub
    than tol whose enclosure contains 0 is the hit. Pruned tapes (Keeter
    2020) are made every FR__PRUNE_EVERY levels and reused by the segment's
    descendants, which depth-first order keeps alive. */
+/* What a test on a segment of fr__trace_interval decides. */
+#define FR__SEG_GO_ON 0  /* nothing: the next tests decide */
+#define FR__SEG_DROP 1   /* no root in it */
+#define FR__SEG_ANSWER 2 /* *found, *t_hit, *t_err hold the answer */
+
+/* The pruned tape of segment s's level (every FR__PRUNE_EVERY levels, up to
+   FR__PRUNE_LEVELS), from the level above over s's box; the level above's
+   when pruning fails. */
+static void fr__prune_segment(fr__ray_t *R, const fr__seg_t *s, fr_tape_t *tapes, fr_instr_t *bufs)
+{
+    int lvl = s->depth / FR__PRUNE_EVERY;
+    iv_t box[3];
+    if (s->depth % FR__PRUNE_EVERY != 0 || s->depth == 0 || lvl >= FR__PRUNE_LEVELS) return;
+    fr__ray_box(R, s->a, s->b, box);
+    R->evals++;
+    if (fr_prune_ex(&tapes[lvl - 1], box, FR_PRUNE_SIGN, R->eval, bufs + (size_t)lvl * R->tape->n_code, R->tape->n_code,
+                    &tapes[lvl], NULL) != FR_OK)
+        tapes[lvl] = tapes[lvl - 1];
+}
+
+/* A polynomial tape: where the centred form of g' (*dg) excludes 0, g is
+   strictly monotone on the segment, so it holds at most one root, and the
+   first one, as every segment left of it is excluded (depth-first, left
+   first). A sign change at the ends then goes straight to regula falsi (to
+   tol, bracketed); no sign change, with the ends' enclosures of one strict
+   sign, proves there is none. Either saves the bisection levels down to
+   tl. *ga, *gb get g at the ends when it was evaluated (*have_ends). */
+static int fr__monotone_segment(fr__ray_t *R, const fr__seg_t *s, iv_t *dg, double *ga, double *gb, int *have_ends, int *found,
+                                double *t_hit, double *t_err)
+{
+    double share;
+    iv_t ea, eb;
+    *dg = fr__poly_range_of(R, R->dc, R->dm, R->pdeg - 1, R->mdeg - 1, R->drho, R->dgam, s->a, s->b, &share);
+    R->evals++;
+    if (iv_is_empty(*dg) || iv_contains(*dg, 0.0)) return FR__SEG_GO_ON;
+    *ga = fr__g(R, s->a);
+    *gb = fr__g(R, s->b);
+    *have_ends = 1;
+    if (*ga == 0 || *gb == 0 || fr__opposite(*ga, *gb)) {
+        *found = 1;
+        *t_err = 0.5 * R->tol;
+        if (*ga == 0) *t_hit = s->a;
+        else if (*gb == 0) *t_hit = s->b;
+        else if (R->any_hit) { *t_hit = 0.5 * (s->a + s->b); *t_err = 0.5 * (s->b - s->a); }
+        else *t_hit = fr__refine(R, FR_REFINE_ILLINOIS, s->a, s->b, *ga, *gb, t_err);
+        return FR__SEG_ANSWER;
+    }
+    ea = fr__poly_range(R, s->a, s->a, &share);
+    eb = fr__poly_range(R, s->b, s->b, &share);
+    R->evals += 2;
+    return (ea.lo > 0 && eb.lo > 0) || (ea.hi < 0 && eb.hi < 0) ? FR__SEG_DROP : FR__SEG_GO_ON;
+}
+
+/* A segment no wider than tl (or any segment, for any-hit): a sign change
+   at the ends proves a root inside. Without one the enclosure may just be
+   loose (a near miss), so such a segment is bisected FR__TOUCH_SCALE
+   further: a near miss is then excluded, a feature thinner than tl shows
+   its sign change, and what survives is reported as a touch. Every segment
+   left of this one is excluded (depth-first, left first), so a sign change
+   here brackets the first root, or with several roots inside the segment
+   one of them. Returns 1 with the answer, 0 to bisect on. */
+static int fr__leaf_segment(fr__ray_t *R, const fr__seg_t *s, double tl, int have_ends, double ga, double gb, int *found,
+                            double *t_hit, double *t_err)
+{
+    int change;
+    if (!have_ends) { ga = fr__g(R, s->a); gb = fr__g(R, s->b); }
+    change = ga == 0 || gb == 0 || fr__opposite(ga, gb);
+    if (!change && !(s->b - s->a <= tl && (s->b - s->a <= tl * FR__TOUCH_SCALE || s->depth >= FR__TRACE_MAX_DEPTH))) return 0;
+    *found = 1;
+    *t_hit = ga == 0 ? s->a : gb == 0 && !fr__opposite(ga, gb) ? s->b : 0.5 * (s->a + s->b);
+    *t_err = 0.5 * (s->b - s->a);
+    if (change && !R->any_hit && ga != 0 && gb != 0 && s->b - s->a > 2.0 * R->tol) /* footprint leaf */
+        *t_hit = fr__refine(R, FR_REFINE_ILLINOIS, s->a, s->b, ga, gb, t_err);
+    return 1;
+}
+
 static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_instr_t *bufs, int *found,
                                       double *t_hit, double *t_err)
 {
@@ -5529,17 +5605,10 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         const fr_tape_t *tp;
         iv_t range, dg;
         fr_result_t e;
-        double tl, ga = 0.0, gb = 0.0;
+        double tl, ga = 0.0, gb = 0.0, m;
         int have_ends = 0; /* ga, gb hold g at the segment's ends */
         R->iters++;
-        if (prune && s.depth % FR__PRUNE_EVERY == 0 && s.depth > 0 && lvl < FR__PRUNE_LEVELS) {
-            iv_t box[3];
-            fr__ray_box(R, s.a, s.b, box);
-            R->evals++;
-            e = fr_prune_ex(&tapes[lvl - 1], box, FR_PRUNE_SIGN, R->eval, bufs + (size_t)lvl * R->tape->n_code,
-                            R->tape->n_code, &tapes[lvl], NULL);
-            if (e != FR_OK) tapes[lvl] = tapes[lvl - 1];
-        }
+        if (prune) fr__prune_segment(R, &s, tapes, bufs);
         tp = prune ? &tapes[lvl < FR__PRUNE_LEVELS ? lvl : FR__PRUNE_LEVELS - 1] : R->tape;
         e = fr__g_range(R, tp, s.a, s.b, plain, &range);
         if (e != FR_OK) return e;
@@ -5548,36 +5617,9 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         tl = R->tol + R->footprint * fabs(s.b);
         dg = iv_entire();
         if (R->mono && s.b - s.a > tl) {
-            /* A polynomial tape: where the centred form of g' excludes 0, g
-               is strictly monotone on the segment, so it holds at most one
-               root, and the first one, as every segment left of it is
-               excluded (depth-first, left first). A sign change at the ends
-               then goes straight to regula falsi (to tol, bracketed); no
-               sign change, with the ends' enclosures of one strict sign,
-               proves there is none. Either saves the bisection levels down
-               to tl. */
-            double share;
-            dg = fr__poly_range_of(R, R->dc, R->dm, R->pdeg - 1, R->mdeg - 1, R->drho, R->dgam, s.a, s.b, &share);
-            R->evals++;
-            if (!iv_is_empty(dg) && !iv_contains(dg, 0.0)) {
-                ga = fr__g(R, s.a);
-                gb = fr__g(R, s.b);
-                have_ends = 1;
-                if (ga == 0 || gb == 0 || fr__opposite(ga, gb)) {
-                    *found = 1;
-                    *t_err = 0.5 * R->tol;
-                    if (ga == 0) *t_hit = s.a;
-                    else if (gb == 0) *t_hit = s.b;
-                    else if (R->any_hit) { *t_hit = 0.5 * (s.a + s.b); *t_err = 0.5 * (s.b - s.a); }
-                    else *t_hit = fr__refine(R, FR_REFINE_ILLINOIS, s.a, s.b, ga, gb, t_err);
-                    return FR_OK;
-                }
-                {
-                    iv_t ea = fr__poly_range(R, s.a, s.a, &share), eb = fr__poly_range(R, s.b, s.b, &share);
-                    R->evals += 2;
-                    if ((ea.lo > 0 && eb.lo > 0) || (ea.hi < 0 && eb.hi < 0)) continue;
-                }
-            }
+            int d = fr__monotone_segment(R, &s, &dg, &ga, &gb, &have_ends, found, t_hit, t_err);
+            if (d == FR__SEG_ANSWER) return FR_OK;
+            if (d == FR__SEG_DROP) continue;
         }
         if (R->newton && s.b - s.a > tl) {
             /* interval Newton: drop the segment or narrow it; a segment
@@ -5589,37 +5631,15 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
                 continue;
             }
         }
-        if (s.b - s.a <= tl || R->any_hit) {
-            /* A sign change at the ends proves a root inside. Without one the
-               enclosure may just be loose (a near miss), so such a segment
-               is bisected FR__TOUCH_SCALE further: a near miss is then
-               excluded, a feature thinner than tl shows its sign change,
-               and what survives is reported as a touch. Every segment left
-               of this one is excluded (depth-first, left first), so a sign
-               change here brackets the first root, or with several roots
-               inside the segment one of them. */
-            int change;
-            if (!have_ends) { ga = fr__g(R, s.a); gb = fr__g(R, s.b); }
-            change = ga == 0 || gb == 0 || fr__opposite(ga, gb);
-            if (change || (s.b - s.a <= tl && (s.b - s.a <= tl * FR__TOUCH_SCALE || s.depth >= FR__TRACE_MAX_DEPTH))) {
-                *found = 1;
-                *t_hit = ga == 0 ? s.a : gb == 0 && !fr__opposite(ga, gb) ? s.b : 0.5 * (s.a + s.b);
-                *t_err = 0.5 * (s.b - s.a);
-                if (change && !R->any_hit && ga != 0 && gb != 0 && s.b - s.a > 2.0 * R->tol) /* footprint leaf */
-                    *t_hit = fr__refine(R, FR_REFINE_ILLINOIS, s.a, s.b, ga, gb, t_err);
-                return FR_OK;
-            }
-        }
+        if ((s.b - s.a <= tl || R->any_hit) && fr__leaf_segment(R, &s, tl, have_ends, ga, gb, found, t_hit, t_err)) return FR_OK;
         if (s.depth >= FR__TRACE_MAX_DEPTH) { *found = 1; *t_hit = 0.5 * (s.a + s.b); *t_err = 0.5 * (s.b - s.a); return FR_OK; }
-        {
-            double m = 0.5 * (s.a + s.b);
-            if (!(m > s.a && m < s.b)) { /* adjacent doubles: as narrow as t can be */
-                *found = 1; *t_hit = s.a; *t_err = s.b - s.a;
-                return FR_OK;
-            }
-            stack[sp].a = m; stack[sp].b = s.b; stack[sp].depth = s.depth + 1; sp++;
-            stack[sp].a = s.a; stack[sp].b = m; stack[sp].depth = s.depth + 1; sp++;
+        m = 0.5 * (s.a + s.b);
+        if (!(m > s.a && m < s.b)) { /* adjacent doubles: as narrow as t can be */
+            *found = 1; *t_hit = s.a; *t_err = s.b - s.a;
+            return FR_OK;
         }
+        stack[sp].a = m; stack[sp].b = s.b; stack[sp].depth = s.depth + 1; sp++;
+        stack[sp].a = s.a; stack[sp].b = m; stack[sp].depth = s.depth + 1; sp++;
     }
     return FR_OK;
 }
