@@ -1253,18 +1253,10 @@ static int gr__shares_section(const gr_grid_desc_t *desc, int g)
            desc->grooves[g].section_count == desc->grooves[g - 1].section_count;
 }
 
-static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_t *diag)
+/* The grid's domain and its cell counts as asked: GR_OK, or the error. */
+static gr_result_t gr__plan_domain(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_t *diag)
 {
-    int g, i, j;
-    double diag_len;
-    size_t off;
-    if (diag) { diag->result = GR_OK; diag->element = -1; diag->message[0] = 0; }
-    if (!desc) { gr__diag(diag, GR_ERR_INVALID_ARG, -1, "desc is NULL"); return GR_ERR_INVALID_ARG; }
-    memset(pl, 0, sizeof *pl);
-    if (desc->groove_count <= 0 || !desc->grooves) {
-        gr__diag(diag, GR_ERR_EMPTY_GRID, -1, "grid has no grooves");
-        return GR_ERR_EMPTY_GRID;
-    }
+    int i;
     gr__domain(desc, pl->dom);
     for (i = 0; i < 4; i++)
         if (!gr__finite(pl->dom[i])) { gr__diag(diag, GR_ERR_NOT_FINITE, -1, "domain is not finite"); return GR_ERR_NOT_FINITE; }
@@ -1277,7 +1269,15 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
         gr__diag(diag, GR_ERR_INVALID_ARG, -1, "cells_u, cells_v out of range (0..65536, product <= 2^24)");
         return GR_ERR_INVALID_ARG;
     }
-    diag_len = hypot(pl->dom[2] - pl->dom[0], pl->dom[3] - pl->dom[1]);
+    return GR_OK;
+}
+
+/* Each groove checked, and the totals of points, section points, facets
+   and blockers (shared sections counted once). */
+static gr_result_t gr__plan_totals(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_t *diag)
+{
+    double diag_len = hypot(pl->dom[2] - pl->dom[0], pl->dom[3] - pl->dom[1]);
+    int g, i, j;
     for (g = 0; g < desc->groove_count; g++) {
         const gr_groove_desc_t *gd = &desc->grooves[g];
         gr_result_t r = gr__check_groove(gd, g, diag_len, diag);
@@ -1294,33 +1294,34 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
             return GR_ERR_INVALID_ARG;
         }
     }
-    pl->groove_count = desc->groove_count;
-    {
-        /* long paths cross about n cells per tile length: aim at
-           GR__AUTO_ITEMS_PER_CELL paths per cell, and at least
-           GR__AUTO_CELLS_PER_SQRT_GROOVE sqrt(G) cells per axis for short ones */
-        double total = 0, tile = 0.5 * ((pl->dom[2] - pl->dom[0]) + (pl->dom[3] - pl->dom[1])), want;
-        int autoc;
-        for (g = 0; g < desc->groove_count; g++) {
-            const gr_groove_desc_t *gd = &desc->grooves[g];
-            for (i = 1; i < gd->point_count; i++)
-                total += sqrt((gd->points[2 * i] - gd->points[2 * i - 2]) * (gd->points[2 * i] - gd->points[2 * i - 2]) +
-                              (gd->points[2 * i + 1] - gd->points[2 * i - 1]) * (gd->points[2 * i + 1] - gd->points[2 * i - 1]));
-        }
-        want = GR__AUTO_CELLS_PER_SQRT_GROOVE * sqrt((double)desc->groove_count);
-        if (total / tile / GR__AUTO_ITEMS_PER_CELL > want) want = total / tile / GR__AUTO_ITEMS_PER_CELL;
-        autoc = want < GR__AUTO_CELLS_MAX ? (int)ceil(want) : GR__AUTO_CELLS_MAX;
-        pl->cells.nu = desc->cells_u ? desc->cells_u : autoc;
-        pl->cells.nv = desc->cells_v ? desc->cells_v : autoc;
+    return GR_OK;
+}
+
+/* The automatic cell count per axis: long paths cross about n cells per
+   tile length, so aim at GR__AUTO_ITEMS_PER_CELL paths per cell, and at
+   least GR__AUTO_CELLS_PER_SQRT_GROOVE sqrt(G) cells per axis for short
+   ones. */
+static int gr__auto_cells(const gr_grid_desc_t *desc, const double dom[4])
+{
+    double total = 0, tile = 0.5 * ((dom[2] - dom[0]) + (dom[3] - dom[1])), want;
+    int g, i;
+    for (g = 0; g < desc->groove_count; g++) {
+        const gr_groove_desc_t *gd = &desc->grooves[g];
+        for (i = 1; i < gd->point_count; i++)
+            total += sqrt((gd->points[2 * i] - gd->points[2 * i - 2]) * (gd->points[2 * i] - gd->points[2 * i - 2]) +
+                          (gd->points[2 * i + 1] - gd->points[2 * i - 1]) * (gd->points[2 * i + 1] - gd->points[2 * i - 1]));
     }
-    pl->cells.u0 = pl->dom[0];
-    pl->cells.v0 = pl->dom[1];
-    pl->cells.cu = (pl->dom[2] - pl->dom[0]) / pl->cells.nu;
-    pl->cells.cv = (pl->dom[3] - pl->dom[1]) / pl->cells.nv;
-    pl->cells.wrap = !desc->no_wrap;
+    want = GR__AUTO_CELLS_PER_SQRT_GROOVE * sqrt((double)desc->groove_count);
+    if (total / tile / GR__AUTO_ITEMS_PER_CELL > want) want = total / tile / GR__AUTO_ITEMS_PER_CELL;
+    return want < GR__AUTO_CELLS_MAX ? (int)ceil(want) : GR__AUTO_CELLS_MAX;
+}
+
 #ifndef GR_NO_INTERSECTIONS
-    /* §5: self-intersections, and room for the pieces they cut a groove
-       into (at most three cuts per hit, gr__split_groove) */
+/* §5: the self-intersections, and room for the pieces they cut a groove
+   into (at most three cuts per hit, gr__split_groove). */
+static gr_result_t gr__plan_self_hits(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_t *diag)
+{
+    int g;
     for (g = 0; g < desc->groove_count; g++) {
         const gr_groove_desc_t *gd = &desc->grooves[g];
         int nh = gr__path_self_hits(gd->points, (int)gd->kind, gd->point_count,
@@ -1335,6 +1336,57 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
             pl->split_points += gd->point_count + 4 * (3 * nh + 1);
         }
     }
+    return GR_OK;
+}
+#endif
+
+/* The grid block's layout: each array's offset, and its size. */
+static void gr__plan_layout(gr__plan_t *pl)
+{
+    size_t nc = (size_t)pl->cells.nu * (size_t)pl->cells.nv, off = gr__align8(sizeof(gr_grid_t));
+    pl->off_grooves = off;
+    off = gr__align8(off + sizeof(gr__groove_t) * ((size_t)pl->groove_count + (size_t)pl->split_records));
+    pl->off_points = off;
+    off = gr__align8(off + sizeof(double) * 2 * ((size_t)pl->total_points + (size_t)pl->split_points));
+    pl->off_section = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_section);
+    pl->off_refl = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_facets);
+    pl->off_bstart = off; off = gr__align8(off + sizeof(int) * ((size_t)pl->total_section + 1));
+    pl->off_blockers = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_blockers);
+    pl->off_cstart = off; off = gr__align8(off + sizeof(int) * (nc + 1));
+    pl->off_ccount = off; off = gr__align8(off + sizeof(int) * nc);
+    pl->off_items = off; off = gr__align8(off + sizeof(int) * (size_t)pl->item_capacity);
+    pl->off_astart = off; off = gr__align8(off + sizeof(int) * (nc + 1));
+    pl->off_aitems = off; off = gr__align8(off + sizeof(int) * (size_t)pl->groove_count);
+    pl->off_rowsum = off; off = gr__align8(off + sizeof(int) * (size_t)pl->cells.nv * ((size_t)pl->cells.nu + 1));
+#ifndef GR_NO_INTERSECTIONS
+    pl->off_self = off; off = gr__align8(off + sizeof(gr_self_hit_t) * (size_t)pl->self_hits);
+#endif
+    pl->bytes = off;
+}
+
+static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_t *diag)
+{
+    int g, autoc;
+    gr_result_t r;
+    if (diag) { diag->result = GR_OK; diag->element = -1; diag->message[0] = 0; }
+    if (!desc) { gr__diag(diag, GR_ERR_INVALID_ARG, -1, "desc is NULL"); return GR_ERR_INVALID_ARG; }
+    memset(pl, 0, sizeof *pl);
+    if (desc->groove_count <= 0 || !desc->grooves) {
+        gr__diag(diag, GR_ERR_EMPTY_GRID, -1, "grid has no grooves");
+        return GR_ERR_EMPTY_GRID;
+    }
+    if ((r = gr__plan_domain(desc, pl, diag)) != GR_OK || (r = gr__plan_totals(desc, pl, diag)) != GR_OK) return r;
+    pl->groove_count = desc->groove_count;
+    autoc = desc->cells_u && desc->cells_v ? 0 : gr__auto_cells(desc, pl->dom);
+    pl->cells.nu = desc->cells_u ? desc->cells_u : autoc;
+    pl->cells.nv = desc->cells_v ? desc->cells_v : autoc;
+    pl->cells.u0 = pl->dom[0];
+    pl->cells.v0 = pl->dom[1];
+    pl->cells.cu = (pl->dom[2] - pl->dom[0]) / pl->cells.nu;
+    pl->cells.cv = (pl->dom[3] - pl->dom[1]) / pl->cells.nv;
+    pl->cells.wrap = !desc->no_wrap;
+#ifndef GR_NO_INTERSECTIONS
+    if ((r = gr__plan_self_hits(desc, pl, diag)) != GR_OK) return r;
 #endif
     for (g = 0; g < desc->groove_count; g++) {
         const gr_groove_desc_t *gd = &desc->grooves[g];
@@ -1344,28 +1396,7 @@ static gr_result_t gr__plan(const gr_grid_desc_t *desc, gr__plan_t *pl, gr_diag_
             return GR_ERR_INVALID_ARG;
         }
     }
-    {
-        size_t nc = (size_t)pl->cells.nu * (size_t)pl->cells.nv;
-        off = gr__align8(sizeof(gr_grid_t));
-        pl->off_grooves = off;
-        off = gr__align8(off + sizeof(gr__groove_t) * ((size_t)pl->groove_count + (size_t)pl->split_records));
-        pl->off_points = off;
-        off = gr__align8(off + sizeof(double) * 2 * ((size_t)pl->total_points + (size_t)pl->split_points));
-        pl->off_section = off; off = gr__align8(off + sizeof(double) * 2 * (size_t)pl->total_section);
-        pl->off_refl = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_facets);
-        pl->off_bstart = off; off = gr__align8(off + sizeof(int) * ((size_t)pl->total_section + 1));
-        pl->off_blockers = off; off = gr__align8(off + sizeof(int) * (size_t)pl->total_blockers);
-        pl->off_cstart = off; off = gr__align8(off + sizeof(int) * (nc + 1));
-        pl->off_ccount = off; off = gr__align8(off + sizeof(int) * nc);
-        pl->off_items = off; off = gr__align8(off + sizeof(int) * (size_t)pl->item_capacity);
-        pl->off_astart = off; off = gr__align8(off + sizeof(int) * (nc + 1));
-        pl->off_aitems = off; off = gr__align8(off + sizeof(int) * (size_t)pl->groove_count);
-        pl->off_rowsum = off; off = gr__align8(off + sizeof(int) * (size_t)pl->cells.nv * ((size_t)pl->cells.nu + 1));
-#ifndef GR_NO_INTERSECTIONS
-        pl->off_self = off; off = gr__align8(off + sizeof(gr_self_hit_t) * (size_t)pl->self_hits);
-#endif
-        pl->bytes = off;
-    }
+    gr__plan_layout(pl);
     return GR_OK;
 }
 
@@ -1466,14 +1497,113 @@ static gr__cells_t gr__grid_cells(const gr_grid_t *gr)
     return c;
 }
 
+/* The grid's header and its arrays' places in the block (plan pl). */
+static gr_grid_t *gr__grid_header(const gr_grid_desc_t *desc, const gr__plan_t *pl, char *base)
+{
+    gr_grid_t *gr = (gr_grid_t *)(void *)base;
+    memset(gr, 0, sizeof *gr);
+    gr->groove_count = pl->groove_count;
+    gr->cells_u = pl->cells.nu;
+    gr->cells_v = pl->cells.nv;
+    memcpy(gr->domain, pl->dom, sizeof pl->dom);
+    gr->wrap = pl->cells.wrap;
+    gr->base_reflectance = desc->base_reflectance;
+    gr->bytes = pl->bytes;
+    gr->alloc_ctx = desc->alloc_ctx;
+    gr->grooves_ = (gr__groove_t *)(void *)(base + pl->off_grooves);
+    gr->points_ = (double *)(void *)(base + pl->off_points);
+    gr->section_ = (double *)(void *)(base + pl->off_section);
+    gr->facet_refl_ = (int *)(void *)(base + pl->off_refl);
+    gr->blocker_start_ = (int *)(void *)(base + pl->off_bstart);
+    gr->blockers_ = (int *)(void *)(base + pl->off_blockers);
+    gr->cell_start_ = (int *)(void *)(base + pl->off_cstart);
+    gr->cell_count_ = (int *)(void *)(base + pl->off_ccount);
+    gr->cell_items_ = (int *)(void *)(base + pl->off_items);
+    gr->anchor_start_ = (int *)(void *)(base + pl->off_astart);
+    gr->anchor_items_ = (int *)(void *)(base + pl->off_aitems);
+    gr->row_anchor_sum_ = (int *)(void *)(base + pl->off_rowsum);
+    gr->total_points_ = pl->total_points;
+    gr->total_section_ = pl->total_section;
+    gr->total_facets_ = pl->total_facets;
+    gr->item_capacity_ = (int)pl->item_capacity;
+#ifndef GR_NO_INTERSECTIONS
+    gr->self_ = (gr_self_hit_t *)(void *)(base + pl->off_self);
+#endif
+    return gr;
+}
+
+#ifndef GR_NO_INTERSECTIONS
+/* §5: self-intersections found once, each self-crossing groove cut into
+   pieces after the grooves (the grid's cells list the grooves only); *pt
+   is the next free point. */
+static void gr__split_self_hits(gr_grid_t *gr, const gr__plan_t *pl, int *pt)
+{
+    int next = pl->groove_count, h0, g;
+    for (g = 0; g < pl->groove_count; g++) {
+        const gr__groove_t *rec = &gr->grooves_[g];
+        h0 = gr->self_count_;
+        gr->self_count_ += gr__path_self_hits(gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count, rec->closed, g,
+                                              gr->self_ + h0, pl->self_hits - h0);
+        if (gr->self_count_ > h0) gr__split_groove(gr, g, gr->self_ + h0, gr->self_count_ - h0, &next, pt);
+    }
+    GR_ASSERT(gr->self_count_ == pl->self_hits && next <= pl->groove_count + pl->split_records);
+    gr->split_records_ = next - pl->groove_count;
+}
+#endif
+
+/* The cell lists: counted (an upper bound), prefix-summed, filled without
+   repeats. */
+static void gr__fill_cells(gr_grid_t *gr, const gr__plan_t *pl)
+{
+    int g, i, nc = pl->cells.nu * pl->cells.nv;
+    memset(gr->cell_start_, 0, sizeof(int) * ((size_t)nc + 1));
+    memset(gr->cell_count_, 0, sizeof(int) * (size_t)nc);
+    for (g = 0; g < pl->groove_count; g++) {
+        const gr__groove_t *rec = &gr->grooves_[g];
+        gr__path_boxes(&pl->cells, gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count, g, gr->cell_start_ + 1, NULL,
+                       NULL, NULL);
+    }
+    for (i = 0; i < nc; i++) gr->cell_start_[i + 1] += gr->cell_start_[i];
+    GR_ASSERT(gr->cell_start_[nc] == pl->item_capacity);
+    for (g = 0; g < pl->groove_count; g++) {
+        const gr__groove_t *rec = &gr->grooves_[g];
+        gr__path_boxes(&pl->cells, gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count, g, NULL, gr->cell_start_,
+                       gr->cell_count_, gr->cell_items_);
+    }
+}
+
+/* The anchors: each groove in the cell of its first point, for grooves
+   that lie wholly inside a footprint box (missed by the boundary cells),
+   and their prefix sums along each row. */
+static void gr__fill_anchors(gr_grid_t *gr, const gr__plan_t *pl)
+{
+    int g, i, j, nc = pl->cells.nu * pl->cells.nv, *cursor = gr->row_anchor_sum_; /* borrowed as a per-cell fill cursor */
+    memset(gr->anchor_start_, 0, sizeof(int) * ((size_t)nc + 1));
+    for (g = 0; g < pl->groove_count; g++)
+        gr->anchor_start_[gr__anchor_cell(&pl->cells, gr->points_ + 2 * gr->grooves_[g].first_point) + 1]++;
+    for (i = 0; i < nc; i++) gr->anchor_start_[i + 1] += gr->anchor_start_[i];
+    memset(cursor, 0, sizeof(int) * (size_t)nc);
+    for (g = 0; g < pl->groove_count; g++) {
+        int cell = gr__anchor_cell(&pl->cells, gr->points_ + 2 * gr->grooves_[g].first_point);
+        gr->anchor_items_[gr->anchor_start_[cell] + cursor[cell]++] = g;
+    }
+    for (j = 0; j < pl->cells.nv; j++) {
+        int *row = gr->row_anchor_sum_ + (size_t)j * (size_t)(pl->cells.nu + 1);
+        row[0] = 0;
+        for (i = 0; i < pl->cells.nu; i++) {
+            int cell = j * pl->cells.nu + i;
+            row[i + 1] = row[i] + gr->anchor_start_[cell + 1] - gr->anchor_start_[cell];
+        }
+    }
+}
+
 GR_DEF gr_result_t gr_grid_build_into(const gr_grid_desc_t *desc, void *buffer, size_t bytes,
                                       gr_grid_t **grid, gr_diag_t *diag)
 {
     gr__plan_t pl;
     gr_result_t r;
     gr_grid_t *gr;
-    char *base = (char *)buffer;
-    int g, pt = 0, sc = 0, fc = 0, bc = 0, nc, i, j;
+    int g, pt = 0, sc = 0, fc = 0, bc = 0;
     if (!buffer || !grid) { gr__diag(diag, GR_ERR_INVALID_ARG, -1, "buffer or grid is NULL"); return GR_ERR_INVALID_ARG; }
     *grid = NULL;
     r = gr__plan(desc, &pl, diag);
@@ -1482,32 +1612,7 @@ GR_DEF gr_result_t gr_grid_build_into(const gr_grid_desc_t *desc, void *buffer, 
         gr__diag(diag, GR_ERR_BUFFER_TOO_SMALL, -1, "buffer smaller than gr_grid_size()");
         return GR_ERR_BUFFER_TOO_SMALL;
     }
-    gr = (gr_grid_t *)buffer;
-    memset(gr, 0, sizeof *gr);
-    gr->groove_count = pl.groove_count;
-    gr->cells_u = pl.cells.nu;
-    gr->cells_v = pl.cells.nv;
-    memcpy(gr->domain, pl.dom, sizeof pl.dom);
-    gr->wrap = pl.cells.wrap;
-    gr->base_reflectance = desc->base_reflectance;
-    gr->bytes = pl.bytes;
-    gr->alloc_ctx = desc->alloc_ctx;
-    gr->grooves_ = (gr__groove_t *)(void *)(base + pl.off_grooves);
-    gr->points_ = (double *)(void *)(base + pl.off_points);
-    gr->section_ = (double *)(void *)(base + pl.off_section);
-    gr->facet_refl_ = (int *)(void *)(base + pl.off_refl);
-    gr->blocker_start_ = (int *)(void *)(base + pl.off_bstart);
-    gr->blockers_ = (int *)(void *)(base + pl.off_blockers);
-    gr->cell_start_ = (int *)(void *)(base + pl.off_cstart);
-    gr->cell_count_ = (int *)(void *)(base + pl.off_ccount);
-    gr->cell_items_ = (int *)(void *)(base + pl.off_items);
-    gr->anchor_start_ = (int *)(void *)(base + pl.off_astart);
-    gr->anchor_items_ = (int *)(void *)(base + pl.off_aitems);
-    gr->row_anchor_sum_ = (int *)(void *)(base + pl.off_rowsum);
-    gr->total_points_ = pl.total_points;
-    gr->total_section_ = pl.total_section;
-    gr->total_facets_ = pl.total_facets;
-    gr->item_capacity_ = (int)pl.item_capacity;
+    gr = gr__grid_header(desc, &pl, (char *)buffer);
     for (g = 0; g < pl.groove_count; g++) {
         const gr__groove_t *rec;
         gr__store_groove(gr, &desc->grooves[g], g, gr__shares_section(desc, g), &pt, &sc, &fc, &bc);
@@ -1517,60 +1622,10 @@ GR_DEF gr_result_t gr_grid_build_into(const gr_grid_desc_t *desc, void *buffer, 
         if (rec->down > gr->d) gr->d = rec->down;
     }
 #ifndef GR_NO_INTERSECTIONS
-    /* §5: self-intersections found once, each self-crossing groove cut into
-       pieces after the grooves (the grid's cells list the grooves only) */
-    gr->self_ = (gr_self_hit_t *)(void *)(base + pl.off_self);
-    {
-        int next = pl.groove_count, h0;
-        for (g = 0; g < pl.groove_count; g++) {
-            const gr__groove_t *rec = &gr->grooves_[g];
-            h0 = gr->self_count_;
-            gr->self_count_ += gr__path_self_hits(gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count,
-                                                  rec->closed, g, gr->self_ + h0, pl.self_hits - h0);
-            if (gr->self_count_ > h0) gr__split_groove(gr, g, gr->self_ + h0, gr->self_count_ - h0, &next, &pt);
-        }
-        GR_ASSERT(gr->self_count_ == pl.self_hits && next <= pl.groove_count + pl.split_records);
-        gr->split_records_ = next - pl.groove_count;
-    }
+    gr__split_self_hits(gr, &pl, &pt);
 #endif
-    /* cell lists: count (upper bound), prefix sum, fill without repeats */
-    nc = pl.cells.nu * pl.cells.nv;
-    memset(gr->cell_start_, 0, sizeof(int) * ((size_t)nc + 1));
-    memset(gr->cell_count_, 0, sizeof(int) * (size_t)nc);
-    for (g = 0; g < pl.groove_count; g++) {
-        const gr__groove_t *rec = &gr->grooves_[g];
-        gr__path_boxes(&pl.cells, gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count, g,
-                       gr->cell_start_ + 1, NULL, NULL, NULL);
-    }
-    for (i = 0; i < nc; i++) gr->cell_start_[i + 1] += gr->cell_start_[i];
-    GR_ASSERT(gr->cell_start_[nc] == pl.item_capacity);
-    for (g = 0; g < pl.groove_count; g++) {
-        const gr__groove_t *rec = &gr->grooves_[g];
-        gr__path_boxes(&pl.cells, gr->points_ + 2 * rec->first_point, rec->kind, rec->point_count, g,
-                       NULL, gr->cell_start_, gr->cell_count_, gr->cell_items_);
-    }
-    /* anchors: each groove in the cell of its first point, for grooves that
-       lie wholly inside a footprint box (missed by the boundary cells) */
-    memset(gr->anchor_start_, 0, sizeof(int) * ((size_t)nc + 1));
-    for (g = 0; g < pl.groove_count; g++)
-        gr->anchor_start_[gr__anchor_cell(&pl.cells, gr->points_ + 2 * gr->grooves_[g].first_point) + 1]++;
-    for (i = 0; i < nc; i++) gr->anchor_start_[i + 1] += gr->anchor_start_[i];
-    {
-        int *cursor = gr->row_anchor_sum_; /* borrowed as a per-cell fill cursor */
-        memset(cursor, 0, sizeof(int) * (size_t)nc);
-        for (g = 0; g < pl.groove_count; g++) {
-            int cell = gr__anchor_cell(&pl.cells, gr->points_ + 2 * gr->grooves_[g].first_point);
-            gr->anchor_items_[gr->anchor_start_[cell] + cursor[cell]++] = g;
-        }
-    }
-    for (j = 0; j < pl.cells.nv; j++) {
-        int *row = gr->row_anchor_sum_ + (size_t)j * (size_t)(pl.cells.nu + 1);
-        row[0] = 0;
-        for (i = 0; i < pl.cells.nu; i++) {
-            int cell = j * pl.cells.nu + i;
-            row[i + 1] = row[i] + gr->anchor_start_[cell + 1] - gr->anchor_start_[cell];
-        }
-    }
+    gr__fill_cells(gr, &pl);
+    gr__fill_anchors(gr, &pl);
     *grid = gr;
     return GR_OK;
 }

@@ -4,12 +4,17 @@
    the views grazing) through gr_query in five settings (default, §4.4's
    normals, ellipse, straight occlusion, no oversampling or lights),
    gr_query_lines, and gr_query_lines_cached on three neighbouring
-   footprints (the cache's hits and misses too). */
+   footprints (the cache's hits and misses too); and the grid itself as
+   gr_grid_build_into() writes it at a fixed address (Linux). */
+#define _GNU_SOURCE
 #define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "../../examples/grooves/gx_scene.h"
+#include <sys/mman.h>
 #include "test.h"
 #include "fp.h"
+
+#define FP_GRID_AT ((void *)0x7e0000000000ull)
 
 #define FP_PI 3.14159265358979323846
 #define FP_SETTINGS 6 /* gr_query in five settings, gr_query_lines */
@@ -40,6 +45,31 @@ static gr_query_t fp_footprint(t_rng_t *rng, const gx_scene_t *s)
     Q.lights = &s->light[0][0];
     Q.light_count = s->nlights;
     return Q;
+}
+
+/* The grid's bytes as gr_grid_build_into() writes them at FP_GRID_AT, the
+   perturbation callbacks and their user pointers (which move from run to
+   run with the program's load address) set to their presence. */
+static unsigned long long fp_grid_bytes(const gr_grid_desc_t *gd)
+{
+    size_t bytes = 0;
+    void *mem;
+    gr_grid_t *grid;
+    unsigned long long h = FP_START;
+    if (gr_grid_size(gd, &bytes, NULL) != GR_OK) return 0;
+    mem = mmap(FP_GRID_AT, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED_NOREPLACE, -1, 0);
+    if (mem != FP_GRID_AT) return 0;
+    if (gr_grid_build_into(gd, mem, bytes, &grid, NULL) == GR_OK) {
+        int g;
+        for (g = 0; g < grid->groove_count + grid->split_records_; g++) {
+            gr__groove_t *rec = &grid->grooves_[g];
+            rec->perturb = rec->perturb ? (gr_perturb_fn)1 : NULL;
+            rec->perturb_user = rec->perturb_user ? (void *)1 : NULL;
+        }
+        h = fp_hash(h, mem, bytes);
+    }
+    munmap(mem, bytes);
+    return h;
 }
 
 static void fp_grid(const gx_scene_t *s, int wrap, int nq, unsigned long long seed)
@@ -87,7 +117,7 @@ static void fp_grid(const gx_scene_t *s, int wrap, int nq, unsigned long long se
     }
     h[FP_SETTINGS] = fp_hash(h[FP_SETTINGS], &cache.hits, sizeof cache.hits);
     h[FP_SETTINGS] = fp_hash(h[FP_SETTINGS], &cache.misses, sizeof cache.misses);
-    printf("grooves   %-13s wrap %d ", s->name, wrap);
+    printf("grooves   %-13s wrap %d  grid %016llx ", s->name, wrap, fp_grid_bytes(&gd));
     for (v = 0; v <= FP_SETTINGS; v++) printf(" %016llx", h[v]);
     printf("\n");
     free(scratch);
