@@ -5168,15 +5168,92 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
    prolongations are the pieces' own extent along T). Returns 1 when it
    filled the list, 0 to leave it to §4: too many grooves or junctions, a
    footprint without area, or a region outgrowing its buffers. */
+/* The footprint as a polygon about its centre (§5.2): the parallelogram
+   F ± A1 ± A2, or for query.ellipse the GR__PP_ELLIPSE_SIDES-gon inscribed
+   in F + A1 cos a + A2 sin a and scaled to the ellipse's area, pi |A1 x A2|
+   (the paper's rhombus through the axes' tips has 2/pi of it). Returns
+   A_F from the axes (the shoelace sum of a flat quad's corners is not
+   exactly 0 under fused multiply-adds), 0 for a footprint without area (a
+   line or a point), which is §4's: A_R / A_F would divide rounding by
+   rounding. */
+static double gr__pp_footprint(const gr_query_t *q, double fpoly[2 * GR__PP_ELLIPSE_SIDES], int *nfp)
+{
+    const gr_footprint_t *fp = &q->footprint;
+    double cr = fabs(fp->axis1[0] * fp->axis2[1] - fp->axis1[1] * fp->axis2[0]);
+    int k;
+    if (!(cr > GR__PP_FLAT_REL * hypot(fp->axis1[0], fp->axis1[1]) * hypot(fp->axis2[0], fp->axis2[1]))) return 0;
+    if (q->ellipse) {
+        double step = 2 * GR__PI / GR__PP_ELLIPSE_SIDES, rho = sqrt(2 * GR__PI / (GR__PP_ELLIPSE_SIDES * sin(step)));
+        *nfp = GR__PP_ELLIPSE_SIDES;
+        for (k = 0; k < *nfp; k++) {
+            double c = rho * cos(k * step), sn = rho * sin(k * step);
+            fpoly[2 * k] = c * fp->axis1[0] + sn * fp->axis2[0];
+            fpoly[2 * k + 1] = c * fp->axis1[1] + sn * fp->axis2[1];
+        }
+        return GR__PI * cr;
+    }
+    *nfp = 4;
+    gr_footprint_polygon(fp, GR_FP_QUAD, fpoly);
+    for (k = 0; k < 4; k++) { fpoly[2 * k] -= fp->center[0]; fpoly[2 * k + 1] -= fp->center[1]; }
+    return 4 * cr;
+}
+
+/* The ground as piece gp: the plane w = 0 (UV coordinates about f) over
+   [-big, big]^2; gr__pp_cuts then cuts it by every groove. */
+static void gr__pp_ground(const gr_grid_t *grid, gr__ppp_t *gp, double big)
+{
+    memset(gp, 0, sizeof *gp);
+    gp->x[0] = 1; gp->y[1] = 1; gp->n[2] = 1;
+    gp->ring[0] = -big; gp->ring[1] = -big; gp->ring[2] = big; gp->ring[3] = -big;
+    gp->ring[4] = big; gp->ring[5] = big; gp->ring[6] = -big; gp->ring[7] = big;
+    gp->nring = 4;
+    gp->g = -1;
+    gp->facet = -1;
+    gp->refl = grid->base_reflectance;
+}
+
+/* Piece i's share of the footprint seen along e (its visible region's
+   area over the footprint's, af) and each light's share of that, added to
+   the list. 0, or -1 when a region ran out of room. */
+static int gr__pp_add_piece(const gr_query_t *q, gr__pps_t *ps, int np, int i, const double e[3], const double *fpoly, int nfp,
+                            double af, double tie, gr_facet_list_t *list)
+{
+    const gr__ppp_t *pc = &ps->p[i];
+    double ne = gr__dot3(pc->n, e), ratio, area, *vis, lit[GR_MAX_LIGHTS];
+    gr__mfacet_t m;
+    int nv, l, k;
+    if (!(ne > GR__PP_EDGE_ON)) return 0; /* back-facing or edge-on (§4.3) */
+    nv = gr__pp_region(ps, np, i, e, fpoly, nfp, NULL, 0, tie, &vis, &area);
+    if (nv < 0) return -1;
+    ratio = fmin(area * ne / e[2] / af, 1); /* a whole footprint, to rounding */
+    if (!(ratio > 0)) return 0;
+    /* keep the visible trapezoids while each light's region is built */
+    memcpy(ps->rv, vis, sizeof(double) * 8 * (size_t)nv);
+    for (l = 0; l < q->light_count; l++) {
+        const double *L0 = q->lights + 3 * l;
+        double L[3], ll = sqrt(gr__dot3(L0, L0)), la, *lr;
+        lit[l] = 0;
+        if (!(ll > 0) || !(L0[2] > 0)) continue;
+        for (k = 0; k < 3; k++) L[k] = L0[k] / ll;
+        if (!(gr__dot3(pc->n, L) > GR__PP_EDGE_ON)) continue;
+        if (gr__pp_region(ps, np, i, L, NULL, 0, ps->rv, nv, tie, &lr, &la) < 0) return -1;
+        lit[l] = area > 0 ? la / area : 0;
+    }
+    m.n[0] = pc->n[0]; m.n[1] = pc->n[1]; m.n[2] = pc->n[2];
+    m.groove = pc->g >= 0 ? ps->g[pc->g].groove : -1; /* a piece's record until the list is done */
+    m.facet = pc->facet;
+    m.refl = pc->refl;
+    gr__list_add(list, &m, ratio, lit, q->light_count);
+    return 0;
+}
+
 static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__scratch_t *s, const gr_junctions_t *jn,
                         void *base, gr_facet_list_t *list)
 {
     const gr_footprint_t *fp = &q->footprint;
     gr__pps_t ps;
-    gr__mfacet_t m;
-    double e[3], el, fpoly[2 * GR__PP_ELLIPSE_SIDES], af, cr, f[2], big, tie, lit[GR_MAX_LIGHTS], area, *vis;
-    int ng = jn->grooves, np, i, k, l, nl = q->light_count, npts, nfp = 4;
-    gr__ppp_t *gp;
+    double e[3], el, fpoly[2 * GR__PP_ELLIPSE_SIDES], af, f[2], big, tie;
+    int ng = jn->grooves, np, i, k, npts, nfp = 4;
     /* the path needs every path end (its grooves' extents), not every
        crossing: detection lists the ends first, so a full list whose last
        entry is a crossing or a self-intersection dropped none of them */
@@ -5184,30 +5261,7 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
     if (jn->dropped && jn->items[jn->count - 1].kind != GR_JUNCTION_CROSSING &&
         jn->items[jn->count - 1].kind != GR_JUNCTION_SELF)
         return 0;
-    /* the footprint (§5.2): the parallelogram F ± A1 ± A2 (local UV about
-       F), or for query.ellipse the GR__PP_ELLIPSE_SIDES-gon inscribed in
-       F + A1 cos a + A2 sin a and scaled to the ellipse's area, pi |A1 x
-       A2| (the paper's rhombus through the axes' tips has 2/pi of it).
-       A_F from the axes: the shoelace sum of a flat quad's corners is not
-       exactly 0 under fused multiply-adds; a footprint without area (a
-       line or a point) is §4's, as A_R / A_F would divide rounding by
-       rounding */
-    cr = fabs(fp->axis1[0] * fp->axis2[1] - fp->axis1[1] * fp->axis2[0]);
-    if (!(cr > GR__PP_FLAT_REL * hypot(fp->axis1[0], fp->axis1[1]) * hypot(fp->axis2[0], fp->axis2[1]))) return 0;
-    if (q->ellipse) {
-        double step = 2 * GR__PI / GR__PP_ELLIPSE_SIDES, rho = sqrt(2 * GR__PI / (GR__PP_ELLIPSE_SIDES * sin(step)));
-        nfp = GR__PP_ELLIPSE_SIDES;
-        for (k = 0; k < nfp; k++) {
-            double c = rho * cos(k * step), sn = rho * sin(k * step);
-            fpoly[2 * k] = c * fp->axis1[0] + sn * fp->axis2[0];
-            fpoly[2 * k + 1] = c * fp->axis1[1] + sn * fp->axis2[1];
-        }
-        af = GR__PI * cr;
-    } else {
-        gr_footprint_polygon(fp, GR_FP_QUAD, fpoly);
-        for (k = 0; k < 4; k++) { fpoly[2 * k] -= fp->center[0]; fpoly[2 * k + 1] -= fp->center[1]; }
-        af = 4 * cr;
-    }
+    if (!((af = gr__pp_footprint(q, fpoly, &nfp)) > 0)) return 0;
     el = sqrt(gr__dot3(fp->view, fp->view));
     for (k = 0; k < 3; k++) e[k] = fp->view[k] / el;
     gr__tile_image(grid, fp->center, f);
@@ -5218,19 +5272,10 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
     gr__pp_layout(base, &ps);
     np = gr__pp_build(grid, s, jn, f, big, &ps);
     if (np < 0 || np >= GR__PP_MAX_PIECES) return 0;
-    /* the ground, after the pieces: the plane w = 0 (UV coordinates about
-       f), cut by every groove; its cuts just below w = 0 are the openings
-       that rays from inside the grooves leave through */
-    gp = &ps.p[np];
-    memset(gp, 0, sizeof *gp);
-    gp->x[0] = 1; gp->y[1] = 1; gp->n[2] = 1;
-    gp->ring[0] = -big; gp->ring[1] = -big; gp->ring[2] = big; gp->ring[3] = -big;
-    gp->ring[4] = big; gp->ring[5] = big; gp->ring[6] = -big; gp->ring[7] = big;
-    gp->nring = 4;
-    gp->g = -1;
-    gp->facet = -1;
-    gp->refl = grid->base_reflectance;
-    ps.nmouth = gr__pp_cuts(&ps, gp, ng, big, tie, &npts);
+    /* the ground, after the pieces; its cuts just below w = 0 are the
+       openings that rays from inside the grooves leave through */
+    gr__pp_ground(grid, &ps.p[np], big);
+    ps.nmouth = gr__pp_cuts(&ps, &ps.p[np], ng, big, tie, &npts);
     if (ps.nmouth < 0 || npts != 4 * ps.nmouth) return 0;
     memcpy(ps.mouth, ps.cut, sizeof(double) * 2 * (size_t)npts);
     {
@@ -5242,33 +5287,8 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
     }
     list->count = 0;
     list->flags = 0;
-    for (i = 0; i <= np; i++) {
-        const gr__ppp_t *pc = &ps.p[i];
-        double ne = gr__dot3(pc->n, e), ratio;
-        int nv;
-        if (!(ne > GR__PP_EDGE_ON)) continue; /* back-facing or edge-on (§4.3) */
-        nv = gr__pp_region(&ps, np, i, e, fpoly, nfp, NULL, 0, tie, &vis, &area);
-        if (nv < 0) return 0;
-        ratio = fmin(area * ne / e[2] / af, 1); /* a whole footprint, to rounding */
-        if (!(ratio > 0)) continue;
-        /* keep the visible trapezoids while each light's region is built */
-        memcpy(ps.rv, vis, sizeof(double) * 8 * (size_t)nv);
-        for (l = 0; l < nl; l++) {
-            const double *L0 = q->lights + 3 * l;
-            double L[3], ll = sqrt(gr__dot3(L0, L0)), la, *lr;
-            lit[l] = 0;
-            if (!(ll > 0) || !(L0[2] > 0)) continue;
-            for (k = 0; k < 3; k++) L[k] = L0[k] / ll;
-            if (!(gr__dot3(pc->n, L) > GR__PP_EDGE_ON)) continue;
-            if (gr__pp_region(&ps, np, i, L, NULL, 0, ps.rv, nv, tie, &lr, &la) < 0) return 0;
-            lit[l] = area > 0 ? la / area : 0;
-        }
-        m.n[0] = pc->n[0]; m.n[1] = pc->n[1]; m.n[2] = pc->n[2];
-        m.groove = pc->g >= 0 ? ps.g[pc->g].groove : -1; /* a piece's record until the list is done */
-        m.facet = pc->facet;
-        m.refl = pc->refl;
-        gr__list_add(list, &m, ratio, lit, nl);
-    }
+    for (i = 0; i <= np; i++)
+        if (gr__pp_add_piece(q, &ps, np, i, e, fpoly, nfp, af, tie, list) < 0) return 0;
     gr__list_name_parents(grid, list);
     list->grooves = ng;
     list->subfootprints = 1;
