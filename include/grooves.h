@@ -3508,121 +3508,160 @@ static int gr__pop_in(gr_poly_op_t op, int in_a, int in_b)
 /* gr_poly_boolean() on valid sets, with room for max_cross crossing
    heights in its scratch (GR_ERR_BUFFER_TOO_SMALL when more): the polygon
    path's sets have a few, and its scratch need not hold every pair. */
+/* gr__poly_boolean's sweep between slabs. */
+typedef struct gr__sweep_t {
+    gr__pscratch_t s;
+    int ne, nx;          /* edges (sorted by their lower end), crossing heights (sorted) */
+    int next, nact, ci;  /* the next edge to join, the active edges (s.active), the next crossing height */
+    int *prev, *now_run; /* (left edge, right edge, id) of the trapezoids that end at run_top, and of this slab's */
+    int nprev;
+    double run_top, total; /* the area so far */
+    double *traps;
+    int trap_cap, ntrap, over; /* over: a trapezoid past trap_cap */
+} gr__sweep_t;
+
+/* The slab above y0: the edges ending at y0 leave the active list, those
+   starting there join, and its top is the lowest of the next edge's lower
+   end, the active edges' upper ends and the next crossing height
+   (HUGE_VAL: above every edge). So an edge joins the active list once and
+   leaves it for good, and each slab visits only the edges that span it,
+   with no sort of all the heights. */
+static double gr__sweep_slab_top(gr__sweep_t *W, double y0)
+{
+    gr__pscratch_t *s = &W->s;
+    double y1 = HUGE_VAL;
+    int m, kept;
+    for (m = 0, kept = 0; m < W->nact; m++)
+        if (s->edge[s->active[m]].y1 > y0) {
+            s->active[kept++] = s->active[m];
+            if (s->edge[s->active[m]].y1 < y1) y1 = s->edge[s->active[m]].y1;
+        }
+    W->nact = kept;
+    for (; W->next < W->ne && s->edge[W->next].y0 <= y0; W->next++)
+        if (s->edge[W->next].y1 > y0) {
+            s->active[W->nact++] = W->next;
+            if (s->edge[W->next].y1 < y1) y1 = s->edge[W->next].y1;
+        }
+    if (W->next < W->ne && s->edge[W->next].y0 < y1) y1 = s->edge[W->next].y0;
+    while (W->ci < W->nx && s->ys[W->ci] <= y0) W->ci++;
+    if (W->ci < W->nx && s->ys[W->ci] < y1) y1 = s->ys[W->ci];
+    return y1;
+}
+
+/* Trapezoid [left.x, x] x [y0, y1] between edges left.edge and edge: its
+   area (its mid-line width times the slab height is exact: the sides are
+   straight in the slab), and its corners, or the top of the trapezoid
+   below that it goes on (same two edges, ending at y0). */
+static void gr__sweep_trapezoid(gr__sweep_t *W, const gr__pcross_t *left, double x, int edge, double y0, double y1, int *nnow)
+{
+    const gr__pedge_t *el = &W->s.edge[left->edge], *er = &W->s.edge[edge];
+    int p, id = -1;
+    W->total += (x - left->x) * (y1 - y0);
+    if (W->run_top == y0)
+        for (p = 0; p < W->nprev && id < 0; p++)
+            if (W->prev[3 * p] == left->edge && W->prev[3 * p + 1] == edge) id = W->prev[3 * p + 2];
+    if (id >= 0) { /* the trapezoid below goes on */
+        if (W->traps && id < W->trap_cap) {
+            double *t = W->traps + 8 * id;
+            t[4] = gr__pedge_x(er, y1); t[5] = y1;
+            t[6] = gr__pedge_x(el, y1); t[7] = y1;
+        }
+    } else {
+        id = W->ntrap++;
+        if (W->traps && id < W->trap_cap) {
+            double *t = W->traps + 8 * id;
+            t[0] = gr__pedge_x(el, y0); t[1] = y0;
+            t[2] = gr__pedge_x(er, y0); t[3] = y0;
+            t[4] = gr__pedge_x(er, y1); t[5] = y1;
+            t[6] = gr__pedge_x(el, y1); t[7] = y1;
+        } else if (W->traps) W->over = 1;
+    }
+    W->now_run[3 * *nnow] = left->edge;
+    W->now_run[3 * *nnow + 1] = edge;
+    W->now_run[3 * *nnow + 2] = id;
+    (*nnow)++;
+}
+
+/* The slab [y0, y1] (mid line ym) of a op b: the active edges' crossings
+   with the mid line, in x order, as the two polygons' inside intervals,
+   merged into trapezoids. */
+static void gr__sweep_slab(gr__sweep_t *W, gr_poly_op_t op, double y0, double y1, double ym)
+{
+    gr__pscratch_t *s = &W->s;
+    gr__pcross_t left;
+    int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, m, nnow = 0, *sw;
+    left.x = 0;
+    left.edge = -1;
+    for (m = 0; m < W->nact; m++) {
+        int e = s->active[m];
+        s->cross[nc].x = gr__pedge_x(&s->edge[e], ym);
+        s->cross[nc++].edge = e;
+    }
+    /* the active list is kept in the last slab's x order, so the crossings
+       come nearly sorted (only new edges and the swaps at crossing heights
+       move): insertion sort, linear in practice */
+    gr__sort_pcross_nearly(s->cross, nc);
+    for (m = 0; m < nc; m++) s->active[m] = s->cross[m].edge;
+    na = gr__pset_intervals(s->cross, nc, s->edge, 0, s->parity, s->ia);
+    nb = gr__pset_intervals(s->cross, nc, s->edge, 1, s->parity, s->ib);
+    /* merge the two interval lists; all boundaries at one x are applied
+       together, so coincident edges (a polygon against itself) give no
+       sliver */
+    while (i < na || j < nb) {
+        double x = i < na && (j >= nb || s->ia[i].x <= s->ib[j].x) ? s->ia[i].x : s->ib[j].x;
+        int edge = -1, now;
+        while (i < na && s->ia[i].x == x) { in_a = !(i & 1); edge = s->ia[i].edge; i++; }
+        while (j < nb && s->ib[j].x == x) { in_b = !(j & 1); edge = s->ib[j].edge; j++; }
+        now = gr__pop_in(op, in_a, in_b);
+        if (now && !was) { left.x = x; left.edge = edge; }
+        else if (!now && was && x > left.x) gr__sweep_trapezoid(W, &left, x, edge, y0, y1, &nnow);
+        was = now;
+    }
+    sw = W->prev; W->prev = W->now_run; W->now_run = sw;
+    W->nprev = nnow;
+    W->run_top = y1;
+}
+
 static gr_result_t gr__poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op, void *scratch,
                                     size_t max_cross, double *traps, int trap_cap, int *trap_count, double *area)
 {
-    gr__pscratch_t s;
-    double total = 0, run_top = 0, y0;
-    int ne, nx, ci, ntrap = 0, over = 0, rings = 0, next, nact, nprev = 0, *prev, *now_run;
+    gr__sweep_t W;
+    gr__pscratch_t *s = &W.s;
+    double y0;
+    int rings = 0;
     if (area) *area = 0;
     if (trap_count) *trap_count = 0;
-    gr__pscratch_layout(a->point_count + b->point_count, max_cross, scratch, &s);
-    prev = s.run;
-    now_run = s.run + 3 * (a->point_count + b->point_count + 1);
-    ne = gr__pset_edges(a, 0, &rings, s.edge, 0);
-    ne = gr__pset_edges(b, 1, &rings, s.edge, ne);
-    memset(s.parity, 0, (size_t)rings);
-    /* slab boundaries: every vertex height and every edge crossing. The
-       sweep rises from event to event: the next is the lowest of the next
-       edge's lower end (edges sorted by it), the active edges' upper ends
-       and the next crossing height (sorted), so an edge joins the active
-       list once and leaves it for good, and each slab visits only the
-       edges that span it, with no sort of all the heights */
-    gr__sort_pedges_by_y0(s.edge, ne);
-    nx = gr__pedge_crossings(s.edge, ne, s.ys, 0, max_cross);
-    if (nx < 0) return GR_ERR_BUFFER_TOO_SMALL;
-    gr__sort_doubles(s.ys, nx);
+    memset(&W, 0, sizeof W);
+    W.traps = traps;
+    W.trap_cap = trap_cap;
+    gr__pscratch_layout(a->point_count + b->point_count, max_cross, scratch, s);
+    W.prev = s->run;
+    W.now_run = s->run + 3 * (a->point_count + b->point_count + 1);
+    W.ne = gr__pset_edges(a, 0, &rings, s->edge, 0);
+    W.ne = gr__pset_edges(b, 1, &rings, s->edge, W.ne);
+    memset(s->parity, 0, (size_t)rings);
+    /* slab boundaries: every vertex height and every edge crossing; the
+       sweep rises from event to event (gr__sweep_slab_top) */
+    gr__sort_pedges_by_y0(s->edge, W.ne);
+    W.nx = gr__pedge_crossings(s->edge, W.ne, s->ys, 0, max_cross);
+    if (W.nx < 0) return GR_ERR_BUFFER_TOO_SMALL;
+    gr__sort_doubles(s->ys, W.nx);
     /* a trapezoid whose two edges go on into the next slab is extended
        there instead of starting another (its sides are those edges, so
        the union is exact): regions do not fragment at every height */
-    y0 = ne > 0 ? s.edge[0].y0 : 0;
-    for (next = 0, nact = 0, ci = 0; ne > 0;) {
-        double y1 = HUGE_VAL, ym;
-        int nc = 0, na, nb, i = 0, j = 0, in_a = 0, in_b = 0, was = 0, e, m, kept, nnow = 0, *sw;
-        gr__pcross_t left;
-        for (m = 0, kept = 0; m < nact; m++) /* edges ending at y0 leave */
-            if (s.edge[s.active[m]].y1 > y0) {
-                s.active[kept++] = s.active[m];
-                if (s.edge[s.active[m]].y1 < y1) y1 = s.edge[s.active[m]].y1;
-            }
-        nact = kept;
-        for (; next < ne && s.edge[next].y0 <= y0; next++) /* edges starting at y0 join */
-            if (s.edge[next].y1 > y0) {
-                s.active[nact++] = next;
-                if (s.edge[next].y1 < y1) y1 = s.edge[next].y1;
-            }
-        if (next < ne && s.edge[next].y0 < y1) y1 = s.edge[next].y0;
-        while (ci < nx && s.ys[ci] <= y0) ci++;
-        if (ci < nx && s.ys[ci] < y1) y1 = s.ys[ci];
+    y0 = W.ne > 0 ? s->edge[0].y0 : 0;
+    while (W.ne > 0) {
+        double y1 = gr__sweep_slab_top(&W, y0), ym;
         if (y1 == HUGE_VAL) break; /* above every edge */
         ym = 0.5 * (y0 + y1);
-        left.x = 0;
-        left.edge = -1;
         /* two adjacent doubles: the mid line would fall on a vertex height,
            where the strict crossing test loses a pass-through vertex */
-        if (!(y0 < ym && ym < y1) || nact == 0) { y0 = y1; continue; }
-        for (m = 0; m < nact; m++) {
-            e = s.active[m];
-            s.cross[nc].x = gr__pedge_x(&s.edge[e], ym);
-            s.cross[nc++].edge = e;
-        }
-        /* the active list is kept in the last slab's x order, so the
-           crossings come nearly sorted (only new edges and the swaps at
-           crossing heights move): insertion sort, linear in practice */
-        gr__sort_pcross_nearly(s.cross, nc);
-        for (m = 0; m < nc; m++) s.active[m] = s.cross[m].edge;
-        na = gr__pset_intervals(s.cross, nc, s.edge, 0, s.parity, s.ia);
-        nb = gr__pset_intervals(s.cross, nc, s.edge, 1, s.parity, s.ib);
-        /* merge the two interval lists; all boundaries at one x are applied
-           together, so coincident edges (a polygon against itself) give no
-           sliver */
-        while (i < na || j < nb) {
-            double x = i < na && (j >= nb || s.ia[i].x <= s.ib[j].x) ? s.ia[i].x : s.ib[j].x;
-            int edge = -1, now;
-            while (i < na && s.ia[i].x == x) { in_a = !(i & 1); edge = s.ia[i].edge; i++; }
-            while (j < nb && s.ib[j].x == x) { in_b = !(j & 1); edge = s.ib[j].edge; j++; }
-            now = gr__pop_in(op, in_a, in_b);
-            if (now && !was) { left.x = x; left.edge = edge; }
-            else if (!now && was && x > left.x) {
-                /* a trapezoid; its mid-line width times the slab height is
-                   its exact area (the sides are straight in the slab) */
-                const gr__pedge_t *el = &s.edge[left.edge], *er = &s.edge[edge];
-                int p, id = -1;
-                total += (x - left.x) * (y1 - y0);
-                if (run_top == y0)
-                    for (p = 0; p < nprev && id < 0; p++)
-                        if (prev[3 * p] == left.edge && prev[3 * p + 1] == edge) id = prev[3 * p + 2];
-                if (id >= 0) { /* the trapezoid below goes on */
-                    if (traps && id < trap_cap) {
-                        double *t = traps + 8 * id;
-                        t[4] = gr__pedge_x(er, y1); t[5] = y1;
-                        t[6] = gr__pedge_x(el, y1); t[7] = y1;
-                    }
-                } else {
-                    id = ntrap++;
-                    if (traps && id < trap_cap) {
-                        double *t = traps + 8 * id;
-                        t[0] = gr__pedge_x(el, y0); t[1] = y0;
-                        t[2] = gr__pedge_x(er, y0); t[3] = y0;
-                        t[4] = gr__pedge_x(er, y1); t[5] = y1;
-                        t[6] = gr__pedge_x(el, y1); t[7] = y1;
-                    } else if (traps) over = 1;
-                }
-                now_run[3 * nnow] = left.edge;
-                now_run[3 * nnow + 1] = edge;
-                now_run[3 * nnow + 2] = id;
-                nnow++;
-            }
-            was = now;
-        }
-        sw = prev; prev = now_run; now_run = sw;
-        nprev = nnow;
-        run_top = y1;
+        if ((y0 < ym && ym < y1) && W.nact > 0) gr__sweep_slab(&W, op, y0, y1, ym);
         y0 = y1;
     }
-    if (area) *area = total;
-    if (trap_count) *trap_count = ntrap;
-    return over ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
+    if (area) *area = W.total;
+    if (trap_count) *trap_count = W.ntrap;
+    return W.over ? GR_ERR_BUFFER_TOO_SMALL : GR_OK;
 }
 
 GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b, gr_poly_op_t op,

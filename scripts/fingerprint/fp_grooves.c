@@ -4,8 +4,11 @@
    the views grazing) through gr_query in five settings (default, §4.4's
    normals, ellipse, straight occlusion, no oversampling or lights),
    gr_query_lines, and gr_query_lines_cached on three neighbouring
-   footprints (the cache's hits and misses too); and the grid itself as
-   gr_grid_build_into() writes it at a fixed address (Linux). */
+   footprints (the cache's hits and misses too); the grid itself as
+   gr_grid_build_into() writes it at a fixed address (Linux); and
+   gr_poly_boolean's trapezoids and areas for the four operations on
+   random star polygons (two rings each, some with a shared vertex height
+   or a copy of the other's ring). */
 #define _GNU_SOURCE
 #define GR_IMPLEMENTATION
 #include "grooves.h"
@@ -124,6 +127,56 @@ static void fp_grid(const gx_scene_t *s, int wrap, int nq, unsigned long long se
     gr_grid_free(grid);
 }
 
+/* A star polygon of n points around c (radii 0.3..1 times r). */
+static void fp_star(t_rng_t *rng, int n, const double c[2], double r, double *xy)
+{
+    int k;
+    for (k = 0; k < n; k++) {
+        double a = 2 * FP_PI * (k + 0.8 * t_rng_unit(rng)) / n, rho = r * (0.3 + 0.7 * t_rng_unit(rng));
+        xy[2 * k] = c[0] + rho * cos(a);
+        xy[2 * k + 1] = c[1] + rho * sin(a);
+    }
+}
+
+static void fp_booleans(int cases)
+{
+    static double traps[8 * 4096], pa[64], pb[64];
+    unsigned long long h = FP_START;
+    size_t sb = gr_poly_boolean_scratch_bytes(64);
+    void *scratch = malloc(sb);
+    t_rng_t rng;
+    int q, op;
+    rng.s = 42;
+    for (q = 0; q < cases; q++) {
+        static const double c0[2] = {0, 0};
+        double c1[2], cb[2];
+        int na = 4 + (int)(t_rng_u64(&rng) % 13), nb = 3 + (int)(t_rng_u64(&rng) % 14), sizes_a[2], sizes_b[2];
+        gr_polyset_t A, B;
+        c1[0] = 0.9 * (t_rng_unit(&rng) - 0.5), c1[1] = 0.9 * (t_rng_unit(&rng) - 0.5);
+        cb[0] = 0.5 * (t_rng_unit(&rng) - 0.5), cb[1] = 0.5 * (t_rng_unit(&rng) - 0.5);
+        fp_star(&rng, na, c0, 1.0, pa);
+        fp_star(&rng, na, c1, 0.6, pa + 2 * na); /* a second ring (a hole or an island by parity) */
+        fp_star(&rng, nb, cb, 0.9, pb);
+        if (q % 5 == 0) memcpy(pb, pa, sizeof(double) * 2 * (size_t)(na < nb ? na : nb)); /* shared points */
+        if (q % 7 == 0) pb[1] = pa[1];                                                   /* a shared height */
+        fp_star(&rng, nb, c1, 0.4, pb + 2 * nb);
+        sizes_a[0] = sizes_a[1] = na, sizes_b[0] = sizes_b[1] = nb;
+        A.points = pa, A.point_count = 2 * na, A.ring_sizes = sizes_a, A.ring_count = 2;
+        B.points = pb, B.point_count = 2 * nb, B.ring_sizes = sizes_b, B.ring_count = 2;
+        for (op = 0; op < 4; op++) {
+            int n = 0;
+            double area = 0;
+            gr_result_t r = gr_poly_boolean(&A, &B, (gr_poly_op_t)op, scratch, sb, traps, 4096, &n, &area);
+            h = fp_hash(h, &r, sizeof r);
+            h = fp_hash(h, &n, sizeof n);
+            h = fp_hash(h, &area, sizeof area);
+            if (r == GR_OK) h = fp_hash(h, traps, sizeof(double) * 8 * (size_t)n);
+        }
+    }
+    printf("grooves   gr_poly_boolean %016llx  (%d polygon pairs, 4 operations)\n", h, cases);
+    free(scratch);
+}
+
 int main(int argc, char **argv)
 {
     int i, wrap, nq = argc > 1 ? atoi(argv[1]) : 3000;
@@ -134,5 +187,6 @@ int main(int argc, char **argv)
         for (wrap = 0; wrap < 2; wrap++) fp_grid(&s, wrap, nq, 1234 + (unsigned long long)i);
         gx_scene_free(&s);
     }
+    fp_booleans(20000);
     return 0;
 }
