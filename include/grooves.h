@@ -5094,12 +5094,11 @@ static int gr__pp_region(const gr__pps_t *ps, int np, int i, const double *d, co
     return ncur;
 }
 
-/* Builds the grooves and pieces of a footprint from gr_detect()'s
-   candidates and junctions. Returns the piece count, or -1 (not handled). */
-static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_junctions_t *jn, const double *f,
-                        double big, gr__pps_t *ps)
+/* Each groove of the footprint in UV about f (the candidates s->cand):
+   its point, tangent, scale and section, unbounded along its path. */
+static int gr__pp_grooves(const gr_grid_t *grid, const gr__scratch_t *s, int ng, gr__pps_t *ps)
 {
-    int ng = jn->grooves, i, k, e, np = 0;
+    int i;
     for (i = 0; i < ng; i++) {
         const gr__cand_t *c = &s->cand[i];
         const gr__groove_t *rec = &grid->grooves_[c->groove];
@@ -5117,8 +5116,14 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
         g->x1 = HUGE_VAL;
         g->end[0] = g->end[1] = 0;
     }
-    /* path ends (§5: intersected, isolated, corners): the groove stops at
-       the end's position along its tangent, x0 for the first point */
+    return 0;
+}
+
+/* Path ends (§5: intersected, isolated, corners): the groove stops at the
+   end's position along its tangent, x0 for the first point. */
+static void gr__pp_ends(const gr_grid_t *grid, const gr_junctions_t *jn, const double *f, gr__pps_t *ps)
+{
+    int k, e, i, ng = jn->grooves;
     for (k = 0; k < jn->count; k++) {
         const gr_junction_t *j = &jn->items[k];
         for (e = 0; e < 2; e++) {
@@ -5134,67 +5139,97 @@ static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_
             ps->g[i].end[end] = 1;
         }
     }
-    for (i = 0; i < ng; i++) {
-        const gr__ppg_t *g = &ps->g[i];
-        const gr__groove_t *rec = &grid->grooves_[g->groove];
-        double bx = -g->t[1], by = g->t[0], xa = fmax(g->x0, -big), xb = fmin(g->x1, big);
-        if (!(xb > xa)) continue;
-        if (np + g->nsec + 3 > GR__PP_MAX_PIECES) return -1;
-        for (k = 0; k + 1 < g->nsec; k++) {
+}
+
+/* Groove i's facets as pieces from np on, over [xa, xb] along its path.
+   Returns the new piece count. */
+static int gr__pp_facets(const gr_grid_t *grid, gr__pps_t *ps, int i, double xa, double xb, int np)
+{
+    const gr__ppg_t *g = &ps->g[i];
+    const gr__groove_t *rec = &grid->grooves_[g->groove];
+    double bx = -g->t[1], by = g->t[0];
+    int k;
+    for (k = 0; k + 1 < g->nsec; k++) {
+        gr__ppp_t *pc = &ps->p[np];
+        double b0 = g->s * g->sec[2 * k], w0 = g->s * g->sec[2 * k + 1];
+        double db = g->s * (g->sec[2 * k + 2] - g->sec[2 * k]), dw = g->s * (g->sec[2 * k + 3] - g->sec[2 * k + 1]);
+        double len = sqrt(db * db + dw * dw);
+        /* no facet, or one lying in the ground plane (a flat section):
+           that is ground */
+        if (!(len > 0) || (w0 == 0 && dw == 0)) continue;
+        /* facet k in groove space (§5.2): through C_k, along T and C_k C_k+1 */
+        pc->o[0] = g->p[0] + b0 * bx; pc->o[1] = g->p[1] + b0 * by; pc->o[2] = w0;
+        pc->x[0] = g->t[0]; pc->x[1] = g->t[1]; pc->x[2] = 0;
+        pc->y[0] = bx * db / len; pc->y[1] = by * db / len; pc->y[2] = dw / len;
+        pc->n[0] = -bx * dw / len; pc->n[1] = -by * dw / len; pc->n[2] = db / len;
+        pc->ring[0] = xa; pc->ring[1] = 0; pc->ring[2] = xb; pc->ring[3] = 0;
+        pc->ring[4] = xb; pc->ring[5] = len; pc->ring[6] = xa; pc->ring[7] = len;
+        pc->nring = 4;
+        pc->g = i;
+        pc->facet = k;
+        pc->refl = grid->facet_refl_[rec->first_facet + k];
+        np++;
+    }
+    return np;
+}
+
+/* Groove i's end caps as pieces from np on: the section standing across
+   the path at each end within big. Its part below w = 0 closes the
+   groove's cut and faces into the groove; its part above closes a
+   protrusion and faces out of it, away from the groove. Returns the new
+   piece count, -1 when a part has more points than a piece holds. */
+static int gr__pp_caps(const gr_grid_t *grid, gr__pps_t *ps, int i, double big, int np)
+{
+    const gr__ppg_t *g = &ps->g[i];
+    const gr__groove_t *rec = &grid->grooves_[g->groove];
+    double bx = -g->t[1], by = g->t[0];
+    int e, k, side;
+    for (e = 0; e < 2; e++) {
+        double x = e == 0 ? g->x0 : g->x1, sg = e == 0 ? 1 : -1, sec[2 * (GR_MAX_FACETS + 1)];
+        double half[4 * (GR_MAX_FACETS + 1)];
+        if (!g->end[e] || fabs(x) > big) continue;
+        for (k = 0; k < g->nsec; k++) {
+            sec[2 * k] = g->s * g->sec[2 * k];
+            sec[2 * k + 1] = g->s * g->sec[2 * k + 1];
+        }
+        for (side = 0; side < 2; side++) {
             gr__ppp_t *pc = &ps->p[np];
-            double b0 = g->s * g->sec[2 * k], w0 = g->s * g->sec[2 * k + 1];
-            double db = g->s * (g->sec[2 * k + 2] - g->sec[2 * k]), dw = g->s * (g->sec[2 * k + 3] - g->sec[2 * k + 1]);
-            double len = sqrt(db * db + dw * dw);
-            /* no facet, or one lying in the ground plane (a flat section):
-               that is ground */
-            if (!(len > 0) || (w0 == 0 && dw == 0)) continue;
-            /* facet k in groove space (§5.2): through C_k, along T and C_k C_k+1 */
-            pc->o[0] = g->p[0] + b0 * bx; pc->o[1] = g->p[1] + b0 * by; pc->o[2] = w0;
-            pc->x[0] = g->t[0]; pc->x[1] = g->t[1]; pc->x[2] = 0;
-            pc->y[0] = bx * db / len; pc->y[1] = by * db / len; pc->y[2] = dw / len;
-            pc->n[0] = -bx * dw / len; pc->n[1] = -by * dw / len; pc->n[2] = db / len;
-            pc->ring[0] = xa; pc->ring[1] = 0; pc->ring[2] = xb; pc->ring[3] = 0;
-            pc->ring[4] = xb; pc->ring[5] = len; pc->ring[6] = xa; pc->ring[7] = len;
-            pc->nring = 4;
+            double su = side ? -sg : sg;
+            /* the section's part on one side of w = 0: up to twice its
+               points for a section crossing w = 0 on every facet, beyond a
+               piece's ring for long sections (then declined) */
+            int nh = gr__pp_halfplane(sec, g->nsec, 0, side ? 1 : -1, 0, half);
+            if (nh > GR_MAX_FACETS + 2) return -1;
+            memcpy(pc->ring, half, sizeof(double) * 2 * (size_t)nh);
+            pc->nring = nh;
+            if (pc->nring < 3 || !(fabs(gr_poly_area(pc->ring, pc->nring)) > 0)) continue;
+            pc->o[0] = g->p[0] + x * g->t[0]; pc->o[1] = g->p[1] + x * g->t[1]; pc->o[2] = 0;
+            pc->x[0] = bx; pc->x[1] = by; pc->x[2] = 0;
+            pc->y[0] = 0; pc->y[1] = 0; pc->y[2] = 1;
+            pc->n[0] = su * g->t[0]; pc->n[1] = su * g->t[1]; pc->n[2] = 0;
             pc->g = i;
-            pc->facet = k;
-            pc->refl = grid->facet_refl_[rec->first_facet + k];
+            pc->facet = g->nsec - 1 + e;
+            pc->refl = grid->facet_refl_[rec->first_facet];
             np++;
         }
-        for (e = 0; e < 2; e++) {
-            /* the end cap: the section standing across the path at its end.
-               Its part below w = 0 closes the groove's cut and faces into
-               the groove; its part above closes a protrusion and faces out
-               of it, away from the groove */
-            double x = e == 0 ? g->x0 : g->x1, sg = e == 0 ? 1 : -1, sec[2 * (GR_MAX_FACETS + 1)];
-            double half[4 * (GR_MAX_FACETS + 1)];
-            int side;
-            if (!g->end[e] || fabs(x) > big) continue;
-            for (k = 0; k < g->nsec; k++) {
-                sec[2 * k] = g->s * g->sec[2 * k];
-                sec[2 * k + 1] = g->s * g->sec[2 * k + 1];
-            }
-            for (side = 0; side < 2; side++) {
-                gr__ppp_t *pc = &ps->p[np];
-                double su = side ? -sg : sg;
-                /* the section's part on one side of w = 0: up to twice its
-                   points for a section crossing w = 0 on every facet,
-                   beyond a piece's ring for long sections (then declined) */
-                int nh = gr__pp_halfplane(sec, g->nsec, 0, side ? 1 : -1, 0, half);
-                if (nh > GR_MAX_FACETS + 2) return -1;
-                memcpy(pc->ring, half, sizeof(double) * 2 * (size_t)nh);
-                pc->nring = nh;
-                if (pc->nring < 3 || !(fabs(gr_poly_area(pc->ring, pc->nring)) > 0)) continue;
-                pc->o[0] = g->p[0] + x * g->t[0]; pc->o[1] = g->p[1] + x * g->t[1]; pc->o[2] = 0;
-                pc->x[0] = bx; pc->x[1] = by; pc->x[2] = 0;
-                pc->y[0] = 0; pc->y[1] = 0; pc->y[2] = 1;
-                pc->n[0] = su * g->t[0]; pc->n[1] = su * g->t[1]; pc->n[2] = 0;
-                pc->g = i;
-                pc->facet = g->nsec - 1 + e;
-                pc->refl = grid->facet_refl_[rec->first_facet];
-                np++;
-            }
-        }
+    }
+    return np;
+}
+
+/* Builds the grooves and pieces of a footprint from gr_detect()'s
+   candidates and junctions. Returns the piece count, or -1 (not handled). */
+static int gr__pp_build(const gr_grid_t *grid, const gr__scratch_t *s, const gr_junctions_t *jn, const double *f,
+                        double big, gr__pps_t *ps)
+{
+    int ng = jn->grooves, i, np = 0;
+    if (gr__pp_grooves(grid, s, ng, ps) < 0) return -1;
+    gr__pp_ends(grid, jn, f, ps);
+    for (i = 0; i < ng; i++) {
+        double xa = fmax(ps->g[i].x0, -big), xb = fmin(ps->g[i].x1, big);
+        if (!(xb > xa)) continue;
+        if (np + ps->g[i].nsec + 3 > GR__PP_MAX_PIECES) return -1;
+        np = gr__pp_facets(grid, ps, i, xa, xb, np);
+        if ((np = gr__pp_caps(grid, ps, i, big, np)) < 0) return -1;
     }
     return np;
 }
