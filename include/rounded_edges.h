@@ -5360,92 +5360,82 @@ static inline const re__object_t *re__query_start(const re_scene_t *scene, const
     return o;
 }
 
-/* Query steps 1-5 for a hit I on face plane f of object o (out holds the
-   answer "unchanged" from re__query_start). */
-static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const double I[3], const double dir[3], double t_host,
-                                  re_hit_t *out)
+/* Query step 1: the kd-tree leaf holding I, then each edge cylinder of it
+   whose detection zone holds I (re__detect; paper §3.1's detection
+   cylinders, widened to cover the exact corners). Returns how many. */
+static unsigned re__detect_leaf(const re__object_t *o, unsigned f, const double I[3], re__set_t *S, re__best_t *best,
+                                unsigned *c0)
 {
-    re__set_t S;
-    unsigned node, i, iter, exit_plane, ndet = 0, c0 = RE__NONE;
-    re__best_t best;
-    double s_exit;
-    S.n = 0;
-    S.bloom = 0;
-    /* detection: the kd-tree leaf holding I, then the corners whose rounded
-       zone can reach I (paper §3.1 detection cylinders, widened to cover the
-       exact corners) */
-    best.cvalid = 0;
-    {
-        const unsigned short *leaf;
-        unsigned base;
-        double Ir[3];
-        re__sub(I, o->origin, Ir); /* the splits' frame (see re__kd_build) */
-        for (node = 0; (o->nodes[node].info & 3u) != 3u;) {
-            const re__node_t *nd = &o->nodes[node];
-            float sp;
-            memcpy(&sp, &nd->data, sizeof sp);
-            node = Ir[nd->info & 3u] <= (double)sp ? node + 1 : nd->info >> 2;
-        }
-        leaf = o->leaf16 + (o->nodes[node].info >> 2);
-        base = o->nodes[node].data;
-        for (;;) {
-            unsigned cnt = leaf[0] & 0x7FFFu, more = leaf[0] >> 15;
-            for (i = 0; i < cnt; i++) ndet += re__detect(o, base + leaf[1 + i], I, f, &S, &best, &c0);
-            leaf += 1 + cnt;
-            if (!more) break;
-            base = leaf[0] | (unsigned)leaf[1] << 16;
-            leaf += 2;
-        }
+    const unsigned short *leaf;
+    unsigned node, base, i, ndet = 0;
+    double Ir[3];
+    re__sub(I, o->origin, Ir); /* the splits' frame (see re__kd_build) */
+    for (node = 0; (o->nodes[node].info & 3u) != 3u;) {
+        const re__node_t *nd = &o->nodes[node];
+        float sp;
+        memcpy(&sp, &nd->data, sizeof sp);
+        node = Ir[nd->info & 3u] <= (double)sp ? node + 1 : nd->info >> 2;
     }
-    if (!S.n || re__on_flat_part(o, &S, f, I)) return RE_UNCHANGED;
-    best.smin = -RE__HOST_T_SLACK * fabs(t_host);
-    /* One edge found, away from its corners (the common case): inside the
-       removed volume around the middle of an edge the only surfaces are its
-       rounding cylinder and its two faces. If the ray meets one of them
-       before coming within walk reach of either corner, that is the answer;
-       else the general search below decides. */
-    if (ndet == 1 && c0 != RE__NONE && S.n == 2) {
-        const re__ecyl_t *cy = &o->cyls[c0];
-        double P[3], IP[3], inv_l2, nd0, nd1, e0 = HUGE_VAL, e1 = HUGE_VAL, sc;
-        const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
-        best.s = HUGE_VAL;
-        best.kind = RE_FEATURE_FACE;
-        best.index = 0;
-        best.h = 0;
-        re__try_cyl(o, c0, re__k_radius(o, S.c[0]), I, dir, &best);
-        nd0 = re__dot(P0->n, dir), nd1 = re__dot(P1->n, dir);
-        if (nd0 > 0) e0 = re__max(0.0, P0->c - re__dot(P0->n, I)) / nd0;
-        if (nd1 > 0) e1 = re__max(0.0, P1->c - re__dot(P1->n, I)) / nd1;
-        s_exit = re__min(e0, e1);
-        exit_plane = e0 <= e1 ? cy->p[0] : cy->p[1];
-        sc = re__min(best.s, s_exit);
-        if (sc < HUGE_VAL) {
-            re__madd(I, sc, dir, P);
-            re__sub(P, I, IP);
-            inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
-            for (i = 0; i < 2; i++) {
-                double wk = (double)o->corners[S.c[i]].walk;
-                if (re__dist2_segment(re__cptr(o, &best, re__pk_id(&o->k_sfirst, S.c[i])), I, IP, inv_l2) <= wk * wk) break;
-            }
-            if (i == 2) goto answer;
-        }
+    leaf = o->leaf16 + (o->nodes[node].info >> 2);
+    base = o->nodes[node].data;
+    for (;;) {
+        unsigned cnt = leaf[0] & 0x7FFFu, more = leaf[0] >> 15;
+        for (i = 0; i < cnt; i++) ndet += re__detect(o, base + leaf[1 + i], I, f, S, best, c0);
+        leaf += 1 + cnt;
+        if (!more) break;
+        base = leaf[0] | (unsigned)leaf[1] << 16;
+        leaf += 2;
     }
-    /* inside the removed volume: nearest capsule or the exit, walking the
-       adjacency graph (cylinder -> corner) while the ray runs toward corners
-       not yet in the set (grazing rays, §3.1) */
-    for (iter = 0;; iter++) {
-        re__nearest_feature(o, &S, I, dir, &best);
-        s_exit = re__exit(o, &S, I, dir, &exit_plane);
-        if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &best, I, dir, re__min(best.s, s_exit))) break;
+    return ndet;
+}
+
+/* One edge found (cylinder c0, its two corners in S), away from its
+   corners (the common case): inside the removed volume around the middle
+   of an edge the only surfaces are its rounding cylinder and its two
+   faces. If the ray meets one of them before coming within walk reach of
+   either corner, that is the answer (1: best, *s_exit, *exit_plane hold
+   it); else (0) the general search decides. */
+static int re__one_edge(const re__object_t *o, const re__set_t *S, unsigned c0, const double I[3], const double dir[3],
+                        re__best_t *best, double *s_exit, unsigned *exit_plane)
+{
+    const re__ecyl_t *cy = &o->cyls[c0];
+    double P[3], IP[3], inv_l2, nd0, nd1, e0 = HUGE_VAL, e1 = HUGE_VAL, sc;
+    const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
+    unsigned i;
+    best->s = HUGE_VAL;
+    best->kind = RE_FEATURE_FACE;
+    best->index = 0;
+    best->h = 0;
+    re__try_cyl(o, c0, re__k_radius(o, S->c[0]), I, dir, best);
+    nd0 = re__dot(P0->n, dir), nd1 = re__dot(P1->n, dir);
+    if (nd0 > 0) e0 = re__max(0.0, P0->c - re__dot(P0->n, I)) / nd0;
+    if (nd1 > 0) e1 = re__max(0.0, P1->c - re__dot(P1->n, I)) / nd1;
+    *s_exit = re__min(e0, e1);
+    *exit_plane = e0 <= e1 ? cy->p[0] : cy->p[1];
+    sc = re__min(best->s, *s_exit);
+    if (!(sc < HUGE_VAL)) return 0;
+    re__madd(I, sc, dir, P);
+    re__sub(P, I, IP);
+    inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
+    for (i = 0; i < 2; i++) {
+        double wk = (double)o->corners[S->c[i]].walk;
+        if (re__dist2_segment(re__cptr(o, best, re__pk_id(&o->k_sfirst, S->c[i])), I, IP, inv_l2) <= wk * wk) return 0;
     }
-answer:
-    if (best.s <= s_exit && best.s < HUGE_VAL) {
+    return 1;
+}
+
+/* Query step 5: the rounded hit at best.s, the pass-through at s_exit
+   (the host goes on from the sharp mesh's face there), or unchanged. */
+static re_hit_kind_t re__answer(const re__object_t *o, re__best_t *best, double s_exit, unsigned exit_plane, const double I[3],
+                                const double dir[3], double t_host, re_hit_t *out)
+{
+    if (best->s <= s_exit && best->s < HUGE_VAL) {
         out->kind = RE_HIT_ROUNDED;
-        out->t = t_host + best.s;
-        re__madd(I, best.s, dir, out->point);
-        re__feature_normal(o, &best, out->point, out->normal);
-        out->feature = best.kind;
-        out->feature_index = best.index;
+        out->t = t_host + best->s;
+        re__madd(I, best->s, dir, out->point);
+        re__feature_normal(o, best, out->point, out->normal);
+        out->feature = best->kind;
+        out->feature_index = best->index;
     } else if (s_exit < HUGE_VAL) {
         const re__plane_t *g = &o->planes[exit_plane];
         out->kind = RE_PASS_THROUGH;
@@ -5454,6 +5444,34 @@ answer:
         out->normal[0] = g->n[0], out->normal[1] = g->n[1], out->normal[2] = g->n[2];
     }
     return out->kind;
+}
+
+/* Query steps 1-5 for a hit I on face plane f of object o (out holds the
+   answer "unchanged" from re__query_start). */
+static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const double I[3], const double dir[3], double t_host,
+                                  re_hit_t *out)
+{
+    re__set_t S;
+    unsigned iter, exit_plane, ndet, c0 = RE__NONE;
+    re__best_t best;
+    double s_exit;
+    S.n = 0;
+    S.bloom = 0;
+    best.cvalid = 0;
+    ndet = re__detect_leaf(o, f, I, &S, &best, &c0);
+    if (!S.n || re__on_flat_part(o, &S, f, I)) return RE_UNCHANGED;
+    best.smin = -RE__HOST_T_SLACK * fabs(t_host);
+    if (ndet == 1 && c0 != RE__NONE && S.n == 2 && re__one_edge(o, &S, c0, I, dir, &best, &s_exit, &exit_plane))
+        return re__answer(o, &best, s_exit, exit_plane, I, dir, t_host, out);
+    /* inside the removed volume: nearest capsule or the exit, walking the
+       adjacency graph (cylinder -> corner) while the ray runs toward corners
+       not yet in the set (grazing rays, §3.1) */
+    for (iter = 0;; iter++) {
+        re__nearest_feature(o, &S, I, dir, &best);
+        s_exit = re__exit(o, &S, I, dir, &exit_plane);
+        if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &best, I, dir, re__min(best.s, s_exit))) break;
+    }
+    return re__answer(o, &best, s_exit, exit_plane, I, dir, t_host, out);
 }
 
 RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
