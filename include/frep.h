@@ -4512,11 +4512,80 @@ FR_DEF double fr_poly_eval_compensated(const double *c, int degree, double t, do
     return v;
 }
 
+/* Descartes' rule of signs on d (degree m): no sign change in d (in d(-x))
+   means no positive (negative) root, so that side is not searched (the
+   empty bands of roots spread beyond one band, the negative pieces of
+   every derivative level when all roots are positive); [*t0, *t1] is
+   narrowed to the sides that may hold roots. 0 when neither does. */
+static int fr__descartes(const double *d, int m, double *t0, double *t1)
+{
+    int i, i0 = -1, pos = 0, neg = 0;
+    for (i = 0; i <= m; i++)
+        if (d[i] != 0) {
+            if (i0 >= 0) {
+                int flip = (d[i] > 0) != (d[i0] > 0);
+                pos += flip;
+                neg += ((i - i0) & 1) ? !flip : flip;
+            }
+            i0 = i;
+        }
+    if (!pos && *t1 > 0) *t1 = 0;
+    if (!neg && *t0 < 0) *t0 = 0;
+    return pos || neg;
+}
+
+/* The roots of d (degree m >= 1, d[0] != 0, exponents ex) in [t0, t1],
+   ascending, into buf: in one band when their magnitudes span at most
+   W = FR__BAND_BITS / m bits, else in bands of at most W bits each,
+   negative side from the largest magnitude down, then positive. try_fast:
+   the fast paths were not tried yet (fr__solve_band). Returns their count. */
+static int fr__solve_bands(const double *d, const int *ex, int m, double t0, double t1, int try_fast, fr__est_t *known,
+                           double *buf)
+{
+    int Elo, Ehi, W = FR__BAND_BITS / m, e, side, cnt = 0;
+    fr__root_exponent_bounds(ex, m, &Elo, &Ehi); /* every root has 2^Elo < |x| < 2^Ehi */
+    if (Ehi - Elo <= W) {
+        double B = fr__ldexp(1.0, Ehi);
+        return fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, try_fast, known, buf);
+    }
+    for (side = -1; side <= 1; side += 2) {
+        for (e = 0; e < Ehi - Elo; e += W) {
+            int e1 = side < 0 ? Ehi - e : Elo + e + W, e0 = e1 - W;
+            double lo = fr__ldexp(1.0, e0 < Elo ? Elo : e0), hi = fr__ldexp(1.0, e1 > Ehi ? Ehi : e1);
+            double xa = side < 0 ? -hi : lo, xb = side < 0 ? -lo : hi;
+            if (xa < t0) xa = t0;
+            if (xb > t1) xb = t1;
+            if (xa <= xb && cnt < m) {
+                double band[FR_POLY_MAX_DEGREE + 1];
+                int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, try_fast, known, band);
+                for (k = 0; k < nb && cnt < m; k++)
+                    if (cnt == 0 || band[k] > buf[cnt - 1]) buf[cnt++] = band[k];
+            }
+        }
+    }
+    return cnt;
+}
+
+/* The cnt ascending roots of buf inside [t0, t1], with the zero root
+   (when z > 0 and 0 is inside) merged in order, distinct, into r. Returns
+   their count. */
+static int fr__merge_roots(const double *buf, int cnt, int z, double t0, double t1, double *r)
+{
+    int i, k = 0, zdone = !(z > 0 && t0 <= 0 && 0 <= t1);
+    for (i = 0; i < cnt; i++) {
+        double x = buf[i];
+        if (!zdone && x >= 0) { r[k++] = 0.0; zdone = 1; if (x == 0) continue; }
+        if (x >= t0 && x <= t1 && x - x == 0 && (k == 0 || x > r[k - 1])) r[k++] = x;
+    }
+    if (!zdone) r[k++] = 0.0;
+    return k;
+}
+
 FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, double *r)
 {
     double buf[FR_POLY_MAX_DEGREE + 1];
     const double *d;
-    int i, n, z, m, cnt = 0, Ehi, Elo, W, emax = INT_MIN, direct, split, ex[FR_POLY_MAX_DEGREE + 1] = {0};
+    int i, n, z, m, cnt = 0, emax = INT_MIN, direct, split, ex[FR_POLY_MAX_DEGREE + 1] = {0};
     fr__est_t known;
     known.n = -1;
     if (!c || !r || degree < 0 || degree > FR_POLY_MAX_DEGREE || !(t0 <= t1)) return -1;
@@ -4552,62 +4621,10 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
            (no underflow or overflow within 2^+-FR__DIRECT_EXP) */
         buf[0] = -d[0] / d[1];
         cnt = 1;
-    } else {
-        /* Descartes' rule of signs: no sign change in d (in d(-x)) means no
-           positive (negative) root, so that side is not searched (the empty
-           bands of roots spread beyond one band, the negative pieces of
-           every derivative level when all roots are positive) */
-        int i0 = -1, pos = 0, neg = 0;
-        for (i = 0; i <= m; i++)
-            if (d[i] != 0) {
-                if (i0 >= 0) {
-                    int flip = (d[i] > 0) != (d[i0] > 0);
-                    pos += flip;
-                    neg += ((i - i0) & 1) ? !flip : flip;
-                }
-                i0 = i;
-            }
-        if (!pos && t1 > 0) t1 = 0;
-        if (!neg && t0 < 0) t0 = 0;
-        fr__root_exponent_bounds(ex, m, &Elo, &Ehi); /* every root has 2^Elo < |x| < 2^Ehi */
-        W = FR__BAND_BITS / (m > 0 ? m : 1);
-        if (m == 0 || (!pos && !neg)) {
-            /* only the zero root, if any */
-        } else if (Ehi - Elo <= W) {
-            double B = fr__ldexp(1.0, Ehi);
-            cnt = fr__solve_band(d, ex, m, Ehi, Elo, t0 > -B ? t0 : -B, t1 < B ? t1 : B, direct == -2, &known, buf);
-        } else {
-            /* Roots spread over more than W bits: bands of at most W bits each,
-               negative side from the largest magnitude down, then positive. */
-            int e, side;
-            for (side = -1; side <= 1; side += 2) {
-                for (e = 0; e < Ehi - Elo; e += W) {
-                    int e1 = side < 0 ? Ehi - e : Elo + e + W, e0 = e1 - W;
-                    double lo = fr__ldexp(1.0, e0 < Elo ? Elo : e0), hi = fr__ldexp(1.0, e1 > Ehi ? Ehi : e1);
-                    double xa = side < 0 ? -hi : lo, xb = side < 0 ? -lo : hi;
-                    if (xa < t0) xa = t0;
-                    if (xb > t1) xb = t1;
-                    if (xa <= xb && cnt < m) {
-                        double band[FR_POLY_MAX_DEGREE + 1];
-                        int k, nb = fr__solve_band(d, ex, m, e1 > Ehi ? Ehi : e1, Elo, xa, xb, direct == -2, &known, band);
-                        for (k = 0; k < nb && cnt < m; k++)
-                            if (cnt == 0 || band[k] > buf[cnt - 1]) buf[cnt++] = band[k];
-                    }
-                }
-            }
-        }
+    } else if (m > 0 && fr__descartes(d, m, &t0, &t1)) {
+        cnt = fr__solve_bands(d, ex, m, t0, t1, direct == -2, &known, buf);
     }
-    /* merge the zero root into the ascending list, keep roots inside [t0, t1] */
-    {
-        int k = 0, zdone = !(z > 0 && t0 <= 0 && 0 <= t1);
-        for (i = 0; i < cnt; i++) {
-            double x = buf[i];
-            if (!zdone && x >= 0) { r[k++] = 0.0; zdone = 1; if (x == 0) continue; }
-            if (x >= t0 && x <= t1 && x - x == 0 && (k == 0 || x > r[k - 1])) r[k++] = x;
-        }
-        if (!zdone) r[k++] = 0.0;
-        return k;
-    }
+    return fr__merge_roots(buf, cnt, z, t0, t1, r);
 }
 
 FR_DEF int fr_solve_quadratic(const double c[3], double r[2]) { return fr_solve_poly(c, 2, -HUGE_VAL, HUGE_VAL, r); }

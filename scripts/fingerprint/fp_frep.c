@@ -4,7 +4,9 @@
    footprint; any-hit; no pruning with FD normals; prepared models) on rays
    at the example's models (examples/models, run from the repository root)
    and eight written here (CSG of quadrics, a torus, the tangle polynomial,
-   a blend, a superellipsoid, noise). */
+   a blend, a superellipsoid, noise); and fr_solve_poly's roots for random
+   polynomials of every degree (from roots: clustered, spread over 1e-30 to
+   1e30, zero roots; or random coefficients), over random intervals. */
 #define IV_IMPLEMENTATION
 #include "interval.h"
 #define FR_IMPLEMENTATION
@@ -92,6 +94,37 @@ static unsigned long long fp_tape(const fr_tape_t *tape, int nrays, unsigned lon
     return h;
 }
 
+static void fp_solve(int cases)
+{
+    unsigned long long h = FP_START;
+    t_rng_t rng;
+    int q;
+    rng.s = 4515;
+    for (q = 0; q < cases; q++) {
+        double c[FR_POLY_MAX_DEGREE + 1], r[FR_POLY_MAX_DEGREE + 1], t0 = -HUGE_VAL, t1 = HUGE_VAL;
+        int deg = 1 + (int)(t_rng_u64(&rng) % FR_POLY_MAX_DEGREE), k, i, n, kind = (int)(t_rng_u64(&rng) % 4);
+        memset(c, 0, sizeof c);
+        if (kind == 3) {
+            for (k = 0; k <= deg; k++) c[k] = (2 * t_rng_unit(&rng) - 1) * pow(10, 6 * (t_rng_unit(&rng) - 0.5));
+        } else {
+            c[0] = 1;
+            for (k = 0; k < deg; k++) { /* times (x - root) */
+                double x = kind == 0 ? 1 + 1e-6 * t_rng_unit(&rng)                       /* clustered */
+                         : kind == 1 ? pow(10, 60 * (t_rng_unit(&rng) - 0.5))            /* spread */
+                                     : (t_rng_u64(&rng) % 3 == 0 ? 0.0 : 4 * t_rng_unit(&rng) - 2); /* zero roots */
+                if (t_rng_u64(&rng) & 1) x = -x;
+                for (i = k + 1; i > 0; i--) c[i] = c[i - 1] - x * c[i];
+                c[0] = -x * c[0];
+            }
+        }
+        if (q % 3 == 0) t0 = -2 * t_rng_unit(&rng), t1 = t0 + 4 * t_rng_unit(&rng);
+        n = fr_solve_poly(c, deg, t0, t1, r);
+        h = fp_hash(h, &n, sizeof n);
+        if (n > 0) h = fp_hash(h, r, sizeof(double) * (size_t)n);
+    }
+    printf("frep      fr_solve_poly          %016llx  (%d polynomials)\n", h, cases);
+}
+
 int main(int argc, char **argv)
 {
     int nrays = argc > 1 ? atoi(argv[1]) : 300;
@@ -123,5 +156,6 @@ int main(int argc, char **argv)
         fr_tape_free(&tape);
         free(text);
     }
+    fp_solve(200000);
     return 0;
 }
