@@ -2806,7 +2806,7 @@ static int gr__keep_parallel(const gr__qset_t *qs, const gr__scratch_t *s, gr_fa
    S = [-pm, pm] from the larger axis projection, widened by the smaller
    one pn into the parallelogram's trapezoid density (gr__xmass) on
    [-half, half], or the ellipse's semicircle; a footprint narrower than
-   GR__POINT_FOOTPRINT_REL of the groove width is a point. */
+   GR__POINT_FOOTPRINT_REL of the widest half-width (grid->w) is a point. */
 typedef struct gr__across_t {
     double pm, half, beta; /* gr__xmass's big (before the E_w scale) and beta */
     int point;
