@@ -3966,7 +3966,10 @@ static re_result_t re__patch_radii(re__an_t *an, re__arena_t *ar, const double *
     unsigned c, i;
     RE__TAKE(pr, double, N->npatch + 1);
     for (c = 0; c < an->nc; c++)
-        if (N->fc[c] != RE__NONE) pr[N->rmap[re__uf_find(uf, c)]] = patch_r[re__uf_find(uf, c)];
+        if (N->fc[c] != RE__NONE) {
+            unsigned root = re__uf_find(uf, c);
+            pr[N->rmap[root]] = patch_r[root];
+        }
     RE__TAKE(F->radii, double, N->npatch + 1);
     memcpy(F->radii, pr, sizeof(double) * N->npatch);
     qsort(F->radii, N->npatch, sizeof(double), re__cmp_double);

@@ -15,6 +15,7 @@
      inside the sharp box and must still be blocked by the rounding). */
 #define RE_IMPLEMENTATION
 #include "rounded_edges.h"
+#define RX_SCENE_IMPLEMENTATION /* rx_scene_round_meshes, which rx_render.h calls */
 #define RX_TESS_IMPLEMENTATION
 #define RX_RENDER_IMPLEMENTATION
 #include "../examples/rounded_edges/rx_render.h"

@@ -153,24 +153,13 @@ static int rx__build_round(rx_world_t *w, int threads)
     re_scene_desc_t desc;
     re_diag_t diag;
     re_result_t rc;
-    int i, n = 0;
+    unsigned n;
     if (!meshes) return -1;
-    for (i = 0; i < s->nobj; i++) {
-        const rx_object_t *o = &s->obj[i];
-        w->re_object[i] = -1;
-        if (!(o->radius > 0)) continue;
-        meshes[n].positions = o->mesh.pos;
-        meshes[n].position_type = RE_FLOAT32;
-        meshes[n].vertex_count = (unsigned)o->mesh.nverts;
-        meshes[n].indices = o->mesh.idx;
-        meshes[n].index_count = (unsigned)(3 * o->mesh.ntris);
-        meshes[n].radius = o->radius;
-        w->re_object[i] = n++;
-    }
+    n = rx_scene_round_meshes(s, meshes, w->re_object);
     memset(&desc, 0, sizeof desc);
     memset(&diag, 0, sizeof diag);
     desc.objects = meshes;
-    desc.object_count = (unsigned)n;
+    desc.object_count = n;
     desc.report = rx__count_report;
     desc.report_user = &w->concave_reports;
     desc.layout = w->mode.kind == RX_ROUNDED && w->mode.n == 1 ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;

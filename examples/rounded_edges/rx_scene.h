@@ -12,6 +12,7 @@
 
 #include "ex_mesh.h"
 #include "ex_shade.h"
+#include "rounded_edges.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -48,6 +49,11 @@ int rx_scene_make(rx_scene_t *s, const char *name, double radius_scale);
 void rx_scene_free(rx_scene_t *s);
 /* Total triangles over all objects. */
 size_t rx_scene_triangles(const rx_scene_t *s);
+/* The rounded objects (radius > 0) as rounded_edges.h meshes, in object
+   order: float positions, the triangles Embree traces. meshes has room for
+   s->nobj; object_of (NULL, or s->nobj entries) gets each object's mesh
+   index, -1 for an object left sharp. Returns the mesh count. */
+unsigned rx_scene_round_meshes(const rx_scene_t *s, re_mesh_t *meshes, int *object_of);
 
 #ifdef __cplusplus
 }
@@ -314,6 +320,27 @@ size_t rx_scene_triangles(const rx_scene_t *s)
     size_t n = 0;
     int i;
     for (i = 0; i < s->nobj; i++) n += s->obj[i].mesh.ntris;
+    return n;
+}
+
+unsigned rx_scene_round_meshes(const rx_scene_t *s, re_mesh_t *meshes, int *object_of)
+{
+    unsigned n = 0;
+    int i;
+    for (i = 0; i < s->nobj; i++) {
+        const rx_object_t *o = &s->obj[i];
+        if (object_of) object_of[i] = -1;
+        if (!(o->radius > 0)) continue;
+        memset(&meshes[n], 0, sizeof meshes[n]);
+        meshes[n].positions = o->mesh.pos;
+        meshes[n].position_type = RE_FLOAT32;
+        meshes[n].vertex_count = (unsigned)o->mesh.nverts;
+        meshes[n].indices = o->mesh.idx;
+        meshes[n].index_count = (unsigned)(3 * o->mesh.ntris);
+        meshes[n].radius = o->radius;
+        if (object_of) object_of[i] = (int)n;
+        n++;
+    }
     return n;
 }
 

@@ -10,35 +10,19 @@
 #include "rounded_edges.h"
 #define RX_SCENE_IMPLEMENTATION
 #include "../../examples/rounded_edges/rx_scene.h"
-#include <pthread.h>
 #include <stdio.h>
 #include <sys/mman.h>
+#include "ex_render.h"
 #include "test.h"
 #include "test_rounded_util.h"
 #include "fp.h"
 
 #define FP_BLOCK_AT ((void *)0x7e0000000000ull)
 
-typedef struct fp_task_t {
-    re_task_fn fn;
-    void *ctx;
-    unsigned index;
-} fp_task_t;
-static void *fp_task_run(void *p)
-{
-    fp_task_t *t = (fp_task_t *)p;
-    t->fn(t->ctx, t->index);
-    return NULL;
-}
 static void fp_parallel(void *user, unsigned count, re_task_fn task, void *ctx)
 {
-    pthread_t th[8];
-    fp_task_t a[8];
-    unsigned i;
     (void)user;
-    for (i = 1; i < count && i < 8; i++) a[i].fn = task, a[i].ctx = ctx, a[i].index = i, pthread_create(&th[i], NULL, fp_task_run, &a[i]);
-    task(ctx, 0);
-    for (i = 1; i < count && i < 8; i++) pthread_join(th[i], NULL);
+    ex_parallel_for(count, task, ctx);
 }
 
 static unsigned long long fp_features(const re_scene_t *s)
@@ -151,23 +135,12 @@ static void fp_example_scene(const char *scene, double radius_scale)
 {
     rx_scene_t sc;
     re_mesh_t *mm;
-    unsigned n = 0;
-    int i;
+    unsigned n;
     char name[64];
     memset(&sc, 0, sizeof sc);
     if (rx_scene_make(&sc, scene, radius_scale)) return;
     mm = (re_mesh_t *)calloc((size_t)sc.nobj + 1, sizeof *mm);
-    for (i = 0; i < sc.nobj; i++) {
-        const rx_object_t *o = &sc.obj[i];
-        if (!(o->radius > 0)) continue;
-        mm[n].positions = o->mesh.pos;
-        mm[n].position_type = RE_FLOAT32;
-        mm[n].vertex_count = (unsigned)o->mesh.nverts;
-        mm[n].indices = o->mesh.idx;
-        mm[n].index_count = (unsigned)(3 * o->mesh.ntris);
-        mm[n].radius = o->radius;
-        n++;
-    }
+    n = rx_scene_round_meshes(&sc, mm, NULL);
     snprintf(name, sizeof name, "%s-%g", scene, radius_scale);
     fp_case(name, mm, n);
     free(mm);
