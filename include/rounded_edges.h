@@ -4771,7 +4771,9 @@ RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem, s
     *scene = NULL;
     if (scene_bytes < re__header_bytes(desc->object_count)) return RE_ERR_BUFFER_TOO_SMALL;
     S = (re_scene_t *)scene_mem;
-    memset(S, 0, sizeof *S);
+    /* the whole header, its alignment gaps too: the block's bytes are then
+       the same whatever the buffer held (re__skip does it past each array) */
+    memset(S, 0, re__header_bytes(desc->object_count));
     S->n_objects = desc->object_count;
     S->objects = (re__object_t *)((unsigned char *)scene_mem + RE__ALIGN(sizeof(re_scene_t)));
     S->alloc_ctx = desc->alloc_ctx;
@@ -4788,7 +4790,6 @@ RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem, s
         if (rc != RE_OK) return rc;
         need = re__object_bytes(&an, &F);
         if ((size_t)(at - (unsigned char *)scene_mem) + need > scene_bytes) return RE_ERR_BUFFER_TOO_SMALL;
-        memset(&S->objects[i], 0, sizeof S->objects[i]);
         re__pack(&an, &F, at, &S->objects[i]);
         at += need;
         an.st.bytes = need;
