@@ -76,7 +76,7 @@ filters=("$@")
 run_pass "$build" normal "${filters[@]}"
 if ls "$build"/../clang/test_* > /dev/null 2>&1; then
   # another compiler's code, not more cases: a quarter of the batteries
-  echo "== interval and rounded-edge tests built by clang (FILIGREE_TEST_SCALE=${FILIGREE_CLANG_SCALE:-0.25})" >&2
+  echo "== interval, rounded-edge and four frep and grooves tests built by clang (FILIGREE_TEST_SCALE=${FILIGREE_CLANG_SCALE:-0.25})" >&2
   FILIGREE_TEST_SCALE=${FILIGREE_CLANG_SCALE:-0.25} run_pass "$build/../clang" clang "${filters[@]}"
 fi
 echo "== tests under ASan + UBSan (FILIGREE_TEST_SCALE=${FILIGREE_SAN_SCALE:-0.05})" >&2

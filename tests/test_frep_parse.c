@@ -358,6 +358,130 @@ static void bad_input_reports_position(void)
         T_CHECK(t.code == NULL);
     }
 }
+/* Literals and comments the models above do not use, and calls whose
+   arguments are constants (folded while parsing): the same model as the C
+   API's, the constants computed by libm here. */
+static fr_node_t api_folded(fr_builder_t *b, fr_p3_t X)
+{
+    double k = 1e-3 + 2.5E+2 + .5 + sqrt(4.0) + exp(0.5) + log(3.0) + sin(1.0) + cos(1.0) + atan(2.0) + fabs(-7.0);
+    return fr_sub(b, K(b, k), X.x);
+}
+static void literals_comments_and_folded_calls(void)
+{
+    same_as_api("m = 1e-3 /* a block\n comment */ + 2.5E+2 + .5 -- a line comment\n"
+                "  // and another\n"
+                "  + sqrt(4) + exp(0.5) + log(3) + sin(1) + cos(1) + atan(2) + abs(-7) - x[1];",
+                api_folded, 0, 1e-15);
+}
+
+/* Every other message of the parser, each from the input that causes it:
+   the code, the message and where it points. Built texts (a name one
+   character too long, a variable too many, a skeleton too long, an
+   argument too many) after the table. */
+typedef struct bad_code_case_t {
+    const char *text;
+    fr_result_t code;
+    const char *needle;
+    int line, col; /* 0: any */
+} bad_code_case_t;
+#define HEAD "m(x[3], a[1]) {\n"
+static void check_bad(int i, const char *text, fr_result_t code, const char *needle, int line, int col)
+{
+    fr_tape_t t;
+    fr_diag_t d;
+    fr_result_t r = parse_text(text, &t, &d, 0);
+    if (r == FR_OK) {
+        T_FAIL("case %d accepted: %s", i, text);
+        fr_tape_free(&t);
+        return;
+    }
+    if (r != code) T_FAIL("case %d: result %d, want %d (%s)", i, (int)r, (int)code, d.message);
+    if (!strstr(d.message, needle)) T_FAIL("case %d: message '%s' lacks '%s'", i, d.message, needle);
+    if (line && (d.line != line || d.column != col))
+        T_FAIL("case %d: at %d:%d, want %d:%d (%s)", i, d.line, d.column, line, col, d.message);
+    T_CHECK(t.code == NULL);
+}
+static void every_parse_error_names_its_cause(void)
+{
+    static const bad_code_case_t cases[] = {
+        {HEAD "  array c[0];\n}", FR_ERR_PARSE, "array length must be an integer from 1 to 16384", 2, 11},
+        {HEAD "  array c[2.5];\n}", FR_ERR_PARSE, "array length must be an integer from 1 to 16384", 2, 11},
+        {HEAD "  array c[16384];\n}", FR_ERR_LIMIT, "arrays too large in total", 2, 17},
+        {HEAD "  array c[q];\n}", FR_ERR_PARSE, "array length must be a number", 2, 11},
+        {HEAD "  array c[3], c[2];\n}", FR_ERR_PARSE, "'c' is already defined", 2, 15},
+        {HEAD "  q = 1; array q[2];\n}", FR_ERR_PARSE, "'q' is already defined", 2, 16},
+        {HEAD "  m = 10^400;\n}", FR_ERR_PARSE, "constant power is not finite", 0, 0},
+        {HEAD "  m = log(0);\n}", FR_ERR_PARSE, "constant function value is not finite", 0, 0},
+        {HEAD "  m = x[x[1]];\n}", FR_ERR_PARSE, "array index must be a constant", 2, 9},
+        {HEAD "  m = hfBlendUni(x, 1, 0, 1, 1);\n}", FR_ERR_PARSE, "hfBlendUni argument 1 must be a number, not array 'x'", 0, 0},
+        {HEAD "  m = hfBlendUni(1, 2, x[1], 1, 1);\n}", FR_ERR_PARSE, "hfBlendUni argument 3 must be a constant", 0, 0},
+        {HEAD "  array c[3]; c = [0, 0, 0]; m = hfSphere(1, c, 1);\n}", FR_ERR_PARSE, "hfSphere argument 1 must be an array", 0, 0},
+        {HEAD "  array q[2], c[3]; q = [0, 0]; c = [0, 0, 0]; m = hfSphere(q, c, 1);\n}", FR_ERR_PARSE,
+         "hfSphere argument 1 must be an array of 3 coordinates", 0, 0},
+        {HEAD "  array c[3]; c[1] = 0; m = hfSphere(x, c, 1);\n}", FR_ERR_PARSE, "array 'c' element 2 is used before it is set", 0, 0},
+        {HEAD "  array c[2]; c = [0, 0]; m = hfSphere(x, c, 1);\n}", FR_ERR_PARSE, "hfSphere: array 'c' must have 3 elements", 0, 0},
+        {HEAD "  array x0[2], y0[2], z0[3], k[2]; x0 = [0, 1]; y0 = [0, 1]; z0 = [0, 1, 2]; k = [1, 1];\n"
+              "  m = hfSoft(x, x0, y0, z0, k, 0.5);\n}", FR_ERR_PARSE, "hfSoft: arrays must have equal lengths", 0, 0},
+        {HEAD "  m = ", FR_ERR_PARSE, "unexpected end of input in an expression", 0, 0},
+        {HEAD "  m = );\n}", FR_ERR_PARSE, "unexpected ')' in an expression", 2, 7},
+        {HEAD "  q = 1; m = q[1];\n}", FR_ERR_PARSE, "'q' is not an array", 0, 0},
+        {HEAD "  array c[3]; c[1] = 1; m = c[2];\n}", FR_ERR_PARSE, "'c[2]' is used before it is set", 0, 0},
+        {HEAD "  m = x ^ 2;\n}", FR_ERR_PARSE, "'^' needs a number on its left", 0, 0},
+        {HEAD "  m = x + 1;\n}", FR_ERR_PARSE, "arithmetic on a whole array", 0, 0},
+        {HEAD "  m = 1 * a;\n}", FR_ERR_PARSE, "arithmetic on a whole array", 0, 0},
+        {HEAD "  x = [1, 2, 3];\n}", FR_ERR_PARSE, "'x' cannot be assigned", 0, 0},
+        {HEAD "  array c[3]; c = [1, 2, 3, 4];\n}", FR_ERR_PARSE, "too many elements for 'c[3]'", 0, 0},
+        {HEAD "  array c[3]; c = [1, 2];\n}", FR_ERR_PARSE, "'c' has 3 elements, the literal 2", 0, 0},
+        {HEAD "  array c[3], e[2]; e = [1, 2]; c = e;\n}", FR_ERR_PARSE, "'c' needs an array of 3 elements", 0, 0},
+        {HEAD "  array c[3]; c = 1;\n}", FR_ERR_PARSE, "'c' needs an array of 3 elements", 0, 0},
+        {HEAD "  q = 1; q[1] = 2;\n}", FR_ERR_PARSE, "'q' is not an array", 0, 0},
+        {HEAD "  a[1] = 2;\n}", FR_ERR_PARSE, "'a' cannot be assigned", 0, 0},
+        {HEAD "  q 5;\n}", FR_ERR_PARSE, "(a statement is an assignment or a call)", 2, 5},
+        {"m(x[3], a[1], t[8]) { m = 1; }", FR_ERR_PARSE, "at most 7 attributes", 0, 0},
+        {"m(x[3], a[0]) { m = 1; }", FR_ERR_PARSE, "bad parameter array length", 0, 0},
+        {"m(x[3], a[1], t[1], u[1]) { m = 1; }", FR_ERR_PARSE, "at most three array parameters", 0, 0},
+    };
+    int n = (int)(sizeof cases / sizeof cases[0]), i;
+    char *text = (char *)malloc(64 * 1024);
+    size_t k;
+    for (i = 0; i < n; i++) check_bad(i, cases[i].text, cases[i].code, cases[i].needle, cases[i].line, cases[i].col);
+    /* a name of FR__P_MAX_NAME characters is one too many (one fewer is
+       a name: "unknown variable") */
+    k = (size_t)sprintf(text, HEAD "  m = ");
+    for (i = 0; i < FR__P_MAX_NAME - 1; i++) text[k++] = 'q';
+    strcpy(text + k, " + 1;\n}");
+    check_bad(n, text, FR_ERR_PARSE, "unknown variable 'qqqq", 2, 7);
+    text[k++] = 'q';
+    strcpy(text + k, " + 1;\n}");
+    check_bad(n, text, FR_ERR_PARSE, "identifier too long", 0, 0);
+    /* the model's name, x, a and FR__P_MAX_SYMS - 3 variables fill the
+       table; the next is refused where its assignment ends */
+    k = (size_t)sprintf(text, HEAD);
+    for (i = 0; i < FR__P_MAX_SYMS - 1; i++) k += (size_t)sprintf(text + k, "  q%d = %d;\n", i, i);
+    strcpy(text + k, "  m = 1;\n}");
+    check_bad(n + 1, text, FR_ERR_LIMIT, "too many variables", 2 + FR__P_MAX_SYMS - 3, 13);
+    /* a skeleton of 65 elements */
+    k = (size_t)sprintf(text, HEAD "  array x0[65], y0[65], z0[65], k[65];\n");
+    {
+        static const char *names[4] = {"x0", "y0", "z0", "k"};
+        int a;
+        for (a = 0; a < 4; a++) {
+            k += (size_t)sprintf(text + k, "  %s = [", names[a]);
+            for (i = 0; i < 65; i++) k += (size_t)sprintf(text + k, i ? ", %d" : "%d", a == 3 ? 1 : i);
+            k += (size_t)sprintf(text + k, "];\n");
+        }
+    }
+    strcpy(text + k, "  m = hfSoft(x, x0, y0, z0, k, 0.5);\n}");
+    check_bad(n + 2, text, FR_ERR_LIMIT, "at most 64 skeleton elements per call", 0, 0);
+    /* FR__P_MAX_ARGS + 1 arguments */
+    k = (size_t)sprintf(text, HEAD "  m = hfSphere(x");
+    for (i = 0; i < FR__P_MAX_ARGS; i++) k += (size_t)sprintf(text + k, ", 1");
+    strcpy(text + k, ");\n}");
+    check_bad(n + 3, text, FR_ERR_PARSE, "hfSphere: too many arguments", 0, 0);
+    free(text);
+}
+#undef HEAD
+
 static void deep_nesting_is_a_limit_not_a_crash(void)
 {
     size_t n = 100000;
@@ -430,6 +554,7 @@ int main(int argc, char **argv)
         T_CASE(constant_arrays_and_elements), T_CASE(attributes_from_third_array),
         T_CASE(example_models_parse),         T_CASE(tangle_cube_matches_api),
         T_CASE(bad_input_reports_position),   T_CASE(deep_nesting_is_a_limit_not_a_crash),
+        T_CASE(literals_comments_and_folded_calls), T_CASE(every_parse_error_names_its_cause),
         T_CASE(length_is_respected_without_terminator), T_CASE(random_garbage_never_crashes),
     };
     return T_RUN(argc, argv, cases);

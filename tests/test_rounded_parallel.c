@@ -5,49 +5,13 @@
    order the host runs them in; reports are the same per object; a failure
    names the same object, element and message as on one thread; the sizes
    agree; the objects are spread evenly; a failing allocator leaves no
-   leak. The allocator hook here fills every block with one byte pattern
-   (so block bytes compare with memcmp) and is called from the tasks'
-   threads. */
-#include <pthread.h>
-#include <stdlib.h>
-#include <string.h>
+   leak. The allocator hook (test_count_alloc.h) fills every block with
+   one byte pattern (so block bytes compare with memcmp) and is called
+   from the tasks' threads. */
+#include "test_count_alloc.h"
 
-typedef struct tp_alloc_t {
-    pthread_mutex_t mu;
-    long calls, fail_at; /* fail the allocation numbered fail_at (0: never) */
-    long live;
-} tp_alloc_t;
-
-static void *tp_malloc(size_t n, void *ctx)
-{
-    tp_alloc_t *a = (tp_alloc_t *)ctx;
-    void *p;
-    if (a) {
-        int fail;
-        pthread_mutex_lock(&a->mu);
-        fail = ++a->calls == a->fail_at;
-        if (!fail) a->live++;
-        pthread_mutex_unlock(&a->mu);
-        if (fail) return NULL;
-    }
-    p = malloc(n ? n : 1);
-    if (p) memset(p, 0xA5, n);
-    return p;
-}
-
-static void tp_free(void *p, void *ctx)
-{
-    tp_alloc_t *a = (tp_alloc_t *)ctx;
-    if (a && p) {
-        pthread_mutex_lock(&a->mu);
-        a->live--;
-        pthread_mutex_unlock(&a->mu);
-    }
-    free(p);
-}
-
-#define RE_MALLOC(sz, ctx) tp_malloc((sz), (ctx))
-#define RE_FREE(p, ctx) tp_free((p), (ctx))
+#define RE_MALLOC(sz, ctx) ta_malloc((sz), (ctx))
+#define RE_FREE(p, ctx) ta_free((p), (ctx))
 /* The kd-tree's node capacity, when not 0 (one_object_kd_near_capacity):
    a tree built on threads then runs into it and is built again on one
    thread. */
@@ -177,7 +141,7 @@ static void tp_scene_free(tp_scene_t *S)
     for (i = 0; i < TP_OBJECTS; i++) tm_free(&S->m[i]);
 }
 
-static re_scene_desc_t tp_desc(const re_mesh_t *mesh, unsigned n, tp_host_t *host, unsigned threads, tp_alloc_t *al)
+static re_scene_desc_t tp_desc(const re_mesh_t *mesh, unsigned n, tp_host_t *host, unsigned threads, ta_alloc_t *al)
 {
     re_scene_desc_t d;
     memset(&d, 0, sizeof d);
@@ -186,13 +150,6 @@ static re_scene_desc_t tp_desc(const re_mesh_t *mesh, unsigned n, tp_host_t *hos
     return d;
 }
 
-static tp_alloc_t *tp_alloc_new(long fail_at)
-{
-    tp_alloc_t *a = (tp_alloc_t *)calloc(1, sizeof *a);
-    pthread_mutex_init(&a->mu, NULL);
-    a->fail_at = fail_at;
-    return a;
-}
 
 /* The same stats; object by object, the same block bytes (every block
    starts as 0xA5, so unwritten padding compares too), and the same answers
@@ -245,7 +202,7 @@ static void parallel_build_equals_serial(void)
     T_INT_EQ(re_sphere_count(s0, 12), 16); /* both boxes of object 12, split at their common corner */
     for (k = 0; k < sizeof threads / sizeof *threads; k++) {
         tp_host_t host = {0, 0, 0};
-        tp_alloc_t *al = tp_alloc_new(0);
+        ta_alloc_t *al = ta_alloc_new(0);
         re_scene_t *s1 = NULL;
         host.reverse = k == 4;
         d = tp_desc(S.mesh, TP_OBJECTS, &host, threads[k], al);
@@ -254,7 +211,7 @@ static void parallel_build_equals_serial(void)
         tp_same_scene(s0, s1, &S, 40 + k);
         re_free(s1);
         T_INT_EQ(al->live, 0);
-        free(al);
+        ta_alloc_delete(al);
     }
     /* threads 0 or 1, or no parallel hook: the calling thread */
     {
@@ -335,7 +292,7 @@ static void parallel_failure_names_lowest_object(void)
     T_INT_EQ(d0.element, 2);
     for (k = 2; k <= 6; k += 2) {
         tp_host_t host = {0, 0, 0};
-        tp_alloc_t *al = tp_alloc_new(0);
+        ta_alloc_t *al = ta_alloc_new(0);
         re_sizes_t sz;
         host.reverse = k == 6;
         d = tp_desc(S.mesh, TP_OBJECTS, &host, k, al);
@@ -350,7 +307,7 @@ static void parallel_failure_names_lowest_object(void)
         T_INT_EQ(re_build_sizes(&d, &sz, &d1), r0);
         T_INT_EQ(d1.object, 5);
         T_INT_EQ(al->live, 0);
-        free(al);
+        ta_alloc_delete(al);
     }
     tp_scene_free(&S);
 }
@@ -365,7 +322,7 @@ static void tp_skipped_task_fails(const tp_scene_t *S, unsigned n)
     re_sizes_t sz;
     re_diag_t dg;
     tp_host_t host = {1, 0, 2};
-    tp_alloc_t *al = tp_alloc_new(0);
+    ta_alloc_t *al = ta_alloc_new(0);
     d = tp_desc(S->mesh, n, &host, 3, al);
     T_INT_EQ(re_build(&d, &s, &dg), RE_ERR_INVALID_ARG);
     T_CHECK(s == NULL);
@@ -373,7 +330,7 @@ static void tp_skipped_task_fails(const tp_scene_t *S, unsigned n)
     T_INT_EQ(re_build_sizes(&d, &sz, &dg), RE_ERR_INVALID_ARG);
     T_INT_EQ(dg.result, RE_ERR_INVALID_ARG);
     T_INT_EQ(al->live, 0);
-    free(al);
+    ta_alloc_delete(al);
 }
 
 /* Objects spread over the tasks. */
@@ -482,7 +439,7 @@ static long tp_each_allocation_fails(const tp_scene_t *S, unsigned n)
 {
     re_scene_desc_t d;
     long at, n_calls, n_oom = 0;
-    tp_alloc_t *count = tp_alloc_new(0);
+    ta_alloc_t *count = ta_alloc_new(0);
     re_scene_t *s = NULL;
     re_diag_t dg;
     tp_host_t host = {0, 0, 0};
@@ -490,9 +447,9 @@ static long tp_each_allocation_fails(const tp_scene_t *S, unsigned n)
     T_INT_EQ(re_build(&d, &s, &dg), RE_OK);
     re_free(s), s = NULL;
     n_calls = count->calls;
-    free(count);
+    ta_alloc_delete(count);
     for (at = 1; at <= n_calls; at++) {
-        tp_alloc_t *al = tp_alloc_new(at);
+        ta_alloc_t *al = ta_alloc_new(at);
         re_sizes_t sz;
         re_result_t rc;
         d = tp_desc(S->mesh, n, &host, 3, al);
@@ -506,7 +463,7 @@ static long tp_each_allocation_fails(const tp_scene_t *S, unsigned n)
         rc = re_build_sizes(&d, &sz, &dg);
         T_CHECK(rc == RE_OK || rc == RE_ERR_OUT_OF_MEMORY);
         if (al->live) T_FAIL("allocation %ld failing: %ld blocks left", at, al->live);
-        free(al);
+        ta_alloc_delete(al);
     }
     T_INT_EQ(n_oom, n_calls);
     return n_calls;
@@ -578,7 +535,7 @@ static void one_object_split_equals_serial(void)
         T_GT(R0.n, 4);
         for (k = 0; k < sizeof threads / sizeof *threads; k++) {
             tp_host_t host = {0, 0, 0};
-            tp_alloc_t *al = tp_alloc_new(0);
+            ta_alloc_t *al = ta_alloc_new(0);
             re_scene_t *s1 = NULL;
             re_sizes_t z1;
             int i, n_same = 0;
@@ -597,7 +554,7 @@ static void one_object_split_equals_serial(void)
             T_INT_EQ(z1.scratch_bytes, z0.scratch_bytes);
             re_free(s1);
             T_INT_EQ(al->live, 0);
-            free(al);
+            ta_alloc_delete(al);
         }
         re_free(s0);
         tp_scene_free(&S);
