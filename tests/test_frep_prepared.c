@@ -278,6 +278,79 @@ static void prepared_csg_grazing_and_tangent_rays(void)
     cup_rig_free(&c);
 }
 
+/* Rays parallel to a generator of the double cone z^2 - x^2 - y^2 >= 0
+   (fr_cone, r = 1) cut by the ball of radius 10: along (3, 4, 5), (5, 0,
+   5), ... the ray's quadratic loses its t^2 term exactly and the leaf is
+   linear, a case no other test reaches (fr__quadric_leaf's c2 = 0 branch);
+   tilted by 1e-9 it is a quadratic whose leading term is nine orders
+   below the others, its far root at ~1e9. Origins inside the ball and
+   outside the cone, entering it inside the ball: the first hit is the
+   cone's entry, from __float128. Prepared, unprepared ANALYTIC and
+   INTERVAL agree with it. */
+static __float128 cone_entry_q(const double o[3], const double d[3])
+{
+    __float128 a = (__float128)d[2] * d[2] - (__float128)d[0] * d[0] - (__float128)d[1] * d[1];
+    __float128 b = 2 * ((__float128)o[2] * d[2] - (__float128)o[0] * d[0] - (__float128)o[1] * d[1]);
+    __float128 c = (__float128)o[2] * o[2] - (__float128)o[0] * o[0] - (__float128)o[1] * o[1];
+    __float128 disc, q;
+    if (a == 0) return -c / b;
+    disc = b * b - 4 * a * c;
+    if (disc < 0) return -1;
+    q = -(b + (b >= 0 ? sqrtq(disc) : -sqrtq(disc))) / 2; /* both roots without cancellation */
+    {
+        __float128 r1 = q / a, r2 = c / q, lo = r1 < r2 ? r1 : r2, hi = r1 < r2 ? r2 : r1;
+        return lo >= 0 ? lo : hi;
+    }
+}
+static void ray_parallel_to_cone_generator(void)
+{
+    static const double gen[8][3] = {{3, 4, 5}, {-3, 4, 5}, {4, -3, -5}, {5, 0, 5}, {0, -5, 5}, {-5, 0, -5}, {0.75, 1, 1.25}, {-4, -3, 5}};
+    static const double c0[3] = {0, 0, 0}, box[6] = {-10, -10, -10, 10, 10, 10};
+    t_rng_t g = {2026};
+    fr_builder_t b;
+    model_t m;
+    fr_prepared_t pr;
+    fr_trace_desc_t an = method(FR_METHOD_ANALYTIC, 0), pp, iv = method(FR_METHOD_INTERVAL, 1e-13);
+    long n = t_count(4000), i, linear = 0, tilted = 0;
+    fr_p3_t X;
+    fr_builder_init(&b, NULL);
+    X = fr_coords(&b);
+    model_finish(&m, &b, fr_intersect(&b, fr_cone(&b, X, 2, c0, 1), fr_sphere(&b, X, c0, 10), 0));
+    T_INT_EQ(fr_prepare(&m.tape, box, &pr), FR_OK);
+    T_INT_EQ((int)pr.kind, (int)FR_PREPARED_CSG);
+    pp = an;
+    pp.prepared = &pr;
+    for (i = 0; i < n; i++) {
+        double o[3], d[3], tilt = (i & 1) ? 1e-9 * t_rng_range(&g, -1, 1) : 0, tr, t1, p2 = 0;
+        __float128 tq;
+        fr_hit_t h[3];
+        int k, j;
+        for (k = 0; k < 3; k++) { o[k] = t_rng_range(&g, -5, 5); d[k] = gen[i % 8][k]; }
+        d[0] += tilt * d[2];
+        if (o[2] * o[2] - o[0] * o[0] - o[1] * o[1] >= 0 || o[0] * o[0] + o[1] * o[1] + o[2] * o[2] >= 25) continue;
+        tq = cone_entry_q(o, d);
+        tr = (double)tq;
+        for (k = 0; k < 3; k++) p2 += (o[k] + tr * d[k]) * (o[k] + tr * d[k]);
+        if (!(tr > 0) || p2 >= 99) continue; /* no entry, or not inside the ball */
+        t1 = 2 * tr + 1;
+        h[0] = trace(&m, o, d, 0, t1, pp);
+        h[1] = trace(&m, o, d, 0, t1, an);
+        h[2] = trace(&m, o, d, 0, t1, iv);
+        for (j = 0; j < 3; j++) {
+            if (!h[j].hit) { T_FAIL("ray %ld, method %d: no hit, want t = %.17g", i, j, tr); continue; }
+            /* the root's condition: |f| rounding over the slope |b| */
+            if (fabs(h[j].t - tr) > 1e-12 * (1 + tr)) T_FAIL("ray %ld, method %d: t = %.17g, want %.17g", i, j, h[j].t, tr);
+            T_CHECK(1);
+        }
+        if (tilt == 0) linear++;
+        else tilted++;
+    }
+    T_GT(linear, n / 20);
+    T_GT(tilted, n / 20);
+    fr_prepared_free(&pr);
+    model_free(&m);
+}
+
 /* Rays through the cup's rim edge (the cut plane z = 0.75 meets the shell),
    and rays inside the cut plane: both paths report the same hit, within
    1e-12 of each other. */
@@ -687,7 +760,7 @@ int main(int argc, char **argv)
         T_CASE(prepared_csg_agrees_on_random_rays),
         T_CASE(prepared_csg_grazing_and_tangent_rays),
         T_CASE(prepared_csg_edges_and_planes),
-        T_CASE(prepared_csg_huge_origins),
+        T_CASE(prepared_csg_huge_origins), T_CASE(ray_parallel_to_cone_generator),
         T_CASE(prepared_csg_shadow_rays_and_fd_normals),
         T_CASE(prepared_csg_many_leaves_agree),
         T_CASE(prepared_poly_agrees_on_random_rays),

@@ -661,6 +661,19 @@ static void invalid_arguments(void)
     T_INT_EQ(fr_trace(&m.tape, o, z, 0, 1, NULL, m.scratch, &h), FR_ERR_INVALID_ARG);
     T_INT_EQ(fr_trace(&m.tape, nan3, d, 0, 1, NULL, m.scratch, &h), FR_ERR_INVALID_ARG);
     T_INT_EQ(fr_trace(&m.tape, o, d, 0, 1, &sp, m.scratch, &h), FR_ERR_NO_LIPSCHITZ);
+    {
+        /* an infinite segment: stepping needs a step length or a
+           Lipschitz bound (the sphere's tape has none), intervals a finite
+           segment; a finite one is traced */
+        fr_trace_desc_t st = method(FR_METHOD_STEP, 0), iv = method(FR_METHOD_INTERVAL, 1e-10);
+        T_INT_EQ(fr_trace(&m.tape, o, d, 0, HUGE_VAL, &st, m.scratch, &h), FR_ERR_INVALID_ARG);
+        T_INT_EQ(fr_trace(&m.tape, o, d, 0, HUGE_VAL, &iv, m.scratch, &h), FR_ERR_INVALID_ARG);
+        T_INT_EQ(fr_trace(&m.tape, o, d, 0, 10, &st, m.scratch, &h), FR_OK);
+        T_CHECK(h.hit && fabs(h.t - 4) < 1e-6);
+        st.step = 0.01;
+        T_INT_EQ(fr_trace(&m.tape, o, d, 0, HUGE_VAL, &st, m.scratch, &h), FR_OK);
+        T_CHECK(h.hit && fabs(h.t - 4) < 1e-6);
+    }
     model_free(&m);
     make_torus_hf(&m, 2, 0.5);
     T_INT_EQ(fr_trace(&m.tape, o, d, 0, 10, &an, m.scratch, &h), FR_ERR_NOT_POLYNOMIAL);
