@@ -416,7 +416,9 @@ FR_DEF fr_result_t fr_prune_ex(const fr_tape_t *t, const iv_t box[3], fr_prune_m
    hfBlendUni hfBlendInt hfShift3D hfScale3D hfRotate3DX/Y/Z hfTwistX/Y/Z
    hfTaperX/Y/Z hfStretch3D, with HyperFun's argument orders. Comments:
    -- or // to the end of the line, and block comments. Constant
-   subexpressions are folded. */
+   subexpressions are folded. Numbers read as strtod reads them in the "C"
+   locale, whatever LC_NUMERIC the host set (a decimal comma changes
+   nothing). */
 typedef struct fr_parse_desc_t {
     void *alloc_ctx;        /* passed to FR_MALLOC / FR_FREE */
     const double *params;   /* values of the model's second array (a[]); missing ones are 0 */
@@ -2436,6 +2438,7 @@ FR_DEF fr_result_t fr_prune_ex(const fr_tape_t *t, const iv_t box[3], fr_prune_m
 #define FR__P_POOL 16384        /* array elements in all */
 #define FR__P_MAX_DEPTH 200     /* expression nesting */
 #define FR__P_MAX_ARGS 16
+#define FR__P_MAX_NUMBER 72     /* characters of a numeric literal, and its NUL */
 
 typedef enum fr__tok_t {
     FR__T_END, FR__T_NUM, FR__T_ID, FR__T_PUNCT
@@ -2506,6 +2509,41 @@ static void fr__padv(fr__parser_t *p)
 static int fr__isalpha(int c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
 static int fr__isdigit(int c) { return c >= '0' && c <= '9'; }
 
+/* The literal in s (digits with at most one point, then optionally e or E,
+   a sign and digits) as strtod reads it in the "C" locale, correctly
+   rounded. strtod's decimal point is the host's LC_NUMERIC one (a comma in
+   de_DE: "0.5" would stop at the point), so it gets the digits without the
+   point and the exponent moved by the digits after it ("12.5e-3" is
+   "125e-4"), a form every locale reads alike. 0 when malformed. */
+static int fr__decimal(const char *s, double *v)
+{
+    char digits[FR__P_MAX_NUMBER + 24];
+    size_t n = 0, i = 0;
+    long e = 0, shift = 0;
+    int point = 0, neg = 0, edigits = 0;
+    for (; s[i] == '.' || fr__isdigit(s[i]); i++) {
+        if (s[i] == '.') {
+            if (point++) return 0;
+        } else {
+            if (n + 1 >= FR__P_MAX_NUMBER) return 0;
+            digits[n++] = s[i];
+            shift -= point;
+        }
+    }
+    if (n == 0) return 0;
+    if (s[i] == 'e' || s[i] == 'E') {
+        i++;
+        if (s[i] == '+' || s[i] == '-') neg = s[i++] == '-';
+        for (; fr__isdigit(s[i]); i++, edigits++)
+            if (e < 100000) e = 10 * e + (s[i] - '0'); /* far past any double's range either way */
+        if (!edigits) return 0;
+    }
+    if (s[i]) return 0;
+    snprintf(digits + n, sizeof digits - n, "e%ld", (neg ? -e : e) + shift);
+    *v = strtod(digits, NULL);
+    return 1;
+}
+
 /* next token; comments: -- and // to end of line, slash-star blocks */
 static void fr__next(fr__parser_t *p)
 {
@@ -2555,7 +2593,7 @@ static void fr__next(fr__parser_t *p)
         return;
     }
     if (fr__isdigit(c) || (c == '.' && fr__isdigit(fr__pc(p, 1)))) {
-        char buf[72];
+        char buf[FR__P_MAX_NUMBER];
         size_t n = 0;
         int e = 0;
         while (n + 1 < sizeof buf) {
@@ -2583,16 +2621,12 @@ static void fr__next(fr__parser_t *p)
             p->tok = FR__T_END;
             return;
         }
-        {
-            char *end = NULL;
-            p->num = strtod(buf, &end);
-            if (!end || *end != 0) {
-                snprintf(msg, sizeof msg, "malformed number '%.40s'", buf);
-                fr__perr(p, FR_ERR_PARSE, msg);
-            } else if (!isfinite(p->num) || fabs(p->num) > 1e300) {
-                snprintf(msg, sizeof msg, "number out of range '%.40s'", buf);
-                fr__perr(p, FR_ERR_PARSE, msg);
-            }
+        if (!fr__decimal(buf, &p->num)) {
+            snprintf(msg, sizeof msg, "malformed number '%.40s'", buf);
+            fr__perr(p, FR_ERR_PARSE, msg);
+        } else if (!isfinite(p->num) || fabs(p->num) > 1e300) {
+            snprintf(msg, sizeof msg, "number out of range '%.40s'", buf);
+            fr__perr(p, FR_ERR_PARSE, msg);
         }
         p->tok = FR__T_NUM;
         return;

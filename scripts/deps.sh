@@ -5,7 +5,7 @@
 # run and exits 1. Header-only use needs none of this: only libc and libm.
 set -u
 case "${1:-test}" in
-  test)  pkgs="gcc g++ clang make pkg-config libclang-rt-14-dev libembree-dev libopenimageio-dev libboost-dev libgsl-dev" ;;
+  test)  pkgs="gcc g++ clang make pkg-config libclang-rt-14-dev libembree-dev libopenimageio-dev libboost-dev libgsl-dev locales" ;;
   demo)  pkgs="gcc g++ make libembree-dev libopenimageio-dev" ;;
   bench) pkgs="gcc g++ clang make libembree-dev libopenimageio-dev libboost-dev libgsl-dev gnuplot-nox" ;;
   fuzz)  pkgs="clang libclang-rt-14-dev" ;;

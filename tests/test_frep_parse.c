@@ -6,6 +6,7 @@
 #define FR_IMPLEMENTATION
 #include "frep.h"
 #include "test.h"
+#include <locale.h>
 
 #define PRELUDE                                                                                                        \
     "m(x[3], a[2]) {\n"                                                                                                \
@@ -440,6 +441,10 @@ static void every_parse_error_names_its_cause(void)
         {"m(x[3], a[1], t[8]) { m = 1; }", FR_ERR_PARSE, "at most 7 attributes", 0, 0},
         {"m(x[3], a[0]) { m = 1; }", FR_ERR_PARSE, "bad parameter array length", 0, 0},
         {"m(x[3], a[1], t[1], u[1]) { m = 1; }", FR_ERR_PARSE, "at most three array parameters", 0, 0},
+        {HEAD "  m = 1.2.3;\n}", FR_ERR_PARSE, "malformed number '1.2.3'", 2, 7},
+        {HEAD "  m = 2e+;\n}", FR_ERR_PARSE, "malformed number '2e+'", 2, 7},
+        {HEAD "  m = 1e5.5;\n}", FR_ERR_PARSE, "malformed number '1e5.5'", 2, 7},
+        {HEAD "  m = 3E;\n}", FR_ERR_PARSE, "malformed number '3E'", 2, 7},
     };
     int n = (int)(sizeof cases / sizeof cases[0]), i;
     char *text = (char *)malloc(64 * 1024);
@@ -481,6 +486,111 @@ static void every_parse_error_names_its_cause(void)
     free(text);
 }
 #undef HEAD
+
+/* A locale whose decimal point is a comma: de_DE.UTF-8 (or fr_FR) if the
+   system has one, else de_DE compiled by localedef (Debian's locales
+   package, installed by scripts/deps.sh test) into a temporary LOCPATH.
+   NULL when neither works. */
+static const char *comma_locale(char *dir)
+{
+    static const char *names[] = {"de_DE.UTF-8", "de_DE.utf8", "fr_FR.UTF-8", "fr_FR.utf8"};
+    char cmd[256];
+    size_t i;
+    dir[0] = 0;
+    for (i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (setlocale(LC_NUMERIC, names[i]) && localeconv()->decimal_point[0] == ',') return names[i];
+    strcpy(dir, "/tmp/filigree_locale_XXXXXX");
+    if (!mkdtemp(dir)) return dir[0] = 0, NULL;
+    snprintf(cmd, sizeof cmd, "localedef -i de_DE -f UTF-8 '%s/de_DE.UTF-8' > /dev/null 2>&1", dir);
+    if (system(cmd) == -1) return NULL;
+    setenv("LOCPATH", dir, 1);
+    if (setlocale(LC_NUMERIC, "de_DE.UTF-8") && localeconv()->decimal_point[0] == ',') return "de_DE.UTF-8";
+    return NULL;
+}
+
+/* Parses "m = <lit>;" and returns the constant, or NAN on a parse error. */
+static double literal_value(const char *lit)
+{
+    char text[200];
+    fr_tape_t t;
+    fr_diag_t d;
+    double v, sc[64];
+    snprintf(text, sizeof text, "m(x[3], a[1]) { m = %s; }", lit);
+    if (parse_text(text, &t, &d, 0) != FR_OK) return NAN;
+    T_LE(fr_scratch_size(&t, FR_EVAL_POINT), sizeof sc);
+    v = fr_eval(&t, C, sc);
+    fr_tape_free(&t);
+    return v;
+}
+
+/* Numeric literals read as C's strtod reads them in the "C" locale, bit
+   for bit, whatever LC_NUMERIC the host set: a host that calls
+   setlocale(LC_ALL, "") in Germany has a decimal comma, and until
+   2026-12-05 every model with a decimal point then failed ("malformed
+   number '0.5'"). 20 000 random literals (1-25 digits, the point
+   anywhere or nowhere, exponents to +-330) in the "C" locale and in a
+   comma locale; the cup parses in both. */
+static void numbers_read_alike_in_every_locale(void)
+{
+    t_rng_t g = {1905};
+    long n = t_count(20000), i, compared = 0;
+    char dir[64], lit[64];
+    static char lits[20000][40];
+    static double want[20000];
+    const char *comma;
+    int pass;
+    if (n > 20000) n = 20000;
+    setlocale(LC_NUMERIC, "C");
+    for (i = 0; i < n; i++) {
+        int nd = 1 + (int)(t_rng_unit(&g) * 25), at = (int)(t_rng_unit(&g) * (nd + 2)) - 1, k, m = 0;
+        for (k = 0; k < nd; k++) {
+            if (k == at) lit[m++] = '.';
+            lit[m++] = (char)('0' + (int)(t_rng_unit(&g) * 10));
+        }
+        if (at == nd) lit[m++] = '.';
+        if (t_rng_unit(&g) < 0.6) m += sprintf(lit + m, "%s%s%d", t_rng_unit(&g) < 0.5 ? "e" : "E",
+                                                t_rng_unit(&g) < 0.3 ? "+" : t_rng_unit(&g) < 0.5 ? "-" : "",
+                                                (int)(t_rng_unit(&g) * 331));
+        lit[m] = 0;
+        strcpy(lits[i], lit);
+        want[i] = strtod(lit, NULL);
+    }
+    comma = comma_locale(dir);
+    if (!comma) T_FAIL("no locale with a decimal comma (install Debian's locales package: scripts/deps.sh test)");
+    for (pass = 0; pass < 2; pass++) {
+        setlocale(LC_NUMERIC, pass == 0 ? "C" : comma ? comma : "C");
+        for (i = 0; i < n; i++) {
+            double v = literal_value(lits[i]);
+            if (!(fabs(want[i]) <= 1e300)) {
+                if (!isnan(v)) T_FAIL("'%.39s' (%g) accepted, out of range", lits[i], want[i]);
+                continue;
+            }
+            if (memcmp(&v, &want[i], sizeof v) != 0)
+                T_FAIL("locale %s: '%.39s' read as %.17g, strtod in C gives %.17g", pass ? comma : "C", lits[i], v, want[i]);
+            compared++;
+        }
+        T_CHECK(!isnan(literal_value("0.5")));
+    }
+    T_GT(compared, n);
+    {
+        size_t len;
+        char *text = read_file("examples/models/cup.hf", &len);
+        fr_tape_t t;
+        fr_diag_t d;
+        fr_parse_desc_t desc = {0};
+        if (T_CHECK(text != NULL)) {
+            if (fr_parse(text, len, &desc, &t, &d) != FR_OK) T_FAIL("cup.hf in %s: %s", comma, d.message);
+            else fr_tape_free(&t);
+            free(text);
+        }
+    }
+    setlocale(LC_NUMERIC, "C");
+    if (dir[0]) {
+        char cmd[128];
+        snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+        T_INT_EQ(system(cmd), 0);
+    }
+}
 
 static void deep_nesting_is_a_limit_not_a_crash(void)
 {
@@ -555,6 +665,7 @@ int main(int argc, char **argv)
         T_CASE(example_models_parse),         T_CASE(tangle_cube_matches_api),
         T_CASE(bad_input_reports_position),   T_CASE(deep_nesting_is_a_limit_not_a_crash),
         T_CASE(literals_comments_and_folded_calls), T_CASE(every_parse_error_names_its_cause),
+        T_CASE(numbers_read_alike_in_every_locale),
         T_CASE(length_is_respected_without_terminator), T_CASE(random_garbage_never_crashes),
     };
     return T_RUN(argc, argv, cases);
