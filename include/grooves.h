@@ -3683,46 +3683,7 @@ GR_DEF gr_result_t gr_poly_boolean(const gr_polyset_t *a, const gr_polyset_t *b,
 /* Chords per Bézier piece when looking for self-intersections: the chord
    polygon is within (1/32)^2 / 8 of the piece's control-polygon size. */
 #define GR__SELF_FLATTEN 32
-static int gr__chord_count(const gr__groove_t *rec)
-{
-    return rec->kind == GR_PATH_POLYLINE ? rec->pieces : rec->pieces * GR__SELF_FLATTEN;
-}
 
-/* Chord k of a path: end points a, b and, when t is not NULL, their path
-   parameters (§3: arc length for polylines, uniform per Bézier piece; a
-   polyline's costs a sum over the chords before k, which the per-query
-   box test does not need). */
-static void gr__chord(const gr_grid_t *grid, const gr__groove_t *rec, int k, double a[2], double b[2], double t[2])
-{
-    const double *pts = grid->points_ + 2 * rec->first_point;
-    if (rec->kind == GR_PATH_POLYLINE) {
-        double acc = 0;
-        int j;
-        a[0] = pts[2 * k]; a[1] = pts[2 * k + 1];
-        b[0] = pts[2 * k + 2]; b[1] = pts[2 * k + 3];
-        if (!t) return;
-        for (j = 0; j < k; j++) acc += hypot(pts[2 * j + 2] - pts[2 * j], pts[2 * j + 3] - pts[2 * j + 1]);
-        t[0] = acc / rec->length;
-        t[1] = (acc + hypot(b[0] - a[0], b[1] - a[1])) / rec->length;
-        return;
-    }
-#ifndef GR_NO_CURVES
-    {
-        int deg = gr__degree(rec->kind), piece = k / GR__SELF_FLATTEN, i = k % GR__SELF_FLATTEN;
-        double d1[2], d2[2], tau0 = (double)i / GR__SELF_FLATTEN, tau1 = (double)(i + 1) / GR__SELF_FLATTEN;
-        gr__bezier_eval(pts + 2 * deg * piece, deg, tau0, a, d1, d2);
-        gr__bezier_eval(pts + 2 * deg * piece, deg, tau1, b, d1, d2);
-        if (t) {
-            t[0] = (piece + tau0) / rec->pieces;
-            t[1] = (piece + tau1) / rec->pieces;
-        }
-    }
-#else
-    GR_ASSERT(0); /* the builder rejects curves */
-    a[0] = a[1] = b[0] = b[1] = 0;
-    if (t) t[0] = t[1] = 0;
-#endif
-}
 
 /* Where segments ab and cd cross: 1 with s on ab and u on cd, each in
    [0, 1) (half-open, so a crossing at a shared vertex counts once), 0 when
@@ -4038,7 +3999,7 @@ static int gr__seg_box(const double *a, const double *b, const double *box)
 static int gr__path_in_box(const gr_grid_t *grid, const gr__groove_t *rec, const double *box)
 {
     double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
-    int k, i, m = gr__chord_count(rec);
+    int k, i;
     for (i = 0; i < 9; i++) {
         double sb[4], du = (i % 3 - 1) * wu, dv = (i / 3 - 1) * wv;
         if (!grid->wrap && i != 4) continue;
@@ -4048,11 +4009,9 @@ static int gr__path_in_box(const gr_grid_t *grid, const gr__groove_t *rec, const
             sb[1] > rec->bbox[3] + rec->half_width || sb[3] < rec->bbox[1] - rec->half_width)
             continue; /* control points bound the path */
         if (rec->kind == GR_PATH_POLYLINE) {
-            for (k = 0; k < m; k++) {
-                double a[2], b[2];
-                gr__chord(grid, rec, k, a, b, NULL);
-                if (gr__seg_box(a, b, sb)) return 1;
-            }
+            const double *pts = grid->points_ + 2 * rec->first_point;
+            for (k = 0; k < rec->pieces; k++)
+                if (gr__seg_box(pts + 2 * k, pts + 2 * k + 2, sb)) return 1;
             continue;
         }
 #ifndef GR_NO_CURVES

@@ -259,6 +259,45 @@ static void self_intersection_polyline(void)
     gr_grid_free(grid);
 }
 
+/* a polyline with two loops one after the other, crossing itself at
+   (0.2, 0.5) and at (0.65, 0.5): the builder cuts it twice (two disjoint
+   parameter intervals, sorted before the pieces are made: the sort no
+   test had reached), and each crossing is then one of two pieces */
+static void self_intersection_two_loops(void)
+{
+    const double z[] = {0.1, 0.3, 0.3, 0.7, 0.4, 0.5, 0.3, 0.3, 0.1, 0.7, 0.1, 0.9, 0.5, 0.9,
+                        0.55, 0.3, 0.75, 0.7, 0.85, 0.5, 0.75, 0.3, 0.55, 0.7};
+    const double *paths[] = {z};
+    const int counts[] = {12};
+    const double at[2][2] = {{0.2, 0.5}, {0.65, 0.5}};
+    gr_grid_t *grid = build(paths, counts, 1, vsec, 3, GR_PATH_POLYLINE);
+    gr_self_hit_t hit[4];
+    gr_junctions_t j;
+    int n = -1, k;
+    memset(hit, 0, sizeof hit);
+    T_INT_EQ(gr_self_intersections(grid, hit, 4, &n), GR_OK);
+    T_INT_EQ(n, 2);
+    for (k = 0; k < 2 && k < n; k++) {
+        int w = hit[k].point[0] > 0.4; /* which loop */
+        T_NEAR(hit[k].point[0], at[w][0], 1e-15);
+        T_NEAR(hit[k].point[1], at[w][1], 1e-15);
+    }
+    for (k = 0; k < 2; k++) {
+        j = detect_at(grid, at[k][0], at[k][1], 0.004, NULL, NULL, 0);
+        T_INT_EQ(j.count, 2);
+        T_INT_EQ(j.grooves, 2);
+        T_INT_EQ(j.items[0].kind, GR_JUNCTION_CROSSING);
+        T_NEAR(j.items[0].point[0], at[k][0], 1e-15);
+        T_NEAR(j.items[0].point[1], at[k][1], 1e-15);
+        T_INT_EQ(j.items[1].kind, GR_JUNCTION_SELF);
+    }
+    /* on the path between the loops, far from both crossings: nothing */
+    j = detect_at(grid, 0.3, 0.9, 0.004, NULL, NULL, 0);
+    T_INT_EQ(j.count, 0);
+    T_INT_EQ(j.grooves, 1);
+    gr_grid_free(grid);
+}
+
 #ifndef GR_NO_CURVES
 /* a looping cubic symmetric about u = 0.5 (P_k.u + P_3-k.u = 1, P_k.v =
    P_3-k.v): it crosses itself where u(τ) = 0.5 with τ < 0.5, found here by
@@ -407,6 +446,7 @@ int main(int argc, char **argv)
         T_CASE(detect_t_intersected_end),
         T_CASE(detect_isolated_end), T_CASE(detect_corner), T_CASE(stiff_distance_test_threshold),
         T_CASE(self_intersection_polyline),
+        T_CASE(self_intersection_two_loops),
 #ifndef GR_NO_CURVES
         T_CASE(self_intersection_cubic),
 #endif
