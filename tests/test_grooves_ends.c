@@ -309,6 +309,47 @@ static double cub(const double *p, double t, int k)
     double s = 1 - t;
     return s * s * s * p[k] + 3 * s * s * t * p[2 + k] + 3 * s * t * t * p[4 + k] + t * t * t * p[6 + k];
 }
+/* a chain of three straight cubic pieces (control points a third apart)
+   in a Z, crossing itself at (0.5, 0.5) between its first and last piece:
+   the crossing's parameters span joints 1 and 2, the cut falls on joint 2,
+   and both pieces are whole Bézier pieces (a branch no test had reached);
+   each piece is where the polyline Z is, so what detection finds along
+   the path is what it finds on the polyline */
+static void self_intersection_chain_cut_at_a_joint(void)
+{
+    const double zc[] = {0.2, 0.2, 0.4, 0.4, 0.6, 0.6, 0.8, 0.8, 0.8, 0.6, 0.8, 0.4, 0.8, 0.2, 0.6, 0.4, 0.4, 0.6, 0.2, 0.8};
+    const double zp[] = {0.2, 0.2, 0.8, 0.8, 0.8, 0.2, 0.2, 0.8};
+    const double *pc[] = {zc}, *pp[] = {zp};
+    const int cc[] = {10}, cp[] = {4};
+    const double probe[5][2] = {{0.5, 0.5}, {0.8, 0.5}, {0.3, 0.3}, {0.7, 0.3}, {0.79, 0.79}};
+    gr_grid_t *chain = build(pc, cc, 1, vsec, 3, GR_PATH_CUBIC), *poly = build(pp, cp, 1, vsec, 3, GR_PATH_POLYLINE);
+    gr_self_hit_t hit[4];
+    int n = -1, k;
+    T_INT_EQ(gr_self_intersections(chain, hit, 4, &n), GR_OK);
+    T_INT_EQ(n, 1);
+    T_NEAR(hit[0].point[0], 0.5, 1e-12);
+    T_NEAR(hit[0].point[1], 0.5, 1e-12);
+    for (k = 0; k < 5; k++) {
+        gr_junctions_t a = detect_at(chain, probe[k][0], probe[k][1], 0.004, NULL, NULL, 0);
+        gr_junctions_t b = detect_at(poly, probe[k][0], probe[k][1], 0.004, NULL, NULL, 0);
+        int i;
+        T_INT_EQ(a.grooves, b.grooves);
+        if (!T_INT_EQ(a.count, b.count)) continue;
+        for (i = 0; i < a.count; i++) {
+            T_INT_EQ(a.items[i].kind, b.items[i].kind);
+            T_NEAR(a.items[i].point[0], b.items[i].point[0], 1e-12);
+            T_NEAR(a.items[i].point[1], b.items[i].point[1], 1e-12);
+        }
+    }
+    {
+        gr_junctions_t a = detect_at(chain, 0.5, 0.5, 0.004, NULL, NULL, 0);
+        T_INT_EQ(a.count, 2);
+        T_INT_EQ(a.grooves, 2);
+        T_INT_EQ(a.items[0].kind, GR_JUNCTION_CROSSING);
+    }
+    gr_grid_free(chain);
+    gr_grid_free(poly);
+}
 static void self_intersection_cubic(void)
 {
     const double c[] = {0.2, 0.2, 1.0, 0.8, 0.0, 0.8, 0.8, 0.2};
@@ -449,6 +490,7 @@ int main(int argc, char **argv)
         T_CASE(self_intersection_two_loops),
 #ifndef GR_NO_CURVES
         T_CASE(self_intersection_cubic),
+        T_CASE(self_intersection_chain_cut_at_a_joint),
 #endif
         T_CASE(search_box_enlargement), T_CASE(detect_across_seam), T_CASE(detect_bad_input),
     };
