@@ -6,7 +6,8 @@
    and eight written here (CSG of quadrics, a torus, the tangle polynomial,
    a blend, a superellipsoid, noise); and fr_solve_poly's roots for random
    polynomials of every degree (from roots: clustered, spread over 1e-30 to
-   1e30, zero roots; or random coefficients), over random intervals. */
+   1e30, zero roots; or random coefficients), over random intervals; and
+   fr_parse's answers on those texts and 20 000 random mutations of them. */
 #define IV_IMPLEMENTATION
 #include "interval.h"
 #define FR_IMPLEMENTATION
@@ -125,6 +126,71 @@ static void fp_solve(int cases)
     printf("frep      fr_solve_poly          %016llx  (%d polynomials)\n", h, cases);
 }
 
+/* The parser's answers: each model text and `cases` random mutations of
+   them (a byte deleted, inserted or replaced, one to four times), parsed;
+   the result, line, column and message, and on success the tape (its
+   instructions field by field, parameters, outputs, flags, Lipschitz
+   bound). Two parses of each text: default alpha and alpha 1. */
+static unsigned long long fp_tape_bytes(unsigned long long h, const fr_tape_t *t)
+{
+    unsigned i;
+    for (i = 0; i < t->n_code; i++) {
+        const fr_instr_t *in = &t->code[i];
+        h = fp_hash(h, &in->op, sizeof in->op);
+        h = fp_hash(h, &in->a, sizeof in->a * 4); /* a, b, c, aux */
+        h = fp_hash(h, &in->k, sizeof in->k);
+    }
+    if (t->n_params) h = fp_hash(h, t->params, sizeof(double) * t->n_params);
+    h = fp_hash(h, t->outputs, sizeof(unsigned) * t->n_outputs);
+    h = fp_hash(h, &t->flags, sizeof t->flags);
+    return fp_hash(h, &t->lipschitz, sizeof t->lipschitz);
+}
+static void fp_parse(const char *const *texts, unsigned n_texts, int cases)
+{
+    static const char alphabet[] = "x[]();,.=+-*/^|&\\~ 0123456789eahfSpr\n";
+    t_rng_t rng = {4242};
+    unsigned long long h = FP_START;
+    long ok = 0;
+    int q;
+    char buf[4096];
+    for (q = 0; q < cases + (int)n_texts; q++) {
+        const char *src = texts[(unsigned)q % n_texts];
+        size_t n = strlen(src);
+        int a;
+        if (n >= sizeof buf - 8) continue;
+        memcpy(buf, src, n);
+        for (a = 0; q >= (int)n_texts && a < 1 + (int)(t_rng_unit(&rng) * 4); a++) {
+            size_t at = (size_t)(t_rng_unit(&rng) * (double)n);
+            int what = (int)(t_rng_unit(&rng) * 3);
+            char c = alphabet[(int)(t_rng_unit(&rng) * (sizeof alphabet - 1))];
+            if (what == 0 && n > 0) memmove(buf + at, buf + at + 1, n - at - 1), n--;
+            else if (what == 1) memmove(buf + at + 1, buf + at, n - at), buf[at] = c, n++;
+            else if (at < n) buf[at] = c;
+        }
+        for (a = 0; a < 2; a++) {
+            fr_parse_desc_t d;
+            fr_tape_t t;
+            fr_diag_t dg;
+            fr_result_t r;
+            memset(&d, 0, sizeof d);
+            memset(&dg, 0, sizeof dg);
+            d.alpha = a;
+            r = fr_parse(buf, n, &d, &t, &dg);
+            h = fp_hash(h, &r, sizeof r);
+            if (r == FR_OK) {
+                h = fp_tape_bytes(h, &t);
+                fr_tape_free(&t);
+                ok++;
+            } else {
+                h = fp_hash(h, &dg.line, sizeof dg.line);
+                h = fp_hash(h, &dg.column, sizeof dg.column);
+                h = fp_hash(h, dg.message, strlen(dg.message));
+            }
+        }
+    }
+    printf("frep      fr_parse               %016llx  (%d texts, %ld parsed)\n", h, cases + (int)n_texts, ok);
+}
+
 int main(int argc, char **argv)
 {
     int nrays = argc > 1 ? atoi(argv[1]) : 300;
@@ -155,6 +221,22 @@ int main(int argc, char **argv)
         printf("frep      %-22s %016llx  (%ld hits)\n", name, h, hits);
         fr_tape_free(&tape);
         free(text);
+    }
+    {
+        /* the example files' texts and the models written here */
+        const char *texts[sizeof fp_files / sizeof *fp_files + sizeof fp_models / sizeof *fp_models];
+        char *owned[sizeof fp_files / sizeof *fp_files];
+        unsigned k, nt = 0;
+        for (k = 0; k < nf; k++) {
+            char path[256];
+            size_t n = 0;
+            snprintf(path, sizeof path, "examples/models/%s", fp_files[k]);
+            owned[k] = fp_read(path, &n);
+            if (owned[k]) owned[k][n] = 0, texts[nt++] = owned[k];
+        }
+        for (k = 0; k < nm; k++) texts[nt++] = fp_models[k];
+        fp_parse(texts, nt, 20000);
+        for (k = 0; k < nf; k++) free(owned[k]);
     }
     fp_solve(200000);
     return 0;
