@@ -2544,13 +2544,12 @@ static int fr__decimal(const char *s, double *v)
     return 1;
 }
 
-/* next token; comments: -- and // to end of line, slash-star blocks */
-static void fr__next(fr__parser_t *p)
+/* Past blanks and comments (-- and // to the end of the line, slash-star
+   blocks); 0 after an unterminated block comment (the error is set). */
+static int fr__skip_blanks(fr__parser_t *p)
 {
-    int c;
-    char msg[96];
     for (;;) {
-        c = fr__pc(p, 0);
+        int c = fr__pc(p, 0);
         if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v') {
             fr__padv(p);
         } else if ((c == '-' && fr__pc(p, 1) == '-') || (c == '/' && fr__pc(p, 1) == '/')) {
@@ -2563,14 +2562,85 @@ static void fr__next(fr__parser_t *p)
             while (fr__pc(p, 0) != -1 && !(fr__pc(p, 0) == '*' && fr__pc(p, 1) == '/')) fr__padv(p);
             if (fr__pc(p, 0) == -1) {
                 fr__perr(p, FR_ERR_PARSE, "unterminated comment");
-                p->tok = FR__T_END;
-                return;
+                return 0;
             }
             fr__padv(p);
             fr__padv(p);
         } else
+            return 1;
+    }
+}
+
+/* An identifier token from the current letter. */
+static void fr__ident(fr__parser_t *p)
+{
+    size_t n = 0;
+    while (fr__isalpha(fr__pc(p, 0)) || fr__isdigit(fr__pc(p, 0))) {
+        if (n + 1 >= FR__P_MAX_NAME) {
+            fr__perr(p, FR_ERR_PARSE, "identifier too long");
+            p->tok = FR__T_END;
+            return;
+        }
+        p->id[n++] = (char)fr__pc(p, 0);
+        fr__padv(p);
+    }
+    p->id[n] = 0;
+    p->tok = FR__T_ID;
+}
+
+/* A number token from the current digit or point: the characters a
+   literal may hold (digits, points, one exponent with its sign), read by
+   fr__decimal. */
+static void fr__number(fr__parser_t *p)
+{
+    char buf[FR__P_MAX_NUMBER], msg[96];
+    size_t n = 0;
+    int e = 0;
+    while (n + 1 < sizeof buf) {
+        int d = fr__pc(p, 0);
+        if (fr__isdigit(d) || d == '.' || ((d == 'e' || d == 'E') && !e)) {
+            if (d == 'e' || d == 'E') {
+                e = 1;
+                buf[n++] = (char)d;
+                fr__padv(p);
+                d = fr__pc(p, 0);
+                if (d == '+' || d == '-') {
+                    buf[n++] = (char)d;
+                    fr__padv(p);
+                }
+                continue;
+            }
+            buf[n++] = (char)d;
+            fr__padv(p);
+        } else
             break;
     }
+    buf[n] = 0;
+    if (n + 1 >= sizeof buf) {
+        fr__perr(p, FR_ERR_PARSE, "number too long");
+        p->tok = FR__T_END;
+        return;
+    }
+    if (!fr__decimal(buf, &p->num)) {
+        snprintf(msg, sizeof msg, "malformed number '%.40s'", buf);
+        fr__perr(p, FR_ERR_PARSE, msg);
+    } else if (!isfinite(p->num) || fabs(p->num) > 1e300) {
+        snprintf(msg, sizeof msg, "number out of range '%.40s'", buf);
+        fr__perr(p, FR_ERR_PARSE, msg);
+    }
+    p->tok = FR__T_NUM;
+}
+
+/* The next token. */
+static void fr__next(fr__parser_t *p)
+{
+    int c;
+    char msg[96];
+    if (!fr__skip_blanks(p)) {
+        p->tok = FR__T_END;
+        return;
+    }
+    c = fr__pc(p, 0);
     p->tline = p->line;
     p->tcol = p->col;
     if (c == -1) {
@@ -2578,57 +2648,11 @@ static void fr__next(fr__parser_t *p)
         return;
     }
     if (fr__isalpha(c)) {
-        size_t n = 0;
-        while (fr__isalpha(fr__pc(p, 0)) || fr__isdigit(fr__pc(p, 0))) {
-            if (n + 1 >= FR__P_MAX_NAME) {
-                fr__perr(p, FR_ERR_PARSE, "identifier too long");
-                p->tok = FR__T_END;
-                return;
-            }
-            p->id[n++] = (char)fr__pc(p, 0);
-            fr__padv(p);
-        }
-        p->id[n] = 0;
-        p->tok = FR__T_ID;
+        fr__ident(p);
         return;
     }
     if (fr__isdigit(c) || (c == '.' && fr__isdigit(fr__pc(p, 1)))) {
-        char buf[FR__P_MAX_NUMBER];
-        size_t n = 0;
-        int e = 0;
-        while (n + 1 < sizeof buf) {
-            int d = fr__pc(p, 0);
-            if (fr__isdigit(d) || d == '.' || ((d == 'e' || d == 'E') && !e)) {
-                if (d == 'e' || d == 'E') {
-                    e = 1;
-                    buf[n++] = (char)d;
-                    fr__padv(p);
-                    d = fr__pc(p, 0);
-                    if (d == '+' || d == '-') {
-                        buf[n++] = (char)d;
-                        fr__padv(p);
-                    }
-                    continue;
-                }
-                buf[n++] = (char)d;
-                fr__padv(p);
-            } else
-                break;
-        }
-        buf[n] = 0;
-        if (n + 1 >= sizeof buf) {
-            fr__perr(p, FR_ERR_PARSE, "number too long");
-            p->tok = FR__T_END;
-            return;
-        }
-        if (!fr__decimal(buf, &p->num)) {
-            snprintf(msg, sizeof msg, "malformed number '%.40s'", buf);
-            fr__perr(p, FR_ERR_PARSE, msg);
-        } else if (!isfinite(p->num) || fabs(p->num) > 1e300) {
-            snprintf(msg, sizeof msg, "number out of range '%.40s'", buf);
-            fr__perr(p, FR_ERR_PARSE, msg);
-        }
-        p->tok = FR__T_NUM;
+        fr__number(p);
         return;
     }
     if (strchr("()[]{},;=+-*/^|&\\~", c) && c != 0) {
@@ -3048,72 +3072,51 @@ static const fr__fninfo_t *fr__lookup_fn(const char *name)
 
 /* ---- expressions */
 
-static fr__val_t fr__primary(fr__parser_t *p)
+/* A call of `name` (at nline:ncol), its '(' the current token. */
+static fr__val_t fr__call_expr(fr__parser_t *p, const char *name, int nline, int ncol)
 {
-    char msg[120], name[FR__P_MAX_NAME];
-    int si, nline, ncol;
-    if (p->err != FR_OK) return fr__scalar(FR_NODE_NONE);
-    if (p->tok == FR__T_NUM) {
-        double v = p->num;
-        fr__next(p);
-        return fr__scalar(fr__chk(p, fr_const(&p->b, v)));
-    }
-    if (fr__is(p, '(')) {
-        fr__val_t v;
-        fr__next(p);
-        v = fr__expr(p);
-        fr__expect(p, ')', "to close '('");
-        return v;
-    }
-    if (p->tok != FR__T_ID) {
-        if (p->tok == FR__T_END) fr__perr(p, FR_ERR_PARSE, "unexpected end of input in an expression");
-        else {
-            snprintf(msg, sizeof msg, "unexpected '%c' in an expression", p->punct);
-            fr__perr(p, FR_ERR_PARSE, msg);
-        }
+    const fr__fninfo_t *f = fr__lookup_fn(name);
+    fr__args_t a;
+    char msg[120];
+    int tl, tc;
+    fr__val_t v;
+    if (!f) {
+        snprintf(msg, sizeof msg, "unknown function '%s'", name);
+        fr__perr_at(p, nline, ncol, msg);
         return fr__scalar(FR_NODE_NONE);
     }
-    memcpy(name, p->id, sizeof name);
-    nline = p->tline;
-    ncol = p->tcol;
     fr__next(p);
-    if (fr__is(p, '(')) {
-        const fr__fninfo_t *f = fr__lookup_fn(name);
-        fr__args_t a;
-        if (!f) {
-            snprintf(msg, sizeof msg, "unknown function '%s'", name);
-            fr__perr_at(p, nline, ncol, msg);
-            return fr__scalar(FR_NODE_NONE);
-        }
-        fr__next(p);
-        a.n = 0;
-        if (!fr__is(p, ')'))
-            for (;;) {
-                fr__val_t v = fr__expr(p);
-                if (p->err != FR_OK) return fr__scalar(FR_NODE_NONE);
-                if (a.n >= FR__P_MAX_ARGS) {
-                    snprintf(msg, sizeof msg, "%s: too many arguments", name);
-                    fr__perr(p, FR_ERR_PARSE, msg);
-                    return fr__scalar(FR_NODE_NONE);
-                }
-                a.v[a.n++] = v;
-                if (!fr__is(p, ',')) break;
-                fr__next(p);
+    a.n = 0;
+    if (!fr__is(p, ')'))
+        for (;;) {
+            v = fr__expr(p);
+            if (p->err != FR_OK) return fr__scalar(FR_NODE_NONE);
+            if (a.n >= FR__P_MAX_ARGS) {
+                snprintf(msg, sizeof msg, "%s: too many arguments", name);
+                fr__perr(p, FR_ERR_PARSE, msg);
+                return fr__scalar(FR_NODE_NONE);
             }
-        if (!fr__expect(p, ')', "to close the argument list")) return fr__scalar(FR_NODE_NONE);
-        /* errors in the call itself point at the function name */
-        {
-            int tl = p->tline, tc = p->tcol;
-            fr__val_t v;
-            p->tline = nline;
-            p->tcol = ncol;
-            v = fr__call(p, f, &a);
-            p->tline = tl;
-            p->tcol = tc;
-            return v;
+            a.v[a.n++] = v;
+            if (!fr__is(p, ',')) break;
+            fr__next(p);
         }
-    }
-    si = fr__find_sym(p, name);
+    if (!fr__expect(p, ')', "to close the argument list")) return fr__scalar(FR_NODE_NONE);
+    /* errors in the call itself point at the function name */
+    tl = p->tline, tc = p->tcol;
+    p->tline = nline;
+    p->tcol = ncol;
+    v = fr__call(p, f, &a);
+    p->tline = tl;
+    p->tcol = tc;
+    return v;
+}
+
+/* The variable `name` (at nline:ncol), an element of it, or the whole
+   array; the token after the name is current. */
+static fr__val_t fr__name_expr(fr__parser_t *p, const char *name, int nline, int ncol)
+{
+    char msg[120];
+    int si = fr__find_sym(p, name);
     if (si < 0) {
         snprintf(msg, sizeof msg, "unknown variable '%s'", name);
         fr__perr_at(p, nline, ncol, msg);
@@ -3145,6 +3148,38 @@ static fr__val_t fr__primary(fr__parser_t *p)
         fr__perr(p, FR_ERR_PARSE, msg);
     }
     return fr__scalar(p->syms[si].node);
+}
+
+static fr__val_t fr__primary(fr__parser_t *p)
+{
+    char msg[120], name[FR__P_MAX_NAME];
+    int nline, ncol;
+    if (p->err != FR_OK) return fr__scalar(FR_NODE_NONE);
+    if (p->tok == FR__T_NUM) {
+        double v = p->num;
+        fr__next(p);
+        return fr__scalar(fr__chk(p, fr_const(&p->b, v)));
+    }
+    if (fr__is(p, '(')) {
+        fr__val_t v;
+        fr__next(p);
+        v = fr__expr(p);
+        fr__expect(p, ')', "to close '('");
+        return v;
+    }
+    if (p->tok != FR__T_ID) {
+        if (p->tok == FR__T_END) fr__perr(p, FR_ERR_PARSE, "unexpected end of input in an expression");
+        else {
+            snprintf(msg, sizeof msg, "unexpected '%c' in an expression", p->punct);
+            fr__perr(p, FR_ERR_PARSE, msg);
+        }
+        return fr__scalar(FR_NODE_NONE);
+    }
+    memcpy(name, p->id, sizeof name);
+    nline = p->tline;
+    ncol = p->tcol;
+    fr__next(p);
+    return fr__is(p, '(') ? fr__call_expr(p, name, nline, ncol) : fr__name_expr(p, name, nline, ncol);
 }
 
 static fr__val_t fr__unary_expr(fr__parser_t *p);
