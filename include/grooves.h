@@ -4675,17 +4675,100 @@ static void gr__pp_groove_affine(const gr__ppp_t *pc, const gr__ppg_t *g, double
     gc[0] = gr__dot3(pc->y, t3); gc[1] = gr__dot3(pc->y, b3); gc[2] = pc->y[2];
 }
 
+/* gr__pp_cut where the plane crosses T: the section mapped back onto the
+   plane by the inverse of its (b, w) map (det its determinant), clipped
+   to x in [x0, x1], into tmp (tmp2 is work). Returns its points, fewer
+   than 3 when nothing is left, -1 when a ring would overflow. */
+static int gr__pp_cut_across(const gr__ppp_t *pc, const gr__ppg_t *g, const double k[3], const double ga[3],
+                             const double gc[3], double det, double shift, double *tmp, double *tmp2)
+{
+    double s = g->s, tn = pc->n[0] * g->t[0] + pc->n[1] * g->t[1];
+    int i, n;
+    for (i = 0; i < g->nsec; i++) { /* (b, w) -> (a, c) by the inverse 2x2 map */
+        double db = s * g->sec[2 * i] - k[1], dw = s * g->sec[2 * i + 1] - k[2];
+        tmp[2 * i] = (db * gc[2] - dw * gc[1]) / det;
+        tmp[2 * i + 1] = (ga[1] * dw - ga[2] * db) / det;
+    }
+    n = g->nsec;
+    /* x in [x0, x1]: two half-planes. A plane across T (x constant on
+       it) lying on an end x0 or x1 decides by the shifted x */
+    if (fabs(ga[0]) + fabs(gc[0]) <= GR__PP_EDGE_ON) {
+        double x = k[0], xs = k[0] + shift * tn;
+        if (fabs(x - g->x0) <= fabs(shift)) x = xs;
+        if (fabs(x - g->x1) <= fabs(shift)) x = xs;
+        return x >= g->x0 && x <= g->x1 ? n : 0;
+    }
+    /* a half-plane at most doubles a ring's points (a non-convex section
+       crosses the line at most once per edge) */
+    n = gr__pp_halfplane(tmp, n, ga[0], gc[0], k[0] - g->x0, tmp2);
+    if (2 * n > GR__PP_RING) return -1;
+    return gr__pp_halfplane(tmp2, n, -ga[0], -gc[0], g->x1 - k[0], tmp);
+}
+
+/* gr__pp_cut where the plane holds T: along the unit direction u (in 2D)
+   across T the plane's trace runs through the section; the intervals
+   where it is inside become strips u-interval x [x0, x1] along T,
+   appended to out as gr__pp_cut does. Returns 0, or -1 when out is full. */
+static int gr__pp_cut_along(const gr__ppp_t *pc, const gr__ppg_t *g, const double k[3], const double ga[3],
+                            const double gc[3], double big, double shift, double *out, int cap, int *npts, int *sizes,
+                            int *nrings)
+{
+    double tl = hypot(ga[0], gc[0]), ua, uc, bs[2 * (GR_MAX_FACETS + 2)], db, dw, ta, tc, tol = fabs(shift), s = g->s;
+    double nb_ = -pc->n[0] * g->t[1] + pc->n[1] * g->t[0];
+    int i, nb = 0, on_pos;
+    if (!(tl > 0)) return 0;
+    ta = ga[0] / tl; tc = gc[0] / tl; /* 2D direction of T */
+    ua = -tc; uc = ta;
+    db = ua * ga[1] + uc * gc[1];
+    dw = ua * ga[2] + uc * gc[2];
+    /* a section point on the trace (within tol) takes the side the moved
+       plane would leave it on: c - shift (db n_w - dw n_b) */
+    on_pos = -shift * (db * pc->n[2] - dw * nb_) > 0;
+    for (i = 0; i < g->nsec; i++) { /* crossings of the trace (b, w) = k + u (db, dw) with the closed section */
+        const double *p0 = g->sec + 2 * i, *p1 = g->sec + 2 * ((i + 1) % g->nsec);
+        double e0[2] = {s * p0[0] - k[1], s * p0[1] - k[2]}, e1[2] = {s * p1[0] - k[1], s * p1[1] - k[2]};
+        double c0 = db * e0[1] - dw * e0[0], c1 = db * e1[1] - dw * e1[0]; /* side of the trace */
+        int s0, s1;
+        if (fabs(c0) <= tol) c0 = 0;
+        if (fabs(c1) <= tol) c1 = 0;
+        s0 = c0 == 0 ? on_pos : c0 > 0;
+        s1 = c1 == 0 ? on_pos : c1 > 0;
+        if (s0 != s1) {
+            double t = c0 / (c0 - c1), q[2] = {e0[0] + t * (e1[0] - e0[0]), e0[1] + t * (e1[1] - e0[1])};
+            bs[nb++] = (q[0] * db + q[1] * dw) / (db * db + dw * dw);
+        }
+    }
+    gr__sort_doubles(bs, nb);
+    for (i = 0; i + 1 < nb; i += 2) {
+        /* x along T at 2D point (a, c): k0 + a ga0 + c gc0; the strip's ends
+           x0, x1 (or +-big) */
+        double xa = fmax(g->x0, k[0] - big), xb = fmin(g->x1, k[0] + big), m;
+        int j;
+        if (!(xb > xa)) continue;
+        if (*npts + 4 > cap || *nrings >= 4 * GR__PP_MAX_GROOVES) return -1;
+        for (j = 0; j < 4; j++) {
+            double u = j == 0 || j == 3 ? bs[i] : bs[i + 1], x = j < 2 ? xa : xb;
+            m = (x - k[0]) / tl; /* along T from the point u ua, u uc, where x = k0 (T is across u) */
+            out[2 * (*npts + j)] = u * ua + m * ta;
+            out[2 * (*npts + j) + 1] = u * uc + m * tc;
+        }
+        *npts += 4;
+        sizes[(*nrings)++] = 4;
+    }
+    return 0;
+}
+
 /* §5.3: the part of the piece's plane inside groove g's volume (its
    section swept along T over [x0, x1]), as rings in the piece's 2D
    coordinates appended to out (*npts points, sizes[*nrings++]). The
-   general case maps the section back onto the plane; a plane holding T
-   (the ground, floors, or a cap across a perpendicular groove) meets the
-   volume in strips along T where the plane's trace crosses the section.
-   Returns 0, or -1 when out is full. */
+   general case maps the section back onto the plane (gr__pp_cut_across);
+   a plane holding T (the ground, floors, or a cap across a perpendicular
+   groove) meets the volume in strips along T where the plane's trace
+   crosses the section (gr__pp_cut_along). Returns 0, or -1 when out is
+   full. */
 static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, double shift, double *out, int cap,
                       int *npts, int *sizes, int *nrings, double *tmp, double *tmp2)
 {
-    double k[3], ga[3], gc[3], det, s = g->s;
     /* a plane on the volume's boundary (equal floors of crossing grooves,
        the ground at every mouth, a wall where a groove ends) decides as if
        moved by `shift` along its normal, so exactly one of two coplanar
@@ -4694,90 +4777,22 @@ static int gr__pp_cut(const gr__ppp_t *pc, const gr__ppg_t *g, double big, doubl
        boundary, and the strips' edges stay where the unmoved plane has
        them (moving the plane itself would move every cut by |shift| / the
        section's slope, a partition error of that order) */
-    double tn = pc->n[0] * g->t[0] + pc->n[1] * g->t[1];
-    int i, n = 0;
+    double k[3], ga[3], gc[3], det;
+    int n;
     gr__pp_groove_affine(pc, g, k, ga, gc);
     /* the plane holds T when its (b, w) map is singular; X and Y are unit
        vectors, so |det| is the sine of the angle between the plane and T
        (a bound relative to the (b, w) parts alone would call the rounding
        of a plane holding T, ~1e-17 under fused multiply-adds, regular) */
     det = ga[1] * gc[2] - ga[2] * gc[1];
-    if (fabs(det) > GR__PP_EDGE_ON) {
-        for (i = 0; i < g->nsec; i++) { /* (b, w) -> (a, c) by the inverse 2x2 map */
-            double db = s * g->sec[2 * i] - k[1], dw = s * g->sec[2 * i + 1] - k[2];
-            tmp[2 * i] = (db * gc[2] - dw * gc[1]) / det;
-            tmp[2 * i + 1] = (ga[1] * dw - ga[2] * db) / det;
-        }
-        n = g->nsec;
-        /* x in [x0, x1]: two half-planes. A plane across T (x constant on
-           it) lying on an end x0 or x1 decides by the shifted x */
-        if (fabs(ga[0]) + fabs(gc[0]) <= GR__PP_EDGE_ON) {
-            double x = k[0], xs = k[0] + shift * tn;
-            if (fabs(x - g->x0) <= fabs(shift)) x = xs;
-            if (fabs(x - g->x1) <= fabs(shift)) x = xs;
-            if (!(x >= g->x0 && x <= g->x1)) return 0;
-            memcpy(tmp2, tmp, sizeof(double) * 2 * (size_t)n);
-        } else {
-            /* a half-plane at most doubles a ring's points (a non-convex
-               section crosses the line at most once per edge) */
-            n = gr__pp_halfplane(tmp, n, ga[0], gc[0], k[0] - g->x0, tmp2);
-            if (2 * n > GR__PP_RING) return -1;
-            n = gr__pp_halfplane(tmp2, n, -ga[0], -gc[0], g->x1 - k[0], tmp);
-        }
-        if (n < 3) return 0;
-        if (*npts + n > cap || *nrings >= 4 * GR__PP_MAX_GROOVES) return -1;
-        memcpy(out + 2 * *npts, tmp, sizeof(double) * 2 * (size_t)n);
-        *npts += n;
-        sizes[(*nrings)++] = n;
-        return 0;
-    }
-    {
-        /* T in the plane: along the unit direction u (in 2D) across T the
-           plane's trace runs through the section; intervals where it is
-           inside become strips u-interval x [x0, x1] along T */
-        double tl = hypot(ga[0], gc[0]), ua, uc, bs[2 * (GR_MAX_FACETS + 2)], db, dw, ta, tc, tol = fabs(shift);
-        double nb_ = -pc->n[0] * g->t[1] + pc->n[1] * g->t[0];
-        int nb = 0, on_pos;
-        if (!(tl > 0)) return 0;
-        ta = ga[0] / tl; tc = gc[0] / tl; /* 2D direction of T */
-        ua = -tc; uc = ta;
-        db = ua * ga[1] + uc * gc[1];
-        dw = ua * ga[2] + uc * gc[2];
-        /* a section point on the trace (within tol) takes the side the
-           moved plane would leave it on: c - shift (db n_w - dw n_b) */
-        on_pos = -shift * (db * pc->n[2] - dw * nb_) > 0;
-        for (i = 0; i < g->nsec; i++) { /* crossings of the trace (b, w) = k + u (db, dw) with the closed section */
-            const double *p0 = g->sec + 2 * i, *p1 = g->sec + 2 * ((i + 1) % g->nsec);
-            double e0[2] = {s * p0[0] - k[1], s * p0[1] - k[2]}, e1[2] = {s * p1[0] - k[1], s * p1[1] - k[2]};
-            double c0 = db * e0[1] - dw * e0[0], c1 = db * e1[1] - dw * e1[0]; /* side of the trace */
-            int s0, s1;
-            if (fabs(c0) <= tol) c0 = 0;
-            if (fabs(c1) <= tol) c1 = 0;
-            s0 = c0 == 0 ? on_pos : c0 > 0;
-            s1 = c1 == 0 ? on_pos : c1 > 0;
-            if (s0 != s1) {
-                double t = c0 / (c0 - c1), q[2] = {e0[0] + t * (e1[0] - e0[0]), e0[1] + t * (e1[1] - e0[1])};
-                bs[nb++] = (q[0] * db + q[1] * dw) / (db * db + dw * dw);
-            }
-        }
-        gr__sort_doubles(bs, nb);
-        for (i = 0; i + 1 < nb; i += 2) {
-            /* x along T at 2D point (a, c): k0 + a ga0 + c gc0; the strip's
-               ends x0, x1 (or +-big) */
-            double xa = fmax(g->x0, k[0] - big), xb = fmin(g->x1, k[0] + big), m;
-            int j;
-            if (!(xb > xa)) continue;
-            if (*npts + 4 > cap || *nrings >= 4 * GR__PP_MAX_GROOVES) return -1;
-            for (j = 0; j < 4; j++) {
-                double u = j == 0 || j == 3 ? bs[i] : bs[i + 1], x = j < 2 ? xa : xb;
-                m = (x - k[0]) / tl; /* along T from the point u ua, u uc, where x = k0 (T is across u) */
-                out[2 * (*npts + j)] = u * ua + m * ta;
-                out[2 * (*npts + j) + 1] = u * uc + m * tc;
-            }
-            *npts += 4;
-            sizes[(*nrings)++] = 4;
-        }
-    }
+    if (!(fabs(det) > GR__PP_EDGE_ON)) return gr__pp_cut_along(pc, g, k, ga, gc, big, shift, out, cap, npts, sizes, nrings);
+    n = gr__pp_cut_across(pc, g, k, ga, gc, det, shift, tmp, tmp2);
+    if (n < 0) return -1;
+    if (n < 3) return 0;
+    if (*npts + n > cap || *nrings >= 4 * GR__PP_MAX_GROOVES) return -1;
+    memcpy(out + 2 * *npts, tmp, sizeof(double) * 2 * (size_t)n);
+    *npts += n;
+    sizes[(*nrings)++] = n;
     return 0;
 }
 
