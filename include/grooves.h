@@ -6510,6 +6510,66 @@ GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query
     return gr_query_lines_cached(grid, query, NULL, scratch, scratch_bytes, list, stats);
 }
 
+/* acc holds each family's area-weighted sums per plane (family f at
+   [f npl, (f + 1) npl), 1 + nl doubles each: the seen length, then the
+   length lit by each light). Adds the m intervals of one line sample,
+   weight wa, in family fam; the unclassified rest of the line (cl the
+   classified length) is shared in proportion. */
+static void gr__lines_add_sample(const gr__lscene_t *sc, int m, int fam, double wa, double cl, int nl, double *acc)
+{
+    int i, q, stride = 1 + nl;
+    for (i = 0; i < m; i++) {
+        const gr__ivl_t *v = &sc->ls.iv[i];
+        double len, *a;
+        if (v->plane < 0 || !(cl > 0)) continue;
+        len = wa * (v->s1 - v->s0) / (2 * cl);
+        a = acc + (fam * sc->npl + v->plane) * stride;
+        a[0] += len;
+        for (q = 0; q < nl; q++)
+            if (v->lit & (1u << q)) a[1 + q] += len;
+    }
+}
+
+/* The families' sums combined into the list: by their mean Jones & Perry
+   weights wfam, or plainly when neither crosses an edge. */
+static void gr__lines_to_list(const gr__lscene_t *sc, const double *acc, int nfam, const double wfam[2], int nl,
+                              gr_facet_list_t *list)
+{
+    int i, k, f, stride = 1 + nl;
+    double wf[2], wsum = wfam[0] + wfam[1];
+    for (f = 0; f < 2; f++) wf[f] = f >= nfam ? 0 : wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
+    for (i = 0; i < sc->npl; i++) {
+        const gr__plane_t *p = &sc->ls.pl[i];
+        gr__mfacet_t mf;
+        double lit[GR_MAX_LIGHTS], ratio = 0;
+        for (k = 0; k < nl; k++) lit[k] = 0;
+        for (f = 0; f < nfam; f++) {
+            const double *a = acc + (f * sc->npl + i) * stride;
+            ratio += wf[f] * a[0];
+            for (k = 0; k < nl; k++) lit[k] += wf[f] * a[1 + k];
+        }
+        if (!(ratio > 0)) continue;
+        for (k = 0; k < nl; k++) lit[k] /= ratio;
+        for (k = 0; k < 3; k++) mf.n[k] = p->n[k];
+        mf.groove = p->lg < 0 ? -1 : sc->ls.lg[p->lg].groove; /* a piece's record until the list is done */
+        mf.facet = p->facet;
+        mf.refl = p->refl;
+        gr__list_add(list, &mf, ratio, lit, nl);
+    }
+}
+
+/* Whether two of the footprint's grooves are not parallel. */
+static int gr__lines_nonparallel(const gr__lscene_t *sc)
+{
+    int i, k;
+    for (i = 0; i < sc->nlg; i++)
+        for (k = 0; k < i; k++) {
+            const gr__lg_t *a = &sc->ls.lg[i], *b = &sc->ls.lg[k];
+            if (fabs(a->t[0] * b->t[1] - a->t[1] * b->t[0]) > sin(GR__DEFAULT_PARALLEL_TOL)) return 1;
+        }
+    return 0;
+}
+
 GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t *query, gr_line_cache_t *cache,
                                          void *scratch, size_t scratch_bytes, gr_facet_list_t *list,
                                          gr_line_stats_t *stats)
@@ -6519,7 +6579,7 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     gr__sheet_t sh;
     const gr_footprint_t *fp;
     double wfam[2] = {0, 0}, tol, *acc;
-    int n, j, i, k, nl, stride;
+    int n, j, nl;
     gr_result_t r;
     if (!list) return GR_ERR_INVALID_ARG;
     list->count = 0;
@@ -6534,7 +6594,6 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     n = query->line_samples ? query->line_samples : 2;
     nl = query->light_count;
     tol = gr__exit_tol(query);
-    stride = 1 + nl;
     gr__line_layout(grid, scratch, &s, &sc);
     acc = sc.ls.acc;
     {
@@ -6542,10 +6601,8 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
         gr__footprint_sheet(grid, query, &all); /* every line shares the footprint's scene */
         gr__line_scene(grid, &s, &sc, &all, 0, cache, query->lights, nl);
     }
-    /* acc holds each family's area-weighted sums (family f at
-       [f npl, (f + 1) npl)); the families combine by their mean Jones &
-       Perry weights, or plainly when neither crosses an edge */
-    memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * stride));
+    /* each family's sums (gr__lines_add_sample), combined by their weights */
+    memset(acc, 0, sizeof(double) * (size_t)(2 * sc.npl * (1 + nl)));
     for (j = 0; j < n; j++) {
         double wj, cl, wa;
         int m, fam;
@@ -6553,47 +6610,11 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
         m = gr__sheet_eval(&sc, &sh, query->lights, nl, tol, &wj, &cl, stats);
         if (stats && j < GR_LINE_MAX_SAMPLES) stats->weight[j] = wj;
         wfam[fam] += wa * wj;
-        for (i = 0; i < m; i++) {
-            const gr__ivl_t *v = &sc.ls.iv[i];
-            double len, *a;
-            int q;
-            if (v->plane < 0 || !(cl > 0)) continue;
-            len = wa * (v->s1 - v->s0) / (2 * cl); /* the unclassified rest shared in proportion */
-            a = acc + (fam * sc.npl + v->plane) * stride;
-            a[0] += len;
-            for (q = 0; q < nl; q++)
-                if (v->lit & (1u << q)) a[1 + q] += len;
-        }
+        gr__lines_add_sample(&sc, m, fam, wa, cl, nl, acc);
     }
-    {
-        int nfam = n > 1 ? 2 : 1, f;
-        double wf[2], wsum = wfam[0] + wfam[1];
-        for (f = 0; f < 2; f++) wf[f] = f >= nfam ? 0 : wsum > 0 ? wfam[f] / wsum : 1.0 / nfam;
-        for (i = 0; i < sc.npl; i++) {
-            const gr__plane_t *p = &sc.ls.pl[i];
-            gr__mfacet_t mf;
-            double lit[GR_MAX_LIGHTS], ratio = 0;
-            for (k = 0; k < nl; k++) lit[k] = 0;
-            for (f = 0; f < nfam; f++) {
-                const double *a = acc + (f * sc.npl + i) * stride;
-                ratio += wf[f] * a[0];
-                for (k = 0; k < nl; k++) lit[k] += wf[f] * a[1 + k];
-            }
-            if (!(ratio > 0)) continue;
-            for (k = 0; k < nl; k++) lit[k] /= ratio;
-            for (k = 0; k < 3; k++) mf.n[k] = p->n[k];
-            mf.groove = p->lg < 0 ? -1 : sc.ls.lg[p->lg].groove; /* a piece's record until the list is done */
-            mf.facet = p->facet;
-            mf.refl = p->refl;
-            gr__list_add(list, &mf, ratio, lit, nl);
-        }
-    }
+    gr__lines_to_list(&sc, acc, n > 1 ? 2 : 1, wfam, nl, list);
     gr__list_name_parents(grid, list);
-    for (i = 0; i < sc.nlg; i++)
-        for (k = 0; k < i; k++) {
-            const gr__lg_t *a = &sc.ls.lg[i], *b = &sc.ls.lg[k];
-            if (fabs(a->t[0] * b->t[1] - a->t[1] * b->t[0]) > sin(GR__DEFAULT_PARALLEL_TOL)) list->flags |= GR_LIST_NONPARALLEL;
-        }
+    if (gr__lines_nonparallel(&sc)) list->flags |= GR_LIST_NONPARALLEL;
     list->flags |= sc.flags;
     list->grooves = sc.nlg;
     if (stats && (sc.flags & GR_LIST_LINE_APPROX)) stats->flags |= GR_STATS_LINE_APPROX;
