@@ -1429,22 +1429,12 @@ static re_result_t re__flat_chains(re__an_t *an, re__arena_t *ar)
     return RE_OK;
 }
 
-static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
+/* The half-edges of good triangles in buckets by their lower vertex:
+   key = higher vertex << 32 | half-edge; bucket i ends at cnt[i] and
+   starts at cnt[i - 1] (0 for the first). Every he_edge becomes RE__NONE. */
+static void re__edge_buckets(re__an_t *an, unsigned *cnt, unsigned long long *key)
 {
-    unsigned V = an->V, T = an->T, t, k, i, E = 0, widened = 0;
-    unsigned *cnt;
-    unsigned long long *key;
-    char msg[160];
-    size_t mark;
-    double M = 0;
-    for (k = 0; k < 3; k++) M = re__max(M, fabs(an->origin[k]));
-    an->flat_k = RE__FLAT_ROUNDINGS * (an->m->position_type == RE_FLOAT32 ? RE__FLT_EPS : RE__DBL_EPS) *
-                 (M + 0.5 * an->size) * an->size;
-    RE__TAKE(an->he_edge, unsigned, 3 * (size_t)T);
-    RE__TAKE(an->edges, re__edge_t, 3 * (size_t)T);
-    mark = ar->used; /* the buckets are scratch of this step only */
-    RE__TAKE(cnt, unsigned, (size_t)V + 1);
-    RE__TAKE(key, unsigned long long, 3 * (size_t)T);
+    unsigned V = an->V, T = an->T, t, k, i;
     memset(cnt, 0, sizeof(unsigned) * ((size_t)V + 1));
     for (t = 0; t < T; t++)
         for (k = 0; k < 3; k++) {
@@ -1459,55 +1449,90 @@ static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
             if (an->tbad[t]) continue;
             key[cnt[a < b ? a : b]++] = ((unsigned long long)(a < b ? b : a) << 32) | (3u * t + k);
         }
-    /* cnt[i] is now the end of bucket i; bucket i starts at cnt[i-1] */
+}
+
+/* key[s, e) ascending. */
+static void re__sort_bucket(unsigned long long *key, unsigned s, unsigned e)
+{
+    unsigned x, y;
+    if (e - s > 64) {
+        qsort(key + s, e - s, sizeof *key, re__cmp_u64);
+        return;
+    }
+    /* up to a 24-gon fan's apex (47): insertion sort beats qsort's calls;
+       the keys are unique, so the order is the same */
+    for (x = s + 1; x < e; x++)
+        for (y = x; y > s && key[y - 1] > key[y]; y--) {
+            unsigned long long tmp = key[y];
+            key[y] = key[y - 1], key[y - 1] = tmp;
+        }
+}
+
+/* The class of edge ed from its half-edges; *widened counts folds the
+   flat test widened (re__fold_class). Two triangles running through it
+   the same way: RE_ERR_INCONSISTENT_WINDING naming the second, or under
+   the skip policy a non-manifold edge. */
+static re_result_t re__classify_edge(re__an_t *an, re__edge_t *ed, unsigned *widened)
+{
+    char msg[160];
+    if (ed->count == 1) {
+        ed->cls = RE__E_BOUNDARY;
+    } else if (ed->count > 2) {
+        ed->cls = RE__E_NONMANIFOLD;
+        an->fins = 1;
+    } else {
+        unsigned h0 = ed->he[0], h1 = ed->he[1];
+        unsigned t0 = h0 / 3, t1 = h1 / 3;
+        unsigned a0 = an->tri[3 * t0 + h0 % 3], a1 = an->tri[3 * t1 + h1 % 3];
+        if (a0 == a1) {
+            snprintf(msg, sizeof msg, "triangles %u and %u run through edge %u-%u the same way (inconsistent winding)",
+                     t0, t1, re__vid(an, ed->v[0]), re__vid(an, ed->v[1]));
+            if (an->desc->bad_input != RE_BAD_INPUT_SKIP) return re__fail(an, RE_ERR_INCONSISTENT_WINDING, t1, msg);
+            ed->cls = RE__E_NONMANIFOLD;
+        } else {
+            int wide = 0;
+            ed->cls = re__fold_class(an, ed, 1, &wide);
+            *widened += (unsigned)wide;
+        }
+    }
+    return RE_OK;
+}
+
+static re_result_t re__edges(re__an_t *an, re__arena_t *ar)
+{
+    unsigned V = an->V, T = an->T, k, i, E = 0, widened = 0;
+    unsigned *cnt;
+    unsigned long long *key;
+    size_t mark;
+    double M = 0;
+    for (k = 0; k < 3; k++) M = re__max(M, fabs(an->origin[k]));
+    an->flat_k = RE__FLAT_ROUNDINGS * (an->m->position_type == RE_FLOAT32 ? RE__FLT_EPS : RE__DBL_EPS) *
+                 (M + 0.5 * an->size) * an->size;
+    RE__TAKE(an->he_edge, unsigned, 3 * (size_t)T);
+    RE__TAKE(an->edges, re__edge_t, 3 * (size_t)T);
+    mark = ar->used; /* the buckets are scratch of this step only */
+    RE__TAKE(cnt, unsigned, (size_t)V + 1);
+    RE__TAKE(key, unsigned long long, 3 * (size_t)T);
+    re__edge_buckets(an, cnt, key);
     for (i = 0; i < V; i++) {
         unsigned s = i ? cnt[i - 1] : 0, e = cnt[i], j;
-        if (e - s > 64) qsort(key + s, e - s, sizeof *key, re__cmp_u64);
-        else { /* up to a 24-gon fan's apex (47): insertion sort beats qsort's calls; the keys are unique, so the order is the same */
-            unsigned x, y;
-            for (x = s + 1; x < e; x++)
-                for (y = x; y > s && key[y - 1] > key[y]; y--) {
-                    unsigned long long tmp = key[y];
-                    key[y] = key[y - 1], key[y - 1] = tmp;
-                }
-        }
-        for (j = s; j < e;) {
-            unsigned hi = (unsigned)(key[j] >> 32), j2 = j;
+        re__sort_bucket(key, s, e);
+        for (j = s; j < e;) { /* the half-edges to one higher vertex make an edge */
+            unsigned hi = (unsigned)(key[j] >> 32);
             re__edge_t *ed = &an->edges[E];
+            re_result_t rc;
             ed->v[0] = i;
             ed->v[1] = hi;
             ed->count = 0;
             ed->rounded = 0;
-            while (j2 < e && (unsigned)(key[j2] >> 32) == hi) {
-                unsigned he = (unsigned)(key[j2] & 0xFFFFFFFFu);
+            for (; j < e && (unsigned)(key[j] >> 32) == hi; j++) {
+                unsigned he = (unsigned)(key[j] & 0xFFFFFFFFu);
                 if (ed->count < 2) ed->he[ed->count] = he;
                 ed->count++;
                 an->he_edge[he] = E;
-                j2++;
             }
-            if (ed->count == 1) {
-                ed->cls = RE__E_BOUNDARY;
-            } else if (ed->count > 2) {
-                ed->cls = RE__E_NONMANIFOLD;
-                an->fins = 1;
-            } else {
-                unsigned h0 = ed->he[0], h1 = ed->he[1];
-                unsigned t0 = h0 / 3, t1 = h1 / 3;
-                unsigned a0 = an->tri[3 * t0 + h0 % 3], a1 = an->tri[3 * t1 + h1 % 3];
-                if (a0 == a1) {
-                    snprintf(msg, sizeof msg, "triangles %u and %u run through edge %u-%u the same way (inconsistent winding)",
-                             t0, t1, re__vid(an, i), re__vid(an, hi));
-                    if (an->desc->bad_input != RE_BAD_INPUT_SKIP)
-                        return re__fail(an, RE_ERR_INCONSISTENT_WINDING, t1, msg);
-                    ed->cls = RE__E_NONMANIFOLD;
-                } else {
-                    int wide = 0;
-                    ed->cls = re__fold_class(an, ed, 1, &wide);
-                    widened += (unsigned)wide;
-                }
-            }
+            if ((rc = re__classify_edge(an, ed, &widened)) != RE_OK) return rc;
             E++;
-            j = j2;
         }
     }
     an->E = E;
