@@ -7128,6 +7128,60 @@ static void fr__trace_answer(fr__ray_t *R, const fr__trace_mem_t *mem, const fr_
     hit->iterations = R->iters;
 }
 
+/* FR_METHOD_AUTO resolved: analytic if every shape path ends in
+   polynomial leaves (*cnt: fr__csg_mark's count, -2 for a polynomial
+   shape), else intervals on a finite segment where the tape has them,
+   else stepping. */
+static fr_method_t fr__auto_method(const fr__ray_t *R, const fr__trace_mem_t *mem, int *cnt)
+{
+    const fr_tape_t *t = R->tape;
+    fr_method_t m;
+    *cnt = mem->deg[t->outputs[0]] >= 0 ? -2 : fr__csg_mark(t, mem);
+    m = *cnt == -1 ? FR_METHOD_STEP : FR_METHOD_ANALYTIC;
+#ifndef FR_NO_INTERVAL
+    if (m == FR_METHOD_STEP && !(t->flags & FR_TAPE_NO_INTERVAL) && R->t1 - R->t0 < HUGE_VAL) m = FR_METHOD_INTERVAL;
+#endif
+    return m;
+}
+
+/* The first root along R by method m (resolved), with what each method
+   needs checked: a gradient for Newton steps, a step length or Lipschitz
+   bound (or a finite segment, stepped in 256) for stepping, intervals and
+   a finite segment for INTERVAL, a Lipschitz bound for sphere tracing. */
+static fr_result_t fr__trace_method(fr__ray_t *R, fr__trace_mem_t *mem, const fr_trace_desc_t *desc, fr_method_t m,
+                                    double ts, int cnt, int *found, double *t_hit, double *t_err)
+{
+    const fr_tape_t *t = R->tape;
+    double step = desc->step, L = desc->lipschitz > 0 ? desc->lipschitz : t->lipschitz;
+    switch (m) {
+    case FR_METHOD_ANALYTIC:
+        return fr__trace_analytic(R, mem, ts, cnt, found, t_hit, t_err);
+    case FR_METHOD_STEP:
+        if (desc->refine == FR_REFINE_NEWTON && (t->flags & FR_TAPE_NO_GRADIENT)) return FR_ERR_NO_GRADIENT;
+        if (step <= 0 && !(L > 0 && L < HUGE_VAL)) {
+            if (!(R->t1 - R->t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
+            step = (R->t1 - R->t0) / 256.0;
+        }
+        *found = fr__trace_step(R, step, desc->refine, L, t_hit, t_err);
+        return FR_OK;
+    case FR_METHOD_INTERVAL:
+#ifndef FR_NO_INTERVAL
+        if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
+        if (!(R->t1 - R->t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
+        if (!desc->plain_intervals && !desc->no_poly_range) fr__interval_poly_form(R, mem, desc);
+        return fr__trace_interval(R, desc->plain_intervals, !desc->no_prune && !R->pc, mem->prune, found, t_hit, t_err);
+#else
+        return FR_ERR_NO_INTERVAL;
+#endif
+    case FR_METHOD_SPHERE:
+        if (!(L > 0 && L < HUGE_VAL)) return FR_ERR_NO_LIPSCHITZ;
+        *found = fr__trace_sphere(R, L, desc->over_relax > 0 ? desc->over_relax : FR__SPHERE_OMEGA, t_hit, t_err);
+        return FR_OK;
+    default:
+        return FR_ERR_INVALID_ARG;
+    }
+}
+
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
 {
@@ -7137,7 +7191,7 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
     fr__ray_t R;
     fr_method_t m;
     fr_result_t e = FR_OK;
-    double t_hit = 0, t_err = 0, L, ts = 0, step;
+    double t_hit = 0, t_err = 0, ts = 0;
     int found = 0, k, cnt = -2, orient = 0;
     unsigned int leaf = 0;
     if (!t || !o || !d || !scratch || !hit || t->n_code == 0) return FR_ERR_INVALID_ARG;
@@ -7172,47 +7226,10 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
         orient = 0;
     }
     fr__trace_settings(&R, desc, t0, t1);
-    step = desc->step;
-    L = desc->lipschitz > 0 ? desc->lipschitz : t->lipschitz;
     R.prep = R.prep && R.prep->kind == FR_PREPARED_POLY ? R.prep : NULL;
     if (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC) ts = fr__analytic_expand(&R, &mem, 0);
-    if (m == FR_METHOD_AUTO) {
-        /* analytic if every shape path ends in polynomial leaves */
-        cnt = mem.deg[t->outputs[0]] >= 0 ? -2 : fr__csg_mark(t, &mem);
-        m = cnt == -1 ? FR_METHOD_STEP : FR_METHOD_ANALYTIC;
-#ifndef FR_NO_INTERVAL
-        if (m == FR_METHOD_STEP && !(t->flags & FR_TAPE_NO_INTERVAL) && R.t1 - R.t0 < HUGE_VAL) m = FR_METHOD_INTERVAL;
-#endif
-    }
-    switch (m) {
-    case FR_METHOD_ANALYTIC:
-        e = fr__trace_analytic(&R, &mem, ts, cnt, &found, &t_hit, &t_err);
-        break;
-    case FR_METHOD_STEP:
-        if (desc->refine == FR_REFINE_NEWTON && (t->flags & FR_TAPE_NO_GRADIENT)) return FR_ERR_NO_GRADIENT;
-        if (step <= 0 && !(L > 0 && L < HUGE_VAL)) {
-            if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
-            step = (R.t1 - R.t0) / 256.0;
-        }
-        found = fr__trace_step(&R, step, desc->refine, L, &t_hit, &t_err);
-        break;
-    case FR_METHOD_INTERVAL:
-#ifndef FR_NO_INTERVAL
-        if (t->flags & FR_TAPE_NO_INTERVAL) return FR_ERR_NO_INTERVAL;
-        if (!(R.t1 - R.t0 < HUGE_VAL)) return FR_ERR_INVALID_ARG;
-        if (!desc->plain_intervals && !desc->no_poly_range) fr__interval_poly_form(&R, &mem, desc);
-        e = fr__trace_interval(&R, desc->plain_intervals, !desc->no_prune && !R.pc, mem.prune, &found, &t_hit, &t_err);
-        break;
-#else
-        return FR_ERR_NO_INTERVAL;
-#endif
-    case FR_METHOD_SPHERE:
-        if (!(L > 0 && L < HUGE_VAL)) return FR_ERR_NO_LIPSCHITZ;
-        found = fr__trace_sphere(&R, L, desc->over_relax > 0 ? desc->over_relax : FR__SPHERE_OMEGA, &t_hit, &t_err);
-        break;
-    default:
-        return FR_ERR_INVALID_ARG;
-    }
+    if (m == FR_METHOD_AUTO) m = fr__auto_method(&R, &mem, &cnt);
+    e = fr__trace_method(&R, &mem, desc, m, ts, cnt, &found, &t_hit, &t_err);
 done:
     if (e != FR_OK) return e;
     fr__trace_answer(&R, &mem, desc, o, d, m, found, t_hit, t_err, leaf, orient, hit);
