@@ -631,7 +631,9 @@ FR_DEF size_t fr_trace_scratch_size(const fr_tape_t *t, const fr_trace_desc_t *d
    desc may be NULL (defaults). Errors: FR_ERR_INVALID_ARG (NULL, NaN, t0 >
    t1, d = 0, an infinite segment for INTERVAL or for a STEP without step
    length or Lipschitz bound), FR_ERR_NOT_POLYNOMIAL (ANALYTIC on a shape
-   that is not min/max/R-functions over polynomial leaves),
+   that is not min/max/R-functions over polynomial leaves, or whose ray
+   polynomial overflows or has subnormal coefficients on this ray: AUTO
+   takes such rays to intervals; docs/frep.md "Scale"),
    FR_ERR_NO_INTERVAL, FR_ERR_NO_GRADIENT (NEWTON refinement with a
    gradient-less callback; AD normals fall back to differences there),
    FR_ERR_NO_LIPSCHITZ (SPHERE). A miss is FR_OK with hit->hit = 0. */
@@ -4970,6 +4972,22 @@ static int fr__checked_degree(const double *c, int dg)
     return dg >= 0 ? fr__tpoly_trim(c, dg) : -1;
 }
 
+/* fr__checked_degree for the ray tracers: also -1 when a coefficient is
+   subnormal. Coefficients that small have lost their relative precision
+   (a quartic model 1e-80 across has f ~ 1e-320 on the ray, and so does a
+   direction 1e-80 long in the t^4 term): roots and error bounds from them
+   would be wrong by orders of magnitude while claiming double accuracy,
+   so the ray takes the path an overflow takes (fr_trace's AUTO: the
+   interval method, which never certifies from such values alone;
+   ANALYTIC: FR_ERR_NOT_POLYNOMIAL). */
+static int fr__trace_degree(const double *c, int dg)
+{
+    int k;
+    for (k = 0; k <= dg; k++)
+        if (c[k] != 0 && fabs(c[k]) < DBL_MIN) return -1;
+    return fr__checked_degree(c, dg);
+}
+
 /* Evaluate every slot of the tape as a polynomial in t (paper §3.1.1: turn
    f(X) = 0 into g(t) = 0). deg[i] = -1 marks a slot that is not a
    polynomial of degree <= FR_POLY_MAX_DEGREE; such slots propagate.
@@ -5843,17 +5861,17 @@ static double fr__analytic_expand(const fr__ray_t *R, const fr__trace_mem_t *mem
         fr__prep_layout(P->n_leaves, P->n_nodes, P->n_prog, NULL, NULL, &prog, P->mem);
         dg = prog[P->n_prog - 1].dc;
         fr__prog_run(R->tape, prog, P->n_prog, ob, R->d, mem->taylor, with_mag ? mem->taylor_mag : NULL);
-        mem->deg[out] = fr__checked_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, dg);
-        if (with_mag) mem->deg_mag[out] = fr__checked_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, dg);
+        mem->deg[out] = fr__trace_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, dg);
+        if (with_mag) mem->deg_mag[out] = fr__trace_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, dg);
         if (mem->deg[out] >= 0 && (!with_mag || mem->deg_mag[out] >= 0)) return ts;
     }
     fr__taylor_run(R->tape, ob, R->d, mem->taylor, mem->deg, NULL);
     {
         unsigned int out = R->tape->outputs[0];
-        mem->deg[out] = fr__checked_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, mem->deg[out]);
+        mem->deg[out] = fr__trace_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, mem->deg[out]);
         if (with_mag && mem->deg[out] >= 0) {
             fr__taylor_run(R->tape, ob, R->d, mem->taylor_mag, mem->deg_mag, mem->taylor);
-            mem->deg_mag[out] = fr__checked_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, mem->deg_mag[out]);
+            mem->deg_mag[out] = fr__trace_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, mem->deg_mag[out]);
             if (mem->deg_mag[out] < 0) mem->deg[out] = -1;
         }
     }
@@ -5878,7 +5896,7 @@ static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
         if (!mem->need[i]) continue;
         mem->list[cnt++] = i;
         if (mem->deg[i] >= 0) { /* a leaf: it must not have overflowed on this ray */
-            if (fr__checked_degree(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i]) < 0) return -1;
+            if (fr__trace_degree(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i]) < 0) return -1;
             continue;
         }
         switch ((fr_op_t)in->op) {
@@ -6969,7 +6987,7 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         if (lf->quadric) m = fr__quadric_leaf(lf, R, inv_dd, culled, cand + nc, &sg);
         else {
             const double *c = mem->taylor + (size_t)lf->slot * FR__TAYLOR_N;
-            int dg = fr__checked_degree(c, lf->degree);
+            int dg = fr__trace_degree(c, lf->degree);
             m = dg < 0 ? -1 : fr__poly_leaf(c, dg, R->t0 - ts, R->t1 - ts, ts, culled, cand + nc, &sg);
         }
         if (m < 0) return FR_ERR_NOT_POLYNOMIAL;

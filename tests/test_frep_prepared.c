@@ -351,6 +351,66 @@ static void ray_parallel_to_cone_generator(void)
     model_free(&m);
 }
 
+/* Direction vectors 1e-80 and 1e80 long (2^-266, 2^266: exact scalings,
+   so the ray is the same line and t scales exactly) at a quartic torus
+   united with a sphere, plain and prepared: the t^4 coefficient of the
+   ray polynomial is ~1e-320 or ~1e320. Overflow always took the ray to
+   the interval method; underflow kept the analytic path, whose roots from
+   subnormal coefficients were off by 1e-5 relative while t_err claimed
+   3e-14. Every answer (AUTO) within its own t_err (plus 1e-12) of the
+   unit-direction analytic root, scaled; ANALYTIC asked outright reports
+   FR_ERR_NOT_POLYNOMIAL at 2^-266 rather than a wrong root. */
+static void tiny_and_huge_direction_vectors(void)
+{
+    static const double c0[3] = {0, 0, 0}, box[6] = {-3, -3, -3, 3, 3, 3};
+    t_rng_t g = {266};
+    fr_builder_t b;
+    model_t m;
+    fr_prepared_t pr;
+    fr_p3_t X;
+    fr_node_t rho2, s2, tor;
+    long n = t_count(300), i, checked = 0;
+    fr_builder_init(&b, NULL);
+    X = fr_coords(&b);
+    rho2 = fr_add(&b, fr_unary(&b, FR_OP_SQR, X.x), fr_unary(&b, FR_OP_SQR, X.y));
+    s2 = fr_add(&b, fr_add(&b, rho2, fr_unary(&b, FR_OP_SQR, X.z)), fr_const(&b, 1 - 0.09));
+    tor = fr_sub(&b, fr_mul(&b, fr_const(&b, 4), rho2), fr_unary(&b, FR_OP_SQR, s2));
+    model_finish(&m, &b, fr_union(&b, tor, fr_sphere(&b, X, c0, 0.5), 0));
+    T_INT_EQ(fr_prepare(&m.tape, box, &pr), FR_OK);
+    for (i = 0; i < n; i++) {
+        double o[3], d[3], ds[3], ref;
+        fr_trace_desc_t an = method(FR_METHOD_ANALYTIC, 0), au = method(FR_METHOD_AUTO, 0);
+        fr_hit_t h0;
+        int k, sc, pp;
+        for (k = 0; k < 3; k++) { o[k] = t_rng_range(&g, -2.5, 2.5); d[k] = t_rng_range(&g, -1, 1) - 0.5 * o[k]; }
+        h0 = trace(&m, o, d, 0, 4, an);
+        if (!h0.hit) continue;
+        ref = h0.t;
+        for (sc = 0; sc < 2; sc++) {
+            double f = ldexp(1.0, sc ? 266 : -266);
+            for (k = 0; k < 3; k++) ds[k] = d[k] * f;
+            for (pp = 0; pp < 2; pp++) {
+                fr_trace_desc_t D = au;
+                fr_hit_t h;
+                if (pp) D.prepared = &pr;
+                h = trace(&m, o, ds, 0, 4 / f, D);
+                if (!h.hit) { T_FAIL("ray %ld scale 2^%d%s: no hit, want t = %.17g", i, sc ? 266 : -266, pp ? " prepared" : "", ref); continue; }
+                if (!(fabs(h.t * f - ref) <= h.t_err * f + 1e-12 * (1 + ref)))
+                    T_FAIL("ray %ld scale 2^%d%s: t = %.17g, want %.17g, t_err %.3g", i, sc ? 266 : -266, pp ? " prepared" : "", h.t * f, ref, h.t_err * f);
+                checked++;
+            }
+        }
+        {
+            fr_hit_t h;
+            for (k = 0; k < 3; k++) ds[k] = d[k] * ldexp(1.0, -266);
+            T_INT_EQ(fr_trace(&m.tape, o, ds, 0, 4 * ldexp(1.0, 266), &an, m.scratch, &h), FR_ERR_NOT_POLYNOMIAL);
+        }
+    }
+    T_GT(checked, n);
+    fr_prepared_free(&pr);
+    model_free(&m);
+}
+
 /* Rays through the cup's rim edge (the cut plane z = 0.75 meets the shell),
    and rays inside the cut plane: both paths report the same hit, within
    1e-12 of each other. */
@@ -761,6 +821,7 @@ int main(int argc, char **argv)
         T_CASE(prepared_csg_grazing_and_tangent_rays),
         T_CASE(prepared_csg_edges_and_planes),
         T_CASE(prepared_csg_huge_origins), T_CASE(ray_parallel_to_cone_generator),
+        T_CASE(tiny_and_huge_direction_vectors),
         T_CASE(prepared_csg_shadow_rays_and_fd_normals),
         T_CASE(prepared_csg_many_leaves_agree),
         T_CASE(prepared_poly_agrees_on_random_rays),
