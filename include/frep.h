@@ -3358,6 +3358,7 @@ static void fr__statement(fr__parser_t *p)
     if (p->tok == FR__T_ID) {
         const fr__fninfo_t *f = fr__lookup_fn(p->id);
         if (!f) {
+            int nline = p->tline, ncol = p->tcol;
             memcpy(name, p->id, sizeof name);
             fr__next(p);
             si = fr__find_sym(p, name);
@@ -3385,7 +3386,14 @@ static void fr__statement(fr__parser_t *p)
                 } else {
                     fr_node_t n = fr__scalar_expr(p, "on the right of '='");
                     if (p->err != FR_OK) return;
-                    if (si < 0) si = fr__new_sym(p, name, 0, 0);
+                    if (si < 0) { /* a new variable: a limit points at its name */
+                        int tl = p->tline, tc = p->tcol;
+                        p->tline = nline;
+                        p->tcol = ncol;
+                        si = fr__new_sym(p, name, 0, 0);
+                        p->tline = tl;
+                        p->tcol = tc;
+                    }
                     if (si < 0) return;
                     p->syms[si].node = n;
                     p->syms[si].assigned = 1;

@@ -460,11 +460,11 @@ static void every_parse_error_names_its_cause(void)
     strcpy(text + k, " + 1;\n}");
     check_bad(n, text, FR_ERR_PARSE, "identifier too long", 0, 0);
     /* the model's name, x, a and FR__P_MAX_SYMS - 3 variables fill the
-       table; the next is refused where its assignment ends */
+       table; the next is refused at its name */
     k = (size_t)sprintf(text, HEAD);
     for (i = 0; i < FR__P_MAX_SYMS - 1; i++) k += (size_t)sprintf(text + k, "  q%d = %d;\n", i, i);
     strcpy(text + k, "  m = 1;\n}");
-    check_bad(n + 1, text, FR_ERR_LIMIT, "too many variables", 2 + FR__P_MAX_SYMS - 3, 13);
+    check_bad(n + 1, text, FR_ERR_LIMIT, "too many variables", 2 + FR__P_MAX_SYMS - 3, 3);
     /* a skeleton of 65 elements */
     k = (size_t)sprintf(text, HEAD "  array x0[65], y0[65], z0[65], k[65];\n");
     {
