@@ -5,7 +5,8 @@
    normals, ellipse, straight occlusion, no oversampling or lights),
    gr_query_lines, and gr_query_lines_cached on three neighbouring
    footprints (the cache's hits and misses too); the grid itself as
-   gr_grid_build_into() writes it at a fixed address (Linux); and
+   gr_grid_build_into() writes it at a fixed address (Linux), the same on
+   four grooves that cross themselves (cut into pieces by the builder); and
    gr_poly_boolean's trapezoids and areas for the four operations on
    random star polygons (two rings each, some with a shared vertex height
    or a copy of the other's ring). */
@@ -177,6 +178,41 @@ static void fp_booleans(int cases)
     free(scratch);
 }
 
+/* Grooves that cross themselves (§5: the builder cuts them into pieces):
+   an "alpha" polyline, a polyline with two loops in turn (two cuts), a Z
+   of three straight cubic pieces (cut at a joint), a looping cubic (cut
+   inside its piece), with one light: the scene the example's have none of. */
+static void fp_self_crossing(int nq)
+{
+    static const double alpha[10] = {0.2, 0.3, 0.6, 0.7, 0.8, 0.5, 0.6, 0.3, 0.2, 0.7};
+    static const double loops[24] = {0.1, 0.3, 0.3, 0.7, 0.4, 0.5, 0.3, 0.3, 0.1, 0.7, 0.1, 0.9,
+                                     0.5, 0.9, 0.55, 0.3, 0.75, 0.7, 0.85, 0.5, 0.75, 0.3, 0.55, 0.7};
+    static const double zc[20] = {0.2, 0.2, 0.4, 0.4, 0.6, 0.6, 0.8, 0.8, 0.8, 0.6,
+                                  0.8, 0.4, 0.8, 0.2, 0.6, 0.4, 0.4, 0.6, 0.2, 0.8};
+    static const double loop[8] = {0.2, 0.3, 1.2, 0.9, 1.2, 0.1, 0.2, 0.7};
+    static const double vsec[6] = {-0.01, 0, 0, -0.008, 0.01, 0};
+    static const double *pts[4] = {alpha, loops, zc, loop};
+    static const int np[4] = {5, 12, 10, 4};
+    static gr_groove_desc_t desc[4];
+    gx_scene_t s;
+    int g, wrap;
+    memset(&s, 0, sizeof s);
+    memset(desc, 0, sizeof desc);
+    for (g = 0; g < 4; g++) {
+        desc[g].kind = g < 2 ? GR_PATH_POLYLINE : GR_PATH_CUBIC;
+        desc[g].points = pts[g];
+        desc[g].point_count = np[g];
+        desc[g].section = vsec;
+        desc[g].section_count = 3;
+    }
+    s.name = "selfcross";
+    s.desc = desc;
+    s.ngrooves = 4;
+    s.nlights = 1;
+    s.light[0][0] = 0.3, s.light[0][1] = -0.2, s.light[0][2] = sqrt(1 - 0.13);
+    for (wrap = 0; wrap < 2; wrap++) fp_grid(&s, wrap, nq, 999);
+}
+
 int main(int argc, char **argv)
 {
     int i, wrap, nq = argc > 1 ? atoi(argv[1]) : 3000;
@@ -187,6 +223,7 @@ int main(int argc, char **argv)
         for (wrap = 0; wrap < 2; wrap++) fp_grid(&s, wrap, nq, 1234 + (unsigned long long)i);
         gx_scene_free(&s);
     }
+    fp_self_crossing(nq);
     fp_booleans(20000);
     return 0;
 }
