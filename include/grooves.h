@@ -3823,26 +3823,15 @@ static void gr__polyline_at(const double *pts, int n, double len, double t, doub
     q[1] = pts[1];
 }
 
-/* §5: "the groove should be simply treated as two independent grooves".
-   The hits of groove g (sorted here by their second parameter) are
-   intervals (t1, t2) of its path parameter; a cut inside each separates
-   the two passes of its crossing. Greedy interval stabbing gives the
-   fewest cuts, each in the middle of the parameters it serves (far from
-   the crossings, where the pieces meet end to end). A Bézier chain is cut
-   at a joint where one serves, or else inside a piece and also at that
-   piece's two joints, so every piece is whole Bézier pieces or part of
-   one: its uniform parameter maps affinely onto the groove's. The pieces
-   go to records *next, ... with their own points from *pt on. */
-static void gr__split_groove(gr_grid_t *gr, int g, gr_self_hit_t *hits, int nh, int *next, int *pt)
+/* The cuts of groove par (gr__split_groove: greedy interval stabbing over
+   its nh hits, sorted here by their second parameter), in piece units for
+   a chain (joints are integers), into rec[].t0 ascending, each once and
+   strictly inside; returns how many. */
+static int gr__self_cuts(const gr__groove_t *par, gr_self_hit_t *hits, int nh, gr__groove_t *rec)
 {
-    gr__groove_t *par = &gr->grooves_[g], *rec = gr->grooves_ + *next;
-    const double *pts = gr->points_ + 2 * par->first_point;
-    int k, nb = 0, n = par->pieces, deg = gr__degree(par->kind), bez = par->kind != GR_PATH_POLYLINE, i;
-    (void)deg; /* Bézier pieces only, left out with GR_NO_CURVES */
+    int k, i, nb = 0, n = par->pieces, bez = par->kind != GR_PATH_POLYLINE;
     double lo = 0, hi = -1;
     qsort(hits, (size_t)nh, sizeof *hits, gr__cmp_hit_t2);
-    /* cut parameters, in piece units for a chain (joints are integers),
-       kept in the records' t0 until the records are made */
     for (k = 0; k <= nh; k++) {
         if (k < nh && hi > lo && hits[k].param[0] < hi) { /* overlaps the group: narrow it */
             if (hits[k].param[0] > lo) lo = hits[k].param[0];
@@ -3866,7 +3855,61 @@ static void gr__split_groove(gr_grid_t *gr, int g, gr_self_hit_t *hits, int nh, 
     qsort(rec, (size_t)nb, sizeof *rec, gr__cmp_rec_t0);
     for (i = 0, k = 0; k < nb; k++) /* unique, strictly inside */
         if (rec[k].t0 > 0 && rec[k].t0 < (bez ? n : 1) && (i == 0 || rec[k].t0 > rec[i - 1].t0)) rec[i++].t0 = rec[k].t0;
-    nb = i;
+    return i;
+}
+
+/* The points of groove par between parameters ua and ub (its own units:
+   arc length in [0, 1] for a polyline, piece units for a chain) into q;
+   returns how many. */
+static int gr__piece_points(const gr__groove_t *par, const double *pts, double ua, double ub, double *q)
+{
+    int k, np = 0;
+    if (par->kind == GR_PATH_POLYLINE) {
+        double acc = 0;
+        gr__polyline_at(pts, par->point_count, par->length, ua, q);
+        np = 1;
+        for (k = 1; k + 1 < par->point_count; k++) { /* the vertices strictly inside */
+            double t;
+            acc += hypot(pts[2 * k] - pts[2 * k - 2], pts[2 * k + 1] - pts[2 * k - 1]);
+            t = acc / par->length;
+            if (t > ua && t < ub) { q[2 * np] = pts[2 * k]; q[2 * np + 1] = pts[2 * k + 1]; np++; }
+        }
+        gr__polyline_at(pts, par->point_count, par->length, ub, q + 2 * np);
+        return np + 1;
+    }
+#ifndef GR_NO_CURVES
+    {
+        int deg = gr__degree(par->kind), j = (int)floor(ua);
+        if (ua == floor(ua) && ub == floor(ub)) { /* whole pieces */
+            np = deg * (int)(ub - ua) + 1;
+            memcpy(q, pts + 2 * deg * (int)ua, sizeof(double) * 2 * (size_t)np);
+            return np;
+        }
+        /* part of one piece */
+        GR_ASSERT(ub <= j + 1);
+        gr__bezier_sub(pts + 2 * deg * j, deg, ua - j, ub - j, q);
+        return deg + 1;
+    }
+#else
+    return np;
+#endif
+}
+
+/* §5: "the groove should be simply treated as two independent grooves".
+   The hits of groove g (sorted here by their second parameter) are
+   intervals (t1, t2) of its path parameter; a cut inside each separates
+   the two passes of its crossing. Greedy interval stabbing gives the
+   fewest cuts, each in the middle of the parameters it serves (far from
+   the crossings, where the pieces meet end to end). A Bézier chain is cut
+   at a joint where one serves, or else inside a piece and also at that
+   piece's two joints, so every piece is whole Bézier pieces or part of
+   one: its uniform parameter maps affinely onto the groove's. The pieces
+   go to records *next, ... with their own points from *pt on. */
+static void gr__split_groove(gr_grid_t *gr, int g, gr_self_hit_t *hits, int nh, int *next, int *pt)
+{
+    gr__groove_t *par = &gr->grooves_[g], *rec = gr->grooves_ + *next;
+    const double *pts = gr->points_ + 2 * par->first_point;
+    int k, i, n = par->pieces, bez = par->kind != GR_PATH_POLYLINE, nb = gr__self_cuts(par, hits, nh, rec);
     par->first_split = *next;
     par->split_count = nb + 1;
     /* piece i covers [b_(i-1), b_i]: made from the last down, so each reads
@@ -3875,31 +3918,7 @@ static void gr__split_groove(gr_grid_t *gr, int g, gr_self_hit_t *hits, int nh, 
         double ua = i > 0 ? rec[i - 1].t0 : 0, ub = i < nb ? rec[i].t0 : (bez ? n : 1);
         gr__groove_t *r = &rec[i];
         double *q = gr->points_ + 2 * *pt;
-        int np = 0;
-        if (!bez) {
-            double acc = 0;
-            gr__polyline_at(pts, par->point_count, par->length, ua, q);
-            np = 1;
-            for (k = 1; k + 1 < par->point_count; k++) { /* the vertices strictly inside */
-                double t;
-                acc += hypot(pts[2 * k] - pts[2 * k - 2], pts[2 * k + 1] - pts[2 * k - 1]);
-                t = acc / par->length;
-                if (t > ua && t < ub) { q[2 * np] = pts[2 * k]; q[2 * np + 1] = pts[2 * k + 1]; np++; }
-            }
-            gr__polyline_at(pts, par->point_count, par->length, ub, q + 2 * np);
-            np++;
-        }
-#ifndef GR_NO_CURVES
-        else if (ua == floor(ua) && ub == floor(ub)) { /* whole pieces */
-            np = deg * (int)(ub - ua) + 1;
-            memcpy(q, pts + 2 * deg * (int)ua, sizeof(double) * 2 * (size_t)np);
-        } else { /* part of one piece */
-            int j = (int)floor(ua);
-            GR_ASSERT(ub <= j + 1);
-            gr__bezier_sub(pts + 2 * deg * j, deg, ua - j, ub - j, q);
-            np = deg + 1;
-        }
-#endif
+        int np = gr__piece_points(par, pts, ua, ub, q);
         *r = *par;
         r->first_point = *pt;
         r->point_count = np;
