@@ -6931,6 +6931,27 @@ static int fr__quadric_leaf(const fr__leaf_t *L, const fr__ray_t *R, double inv_
 }
 
 
+/* Nodes whose solid box the segment misses are outside (-1) throughout:
+   their bits into *force; the leaves and boxed nodes only they reach need
+   no work (their bits into *skip, and nodes into a mask of their own:
+   top-down from the shape, so a node inside a missed one is not even
+   tested). */
+static void fr__prep_cull_nodes(fr__ray_t *R, const fr__csg_node_t *N, unsigned int nn, unsigned long long *force,
+                                unsigned long long *skip)
+{
+    unsigned long long gone = 0;
+    unsigned int i;
+    fr__ray_inv(R);
+    for (i = nn; i-- > 0;) {
+        if (!N[i].bit || (gone & N[i].bit)) continue;
+        if (!fr__slab_meets(R, N[i].box, R->t0, R->t1)) {
+            *force |= N[i].bit;
+            *skip |= N[i].leaf_mask;
+            gone |= N[i].node_mask;
+        }
+    }
+}
+
 /* ANALYTIC on a prepared CSG model (paper §3.1.1): every leaf's crossings
    of the segment, sorted; a candidate is the hit where the shape's sign
    differs between just before and just after it -- within the same
@@ -6954,28 +6975,13 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
     unsigned int *cl = mem->cleaf;
     signed char *vlo = mem->sgn, *vhi = mem->sgn + nl + nn;
     int nc = 0, k;
-    unsigned long long force = 0, skip = 0, gone = 0;
+    unsigned long long force = 0, skip = 0;
     fr__prep_layout(nl, nn, Pp->n_prog, &L, &N, &prog, Pp->mem);
     *found = 0;
     *orient = 0;
     dd = R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2];
     inv_dd = 1.0 / dd;
-    if (((const fr__prep_head_t *)Pp->mem)->n_boxed_nodes) {
-        /* nodes whose solid box the segment misses are outside (-1)
-           throughout (force); the leaves and boxed nodes only they reach
-           need no work (top-down from the shape, so a node inside a
-           missed one is not even tested) */
-        unsigned int i;
-        fr__ray_inv(R);
-        for (i = nn; i-- > 0;) {
-            if (!N[i].bit || (gone & N[i].bit)) continue;
-            if (!fr__slab_meets(R, N[i].box, R->t0, R->t1)) {
-                force |= N[i].bit;
-                skip |= N[i].leaf_mask;
-                gone |= N[i].node_mask;
-            }
-        }
-    }
+    if (((const fr__prep_head_t *)Pp->mem)->n_boxed_nodes) fr__prep_cull_nodes(R, N, nn, &force, &skip);
     if (Pp->n_prog) { /* the Taylor program of the leaves that are not quadrics */
         double ob[3];
         ts = -(R->o[0] * R->d[0] + R->o[1] * R->d[1] + R->o[2] * R->d[2]) * inv_dd;
