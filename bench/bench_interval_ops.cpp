@@ -196,6 +196,10 @@
 #define iv_empty F_iv_empty
 #define iv_entire F_iv_entire
 #define iv_exp F_iv_exp
+#define iv_fp_env_enter F_iv_fp_env_enter
+#define iv_fp_env_leave F_iv_fp_env_leave
+#define iv_fp_env_ok F_iv_fp_env_ok
+#define iv_fp_env_t F_iv_fp_env_t
 #define iv_from_affine F_iv_from_affine
 #define iv_hull F_iv_hull
 #define iv_hypot F_iv_hypot
@@ -396,6 +400,10 @@
 #undef iv_empty
 #undef iv_entire
 #undef iv_exp
+#undef iv_fp_env_enter
+#undef iv_fp_env_leave
+#undef iv_fp_env_ok
+#undef iv_fp_env_t
 #undef iv_from_affine
 #undef iv_hull
 #undef iv_hypot

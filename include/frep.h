@@ -32,7 +32,14 @@
      and fr_prune / fr_prune_ex shorten for a box. Interval and affine
      results enclose f over their inputs (rigorous with interval.h's default
      rounding); a model whose black-box callback has no interval function
-     says so (FR_ERR_NO_INTERVAL) instead of guessing.
+     says so (FR_ERR_NO_INTERVAL) instead of guessing. The entry points
+     whose answers rest on exact rounding (interval and affine evaluation,
+     pruning, fr_bound_box, fr_prepare, fr_trace, fr_solve_poly) run in
+     round to nearest with gradual underflow whatever the host set (x86
+     flush-to-zero and denormals-are-zero, which Embree recommends, or
+     another rounding mode) and restore the host's environment after
+     (interval.h's iv_fp_env_enter; docs/frep.md "Floating-point
+     environment").
    RAYS (docs/frep.md, "Polynomial solvers and ray intersection")
      fr_trace finds the first root of f(o + t d) by the analytic, stepping,
      interval-bisection or sphere-tracing method; fr_bound_box gives a box
@@ -788,6 +795,32 @@ FR_DEF const char *fr_result_string(fr_result_t r)
 #include <string.h>
 #include <stdio.h>
 #include <float.h>
+/* The public entry points whose answers rest on exact rounding (interval
+   and affine evaluation, pruning, the bounding box, preparing, tracing,
+   the polynomial solver) run call in the environment interval.h's
+   guarantee assumes and restore the host's after (iv_fp_env_enter: one
+   register read when the host's is that already). A host that keeps
+   flush-to-zero on for Embree gets the answers it would get without.
+   User callbacks run in that environment too. Without interval.h
+   (FR_NO_INTERVAL) the host's environment stays. */
+#if defined(__GNUC__) || defined(__clang__)
+#  define FR__NOINLINE __attribute__((noinline)) /* compilers may move arithmetic across the */
+#elif defined(_MSC_VER)                          /* MXCSR writes, not across a call */
+#  define FR__NOINLINE __declspec(noinline)
+#else
+#  define FR__NOINLINE
+#endif
+#ifndef FR_NO_INTERVAL
+#  define FR__IN_FP_ENV(type, call)                                                    \
+    do {                                                                               \
+        iv_fp_env_t fr__env = iv_fp_env_enter();                                       \
+        type fr__result = (call);                                                      \
+        iv_fp_env_leave(fr__env);                                                      \
+        return fr__result;                                                             \
+    } while (0)
+#else
+#  define FR__IN_FP_ENV(type, call) return (call)
+#endif
 
 /* ---- builder internals */
 
@@ -2203,7 +2236,7 @@ static fr_result_t fr__run_interval(const fr_tape_t *t, const iv_t box[3], iv_t 
     return FR_OK;
 }
 
-FR_DEF fr_result_t fr_eval_interval(const fr_tape_t *t, const iv_t box[3], void *scratch, iv_t *out)
+static FR__NOINLINE fr_result_t fr__eval_interval(const fr_tape_t *t, const iv_t box[3], void *scratch, iv_t *out)
 {
     iv_t *v = (iv_t *)scratch;
     fr_result_t r;
@@ -2212,6 +2245,11 @@ FR_DEF fr_result_t fr_eval_interval(const fr_tape_t *t, const iv_t box[3], void 
     r = fr__run_interval(t, box, v);
     if (r == FR_OK) *out = v[t->outputs[0]];
     return r;
+}
+
+FR_DEF fr_result_t fr_eval_interval(const fr_tape_t *t, const iv_t box[3], void *scratch, iv_t *out)
+{
+    FR__IN_FP_ENV(fr_result_t, fr__eval_interval(t, box, scratch, out));
 }
 
 #ifndef IV_NO_AFFINE
@@ -2251,7 +2289,7 @@ static iv_affine_t fr__af_repair(iv_affine_t x, iv_t shadow, int need_pos, int a
     return x;
 }
 
-FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], void *scratch, iv_affine_t *out)
+static FR__NOINLINE fr_result_t fr__eval_affine(const fr_tape_t *t, const iv_affine_t p[3], void *scratch, iv_affine_t *out)
 {
     iv_affine_t *v = (iv_affine_t *)scratch;
     iv_t *w, box[3];
@@ -2331,6 +2369,11 @@ FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], vo
     }
     return FR_OK;
 }
+
+FR_DEF fr_result_t fr_eval_affine(const fr_tape_t *t, const iv_affine_t p[3], void *scratch, iv_affine_t *out)
+{
+    FR__IN_FP_ENV(fr_result_t, fr__eval_affine(t, p, scratch, out));
+}
 #endif /* IV_NO_AFFINE */
 
 /* ---- pruning (libfive; Keeter 2020, section 3): evaluate the box in
@@ -2377,7 +2420,7 @@ FR_DEF fr_result_t fr_prune(const fr_tape_t *t, const iv_t box[3], void *scratch
     return fr_prune_ex(t, box, FR_PRUNE_DEFAULT, scratch, code_buf, cap, out, range);
 }
 
-FR_DEF fr_result_t fr_prune_ex(const fr_tape_t *t, const iv_t box[3], fr_prune_mode_t mode, void *scratch,
+static FR__NOINLINE fr_result_t fr__prune_ex(const fr_tape_t *t, const iv_t box[3], fr_prune_mode_t mode, void *scratch,
                                fr_instr_t *code_buf, unsigned int cap, fr_tape_t *out, iv_t *range)
 {
     iv_t *v = (iv_t *)scratch;
@@ -2428,6 +2471,12 @@ FR_DEF fr_result_t fr_prune_ex(const fr_tape_t *t, const iv_t box[3], fr_prune_m
         out->lipschitz = INFINITY;
     }
     return FR_OK;
+}
+
+FR_DEF fr_result_t fr_prune_ex(const fr_tape_t *t, const iv_t box[3], fr_prune_mode_t mode, void *scratch,
+                               fr_instr_t *code_buf, unsigned int cap, fr_tape_t *out, iv_t *range)
+{
+    FR__IN_FP_ENV(fr_result_t, fr__prune_ex(t, box, mode, scratch, code_buf, cap, out, range));
 }
 #endif /* FR_NO_INTERVAL */
 
@@ -4660,7 +4709,7 @@ static int fr__merge_roots(const double *buf, int cnt, int z, double t0, double 
     return k;
 }
 
-FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, double *r)
+static FR__NOINLINE int fr__solve_poly(const double *c, int degree, double t0, double t1, double *r)
 {
     double buf[FR_POLY_MAX_DEGREE + 1];
     const double *d;
@@ -4704,6 +4753,11 @@ FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, doub
         cnt = fr__solve_bands(d, ex, m, t0, t1, direct == -2, &known, buf);
     }
     return fr__merge_roots(buf, cnt, z, t0, t1, r);
+}
+
+FR_DEF int fr_solve_poly(const double *c, int degree, double t0, double t1, double *r)
+{
+    FR__IN_FP_ENV(int, fr__solve_poly(c, degree, t0, t1, r));
 }
 
 FR_DEF int fr_solve_quadratic(const double c[3], double r[2]) { return fr_solve_poly(c, 2, -HUGE_VAL, HUGE_VAL, r); }
@@ -5603,7 +5657,7 @@ static fr_result_t fr__g_range(fr__ray_t *R, const fr_tape_t *tp, double a, doub
         fr_result_t e;
         int k;
         for (k = 0; k < 3; k++) P[k] = iv_affine_add_d(iv_affine_mul_d(T, R->d[k]), R->o[k]);
-        e = fr_eval_affine(tp, P, R->eval, &res);
+        e = fr__eval_affine(tp, P, R->eval, &res);
         if (e == FR_OK) {
             iv_t x = iv_intersect(iv_from_affine(res), pr); /* both enclose g */
             *out = iv_is_empty(x) ? iv_from_affine(res) : x;
@@ -5615,7 +5669,7 @@ static fr_result_t fr__g_range(fr__ray_t *R, const fr_tape_t *tp, double a, doub
         iv_t box[3];
         (void)plain;
         fr__ray_box(R, a, b, box);
-        return fr_eval_interval(tp, box, R->eval, out);
+        return fr__eval_interval(tp, box, R->eval, out);
     }
 }
 
@@ -5640,7 +5694,7 @@ static void fr__prune_segment(fr__ray_t *R, const fr__seg_t *s, fr_tape_t *tapes
     if (s->depth % FR__PRUNE_EVERY != 0 || s->depth == 0 || lvl >= FR__PRUNE_LEVELS) return;
     fr__ray_box(R, s->a, s->b, box);
     R->evals++;
-    if (fr_prune_ex(&tapes[lvl - 1], box, FR_PRUNE_SIGN, R->eval, bufs + (size_t)lvl * R->tape->n_code, R->tape->n_code,
+    if (fr__prune_ex(&tapes[lvl - 1], box, FR_PRUNE_SIGN, R->eval, bufs + (size_t)lvl * R->tape->n_code, R->tape->n_code,
                     &tapes[lvl], NULL) != FR_OK)
         tapes[lvl] = tapes[lvl - 1];
 }
@@ -5822,10 +5876,10 @@ typedef struct fr__tape_cell_t {
 static fr_result_t fr__tape_cell(const void *ctx, const iv_t box[3], iv_t *r)
 {
     const fr__tape_cell_t *c = (const fr__tape_cell_t *)ctx;
-    return fr_eval_interval(c->tape, box, c->scratch, r);
+    return fr__eval_interval(c->tape, box, c->scratch, r);
 }
 
-FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
+static FR__NOINLINE fr_result_t fr__bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
                                 double out_lo[3], double out_hi[3])
 {
     fr__tape_cell_t c;
@@ -5839,6 +5893,12 @@ FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const do
     c.tape = t;
     c.scratch = scratch;
     return fr__box_search(fr__tape_cell, &c, 0, lo, hi, depth, out_lo, out_hi);
+}
+
+FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const double hi[3], int depth, void *scratch,
+                                double out_lo[3], double out_hi[3])
+{
+    FR__IN_FP_ENV(fr_result_t, fr__bound_box(t, lo, hi, depth, scratch, out_lo, out_hi));
 }
 #endif
 
@@ -5944,7 +6004,7 @@ static int fr__poly_leaf(const double *c, int deg, double s0, double s1, double 
         *sg = fr__sgn(y);
         return 0;
     }
-    nr = fr_solve_poly(c, deg, s0, s1, r);
+    nr = fr__solve_poly(c, deg, s0, s1, r);
     if (nr < 0) return -1;
     while (first < nr && r[first] <= s0) first++;
     prev = 0;
@@ -6070,7 +6130,7 @@ static fr_result_t fr__trace_analytic(fr__ray_t *R, const fr__trace_mem_t *mem, 
     if (mem->deg[out] >= 0) { /* a polynomial tape; CSG trees scale their own (fr__csg_walk) */
         double r[FR_POLY_MAX_DEGREE], oscale = (fabs(R->o[0]) + fabs(R->o[1]) + fabs(R->o[2])) /
                                                (fabs(R->d[0]) + fabs(R->d[1]) + fabs(R->d[2]));
-        int nr = fr_solve_poly(mem->taylor + (size_t)out * FR__TAYLOR_N, mem->deg[out], s0, s1, r);
+        int nr = fr__solve_poly(mem->taylor + (size_t)out * FR__TAYLOR_N, mem->deg[out], s0, s1, r);
         R->iters++;
         if (nr > 0) { *found = 1; *t_hit = ts + r[0]; *t_err = 4.0 * FR__U * (fabs(*t_hit) + oscale); }
         return FR_OK;
@@ -6738,7 +6798,7 @@ static unsigned int fr__prepare_program(const fr_tape_t *t, const int *gdeg, con
     return np;
 }
 
-FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepared_t *out)
+static FR__NOINLINE fr_result_t fr__prepare(const fr_tape_t *t, const double *bounds, fr_prepared_t *out)
 {
     size_t n;
     unsigned char *work, *need;
@@ -6801,6 +6861,11 @@ FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepa
     out->n_prog = fr__prepare_program(t, gdeg, need, outs, P);
     FR_FREE(work, t->alloc_ctx);
     return FR_OK;
+}
+
+FR_DEF fr_result_t fr_prepare(const fr_tape_t *t, const double *bounds, fr_prepared_t *out)
+{
+    FR__IN_FP_ENV(fr_result_t, fr__prepare(t, bounds, out));
 }
 
 FR_DEF void fr_prepared_free(fr_prepared_t *p)
@@ -7214,7 +7279,7 @@ static fr_result_t fr__trace_method(fr__ray_t *R, fr__trace_mem_t *mem, const fr
     }
 }
 
-FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
+static FR__NOINLINE fr_result_t fr__trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
 {
     fr_trace_desc_t zero_desc;
@@ -7266,6 +7331,12 @@ done:
     if (e != FR_OK) return e;
     fr__trace_answer(&R, &mem, desc, o, d, m, found, t_hit, t_err, leaf, orient, hit);
     return FR_OK;
+}
+
+FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
+                            const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
+{
+    FR__IN_FP_ENV(fr_result_t, fr__trace(t, o, d, t0, t1, desc_in, scratch, hit));
 }
 
 /* ==== [end section: trace] ==== */

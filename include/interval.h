@@ -28,6 +28,15 @@
      in the default rounding mode (round to nearest), with any optimisation
      flags except -ffast-math (in particular with -ffp-contract=fast and
      -march=native), without fesetround and without -frounding-math.
+     It assumes the environment C gives a program at start: round to
+     nearest and gradual underflow. A host that turns on flush-to-zero and
+     denormals-are-zero (x86 MXCSR FTZ and DAZ; Embree recommends them for
+     speed) or another rounding mode loses it: a product below 2^-1022
+     becomes 0 and the error terms the method relies on vanish (with FTZ
+     and DAZ on, 0.5% of the property test's points fall outside their
+     enclosures). iv_fp_env_ok() tells; iv_fp_env_enter() and
+     iv_fp_env_leave() set that environment around interval work and
+     restore the host's (frep.h's rigorous entry points do so themselves).
 
    THE METHOD
      Every endpoint is first computed in round-to-nearest, so it lies within
@@ -106,6 +115,14 @@
 #include <string.h>
 #include <stdint.h>
 #include <math.h>
+/* The floating-point environment (iv_fp_env_ok): MXCSR on x86, the C
+   rounding mode elsewhere. */
+#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
+#  define IV__MXCSR 1
+#  include <xmmintrin.h>
+#else
+#  include <fenv.h>
+#endif
 /* The pair path: both endpoints in one SSE register (x86 with FMA, e.g.
    -march=haswell or later / -march=native); else portable scalar code. */
 #if !defined(IV_NO_SIMD) && defined(__FMA__) && defined(__SSE4_1__) && defined(__GNUC__)
@@ -146,6 +163,66 @@ IV_DEF const char *iv_result_string(iv_result_t r);
 typedef struct iv_t {
     double lo, hi;
 } iv_t;
+
+/* The floating-point environment the guarantee assumes (THE GUARANTEE
+   above): round to nearest, gradual underflow. The calling thread's is
+   checked and set; on x86 its MXCSR (flush-to-zero, denormals-are-zero
+   and rounding bits), elsewhere its C rounding mode (fenv.h; an ARM
+   flush-to-zero bit is not seen). */
+typedef struct iv_fp_env_t {
+    unsigned int saved; /* what iv_fp_env_leave() restores */
+    int changed;        /* iv_fp_env_enter() changed the environment */
+} iv_fp_env_t;
+#ifdef IV__MXCSR
+#  define IV__MXCSR_MODES 0xE040u /* FTZ (bit 15), rounding (13-14), DAZ (6) */
+#endif
+
+/* 1 when the calling thread's environment is the one the guarantee assumes. */
+static inline int iv_fp_env_ok(void)
+{
+#ifdef IV__MXCSR
+    return (_mm_getcsr() & IV__MXCSR_MODES) == 0;
+#elif defined(FE_TONEAREST)
+    return fegetround() == FE_TONEAREST;
+#else
+    return 1;
+#endif
+}
+
+/* Sets that environment on the calling thread (only when it differs: one
+   register read otherwise) and returns what to restore. Compilers do not
+   order arithmetic against these register writes (C's FENV_ACCESS, which
+   gcc does not implement): put the interval work in a function of its own
+   that is not inlined, as frep.h does. */
+static inline iv_fp_env_t iv_fp_env_enter(void)
+{
+    iv_fp_env_t e;
+#ifdef IV__MXCSR
+    e.saved = _mm_getcsr();
+    e.changed = (e.saved & IV__MXCSR_MODES) != 0;
+    if (e.changed) _mm_setcsr(e.saved & ~IV__MXCSR_MODES);
+#elif defined(FE_TONEAREST)
+    int r = fegetround();
+    e.saved = (unsigned int)r;
+    e.changed = r != FE_TONEAREST;
+    if (e.changed) fesetround(FE_TONEAREST);
+#else
+    e.saved = 0;
+    e.changed = 0;
+#endif
+    return e;
+}
+
+/* Restores the environment iv_fp_env_enter() found. */
+static inline void iv_fp_env_leave(iv_fp_env_t e)
+{
+    if (!e.changed) return;
+#ifdef IV__MXCSR
+    _mm_setcsr(e.saved);
+#elif defined(FE_TONEAREST)
+    fesetround((int)e.saved);
+#endif
+}
 
 /* ------------------------------------------------------------------------ */
 /* Private helpers (double underscore: not part of the API).                */
