@@ -37,25 +37,6 @@ static iv_t cb_ball_iv(const iv_t b[3], void *u)
     return iv_sub(iv_point(0.25), iv_add(iv_add(iv_sqr(b[0]), iv_sqr(b[1])), iv_sqr(b[2])));
 }
 
-/* A quartic torus united with a sphere and a black-box ball. */
-static void make_model(model_t *m)
-{
-    static const double c0[3] = {0, 0, 0};
-    fr_builder_t b;
-    fr_p3_t X;
-    fr_node_t rho2, s2, tor;
-    fr_callback_t cb;
-    memset(&cb, 0, sizeof cb);
-    cb.point = cb_ball;
-    cb.interval = cb_ball_iv;
-    fr_builder_init(&b, NULL);
-    X = fr_coords(&b);
-    rho2 = fr_add(&b, fr_unary(&b, FR_OP_SQR, X.x), fr_unary(&b, FR_OP_SQR, X.y));
-    s2 = fr_add(&b, fr_add(&b, rho2, fr_unary(&b, FR_OP_SQR, X.z)), fr_const(&b, 1 - 0.09));
-    tor = fr_sub(&b, fr_mul(&b, fr_const(&b, 4), rho2), fr_unary(&b, FR_OP_SQR, s2));
-    model_finish(m, &b, fr_union(&b, tor, fr_sphere(&b, X, c0, 0.5), 0));
-    (void)cb;
-}
 
 static int same_hit(const fr_hit_t *a, const fr_hit_t *b)
 {
@@ -73,7 +54,7 @@ static void trace_answers_as_in_the_default_environment(void)
     model_t m;
     fr_prepared_t pr;
     long n = t_count(300), i, differ = 0, lost = 0, hits = 0;
-    make_model(&m);
+    make_torus_and_ball(&m);
     host_off();
     T_INT_EQ(fr_prepare(&m.tape, box, &pr), FR_OK);
     for (i = 0; i < n; i++) {
@@ -118,7 +99,7 @@ static void evaluations_as_in_the_default_environment(void)
     iv_affine_t *sa;
     fr_instr_t *buf;
     void *sp;
-    make_model(&m);
+    make_torus_and_ball(&m);
     sp = malloc(fr_scratch_size(&m.tape, FR_EVAL_PRUNE));
     si = (iv_t *)malloc(fr_scratch_size(&m.tape, FR_EVAL_INTERVAL));
     sa = (iv_affine_t *)malloc(fr_scratch_size(&m.tape, FR_EVAL_AFFINE));

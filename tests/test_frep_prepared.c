@@ -362,20 +362,12 @@ static void ray_parallel_to_cone_generator(void)
    FR_ERR_NOT_POLYNOMIAL at 2^-266 rather than a wrong root. */
 static void tiny_and_huge_direction_vectors(void)
 {
-    static const double c0[3] = {0, 0, 0}, box[6] = {-3, -3, -3, 3, 3, 3};
+    static const double box[6] = {-3, -3, -3, 3, 3, 3};
     t_rng_t g = {266};
-    fr_builder_t b;
     model_t m;
     fr_prepared_t pr;
-    fr_p3_t X;
-    fr_node_t rho2, s2, tor;
     long n = t_count(300), i, checked = 0;
-    fr_builder_init(&b, NULL);
-    X = fr_coords(&b);
-    rho2 = fr_add(&b, fr_unary(&b, FR_OP_SQR, X.x), fr_unary(&b, FR_OP_SQR, X.y));
-    s2 = fr_add(&b, fr_add(&b, rho2, fr_unary(&b, FR_OP_SQR, X.z)), fr_const(&b, 1 - 0.09));
-    tor = fr_sub(&b, fr_mul(&b, fr_const(&b, 4), rho2), fr_unary(&b, FR_OP_SQR, s2));
-    model_finish(&m, &b, fr_union(&b, tor, fr_sphere(&b, X, c0, 0.5), 0));
+    make_torus_and_ball(&m);
     T_INT_EQ(fr_prepare(&m.tape, box, &pr), FR_OK);
     for (i = 0; i < n; i++) {
         double o[3], d[3], ds[3], ref;
@@ -563,13 +555,8 @@ static void prepared_csg_many_leaves_agree(void)
         }
         u = j == 0 ? f : fr_union(&b, u, f, j % 2 ? 1.0 : 0.0);
     }
-    { /* a quartic torus about (0, 0, 1.8): 4 R^2 (x^2 + y^2) - (x^2 + y^2 + z'^2 + R^2 - r^2)^2 */
-        fr_node_t z = fr_sub(&b, p.z, fr_const(&b, 1.8)), rho2, sum, tor;
-        rho2 = fr_add(&b, fr_unary(&b, FR_OP_SQR, p.x), fr_unary(&b, FR_OP_SQR, p.y));
-        sum = fr_add(&b, fr_add(&b, rho2, fr_unary(&b, FR_OP_SQR, z)), fr_const(&b, 0.5 * 0.5 - 0.15 * 0.15));
-        tor = fr_sub(&b, fr_mul(&b, fr_const(&b, 4 * 0.5 * 0.5), rho2), fr_unary(&b, FR_OP_SQR, sum));
-        u = fr_union(&b, u, tor, 1.0);
-    }
+    /* a quartic torus about (0, 0, 1.8) */
+    u = fr_union(&b, u, torus_poly_node(&b, p.x, p.y, fr_sub(&b, p.z, fr_const(&b, 1.8)), 0.5, 0.15), 1.0);
     {
         static const double hc[3] = {0.3, -0.2, 0.1};
         u = fr_subtract(&b, u, fr_sphere(&b, p, hc, 0.5), 0.0);

@@ -32,19 +32,35 @@ static void make_sphere(model_t *m, const double c[3], double r)
     model_finish(m, &b, fr_sphere(&b, fr_coords(&b), c, r));
 }
 
-/* A torus about z as a user polynomial (degree 4):
-   4 R^2 (x^2 + y^2) - (x^2 + y^2 + z^2 + R^2 - r^2)^2 >= 0 inside. */
+/* A torus about the z axis as a user polynomial (degree 4) in the point
+   nodes (x, y, z): 4 R^2 (x^2 + y^2) - (x^2 + y^2 + z^2 + R^2 - r^2)^2 >= 0
+   inside. */
+static fr_node_t torus_poly_node(fr_builder_t *b, fr_node_t x, fr_node_t y, fr_node_t z, double R, double r)
+{
+    fr_node_t rho2 = fr_add(b, fr_unary(b, FR_OP_SQR, x), fr_unary(b, FR_OP_SQR, y));
+    fr_node_t s = fr_add(b, fr_add(b, rho2, fr_unary(b, FR_OP_SQR, z)), fr_const(b, R * R - r * r));
+    return fr_sub(b, fr_mul(b, fr_const(b, 4 * R * R), rho2), fr_unary(b, FR_OP_SQR, s));
+}
+
 static void make_torus_poly(model_t *m, double R, double r)
 {
     fr_builder_t b;
     fr_p3_t p;
-    fr_node_t rho2, s, f;
     fr_builder_init(&b, NULL);
     p = fr_coords(&b);
-    rho2 = fr_add(&b, fr_unary(&b, FR_OP_SQR, p.x), fr_unary(&b, FR_OP_SQR, p.y));
-    s = fr_add(&b, fr_add(&b, rho2, fr_unary(&b, FR_OP_SQR, p.z)), fr_const(&b, R * R - r * r));
-    f = fr_sub(&b, fr_mul(&b, fr_const(&b, 4 * R * R), rho2), fr_unary(&b, FR_OP_SQR, s));
-    model_finish(m, &b, f);
+    model_finish(m, &b, torus_poly_node(&b, p.x, p.y, p.z, R, r));
+}
+
+/* The quartic torus R = 1, r = 0.3 united with a ball of radius 0.5 at
+   its centre: a CSG of a Taylor-program leaf and a quadric. */
+static void make_torus_and_ball(model_t *m)
+{
+    static const double c0[3] = {0, 0, 0};
+    fr_builder_t b;
+    fr_p3_t p;
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    model_finish(m, &b, fr_union(&b, torus_poly_node(&b, p.x, p.y, p.z, 1, 0.3), fr_sphere(&b, p, c0, 0.5), 0));
 }
 
 /* HyperFun's torus (with a square root: not polynomial). */
