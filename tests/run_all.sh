@@ -98,14 +98,26 @@ for n in sharp_cube_icosphere rounded_edges; do
   add_counts "selftest $n" "$log/selftest_$n.all" "$status"
 done
 
-echo "== short fuzz runs (${FILIGREE_FUZZ_SECONDS:-20} s each)" >&2
+echo "== short fuzz runs (${FILIGREE_FUZZ_SECONDS:-20} s each, $jobs at a time)" >&2
+fuzzers=()
 for f in "$build"/../fuzz/fuzz_*; do
   # the fuzzers only: their corpus folders (fuzz_*.corpus, from an earlier
   # run) are executable too
-  [ -f "$f" ] && [ -x "$f" ] || continue
-  n=$(basename "$f"); corpus=build/fuzz/$n.corpus; mkdir -p "$corpus"
+  [ -f "$f" ] && [ -x "$f" ] && fuzzers+=("$f")
+done
+running=0
+for f in "${fuzzers[@]}"; do
+  n=$(basename "$f"); corpus=build/fuzz/$n.corpus; mkdir -p "$corpus"; rm -f "$log/$n.fuzz_status"
   seeds=""; [ -d tests/corpus/$n ] && seeds=tests/corpus/$n
-  if "$f" -max_total_time="${FILIGREE_FUZZ_SECONDS:-20}" -print_final_stats=0 "$corpus" $seeds > "$log/$n.log" 2>&1; then
+  ( "$f" -max_total_time="${FILIGREE_FUZZ_SECONDS:-20}" -print_final_stats=0 "$corpus" $seeds > "$log/$n.log" 2>&1
+    echo $? > "$log/$n.fuzz_status" ) &
+  running=$((running + 1))
+  if [ "$running" -ge "$jobs" ]; then wait -n; running=$((running - 1)); fi
+done
+wait
+for f in "${fuzzers[@]}"; do
+  n=$(basename "$f")
+  if [ "$(cat "$log/$n.fuzz_status" 2>/dev/null)" = 0 ]; then
     total_pass=$((total_pass + 1)); printf '%-44s ok\n' "fuzz $n" >&2
   else
     total_fail=$((total_fail + 1)); echo "fuzz $n: crash or sanitizer report; see $log/$n.log" >&2
