@@ -2741,15 +2741,17 @@ static int fr__find_sym(const fr__parser_t *p, const char *name)
         if (!strcmp(p->syms[i].name, name)) return (int)i;
     return -1;
 }
-static int fr__new_sym(fr__parser_t *p, const char *name, int is_array, unsigned int len)
+static int fr__new_sym(fr__parser_t *p, const char *name, int is_array, unsigned int len, int line, int col)
 {
     fr__sym_t *s;
-    if (p->n_syms >= FR__P_MAX_SYMS) {
-        fr__perr(p, FR_ERR_LIMIT, "too many variables");
-        return -1;
-    }
-    if (is_array && (len == 0 || len > FR__P_POOL - p->n_pool)) {
-        fr__perr(p, FR_ERR_LIMIT, len == 0 ? "array length must be at least 1" : "arrays too large in total");
+    const char *limit = NULL;
+    if (p->n_syms >= FR__P_MAX_SYMS) limit = "too many variables";
+    else if (is_array && len == 0) limit = "array length must be at least 1";
+    else if (is_array && len > FR__P_POOL - p->n_pool) limit = "arrays too large in total";
+    if (limit) { /* reported at line:col, where the caller's name or length stands */
+        p->tline = line;
+        p->tcol = col;
+        fr__perr(p, FR_ERR_LIMIT, limit);
         return -1;
     }
     s = &p->syms[p->n_syms];
@@ -3347,7 +3349,7 @@ static void fr__array_decl(fr__parser_t *p)
         }
         fr__next(p);
         if (!fr__expect(p, ']', "after the array length")) return;
-        if (fr__new_sym(p, name, 1, (unsigned int)n) < 0) return;
+        if (fr__new_sym(p, name, 1, (unsigned int)n, p->tline, p->tcol) < 0) return;
         if (!fr__is(p, ',')) break;
         fr__next(p);
     }
@@ -3435,14 +3437,7 @@ static void fr__statement(fr__parser_t *p)
                 } else {
                     fr_node_t n = fr__scalar_expr(p, "on the right of '='");
                     if (p->err != FR_OK) return;
-                    if (si < 0) { /* a new variable: a limit points at its name */
-                        int tl = p->tline, tc = p->tcol;
-                        p->tline = nline;
-                        p->tcol = ncol;
-                        si = fr__new_sym(p, name, 0, 0);
-                        p->tline = tl;
-                        p->tcol = tc;
-                    }
+                    if (si < 0) si = fr__new_sym(p, name, 0, 0, nline, ncol); /* a limit points at its name */
                     if (si < 0) return;
                     p->syms[si].node = n;
                     p->syms[si].assigned = 1;
@@ -3467,7 +3462,7 @@ static void fr__header(fr__parser_t *p)
         fr__perr(p, FR_ERR_PARSE, "expected the model name");
         return;
     }
-    p->model = fr__new_sym(p, p->id, 0, 0);
+    p->model = fr__new_sym(p, p->id, 0, 0, p->tline, p->tcol);
     fr__next(p);
     if (!fr__expect(p, '(', "after the model name")) return;
     for (;;) {
@@ -3483,7 +3478,7 @@ static void fr__header(fr__parser_t *p)
         }
         fr__next(p);
         if (!fr__expect(p, ']', "after the array length")) return;
-        si = fr__new_sym(p, name, 1, (unsigned int)n);
+        si = fr__new_sym(p, name, 1, (unsigned int)n, p->tline, p->tcol);
         if (si < 0) return;
         if (k == 0) {
             fr_p3_t X = fr_coords(&p->b);
@@ -5026,28 +5021,22 @@ static FR__HOT_INLINE void fr__tpoly_step(const fr_instr_t *in, const double *A,
 }
 
 /* The degree of a slot's coefficients c of degree dg (-1: none), trailing
-   zeros trimmed; -1 if any is not finite (an overflow on this ray). */
-static int fr__checked_degree(const double *c, int dg)
-{
-    int k;
-    for (k = 0; k <= dg; k++) if (!(c[k] - c[k] == 0)) return -1;
-    return dg >= 0 ? fr__tpoly_trim(c, dg) : -1;
-}
-
-/* fr__checked_degree for the ray tracers: also -1 when a coefficient is
-   subnormal. Coefficients that small have lost their relative precision
-   (a quartic model 1e-80 across has f ~ 1e-320 on the ray, and so does a
-   direction 1e-80 long in the t^4 term): roots and error bounds from them
-   would be wrong by orders of magnitude while claiming double accuracy,
-   so the ray takes the path an overflow takes (fr_trace's AUTO: the
-   interval method, which never certifies from such values alone;
-   ANALYTIC: FR_ERR_NOT_POLYNOMIAL). */
-static int fr__trace_degree(const double *c, int dg)
+   zeros trimmed; -1 if any is not finite (an overflow on this ray) or,
+   nonzero, below min_abs in magnitude. The ray tracers pass
+   FR__TRACE_MIN_COEF: subnormal coefficients have lost their relative
+   precision (a quartic model 1e-80 across has f ~ 1e-320 on the ray, and
+   so does a direction 1e-80 long in the t^4 term), roots and error bounds
+   from them would be wrong by orders of magnitude while claiming double
+   accuracy, so the ray takes the path an overflow takes (fr_trace's AUTO:
+   the interval method, which never certifies from such values alone;
+   ANALYTIC: FR_ERR_NOT_POLYNOMIAL). fr_ray_poly passes 0. */
+#define FR__TRACE_MIN_COEF DBL_MIN
+static int fr__checked_degree(const double *c, int dg, double min_abs)
 {
     int k;
     for (k = 0; k <= dg; k++)
-        if (c[k] != 0 && fabs(c[k]) < DBL_MIN) return -1;
-    return fr__checked_degree(c, dg);
+        if (!(c[k] - c[k] == 0) || (c[k] != 0 && fabs(c[k]) < min_abs)) return -1;
+    return dg >= 0 ? fr__tpoly_trim(c, dg) : -1;
 }
 
 /* Evaluate every slot of the tape as a polynomial in t (paper §3.1.1: turn
@@ -5089,7 +5078,7 @@ FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const doub
     deg = (int *)(void *)((unsigned char *)scratch + fr__align8((size_t)t->n_code * FR__TAYLOR_N * sizeof(double)));
     fr__taylor_run(t, o, d, P, deg, NULL);
     out = t->outputs[0];
-    dg = fr__checked_degree(P + (size_t)out * FR__TAYLOR_N, deg[out]);
+    dg = fr__checked_degree(P + (size_t)out * FR__TAYLOR_N, deg[out], 0);
     if (dg < 0) return FR_ERR_NOT_POLYNOMIAL;
     for (k = 0; k <= FR_POLY_MAX_DEGREE; k++) coef[k] = k <= dg ? P[(size_t)out * FR__TAYLOR_N + (size_t)k] : 0.0;
     *degree = dg;
@@ -5929,17 +5918,17 @@ static double fr__analytic_expand(const fr__ray_t *R, const fr__trace_mem_t *mem
         fr__prep_layout(P->n_leaves, P->n_nodes, P->n_prog, NULL, NULL, &prog, P->mem);
         dg = prog[P->n_prog - 1].dc;
         fr__prog_run(R->tape, prog, P->n_prog, ob, R->d, mem->taylor, with_mag ? mem->taylor_mag : NULL);
-        mem->deg[out] = fr__trace_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, dg);
-        if (with_mag) mem->deg_mag[out] = fr__trace_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, dg);
+        mem->deg[out] = fr__checked_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, dg, FR__TRACE_MIN_COEF);
+        if (with_mag) mem->deg_mag[out] = fr__checked_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, dg, FR__TRACE_MIN_COEF);
         if (mem->deg[out] >= 0 && (!with_mag || mem->deg_mag[out] >= 0)) return ts;
     }
     fr__taylor_run(R->tape, ob, R->d, mem->taylor, mem->deg, NULL);
     {
         unsigned int out = R->tape->outputs[0];
-        mem->deg[out] = fr__trace_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, mem->deg[out]);
+        mem->deg[out] = fr__checked_degree(mem->taylor + (size_t)out * FR__TAYLOR_N, mem->deg[out], FR__TRACE_MIN_COEF);
         if (with_mag && mem->deg[out] >= 0) {
             fr__taylor_run(R->tape, ob, R->d, mem->taylor_mag, mem->deg_mag, mem->taylor);
-            mem->deg_mag[out] = fr__trace_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, mem->deg_mag[out]);
+            mem->deg_mag[out] = fr__checked_degree(mem->taylor_mag + (size_t)out * FR__TAYLOR_N, mem->deg_mag[out], FR__TRACE_MIN_COEF);
             if (mem->deg_mag[out] < 0) mem->deg[out] = -1;
         }
     }
@@ -5964,7 +5953,7 @@ static int fr__csg_mark(const fr_tape_t *t, const fr__trace_mem_t *mem)
         if (!mem->need[i]) continue;
         mem->list[cnt++] = i;
         if (mem->deg[i] >= 0) { /* a leaf: it must not have overflowed on this ray */
-            if (fr__trace_degree(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i]) < 0) return -1;
+            if (fr__checked_degree(mem->taylor + (size_t)i * FR__TAYLOR_N, mem->deg[i], FR__TRACE_MIN_COEF) < 0) return -1;
             continue;
         }
         switch ((fr_op_t)in->op) {
@@ -7066,7 +7055,7 @@ static fr_result_t fr__trace_prepared_csg(fr__ray_t *R, const fr__trace_mem_t *m
         if (lf->quadric) m = fr__quadric_leaf(lf, R, inv_dd, culled, cand + nc, &sg);
         else {
             const double *c = mem->taylor + (size_t)lf->slot * FR__TAYLOR_N;
-            int dg = fr__trace_degree(c, lf->degree);
+            int dg = fr__checked_degree(c, lf->degree, FR__TRACE_MIN_COEF);
             m = dg < 0 ? -1 : fr__poly_leaf(c, dg, R->t0 - ts, R->t1 - ts, ts, culled, cand + nc, &sg);
         }
         if (m < 0) return FR_ERR_NOT_POLYNOMIAL;
