@@ -4776,7 +4776,7 @@ RE_DEF re_result_t re_build_sizes(const re_scene_desc_t *desc, re_sizes_t *sizes
     re_stats_t st;
     size_t high = 0;
     if (rc != RE_OK) return rc;
-    if (!sizes) return RE_ERR_INVALID_ARG;
+    if (!sizes) return re__diag_fail(diag, RE_ERR_INVALID_ARG, -1, -1, "NULL sizes");
     memset(&st, 0, sizeof st);
     if ((rc = re__run_tasks(desc, NULL, diag ? diag : &dg, &st, &high)) != RE_OK) return rc;
     sizes->scene_bytes = re__header_bytes(desc->object_count) + st.bytes;
@@ -4792,9 +4792,12 @@ RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem, s
     re_scene_t *S;
     unsigned i;
     if (rc != RE_OK) return rc;
-    if (!scene || !scene_mem || ((size_t)scene_mem & 15u) || (!scratch && scratch_bytes)) return RE_ERR_INVALID_ARG;
+    if (!scene || !scene_mem || (!scratch && scratch_bytes))
+        return re__diag_fail(diag, RE_ERR_INVALID_ARG, -1, -1, "NULL scene or scene_mem, or NULL scratch with scratch_bytes > 0");
+    if ((size_t)scene_mem & 15u) return re__diag_fail(diag, RE_ERR_INVALID_ARG, -1, -1, "scene_mem is not 16-byte aligned");
     *scene = NULL;
-    if (scene_bytes < re__header_bytes(desc->object_count)) return RE_ERR_BUFFER_TOO_SMALL;
+    if (scene_bytes < re__header_bytes(desc->object_count))
+        return re__diag_fail(diag, RE_ERR_BUFFER_TOO_SMALL, -1, -1, "scene_bytes smaller than re_build_sizes() asked");
     S = (re_scene_t *)scene_mem;
     /* the whole header, its alignment gaps too: the block's bytes are then
        the same whatever the buffer held (re__skip does it past each array) */
@@ -4814,7 +4817,8 @@ RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem, s
         rc = re__analyze(desc, i, 0, 1, &ar, diag, &an, &F, 0);
         if (rc != RE_OK) return rc;
         need = re__object_bytes(&an, &F);
-        if ((size_t)(at - (unsigned char *)scene_mem) + need > scene_bytes) return RE_ERR_BUFFER_TOO_SMALL;
+        if ((size_t)(at - (unsigned char *)scene_mem) + need > scene_bytes)
+            return re__diag_fail(diag, RE_ERR_BUFFER_TOO_SMALL, i, -1, "scene_bytes smaller than re_build_sizes() asked");
         re__pack(&an, &F, at, &S->objects[i]);
         at += need;
         an.st.bytes = need;
@@ -4842,7 +4846,7 @@ RE_DEF re_result_t re_build(const re_scene_desc_t *desc, re_scene_t **scene, re_
     size_t hb, high = 0;
     re_scene_t *S;
     if (rc != RE_OK) return rc;
-    if (!scene) return RE_ERR_INVALID_ARG;
+    if (!scene) return re__diag_fail(diag, RE_ERR_INVALID_ARG, -1, -1, "NULL scene");
     *scene = NULL;
     hb = re__header_bytes(desc->object_count);
     S = (re_scene_t *)RE_MALLOC(hb, desc->alloc_ctx);

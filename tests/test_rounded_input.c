@@ -319,12 +319,14 @@ static void null_and_junk_arguments(void)
     memset(&mesh, 0, sizeof mesh);
     T_INT_EQ(re_build(NULL, &s, &dg), RE_ERR_INVALID_ARG);
     T_INT_EQ(re_build(&desc, NULL, &dg), RE_ERR_INVALID_ARG);
+    T_INT_EQ(dg.result, RE_ERR_INVALID_ARG), T_CHECK(strstr(dg.message, "NULL scene") != NULL);
     desc.object_count = 1;
     T_INT_EQ(re_build(&desc, &s, &dg), RE_ERR_INVALID_ARG);
     desc.objects = &mesh;
     mesh.index_count = 3, mesh.vertex_count = 3, mesh.radius = 1; /* NULL arrays */
     T_INT_EQ(re_build(&desc, &s, &dg), RE_ERR_INVALID_ARG);
     T_INT_EQ(re_build_sizes(&desc, NULL, &dg), RE_ERR_INVALID_ARG);
+    T_INT_EQ(dg.result, RE_ERR_INVALID_ARG);
     desc.radius_policy = (re_radius_policy_t)7;
     T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_ERR_INVALID_ARG);
     desc.radius_policy = RE_RADIUS_CLAMP;
@@ -424,9 +426,17 @@ static void input_variants_agree(void)
     T_INT_EQ(re_build(&desc, &s[0], &dg), RE_OK);
     T_INT_EQ(re_build_sizes(&desc, &sz, &dg), RE_OK);
     mem = malloc(sz.scene_bytes), scratch = malloc(sz.scratch_bytes);
+    /* each refusal fills the diagnostic with its code and a reason */
     T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes - 16, scratch, sz.scratch_bytes, &s[1], &dg), RE_ERR_BUFFER_TOO_SMALL);
+    T_INT_EQ(dg.result, RE_ERR_BUFFER_TOO_SMALL), T_CHECK(strstr(dg.message, "scene_bytes") != NULL);
+    T_INT_EQ(re_build_into(&desc, mem, 8, scratch, sz.scratch_bytes, &s[1], &dg), RE_ERR_BUFFER_TOO_SMALL);
+    T_INT_EQ(dg.result, RE_ERR_BUFFER_TOO_SMALL), T_CHECK(strstr(dg.message, "scene_bytes") != NULL);
     T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes / 2, &s[1], &dg), RE_ERR_BUFFER_TOO_SMALL);
+    T_INT_EQ(dg.result, RE_ERR_BUFFER_TOO_SMALL), T_CHECK(strstr(dg.message, "scratch") != NULL);
     T_INT_EQ(re_build_into(&desc, (char *)mem + 8, sz.scene_bytes - 16, scratch, sz.scratch_bytes, &s[1], &dg), RE_ERR_INVALID_ARG);
+    T_INT_EQ(dg.result, RE_ERR_INVALID_ARG), T_CHECK(strstr(dg.message, "aligned") != NULL);
+    T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes, NULL, &dg), RE_ERR_INVALID_ARG);
+    T_INT_EQ(dg.result, RE_ERR_INVALID_ARG), T_CHECK(strstr(dg.message, "NULL") != NULL);
     T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes, &s[1], &dg), RE_OK);
     {
         re_stats_t a, b;
