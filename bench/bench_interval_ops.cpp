@@ -78,6 +78,7 @@
 #define iv__clamp_unit F_iv__clamp_unit
 #define iv__cos_narrow F_iv__cos_narrow
 #define iv__cos_point F_iv__cos_point
+#define iv__dd_err F_iv__dd_err
 #define iv__dd_mul F_iv__dd_mul
 #define iv__dd_renorm F_iv__dd_renorm
 #define iv__div_pos F_iv__div_pos
@@ -120,6 +121,7 @@
 #define iv__periodic F_iv__periodic
 #define iv__pow_point F_iv__pow_point
 #define iv__pown_bounds F_iv__pown_bounds
+#define iv__pown_less F_iv__pown_less
 #define iv__pown_mag F_iv__pown_mag
 #define iv__pun_t F_iv__pun_t
 #define iv__q F_iv__q
@@ -282,6 +284,7 @@
 #undef iv__clamp_unit
 #undef iv__cos_narrow
 #undef iv__cos_point
+#undef iv__dd_err
 #undef iv__dd_mul
 #undef iv__dd_renorm
 #undef iv__div_pos
@@ -324,6 +327,7 @@
 #undef iv__periodic
 #undef iv__pow_point
 #undef iv__pown_bounds
+#undef iv__pown_less
 #undef iv__pown_mag
 #undef iv__pun_t
 #undef iv__q

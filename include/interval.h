@@ -111,6 +111,7 @@
 #ifndef FILIGREE_IV_H
 #define FILIGREE_IV_H
 
+#include <limits.h>
 #include <stddef.h>
 #include <string.h>
 #include <stdint.h>
@@ -791,7 +792,8 @@ IV_DEF iv_t iv_exp(iv_t x);
 IV_DEF iv_t iv_log(iv_t x);
 /* sin, cos: exact extremum detection for widths below pi, tested at 1e15
    and beyond; intervals wider than 2pi (and every non-point interval at
-   |x| >= 2^55, where doubles are 8 apart) give [-1, 1] in constant time. */
+   |x| >= 2^55, where doubles are 8 apart, and those wider than pi in
+   [2^54, 2^55), where they are 4 apart) give [-1, 1] in constant time. */
 IV_DEF iv_t iv_sin(iv_t x);
 IV_DEF iv_t iv_cos(iv_t x);
 /* tan: entire when x may contain a pole (width >= 3.14 or a sign change of
@@ -1484,11 +1486,15 @@ static iv_t iv__periodic(iv_t x, iv_t (*narrow)(double, double))
     w = x.hi - x.lo;
     if (w < IV__NARROW) return narrow(x.lo, x.hi);
     if (!(w < IV__FULL_PERIOD)) return iv__raw(-1.0, 1.0);
-    /* each piece is about w/3 < 2.1 wide, far below pi even after the
-       rounding of m1, m2 (at most half an ulp of |x|, and |x| < 2^55 here
-       since doubles there are less than 6.28 apart) */
+    /* each piece is about w/3 < 2.1 wide, below pi after the rounding of
+       m1, m2 wherever doubles are at most 2 apart (|x| < 2^54). In
+       [2^54, 2^55) they are 4 apart and w = 4: the cut points round back
+       onto the ends, leaving a piece wider than pi, which may hold a
+       maximum and a minimum that narrow() cannot see (the differences
+       below are exact there) */
     m1 = iv__min(iv__max(x.lo + w / 3, x.lo), x.hi);
     m2 = iv__min(iv__max(x.hi - w / 3, m1), x.hi);
+    if (!(m1 - x.lo < IV__NARROW && m2 - m1 < IV__NARROW && x.hi - m2 < IV__NARROW)) return iv__raw(-1.0, 1.0);
     return iv_hull(iv_hull(narrow(x.lo, m1), narrow(m1, m2)), narrow(m2, x.hi));
 }
 
@@ -1525,6 +1531,7 @@ IV_DEF iv_t iv_pow(iv_t x, iv_t y)
     iv_t r;
     if (iv_is_empty(x) || iv_is_empty(y) || x.hi < 0) return iv_empty();
     if (x.lo <= 0) x.lo = 0.0; /* also turns -0 into +0: pow(-0, -3) = -inf */
+    if (x.hi == 0) x.hi = 0.0;
     r = iv_hull(iv_hull(iv__pow_point(x.lo, y.lo), iv__pow_point(x.lo, y.hi)),
                 iv_hull(iv__pow_point(x.hi, y.lo), iv__pow_point(x.hi, y.hi)));
     /* pow(0, y) = 0 exactly only for y > 0: a corner 0^0 or 0^-y is handled
@@ -1564,15 +1571,25 @@ static void iv__dd_renorm(double *h, double *l, long long *ex)
    (Joldes, Muller, Popescu 2017, DWTimesDW); we charge 2^-100 per
    operation, an 8x margin that also absorbs contraction effects. */
 #define IV__DD_REL 7.888609052210118e-31 /* 2^-100 */
+/* Relative error bound of a product whose factors carry relative errors
+   ea and eb, formed with one more operation: (1+ea)(1+eb)(1+2^-100) - 1.
+   Errors compound through the squarings (a square doubles its base's
+   error), so after the square-and-multiply of x^n the bound grows like
+   |n| 2^-100, not like the number of operations. The bound is itself
+   computed in double, rounded to nearest: its own relative error (a few
+   2^-53) is covered by the factor IV__DD_SLACK where it is used. */
+static double iv__dd_err(double ea, double eb) { return ea + eb + ea * eb + IV__DD_REL * (1 + ea) * (1 + eb); }
+#define IV__DD_SLACK 1.0000001
 
 /* Bounds lo <= x^n <= hi for x > 0 finite, n != 0. Each is the correctly
    rounded bound or one double beyond it when the result is normal. */
 static void iv__pown_bounds(double x, int n, double *lo, double *hi)
 {
     double rh = 1.0, rl = 0.0, bh, bl = 0.0, s, l, err, dn, up;
+    double er = 0.0, eb = 0.0; /* relative error bounds of r and of the base */
     long long re = 0, be;
     unsigned long k = n < 0 ? 0ul - (unsigned long)n : (unsigned long)n;
-    int ops = 0, exact = 1, e0;
+    int exact = 1, e0;
     bh = frexp(x, &e0);
     be = e0;
     while (k) {
@@ -1581,7 +1598,7 @@ static void iv__pown_bounds(double x, int n, double *lo, double *hi)
             re += be;
             iv__dd_renorm(&rh, &rl, &re);
             exact &= rl == 0;
-            ops++;
+            er = iv__dd_err(er, eb);
         }
         k >>= 1;
         if (k) {
@@ -1589,11 +1606,12 @@ static void iv__pown_bounds(double x, int n, double *lo, double *hi)
             be *= 2;
             iv__dd_renorm(&bh, &bl, &be);
             exact &= bl == 0;
-            ops++;
+            eb = iv__dd_err(eb, eb);
         }
     }
     if (n < 0) {
-        /* 1/(rh + rl): Newton correction from the exact residual 1 - q rh */
+        /* 1/(rh + rl): Newton correction from the exact residual 1 - q rh;
+           1/(v(1+e)) = (1/v)(1 - e/(1+e)), then two operations */
         double q = 1.0 / rh;
         double res = fma(-q, rh, 1.0) - q * rl;
         double corr = res * q;
@@ -1601,11 +1619,11 @@ static void iv__pown_bounds(double x, int n, double *lo, double *hi)
         rh = q + corr;
         rl = corr - (rh - q);
         re = -re;
-        ops += 2;
+        er = iv__dd_err(iv__dd_err(er / (1 - er), 0.0), 0.0);
     }
     s = rh + rl;
     l = rl - (s - rh);
-    err = (double)(ops + 1) * IV__DD_REL * s;
+    err = iv__dd_err(er, 0.0) * IV__DD_SLACK * s;
     /* s is within half an ulp of the value; l (and the error bound) say on
        which side the value lies when that is certain */
     dn = exact && l == 0 ? s : l > err ? s : iv__down(s);
@@ -1786,6 +1804,14 @@ enum { IV__LIN_TAYLOR, IV__LIN_CHEBYSHEV, IV__LIN_MINRANGE, IV__LIN_AUTO };
    of widths: independent of scale. */
 #define IV__LIN_RANGE_RATIO 1.1
 
+/* x^(n - k) for k = 1, 2 (the derivatives of x^n), also where n - k is
+   below INT_MIN: then as x^(n + 2) x^(-2 - k), whose enclosures' product
+   encloses it. */
+static iv_t iv__pown_less(iv_t x, int n, int k)
+{
+    return n >= INT_MIN + k ? iv_pow_n(x, n - k) : iv_mul(iv_pow_n(x, n + 2), iv_pow_n(x, -2 - k));
+}
+
 /* f (deriv = 0) or f' (deriv = 1) over x, rigorously. */
 static iv_t iv__aff_fn(int f, int n, iv_t x, int deriv)
 {
@@ -1794,7 +1820,7 @@ static iv_t iv__aff_fn(int f, int n, iv_t x, int deriv)
     case IV__F_LOG: return deriv ? iv_recip(x) : iv_log(x);
     case IV__F_SQRT: return deriv ? iv_recip(iv_mul_d(iv_sqrt(x), 2.0)) : iv_sqrt(x);
     case IV__F_RECIP: return deriv ? iv_neg(iv_recip(iv_sqr(x))) : iv_recip(x);
-    case IV__F_POWN: return deriv ? iv_mul_d(iv_pow_n(x, n - 1), (double)n) : iv_pow_n(x, n);
+    case IV__F_POWN: return deriv ? iv_mul_d(iv__pown_less(x, n, 1), (double)n) : iv_pow_n(x, n);
     default: return deriv ? iv_recip(iv_add_d(iv_sqr(x), 1.0)) : iv_atan(x);
     }
 }
@@ -1822,7 +1848,7 @@ static double iv__aff_tangent_point(int f, int n, double alpha, iv_t dom)
     case IV__F_LOG: u = 1.0 / alpha; break;
     case IV__F_SQRT: u = 0.25 / (alpha * alpha); break;
     case IV__F_RECIP: u = side * sqrt(-1.0 / alpha); break;
-    case IV__F_POWN: u = side * pow(fabs(alpha / (double)n), 1.0 / (double)(n - 1)); break;
+    case IV__F_POWN: u = side * pow(fabs(alpha / (double)n), 1.0 / ((double)n - 1.0)); break;
     default: u = side * sqrt(1.0 / alpha - 1.0); break;
     }
     if (!(u == u)) u = iv_mid(dom);
@@ -1877,7 +1903,8 @@ static iv_affine_t iv__aff_taylor_fn(iv_affine_t x, iv_t dom, double c, int f, i
     /* -1/(4 x sqrt x) */
     case IV__F_SQRT: d2 = iv_neg(iv_recip(iv_mul_d(iv_mul(dom, iv_sqrt(dom)), 4.0))); break;
     case IV__F_RECIP: d2 = iv_mul_d(iv_pow_n(dom, -3), 2.0); break;
-    case IV__F_POWN: d2 = iv_mul_d(iv_pow_n(dom, n - 2), (double)n * (double)(n - 1)); break;
+    /* n (n - 1) is not a double beyond |n| ~ 2^26.5: two exact factors */
+    case IV__F_POWN: d2 = iv_mul_d(iv_mul_d(iv__pown_less(dom, n, 2), (double)n), (double)n - 1.0); break;
     /* -2x / (1 + x^2)^2 */
     default: d2 = iv_div(iv_mul_d(dom, -2.0), iv_sqr(iv_add_d(iv_sqr(dom), 1.0))); break;
     }

@@ -3,6 +3,7 @@
    bounds of the libm-based functions and of pow_n; affine bad input. */
 #define IV_IMPLEMENTATION
 #include "test_interval_gen.h"
+#include <limits.h>
 
 /* Doubles from x outward to y (x <= y), 0 when x == y. */
 static long long gap(double x, double y) { return ig_ulps(x, y); }
@@ -176,6 +177,59 @@ static void pow_n_tightness(void)
     fprintf(stderr, "    pow_n: worst endpoint %lld ulp outside the correctly rounded one\n", worst);
 }
 
+/* x^n near x = 1 at the largest |n|: the double-double error compounds
+   through the squarings (about |n| 2^-100), far beyond a per-operation
+   charge. The two fixed points fell outside their enclosures when the
+   bound grew with the number of operations (found by a search over 4e7
+   points); the sweep asserts containment and one ulp of tightness. */
+static void pow_n_largest_exponents(void)
+{
+    static const struct { double x; int n; } fixed[] = {{0x1.000003cb64689p+0, 2147483647}, {0x1.00000494cf5dep+0, -2147483647}};
+    static const int ns[] = {2147483647, -2147483647, INT_MIN, 1073741825, -1073741825, 1000003, -1000003, 1001, -1001};
+    t_rng_t r = {17};
+    long i, m = t_count(20000);
+    long long worst = 0;
+    for (i = 0; i < 2 + m; i++) {
+        int n = i < 2 ? fixed[i].n : ns[i % 9];
+        /* |n log x| up to 600: the power stays a normal double */
+        double x = i < 2 ? fixed[i].x : 1 + (t_rng_u64(&r) % 2 ? 1 : -1) * t_rng_range(&r, 0, 600.0 / fabs((double)n));
+        q_t v = expq((q_t)n * log1pq((q_t)x - 1));
+        iv_t z = iv_pow_n(iv_point(x), n);
+        if (!T_CHECK(ig_in(z, v))) {
+            fprintf(stderr, "    iv_pow_n(%a, %d) = [%a, %a]\n", x, n, z.lo, z.hi);
+            break;
+        }
+        if (gap(z.lo, ig_rd(v)) > worst) worst = gap(z.lo, ig_rd(v));
+        if (gap(ig_ru(v), z.hi) > worst) worst = gap(ig_ru(v), z.hi);
+    }
+    T_LE(worst, 1);
+}
+
+/* sin and cos of [a, a + 4] where doubles are 4 apart (2^54 <= a < 2^55):
+   the interval is wider than pi and has no double inside to cut it at.
+   Containment of the true range (end values, and +-1 where a maximum or
+   minimum of the function lies inside, located in __float128). */
+static void sin_cos_width_4_below_2_55(void)
+{
+    long k, m = t_count(3000), wide = 0;
+    for (k = 0; k < m; k++) {
+        double a = 0x1p54 + 4.0 * (double)(k * 1234567 % 2000000000), b = a + 4;
+        q_t qa = (q_t)a, qb = (q_t)b, sa = sinq(qa), sb = sinq(qb), ca = cosq(qa), cb = cosq(qb);
+        /* whether a + x0 + 2 pi j lies in [a, b] for some j: x0 = pi/2 (sin max), 3pi/2 (sin min), 0 (cos max), pi (cos min) */
+#define HAS(x0) (floorq((qb - (x0)) / (2 * M_PIq)) != floorq((qa - (x0)) / (2 * M_PIq)))
+        q_t slo = HAS(3 * M_PIq / 2) ? -1 : fminq(sa, sb), shi = HAS(M_PIq / 2) ? 1 : fmaxq(sa, sb);
+        q_t clo = HAS(M_PIq) ? -1 : fminq(ca, cb), chi = HAS(0) ? 1 : fmaxq(ca, cb);
+#undef HAS
+        iv_t s = iv_sin(iv_make(a, b)), c = iv_cos(iv_make(a, b));
+        if (!T_CHECK(ig_in(s, slo) && ig_in(s, shi) && ig_in(c, clo) && ig_in(c, chi))) {
+            fprintf(stderr, "    sin, cos of [%.17g, %.17g]\n", a, b);
+            break;
+        }
+        wide += s.lo == -1 && s.hi == 1;
+    }
+    T_GT(wide, 0); /* the sweep reached intervals whose answer is [-1, 1] */
+}
+
 /* Measured ulp distance of the libm-based functions, asserted against the
    derived bound LIBM_BOUND. */
 static void libm_functions_ulp_bound(void)
@@ -241,6 +295,11 @@ static void pow_domain(void)
     z = iv_pow(iv_make(0, 2), iv_make(-1, 1));
     T_EQ(z.lo, 0); T_EQ(z.hi, HUGE_VAL);
     T_CHECK(iv_is_empty(iv_pow(iv_point(0), iv_point(-1))));
+    /* a -0 upper end is 0 too: pow(-0, -1) = -inf must not leak in */
+    T_CHECK(iv_is_empty(iv_pow(iv_point(-0.0), iv_point(-1))));
+    T_CHECK(iv_is_empty(iv_pow(iv_make(-3, -0.0), iv_point(-3))));
+    z = iv_pow(iv_make(-3, -0.0), iv_point(2));
+    T_EQ(z.lo, 0); T_EQ(z.hi, 0);
     z = iv_pow(iv_make(-0.0, 2), iv_point(-3));
     T_GE(z.lo, 0.125 * 0.99); T_EQ(z.hi, HUGE_VAL);
 }
@@ -357,6 +416,28 @@ static void affine_linearisations(void)
         T_LE(iv_width(z), 1e-14);
     }
 }
+
+/* iv_affine_pow_n at n = INT_MIN and -INT_MAX: its derivatives' exponents
+   n - 1, n - 2 leave int (they overflowed, and the enclosure was wrong);
+   checked against __float128 samples of the ray. */
+static void affine_pow_n_at_int_min(void)
+{
+    static const double ends[][2] = {{1 - 1e-9, 1 + 1e-9}, {1, 1 + 1e-8}, {1 - 1e-8, 1}, {-1 - 1e-8, -1}};
+    static const int ns[] = {INT_MIN, INT_MIN + 1, INT_MAX};
+    int i, j, k;
+    for (i = 0; i < 4; i++)
+        for (j = 0; j < 3; j++) {
+            iv_t z = iv_from_affine(iv_affine_pow_n(iv_affine_ray_param(ends[i][0], ends[i][1]), ns[j]));
+            long out = 0;
+            for (k = 0; k <= 2000; k++) {
+                q_t t = (q_t)ends[i][0] + ((q_t)ends[i][1] - (q_t)ends[i][0]) * k / 2000;
+                q_t v = expq((q_t)ns[j] * logq(fabsq(t)));
+                if (t < 0 && (ns[j] & 1)) v = -v;
+                out += !ig_in(z, v);
+            }
+            T_INT_EQ(out, 0);
+        }
+}
 #endif
 
 int main(int argc, char **argv)
@@ -365,12 +446,14 @@ int main(int argc, char **argv)
         T_CASE(sin_cos_at_1e15),
         T_CASE(sin_cos_near_half_pi_multiples),
         T_CASE(sin_cos_wide_is_unit),
+        T_CASE(sin_cos_width_4_below_2_55),
         T_CASE(huge_arguments),
         T_CASE(exp_overflows_upper_only),
         T_CASE(log_zero_one),
         T_CASE(sqr_and_even_pow_n_not_negative),
         T_CASE(pow_n_negative_intervals),
         T_CASE(pow_n_tightness),
+        T_CASE(pow_n_largest_exponents),
         T_CASE(libm_functions_ulp_bound),
         T_CASE(hypot_huge_and_tiny),
         T_CASE(pow_domain),
@@ -379,6 +462,7 @@ int main(int argc, char **argv)
         T_CASE(affine_bad_input),
         T_CASE(affine_cancels_dependency),
         T_CASE(affine_linearisations),
+        T_CASE(affine_pow_n_at_int_min),
 #endif
     };
     return T_RUN(argc, argv, cases);
