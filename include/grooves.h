@@ -1933,6 +1933,14 @@ static void gr__bezier_frame(const double *a, int deg, int pieces, const double 
 /* Distance from x to the interval [lo, hi]. */
 static double gr__interval_dist(double x, double lo, double hi) { return x < lo ? lo - x : x > hi ? x - hi : 0; }
 
+/* Squared length of polyline piece k (0 for a repeated point). */
+static double gr__piece_len2(const double *pts, int k)
+{
+    const double *a = pts + 2 * k;
+    double ex = a[2] - a[0], ey = a[3] - a[1];
+    return ex * ex + ey * ey;
+}
+
 /* Nearest point of a groove's path to f (§4.2), among points closer than
    sqrt(limit2): fills p, t, param, dtds, kappa, end and dist of c and
    returns 1, or returns 0 when no point is that close. */
@@ -1944,6 +1952,9 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
     int k;
     if (rec->kind == GR_PATH_POLYLINE) {
         double acc = 0;
+        int first = 0, last = rec->pieces - 1; /* the end pieces, past repeated end points */
+        while (first < last && gr__piece_len2(pts, first) == 0) first++;
+        while (last > first && gr__piece_len2(pts, last) == 0) last--;
         for (k = 0; k < rec->pieces; k++) {
             const double *a = pts + 2 * k;
             double ex = a[2] - a[0], ey = a[3] - a[1], len2 = ex * ex + ey * ey, len = sqrt(len2);
@@ -1963,7 +1974,7 @@ static int gr__nearest(const gr_grid_t *grid, const gr__groove_t *rec, const dou
                 c->dtds2 = 0;
                 c->kappa = 0;
                 c->dkds = 0;
-                c->end = rec->closed ? 0 : (k == 0 && raw < 0) ? -1 : (k == rec->pieces - 1 && raw > 1) ? 1 : 0;
+                c->end = rec->closed ? 0 : (k == first && raw < 0) ? -1 : (k == last && raw > 1) ? 1 : 0;
             }
             acc += len;
         }
@@ -5714,12 +5725,13 @@ static int gr__lg_from(const gr_grid_t *grid, int id, const gr__cand_t *cd0, con
     return g->f > 0; /* scaled away here otherwise */
 }
 
-/* Groove id in its straight approximation at the point nearest c. */
-static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, double reach, gr__lg_t *g)
+/* Groove id in its straight approximation at the point nearest c, found
+   from ci, c's image in the tile (gr__locate looks one tile around). */
+static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, const double *ci, double reach, gr__lg_t *g)
 {
     gr__cand_t cd;
     memset(&cd, 0, sizeof cd);
-    if (!gr__locate(grid, id, c, reach + grid->grooves_[id].half_width, &cd)) return 0;
+    if (!gr__locate(grid, id, ci, reach + grid->grooves_[id].half_width, &cd)) return 0;
     return gr__lg_from(grid, id, &cd, c, g);
 }
 
@@ -5772,7 +5784,7 @@ static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, do
    pieces (§5, as the polygon path does: gr__split_candidates), each in its
    own straight approximation; 0 when none is near (the groove then stands
    for itself). Pieces are never cached (their groove is no segment). */
-static int gr__lg_pieces(gr__lscene_t *sc, int id, const double *box, const double *c, double reach,
+static int gr__lg_pieces(gr__lscene_t *sc, int id, const double *box, const double *c, const double *ci, double reach,
                          const gr__region_t *quad)
 {
     const gr_grid_t *grid = sc->grid;
@@ -5787,7 +5799,7 @@ static int gr__lg_pieces(gr__lscene_t *sc, int id, const double *box, const doub
         gr__cand_t cd;
         gr__lg_t g;
         memset(&cd, 0, sizeof cd);
-        if (!gr__piece_locate(grid, pid, box, c, reach + rec->half_width, &cd) || !gr__lg_from(grid, pid, &cd, c, &g))
+        if (!gr__piece_locate(grid, pid, box, ci, reach + rec->half_width, &cd) || !gr__lg_from(grid, pid, &cd, c, &g))
             continue;
         gr__lg_keep(sc, &g, c, reach, quad);
         n++;
@@ -5802,16 +5814,19 @@ static int gr__line_gather(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
                            const double *c, double reach, const gr__region_t *quad, gr_line_cache_t *fill)
 {
     int k, n;
+    double ci[2]; /* c moved with the box: the grooves are located from there */
+    ci[0] = c[0], ci[1] = c[1];
     if (grid->wrap) { /* gather around the centre's image in the tile */
         double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
         double su = floor((c[0] - grid->domain[0]) / wu) * wu, sv = floor((c[1] - grid->domain[1]) / wv) * wv;
         box[0] -= su; box[2] -= su; box[1] -= sv; box[3] -= sv;
+        ci[0] -= su, ci[1] -= sv;
     }
     n = gr__gather(grid, box, s->seen, s->ids, NULL);
     for (k = 0; k < n; k++) {
         gr__lg_t g;
-        if (!fill && grid->split_records_ > 0 && gr__lg_pieces(sc, s->ids[k], box, c, reach, quad)) continue;
-        if (!gr__lg_make(grid, s->ids[k], c, reach, &g)) continue;
+        if (!fill && grid->split_records_ > 0 && gr__lg_pieces(sc, s->ids[k], box, c, ci, reach, quad)) continue;
+        if (!gr__lg_make(grid, s->ids[k], c, ci, reach, &g)) continue;
         if (!fill) { gr__lg_keep(sc, &g, c, reach, quad); continue; }
         if (fill->count == GR_LINE_MAX_GROOVES || !gr__line_cacheable(&grid->grooves_[s->ids[k]])) return 0;
         memcpy(fill->store_ + 16 * fill->count++, &g, sizeof g);

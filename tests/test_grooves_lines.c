@@ -859,6 +859,49 @@ static int scaled_crossing(scene_t *s, double k, double *sec)
 /* Scale: the X crossing at 1e-5 and 1e3 times its size (footprint and
    sections scaled with it, the tile around it) gives the size-1 answer
    (the tolerances are relative to the scene scale w + h + d). */
+/* A repeating tile (the default): a footprint whole tiles away sees what
+   its image in the tile sees, in line samples too (they had located the
+   grooves from the unmoved centre, which gr__locate searches only one
+   tile around: from two tiles away every groove was lost). Line samples
+   directly, gr_query diverting to them at an open groove's end, and the
+   inter-reflection that runs on them. */
+static void t_wrap_any_number_of_tiles(void)
+{
+    static const double path[4] = {0.5, 0.0, 0.5, 1.0}, open_path[4] = {0.3, 0.2, 0.7, 0.25};
+    static const double sec[6] = {-0.02, 0, 0, -0.02, 0.02, 0};
+    static const double shifts[][2] = {{2, 0}, {-2, 0}, {7, -3}, {1000, 0}, {-1, 5}};
+    gr_groove_desc_t g[2];
+    gr_grid_desc_t d;
+    gr_grid_t *grid = NULL;
+    gr_facet_list_t l0, l;
+    size_t need;
+    void *scratch;
+    int k, mode, i;
+    memset(g, 0, sizeof g);
+    memset(&d, 0, sizeof d);
+    g[0].points = path, g[0].point_count = 2, g[0].section = sec, g[0].section_count = 3;
+    g[1].points = open_path, g[1].point_count = 2, g[1].section = sec, g[1].section_count = 3;
+    d.grooves = g, d.groove_count = 2;
+    if (!T_INT_EQ(gr_grid_build(&d, &grid, NULL), GR_OK)) return;
+    need = gr_query_scratch_bytes(grid);
+    scratch = malloc(need);
+    for (mode = 0; mode < 2; mode++) { /* 0: line samples on the closed groove; 1: gr_query at the open one's end */
+        double cu = mode ? 0.7 : 0.5, cv = mode ? 0.25 : 0.5;
+        gr_query_t q = gt_query(cu, cv, 0.05, 0, 0, 1);
+        q.line_samples = 4;
+        T_INT_EQ(mode ? gr_query(grid, &q, scratch, need, &l0) : gr_query_lines(grid, &q, scratch, need, &l0, NULL), GR_OK);
+        T_GE(l0.count, 3); /* ground and both walls */
+        for (k = 0; k < 5; k++) {
+            q.footprint.center[0] = cu + shifts[k][0], q.footprint.center[1] = cv + shifts[k][1];
+            T_INT_EQ(mode ? gr_query(grid, &q, scratch, need, &l) : gr_query_lines(grid, &q, scratch, need, &l, NULL), GR_OK);
+            if (!T_INT_EQ(l.count, l0.count)) continue;
+            for (i = 0; i < l.count; i++) T_NEAR(gt_ratio_of(&l, l0.facets[i].facet), l0.facets[i].ratio, 1e-9);
+        }
+    }
+    free(scratch);
+    gr_grid_free(grid);
+}
+
 static void t_stiff_scale(void)
 {
     static const double scales[2] = {1e-5, 1e3};
@@ -1039,7 +1082,7 @@ int main(int argc, char **argv)
         T_CASE(t_isolated_equals_query), T_CASE(t_crossings_vs_raster), T_CASE(t_oblique_crossings_vs_oracle),
         T_CASE(t_self_crossing_vs_oracle),
         T_CASE(t_weighting),
-        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_dispatch_after_oversampling), T_CASE(t_self_crossings_share_a_cut), T_CASE(t_stiff_scale), T_CASE(t_stiff_grazing),
+        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_dispatch_after_oversampling), T_CASE(t_self_crossings_share_a_cut), T_CASE(t_wrap_any_number_of_tiles), T_CASE(t_stiff_scale), T_CASE(t_stiff_grazing),
         T_CASE(t_stiff_degenerate_footprint), T_CASE(t_stiff_many_grooves), T_CASE(t_bad_input),
     };
     return T_RUN(argc, argv, cases);
