@@ -436,8 +436,10 @@ typedef struct fr_parse_desc_t {
 } fr_parse_desc_t;
 
 /* Parse len bytes of text into *out (free with fr_tape_free). On error
-   returns FR_ERR_PARSE (or FR_ERR_LIMIT / FR_ERR_OUT_OF_MEMORY) and fills
-   diag with line:column and a message. Never reads past text + len. */
+   returns FR_ERR_PARSE (or FR_ERR_LIMIT / FR_ERR_OUT_OF_MEMORY, or
+   FR_ERR_INVALID_ARG for a call parameter out of range, hfSphere(x, c, -1))
+   and fills diag with line:column and a message. Never reads past text +
+   len. */
 FR_DEF fr_result_t fr_parse(const char *text, size_t len, const fr_parse_desc_t *desc, fr_tape_t *out,
                             fr_diag_t *diag);
 #endif
@@ -640,7 +642,8 @@ FR_DEF size_t fr_trace_scratch_size(const fr_tape_t *t, const fr_trace_desc_t *d
    length or Lipschitz bound), FR_ERR_NOT_POLYNOMIAL (ANALYTIC on a shape
    that is not min/max/R-functions over polynomial leaves, or whose ray
    polynomial overflows or has subnormal coefficients on this ray: AUTO
-   takes such rays to intervals; docs/frep.md "Scale"),
+   takes such rays to intervals; docs/frep.md "Scale"; d may have any
+   length: far from 1 it is traced rescaled by a power of 2),
    FR_ERR_NO_INTERVAL, FR_ERR_NO_GRADIENT (NEWTON refinement with a
    gradient-less callback; AD normals fall back to differences there),
    FR_ERR_NO_LIPSCHITZ (SPHERE). A miss is FR_OK with hit->hit = 0. */
@@ -2023,7 +2026,8 @@ static fr_result_t fr__run_grad(const fr_tape_t *t, const double p[3], double *v
         case FR_OP_SIN: val = sin(a); da = cos(a); break;
         case FR_OP_COS: val = cos(a); da = -sin(a); break;
         case FR_OP_ATAN: val = atan(a); da = 1 / (1 + a * a); break;
-        case FR_OP_POWI: val = fr__powi(a, (int)in->k); da = in->k * fr__powi(a, (int)in->k - 1); break;
+        /* x^0 is the constant 1: its derivative 0, not 0 * inf at x = 0 */
+        case FR_OP_POWI: val = fr__powi(a, (int)in->k); da = in->k == 0 ? 0.0 : in->k * fr__powi(a, (int)in->k - 1); break;
         case FR_OP_POWC: val = pow(a, in->k); da = in->k * pow(a, in->k - 1); break;
         case FR_OP_ADD: val = a + c; da = 1; db = 1; break;
         case FR_OP_SUB: val = a - c; da = 1; db = -1; break;
@@ -5465,7 +5469,7 @@ static int fr__trace_step(fr__ray_t *R, double step, fr_refine_t refine, double 
 static int fr__trace_sphere(fr__ray_t *R, double L, double omega, double *t_hit, double *t_err)
 {
     double dn = sqrt(R->d[0] * R->d[0] + R->d[1] * R->d[1] + R->d[2] * R->d[2]);
-    double t = R->t0, t_prev = R->t0, r_prev = 0.0;
+    double t = R->t0, t_prev = R->t0, r_prev = 0.0, g_prev = 0.0;
     int have_prev = 0;
     unsigned int it;
     for (it = 0; it < R->max_iters && t <= R->t1; it++) {
@@ -5473,13 +5477,26 @@ static int fr__trace_sphere(fr__ray_t *R, double L, double omega, double *t_hit,
         R->iters++;
         if (!(g == g)) return 0; /* NaN: the bound says nothing, no hit is claimed */
         r = fabs(g) / (L * dn);
+        /* a relaxed step that crossed the surface: its sphere may still
+           overlap the previous one (on a plane hit head-on the overshoot
+           is exactly the new radius), so the sign decides; an unrelaxed
+           step crosses only by rounding or a loose L: the root is there */
+        if (have_prev && fr__opposite(g_prev, g)) {
+            if (omega > 1.0) {
+                t = t_prev + r_prev;
+                omega = 1.0;
+                continue;
+            }
+            *t_hit = fr__refine(R, FR_REFINE_ILLINOIS, t_prev, t, g_prev, g, t_err);
+            return 1;
+        }
         if (omega > 1.0 && have_prev && r + r_prev < t - t_prev) {
             t = t_prev + r_prev;
             omega = 1.0;
             continue;
         }
         if (r <= R->tol) { *t_hit = t; *t_err = R->tol; return 1; }
-        t_prev = t; r_prev = r; have_prev = 1;
+        t_prev = t; r_prev = r; g_prev = g; have_prev = 1;
         t += omega * r;
     }
     return 0;
@@ -6003,6 +6020,15 @@ static int fr__poly_leaf(const double *c, int deg, double s0, double s1, double 
         x = 0.5 * a + 0.5 * b;
         for (y = c[deg], k = deg; k-- > 0;) y = y * x + c[k];
         g = fr__sgn(y);
+        if (g == 0 && j >= first && j + 1 == nr) {
+            /* the last root at s1 (or within rounding of it): its gap is
+               empty and its midpoint the root. Just beyond it, 2^-20 of
+               the gap before away, a simple root's sign has turned and a
+               touch's has not (the prepared path takes such a root too) */
+            x = a + (a - (j > first ? r[j - 1] : s0)) * 0x1p-20;
+            for (y = c[deg], k = deg; k-- > 0;) y = y * x + c[k];
+            g = fr__sgn(y);
+        }
         if (j < first) *sg = prev = g;
         else {
             if (g != 0 && prev != 0 && g != prev) cand[m++] = ts + r[j];
@@ -7322,10 +7348,49 @@ done:
     return FR_OK;
 }
 
+/* Directions whose largest component lies outside [1/FR__DIR_UNIT_RANGE,
+   FR__DIR_UNIT_RANGE] are traced as d 2^k with t in units of 2^-k (k puts
+   the largest component in [1, 2)): exact scalings, the same ray and the
+   same points, but the ray polynomial's coefficients (|d|^j up to degree
+   FR_POLY_MAX_DEGREE) neither overflow nor underflow -- to subnormals, or
+   to 0, which would lower the degree unseen -- and the marching steps'
+   |d| neither. The t-valued settings (tol, step) go with t. Directions
+   inside the range are traced as given, bit for bit as before. */
+#define FR__DIR_UNIT_RANGE 65536.0
+static fr_result_t fr__trace_any_length(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
+                                        const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
+{
+    fr_trace_desc_t D;
+    double ds[3], m;
+    int k, ex;
+    if (!d || !desc_in || !hit) return fr__trace(t, o, d, t0, t1, desc_in, scratch, hit);
+    m = fabs(d[0]);
+    if (fabs(d[1]) > m) m = fabs(d[1]);
+    if (fabs(d[2]) > m) m = fabs(d[2]);
+    if (!(m > 0 && m < HUGE_VAL) || (m >= 1 / FR__DIR_UNIT_RANGE && m <= FR__DIR_UNIT_RANGE))
+        return fr__trace(t, o, d, t0, t1, desc_in, scratch, hit);
+    (void)frexp(m, &ex);
+    for (k = 0; k < 3; k++) ds[k] = ldexp(d[k], 1 - ex);
+    D = *desc_in;
+    if (D.tol > 0) D.tol = ldexp(D.tol, ex - 1);
+    if (D.step > 0) D.step = ldexp(D.step, ex - 1);
+    {
+        fr_result_t e = fr__trace(t, o, ds, ldexp(t0, ex - 1), ldexp(t1, ex - 1), &D, scratch, hit);
+        hit->t = ldexp(hit->t, 1 - ex);
+        hit->t_err = ldexp(hit->t_err, 1 - ex);
+        return e;
+    }
+}
+
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
 {
-    FR__IN_FP_ENV(fr_result_t, fr__trace(t, o, d, t0, t1, desc_in, scratch, hit));
+    fr_trace_desc_t zero_desc;
+    if (!desc_in) { /* the defaults, as fr__trace takes them */
+        memset(&zero_desc, 0, sizeof zero_desc);
+        desc_in = &zero_desc;
+    }
+    FR__IN_FP_ENV(fr_result_t, fr__trace_any_length(t, o, d, t0, t1, desc_in, scratch, hit));
 }
 
 /* ==== [end section: trace] ==== */

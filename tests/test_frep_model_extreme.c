@@ -74,6 +74,37 @@ static void extreme_r_union_gradient_at_double_zero(void)
     fr_tape_free(&t);
 }
 
+/* x^0 + y - 1.5 at x = 0 and at a subnormal x: x^0 is the constant 1, so
+   the gradient is (0, 1, 0); its derivative 0 * x^-1 was 0 * inf = NaN,
+   and fr_trace's hits there had a zero normal. The parsed form too. */
+static void extreme_zeroth_power_gradient_at_zero(void)
+{
+    static const double xs[3] = {0.0, 1e-310, -0.0};
+    static const char text[] = "m(x[3], a[1]) { m = x[1]^0 + x[2] - 1.5; }";
+    double sc[1024], v = 0, g[3];
+    fr_tape_t t[2];
+    fr_builder_t b;
+    fr_diag_t dg;
+    int i, k;
+    fr_builder_init(&b, NULL);
+    {
+        fr_p3_t X = fr_coords(&b);
+        t[0] = finish(&b, fr_sub(&b, fr_add(&b, fr_powi(&b, X.x, 0), X.y), fr_const(&b, 1.5)));
+    }
+    if (!T_INT_EQ(fr_parse(text, sizeof text - 1, NULL, &t[1], &dg), FR_OK)) { fr_tape_free(&t[0]); return; }
+    for (k = 0; k < 2; k++)
+        for (i = 0; i < 3; i++) {
+            double p[3] = {xs[i], 1, 0};
+            T_INT_EQ(fr_eval_grad(&t[k], p, sc, &v, g), FR_OK);
+            T_EQ(v, 0.5);
+            T_EQ(g[0], 0.0);
+            T_EQ(g[1], 1.0);
+            T_EQ(g[2], 0.0);
+        }
+    fr_tape_free(&t[0]);
+    fr_tape_free(&t[1]);
+}
+
 /* gradient noise at |x| ~ 1e15 (the lattice index wraps through fmod):
    values stay within 2 amp and the enclosure contains samples */
 static void extreme_noise_at_huge_coordinates(void)
@@ -243,7 +274,8 @@ int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
         T_CASE(extreme_sphere_far_from_origin_1e8),  T_CASE(extreme_interval_at_overflowing_coordinates),
-        T_CASE(extreme_r_union_gradient_at_double_zero), T_CASE(extreme_noise_at_huge_coordinates),
+        T_CASE(extreme_r_union_gradient_at_double_zero), T_CASE(extreme_zeroth_power_gradient_at_zero),
+        T_CASE(extreme_noise_at_huge_coordinates),
         T_CASE(extreme_blend_with_overflowing_arguments), T_CASE(extreme_micrometre_sphere),
         T_CASE(extreme_alpha_just_below_one),        T_CASE(extreme_million_instruction_tape),
         T_CASE(concurrent_evaluation_matches_serial),

@@ -601,6 +601,101 @@ static void sphere_tracing_over_relaxation(void)
     model_free(&m);
 }
 
+/* Over-relaxed sphere tracing (the default omega 1.6) of exact SDFs where
+   the overshoot lands inside at a depth equal to its own radius: a plane
+   hit head-on (x >= 1), also tilted by 1e-8, and a ball traced from its
+   centre. The spheres still overlapped, so the step stood and the march
+   went on through the inside (every such ray missed); the sign change now
+   sends it back to the safe step. Hits within 2 t_err + 1e-12 of exact. */
+static void sphere_tracing_relaxed_step_into_the_solid(void)
+{
+    static const double c[3] = {0, 0, 0};
+    model_t plane, ball;
+    fr_builder_t b;
+    t_rng_t g = {1600};
+    long n = t_count(2000), i;
+    fr_trace_desc_t D = method(FR_METHOD_SPHERE, 0);
+    fr_hit_t h;
+    fr_builder_init(&b, NULL);
+    model_finish(&plane, &b, fr_from_sdf(&b, fr_sub(&b, fr_const(&b, 1.0), fr_coords(&b).x), 1.0));
+    for (i = 0; i < n; i++) {
+        double o[3], d[3] = {1, i % 2 ? 1e-8 : 0, 0}, want;
+        o[0] = 1 - t_rng_range(&g, 0.01, 10), o[1] = t_rng_range(&g, -1, 1), o[2] = t_rng_range(&g, -1, 1);
+        want = 1 - o[0];
+        h = trace(&plane, o, d, 0, 100, D);
+        if (!T_INT_EQ(h.hit, 1)) break;
+        T_LE(fabs(h.t - want), 2 * h.t_err + 1e-12);
+    }
+    make_sdf_sphere(&ball, c, 1);
+    {
+        double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
+        h = trace(&ball, o, d, 0, 10, D);
+        T_INT_EQ(h.hit, 1);
+        T_LE(fabs(h.t - 1), 2 * h.t_err + 1e-12);
+    }
+    model_free(&plane);
+    model_free(&ball);
+}
+
+/* A root exactly at t1 on the plain (unprepared) analytic CSG path: two
+   concentric spheres' union entered at t = 4 = t1. The leaf's last gap
+   [4, 4] has its midpoint on the root, where the sign is 0, so the root
+   was never a crossing (the prepared path and a single sphere found it). */
+static void analytic_csg_root_at_t1(void)
+{
+    static const double c[3] = {0, 0, 0}, box[6] = {-2, -2, -2, 2, 2, 2};
+    model_t m;
+    fr_builder_t b;
+    fr_prepared_t pr;
+    fr_p3_t p;
+    double o[3] = {-5, 0, 0}, d[3] = {1, 0, 0}, t1s[3] = {4, 4.0000000000000009, 4.5};
+    int k, pp;
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    model_finish(&m, &b, fr_union(&b, fr_sphere(&b, p, c, 1), fr_sphere(&b, p, c, 0.5), 0));
+    T_INT_EQ(fr_prepare(&m.tape, box, &pr), FR_OK);
+    for (k = 0; k < 3; k++)
+        for (pp = 0; pp < 2; pp++) {
+            fr_trace_desc_t D = method(FR_METHOD_ANALYTIC, 0);
+            fr_hit_t h;
+            if (pp) D.prepared = &pr;
+            h = trace(&m, o, d, 0, t1s[k], D);
+            T_INT_EQ(h.hit, 1);
+            T_NEAR(h.t, 4, 1e-12);
+        }
+    fr_prepared_free(&pr);
+    model_free(&m);
+}
+
+/* Directions 1e-170 and 1e-300 long at the unit ball: |d|^2 underflows to
+   exactly 0, so the ray polynomial lost its t^2 term unseen (degree 1:
+   ANALYTIC answered x = 2.6, INTERVAL x = 1.67, both outside the ball);
+   and 1e+150 long, where it overflows. Every method traces the same line
+   with d scaled by a power of 2 (exact), so each finds t = 4 / |d| to its
+   tolerance, SPHERE too (its steps need |d|). */
+static void extreme_direction_lengths_every_method(void)
+{
+    static const double c[3] = {0, 0, 0};
+    static const double lens[4] = {1e-170, 1e-300, 1e150, 1e-5};
+    static const fr_method_t ms[4] = {FR_METHOD_ANALYTIC, FR_METHOD_INTERVAL, FR_METHOD_STEP, FR_METHOD_AUTO};
+    model_t poly, sdf;
+    int i, k;
+    make_sphere(&poly, c, 1);
+    make_sdf_sphere(&sdf, c, 1);
+    for (i = 0; i < 4; i++) {
+        double o[3] = {-5, 0, 0}, d[3] = {lens[i], 0, 0}, want = 4 / lens[i];
+        for (k = 0; k < 5; k++) {
+            fr_trace_desc_t D = method(k < 4 ? ms[k] : FR_METHOD_SPHERE, 0);
+            fr_hit_t h = trace(k < 4 ? &poly : &sdf, o, d, 0, 8 / lens[i], D);
+            if (!T_INT_EQ(h.hit, 1)) continue;
+            T_LE(fabs(h.t - want), 2 * h.t_err + 1e-12 * want);
+            T_LE(fabs(o[0] + h.t * d[0] + 1), 1e-8); /* the point is the ball's entry x = -1 */
+        }
+    }
+    model_free(&poly);
+    model_free(&sdf);
+}
+
 static void auto_method_choices_and_stats(void)
 {
     static const double c[3] = {0, 0, 0};
@@ -699,6 +794,9 @@ int main(int argc, char **argv)
         T_CASE(all_methods_on_random_sphere_rays),
         T_CASE(finite_difference_normals_match_ad),
         T_CASE(sphere_tracing_over_relaxation),
+        T_CASE(sphere_tracing_relaxed_step_into_the_solid),
+        T_CASE(analytic_csg_root_at_t1),
+        T_CASE(extreme_direction_lengths_every_method),
         T_CASE(auto_method_choices_and_stats),
         T_CASE(black_box_callback_model),
         T_CASE(invalid_arguments),
