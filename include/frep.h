@@ -562,8 +562,9 @@ typedef struct fr_trace_desc_t {
     fr_method_t method;
     /* the t tolerance of STEP, INTERVAL and SPHERE: a root is located within
        tol (absolute, t units). 0: 1e-9 * (t1 - t0) for finite segments,
-       otherwise 1e-9 * (1 + |t0|). Negative asks for the limit of doubles:
-       a few ulps of t. */
+       otherwise 1e-9 * (1 + |t0|) (|t1| when t0 is infinite, 0 when both
+       are). Negative asks for the limit of doubles: a few ulps of the
+       finite ends. */
     double tol;
     /* STEP: the step length in t units. 0: the step comes from the
        Lipschitz bound, |g(t)| / (L |d|), never below tol; with no finite
@@ -7132,6 +7133,12 @@ static int fr__quadric_normal(const fr__leaf_t *L, int orient, const double p[3]
 
 /* fr_trace's arguments: FR_OK when they make a ray query (a NULL desc
    stands for the zero one), else FR_ERR_INVALID_ARG. */
+/* The |grad f| bound the marching methods use: desc's, else the tape's. */
+static double fr__trace_lipschitz(const fr_tape_t *t, const fr_trace_desc_t *desc)
+{
+    return desc->lipschitz > 0 ? desc->lipschitz : t->lipschitz;
+}
+
 static fr_result_t fr__trace_args(const double o[3], const double d[3], double t0, double t1, const fr_trace_desc_t *desc)
 {
     /* x - x is 0 for finite x, NaN for infinities and NaN: one test for all six */
@@ -7161,10 +7168,12 @@ static int fr__trace_clip(fr__ray_t *R, const fr_trace_desc_t *desc)
    CSG path. */
 static void fr__trace_settings(fr__ray_t *R, const fr_trace_desc_t *desc, double t0, double t1)
 {
+    /* an infinite end counts as 0 here: the finite one sets the scale */
+    double a0 = fabs(t0) < HUGE_VAL ? fabs(t0) : 0.0, a1 = fabs(t1) < HUGE_VAL ? fabs(t1) : 0.0;
     R->max_iters = desc->max_iters ? desc->max_iters : FR__TRACE_MAX_ITERS;
     if (desc->tol > 0) R->tol = desc->tol;
-    else if (desc->tol < 0) R->tol = 4.0 * FR__U * (fabs(t0) > fabs(t1) ? fabs(t0) : fabs(t1));
-    else R->tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + fabs(t0));
+    else if (desc->tol < 0) R->tol = 4.0 * FR__U * (a0 > a1 ? a0 : a1);
+    else R->tol = FR__TRACE_TOL_REL * (t1 - t0 < HUGE_VAL ? t1 - t0 : 1.0 + (t0 > -HUGE_VAL ? a0 : a1));
     if (!(R->tol > 0)) R->tol = FR__U;
     R->footprint = desc->footprint > 0 && desc->footprint < HUGE_VAL ? desc->footprint : 0.0;
     R->pc = R->pm = NULL;
@@ -7264,7 +7273,7 @@ static fr_result_t fr__trace_method(fr__ray_t *R, fr__trace_mem_t *mem, const fr
                                     double ts, int cnt, int *found, double *t_hit, double *t_err)
 {
     const fr_tape_t *t = R->tape;
-    double step = desc->step, L = desc->lipschitz > 0 ? desc->lipschitz : t->lipschitz;
+    double step = desc->step, L = fr__trace_lipschitz(t, desc);
     switch (m) {
     case FR_METHOD_ANALYTIC:
         return fr__trace_analytic(R, mem, ts, cnt, found, t_hit, t_err);
@@ -7314,6 +7323,8 @@ static FR__NOINLINE fr_result_t fr__trace(const fr_tape_t *t, const double o[3],
         desc = &zero_desc;
     }
     if ((e = fr__trace_args(o, d, t0, t1, desc)) != FR_OK) return e;
+    if (desc->method == FR_METHOD_SPHERE && !(fr__trace_lipschitz(t, desc) > 0 && fr__trace_lipschitz(t, desc) < HUGE_VAL))
+        return FR_ERR_NO_LIPSCHITZ; /* whatever the ray: also one that misses the bounds */
     hit->hit = 0;
     hit->method = m = desc->method;
     hit->t = hit->t_err = 0.0;

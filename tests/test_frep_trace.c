@@ -696,6 +696,32 @@ static void extreme_direction_lengths_every_method(void)
     model_free(&sdf);
 }
 
+/* t in [-inf, inf] with bounds (which make the segment finite): the
+   default tolerance 1e-9 (1 + |t0|) was infinite there, and INTERVAL
+   reported t = 10 with t_err 4.2 where the first root is 8.7 (STEP was off
+   by 0.01). The torus-and-ball from x = -10 along +x meets the torus's
+   outer wall at x = -1.3. */
+static void infinite_segment_with_bounds(void)
+{
+    static const double box[6] = {-1.5, -1.5, -0.5, 1.5, 1.5, 0.5};
+    static const fr_method_t ms[2] = {FR_METHOD_INTERVAL, FR_METHOD_STEP};
+    model_t m;
+    double o[3] = {-10, 0, 0}, d[3] = {1, 0, 0};
+    int k, e;
+    make_torus_and_ball(&m);
+    for (k = 0; k < 2; k++)
+        for (e = 0; e < 2; e++) {
+            fr_trace_desc_t D = method(ms[k], 0);
+            fr_hit_t h;
+            D.bounds = box;
+            h = trace(&m, o, d, e ? -HUGE_VAL : 0, HUGE_VAL, D);
+            if (!T_INT_EQ(h.hit, 1)) continue;
+            T_LE(h.t_err, 1e-8);
+            T_NEAR(h.t, 8.7, 1e-8);
+        }
+    model_free(&m);
+}
+
 static void auto_method_choices_and_stats(void)
 {
     static const double c[3] = {0, 0, 0};
@@ -757,6 +783,13 @@ static void invalid_arguments(void)
     T_INT_EQ(fr_trace(&m.tape, nan3, d, 0, 1, NULL, m.scratch, &h), FR_ERR_INVALID_ARG);
     T_INT_EQ(fr_trace(&m.tape, o, d, 0, 1, &sp, m.scratch, &h), FR_ERR_NO_LIPSCHITZ);
     {
+        /* also for a ray that misses the bounds (it was a miss, FR_OK) */
+        static const double far_box[6] = {10, 10, 10, 11, 11, 11};
+        fr_trace_desc_t spb = sp;
+        spb.bounds = far_box;
+        T_INT_EQ(fr_trace(&m.tape, o, d, 0, 1, &spb, m.scratch, &h), FR_ERR_NO_LIPSCHITZ);
+    }
+    {
         /* an infinite segment: stepping needs a step length or a
            Lipschitz bound (the sphere's tape has none), intervals a finite
            segment; a finite one is traced */
@@ -797,6 +830,7 @@ int main(int argc, char **argv)
         T_CASE(sphere_tracing_relaxed_step_into_the_solid),
         T_CASE(analytic_csg_root_at_t1),
         T_CASE(extreme_direction_lengths_every_method),
+        T_CASE(infinite_segment_with_bounds),
         T_CASE(auto_method_choices_and_stats),
         T_CASE(black_box_callback_model),
         T_CASE(invalid_arguments),
