@@ -374,7 +374,7 @@ GR_DEF size_t gr_query_scratch_bytes(const gr_grid_t *grid);
 
 /* The facet list for one footprint. Const on the grid, allocation-free,
    thread-safe (each thread its own scratch and list). Errors:
-   GR_ERR_INVALID_ARG (NULL, light_count out of range),
+   GR_ERR_INVALID_ARG (NULL, light_count or line_samples out of range),
    GR_ERR_BUFFER_TOO_SMALL (scratch), GR_ERR_NOT_FINITE (NaN footprint). */
 GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query,
                             void *scratch, size_t scratch_bytes, gr_facet_list_t *list);
@@ -636,6 +636,9 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 #    define GR_NO_INTERREFLECTION
 #  endif
 #endif
+/* Most line samples per footprint (gr_query_t.line_samples): 16 chords
+   along each axis. gr_query() checks the range in every build. */
+#define GR_LINE_MAX_SAMPLES 32
 #if !defined(GR_NO_LINE_SAMPLES) || !defined(GR_NO_INTERREFLECTION)
 /* Local grooves one line-sample evaluation keeps (the nearest), facet
    planes (the ground, facets and end walls of those grooves) and the
@@ -655,9 +658,6 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 #ifndef GR_LINE_MAX_EDGES /* edge lines kept per scene; beyond, found per segment (slower, same answer) */
 #  define GR_LINE_MAX_EDGES 2048
 #endif
-/* Most line samples per footprint (gr_query_t.line_samples): 16 chords
-   along each axis. */
-#define GR_LINE_MAX_SAMPLES 32
 /* gr_facet_list_t.flags: line samples dropped grooves or breakpoints. */
 #define GR_LIST_LINE_APPROX 32u
 
@@ -3138,7 +3138,8 @@ GR_DEF gr_result_t gr_query(const gr_grid_t *grid, const gr_query_t *query, void
     list->flags = 0;
     list->grooves = 0;
     list->subfootprints = 1;
-    if (query->light_count < 0 || query->light_count > GR_MAX_LIGHTS || (query->light_count > 0 && !query->lights))
+    if (query->light_count < 0 || query->light_count > GR_MAX_LIGHTS || (query->light_count > 0 && !query->lights) ||
+        query->line_samples < 0 || query->line_samples > GR_LINE_MAX_SAMPLES) /* whatever the footprint meets */
         return GR_ERR_INVALID_ARG;
     if (scratch_bytes < gr_query_scratch_bytes(grid)) return GR_ERR_BUFFER_TOO_SMALL;
     if ((r = gr__query_settings(query, &qs)) != GR_OK) return r;

@@ -242,6 +242,15 @@ static void bad_queries(void)
     q.light_count = -1;
     T_INT_EQ(gr_query(grid, &q, scratch, need, &l), GR_ERR_INVALID_ARG);
     q.light_count = 1;
+    /* line_samples out of 0..32 whatever the footprint meets (it was
+       checked only when a footprint was handed to line samples) */
+    q.line_samples = GR_LINE_MAX_SAMPLES + 1;
+    T_INT_EQ(gr_query(grid, &q, scratch, need, &l), GR_ERR_INVALID_ARG);
+    q.line_samples = -1;
+    T_INT_EQ(gr_query(grid, &q, scratch, need, &l), GR_ERR_INVALID_ARG);
+    q.line_samples = GR_LINE_MAX_SAMPLES;
+    T_INT_EQ(gr_query(grid, &q, scratch, need, &l), GR_OK);
+    q.line_samples = 0;
     light[1] = NAN;
     T_INT_EQ(gr_query(grid, &q, scratch, need, &l), GR_ERR_NOT_FINITE);
     free(scratch);
