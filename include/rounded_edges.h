@@ -134,8 +134,20 @@ typedef enum re_result_t {
     RE_ERR_RADIUS_TOO_LARGE,     /* RE_RADIUS_REJECT and a radius does not fit */
     RE_ERR_BUFFER_TOO_SMALL,     /* re_build_into() buffers below re_build_sizes() */
     RE_ERR_TOO_LARGE,            /* counts overflow 32-bit ids */
+    RE_ERR_BAD_SCALE,            /* an object's size outside [RE_SIZE_MIN, RE_SIZE_MAX] */
     RE_RESULT_COUNT_
 } re_result_t;
+
+/* The object sizes (diagonals of the used vertices' box) the build takes;
+   outside them it fails with RE_ERR_BAD_SCALE naming the size. Above
+   about 3e39 the detection radii, walk reaches and kd splits, stored as
+   float and bfloat16, overflow (the build succeeded and every rounded hit
+   came back unchanged); from 1e78 the face normals' squared lengths
+   overflow and every edge read as concave; below about 1e-79 the squared
+   cross products are subnormal and hits moved by 2e-5 of the size. The
+   margins are three orders of magnitude above, nineteen below. */
+#define RE_SIZE_MAX 1e36
+#define RE_SIZE_MIN 1e-60
 
 /* A human-readable name for a result code; never NULL. */
 RE_DEF const char *re_result_string(re_result_t r);
@@ -657,6 +669,7 @@ RE_DEF const char *re_result_string(re_result_t r)
     case RE_ERR_RADIUS_TOO_LARGE: return "radius too large for the geometry";
     case RE_ERR_BUFFER_TOO_SMALL: return "buffer smaller than re_build_sizes() asked";
     case RE_ERR_TOO_LARGE: return "mesh too large for 32-bit ids";
+    case RE_ERR_BAD_SCALE: return "object size outside [RE_SIZE_MIN, RE_SIZE_MAX]";
     case RE_RESULT_COUNT_: break;
     }
     return "unknown result";
@@ -1226,6 +1239,13 @@ static re_result_t re__measure_triangle(re__an_t *an, unsigned t, const unsigned
     len = re__len(cr);
     lmax = re__max(re__dot(e1, e1), re__max(re__dot(e2, e2), re__dot(e3, e3)));
     if (!(len > RE__DEGENERATE_REL * lmax)) {
+        double emax = 0;
+        for (k = 0; k < 3; k++) emax = re__max(emax, re__max(fabs(e1[k]), fabs(e2[k])));
+        if (emax > RE_SIZE_MAX || (emax > 0 && emax < RE_SIZE_MIN)) { /* its squares left double's range */
+            snprintf(msg, msg_size, "triangle %u (vertices %u %u %u) has edges of %g, outside [%g, %g]", t, tr[0], tr[1], tr[2],
+                     emax, RE_SIZE_MIN, RE_SIZE_MAX);
+            return RE_ERR_BAD_SCALE;
+        }
         snprintf(msg, msg_size, "triangle %u (vertices %u %u %u) is degenerate (zero area or zero-length edge)", t, tr[0], tr[1],
                  tr[2]);
         return RE_ERR_DEGENERATE_TRIANGLE;
@@ -4560,6 +4580,10 @@ static re_result_t re__analyze(const re_scene_desc_t *desc, unsigned obj, int si
     if (an->V >= 0x7FFFFFFFu) return re__fail(an, RE_ERR_TOO_LARGE, -1, "too many vertices");
     an->st.triangles = an->T;
     if ((rc = re__triangles(an, ar)) != RE_OK) return rc;
+    if (an->size > 0 && !(an->size >= RE_SIZE_MIN && an->size <= RE_SIZE_MAX)) {
+        snprintf(msg, sizeof msg, "size %g outside [%g, %g]: scale the object's positions", an->size, RE_SIZE_MIN, RE_SIZE_MAX);
+        return re__fail(an, RE_ERR_BAD_SCALE, -1, msg);
+    }
     if ((rc = re__edges(an, ar)) != RE_OK) return rc;
     if (an->fins && (rc = re__split_fans(an, ar)) != RE_OK) return rc;
     if ((rc = re__planes(an, ar)) != RE_OK) return rc; /* per triangle: the same after step 2a */
@@ -5507,26 +5531,15 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
     return re__answer(o, &best, s_exit, exit_plane, I, dir, t_host, out);
 }
 
-RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
-                              unsigned triangle, double t_host, re_hit_t *out)
+/* re_query and re_query_uv (with_uv: the host's barycentrics first). */
+static re_hit_kind_t re__query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                               unsigned triangle, double t_host, int with_uv, double u, double v, re_hit_t *out)
 {
     const re__object_t *o;
     double I[3];
     unsigned f = 0;
-    if (!out) return RE_UNCHANGED;
     o = re__query_start(scene, o3, dir, object, triangle, t_host, out, I, &f);
-    return o ? re__query_kd(o, f, I, dir, t_host, out) : RE_UNCHANGED;
-}
-
-RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
-                                 unsigned triangle, double t_host, double u, double v, re_hit_t *out)
-{
-    const re__object_t *o;
-    double I[3];
-    unsigned f = 0;
-    if (!out) return RE_UNCHANGED;
-    o = re__query_start(scene, o3, dir, object, triangle, t_host, out, I, &f);
-    if (!o || re__band_flat(o, triangle, u, v)) return RE_UNCHANGED;
+    if (!o || (with_uv && re__band_flat(o, triangle, u, v))) return RE_UNCHANGED;
     return re__query_kd(o, f, I, dir, t_host, out);
 }
 
@@ -5540,7 +5553,6 @@ static re_hit_kind_t re__query_exit(const re_scene_t *scene, const double o3[3],
     double I[3], back[3];
     unsigned f = 0;
     re_hit_t face;
-    if (!out) return RE_UNCHANGED;
     o = re__query_start(scene, o3, dir, object, triangle, t_host, out, I, &f);
     if (!o || (with_uv && re__band_flat(o, triangle, u, v))) return RE_UNCHANGED;
     face = *out;
@@ -5562,16 +5574,67 @@ static re_hit_kind_t re__query_exit(const re_scene_t *scene, const double o3[3],
     return RE_PASS_THROUGH;
 }
 
+/* A direction whose largest component lies outside [1/RE__DIR_UNIT_RANGE,
+   RE__DIR_UNIT_RANGE] is queried as dir 2^e with t in units of 2^-e (e
+   brings that component into [1, 2)): exact scalings, the same ray and
+   points, but |dir|^2 and the capsule and plane products neither overflow
+   nor underflow (at |dir| = 1e+-200 a third of the rounded hits came back
+   unchanged or with the point left on the sharp face). Other directions
+   are queried as given, bit for bit. Returns e, ds the direction used. */
+#define RE__DIR_UNIT_RANGE 65536.0
+static int re__dir_scale(const double dir[3], double ds[3])
+{
+    double m;
+    int e = 0, k;
+    if (dir) {
+        m = re__max(fabs(dir[0]), re__max(fabs(dir[1]), fabs(dir[2])));
+        if (m > 0 && m < HUGE_VAL && !(m >= 1 / RE__DIR_UNIT_RANGE && m <= RE__DIR_UNIT_RANGE)) (void)frexp(m, &e), e = 1 - e;
+        for (k = 0; k < 3; k++) ds[k] = ldexp(dir[k], e);
+    }
+    return e;
+}
+
+/* The four queries, each through re__dir_scale (exit: the reversed ray). */
+static re_hit_kind_t re__query_any_length(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                                          unsigned triangle, double t_host, int exit, int with_uv, double u, double v,
+                                          re_hit_t *out)
+{
+    double ds[3];
+    int e;
+    re_hit_kind_t kind;
+    if (!out) return RE_UNCHANGED;
+    e = re__dir_scale(dir, ds);
+    if (e == 0) return exit ? re__query_exit(scene, o3, dir, object, triangle, t_host, with_uv, u, v, out)
+                            : re__query(scene, o3, dir, object, triangle, t_host, with_uv, u, v, out);
+    t_host = ldexp(t_host, -e);
+    kind = exit ? re__query_exit(scene, o3, ds, object, triangle, t_host, with_uv, u, v, out)
+                : re__query(scene, o3, ds, object, triangle, t_host, with_uv, u, v, out);
+    out->t = ldexp(out->t, e);
+    return kind;
+}
+
+RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                              unsigned triangle, double t_host, re_hit_t *out)
+{
+    return re__query_any_length(scene, o3, dir, object, triangle, t_host, 0, 0, 0, 0, out);
+}
+
+RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                                 unsigned triangle, double t_host, double u, double v, re_hit_t *out)
+{
+    return re__query_any_length(scene, o3, dir, object, triangle, t_host, 0, 1, u, v, out);
+}
+
 RE_DEF re_hit_kind_t re_query_exit(const re_scene_t *scene, const double o[3], const double dir[3], unsigned object,
                                    unsigned triangle, double t_host, re_hit_t *out)
 {
-    return re__query_exit(scene, o, dir, object, triangle, t_host, 0, 0, 0, out);
+    return re__query_any_length(scene, o, dir, object, triangle, t_host, 1, 0, 0, 0, out);
 }
 
 RE_DEF re_hit_kind_t re_query_exit_uv(const re_scene_t *scene, const double o[3], const double dir[3], unsigned object,
                                       unsigned triangle, double t_host, double u, double v, re_hit_t *out)
 {
-    return re__query_exit(scene, o, dir, object, triangle, t_host, 1, u, v, out);
+    return re__query_any_length(scene, o, dir, object, triangle, t_host, 1, 1, u, v, out);
 }
 
 /* Is I + s dir, on plane `plane` of a corner of S and inside all of S's
@@ -5605,10 +5668,11 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
     re__set_t S;
     re__best_t b;
     unsigned plane, iter;
-    double s, push;
+    double s, push, ds[3];
     const double *nrm;
     if (!origin) return;
     if (!hit) return;
+    if (dir && re__dir_scale(dir, ds) != 0) dir = ds; /* the same ray (s only changes its units) */
     origin[0] = hit->point[0], origin[1] = hit->point[1], origin[2] = hit->point[2];
     if (!scene || hit->object >= scene->n_objects) return;
     o = &scene->objects[hit->object];

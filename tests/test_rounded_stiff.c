@@ -249,6 +249,145 @@ static void coordinates_offset_1e6(void)
     g_t_conditioned = 0;
 }
 
+/* The box scaled to the ends of the supported sizes (its diagonal 1.23 s,
+   s = 1e-60 and 8e35): every answer is the unit box's scaled (kind, t / s
+   and point / s within 1e-9, normals within 1e-9), rounding being
+   scale-invariant; the unit box is exact against the analytic one above. */
+static void object_sizes_at_both_ends_of_the_range(void)
+{
+    static const double scales[2] = {1e-60, 8e35};
+    tm_mesh_t m1 = {0};
+    re_scene_t *s1;
+    re_diag_t dg;
+    int k, a;
+    tm_box(&m1, BOX_LO, BOX_HI);
+    s1 = build1(&m1, 0.05, &dg);
+    if (!T_CHECK(s1 != NULL)) { tm_free(&m1); return; }
+    for (k = 0; k < 2; k++) {
+        double lo[3], hi[3], f = scales[k];
+        tm_mesh_t ms = {0};
+        re_scene_t *ss;
+        t_rng_t rng = {60};
+        long i, n = t_count(4000), rounded = 0;
+        for (a = 0; a < 3; a++) lo[a] = BOX_LO[a] * f, hi[a] = BOX_HI[a] * f;
+        tm_box(&ms, lo, hi);
+        ss = build1(&ms, 0.05 * f, &dg);
+        if (!T_CHECK(ss != NULL)) { tm_free(&ms); continue; }
+        for (i = 0; i < n; i++) {
+            double o[3], d[3], of[3], tgt[3], t1, tf, u, v;
+            unsigned tri1, trif;
+            re_hit_t h1, hf;
+            for (a = 0; a < 3; a++) {
+                double w = t_rng_unit(&rng);
+                tgt[a] = w < 0.35 ? BOX_LO[a] + 0.08 * t_rng_unit(&rng) : w < 0.7 ? BOX_HI[a] - 0.08 * t_rng_unit(&rng)
+                                                                              : t_rng_range(&rng, BOX_LO[a], BOX_HI[a]);
+                o[a] = tgt[a] + t_rng_range(&rng, -3, 3);
+                of[a] = o[a] * f;
+            }
+            tm_sub(tgt, o, d);
+            if (!tm_hit_uv(&m1, o, d, &t1, &tri1, &u, &v) || !tm_hit_uv(&ms, of, d, &tf, &trif, &u, &v)) continue;
+            re_query(s1, o, d, 0, tri1, t1, &h1);
+            re_query(ss, of, d, 0, trif, tf, &hf);
+            rounded += h1.kind == RE_HIT_ROUNDED;
+            if (!T_INT_EQ(hf.kind, h1.kind)) continue;
+            T_NEAR(hf.t / f, h1.t, 1e-9 * (1 + h1.t));
+            for (a = 0; a < 3; a++) {
+                T_NEAR(hf.point[a] / f, h1.point[a], 1e-9);
+                T_NEAR(hf.normal[a], h1.normal[a], 1e-9);
+            }
+        }
+        T_GT(rounded, n / 10);
+        re_free(ss);
+        tm_free(&ms);
+    }
+    re_free(s1);
+    tm_free(&m1);
+}
+
+/* Beyond them the build fails with RE_ERR_BAD_SCALE and says why: above
+   ~3e39 the float detection radii overflowed (the build succeeded and
+   every rounded hit came back unchanged), from 1e78 every edge read as
+   concave, from 1e155 the box's triangles read as degenerate; below
+   ~1e-79 hits moved by 2e-5 of the size, below 1e-81 degenerate again. */
+static void object_sizes_outside_the_range_rejected(void)
+{
+    static const double scales[6] = {1e-62, 1e-80, 1e-90, 1e37, 1e78, 1e160};
+    int k, a, n;
+    for (k = 0; k < 6; k++) {
+        double lo[3], hi[3];
+        tm_mesh_t m = {0};
+        re_diag_t dg;
+        re_scene_t *sc;
+        for (a = 0; a < 3; a++) lo[a] = BOX_LO[a] * scales[k], hi[a] = BOX_HI[a] * scales[k];
+        tm_box(&m, lo, hi);
+        for (n = 0; n < 2; n++) { /* the size, or the first triangle whose squares leave doubles */
+            sc = build1(&m, 0.05 * scales[k], &dg);
+            T_CHECK(sc == NULL);
+            re_free(sc);
+            T_INT_EQ(dg.result, RE_ERR_BAD_SCALE);
+            T_CHECK(strstr(dg.message, "outside [1e-60, 1e+36]") != NULL);
+        }
+        tm_free(&m);
+    }
+}
+
+/* Directions 2^-600 ... 2^600 long (exact scalings of the same rays): the
+   query traces them rescaled, so every answer is the unit ray's, its t
+   scaled (within 1e-12, the rescaled direction differs from the unit one
+   by a power of 2 too), through re_query, re_query_uv, re_query_exit and
+   re_secondary_origin. At 1e+-200 a third of the rounded hits had come
+   back unchanged, or with the point left on the sharp face. */
+static void extreme_direction_lengths(void)
+{
+    static const int exps[4] = {-600, -100, 100, 600};
+    tm_mesh_t m = {0};
+    re_scene_t *sc;
+    re_diag_t dg;
+    t_rng_t rng = {600};
+    long i, n = t_count(3000), rounded = 0;
+    int a, k;
+    tm_box(&m, BOX_LO, BOX_HI);
+    sc = build1(&m, 0.05, &dg);
+    if (!T_CHECK(sc != NULL)) { tm_free(&m); return; }
+    for (i = 0; i < n; i++) {
+        double o[3], d[3], tgt[3], t_host, u, v, so0[3];
+        unsigned tri;
+        re_hit_t h0, x0;
+        for (a = 0; a < 3; a++) {
+            double w = t_rng_unit(&rng);
+            tgt[a] = w < 0.35 ? BOX_LO[a] + 0.08 * t_rng_unit(&rng) : w < 0.7 ? BOX_HI[a] - 0.08 * t_rng_unit(&rng)
+                                                                          : t_rng_range(&rng, BOX_LO[a], BOX_HI[a]);
+            o[a] = tgt[a] + t_rng_range(&rng, -3, 3);
+        }
+        tm_sub(tgt, o, d);
+        if (!tm_hit_uv(&m, o, d, &t_host, &tri, &u, &v)) continue;
+        re_query(sc, o, d, 0, tri, t_host, &h0);
+        re_query_exit(sc, o, d, 0, tri, t_host, &x0);
+        re_secondary_origin(sc, &h0, d, so0);
+        rounded += h0.kind == RE_HIT_ROUNDED;
+        for (k = 0; k < 4; k++) {
+            double ds[3], f = ldexp(1.0, exps[k]), so[3];
+            re_hit_t h, hu, x;
+            for (a = 0; a < 3; a++) ds[a] = d[a] * f;
+            re_query(sc, o, ds, 0, tri, t_host / f, &h);
+            re_query_uv(sc, o, ds, 0, tri, t_host / f, u, v, &hu);
+            re_query_exit(sc, o, ds, 0, tri, t_host / f, &x);
+            re_secondary_origin(sc, &h, ds, so);
+            if (!T_INT_EQ(h.kind, h0.kind) || !T_INT_EQ(hu.kind, h0.kind) || !T_INT_EQ(x.kind, x0.kind)) continue;
+            T_NEAR(h.t * f, h0.t, 1e-12 * (1 + h0.t));
+            T_NEAR(hu.t * f, h0.t, 1e-12 * (1 + h0.t));
+            T_NEAR(x.t * f, x0.t, 1e-12 * (1 + x0.t));
+            for (a = 0; a < 3; a++) {
+                T_NEAR(h.point[a], h0.point[a], 1e-12);
+                T_NEAR(so[a], so0[a], 1e-12);
+            }
+        }
+    }
+    T_GT(rounded, n / 10);
+    re_free(sc);
+    tm_free(&m);
+}
+
 /* A box whose faces are 24 x 24 grids of quads, turned (generic planes),
    built at the origin and moved to (3e5, -2e5, 1e5) plus fractions: there
    each vertex is rounded to 6e-11, which tilts the coplanar pieces (0.03
@@ -1232,6 +1371,9 @@ int main(int argc, char **argv)
         T_CASE(dihedral_1_degree),
         T_CASE(icosphere_level1),
         T_CASE(coordinates_offset_1e6),
+        T_CASE(object_sizes_at_both_ends_of_the_range),
+        T_CASE(object_sizes_outside_the_range_rejected),
+        T_CASE(extreme_direction_lengths),
         T_CASE(rays_exactly_through_edges_and_vertices),
         T_CASE(rays_grazing_a_face),
         T_CASE(rays_lying_in_a_face_plane),
