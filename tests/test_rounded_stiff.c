@@ -249,6 +249,21 @@ static void coordinates_offset_1e6(void)
     g_t_conditioned = 0;
 }
 
+/* A ray at the test box from up to 3 away, aimed near its edges and
+   corners in two draws of three per axis. */
+static void box_edge_ray(t_rng_t *rng, double o[3], double d[3])
+{
+    double tgt[3];
+    int a;
+    for (a = 0; a < 3; a++) {
+        double w = t_rng_unit(rng);
+        tgt[a] = w < 0.35 ? BOX_LO[a] + 0.08 * t_rng_unit(rng) : w < 0.7 ? BOX_HI[a] - 0.08 * t_rng_unit(rng)
+                                                                     : t_rng_range(rng, BOX_LO[a], BOX_HI[a]);
+        o[a] = tgt[a] + t_rng_range(rng, -3, 3);
+    }
+    tm_sub(tgt, o, d);
+}
+
 /* The box scaled to the ends of the supported sizes (its diagonal 1.23 s,
    s = 1e-60 and 8e35): every answer is the unit box's scaled (kind, t / s
    and point / s within 1e-9, normals within 1e-9), rounding being
@@ -274,17 +289,11 @@ static void object_sizes_at_both_ends_of_the_range(void)
         ss = build1(&ms, 0.05 * f, &dg);
         if (!T_CHECK(ss != NULL)) { tm_free(&ms); continue; }
         for (i = 0; i < n; i++) {
-            double o[3], d[3], of[3], tgt[3], t1, tf, u, v;
+            double o[3], d[3], of[3], t1, tf, u, v;
             unsigned tri1, trif;
             re_hit_t h1, hf;
-            for (a = 0; a < 3; a++) {
-                double w = t_rng_unit(&rng);
-                tgt[a] = w < 0.35 ? BOX_LO[a] + 0.08 * t_rng_unit(&rng) : w < 0.7 ? BOX_HI[a] - 0.08 * t_rng_unit(&rng)
-                                                                              : t_rng_range(&rng, BOX_LO[a], BOX_HI[a]);
-                o[a] = tgt[a] + t_rng_range(&rng, -3, 3);
-                of[a] = o[a] * f;
-            }
-            tm_sub(tgt, o, d);
+            box_edge_ray(&rng, o, d);
+            for (a = 0; a < 3; a++) of[a] = o[a] * f;
             if (!tm_hit_uv(&m1, o, d, &t1, &tri1, &u, &v) || !tm_hit_uv(&ms, of, d, &tf, &trif, &u, &v)) continue;
             re_query(s1, o, d, 0, tri1, t1, &h1);
             re_query(ss, of, d, 0, trif, tf, &hf);
@@ -350,16 +359,10 @@ static void extreme_direction_lengths(void)
     sc = build1(&m, 0.05, &dg);
     if (!T_CHECK(sc != NULL)) { tm_free(&m); return; }
     for (i = 0; i < n; i++) {
-        double o[3], d[3], tgt[3], t_host, u, v, so0[3];
+        double o[3], d[3], t_host, u, v, so0[3];
         unsigned tri;
         re_hit_t h0, x0;
-        for (a = 0; a < 3; a++) {
-            double w = t_rng_unit(&rng);
-            tgt[a] = w < 0.35 ? BOX_LO[a] + 0.08 * t_rng_unit(&rng) : w < 0.7 ? BOX_HI[a] - 0.08 * t_rng_unit(&rng)
-                                                                          : t_rng_range(&rng, BOX_LO[a], BOX_HI[a]);
-            o[a] = tgt[a] + t_rng_range(&rng, -3, 3);
-        }
-        tm_sub(tgt, o, d);
+        box_edge_ray(&rng, o, d);
         if (!tm_hit_uv(&m, o, d, &t_host, &tri, &u, &v)) continue;
         re_query(sc, o, d, 0, tri, t_host, &h0);
         re_query_exit(sc, o, d, 0, tri, t_host, &x0);
