@@ -166,7 +166,9 @@ typedef enum re_scalar_t {
 typedef struct re_mesh_t {
     const void *positions;      /* x,y,z per vertex, object units */
     re_scalar_t position_type;  /* default RE_FLOAT64 */
-    size_t position_stride;     /* bytes from one vertex to the next; 0 = packed */
+    size_t position_stride;     /* bytes from one vertex to the next; 0 = packed.
+                                   Any count: positions are read by memcpy, so
+                                   neither they nor the stride need alignment */
     unsigned vertex_count;
     const unsigned *indices;    /* 32-bit vertex indices */
     unsigned index_count;       /* 3 * triangles, or the sum of face_sizes */
@@ -368,8 +370,9 @@ typedef struct re_scene_t re_scene_t; /* opaque; lives in one block */
    with desc.parallel (THREADS). */
 RE_DEF re_result_t re_build_sizes(const re_scene_desc_t *desc, re_sizes_t *sizes,
                                   re_diag_t *diag);
-/* Build into caller buffers (sizes from re_build_sizes(); `scene_mem` aligned
-   to 16 bytes). *scene points into scene_mem; nothing to free. Runs on the
+/* Build into caller buffers (sizes from re_build_sizes(); `scene_mem` and
+   `scratch` aligned to 16 bytes, as malloc gives them: RE_ERR_INVALID_ARG
+   otherwise). *scene points into scene_mem; nothing to free. Runs on the
    calling thread (desc.parallel is not used). */
 RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem,
                                  size_t scene_bytes, void *scratch, size_t scratch_bytes,
@@ -1149,16 +1152,15 @@ static void re__read_pos(const re_mesh_t *m, unsigned i, double out[3])
 {
     size_t stride = m->position_stride;
     const unsigned char *base = (const unsigned char *)m->positions;
+    /* memcpy: a stride need not keep the scalars aligned */
     if (m->position_type == RE_FLOAT32) {
-        const float *p = (const float *)(const void *)(base + (stride ? stride : 3 * sizeof(float)) * i);
+        float p[3];
+        memcpy(p, base + (stride ? stride : 3 * sizeof(float)) * i, sizeof p);
         out[0] = p[0];
         out[1] = p[1];
         out[2] = p[2];
     } else {
-        const double *p = (const double *)(const void *)(base + (stride ? stride : 3 * sizeof(double)) * i);
-        out[0] = p[0];
-        out[1] = p[1];
-        out[2] = p[2];
+        memcpy(out, base + (stride ? stride : 3 * sizeof(double)) * i, 3 * sizeof(double));
     }
 }
 
@@ -1270,7 +1272,8 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     size_t mark;
     re_result_t rc;
     char msg[128];
-    if (m->position_type == RE_FLOAT64 && (m->position_stride == 0 || m->position_stride == 3 * sizeof(double)))
+    if (m->position_type == RE_FLOAT64 && (m->position_stride == 0 || m->position_stride == 3 * sizeof(double)) &&
+        !((size_t)m->positions % sizeof(double)))
         an->pos = (const double *)m->positions; /* no copy: fewer fresh scratch pages */
     else {
         double *pos;
@@ -2689,10 +2692,10 @@ static re_result_t re__patch_radius(re__an_t *an, const unsigned *uf, const re__
         }
         if (P->req[c] > P->rmax[c] * (1 + RE__RADIUS_SLACK)) {
             if (P->lim1[c] >= 0)
-                snprintf(msg, sizeof msg, "radius %g too large: edge %lld-%lld is shorter than its two set-backs (largest %.17g)",
+                snprintf(msg, sizeof msg, "radius %.17g too large: edge %lld-%lld is shorter than its two set-backs (largest %.17g)",
                          P->req[c], P->lim0[c], P->lim1[c], P->rmax[c]);
             else
-                snprintf(msg, sizeof msg, "radius %g too large at vertex %lld: the solid is thinner than 2r there (largest %.17g)",
+                snprintf(msg, sizeof msg, "radius %.17g too large at vertex %lld: the solid is thinner than 2r there (largest %.17g)",
                          P->req[c], P->lim0[c], P->rmax[c]);
             if (an->desc->radius_policy == RE_RADIUS_REJECT) return re__fail(an, RE_ERR_RADIUS_TOO_LARGE, P->lim0[c], msg);
             r[c] = P->rmax[c];
@@ -4818,7 +4821,8 @@ RE_DEF re_result_t re_build_into(const re_scene_desc_t *desc, void *scene_mem, s
     if (rc != RE_OK) return rc;
     if (!scene || !scene_mem || (!scratch && scratch_bytes))
         return re__diag_fail(diag, RE_ERR_INVALID_ARG, -1, -1, "NULL scene or scene_mem, or NULL scratch with scratch_bytes > 0");
-    if ((size_t)scene_mem & 15u) return re__diag_fail(diag, RE_ERR_INVALID_ARG, -1, -1, "scene_mem is not 16-byte aligned");
+    if (((size_t)scene_mem | (size_t)scratch) & 15u)
+        return re__diag_fail(diag, RE_ERR_INVALID_ARG, -1, -1, "scene_mem or scratch is not 16-byte aligned");
     *scene = NULL;
     if (scene_bytes < re__header_bytes(desc->object_count))
         return re__diag_fail(diag, RE_ERR_BUFFER_TOO_SMALL, -1, -1, "scene_bytes smaller than re_build_sizes() asked");

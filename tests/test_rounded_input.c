@@ -403,13 +403,14 @@ static void input_variants_agree(void)
     re_sizes_t sz;
     re_diag_t dg;
     float fpos[8][4];
-    double dpos[8][6];
+    unsigned char dbytes[1 + 8 * 28]; /* doubles at an odd address, a stride of 28: no alignment at all */
     unsigned quads[24], sizes[6], i, k;
     void *mem, *scratch;
     t_rng_t rng = {5};
     tm_box(&m, LO, HI);
     for (i = 0; i < 8; i++) for (k = 0; k < 3; k++) fpos[i][k] = (float)m.v[3 * i + k];
-    for (i = 0; i < 8; i++) for (k = 0; k < 6; k++) dpos[i][k] = k < 3 ? m.v[3 * i + k] : -7.0;
+    memset(dbytes, 0x7F, sizeof dbytes);
+    for (i = 0; i < 8; i++) memcpy(dbytes + 1 + 28 * i, m.v + 3 * i, 3 * sizeof(double));
     for (i = 0; i < 6; i++) { /* the quad a b c d behind triangles (a b c), (a c d) */
         quads[4 * i] = m.idx[6 * i], quads[4 * i + 1] = m.idx[6 * i + 1], quads[4 * i + 2] = m.idx[6 * i + 2], quads[4 * i + 3] = m.idx[6 * i + 5];
         sizes[i] = 4;
@@ -420,7 +421,7 @@ static void input_variants_agree(void)
     mesh[2] = mesh[0];
     mesh[2].indices = quads, mesh[2].index_count = 24, mesh[2].face_sizes = sizes, mesh[2].face_count = 6;
     mesh[3] = mesh[0];
-    mesh[3].positions = dpos, mesh[3].position_stride = sizeof dpos[0];
+    mesh[3].positions = dbytes + 1, mesh[3].position_stride = 28;
     memset(&desc, 0, sizeof desc);
     desc.objects = mesh, desc.object_count = 4;
     T_INT_EQ(re_build(&desc, &s[0], &dg), RE_OK);
@@ -435,6 +436,8 @@ static void input_variants_agree(void)
     T_INT_EQ(dg.result, RE_ERR_BUFFER_TOO_SMALL), T_CHECK(strstr(dg.message, "scratch") != NULL);
     T_INT_EQ(re_build_into(&desc, (char *)mem + 8, sz.scene_bytes - 16, scratch, sz.scratch_bytes, &s[1], &dg), RE_ERR_INVALID_ARG);
     T_INT_EQ(dg.result, RE_ERR_INVALID_ARG), T_CHECK(strstr(dg.message, "aligned") != NULL);
+    T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes, (char *)scratch + 4, sz.scratch_bytes - 16, &s[1], &dg), RE_ERR_INVALID_ARG);
+    T_INT_EQ(dg.result, RE_ERR_INVALID_ARG), T_CHECK(strstr(dg.message, "scratch") != NULL);
     T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes, NULL, &dg), RE_ERR_INVALID_ARG);
     T_INT_EQ(dg.result, RE_ERR_INVALID_ARG), T_CHECK(strstr(dg.message, "NULL") != NULL);
     T_INT_EQ(re_build_into(&desc, mem, sz.scene_bytes, scratch, sz.scratch_bytes, &s[1], &dg), RE_OK);
