@@ -865,7 +865,6 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
 #  define GR_FREE(p, ctx) ((void)(ctx), free(p))
 #endif
 #include <stdio.h>  /* snprintf for diagnostics */
-#include <stdlib.h> /* qsort */
 #include <float.h>  /* DBL_EPSILON */
 #include <string.h>
 
@@ -2072,6 +2071,112 @@ static int gr__locate(const gr_grid_t *grid, int g, const double f[2], double re
     return found;
 }
 
+/* ---- Sorting without allocation ----------------------------------------------
+   libc's qsort may malloc a buffer (glibc does for arrays of 1 KiB and
+   more), which a query must not and a builder may only through GR_MALLOC.
+   gr__sort is stable (equal keys keep their order, as glibc's merge sort
+   kept them), in place and allocation-free: insertion sort on runs of
+   GR__SORT_RUN, then runs merged pairwise, through a 4 KiB buffer on the
+   stack while the left run fits in it, else by rotations (the longer
+   run's middle element is placed by binary search in the other, the two
+   pieces between are swapped by three reversals, and each side is merged
+   again: O(n log n) compares and O(n log^2 n) element moves). cmp as
+   qsort's. */
+typedef int (*gr__cmp_fn)(const void *, const void *);
+#define GR__SORT_RUN 16
+static void gr__elem_swap(unsigned char *a, unsigned char *b, size_t size)
+{
+    unsigned char t[64];
+    while (size) { /* in pieces of 64 bytes: elements of any size */
+        size_t k = size < sizeof t ? size : sizeof t;
+        memcpy(t, a, k);
+        memcpy(a, b, k);
+        memcpy(b, t, k);
+        a += k, b += k, size -= k;
+    }
+}
+static void gr__reverse(unsigned char *base, size_t size, size_t lo, size_t hi) /* [lo, hi) */
+{
+    while (hi > lo + 1) gr__elem_swap(base + lo++ * size, base + --hi * size, size);
+}
+/* [a, m) [m, b) -> [m, b) [a, m) */
+static void gr__rotate(unsigned char *base, size_t size, size_t a, size_t m, size_t b)
+{
+    if (a == m || m == b) return;
+    gr__reverse(base, size, a, m);
+    gr__reverse(base, size, m, b);
+    gr__reverse(base, size, a, b);
+}
+/* First index in [lo, hi) whose element is not below x (below: strictly
+   less; upper: less or equal, for x from the left run). */
+static size_t gr__bound(const unsigned char *base, size_t size, gr__cmp_fn cmp, size_t lo, size_t hi, const void *x, int upper)
+{
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        int c = cmp(base + mid * size, x);
+        if (c < 0 || (upper && c == 0)) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo;
+}
+/* Merge the sorted runs [a, m) and [m, b) stably, in place. */
+static void gr__merge_runs(unsigned char *base, size_t size, gr__cmp_fn cmp, size_t a, size_t m, size_t b)
+{
+    while (a < m && m < b) {
+        size_t c1, c2, nm;
+        if (b - a == 2) {
+            if (cmp(base + m * size, base + a * size) < 0) gr__elem_swap(base + a * size, base + m * size, size);
+            return;
+        }
+        if (m - a >= b - m) { /* the left run's middle, after the right run's smaller elements */
+            c1 = a + (m - a) / 2;
+            c2 = gr__bound(base, size, cmp, m, b, base + c1 * size, 0);
+        } else { /* the right run's middle, after the left run's elements not above it */
+            c2 = m + (b - m) / 2;
+            c1 = gr__bound(base, size, cmp, a, m, base + c2 * size, 1);
+        }
+        gr__rotate(base, size, c1, m, c2);
+        nm = c1 + (c2 - m);
+        /* the smaller side recursively, the larger one by the loop: depth log n */
+        if (nm - a < b - nm) {
+            gr__merge_runs(base, size, cmp, a, c1, nm);
+            a = nm, m = c2;
+        } else {
+            gr__merge_runs(base, size, cmp, nm, c2, b);
+            b = nm, m = c1;
+        }
+    }
+}
+/* The same merge with the left run copied out to buf first (it fits):
+   each element moves once; the left run's element goes first on ties. */
+static void gr__merge_buffered(unsigned char *base, size_t size, gr__cmp_fn cmp, size_t a, size_t m, size_t b, unsigned char *buf)
+{
+    size_t i = 0, nl = m - a, j = m, k = a;
+    memcpy(buf, base + a * size, nl * size);
+    while (i < nl && j < b) {
+        if (cmp(base + j * size, buf + i * size) < 0) memcpy(base + k++ * size, base + j++ * size, size);
+        else memcpy(base + k++ * size, buf + i++ * size, size);
+    }
+    if (i < nl) memcpy(base + k * size, buf + i * size, (nl - i) * size);
+}
+static void gr__sort(void *base_v, size_t n, size_t size, gr__cmp_fn cmp)
+{
+    unsigned char *base = (unsigned char *)base_v, buf[4096]; /* merges whose left run fits skip the rotations */
+    size_t r, i, j, w;
+    for (r = 0; r < n; r += GR__SORT_RUN) { /* runs by insertion (adjacent swaps) */
+        size_t end = r + GR__SORT_RUN < n ? r + GR__SORT_RUN : n;
+        for (i = r + 1; i < end; i++)
+            for (j = i; j > r && cmp(base + j * size, base + (j - 1) * size) < 0; j--)
+                gr__elem_swap(base + j * size, base + (j - 1) * size, size);
+    }
+    for (w = GR__SORT_RUN; w < n; w *= 2)
+        for (r = 0; r + w < n; r += 2 * w) {
+            size_t b = r + 2 * w < n ? r + 2 * w : n;
+            if (w * size <= sizeof buf) gr__merge_buffered(base, size, cmp, r, r + w, b, buf);
+            else gr__merge_runs(base, size, cmp, r, r + w, b);
+        }
+}
+
 static int gr__key_less(const gr__key_t *a, const gr__key_t *b)
 {
     return a->x < b->x || (a->x == b->x && a->groove < b->groove);
@@ -2082,11 +2187,11 @@ static int gr__cmp_key(const void *a, const void *b)
     return gr__key_less(x, y) ? -1 : gr__key_less(y, x);
 }
 /* Candidates arrive nearly in order for parallel families: insertion sort
-   while short, qsort beyond. */
+   while short, gr__sort beyond. */
 static void gr__sort_keys(gr__key_t *k, int n)
 {
     int i, j;
-    if (n > 32) { qsort(k, (size_t)n, sizeof *k, gr__cmp_key); return; }
+    if (n > 32) { gr__sort(k, (size_t)n, sizeof *k, gr__cmp_key); return; }
     for (i = 1; i < n; i++) {
         gr__key_t t = k[i];
         for (j = i; j > 0 && gr__key_less(&t, &k[j - 1]); j--) k[j] = k[j - 1];
@@ -3843,7 +3948,7 @@ static int gr__self_cuts(const gr__groove_t *par, gr_self_hit_t *hits, int nh, g
 {
     int k, i, nb = 0, n = par->pieces, bez = par->kind != GR_PATH_POLYLINE;
     double lo = 0, hi = -1;
-    qsort(hits, (size_t)nh, sizeof *hits, gr__cmp_hit_t2);
+    gr__sort(hits, (size_t)nh, sizeof *hits, gr__cmp_hit_t2);
     for (k = 0; k <= nh; k++) {
         if (k < nh && hi > lo && hits[k].param[0] < hi) { /* overlaps the group: narrow it */
             if (hits[k].param[0] > lo) lo = hits[k].param[0];
@@ -3864,7 +3969,7 @@ static int gr__self_cuts(const gr__groove_t *par, gr_self_hit_t *hits, int nh, g
         }
         if (k < nh) { lo = hits[k].param[0]; hi = hits[k].param[1]; }
     }
-    qsort(rec, (size_t)nb, sizeof *rec, gr__cmp_rec_t0);
+    gr__sort(rec, (size_t)nb, sizeof *rec, gr__cmp_rec_t0);
     for (i = 0, k = 0; k < nb; k++) /* unique, strictly inside */
         if (rec[k].t0 > 0 && rec[k].t0 < (bez ? n : 1) && (i == 0 || rec[k].t0 > rec[i - 1].t0)) rec[i++].t0 = rec[k].t0;
     return i;
@@ -4846,7 +4951,7 @@ static int gr__pp_merge(double *t, int n)
     if (n < 2) return n;
     /* by bottom height, then left end: a trapezoid's upper neighbour is
        found by bisection on its top height */
-    qsort(tr, (size_t)n, sizeof *tr, gr__cmp_trap);
+    gr__sort(tr, (size_t)n, sizeof *tr, gr__cmp_trap);
     memset(gone, 0, (size_t)n);
     for (i = 0; i < n; i++) {
         double *a = tr[i].v;
@@ -6266,17 +6371,17 @@ static int gr__sheet_breaks(gr__lscene_t *sc, const gr__sheet_t *sh, const doubl
     return nb;
 }
 
-#define GR__LINE_SMALL_SORT 24 /* insertion sort below, qsort above */
+#define GR__LINE_SMALL_SORT 24 /* insertion sort below, gr__sort above */
 static int gr__cmp_brk(const void *a, const void *b)
 {
     double x = ((const gr__brk_t *)a)->s, y = ((const gr__brk_t *)b)->s;
     return (x > y) - (x < y);
 }
 
-/* Sort breakpoints by s (insertion for short lists, qsort beyond). */
+/* Sort breakpoints by s (insertion for short lists, gr__sort beyond). */
 static void gr__brk_sort(gr__lscene_t *sc, int nb)
 {
-    if (nb > GR__LINE_SMALL_SORT) qsort(sc->ls.brk, (size_t)nb, sizeof(gr__brk_t), gr__cmp_brk);
+    if (nb > GR__LINE_SMALL_SORT) gr__sort(sc->ls.brk, (size_t)nb, sizeof(gr__brk_t), gr__cmp_brk);
     else {
         int i, j;
         for (i = 1; i < nb; i++) {
@@ -6378,7 +6483,7 @@ static void gr__ivl_sort(gr__ivl_t *iv, int n, int by_len)
 {
     int i, j;
     if (n > GR__LINE_SMALL_SORT) {
-        qsort(iv, (size_t)n, sizeof *iv, by_len ? gr__cmp_ivl_len : gr__cmp_ivl_pos);
+        gr__sort(iv, (size_t)n, sizeof *iv, by_len ? gr__cmp_ivl_len : gr__cmp_ivl_pos);
         return;
     }
     for (i = 1; i < n; i++) {

@@ -631,7 +631,6 @@ RE_DEF re_result_t re_bevel_cycles(const re_bevel_cycles_desc_t *desc, const dou
 #define FILIGREE_RE_IMPLEMENTATION_DONE
 
 #include <stdio.h>  /* snprintf for diagnostics; nothing is printed */
-#include <stdlib.h> /* qsort */
 #include <string.h>
 
 #ifndef RE_ASSERT
@@ -1322,6 +1321,40 @@ static re_result_t re__triangles(re__an_t *an, re__arena_t *ar)
     return RE_OK;
 }
 
+/* In-place heapsort, allocation-free: libc's qsort may malloc a buffer
+   (glibc does from 1 KiB), outside RE_MALLOC and the caller's scratch.
+   Not stable; every sort here orders values whose equal keys are equal
+   bits, so the result is the one qsort gave. cmp as qsort's. */
+static void re__sort_swap(unsigned char *a, unsigned char *b, size_t size)
+{
+    while (size--) {
+        unsigned char t = *a;
+        *a++ = *b, *b++ = t;
+    }
+}
+static void re__sift_down(unsigned char *base, size_t size, int (*cmp)(const void *, const void *), size_t i, size_t n)
+{
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= n) return;
+        if (c + 1 < n && cmp(base + c * size, base + (c + 1) * size) < 0) c++;
+        if (!(cmp(base + i * size, base + c * size) < 0)) return;
+        re__sort_swap(base + i * size, base + c * size, size);
+        i = c;
+    }
+}
+static void re__sort(void *base_v, size_t n, size_t size, int (*cmp)(const void *, const void *))
+{
+    unsigned char *base = (unsigned char *)base_v;
+    size_t i;
+    if (n < 2) return;
+    for (i = n / 2; i-- > 0;) re__sift_down(base, size, cmp, i, n);
+    for (i = n - 1; i > 0; i--) {
+        re__sort_swap(base, base + i * size, size);
+        re__sift_down(base, size, cmp, 0, i);
+    }
+}
+
 static int re__cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -1479,10 +1512,10 @@ static void re__sort_bucket(unsigned long long *key, unsigned s, unsigned e)
 {
     unsigned x, y;
     if (e - s > 64) {
-        qsort(key + s, e - s, sizeof *key, re__cmp_u64);
+        re__sort(key + s, e - s, sizeof *key, re__cmp_u64);
         return;
     }
-    /* up to a 24-gon fan's apex (47): insertion sort beats qsort's calls;
+    /* up to a 24-gon fan's apex (47): insertion sort beats re__sort's calls;
        the keys are unique, so the order is the same */
     for (x = s + 1; x < e; x++)
         for (y = x; y > s && key[y - 1] > key[y]; y--) {
@@ -4020,7 +4053,7 @@ static re_result_t re__patch_radii(re__an_t *an, re__arena_t *ar, const double *
         }
     RE__TAKE(F->radii, double, N->npatch + 1);
     memcpy(F->radii, pr, sizeof(double) * N->npatch);
-    qsort(F->radii, N->npatch, sizeof(double), re__cmp_double);
+    re__sort(F->radii, N->npatch, sizeof(double), re__cmp_double);
     F->n_radii = 0;
     for (i = 0; i < N->npatch; i++)
         if (F->n_radii == 0 || F->radii[F->n_radii - 1] != F->radii[i]) F->radii[F->n_radii++] = F->radii[i];
@@ -4735,7 +4768,7 @@ static re_result_t re__assign_tasks(const re_scene_desc_t *desc, unsigned k, uns
     unsigned i, w, n = desc->object_count;
     if (!(key = (unsigned long long *)RE_MALLOC(sizeof *key * n, desc->alloc_ctx))) return RE_ERR_OUT_OF_MEMORY;
     for (i = 0; i < n; i++) key[i] = ((unsigned long long)(0xFFFFFFFFu - desc->objects[i].index_count) << 28) | i;
-    qsort(key, n, sizeof *key, re__cmp_u64);
+    re__sort(key, n, sizeof *key, re__cmp_u64);
     memset(load, 0, sizeof load);
     for (i = 0; i < n; i++) {
         unsigned o = (unsigned)(key[i] & 0x0FFFFFFFu), best = 0;

@@ -90,6 +90,14 @@ run_one() {
 }
 export -f run_one
 results=$(xargs -P "$jobs" -d '\n' -I{} bash -c 'run_one "$@"' _ {} < "$joblist")
+# No header calls libc's allocator but through its XX_MALLOC/XX_FREE default,
+# nor qsort/bsearch (glibc's qsort mallocs a buffer from 1 KiB: a query
+# must not allocate, a builder only through the hooks). One result per header.
+for h in "${headers[@]}"; do
+  bad=$(grep -nE '\b(qsort|bsearch|malloc|calloc|realloc|free|aligned_alloc|posix_memalign)[[:space:]]*\(' "include/$h" |
+        grep -vE 'define [A-Z]+_(MALLOC|FREE)\(|^[0-9]+:[[:space:]]*(/\*|\*|//)|re_free|gr_grid_free|fr_tape_free|fr_builder_free|fr_prepared_free|_free\(' || true)
+  if [ -z "$bad" ]; then results+=$'\nPASS'; else results+=$'\n'"FAIL: include/$h calls libc's allocator or qsort outside its hooks:"$'\n'"$bad"; fi
+done
 pass=$(grep -c '^PASS$' <<< "$results")
 fail=$(grep -c '^FAIL: ' <<< "$results")
 grep -v '^PASS$' <<< "$results"

@@ -742,6 +742,45 @@ static void boundary_cells_visited(void)
     gr_grid_free(raised);
 }
 
+/* gr__sort, which the builder and the queries use instead of libc's qsort
+   (glibc's mallocs a buffer from 1 KiB): equal to a reference order (the
+   key, then the original position, so stable) on 3 000 random arrays of
+   up to 700 elements with many equal keys, elements of 28 bytes (the 4 KiB
+   merge buffer) and of 260 (the rotations past it). */
+typedef struct sort_el_t { int key, pos; unsigned char pad[20]; } sort_el_t;
+typedef struct sort_big_t { int key, pos; unsigned char pad[252]; } sort_big_t;
+static int sort_by_key(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+static int sort_by_key_pos(const void *a, const void *b)
+{
+    const int *x = (const int *)a, *y = (const int *)b;
+    return x[0] != y[0] ? (x[0] > y[0]) - (x[0] < y[0]) : (x[1] > y[1]) - (x[1] < y[1]);
+}
+static void sort_is_stable_in_place(void)
+{
+    t_rng_t r = {700};
+    long trial, m = t_count(3000);
+    for (trial = 0; trial < m; trial++) {
+        int big = trial % 4 == 3, n = (int)(t_rng_u64(&r) % (big ? 200 : 700)), range = 1 + (int)(t_rng_u64(&r) % 50), i;
+        size_t sz = big ? sizeof(sort_big_t) : sizeof(sort_el_t);
+        unsigned char *a = (unsigned char *)malloc(sz * (size_t)(n + 1)), *b = (unsigned char *)malloc(sz * (size_t)(n + 1));
+        for (i = 0; i < n; i++) {
+            int kp[2];
+            kp[0] = (int)(t_rng_u64(&r) % (unsigned)range), kp[1] = i;
+            memset(a + sz * (size_t)i, i & 255, sz);
+            memcpy(a + sz * (size_t)i, kp, sizeof kp);
+        }
+        memcpy(b, a, sz * (size_t)n);
+        gr__sort(a, (size_t)n, sz, sort_by_key);
+        qsort(b, (size_t)n, sz, sort_by_key_pos);
+        if (!T_CHECK(memcmp(a, b, sz * (size_t)n) == 0)) trial = m;
+        free(a), free(b);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -761,6 +800,7 @@ int main(int argc, char **argv)
         T_CASE(shade_with_brdf_callback),
         T_CASE(many_threads_one_grid),
         T_CASE(random_scenes_keep_invariants),
+        T_CASE(sort_is_stable_in_place),
     };
     return T_RUN(argc, argv, cases);
 }
