@@ -658,8 +658,10 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 #ifndef GR_LINE_MAX_EDGES /* edge lines kept per scene; beyond, found per segment (slower, same answer) */
 #  define GR_LINE_MAX_EDGES 2048
 #endif
-/* gr_facet_list_t.flags: line samples dropped grooves or breakpoints. */
-#define GR_LIST_LINE_APPROX 32u
+/* gr_facet_list_t.flags: line samples dropped grooves or breakpoints.
+   (32u until 2026-12-05: the bit of GR_LIST_POLYGON, so a line-sampled
+   answer that dropped grooves claimed the polygon path.) */
+#define GR_LIST_LINE_APPROX 64u
 
 /* gr_line_stats_t.flags */
 #define GR_STATS_LINE_APPROX 1u /* a segment's scene dropped grooves, planes or

@@ -1035,6 +1035,7 @@ static void t_stiff_many_grooves(void)
         free(scratch);
     }
     T_CHECK(l.flags & GR_LIST_LINE_APPROX);
+    T_CHECK(!(l.flags & GR_LIST_POLYGON)); /* line samples, not the polygon path: the flags' bits differ */
     T_CHECK(st.flags & GR_STATS_LINE_APPROX);
     T_INT_EQ(l.grooves, GR_LINE_MAX_GROOVES);
     T_NEAR(gt_ratio_sum(&l), 1, 1e-9);
