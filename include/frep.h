@@ -7131,14 +7131,14 @@ static int fr__quadric_normal(const fr__leaf_t *L, int orient, const double p[3]
     return 1;
 }
 
-/* fr_trace's arguments: FR_OK when they make a ray query (a NULL desc
-   stands for the zero one), else FR_ERR_INVALID_ARG. */
 /* The |grad f| bound the marching methods use: desc's, else the tape's. */
 static double fr__trace_lipschitz(const fr_tape_t *t, const fr_trace_desc_t *desc)
 {
     return desc->lipschitz > 0 ? desc->lipschitz : t->lipschitz;
 }
 
+/* fr_trace's arguments: FR_OK when they make a ray query (a NULL desc
+   stands for the zero one), else FR_ERR_INVALID_ARG. */
 static fr_result_t fr__trace_args(const double o[3], const double d[3], double t0, double t1, const fr_trace_desc_t *desc)
 {
     /* x - x is 0 for finite x, NaN for infinities and NaN: one test for all six */
@@ -7387,8 +7387,10 @@ static fr_result_t fr__trace_any_length(const fr_tape_t *t, const double o[3], c
     if (D.step > 0) D.step = ldexp(D.step, ex - 1);
     {
         fr_result_t e = fr__trace(t, o, ds, ldexp(t0, ex - 1), ldexp(t1, ex - 1), &D, scratch, hit);
-        hit->t = ldexp(hit->t, 1 - ex);
-        hit->t_err = ldexp(hit->t_err, 1 - ex);
+        if (e == FR_OK) { /* an error leaves *hit as fr__trace left it */
+            hit->t = ldexp(hit->t, 1 - ex);
+            hit->t_err = ldexp(hit->t_err, 1 - ex);
+        }
         return e;
     }
 }

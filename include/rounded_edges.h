@@ -5631,9 +5631,10 @@ static int re__dir_scale(const double dir[3], double ds[3])
     return e;
 }
 
-/* The four queries, each through re__dir_scale (exit: the reversed ray). */
+/* The four queries, each through re__dir_scale (from_inside: the exit
+   queries, the reversed ray). */
 static re_hit_kind_t re__query_any_length(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
-                                          unsigned triangle, double t_host, int exit, int with_uv, double u, double v,
+                                          unsigned triangle, double t_host, int from_inside, int with_uv, double u, double v,
                                           re_hit_t *out)
 {
     double ds[3];
@@ -5641,11 +5642,11 @@ static re_hit_kind_t re__query_any_length(const re_scene_t *scene, const double 
     re_hit_kind_t kind;
     if (!out) return RE_UNCHANGED;
     e = re__dir_scale(dir, ds);
-    if (e == 0) return exit ? re__query_exit(scene, o3, dir, object, triangle, t_host, with_uv, u, v, out)
-                            : re__query(scene, o3, dir, object, triangle, t_host, with_uv, u, v, out);
+    if (e == 0) return from_inside ? re__query_exit(scene, o3, dir, object, triangle, t_host, with_uv, u, v, out)
+                                   : re__query(scene, o3, dir, object, triangle, t_host, with_uv, u, v, out);
     t_host = ldexp(t_host, -e);
-    kind = exit ? re__query_exit(scene, o3, ds, object, triangle, t_host, with_uv, u, v, out)
-                : re__query(scene, o3, ds, object, triangle, t_host, with_uv, u, v, out);
+    kind = from_inside ? re__query_exit(scene, o3, ds, object, triangle, t_host, with_uv, u, v, out)
+                       : re__query(scene, o3, ds, object, triangle, t_host, with_uv, u, v, out);
     out->t = ldexp(out->t, e);
     return kind;
 }
