@@ -7303,11 +7303,10 @@ static fr_result_t fr__trace_method(fr__ray_t *R, fr__trace_mem_t *mem, const fr
     }
 }
 
+/* fr_trace's body; desc is never NULL (fr_trace stands the defaults in). */
 static FR__NOINLINE fr_result_t fr__trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
-                            const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
+                            const fr_trace_desc_t *desc, void *scratch, fr_hit_t *hit)
 {
-    fr_trace_desc_t zero_desc;
-    const fr_trace_desc_t *desc = desc_in;
     fr__trace_mem_t mem;
     fr__ray_t R;
     fr_method_t m;
@@ -7316,12 +7315,6 @@ static FR__NOINLINE fr_result_t fr__trace(const fr_tape_t *t, const double o[3],
     int found = 0, k, cnt = -2, orient = 0;
     unsigned int leaf = 0;
     if (!t || !o || !d || !scratch || !hit || t->n_code == 0) return FR_ERR_INVALID_ARG;
-    if (!desc) {
-        unsigned char *z = (unsigned char *)&zero_desc;
-        size_t zi;
-        for (zi = 0; zi < sizeof zero_desc; zi++) z[zi] = 0;
-        desc = &zero_desc;
-    }
     if ((e = fr__trace_args(o, d, t0, t1, desc)) != FR_OK) return e;
     if (desc->method == FR_METHOD_SPHERE && !(fr__trace_lipschitz(t, desc) > 0 && fr__trace_lipschitz(t, desc) < HUGE_VAL))
         return FR_ERR_NO_LIPSCHITZ; /* whatever the ray: also one that misses the bounds */
@@ -7374,7 +7367,7 @@ static fr_result_t fr__trace_any_length(const fr_tape_t *t, const double o[3], c
     fr_trace_desc_t D;
     double ds[3], m;
     int k, ex;
-    if (!d || !desc_in || !hit) return fr__trace(t, o, d, t0, t1, desc_in, scratch, hit);
+    if (!d || !hit) return fr__trace(t, o, d, t0, t1, desc_in, scratch, hit);
     m = fabs(d[0]);
     if (fabs(d[1]) > m) m = fabs(d[1]);
     if (fabs(d[2]) > m) m = fabs(d[2]);
@@ -7399,7 +7392,7 @@ FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double 
                             const fr_trace_desc_t *desc_in, void *scratch, fr_hit_t *hit)
 {
     fr_trace_desc_t zero_desc;
-    if (!desc_in) { /* the defaults, as fr__trace takes them */
+    if (!desc_in) { /* the defaults: the one place a NULL desc is read */
         memset(&zero_desc, 0, sizeof zero_desc);
         desc_in = &zero_desc;
     }
