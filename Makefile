@@ -22,10 +22,13 @@ PREFIX  ?= /usr/local
 B       := build
 NPROC   := $(shell nproc 2>/dev/null || echo 2)
 OPT     ?= -O2 -march=native
+# line tables only: enough for sanitizer and perf backtraces, and a quarter
+# of the compile time of -g (make DBG=-g for a debugger's variables)
+DBG     ?= -g1
 WARN    := -Wall -Wextra -Werror -Wno-unused-function
 # -ffp-contract=fast is gcc's default in GNU mode; we state it so the tests
 # prove the headers survive contraction of a*b+c into fma.
-CFLAGS_ALL   := $(OPT) -g -ffp-contract=fast -Iinclude -Itests -Iexamples/common $(WARN)
+CFLAGS_ALL   := $(OPT) $(DBG) -ffp-contract=fast -Iinclude -Itests -Iexamples/common $(WARN)
 TEST_CFLAGS  := -std=gnu11 $(CFLAGS_ALL)
 TEST_CXXFLAGS:= -std=gnu++17 $(CFLAGS_ALL)
 SAN_FLAGS    := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
@@ -49,6 +52,15 @@ CLANG_TESTS := $(patsubst tests/%.c,$(B)/clang/%,$(wildcard tests/test_interval*
 # after clang's
 GCC_INCLUDE := $(shell gcc -print-file-name=include)
 TEST_DEPS:= $(HEADERS) $(wildcard tests/*.h)
+# Each header's implementation is compiled once per test build (normal,
+# ASan+UBSan, clang) into build/impl/<build>/libfiligree.a, one member per
+# header (tests/impl/*.c). A test that does not define XX_IMPLEMENTATION
+# links it from there; one that needs its own copy (XX_NO_* switches,
+# allocator hooks, the xx__ internals) defines it and takes nothing from
+# that member. Compiling every implementation into every test was two
+# thirds of make test's compile time.
+IMPL_NAMES := $(basename $(notdir $(wildcard tests/impl/*.c)))
+IMPL_OBJS  := $(foreach f,tests san clang,$(foreach n,$(IMPL_NAMES),$(B)/impl/$(f)/$(n).o))
 
 BENCH_C  := $(wildcard bench/bench_*.c)
 BENCH_CPP:= $(wildcard bench/bench_*.cpp)
@@ -64,7 +76,7 @@ EX_COMMON_OBJ := $(patsubst examples/common/%,$(B)/examples/common/%.o,$(EX_COMM
 .PHONY: all test tests benches fingerprints fingerprint check-headers demo bench fuzz coverage install clean deps-test deps-demo deps-bench examples
 .DELETE_ON_ERROR:
 # the examples/common objects are shared by every example and bench: keep them
-.SECONDARY: $(EX_COMMON_OBJ)
+.SECONDARY: $(EX_COMMON_OBJ) $(IMPL_OBJS)
 
 all: tests examples
 
@@ -90,26 +102,38 @@ FUZZ_FLAGS_fuzz_interval_ops := -march=native -idirafter $(GCC_INCLUDE)
 FUZZ_LIBS_fuzz_interval_ops  := -lquadmath
 $(B)/fuzz/%: tests/%.c $(TEST_DEPS)
 	@mkdir -p $(dir $@)
-	clang -std=gnu11 -O1 -g -Iinclude -Itests $(FUZZ_FLAGS_$*) -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all $< -o $@ $(FUZZ_LIBS_$*) -lm
+	clang -std=gnu11 -O1 $(DBG) -Iinclude -Itests $(FUZZ_FLAGS_$*) -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all $< -o $@ $(FUZZ_LIBS_$*) -lm
 
 check-headers:
 	@tests/check_headers.sh
 
-$(B)/tests/%: tests/%.c $(TEST_DEPS)
+$(B)/impl/tests/%.o: tests/impl/%.c $(HEADERS)
 	@mkdir -p $(dir $@)
-	$(CC) $(TEST_CFLAGS) $< -o $@ $(LDLIBS_ALL)
-$(B)/tests/%: tests/%.cpp $(TEST_DEPS)
+	$(CC) $(TEST_CFLAGS) -c $< -o $@
+$(B)/impl/san/%.o: tests/impl/%.c $(HEADERS)
 	@mkdir -p $(dir $@)
-	$(CXX) $(TEST_CXXFLAGS) $< -o $@ $(LDLIBS_ALL)
-$(B)/clang/%: tests/%.c $(TEST_DEPS)
+	$(CC) $(TEST_CFLAGS) -O1 $(SAN_FLAGS) -c $< -o $@
+$(B)/impl/clang/%.o: tests/impl/%.c $(HEADERS)
 	@mkdir -p $(dir $@)
-	clang $(TEST_CFLAGS) -idirafter $(GCC_INCLUDE) $< -o $@ $(LDLIBS_ALL)
-$(B)/san/%: tests/%.c $(TEST_DEPS)
+	clang $(TEST_CFLAGS) -c $< -o $@
+$(B)/impl/%/libfiligree.a: $(foreach n,$(IMPL_NAMES),$(B)/impl/%/$(n).o)
+	rm -f $@ && ar rcs $@ $^
+
+$(B)/tests/%: tests/%.c $(TEST_DEPS) $(B)/impl/tests/libfiligree.a
 	@mkdir -p $(dir $@)
-	$(CC) $(TEST_CFLAGS) -O1 $(SAN_FLAGS) $< -o $@ $(LDLIBS_ALL)
-$(B)/san/%: tests/%.cpp $(TEST_DEPS)
+	$(CC) $(TEST_CFLAGS) $< $(B)/impl/tests/libfiligree.a -o $@ $(LDLIBS_ALL)
+$(B)/tests/%: tests/%.cpp $(TEST_DEPS) $(B)/impl/tests/libfiligree.a
 	@mkdir -p $(dir $@)
-	$(CXX) $(TEST_CXXFLAGS) -O1 $(SAN_FLAGS) $< -o $@ $(LDLIBS_ALL)
+	$(CXX) $(TEST_CXXFLAGS) $< $(B)/impl/tests/libfiligree.a -o $@ $(LDLIBS_ALL)
+$(B)/clang/%: tests/%.c $(TEST_DEPS) $(B)/impl/clang/libfiligree.a
+	@mkdir -p $(dir $@)
+	clang $(TEST_CFLAGS) -idirafter $(GCC_INCLUDE) $< $(B)/impl/clang/libfiligree.a -o $@ $(LDLIBS_ALL)
+$(B)/san/%: tests/%.c $(TEST_DEPS) $(B)/impl/san/libfiligree.a
+	@mkdir -p $(dir $@)
+	$(CC) $(TEST_CFLAGS) -O1 $(SAN_FLAGS) $< $(B)/impl/san/libfiligree.a -o $@ $(LDLIBS_ALL)
+$(B)/san/%: tests/%.cpp $(TEST_DEPS) $(B)/impl/san/libfiligree.a
+	@mkdir -p $(dir $@)
+	$(CXX) $(TEST_CXXFLAGS) -O1 $(SAN_FLAGS) $< $(B)/impl/san/libfiligree.a -o $@ $(LDLIBS_ALL)
 
 # ---------------------------------------------------------------- examples
 deps-demo:

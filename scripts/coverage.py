@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Line coverage of the headers by the tests (make coverage).
 
-Builds every tests/test_<module>*.c with gcc --coverage (-O1, so that the
+Builds every tests/test_<module>*.c (and the shared implementations,
+tests/impl/*.c) with gcc --coverage (-O1, so that the
 large batteries finish), runs them at FILIGREE_TEST_SCALE (default 0.05),
 and prints, per header, the lines that no test ran, grouped into ranges
 with the function and the first line of code. Where a test exists for a
@@ -21,13 +22,31 @@ MODULES = {"interval": "interval.h", "frep": "frep.h", "rounded": "rounded_edges
 LIBS = ["-lembree3", "-lquadmath", "-lpthread", "-lm"]
 
 
+CFLAGS = ["-std=gnu11", "-O1", "-march=native", "-g", "--coverage", "-ffp-contract=fast",
+          "-Iinclude", "-Itests", "-Iexamples/common", "-w"]
+
+
+def build_impl(out):
+    """The headers' shared implementations (tests/impl/*.c, as the Makefile
+    builds them): the tests that do not compile their own link them, and
+    every run adds to the one .gcda of each."""
+    objs = []
+    for src in sorted(glob.glob("tests/impl/*.c")):
+        obj = os.path.join(out, "impl_" + os.path.basename(src)[:-2] + ".o")
+        subprocess.run(["gcc"] + CFLAGS + ["-c", src, "-o", obj], check=True)
+        objs.append(obj)
+    lib = os.path.join(out, "libfiligree.a")
+    subprocess.run(["ar", "rcs", lib] + objs, check=True)
+    return lib
+
+
 def build_and_run(module, out):
     srcs = sorted(glob.glob("tests/test_%s*.c" % module)) + ["tests/test_harness.c"] # the harness includes every header
+    lib = build_impl(out)
     for i, src in enumerate(srcs):
         exe = os.path.join(out, os.path.basename(src)[:-2])
         sys.stderr.write("[%d/%d] %s\n" % (i + 1, len(srcs), src))
-        subprocess.run(["gcc", "-std=gnu11", "-O1", "-march=native", "-g", "--coverage", "-ffp-contract=fast",
-                        "-Iinclude", "-Itests", "-Iexamples/common", "-w", src, "-o", exe] + LIBS, check=True)
+        subprocess.run(["gcc"] + CFLAGS + [src, lib, "-o", exe] + LIBS, check=True)
         env = dict(os.environ, FILIGREE_TEST_SCALE=os.environ.get("FILIGREE_TEST_SCALE", "0.05"))
         r = subprocess.run([exe], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         if r.returncode != 0:

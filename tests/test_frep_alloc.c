@@ -7,7 +7,6 @@
 #include "test_count_alloc.h"
 #define FR_MALLOC(sz, ctx) ta_malloc((sz), (ctx))
 #define FR_FREE(p, ctx) ta_free((p), (ctx))
-#define IV_IMPLEMENTATION
 #include "interval.h"
 #define FR_IMPLEMENTATION
 #include "frep.h"

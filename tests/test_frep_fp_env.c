@@ -7,9 +7,7 @@
    flushed the ray polynomial's coefficients to 0 and the roots were
    wrong. Callbacks run in the default environment too. */
 #include "test.h"
-#define IV_IMPLEMENTATION
 #include "interval.h"
-#define FR_IMPLEMENTATION
 #include "frep.h"
 #include "test_frep_trace_models.h"
 #include <fenv.h>

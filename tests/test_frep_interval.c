@@ -1,9 +1,7 @@
 /* frep.h interval, affine and pruning: enclosures contain sampled values on
    10^6 random boxes over the whole operation set (zero violations), are
    tight for tiny boxes, and pruned tapes agree with the full tape. */
-#define IV_IMPLEMENTATION
 #include "interval.h"
-#define FR_IMPLEMENTATION
 #include "frep.h"
 #include "test.h"
 #include <float.h>

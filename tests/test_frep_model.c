@@ -2,9 +2,7 @@
    form (written out here from HyperFun's library definitions, independently
    of the builder's lowering), AD gradients against analytic gradients and
    central differences, batch against point evaluation, builder errors. */
-#define IV_IMPLEMENTATION
 #include "interval.h"
-#define FR_IMPLEMENTATION
 #include "frep.h"
 #include "test.h"
 

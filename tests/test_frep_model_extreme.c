@@ -1,10 +1,9 @@
 /* frep.h model: stiff and extreme cases, one named test each with a bound,
    and concurrent evaluation of one tape from several threads. */
-#define IV_IMPLEMENTATION
 #include "interval.h"
-#define FR_IMPLEMENTATION
 #include "frep.h"
 #include "test.h"
+#include <float.h>
 #include <pthread.h>
 
 /* the fixed scratch arrays below hold 1024 doubles: every tape here fits */

@@ -1,7 +1,6 @@
 /* frep.h parser: every construct against the same model built through the
    C API, the example models, and bad input (an error with line:column,
    never a crash). */
-#define IV_IMPLEMENTATION
 #include "interval.h"
 #define FR_IMPLEMENTATION
 #include "frep.h"

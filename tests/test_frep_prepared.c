@@ -5,7 +5,6 @@
    unprepared fr_trace and against __float128 references: random rays,
    grazing and tangent rays, huge origins, thin features. */
 #include "test.h"
-#define IV_IMPLEMENTATION
 #include "interval.h"
 #define FR_IMPLEMENTATION
 #include "frep.h"

@@ -3,7 +3,6 @@
    those of the polynomial whose coefficients are the very doubles we pass,
    so every bound below is about the solver, not about coefficient rounding. */
 #include "test.h"
-#define IV_IMPLEMENTATION
 #include "interval.h"
 #define FR_IMPLEMENTATION
 #include "frep.h"

@@ -3,9 +3,7 @@
    point, and the stability cases of the issue, one named test each with an
    asserted bound. References are closed forms evaluated in __float128. */
 #include "test.h"
-#define IV_IMPLEMENTATION
 #include "interval.h"
-#define FR_IMPLEMENTATION
 #include "frep.h"
 #include <quadmath.h>
 #include "test_frep_trace_models.h"

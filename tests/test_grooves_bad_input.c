@@ -1,6 +1,5 @@
 /* grooves.h bad input: every rejection is a clear code plus a diagnostic
    naming the groove; nothing crashes (the sanitizer pass runs this too). */
-#define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
 

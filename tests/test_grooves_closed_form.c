@@ -1,7 +1,6 @@
 /* grooves.h against hand-derived closed forms (Bosch et al. 2006, §4).
    Every expected value here is derived in the comment above it from the
    geometry of a V-groove, not from the code under test. */
-#define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
 #include "grooves_test_util.h"

@@ -11,7 +11,6 @@
    each groove's floor independently and does not carve at crossings, so
    a ray stops on the higher of two overlapping floors (measured: it
    matches a raster of max(z_0, z_1), not of min, to 4e-4). */
-#define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
 static const double VSEC[6] = {-0.01, 0, 0, -0.02, 0.01, 0};

@@ -11,7 +11,6 @@
    the up-facing base entry. Bound: the issue's 1e-2. Oracle error: n = 256
    stratified rays, B <= 24 region boundaries, sigma <= sqrt(B/(2 n^3)) =
    8.4e-4, so 1e-2 is over 11 sigma. */
-#define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
 #include "grooves_oracle.h"
@@ -564,7 +563,7 @@ static void random_protruding_junctions(void)
 
 /* Degenerate footprints at a crossing: a line (no area) is §4's, with
    its flags; a footprint over more grooves than the polygon path takes
-   (GR__PP_MAX_GROOVES, 16: here 20) likewise; both still partition. */
+   (GR_POLY_MAX_GROOVES, 16: here 20) likewise; both still partition. */
 static void degenerate_footprints_fall_back(void)
 {
     static double paths[20][4];

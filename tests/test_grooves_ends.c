@@ -3,7 +3,6 @@
    point and box edge is known exactly; the cubic self-intersection is
    checked against a bisection on the curve's symmetry. Shared section: a
    V groove of half width w = 0.01 and depth 0.02 (so w_g + w_h = 0.02). */
-#define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
 

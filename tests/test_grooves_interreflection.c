@@ -29,7 +29,6 @@
    equal to the direct result, transmission through a flat pane (Snell's
    direction), and a footprint that overflows the recursion stack
    (GR_ERR_STACK_FULL). */
-#define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
 #include "grooves_test_util.h"

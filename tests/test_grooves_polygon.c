@@ -4,7 +4,6 @@
    |A∩B| + |A\B| = |A| and |A∪B| = |A| + |B| - |A∩B| (each operation is a
    separate pass of the sweep, so a wrong predicate or a lost slab breaks
    them), and an independent raster of even-odd point-in-polygon tests. */
-#define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
 

@@ -5,7 +5,6 @@
    independently in world-like (u, v, w) coordinates; a stratified sample
    of the footprint for the clipped ratio; and gr_query() (part 1, §4) for a
    groove seen from straight above, where nothing is masked. */
-#define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
 

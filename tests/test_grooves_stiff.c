@@ -4,7 +4,6 @@
    B = (-T_v, T_u) = (-1, 0): a section point at b lies at u = u_path - b.
    A profile point (b, w) seen from E projects to b + w tan θ' on the base
    line, tan θ' = -E_b/E_w with E_b = E . B (§4.2). */
-#define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "test.h"
 #include "grooves_test_util.h"

@@ -1,11 +1,8 @@
 /* Tests of the test harness itself and of the shared header skeleton pieces
    (result strings), so a broken harness cannot make every other test pass. */
 #include "test.h"
-#define IV_IMPLEMENTATION
 #include "interval.h"
-#define RE_IMPLEMENTATION
 #include "rounded_edges.h"
-#define GR_IMPLEMENTATION
 #include "grooves.h"
 
 static void harness_counts_failures(void)

@@ -7,7 +7,6 @@
    - Cycles-style bevel: 1-D quadratures of the cubic falloff over the two
      faces of a box edge give the normal the estimator is unbiased for;
    - the analytic rounded edge of radius r bounds both tilts. */
-#define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 #include "test.h"
 

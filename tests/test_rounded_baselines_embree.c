@@ -13,7 +13,6 @@
      normal into the removed volume: back-face exit, reversed query);
    - shadow rays from floor points under the rounded edges (they start
      inside the sharp box and must still be blocked by the rounding). */
-#define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 #define RX_SCENE_IMPLEMENTATION /* rx_scene_round_meshes, which rx_render.h calls */
 #define RX_TESS_IMPLEMENTATION

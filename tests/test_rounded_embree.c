@@ -3,7 +3,6 @@
    at once on one scene, following the integration protocol (pass-through:
    trace on from h.t). Oracle: sphere tracing of the union of the analytic
    rounded boxes. */
-#define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 #include "test.h"
 #include "test_rounded_util.h"

@@ -7,7 +7,6 @@
    transpose). Oracles, per instance in the prototype's space: the analytic
    rounded box, and sphere tracing of the eroded polytope minus r for a
    random convex hull; the hit is the nearest over the instances. */
-#define RE_IMPLEMENTATION
 #include "rounded_edges.h"
 #include "test.h"
 #include "test_rounded_util.h"
