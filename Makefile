@@ -60,7 +60,7 @@ TEST_DEPS:= $(HEADERS) $(wildcard tests/*.h)
 # that member. Compiling every implementation into every test was two
 # thirds of make test's compile time.
 IMPL_NAMES := $(basename $(notdir $(wildcard tests/impl/*.c)))
-IMPL_OBJS  := $(foreach f,tests san clang,$(foreach n,$(IMPL_NAMES),$(B)/impl/$(f)/$(n).o))
+IMPL_OBJS  := $(foreach f,tests san clang,$(foreach n,$(IMPL_NAMES),$(B)/impl/$(f)/$(n).o) $(B)/impl/$(f)/libfiligree.a)
 
 BENCH_C  := $(wildcard bench/bench_*.c)
 BENCH_CPP:= $(wildcard bench/bench_*.cpp)

@@ -739,7 +739,8 @@ typedef struct gr_line_cache_t {
 GR_DEF gr_result_t gr_query_lines(const gr_grid_t *grid, const gr_query_t *query, void *scratch,
                                   size_t scratch_bytes, gr_facet_list_t *list, gr_line_stats_t *stats);
 
-/* gr_query_lines() with a cache (NULL: none). Same result. */
+/* gr_query_lines() with a cache (NULL: none). The same result, bit for bit:
+   facets, groove count and flags (docs/grooves.md, "Cache"). */
 GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t *query, gr_line_cache_t *cache,
                                          void *scratch, size_t scratch_bytes, gr_facet_list_t *list,
                                          gr_line_stats_t *stats);
@@ -5849,6 +5850,31 @@ static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, const dou
    along each light to the top (shadow rays, §5.4). */
 typedef struct gr__region_t { double p[2 * 4 * (1 + GR_MAX_LIGHTS)]; int n; } gr__region_t;
 
+/* Whether the band of a straight groove, [lo, hi] along t and g->reach
+   either side, meets the box sc->box (centre c): separating axes u, v, t
+   and bn. A straight groove is the same record from any footprint, so
+   this decides the same way whether it came from the grid or from the
+   cache (§5.6), which gathers over a grown box and would otherwise keep
+   grooves whose line passes near the footprint and whose segment ends far
+   from it: gr_query_lines_cached() promises gr_query_lines()'s answer,
+   groove count and flags included. */
+static int gr__lg_band_meets_box(const gr__lscene_t *sc, const gr__lg_t *g, const double *c)
+{
+    const double *box = sc->box;
+    double hu = 0.5 * (box[2] - box[0]), hv = 0.5 * (box[3] - box[1]);
+    double du = c[0] - g->p[0], dv = c[1] - g->p[1];
+    double a0 = g->t[0] * du + g->t[1] * dv, b0 = g->bn[0] * du + g->bn[1] * dv;
+    double et = hu * fabs(g->t[0]) + hv * fabs(g->t[1]), eb = hu * fabs(g->bn[0]) + hv * fabs(g->bn[1]);
+    int k;
+    if (!(a0 + et >= g->lo && a0 - et <= g->hi) || !(fabs(b0) <= g->reach + eb)) return 0;
+    for (k = 0; k < 2; k++) { /* the box's own axes */
+        double e0 = g->p[k] + g->lo * g->t[k], e1 = g->p[k] + g->hi * g->t[k], w = g->reach * fabs(g->bn[k]);
+        double lo = (e0 < e1 ? e0 : e1) - w, hi = (e0 < e1 ? e1 : e0) + w;
+        if (hi < box[k] || lo > box[k + 2]) return 0;
+    }
+    return 1;
+}
+
 /* Keep g if its band reaches the box (centre c, radius reach) and, when
    tight, the region the segment's rays sweep; the nearest
    GR_LINE_MAX_GROOVES stay. */
@@ -5856,8 +5882,10 @@ static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, do
 {
     double bc = fabs(g->bn[0] * (c[0] - g->p[0]) + g->bn[1] * (c[1] - g->p[1]));
     double a0 = g->t[0] * (c[0] - g->p[0]) + g->t[1] * (c[1] - g->p[1]);
+    const gr__groove_t *rec = &sc->grid->grooves_[g->groove];
     int i, e;
     if (bc > reach + g->reach) return; /* its band misses the box */
+    if (rec->parent == g->groove && gr__line_cacheable(rec) && !rec->closed && !gr__lg_band_meets_box(sc, g, c)) return;
     if (quad) { /* ... or the region this segment's rays sweep */
         double bl = HUGE_VAL, bh = -HUGE_VAL, al = HUGE_VAL, ah = -HUGE_VAL;
         for (e = 0; e < quad->n; e++) {

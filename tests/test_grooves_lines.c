@@ -626,7 +626,7 @@ static double perturb_wave(double t, void *user)
 static int lists_identical(const gr_facet_list_t *a, const gr_facet_list_t *b)
 {
     int i, k;
-    if (a->count != b->count || a->flags != b->flags) return 0;
+    if (a->count != b->count || a->flags != b->flags || a->grooves != b->grooves) return 0;
     for (i = 0; i < a->count; i++) {
         const gr_facet_t *x = &a->facets[i], *y = &b->facets[i];
         if (x->ratio != y->ratio || x->groove != y->groove || x->facet != y->facet || x->reflectance != y->reflectance)
@@ -636,6 +636,20 @@ static int lists_identical(const gr_facet_list_t *a, const gr_facet_list_t *b)
         if (x->lit[0] != y->lit[0]) return 0;
     }
     return 1;
+}
+
+/* q answered by gr_query_lines() and through the cache: whether the two
+   lists are identical (*uncached: the first) */
+static int cached_identical(const gr_grid_t *grid, gr_query_t *q, const double *light, int samples, gr_line_cache_t *cache,
+                            void *scratch, size_t need, gr_facet_list_t *uncached)
+{
+    gr_facet_list_t b;
+    q->lights = light;
+    q->light_count = 1;
+    q->line_samples = samples;
+    T_INT_EQ(gr_query_lines(grid, q, scratch, need, uncached, NULL), GR_OK);
+    T_INT_EQ(gr_query_lines_cached(grid, q, cache, scratch, need, &b, NULL), GR_OK);
+    return lists_identical(uncached, &b);
 }
 
 /* §5.6's cache along scanlines seen from an orthographic camera (one view
@@ -662,19 +676,14 @@ static void t_cache_views(void)
             for (k = 0; k < 60; k++) {
                 double u = 0.47 + 0.001 * k, w = 0.5 + 0.0003 * k, l[3];
                 gr_query_t q = v ? gt_query(u, w, 0.004, cam[0] - u, cam[1] - w, cam[2]) : gt_query(u, w, 0.004, 0.3, -0.2, 0.93);
-                gr_facet_list_t a, b;
+                gr_facet_list_t a;
                 if (v == 2) {
                     double n = sqrt((lamp[0] - u) * (lamp[0] - u) + (lamp[1] - w) * (lamp[1] - w) + lamp[2] * lamp[2]);
                     l[0] = (lamp[0] - u) / n; l[1] = (lamp[1] - w) / n; l[2] = lamp[2] / n;
                 } else {
                     memcpy(l, sun, sizeof l);
                 }
-                q.lights = l;
-                q.light_count = 1;
-                q.line_samples = k & 1 ? 8 : 2;
-                T_INT_EQ(gr_query_lines(s.grid, &q, scratch, need, &a, NULL), GR_OK);
-                T_INT_EQ(gr_query_lines_cached(s.grid, &q, &cache, scratch, need, &b, NULL), GR_OK);
-                same += lists_identical(&a, &b);
+                same += cached_identical(s.grid, &q, l, k & 1 ? 8 : 2, &cache, scratch, need, &a);
             }
             printf("  cache, %s crossing, %s: %lld of 60 served, %lld refills, %d of 60 identical\n", c ? "T" : "X",
                    v == 0 ? "orthographic, sun" : v == 1 ? "perspective, sun" : "perspective, lamp", cache.hits,
@@ -684,6 +693,47 @@ static void t_cache_views(void)
             free(scratch);
             gr_grid_free(s.grid);
         }
+}
+
+/* The cache keeps every groove near a grown box; a footprint served from
+   it must still report what gr_query_lines() reports: the same facets, the
+   same grooves count and flags (GR_LIST_PATH_END). Before 2026-12-06 it
+   counted grooves whose line passes near the footprint but whose segment
+   ends far from it (the uncached search never sees them), and flagged
+   their far ends. Scanlines run past two groove ends, a T and a groove
+   ending in the open, 400 footprints each. */
+static void t_cache_near_path_ends(void)
+{
+    static const double sun[3] = {0.5, 0.3, 0.81};
+    int c, k, same = 0, ended = 0, n = 0;
+    for (c = 0; c < 2; c++) {
+        scene_t s;
+        gr_line_cache_t cache;
+        size_t need;
+        void *scratch;
+        memset(&s, 0, sizeof s);
+        scene_add(&s, 0.2, 0.5, 0.8, 0.5, VSEC, 3);
+        if (c == 0) scene_add(&s, 0.5, 0.8, 0.5, 0.5, VSEC, 3); /* ends on the first's centre line */
+        else scene_add(&s, 0.3, 0.56, 0.45, 0.56, VSEC, 3);     /* ends in the open, beside the first */
+        if (!T_CHECK(scene_build(&s))) return;
+        memset(&cache, 0, sizeof cache);
+        need = gr_query_scratch_bytes(s.grid);
+        scratch = malloc(need);
+        for (k = 0; k < 400; k++) {
+            double u = 0.38 + 0.0005 * k, w = (c == 0 ? 0.47 : 0.53) + 0.00011 * (k % 37);
+            gr_query_t q = gt_query(u, w, 0.003, 0.3, -0.2, 0.93);
+            gr_facet_list_t a;
+            same += cached_identical(s.grid, &q, sun, k & 1 ? 4 : 2, &cache, scratch, need, &a);
+            ended += (a.flags & GR_LIST_PATH_END) != 0;
+            n++;
+        }
+        free(scratch);
+        gr_grid_free(s.grid);
+    }
+    printf("  cache near path ends: %d of %d lists identical (groove counts and flags too), %d with an end\n", same, n,
+           ended);
+    T_INT_EQ(same, n);
+    T_GT(ended, 20); /* the scanlines do pass ends */
 }
 
 static void t_cache(void)
@@ -718,14 +768,9 @@ static void t_cache(void)
         scratch = malloc(need);
         for (k = 0; k < 60; k++) {
             gr_query_t q = gt_query(0.47 + 0.001 * k, 0.5 + 0.0003 * k, 0.004, 0.3, -0.2, 0.93);
-            gr_facet_list_t a, b;
-            q.lights = lights;
-            q.light_count = 1;
-            q.line_samples = k & 1 ? 8 : 2;
+            gr_facet_list_t a;
             q.ellipse = (k >> 1) & 1;
-            T_INT_EQ(gr_query_lines(s.grid, &q, scratch, need, &a, NULL), GR_OK);
-            T_INT_EQ(gr_query_lines_cached(s.grid, &q, &cache, scratch, need, &b, NULL), GR_OK);
-            same += lists_identical(&a, &b);
+            same += cached_identical(s.grid, &q, lights, k & 1 ? 8 : 2, &cache, scratch, need, &a);
         }
         T_INT_EQ(same, 60);
         if (c < 2) {
@@ -739,6 +784,7 @@ static void t_cache(void)
         gr_grid_free(s.grid);
     }
     t_cache_views();
+    t_cache_near_path_ends();
 }
 
 /* gr_query() with line_samples > 0 sends crossings and ends to
