@@ -1764,13 +1764,27 @@ static inline double fr__rroot(double a, double b, double al)
     }
     return sqrt(t * t + (1.0 - al * al) * u * u);
 }
+/* a + b + sg s, sg = 1 (R-union) or -1 (R-intersection), s = fr__rroot.
+   Where a + b and sg s have opposite signs the sum cancels: with alpha = 0
+   the intersection of a = 1e17 and b = -1 came out 0 (on the surface) for
+   a point 1 outside of b. There it is computed as 2 (1 + alpha) a b /
+   (a + b - sg s), the same value since (a + b)^2 - s^2 = 2 (1 + alpha) a b,
+   with no difference of near-equal terms; the product is formed as
+   a (b / (a + b - sg s)) so that a b cannot overflow. Every other case
+   (no cancellation, or a + b overflowing) adds as written. */
+static inline double fr__rsum(double a, double b, double al, double s, double sg)
+{
+    double t = a + b;
+    if (sg * t < 0 && fabs(t) < HUGE_VAL) return (2.0 * (1.0 + al)) * (a * (b / (t - sg * s)));
+    return t + sg * s;
+}
 static inline double fr__runi(double a, double b, double al)
 {
-    return al == 1.0 ? (a > b ? a : b) : a + b + fr__rroot(a, b, al);
+    return al == 1.0 ? (a > b ? a : b) : fr__rsum(a, b, al, fr__rroot(a, b, al), 1.0);
 }
 static inline double fr__rint(double a, double b, double al)
 {
-    return al == 1.0 ? (a < b ? a : b) : a + b - fr__rroot(a, b, al);
+    return al == 1.0 ? (a < b ? a : b) : fr__rsum(a, b, al, fr__rroot(a, b, al), -1.0);
 }
 /* polynomial smooth max/min: h = max(k - |a-b|, 0)/k, max + h^2 k/4 */
 static inline double fr__smax(double a, double b, double k)
@@ -2044,7 +2058,7 @@ static fr_result_t fr__run_grad(const fr_tape_t *t, const double p[3], double *v
                 da = first; db = !first;
             } else {
                 double s = fr__rroot(a, c, al);
-                val = a + c + sg * s;
+                val = fr__rsum(a, c, al, s, sg);
                 /* d s = ((a - alpha c) da + (c - alpha a) dc) / s; 0 at the kink s = 0 */
                 da = 1 + (s > 0 ? sg * (a - al * c) / s : 0);
                 db = 1 + (s > 0 ? sg * (c - al * a) / s : 0);
