@@ -3296,7 +3296,7 @@ static fr__val_t fr__unary_expr(fr__parser_t *p)
 
 static fr__val_t fr__binary_level(fr__parser_t *p, int level)
 {
-    static const char *ops[3] = {"|&\\", "+-", "*/"};
+    static const char *const ops[3] = {"|&\\", "+-", "*/"};
     fr__val_t v = level == 2 ? fr__unary_expr(p) : fr__binary_level(p, level + 1);
     while (p->err == FR_OK && p->tok == FR__T_PUNCT && strchr(ops[level], p->punct)) {
         char op = p->punct;

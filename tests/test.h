@@ -80,7 +80,7 @@ static int t_check_(int ok, const char *file, int line, const char *expr)
 /* a op b for doubles; NaN never satisfies a comparison. */
 static int t_cmp_(double a, double b, int op, const char *file, int line, const char *ea, const char *eb)
 {
-    static const char *ops[] = {"==", "<=", ">=", "<", ">", "!="};
+    static const char *const ops[] = {"==", "<=", ">=", "<", ">", "!="};
     int ok = op == 0 ? a == b : op == 1 ? a <= b : op == 2 ? a >= b : op == 3 ? a < b : op == 4 ? a > b : a != b;
     char expr[512], detail[160];
     if (ok) { t_state_.passed++; return 1; }

@@ -14,7 +14,7 @@ enum {
     OP_MIN, OP_MAX, OP_ADD_D, OP_MUL_D, OP_EXP, OP_LOG, OP_SIN, OP_COS, OP_TAN,
     OP_ATAN, OP_POW, OP_HYPOT, OP_POW_N, OP_COUNT
 };
-static const char *op_name[OP_COUNT] = {
+static const char *const op_name[OP_COUNT] = {
     "add", "sub", "mul", "div", "neg", "recip", "sqr", "sqrt", "abs", "min", "max", "add_d", "mul_d",
     "exp", "log", "sin", "cos", "tan", "atan", "pow", "hypot", "pow_n"};
 static const int pow_ns[] = {-5, -3, -2, -1, 2, 3, 4, 5, 7, 10, 33};
