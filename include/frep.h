@@ -88,6 +88,7 @@ typedef enum fr_result_t {
     FR_ERR_PARSE,         /* model text rejected (see fr_diag_t line:column) */
     FR_ERR_NOT_POLYNOMIAL, /* the tape is not a polynomial in the ray parameter */
     FR_ERR_NO_LIPSCHITZ,  /* sphere tracing needs a finite Lipschitz bound */
+    FR_ERR_ITERATIONS,    /* fr_trace: max_iters ran out before the segment was decided */
     FR_RESULT_COUNT_
 } fr_result_t;
 
@@ -590,7 +591,9 @@ typedef struct fr_trace_desc_t {
        monotone hand-over (FR_METHOD_INTERVAL above) already decides the
        segment, so Newton only acts on the segments that leaves open. */
     int interval_newton;
-    unsigned int max_iters;   /* iteration cap of every loop; 0: 100000 */
+    unsigned int max_iters;   /* iteration cap of every loop; 0: 100000. STEP,
+                                 INTERVAL and SPHERE stopped by it with part of
+                                 the segment undecided: FR_ERR_ITERATIONS */
     fr_normal_mode_t normal;  /* default AD */
     double fd_step;           /* FD normals: step relative to max(1, |p|); 0: 1e-6 */
     /* Every method: NULL, or 6 doubles lo x, y, z then hi x, y, z of a box
@@ -647,7 +650,12 @@ FR_DEF size_t fr_trace_scratch_size(const fr_tape_t *t, const fr_trace_desc_t *d
    length: far from 1 it is traced rescaled by a power of 2),
    FR_ERR_NO_INTERVAL, FR_ERR_NO_GRADIENT (NEWTON refinement with a
    gradient-less callback; AD normals fall back to differences there),
-   FR_ERR_NO_LIPSCHITZ (SPHERE). A miss is FR_OK with hit->hit = 0. */
+   FR_ERR_NO_LIPSCHITZ (SPHERE), FR_ERR_ITERATIONS (STEP, INTERVAL or
+   SPHERE used desc->max_iters up with part of the segment undecided: no
+   root was found before hit->t - hit->t_err, the first root, if any, lies
+   in hit->t +- hit->t_err, and hit->hit is 0; a renderer may take it as a
+   miss or trace on from there). A miss is FR_OK with hit->hit = 0: for
+   INTERVAL and ANALYTIC a proof that there is no root. */
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc, void *scratch, fr_hit_t *hit);
 
@@ -790,6 +798,7 @@ FR_DEF const char *fr_result_string(fr_result_t r)
     case FR_ERR_PARSE: return "parse error";
     case FR_ERR_NOT_POLYNOMIAL: return "not a polynomial along the ray";
     case FR_ERR_NO_LIPSCHITZ: return "no Lipschitz bound for sphere tracing";
+    case FR_ERR_ITERATIONS: return "iteration cap reached before the ray was decided";
     case FR_RESULT_COUNT_: break;
     }
     return "unknown result";
@@ -5323,6 +5332,10 @@ typedef struct fr__ray_t {
     void *eval;
     unsigned long long evals, iters;
     unsigned int max_iters;
+    /* a marching method stopped by max_iters: [undecided_lo, t1'] is where
+       it did not look (fr__trace returns FR_ERR_ITERATIONS) */
+    int capped;
+    double undecided_lo, undecided_hi;
 } fr__ray_t;
 
 /* g(t). With the ray polynomial at hand (R->pc: INTERVAL on a polynomial
@@ -5448,6 +5461,14 @@ static double fr__refine(fr__ray_t *R, fr_refine_t m, double a, double b, double
     return 0.5 * (a + b);
 }
 
+/* A method ran out of iterations with [lo, hi] undecided. */
+static void fr__capped(fr__ray_t *R, double lo, double hi)
+{
+    R->capped = 1;
+    R->undecided_lo = lo;
+    R->undecided_hi = hi;
+}
+
 /* ---------------------------------------------------------------- stepping */
 
 static int fr__trace_step(fr__ray_t *R, double step, fr_refine_t refine, double L, double *t_hit, double *t_err)
@@ -5472,6 +5493,7 @@ static int fr__trace_step(fr__ray_t *R, double step, fr_refine_t refine, double 
         }
         ta = tb; ga = gb;
     }
+    if (ta < R->t1) fr__capped(R, ta, R->t1);
     return 0;
 }
 
@@ -5514,6 +5536,7 @@ static int fr__trace_sphere(fr__ray_t *R, double L, double omega, double *t_hit,
         t_prev = t; r_prev = r; g_prev = g; have_prev = 1;
         t += omega * r;
     }
+    if (t <= R->t1) fr__capped(R, have_prev ? t_prev : t, R->t1); /* the last step is not yet checked */
     return 0;
 }
 
@@ -5828,6 +5851,9 @@ static fr_result_t fr__trace_interval(fr__ray_t *R, int plain, int prune, fr_ins
         stack[sp].a = m; stack[sp].b = s.b; stack[sp].depth = s.depth + 1; sp++;
         stack[sp].a = s.a; stack[sp].b = m; stack[sp].depth = s.depth + 1; sp++;
     }
+    /* segments left: everything before the top one is proven root-free,
+       the stack holds the rest in order (the bottom one ends last) */
+    if (sp > 0) fr__capped(R, stack[sp - 1].a, stack[0].b);
     return FR_OK;
 }
 #endif
@@ -7346,6 +7372,7 @@ static FR__NOINLINE fr_result_t fr__trace(const fr_tape_t *t, const double o[3],
     R.tape = t;
     R.eval = mem.eval;
     R.evals = R.iters = 0;
+    R.capped = 0;
     /* the prepared CSG path needs none of the set-up below */
     if (R.prep && R.prep->kind == FR_PREPARED_CSG && (m == FR_METHOD_AUTO || m == FR_METHOD_ANALYTIC)) {
         e = fr__trace_prepared_csg(&R, &mem, &found, &t_hit, &t_err, &leaf, &orient);
@@ -7363,6 +7390,11 @@ static FR__NOINLINE fr_result_t fr__trace(const fr_tape_t *t, const double o[3],
 done:
     if (e != FR_OK) return e;
     fr__trace_answer(&R, &mem, desc, o, d, m, found, t_hit, t_err, leaf, orient, hit);
+    if (!found && R.capped) { /* not a miss: the rest of the segment is unknown */
+        hit->t = 0.5 * R.undecided_lo + 0.5 * R.undecided_hi;
+        hit->t_err = 0.5 * R.undecided_hi - 0.5 * R.undecided_lo;
+        return FR_ERR_ITERATIONS;
+    }
     return FR_OK;
 }
 
@@ -7394,7 +7426,7 @@ static fr_result_t fr__trace_any_length(const fr_tape_t *t, const double o[3], c
     if (D.step > 0) D.step = ldexp(D.step, ex - 1);
     {
         fr_result_t e = fr__trace(t, o, ds, ldexp(t0, ex - 1), ldexp(t1, ex - 1), &D, scratch, hit);
-        if (e == FR_OK) { /* an error leaves *hit as fr__trace left it */
+        if (e == FR_OK || e == FR_ERR_ITERATIONS) { /* other errors leave *hit as fr__trace left it */
             hit->t = ldexp(hit->t, 1 - ex);
             hit->t_err = ldexp(hit->t_err, 1 - ex);
         }

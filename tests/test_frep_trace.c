@@ -768,6 +768,75 @@ static void black_box_callback_model(void)
     model_free(&m);
 }
 
+/* A method stopped by desc.max_iters with part of the segment undecided
+   does not report a miss (found by review, 2026-12-06): a ray grazing the
+   quartic torus (R 1, r 0.3) 1e-15 below the top of its tube, where g is
+   as flat as (t - 3)^4 over 1e-3, kept INTERVAL's 10^5 bisections busy,
+   and it answered FR_OK with no hit, plain and prepared: a false proof.
+   Now such a ray gets the hit or FR_ERR_ITERATIONS, whose hit->t +-
+   t_err holds ANALYTIC's root; with a cap of 2000 it is the error, and
+   STEP and SPHERE with a cap of 5 give it too (their range holds the
+   root at t = 4.2 of the unit ball, and starts where they stopped). */
+static void iteration_cap_is_not_a_miss(void)
+{
+    static const double box[6] = {-2, -2, -2, 2, 2, 2};
+    double o[3] = {-3, 1, 0x1.3333333333321p-2}, d[3] = {1, 0, 0}, ob[3] = {-5, 0.6, 0};
+    model_t m, ball;
+    fr_builder_t b;
+    fr_callback_t cb;
+    fr_prepared_t pr;
+    fr_hit_t ref, h;
+    int k, pp;
+    make_torus_poly(&m, 1, 0.3);
+    T_INT_EQ(fr_prepare(&m.tape, box, &pr), FR_OK);
+    ref = trace(&m, o, d, 0, 6, method(FR_METHOD_ANALYTIC, 0));
+    T_INT_EQ(ref.hit, 1);
+    for (k = 0; k < 2; k++)
+        for (pp = 0; pp < 2; pp++) {
+            fr_trace_desc_t D = method(FR_METHOD_INTERVAL, 7e-12);
+            fr_result_t r;
+            if (pp) D.prepared = &pr;
+            D.max_iters = k ? 2000 : 0;
+            r = fr_trace(&m.tape, o, d, 0, 6, &D, m.scratch, &h);
+            if (r == FR_OK && !k) { /* the default cap may be enough on another machine's code */
+                T_INT_EQ(h.hit, 1);
+                T_NEAR(h.t, ref.t, 1e-3);
+                continue;
+            }
+            T_INT_EQ(r, FR_ERR_ITERATIONS);
+            T_INT_EQ(h.hit, 0);
+            T_LE(h.t - h.t_err, ref.t);
+            T_GE(h.t + h.t_err, ref.t);
+            T_LE(h.t + h.t_err, 6);
+            T_GE(h.iterations, k ? 2000 : 100000);
+        }
+    fr_prepared_free(&pr);
+    model_free(&m);
+    memset(&cb, 0, sizeof cb);
+    cb.point = unit_sphere_sdf;
+    fr_builder_init(&b, NULL);
+    model_finish(&ball, &b, fr_from_sdf(&b, fr_callback(&b, fr_coords(&b), &cb), 1.0));
+    for (k = 0; k < 2; k++) {
+        fr_trace_desc_t D = method(k ? FR_METHOD_SPHERE : FR_METHOD_STEP, 1e-10);
+        fr_result_t r;
+        D.step = k ? 0 : 0.01;
+        D.over_relax = 1;
+        D.max_iters = 5;
+        r = fr_trace(&ball.tape, ob, d, 0, 10, &D, ball.scratch, &h);
+        T_INT_EQ(r, FR_ERR_ITERATIONS);
+        T_INT_EQ(h.hit, 0);
+        T_LE(h.t - h.t_err, 4.2);
+        T_GE(h.t + h.t_err, 4.2);
+        T_GE(h.t - h.t_err, k ? 4.0 : 0.04); /* STEP checked 5 steps of 0.01; SPHERE's first step is 4.04 */
+        D.max_iters = 0;
+        h = trace(&ball, ob, d, 0, 10, D);
+        T_INT_EQ(h.hit, 1);
+        T_NEAR(h.t, 4.2, 1e-9);
+    }
+    model_free(&ball);
+    T_CHECK(strcmp(fr_result_string(FR_ERR_ITERATIONS), "unknown result") != 0);
+}
+
 static void invalid_arguments(void)
 {
     static const double c[3] = {0, 0, 0};
@@ -831,6 +900,7 @@ int main(int argc, char **argv)
         T_CASE(infinite_segment_with_bounds),
         T_CASE(auto_method_choices_and_stats),
         T_CASE(black_box_callback_model),
+        T_CASE(iteration_cap_is_not_a_miss),
         T_CASE(invalid_arguments),
         T_CASE(bound_box_holds_the_solid),
         T_CASE(tangle_interval_variants_agree),
