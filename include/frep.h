@@ -654,8 +654,8 @@ FR_DEF size_t fr_trace_scratch_size(const fr_tape_t *t, const fr_trace_desc_t *d
    SPHERE used desc->max_iters up with part of the segment undecided: no
    root was found before hit->t - hit->t_err, the first root, if any, lies
    in hit->t +- hit->t_err, and hit->hit is 0; a renderer may take it as a
-   miss or trace on from there). A miss is FR_OK with hit->hit = 0: for
-   INTERVAL and ANALYTIC a proof that there is no root. */
+   miss or trace on from there). A miss is FR_OK with hit->hit = 0 (for
+   INTERVAL, a proof that the segment holds no root). */
 FR_DEF fr_result_t fr_trace(const fr_tape_t *t, const double o[3], const double d[3], double t0, double t1,
                             const fr_trace_desc_t *desc, void *scratch, fr_hit_t *hit);
 
