@@ -5332,8 +5332,8 @@ typedef struct fr__ray_t {
     void *eval;
     unsigned long long evals, iters;
     unsigned int max_iters;
-    /* a marching method stopped by max_iters: [undecided_lo, t1'] is where
-       it did not look (fr__trace returns FR_ERR_ITERATIONS) */
+    /* a method stopped by max_iters: [undecided_lo, undecided_hi] is what
+       it had not decided (fr__trace returns FR_ERR_ITERATIONS) */
     int capped;
     double undecided_lo, undecided_hi;
 } fr__ray_t;
