@@ -5851,18 +5851,18 @@ static int gr__lg_make(const gr_grid_t *grid, int id, const double *c, const dou
 typedef struct gr__region_t { double p[2 * 4 * (1 + GR_MAX_LIGHTS)]; int n; } gr__region_t;
 
 /* Whether the band of a straight groove, [lo, hi] along t and g->reach
-   either side, meets the box sc->box (centre c): separating axes u, v, t
+   either side, meets the box sc->box: separating axes u, v, t
    and bn. A straight groove is the same record from any footprint, so
    this decides the same way whether it came from the grid or from the
    cache (§5.6), which gathers over a grown box and would otherwise keep
    grooves whose line passes near the footprint and whose segment ends far
    from it: gr_query_lines_cached() promises gr_query_lines()'s answer,
    groove count and flags included. */
-static int gr__lg_band_meets_box(const gr__lscene_t *sc, const gr__lg_t *g, const double *c)
+static int gr__lg_band_meets_box(const gr__lscene_t *sc, const gr__lg_t *g)
 {
     const double *box = sc->box;
     double hu = 0.5 * (box[2] - box[0]), hv = 0.5 * (box[3] - box[1]);
-    double du = c[0] - g->p[0], dv = c[1] - g->p[1];
+    double du = 0.5 * (box[0] + box[2]) - g->p[0], dv = 0.5 * (box[1] + box[3]) - g->p[1];
     double a0 = g->t[0] * du + g->t[1] * dv, b0 = g->bn[0] * du + g->bn[1] * dv;
     double et = hu * fabs(g->t[0]) + hv * fabs(g->t[1]), eb = hu * fabs(g->bn[0]) + hv * fabs(g->bn[1]);
     int k;
@@ -5885,7 +5885,7 @@ static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, do
     const gr__groove_t *rec = &sc->grid->grooves_[g->groove];
     int i, e;
     if (bc > reach + g->reach) return; /* its band misses the box */
-    if (rec->parent == g->groove && gr__line_cacheable(rec) && !rec->closed && !gr__lg_band_meets_box(sc, g, c)) return;
+    if (rec->parent == g->groove && gr__line_cacheable(rec) && !rec->closed && !gr__lg_band_meets_box(sc, g)) return;
     if (quad) { /* ... or the region this segment's rays sweep */
         double bl = HUGE_VAL, bh = -HUGE_VAL, al = HUGE_VAL, ah = -HUGE_VAL;
         for (e = 0; e < quad->n; e++) {
@@ -5979,7 +5979,7 @@ static void gr__edge_list(gr__lscene_t *sc);
    and their shadow casters toward the lights (§5.1's w_L), which the box
    also holds. */
 static void gr__sheet_box(const gr_grid_t *grid, const gr__lscene_t *sc, const gr__sheet_t *sh, const double *lights, int nl,
-                          double box[4], gr__region_t *quad)
+                          double box[4], gr__region_t *quad, double view_c[2])
 {
     double seglen = 2 * sqrt(gr__dot3(sh->a, sh->a));
     int i, k, e;
@@ -5997,6 +5997,8 @@ static void gr__sheet_box(const gr_grid_t *grid, const gr__lscene_t *sc, const g
             if (v > box[3]) box[3] = v;
         }
     }
+    view_c[0] = 0.5 * (box[0] + box[2]); /* the view rays' region, before the lights stretch the box */
+    view_c[1] = 0.5 * (box[1] + box[3]);
     for (k = 0; k < 4; k++) box[k] += k < 2 ? -grid->w : grid->w;
     quad->n = 0;
     for (e = 0; e < 4; e++) { /* the swept region's points (UV), for pruning */
@@ -6148,11 +6150,19 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
     sc->scale = grid->w + grid->h + grid->d;
     sc->nlg = 0;
     sc->flags = 0;
-    gr__sheet_box(grid, sc, sh, lights, nl, box, &quad);
+    /* the grooves are located (their periodic image, the point of their
+       straight approximation) from c, the centre of the view rays' region:
+       a low light stretches the box toward it by (h + d) / L_w, and from
+       that box's centre the groove under the footprint was taken a tile
+       away (wrap) or from 1e18 away (L_w = 1e-20); reach still holds the
+       whole box */
+    gr__sheet_box(grid, sc, sh, lights, nl, box, &quad, c);
     memcpy(sc->box, box, sizeof box);
-    c[0] = 0.5 * (box[0] + box[2]);
-    c[1] = 0.5 * (box[1] + box[3]);
-    reach = 0.5 * sqrt((box[2] - box[0]) * (box[2] - box[0]) + (box[3] - box[1]) * (box[3] - box[1]));
+    reach = 0;
+    for (i = 0; i < 4; i++) {
+        double du = (i & 1 ? box[2] : box[0]) - c[0], dv = (i & 2 ? box[3] : box[1]) - c[1], r = sqrt(du * du + dv * dv);
+        if (r > reach) reach = r;
+    }
     gr__line_grooves(grid, s, sc, box, c, reach, tight ? &quad : NULL, cache);
     /* planes: the ground, then every facet of every groove (§3) */
     memset(&sc->ls.pl[0], 0, sizeof sc->ls.pl[0]);

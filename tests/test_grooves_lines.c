@@ -948,6 +948,57 @@ static void t_wrap_any_number_of_tiles(void)
     gr_grid_free(grid);
 }
 
+/* A low light stretches the line samples' search box toward it, by
+   (h + d) / L_w (shadow casters): 2.5 tiles at L_w = 0.01 (0.57 degrees,
+   a sunset). The grooves were located, and their periodic image chosen,
+   nearest that box's centre, so with wrap on the one groove under the
+   footprint landed a tile away and the answer was ground only (found by
+   review, 2026-12-06); without wrap a light 1e-20 above the horizon put
+   the centre 1e18 away. Now they are located from the centre of the view
+   rays' region: the visible ratios equal the light-free ones (a lone
+   groove casts no shadow on itself seen from this side: only the lit
+   shares may change), at L_w from 0.3 down to 1e-20, wrapped or not. */
+static void t_low_light_keeps_the_grooves(void)
+{
+    static const double path[4] = {0.1, 0.5, 0.9, 0.5};
+    static const double lws[5] = {0.3, 0.05, 0.01, 1e-6, 1e-20};
+    int wrap, k, i;
+    for (wrap = 0; wrap < 2; wrap++) {
+        gr_groove_desc_t g;
+        gr_grid_desc_t d;
+        gr_grid_t *grid = NULL;
+        gr_facet_list_t l0, l;
+        size_t need;
+        void *scratch;
+        gr_query_t q = gt_query(0.5, 0.5, 0.02, 0.3, 0, 0.95394);
+        memset(&g, 0, sizeof g);
+        memset(&d, 0, sizeof d);
+        g.points = path, g.point_count = 2, g.section = VSEC, g.section_count = 3, g.reflectance = 1;
+        d.grooves = &g, d.groove_count = 1, d.no_wrap = !wrap;
+        if (!T_INT_EQ(gr_grid_build(&d, &grid, NULL), GR_OK)) return;
+        need = gr_query_scratch_bytes(grid);
+        scratch = malloc(need);
+        q.line_samples = 2;
+        T_INT_EQ(gr_query_lines(grid, &q, scratch, need, &l0, NULL), GR_OK);
+        T_INT_EQ(l0.count, 3); /* ground and both walls */
+        for (k = 0; k < 5; k++) {
+            double L[3], c = sqrt(1 - lws[k] * lws[k]);
+            L[0] = 0.6 * c, L[1] = 0.8 * c, L[2] = lws[k];
+            q.lights = L;
+            q.light_count = 1;
+            T_INT_EQ(gr_query_lines(grid, &q, scratch, need, &l, NULL), GR_OK);
+            if (!T_INT_EQ(l.count, l0.count)) {
+                printf("    wrap %d, light %g above the horizon: %d facets (ground %.3g)\n", wrap, lws[k], l.count,
+                       gt_ratio_of(&l, -1));
+                continue;
+            }
+            for (i = 0; i < l.count; i++) T_NEAR(gt_ratio_of(&l, l0.facets[i].facet), l0.facets[i].ratio, 1e-12);
+        }
+        free(scratch);
+        gr_grid_free(grid);
+    }
+}
+
 static void t_stiff_scale(void)
 {
     static const double scales[2] = {1e-5, 1e3};
@@ -1129,7 +1180,8 @@ int main(int argc, char **argv)
         T_CASE(t_isolated_equals_query), T_CASE(t_crossings_vs_raster), T_CASE(t_oblique_crossings_vs_oracle),
         T_CASE(t_self_crossing_vs_oracle),
         T_CASE(t_weighting),
-        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_dispatch_after_oversampling), T_CASE(t_self_crossings_share_a_cut), T_CASE(t_wrap_any_number_of_tiles), T_CASE(t_stiff_scale), T_CASE(t_stiff_grazing),
+        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_dispatch_after_oversampling), T_CASE(t_self_crossings_share_a_cut), T_CASE(t_wrap_any_number_of_tiles), T_CASE(t_low_light_keeps_the_grooves),
+        T_CASE(t_stiff_scale), T_CASE(t_stiff_grazing),
         T_CASE(t_stiff_degenerate_footprint), T_CASE(t_stiff_many_grooves), T_CASE(t_bad_input),
     };
     return T_RUN(argc, argv, cases);
