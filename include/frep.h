@@ -2165,7 +2165,10 @@ static iv_t fr__iv_monotone2(const fr_instr_t *in, iv_t a, iv_t b)
     case FR_OP_SMAX: lo = fr__smax(a.lo, b.lo, in->k); hi = fr__smax(a.hi, b.hi, in->k); break;
     default: lo = fr__smin(a.lo, b.lo, in->k); hi = fr__smin(a.hi, b.hi, in->k); break;
     }
-    return fr__widen(lo, hi, fr__mag2(a, b) + in->k);
+    /* the smooth ops' k is a field value (their h^2 k / 4 term); an
+       R-function's is alpha, a pure number: as a pad it swamped fields
+       below 1e-15 (an alpha = 0.5 lens at 1e-100 enclosed as +-1.8e-15) */
+    return fr__widen(lo, hi, fr__mag2(a, b) + (in->op == FR_OP_SMAX || in->op == FR_OP_SMIN ? in->k : 0.0));
 }
 
 /* Noise over a box: the value at the centre plus the Lipschitz bound times
@@ -5535,6 +5538,11 @@ static int fr__trace_sphere(fr__ray_t *R, double L, double omega, double *t_hit,
         if (r <= R->tol) { *t_hit = t; *t_err = R->tol; return 1; }
         t_prev = t; r_prev = r; g_prev = g; have_prev = 1;
         t += omega * r;
+        /* a relaxed step past t1 is unchecked: the safe step decides */
+        if (t > R->t1 && omega > 1.0) {
+            t = t_prev + r_prev;
+            omega = 1.0;
+        }
     }
     if (t <= R->t1) fr__capped(R, have_prev ? t_prev : t, R->t1); /* the last step is not yet checked */
     return 0;

@@ -241,6 +241,35 @@ static void extreme_r_functions_far_from_the_surface(void)
     printf("    R-functions far from the surface: worst relative error %.2g ulp\n", worst / DBL_EPSILON);
 }
 
+/* The interval image of an alpha < 1 R-function was padded by alpha
+   itself, as if it were a field value (found by review, 2026-12-06): the
+   alpha = 0.5 lens of two spheres of radius 0.5 s, evaluated on the point
+   (0, s, 0), came out [-1.8e-15, 1.8e-15] for s = 1e-100 (the value is
+   -2.52 s^2), and INTERVAL tracing reported hits at the ray origin on rays
+   that miss. Now the point box's enclosure holds the point value and is
+   within 1e-12 of it, relatively, at every scale (plus the widening's
+   absolute floor, 4.5e-308, which matters at 1e-150 only). */
+static void extreme_tiny_r_function_enclosure(void)
+{
+    static const double scales[4] = {1, 1e-8, 1e-100, 1e-150};
+    int k;
+    for (k = 0; k < 4; k++) {
+        double s = scales[k], c1[3] = {-0.3 * s, 0, 0}, c2[3] = {0.3 * s, 0, 0}, p[3] = {0, s, 0}, sp[1024], v;
+        iv_t box[3], o, si[1024];
+        fr_builder_t b;
+        fr_builder_init(&b, NULL);
+        fr_p3_t X = fr_coords(&b);
+        fr_tape_t t = finish(&b, fr_intersect(&b, fr_sphere(&b, X, c1, 0.5 * s), fr_sphere(&b, X, c2, 0.5 * s), 0.5));
+        v = fr_eval(&t, p, sp);
+        box[0] = iv_point(0), box[1] = iv_point(s), box[2] = iv_point(0);
+        T_INT_EQ(fr_eval_interval(&t, box, si, &o), FR_OK);
+        T_CHECK(o.lo <= v && v <= o.hi);
+        T_LE(iv_width(o), 1e-12 * fabs(v) + 1e-306); /* + the widening's floor near underflow */
+        T_LE(v, 0); /* outside both balls */
+        fr_tape_free(&t);
+    }
+}
+
 /* a tape of 10^6 instructions: building, finishing and pruning are
    iterative (no recursion), scratch is sized by the query */
 static void extreme_million_instruction_tape(void)
@@ -337,6 +366,7 @@ int main(int argc, char **argv)
         T_CASE(extreme_blend_with_overflowing_arguments), T_CASE(extreme_micrometre_sphere),
         T_CASE(extreme_alpha_just_below_one),        T_CASE(extreme_million_instruction_tape),
         T_CASE(extreme_r_functions_far_from_the_surface),
+        T_CASE(extreme_tiny_r_function_enclosure),
         T_CASE(concurrent_evaluation_matches_serial),
     };
     return T_RUN(argc, argv, cases);

@@ -837,6 +837,27 @@ static void iteration_cap_is_not_a_miss(void)
     T_CHECK(strcmp(fr_result_string(FR_ERR_ITERATIONS), "unknown result") != 0);
 }
 
+/* Sphere tracing with over-relaxation near t1 (found by review,
+   2026-12-06): the relaxed step from t = 0 toward the plane z = 0 at t = 1
+   lands at 1.6; for t1 in [1, 1.6) it left the loop unchecked and the
+   ray missed. A relaxed step past t1 now falls back to the safe step. */
+static void sphere_tracing_relaxed_step_past_t1(void)
+{
+    static const double t1s[5] = {1.0, 1.2, 1.5, 1.599, 3};
+    double o[3] = {0, 0, 1}, d[3] = {0, 0, -1};
+    fr_builder_t b;
+    model_t m;
+    int k;
+    fr_builder_init(&b, NULL);
+    model_finish(&m, &b, fr_from_sdf(&b, fr_coords(&b).z, 1.0));
+    for (k = 0; k < 5; k++) {
+        fr_hit_t h = trace(&m, o, d, 0, t1s[k], method(FR_METHOD_SPHERE, 1e-9));
+        if (!T_INT_EQ(h.hit, 1)) continue;
+        T_NEAR(h.t, 1, 1e-9);
+    }
+    model_free(&m);
+}
+
 static void invalid_arguments(void)
 {
     static const double c[3] = {0, 0, 0};
@@ -901,6 +922,7 @@ int main(int argc, char **argv)
         T_CASE(auto_method_choices_and_stats),
         T_CASE(black_box_callback_model),
         T_CASE(iteration_cap_is_not_a_miss),
+        T_CASE(sphere_tracing_relaxed_step_past_t1),
         T_CASE(invalid_arguments),
         T_CASE(bound_box_holds_the_solid),
         T_CASE(tangle_interval_variants_agree),
