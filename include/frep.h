@@ -562,7 +562,10 @@ struct fr_prepared_t; /* fr_prepare, below */
 typedef struct fr_trace_desc_t {
     fr_method_t method;
     /* the t tolerance of STEP, INTERVAL and SPHERE: a root is located within
-       tol (absolute, t units). 0: 1e-9 * (t1 - t0) for finite segments,
+       tol (absolute, t units; SPHERE's stop where the surface is within tol
+       of the point is a distance, and on an oblique ray the root can lie
+       up to tol / sin(angle) farther along it, or a grazing ray may not
+       cross at all). 0: 1e-9 * (t1 - t0) for finite segments,
        otherwise 1e-9 * (1 + |t0|) (|t1| when t0 is infinite, 0 when both
        are). Negative asks for the limit of doubles: a few ulps of the
        finite ends. */
@@ -630,7 +633,9 @@ typedef struct fr_hit_t {
     double point[3];        /* o + t d */
     double normal[3];       /* unit outward normal (along -grad f); 0 if unknown */
     double t_err;           /* the root is within t +- t_err (tolerance reached;
-                               for ANALYTIC an error estimate from the polish) */
+                               for ANALYTIC an error estimate from the polish;
+                               for SPHERE's stop near the surface, desc.tol as
+                               a distance: see tol) */
     unsigned long long evals;      /* tape evaluations (any arithmetic) */
     unsigned long long iterations; /* loop iterations (steps, bisections, polish) */
     fr_method_t method;     /* the method used (AUTO resolved) */
