@@ -4691,6 +4691,11 @@ GR_DEF gr_result_t gr_section_on_facet(const gr_facet_geom_t *facet, const doubl
 /* A footprint whose area 4 |A1 x A2| is below this fraction of 4 |A1| |A2|
    has no area for the polygon path (its axes are parallel to rounding). */
 #define GR__PP_FLAT_REL 1e-12
+/* ... and one narrower than this many tie tolerances (GR__PP_TIE_REL of
+   the sections' size) is a line there too: its ratios are differences of
+   areas that rounding at the tie scale swamps (a footprint 1e-16 wide at
+   an X crossing summed to 1.1, from 1e-20 to an empty list). */
+#define GR__PP_MIN_WIDTH_TIES 64
 
 /* One locally straight groove near the footprint, in coordinates relative
    to the footprint centre's tile image f (§4.2's straight approximation). */
@@ -5449,13 +5454,17 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
         jn->items[jn->count - 1].kind != GR_JUNCTION_SELF)
         return 0;
     if (!((af = gr__pp_footprint(q, fpoly, &nfp)) > 0)) return 0;
+    tie = GR__PP_TIE_REL * (grid->w + grid->d + grid->h);
+    { /* af / (4 max |A_i|): half the footprint's narrow width (a parallelogram's exactly) */
+        double a1 = hypot(fp->axis1[0], fp->axis1[1]), a2 = hypot(fp->axis2[0], fp->axis2[1]);
+        if (!(af >= 4.0 * (a1 > a2 ? a1 : a2) * GR__PP_MIN_WIDTH_TIES * tie)) return 0;
+    }
     el = sqrt(gr__dot3(fp->view, fp->view));
     for (k = 0; k < 3; k++) e[k] = fp->view[k] / el;
     gr__tile_image(grid, fp->center, f);
     /* pieces reach beyond the search box by its size: far enough that no
        ray from the footprint toward the viewer or a light meets their ends */
     big = 2 * (jn->box[2] - jn->box[0] + jn->box[3] - jn->box[1]) + grid->w + grid->d;
-    tie = GR__PP_TIE_REL * (grid->w + grid->d + grid->h);
     gr__pp_layout(base, &ps);
     np = gr__pp_build(grid, s, jn, f, big, &ps);
     if (np < 0 || np >= GR__PP_MAX_PIECES) return 0;

@@ -999,6 +999,45 @@ static void t_low_light_keeps_the_grooves(void)
     }
 }
 
+/* A footprint far thinner than the polygon path's tie tolerance (1e-9 of
+   the grooves' size) is a line (found by review, 2026-12-06): at an X
+   crossing seen from above, A1 = (1e-16, 0) gave sum r_i = 1.1 and from
+   1e-20 down to subnormal lengths an empty list, where A1 = 0 (a line)
+   gives section 4's answer. Now such footprints get that answer. */
+static void t_near_line_footprints(void)
+{
+    static const double a1s[6] = {1e-12, 1e-16, 1e-20, 1e-100, 1e-300, 1e-320};
+    int wrap, k, i;
+    for (wrap = 0; wrap < 2; wrap++) {
+        scene_t s;
+        gr_facet_list_t l0, l;
+        gr_query_t q = gt_query(0.5, 0.5, 0.02, 0, 0, 1);
+        memset(&s, 0, sizeof s);
+        scene_add(&s, 0.2, 0.5, 0.8, 0.5, VSEC, 3);
+        scene_add(&s, 0.5, 0.2, 0.5, 0.8, VSEC, 3);
+        {
+            gr_grid_desc_t d;
+            memset(&d, 0, sizeof d);
+            d.grooves = s.g, d.groove_count = s.n, d.no_wrap = !wrap;
+            if (!T_INT_EQ(gr_grid_build(&d, &s.grid, NULL), GR_OK)) return;
+        }
+        q.footprint.axis1[0] = 0;
+        if (!gt_run(s.grid, &q, &l0)) return;
+        T_NEAR(gt_ratio_sum(&l0), 1, 1e-9);
+        for (k = 0; k < 6; k++) {
+            q.footprint.axis1[0] = a1s[k];
+            if (!gt_run(s.grid, &q, &l)) continue;
+            T_NEAR(gt_ratio_sum(&l), 1, 1e-9);
+            if (!T_INT_EQ(l.count, l0.count)) {
+                printf("    wrap %d, A1 = %g: %d facets, sum %.6g\n", wrap, a1s[k], l.count, gt_ratio_sum(&l));
+                continue;
+            }
+            for (i = 0; i < l.count; i++) T_NEAR(l.facets[i].ratio, l0.facets[i].ratio, 1e-9);
+        }
+        gr_grid_free(s.grid);
+    }
+}
+
 static void t_stiff_scale(void)
 {
     static const double scales[2] = {1e-5, 1e3};
@@ -1180,7 +1219,7 @@ int main(int argc, char **argv)
         T_CASE(t_isolated_equals_query), T_CASE(t_crossings_vs_raster), T_CASE(t_oblique_crossings_vs_oracle),
         T_CASE(t_self_crossing_vs_oracle),
         T_CASE(t_weighting),
-        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_dispatch_after_oversampling), T_CASE(t_self_crossings_share_a_cut), T_CASE(t_wrap_any_number_of_tiles), T_CASE(t_low_light_keeps_the_grooves),
+        T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_dispatch_after_oversampling), T_CASE(t_self_crossings_share_a_cut), T_CASE(t_wrap_any_number_of_tiles), T_CASE(t_low_light_keeps_the_grooves), T_CASE(t_near_line_footprints),
         T_CASE(t_stiff_scale), T_CASE(t_stiff_grazing),
         T_CASE(t_stiff_degenerate_footprint), T_CASE(t_stiff_many_grooves), T_CASE(t_bad_input),
     };
