@@ -5809,6 +5809,14 @@ static int gr__line_cacheable(const gr__groove_t *rec)
     return rec->kind == GR_PATH_POLYLINE && rec->point_count == 2 && !rec->perturb;
 }
 
+/* Groove id (not a piece) is straight: its straight approximation is the
+   groove itself, anchored at its first point, the same from any footprint. */
+static int gr__line_anchored(const gr_grid_t *grid, int id)
+{
+    const gr__groove_t *rec = &grid->grooves_[id];
+    return rec->parent == id && gr__line_cacheable(rec);
+}
+
 /* Groove (or piece of a self-crossing groove) id in its straight
    approximation at cd, its point nearest c (parameter and rate the
    groove's). A piece runs on straight past its cut ends (they join the
@@ -5831,7 +5839,7 @@ static int gr__lg_from(const gr_grid_t *grid, int id, const gr__cand_t *cd0, con
     g->first_facet = rec->first_facet;
     g->lo = rec->closed || rec->join[0] ? -HUGE_VAL : -(cd.param - rec->t0) / cd.dtds;
     g->hi = rec->closed || rec->join[1] ? HUGE_VAL : (rec->t1 - cd.param) / cd.dtds;
-    if (rec->parent == id && gr__line_cacheable(rec)) { /* anchored at its first point: the same record from any footprint */
+    if (gr__line_anchored(grid, id)) {
         const double *a = grid->points_ + 2 * rec->first_point;
         g->p[0] = a[0] + (c[0] - cd.fc[0]); /* the image shift: a whole number of tiles, 0 without wrap */
         g->p[1] = a[1] + (c[1] - cd.fc[1]);
@@ -5891,10 +5899,10 @@ static void gr__lg_keep(gr__lscene_t *sc, const gr__lg_t *g, const double *c, do
 {
     double bc = fabs(g->bn[0] * (c[0] - g->p[0]) + g->bn[1] * (c[1] - g->p[1]));
     double a0 = g->t[0] * (c[0] - g->p[0]) + g->t[1] * (c[1] - g->p[1]);
-    const gr__groove_t *rec = &sc->grid->grooves_[g->groove];
     int i, e;
     if (bc > reach + g->reach) return; /* its band misses the box */
-    if (rec->parent == g->groove && gr__line_cacheable(rec) && !rec->closed && !gr__lg_band_meets_box(sc, g)) return;
+    if (gr__line_anchored(sc->grid, g->groove) && !sc->grid->grooves_[g->groove].closed && !gr__lg_band_meets_box(sc, g))
+        return;
     if (quad) { /* ... or the region this segment's rays sweep */
         double bl = HUGE_VAL, bh = -HUGE_VAL, al = HUGE_VAL, ah = -HUGE_VAL;
         for (e = 0; e < quad->n; e++) {
@@ -6167,10 +6175,9 @@ static void gr__line_scene(const gr_grid_t *grid, const gr__scratch_t *s, gr__ls
        whole box */
     gr__sheet_box(grid, sc, sh, lights, nl, box, &quad, c);
     memcpy(sc->box, box, sizeof box);
-    reach = 0;
-    for (i = 0; i < 4; i++) {
-        double du = (i & 1 ? box[2] : box[0]) - c[0], dv = (i & 2 ? box[3] : box[1]) - c[1], r = sqrt(du * du + dv * dv);
-        if (r > reach) reach = r;
+    { /* to the box's farthest corner */
+        double du = fmax(c[0] - box[0], box[2] - c[0]), dv = fmax(c[1] - box[1], box[3] - c[1]);
+        reach = sqrt(du * du + dv * dv);
     }
     gr__line_grooves(grid, s, sc, box, c, reach, tight ? &quad : NULL, cache);
     /* planes: the ground, then every facet of every groove (§3) */

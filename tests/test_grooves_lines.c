@@ -63,15 +63,16 @@ static void scene_add(scene_t *s, double u0, double v0, double u1, double v1, co
     s->n++;
 }
 
-static int scene_build(scene_t *s)
+static int scene_build_wrap(scene_t *s, int wrap)
 {
     gr_grid_desc_t d;
     memset(&d, 0, sizeof d);
     d.grooves = s->g;
     d.groove_count = s->n;
-    d.no_wrap = 1;
+    d.no_wrap = !wrap;
     return gr_grid_build(&d, &s->grid, NULL) == GR_OK;
 }
+static int scene_build(scene_t *s) { return scene_build_wrap(s, 0); }
 
 /* crossing c: 0 X (second section xsec), 1 oblique at 60°, 2 T (the
    second groove ends on the first's centre line) */
@@ -960,22 +961,19 @@ static void t_wrap_any_number_of_tiles(void)
    shares may change), at L_w from 0.3 down to 1e-20, wrapped or not. */
 static void t_low_light_keeps_the_grooves(void)
 {
-    static const double path[4] = {0.1, 0.5, 0.9, 0.5};
     static const double lws[5] = {0.3, 0.05, 0.01, 1e-6, 1e-20};
     int wrap, k, i;
     for (wrap = 0; wrap < 2; wrap++) {
-        gr_groove_desc_t g;
-        gr_grid_desc_t d;
-        gr_grid_t *grid = NULL;
+        scene_t s;
+        gr_grid_t *grid;
         gr_facet_list_t l0, l;
         size_t need;
         void *scratch;
         gr_query_t q = gt_query(0.5, 0.5, 0.02, 0.3, 0, 0.95394);
-        memset(&g, 0, sizeof g);
-        memset(&d, 0, sizeof d);
-        g.points = path, g.point_count = 2, g.section = VSEC, g.section_count = 3, g.reflectance = 1;
-        d.grooves = &g, d.groove_count = 1, d.no_wrap = !wrap;
-        if (!T_INT_EQ(gr_grid_build(&d, &grid, NULL), GR_OK)) return;
+        memset(&s, 0, sizeof s);
+        scene_add(&s, 0.1, 0.5, 0.9, 0.5, VSEC, 3);
+        if (!T_CHECK(scene_build_wrap(&s, wrap))) return;
+        grid = s.grid;
         need = gr_query_scratch_bytes(grid);
         scratch = malloc(need);
         q.line_samples = 2;
@@ -1015,12 +1013,7 @@ static void t_near_line_footprints(void)
         memset(&s, 0, sizeof s);
         scene_add(&s, 0.2, 0.5, 0.8, 0.5, VSEC, 3);
         scene_add(&s, 0.5, 0.2, 0.5, 0.8, VSEC, 3);
-        {
-            gr_grid_desc_t d;
-            memset(&d, 0, sizeof d);
-            d.grooves = s.g, d.groove_count = s.n, d.no_wrap = !wrap;
-            if (!T_INT_EQ(gr_grid_build(&d, &s.grid, NULL), GR_OK)) return;
-        }
+        if (!T_CHECK(scene_build_wrap(&s, wrap))) return;
         q.footprint.axis1[0] = 0;
         if (!gt_run(s.grid, &q, &l0)) return;
         T_NEAR(gt_ratio_sum(&l0), 1, 1e-9);
