@@ -224,7 +224,11 @@ GR_DEF int gr_facet_blockers(const gr_grid_t *grid, int groove, int facet, const
 /* A pixel footprint in texture space: centre F and half-axes A1, A2 (the
    footprint is the parallelogram/ellipse F + a A1 + b A2, |a|,|b| <= 1), plus
    the unit direction E from the surface toward the viewer in texture space
-   (U, V, W), W the surface normal. A1 = A2 = 0 is a point sample. */
+   (U, V, W), W the surface normal. A1 = A2 = 0 is a point sample. At
+   intersections and ends (the polygon path, line samples) a view or light
+   less than 1e-6 (sine of its elevation) above the horizon is taken at
+   1e-6, where the answer has reached its grazing limit (blockers farther
+   than 1e6 scene scales along it are not found); §4 takes any. */
 typedef struct gr_footprint_t {
     double center[2];
     double axis1[2];
@@ -905,6 +909,20 @@ extern "C" {
    double precision (every height projects 1e150 times farther than any
    footprint). */
 #define GR__GRAZING_MIN_W 1e-150
+/* The region methods (the polygon path, line samples and the bounces
+   of gr_shade_indirect) take a view or a light lower than this (the sine
+   of its elevation) at this elevation, with its azimuth. Their search box
+   grows by (h + d) / e_w and the coordinates with it, while the areas
+   must resolve the tie tolerance (1e-9 of the sections' size): at an X
+   crossing the polygon path's ratios summed to 1 within 1e-10 at
+   e_w = 1e-7, 3e-8 at 1e-9, 5e-6 at 3e-12 and 0.92 below 2e-12; line
+   samples lost the ground's share from 3e-15 and every groove at the
+   smallest subnormal. At this elevation every ray from the footprint runs
+   1e6 scene scales (w + h + d) before it leaves the grooves' depth range,
+   so the answer is the grazing limit for footprints and blockers within
+   that reach (test_grooves_stiff: extreme_views_at_a_crossing,
+   extreme_lights_at_a_crossing_and_an_end). */
+#define GR__REGION_MIN_ELEVATION 1e-6
 /* Default query settings (documented in gr_query_t). */
 #define GR__DEFAULT_OVERSAMPLE_TOL 0.05
 #define GR__DEFAULT_MAX_OVERSAMPLE 8
@@ -2394,6 +2412,29 @@ static void gr__grazing_scale(double *b, double *w)
     *w /= m;
     if (*w < GR__GRAZING_MIN_W) *w = GR__GRAZING_MIN_W;
 }
+
+#if !defined(GR_NO_INTERSECTIONS) || !defined(GR_NO_LINE_SAMPLES) || !defined(GR_NO_INTERREFLECTION)
+/* A direction above the surface raised to GR__REGION_MIN_ELEVATION when
+   it is lower (any other direction is copied). */
+static void gr__raise_direction(const double *in, double *out)
+{
+    double hl = hypot(in[0], in[1]), s;
+    out[0] = in[0], out[1] = in[1], out[2] = in[2];
+    if (!(in[2] > 0) || !(in[2] < GR__REGION_MIN_ELEVATION * hypot(hl, in[2]))) return;
+    s = sqrt(1 - GR__REGION_MIN_ELEVATION * GR__REGION_MIN_ELEVATION) / hl;
+    out[0] = in[0] * s, out[1] = in[1] * s, out[2] = GR__REGION_MIN_ELEVATION;
+}
+/* *out = q with its view and lights raised (lights: room for
+   GR_MAX_LIGHTS; q->light_count checked by the caller). */
+static void gr__raised_query(const gr_query_t *q, gr_query_t *out, double *lights)
+{
+    int k;
+    *out = *q;
+    gr__raise_direction(q->footprint.view, out->footprint.view);
+    for (k = 0; k < q->light_count; k++) gr__raise_direction(q->lights + 3 * k, lights + 3 * k);
+    if (q->light_count > 0) out->lights = lights;
+}
+#endif
 
 /* tan θ of a direction (eq. 1), for box enlargement; huge near grazing. */
 static double gr__tan(const double *dir) { return sqrt(dir[0] * dir[0] + dir[1] * dir[1]) / dir[2]; }
@@ -5414,7 +5455,9 @@ static int gr__pp_add_piece(const gr_query_t *q, gr__pps_t *ps, int np, int i, c
     double ne = gr__dot3(pc->n, e), ratio, area, *vis, lit[GR_MAX_LIGHTS];
     gr__mfacet_t m;
     int nv, l, k;
-    if (!(ne > GR__PP_EDGE_ON)) return 0; /* back-facing or edge-on (§4.3) */
+    /* back-facing or edge-on (§4.3); relative to e_w, because the ratio
+       is area * ne / e_w: the ground (ne = e_w) is never edge-on */
+    if (!(ne > GR__PP_EDGE_ON * e[2])) return 0;
     nv = gr__pp_region(ps, np, i, e, fpoly, nfp, NULL, 0, tie, &vis, &area);
     if (nv < 0) return -1;
     ratio = fmin(area * ne / e[2] / af, 1); /* a whole footprint, to rounding */
@@ -5427,7 +5470,7 @@ static int gr__pp_add_piece(const gr_query_t *q, gr__pps_t *ps, int np, int i, c
         lit[l] = 0;
         if (!(ll > 0) || !(L0[2] > 0)) continue;
         for (k = 0; k < 3; k++) L[k] = L0[k] / ll;
-        if (!(gr__dot3(pc->n, L) > GR__PP_EDGE_ON)) continue;
+        if (!(gr__dot3(pc->n, L) > GR__PP_EDGE_ON * L[2])) continue;
         if (gr__pp_region(ps, np, i, L, NULL, 0, ps->rv, nv, tie, &lr, &la) < 0) return -1;
         lit[l] = area > 0 ? la / area : 0;
     }
@@ -5494,13 +5537,16 @@ static int gr__pp_query(const gr_grid_t *grid, const gr_query_t *q, const gr__sc
 
 /* gr_query()'s entry to the polygon path: 1 when it answered. Its scratch
    follows the §4 layout. */
-static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q, void *scratch, size_t bytes,
+static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q0, void *scratch, size_t bytes,
                            const gr__scratch_t *s, gr_facet_list_t *list)
 {
     gr_junctions_t jn;
+    gr_query_t q;
+    double lights[3 * GR_MAX_LIGHTS];
     size_t base = gr__align8(gr__scratch_layout(grid, NULL, NULL));
-    if (gr__detect(grid, q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
-    if (gr__pp_query(grid, q, s, &jn, (char *)scratch + base, list)) return 1;
+    gr__raised_query(q0, &q, lights);
+    if (gr__detect(grid, &q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
+    if (gr__pp_query(grid, &q, s, &jn, (char *)scratch + base, list)) return 1;
     /* declined part way (a buffer outgrown): §4 starts from an empty list */
     list->count = 0;
     list->flags = 0;
@@ -6773,8 +6819,9 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     gr__scratch_t s;
     gr__lscene_t sc;
     gr__sheet_t sh;
+    gr_query_t raised;
     const gr_footprint_t *fp;
-    double wfam[2] = {0, 0}, tol, *acc;
+    double wfam[2] = {0, 0}, tol, *acc, lights[3 * GR_MAX_LIGHTS];
     int n, j, nl;
     gr_result_t r;
     if (!list) return GR_ERR_INVALID_ARG;
@@ -6785,6 +6832,8 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     if (stats) memset(stats, 0, sizeof *stats);
     r = gr__line_check(grid, query, scratch, scratch_bytes);
     if (r != GR_OK) return r;
+    gr__raised_query(query, &raised, lights);
+    query = &raised;
     fp = &query->footprint;
     if (!(fp->view[2] > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
     n = query->line_samples ? query->line_samples : 2;
@@ -6981,8 +7030,9 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
     gr__scratch_t s;
     gr__lscene_t sc;
     gr__stack_t stack;
+    gr_query_t raised;
     const gr_footprint_t *fp;
-    double wfam[2] = {0, 0}, cfam[2][3] = {{0, 0, 0}, {0, 0, 0}}, tol;
+    double wfam[2] = {0, 0}, cfam[2][3] = {{0, 0, 0}, {0, 0, 0}}, tol, lights[3 * GR_MAX_LIGHTS];
     int n, j, k, full = 0;
     unsigned approx = 0;
     gr_result_t r;
@@ -6994,6 +7044,8 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
         return GR_ERR_INVALID_ARG;
     r = gr__line_check(grid, query, scratch, scratch_bytes);
     if (r != GR_OK) return r;
+    gr__raised_query(query, &raised, lights);
+    query = &raised;
     fp = &query->footprint;
     if (!(fp->view[2] > 0)) return GR_OK;
     n = query->line_samples ? query->line_samples : 2;

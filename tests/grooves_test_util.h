@@ -46,6 +46,15 @@ static double gt_ratio_of(const gr_facet_list_t *l, int facet)
     const gr_facet_t *f = gt_entry(l, facet);
     return f ? f->ratio : 0.0;
 }
+/* The summed ratio of (groove g, facet f) in a list; g = f = -1 the ground. */
+static double gt_ratio_gf(const gr_facet_list_t *l, int g, int f)
+{
+    double s = 0;
+    int i;
+    for (i = 0; i < l->count; i++)
+        if (l->facets[i].groove == g && l->facets[i].facet == f) s += l->facets[i].ratio;
+    return s;
+}
 static double gt_ratio_sum(const gr_facet_list_t *l)
 {
     double s = 0;

@@ -96,15 +96,6 @@ static int run_lines(const gr_grid_t *grid, const gr_query_t *q, gr_facet_list_t
     return r == GR_OK;
 }
 
-/* ratio of (groove, facet) in a list; groove -1 = ground */
-static double ratio_gf(const gr_facet_list_t *l, int g, int f)
-{
-    double s = 0;
-    int i;
-    for (i = 0; i < l->count; i++)
-        if (l->facets[i].groove == g && l->facets[i].facet == f) s += l->facets[i].ratio;
-    return s;
-}
 
 static void t_isolated_equals_query(void)
 {
@@ -221,9 +212,9 @@ static void t_crossings_vs_raster(void)
                 q.line_samples = 1;
                 q.line_exit_tol = -1;
                 if (!run_lines(s.grid, &q, &l, NULL)) return;
-                T_NEAR(ratio_gf(&l, -1, -1), share[24], 1e-4);
+                T_NEAR(gt_ratio_gf(&l, -1, -1), share[24], 1e-4);
                 for (g = 0; g < s.n; g++)
-                    for (f = 0; f < 2; f++) T_NEAR(ratio_gf(&l, g, f), share[g * 8 + f], 1e-4);
+                    for (f = 0; f < 2; f++) T_NEAR(gt_ratio_gf(&l, g, f), share[g * 8 + f], 1e-4);
             }
             q.ellipse = (int)(k & 1);
             raster(&s, &q.footprint, q.ellipse, share);
@@ -235,10 +226,10 @@ static void t_crossings_vs_raster(void)
                 q.line_exit_tol = -1;
                 if (!run_lines(s.grid, &q, &l, NULL)) return;
                 T_NEAR(gt_ratio_sum(&l), 1, 1e-12);
-                e = fabs(ratio_gf(&l, -1, -1) - share[24]);
+                e = fabs(gt_ratio_gf(&l, -1, -1) - share[24]);
                 for (g = 0; g < s.n; g++)
                     for (f = 0; f < 2; f++) {
-                        double d = fabs(ratio_gf(&l, g, f) - share[g * 8 + f]);
+                        double d = fabs(gt_ratio_gf(&l, g, f) - share[g * 8 + f]);
                         if (d > e) e = d;
                     }
                 if (e > worst[c][ns]) worst[c][ns] = e;
@@ -343,15 +334,15 @@ static void t_oblique_crossings_vs_oracle(void)
                     if (!run_lines(s.grid, &q, &l, NULL)) return;
                     q.line_samples = 8;
                     if (!run_lines(s.grid, &q, &l8, NULL)) return;
-                    e = fabs(ratio_gf(&l, -1, -1) - res.ground_vis);
+                    e = fabs(gt_ratio_gf(&l, -1, -1) - res.ground_vis);
                     e = fmax(e, fabs(lit_gf(&l, -1, -1, 0) - res.ground_lit[0]));
-                    e8 = fabs(ratio_gf(&l8, -1, -1) - res.ground_vis);
+                    e8 = fabs(gt_ratio_gf(&l8, -1, -1) - res.ground_vis);
                     for (g = 0; g < 2; g++)
                         for (f = 0; f < s.g[g].section_count + 1; f++) {
                             int slot = f < s.g[g].section_count - 1 ? f : f == s.g[g].section_count - 1 ? GRO_CAP0 : GRO_CAP1;
-                            e = fmax(e, fabs(ratio_gf(&l, g, f) - gro_vis(&res, g, slot)));
+                            e = fmax(e, fabs(gt_ratio_gf(&l, g, f) - gro_vis(&res, g, slot)));
                             e = fmax(e, fabs(lit_gf(&l, g, f, 0) - gro_lit(&res, 0, g, slot)));
-                            e8 = fmax(e8, fabs(ratio_gf(&l8, g, f) - gro_vis(&res, g, slot)));
+                            e8 = fmax(e8, fabs(gt_ratio_gf(&l8, g, f) - gro_vis(&res, g, slot)));
                         }
                     if (pass == 0) {
                         T_LE(e, ORACLE_SEG_TOL);
@@ -443,9 +434,9 @@ static void t_self_crossing_vs_oracle(void)
                     if (!oracle_for(&q, og, 2, &dev, pass ? 160 : 384, (uint64_t)(k + 11), &res)) return;
                     q.line_samples = pass ? 8 : 1;
                     if (!run_lines(grid, &q, &l, NULL)) return;
-                    e = fmax(fabs(ratio_gf(&l, -1, -1) - res.ground_vis), fabs(lit_gf(&l, -1, -1, 0) - res.ground_lit[0]));
+                    e = fmax(fabs(gt_ratio_gf(&l, -1, -1) - res.ground_vis), fabs(lit_gf(&l, -1, -1, 0) - res.ground_lit[0]));
                     for (f = 0; f < nf; f++) {
-                        e = fmax(e, fabs(ratio_gf(&l, 0, f) - gro_vis(&res, 0, f) - gro_vis(&res, 1, f)));
+                        e = fmax(e, fabs(gt_ratio_gf(&l, 0, f) - gro_vis(&res, 0, f) - gro_vis(&res, 1, f)));
                         e = fmax(e, fabs(lit_gf(&l, 0, f, 0) - gro_lit(&res, 0, 0, f) - gro_lit(&res, 0, 1, f)));
                         seen[0] += gro_vis(&res, 0, f);
                         seen[1] += gro_vis(&res, 1, f);
@@ -561,11 +552,11 @@ static void t_weighting(void)
         for (g = -1; g < 2; g++)
             for (f = g < 0 ? -1 : 0; f < (g < 0 ? 0 : 2); f++) {
                 double w0 = st.weight[0], w1 = st.weight[1];
-                double want = w0 + w1 > 0 ? (w0 * ratio_gf(&l1, g, f) + w1 * ratio_gf(&l2, g, f)) / (w0 + w1)
-                                          : 0.5 * (ratio_gf(&l1, g, f) + ratio_gf(&l2, g, f));
-                T_NEAR(ratio_gf(&l, g, f), want, 1e-12);
+                double want = w0 + w1 > 0 ? (w0 * gt_ratio_gf(&l1, g, f) + w1 * gt_ratio_gf(&l2, g, f)) / (w0 + w1)
+                                          : 0.5 * (gt_ratio_gf(&l1, g, f) + gt_ratio_gf(&l2, g, f));
+                T_NEAR(gt_ratio_gf(&l, g, f), want, 1e-12);
                 /* a segment along the edges only (weight 0): the other one alone */
-                if (w1 == 0 && w0 > 0) T_NEAR(ratio_gf(&l, g, f), ratio_gf(&l1, g, f), 1e-12);
+                if (w1 == 0 && w0 > 0) T_NEAR(gt_ratio_gf(&l, g, f), gt_ratio_gf(&l1, g, f), 1e-12);
             }
     }
     T_GT(eq, 0); /* equal weights seen: the plain two-segment average */
@@ -598,7 +589,7 @@ static void t_early_exit(void)
         if (!run_lines(s.grid, &q, &le, &se)) return;
         T_NEAR(gt_ratio_sum(&le), 1, 1e-12);
         for (g = -1; g < 2; g++)
-            for (f = -1; f < 6; f++) T_NEAR(ratio_gf(&le, g, f), ratio_gf(&lf, g, f), tol);
+            for (f = -1; f < 6; f++) T_NEAR(gt_ratio_gf(&le, g, f), gt_ratio_gf(&lf, g, f), tol);
         ev_full += sf.evaluated;
         ev_exit += se.evaluated;
         exits += se.early_exits;
@@ -1057,7 +1048,7 @@ static void t_stiff_scale(void)
             if (!run_lines(s0.grid, &q0, &l0, NULL) || !run_lines(s.grid, &q, &l, NULL)) return;
             for (g = -1; g < 2; g++)
                 for (f = g < 0 ? -1 : 0; f < (g < 0 ? 0 : 2); f++) {
-                    worst = fmax(worst, fabs(ratio_gf(&l, g, f) - ratio_gf(&l0, g, f)));
+                    worst = fmax(worst, fabs(gt_ratio_gf(&l, g, f) - gt_ratio_gf(&l0, g, f)));
                     worst = fmax(worst, fabs(lit_gf(&l, g, f, 0) - lit_gf(&l0, g, f, 0)));
                 }
         }
@@ -1094,7 +1085,7 @@ static void t_stiff_grazing(void)
                 if (!gt_run(s.grid, &q, &lp)) return;
                 for (g = -1; g < 2; g++)
                     for (f = g < 0 ? -1 : 0; f < (g < 0 ? 0 : 2); f++)
-                        worst = fmax(worst, fabs(ratio_gf(&l, g, f) - ratio_gf(&lp, g, f)));
+                        worst = fmax(worst, fabs(gt_ratio_gf(&l, g, f) - gt_ratio_gf(&lp, g, f)));
                 T_LE(worst, LINE_ERR_8);
             }
         }
@@ -1120,7 +1111,7 @@ static void t_stiff_degenerate_footprint(void)
         q.line_samples = 8;
         if (!run_lines(s.grid, &q, &l8, NULL)) return;
         for (g = -1; g < 2; g++)
-            for (f = g < 0 ? -1 : 0; f < (g < 0 ? 0 : 2); f++) T_NEAR(ratio_gf(&l8, g, f), ratio_gf(&l1, g, f), 1e-12);
+            for (f = g < 0 ? -1 : 0; f < (g < 0 ? 0 : 2); f++) T_NEAR(gt_ratio_gf(&l8, g, f), gt_ratio_gf(&l1, g, f), 1e-12);
     }
     gr_grid_free(s.grid);
 }

@@ -415,6 +415,164 @@ static void viewer_below_surface(void)
     gr_grid_free(grid);
 }
 
+/* An X crossing at (0.5, 0.5): groove 0 along +u (T = (1, 0), B = (0, 1):
+   facet 0 is its -v wall), groove 1 along +v (B = (-1, 0): facet 0 is its
+   +u wall), both the V of half-width A and depth DEP, or groove 1 with a
+   ridge (a lipped W) when ridge is set; path ends at a given distance
+   from the crossing (0: far beyond any footprint). */
+static gr_grid_t *x_crossing(int ridge, double end)
+{
+    static const double vsec[6] = {-A, 0, 0, -DEP, A, 0};
+    static const double rsec[10] = {-A, 0, -A / 2, -A, 0, 0.006, A / 2, -A, A, 0};
+    double pts[2][4] = {{0.2, 0.5, end > 0 ? 0.5 + end : 0.8, 0.5}, {0.5, 0.2, 0.5, 0.8}};
+    gr_groove_desc_t g[2];
+    gr_grid_desc_t d;
+    gr_grid_t *grid = NULL;
+    gr_diag_t diag;
+    int i;
+    memset(g, 0, sizeof g);
+    memset(&d, 0, sizeof d);
+    for (i = 0; i < 2; i++) {
+        g[i].points = pts[i];
+        g[i].point_count = 2;
+        g[i].section = i == 1 && ridge ? rsec : vsec;
+        g[i].section_count = i == 1 && ridge ? 5 : 3;
+        g[i].reflectance = 7;
+    }
+    d.grooves = g;
+    d.groove_count = 2;
+    d.no_wrap = 1;
+    if (gr_grid_build(&d, &grid, &diag) != GR_OK) T_FAIL("build: %s", diag.message);
+    return grid;
+}
+
+/* The grazing limit at the X crossing, by raster: a point outside both
+   mouths is ground; a ray from inside runs along -(cos az, sin az) just
+   under w = 0 and meets the first wall where it leaves the union of the
+   two mouths (each strip's exit, extended through the other strip while
+   they overlap). share[g][f]: the footprint's share of (groove g, facet f),
+   share[2][0] the ground's. Independent of grooves.h (2-D geometry only). */
+static void x_crossing_limit(double cu, double cv, double r, double az, double share[3][2])
+{
+    const int n = 1000;
+    double du = -cos(az), dv = -sin(az);
+    int i, j;
+    memset(share, 0, sizeof(double) * 6);
+    for (i = 0; i < n; i++)
+        for (j = 0; j < n; j++) {
+            double u = cu + r * (2 * (i + 0.5) / n - 1), v = cv + r * (2 * (j + 0.5) / n - 1);
+            double in0 = fabs(v - 0.5) < A, in1 = fabs(u - 0.5) < A;
+            /* exit parameters of each strip (the strip's line the ray leaves by) */
+            double s0 = dv > 0 ? (0.5 + A - v) / dv : dv < 0 ? (0.5 - A - v) / dv : HUGE_VAL;
+            double s1 = du > 0 ? (0.5 + A - u) / du : du < 0 ? (0.5 - A - u) / du : HUGE_VAL;
+            double e0 = dv > 0 ? (0.5 - A - v) / dv : dv < 0 ? (0.5 + A - v) / dv : -HUGE_VAL; /* entries */
+            double e1 = du > 0 ? (0.5 - A - u) / du : du < 0 ? (0.5 + A - u) / du : -HUGE_VAL;
+            int strip;
+            if (!in0 && !in1) { share[2][0] += 1; continue; }
+            strip = in0 && (!in1 || s0 >= s1) ? 0 : 1;
+            if (strip == 0 && e1 <= s0 && s1 > s0) strip = 1; /* runs on into groove 1's strip */
+            else if (strip == 1 && e0 <= s1 && s0 > s1) strip = 0;
+            if (strip == 0) share[0][dv < 0 ? 0 : 1] += 1;
+            else share[1][du > 0 ? 0 : 1] += 1;
+        }
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 2; j++) share[i][j] /= (double)n * n;
+}
+
+/* 8 line samples against the area answer: the bound of
+   test_grooves_lines (LINE_ERR_8, measured 0.056 there) */
+#define LINE_SAMPLES_8_ERR 0.07
+
+/* Views from 1e-7 down to the smallest subnormal above the horizon at an
+   X crossing (the polygon path; found by review, 2026-12-06). Its §5.1
+   box grows as (h + d) / E_w, and its coordinates outgrew its tie
+   tolerance: the ratios summed to 1 within 1e-10 at 1e-7 but 0.75 at
+   1e-9 (the ground judged edge-on against an absolute 1e-9), 0.92 at
+   1e-12 and an empty list from 1e-17. Now a view lower than 1e-6 is taken
+   at 1e-6 there, where every ray already runs 1e6 scene scales under
+   w = 0 before it could leave a groove, so the answer is the grazing
+   limit: the raster of x_crossing_limit within its sampling (1e-3 of the
+   footprint: a boundary's share of one raster column), at three azimuths
+   that leave the crossing by different walls. With a ridge on groove 1
+   (protrusions block the ground behind them) the ratios still sum to 1
+   within 1e-9. Line samples (8) had the same trouble (the ground's share
+   drifted by 0.018 from 3e-15, every groove was lost at the smallest
+   subnormal) and take the same elevation: the limit within
+   LINE_SAMPLES_8_ERR, their bound against an area answer. */
+static void extreme_views_at_a_crossing(void)
+{
+    static const double ew[7] = {1e-7, 1e-9, 1e-12, 1e-17, 1e-30, 1e-300, 4.9e-324};
+    static const double az[3] = {0.5, 2.0, -2.6};
+    double worst[2] = {0, 0};
+    int ridge, a, k, g, f, ls;
+    for (ridge = 0; ridge < 2; ridge++) {
+        gr_grid_t *grid = x_crossing(ridge, 0);
+        if (!grid) return;
+        for (a = 0; a < 3; a++) {
+            double lim[3][2];
+            if (!ridge) x_crossing_limit(0.503, 0.498, 0.02, az[a], lim);
+            for (k = 0; k < 7; k++)
+                for (ls = 0; ls < 2; ls++) {
+                    gr_query_t q = gt_query(0.503, 0.498, 0.02, cos(az[a]), sin(az[a]), 0);
+                    gr_facet_list_t l;
+                    q.footprint.view[2] = ew[k];
+                    q.line_samples = ls ? 8 : 0;
+                    if (!gt_run(grid, &q, &l)) continue;
+                    T_CHECK(ls ? !(l.flags & GR_LIST_POLYGON) : (l.flags & GR_LIST_POLYGON) != 0);
+                    T_NEAR(gt_ratio_sum(&l), 1, 1e-9);
+                    if (ridge) continue;
+                    for (g = 0; g < 2; g++)
+                        for (f = 0; f < 2; f++) worst[ls] = fmax(worst[ls], fabs(gt_ratio_gf(&l, g, f) - lim[g][f]));
+                    worst[ls] = fmax(worst[ls], fabs(gt_ratio_gf(&l, -1, -1) - lim[2][0]));
+                }
+        }
+        gr_grid_free(grid);
+    }
+    printf("  worst |r_i - grazing limit|: polygons %.2e, 8 line samples %.2e\n", worst[0], worst[1]);
+    T_LE(worst[0], 1e-3);
+    T_LE(worst[1], LINE_SAMPLES_8_ERR);
+}
+
+/* Lights from 1e-7 down to the smallest subnormal above the horizon (found
+   by review, 2026-12-06: a light 1e-20 above the horizon grew the box so
+   far that a lone groove's end reached it and the polygon path answered,
+   with walls lit 0.25 and 1e-6). In the grazing limit a V groove's walls
+   are dark (a ray toward the light from depth y leaves the mouth only
+   within y / L_w of the rim, so only the top L_w * 2A of a wall is lit)
+   and the ground is lit: walls' lit shares at most 1e-5, the ground's 1,
+   at an X crossing and near a groove's end 0.05 away, the light along and
+   across the grooves, by the polygon path and by 8 line samples. */
+static void extreme_lights_at_a_crossing_and_an_end(void)
+{
+    static const double lw[6] = {1e-7, 1e-12, 1e-20, 1e-100, 1e-300, 4.9e-324};
+    static const double az[3] = {0.3, 1.8, -2.5};
+    double worst = 0;
+    int sc, a, k, i;
+    for (sc = 0; sc < 2; sc++) {
+        gr_grid_t *grid = x_crossing(0, sc ? 0.25 : 0);
+        double cu = sc ? 0.7 : 0.503;
+        if (!grid) return;
+        for (a = 0; a < 3; a++)
+            for (k = 0; k < 12; k++) {
+                double light[3] = {cos(az[a]), sin(az[a]), lw[k / 2]};
+                gr_query_t q = gt_query(cu, 0.498, 0.02, 0.3, -0.2, 0.93);
+                gr_facet_list_t l;
+                q.lights = light;
+                q.light_count = 1;
+                q.line_samples = k % 2 ? 8 : 0;
+                if (!gt_run(grid, &q, &l)) continue;
+                T_NEAR(gt_ratio_sum(&l), 1, 1e-9);
+                for (i = 0; i < l.count; i++) {
+                    if (l.facets[i].facet < 0) { T_NEAR(l.facets[i].lit[0], 1, 1e-12); continue; }
+                    worst = fmax(worst, l.facets[i].lit[0]);
+                }
+            }
+        gr_grid_free(grid);
+    }
+    printf("  worst wall lit share %.2e\n", worst);
+    T_LE(worst, 1e-5);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -432,6 +590,8 @@ int main(int argc, char **argv)
         T_CASE(groove_wider_than_footprint),
         T_CASE(groove_much_narrower_than_footprint),
         T_CASE(viewer_below_surface),
+        T_CASE(extreme_views_at_a_crossing),
+        T_CASE(extreme_lights_at_a_crossing_and_an_end),
     };
     return T_RUN(argc, argv, cases);
 }
