@@ -858,6 +858,57 @@ static void sphere_tracing_relaxed_step_past_t1(void)
     model_free(&m);
 }
 
+/* Sphere tracing's stop within tol of the surface is a distance; on an
+   oblique ray the root lay up to tol / sin(angle) farther than the
+   reported t +- t_err (9.5 tol at 5.7 degrees; found by review,
+   2026-12-06). The stop now looks ahead for the sign change and refines
+   it. A plane z = 0 from (0, 0, 1) at 90 .. 0.5 degrees and a unit ball
+   (exact SDFs) from x = -20 at impact parameters up to 0.999 (2.6
+   degrees): the exact root (__float128 for the ball) within
+   t_err + 4 ulp of t, t_err <= tol. A ray passing the ball 0.4 tol
+   outside its surface crosses nowhere: a hit at its stop, t_err = tol, the
+   point within tol of the surface (the documented grazing case). */
+static void sphere_tracing_oblique_rays_bracket_the_root(void)
+{
+    static const double deg[6] = {90, 30, 5.7, 2, 1, 0.5}, c[3] = {0, 0, 0};
+    const double tol = 1e-6;
+    fr_builder_t b;
+    model_t plane, ball;
+    t_rng_t g = {5150};
+    int k;
+    long i, n = t_count(400);
+    fr_trace_desc_t D = method(FR_METHOD_SPHERE, tol);
+    fr_builder_init(&b, NULL);
+    model_finish(&plane, &b, fr_from_sdf(&b, fr_coords(&b).z, 1.0));
+    for (k = 0; k < 6; k++) {
+        double a = deg[k] * 3.14159265358979323846 / 180, o[3] = {0, 0, 1}, d[3], want = 1 / sin(a);
+        fr_hit_t h;
+        d[0] = cos(a), d[1] = 0, d[2] = -sin(a);
+        h = trace(&plane, o, d, 0, 1000, D);
+        if (!T_INT_EQ(h.hit, 1)) continue;
+        T_LE(fabs(h.t - want), h.t_err + 4 * 2.220446049250313e-16 * want);
+        T_LE(h.t_err, tol);
+    }
+    make_sdf_sphere(&ball, c, 1);
+    for (i = 0; i < n; i++) {
+        double rho = t_rng_range(&g, 0, 0.999), o[3] = {-20, rho, 0}, d[3] = {1, 0, 0}, want = sphere_entry(-20, rho, 1);
+        fr_hit_t h = trace(&ball, o, d, 0, 40, D);
+        if (!T_INT_EQ(h.hit, 1)) break;
+        T_LE(fabs(h.t - want), h.t_err + 4 * 2.220446049250313e-16 * 20);
+        T_LE(h.t_err, tol);
+    }
+    {
+        double o[3] = {-20, 1 + 0.4 * tol, 0}, d[3] = {1, 0, 0};
+        fr_hit_t h = trace(&ball, o, d, 0, 40, D);
+        if (T_INT_EQ(h.hit, 1)) {
+            T_NEAR(h.t_err, tol, 0);
+            T_LE(fabs(sqrt(h.point[0] * h.point[0] + h.point[1] * h.point[1] + h.point[2] * h.point[2]) - 1), tol);
+        }
+    }
+    model_free(&plane);
+    model_free(&ball);
+}
+
 static void invalid_arguments(void)
 {
     static const double c[3] = {0, 0, 0};
@@ -923,6 +974,7 @@ int main(int argc, char **argv)
         T_CASE(black_box_callback_model),
         T_CASE(iteration_cap_is_not_a_miss),
         T_CASE(sphere_tracing_relaxed_step_past_t1),
+        T_CASE(sphere_tracing_oblique_rays_bracket_the_root),
         T_CASE(invalid_arguments),
         T_CASE(bound_box_holds_the_solid),
         T_CASE(tangle_interval_variants_agree),
