@@ -2424,12 +2424,29 @@ static void gr__raise_direction(const double *in, double *out)
     s = sqrt(1 - GR__REGION_MIN_ELEVATION * GR__REGION_MIN_ELEVATION) / hl;
     out[0] = in[0] * s, out[1] = in[1] * s, out[2] = GR__REGION_MIN_ELEVATION;
 }
-/* *out = q with its view and lights raised (lights: room for
-   GR_MAX_LIGHTS; q->light_count checked by the caller). */
-static void gr__raised_query(const gr_query_t *q, gr_query_t *out, double *lights)
+/* c's image in the tile (the domain) when the texture repeats, else c. */
+static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
+{
+    f[0] = c[0];
+    f[1] = c[1];
+    if (grid->wrap) {
+        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
+        f[0] -= floor((f[0] - grid->domain[0]) / wu) * wu;
+        f[1] -= floor((f[1] - grid->domain[1]) / wv) * wv;
+    }
+}
+/* *out = q as the region methods take it: its view and lights raised,
+   and (recentre, for answers that hold no positions) with a repeating
+   texture its footprint's centre moved to the tile image (a whole number
+   of tiles: the same answer, in coordinates that resolve the footprint;
+   at u = 1e15 + 0.5 line samples had coalesced a 0.02 footprint into one
+   breakpoint and found nothing). lights: room for GR_MAX_LIGHTS;
+   q->light_count checked by the caller. */
+static void gr__region_query(const gr_grid_t *grid, const gr_query_t *q, int recentre, gr_query_t *out, double *lights)
 {
     int k;
     *out = *q;
+    if (recentre) gr__tile_image(grid, q->footprint.center, out->footprint.center);
     gr__raise_direction(q->footprint.view, out->footprint.view);
     for (k = 0; k < q->light_count; k++) gr__raise_direction(q->lights + 3 * k, lights + 3 * k);
     if (q->light_count > 0) out->lights = lights;
@@ -4335,17 +4352,6 @@ static void gr__overlap_nearest(const double *pa, const double *ta, double wa, c
     if (inside) { q[0] = f[0]; q[1] = f[1]; }
 }
 
-static void gr__tile_image(const gr_grid_t *grid, const double *c, double f[2])
-{
-    f[0] = c[0];
-    f[1] = c[1];
-    if (grid->wrap) {
-        double wu = grid->domain[2] - grid->domain[0], wv = grid->domain[3] - grid->domain[1];
-        f[0] -= floor((f[0] - grid->domain[0]) / wu) * wu;
-        f[1] -= floor((f[1] - grid->domain[1]) / wv) * wv;
-    }
-}
-
 /* Does one of groove g's self-intersections (§5), in its image nearest
    f, lie in the box? Then the groove is taken as its pieces there. The
    builder stores the hits groove by groove, so g's run is found by
@@ -5544,7 +5550,7 @@ static int gr__pp_dispatch(const gr_grid_t *grid, const gr_query_t *q0, void *sc
     gr_query_t q;
     double lights[3 * GR_MAX_LIGHTS];
     size_t base = gr__align8(gr__scratch_layout(grid, NULL, NULL));
-    gr__raised_query(q0, &q, lights);
+    gr__region_query(grid, q0, 1, &q, lights);
     if (gr__detect(grid, &q, NULL, 0, scratch, bytes, &jn) != GR_OK || jn.count == 0) return 0;
     if (gr__pp_query(grid, &q, s, &jn, (char *)scratch + base, list)) return 1;
     /* declined part way (a buffer outgrown): §4 starts from an empty list */
@@ -6621,7 +6627,11 @@ static int gr__sheet_eval(gr__lscene_t *sc, const gr__sheet_t *sh, const double 
     gr__brk_sort(sc, nb);
     for (i = 0; i <= nb; i++) {
         double s = i < nb ? sc->ls.brk[i].s : 1;
-        if (s - last <= snap) { /* coalesce: keep the steepest edge */
+        /* coalesce (keep the steepest edge), but keep one interval: a
+           segment shorter than the snap (a footprint narrower than 16 ulps
+           of its coordinates, at u = 1e15 for a 0.02 footprint) is one
+           class, its midpoint's (it was dropped: an empty list) */
+        if (s - last <= snap && (i < nb || n > 0)) {
             if (i < nb && sc->ls.brk[i].sin2 > sin2) sin2 = sc->ls.brk[i].sin2;
             continue;
         }
@@ -6832,7 +6842,7 @@ GR_DEF gr_result_t gr_query_lines_cached(const gr_grid_t *grid, const gr_query_t
     if (stats) memset(stats, 0, sizeof *stats);
     r = gr__line_check(grid, query, scratch, scratch_bytes);
     if (r != GR_OK) return r;
-    gr__raised_query(query, &raised, lights);
+    gr__region_query(grid, query, 1, &raised, lights);
     query = &raised;
     fp = &query->footprint;
     if (!(fp->view[2] > 0)) { list->flags |= GR_LIST_BELOW_HORIZON; return GR_OK; }
@@ -7044,7 +7054,7 @@ GR_DEF gr_result_t gr_shade_indirect(const gr_grid_t *grid, const gr_query_t *qu
         return GR_ERR_INVALID_ARG;
     r = gr__line_check(grid, query, scratch, scratch_bytes);
     if (r != GR_OK) return r;
-    gr__raised_query(query, &raised, lights);
+    gr__region_query(grid, query, 0, &raised, lights); /* the bounces' origins go to the host */
     query = &raised;
     fp = &query->footprint;
     if (!(fp->view[2] > 0)) return GR_OK;

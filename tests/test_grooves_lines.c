@@ -1116,6 +1116,46 @@ static void t_stiff_degenerate_footprint(void)
     gr_grid_free(s.grid);
 }
 
+/* Footprints at huge coordinates (found by review, 2026-12-06): a 0.02
+   footprint at u = 1e15 is narrower than 16 ulps of its coordinates, so
+   its breakpoints' snap spans the whole segment, and every interval was
+   coalesced away: an empty list from 1e15 to 1e308, wrapped or not, where
+   gr_query answers ground. Now such a segment is one interval, of its
+   midpoint's class, and with a repeating texture the footprint is taken
+   at its tile image (a whole number of tiles away: the same answer). The
+   ratios sum to 1 (within 1e-12); away from the grooves (no wrap, or a
+   tile image on the ground) the ground is all; at u = 1e15 + 0.5, wrapped,
+   the answer is the one at u = 0.5 (within 1e-12). */
+static void t_stiff_huge_coordinates(void)
+{
+    static const double us[7] = {1e15, 1e16, 1e20, 1e100, 1e308, -1e308, 1e15 + 0.5};
+    int wrap, k, n, g, f;
+    for (wrap = 0; wrap < 2; wrap++) {
+        scene_t s;
+        memset(&s, 0, sizeof s);
+        scene_add(&s, 0.2, 0.5, 0.8, 0.5, VSEC, 3);
+        scene_add(&s, 0.5, 0.2, 0.5, 0.8, VSEC, 3);
+        if (!T_CHECK(scene_build_wrap(&s, wrap))) return;
+        for (n = 1; n <= 8; n *= 2) {
+            gr_query_t q0 = gt_query(0.5, 0.5, 0.02, 0.3, 0.2, 0.9);
+            gr_facet_list_t l0;
+            q0.line_samples = n;
+            if (!run_lines(s.grid, &q0, &l0, NULL)) continue;
+            for (k = 0; k < 7; k++) {
+                gr_query_t q = q0;
+                gr_facet_list_t l;
+                q.footprint.center[0] = us[k];
+                if (!run_lines(s.grid, &q, &l, NULL)) continue;
+                if (!T_NEAR(gt_ratio_sum(&l), 1, 1e-12)) printf("    wrap %d, u = %.17g, %d samples: %d facets\n", wrap, us[k], n, l.count);
+                if (!wrap || k < 6) { T_NEAR(gt_ratio_gf(&l, -1, -1), 1, 1e-12); continue; }
+                for (g = -1; g < 2; g++)
+                    for (f = g < 0 ? -1 : 0; f < (g < 0 ? 0 : 2); f++) T_NEAR(gt_ratio_gf(&l, g, f), gt_ratio_gf(&l0, g, f), 1e-12);
+            }
+        }
+        gr_grid_free(s.grid);
+    }
+}
+
 /* More grooves under the footprint than GR_LINE_MAX_GROOVES (40 parallel
    V grooves crossed by one): the nearest are kept, the list and the stats
    say so, and the ratios still sum to 1. */
@@ -1205,7 +1245,7 @@ int main(int argc, char **argv)
         T_CASE(t_weighting),
         T_CASE(t_early_exit), T_CASE(t_cache), T_CASE(t_dispatch), T_CASE(t_dispatch_after_oversampling), T_CASE(t_self_crossings_share_a_cut), T_CASE(t_wrap_any_number_of_tiles), T_CASE(t_low_light_keeps_the_grooves), T_CASE(t_near_line_footprints),
         T_CASE(t_stiff_scale), T_CASE(t_stiff_grazing),
-        T_CASE(t_stiff_degenerate_footprint), T_CASE(t_stiff_many_grooves), T_CASE(t_bad_input),
+        T_CASE(t_stiff_degenerate_footprint), T_CASE(t_stiff_huge_coordinates), T_CASE(t_stiff_many_grooves), T_CASE(t_bad_input),
     };
     return T_RUN(argc, argv, cases);
 }
