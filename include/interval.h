@@ -54,7 +54,10 @@
      multiple below 2^-1022 is a double; it is not stepped. The libm
      functions are trusted to IV_LIBM_ULPS ulps and stepped 2*IV_LIBM_ULPS
      doubles outward, which is enough whatever side the libm error falls on
-     (docs/interval.md).
+     (docs/interval.md). sin, cos and tan of |x| >= 2^20 are reduced by
+     this header (Payne-Hanek; glibc's own reduction is off by thousands
+     of ulps near multiples of pi/2 there), libm sees |r| <= pi/4 only,
+     and the values are stepped two doubles more.
 
    THE PAIR PATH AND ITS STEP
      On x86 with FMA (SSE4.1 and __FMA__, e.g. -march=haswell or
@@ -1394,20 +1397,21 @@ IV_DEF int iv_div_ext(iv_t a, iv_t b, iv_t out[2])
    two). Stepping 2N doubles outward therefore always reaches past f. */
 #define IV__LIBM_STEPS (2 * (IV_LIBM_ULPS))
 
-static double iv__libm_down(double y)
+/* y stepped n doubles down (up). */
+static double iv__steps_down(double y, int n)
 {
     int i;
-    for (i = 0; i < IV__LIBM_STEPS; i++) y = iv__down(y);
+    for (i = 0; i < n; i++) y = iv__down(y);
     return y;
 }
-static double iv__libm_up(double y)
+static double iv__steps_up(double y, int n)
 {
     int i;
-    for (i = 0; i < IV__LIBM_STEPS; i++) y = iv__up(y);
+    for (i = 0; i < n; i++) y = iv__up(y);
     return y;
 }
-/* Interval from an already-ordered pair of libm values. */
-static iv_t iv__libm_hull(double lo, double hi) { return iv__raw(iv__libm_down(lo), iv__libm_up(hi)); }
+static double iv__libm_down(double y) { return iv__steps_down(y, IV__LIBM_STEPS); }
+static double iv__libm_up(double y) { return iv__steps_up(y, IV__LIBM_STEPS); }
 
 IV_DEF iv_t iv_exp(iv_t x)
 {
@@ -1440,18 +1444,132 @@ IV_DEF iv_t iv_atan(iv_t x)
 /* A real width above 2pi holds a full period of sin and cos. */
 #define IV__FULL_PERIOD 6.2832
 
-/* libm sin/cos at a double; exact at 0. glibc reduces arguments exactly
-   (Payne-Hanek), so the value, and in particular its sign, is accurate to
-   IV_LIBM_ULPS at every double, including 1e15..1e300. */
+/* Our own argument reduction for |x| >= IV__REDUCE_MIN. libm is trusted
+   to IV_LIBM_ULPS only where it reduces well: glibc 2.36's sin, cos and
+   tan are off by up to 39 141 ulps at doubles near multiples of pi/2 from
+   2^39 up (its reduced argument loses bits there; found by review,
+   2026-12-06), so large arguments are reduced here, exactly enough, and
+   libm sees only |r| <= pi/4 (plus rounding). Payne-Hanek: x = M 2^E
+   (M < 2^53 an integer), x (2/pi) mod 4 needs only the bits of 2/pi from
+   2^-(E-1) on (the earlier ones give multiples of 4); 192 of them times M
+   give the quadrant and 128 bits of the fraction. The nearest double to a
+   multiple of pi/2 is at least 2^-62 from it (in units of pi/2, for every
+   double), so the fraction keeps 60 significant bits or more, and the
+   bits past the window change it by less than 2^-137. */
+#define IV__REDUCE_MIN 1048576.0 /* 2^20 */
+/* 2/pi, 1344 bits, 32 per word, most significant first (0.A2F9836E...) */
+static const uint32_t iv__two_over_pi[42] = {
+    0xa2f9836eu, 0x4e441529u, 0xfc2757d1u, 0xf534ddc0u, 0xdb629599u, 0x3c439041u,
+    0xfe5163abu, 0xdebbc561u, 0xb7246e3au, 0x424dd2e0u, 0x06492eeau, 0x09d1921cu,
+    0xfe1deb1cu, 0xb129a73eu, 0xe88235f5u, 0x2ebb4484u, 0xe99c7026u, 0xb45f7e41u,
+    0x3991d639u, 0x835339f4u, 0x9c845f8bu, 0xbdf9283bu, 0x1ff897ffu, 0xde05980fu,
+    0xef2f118bu, 0x5a0a6d1fu, 0x6d367ecfu, 0x27cb09b7u, 0x4f463f66u, 0x9e5fea2du,
+    0x7527bac7u, 0xebe5f17bu, 0x3d0739f7u, 0x8a5292eau, 0x6bfb5fb1u, 0x1f8d5d08u,
+    0x56033046u, 0xfc7b6babu, 0xf0cfbc20u, 0x9af4361du, 0xa9e39161u, 0x5ee61b08u,
+};
+/* pi/2 = IV__PIO2_HI + IV__PIO2_LO to 2^-107 */
+#define IV__PIO2_HI 1.5707963267948966     /* 0x1.921fb54442d18p+0 */
+#define IV__PIO2_LO 6.123233995736766e-17  /* 0x1.1a62633145c07p-54 */
+
+/* 32 bits of 2/pi from bit i on (bit 1 is the first after the point). */
+static uint32_t iv__tpi_bits(int i)
+{
+    int a = (i - 1) / 32, b = (i - 1) % 32;
+    return b ? (uint32_t)(iv__two_over_pi[a] << b | iv__two_over_pi[a + 1] >> (32 - b)) : iv__two_over_pi[a];
+}
+/* 64 bits of the 256-bit little-endian number p (8 words) from bit l up. */
+static uint64_t iv__bits64(const uint32_t *p, int l)
+{
+    int k = l / 32, sh = l % 32;
+    uint64_t w0 = k < 8 ? p[k] : 0, w1 = k + 1 < 8 ? p[k + 1] : 0, w2 = k + 2 < 8 ? p[k + 2] : 0;
+    return sh ? w0 >> sh | w1 << (32 - sh) | w2 << (64 - sh) : w0 | w1 << 32;
+}
+/* |x| = q pi/2 + r (q mod 4), r = *rh + *rl as a double-double with
+   |r| <= pi/4 (to rounding), for finite |x| >= 2^20. */
+static int iv__reduce(double x, double *rh, double *rl)
+{
+    uint32_t w[6], p[8] = {0, 0, 0, 0, 0, 0, 0, 0}, m[2];
+    uint64_t M, hi, lo;
+    int e, E, st, pb, q, i, j, neg = 0, lz = 0;
+    double fh, fl;
+    M = (uint64_t)ldexp(frexp(fabs(x), &e), 53);
+    E = e - 53;
+    st = E - 1 > 1 ? E - 1 : 1;
+    for (j = 0; j < 6; j++) w[5 - j] = iv__tpi_bits(st + 32 * j);
+    m[0] = (uint32_t)M, m[1] = (uint32_t)(M >> 32);
+    for (i = 0; i < 2; i++) { /* p = M W, schoolbook on 32-bit words */
+        uint64_t c = 0;
+        for (j = 0; j < 6; j++) {
+            uint64_t t = (uint64_t)m[i] * w[j] + p[i + j] + c;
+            p[i + j] = (uint32_t)t;
+            c = t >> 32;
+        }
+        p[i + 6] = (uint32_t)c;
+    }
+    /* x (2/pi) = p 2^-pb plus a multiple of 4 */
+    pb = st + 191 - E;
+    q = (int)(iv__bits64(p, pb) & 3);
+    hi = iv__bits64(p, pb - 64);
+    lo = iv__bits64(p, pb - 128);
+    if (hi >> 63) { /* fraction >= 1/2: the next quadrant, r < 0 */
+        q = (q + 1) & 3;
+        neg = 1;
+        lo = ~lo + 1;
+        hi = ~hi + (lo == 0);
+    }
+    if (hi == 0) hi = lo, lo = 0, lz = 64;
+    if (hi == 0) { *rh = *rl = 0; return q; }
+    for (; !(hi >> 63); lz++) hi = hi << 1 | lo >> 63, lo <<= 1;
+    /* the fraction f = (hi + lo 2^-64) 2^-(64 + lz) as fh + fl: hi's top
+       53 bits are exact in a double, the other 75 in fl to 2^-128 of f */
+    fh = ldexp((double)(hi & ~(uint64_t)0x7ff), -64 - lz);
+    fl = ldexp((double)(hi & 0x7ff) + ldexp((double)lo, -64), -64 - lz);
+    {
+        double ph = fh * IV__PIO2_HI, pe = fma(fh, IV__PIO2_HI, -ph) + (fh * IV__PIO2_LO + fl * IV__PIO2_HI), sh = ph + pe;
+        *rl = pe - (sh - ph);
+        *rh = sh;
+    }
+    if (neg) *rh = -*rh, *rl = -*rl;
+    return q;
+}
+/* sin (k = 0), cos (1) or tan (2) of a finite x with |x| >= 2^20, from
+   the reduced argument: within IV_LIBM_ULPS + 1/2 ulp for sin and cos (the
+   correction's rounding; r's own error is below 2^-60 of r) and
+   IV_LIBM_ULPS + 1 for tan (one more rounding in -1/tan). */
+static double iv__trig_reduced(double x, int k)
+{
+    double rh, rl, s, c, t;
+    int q = iv__reduce(x, &rh, &rl), odd = x < 0;
+    s = sin(rh) + cos(rh) * rl;
+    c = cos(rh) - sin(rh) * rl;
+    if (k == 2) {
+        t = q & 1 ? -c / s : s / c;
+        return odd ? -t : t;
+    }
+    if (k == 1) q = (q + 1) & 3, odd = 0; /* cos x = sin(|x| + pi/2) */
+    t = q & 1 ? c : s;
+    if (q & 2) t = -t;
+    return odd ? -t : t;
+}
+/* Outward steps for a libm-based value at a: one pair more where it came
+   from iv__trig_reduced (its extra half ulp or ulp). */
+static int iv__trig_steps(double a) { return fabs(a) < IV__REDUCE_MIN ? IV__LIBM_STEPS : IV__LIBM_STEPS + 2; }
+static double iv__sin_any(double a) { return fabs(a) < IV__REDUCE_MIN ? sin(a) : iv__trig_reduced(a, 0); }
+static double iv__cos_any(double a) { return fabs(a) < IV__REDUCE_MIN ? cos(a) : iv__trig_reduced(a, 1); }
+static double iv__tan_any(double a) { return fabs(a) < IV__REDUCE_MIN ? tan(a) : iv__trig_reduced(a, 2); }
+
+/* sin/cos at a double, stepped outward; exact at 0. */
 static iv_t iv__sin_point(double a)
 {
-    double s = sin(a);
-    return a == 0 ? iv__raw(0.0, 0.0) : iv__libm_hull(s, s);
+    double s = iv__sin_any(a);
+    int n = iv__trig_steps(a);
+    return a == 0 ? iv__raw(0.0, 0.0) : iv__raw(iv__steps_down(s, n), iv__steps_up(s, n));
 }
 static iv_t iv__cos_point(double a)
 {
-    double c = cos(a);
-    return a == 0 ? iv__raw(1.0, 1.0) : iv__libm_hull(c, c);
+    double c = iv__cos_any(a);
+    int n = iv__trig_steps(a);
+    return a == 0 ? iv__raw(1.0, 1.0) : iv__raw(iv__steps_down(c, n), iv__steps_up(c, n));
 }
 static iv_t iv__clamp_unit(iv_t y) { return iv__raw(iv__max(y.lo, -1.0), iv__min(y.hi, 1.0)); }
 
@@ -1461,7 +1579,7 @@ static iv_t iv__clamp_unit(iv_t y) { return iv__raw(iv__max(y.lo, -1.0), iv__min
 static iv_t iv__sin_narrow(double a, double b)
 {
     iv_t y = iv_hull(iv__sin_point(a), iv__sin_point(b));
-    double ca = cos(a), cb = cos(b);
+    double ca = iv__cos_any(a), cb = iv__cos_any(b);
     if (ca > 0 && cb < 0) y.hi = 1.0;
     if (ca < 0 && cb > 0) y.lo = -1.0;
     return iv__clamp_unit(y);
@@ -1471,7 +1589,7 @@ static iv_t iv__sin_narrow(double a, double b)
 static iv_t iv__cos_narrow(double a, double b)
 {
     iv_t y = iv_hull(iv__cos_point(a), iv__cos_point(b));
-    double sa = sin(a), sb = sin(b);
+    double sa = iv__sin_any(a), sb = iv__sin_any(b);
     if (sa > 0 && sb < 0) y.lo = -1.0;
     if (sa < 0 && sb > 0) y.hi = 1.0;
     return iv__clamp_unit(y);
@@ -1507,10 +1625,11 @@ IV_DEF iv_t iv_tan(iv_t x)
     if (iv_is_empty(x)) return iv_empty();
     if (!(x.hi - x.lo < IV__NARROW)) return iv_entire();
     /* poles are the zeros of cos, pi apart: at most one inside */
-    ca = cos(x.lo);
-    cb = cos(x.hi);
+    ca = iv__cos_any(x.lo);
+    cb = iv__cos_any(x.hi);
     if ((ca > 0) != (cb > 0)) return iv_entire();
-    return iv__raw(x.lo == 0 ? 0.0 : iv__libm_down(tan(x.lo)), x.hi == 0 ? 0.0 : iv__libm_up(tan(x.hi)));
+    return iv__raw(x.lo == 0 ? 0.0 : iv__steps_down(iv__tan_any(x.lo), iv__trig_steps(x.lo)),
+                   x.hi == 0 ? 0.0 : iv__steps_up(iv__tan_any(x.hi), iv__trig_steps(x.hi)));
 }
 
 /* pow at one corner (x >= 0), stepped outward; exact C conventions for the

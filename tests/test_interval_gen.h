@@ -16,6 +16,9 @@ typedef __float128 q_t;
    IV_LIBM_ULPS from f, so y is at most IV_LIBM_ULPS + 1 doubles beyond the
    correctly rounded end, plus our 2*IV_LIBM_ULPS outward steps. */
 #define LIBM_BOUND (3 * IV_LIBM_ULPS + 1)
+/* sin, cos, tan at |x| >= 2^20, reduced by the header itself: one more
+   ulp of error (the reduced argument's correction, tan's division) */
+#define LIBM_REDUCED_BOUND (3 * (IV_LIBM_ULPS + 1) + 1)
 
 /* A random finite double from one of the magnitude classes. */
 static double ig_value(t_rng_t *r)
