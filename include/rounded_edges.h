@@ -5540,15 +5540,39 @@ static re_hit_kind_t re__answer(const re__object_t *o, re__best_t *best, double 
     return out->kind;
 }
 
-/* Query steps 1-5 for a hit I on face plane f of object o (out holds the
+/* A host's t a little early (float tracers: ~1e-7 relative) leaves I just
+   outside face f's plane, beside the true crossing. Past I the search
+   assumes the ray is inside the sharp mesh, which holds only from the
+   plane on: next to a rounding's tangent line the flat-part test failed
+   and the ray's entry through the face was never considered (a pass-through
+   into the solid, or a rounded hit inside it with its normal 0.4 rad off;
+   found by review, 2026-12-06). So an I outside the plane by more than the
+   plane test's rounding is moved along the ray onto it, when that is at
+   most RE__HOST_T_SLACK t_host; returns the distance moved (in t). A late
+   t (I inside) is left to the capsule search's slack (best.smin). */
+static double re__onto_face(const re__object_t *o, unsigned f, const double I[3], const double dir[3], double t_host,
+                            double Ip[3])
+{
+    const re__plane_t *pf = &o->planes[f];
+    double h = re__dot(pf->n, I) - pf->c, nd = re__dot(pf->n, dir), sf;
+    double mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]);
+    Ip[0] = I[0], Ip[1] = I[1], Ip[2] = I[2];
+    if (!(h > RE__FLAT_ULPS * (fabs(pf->c) + mag)) || !(nd < 0)) return 0;
+    sf = -h / nd;
+    if (!(sf <= RE__HOST_T_SLACK * fabs(t_host))) return 0;
+    re__madd(I, sf, dir, Ip);
+    return sf;
+}
+
+/* Query steps 1-5 for a hit I0 on face plane f of object o (out holds the
    answer "unchanged" from re__query_start). */
-static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const double I[3], const double dir[3], double t_host,
+static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const double I0[3], const double dir[3], double t_host,
                                   re_hit_t *out)
 {
     re__set_t S;
     unsigned iter, exit_plane, ndet, c0 = RE__NONE;
     re__best_t best;
-    double s_exit;
+    double s_exit, I[3], t_on = t_host + re__onto_face(o, f, I0, dir, t_host, I);
     S.n = 0;
     S.bloom = 0;
     best.cvalid = 0;
@@ -5556,7 +5580,7 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
     if (!S.n || re__on_flat_part(o, &S, f, I)) return RE_UNCHANGED;
     best.smin = -RE__HOST_T_SLACK * fabs(t_host);
     if (ndet == 1 && c0 != RE__NONE && S.n == 2 && re__one_edge(o, &S, c0, I, dir, &best, &s_exit, &exit_plane))
-        return re__answer(o, &best, s_exit, exit_plane, I, dir, t_host, out);
+        return re__answer(o, &best, s_exit, exit_plane, I, dir, t_on, out);
     /* inside the removed volume: nearest capsule or the exit, walking the
        adjacency graph (cylinder -> corner) while the ray runs toward corners
        not yet in the set (grazing rays, §3.1) */
@@ -5565,7 +5589,7 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
         s_exit = re__exit(o, &S, I, dir, &exit_plane);
         if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &best, I, dir, re__min(best.s, s_exit))) break;
     }
-    return re__answer(o, &best, s_exit, exit_plane, I, dir, t_host, out);
+    return re__answer(o, &best, s_exit, exit_plane, I, dir, t_on, out);
 }
 
 /* re_query and re_query_uv (with_uv: the host's barycentrics first). */

@@ -217,6 +217,9 @@ static void box_rays(const double lo[3], const double hi[3], double r, long nray
    this many radii along each axis (a test may narrow it to look closely
    at the vertices) */
 static double g_poly_jitter = 3.0;
+/* poly_rays hands the host's t early by this fraction (a float tracer's
+   rounding); an unchanged answer is then off by that much */
+static double g_poly_host_early = 0;
 
 /* Rays at a convex polyhedron (hull mesh + planes), compared with sphere
    tracing of dist(x, eroded polytope) - r. Returns rays that hit a corner
@@ -260,6 +263,7 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
         o[0] = tgt[0] + 3 * scale * w * cos(u), o[1] = tgt[1] + 3 * scale * w * sin(u), o[2] = tgt[2] + 3 * scale * v;
         tm_sub(tgt, o, d);
         if (!tm_hit_uv(m, o, d, &t_host, &tri, &bu, &bv)) continue;
+        t_host *= 1 - g_poly_host_early;
         re_query(s, o, d, 0, tri, t_host, &h);
         check_query_uv(s, o, d, tri, t_host, bu, bv, &h);
         t_ref = tm_trace(tm_eroded_sdf, &E, o, d, 10.0, scale);
@@ -277,7 +281,7 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
         } else {
             if (h.kind == RE_HIT_ROUNDED) n_round++;
             if (h.kind == RE_HIT_ROUNDED && !check_feature(s, &h, tol_rel * scale, scale)) bad++;
-            if (!(fabs(h.t - t_ref) <= tol_rel * scale)) {
+            if (!(fabs(h.t - t_ref) <= tol_rel * scale + (h.kind == RE_UNCHANGED ? g_poly_host_early * t_host * 1.01 : 0))) {
                 bad++;
                 if (bad < 5) T_FAIL("%s ray %ld: kind %d feature %d t %.17g, reference %.17g (host %.17g)", what, i, (int)h.kind,
                                     (int)h.feature, h.t, t_ref, t_host);

@@ -1359,6 +1359,37 @@ static void float_icosphere_random_motions(void)
     }
 }
 
+/* A float host reports t early or late by ~1e-7 relative. Early, I lies
+   just outside the face plane beside the true crossing, and next to a
+   rounding's tangent line the flat-part test failed there; the search then
+   took the ray as already inside the sharp mesh and never considered its
+   entry through the face (found by review, 2026-12-06): pass-throughs of
+   rays that go deep into the solid, and rounded hits inside it with their
+   normals 0.4 rad off (r = 1e-6 of the size at t early by 6e-8, r = 0.01
+   at 2e-6). Random hulls of 8 to 20 vertices, rays at vertices and along
+   chords with jitter of a radius, the host's t early by 6e-8 and 2e-6
+   (inside RE__HOST_T_SLACK): every answer against the eroded-polytope
+   reference (1e-7 of the size, an unchanged answer also off by the host's
+   own error), re_query_uv the same as re_query. */
+static void early_host_t_next_to_seams(void)
+{
+    static const double early[2] = {6e-8, 2e-6}, radii[2] = {2e-6, 0.02};
+    t_rng_t rng = {2612};
+    int it, k;
+    g_poly_jitter = 1.0;
+    for (it = 0; it < 4; it++)
+        for (k = 0; k < 4; k++) {
+            tm_mesh_t m = {0};
+            static tm_poly_t P;
+            tm_random_hull(&rng, 8 + 4 * it, 0.8, 1.2, &m, &P);
+            g_poly_host_early = early[k & 1];
+            poly_rays(&m, &P, radii[k >> 1], t_count(500), 1e-7, 700 + (unsigned long long)(4 * it + k), "early host t");
+            tm_free(&m);
+        }
+    g_poly_host_early = 0;
+    g_poly_jitter = 3.0;
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -1395,6 +1426,7 @@ int main(int argc, char **argv)
         T_CASE(compact_layout_float_boxes_rotated_keep_quads_flat),
         T_CASE(compact_layout_long_straight_chains),
         T_CASE(compact_layout_grazing_along_a_subdivided_edge),
+        T_CASE(early_host_t_next_to_seams),
     };
     return T_RUN(argc, argv, cases);
 }
