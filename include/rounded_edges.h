@@ -468,7 +468,9 @@ RE_DEF re_hit_kind_t re_query_exit_uv(const re_scene_t *scene, const double o[3]
    is convex), pushed out along the crossed face's normal by
    RE_ORIGIN_OFFSET_REL times the object's size so the host's own
    self-intersection guard is not needed. For other kinds: hit->point pushed
-   out the same way. */
+   out the same way. A dir into the solid (dir . hit->normal <= 0, e.g.
+   refraction) gets hit->point itself: the exit walk assumes a ray leaving
+   the rounded surface (it gave points up to 66 sizes away). */
 #define RE_ORIGIN_OFFSET_REL 1e-9
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit,
                                 const double dir[3], double origin[3]);
@@ -5740,6 +5742,7 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
     o = &scene->objects[hit->object];
     push = RE_ORIGIN_OFFSET_REL * o->size;
     nrm = hit->normal;
+    if (hit->kind == RE_HIT_ROUNDED && dir && !(re__dot(dir, nrm) > 0)) return; /* into the solid: the point itself */
     if (hit->kind == RE_HIT_ROUNDED && dir) {
         S.n = 0;
         S.bloom = 0;

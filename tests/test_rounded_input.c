@@ -865,6 +865,12 @@ static void secondary_origin_on_the_sharp_mesh(void)
         }
         T_GE(inside, 0.0);
         T_LE(inside, 1e-8);
+        /* a direction into the solid (refraction; outside the documented
+           use) gets the hit point itself: the exit walk had sent such
+           origins up to 60 sizes away (found by review, 2026-12-06) */
+        for (a = 0; a < 3; a++) dir[a] = d[a] / tm_len(d) - 0.3 * h.normal[a];
+        re_secondary_origin(s, &h, dir, org);
+        T_CHECK(org[0] == h.point[0] && org[1] == h.point[1] && org[2] == h.point[2]);
         n++;
     }
     T_GT(n, 100);
