@@ -6101,6 +6101,14 @@ static void gr__sheet_box(const gr_grid_t *grid, const gr__lscene_t *sc, const g
    it is not NULL) into sc->ls.lg, in groove order: from the grid, or
    (§5.6) from the cache of a neighbour's grooves, refilled over a grown
    box when this box leaves it. */
+/* Is the box wider than a quarter of the tile in a repeating direction? */
+static int gr__box_beyond_quarter_tile(const gr_grid_t *grid, const double box[4])
+{
+    if (!grid->wrap) return 0;
+    return !(box[2] - box[0] <= 0.25 * (grid->domain[2] - grid->domain[0]) &&
+             box[3] - box[1] <= 0.25 * (grid->domain[3] - grid->domain[1]));
+}
+
 static void gr__line_grooves(const gr_grid_t *grid, const gr__scratch_t *s, gr__lscene_t *sc, const double box[4],
                              const double c[2], double reach, const gr__region_t *quad, gr_line_cache_t *cache)
 {
@@ -6122,7 +6130,13 @@ static void gr__line_grooves(const gr_grid_t *grid, const gr__scratch_t *s, gr__
             br = GR_LINE_CACHE_GROW * reach;
             cache->grid = grid;
             cache->count = 0;
-            cache->valid = gr__line_gather(grid, s, sc, big, bc, br, NULL, cache);
+            /* with a repeating texture each groove is held at its image
+               nearest the filling centre, the right one for every
+               footprint within a quarter tile of it; a box wider than
+               that (low lights, grazing views) is not cached (found by
+               review: a box 3.6 x 4.2 tiles wide served a footprint the
+               wrong images, ground instead of a wall) */
+            cache->valid = !gr__box_beyond_quarter_tile(grid, big) && gr__line_gather(grid, s, sc, big, bc, br, NULL, cache);
             cache->misses++;
         } else {
             cache->hits++;
