@@ -74,8 +74,10 @@
 #define iv__aff_taylor_fn F_iv__aff_taylor_fn
 #define iv__aff_unary F_iv__aff_unary
 #define iv__any_nan F_iv__any_nan
+#define iv__bits64 F_iv__bits64
 #define iv__blendv F_iv__blendv
 #define iv__clamp_unit F_iv__clamp_unit
+#define iv__cos_any F_iv__cos_any
 #define iv__cos_narrow F_iv__cos_narrow
 #define iv__cos_point F_iv__cos_point
 #define iv__dd_err F_iv__dd_err
@@ -91,7 +93,6 @@
 #define iv__floor_normal F_iv__floor_normal
 #define iv__hypot_point F_iv__hypot_point
 #define iv__libm_down F_iv__libm_down
-#define iv__libm_hull F_iv__libm_hull
 #define iv__libm_up F_iv__libm_up
 #define iv__max F_iv__max
 #define iv__min F_iv__min
@@ -126,9 +127,11 @@
 #define iv__pun_t F_iv__pun_t
 #define iv__q F_iv__q
 #define iv__raw F_iv__raw
+#define iv__reduce F_iv__reduce
 #define iv__scale_down F_iv__scale_down
 #define iv__scale_up F_iv__scale_up
 #define iv__sign_lo F_iv__sign_lo
+#define iv__sin_any F_iv__sin_any
 #define iv__sin_narrow F_iv__sin_narrow
 #define iv__sin_point F_iv__sin_point
 #define iv__slow2 F_iv__slow2
@@ -136,9 +139,16 @@
 #define iv__sqr2 F_iv__sqr2
 #define iv__sqrt1 F_iv__sqrt1
 #define iv__sqrt2 F_iv__sqrt2
+#define iv__steps_down F_iv__steps_down
+#define iv__steps_up F_iv__steps_up
 #define iv__sub1 F_iv__sub1
 #define iv__sub2 F_iv__sub2
 #define iv__swap F_iv__swap
+#define iv__tan_any F_iv__tan_any
+#define iv__tpi_bits F_iv__tpi_bits
+#define iv__trig_reduced F_iv__trig_reduced
+#define iv__trig_steps F_iv__trig_steps
+#define iv__two_over_pi F_iv__two_over_pi
 #define iv__unvec F_iv__unvec
 #define iv__up F_iv__up
 #define iv__vec F_iv__vec
@@ -280,8 +290,10 @@
 #undef iv__aff_taylor_fn
 #undef iv__aff_unary
 #undef iv__any_nan
+#undef iv__bits64
 #undef iv__blendv
 #undef iv__clamp_unit
+#undef iv__cos_any
 #undef iv__cos_narrow
 #undef iv__cos_point
 #undef iv__dd_err
@@ -297,7 +309,6 @@
 #undef iv__floor_normal
 #undef iv__hypot_point
 #undef iv__libm_down
-#undef iv__libm_hull
 #undef iv__libm_up
 #undef iv__max
 #undef iv__min
@@ -332,9 +343,11 @@
 #undef iv__pun_t
 #undef iv__q
 #undef iv__raw
+#undef iv__reduce
 #undef iv__scale_down
 #undef iv__scale_up
 #undef iv__sign_lo
+#undef iv__sin_any
 #undef iv__sin_narrow
 #undef iv__sin_point
 #undef iv__slow2
@@ -342,9 +355,16 @@
 #undef iv__sqr2
 #undef iv__sqrt1
 #undef iv__sqrt2
+#undef iv__steps_down
+#undef iv__steps_up
 #undef iv__sub1
 #undef iv__sub2
 #undef iv__swap
+#undef iv__tan_any
+#undef iv__tpi_bits
+#undef iv__trig_reduced
+#undef iv__trig_steps
+#undef iv__two_over_pi
 #undef iv__unvec
 #undef iv__up
 #undef iv__vec

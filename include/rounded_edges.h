@@ -1132,6 +1132,9 @@ static re_result_t re__count_tris(const re_mesh_t *m, unsigned *T, long long *ba
     *bad = -1;
     if (!m->face_sizes) {
         if (m->index_count % 3u) return RE_ERR_BAD_FACE;
+        /* the same limit as for polygons: 4 T must fit the 32-bit loop
+           counters (found by review: 1.4e9 triangles passed) */
+        if (m->index_count / 3u >= 0x40000000u) return RE_ERR_TOO_LARGE;
         *T = m->index_count / 3u;
         return RE_OK;
     }
@@ -2001,6 +2004,38 @@ static unsigned re__erode_walk(const re__an_t *an, const unsigned *pl, unsigned 
     return ns;
 }
 
+/* Two distinct vertices of an eroded corner share at most two planes, so
+   two kept vertices whose masks share three are one point to the masks'
+   tolerance (RE__CORNER_EPS), however far apart the solves put them.
+   Where creases are nearly flat (an off-centre roof apex of 6 to 8 planes
+   at 179.8 to 179.99 degrees) the walk's vertices lie 1e-7 to 1e-5 apart,
+   each within RE__CORNER_EPS of every plane: unmerged, every plane pair
+   looked like an eroded edge, the extra cylinders outgrew their cap, and
+   the corner and through it the whole solid stayed sharp, reported as an
+   ill-conditioned corner (found by review, 2026-12-06). Merged into the
+   one with the smaller violation, masks united; a corner whose triples
+   are well conditioned has nothing to merge. */
+static int re__three_bits(unsigned long long m)
+{
+    m &= m - 1;
+    m &= m - 1;
+    return m != 0;
+}
+static void re__erode_merge_same(double *su, unsigned *stri, double *viol, unsigned long long *mask, unsigned *ns)
+{
+    unsigned a, b, n = *ns;
+    for (a = 0; a < n; a++)
+        for (b = a + 1; b < n;) {
+            if (!re__three_bits(mask[a] & mask[b])) { b++; continue; }
+            mask[a] |= mask[b];
+            if (viol[b] < viol[a]) su[3 * a] = su[3 * b], su[3 * a + 1] = su[3 * b + 1], su[3 * a + 2] = su[3 * b + 2], viol[a] = viol[b], stri[a] = stri[b];
+            n--;
+            su[3 * b] = su[3 * n], su[3 * b + 1] = su[3 * n + 1], su[3 * b + 2] = su[3 * n + 2];
+            stri[b] = stri[n], viol[b] = viol[n], mask[b] = mask[n];
+        }
+    *ns = n;
+}
+
 /* The eroded corner at unit radius (issue item 1, exact corners). With the
    k face planes n_i.(x - v) = 0 around v shifted inward by 1, the local
    eroded polytope E_v = {u : n_i.u <= -1} has finite vertices where three
@@ -2042,6 +2077,7 @@ static int re__erode_corner(re__an_t *an, unsigned c)
         if (!ns) ns = re__erode_triples(an, pl, k, su, stri, viol, mask, cap);
         if (!ns) return 0;
     }
+    re__erode_merge_same(su, stri, viol, mask, &ns);
     /* the masks transposed, for the pair tests below: a plane pair's
        vertices are then one AND */
     for (j = 0; j < k; j++) on[j] = 0;

@@ -2,7 +2,7 @@
 """Regenerates the renaming block of bench/bench_interval_ops.cpp.
 
 The bench includes interval.h a second time in IV_FAST mode; its names
-(functions, types, enum constants: not macros) are renamed to F_... for that
+(functions, tables, types, enum constants: not macros) are renamed to F_... for that
 inclusion. Run after adding or removing a name in include/interval.h:
     python3 scripts/interval_fast_names.py
 With --check it only compares (make test runs it): prints `1 passed, 0
@@ -18,6 +18,7 @@ header = open(root + '/include/interval.h').read()
 code = re.sub(r'/\*.*?\*/', '', header, flags=re.S)
 names = set(re.findall(r'\b(iv__?\w+)\s*\(', code))
 names |= set(re.findall(r'\b(iv__?\w*_t)\b', code))
+names |= set(re.findall(r'\b(iv__?\w+)\s*\[', code))  # tables
 names.add('iv__pair_layout_check')
 for body in re.findall(r'enum\s*\w*\s*\{([^}]*)\}', code):
     names |= {c.split('=')[0].strip() for c in body.split(',') if c.strip()}

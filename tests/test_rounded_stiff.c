@@ -1390,6 +1390,51 @@ static void early_host_t_next_to_seams(void)
     g_poly_jitter = 3.0;
 }
 
+/* A regular k-gon prism (z in [-0.5, 0]) with a low pyramid roof, its apex
+   a little off centre at (a, 0.7 a, h): the apex's creases are 0.05 to 0.2
+   degrees from flat. The walk puts the eroded corner's k - 2 vertices 1e-7
+   to 1e-5 apart, each within the masks' tolerance of every plane; every
+   plane pair then looked like an eroded edge, the extra cylinders outgrew
+   their cap and the apex was reported unroundable, leaving the whole
+   solid sharp (its 90-degree walls too; found by review, 2026-12-06: k = 6,
+   a = 0.004096, h = 0.003, and most random apexes at h = 1e-4 for k = 8,
+   all at 1e-5). Kept vertices on three common planes are now one. Every
+   convex edge rounded, no corner reported, and rays against the eroded
+   polytope (1e-7 of the size). */
+static void nearly_flat_off_centre_apex(void)
+{
+    static const double cases[6][3] = {{6, 0.004096, 0.003}, {8, 0.008, 0.001}, {6, 0.0123, 1e-4},
+                                       {7, 0.0071, 1e-4}, {8, 0.0031, 1e-4}, {8, 0.0057, 1e-5}};
+    int c;
+    for (c = 0; c < 6; c++) {
+        tm_mesh_t m = {0};
+        static tm_poly_t P;
+        int i, k = (int)cases[c][0];
+        double a = cases[c][1], h = cases[c][2];
+        unsigned apex;
+        re_scene_t *s;
+        re_diag_t dg;
+        re_stats_t st;
+        char what[64];
+        for (i = 0; i < k; i++) tm_vert(&m, cos(2 * M_PI * i / k), sin(2 * M_PI * i / k), 0);
+        for (i = 0; i < k; i++) tm_vert(&m, cos(2 * M_PI * i / k), sin(2 * M_PI * i / k), -0.5);
+        apex = tm_vert(&m, a, 0.7 * a, h);
+        for (i = 0; i < k; i++) tm_tri(&m, (unsigned)i, (unsigned)((i + 1) % k), apex);
+        for (i = 0; i < k; i++) tm_quad(&m, (unsigned)(k + i), (unsigned)(k + (i + 1) % k), (unsigned)((i + 1) % k), (unsigned)i);
+        for (i = 1; i + 1 < k; i++) tm_tri(&m, (unsigned)k, (unsigned)(k + i + 1), (unsigned)(k + i));
+        tm_planes(&m, &P);
+        snprintf(what, sizeof what, "roof k %d apex %g h %g", k, a, h);
+        s = build1(&m, 0.05, &dg);
+        if (!T_CHECK(s != NULL)) { fprintf(stderr, "%s: %s\n", what, dg.message); tm_free(&m); continue; }
+        re_get_stats(s, &st);
+        if (!T_INT_EQ(st.rounded_edges, st.convex_edges)) fprintf(stderr, "%s: %llu of %llu convex edges rounded\n", what, (unsigned long long)st.rounded_edges, (unsigned long long)st.convex_edges);
+        T_GT(st.convex_edges, 3 * (unsigned long long)k - 1);
+        re_free(s);
+        poly_rays(&m, &P, 0.05, t_count(600), 1e-7, 900 + (unsigned long long)c, what);
+        tm_free(&m);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -1427,6 +1472,7 @@ int main(int argc, char **argv)
         T_CASE(compact_layout_long_straight_chains),
         T_CASE(compact_layout_grazing_along_a_subdivided_edge),
         T_CASE(early_host_t_next_to_seams),
+        T_CASE(nearly_flat_off_centre_apex),
     };
     return T_RUN(argc, argv, cases);
 }
