@@ -90,6 +90,7 @@
 #define iv__div_zero_pos F_iv__div_zero_pos
 #define iv__down F_iv__down
 #define iv__down_sum F_iv__down_sum
+#define iv__fast_clamp F_iv__fast_clamp
 #define iv__floor_normal F_iv__floor_normal
 #define iv__hypot_point F_iv__hypot_point
 #define iv__libm_down F_iv__libm_down
@@ -306,6 +307,7 @@
 #undef iv__div_zero_pos
 #undef iv__down
 #undef iv__down_sum
+#undef iv__fast_clamp
 #undef iv__floor_normal
 #undef iv__hypot_point
 #undef iv__libm_down

@@ -34,9 +34,12 @@
      speed) or another rounding mode loses it: a product below 2^-1022
      becomes 0 and the error terms the method relies on vanish (with FTZ
      and DAZ on, 0.5% of the property test's points fall outside their
-     enclosures). iv_fp_env_ok() tells; iv_fp_env_enter() and
-     iv_fp_env_leave() set that environment around interval work and
-     restore the host's (frep.h's rigorous entry points do so themselves).
+     enclosures). Floating-point exceptions must stay masked, as C starts
+     them: the method makes inf and NaN on purpose in rare cases, which
+     trap where a host unmasks them (x86 MXCSR). iv_fp_env_ok() tells;
+     iv_fp_env_enter() and iv_fp_env_leave() set that environment around
+     interval work and restore the host's (frep.h's rigorous entry points
+     do so themselves).
 
    THE METHOD
      Every endpoint is first computed in round-to-nearest, so it lies within
@@ -86,7 +89,9 @@
      sends the operation to the scalar code: a branch that is predicted,
      so not on the dependency chain (add, abs, fma: 8 cycles on Zen 4, the
      latency bound is derived in docs/interval.md). The pair path gives the
-     scalar code's results exactly (tested); IV_NO_SIMD selects the
+     scalar code's values exactly (tested); the sign of a zero end may
+     differ ([0, 0] - [0, 0] is [0, +0] there and [0, -0] in the scalar
+     code; no operation's value depends on it). IV_NO_SIMD selects the
      scalar code.
 
    ARRAY FORMS
@@ -179,13 +184,18 @@ typedef struct iv_fp_env_t {
 } iv_fp_env_t;
 #ifdef IV__MXCSR
 #  define IV__MXCSR_MODES 0xE040u /* FTZ (bit 15), rounding (13-14), DAZ (6) */
+/* every exception masked (bits 7-12): the outward step makes NaN and inf
+   on purpose in its rare cases (an overflowed end, 0 * inf), which trap
+   where a host unmasks them (found by review, 2026-12-06: SIGFPE in
+   iv_mul([1e300], [1e300]) with FE_INVALID unmasked, iv_fp_env_ok() 1) */
+#  define IV__MXCSR_MASKS 0x1F80u
 #endif
 
 /* 1 when the calling thread's environment is the one the guarantee assumes. */
 static inline int iv_fp_env_ok(void)
 {
 #ifdef IV__MXCSR
-    return (_mm_getcsr() & IV__MXCSR_MODES) == 0;
+    return (_mm_getcsr() & (IV__MXCSR_MODES | IV__MXCSR_MASKS)) == IV__MXCSR_MASKS;
 #elif defined(FE_TONEAREST)
     return fegetround() == FE_TONEAREST;
 #else
@@ -203,8 +213,8 @@ static inline iv_fp_env_t iv_fp_env_enter(void)
     iv_fp_env_t e;
 #ifdef IV__MXCSR
     e.saved = _mm_getcsr();
-    e.changed = (e.saved & IV__MXCSR_MODES) != 0;
-    if (e.changed) _mm_setcsr(e.saved & ~IV__MXCSR_MODES);
+    e.changed = (e.saved & (IV__MXCSR_MODES | IV__MXCSR_MASKS)) != IV__MXCSR_MASKS;
+    if (e.changed) _mm_setcsr((e.saved & ~IV__MXCSR_MODES) | IV__MXCSR_MASKS);
 #elif defined(FE_TONEAREST)
     int r = fegetround();
     e.saved = (unsigned int)r;
@@ -286,10 +296,14 @@ static inline double iv__next_down(double x) { return iv__next_down_bits(x); }
 #endif
 static inline double iv__next_up(double x) { return -iv__next_down(-x); }
 
-/* Outward rounding of a round-to-nearest endpoint (identity under IV_FAST). */
+/* Outward rounding of a round-to-nearest endpoint. Under IV_FAST none,
+   but an end that overflowed inward (a lower end of +inf, an upper end of
+   -inf) becomes the largest double, as in the rigorous build: a result is
+   never [inf, inf], which iv_make rejects (iv_pow_n of [1e300, 1e300]
+   returned the empty set; found by review, 2026-12-06). NaN stays NaN. */
 #ifdef IV_FAST
-static inline double iv__down(double x) { return x; }
-static inline double iv__up(double x) { return x; }
+static inline double iv__down(double x) { return x == HUGE_VAL ? 1.7976931348623157e308 : x; }
+static inline double iv__up(double x) { return x == -HUGE_VAL ? -1.7976931348623157e308 : x; }
 #else
 static inline double iv__down(double x) { return iv__next_down(x); }
 static inline double iv__up(double x) { return iv__next_up(x); }
@@ -324,8 +338,8 @@ static inline double iv__down_sum(double s) { return fabs(s) < 2.225073858507201
    the same instruction. A result lane that is NaN (empty input, 0 * inf,
    an end that overflowed to the wrong infinity) sends the operation to
    the scalar code, kept out of line; that test is not on the dependency
-   chain (a predicted branch). Results are identical to the scalar code's
-   (tests: pair_path_matches_scalar). */
+   chain (a predicted branch). Values are identical to the scalar code's,
+   zero ends up to their sign (tests: pair_path_matches_scalar). */
 /* [lo, hi] to a vector with _mm_set_pd and back through a union (iv_t is
    two doubles without padding on every x86 ABI, checked by the array size
    below; reading the other member of a union is defined in C99 and, as a
@@ -389,9 +403,15 @@ static inline __m128d iv__floor_normal(__m128d m)
    v = +-inf on the outward side stays; on the inward side it gives NaN
    (overflow: the caller's scalar path clamps it to +-DBL_MAX). */
 #ifdef IV_FAST
-static inline __m128d iv__out_exact(__m128d v) { return v; }
-static inline __m128d iv__out(__m128d v) { return v; }
-static inline __m128d iv__out_pair(__m128d v, __m128d m) { (void)m; return _mm_xor_pd(v, iv__sign_lo()); }
+/* [lo, hi] with an inward overflow clamped (iv__down); min and max return
+   their second operand for NaN, so NaN lanes stay */
+static inline __m128d iv__fast_clamp(__m128d v)
+{
+    return _mm_max_pd(_mm_set_pd(-1.7976931348623157e308, -HUGE_VAL), _mm_min_pd(_mm_set_pd(HUGE_VAL, 1.7976931348623157e308), v));
+}
+static inline __m128d iv__out_exact(__m128d v) { return iv__fast_clamp(v); }
+static inline __m128d iv__out(__m128d v) { return iv__fast_clamp(v); }
+static inline __m128d iv__out_pair(__m128d v, __m128d m) { (void)m; return iv__fast_clamp(_mm_xor_pd(v, iv__sign_lo())); }
 #else
 static inline __m128d iv__q(void) { return _mm_set_pd(IV__PHI, -IV__PHI); }
 /* for results whose subnormals are exact (+ - sqrt): X = |v| */
@@ -477,8 +497,9 @@ static inline void iv_split(iv_t x, iv_t *left, iv_t *right)
 
 static inline iv_t iv_neg(iv_t x) { return iv__raw(-x.hi, -x.lo); }
 /* Each operation has a portable scalar form (iv__add1, ...) and, where
-   IV__PAIR is on, a pair form (iv__add2, ...) giving identical results;
-   the tests compare the two on every class of input. */
+   IV__PAIR is on, a pair form (iv__add2, ...) giving identical values (a
+   zero end's sign may differ); the tests compare the two on every class
+   of input. */
 /* + and -: an empty input (NaN endpoints) propagates through the
    arithmetic, and valid endpoints never give inf - inf, so no test is
    needed. The upper end is computed negated, -(a.hi + b.hi) = (-a.hi) -
@@ -658,7 +679,7 @@ static inline iv_t iv__div_pos2(iv_t a, iv_t b)
     /* [a.lo >= 0, a.hi <= 0] as all-ones lanes: those ends are clamped */
     __m128d keep = _mm_cmpge_pd(_mm_xor_pd(av, _mm_set_pd(-0.0, 0.0)), _mm_setzero_pd());
 #ifdef IV_FAST
-    r = w;
+    r = _mm_max_pd(_mm_set1_pd(-1.7976931348623157e308), w); /* -lo and hi: an inward overflow clamped */
 #else
     r = _mm_fmadd_pd(_mm_set1_pd(IV__PHI), iv__floor_normal(iv__abs2(w)), w);
 #endif
@@ -1135,7 +1156,11 @@ static inline int iv__w_any_nan(iv__wv a, iv__wv b) { return _mm256_movemask_pd(
 /* the pair path's step for + and -, lane pair by lane pair (see
    iv__out_exact) */
 #  ifdef IV_FAST
-static inline iv__wv iv__w_out_exact(iv__wv v) { return v; }
+static inline iv__wv iv__w_out_exact(iv__wv v)
+{
+    return IV__W_OP(max)(iv__w_pairs(_mm_set_pd(-1.7976931348623157e308, -HUGE_VAL)),
+                         IV__W_OP(min)(iv__w_pairs(_mm_set_pd(HUGE_VAL, 1.7976931348623157e308)), v));
+}
 #  else
 static inline iv__wv iv__w_out_exact(iv__wv v)
 {
@@ -1174,6 +1199,8 @@ static inline void iv__w_op_soa(int op, iv__wv al, iv__wv ah, iv__wv bl, iv__wv 
     }
 #  ifdef IV_FAST
     (void)phi;
+    l = IV__W_OP(min)(IV__W_OP(set1)(1.7976931348623157e308), l); /* an inward overflow clamped */
+    h = IV__W_OP(max)(IV__W_OP(set1)(-1.7976931348623157e308), h);
 #  else
     if (op == IV__N_MUL) {
         l = IV__W_OP(fnmadd)(phi, iv__w_mag_floor(l), l);

@@ -111,6 +111,36 @@ static void ftz_daz_seen_and_restored(void)
     }
     _mm_setcsr(base);
 }
+
+/* A host that unmasks floating-point exceptions (a debug build's
+   feenableexcept(FE_INVALID)): the method makes NaN and inf on purpose in
+   rare cases (iv_mul([1e300], [1e300]) overflows, the step turns its
+   lower end into NaN to reach the clamp), which then trapped with SIGFPE
+   while iv_fp_env_ok() said 1 (found by review, 2026-12-06). Now it says
+   0, enter masks them, the product is [DBL_MAX, inf] without a trap, and
+   leave restores the host's bits. */
+static __attribute__((noinline)) iv_t square_of(volatile double *x) { return iv_mul(iv_point(*x), iv_point(*x)); }
+static void unmasked_exceptions_seen_and_masked(void)
+{
+    volatile double big = 1e300;
+    unsigned base = _mm_getcsr(), bits[3] = {0x0080u, 0x0200u, 0x1F80u};
+    int i;
+    for (i = 0; i < 3; i++) {
+        iv_fp_env_t e;
+        unsigned host = base & ~bits[i];
+        iv_t z;
+        _mm_setcsr(host);
+        T_INT_EQ(iv_fp_env_ok(), 0);
+        e = iv_fp_env_enter();
+        T_INT_EQ(iv_fp_env_ok(), 1);
+        z = square_of(&big); /* not inlined: its arithmetic stays between enter and leave */
+        iv_fp_env_leave(e);
+        T_INT_EQ(_mm_getcsr(), host);
+        _mm_setcsr(base);
+        T_EQ(z.lo, 1.7976931348623157e308);
+        T_EQ(z.hi, HUGE_VAL);
+    }
+}
 #endif
 
 int main(int argc, char **argv)
@@ -118,7 +148,7 @@ int main(int argc, char **argv)
     static const t_case_t cases[] = {
         T_CASE(default_environment_is_ok), T_CASE(rounding_mode_seen_set_and_restored),
 #ifdef FTZ_DAZ
-        T_CASE(ftz_daz_seen_and_restored), T_CASE(tiny_operands_under_ftz_daz),
+        T_CASE(ftz_daz_seen_and_restored), T_CASE(tiny_operands_under_ftz_daz), T_CASE(unmasked_exceptions_seen_and_masked),
 #endif
     };
     return T_RUN(argc, argv, cases);
