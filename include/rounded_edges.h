@@ -563,6 +563,10 @@ typedef struct re_trace_hit_t {
    safe to call from several threads at once if the baselines are. */
 typedef int (*re_trace_fn)(void *user, const double origin[3], const double dir[3],
                            double tmin, double tmax, re_trace_hit_t *hit);
+/* The same restricted to the host object `object` (Cycles' local BVH query):
+   the nearest hit on that object only. Optional (re_bevel_cycles_desc_t). */
+typedef int (*re_trace_object_fn)(void *user, unsigned object, const double origin[3], const double dir[3],
+                                  double tmin, double tmax, re_trace_hit_t *hit);
 
 /* The bevel shader of the OSL blog post (bevel_shader_osl_blog.txt): from the
    point P - delta*N below the surface, cast rays along N + perturb*d, d in the
@@ -587,6 +591,13 @@ typedef struct re_bevel_cycles_desc_t {
     double radius; /* R, scene units. Required, > 0. */
     int samples;   /* disk samples, >= 1. Default (0): 4, Cycles' default. */
     unsigned seed; /* rotates the sample set; every value is valid */
+    /* Optional: the probes then trace P's object alone (called with the
+       same user pointer), as Cycles does. With the any-object trace only,
+       a surface of P's object that coincides with another object's (a box
+       resting on a floor: its bottom face and the floor) or lies within
+       RE_BEVEL_STEP_REL R behind it is missed, and other objects' hits
+       use up RE_BEVEL_MAX_HITS. */
+    re_trace_object_fn trace_object;
 } re_bevel_cycles_desc_t;
 
 typedef struct re_bevel_result_t {
@@ -612,7 +623,8 @@ RE_DEF re_result_t re_bevel_blog(const re_bevel_blog_desc_t *desc, const double 
                                  const double n[3], re_trace_fn trace, void *user,
                                  re_bevel_result_t *out);
 /* Cycles-style bevel at P (on object `object`) with unit outward normal n.
-   Hits on other objects are skipped. RE_ERR_INVALID_ARG as above. */
+   Hits on other objects are skipped (with desc->trace_object they are
+   never found). RE_ERR_INVALID_ARG as above. */
 RE_DEF re_result_t re_bevel_cycles(const re_bevel_cycles_desc_t *desc, const double p[3],
                                    const double n[3], unsigned object, re_trace_fn trace,
                                    void *user, re_bevel_result_t *out);
@@ -6052,7 +6064,9 @@ RE_DEF re_result_t re_bevel_cycles(const re_bevel_cycles_desc_t *desc, const dou
             re_trace_hit_t hit;
             double pdf[3], hp[3], dist, w;
             calls++;
-            if (!trace(user, o, d, tmin, 2.0 * h, &hit)) break;
+            if (desc->trace_object ? !desc->trace_object(user, object, o, d, tmin, 2.0 * h, &hit)
+                                   : !trace(user, o, d, tmin, 2.0 * h, &hit))
+                break;
             tmin = hit.t + step;
             if (hit.object != object) continue; /* same object only, as Cycles' local BVH query */
             for (k = 0; k < 3; k++) {

@@ -92,6 +92,23 @@ static int scene_trace(void *user, const double o[3], const double d[3], double 
     return found;
 }
 
+/* scene_trace restricted to one object (re_bevel_cycles_desc_t.trace_object) */
+static int scene_trace_object(void *user, unsigned object, const double o[3], const double d[3], double tmin,
+                              double tmax, re_trace_hit_t *hit)
+{
+    scene_t *s = (scene_t *)user;
+    int i, found = 0;
+    s->calls++;
+    for (i = 0; i < s->n; i++) {
+        re_trace_hit_t h;
+        if (s->box[i].object == object && box_hit(&s->box[i], o, d, tmin, tmax, &h) && (!found || h.t < hit->t)) {
+            *hit = h;
+            found = 1;
+        }
+    }
+    return found;
+}
+
 /* The unit box [-1,1]^3, object 0. The edge under test is top (z = 1) ∩ side
    (x = 1); P = (1 - x, 0, 1) lies on the top face at distance x from it. */
 static scene_t unit_box(void)
@@ -412,6 +429,46 @@ static void cycles_ignores_other_objects(void)
     T_GT(fabs(r.normal[0]) + fabs(r.normal[1]), 1e-3);
 }
 
+/* A box resting on a floor: its bottom face lies in the floor's top face.
+   The any-object trace found the floor where both are (the tracer here, as
+   Embree may, keeps the floor at equal t), so near the contact line the
+   Cycles-style normal lost the bottom face's tilt: 0.002 rad against the
+   bisector's 0.785 at the line (found by review, 2026-12-06, with the
+   example's Embree callback). With trace_object (P's object alone, as
+   Cycles' local query) the side face's normal at height d above the line
+   tilts toward the bottom as the quadrature says, within CYCLES_TILT_TOL;
+   without it, it stays wrong (so the check can fail). */
+static void cycles_sees_its_own_object_on_a_floor(void)
+{
+    static const double ds[5] = {0, 0.02, 0.05, 0.08, 0.12};
+    re_bevel_cycles_desc_t cd;
+    re_bevel_result_t r;
+    scene_t s;
+    int i;
+    memset(&s, 0, sizeof s);
+    box_init(&s.box[0], -5, -5, -2, 5, 5, -1, 9); /* the floor first: it wins ties */
+    box_init(&s.box[1], -1, -1, -1, 1, 1, 1, 0);
+    s.n = 2;
+    memset(&cd, 0, sizeof cd);
+    cd.radius = 0.1;
+    cd.samples = (int)t_count(16384) < 2048 ? 2048 : (int)t_count(16384);
+    for (i = 0; i < 5; i++) {
+        double p[3] = {1, 0, -1 + ds[i]}, n[3] = {1, 0, 0}, a;
+        cd.seed = (unsigned)(3 * i + 2);
+        cd.trace_object = scene_trace_object;
+        T_INT_EQ(re_bevel_cycles(&cd, p, n, 0, scene_trace, &s, &r), RE_OK);
+        a = atan2(-r.normal[2], r.normal[0]); /* toward the bottom face */
+        T_NEAR(r.normal[1], 0, 1e-12);
+        T_NEAR(a, cycles_expected_tilt(ds[i], cd.radius), CYCLES_TILT_TOL);
+        if (ds[i] > 0.05) continue;
+        cd.trace_object = NULL;
+        T_INT_EQ(re_bevel_cycles(&cd, p, n, 0, scene_trace, &s, &r), RE_OK);
+        fprintf(stderr, "    d = %.2f: tilt %.4f with the object's own trace, %.4f without (quadrature %.4f)\n", ds[i], a,
+                atan2(-r.normal[2], r.normal[0]), cycles_expected_tilt(ds[i], cd.radius));
+        T_GT(fabs(atan2(-r.normal[2], r.normal[0]) - cycles_expected_tilt(ds[i], cd.radius)), 0.05);
+    }
+}
+
 /* The blog bevel's known failure (the paper's "thin structures"): on a wall
    thinner than delta the probe origin lies outside the far side, its probes
    cross the whole wall, and the normal stays flat where a rounding of radius
@@ -471,6 +528,7 @@ int main(int argc, char **argv)
         T_CASE(cycles_edge_matches_quadrature),
         T_CASE(error_falls_with_sample_count),
         T_CASE(cycles_ignores_other_objects),
+        T_CASE(cycles_sees_its_own_object_on_a_floor),
         T_CASE(blog_thin_wall_behaviour),
         T_CASE(rejects_bad_arguments),
         T_CASE(no_hits_keep_the_normal),

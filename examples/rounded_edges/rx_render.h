@@ -289,6 +289,9 @@ static int rx__bevel_trace(void *user, const double o[3], const double d[3], dou
     return 1;
 }
 
+static int rx__bevel_trace_object(void *user, unsigned object, const double o[3], const double d[3], double tmin,
+                                  double tmax, re_trace_hit_t *hit);
+
 /* A per-ray seed for the bevel baselines from the ray's bits: the callback
    has no access to the path's random stream, and this keeps it deterministic. */
 static unsigned rx__ray_seed(const ex_ray_t *ray)
@@ -588,6 +591,7 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
                 cd.radius = ob->radius;
                 cd.samples = w->mode.n;
                 cd.seed = rx__ray_seed(ray);
+                cd.trace_object = rx__bevel_trace_object; /* P's object alone, as Cycles */
                 rc = re_bevel_cycles(&cd, p, n, h.geom_id, rx__bevel_trace, w, &b);
             }
             if (rc == RE_OK) {
@@ -628,6 +632,26 @@ static void rx__only_filter(const struct RTCFilterFunctionNArguments *args)
     unsigned i;
     for (i = 0; i < args->N; i++)
         if (args->valid[i] == -1 && geom[i] != c->geom) args->valid[i] = 0;
+}
+
+/* rx__bevel_trace on one object only (re_bevel_cycles_desc_t.trace_object):
+   a box resting on the floor has its bottom face where the floor is, and the
+   any-object trace found the floor there (found by review, 2026-12-06). */
+static int rx__bevel_trace_object(void *user, unsigned object, const double o[3], const double d[3], double tmin,
+                                  double tmax, re_trace_hit_t *hit)
+{
+    const rx_world_t *w = (const rx_world_t *)user;
+    rx__only_ctx_t c;
+    ex_hit_t h;
+    rtcInitIntersectContext(&c.ctx);
+    c.ctx.filter = rx__only_filter;
+    c.geom = object;
+    h = rx__intersect_in(w, &c.ctx, ex_v3(o[0], o[1], o[2]), ex_v3(d[0], d[1], d[2]), tmin, tmax);
+    if (!h.hit) return 0;
+    hit->t = h.t;
+    hit->normal[0] = h.ng.x; hit->normal[1] = h.ng.y; hit->normal[2] = h.ng.z;
+    hit->object = h.geom_id;
+    return 1;
 }
 
 /* A ray inside rounded object g leaves its rounded solid before it meets
