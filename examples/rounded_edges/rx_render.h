@@ -189,8 +189,10 @@ int rx_world_build(rx_world_t *w, const rx_scene_t *s, rx_mode_t m, int width, i
     if (!(w->dev = ex_embree_device())) { rx_world_free(w); return -1; }
     rtcSetDeviceMemoryMonitorFunction(w->dev, rx__memory_monitor, &w->embree_mem_live);
     w->rtc = rtcNewScene(w->dev);
-    /* rounded mode hides exit faces with an intersect-context filter */
-    if (m.kind == RX_ROUNDED) rtcSetSceneFlags(w->rtc, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    /* rounded mode hides exit faces with an intersect-context filter; the
+       Cycles-style bevel traces P's object alone through one
+       (rx__bevel_trace_object) */
+    if (m.kind == RX_ROUNDED || m.kind == RX_CYCLES) rtcSetSceneFlags(w->rtc, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     if ((m.kind == RX_ROUNDED || m.kind == RX_TESS) && rx__build_round(w, threads)) { rx_world_free(w); return -1; }
     for (i = 0; i < s->nobj; i++) w->glass |= m.kind == RX_ROUNDED && s->obj[i].radius > 0 && s->mats[s->obj[i].material].ior > 0;
     t1 = ex_now();
