@@ -76,37 +76,32 @@ static int box_hit(const box_t *b, const double o_w[3], const double d_w[3], dou
     return 1;
 }
 
-static int scene_trace(void *user, const double o[3], const double d[3], double tmin, double tmax,
-                       re_trace_hit_t *hit)
+/* The nearest hit among the boxes (only: every object, or one object id). */
+static int scene_trace_only(scene_t *s, long only, const double o[3], const double d[3], double tmin, double tmax,
+                            re_trace_hit_t *hit)
 {
-    scene_t *s = (scene_t *)user;
     int i, found = 0;
     s->calls++;
     for (i = 0; i < s->n; i++) {
         re_trace_hit_t h;
-        if (box_hit(&s->box[i], o, d, tmin, tmax, &h) && (!found || h.t < hit->t)) {
+        if ((only < 0 || s->box[i].object == (unsigned)only) && box_hit(&s->box[i], o, d, tmin, tmax, &h) &&
+            (!found || h.t < hit->t)) {
             *hit = h;
             found = 1;
         }
     }
     return found;
 }
-
+static int scene_trace(void *user, const double o[3], const double d[3], double tmin, double tmax,
+                       re_trace_hit_t *hit)
+{
+    return scene_trace_only((scene_t *)user, -1, o, d, tmin, tmax, hit);
+}
 /* scene_trace restricted to one object (re_bevel_cycles_desc_t.trace_object) */
 static int scene_trace_object(void *user, unsigned object, const double o[3], const double d[3], double tmin,
                               double tmax, re_trace_hit_t *hit)
 {
-    scene_t *s = (scene_t *)user;
-    int i, found = 0;
-    s->calls++;
-    for (i = 0; i < s->n; i++) {
-        re_trace_hit_t h;
-        if (s->box[i].object == object && box_hit(&s->box[i], o, d, tmin, tmax, &h) && (!found || h.t < hit->t)) {
-            *hit = h;
-            found = 1;
-        }
-    }
-    return found;
+    return scene_trace_only((scene_t *)user, (long)object, o, d, tmin, tmax, hit);
 }
 
 /* The unit box [-1,1]^3, object 0. The edge under test is top (z = 1) ∩ side

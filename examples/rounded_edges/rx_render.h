@@ -279,16 +279,20 @@ static void rx__surface_from_answer(const re_hit_t *q, ex_surface_t *s)
 }
 
 /* Host trace callback for the bevel baselines: Embree, object = geometry id. */
-static int rx__bevel_trace(void *user, const double o[3], const double d[3], double tmin, double tmax,
-                           re_trace_hit_t *hit)
+/* An Embree hit as the baselines' callbacks report it; 0 for a miss. */
+static int rx__bevel_hit(ex_hit_t h, re_trace_hit_t *hit)
 {
-    const rx_world_t *w = (const rx_world_t *)user;
-    ex_hit_t h = ex_embree_intersect(w->rtc, ex_v3(o[0], o[1], o[2]), ex_v3(d[0], d[1], d[2]), tmin, tmax);
     if (!h.hit) return 0;
     hit->t = h.t;
     hit->normal[0] = h.ng.x; hit->normal[1] = h.ng.y; hit->normal[2] = h.ng.z;
     hit->object = h.geom_id;
     return 1;
+}
+static int rx__bevel_trace(void *user, const double o[3], const double d[3], double tmin, double tmax,
+                           re_trace_hit_t *hit)
+{
+    const rx_world_t *w = (const rx_world_t *)user;
+    return rx__bevel_hit(ex_embree_intersect(w->rtc, ex_v3(o[0], o[1], o[2]), ex_v3(d[0], d[1], d[2]), tmin, tmax), hit);
 }
 
 static int rx__bevel_trace_object(void *user, unsigned object, const double o[3], const double d[3], double tmin,
@@ -644,16 +648,10 @@ static int rx__bevel_trace_object(void *user, unsigned object, const double o[3]
 {
     const rx_world_t *w = (const rx_world_t *)user;
     rx__only_ctx_t c;
-    ex_hit_t h;
     rtcInitIntersectContext(&c.ctx);
     c.ctx.filter = rx__only_filter;
     c.geom = object;
-    h = rx__intersect_in(w, &c.ctx, ex_v3(o[0], o[1], o[2]), ex_v3(d[0], d[1], d[2]), tmin, tmax);
-    if (!h.hit) return 0;
-    hit->t = h.t;
-    hit->normal[0] = h.ng.x; hit->normal[1] = h.ng.y; hit->normal[2] = h.ng.z;
-    hit->object = h.geom_id;
-    return 1;
+    return rx__bevel_hit(rx__intersect_in(w, &c.ctx, ex_v3(o[0], o[1], o[2]), ex_v3(d[0], d[1], d[2]), tmin, tmax), hit);
 }
 
 /* A ray inside rounded object g leaves its rounded solid before it meets
