@@ -79,7 +79,6 @@
 #define iv__clamp_unit F_iv__clamp_unit
 #define iv__cos_any F_iv__cos_any
 #define iv__cos_narrow F_iv__cos_narrow
-#define iv__cos_point F_iv__cos_point
 #define iv__dd_err F_iv__dd_err
 #define iv__dd_mul F_iv__dd_mul
 #define iv__dd_renorm F_iv__dd_renorm
@@ -134,7 +133,6 @@
 #define iv__sign_lo F_iv__sign_lo
 #define iv__sin_any F_iv__sin_any
 #define iv__sin_narrow F_iv__sin_narrow
-#define iv__sin_point F_iv__sin_point
 #define iv__slow2 F_iv__slow2
 #define iv__sqr1 F_iv__sqr1
 #define iv__sqr2 F_iv__sqr2
@@ -147,6 +145,7 @@
 #define iv__swap F_iv__swap
 #define iv__tan_any F_iv__tan_any
 #define iv__tpi_bits F_iv__tpi_bits
+#define iv__trig_point F_iv__trig_point
 #define iv__trig_reduced F_iv__trig_reduced
 #define iv__trig_steps F_iv__trig_steps
 #define iv__two_over_pi F_iv__two_over_pi
@@ -296,7 +295,6 @@
 #undef iv__clamp_unit
 #undef iv__cos_any
 #undef iv__cos_narrow
-#undef iv__cos_point
 #undef iv__dd_err
 #undef iv__dd_mul
 #undef iv__dd_renorm
@@ -351,7 +349,6 @@
 #undef iv__sign_lo
 #undef iv__sin_any
 #undef iv__sin_narrow
-#undef iv__sin_point
 #undef iv__slow2
 #undef iv__sqr1
 #undef iv__sqr2
@@ -364,6 +361,7 @@
 #undef iv__swap
 #undef iv__tan_any
 #undef iv__tpi_bits
+#undef iv__trig_point
 #undef iv__trig_reduced
 #undef iv__trig_steps
 #undef iv__two_over_pi

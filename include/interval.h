@@ -1585,18 +1585,12 @@ static double iv__sin_any(double a) { return fabs(a) < IV__REDUCE_MIN ? sin(a) :
 static double iv__cos_any(double a) { return fabs(a) < IV__REDUCE_MIN ? cos(a) : iv__trig_reduced(a, 1); }
 static double iv__tan_any(double a) { return fabs(a) < IV__REDUCE_MIN ? tan(a) : iv__trig_reduced(a, 2); }
 
-/* sin/cos at a double, stepped outward; exact at 0. */
-static iv_t iv__sin_point(double a)
+/* sin or cos at a double a, from its libm-based value v, stepped outward;
+   exact at a = 0 (value_at_0: sin 0 = 0, cos 0 = 1). */
+static iv_t iv__trig_point(double a, double v, double value_at_0)
 {
-    double s = iv__sin_any(a);
     int n = iv__trig_steps(a);
-    return a == 0 ? iv__raw(0.0, 0.0) : iv__raw(iv__steps_down(s, n), iv__steps_up(s, n));
-}
-static iv_t iv__cos_point(double a)
-{
-    double c = iv__cos_any(a);
-    int n = iv__trig_steps(a);
-    return a == 0 ? iv__raw(1.0, 1.0) : iv__raw(iv__steps_down(c, n), iv__steps_up(c, n));
+    return a == 0 ? iv__raw(value_at_0, value_at_0) : iv__raw(iv__steps_down(v, n), iv__steps_up(v, n));
 }
 static iv_t iv__clamp_unit(iv_t y) { return iv__raw(iv__max(y.lo, -1.0), iv__min(y.hi, 1.0)); }
 
@@ -1605,7 +1599,7 @@ static iv_t iv__clamp_unit(iv_t y) { return iv__raw(iv__max(y.lo, -1.0), iv__min
    at a double, so the signs are strict. */
 static iv_t iv__sin_narrow(double a, double b)
 {
-    iv_t y = iv_hull(iv__sin_point(a), iv__sin_point(b));
+    iv_t y = iv_hull(iv__trig_point(a, iv__sin_any(a), 0.0), iv__trig_point(b, iv__sin_any(b), 0.0));
     double ca = iv__cos_any(a), cb = iv__cos_any(b);
     if (ca > 0 && cb < 0) y.hi = 1.0;
     if (ca < 0 && cb > 0) y.lo = -1.0;
@@ -1615,7 +1609,7 @@ static iv_t iv__sin_narrow(double a, double b)
    a = 0, where the extremum is the end value itself. */
 static iv_t iv__cos_narrow(double a, double b)
 {
-    iv_t y = iv_hull(iv__cos_point(a), iv__cos_point(b));
+    iv_t y = iv_hull(iv__trig_point(a, iv__cos_any(a), 1.0), iv__trig_point(b, iv__cos_any(b), 1.0));
     double sa = iv__sin_any(a), sb = iv__sin_any(b);
     if (sa > 0 && sb < 0) y.lo = -1.0;
     if (sa < 0 && sb > 0) y.hi = 1.0;
