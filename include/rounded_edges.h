@@ -5700,33 +5700,36 @@ static re_hit_kind_t re__query_exit(const re_scene_t *scene, const double o3[3],
    points, but |dir|^2 and the capsule and plane products neither overflow
    nor underflow (at |dir| = 1e+-200 a third of the rounded hits came back
    unchanged or with the point left on the sharp face). Other directions
-   are queried as given, bit for bit. Returns e, ds the direction used. */
+   are queried as given, bit for bit: re__dir_plain says which, in three
+   compares (every query asks it). re__dir_scale returns e (0: query dir
+   itself, ds not written). */
 #define RE__DIR_UNIT_RANGE 65536.0
-static int re__dir_scale(const double dir[3], double ds[3])
+static int re__dir_plain(const double dir[3])
 {
     double m;
-    int e = 0, k;
-    if (dir) {
-        m = re__max(fabs(dir[0]), re__max(fabs(dir[1]), fabs(dir[2])));
-        if (m > 0 && m < HUGE_VAL && !(m >= 1 / RE__DIR_UNIT_RANGE && m <= RE__DIR_UNIT_RANGE)) (void)frexp(m, &e), e = 1 - e;
-        for (k = 0; k < 3; k++) ds[k] = ldexp(dir[k], e);
-    }
+    if (!dir) return 1;
+    m = re__max(fabs(dir[0]), re__max(fabs(dir[1]), fabs(dir[2])));
+    return (m >= 1 / RE__DIR_UNIT_RANGE && m <= RE__DIR_UNIT_RANGE) || !(m > 0 && m < HUGE_VAL);
+}
+static int re__dir_scale(const double dir[3], double ds[3])
+{
+    int e, k;
+    if (re__dir_plain(dir)) return 0;
+    (void)frexp(re__max(fabs(dir[0]), re__max(fabs(dir[1]), fabs(dir[2]))), &e);
+    e = 1 - e;
+    for (k = 0; k < 3; k++) ds[k] = ldexp(dir[k], e);
     return e;
 }
 
-/* The four queries, each through re__dir_scale (from_inside: the exit
-   queries, the reversed ray). */
-static re_hit_kind_t re__query_any_length(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
-                                          unsigned triangle, double t_host, int from_inside, int with_uv, double u, double v,
-                                          re_hit_t *out)
+/* A query whose direction needs rescaling (re__dir_plain is 0), in the
+   scaled units and back (from_inside: the exit queries, the reversed ray). */
+static re_hit_kind_t re__query_scaled(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
+                                      unsigned triangle, double t_host, int from_inside, int with_uv, double u, double v,
+                                      re_hit_t *out)
 {
     double ds[3];
-    int e;
+    int e = re__dir_scale(dir, ds);
     re_hit_kind_t kind;
-    if (!out) return RE_UNCHANGED;
-    e = re__dir_scale(dir, ds);
-    if (e == 0) return from_inside ? re__query_exit(scene, o3, dir, object, triangle, t_host, with_uv, u, v, out)
-                                   : re__query(scene, o3, dir, object, triangle, t_host, with_uv, u, v, out);
     t_host = ldexp(t_host, -e);
     kind = from_inside ? re__query_exit(scene, o3, ds, object, triangle, t_host, with_uv, u, v, out)
                        : re__query(scene, o3, ds, object, triangle, t_host, with_uv, u, v, out);
@@ -5737,25 +5740,33 @@ static re_hit_kind_t re__query_any_length(const re_scene_t *scene, const double 
 RE_DEF re_hit_kind_t re_query(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
                               unsigned triangle, double t_host, re_hit_t *out)
 {
-    return re__query_any_length(scene, o3, dir, object, triangle, t_host, 0, 0, 0, 0, out);
+    if (!out) return RE_UNCHANGED;
+    if (re__dir_plain(dir)) return re__query(scene, o3, dir, object, triangle, t_host, 0, 0, 0, out);
+    return re__query_scaled(scene, o3, dir, object, triangle, t_host, 0, 0, 0, 0, out);
 }
 
 RE_DEF re_hit_kind_t re_query_uv(const re_scene_t *scene, const double o3[3], const double dir[3], unsigned object,
                                  unsigned triangle, double t_host, double u, double v, re_hit_t *out)
 {
-    return re__query_any_length(scene, o3, dir, object, triangle, t_host, 0, 1, u, v, out);
+    if (!out) return RE_UNCHANGED;
+    if (re__dir_plain(dir)) return re__query(scene, o3, dir, object, triangle, t_host, 1, u, v, out);
+    return re__query_scaled(scene, o3, dir, object, triangle, t_host, 0, 1, u, v, out);
 }
 
 RE_DEF re_hit_kind_t re_query_exit(const re_scene_t *scene, const double o[3], const double dir[3], unsigned object,
                                    unsigned triangle, double t_host, re_hit_t *out)
 {
-    return re__query_any_length(scene, o, dir, object, triangle, t_host, 1, 0, 0, 0, out);
+    if (!out) return RE_UNCHANGED;
+    if (re__dir_plain(dir)) return re__query_exit(scene, o, dir, object, triangle, t_host, 0, 0, 0, out);
+    return re__query_scaled(scene, o, dir, object, triangle, t_host, 1, 0, 0, 0, out);
 }
 
 RE_DEF re_hit_kind_t re_query_exit_uv(const re_scene_t *scene, const double o[3], const double dir[3], unsigned object,
                                       unsigned triangle, double t_host, double u, double v, re_hit_t *out)
 {
-    return re__query_any_length(scene, o, dir, object, triangle, t_host, 1, 1, u, v, out);
+    if (!out) return RE_UNCHANGED;
+    if (re__dir_plain(dir)) return re__query_exit(scene, o, dir, object, triangle, t_host, 1, u, v, out);
+    return re__query_scaled(scene, o, dir, object, triangle, t_host, 1, 1, u, v, out);
 }
 
 /* Is I + s dir, on plane `plane` of a corner of S and inside all of S's
