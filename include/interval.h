@@ -1770,12 +1770,16 @@ static void iv__pown_bounds(double x, int n, double *lo, double *hi)
     up = exact && l == 0 ? s : -l > err ? s : iv__up(s);
     if (re > 2200) re = 2200;
     if (re < -2200) re = -2200;
-    dn = ldexp(dn, (int)re);
-    up = ldexp(up, (int)re);
-    /* scaling is exact unless it overflowed or went subnormal */
-    if (!(fabs(dn) >= 2.2250738585072014e-308) || dn == HUGE_VAL) dn = iv__down(dn);
-    if (!(fabs(up) >= 2.2250738585072014e-308) && up != 0) up = iv__up(up);
-    if (up == 0) up = iv__up(up);
+    /* scaling is exact unless it overflowed or went subnormal, and then it
+       rounded to nearest, even up to DBL_MIN itself (a tie just below it).
+       Scaling back is exact, so it shows which way each end moved. */
+    {
+        double ds = ldexp(dn, (int)re), us = ldexp(up, (int)re);
+        if (ds == HUGE_VAL || ldexp(ds, -(int)re) > dn) ds = iv__down(ds);
+        if (us != HUGE_VAL && ldexp(us, -(int)re) < up) us = iv__up(us);
+        dn = ds;
+        up = us;
+    }
     *lo = iv__max(dn, 0.0);
     *hi = up;
 }
@@ -2161,8 +2165,8 @@ IV_DEF iv_affine_t iv_affine_max(iv_affine_t x, iv_affine_t y)
     return iv_affine_mul_d(iv_affine_add(iv_affine_add(x, y), iv_affine_abs(iv_affine_sub(x, y))), 0.5);
 }
 
-/* x^y = exp(y log x) over x > 0 (x = 0 is reached through log's interval
-   fallback, which makes the result unbounded but still sound). */
+/* x^y = exp(y log x) over x > 0; a range reaching 0 or below takes the
+   interval iv_pow (its domain rule, x^y at x = 0 included). */
 IV_DEF iv_affine_t iv_affine_pow(iv_affine_t x, iv_affine_t y)
 {
     iv_t rx = iv_from_affine(x);

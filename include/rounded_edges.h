@@ -5704,7 +5704,7 @@ static re_hit_kind_t re__query_exit(const re_scene_t *scene, const double o3[3],
    compares (every query asks it). re__dir_scale returns e (0: query dir
    itself, ds not written). */
 #define RE__DIR_UNIT_RANGE 65536.0
-static int re__dir_plain(const double dir[3])
+static inline int re__dir_plain(const double dir[3])
 {
     double m;
     if (!dir) return 1;

@@ -226,6 +226,46 @@ static void pow_n_tightness(void)
     fprintf(stderr, "    pow_n: worst endpoint %lld ulp outside the correctly rounded one\n", worst);
 }
 
+/* x^n just below DBL_MIN: the scaled double-double can be a tie halfway
+   between the largest subnormal and DBL_MIN, which ldexp rounds up to
+   DBL_MIN, a normal number; the lower end was taken as exact there and
+   lay above the true value (found by review, 2026-12-06: the first three
+   fixed points, and the negated first for odd n). The sweep puts x^n
+   around DBL_MIN and in the subnormals, for both signs and n = 2..64 and
+   negative n, and asserts containment and one ulp of tightness. */
+static void pow_n_results_near_dbl_min(void)
+{
+    static const struct { double x; int n; } fixed[] = {
+        {0x1.10a688680a753p-93, 11}, {0x1.d2cd4a3ec542dp-69, 15}, {0x1.0cc2994a84f3dp-18, 57}, {-0x1.10a688680a753p-93, 11}};
+    t_rng_t r = {2206};
+    long i, m = t_count(200000);
+    long long worst = 0;
+    for (i = 0; i < 4 + m; i++) {
+        int n = i < 4 ? fixed[i].n : (int)(t_rng_u64(&r) % 63) + 2;
+        double x;
+        q_t v;
+        iv_t z;
+        if (i < 4) {
+            x = fixed[i].x;
+        } else {
+            /* log2 of the target: DBL_MIN times 2^[-40, 2] */
+            double l2 = -1022 + t_rng_range(&r, -40, 2);
+            if (t_rng_u64(&r) % 4 == 0) n = -n; /* then x > 1 */
+            x = exp2(l2 / n) * (n % 2 && t_rng_u64(&r) % 2 ? -1 : 1);
+        }
+        v = powq((q_t)x, (q_t)n);
+        z = iv_pow_n(iv_point(x), n);
+        if (!T_CHECK(ig_in(z, v))) {
+            fprintf(stderr, "    iv_pow_n(%a, %d) = [%a, %a]\n", x, n, z.lo, z.hi);
+            break;
+        }
+        if (gap(z.lo, ig_rd(v)) > worst) worst = gap(z.lo, ig_rd(v));
+        if (gap(ig_ru(v), z.hi) > worst) worst = gap(ig_ru(v), z.hi);
+    }
+    T_LE(worst, 1);
+    fprintf(stderr, "    pow_n near DBL_MIN: worst endpoint %lld ulp outside the correctly rounded one\n", worst);
+}
+
 /* x^n near x = 1 at the largest |n|: the double-double error compounds
    through the squarings (about |n| 2^-100), far beyond a per-operation
    charge. The two fixed points fell outside their enclosures when the
@@ -511,6 +551,7 @@ int main(int argc, char **argv)
         T_CASE(pow_n_negative_intervals),
         T_CASE(pow_n_tightness),
         T_CASE(pow_n_largest_exponents),
+        T_CASE(pow_n_results_near_dbl_min),
         T_CASE(libm_functions_ulp_bound),
         T_CASE(hypot_huge_and_tiny),
         T_CASE(pow_domain),
