@@ -779,9 +779,16 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    the host's t is accepted, so the rounded hit is still computed exactly
    in double from the ray itself. */
 #define RE__HOST_T_SLACK 1e-5
-/* Most mesh corners one query may visit when a grazing ray travels along the
-   removed volume (adjacency-graph walk, paper §3.1). */
+/* Most steps of the adjacency-graph walk one query takes when a grazing ray
+   travels along the removed volume (paper §3.1). */
 #define RE__MAX_WALK 64
+/* Most corners one query holds (its set, re__set_t): the corners on the
+   hit's face plane whose detection cylinders contain the hit, and those
+   the walk adds. A finely tessellated round rim under a large radius puts
+   hundreds of them within reach of one point (a 512-gon prism at r = 0.4
+   of its radius: 188 detected, 66 of them needed); 64 dropped some
+   (found by review, 2026-12-06). 4 KiB of stack; nothing is cleared. */
+#define RE__SET_CAP 1024
 
 #define RE__NONE 0xFFFFFFFFu
 
@@ -5204,7 +5211,7 @@ static int re__corner_has_plane(const re__object_t *o, const re__kv_t *K, unsign
 /* The corners a query works on, with a 64-bit filter of their ids, so "is
    w in the set?" mostly needs no search. */
 typedef struct re__set_t {
-    unsigned c[RE__MAX_WALK], n;
+    unsigned c[RE__SET_CAP], n;
     unsigned long long bloom;
 } re__set_t;
 
@@ -5221,7 +5228,7 @@ static unsigned re__set_find(const re__set_t *S, unsigned w)
 
 static int re__set_add(re__set_t *S, unsigned c)
 {
-    if (re__set_find(S, c) < S->n || S->n == RE__MAX_WALK) return 0;
+    if (re__set_find(S, c) < S->n || S->n == RE__SET_CAP) return 0;
     S->c[S->n++] = c;
     S->bloom |= re__bloom_bit(c);
     return 1;
@@ -5466,7 +5473,7 @@ static int re__walk_grow(const re__object_t *o, re__set_t *S, re__best_t *b, con
     re__madd(I, s < HUGE_VAL ? s : 0.0, dir, P);
     re__sub(P, I, IP);
     inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
-    for (i = 0; i < S->n && S->n < RE__MAX_WALK; i++) {
+    for (i = 0; i < S->n && S->n < RE__SET_CAP; i++) {
         re__kv_t K = re__kview(o, S->c[i]);
         for (j = 0; j < K.np; j++) {
             unsigned w = re__s_corner(o, re__far_sphere(o, o->refs[K.first + j]));
