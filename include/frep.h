@@ -5013,16 +5013,56 @@ static FR__HOT_INLINE int fr__tpoly_degree(const fr_instr_t *in, int da, int db,
     }
 }
 
+/* The magnitude of a constant op's result (the magnitude run,
+   fr__tpoly_step), from the plain operand (pa), the plain result (fc) and
+   the operands' magnitudes ma, mb. Sums and
+   products carry their operands' errors through absolute values; these
+   ops amplify them: the plain operand is within rho ma of the exact one,
+   and a result that moves by up to L rho ma (L bounding |f'| near a) is
+   covered by fc + 2 L ma. Where the operand came from a cancellation (ma
+   much larger than |a|) or f is ill-conditioned there (sin of a large
+   argument, log near 1, a power or division near 0), |fc| alone was no
+   bound: 1e16 sin(13 y) on a ray with d_y = 0, 13 y rounded 2e-16 off
+   2 pi, flipped the sign of the whole polynomial and INTERVAL proved a
+   miss (found by review, 2026-12-06). The bounds assume rho ma <= |a| / 10
+   (and <= 0.6 for exp): the centred form is used only where rho <=
+   2.002e-3 (fr__interval_poly_form: 160 n u < 1e-3), so ma < 50 |a| (ma
+   < 300) suffices; beyond it the magnitude is inf and the centred form
+   gives up on the ray. */
+#define FR__MAG_COND 50.0
+static double fr__amplified_mag(const fr_instr_t *in, double pa, double fc, double ma, double mb)
+{
+    double ra = fabs(pa), f = fabs(fc);
+    switch ((fr_op_t)in->op) {
+    case FR_OP_ABS: case FR_OP_SIN: case FR_OP_COS: case FR_OP_ATAN: return f + 2.0 * ma; /* |f'| <= 1 */
+    case FR_OP_MIN: case FR_OP_MAX: return f + 2.0 * (ma + mb);
+    case FR_OP_EXP: return ma < 300.0 ? f + 4.0 * f * ma : HUGE_VAL; /* f' = f, within e^0.6 f */
+    default: break;
+    }
+    if (ma == 0) return f; /* an exact operand */
+    if (!(ma < FR__MAG_COND * ra)) return HUGE_VAL;
+    switch ((fr_op_t)in->op) {
+    case FR_OP_LOG: return f + 4.0 * ma / ra;        /* 1/a, within 1.2/|a| */
+    case FR_OP_SQRT: return f + 2.0 * ma / sqrt(ra); /* 1/(2 sqrt a), within 0.53/sqrt|a| */
+    case FR_OP_POWC: /* k a^(k-1), within 1.2 |k| f/|a| when (|k| + 1) rho ma <= |a| / 10 */
+        return (fabs(in->k) + 1.0) * ma < FR__MAG_COND * ra ? f + 4.0 * fabs(in->k) * f * ma / ra : HUGE_VAL;
+    default: return HUGE_VAL;
+    }
+}
+
 /* One slot of a Taylor run: c from its operands A (degree da) and B (db),
    whose result's degree fr__tpoly_degree gives. With plain != NULL (the slot's
-   plain coefficients) it is the magnitude run instead: every input and
-   constant by its absolute value and every subtraction an addition, so each
-   coefficient is the sum of the absolute values of the terms whose rounded
-   sum the plain run computed; it scales the plain coefficients' rounding
-   error (fr__poly_range). An invalid operand of a constant op (a division
-   by 0, a non-finite argument) gives NaN, which every later op keeps. */
+   plain coefficients; pa, pb the plain operands) it is the magnitude run
+   instead: every input and constant by its absolute value and every
+   subtraction an addition, so each coefficient is the sum of the absolute
+   values of the terms whose rounded sum the plain run computed; divisions
+   and constant ops add what they amplify (fr__amplified_mag). It scales
+   the plain coefficients' rounding error (fr__poly_range). An invalid
+   operand of a constant op (a division by 0, a non-finite argument) gives
+   NaN, which every later op keeps. */
 static FR__HOT_INLINE void fr__tpoly_step(const fr_instr_t *in, const double *A, int da, const double *B, int db,
-                                  const double o[3], const double d[3], double *c, const double *plain)
+                                  const double o[3], const double d[3], double *c, const double *plain,
+                                  const double *pa, const double *pb)
 {
     int k, mag = plain != NULL;
     switch ((fr_op_t)in->op) {
@@ -5046,11 +5086,17 @@ static FR__HOT_INLINE void fr__tpoly_step(const fr_instr_t *in, const double *A,
     case FR_OP_POWI: fr__tpoly_powi(A, da, (int)in->k, c); break;
     case FR_OP_DIV: {
         double q = B[0] != 0 ? B[0] : NAN;
-        for (k = 0; k <= da; k++) c[k] = A[k] / q;
+        if (mag) { /* A / q_exact: the numerator's share over |q| / 1.1, |c| |dq| / |q| (1.12) the divisor's */
+            double aq = fabs(pb[0]), mq = B[0];
+            int bounded = mq == 0 || mq < FR__MAG_COND * aq;
+            for (k = 0; k <= da; k++) c[k] = bounded ? (1.25 * A[k] + 2.0 * fabs(plain[k]) * mq) / aq : HUGE_VAL;
+        } else {
+            for (k = 0; k <= da; k++) c[k] = A[k] / q;
+        }
         break;
     }
     default: /* an op on constants */
-        if (mag) c[0] = fabs(plain[0]);
+        if (mag) c[0] = fr__amplified_mag(in, pa[0], plain[0], A[0], db >= 0 ? B[0] : 0.0);
         else if (!(A[0] - A[0] == 0) || ((in->op == FR_OP_MIN || in->op == FR_OP_MAX) && !(B[0] - B[0] == 0)) ||
                  !fr__tpoly_const_op(in, A[0], B[0], c))
             c[0] = NAN;
@@ -5098,7 +5144,9 @@ static void fr__taylor_run(const fr_tape_t *t, const double o[3], const double d
         int vd = in->op >= FR_OP_VAR_X && in->op <= FR_OP_VAR_Z ? d[in->op - FR_OP_VAR_X] != 0 : 1;
         dc = fr__tpoly_degree(in, da, db, vd);
         if (dc >= 0) {
-            fr__tpoly_step(in, A, da, B, db, o, d, c, signed_P ? signed_P + (size_t)i * FR__TAYLOR_N : NULL);
+            fr__tpoly_step(in, A, da, B, db, o, d, c, signed_P ? signed_P + (size_t)i * FR__TAYLOR_N : NULL,
+                           signed_P ? signed_P + (size_t)in->a * FR__TAYLOR_N : NULL,
+                           signed_P ? signed_P + (size_t)in->b * FR__TAYLOR_N : NULL);
             if (in->op == FR_OP_ADD || in->op == FR_OP_SUB) dc = fr__tpoly_trim(c, dc);
         }
         deg[i] = dc;
@@ -5302,8 +5350,8 @@ static FR__HOT_INLINE void fr__prog_pass(const fr_tape_t *t, const fr__tp_t *pro
         }
         default: {
             const fr_instr_t *in = &t->code[pi->slot];
-            fr__tpoly_step(in, A, da, B, db, o, d, c, NULL);
-            if (mag) fr__tpoly_step(in, MA, da, MB, db, o, d, mc, c);
+            fr__tpoly_step(in, A, da, B, db, o, d, c, NULL, NULL, NULL);
+            if (mag) fr__tpoly_step(in, MA, da, MB, db, o, d, mc, c, A, B);
             break;
         }
         }

@@ -665,6 +665,45 @@ static void analytic_csg_root_at_t1(void)
     model_free(&m);
 }
 
+/* The interval method's centred form over a constant op whose argument
+   was rounded: 1e16 sin(13 y) - x^2 on a ray with d_y = 0, where 13 Y is
+   2 pi + 2e-16 exactly but 2 pi rounded in double, so the plain
+   polynomial is negative everywhere while the surface is crossed at t =
+   3.59 and 6.41. The magnitude run took |sin(13 Y)| = 2.4e-16 as the
+   coefficient's error scale, and INTERVAL proved a miss, plain and
+   prepared (found by review, 2026-12-06). The method must not miss nor
+   answer past the first root (a touch before it, from the wide interval
+   enclosures, is allowed). */
+static void centred_form_over_a_rounded_constant_op(void)
+{
+    static const double box[6] = {-10, -1, -1, 10, 1, 1};
+    const double Y = 0x1.eeebf2ca2ada8p-2;
+    double o[3] = {-5, 0, 0}, d[3] = {1, 0, 0}, first;
+    model_t m;
+    fr_builder_t b;
+    fr_prepared_t pr;
+    fr_p3_t p;
+    fr_node_t s;
+    int pp;
+    o[1] = Y;
+    first = (double)(5 - sqrtq((__float128)1e16 * sinq(13 * (__float128)Y)));
+    fr_builder_init(&b, NULL);
+    p = fr_coords(&b);
+    s = fr_unary(&b, FR_OP_SIN, fr_mul(&b, fr_const(&b, 13.0), p.y));
+    model_finish(&m, &b, fr_sub(&b, fr_mul(&b, fr_const(&b, 1e16), s), fr_mul(&b, p.x, p.x)));
+    T_INT_EQ(fr_prepare(&m.tape, box, &pr), FR_OK);
+    for (pp = 0; pp < 2; pp++) {
+        fr_trace_desc_t D = method(FR_METHOD_INTERVAL, 0);
+        fr_hit_t h;
+        if (pp) D.prepared = &pr;
+        h = trace(&m, o, d, 0, 10, D);
+        if (!T_INT_EQ(h.hit, 1)) continue;
+        T_LE(h.t - h.t_err, first);
+    }
+    fr_prepared_free(&pr);
+    model_free(&m);
+}
+
 /* Directions 1e-170 and 1e-300 long at the unit ball: |d|^2 underflows to
    exactly 0, so the ray polynomial lost its t^2 term unseen (degree 1:
    ANALYTIC answered x = 2.6, INTERVAL x = 1.67, both outside the ball);
@@ -968,6 +1007,7 @@ int main(int argc, char **argv)
         T_CASE(sphere_tracing_over_relaxation),
         T_CASE(sphere_tracing_relaxed_step_into_the_solid),
         T_CASE(analytic_csg_root_at_t1),
+        T_CASE(centred_form_over_a_rounded_constant_op),
         T_CASE(extreme_direction_lengths_every_method),
         T_CASE(infinite_segment_with_bounds),
         T_CASE(auto_method_choices_and_stats),
