@@ -91,6 +91,7 @@
 #define iv__down_sum F_iv__down_sum
 #define iv__fast_clamp F_iv__fast_clamp
 #define iv__floor_normal F_iv__floor_normal
+#define iv__hypot_below_one F_iv__hypot_below_one
 #define iv__hypot_point F_iv__hypot_point
 #define iv__libm_down F_iv__libm_down
 #define iv__libm_up F_iv__libm_up
@@ -307,6 +308,7 @@
 #undef iv__down_sum
 #undef iv__fast_clamp
 #undef iv__floor_normal
+#undef iv__hypot_below_one
 #undef iv__hypot_point
 #undef iv__libm_down
 #undef iv__libm_up

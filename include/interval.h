@@ -1838,14 +1838,26 @@ static double iv__scale_up(double v, int k)
     return ((r != 0 && fabs(r) < 2.2250738585072014e-308) || (r == 0 && v != 0)) ? iv__up(r) : r;
 }
 
+/* Is sqrt(a^2 + b^2) surely at most 1 - 2^-53 (DBL_MAX 2^-1024), for
+   a, b in [0, 1]? a^2 + b^2 - (1 - 2^-53)^2 from exact squares (fma) and
+   an exact sum (TwoSum; s - 1 is exact for s in [0.5, 2]), its six small
+   terms added with an error below 2^-100: their sum must lie below
+   -2^-99. */
+static int iv__hypot_below_one(double a, double b)
+{
+    double p1 = a * a, e1 = fma(a, a, -p1), p2 = b * b, e2 = fma(b, b, -p2);
+    double s = p1 + p2, v = s - p1, ts = (p1 - (s - v)) + (p2 - v);
+    return s >= 0.5 && (s - 1.0) + ts + e1 + e2 + 0x1p-52 - 0x1p-106 < -0x1p-99;
+}
+
 /* Enclosure of hypot(a, b) for a, b >= 0. */
 static iv_t iv__hypot_point(double a, double b)
 {
-    double m = iv__max(a, b), as, bs;
+    double m = iv__max(a, b), as, bs, hi;
     iv_t ai, bi, s;
     int k;
     if (m == HUGE_VAL) return iv__raw(HUGE_VAL, HUGE_VAL);
-    if (m == 0) return iv__raw(0.0, 0.0);
+    if (a == 0 || b == 0) return iv__raw(m, m); /* exact, 0 included */
     (void)frexp(m, &k);
     as = ldexp(a, -k);
     bs = ldexp(b, -k);
@@ -1856,7 +1868,11 @@ static iv_t iv__hypot_point(double a, double b)
     if (as == 0 && a == 0) ai = iv__raw(0.0, 0.0);
     if (bs == 0 && b == 0) bi = iv__raw(0.0, 0.0);
     s = iv_sqrt(iv_add(iv_sqr(ai), iv_sqr(bi)));
-    return iv__raw(iv__max(0.0, iv__scale_down(s.lo, k)), iv__scale_up(s.hi, k));
+    /* the three stepped operations can take s.hi to 1 when the value lies
+       within a few ulps below DBL_MAX: scaled, that would be inf */
+    hi = iv__scale_up(s.hi, k);
+    if (hi == HUGE_VAL && iv__hypot_below_one(ai.hi, bi.hi)) hi = 1.7976931348623157e308;
+    return iv__raw(iv__max(0.0, iv__scale_down(s.lo, k)), hi);
 }
 
 IV_DEF iv_t iv_hypot(iv_t x, iv_t y)

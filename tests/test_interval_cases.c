@@ -363,6 +363,39 @@ static void libm_functions_ulp_bound(void)
     }
 }
 
+/* hypot whose value lies just below DBL_MAX fits, so its upper end must
+   be finite: the three stepped operations took it past DBL_MAX, to inf,
+   even for hypot(DBL_MAX, 0) (found by review, 2026-12-06). Exact with a
+   zero argument; elsewhere containment, and a finite upper end for values
+   up to 2^-90 relative below DBL_MAX (inf above DBL_MAX). */
+static void hypot_just_below_dbl_max(void)
+{
+    const double dmax = 1.7976931348623157e308, a45 = 0x1.6a09e667f3bcbp+1023;
+    q_t qmax = (q_t)dmax, v = sqrtq((q_t)a45 * a45 * 2);
+    t_rng_t r = {1023};
+    long i, n = t_count(100000), finite = 0;
+    iv_t z = iv_hypot(iv_point(dmax), iv_point(0.0));
+    T_EQ(z.lo, dmax); T_EQ(z.hi, dmax);
+    z = iv_hypot(iv_point(0.0), iv_point(-0x1.ffffffffffffep+1023));
+    T_EQ(z.lo, 0x1.ffffffffffffep+1023); T_EQ(z.hi, 0x1.ffffffffffffep+1023);
+    z = iv_hypot(iv_point(a45), iv_point(a45));
+    check_tight(z, v, v, 4);
+    for (i = 0; i < n; i++) {
+        /* a in [DBL_MAX / 2, DBL_MAX), b from the target value DBL_MAX (1 + eps), |eps| in 2^[-52, -30] */
+        double a = ldexp(t_rng_range(&r, 0.5, 1.0), 1024) * (1 - 0x1p-53), eps = ldexp(1.0, -(int)(t_rng_u64(&r) % 23) - 30);
+        q_t target = qmax * (1 + (t_rng_u64(&r) % 2 ? -(q_t)eps : (q_t)eps)), b2 = target * target - (q_t)a * a;
+        double b = b2 > 0 ? (double)sqrtq(b2) : 0;
+        v = sqrtq((q_t)a * a + (q_t)b * b);
+        z = iv_hypot(iv_point(a), iv_point(b));
+        if (!T_CHECK(ig_in(z, v))) { fprintf(stderr, "    hypot(%a, %a) = [%a, %a]\n", a, b, z.lo, z.hi); break; }
+        if (v <= qmax * (1 - (q_t)0x1p-90)) {
+            if (!T_CHECK(z.hi < HUGE_VAL)) { fprintf(stderr, "    hypot(%a, %a) = [%a, %a]\n", a, b, z.lo, z.hi); break; }
+            finite++;
+        }
+    }
+    T_GT(finite, n / 3);
+}
+
 static void hypot_huge_and_tiny(void)
 {
     q_t big = sqrtq((q_t)1e300 * (q_t)1e300 * 2), tiny = sqrtq((q_t)1e-300 * (q_t)1e-300 * 2);
@@ -553,6 +586,7 @@ int main(int argc, char **argv)
         T_CASE(pow_n_results_near_dbl_min),
         T_CASE(libm_functions_ulp_bound),
         T_CASE(hypot_huge_and_tiny),
+        T_CASE(hypot_just_below_dbl_max),
         T_CASE(pow_domain),
         T_CASE(tan_poles),
 #ifndef IV_NO_AFFINE
