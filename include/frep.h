@@ -635,7 +635,10 @@ typedef struct fr_hit_t {
     double point[3];        /* o + t d */
     double normal[3];       /* unit outward normal (along -grad f); 0 if unknown */
     double t_err;           /* the root is within t +- t_err (tolerance reached;
-                               for ANALYTIC an error estimate from the polish;
+                               for ANALYTIC an error estimate from the polish,
+                               of the rounded polynomial's root: on grazing
+                               rays (small |g'|) the true root is farther,
+                               docs/frep.md "Ray methods";
                                for SPHERE's grazing stop that crosses nowhere,
                                desc.tol as a distance: see tol) */
     unsigned long long evals;      /* tape evaluations (any arithmetic) */
