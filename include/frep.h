@@ -692,7 +692,9 @@ FR_DEF fr_result_t fr_bound_box(const fr_tape_t *t, const double lo[3], const do
    FR_POLY_MAX_DEGREE + 1 doubles, *degree receives the degree (trailing
    zero coefficients trimmed). FR_ERR_NOT_POLYNOMIAL when an operation is not
    polynomial (sqrt, min, R-functions, noise, callbacks, division by a
-   non-constant) or the degree exceeds FR_POLY_MAX_DEGREE. Scratch:
+   non-constant) or the degree exceeds FR_POLY_MAX_DEGREE, and where a
+   coefficient overflowed or a product's top one underflowed (it would
+   have dropped the degree unseen: docs/frep.md "Scale"). Scratch:
    fr_ray_poly_scratch_size(t) bytes. */
 FR_DEF size_t fr_ray_poly_scratch_size(const fr_tape_t *t);
 FR_DEF fr_result_t fr_ray_poly(const fr_tape_t *t, const double o[3], const double d[3], void *scratch,
@@ -4911,6 +4913,19 @@ FR_DEF size_t fr_ray_poly_scratch_size(const fr_tape_t *t)
 
 /* ---------------------------------------------------------------- Taylor arithmetic */
 
+/* The top coefficient of a product or quotient of nonzero tops is
+   nonzero and normal unless it underflowed; then it is NaN, so the ray
+   takes the path an overflow takes (fr__checked_degree). An ellipsoid
+   1e162 across through its centre has the t^2 coefficient -1/a^2 =
+   -1e-324: it rounded to 0, the polynomial read as the constant 1, and
+   ANALYTIC, AUTO and INTERVAL's centred form reported no hit (found by
+   review, 2026-12-06). Lower coefficients are not checked: all of a
+   coefficient's terms underflow only where higher ones dominate it. */
+static FR__HOT_INLINE void fr__tpoly_top_underflow(double *c, int dc, int nonzero_tops)
+{
+    if (nonzero_tops && !(fabs(c[dc]) >= DBL_MIN)) c[dc] = NAN;
+}
+
 /* c = a * b truncated; returns the degree or -1 if it would exceed the cap.
    c may be a or b (or both): coefficient k is written after every read of
    a[i], b[j] with i, j <= k, from the top down, so no temporary is needed
@@ -4918,7 +4933,9 @@ FR_DEF size_t fr_ray_poly_scratch_size(const fr_tape_t *t)
 static int fr__tpoly_mul(const double *a, int da, const double *b, int db, double *c)
 {
     int i, k, dc = da + db;
+    double at, bt;
     if (dc > FR_POLY_MAX_DEGREE) return -1;
+    at = a[da], bt = b[db]; /* read before c, which may alias them, is written */
     if (da <= 2 && db <= 2) {
         /* Products of linear and quadratic factors (o + t d, quadrics, the
            squares inside x^4) are most of a quadric or quartic tape: the
@@ -4932,14 +4949,15 @@ static int fr__tpoly_mul(const double *a, int da, const double *b, int db, doubl
         if (dc >= 2) c[2] = (a0 * b2 + a1 * b1) + a2 * b0;
         if (dc >= 3) c[3] = a1 * b2 + a2 * b1;
         if (dc >= 4) c[4] = a2 * b2;
-        return dc;
+    } else {
+        for (k = dc; k >= 0; k--) {
+            int lo = k - db > 0 ? k - db : 0, hi = k < da ? k : da;
+            double sum = 0.0;
+            for (i = lo; i <= hi; i++) sum += a[i] * b[k - i];
+            c[k] = sum;
+        }
     }
-    for (k = dc; k >= 0; k--) {
-        int lo = k - db > 0 ? k - db : 0, hi = k < da ? k : da;
-        double sum = 0.0;
-        for (i = lo; i <= hi; i++) sum += a[i] * b[k - i];
-        c[k] = sum;
-    }
+    fr__tpoly_top_underflow(c, dc, at != 0 && bt != 0);
     return dc;
 }
 
@@ -5095,6 +5113,7 @@ static FR__HOT_INLINE void fr__tpoly_step(const fr_instr_t *in, const double *A,
             for (k = 0; k <= da; k++) c[k] = bounded ? (1.25 * A[k] + 2.0 * fabs(plain[k]) * mq) / aq : HUGE_VAL;
         } else {
             for (k = 0; k <= da; k++) c[k] = A[k] / q;
+            fr__tpoly_top_underflow(c, da, A[da] != 0);
         }
         break;
     }
@@ -5320,22 +5339,27 @@ static FR__HOT_INLINE void fr__prog_pass(const fr_tape_t *t, const fr__tp_t *pro
             break;
         case FR__K_MULK:
             for (k = 0; k <= da; k++) c[k] = A[k] * B[0];
+            fr__tpoly_top_underflow(c, da, A[da] != 0 && B[0] != 0);
             if (mag) for (k = 0; k <= da; k++) mc[k] = MA[k] * MB[0];
             break;
         case FR__K_KMUL:
             for (k = 0; k <= db; k++) c[k] = A[0] * B[k];
+            fr__tpoly_top_underflow(c, db, A[0] != 0 && B[db] != 0);
             if (mag) for (k = 0; k <= db; k++) mc[k] = MA[0] * MB[k];
             break;
         case FR__K_SQR1:
             c[0] = A[0] * A[0]; c[1] = 2.0 * (A[0] * A[1]); c[2] = A[1] * A[1];
+            fr__tpoly_top_underflow(c, 2, A[1] != 0);
             if (mag) { mc[0] = MA[0] * MA[0]; mc[1] = 2.0 * (MA[0] * MA[1]); mc[2] = MA[1] * MA[1]; }
             break;
         case FR__K_SQR2:
             fr__sqr2(A[0], A[1], A[2], c);
+            fr__tpoly_top_underflow(c, 4, A[2] != 0);
             if (mag) fr__sqr2(MA[0], MA[1], MA[2], mc);
             break;
         case FR__K_POW4:
             fr__sqr2(A[0] * A[0], 2.0 * (A[0] * A[1]), A[1] * A[1], c);
+            fr__tpoly_top_underflow(c, 4, A[1] != 0);
             if (mag) fr__sqr2(MA[0] * MA[0], 2.0 * (MA[0] * MA[1]), MA[1] * MA[1], mc);
             break;
         case FR__K_ADD: case FR__K_SUB: {

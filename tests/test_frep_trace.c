@@ -704,6 +704,50 @@ static void centred_form_over_a_rounded_constant_op(void)
     model_free(&m);
 }
 
+/* A Taylor term that underflows to exactly 0: an ellipsoid with half-axes
+   1e162 (f = 1 - |p|^2 / a^2, between -3 and 1 along the ray) has the t^2
+   coefficient -1/a^2, about -1e-324, which rounded to 0; the polynomial
+   read as the constant 1 and ANALYTIC, AUTO and INTERVAL answered no hit,
+   plain and prepared (found by review, 2026-12-06). Now the degree drop
+   is seen: ANALYTIC says FR_ERR_NOT_POLYNOMIAL, the others find the
+   entry. At 1e150 nothing underflows and every method answers as before. */
+static void taylor_term_underflow_is_not_a_miss(void)
+{
+    static const double c[3] = {0, 0, 0}, as[2] = {1e162, 1e150};
+    static const fr_method_t ms[3] = {FR_METHOD_AUTO, FR_METHOD_INTERVAL, FR_METHOD_ANALYTIC};
+    int i, k, pp;
+    for (i = 0; i < 2; i++) {
+        double a = as[i], o[3] = {0, 0, 0}, d[3] = {1, 0, 0}, box[6], want = a * sqrt(0.91);
+        model_t m;
+        fr_builder_t b;
+        fr_prepared_t pr;
+        o[1] = 0.3 * a;
+        for (k = 0; k < 3; k++) box[k] = -2 * a, box[k + 3] = 2 * a;
+        fr_builder_init(&b, NULL);
+        model_finish(&m, &b, fr_ellipsoid(&b, fr_coords(&b), c, a, a, a));
+        T_INT_EQ(fr_prepare(&m.tape, box, &pr), FR_OK);
+        for (k = 0; k < 3; k++)
+            for (pp = 0; pp < 2; pp++) {
+                fr_trace_desc_t D = method(ms[k], 0);
+                void *scratch;
+                fr_hit_t h;
+                fr_result_t r;
+                if (pp) D.prepared = &pr;
+                scratch = malloc(fr_trace_scratch_size(&m.tape, &D));
+                r = fr_trace(&m.tape, o, d, 0, 3 * a, &D, scratch, &h);
+                free(scratch);
+                if (ms[k] == FR_METHOD_ANALYTIC && i == 0 && r == FR_ERR_NOT_POLYNOMIAL) continue;
+                if (!T_INT_EQ(r, FR_OK) || !T_INT_EQ(h.hit, 1)) {
+                    fprintf(stderr, "    a %g method %d prepared %d: %s hit %d\n", a, (int)ms[k], pp, fr_result_string(r), h.hit);
+                    continue;
+                }
+                T_LE(fabs(h.t - want), h.t_err + 1e-9 * want);
+            }
+        fr_prepared_free(&pr);
+        model_free(&m);
+    }
+}
+
 /* Directions 1e-170 and 1e-300 long at the unit ball: |d|^2 underflows to
    exactly 0, so the ray polynomial lost its t^2 term unseen (degree 1:
    ANALYTIC answered x = 2.6, INTERVAL x = 1.67, both outside the ball);
@@ -1008,6 +1052,7 @@ int main(int argc, char **argv)
         T_CASE(sphere_tracing_relaxed_step_into_the_solid),
         T_CASE(analytic_csg_root_at_t1),
         T_CASE(centred_form_over_a_rounded_constant_op),
+        T_CASE(taylor_term_underflow_is_not_a_miss),
         T_CASE(extreme_direction_lengths_every_method),
         T_CASE(infinite_segment_with_bounds),
         T_CASE(auto_method_choices_and_stats),
