@@ -2055,6 +2055,65 @@ static void re__erode_merge_same(double *su, unsigned *stri, double *viol, unsig
     *ns = n;
 }
 
+/* Where each mesh-edge cylinder of corner c starts: the eroded vertex on
+   planes j and j+1 (on: the kept vertices on each plane) nearest to the
+   corner's vertex along the edge. 0 when an edge has none. */
+static int re__erode_edge_starts(re__an_t *an, unsigned c, const double *su, unsigned ns, const unsigned long long *on,
+                                 unsigned char *start)
+{
+    unsigned k = an->c_np[c], i, j, vc = an->c_vertex[c];
+    const unsigned *ed = an->c_edges + an->c_pfirst[c];
+    const double *v = an->pos + 3 * (size_t)vc;
+    for (j = 0; j < k; j++) {
+        const re__edge_t *e = &an->edges[ed[j]];
+        unsigned other = e->v[0] == vc ? e->v[1] : e->v[0], best = RE__NONE;
+        unsigned long long both = on[j] & on[(j + 1) % k];
+        double dir[3], bp = HUGE_VAL;
+        re__sub(an->pos + 3 * (size_t)other, v, dir);
+        for (i = 0; i < ns; i++)
+            if (both >> i & 1u) {
+                double pr = re__dot(su + 3 * i, dir);
+                if (pr < bp) bp = pr, best = i;
+            }
+        if (best == RE__NONE) return 0;
+        start[j] = (unsigned char)best;
+        an->edge_end[2 * ed[j] + (e->v[0] == vc ? 0u : 1u)] = (unsigned char)best;
+    }
+    return 1;
+}
+
+/* The extra cylinders of a corner of k planes pl: finite eroded edges
+   between non-neighbouring planes, the pair's two extreme vertices along
+   their line, into xs (4 entries each), *nx of them. 0 when more than cap. */
+static int re__erode_extra_edges(const re__an_t *an, const unsigned *pl, unsigned k, const double *su, unsigned ns,
+                                 const unsigned long long *on, unsigned cap, unsigned *xs, unsigned *nx)
+{
+    unsigned i, j;
+    *nx = 0;
+    for (i = 0; i < k; i++)
+        for (j = i + 2; j < k; j++) {
+            unsigned long long both = on[i] & on[j];
+            unsigned lo = RE__NONE, hi = RE__NONE, q;
+            double ax[3], plo = HUGE_VAL, phi = -HUGE_VAL, dd[3];
+            if (i == 0 && j == k - 1) continue; /* neighbours through the wrap */
+            if (!(both & (both - 1))) continue; /* fewer than two vertices on both planes: no edge (most pairs) */
+            re__cross(RE__N(i), RE__N(j), ax);
+            for (q = 0; q < ns; q++)
+                if (both >> q & 1u) {
+                    double pr = re__dot(su + 3 * q, ax);
+                    if (pr < plo) plo = pr, lo = q;
+                    if (pr > phi) phi = pr, hi = q;
+                }
+            if (lo == RE__NONE || lo == hi) continue;
+            re__sub(su + 3 * lo, su + 3 * hi, dd);
+            if (re__len(dd) <= RE__CORNER_EPS * re__max(1.0, re__len(su + 3 * lo))) continue;
+            if (*nx == cap) return 0;
+            xs[4 * *nx] = i, xs[4 * *nx + 1] = j, xs[4 * *nx + 2] = lo, xs[4 * *nx + 3] = hi;
+            (*nx)++;
+        }
+    return 1;
+}
+
 /* The eroded corner at unit radius (issue item 1, exact corners). With the
    k face planes n_i.(x - v) = 0 around v shifted inward by 1, the local
    eroded polytope E_v = {u : n_i.u <= -1} has finite vertices where three
@@ -2100,61 +2159,21 @@ static int re__erode_corner(re__an_t *an, unsigned c)
        start, more extra cylinders than the cap), once more after merging
        the vertices that are one point (re__erode_merge_same) */
     for (attempt = 0;; attempt++) {
-        int fits = 1;
         if (attempt) re__erode_merge_same(su, stri, viol, mask, &ns);
-        nx = 0;
-        /* the masks transposed, for the pair tests below: a plane pair's
+        /* the masks transposed, for the pair tests: a plane pair's
            vertices are then one AND */
         for (j = 0; j < k; j++) on[j] = 0;
         for (i = 0; i < ns; i++)
             for (j = 0; j < k; j++) on[j] |= (mask[i] >> j & 1u) << i;
-        /* where each mesh-edge cylinder starts: the eroded vertex on planes j and
-           j+1 nearest to v along the edge */
-        for (j = 0; j < k; j++) {
-            const re__edge_t *e = &an->edges[ed[j]];
-            unsigned other = e->v[0] == an->c_vertex[c] ? e->v[1] : e->v[0], best = RE__NONE;
-            unsigned long long both = on[j] & on[(j + 1) % k];
-            double dir[3], bp = HUGE_VAL;
-            re__sub(an->pos + 3 * (size_t)other, v, dir);
-            for (i = 0; i < ns; i++)
-                if (both >> i & 1u) {
-                    double pr = re__dot(su + 3 * i, dir);
-                    if (pr < bp) bp = pr, best = i;
-                }
-            if (best == RE__NONE) { fits = 0; break; }
-            start[j] = (unsigned char)best;
-            an->edge_end[2 * ed[j] + (e->v[0] == an->c_vertex[c] ? 0u : 1u)] = (unsigned char)best;
-        }
-        /* extra cylinders: finite eroded edges between non-neighbouring planes */
-        for (i = 0; i < k && fits; i++)
-            for (j = i + 2; j < k; j++) {
-                unsigned long long both = on[i] & on[j];
-                unsigned lo = RE__NONE, hi = RE__NONE, q;
-                double ax[3], plo = HUGE_VAL, phi = -HUGE_VAL, dd[3];
-                if (i == 0 && j == k - 1) continue; /* neighbours through the wrap */
-                if (!(both & (both - 1))) continue; /* fewer than two vertices on both planes: no edge (most pairs) */
-                re__cross(RE__N(i), RE__N(j), ax);
-                for (q = 0; q < ns; q++)
-                    if (both >> q & 1u) {
-                        double pr = re__dot(su + 3 * q, ax);
-                        if (pr < plo) plo = pr, lo = q;
-                        if (pr > phi) phi = pr, hi = q;
-                    }
-                if (lo == RE__NONE || lo == hi) continue;
-                re__sub(su + 3 * lo, su + 3 * hi, dd);
-                if (re__len(dd) <= RE__CORNER_EPS * re__max(1.0, re__len(su + 3 * lo))) continue;
-                if (nx == cap) { fits = 0; break; }
-                xs[4 * nx] = i, xs[4 * nx + 1] = j, xs[4 * nx + 2] = lo, xs[4 * nx + 3] = hi;
-                nx++;
-            }
-        if (fits) break;
+        if (re__erode_edge_starts(an, c, su, ns, on, start) && re__erode_extra_edges(an, pl, k, su, ns, on, cap, xs, &nx))
+            break;
         if (attempt) return 0;
     }
-#undef RE__N
     an->c_ns[c] = (unsigned char)ns;
     an->c_nx[c] = (unsigned char)nx;
     return 1;
 }
+#undef RE__N
 
 /* Why step 4 left a vertex sharp (re__an_t.vwhy). */
 enum { RE__WHY_NONE, RE__WHY_MIXED, RE__WHY_FANS, RE__WHY_COMPLEX, RE__WHY_NOT_SIMPLE, RE__WHY_ERODE };
