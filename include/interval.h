@@ -88,7 +88,8 @@
      instruction. Any NaN lane (empty input, 0 * inf, an overflowed end)
      sends the operation to the scalar code: a branch that is predicted,
      so not on the dependency chain (add, abs, fma: 8 cycles on Zen 4, the
-     latency bound is derived in docs/interval.md). The pair path gives the
+     latency bound is derived in docs/interval.md). On valid intervals
+     (what iv_make and the operations return) the pair path gives the
      scalar code's values exactly (tested); the sign of a zero end may
      differ ([0, 0] - [0, 0] is [0, +0] there and [0, -0] in the scalar
      code; no operation's value depends on it). IV_NO_SIMD selects the
@@ -111,7 +112,11 @@
      when an input is empty. Bad input (a NaN endpoint, lo > hi, lo = +inf or
      hi = -inf) is turned into the empty interval by iv_make, never into a
      silently wrong enclosure. Operations assume valid intervals: + - * /
-     sqrt sqr mul_d do not re-check a struct literal with lo > hi.
+     sqrt sqr mul_d do not re-check a struct literal with lo > hi or one
+     NaN end, and their answer to one is unspecified (it may differ
+     between the pair and the scalar path: iv_add of {2, 1} and {0, 1}
+     gives [2, 2]; iv_sqrt of {NaN, 4} gives [0, 2] on the pair path and
+     the empty set on the scalar one). Make intervals with iv_make.
 
    LICENSE
      MIT, see the end of this file.
