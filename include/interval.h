@@ -57,10 +57,12 @@
      multiple below 2^-1022 is a double; it is not stepped. The libm
      functions are trusted to IV_LIBM_ULPS ulps and stepped 2*IV_LIBM_ULPS
      doubles outward, which is enough whatever side the libm error falls on
-     (docs/interval.md). sin, cos and tan of |x| >= 2^20 are reduced by
-     this header (Payne-Hanek; glibc's own reduction is off by thousands
-     of ulps near multiples of pi/2 there), libm sees |r| <= pi/4 only,
-     and the values are stepped two doubles more.
+     (docs/interval.md); an end is then at most 4*IV_LIBM_ULPS doubles
+     beyond the correctly rounded one. sin, cos and tan of |x| >= 2^20 are
+     reduced by this header (Payne-Hanek; glibc's own reduction is off by
+     thousands of ulps near multiples of pi/2 there), libm sees |r| <= pi/4
+     only, and the values are stepped two doubles more (at most
+     4*(IV_LIBM_ULPS + 1) beyond).
 
    THE PAIR PATH AND ITS STEP
      On x86 with FMA (SSE4.1 and __FMA__, e.g. -march=haswell or

@@ -12,13 +12,17 @@
 
 typedef __float128 q_t;
 
-/* Guaranteed bound for the libm-based functions: libm's value y is at most
-   IV_LIBM_ULPS from f, so y is at most IV_LIBM_ULPS + 1 doubles beyond the
-   correctly rounded end, plus our 2*IV_LIBM_ULPS outward steps. */
-#define LIBM_BOUND (3 * IV_LIBM_ULPS + 1)
+/* Guaranteed bound for the libm-based functions: libm's value y is within
+   N = IV_LIBM_ULPS ulps of f (ulps of f's binade), so up to 2N doubles
+   below f where the spacing halves below a power of two; the header steps
+   it 2N doubles outward, so an end lies at most 4N doubles beyond the
+   correctly rounded one (at N = 1 the same 4 as the 3N + 1 this gave
+   until 2026-12-06, which was short for N >= 2: found by review). */
+#define LIBM_BOUND (4 * IV_LIBM_ULPS)
 /* sin, cos, tan at |x| >= 2^20, reduced by the header itself: one more
-   ulp of error (the reduced argument's correction, tan's division) */
-#define LIBM_REDUCED_BOUND (3 * (IV_LIBM_ULPS + 1) + 1)
+   ulp of error (the reduced argument's correction, tan's division) and
+   two more steps: 4 (N + 1) */
+#define LIBM_REDUCED_BOUND (4 * (IV_LIBM_ULPS + 1))
 
 /* A random finite double from one of the magnitude classes. */
 static double ig_value(t_rng_t *r)
