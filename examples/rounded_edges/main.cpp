@@ -11,7 +11,7 @@
    Modes: sharp, rounded, rounded-compact (RE_LAYOUT_COMPACT), bevel-blog-N, bevel-cycles-N, tess-N (N >= 1).
    Scenes: article (the bevel-shader post's cube and icosphere), glass (the
    same with a glass cube: rays refract through its rounded edges, in and
-   out), blocks (play blocks with knobs, ~258k triangles), cornell (a
+   out), blocks (play blocks with knobs, 250 142 triangles), cornell (a
    Cornell box). */
 #define RE_IMPLEMENTATION
 #define RX_SCENE_IMPLEMENTATION
