@@ -179,6 +179,7 @@
 #define iv_affine_const F_iv_affine_const
 #define iv_affine_cos F_iv_affine_cos
 #define iv_affine_div F_iv_affine_div
+#define iv_affine_div_d F_iv_affine_div_d
 #define iv_affine_exp F_iv_affine_exp
 #define iv_affine_from_iv F_iv_affine_from_iv
 #define iv_affine_hypot F_iv_affine_hypot
@@ -396,6 +397,7 @@
 #undef iv_affine_const
 #undef iv_affine_cos
 #undef iv_affine_div
+#undef iv_affine_div_d
 #undef iv_affine_exp
 #undef iv_affine_from_iv
 #undef iv_affine_hypot

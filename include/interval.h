@@ -869,11 +869,14 @@ typedef struct iv_affine_t {
                                  either is NaN or infinite
      iv_from_affine(x)           an interval holding every value of the form
      iv_affine_is_empty(x)
-     iv_affine_add, _sub, _neg, _add_d, _sub_d, _mul_d
+     iv_affine_add, _sub, _neg, _add_d, _sub_d, _mul_d (_div_d below)
      iv_affine_mul, iv_affine_sqr  products keep the mean of the squared
                                  shared symbol (t*t'/2 into the centre), the
                                  standard affine treatment of eps_t^2 */
 IV_DEF iv_affine_t iv_affine_div(iv_affine_t x, iv_affine_t y);
+/* x / d for a double d: iv_affine_div by the constant form (the domain
+   rules of iv_div_d: d = 0 or NaN gives the empty form). */
+IV_DEF iv_affine_t iv_affine_div_d(iv_affine_t x, double d);
 /* Non-affine operations. exp log sqrt recip atan pow_n (and div through
    recip), on a range where f is convex or concave: a linear approximation
    alpha x + g with g = f - alpha x enclosed rigorously (end values and a
@@ -2118,6 +2121,7 @@ IV_DEF iv_affine_t iv_affine_recip(iv_affine_t x) { return iv__aff_unary(x, IV__
 IV_DEF iv_affine_t iv_affine_atan(iv_affine_t x) { return iv__aff_unary(x, IV__F_ATAN, 0, IV__LIN_DEFAULT); }
 
 IV_DEF iv_affine_t iv_affine_div(iv_affine_t x, iv_affine_t y) { return iv_affine_mul(x, iv_affine_recip(y)); }
+IV_DEF iv_affine_t iv_affine_div_d(iv_affine_t x, double d) { return iv_affine_div(x, iv_affine_const(d)); }
 
 IV_DEF iv_affine_t iv_affine_pow_n(iv_affine_t x, int n)
 {

@@ -462,6 +462,35 @@ static void affine_bad_input(void)
     T_EQ(iv_from_affine(iv_affine_exp(iv_affine_add_d(t, 800))).hi, HUGE_VAL);
 }
 
+/* iv_affine_div_d (added 2026-12-06: the affine set lacked iv_div_d's
+   counterpart, found by the issue audit): the form's range holds t / d
+   for sampled t of the ray parameter, d of any sign and magnitude from
+   1e-300 to 1e300; d = 0 or NaN gives the empty form, as iv_div_d gives
+   the empty interval. */
+static void affine_div_d_by_doubles(void)
+{
+    t_rng_t r = {4242};
+    long i, n = t_count(20000);
+    T_CHECK(iv_affine_is_empty(iv_affine_div_d(iv_affine_ray_param(1, 2), 0.0)));
+    T_CHECK(iv_affine_is_empty(iv_affine_div_d(iv_affine_ray_param(1, 2), NAN)));
+    T_CHECK(iv_is_empty(iv_div_d(iv_make(1, 2), 0.0)));
+    for (i = 0; i < n; i++) {
+        double t0 = t_rng_range(&r, -10, 10), t1 = t0 + t_rng_range(&r, 0, 5);
+        double d = ldexp(t_rng_range(&r, 0.5, 1), (int)(t_rng_u64(&r) % 1990) - 995) * (t_rng_u64(&r) % 2 ? 1 : -1);
+        iv_affine_t x = iv_affine_ray_param(t0, t1);
+        iv_t z = iv_from_affine(iv_affine_div_d(x, d));
+        int k;
+        for (k = 0; k <= 4; k++) {
+            double t = k == 4 ? t_rng_range(&r, t0, t1) : t0 + (t1 - t0) * k / 3.0;
+            q_t v = (q_t)(t < t1 ? t : t1) / (q_t)d;
+            if (!T_CHECK(ig_in(z, v))) {
+                fprintf(stderr, "    [%a, %a] / %a at %a: [%a, %a]\n", t0, t1, d, t, z.lo, z.hi);
+                return;
+            }
+        }
+    }
+}
+
 /* Dependency: x - x and x*x - x^2 on the ray parameter collapse to
    rounding-error size with affine forms, not with intervals. */
 static void affine_cancels_dependency(void)
@@ -591,6 +620,7 @@ int main(int argc, char **argv)
         T_CASE(tan_poles),
 #ifndef IV_NO_AFFINE
         T_CASE(affine_bad_input),
+        T_CASE(affine_div_d_by_doubles),
         T_CASE(affine_cancels_dependency),
         T_CASE(affine_linearisations),
         T_CASE(affine_pow_n_at_int_min),
