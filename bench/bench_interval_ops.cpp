@@ -35,10 +35,12 @@
 #define IV_OK F_IV_OK
 #define IV_RESULT_COUNT_ F_IV_RESULT_COUNT_
 #define IV__F_ATAN F_IV__F_ATAN
+#define IV__F_COS F_IV__F_COS
 #define IV__F_EXP F_IV__F_EXP
 #define IV__F_LOG F_IV__F_LOG
 #define IV__F_POWN F_IV__F_POWN
 #define IV__F_RECIP F_IV__F_RECIP
+#define IV__F_SIN F_IV__F_SIN
 #define IV__F_SQRT F_IV__F_SQRT
 #define IV__LIN_AUTO F_IV__LIN_AUTO
 #define IV__LIN_CHEBYSHEV F_IV__LIN_CHEBYSHEV
@@ -72,6 +74,7 @@
 #define iv__aff_tangent_point F_iv__aff_tangent_point
 #define iv__aff_taylor F_iv__aff_taylor
 #define iv__aff_taylor_fn F_iv__aff_taylor_fn
+#define iv__aff_trig_tangent F_iv__aff_trig_tangent
 #define iv__aff_unary F_iv__aff_unary
 #define iv__any_nan F_iv__any_nan
 #define iv__bits64 F_iv__bits64
@@ -253,10 +256,12 @@
 #undef IV_OK
 #undef IV_RESULT_COUNT_
 #undef IV__F_ATAN
+#undef IV__F_COS
 #undef IV__F_EXP
 #undef IV__F_LOG
 #undef IV__F_POWN
 #undef IV__F_RECIP
+#undef IV__F_SIN
 #undef IV__F_SQRT
 #undef IV__LIN_AUTO
 #undef IV__LIN_CHEBYSHEV
@@ -290,6 +295,7 @@
 #undef iv__aff_tangent_point
 #undef iv__aff_taylor
 #undef iv__aff_taylor_fn
+#undef iv__aff_trig_tangent
 #undef iv__aff_unary
 #undef iv__any_nan
 #undef iv__bits64
