@@ -42,6 +42,7 @@
 #define IV__F_RECIP F_IV__F_RECIP
 #define IV__F_SIN F_IV__F_SIN
 #define IV__F_SQRT F_IV__F_SQRT
+#define IV__F_TAN F_IV__F_TAN
 #define IV__LIN_AUTO F_IV__LIN_AUTO
 #define IV__LIN_CHEBYSHEV F_IV__LIN_CHEBYSHEV
 #define IV__LIN_MINRANGE F_IV__LIN_MINRANGE
@@ -263,6 +264,7 @@
 #undef IV__F_RECIP
 #undef IV__F_SIN
 #undef IV__F_SQRT
+#undef IV__F_TAN
 #undef IV__LIN_AUTO
 #undef IV__LIN_CHEBYSHEV
 #undef IV__LIN_MINRANGE

@@ -883,8 +883,8 @@ IV_DEF iv_affine_t iv_affine_div_d(iv_affine_t x, double d);
    tangent bound); the slope is the one nearest the Chebyshev (minimax)
    slope, among Chebyshev, halfway and min-range (Stolfi & de Figueiredo),
    whose range stays within 1.1x f's image (see the implementation and
-   docs/interval.md); sin and cos too, on ranges where they have no
-   inflection (since 2026-12-06). Elsewhere (tan, sin and cos across an
+   docs/interval.md); sin, cos and tan too, on ranges where they have no
+   inflection (since 2026-12-06). Elsewhere (sin, cos and tan across an
    inflection, atan across 0, odd pow_n across 0, log and sqrt of ranges
    touching 0): a first-order Taylor form
    with an interval Lagrange remainder, f(c) + f'(c)(x - c) + [0, r^2]
@@ -1962,7 +1962,7 @@ static int iv__aff_domain(iv_affine_t x, double lo, double hi, iv_t *dom, double
    error term (the best linear approximation in the max norm). Min-range:
    alpha = f' at the end of dom where |f'| is smaller, u that end, which
    makes the result's range that of f itself. */
-enum { IV__F_EXP, IV__F_LOG, IV__F_SQRT, IV__F_RECIP, IV__F_POWN, IV__F_ATAN, IV__F_SIN, IV__F_COS };
+enum { IV__F_EXP, IV__F_LOG, IV__F_SQRT, IV__F_RECIP, IV__F_POWN, IV__F_ATAN, IV__F_SIN, IV__F_COS, IV__F_TAN };
 enum { IV__LIN_TAYLOR, IV__LIN_CHEBYSHEV, IV__LIN_MINRANGE, IV__LIN_AUTO };
 /* IV__LIN_AUTO (the default): the slope closest to Chebyshev's, among
    Chebyshev, halfway to min-range and min-range, whose result's range is
@@ -1995,6 +1995,7 @@ static iv_t iv__aff_fn(int f, int n, iv_t x, int deriv)
     case IV__F_POWN: return deriv ? iv_mul_d(iv__pown_less(x, n, 1), (double)n) : iv_pow_n(x, n);
     case IV__F_SIN: return deriv ? iv_cos(x) : iv_sin(x);
     case IV__F_COS: return deriv ? iv_neg(iv_sin(x)) : iv_cos(x);
+    case IV__F_TAN: return deriv ? iv_add_d(iv_sqr(iv_tan(x)), 1.0) : iv_tan(x);
     default: return deriv ? iv_recip(iv_add_d(iv_sqr(x), 1.0)) : iv_atan(x);
     }
 }
@@ -2009,26 +2010,31 @@ static int iv__aff_curvature(int f, int n, iv_t dom)
     case IV__F_RECIP: return side;
     /* f'' = n (n - 1) x^(n-2) with n (n - 1) > 0 for n other than 0, 1 */
     case IV__F_POWN: return n % 2 == 0 ? 1 : side;
-    case IV__F_SIN: case IV__F_COS: { /* f'' = -f: its sign over dom, proved by the enclosure */
+    case IV__F_SIN: case IV__F_COS: case IV__F_TAN: {
+        /* f'' = -f (sin, cos), 2 f (1 + f^2) (tan): the sign of f over dom,
+           proved by the enclosure (a range around a pole of tan: none) */
         iv_t v = iv__aff_fn(f, n, dom, 0);
-        return v.lo >= 0 ? -1 : v.hi <= 0 ? 1 : 0;
+        int sg = v.lo >= 0 ? 1 : v.hi <= 0 ? -1 : 0;
+        return f == IV__F_TAN ? sg : -sg;
     }
     default: return -side; /* atan'' = -2x / (1 + x^2)^2 */
     }
 }
 
-/* sin' = cos and cos' = -sin take alpha at +-a0 (+ pi) plus whole turns:
-   the solution nearest dom's middle, clamped into dom (any u in dom is
-   sound, iv__aff_linearise; a good one is tighter). */
+/* sin' = cos and cos' = -sin take alpha at +-a0 (+ pi) plus whole turns,
+   tan' = 1 + tan^2 at +-atan(sqrt(alpha - 1)) plus multiples of pi: the
+   solution nearest dom's middle, clamped into dom (any u in dom is sound,
+   iv__aff_linearise; a good one is tighter). */
 static double iv__aff_trig_tangent(int f, double alpha, iv_t dom)
 {
-    const double two_pi = 6.283185307179586, pi = 3.141592653589793;
-    double a = iv__min(iv__max(alpha, -1.0), 1.0), m = iv_mid(dom), best = m, bd = HUGE_VAL, cand[2];
+    const double pi = 3.141592653589793;
+    double a = iv__min(iv__max(alpha, -1.0), 1.0), m = iv_mid(dom), best = m, bd = HUGE_VAL, cand[2], period = 2 * pi;
     int i;
     if (f == IV__F_SIN) cand[0] = acos(a), cand[1] = -acos(a);
-    else cand[0] = asin(-a), cand[1] = pi - asin(-a);
+    else if (f == IV__F_COS) cand[0] = asin(-a), cand[1] = pi - asin(-a);
+    else cand[0] = atan(sqrt(iv__max(alpha - 1.0, 0.0))), cand[1] = -cand[0], period = pi;
     for (i = 0; i < 2; i++) {
-        double u = cand[i] + two_pi * floor((m - cand[i]) / two_pi + 0.5);
+        double u = cand[i] + period * floor((m - cand[i]) / period + 0.5);
         if (fabs(u - m) < bd) bd = fabs(u - m), best = u;
     }
     return iv__min(iv__max(best, dom.lo), dom.hi);
@@ -2044,7 +2050,7 @@ static double iv__aff_tangent_point(int f, int n, double alpha, iv_t dom)
     case IV__F_SQRT: u = 0.25 / (alpha * alpha); break;
     case IV__F_RECIP: u = side * sqrt(-1.0 / alpha); break;
     case IV__F_POWN: u = side * pow(fabs(alpha / (double)n), 1.0 / ((double)n - 1.0)); break;
-    case IV__F_SIN: case IV__F_COS: return iv__aff_trig_tangent(f, alpha, dom);
+    case IV__F_SIN: case IV__F_COS: case IV__F_TAN: return iv__aff_trig_tangent(f, alpha, dom);
     default: u = side * sqrt(1.0 / alpha - 1.0); break;
     }
     if (!(u == u)) u = iv_mid(dom);
@@ -2102,6 +2108,11 @@ static iv_affine_t iv__aff_taylor_fn(iv_affine_t x, iv_t dom, double c, int f, i
     /* n (n - 1) is not a double beyond |n| ~ 2^26.5: two exact factors */
     case IV__F_POWN: d2 = iv_mul_d(iv_mul_d(iv__pown_less(dom, n, 2), (double)n), (double)n - 1.0); break;
     case IV__F_SIN: case IV__F_COS: d2 = iv_neg(iv__aff_fn(f, n, dom, 0)); break; /* f'' = -f */
+    case IV__F_TAN: { /* 2 tan (1 + tan^2) */
+        iv_t td = iv_tan(dom);
+        d2 = iv_mul_d(iv_mul(td, iv_add_d(iv_sqr(td), 1.0)), 2.0);
+        break;
+    }
     /* -2x / (1 + x^2)^2 */
     default: d2 = iv_div(iv_mul_d(dom, -2.0), iv_sqr(iv_add_d(iv_sqr(dom), 1.0))); break;
     }
@@ -2165,18 +2176,9 @@ IV_DEF iv_affine_t iv_affine_pow_n(iv_affine_t x, int n)
 IV_DEF iv_affine_t iv_affine_sin(iv_affine_t x) { return iv__aff_unary(x, IV__F_SIN, 0, IV__LIN_DEFAULT); }
 IV_DEF iv_affine_t iv_affine_cos(iv_affine_t x) { return iv__aff_unary(x, IV__F_COS, 0, IV__LIN_DEFAULT); }
 
-IV_DEF iv_affine_t iv_affine_tan(iv_affine_t x)
-{
-    iv_t dom, cc, tc, td;
-    double c;
-    if (iv_affine_is_empty(x) || !iv__aff_domain(x, -HUGE_VAL, HUGE_VAL, &dom, &c)) return iv__aff_empty();
-    cc = iv__raw(c, c);
-    tc = iv_tan(cc);
-    td = iv_tan(dom);
-    /* f' = 1 + tan^2, f'' = 2 tan (1 + tan^2) */
-    return iv__aff_taylor(x, dom, c, tc, iv_add_d(iv_sqr(tc), 1.0),
-                          iv_mul_d(iv_mul(td, iv_add_d(iv_sqr(td), 1.0)), 2.0), td);
-}
+/* tan likewise on a pole-free range where tan keeps its sign; across a
+   pole the Taylor form gives the interval image (entire). */
+IV_DEF iv_affine_t iv_affine_tan(iv_affine_t x) { return iv__aff_unary(x, IV__F_TAN, 0, IV__LIN_DEFAULT); }
 
 IV_DEF iv_affine_t iv_affine_abs(iv_affine_t x)
 {

@@ -138,6 +138,7 @@ static iv_affine_t eval_aff(int op, iv_affine_t a, iv_affine_t b, double d, int 
         case OP_ATAN: return iv__aff_unary(a, IV__F_ATAN, 0, method);
         case OP_SIN: return iv__aff_unary(a, IV__F_SIN, 0, method);
         case OP_COS: return iv__aff_unary(a, IV__F_COS, 0, method);
+        case OP_TAN: return iv__aff_unary(a, IV__F_TAN, 0, method);
         case OP_POW_N: if (n != 1 && n != 2 && n != 0 && n != -1) return iv__aff_unary(a, IV__F_POWN, n, method); break;
         default: break;
         }
