@@ -2180,13 +2180,30 @@ IV_DEF iv_affine_t iv_affine_cos(iv_affine_t x) { return iv__aff_unary(x, IV__F_
    pole the Taylor form gives the interval image (entire). */
 IV_DEF iv_affine_t iv_affine_tan(iv_affine_t x) { return iv__aff_unary(x, IV__F_TAN, 0, IV__LIN_DEFAULT); }
 
+/* |x| across 0: convex, so the Chebyshev form alpha x + g with alpha the
+   secant slope (b + a)/(b - a) of [a, b] (clamped to [-1, 1], where
+   |x| - alpha x >= 0 exactly) and g in [0, max(g(a), g(b))], kept when
+   its range stays within IV__LIN_RANGE_RATIO of the image [0, max(-a,
+   b)] (ranges nearly one-sided: the correlation survives, for min, max
+   and cancellations later); else the image (until 2026-12-06 always the
+   image, found by the issue audit). */
 IV_DEF iv_affine_t iv_affine_abs(iv_affine_t x)
 {
-    iv_t r = iv_from_affine(x);
+    iv_t r = iv_from_affine(x), ga, gb, img;
+    iv_affine_t z;
+    double alpha;
     if (iv_affine_is_empty(x)) return iv__aff_empty();
     if (r.lo >= 0) return x;
     if (r.hi <= 0) return iv_affine_neg(x);
-    return iv_affine_from_iv(iv_abs(r));
+    img = iv_abs(r);
+    if (!(r.lo > -HUGE_VAL && r.hi < HUGE_VAL)) return iv_affine_from_iv(img);
+    alpha = iv__min(iv__max((r.hi + r.lo) / (r.hi - r.lo), -1.0), 1.0);
+    ga = iv_sub(iv__raw(-r.lo, -r.lo), iv_mul_d(iv__raw(r.lo, r.lo), alpha));
+    gb = iv_sub(iv__raw(r.hi, r.hi), iv_mul_d(iv__raw(r.hi, r.hi), alpha));
+    z = iv__aff_add_iv(iv_affine_mul_d(x, alpha), iv__raw(0.0, iv__max(ga.hi, gb.hi)));
+    if (iv_affine_is_empty(z) || !(iv_width(iv_from_affine(z)) <= IV__LIN_RANGE_RATIO * iv_width(img)))
+        return iv_affine_from_iv(img);
+    return z;
 }
 
 /* min(x, y) = (x + y - |x - y|) / 2, max with + |x - y|; when the ranges

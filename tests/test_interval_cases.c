@@ -584,6 +584,28 @@ static void affine_trig_linearised(void)
     }
 }
 
+/* |t| - t over a range nearly one-sided ([-0.1, 3]: true range [0, 0.2])
+   keeps the correlation of abs's Chebyshev form (since 2026-12-06; the
+   interval image before, width 6.1); a symmetric range falls back to the
+   image; max(t, 0.5 t) likewise through abs. Containment at samples. */
+static void affine_abs_keeps_correlation(void)
+{
+    iv_affine_t t = iv_affine_ray_param(-0.1, 3), u = iv_affine_ray_param(-1, 1);
+    iv_t z = iv_from_affine(iv_affine_sub(iv_affine_abs(t), t));
+    iv_t w = iv_from_affine(iv_affine_abs(u));
+    iv_t m = iv_from_affine(iv_affine_sub(iv_affine_max(t, iv_affine_mul_d(t, 0.5)), t));
+    int i;
+    fprintf(stderr, "    |t| - t on [-0.1, 3]: [%.4g, %.4g]; max(t, t/2) - t: [%.4g, %.4g]\n", z.lo, z.hi, m.lo, m.hi);
+    T_LE(iv_width(z), 0.5);
+    T_LE(iv_width(m), 0.5);
+    T_CHECK(w.lo >= -1e-13 && w.lo <= 0 && w.hi <= 1 + 1e-13 && w.hi >= 1); /* the image, with the form's rounding slack */
+    for (i = 0; i <= 1000; i++) {
+        q_t x = (q_t)-0.1 + (q_t)3.1 * i / 1000, v = (x < 0 ? -x : x) - x, mx = (x > x / 2 ? x : x / 2) - x;
+        T_CHECK(ig_in(z, v));
+        T_CHECK(ig_in(m, mx));
+    }
+}
+
 /* Chebyshev and min-range linearisations (issue 3): each method contains
    f; the default per-range choice beats the old Taylor form where the
    linear part is cancelled later (f(t) - k t), min-range gives f's own
@@ -672,6 +694,7 @@ int main(int argc, char **argv)
         T_CASE(affine_cancels_dependency),
         T_CASE(affine_linearisations),
         T_CASE(affine_trig_linearised),
+        T_CASE(affine_abs_keeps_correlation),
         T_CASE(affine_pow_n_at_int_min),
 #endif
     };
