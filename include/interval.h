@@ -701,7 +701,10 @@ static inline iv_t iv__div_pos(iv_t a, iv_t b) { return iv__div_pos1(a, b); }
 /* Tightest enclosure of a / b over b's nonzero points. Returns the number of
    pieces written to out[0..1] (sorted, disjoint): 0 when the quotient is
    empty (a empty, b empty or b = [0,0]), 1 normally, 2 when 0 is interior to
-   b and not in a, e.g. [1,2]/[-1,1] = [-inf,-1] and [1,inf]. */
+   b and not in a, e.g. [1,2]/[-1,1] = [-inf,-1] and [1,inf]; 1 there too
+   when the two pieces touch or overlap after outward rounding (the whole
+   line: [1,2]/[-inf,inf], or [-inf,-2^-1074]/[-1,DBL_MAX], whose pieces'
+   inner ends both round to 0). */
 IV_DEF int iv_div_ext(iv_t a, iv_t b, iv_t out[2]);
 /* Divisors holding 0, and empty inputs (out of line). */
 IV_DEF iv_t iv__div_slow(iv_t a, iv_t b);
