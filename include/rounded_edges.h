@@ -468,9 +468,10 @@ RE_DEF re_hit_kind_t re_query_exit_uv(const re_scene_t *scene, const double o[3]
    is convex), pushed out along the crossed face's normal by
    RE_ORIGIN_OFFSET_REL times the object's size so the host's own
    self-intersection guard is not needed. For other kinds: hit->point pushed
-   out the same way. A dir into the solid (dir . hit->normal <= 0, e.g.
-   refraction) gets hit->point itself: the exit walk assumes a ray leaving
-   the rounded surface (it gave points up to 66 sizes away). */
+   out the same way. A dir into the solid (dir . hit->normal < 0 by more
+   than rounding, 8 ulps of |dir|; e.g. refraction) gets hit->point itself:
+   the exit walk assumes a ray leaving the rounded surface (it gave points
+   up to 66 sizes away). A tangent dir (dir . hit->normal = 0) leaves. */
 #define RE_ORIGIN_OFFSET_REL 1e-9
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit,
                                 const double dir[3], double origin[3]);
@@ -5820,6 +5821,12 @@ static int re__exit_on_face(const re__object_t *o, const re__set_t *S, re__best_
     return 0;
 }
 
+/* A direction counts as into the solid when dir . normal < -RE__INTO_SOLID_EPS |dir|;
+   a tangent one (0: a reflection of a ray that grazes along the rounding,
+   or within rounding of it) leaves, as the rounded solid is convex. Until
+   2026-12-06 a direction exactly tangent got the unpushed hit point
+   (found by fuzz_rounded_exact's short run in make test). */
+#define RE__INTO_SOLID_EPS (8.0 * RE__DBL_EPS)
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
 {
     const re__object_t *o;
@@ -5836,7 +5843,10 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
     o = &scene->objects[hit->object];
     push = RE_ORIGIN_OFFSET_REL * o->size;
     nrm = hit->normal;
-    if (hit->kind == RE_HIT_ROUNDED && dir && !(re__dot(dir, nrm) > 0)) return; /* into the solid: the point itself */
+    if (hit->kind == RE_HIT_ROUNDED && dir) { /* into the solid beyond rounding: the point itself */
+        double dn = re__dot(dir, nrm);
+        if (dn != dn || (dn < 0 && dn * dn > RE__INTO_SOLID_EPS * RE__INTO_SOLID_EPS * re__dot(dir, dir))) return;
+    }
     if (hit->kind == RE_HIT_ROUNDED && dir) {
         S.n = 0;
         S.bloom = 0;

@@ -897,7 +897,7 @@ static void secondary_origin_on_the_sharp_mesh(void)
     re_scene_t *s;
     re_diag_t dg;
     t_rng_t rng = {9};
-    long i, n = 0;
+    long i, n = 0, n_tangent = 0;
     tm_box(&m, LO, HI);
     mesh = mesh_of(&m, 0.05);
     if (!T_INT_EQ(try_build(&mesh, RE_BAD_INPUT_REJECT, NULL, &dg, &s), RE_OK)) return;
@@ -929,9 +929,23 @@ static void secondary_origin_on_the_sharp_mesh(void)
         for (a = 0; a < 3; a++) dir[a] = d[a] / tm_len(d) - 0.3 * h.normal[a];
         re_secondary_origin(s, &h, dir, org);
         T_CHECK(org[0] == h.point[0] && org[1] == h.point[1] && org[2] == h.point[2]);
+        /* a tangent direction ((-n_y, n_x, 0): dir . normal is 0, or a
+           rounding of the products either way) leaves: pushed outside the
+           box like a reflection. An exactly tangent one got the unpushed
+           hit point before 2026-12-06 (found by fuzz_rounded_exact) */
+        if (fabs(h.normal[0]) + fabs(h.normal[1]) > 0.1) {
+            dir[0] = -h.normal[1], dir[1] = h.normal[0], dir[2] = 0;
+            re_secondary_origin(s, &h, dir, org);
+            inside = -HUGE_VAL;
+            for (a = 0; a < 3; a++) inside = fmax(inside, fmax(org[a] - HI[a], LO[a] - org[a]));
+            T_GT(inside, 0.0);
+            T_LE(inside, 1e-8);
+            n_tangent++;
+        }
         n++;
     }
     T_GT(n, 100);
+    T_GT(n_tangent, 10);
     re_free(s);
     tm_free(&m);
 }
