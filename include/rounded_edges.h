@@ -5731,18 +5731,22 @@ static re_hit_kind_t re__query_exit(const re_scene_t *scene, const double o3[3],
    compares (every query asks it). re__dir_scale returns e (0: query dir
    itself, ds not written). */
 #define RE__DIR_UNIT_RANGE 65536.0
+static inline double re__dir_largest(const double dir[3])
+{
+    return re__max(fabs(dir[0]), re__max(fabs(dir[1]), fabs(dir[2])));
+}
 static inline int re__dir_plain(const double dir[3])
 {
     double m;
     if (!dir) return 1;
-    m = re__max(fabs(dir[0]), re__max(fabs(dir[1]), fabs(dir[2])));
+    m = re__dir_largest(dir);
     return (m >= 1 / RE__DIR_UNIT_RANGE && m <= RE__DIR_UNIT_RANGE) || !(m > 0 && m < HUGE_VAL);
 }
 static int re__dir_scale(const double dir[3], double ds[3])
 {
     int e, k;
     if (re__dir_plain(dir)) return 0;
-    (void)frexp(re__max(fabs(dir[0]), re__max(fabs(dir[1]), fabs(dir[2]))), &e);
+    (void)frexp(re__dir_largest(dir), &e);
     e = 1 - e;
     for (k = 0; k < 3; k++) ds[k] = ldexp(dir[k], e);
     return e;
