@@ -249,7 +249,11 @@ typedef enum re_report_kind_t {
     RE_REPORT_SHARP_PATCH_EDGE,  /* convex edge left sharp because a corner of
                                     its patch is mixed, complex or
                                     unroundable (see docs: limits) */
-    RE_REPORT_RADIUS_CLAMPED,    /* value = new radius */
+    RE_REPORT_RADIUS_CLAMPED,    /* value = new radius; element: the edge
+                                    (both vertices) or vertex that limits
+                                    it, or a triangle of the same object
+                                    in the rounding's way (element2 -1;
+                                    the message says which) */
     RE_REPORT_RADIUS_MISMATCH,   /* unequal edge radii met at a corner; value = radius kept */
     RE_REPORT_SKIPPED_TRIANGLE,  /* RE_BAD_INPUT_SKIP dropped this triangle */
     RE_REPORT_COMPLEX_CORNER,    /* more than RE_MAX_CORNER_PLANES face planes
@@ -2748,6 +2752,7 @@ static re_result_t re__corner_bounds(re__an_t *an, re__bound_job_t *J, unsigned 
 typedef struct re__patch_limits_t {
     double *req, *rmax;
     long long *lim0, *lim1; /* the limiting edge's vertices, or the vertex and -1 */
+    long long *ltri;        /* the triangle of another plane that limits it (re__reach_bounds), or -1 */
     unsigned char *mism;
 } re__patch_limits_t;
 
@@ -2793,6 +2798,360 @@ static re_result_t re__patch_requests(re__an_t *an, unsigned *uf, re__patch_limi
     return RE_OK;
 }
 
+/* ---- Step 6b: what the rest of the object puts in the way ----------------
+
+   The bounds above look at a corner's neighbours only. A face of another
+   part of the same object can lie where a rounding removes material: a
+   pocket 0.1 from a rounded edge of r = 0.3 has its wall inside the
+   edge's removed volume, and the rounding would cut through it.
+
+   Only objects that can have such faces are checked. A closed object whose
+   every edge is flat or a rounded convex edge is locally convex everywhere,
+   so each of its closed parts is a convex solid (Tietze's theorem): its
+   removed volumes lie inside that solid and nothing of the object is there.
+   Any other object (a concave edge, a boundary, a fin, a convex edge left
+   sharp) is checked against its own triangles.
+
+   The zones, each growing linearly with r (so a face entering the zone at r
+   bounds the patch's radius by where it enters):
+   - Edge e with planes n0, n1: the cylinder is tangent to both planes at
+     depths (0, r k) and (r k, 0), k = 1 - n0.n1, and its removed volume
+     lies between the edge and the arc, so on the edge's side of the chord
+     between those tangent lines: depth d0 + d1 <= r k, with d0, d1 >= 0
+     inside every face plane at its two end corners and between the
+     planes across the edge at its ends (the cylinder beyond them lies
+     within the corners' balls, below). Bound: the least (d0 + d1) / k
+     over the part of a face inside those planes.
+   - Corner c: its spheres' centres lie at v + r u, so its removed volume
+     lies within r (1 + max |u|) of v, inside its own planes. Bound: the
+     least |p - v| / (1 + max |u|) over the part of a face inside them.
+   Faces in one of the zone's planes (the patch's own faces, and pieces of
+   them) are not in the way and are skipped by plane. A part of a face
+   within RE__REACH_ULPS of a plane is taken as on it. The bounds are
+   conservative: the chord zone holds the removed volume with room, the
+   corner's ball more so, so a face near a corner can clamp the radius to
+   below what would fit (up to 1 + max |u|, 2.7 at a cube's corner).
+   Candidates come from a bounding-volume tree over the triangles' boxes,
+   built only for the objects checked. */
+#define RE__REACH_ULPS (64.0 * RE__DBL_EPS)
+/* triangles per leaf of the tree */
+#define RE__TBVH_LEAF 4u
+/* vertices of a triangle clipped by up to 2 RE_MAX_CORNER_PLANES + 2 planes */
+#define RE__CLIP_MAX (5u + 2u * RE_MAX_CORNER_PLANES)
+
+typedef struct re__tbvh_node_t {
+    double lo[3], hi[3];
+    unsigned first, count; /* a leaf's triangles: idx[first .. first + count); count 0: children node + 1 and first */
+} re__tbvh_node_t;
+
+typedef struct re__tbvh_t {
+    re__tbvh_node_t *nodes;
+    unsigned *idx;  /* triangles, leaf by leaf */
+    double *box;    /* 6 per triangle: lo, hi */
+    unsigned *cand; /* a query's answer */
+} re__tbvh_t;
+
+/* 1 when the object may have faces inside a removed volume (see above). */
+static int re__may_reach_own_faces(const re__an_t *an)
+{
+    unsigned i;
+    for (i = 0; i < an->E; i++) {
+        const re__edge_t *e = &an->edges[i];
+        if (e->cls != RE__E_FLAT && !(e->cls == RE__E_CONVEX && e->rounded)) return 1;
+    }
+    return 0;
+}
+
+/* The centroid coordinate of triangle idx[i] along axis a (times 2). */
+static double re__tbvh_key(const re__tbvh_t *B, unsigned i, unsigned a)
+{
+    const double *b = B->box + 6 * (size_t)B->idx[i];
+    return b[a] + b[3 + a];
+}
+
+/* Reorders idx[lo .. hi) so that idx[mid] holds the triangle of median key
+   along axis a, smaller keys before it and larger after (quickselect). */
+static void re__tbvh_select(re__tbvh_t *B, unsigned lo, unsigned hi, unsigned mid, unsigned a)
+{
+    while (hi - lo > 1) {
+        double pivot = re__tbvh_key(B, (lo + hi) / 2, a);
+        unsigned i = lo, j = hi - 1, t;
+        while (i <= j) {
+            while (re__tbvh_key(B, i, a) < pivot) i++;
+            while (re__tbvh_key(B, j, a) > pivot) j--;
+            if (i <= j) {
+                t = B->idx[i], B->idx[i] = B->idx[j], B->idx[j] = t;
+                i++;
+                if (j == 0) break;
+                j--;
+            }
+        }
+        if (mid <= j) hi = j + 1;
+        else if (mid >= i) lo = i;
+        else return;
+    }
+}
+
+/* The tree over triangles t with a plane (not skipped): median splits
+   along the longest axis of the boxes' extent. Returns its node count. */
+static unsigned re__tbvh_build(const re__an_t *an, re__tbvh_t *B)
+{
+    unsigned t, n = 0, nn = 1, k, sp = 0;
+    unsigned stack[2 * 64][2], node_of[2 * 64]; /* depth-first: at most depth + 1 entries */
+    for (t = 0; t < an->T; t++) {
+        double *b = B->box + 6 * (size_t)t;
+        if (an->tbad[t] || an->tplane[t] == RE__NONE) continue;
+        for (k = 0; k < 3; k++) {
+            const double *p0 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t], *p1 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t + 1],
+                         *p2 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t + 2];
+            b[k] = re__min(p0[k], re__min(p1[k], p2[k]));
+            b[3 + k] = re__max(p0[k], re__max(p1[k], p2[k]));
+        }
+        B->idx[n++] = t;
+    }
+    if (!n) return 0;
+    stack[0][0] = 0, stack[0][1] = n, node_of[0] = 0, sp = 1;
+    while (sp) {
+        unsigned lo, hi, id, i, a = 0;
+        re__tbvh_node_t *nd;
+        sp--;
+        lo = stack[sp][0], hi = stack[sp][1], id = node_of[sp];
+        nd = &B->nodes[id];
+        for (k = 0; k < 3; k++) nd->lo[k] = HUGE_VAL, nd->hi[k] = -HUGE_VAL;
+        for (i = lo; i < hi; i++) {
+            const double *b = B->box + 6 * (size_t)B->idx[i];
+            for (k = 0; k < 3; k++) nd->lo[k] = re__min(nd->lo[k], b[k]), nd->hi[k] = re__max(nd->hi[k], b[3 + k]);
+        }
+        /* median splits halve the count: the depth stays under 64 */
+        if (hi - lo <= RE__TBVH_LEAF || sp + 2 > 2 * 64) {
+            nd->first = lo, nd->count = hi - lo;
+            continue;
+        }
+        for (k = 1; k < 3; k++)
+            if (nd->hi[k] - nd->lo[k] > nd->hi[a] - nd->lo[a]) a = k;
+        re__tbvh_select(B, lo, hi, (lo + hi) / 2, a);
+        nd->count = 0;
+        nd->first = nn; /* children: nn (left half) and nn + 1 */
+        stack[sp][0] = (lo + hi) / 2, stack[sp][1] = hi, node_of[sp] = nn + 1, sp++;
+        stack[sp][0] = lo, stack[sp][1] = (lo + hi) / 2, node_of[sp] = nn, sp++;
+        nn += 2;
+    }
+    return nn;
+}
+
+/* The triangles whose boxes meet [lo, hi], into B->cand; returns how many. */
+static unsigned re__tbvh_query(const re__tbvh_t *B, const double lo[3], const double hi[3])
+{
+    unsigned stack[2 * 64 + 2], sp = 1, n = 0, i, k;
+    stack[0] = 0;
+    while (sp) {
+        const re__tbvh_node_t *nd = &B->nodes[stack[--sp]];
+        int out = 0;
+        for (k = 0; k < 3; k++) out |= nd->lo[k] > hi[k] || nd->hi[k] < lo[k];
+        if (out) continue;
+        if (nd->count) {
+            for (i = nd->first; i < nd->first + nd->count; i++) {
+                const double *b = B->box + 6 * (size_t)B->idx[i];
+                int o = 0;
+                for (k = 0; k < 3; k++) o |= b[k] > hi[k] || b[3 + k] < lo[k];
+                if (!o) B->cand[n++] = B->idx[i];
+            }
+        } else {
+            stack[sp++] = nd->first;
+            stack[sp++] = nd->first + 1;
+        }
+    }
+    return n;
+}
+
+/* Triangle t clipped to the part at least tol inside every plane of
+   pl[0 .. np) (depth c - n.p): its vertices into poly (3 per vertex,
+   room for RE__CLIP_MAX), their count returned (below 3: nothing left). */
+static unsigned re__clip_inside(const re__an_t *an, unsigned t, const re__plane_t *pls, unsigned np, double tol,
+                                double *poly, double *tmp)
+{
+    unsigned n = 3, j, i, k;
+    for (k = 0; k < 3; k++)
+        for (j = 0; j < 3; j++) poly[3 * k + j] = an->pos[3 * (size_t)an->tri[3 * (size_t)t + k] + j];
+    for (j = 0; j < np && n >= 3; j++) {
+        const re__plane_t *pl = &pls[j];
+        unsigned m = 0;
+        for (i = 0; i < n; i++) {
+            const double *a = poly + 3 * i, *b = poly + 3 * ((i + 1) % n);
+            double da = pl->c - re__dot(pl->n, a) - tol, db = pl->c - re__dot(pl->n, b) - tol;
+            if (da >= 0 && m < RE__CLIP_MAX) tmp[3 * m] = a[0], tmp[3 * m + 1] = a[1], tmp[3 * m + 2] = a[2], m++;
+            if ((da >= 0) != (db >= 0) && m < RE__CLIP_MAX) {
+                double s = da / (da - db);
+                for (k = 0; k < 3; k++) tmp[3 * m + k] = a[k] + s * (b[k] - a[k]);
+                m++;
+            }
+        }
+        memcpy(poly, tmp, sizeof(double) * 3 * m);
+        n = m;
+    }
+    return n;
+}
+
+/* Distance from v to the convex planar polygon poly (n >= 3 vertices). */
+static double re__dist_polygon(const double *poly, unsigned n, const double v[3])
+{
+    double nrm[3] = {0, 0, 0}, best = HUGE_VAL, d[3], len;
+    unsigned i, inside = 1;
+    for (i = 1; i + 1 < n; i++) {
+        double a[3], b[3], c[3];
+        re__sub(poly + 3 * i, poly, a);
+        re__sub(poly + 3 * (i + 1), poly, b);
+        re__cross(a, b, c);
+        nrm[0] += c[0], nrm[1] += c[1], nrm[2] += c[2];
+    }
+    len = re__len(nrm);
+    for (i = 0; i < n; i++) {
+        const double *a = poly + 3 * i, *b = poly + 3 * ((i + 1) % n);
+        double ab[3], av[3], c[3], s, L2;
+        re__sub(b, a, ab);
+        re__sub(v, a, av);
+        re__cross(ab, av, c);
+        if (len > 0 && re__dot(c, nrm) < 0) inside = 0;
+        L2 = re__dot(ab, ab);
+        s = L2 > 0 ? re__max(0.0, re__min(1.0, re__dot(av, ab) / L2)) : 0;
+        re__madd(a, -1.0, v, d);
+        re__madd(d, s, ab, d);
+        best = re__min(best, re__len(d));
+    }
+    if (inside && len > 0) {
+        re__sub(v, poly, d);
+        best = re__min(best, fabs(re__dot(d, nrm)) / len);
+    }
+    return best;
+}
+
+/* 1 when plane id q is among planes[0 .. np). */
+static int re__plane_listed(const unsigned *planes, unsigned np, unsigned q)
+{
+    unsigned j;
+    for (j = 0; j < np; j++)
+        if (planes[j] == q) return 1;
+    return 0;
+}
+
+/* The bound the object's other faces put on rounded edge i (see above), at
+   most bmax (the patch's smallest so far); *tri the limiting triangle. */
+static double re__edge_reach_bound(const re__an_t *an, re__tbvh_t *B, unsigned i, double req, double bmax, double tol,
+                                   long long *tri, double *poly, double *tmp)
+{
+    const re__edge_t *e = &an->edges[i];
+    const re__plane_t *P0 = &an->planes[an->tplane[e->he[0] / 3]], *P1 = &an->planes[an->tplane[e->he[1] / 3]];
+    const double *va = an->pos + 3 * (size_t)e->v[0], *vb = an->pos + 3 * (size_t)e->v[1];
+    unsigned planes[2 * RE_MAX_CORNER_PLANES], np = 0, q, j, n, nc, k;
+    re__plane_t pls[2 * RE_MAX_CORNER_PLANES + 2];
+    double cs = re__dot(P0->n, P1->n), kk = 1 - cs, ell, lo[3], hi[3], dir[3], len, over, ext = 0;
+    for (q = 0; q < 2; q++) {
+        unsigned c = an->vcorner[e->v[q]];
+        for (j = 0; j < an->c_np[c]; j++) {
+            planes[np] = an->c_planes[an->c_pfirst[c] + j];
+            pls[np] = an->planes[planes[np]];
+            np++;
+        }
+    }
+    /* between the planes across the edge at its two ends, moved out to
+       the end spheres' centres where those lie beyond them: past them the
+       corners' balls (a chain's next segment) take over */
+    re__sub(vb, va, dir);
+    len = re__len(dir);
+    if (!(kk > 0) || !(len > 0)) return bmax;
+    for (k = 0; k < 3; k++) dir[k] /= len;
+    for (k = 0; k < 3; k++) pls[np].n[k] = dir[k], pls[np + 1].n[k] = -dir[k];
+    pls[np].c = re__dot(dir, vb), pls[np + 1].c = -re__dot(dir, va);
+    for (q = 0; q < 2; q++) {
+        if (an->edge_end[2 * (size_t)i + q] == 255) continue;
+        over = req * re__dot(dir, re__edge_su(an, an->vcorner[e->v[q]], i)) * (q ? 1 : -1) * (1 + 1e-9);
+        if (over > 0) pls[np + (q ? 0u : 1u)].c += over, ext = re__max(ext, over);
+    }
+    /* the tangent lines lie r tan(phi / 2) from the edge */
+    ell = cs > -1 ? req * sqrt(kk / (1 + cs)) * (1 + 1e-9) + tol : HUGE_VAL;
+    for (k = 0; k < 3; k++) {
+        lo[k] = re__min(va[k], vb[k]) - ell - ext;
+        hi[k] = re__max(va[k], vb[k]) + ell + ext;
+    }
+    nc = re__tbvh_query(B, lo, hi);
+    for (q = 0; q < nc; q++) {
+        unsigned t = B->cand[q];
+        if (re__plane_listed(planes, np, an->tplane[t])) continue;
+        n = re__clip_inside(an, t, pls, np + 2, tol, poly, tmp);
+        for (j = 0; j < n && n >= 3; j++) {
+            const double *p = poly + 3 * j;
+            double b = (P0->c - re__dot(P0->n, p) + P1->c - re__dot(P1->n, p)) / kk;
+            if (b < bmax) bmax = b, *tri = t;
+        }
+    }
+    return bmax;
+}
+
+/* The same for corner c: the least |p - v| / (1 + max |u|). */
+static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, unsigned c, double req, double bmax, double tol,
+                                     long long *tri, double *poly, double *tmp)
+{
+    const unsigned *planes = an->c_planes + an->c_pfirst[c];
+    const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
+    unsigned np = an->c_np[c], s, q, n, k, nc;
+    re__plane_t pls[RE_MAX_CORNER_PLANES];
+    double umax = 0, reach, lo[3], hi[3];
+    for (q = 0; q < np; q++) pls[q] = an->planes[planes[q]];
+    for (s = 0; s < an->c_ns[c]; s++) umax = re__max(umax, re__len(an->su + 3 * (size_t)(an->c_sfirst[c] + s)));
+    reach = req * (1 + umax) * (1 + 1e-9) + tol;
+    for (k = 0; k < 3; k++) lo[k] = v[k] - reach, hi[k] = v[k] + reach;
+    nc = re__tbvh_query(B, lo, hi);
+    for (q = 0; q < nc; q++) {
+        unsigned t = B->cand[q];
+        double b;
+        if (re__plane_listed(planes, np, an->tplane[t])) continue;
+        if ((n = re__clip_inside(an, t, pls, np, tol, poly, tmp)) < 3) continue;
+        b = re__dist_polygon(poly, n, v) / (1 + umax);
+        if (b < bmax) bmax = b, *tri = t;
+    }
+    return bmax;
+}
+
+/* Step 6b for a whole object: lowers P->rmax of each patch to what its
+   edges' and corners' zones allow (see above), naming the triangle. */
+static re_result_t re__reach_bounds(re__an_t *an, re__arena_t *ar, const unsigned *patch, re__patch_limits_t *P)
+{
+    re__tbvh_t B;
+    unsigned i, c;
+    double tol, M = 0, poly[3 * RE__CLIP_MAX], tmp[3 * RE__CLIP_MAX];
+    size_t mark = ar->used;
+    if (!re__may_reach_own_faces(an)) return RE_OK;
+    RE__TAKE(B.nodes, re__tbvh_node_t, 2 * (size_t)an->T + 1);
+    RE__TAKE(B.idx, unsigned, an->T);
+    RE__TAKE(B.box, double, 6 * (size_t)an->T);
+    RE__TAKE(B.cand, unsigned, an->T);
+    if (!re__tbvh_build(an, &B)) { ar->used = mark; return RE_OK; }
+    for (i = 0; i < 3; i++) M = re__max(M, fabs(an->origin[i]));
+    tol = RE__REACH_ULPS * (M + an->size);
+    for (i = 0; i < an->E; i++) {
+        const re__edge_t *e = &an->edges[i];
+        unsigned p;
+        long long tri = -1;
+        double b;
+        if (!e->rounded) continue;
+        p = patch[an->vcorner[e->v[0]]];
+        if (P->req[p] == HUGE_VAL) continue;
+        b = re__edge_reach_bound(an, &B, i, P->req[p], re__min(P->rmax[p], P->req[p]), tol, &tri, poly, tmp);
+        if (tri >= 0 && b < P->rmax[p])
+            P->rmax[p] = b, P->ltri[p] = tri, P->lim0[p] = re__vid(an, e->v[0]), P->lim1[p] = re__vid(an, e->v[1]);
+    }
+    for (c = 0; c < an->nc; c++) {
+        unsigned p = patch[c];
+        long long tri = -1;
+        double b;
+        if (an->vstate[an->c_vertex[c]] != RE__V_CORNER || an->c_np[c] < 3 || P->req[p] == HUGE_VAL) continue;
+        b = re__corner_reach_bound(an, &B, c, P->req[p], re__min(P->rmax[p], P->req[p]), tol, &tri, poly, tmp);
+        if (tri >= 0 && b < P->rmax[p]) P->rmax[p] = b, P->ltri[p] = tri, P->lim0[p] = re__vid(an, an->c_vertex[c]), P->lim1[p] = -1;
+    }
+    ar->used = mark;
+    return RE_OK;
+}
+
 /* Each patch's radius r[root] (0 elsewhere): its request, reported when
    its edges asked for different ones, and clamped to what fits (reported)
    or rejected, as the radius policy says, when it is larger. */
@@ -2810,16 +3169,24 @@ static re_result_t re__patch_radius(re__an_t *an, const unsigned *uf, const re__
             re__report(an, RE_REPORT_RADIUS_MISMATCH, re__vid(an, an->c_vertex[c]), -1, P->req[c], msg);
         }
         if (P->req[c] > P->rmax[c] * (1 + RE__RADIUS_SLACK)) {
-            if (P->lim1[c] >= 0)
+            long long el = P->lim0[c], el2 = P->lim1[c];
+            if (P->ltri[c] >= 0 && P->lim1[c] >= 0)
+                snprintf(msg, sizeof msg, "radius %.17g too large: the rounding of edge %lld-%lld would cut triangle %lld (largest %.17g)",
+                         P->req[c], P->lim0[c], P->lim1[c], P->ltri[c], P->rmax[c]);
+            else if (P->ltri[c] >= 0)
+                snprintf(msg, sizeof msg, "radius %.17g too large: the rounding at vertex %lld would cut triangle %lld (largest %.17g)",
+                         P->req[c], P->lim0[c], P->ltri[c], P->rmax[c]);
+            else if (P->lim1[c] >= 0)
                 snprintf(msg, sizeof msg, "radius %.17g too large: edge %lld-%lld is shorter than its two set-backs (largest %.17g)",
                          P->req[c], P->lim0[c], P->lim1[c], P->rmax[c]);
             else
                 snprintf(msg, sizeof msg, "radius %.17g too large at vertex %lld: the solid is thinner than 2r there (largest %.17g)",
                          P->req[c], P->lim0[c], P->rmax[c]);
-            if (an->desc->radius_policy == RE_RADIUS_REJECT) return re__fail(an, RE_ERR_RADIUS_TOO_LARGE, P->lim0[c], msg);
+            if (P->ltri[c] >= 0) el = P->ltri[c], el2 = -1; /* the triangle in the way */
+            if (an->desc->radius_policy == RE_RADIUS_REJECT) return re__fail(an, RE_ERR_RADIUS_TOO_LARGE, el, msg);
             r[c] = P->rmax[c];
             an->st.clamped++;
-            re__report(an, RE_REPORT_RADIUS_CLAMPED, P->lim0[c], P->lim1[c], r[c], msg);
+            re__report(an, RE_REPORT_RADIUS_CLAMPED, el, el2, r[c], msg);
         }
     }
     return RE_OK;
@@ -2867,9 +3234,11 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
     RE__TAKE(P.lim0, long long, nc + 1);
     RE__TAKE(P.lim1, long long, nc + 1);
     RE__TAKE(P.mism, unsigned char, nc + 1);
+    RE__TAKE(P.ltri, long long, nc + 1);
     RE__TAKE(pmark, unsigned, an->n_planes + 1);
     memset(pmark, 0, sizeof(unsigned) * (an->n_planes + 1));
-    for (c = 0; c < nc; c++) uf[c] = c, P.req[c] = HUGE_VAL, P.rmax[c] = HUGE_VAL, P.mism[c] = 0, P.lim0[c] = P.lim1[c] = -1;
+    for (c = 0; c < nc; c++)
+        uf[c] = c, P.req[c] = HUGE_VAL, P.rmax[c] = HUGE_VAL, P.mism[c] = 0, P.lim0[c] = P.lim1[c] = P.ltri[c] = -1;
     if ((rc = re__patch_requests(an, uf, &P)) != RE_OK) return rc;
     RE__TAKE(patch, unsigned, nc + 1);
     RE__TAKE(job.bound, double, nc + 1);
@@ -2882,6 +3251,7 @@ static re_result_t re__radii(re__an_t *an, re__arena_t *ar, double **patch_r_out
         unsigned q = patch[c];
         if (job.bound[c] < P.rmax[q]) P.rmax[q] = job.bound[c], P.lim0[q] = job.lim[2 * c], P.lim1[q] = job.lim[2 * c + 1];
     }
+    if ((rc = re__reach_bounds(an, ar, patch, &P)) != RE_OK) return rc;
     if ((rc = re__patch_radius(an, uf, &P, r)) != RE_OK) return rc;
     re__sharpen_unroundable(an, uf, P.req, r);
     *patch_r_out = r;

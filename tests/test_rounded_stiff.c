@@ -187,6 +187,130 @@ static void thin_slab_with_subdivided_walls(void)
     tm_free(&m);
 }
 
+/* quad a b c d wound so that its normal points along (nx, ny, nz) */
+static void quad_facing(tm_mesh_t *m, unsigned a, unsigned b, unsigned c, unsigned d, double nx, double ny, double nz)
+{
+    double e1[3], e2[3], n[3], want[3];
+    want[0] = nx, want[1] = ny, want[2] = nz;
+    tm_sub(m->v + 3 * b, m->v + 3 * a, e1);
+    tm_sub(m->v + 3 * c, m->v + 3 * a, e2);
+    tm_cross(e1, e2, n);
+    if (tm_dot(n, want) > 0) tm_quad(m, a, b, c, d);
+    else tm_quad(m, d, c, b, a);
+}
+
+/* The cube [-1, 1]^3 with a pocket cut into its top face (z = 1): rim
+   x in [xa, xb], y in [ya, yb], floor at z = zf. The pocket's rim corners
+   are mixed, so the pocket stays sharp; the cube's twelve edges form one
+   rounded patch. */
+static void pocketed_cube(tm_mesh_t *m, double xa, double xb, double ya, double yb, double zf)
+{
+    unsigned b[8], o[4], in[4], f[4], i;
+    for (i = 0; i < 8; i++) b[i] = tm_vert(m, i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+    o[0] = b[4], o[1] = b[5], o[2] = b[7], o[3] = b[6]; /* the top square, CCW from +z */
+    in[0] = tm_vert(m, xa, ya, 1), in[1] = tm_vert(m, xb, ya, 1), in[2] = tm_vert(m, xb, yb, 1), in[3] = tm_vert(m, xa, yb, 1);
+    for (i = 0; i < 4; i++) f[i] = tm_vert(m, m->v[3 * in[i]], m->v[3 * in[i] + 1], zf);
+    quad_facing(m, b[0], b[1], b[3], b[2], 0, 0, -1);
+    quad_facing(m, b[1], b[3], b[7], b[5], 1, 0, 0);
+    quad_facing(m, b[0], b[2], b[6], b[4], -1, 0, 0);
+    quad_facing(m, b[2], b[3], b[7], b[6], 0, 1, 0);
+    quad_facing(m, b[0], b[1], b[5], b[4], 0, -1, 0);
+    for (i = 0; i < 4; i++) quad_facing(m, o[i], o[(i + 1) % 4], in[(i + 1) % 4], in[i], 0, 0, 1);
+    quad_facing(m, in[0], in[1], f[1], f[0], 0, 1, 0);  /* walls face into the pocket */
+    quad_facing(m, in[1], in[2], f[2], f[1], -1, 0, 0);
+    quad_facing(m, in[2], in[3], f[3], f[2], 0, -1, 0);
+    quad_facing(m, in[3], in[0], f[0], f[3], 1, 0, 0);
+    quad_facing(m, f[0], f[1], f[2], f[3], 0, 0, 1);
+}
+
+/* A rounded patch next to a sharp pocket of the same object (construction
+   step 7b): at r = 0.3 the rounding of the edge x = z = 1 would cut the
+   pocket's wall at x = 0.9. The radius is clamped to 0.1 (the wall's
+   distance: the edge's chord zone), naming a wall triangle; rejected under
+   RE_RADIUS_REJECT; and the rounding between the edge and the pocket is
+   the cylinder of radius 0.1 (before, r stayed 0.3 and the rounded surface
+   crossed the pocket). */
+static void rounding_beside_a_pocket_is_clamped(void)
+{
+    tm_mesh_t m = {0};
+    clamp_log_t L;
+    re_diag_t dg;
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    double r = 0;
+    long i, n = t_count(2000), rounded = 0;
+    t_rng_t g = {41};
+    pocketed_cube(&m, 0.2, 0.9, -0.5, 0.5, 0.6);
+    T_INT_EQ(build_policy(&m, 0.3, RE_RADIUS_REJECT, &L, &dg, &r), RE_ERR_RADIUS_TOO_LARGE);
+    T_CHECK(strstr(dg.message, "would cut triangle") != NULL);
+    T_GE(dg.element, 12); /* a triangle of the pocket (the cube's own faces come first) */
+    T_INT_EQ(build_policy(&m, 0.3, RE_RADIUS_CLAMP, &L, &dg, &r), RE_OK);
+    T_INT_EQ(L.n, 1);
+    T_INT_EQ(L.e2, -1); /* a triangle, not an edge */
+    T_NEAR(r, 0.1, 1e-9);
+    T_GE(r, 0.1);
+    fprintf(stderr, "    %s\n", L.msg);
+    T_INT_EQ(build_policy(&m, 0.0999, RE_RADIUS_REJECT, &L, &dg, &r), RE_OK); /* below it: valid */
+    /* vertical rays onto the strip between the edge and the pocket */
+    memset(&mesh, 0, sizeof mesh);
+    memset(&desc, 0, sizeof desc);
+    mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.radius = 0.3;
+    desc.objects = &mesh, desc.object_count = 1;
+    if (!T_INT_EQ(re_build(&desc, &s, &dg), RE_OK)) { tm_free(&m); return; }
+    for (i = 0; i < n; i++) {
+        double x = t_rng_range(&g, 0.9005, 0.9995), o[3], d[3] = {0, 0, -1}, t;
+        unsigned tri;
+        re_hit_t h;
+        o[0] = x, o[1] = t_rng_range(&g, -0.4, 0.4), o[2] = 3;
+        if (!T_CHECK(tm_hit(&m, o, d, &t, &tri))) continue;
+        if (!T_INT_EQ(re_query(s, o, d, 0, tri, t, &h), RE_HIT_ROUNDED)) continue;
+        rounded++;
+        T_NEAR(h.point[2], 0.9 + sqrt(0.01 - (x - 0.9) * (x - 0.9)), 1e-9);
+    }
+    T_GT(rounded, n / 2);
+    re_free(s);
+    tm_free(&m);
+}
+
+/* The same with the pocket next to the corner (1, 1, 1): rim x, y in
+   [0.6, 0.9]. The largest radius that keeps the walls out of the rounding
+   is 0.1 (the rim's corner (0.9, 0.9, 1) lies on the rounded cube of
+   r = 0.1, outside it above). The corner's zone is a ball of 1 + sqrt 3
+   times r, so the bound is conservative there: 0.1 / 2.74 <= r <= 0.1,
+   and the walls lie inside the rounded cube of the radius built. */
+static void rounding_beside_a_pocket_near_a_corner(void)
+{
+    const double c0[3] = {0, 0, 0}, half[3] = {1, 1, 1};
+    tm_mesh_t m = {0};
+    clamp_log_t L;
+    re_diag_t dg;
+    double r = 0, worst = -HUGE_VAL;
+    unsigned t, k;
+    t_rng_t g = {43};
+    pocketed_cube(&m, 0.6, 0.9, 0.6, 0.9, 0.6);
+    T_INT_EQ(build_policy(&m, 0.3, RE_RADIUS_CLAMP, &L, &dg, &r), RE_OK);
+    T_INT_EQ(L.n, 1);
+    fprintf(stderr, "    %s\n", L.msg);
+    T_LE(r, 0.1 * (1 + 1e-9));
+    T_GE(r, 0.1 / (1 + sqrt(3.0)));
+    /* every wall and floor triangle of the pocket (0-11: the cube's other
+       faces, 12-19: the top face's ring, the patch's own face) */
+    for (t = 20; t < m.ni / 3; t++)
+        for (k = 0; k < 200; k++) {
+            double a = t_rng_unit(&g), b = t_rng_unit(&g), p[3];
+            unsigned j;
+            if (a + b > 1) a = 1 - a, b = 1 - b;
+            for (j = 0; j < 3; j++)
+                p[j] = m.v[3 * m.idx[3 * t] + j] + a * (m.v[3 * m.idx[3 * t + 1] + j] - m.v[3 * m.idx[3 * t] + j]) +
+                       b * (m.v[3 * m.idx[3 * t + 2] + j] - m.v[3 * m.idx[3 * t] + j]);
+            worst = fmax(worst, tm_rbox_sdf(c0, half, r, p));
+        }
+    T_LE(worst, 1e-12);
+    tm_free(&m);
+}
+
+
 /* a ridge of 179.9 degrees on top of a slab */
 static void dihedral_179_9_degrees(void)
 {
@@ -1515,6 +1639,8 @@ int main(int argc, char **argv)
         T_CASE(radius_above_largest_is_rejected),
         T_CASE(short_edge_is_named),
         T_CASE(thin_slab_with_subdivided_walls),
+        T_CASE(rounding_beside_a_pocket_is_clamped),
+        T_CASE(rounding_beside_a_pocket_near_a_corner),
         T_CASE(coplanar_pieces_far_from_origin_stay_flat),
         T_CASE(dihedral_179_9_degrees),
         T_CASE(dihedral_1_degree),
