@@ -131,6 +131,7 @@
 #include <string.h>
 #include <stdint.h>
 #include <math.h>
+#include <float.h>
 /* The floating-point environment (iv_fp_env_ok): MXCSR on x86, the C
    rounding mode elsewhere. */
 #if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
@@ -292,7 +293,7 @@ static inline double iv__next_down_fma(double x)
     double b = fma(-IV__PHI, fabs(x), x); /* for normal x; NaN for +-inf */
     double y = b < a ? b : a;              /* a when b is NaN */
     /* +inf -> DBL_MAX; NaN passes (the comparison is false): one minsd */
-    return 1.7976931348623157e308 < y ? 1.7976931348623157e308 : y;
+    return DBL_MAX < y ? DBL_MAX : y;
 }
 /* The fused form is used when the target has a hardware fma (with no fma
    instruction, fma() is a slow software routine). */
@@ -309,8 +310,8 @@ static inline double iv__next_up(double x) { return -iv__next_down(-x); }
    never [inf, inf], which iv_make rejects (iv_pow_n of [1e300, 1e300]
    returned the empty set; found by review, 2026-12-06). NaN stays NaN. */
 #ifdef IV_FAST
-static inline double iv__down(double x) { return x == HUGE_VAL ? 1.7976931348623157e308 : x; }
-static inline double iv__up(double x) { return x == -HUGE_VAL ? -1.7976931348623157e308 : x; }
+static inline double iv__down(double x) { return x == HUGE_VAL ? DBL_MAX : x; }
+static inline double iv__up(double x) { return x == -HUGE_VAL ? -DBL_MAX : x; }
 #else
 static inline double iv__down(double x) { return iv__next_down(x); }
 static inline double iv__up(double x) { return iv__next_up(x); }
@@ -414,7 +415,7 @@ static inline __m128d iv__floor_normal(__m128d m)
    their second operand for NaN, so NaN lanes stay */
 static inline __m128d iv__fast_clamp(__m128d v)
 {
-    return _mm_max_pd(_mm_set_pd(-1.7976931348623157e308, -HUGE_VAL), _mm_min_pd(_mm_set_pd(HUGE_VAL, 1.7976931348623157e308), v));
+    return _mm_max_pd(_mm_set_pd(-DBL_MAX, -HUGE_VAL), _mm_min_pd(_mm_set_pd(HUGE_VAL, DBL_MAX), v));
 }
 static inline __m128d iv__out_exact(__m128d v) { return iv__fast_clamp(v); }
 static inline __m128d iv__out(__m128d v) { return iv__fast_clamp(v); }
@@ -469,8 +470,8 @@ static inline double iv_mid(iv_t x)
 {
     double m;
     if (iv_is_empty(x)) return NAN;
-    if (x.lo == -HUGE_VAL) return x.hi == HUGE_VAL ? 0.0 : -1.7976931348623157e308;
-    if (x.hi == HUGE_VAL) return 1.7976931348623157e308;
+    if (x.lo == -HUGE_VAL) return x.hi == HUGE_VAL ? 0.0 : -DBL_MAX;
+    if (x.hi == HUGE_VAL) return DBL_MAX;
     m = 0.5 * x.lo + 0.5 * x.hi; /* no overflow; rounding may leave [lo,hi] */
     return iv__min(iv__max(m, x.lo), x.hi);
 }
@@ -686,7 +687,7 @@ static inline iv_t iv__div_pos2(iv_t a, iv_t b)
     /* [a.lo >= 0, a.hi <= 0] as all-ones lanes: those ends are clamped */
     __m128d keep = _mm_cmpge_pd(_mm_xor_pd(av, _mm_set_pd(-0.0, 0.0)), _mm_setzero_pd());
 #ifdef IV_FAST
-    r = _mm_max_pd(_mm_set1_pd(-1.7976931348623157e308), w); /* -lo and hi: an inward overflow clamped */
+    r = _mm_max_pd(_mm_set1_pd(-DBL_MAX), w); /* -lo and hi: an inward overflow clamped */
 #else
     r = _mm_fmadd_pd(_mm_set1_pd(IV__PHI), iv__floor_normal(iv__abs2(w)), w);
 #endif
@@ -1173,8 +1174,8 @@ static inline int iv__w_any_nan(iv__wv a, iv__wv b) { return _mm256_movemask_pd(
 #  ifdef IV_FAST
 static inline iv__wv iv__w_out_exact(iv__wv v)
 {
-    return IV__W_OP(max)(iv__w_pairs(_mm_set_pd(-1.7976931348623157e308, -HUGE_VAL)),
-                         IV__W_OP(min)(iv__w_pairs(_mm_set_pd(HUGE_VAL, 1.7976931348623157e308)), v));
+    return IV__W_OP(max)(iv__w_pairs(_mm_set_pd(-DBL_MAX, -HUGE_VAL)),
+                         IV__W_OP(min)(iv__w_pairs(_mm_set_pd(HUGE_VAL, DBL_MAX)), v));
 }
 #  else
 static inline iv__wv iv__w_out_exact(iv__wv v)
@@ -1214,8 +1215,8 @@ static inline void iv__w_op_soa(int op, iv__wv al, iv__wv ah, iv__wv bl, iv__wv 
     }
 #  ifdef IV_FAST
     (void)phi;
-    l = IV__W_OP(min)(IV__W_OP(set1)(1.7976931348623157e308), l); /* an inward overflow clamped */
-    h = IV__W_OP(max)(IV__W_OP(set1)(-1.7976931348623157e308), h);
+    l = IV__W_OP(min)(IV__W_OP(set1)(DBL_MAX), l); /* an inward overflow clamped */
+    h = IV__W_OP(max)(IV__W_OP(set1)(-DBL_MAX), h);
 #  else
     if (op == IV__N_MUL) {
         l = IV__W_OP(fnmadd)(phi, iv__w_mag_floor(l), l);
@@ -1886,7 +1887,7 @@ static iv_t iv__hypot_point(double a, double b)
     /* the three stepped operations can take s.hi to 1 when the value lies
        within a few ulps below DBL_MAX: scaled, that would be inf */
     hi = iv__scale_up(s.hi, k);
-    if (hi == HUGE_VAL && iv__hypot_below_one(ai.hi, bi.hi)) hi = 1.7976931348623157e308;
+    if (hi == HUGE_VAL && iv__hypot_below_one(ai.hi, bi.hi)) hi = DBL_MAX;
     return iv__raw(iv__max(0.0, iv__scale_down(s.lo, k)), hi);
 }
 
