@@ -981,6 +981,10 @@ static inline iv_t iv_from_affine(iv_affine_t x)
     r = fabs(x.t) + x.e;
     r = r == 0 ? 0.0 : iv__up(r);
     if (r == 0) return iv__raw(x.c, x.c);
+    /* c + c eps_x is [0, 2c] exactly: the outward steps below would put
+       its lower end under 0, which a function >= 0 (iv_affine_hypot)
+       must not show */
+    if (x.t == 0 && x.e == x.c) return iv__raw(0.0, iv__up(x.c + x.c));
     return iv_make(iv__down(x.c - r), iv__up(x.c + r));
 }
 
@@ -2239,14 +2243,27 @@ IV_DEF iv_affine_t iv_affine_pow(iv_affine_t x, iv_affine_t y)
     return iv_affine_exp(iv_affine_mul(y, iv_affine_log(x)));
 }
 
+/* hypot >= 0, but where its range reaches 0 the form's would not stop
+   there: the squares' rounding terms (IV__AFF_ABS) and sqrt's
+   linearisation reach below 0, and so do the outward steps of any range
+   that ends at 0. Such a form becomes c + c eps_x, c = hi/2 rounded up,
+   whose range is [0, 2c] (iv_from_affine); it had no correlation worth
+   keeping, being that wide. */
 IV_DEF iv_affine_t iv_affine_hypot(iv_affine_t x, iv_affine_t y)
 {
     iv_affine_t s;
+    iv_t r;
+    double h;
     if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
+    /* hypot(0, 0) is 0 exactly; through the squares it was a range of 1e-158 */
+    if (x.c == 0 && x.t == 0 && x.e == 0 && y.c == 0 && y.t == 0 && y.e == 0) return iv_affine_const(0.0);
     s = iv_affine_sqrt(iv_affine_add(iv_affine_sqr(x), iv_affine_sqr(y)));
     /* squares overflow long before hypot does: fall back to the interval */
-    if (s.e == HUGE_VAL) return iv_affine_from_iv(iv_hypot(iv_from_affine(x), iv_from_affine(y)));
-    return s;
+    if (s.e == HUGE_VAL) s = iv_affine_from_iv(iv_hypot(iv_from_affine(x), iv_from_affine(y)));
+    r = iv_from_affine(s);
+    if (!(r.lo < 0 && r.hi < HUGE_VAL)) return s;
+    h = iv__up(0.5 * r.hi);
+    return iv__aff(h, 0.0, h);
 }
 #endif /* IV_NO_AFFINE */
 

@@ -665,6 +665,35 @@ static void affine_pow_n_at_int_min(void)
             T_INT_EQ(out, 0);
         }
 }
+
+/* iv_affine_hypot never reads below 0 (issue 3; found by review: of two
+   zero forms it gave [-2^-576, 2^-523], of ranges reaching 0 a lower end
+   one ulp of the radius below it): its range holds the samples' hypot in
+   quad and starts at 0 or above; hypot(0, 0) is the point 0. */
+static void affine_hypot_not_below_zero(void)
+{
+    static const double xs[][2] = {{0, 0}, {-1, 1}, {0, 1}, {-0.5, 1.5}, {-1e-300, 1e-300}, {-3e150, 1e200}, {-1e307, 1e308}};
+    static const double ys[] = {0, -0.0, 1e-3, -2, 1e-200};
+    iv_affine_t z0 = iv_affine_const(0), zn = iv_affine_const(-0.0);
+    iv_t z = iv_from_affine(iv_affine_hypot(z0, zn));
+    int i, j, k, m;
+    T_EQ(z.lo, 0); T_EQ(z.hi, 0);
+    z = iv_from_affine(iv_affine_hypot(iv_affine_const(1e-200), z0));
+    T_GE(z.lo, 0); T_CHECK(ig_in(z, (q_t)1e-200));
+    for (i = 0; i < (int)(sizeof xs / sizeof xs[0]); i++)
+        for (j = 0; j < (int)(sizeof ys / sizeof ys[0]); j++)
+            for (m = 0; m < 3; m++) {
+                /* the ray itself, an independent range, and both correlated */
+                iv_affine_t x = m == 1 ? iv_affine_from_iv(iv_make(xs[i][0], xs[i][1])) : iv_affine_ray_param(xs[i][0], xs[i][1]);
+                iv_affine_t y = m == 2 ? iv_affine_add_d(iv_affine_mul_d(x, 0.5), ys[j]) : iv_affine_const(ys[j]);
+                z = iv_from_affine(iv_affine_hypot(x, y));
+                if (!T_GE(z.lo, 0)) fprintf(stderr, "    hypot over [%g, %g], %g (%d): [%a, %a]\n", xs[i][0], xs[i][1], ys[j], m, z.lo, z.hi);
+                for (k = 0; k <= 64; k++) {
+                    q_t t = (q_t)xs[i][0] + ((q_t)xs[i][1] - (q_t)xs[i][0]) * k / 64, u = m == 2 ? t / 2 + ys[j] : (q_t)ys[j];
+                    T_CHECK(ig_in(z, sqrtq(t * t + u * u)));
+                }
+            }
+}
 #endif
 
 int main(int argc, char **argv)
@@ -696,6 +725,7 @@ int main(int argc, char **argv)
         T_CASE(affine_trig_linearised),
         T_CASE(affine_abs_keeps_correlation),
         T_CASE(affine_pow_n_at_int_min),
+        T_CASE(affine_hypot_not_below_zero),
 #endif
     };
     return T_RUN(argc, argv, cases);
