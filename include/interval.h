@@ -489,14 +489,23 @@ static inline iv_t iv_intersect(iv_t a, iv_t b)
     if (iv_is_empty(a) || iv_is_empty(b) || lo > hi) return iv_empty();
     return iv__raw(lo, hi);
 }
-/* Bisection at iv_mid(x): *left = [lo, m], *right = [m, hi]. Both empty
-   when x is empty. */
-static inline void iv_split(iv_t x, iv_t *left, iv_t *right)
+/* Bisection at m = iv_mid(x): *left = [lo, m], *right = [m, hi], whose
+   union is x. Returns 1 when both halves are proper subsets of x, which
+   holds exactly when a double lies strictly between lo and hi (m is then
+   one of them; a half-line splits at +-DBL_MAX, the entire line at 0).
+   Returns 0 when no double does, so no two intervals with double ends can
+   split x: a point (both halves are x), two adjacent doubles, [DBL_MAX,
+   inf] ([DBL_MAX, DBL_MAX] and x) and [-inf, -DBL_MAX] (x and [-DBL_MAX,
+   -DBL_MAX]); one half is x, the other the point at its finite end (for
+   two adjacent doubles the end m rounds to). A bisection stops there.
+   Returns 0 with both halves empty when x is empty. */
+static inline int iv_split(iv_t x, iv_t *left, iv_t *right)
 {
     double m = iv_mid(x);
-    if (iv_is_empty(x)) { *left = *right = iv_empty(); return; }
+    if (iv_is_empty(x)) { *left = *right = iv_empty(); return 0; }
     *left = iv__raw(x.lo, m);
     *right = iv__raw(m, x.hi);
+    return m > x.lo && m < x.hi;
 }
 
 /* ------------------------------------------------------------------------ */

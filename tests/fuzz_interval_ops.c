@@ -250,11 +250,14 @@ static void fz_sets(const double *d)
     if (!iv_is_empty(a)) {
         double w = iv_width(a), mid = iv_mid(a);
         FUZZ_CHECK((q_t)w >= (q_t)a.hi - (q_t)a.lo && iv_contains(a, mid), "width/mid of [%a,%a]: %a, %a", a.lo, a.hi, w, mid);
-        iv_split(a, &l, &r);
+        int sp = iv_split(a, &l, &r);
         fz_valid(l, "split");
         fz_valid(r, "split");
         FUZZ_CHECK(l.lo == a.lo && r.hi == a.hi && l.hi == r.lo && l.hi >= a.lo && l.hi <= a.hi,
                    "split [%a,%a] into [%a,%a] and [%a,%a]", a.lo, a.hi, l.lo, l.hi, r.lo, r.hi);
+        /* proper halves exactly when a double lies strictly inside */
+        FUZZ_CHECK(sp == (nextafter(a.lo, HUGE_VAL) < a.hi) && (sp ? l.hi > a.lo && l.hi < a.hi : l.hi == a.lo || l.hi == a.hi),
+                   "split [%a,%a] returned %d with m = %a", a.lo, a.hi, sp, l.hi);
     }
     /* a / b as pieces: every quotient lies in one of them */
     np = iv_div_ext(a, b, piece);

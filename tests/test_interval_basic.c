@@ -56,6 +56,38 @@ static void queries(void)
     T_CHECK(iv_contains(x, 1) && iv_contains(x, 3) && !iv_contains(x, 3.0000001));
 }
 
+/* iv_split with infinite ends and unsplittable inputs (issue 3; found by
+   review: [DBL_MAX, inf] came back as one of its own halves, unannounced).
+   The union is x; the return value is 1 exactly when a double lies
+   strictly inside x, and then both halves are proper subsets; else one
+   half is x and the other a point at a finite end. */
+static void split_infinite_and_unsplittable(void)
+{
+    static const double ends[][2] = {{DBL_MAX, HUGE_VAL}, {-HUGE_VAL, -DBL_MAX}, {-HUGE_VAL, HUGE_VAL}, {DBL_MAX, DBL_MAX},
+        {-DBL_MAX, -DBL_MAX}, {0, HUGE_VAL}, {-HUGE_VAL, 0}, {-DBL_MAX, HUGE_VAL}, {0x1.fffffffffffffp+1022, HUGE_VAL},
+        {-HUGE_VAL, -0x1.fffffffffffffp+1022}, {1, 0x1.0000000000001p+0}, {0x1.0000000000001p+0, 0x1.0000000000002p+0},
+        {0, 0x1p-1074}, {-0x1p-1074, 0x1p-1074}, {0x1p-1074, 0x1.8p-1073}, {-0.0, 0.0}, {1, 3}, {-DBL_MAX, DBL_MAX}};
+    static const int splits[] = {0, 0, 1, 0, 0, 1, 1, 1, 1, 1, 0, 0, 0, 1, 1, 0, 1, 1};
+    int i;
+    iv_t l, r;
+    for (i = 0; i < (int)(sizeof splits / sizeof splits[0]); i++) {
+        iv_t x = iv_make(ends[i][0], ends[i][1]);
+        int got = iv_split(x, &l, &r), lx = l.lo == x.lo && l.hi == x.hi, rx = r.lo == x.lo && r.hi == x.hi;
+        T_CHECK(!iv_is_empty(l) && !iv_is_empty(r) && l.hi < HUGE_VAL && r.lo > -HUGE_VAL);
+        T_CHECK(l.lo == x.lo && r.hi == x.hi && l.hi == r.lo && l.hi >= x.lo && l.hi <= x.hi);
+        if (!T_INT_EQ(got, splits[i])) fprintf(stderr, "    split [%a, %a] -> %d\n", x.lo, x.hi, got);
+        if (got) T_CHECK(!lx && !rx);
+        else T_CHECK((lx && r.lo == r.hi) || (rx && l.lo == l.hi));
+    }
+    T_EQ(l.hi, 0); /* [-DBL_MAX, DBL_MAX] at 0 */
+    iv_split(iv_make(DBL_MAX, HUGE_VAL), &l, &r);
+    T_EQ(l.lo, DBL_MAX); T_EQ(l.hi, DBL_MAX); T_EQ(r.lo, DBL_MAX); T_EQ(r.hi, HUGE_VAL);
+    iv_split(iv_make(-HUGE_VAL, -DBL_MAX), &l, &r);
+    T_EQ(l.lo, -HUGE_VAL); T_EQ(l.hi, -DBL_MAX); T_EQ(r.lo, -DBL_MAX); T_EQ(r.hi, -DBL_MAX);
+    T_INT_EQ(iv_split(iv_empty(), &l, &r), 0);
+    T_CHECK(iv_is_empty(l) && iv_is_empty(r));
+}
+
 static void div_one_two_by_minus_one_one(void)
 {
     iv_t p[2];
@@ -325,6 +357,7 @@ int main(int argc, char **argv)
     static const t_case_t cases[] = {
         T_CASE(bad_input_is_empty),
         T_CASE(queries),
+        T_CASE(split_infinite_and_unsplittable),
         T_CASE(result_strings),
         T_CASE(div_one_two_by_minus_one_one),
         T_CASE(div_zero_cases),
