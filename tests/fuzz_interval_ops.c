@@ -82,8 +82,8 @@ static void fz_interval(int op, int n, const double *d)
     iv_t a = iv_make(d[0], d[1]), b = iv_make(d[2], d[3]), z;
     double xs[5], ys[5];
     int nx, ny, i, j;
-    if (op == OP_ADD_D || op == OP_MUL_D) {
-        z = op == OP_ADD_D ? iv_add_d(a, d[2]) : iv_mul_d(a, d[2]);
+    if (is_scalar(op)) {
+        z = eval_iv(op, a, iv__raw(d[2], d[2]), n); /* the scalar forms read b.lo */
         if (!fz_finite(d[2])) {
             FUZZ_CHECK(iv_is_empty(z), "%s([%a,%a], %a) = [%a,%a]: a bad scalar gives the empty interval", op_name[op],
                        a.lo, a.hi, d[2], z.lo, z.hi);
@@ -173,8 +173,8 @@ static void fz_affine(int op, int n, int method, const double *d)
     z = eval_aff(op, a, b, d[6], n, method);
     zi = iv_from_affine(z);
     fz_valid(zi, "iv_from_affine");
-    if (iv_affine_is_empty(a) || (is_binary(op) && op != OP_ADD_D && op != OP_MUL_D && iv_affine_is_empty(b)) ||
-        ((op == OP_ADD_D || op == OP_MUL_D) && !fz_finite(d[6]))) {
+    if (iv_affine_is_empty(a) || (is_binary(op) && !is_scalar(op) && iv_affine_is_empty(b)) ||
+        (is_scalar(op) && !fz_finite(d[6]))) {
         FUZZ_CHECK(iv_affine_is_empty(z), "affine %s: an empty operand gives the empty form, not (%a,%a,%a)", op_name[op],
                    z.c, z.t, z.e);
         return;
@@ -184,7 +184,7 @@ static void fz_affine(int op, int n, int method, const double *d)
     if (a.e == HUGE_VAL || b.e == HUGE_VAL) return;
     for (k = 0; k < 4; k++) {
         q_t et = k == 0 ? 1 : k == 1 ? -1 : fz_eps(d[7 + k]), ea = fz_eps(d[8 + k]), eb = fz_eps(d[9 + k]), v, dev, slack;
-        q_t x = form_at(a, et, ea), y = op == OP_ADD_D || op == OP_MUL_D ? (q_t)d[6] : form_at(b, et, eb);
+        q_t x = form_at(a, et, ea), y = is_scalar(op) ? (q_t)d[6] : form_at(b, et, eb);
         if (!is_binary(op)) y = 0;
         char buf[64];
         if (op == OP_SQR) y = x;

@@ -12,11 +12,11 @@
 enum {
     OP_ADD, OP_SUB, OP_MUL, OP_DIV, OP_NEG, OP_RECIP, OP_SQR, OP_SQRT, OP_ABS,
     OP_MIN, OP_MAX, OP_ADD_D, OP_MUL_D, OP_EXP, OP_LOG, OP_SIN, OP_COS, OP_TAN,
-    OP_ATAN, OP_POW, OP_HYPOT, OP_POW_N, OP_COUNT
+    OP_ATAN, OP_POW, OP_HYPOT, OP_POW_N, OP_SUB_D, OP_DIV_D, OP_COUNT
 };
 static const char *const op_name[OP_COUNT] = {
     "add", "sub", "mul", "div", "neg", "recip", "sqr", "sqrt", "abs", "min", "max", "add_d", "mul_d",
-    "exp", "log", "sin", "cos", "tan", "atan", "pow", "hypot", "pow_n"};
+    "exp", "log", "sin", "cos", "tan", "atan", "pow", "hypot", "pow_n", "sub_d", "div_d"};
 static const int pow_ns[] = {-5, -3, -2, -1, 2, 3, 4, 5, 7, 10, 33};
 
 /* f(x, y) in quad; NaN when (x, y) is outside f's domain. */
@@ -24,9 +24,9 @@ static q_t ref(int op, q_t x, q_t y, int n)
 {
     switch (op) {
     case OP_ADD: case OP_ADD_D: return x + y;
-    case OP_SUB: return x - y;
+    case OP_SUB: case OP_SUB_D: return x - y;
     case OP_MUL: case OP_MUL_D: return x * y;
-    case OP_DIV: return y == 0 ? (q_t)NAN : x / y;
+    case OP_DIV: case OP_DIV_D: return y == 0 ? (q_t)NAN : x / y;
     case OP_NEG: return -x;
     case OP_RECIP: return x == 0 ? (q_t)NAN : 1 / x;
     case OP_SQR: return x * x;
@@ -46,10 +46,13 @@ static q_t ref(int op, q_t x, q_t y, int n)
     }
 }
 
+/* the scalar forms (iv_add_d, ...): the second operand is a double */
+static int is_scalar(int op) { return op == OP_ADD_D || op == OP_MUL_D || op == OP_SUB_D || op == OP_DIV_D; }
+
 static int is_binary(int op)
 {
     return op == OP_ADD || op == OP_SUB || op == OP_MUL || op == OP_DIV || op == OP_MIN || op == OP_MAX ||
-           op == OP_ADD_D || op == OP_MUL_D || op == OP_POW || op == OP_HYPOT;
+           is_scalar(op) || op == OP_POW || op == OP_HYPOT;
 }
 
 static iv_t eval_iv(int op, iv_t a, iv_t b, int n)
@@ -68,6 +71,8 @@ static iv_t eval_iv(int op, iv_t a, iv_t b, int n)
     case OP_MAX: return iv_max(a, b);
     case OP_ADD_D: return iv_add_d(a, b.lo);
     case OP_MUL_D: return iv_mul_d(a, b.lo);
+    case OP_SUB_D: return iv_sub_d(a, b.lo);
+    case OP_DIV_D: return iv_div_d(a, b.lo);
     case OP_EXP: return iv_exp(a);
     case OP_LOG: return iv_log(a);
     case OP_SIN: return iv_sin(a);
@@ -158,6 +163,8 @@ static iv_affine_t eval_aff(int op, iv_affine_t a, iv_affine_t b, double d, int 
     case OP_MAX: return iv_affine_max(a, b);
     case OP_ADD_D: return iv_affine_add_d(a, d);
     case OP_MUL_D: return iv_affine_mul_d(a, d);
+    case OP_SUB_D: return iv_affine_sub_d(a, d);
+    case OP_DIV_D: return iv_affine_div_d(a, d);
     case OP_EXP: return iv_affine_exp(a);
     case OP_LOG: return iv_affine_log(a);
     case OP_SIN: return iv_affine_sin(a);

@@ -1,7 +1,12 @@
 /* Property-based containment tests of interval.h against __float128
    references (issue 3): at least 10^7 random interval cases and 10^7 random
    affine cases per normal run, over every operation, with the input classes
-   of test_interval_gen.h. Zero violations allowed. */
+   of test_interval_gen.h. Zero violations allowed. Public functions not
+   checked here: the array forms (bit for bit against the per-call forms,
+   test_interval_basic), iv_fp_env_* (test_interval_fp_env),
+   iv_result_string, and iv_make, iv_point, iv_empty, iv_entire,
+   iv_is_empty, iv_contains, iv_affine_const, iv_affine_from_iv,
+   iv_affine_is_empty, iv_from_affine only as the checks' own tools. */
 #define IV_IMPLEMENTATION
 #include "test_interval_oracle.h"
 /* cases per property (test_interval_props_nosimd.c runs fewer) */
@@ -50,6 +55,18 @@ static iv_t input_for(t_rng_t *r, int op)
     return x;
 }
 
+/* The set operations at a point x of a (y of b): x lies in the hull and
+   in a half of iv_split(a), in the intersection exactly when y = x lies
+   in b too; iv_mid(a) lies in a and iv_width(a) is at least hi - lo. */
+static int sets_hold(iv_t a, iv_t b, double x)
+{
+    iv_t l, h;
+    int in = iv_contains(iv_hull(a, b), x) && iv_contains(iv_intersect(a, b), x) == iv_contains(b, x);
+    iv_split(a, &l, &h);
+    return in && (iv_contains(l, x) || iv_contains(h, x)) && iv_contains(a, iv_mid(a)) &&
+           (q_t)iv_width(a) >= (q_t)a.hi - (q_t)a.lo;
+}
+
 static void *interval_worker(void *arg)
 {
     job_t *j = (job_t *)arg;
@@ -57,18 +74,28 @@ static void *interval_worker(void *arg)
     long i;
     r.s = j->seed;
     for (i = 0; i < j->n; i++) {
-        int op = (int)(t_rng_u64(&r) % OP_COUNT), k;
+        int op = (int)(t_rng_u64(&r) % OP_COUNT), k, np = 0;
         int pn = pow_ns[t_rng_u64(&r) % (sizeof pow_ns / sizeof pow_ns[0])];
-        iv_t a = input_for(&r, op), b = input_for(&r, op), z;
-        if (op == OP_ADD_D || op == OP_MUL_D) { double d = ig_value(&r); b = iv_point(d); }
+        iv_t a = input_for(&r, op), b = input_for(&r, op), z, piece[2];
+        if (is_scalar(op)) { double d = ig_value(&r); b = iv_point(d); }
         if (op == OP_POW && t_rng_u64(&r) % 2) b = iv_make(-3 + 6 * t_rng_unit(&r), 3);
         z = eval_iv(op, a, b, pn);
+        if (op == OP_DIV) np = iv_div_ext(a, b, piece);
         j->per_op[op]++;
         for (k = 0; k < 2; k++) {
             double x = ig_point(&r, a), y = is_binary(op) ? ig_point(&r, b) : 0.0;
             q_t v = ref(op, (q_t)x, (q_t)y, pn);
+            if (k == 0 && !sets_hold(a, b, x))
+                JOB_FAIL(j, "hull, intersect, split, mid or width: x=%a in [%a,%a], [%a,%a]", x, a.lo, a.hi, b.lo, b.hi);
             if (v != v) continue; /* outside the domain */
             j->checked++;
+            /* iv_div_ext: the quotient lies in one of its pieces */
+            if (op == OP_DIV && !((np > 0 && ig_in(piece[0], v)) || (np > 1 && ig_in(piece[1], v)))) {
+                char buf[64];
+                quadmath_snprintf(buf, sizeof buf, "%.36Qg", v);
+                JOB_FAIL(j, "div_ext: x=%a in [%a,%a], y=%a in [%a,%a]: f=%s in none of %d pieces", x, a.lo, a.hi, y, b.lo,
+                         b.hi, buf, np);
+            }
             if (iv_is_empty(z) || !ig_in(z, v)) {
                 char buf[64];
                 quadmath_snprintf(buf, sizeof buf, "%.36Qg", v);
@@ -95,11 +122,16 @@ static void containment_intervals(void)
 /* A random affine form; its eps_x value is chosen per sample. */
 static iv_affine_t rand_form(t_rng_t *r)
 {
-    unsigned k = (unsigned)(t_rng_u64(r) % 8);
+    unsigned k = (unsigned)(t_rng_u64(r) % 9);
     double c = ig_value(r), s;
     iv_affine_t f;
+    iv_t x;
     if (k == 0) return iv_affine_const(c);
     if (k == 1) return iv_affine_from_iv(ig_interval(r));
+    if (k == 8) { /* the ray parameter over a finite range */
+        x = ig_interval(r);
+        return x.lo > -HUGE_VAL && x.hi < HUGE_VAL ? iv_affine_ray_param(x.lo, x.hi) : iv_affine_from_iv(x);
+    }
     s = k <= 4 ? fabs(c) * pow(10.0, t_rng_range(r, -6, 0)) : pow(10.0, t_rng_range(r, -3, 1));
     f.c = k == 7 ? t_rng_range(r, -3, 3) : c;
     f.t = s * t_rng_range(r, -1, 1);
@@ -121,8 +153,12 @@ static void *affine_worker(void *arg)
         int op = (int)(t_rng_u64(&r) % OP_COUNT), k;
         int pn = pow_ns[t_rng_u64(&r) % (sizeof pow_ns / sizeof pow_ns[0])];
         iv_affine_t a = rand_form(&r), b = rand_form(&r), z;
-        double d = ig_value(&r);
+        double d = ig_value(&r), t0 = ig_value(&r), t1 = t0 + fabs(ig_value(&r));
         iv_t zi;
+        /* iv_affine_ray_param's claim: every t in [t0, t1] is c + t eps_t */
+        z = iv_affine_ray_param(t0, t1);
+        if (t1 < HUGE_VAL && !(z.e == 0 && (q_t)z.c - fabsq((q_t)z.t) <= (q_t)t0 && (q_t)z.c + fabsq((q_t)z.t) >= (q_t)t1))
+            JOB_FAIL(j, "ray_param(%a, %a) = (%a,%a,%a)", t0, t1, z.c, z.t, z.e);
         if ((op == OP_LOG || op == OP_SQRT || op == OP_POW) && a.c < 0 && t_rng_u64(&r) % 2) a.c = -a.c;
         if (op == OP_EXP && fabs(a.c) > 700) a.c = fmod(a.c, 700.0);
         z = eval_aff(op, a, b, d, pn, (int)(t_rng_u64(&r) % 4));
@@ -130,7 +166,7 @@ static void *affine_worker(void *arg)
         for (k = 0; k < 2; k++) {
             q_t et = (q_t)(k == 0 ? (t_rng_u64(&r) % 2 ? 1.0 : -1.0) : t_rng_range(&r, -1, 1));
             q_t ea = (q_t)t_rng_range(&r, -1, 1), eb = (q_t)t_rng_range(&r, -1, 1);
-            q_t x = form_at(a, et, ea), y = op == OP_ADD_D || op == OP_MUL_D ? (q_t)d : form_at(b, et, eb), v, dev;
+            q_t x = form_at(a, et, ea), y = is_scalar(op) ? (q_t)d : form_at(b, et, eb), v, dev;
             if (op == OP_SQR) y = x;
             v = ref(op, x, y, pn);
             if (v != v || isinfq(v) || a.e == HUGE_VAL || b.e == HUGE_VAL) continue;
