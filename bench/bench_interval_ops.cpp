@@ -77,6 +77,7 @@
 #define iv__aff_taylor_fn F_iv__aff_taylor_fn
 #define iv__aff_trig_tangent F_iv__aff_trig_tangent
 #define iv__aff_unary F_iv__aff_unary
+#define iv__aff_unbounded F_iv__aff_unbounded
 #define iv__any_nan F_iv__any_nan
 #define iv__bits64 F_iv__bits64
 #define iv__blendv F_iv__blendv
@@ -299,6 +300,7 @@
 #undef iv__aff_taylor_fn
 #undef iv__aff_trig_tangent
 #undef iv__aff_unary
+#undef iv__aff_unbounded
 #undef iv__any_nan
 #undef iv__bits64
 #undef iv__blendv

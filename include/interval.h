@@ -863,7 +863,11 @@ IV_DEF iv_t iv_hypot(iv_t x, iv_t y);
    independent input ranges); each form's eps_x is a fresh symbol,
    independent of all others, which is always sound.
    Empty form: c = t = e = NaN. Unbounded form: c = t = 0, e = +inf
-   (iv_from_affine gives the entire line); any overflow yields it. */
+   (iv_from_affine gives the entire line); any overflow yields it. A form
+   with any infinite part (no operation makes one; a struct literal, or
+   parts copied from an overflowed computation) is unbounded too: it
+   stands for any real, as an overflow does, so iv_from_affine gives the
+   entire line and every operation answers as for (0, 0, inf). */
 typedef struct iv_affine_t {
     double c; /* centre */
     double t; /* coefficient of the shared ray symbol eps_t */
@@ -949,6 +953,11 @@ static inline iv_affine_t iv__aff(double c, double t, double e)
 static inline iv_affine_t iv__aff_empty(void) { return iv__aff(NAN, NAN, NAN); }
 static inline iv_affine_t iv__aff_entire(void) { return iv__aff(0.0, 0.0, HUGE_VAL); }
 static inline int iv_affine_is_empty(iv_affine_t x) { return x.e != x.e; }
+/* any infinite part: the unbounded form, whatever the other parts hold */
+static inline int iv__aff_unbounded(iv_affine_t x)
+{
+    return x.e == HUGE_VAL || fabs(x.c) == HUGE_VAL || fabs(x.t) == HUGE_VAL;
+}
 /* Inputs were non-empty; anything non-finite now is overflow (or an
    unbounded input): the sound answer is the unbounded form. */
 static inline iv_affine_t iv__aff_finish(double c, double t, double e)
@@ -986,7 +995,8 @@ static inline iv_t iv_from_affine(iv_affine_t x)
 {
     double r;
     if (iv_affine_is_empty(x)) return iv_empty();
-    if (x.e == HUGE_VAL) return iv_entire();
+    /* an infinite centre or coefficient gave [DBL_MAX, inf] or NaN ends */
+    if (iv__aff_unbounded(x)) return iv_entire();
     r = fabs(x.t) + x.e;
     r = r == 0 ? 0.0 : iv__up(r);
     if (r == 0) return iv__raw(x.c, x.c);
@@ -1021,7 +1031,8 @@ static inline iv_affine_t iv_affine_mul_d(iv_affine_t x, double d)
 {
     double c, t;
     if (iv_affine_is_empty(x) || !(d - d == 0)) return iv__aff_empty();
-    if (x.e == HUGE_VAL) return d == 0 ? iv__aff(0.0, 0.0, 0.0) : x;
+    /* returning x kept its infinite parts (1e300 * a form with c = inf) */
+    if (iv__aff_unbounded(x)) return d == 0 ? iv__aff(0.0, 0.0, 0.0) : iv__aff_entire();
     c = x.c * d;
     t = x.t * d;
     return iv__aff_finish(c, t, iv__aff_radius(x.e * fabs(d) + iv__aff_rnd(fabs(c) + fabs(t))));

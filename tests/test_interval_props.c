@@ -122,7 +122,7 @@ static void containment_intervals(void)
 /* A random affine form; its eps_x value is chosen per sample. */
 static iv_affine_t rand_form(t_rng_t *r)
 {
-    unsigned k = (unsigned)(t_rng_u64(r) % 9);
+    unsigned k = (unsigned)(t_rng_u64(r) % 10);
     double c = ig_value(r), s;
     iv_affine_t f;
     iv_t x;
@@ -136,13 +136,26 @@ static iv_affine_t rand_form(t_rng_t *r)
     f.c = k == 7 ? t_rng_range(r, -3, 3) : c;
     f.t = s * t_rng_range(r, -1, 1);
     f.e = (t_rng_u64(r) % 3) ? 0.0 : s * t_rng_unit(r) * 0.3;
+    if (k == 9) { /* infinite parts: an unbounded form that is not the canonical (0, 0, inf) */
+        unsigned m = (unsigned)(t_rng_u64(r) % 7) + 1;
+        if (m & 1) f.c = t_rng_u64(r) % 2 ? HUGE_VAL : -HUGE_VAL;
+        if (m & 2) f.t = t_rng_u64(r) % 2 ? HUGE_VAL : -HUGE_VAL;
+        if (m & 4) f.e = HUGE_VAL;
+    }
     return f;
 }
+
+/* A form with an infinite part is unbounded: it stands for any real
+   (docs/interval.md, "Affine arithmetic"). */
+static int unbounded(iv_affine_t f) { return fabs(f.c) == HUGE_VAL || fabs(f.t) == HUGE_VAL || f.e == HUGE_VAL; }
 
 /* The affine claim is stronger than range containment: for every input
    point (eps_t, eps_a, eps_b), f(a, b) differs from z.c + z.t*eps_t (the
    same eps_t) by at most z.e. The interval iv_from_affine(z) must contain
-   f as well. */
+   f as well. An unbounded operand takes any real value (a random double
+   of every class, at every eps_t); the result must then still be a form
+   (finite parts, or the unbounded form) whose claim holds, and
+   iv_from_affine of an unbounded operand is the entire line. */
 static void *affine_worker(void *arg)
 {
     job_t *j = (job_t *)arg;
@@ -160,16 +173,23 @@ static void *affine_worker(void *arg)
         if (t1 < HUGE_VAL && !(z.e == 0 && (q_t)z.c - fabsq((q_t)z.t) <= (q_t)t0 && (q_t)z.c + fabsq((q_t)z.t) >= (q_t)t1))
             JOB_FAIL(j, "ray_param(%a, %a) = (%a,%a,%a)", t0, t1, z.c, z.t, z.e);
         if ((op == OP_LOG || op == OP_SQRT || op == OP_POW) && a.c < 0 && t_rng_u64(&r) % 2) a.c = -a.c;
-        if (op == OP_EXP && fabs(a.c) > 700) a.c = fmod(a.c, 700.0);
+        if (op == OP_EXP && fabs(a.c) > 700 && fabs(a.c) < HUGE_VAL) a.c = fmod(a.c, 700.0);
         z = eval_aff(op, a, b, d, pn, (int)(t_rng_u64(&r) % 4));
         zi = iv_from_affine(z);
+        if (unbounded(a) && !(iv_from_affine(a).lo == -HUGE_VAL && iv_from_affine(a).hi == HUGE_VAL))
+            JOB_FAIL(j, "iv_from_affine(%a,%a,%a) = [%a,%a], not the entire line", a.c, a.t, a.e, iv_from_affine(a).lo,
+                     iv_from_affine(a).hi);
+        if (!iv_affine_is_empty(z) && !(z.e >= 0 && z.c == z.c && z.t == z.t))
+            JOB_FAIL(j, "affine %s(n=%d): a=(%a,%a,%a) b=(%a,%a,%a) d=%a -> (%a,%a,%a) is not a form", op_name[op], pn, a.c, a.t,
+                     a.e, b.c, b.t, b.e, d, z.c, z.t, z.e);
         for (k = 0; k < 2; k++) {
             q_t et = (q_t)(k == 0 ? (t_rng_u64(&r) % 2 ? 1.0 : -1.0) : t_rng_range(&r, -1, 1));
             q_t ea = (q_t)t_rng_range(&r, -1, 1), eb = (q_t)t_rng_range(&r, -1, 1);
-            q_t x = form_at(a, et, ea), y = is_scalar(op) ? (q_t)d : form_at(b, et, eb), v, dev;
+            q_t x = unbounded(a) ? (q_t)ig_value(&r) : form_at(a, et, ea), v, dev;
+            q_t y = is_scalar(op) ? (q_t)d : unbounded(b) ? (q_t)ig_value(&r) : form_at(b, et, eb);
             if (op == OP_SQR) y = x;
             v = ref(op, x, y, pn);
-            if (v != v || isinfq(v) || a.e == HUGE_VAL || b.e == HUGE_VAL) continue;
+            if (v != v || isinfq(v)) continue;
             if (fabsq(x) > (q_t)1.7976931348623157e308 || fabsq(y) > (q_t)1.7976931348623157e308) continue;
             j->checked++;
             /* the quad reference itself is rounded (about 2^-112 relative,
@@ -177,7 +197,7 @@ static void *affine_worker(void *arg)
                allow 2^-96 of the magnitudes involved, far below the 2^-53
                size of any double rounding error the form must account for */
             dev = fabsq(v - form_at(z, et, 0)) - ldexpq(fabsq(v) + fabsq(x) + fabsq(y), -96);
-            if (iv_affine_is_empty(z) || !(dev <= (q_t)z.e || z.e == HUGE_VAL) || !ig_in(zi, v)) {
+            if (iv_affine_is_empty(z) || !(dev <= (q_t)z.e || unbounded(z)) || !ig_in(zi, v)) {
                 char buf[64];
                 quadmath_snprintf(buf, sizeof buf, "%.30Qg", v);
                 JOB_FAIL(j, "affine %s(n=%d): a=(%a,%a,%a) b=(%a,%a,%a) d=%a -> (%a,%a,%a), f=%s", op_name[op], pn,
