@@ -119,6 +119,10 @@ $(B)/impl/clang/%.o: tests/impl/%.c $(HEADERS)
 $(B)/impl/%/libfiligree.a: $(foreach n,$(IMPL_NAMES),$(B)/impl/%/$(n).o)
 	rm -f $@ && ar rcs $@ $^
 
+# tests that include example sources rebuild when those change
+EX_TESTS := $(basename $(notdir $(shell grep -l '"\.\./examples/' tests/*.c)))
+$(foreach d,tests clang san fuzz,$(addprefix $(B)/$(d)/,$(EX_TESTS))): $(wildcard examples/*/*.h examples/common/*.c)
+
 $(B)/tests/%: tests/%.c $(TEST_DEPS) $(B)/impl/tests/libfiligree.a
 	@mkdir -p $(dir $@)
 	$(CC) $(TEST_CFLAGS) $< $(B)/impl/tests/libfiligree.a -o $@ $(LDLIBS_ALL)

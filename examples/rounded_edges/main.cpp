@@ -12,7 +12,8 @@
    Scenes: article (the bevel-shader post's cube and icosphere), glass (the
    same with a glass cube: rays refract through its rounded edges, in and
    out), blocks (play blocks with knobs, 250 142 triangles), cornell (a
-   Cornell box). */
+   Cornell box seen from inside: the room is one rounded box around the
+   camera). */
 #define RE_IMPLEMENTATION
 #define RX_SCENE_IMPLEMENTATION
 #define RX_TESS_IMPLEMENTATION

@@ -3,8 +3,9 @@
    mode decides what a hit on a rounded object becomes.
 
      sharp           the host hit as is
-     rounded         rounded_edges.h: re_query() on every front-face hit of a
-                     rounded object (the integration protocol, docs/rounded_edges.md)
+     rounded         rounded_edges.h: re_query_uv() on every front-face hit of a
+                     rounded object, re_query_exit_uv() on every back-face hit
+                     (the integration protocol, docs/rounded_edges.md)
      bevel-blog-N    re_bevel_blog() shading normal, N probe rays, delta = r
      bevel-cycles-N  re_bevel_cycles() shading normal, N samples, R = r
      tess-N          a triangle mesh of the same rounded solid (rx_tess.h), N
@@ -260,22 +261,35 @@ static double rx__next_t(const rx_world_t *w, double t)
     return t * (1 + RX_STEP_REL) + RX_STEP_REL * w->scene->scale;
 }
 
+/* Object g's material at a surface with outward normal n (rx_object_t.by_axis). */
+static const ex_material_t *rx__material(const rx_world_t *w, unsigned g, ex_v3_t n)
+{
+    const rx_object_t *ob = &w->scene->obj[g];
+    double ax = fabs(n.x), ay = fabs(n.y), az = fabs(n.z);
+    int a;
+    if (!ob->by_axis) return &w->scene->mats[ob->material];
+    a = ax >= ay && ax >= az ? 0 : ay >= az ? 1 : 2;
+    return &w->scene->mats[ob->axis_material[2 * a + ((a == 0 ? n.x : a == 1 ? n.y : n.z) > 0)]];
+}
+
 static void rx__surface_from_hit(const rx_world_t *w, const ex_ray_t *ray, const ex_hit_t *h, ex_surface_t *s)
 {
     s->t = h->t;
     s->p = ex_madd(ray->o, ray->d, h->t);
     s->ng = h->ng;
     s->n = h->ng;
-    s->mat = &w->scene->mats[w->scene->obj[h->geom_id].material];
+    s->mat = rx__material(w, h->geom_id, h->ng);
 }
 
-/* The surface of a rounded-edges answer (a rounded hit or exit): its t,
-   point and normal, as the shading normal too. */
-static void rx__surface_from_answer(const re_hit_t *q, ex_surface_t *s)
+/* The surface of a rounded-edges answer on object g (a rounded hit or
+   exit): its t, point and normal, as the shading normal too, and the
+   material there. */
+static void rx__surface_from_answer(const rx_world_t *w, unsigned g, const re_hit_t *q, ex_surface_t *s)
 {
     s->t = q->t;
     s->p = ex_v3(q->point[0], q->point[1], q->point[2]);
     s->n = s->ng = ex_v3(q->normal[0], q->normal[1], q->normal[2]);
+    s->mat = rx__material(w, g, s->ng);
 }
 
 /* Host trace callback for the bevel baselines: Embree, object = geometry id. */
@@ -550,7 +564,7 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
                        the ray leaves the rounded solid, which only a ray born
                        under a chamfer can produce */
                     chamfer = 1;
-                    rx__surface_from_answer(&q, s);
+                    rx__surface_from_answer(w, h.geom_id, &q, s);
                     break;
                 }
                 found = 0;
@@ -565,7 +579,7 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
             if (k == RE_HIT_ROUNDED) {
                 chamfer = 1;
                 if (rounded) *rounded = q;
-                rx__surface_from_answer(&q, s);
+                rx__surface_from_answer(w, h.geom_id, &q, s);
                 break;
             }
             if (k == RE_PASS_THROUGH) {
@@ -578,7 +592,10 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
             }
             break;
         }
-        if ((w->mode.kind == RX_BLOG || w->mode.kind == RX_CYCLES) && front) {
+        /* the bevels take the outward normal from either side: seen from
+           inside a solid (the Cornell room) they probe its faces from
+           within, as a bevel node does on any surface it shades */
+        if (w->mode.kind == RX_BLOG || w->mode.kind == RX_CYCLES) {
             double p[3], n[3];
             re_bevel_result_t b;
             re_result_t rc;
@@ -677,8 +694,7 @@ static int rx__exit_first(const rx_world_t *w, const ex_ray_t *ray, unsigned g, 
     if (re_query_exit_uv(w->round, o, d, (unsigned)w->re_object[g], h.prim_id, h.t, h.u, h.v, &q) != RE_HIT_ROUNDED ||
         !(q.t < s->t))
         return 0;
-    rx__surface_from_answer(&q, s);
-    s->mat = &w->scene->mats[w->scene->obj[g].material];
+    rx__surface_from_answer(w, g, &q, s);
     *chamfer = 1;
     return 1;
 }

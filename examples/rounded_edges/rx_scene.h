@@ -1,8 +1,9 @@
 /* rx_scene.h — the scenes of the rounded-edges example and benchmark.
 
    Every scene is generated in code, y up, as a list of closed convex objects
-   (each its own indexed triangle mesh, CCW from outside) plus open or
-   unrounded props (ground, room walls), materials, lights and a camera.
+   (each its own indexed triangle mesh, CCW from outside) plus unrounded
+   props (the ground), materials, lights and a camera. The camera may stand
+   inside an object (the Cornell room).
    An object's `radius` is its rounding radius in scene units; 0 leaves it
    sharp in every mode.
 
@@ -22,6 +23,12 @@ typedef struct rx_object_t {
     ex_mesh_t mesh;   /* sharp mesh, world space */
     int material;     /* index into rx_scene_t.mats */
     double radius;    /* rounding radius, scene units; 0 = never rounded */
+    /* by_axis: the material follows the surface's outward normal instead,
+       axis_material[2 a + (n_a > 0)] for its largest component a (a room's
+       walls in one box: a rounded seam takes the nearer wall's colour in
+       every mode alike) */
+    int by_axis;
+    int axis_material[6];
 } rx_object_t;
 
 #define RX_MAX_MATS 16
@@ -92,6 +99,7 @@ static int rx__add(rx_scene_t *s, ex_mesh_t *m, int material, double radius)
     s->obj[s->nobj].mesh = *m;
     s->obj[s->nobj].material = material;
     s->obj[s->nobj].radius = radius;
+    s->obj[s->nobj].by_axis = 0;
     s->nobj++;
     memset(m, 0, sizeof *m);
     return 0;
@@ -257,29 +265,28 @@ static int rx__blocks(rx_scene_t *s, double rs)
     return 0;
 }
 
-/* A Cornell box, its interior seen through the open front (the camera
-   stands 2.6 in front of the opening, as Cornell box images are framed;
-   not inside the room). The room is five thick wall slabs (convex
-   boxes): their exposed front edges are convex and rounded, while the room's
-   interior corners, where two slabs meet, are concave and stay sharp: the
-   method rounds convex edges only. Inside: a tall box, a short box and an
-   icosphere, all rounded. */
+/* A Cornell box seen from inside, as the paper's Fig. 12: the room is one
+   closed box (a convex solid) with the camera inside it, so every ray meets
+   its walls from inside (the host's exit query, re_query_exit_uv) and its
+   twelve edges and eight corners, rounded, are the room's concave seams as
+   seen from within. The left wall is red, the right green (by the outward
+   normal, rx_object_t.by_axis). Inside: a tall box and a short box resting
+   on the floor and an icosphere, all rounded. */
 static int rx__cornell(rx_scene_t *s, double rs)
 {
+    static const int walls[6] = {1, 2, 0, 0, 0, 0}; /* -x red, +x green, the rest white */
     ex_mesh_t m;
-    const double t = 0.1, rw = 0.03 * rs;
     s->mats[0] = rx__mat(0.73, 0.73, 0.73, 0.0, 1.0);   /* white */
     s->mats[1] = rx__mat(0.63, 0.07, 0.05, 0.0, 1.0);   /* red */
     s->mats[2] = rx__mat(0.12, 0.45, 0.09, 0.0, 1.0);   /* green */
     s->mats[3] = rx__mat(0.70, 0.70, 0.68, 0.05, 0.15); /* glossy white */
     s->mats[4] = rx__mat(0.75, 0.55, 0.15, 0.6, 0.25);  /* gold-ish */
     s->nmats = 5;
-    /* room interior [-1,1] x [0,2] x [-1,1], open at z = +1 */
-    if (rx__box(&m, ex_v3(-1 - t, -t, -1 - t), ex_v3(1 + t, 0, 1), 0) || rx__add(s, &m, 0, rw)) return -1;     /* floor */
-    if (rx__box(&m, ex_v3(-1 - t, 2, -1 - t), ex_v3(1 + t, 2 + t, 1), 0) || rx__add(s, &m, 0, rw)) return -1;  /* ceiling */
-    if (rx__box(&m, ex_v3(-1, 0, -1 - t), ex_v3(1, 2, -1), 0) || rx__add(s, &m, 0, rw)) return -1;            /* back */
-    if (rx__box(&m, ex_v3(-1 - t, 0, -1), ex_v3(-1, 2, 1), 0) || rx__add(s, &m, 1, rw)) return -1;             /* left */
-    if (rx__box(&m, ex_v3(1, 0, -1), ex_v3(1 + t, 2, 1), 0) || rx__add(s, &m, 2, rw)) return -1;               /* right */
+    /* room interior [-1,1] x [0,2] x [-1,2.2]; the camera stands inside it,
+       0.2 from the front wall */
+    if (rx__box(&m, ex_v3(-1, 0, -1), ex_v3(1, 2, 2.2), 0) || rx__add(s, &m, 0, 0.12 * rs)) return -1;
+    s->obj[s->nobj - 1].by_axis = 1;
+    memcpy(s->obj[s->nobj - 1].axis_material, walls, sizeof walls);
     if (rx__box(&m, ex_v3(-0.65, 0, -0.55), ex_v3(-0.05, 1.2, 0.05), 0.3) || rx__add(s, &m, 3, 0.04 * rs)) return -1;
     if (rx__box(&m, ex_v3(0.1, 0, 0.0), ex_v3(0.7, 0.6, 0.6), -0.3) || rx__add(s, &m, 3, 0.04 * rs)) return -1;
     if (rx__icosphere(&m, 1, 0.28, ex_v3(0.4, 0.88, 0.3)) || rx__add(s, &m, 4, 0.02 * rs)) return -1;
@@ -288,10 +295,10 @@ static int rx__cornell(rx_scene_t *s, double rs)
     s->lights[0].edge_v = ex_v3(0, 0, 0.6);
     s->lights[0].radiance = ex_v3(14, 12.5, 10);
     s->nlights = 1;
-    s->eye = ex_v3(0, 1.0, 3.6);
-    s->at = ex_v3(0, 0.95, 0);
+    s->eye = ex_v3(0, 1.0, 2.0);
+    s->at = ex_v3(0, 0.9, 0);
     s->up = ex_v3(0, 1, 0);
-    s->vfov = 38;
+    s->vfov = 56;
     s->scale = 2;
     return 0;
 }
