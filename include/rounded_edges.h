@@ -250,10 +250,10 @@ typedef enum re_report_kind_t {
                                     its patch is mixed, complex or
                                     unroundable (see docs: limits) */
     RE_REPORT_RADIUS_CLAMPED,    /* value = new radius; element: the edge
-                                    (both vertices) or vertex that limits
-                                    it, or a triangle of the same object
-                                    in the rounding's way (element2 -1;
-                                    the message says which) */
+                                    (both vertices) or the vertex (element2
+                                    -1) that limits it, or a triangle of
+                                    the same object in the rounding's way
+                                    (element2 -2) */
     RE_REPORT_RADIUS_MISMATCH,   /* unequal edge radii met at a corner; value = radius kept */
     RE_REPORT_SKIPPED_TRIANGLE,  /* RE_BAD_INPUT_SKIP dropped this triangle */
     RE_REPORT_COMPLEX_CORNER,    /* more than RE_MAX_CORNER_PLANES face planes
@@ -2798,7 +2798,7 @@ static re_result_t re__patch_requests(re__an_t *an, unsigned *uf, re__patch_limi
     return RE_OK;
 }
 
-/* ---- Step 6b: what the rest of the object puts in the way ----------------
+/* ---- Step 6b (docs: construction step 7, "the rest of the object") -------
 
    The bounds above look at a corner's neighbours only. A face of another
    part of the same object can lie where a rounding removes material: a
@@ -2825,19 +2825,29 @@ static re_result_t re__patch_requests(re__an_t *an, unsigned *uf, re__patch_limi
    - Corner c: its spheres' centres lie at v + r u, so its removed volume
      lies within r (1 + max |u|) of v, inside its own planes. Bound: the
      least |p - v| / (1 + max |u|) over the part of a face inside them.
-   Faces in one of the zone's planes (the patch's own faces, and pieces of
-   them) are not in the way and are skipped by plane. A part of a face
-   within RE__REACH_ULPS of a plane is taken as on it. The bounds are
-   conservative: the chord zone holds the removed volume with room, the
-   corner's ball more so, so a face near a corner can clamp the radius to
-   below what would fit (up to 1 + max |u|, 2.7 at a cube's corner).
-   Candidates come from a bounding-volume tree over the triangles' boxes,
-   built only for the objects checked. */
+   The zones are closed: a face that only touches one of their planes
+   from outside (a boss standing on the strip a rounding removes) bounds
+   the radius too. Faces of the patch itself (a plane of any of its
+   corners) are left to the local bounds above: a patch's faces are
+   bounded by its rounded edges, locally convex, and would otherwise be
+   caught by the corner's ball (the far sides of a fine prism). So are
+   planes shared by several patches. The bounds are conservative: the
+   chord zone holds the removed volume with room, the corner's ball more
+   so, so a face near a corner can clamp the radius to below what would
+   fit. Candidates come from a bounding-volume tree over the triangles'
+   boxes, built only for the objects checked, queried piece by piece
+   along a long edge. */
 #define RE__REACH_ULPS (64.0 * RE__DBL_EPS)
 /* triangles per leaf of the tree */
 #define RE__TBVH_LEAF 4u
-/* vertices of a triangle clipped by up to 2 RE_MAX_CORNER_PLANES + 2 planes */
-#define RE__CLIP_MAX (5u + 2u * RE_MAX_CORNER_PLANES)
+/* vertices of a triangle clipped by up to 2 RE_MAX_CORNER_PLANES + 3 planes */
+#define RE__CLIP_MAX (6u + 2u * RE_MAX_CORNER_PLANES)
+
+/* Per plane, the patch whose corners have it (RE__NONE: none; RE__MULTI:
+   several): such faces are left to the local bounds (see above). */
+#define RE__MULTI (RE__NONE - 1u)
+/* no patch met yet (re__reach_bounds) */
+#define RE__UNSEEN (RE__NONE - 2u)
 
 typedef struct re__tbvh_node_t {
     double lo[3], hi[3];
@@ -2892,15 +2902,21 @@ static void re__tbvh_select(re__tbvh_t *B, unsigned lo, unsigned hi, unsigned mi
     }
 }
 
-/* The tree over triangles t with a plane (not skipped): median splits
-   along the longest axis of the boxes' extent. Returns its node count. */
-static unsigned re__tbvh_build(const re__an_t *an, re__tbvh_t *B)
+/* The tree over the triangles that some patch must be checked against:
+   with a plane (not skipped), not on planes of several patches, and not on
+   the planes of `only` (the object's one patch, RE__NONE if it has more).
+   Median splits along the longest axis of the boxes' extent. Returns its
+   node count. */
+static unsigned re__tbvh_build(const re__an_t *an, re__tbvh_t *B, const unsigned *plane_patch, unsigned only)
 {
     unsigned t, n = 0, nn = 1, k, sp = 0;
     unsigned stack[2 * 64][2], node_of[2 * 64]; /* depth-first: at most depth + 1 entries */
     for (t = 0; t < an->T; t++) {
         double *b = B->box + 6 * (size_t)t;
+        unsigned pp;
         if (an->tbad[t] || an->tplane[t] == RE__NONE) continue;
+        pp = plane_patch[an->tplane[t]];
+        if (pp == RE__MULTI || (only != RE__NONE && pp == only)) continue;
         for (k = 0; k < 3; k++) {
             const double *p0 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t], *p1 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t + 1],
                          *p2 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t + 2];
@@ -2964,21 +2980,22 @@ static unsigned re__tbvh_query(const re__tbvh_t *B, const double lo[3], const do
     return n;
 }
 
-/* Triangle t clipped to the part at least tol inside every plane of
-   pl[0 .. np) (depth c - n.p): its vertices into poly (3 per vertex,
-   room for RE__CLIP_MAX), their count returned (below 3: nothing left). */
+/* Triangle t clipped to the part inside every plane of pl[0 .. np)
+   (depth c - n.p at least -tol: the planes count as closed): its vertices
+   into poly (3 per vertex, room for RE__CLIP_MAX), their count returned
+   (0: nothing left; 1 or 2: it only touches there). */
 static unsigned re__clip_inside(const re__an_t *an, unsigned t, const re__plane_t *pls, unsigned np, double tol,
                                 double *poly, double *tmp)
 {
     unsigned n = 3, j, i, k;
     for (k = 0; k < 3; k++)
         for (j = 0; j < 3; j++) poly[3 * k + j] = an->pos[3 * (size_t)an->tri[3 * (size_t)t + k] + j];
-    for (j = 0; j < np && n >= 3; j++) {
+    for (j = 0; j < np && n >= 1; j++) {
         const re__plane_t *pl = &pls[j];
         unsigned m = 0;
         for (i = 0; i < n; i++) {
             const double *a = poly + 3 * i, *b = poly + 3 * ((i + 1) % n);
-            double da = pl->c - re__dot(pl->n, a) - tol, db = pl->c - re__dot(pl->n, b) - tol;
+            double da = pl->c - re__dot(pl->n, a) + tol, db = pl->c - re__dot(pl->n, b) + tol;
             if (da >= 0 && m < RE__CLIP_MAX) tmp[3 * m] = a[0], tmp[3 * m + 1] = a[1], tmp[3 * m + 2] = a[2], m++;
             if ((da >= 0) != (db >= 0) && m < RE__CLIP_MAX) {
                 double s = da / (da - db);
@@ -2992,7 +3009,8 @@ static unsigned re__clip_inside(const re__an_t *an, unsigned t, const re__plane_
     return n;
 }
 
-/* Distance from v to the convex planar polygon poly (n >= 3 vertices). */
+/* Distance from v to the convex planar polygon poly (n vertices; 1: a
+   point, 2: a segment). */
 static double re__dist_polygon(const double *poly, unsigned n, const double v[3])
 {
     double nrm[3] = {0, 0, 0}, best = HUGE_VAL, d[3], len;
@@ -3025,33 +3043,25 @@ static double re__dist_polygon(const double *poly, unsigned n, const double v[3]
     return best;
 }
 
-/* 1 when plane id q is among planes[0 .. np). */
-static int re__plane_listed(const unsigned *planes, unsigned np, unsigned q)
-{
-    unsigned j;
-    for (j = 0; j < np; j++)
-        if (planes[j] == q) return 1;
-    return 0;
-}
-
-/* The bound the object's other faces put on rounded edge i (see above), at
-   most bmax (the patch's smallest so far); *tri the limiting triangle. */
-static double re__edge_reach_bound(const re__an_t *an, re__tbvh_t *B, unsigned i, double req, double bmax, double tol,
-                                   long long *tri, double *poly, double *tmp)
+/* The bound the object's other faces put on rounded edge i of patch p
+   (see above), at most bmax (the patch's smallest so far); *tri the
+   limiting triangle. */
+static double re__edge_reach_bound(const re__an_t *an, re__tbvh_t *B, const unsigned *plane_patch, unsigned p, unsigned i,
+                                   double req, double bmax, double tol, long long *tri, double *poly, double *tmp)
 {
     const re__edge_t *e = &an->edges[i];
     const re__plane_t *P0 = &an->planes[an->tplane[e->he[0] / 3]], *P1 = &an->planes[an->tplane[e->he[1] / 3]];
     const double *va = an->pos + 3 * (size_t)e->v[0], *vb = an->pos + 3 * (size_t)e->v[1];
-    unsigned planes[2 * RE_MAX_CORNER_PLANES], np = 0, q, j, n, nc, k;
-    re__plane_t pls[2 * RE_MAX_CORNER_PLANES + 2];
-    double cs = re__dot(P0->n, P1->n), kk = 1 - cs, ell, lo[3], hi[3], dir[3], len, over, ext = 0;
+    unsigned np = 1, q, j, n, nc, k, piece, pieces;
+    re__plane_t pls[2 * RE_MAX_CORNER_PLANES + 3];
+    double cs = re__dot(P0->n, P1->n), kk = 1 - cs, ell, dir[3], len, over, ext = 0;
+    /* pls[0]: the chord at the smallest bound so far, d0 + d1 <= bmax k:
+       a face beyond it cannot lower the bound, and most candidates fail on
+       it first */
+    for (k = 0; k < 3; k++) pls[0].n[k] = -(P0->n[k] + P1->n[k]);
     for (q = 0; q < 2; q++) {
         unsigned c = an->vcorner[e->v[q]];
-        for (j = 0; j < an->c_np[c]; j++) {
-            planes[np] = an->c_planes[an->c_pfirst[c] + j];
-            pls[np] = an->planes[planes[np]];
-            np++;
-        }
+        for (j = 0; j < an->c_np[c]; j++) pls[np++] = an->planes[an->c_planes[an->c_pfirst[c] + j]];
     }
     /* between the planes across the edge at its two ends, moved out to
        the end spheres' centres where those lie beyond them: past them the
@@ -3067,29 +3077,39 @@ static double re__edge_reach_bound(const re__an_t *an, re__tbvh_t *B, unsigned i
         over = req * re__dot(dir, re__edge_su(an, an->vcorner[e->v[q]], i)) * (q ? 1 : -1) * (1 + 1e-9);
         if (over > 0) pls[np + (q ? 0u : 1u)].c += over, ext = re__max(ext, over);
     }
-    /* the tangent lines lie r tan(phi / 2) from the edge */
+    np += 2;
+    /* the tangent lines lie r tan(phi / 2) from the edge; a long edge is
+       searched in pieces about that long (an oblique edge's box would hold
+       most of a fine mesh) */
     ell = cs > -1 ? req * sqrt(kk / (1 + cs)) * (1 + 1e-9) + tol : HUGE_VAL;
-    for (k = 0; k < 3; k++) {
-        lo[k] = re__min(va[k], vb[k]) - ell - ext;
-        hi[k] = re__max(va[k], vb[k]) + ell + ext;
-    }
-    nc = re__tbvh_query(B, lo, hi);
-    for (q = 0; q < nc; q++) {
-        unsigned t = B->cand[q];
-        if (re__plane_listed(planes, np, an->tplane[t])) continue;
-        n = re__clip_inside(an, t, pls, np + 2, tol, poly, tmp);
-        for (j = 0; j < n && n >= 3; j++) {
-            const double *p = poly + 3 * j;
-            double b = (P0->c - re__dot(P0->n, p) + P1->c - re__dot(P1->n, p)) / kk;
-            if (b < bmax) bmax = b, *tri = t;
+    pieces = ell < HUGE_VAL && len > ell ? (unsigned)re__min(16.0, ceil(len / ell)) : 1u;
+    for (piece = 0; piece < pieces; piece++) {
+        double lo[3], hi[3], a = (double)piece / pieces, b = (double)(piece + 1) / pieces;
+        for (k = 0; k < 3; k++) {
+            double x0 = va[k] + a * (vb[k] - va[k]), x1 = va[k] + b * (vb[k] - va[k]);
+            lo[k] = re__min(x0, x1) - ell - (piece == 0 || piece + 1 == pieces ? ext : 0);
+            hi[k] = re__max(x0, x1) + ell + (piece == 0 || piece + 1 == pieces ? ext : 0);
+        }
+        nc = re__tbvh_query(B, lo, hi);
+        for (q = 0; q < nc; q++) {
+            unsigned t = B->cand[q], pp = plane_patch[an->tplane[t]];
+            if (pp == p || pp == RE__MULTI) continue;
+            pls[0].c = bmax * kk - P0->c - P1->c;
+            n = re__clip_inside(an, t, pls, np, tol, poly, tmp);
+            for (j = 0; j < n; j++) {
+                const double *x = poly + 3 * j;
+                double bound = (P0->c - re__dot(P0->n, x) + P1->c - re__dot(P1->n, x)) / kk;
+                if (bound < bmax) bmax = bound, *tri = t;
+            }
         }
     }
     return bmax;
 }
 
-/* The same for corner c: the least |p - v| / (1 + max |u|). */
-static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, unsigned c, double req, double bmax, double tol,
-                                     long long *tri, double *poly, double *tmp)
+/* The same for corner c of patch p: the least |x - v| / (1 + max |u|). */
+static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, const unsigned *plane_patch, unsigned p,
+                                     unsigned c, double req, double bmax, double tol, long long *tri, double *poly,
+                                     double *tmp)
 {
     const unsigned *planes = an->c_planes + an->c_pfirst[c];
     const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
@@ -3102,10 +3122,10 @@ static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, unsigned
     for (k = 0; k < 3; k++) lo[k] = v[k] - reach, hi[k] = v[k] + reach;
     nc = re__tbvh_query(B, lo, hi);
     for (q = 0; q < nc; q++) {
-        unsigned t = B->cand[q];
+        unsigned t = B->cand[q], pp = plane_patch[an->tplane[t]];
         double b;
-        if (re__plane_listed(planes, np, an->tplane[t])) continue;
-        if ((n = re__clip_inside(an, t, pls, np, tol, poly, tmp)) < 3) continue;
+        if (pp == p || pp == RE__MULTI) continue;
+        if (!(n = re__clip_inside(an, t, pls, np, tol, poly, tmp))) continue;
         b = re__dist_polygon(poly, n, v) / (1 + umax);
         if (b < bmax) bmax = b, *tri = t;
     }
@@ -3117,15 +3137,25 @@ static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, unsigned
 static re_result_t re__reach_bounds(re__an_t *an, re__arena_t *ar, const unsigned *patch, re__patch_limits_t *P)
 {
     re__tbvh_t B;
-    unsigned i, c;
+    unsigned i, c, j, *plane_patch, only = RE__UNSEEN;
     double tol, M = 0, poly[3 * RE__CLIP_MAX], tmp[3 * RE__CLIP_MAX];
     size_t mark = ar->used;
     if (!re__may_reach_own_faces(an)) return RE_OK;
+    RE__TAKE(plane_patch, unsigned, an->n_planes + 1);
+    for (i = 0; i < an->n_planes; i++) plane_patch[i] = RE__NONE;
+    for (c = 0; c < an->nc; c++) {
+        if (an->vstate[an->c_vertex[c]] != RE__V_CORNER || P->req[patch[c]] == HUGE_VAL) continue;
+        only = only == RE__UNSEEN || only == patch[c] ? patch[c] : RE__NONE; /* RE__NONE: several */
+        for (j = 0; j < an->c_np[c]; j++) {
+            unsigned *pp = &plane_patch[an->c_planes[an->c_pfirst[c] + j]];
+            *pp = *pp == RE__NONE || *pp == patch[c] ? patch[c] : RE__MULTI;
+        }
+    }
     RE__TAKE(B.nodes, re__tbvh_node_t, 2 * (size_t)an->T + 1);
     RE__TAKE(B.idx, unsigned, an->T);
     RE__TAKE(B.box, double, 6 * (size_t)an->T);
     RE__TAKE(B.cand, unsigned, an->T);
-    if (!re__tbvh_build(an, &B)) { ar->used = mark; return RE_OK; }
+    if (only == RE__UNSEEN || !re__tbvh_build(an, &B, plane_patch, only)) { ar->used = mark; return RE_OK; }
     for (i = 0; i < 3; i++) M = re__max(M, fabs(an->origin[i]));
     tol = RE__REACH_ULPS * (M + an->size);
     for (i = 0; i < an->E; i++) {
@@ -3136,7 +3166,7 @@ static re_result_t re__reach_bounds(re__an_t *an, re__arena_t *ar, const unsigne
         if (!e->rounded) continue;
         p = patch[an->vcorner[e->v[0]]];
         if (P->req[p] == HUGE_VAL) continue;
-        b = re__edge_reach_bound(an, &B, i, P->req[p], re__min(P->rmax[p], P->req[p]), tol, &tri, poly, tmp);
+        b = re__edge_reach_bound(an, &B, plane_patch, p, i, P->req[p], re__min(P->rmax[p], P->req[p]), tol, &tri, poly, tmp);
         if (tri >= 0 && b < P->rmax[p])
             P->rmax[p] = b, P->ltri[p] = tri, P->lim0[p] = re__vid(an, e->v[0]), P->lim1[p] = re__vid(an, e->v[1]);
     }
@@ -3145,7 +3175,7 @@ static re_result_t re__reach_bounds(re__an_t *an, re__arena_t *ar, const unsigne
         long long tri = -1;
         double b;
         if (an->vstate[an->c_vertex[c]] != RE__V_CORNER || an->c_np[c] < 3 || P->req[p] == HUGE_VAL) continue;
-        b = re__corner_reach_bound(an, &B, c, P->req[p], re__min(P->rmax[p], P->req[p]), tol, &tri, poly, tmp);
+        b = re__corner_reach_bound(an, &B, plane_patch, p, c, P->req[p], re__min(P->rmax[p], P->req[p]), tol, &tri, poly, tmp);
         if (tri >= 0 && b < P->rmax[p]) P->rmax[p] = b, P->ltri[p] = tri, P->lim0[p] = re__vid(an, an->c_vertex[c]), P->lim1[p] = -1;
     }
     ar->used = mark;
@@ -3182,7 +3212,7 @@ static re_result_t re__patch_radius(re__an_t *an, const unsigned *uf, const re__
             else
                 snprintf(msg, sizeof msg, "radius %.17g too large at vertex %lld: the solid is thinner than 2r there (largest %.17g)",
                          P->req[c], P->lim0[c], P->rmax[c]);
-            if (P->ltri[c] >= 0) el = P->ltri[c], el2 = -1; /* the triangle in the way */
+            if (P->ltri[c] >= 0) el = P->ltri[c], el2 = -2; /* the triangle in the way */
             if (an->desc->radius_policy == RE_RADIUS_REJECT) return re__fail(an, RE_ERR_RADIUS_TOO_LARGE, el, msg);
             r[c] = P->rmax[c];
             an->st.clamped++;

@@ -405,7 +405,8 @@ static void camera_inside_a_rounded_room(void)
            on it: Embree's default triangle test (no RTC_SCENE_FLAG_ROBUST,
            which would cost the sharp article render 6.8% more
            instructions) can let a ray aimed exactly along a shared edge
-           through both triangles, in every mode alike */
+           through both triangles, in every mode alike; rays that leave
+           the sharp box within 1e-5 of an edge are skipped below */
         double ext[3] = {HX, HY, HZ}, c[3], err, dn, big, second;
         ex_v3_t o = ex_v3(t_rng_range(&g, -HX, HX), t_rng_range(&g, 0, 2 * HY), t_rng_range(&g, -HZ, HZ)), q, nq;
         ex_ray_t ray;
@@ -422,7 +423,13 @@ static void camera_inside_a_rounded_room(void)
         if (!(ex_len(ray.d) > 1e-3)) continue;
         ray.d = ex_normalize(ray.d);
         q = ex_madd(o, ray.d, oracle_box_exit(o, ray.d));
-        if (ex_madd(o, ray.d, sharp_box_exit(o, ray.d)).y < 1e-6) continue; /* onto the floor */
+        {
+            /* onto the floor; or within 1e-5 of a sharp edge, where
+               Embree's default triangle test leaves cracks (see above) */
+            ex_v3_t ps = ex_madd(o, ray.d, sharp_box_exit(o, ray.d));
+            int on = (fabs(fabs(ps.x) - HX) < 1e-5) + (fabs(fabs(ps.y - HY) - HY) < 1e-5) + (fabs(fabs(ps.z) - HZ) < 1e-5);
+            if (ps.y < 1e-6 || on >= 2) continue;
+        }
         nq = normal_box(q);
         hit = rx__intersect(&f.w, &ray, HUGE_VAL, &s);
         done++;

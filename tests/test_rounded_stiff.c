@@ -199,13 +199,15 @@ static void quad_facing(tm_mesh_t *m, unsigned a, unsigned b, unsigned c, unsign
     else tm_quad(m, d, c, b, a);
 }
 
-/* The cube [-1, 1]^3 with a pocket cut into its top face (z = 1): rim
-   x in [xa, xb], y in [ya, yb], floor at z = zf. The pocket's rim corners
-   are mixed, so the pocket stays sharp; the cube's twelve edges form one
-   rounded patch. */
+/* The cube [-1, 1]^3 with a pocket cut into its top face (z = 1; zf < 1)
+   or a boss standing on it (zf > 1): rim x in [xa, xb], y in [ya, yb], the
+   pocket's floor or the boss's top at z = zf. The rim's corners are mixed,
+   so the rim stays sharp; the cube's twelve edges form one rounded patch
+   (a boss's top edges another). */
 static void pocketed_cube(tm_mesh_t *m, double xa, double xb, double ya, double yb, double zf)
 {
     unsigned b[8], o[4], in[4], f[4], i;
+    double w = zf < 1 ? 1 : -1; /* walls face into the pocket, out of the boss */
     for (i = 0; i < 8; i++) b[i] = tm_vert(m, i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
     o[0] = b[4], o[1] = b[5], o[2] = b[7], o[3] = b[6]; /* the top square, CCW from +z */
     in[0] = tm_vert(m, xa, ya, 1), in[1] = tm_vert(m, xb, ya, 1), in[2] = tm_vert(m, xb, yb, 1), in[3] = tm_vert(m, xa, yb, 1);
@@ -216,10 +218,10 @@ static void pocketed_cube(tm_mesh_t *m, double xa, double xb, double ya, double 
     quad_facing(m, b[2], b[3], b[7], b[6], 0, 1, 0);
     quad_facing(m, b[0], b[1], b[5], b[4], 0, -1, 0);
     for (i = 0; i < 4; i++) quad_facing(m, o[i], o[(i + 1) % 4], in[(i + 1) % 4], in[i], 0, 0, 1);
-    quad_facing(m, in[0], in[1], f[1], f[0], 0, 1, 0);  /* walls face into the pocket */
-    quad_facing(m, in[1], in[2], f[2], f[1], -1, 0, 0);
-    quad_facing(m, in[2], in[3], f[3], f[2], 0, -1, 0);
-    quad_facing(m, in[3], in[0], f[0], f[3], 1, 0, 0);
+    quad_facing(m, in[0], in[1], f[1], f[0], 0, w, 0);
+    quad_facing(m, in[1], in[2], f[2], f[1], -w, 0, 0);
+    quad_facing(m, in[2], in[3], f[3], f[2], 0, -w, 0);
+    quad_facing(m, in[3], in[0], f[0], f[3], w, 0, 0);
     quad_facing(m, f[0], f[1], f[2], f[3], 0, 0, 1);
 }
 
@@ -247,7 +249,7 @@ static void rounding_beside_a_pocket_is_clamped(void)
     T_GE(dg.element, 12); /* a triangle of the pocket (the cube's own faces come first) */
     T_INT_EQ(build_policy(&m, 0.3, RE_RADIUS_CLAMP, &L, &dg, &r), RE_OK);
     T_INT_EQ(L.n, 1);
-    T_INT_EQ(L.e2, -1); /* a triangle, not an edge */
+    T_INT_EQ(L.e2, -2); /* a triangle, not an edge or a vertex */
     T_NEAR(r, 0.1, 1e-9);
     T_GE(r, 0.1);
     fprintf(stderr, "    %s\n", L.msg);
@@ -270,6 +272,52 @@ static void rounding_beside_a_pocket_is_clamped(void)
     }
     T_GT(rounded, n / 2);
     re_free(s);
+    tm_free(&m);
+}
+
+/* A boss standing on the strip the rounding of the edge x = z = 1 would
+   remove (footprint x in [0.6, 0.9]): its wall only touches the top face's
+   plane, from outside, and still bounds the radius to 0.1 (found by
+   review: the zone's planes were open, the boss floated over a groove at
+   r = 0.3 and rays passed through it). */
+static void rounding_beside_a_boss_is_clamped(void)
+{
+    const double c0[3] = {0, 0, 0}, half[3] = {1, 1, 1}, base[3] = {0.9, 0, 1};
+    tm_mesh_t m = {0};
+    clamp_log_t L;
+    re_diag_t dg;
+    double r = 0;
+    pocketed_cube(&m, 0.6, 0.9, -0.5, 0.5, 1.3);
+    T_INT_EQ(build_policy(&m, 0.3, RE_RADIUS_CLAMP, &L, &dg, &r), RE_OK);
+    T_GE(L.n, 1);
+    fprintf(stderr, "    %s\n", L.msg);
+    T_NEAR(r, 0.1, 1e-9);
+    T_LE(tm_rbox_sdf(c0, half, r, base), 1e-12); /* the wall's foot stays on the rounded cube */
+    tm_free(&m);
+}
+
+/* A checked object (a loose triangle far away makes it so) whose patch is
+   a fine convex prism: its own faces are left to the local bounds, so the
+   radius stays as asked (found by review: the corners' balls caught the
+   prism's own side faces, r 0.1 -> 0.0406). */
+static void far_loose_triangle_clamps_nothing(void)
+{
+    double q[64][2], r = 0;
+    tm_mesh_t m = {0};
+    static tm_poly_t P;
+    clamp_log_t L;
+    re_diag_t dg;
+    unsigned a;
+    int i;
+    for (i = 0; i < 64; i++) q[i][0] = cos(2 * M_PI * i / 64), q[i][1] = sin(2 * M_PI * i / 64);
+    tm_prism(&m, &P, (const double(*)[2])q, 64, 1.0);
+    a = tm_vert(&m, 50, 50, 50);
+    tm_vert(&m, 51, 50, 50);
+    tm_vert(&m, 50, 51, 50);
+    tm_tri(&m, a, a + 1, a + 2);
+    T_INT_EQ(build_policy(&m, 0.1, RE_RADIUS_REJECT, &L, &dg, &r), RE_OK);
+    T_INT_EQ(L.n, 0);
+    T_NEAR(r, 0.1, 0);
     tm_free(&m);
 }
 
@@ -1641,6 +1689,8 @@ int main(int argc, char **argv)
         T_CASE(thin_slab_with_subdivided_walls),
         T_CASE(rounding_beside_a_pocket_is_clamped),
         T_CASE(rounding_beside_a_pocket_near_a_corner),
+        T_CASE(rounding_beside_a_boss_is_clamped),
+        T_CASE(far_loose_triangle_clamps_nothing),
         T_CASE(coplanar_pieces_far_from_origin_stay_flat),
         T_CASE(dihedral_179_9_degrees),
         T_CASE(dihedral_1_degree),
