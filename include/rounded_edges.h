@@ -2827,7 +2827,9 @@ static re_result_t re__patch_requests(re__an_t *an, unsigned *uf, re__patch_limi
      least |p - v| / (1 + max |u|) over the part of a face inside them.
    The zones are closed: a face that only touches one of their planes
    from outside (a boss standing on the strip a rounding removes) bounds
-   the radius too. Faces of the patch itself (a plane of any of its
+   the radius too, unless it has a corner at the zone's own vertex (a
+   solid touching this one there, step 2a: rounding gives up that
+   contact, as for solids built apart). Faces of the patch itself (a plane of any of its
    corners) are left to the local bounds above: a patch's faces are
    bounded by its rounded edges, locally convex, and would otherwise be
    caught by the corner's ball (the far sides of a fine prism). So are
@@ -3043,6 +3045,21 @@ static double re__dist_polygon(const double *poly, unsigned n, const double v[3]
     return best;
 }
 
+/* 1 when triangle t has a corner at vertex v's position: it touches the
+   zone at v only (another solid meeting this one at a vertex, step 2a; a
+   fin on an edge ending there), and that contact is what rounding the
+   corner gives up, not a face in the way. */
+static int re__touches_at(const re__an_t *an, unsigned t, unsigned v)
+{
+    const double *p = an->pos + 3 * (size_t)v;
+    unsigned k;
+    for (k = 0; k < 3; k++) {
+        const double *q = an->pos + 3 * (size_t)an->tri[3 * (size_t)t + k];
+        if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2]) return 1;
+    }
+    return 0;
+}
+
 /* The bound the object's other faces put on rounded edge i of patch p
    (see above), at most bmax (the patch's smallest so far); *tri the
    limiting triangle. */
@@ -3093,7 +3110,7 @@ static double re__edge_reach_bound(const re__an_t *an, re__tbvh_t *B, const unsi
         nc = re__tbvh_query(B, lo, hi);
         for (q = 0; q < nc; q++) {
             unsigned t = B->cand[q], pp = plane_patch[an->tplane[t]];
-            if (pp == p || pp == RE__MULTI) continue;
+            if (pp == p || pp == RE__MULTI || re__touches_at(an, t, e->v[0]) || re__touches_at(an, t, e->v[1])) continue;
             pls[0].c = bmax * kk - P0->c - P1->c;
             n = re__clip_inside(an, t, pls, np, tol, poly, tmp);
             for (j = 0; j < n; j++) {
@@ -3124,7 +3141,7 @@ static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, const un
     for (q = 0; q < nc; q++) {
         unsigned t = B->cand[q], pp = plane_patch[an->tplane[t]];
         double b;
-        if (pp == p || pp == RE__MULTI) continue;
+        if (pp == p || pp == RE__MULTI || re__touches_at(an, t, an->c_vertex[c])) continue;
         if (!(n = re__clip_inside(an, t, pls, np, tol, poly, tmp))) continue;
         b = re__dist_polygon(poly, n, v) / (1 + umax);
         if (b < bmax) bmax = b, *tri = t;
