@@ -2823,27 +2823,38 @@ static re_result_t re__patch_requests(re__an_t *an, unsigned *uf, re__patch_limi
      within the corners' balls, below). Bound: the least (d0 + d1) / k
      over the part of a face inside those planes.
    - Corner c: its spheres' centres lie at v + r u, so its removed volume
-     lies within r (1 + max |u|) of v, inside its own planes. Bound: the
-     least |p - v| / (1 + max |u|) over the part of a face inside them.
-   The zones are closed: a face that only touches one of their planes
-   from outside (a boss standing on the strip a rounding removes) bounds
-   the radius too, unless it has a corner at the zone's own vertex (a
-   solid touching this one there, step 2a: rounding gives up that
-   contact, as for solids built apart). Faces of the patch itself (a plane of any of its
-   corners) are left to the local bounds above: a patch's faces are
-   bounded by its rounded edges, locally convex, and would otherwise be
-   caught by the corner's ball (the far sides of a fine prism). So are
-   planes shared by several patches. The bounds are conservative: the
+     lies within r (1 + max |u|) of v, inside its own planes and those of
+     the corners its rounded edges lead to. Bound: the least
+     |p - v| / (1 + max |u|) over the part of a face inside them.
+   For faces of the patch's own shell (triangles joined to it across
+   edges) the zones are closed: a face that only touches one of their
+   planes from outside (a boss standing on the strip a rounding removes)
+   bounds the radius too. For other shells they are open: a solid that
+   only touches this one (at a vertex, step 2a, or resting on a face)
+   gives up that contact, as when it is built apart (and as in an object
+   not checked), while a part of it inside the zone still bounds the
+   radius. "On a plane" means within RE__REACH_ULPS of the object's
+   magnitude (RE__REACH_FLT_ULPS for float positions). Faces of the patch
+   itself (a plane of any of its corners) are left to the local bounds
+   above: a patch's faces are bounded by its rounded edges, locally
+   convex, and would otherwise be caught by the corner's ball (the far
+   sides of a fine prism). So are planes shared by several patches. The
+   bounds are conservative: the
    chord zone holds the removed volume with room, the corner's ball more
    so, so a face near a corner can clamp the radius to below what would
    fit. Candidates come from a bounding-volume tree over the triangles'
    boxes, built only for the objects checked, queried piece by piece
    along a long edge. */
 #define RE__REACH_ULPS (64.0 * RE__DBL_EPS)
+/* the same for float positions, in units of FLT_EPSILON (they were
+   rounded to float before the planes were fitted) */
+#define RE__REACH_FLT_ULPS 4.0
 /* triangles per leaf of the tree */
 #define RE__TBVH_LEAF 4u
-/* vertices of a triangle clipped by up to 2 RE_MAX_CORNER_PLANES + 3 planes */
-#define RE__CLIP_MAX (6u + 2u * RE_MAX_CORNER_PLANES)
+/* vertices of a triangle clipped by up to 4 RE_MAX_CORNER_PLANES + 3 planes */
+#define RE__CLIP_MAX (6u + 4u * RE_MAX_CORNER_PLANES)
+/* planes a corner's zone is clipped by: its own and its neighbours' */
+#define RE__CORNER_CLIP_PLANES (4u * RE_MAX_CORNER_PLANES)
 
 /* Per plane, the patch whose corners have it (RE__NONE: none; RE__MULTI:
    several): such faces are left to the local bounds (see above). */
@@ -2983,10 +2994,11 @@ static unsigned re__tbvh_query(const re__tbvh_t *B, const double lo[3], const do
 }
 
 /* Triangle t clipped to the part inside every plane of pl[0 .. np)
-   (depth c - n.p at least -tol: the planes count as closed): its vertices
-   into poly (3 per vertex, room for RE__CLIP_MAX), their count returned
-   (0: nothing left; 1 or 2: it only touches there). */
-static unsigned re__clip_inside(const re__an_t *an, unsigned t, const re__plane_t *pls, unsigned np, double tol,
+   (depth c - n.p at least -slack: slack > 0 makes the planes closed,
+   slack < 0 open): its vertices into poly (3 per vertex, room for
+   RE__CLIP_MAX), their count returned (0: nothing left; 1 or 2: it only
+   touches there). */
+static unsigned re__clip_inside(const re__an_t *an, unsigned t, const re__plane_t *pls, unsigned np, double slack,
                                 double *poly, double *tmp)
 {
     unsigned n = 3, j, i, k;
@@ -2997,7 +3009,7 @@ static unsigned re__clip_inside(const re__an_t *an, unsigned t, const re__plane_
         unsigned m = 0;
         for (i = 0; i < n; i++) {
             const double *a = poly + 3 * i, *b = poly + 3 * ((i + 1) % n);
-            double da = pl->c - re__dot(pl->n, a) + tol, db = pl->c - re__dot(pl->n, b) + tol;
+            double da = pl->c - re__dot(pl->n, a) + slack, db = pl->c - re__dot(pl->n, b) + slack;
             if (da >= 0 && m < RE__CLIP_MAX) tmp[3 * m] = a[0], tmp[3 * m + 1] = a[1], tmp[3 * m + 2] = a[2], m++;
             if ((da >= 0) != (db >= 0) && m < RE__CLIP_MAX) {
                 double s = da / (da - db);
@@ -3045,26 +3057,12 @@ static double re__dist_polygon(const double *poly, unsigned n, const double v[3]
     return best;
 }
 
-/* 1 when triangle t has a corner at vertex v's position: it touches the
-   zone at v only (another solid meeting this one at a vertex, step 2a; a
-   fin on an edge ending there), and that contact is what rounding the
-   corner gives up, not a face in the way. */
-static int re__touches_at(const re__an_t *an, unsigned t, unsigned v)
-{
-    const double *p = an->pos + 3 * (size_t)v;
-    unsigned k;
-    for (k = 0; k < 3; k++) {
-        const double *q = an->pos + 3 * (size_t)an->tri[3 * (size_t)t + k];
-        if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2]) return 1;
-    }
-    return 0;
-}
-
 /* The bound the object's other faces put on rounded edge i of patch p
    (see above), at most bmax (the patch's smallest so far); *tri the
    limiting triangle. */
-static double re__edge_reach_bound(const re__an_t *an, re__tbvh_t *B, const unsigned *plane_patch, unsigned p, unsigned i,
-                                   double req, double bmax, double tol, long long *tri, double *poly, double *tmp)
+static double re__edge_reach_bound(const re__an_t *an, re__tbvh_t *B, const unsigned *plane_patch, const unsigned *shell,
+                                   unsigned p, unsigned i, double req, double bmax, double tol, long long *tri, double *poly,
+                                   double *tmp)
 {
     const re__edge_t *e = &an->edges[i];
     const re__plane_t *P0 = &an->planes[an->tplane[e->he[0] / 3]], *P1 = &an->planes[an->tplane[e->he[1] / 3]];
@@ -3110,12 +3108,12 @@ static double re__edge_reach_bound(const re__an_t *an, re__tbvh_t *B, const unsi
         nc = re__tbvh_query(B, lo, hi);
         for (q = 0; q < nc; q++) {
             unsigned t = B->cand[q], pp = plane_patch[an->tplane[t]];
-            if (pp == p || pp == RE__MULTI || re__touches_at(an, t, e->v[0]) || re__touches_at(an, t, e->v[1])) continue;
+            if (pp == p || pp == RE__MULTI) continue;
             pls[0].c = bmax * kk - P0->c - P1->c;
-            n = re__clip_inside(an, t, pls, np, tol, poly, tmp);
+            n = re__clip_inside(an, t, pls, np, shell[t] == shell[e->he[0] / 3] ? tol : -tol, poly, tmp);
             for (j = 0; j < n; j++) {
                 const double *x = poly + 3 * j;
-                double bound = (P0->c - re__dot(P0->n, x) + P1->c - re__dot(P1->n, x)) / kk;
+                double bound = re__max(0.0, (P0->c - re__dot(P0->n, x) + P1->c - re__dot(P1->n, x)) / kk);
                 if (bound < bmax) bmax = bound, *tri = t;
             }
         }
@@ -3124,16 +3122,28 @@ static double re__edge_reach_bound(const re__an_t *an, re__tbvh_t *B, const unsi
 }
 
 /* The same for corner c of patch p: the least |x - v| / (1 + max |u|). */
-static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, const unsigned *plane_patch, unsigned p,
-                                     unsigned c, double req, double bmax, double tol, long long *tri, double *poly,
-                                     double *tmp)
+static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, const unsigned *plane_patch, const unsigned *shell,
+                                     unsigned p, unsigned c, double req, double bmax, double tol, long long *tri,
+                                     double *poly, double *tmp)
 {
     const unsigned *planes = an->c_planes + an->c_pfirst[c];
     const double *v = an->pos + 3 * (size_t)an->c_vertex[c];
-    unsigned np = an->c_np[c], s, q, n, k, nc;
-    re__plane_t pls[RE_MAX_CORNER_PLANES];
+    unsigned np = an->c_np[c], s, q, n, k, nc, own = RE__NONE, vi = an->c_vertex[c];
+    re__plane_t pls[RE__CORNER_CLIP_PLANES];
     double umax = 0, reach, lo[3], hi[3];
     for (q = 0; q < np; q++) pls[q] = an->planes[planes[q]];
+    /* and the planes of the corners its rounded edges lead to: the solid
+       lies inside them near c as the slab bound assumes (a box's top
+       corner's cone would reach below its bottom face) */
+    for (q = an->voff[vi]; q < an->voff[vi + 1]; q++) {
+        const re__edge_t *e = &an->edges[an->vinc[q]];
+        unsigned cw, j;
+        if (!e->rounded) continue;
+        cw = an->vcorner[e->v[0] == vi ? e->v[1] : e->v[0]];
+        for (j = 0; j < an->c_np[cw] && np < RE__CORNER_CLIP_PLANES; j++) pls[np++] = an->planes[an->c_planes[an->c_pfirst[cw] + j]];
+    }
+    for (q = an->voff[an->c_vertex[c]]; q < an->voff[an->c_vertex[c] + 1] && own == RE__NONE; q++)
+        own = shell[an->edges[an->vinc[q]].he[0] / 3];
     for (s = 0; s < an->c_ns[c]; s++) umax = re__max(umax, re__len(an->su + 3 * (size_t)(an->c_sfirst[c] + s)));
     reach = req * (1 + umax) * (1 + 1e-9) + tol;
     for (k = 0; k < 3; k++) lo[k] = v[k] - reach, hi[k] = v[k] + reach;
@@ -3141,8 +3151,8 @@ static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, const un
     for (q = 0; q < nc; q++) {
         unsigned t = B->cand[q], pp = plane_patch[an->tplane[t]];
         double b;
-        if (pp == p || pp == RE__MULTI || re__touches_at(an, t, an->c_vertex[c])) continue;
-        if (!(n = re__clip_inside(an, t, pls, np, tol, poly, tmp))) continue;
+        if (pp == p || pp == RE__MULTI) continue;
+        if (!(n = re__clip_inside(an, t, pls, np, shell[t] == own ? tol : -tol, poly, tmp))) continue;
         b = re__dist_polygon(poly, n, v) / (1 + umax);
         if (b < bmax) bmax = b, *tri = t;
     }
@@ -3154,7 +3164,7 @@ static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, const un
 static re_result_t re__reach_bounds(re__an_t *an, re__arena_t *ar, const unsigned *patch, re__patch_limits_t *P)
 {
     re__tbvh_t B;
-    unsigned i, c, j, *plane_patch, only = RE__UNSEEN;
+    unsigned i, c, j, *plane_patch, *shell, only = RE__UNSEEN;
     double tol, M = 0, poly[3 * RE__CLIP_MAX], tmp[3 * RE__CLIP_MAX];
     size_t mark = ar->used;
     if (!re__may_reach_own_faces(an)) return RE_OK;
@@ -3173,8 +3183,15 @@ static re_result_t re__reach_bounds(re__an_t *an, re__arena_t *ar, const unsigne
     RE__TAKE(B.box, double, 6 * (size_t)an->T);
     RE__TAKE(B.cand, unsigned, an->T);
     if (only == RE__UNSEEN || !re__tbvh_build(an, &B, plane_patch, only)) { ar->used = mark; return RE_OK; }
+    /* shells: triangles joined across edges (the tree's triangles only
+       need it, but the joins run over all) */
+    RE__TAKE(shell, unsigned, an->T + 1);
+    for (i = 0; i < an->T; i++) shell[i] = i;
+    for (i = 0; i < an->E; i++)
+        if (an->edges[i].count >= 2) re__uf_join(shell, an->edges[i].he[0] / 3, an->edges[i].he[1] / 3);
+    for (i = 0; i < an->T; i++) shell[i] = re__uf_find(shell, i);
     for (i = 0; i < 3; i++) M = re__max(M, fabs(an->origin[i]));
-    tol = RE__REACH_ULPS * (M + an->size);
+    tol = (an->m->position_type == RE_FLOAT32 ? RE__REACH_FLT_ULPS * RE__FLT_EPS : RE__REACH_ULPS) * (M + an->size);
     for (i = 0; i < an->E; i++) {
         const re__edge_t *e = &an->edges[i];
         unsigned p;
@@ -3183,7 +3200,8 @@ static re_result_t re__reach_bounds(re__an_t *an, re__arena_t *ar, const unsigne
         if (!e->rounded) continue;
         p = patch[an->vcorner[e->v[0]]];
         if (P->req[p] == HUGE_VAL) continue;
-        b = re__edge_reach_bound(an, &B, plane_patch, p, i, P->req[p], re__min(P->rmax[p], P->req[p]), tol, &tri, poly, tmp);
+        b = re__edge_reach_bound(an, &B, plane_patch, shell, p, i, P->req[p], re__min(P->rmax[p], P->req[p]), tol, &tri, poly,
+                                 tmp);
         if (tri >= 0 && b < P->rmax[p])
             P->rmax[p] = b, P->ltri[p] = tri, P->lim0[p] = re__vid(an, e->v[0]), P->lim1[p] = re__vid(an, e->v[1]);
     }
@@ -3192,7 +3210,8 @@ static re_result_t re__reach_bounds(re__an_t *an, re__arena_t *ar, const unsigne
         long long tri = -1;
         double b;
         if (an->vstate[an->c_vertex[c]] != RE__V_CORNER || an->c_np[c] < 3 || P->req[p] == HUGE_VAL) continue;
-        b = re__corner_reach_bound(an, &B, plane_patch, p, c, P->req[p], re__min(P->rmax[p], P->req[p]), tol, &tri, poly, tmp);
+        b = re__corner_reach_bound(an, &B, plane_patch, shell, p, c, P->req[p], re__min(P->rmax[p], P->req[p]), tol, &tri,
+                                   poly, tmp);
         if (tri >= 0 && b < P->rmax[p]) P->rmax[p] = b, P->ltri[p] = tri, P->lim0[p] = re__vid(an, an->c_vertex[c]), P->lim1[p] = -1;
     }
     ar->used = mark;

@@ -321,6 +321,65 @@ static void far_loose_triangle_clamps_nothing(void)
     tm_free(&m);
 }
 
+/* Another shell inside the solid: an open fin of two triangles from the
+   cube's corner (1, 1, 1) (its own vertex there) along the edge's
+   removed volume. The zones are open for other shells, but the fin lies
+   inside them, so the radius drops to about 0 (found by review: a rule
+   that skipped triangles with a corner at the zone's vertex kept 0.294
+   and the rounding cut through the fin). */
+static void other_shell_inside_the_rounding_clamps(void)
+{
+    const double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
+    tm_mesh_t m = {0};
+    clamp_log_t L;
+    re_diag_t dg;
+    double r = 1;
+    unsigned a;
+    tm_box(&m, lo, hi);
+    a = tm_vert(&m, 1, 1, 1);
+    tm_vert(&m, 0.95, -0.2, 0.95);
+    tm_vert(&m, 0.9, -0.2, 0.9);
+    tm_vert(&m, 0.9, 0.8, 0.9);
+    tm_tri(&m, a, a + 1, a + 2);
+    tm_tri(&m, a, a + 2, a + 3);
+    T_INT_EQ(build_policy(&m, 0.3, RE_RADIUS_CLAMP, &L, &dg, &r), RE_OK);
+    T_GE(L.n, 1);
+    T_LT(L.value, 1e-9);
+    tm_free(&m);
+}
+
+/* A box resting on a cube, both in one object: the cube's rounding gives
+   up the contact as when the two are built apart, and whether the object
+   is checked at all (a loose triangle far away makes it so) changes
+   nothing: the same clamps, the same radii (found by review: the resting
+   box's top corners' balls reached below its bottom face and caught the
+   cube's top, 0.183 against 0.25). */
+static void touching_shells_agree_checked_or_not(void)
+{
+    const double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1}, lo2[3] = {0.5, 0.5, 1}, hi2[3] = {1, 1, 1.5};
+    clamp_log_t L[2];
+    re_diag_t dg;
+    double r[2];
+    int k;
+    for (k = 0; k < 2; k++) {
+        tm_mesh_t m = {0};
+        tm_box(&m, lo, hi);
+        tm_box(&m, lo2, hi2);
+        if (k) {
+            unsigned a = tm_vert(&m, 50, 50, 50);
+            tm_vert(&m, 51, 50, 50);
+            tm_vert(&m, 50, 51, 50);
+            tm_tri(&m, a, a + 1, a + 2);
+        }
+        T_INT_EQ(build_policy(&m, 0.3, RE_RADIUS_CLAMP, &L[k], &dg, &r[k]), RE_OK);
+        tm_free(&m);
+    }
+    T_INT_EQ(L[1].n, L[0].n);
+    T_NEAR(L[1].value, L[0].value, 0);
+    T_NEAR(r[1], r[0], 0);
+    T_NEAR(L[0].value, 0.25, 1e-12); /* the resting box's own edges */
+}
+
 /* The same with the pocket next to the corner (1, 1, 1): rim x, y in
    [0.6, 0.9]. The largest radius that keeps the walls out of the rounding
    is 0.1 (the rim's corner (0.9, 0.9, 1) lies on the rounded cube of
@@ -1691,6 +1750,8 @@ int main(int argc, char **argv)
         T_CASE(rounding_beside_a_pocket_near_a_corner),
         T_CASE(rounding_beside_a_boss_is_clamped),
         T_CASE(far_loose_triangle_clamps_nothing),
+        T_CASE(other_shell_inside_the_rounding_clamps),
+        T_CASE(touching_shells_agree_checked_or_not),
         T_CASE(coplanar_pieces_far_from_origin_stay_flat),
         T_CASE(dihedral_179_9_degrees),
         T_CASE(dihedral_1_degree),
