@@ -70,6 +70,7 @@
 #define iv__aff_finish F_iv__aff_finish
 #define iv__aff_fn F_iv__aff_fn
 #define iv__aff_linearise F_iv__aff_linearise
+#define iv__aff_nonneg F_iv__aff_nonneg
 #define iv__aff_radius F_iv__aff_radius
 #define iv__aff_rnd F_iv__aff_rnd
 #define iv__aff_tangent_point F_iv__aff_tangent_point
@@ -293,6 +294,7 @@
 #undef iv__aff_finish
 #undef iv__aff_fn
 #undef iv__aff_linearise
+#undef iv__aff_nonneg
 #undef iv__aff_radius
 #undef iv__aff_rnd
 #undef iv__aff_tangent_point

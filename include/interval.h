@@ -917,6 +917,10 @@ IV_DEF iv_affine_t iv_affine_sin(iv_affine_t x);
 IV_DEF iv_affine_t iv_affine_cos(iv_affine_t x);
 IV_DEF iv_affine_t iv_affine_tan(iv_affine_t x);
 IV_DEF iv_affine_t iv_affine_atan(iv_affine_t x);
+/* abs, sqr, sqrt, even pow_n and hypot: a result whose range would read
+   below 0 while its t is 0 (hypot: whatever its t) is c + c eps_x, which
+   iv_from_affine gives as [0, 2c]; one with t != 0 keeps the dip of its
+   approximation, and its correlation (docs/interval.md). */
 IV_DEF iv_affine_t iv_affine_abs(iv_affine_t x);
 IV_DEF iv_affine_t iv_affine_min(iv_affine_t x, iv_affine_t y);
 IV_DEF iv_affine_t iv_affine_max(iv_affine_t x, iv_affine_t y);
@@ -1001,10 +1005,33 @@ static inline iv_t iv_from_affine(iv_affine_t x)
     r = r == 0 ? 0.0 : iv__up(r);
     if (r == 0) return iv__raw(x.c, x.c);
     /* c + c eps_x is [0, 2c] exactly: the outward steps below would put
-       its lower end under 0, which a function >= 0 (iv_affine_hypot)
+       its lower end under 0, which a function >= 0 (iv__aff_nonneg)
        must not show */
-    if (x.t == 0 && x.e == x.c) return iv__raw(0.0, iv__up(x.c + x.c));
+    if (x.t == 0 && x.e == x.c) return iv__raw(0.0, x.c + x.c); /* doubling is exact */
     return iv_make(iv__down(x.c - r), iv__up(x.c + r));
+}
+
+/* A form of a function >= 0 (abs, sqr, sqrt, even pow_n, hypot) whose
+   range reads below 0 (the outward steps at a range that ends at 0, the
+   rounding terms in e) becomes c + c eps_x, c = hi/2 rounded up, whose
+   range is [0, 2c] (iv_from_affine above; 2c = hi unless hi is subnormal
+   and odd): where t = 0 the form had no
+   correlation to lose. A form with t != 0 keeps its dip (see
+   docs/interval.md): a lower line c - e + t eps_t below 0 somewhere in
+   [-1, 1] allows no t != 0 once both its ends must be >= 0, and the
+   correlation is what later cancellations need (x^2 of t in [-0.5, 1.5]
+   reads [-0.75, 2.25]; with it x^2 - x is [-0.25, 0.75], without it
+   [-1.5, 2.75]). hypot passes any = 1: any dip goes. */
+static inline iv_affine_t iv__aff_nonneg(iv_affine_t x, int any)
+{
+    iv_t r;
+    double h;
+    if (x.t != 0 && !any) return x;
+    r = iv_from_affine(x);
+    if (!(r.lo < 0 && r.hi < HUGE_VAL)) return x;
+    h = 0.5 * r.hi; /* exact but in the subnormal range */
+    if (h + h < r.hi) h = iv__up(h);
+    return iv__aff(h, 0.0, h);
 }
 
 static inline iv_affine_t iv_affine_add(iv_affine_t x, iv_affine_t y)
@@ -1068,7 +1095,7 @@ static inline iv_affine_t iv_affine_sqr(iv_affine_t x)
     t = 2.0 * x.c * x.t;
     e = 2.0 * fabs(x.c) * x.e + tt + ee + 2.0 * fabs(x.t) * x.e;
     e += iv__aff_rnd(cc + tt + ee + fabs(t));
-    return iv__aff_finish(c, t, iv__aff_radius(e));
+    return iv__aff_nonneg(iv__aff_finish(c, t, iv__aff_radius(e)), 0);
 }
 
 #endif /* IV_NO_AFFINE */
@@ -2182,7 +2209,7 @@ static iv_affine_t iv__aff_unary(iv_affine_t x, int f, int n, int method)
 
 IV_DEF iv_affine_t iv_affine_exp(iv_affine_t x) { return iv__aff_unary(x, IV__F_EXP, 0, IV__LIN_DEFAULT); }
 IV_DEF iv_affine_t iv_affine_log(iv_affine_t x) { return iv__aff_unary(x, IV__F_LOG, 0, IV__LIN_DEFAULT); }
-IV_DEF iv_affine_t iv_affine_sqrt(iv_affine_t x) { return iv__aff_unary(x, IV__F_SQRT, 0, IV__LIN_DEFAULT); }
+IV_DEF iv_affine_t iv_affine_sqrt(iv_affine_t x) { return iv__aff_nonneg(iv__aff_unary(x, IV__F_SQRT, 0, IV__LIN_DEFAULT), 0); }
 IV_DEF iv_affine_t iv_affine_recip(iv_affine_t x) { return iv__aff_unary(x, IV__F_RECIP, -1, IV__LIN_DEFAULT); }
 IV_DEF iv_affine_t iv_affine_atan(iv_affine_t x) { return iv__aff_unary(x, IV__F_ATAN, 0, IV__LIN_DEFAULT); }
 
@@ -2196,6 +2223,7 @@ IV_DEF iv_affine_t iv_affine_pow_n(iv_affine_t x, int n)
     if (n == 1) return x;
     if (n == 2) return iv_affine_sqr(x); /* already the Chebyshev form of x^2 */
     if (n == -1) return iv_affine_recip(x);
+    if (n % 2 == 0) return iv__aff_nonneg(iv__aff_unary(x, IV__F_POWN, n, IV__LIN_DEFAULT), 0);
     return iv__aff_unary(x, IV__F_POWN, n, IV__LIN_DEFAULT);
 }
 
@@ -2230,8 +2258,8 @@ IV_DEF iv_affine_t iv_affine_abs(iv_affine_t x)
     gb = iv_sub(iv__raw(r.hi, r.hi), iv_mul_d(iv__raw(r.hi, r.hi), alpha));
     z = iv__aff_add_iv(iv_affine_mul_d(x, alpha), iv__raw(0.0, iv__max(ga.hi, gb.hi)));
     if (iv_affine_is_empty(z) || !(iv_width(iv_from_affine(z)) <= IV__LIN_RANGE_RATIO * iv_width(img)))
-        return iv_affine_from_iv(img);
-    return z;
+        z = iv_affine_from_iv(img);
+    return iv__aff_nonneg(z, 0);
 }
 
 /* min(x, y) = (x + y - |x - y|) / 2, max with + |x - y|; when the ranges
@@ -2272,18 +2300,13 @@ IV_DEF iv_affine_t iv_affine_pow(iv_affine_t x, iv_affine_t y)
 IV_DEF iv_affine_t iv_affine_hypot(iv_affine_t x, iv_affine_t y)
 {
     iv_affine_t s;
-    iv_t r;
-    double h;
     if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv__aff_empty();
     /* hypot(0, 0) is 0 exactly; through the squares it was a range of 1e-158 */
     if (x.c == 0 && x.t == 0 && x.e == 0 && y.c == 0 && y.t == 0 && y.e == 0) return iv_affine_const(0.0);
     s = iv_affine_sqrt(iv_affine_add(iv_affine_sqr(x), iv_affine_sqr(y)));
     /* squares overflow long before hypot does: fall back to the interval */
     if (s.e == HUGE_VAL) s = iv_affine_from_iv(iv_hypot(iv_from_affine(x), iv_from_affine(y)));
-    r = iv_from_affine(s);
-    if (!(r.lo < 0 && r.hi < HUGE_VAL)) return s;
-    h = iv__up(0.5 * r.hi);
-    return iv__aff(h, 0.0, h);
+    return iv__aff_nonneg(s, 1);
 }
 #endif /* IV_NO_AFFINE */
 
