@@ -549,10 +549,12 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
             d[0] = ray->d.x; d[1] = ray->d.y; d[2] = ray->d.z;
             if (!front) {
                 /* The ray leaves object k's sharp mesh from inside: it started
-                   in the removed volume (a secondary ray from a rounded hit,
-                   whose origin is I' pushed out along the rounded normal, or a
-                   ray from another surface lying under a chamfer, such as the
-                   floor under a cube's rounded bottom edge). re_query_exit_uv
+                   inside the solid (a camera or bounce ray in the Cornell
+                   room, a refracted ray in glass) or in the removed volume (a
+                   secondary ray from a rounded hit, whose origin is I' pushed
+                   out along the rounded normal, or a ray from another surface
+                   lying under a chamfer, such as the floor under a cube's
+                   rounded bottom edge). re_query_exit_uv
                    asks about the ray reversed at this exit face: if the
                    segment meets the rounded solid (through its rounding or
                    its flat face) it says where it leaves it; otherwise the
@@ -560,9 +562,9 @@ static int rx__trace(rx_world_t *w, const ex_ray_t *ray, double tmax, unsigned s
                 k = re_query_exit_uv(w->round, o, d, (unsigned)w->re_object[h.geom_id], h.prim_id, h.t, h.u, h.v, &q);
                 if (k == RE_UNCHANGED) break; /* through the flat face: the solid blocks it here */
                 if (k == RE_HIT_ROUNDED) {
-                    /* exact for visibility (shadow rays); as a hit it is where
-                       the ray leaves the rounded solid, which only a ray born
-                       under a chamfer can produce */
+                    /* where the ray leaves the rounded solid: the Cornell
+                       room's rounded seams seen from inside, a ray born under
+                       a chamfer; exact for visibility (shadow rays) */
                     chamfer = 1;
                     rx__surface_from_answer(w, h.geom_id, &q, s);
                     break;
