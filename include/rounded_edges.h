@@ -2926,13 +2926,15 @@ static unsigned re__tbvh_build(const re__an_t *an, re__tbvh_t *B, const unsigned
     unsigned stack[2 * 64][2], node_of[2 * 64]; /* depth-first: at most depth + 1 entries */
     for (t = 0; t < an->T; t++) {
         double *b = B->box + 6 * (size_t)t;
+        const double *p0, *p1, *p2;
         unsigned pp;
         if (an->tbad[t] || an->tplane[t] == RE__NONE) continue;
         pp = plane_patch[an->tplane[t]];
         if (pp == RE__MULTI || (only != RE__NONE && pp == only)) continue;
+        p0 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t];
+        p1 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t + 1];
+        p2 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t + 2];
         for (k = 0; k < 3; k++) {
-            const double *p0 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t], *p1 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t + 1],
-                         *p2 = an->pos + 3 * (size_t)an->tri[3 * (size_t)t + 2];
             b[k] = re__min(p0[k], re__min(p1[k], p2[k]));
             b[3 + k] = re__max(p0[k], re__max(p1[k], p2[k]));
         }
@@ -3023,6 +3025,20 @@ static unsigned re__clip_inside(const re__an_t *an, unsigned t, const re__plane_
     return n;
 }
 
+/* Squared distance from p to the segment a -> a + ab, with inv_l2 = 1 / |ab|^2
+   (0 for a point): the walk tests many corners against one segment, so the
+   division is hoisted out (it was the hottest instruction of re_query). */
+static double re__dist2_segment(const double p[3], const double a[3], const double ab[3], double inv_l2)
+{
+    double ap[3], t, q[3];
+    re__sub(p, a, ap);
+    t = re__dot(ap, ab) * inv_l2;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    re__madd(a, t, ab, q);
+    re__sub(p, q, q);
+    return re__dot(q, q);
+}
+
 /* Distance from v to the convex planar polygon poly (n vertices; 1: a
    point, 2: a segment). */
 static double re__dist_polygon(const double *poly, unsigned n, const double v[3])
@@ -3039,16 +3055,13 @@ static double re__dist_polygon(const double *poly, unsigned n, const double v[3]
     len = re__len(nrm);
     for (i = 0; i < n; i++) {
         const double *a = poly + 3 * i, *b = poly + 3 * ((i + 1) % n);
-        double ab[3], av[3], c[3], s, L2;
+        double ab[3], av[3], c[3], L2;
         re__sub(b, a, ab);
         re__sub(v, a, av);
         re__cross(ab, av, c);
         if (len > 0 && re__dot(c, nrm) < 0) inside = 0;
         L2 = re__dot(ab, ab);
-        s = L2 > 0 ? re__max(0.0, re__min(1.0, re__dot(av, ab) / L2)) : 0;
-        re__madd(a, -1.0, v, d);
-        re__madd(d, s, ab, d);
-        best = re__min(best, re__len(d));
+        best = re__min(best, sqrt(re__dist2_segment(v, a, ab, L2 > 0 ? 1 / L2 : 0)));
     }
     if (inside && len > 0) {
         re__sub(v, poly, d);
@@ -5521,20 +5534,6 @@ static double re__cyl_entry(const double I[3], const double d[3], const double a
     if (hh < 0 || hh > L2) return HUGE_VAL; /* beyond the span: a sphere cap */
     *h = hh * inv;
     return s0;
-}
-
-/* Squared distance from p to the segment a -> a + ab, with inv_l2 = 1 / |ab|^2
-   (0 for a point): the walk tests many corners against one segment, so the
-   division is hoisted out (it was the hottest instruction of re_query). */
-static double re__dist2_segment(const double p[3], const double a[3], const double ab[3], double inv_l2)
-{
-    double ap[3], t, q[3];
-    re__sub(p, a, ap);
-    t = re__dot(ap, ab) * inv_l2;
-    t = t < 0 ? 0 : t > 1 ? 1 : t;
-    re__madd(a, t, ab, q);
-    re__sub(p, q, q);
-    return re__dot(q, q);
 }
 
 static double re__dist2_halfline(const double p[3], const double a[3], const double d[3])

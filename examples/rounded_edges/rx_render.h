@@ -265,9 +265,10 @@ static double rx__next_t(const rx_world_t *w, double t)
 static const ex_material_t *rx__material(const rx_world_t *w, unsigned g, ex_v3_t n)
 {
     const rx_object_t *ob = &w->scene->obj[g];
-    double ax = fabs(n.x), ay = fabs(n.y), az = fabs(n.z);
+    double ax, ay, az;
     int a;
-    if (!ob->by_axis) return &w->scene->mats[ob->material];
+    if (!ob->by_axis) return &w->scene->mats[ob->material]; /* every hit of every other object */
+    ax = fabs(n.x), ay = fabs(n.y), az = fabs(n.z);
     a = ax >= ay && ax >= az ? 0 : ay >= az ? 1 : 2;
     return &w->scene->mats[ob->axis_material[2 * a + ((a == 0 ? n.x : a == 1 ? n.y : n.z) > 0)]];
 }
