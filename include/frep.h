@@ -2532,7 +2532,7 @@ FR_DEF fr_result_t fr_prune_ex(const fr_tape_t *t, const iv_t box[3], fr_prune_m
 #define FR__P_POOL 16384        /* array elements in all */
 #define FR__P_MAX_DEPTH 200     /* expression nesting */
 #define FR__P_MAX_ARGS 16
-#define FR__P_MAX_NUMBER 72     /* characters of a numeric literal, and its NUL */
+#define FR__P_MAX_NUMBER 72     /* a literal's buffer: 69 characters, room for an exponent's sign, NUL */
 
 typedef enum fr__tok_t {
     FR__T_END, FR__T_NUM, FR__T_ID, FR__T_PUNCT
@@ -2690,7 +2690,9 @@ static void fr__number(fr__parser_t *p)
     char buf[FR__P_MAX_NUMBER], msg[96];
     size_t n = 0;
     int e = 0;
-    while (n + 1 < sizeof buf) {
+    /* Room for one more character, an exponent's sign after it and the
+       NUL: an 'e' and its sign take two slots in one step. */
+    while (n + 2 < sizeof buf) {
         int d = fr__pc(p, 0);
         if (fr__isdigit(d) || d == '.' || ((d == 'e' || d == 'E') && !e)) {
             if (d == 'e' || d == 'E') {
@@ -2710,7 +2712,7 @@ static void fr__number(fr__parser_t *p)
             break;
     }
     buf[n] = 0;
-    if (n + 1 >= sizeof buf) {
+    if (n + 2 >= sizeof buf) {
         fr__perr(p, FR_ERR_PARSE, "number too long");
         p->tok = FR__T_END;
         return;

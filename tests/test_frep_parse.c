@@ -591,6 +591,43 @@ static void numbers_read_alike_in_every_locale(void)
     }
 }
 
+/* Literals of every length around the buffer's end, with and without an
+   exponent and its sign: FR__P_MAX_NUMBER - 3 characters are read (as
+   strtod reads them), longer ones are "number too long". The fuzzer
+   found (2026-12-06) that an 'e' and its sign in the last two slots
+   wrote the NUL one past the buffer; under ASan this test overflowed
+   before the mend. */
+static void long_literals_end_at_the_limit(void)
+{
+    static const char *tails[] = {"", "e+5", "e-5", "e5", "E+", ".5", "e+"};
+    const int most = FR__P_MAX_NUMBER - 3;
+    char lit[128], text[256];
+    int len, k, tail;
+    for (tail = 0; tail < (int)(sizeof tails / sizeof tails[0]); tail++)
+        for (len = most - 8; len <= FR__P_MAX_NUMBER + 8; len++) {
+            int digits = len - (int)strlen(tails[tail]);
+            int well_formed = strcmp(tails[tail], "E+") != 0 && strcmp(tails[tail], "e+") != 0;
+            fr_tape_t t;
+            fr_diag_t d;
+            lit[0] = '1';
+            for (k = 1; k < digits; k++) lit[k] = '0';
+            strcpy(lit + digits, tails[tail]);
+            if (len > most) {
+                snprintf(text, sizeof text, "m(x[3], a[1]) { m = %s; }", lit);
+                if (parse_text(text, &t, &d, 0) == FR_OK) {
+                    T_FAIL("%d characters '%.12s...%s' accepted, limit %d", len, lit, tails[tail], most);
+                    fr_tape_free(&t);
+                } else if (!strstr(d.message, "number too long"))
+                    T_FAIL("%d characters '...%s': '%s', want 'number too long'", len, tails[tail], d.message);
+            } else if (well_formed) {
+                double v = literal_value(lit), want = strtod(lit, NULL);
+                if (memcmp(&v, &want, sizeof v) != 0)
+                    T_FAIL("%d characters '...%s' read as %.17g, strtod %.17g", len, tails[tail], v, want);
+            } else if (!isnan(literal_value(lit)))
+                T_FAIL("%d characters '...%s' (malformed) accepted", len, tails[tail]);
+        }
+}
+
 static void deep_nesting_is_a_limit_not_a_crash(void)
 {
     size_t n = 100000;
@@ -664,7 +701,7 @@ int main(int argc, char **argv)
         T_CASE(example_models_parse),         T_CASE(tangle_cube_matches_api),
         T_CASE(bad_input_reports_position),   T_CASE(deep_nesting_is_a_limit_not_a_crash),
         T_CASE(literals_comments_and_folded_calls), T_CASE(every_parse_error_names_its_cause),
-        T_CASE(numbers_read_alike_in_every_locale),
+        T_CASE(numbers_read_alike_in_every_locale), T_CASE(long_literals_end_at_the_limit),
         T_CASE(length_is_respected_without_terminator), T_CASE(random_garbage_never_crashes),
     };
     return T_RUN(argc, argv, cases);
