@@ -2865,6 +2865,7 @@ static re_result_t re__patch_requests(re__an_t *an, unsigned *uf, re__patch_limi
 typedef struct re__tbvh_node_t {
     double lo[3], hi[3];
     unsigned first, count; /* a leaf's triangles: idx[first .. first + count); count 0: children node + 1 and first */
+    unsigned patch;        /* the patch of all its triangles (plane_patch), RE__MULTI when they differ */
 } re__tbvh_node_t;
 
 typedef struct re__tbvh_t {
@@ -2949,9 +2950,11 @@ static unsigned re__tbvh_build(const re__an_t *an, re__tbvh_t *B, const unsigned
         lo = stack[sp][0], hi = stack[sp][1], id = node_of[sp];
         nd = &B->nodes[id];
         for (k = 0; k < 3; k++) nd->lo[k] = HUGE_VAL, nd->hi[k] = -HUGE_VAL;
+        nd->patch = plane_patch[an->tplane[B->idx[lo]]];
         for (i = lo; i < hi; i++) {
             const double *b = B->box + 6 * (size_t)B->idx[i];
             for (k = 0; k < 3; k++) nd->lo[k] = re__min(nd->lo[k], b[k]), nd->hi[k] = re__max(nd->hi[k], b[3 + k]);
+            if (plane_patch[an->tplane[B->idx[i]]] != nd->patch) nd->patch = RE__MULTI;
         }
         /* median splits halve the count: the depth stays under 64 */
         if (hi - lo <= RE__TBVH_LEAF || sp + 2 > 2 * 64) {
@@ -2970,14 +2973,18 @@ static unsigned re__tbvh_build(const re__an_t *an, re__tbvh_t *B, const unsigned
     return nn;
 }
 
-/* The triangles whose boxes meet [lo, hi], into B->cand; returns how many. */
-static unsigned re__tbvh_query(const re__tbvh_t *B, const double lo[3], const double hi[3])
+/* The triangles whose boxes meet [lo, hi], into B->cand; returns how many.
+   Subtrees whose triangles all belong to patch `skip` are left out: a
+   patch's own faces are never candidates, and a fine patch's fans would
+   otherwise be met by each of its edges (a 6 000-gon prism with a far box
+   in one object: 2.8 s before, construction step 7). */
+static unsigned re__tbvh_query(const re__tbvh_t *B, const double lo[3], const double hi[3], unsigned skip)
 {
     unsigned stack[2 * 64 + 2], sp = 1, n = 0, i, k;
     stack[0] = 0;
     while (sp) {
         const re__tbvh_node_t *nd = &B->nodes[stack[--sp]];
-        int out = 0;
+        int out = nd->patch == skip;
         for (k = 0; k < 3; k++) out |= nd->lo[k] > hi[k] || nd->hi[k] < lo[k];
         if (out) continue;
         if (nd->count) {
@@ -3118,7 +3125,7 @@ static double re__edge_reach_bound(const re__an_t *an, re__tbvh_t *B, const unsi
             lo[k] = re__min(x0, x1) - ell - (piece == 0 || piece + 1 == pieces ? ext : 0);
             hi[k] = re__max(x0, x1) + ell + (piece == 0 || piece + 1 == pieces ? ext : 0);
         }
-        nc = re__tbvh_query(B, lo, hi);
+        nc = re__tbvh_query(B, lo, hi, p);
         for (q = 0; q < nc; q++) {
             unsigned t = B->cand[q], pp = plane_patch[an->tplane[t]];
             if (pp == p || pp == RE__MULTI) continue;
@@ -3160,7 +3167,7 @@ static double re__corner_reach_bound(const re__an_t *an, re__tbvh_t *B, const un
     for (s = 0; s < an->c_ns[c]; s++) umax = re__max(umax, re__len(an->su + 3 * (size_t)(an->c_sfirst[c] + s)));
     reach = req * (1 + umax) * (1 + 1e-9) + tol;
     for (k = 0; k < 3; k++) lo[k] = v[k] - reach, hi[k] = v[k] + reach;
-    nc = re__tbvh_query(B, lo, hi);
+    nc = re__tbvh_query(B, lo, hi, p);
     for (q = 0; q < nc; q++) {
         unsigned t = B->cand[q], pp = plane_patch[an->tplane[t]];
         double b;
@@ -4406,6 +4413,184 @@ static unsigned char re__clear_code(double ratio)
     return (unsigned char)(q < 1 ? 0 : q);
 }
 
+/* Orthonormal t, b completing unit n (Duff et al. 2017, "Building an
+   orthonormal basis, revisited"): branch-free apart from the sign, exact for
+   axis-aligned n, so the baselines' probes on a box face run along its edges. */
+static void re__frame(const double n[3], double t[3], double b[3])
+{
+    double s = n[2] >= 0 ? 1.0 : -1.0;
+    double a = -1.0 / (s + n[2]);
+    double c = n[0] * n[1] * a;
+    t[0] = 1.0 + s * n[0] * n[0] * a; t[1] = s * c; t[2] = -s * n[0];
+    b[0] = c; b[1] = s + n[1] * n[1] * a; b[2] = -n[1];
+}
+
+/* A face plane bordered by more planes than this gets an angular tree of
+   them in re__exit_clearance: otherwise each of a fine polygon's corners
+   reads all its neighbours (a 12 000-gon prism's caps: 1.15 s of a 1.2 s
+   build). */
+#define RE__CLEAR_TREE_MIN 64u
+/* bordering planes per leaf of that tree */
+#define RE__CLEAR_LEAF 8u
+
+/* A bordering plane h of face plane g, seen in g: the in-plane distance
+   from a point X of g to the line g meets h in is
+   (c_h - n_h.X) / sin = a - u.(X - o)_g - (cos / sin) (n_g.(X - o)),
+   o the tree's origin, u the unit direction of n_h's part in g. */
+typedef struct re__clear_line_t {
+    double phi;   /* angle of u in g's basis (the sort key: first member) */
+    double u[2];  /* u in g's basis */
+    double a;     /* the distance from o, signed (HUGE_VAL where h is parallel to g) */
+    double k, s;  /* |cos| / sin and 1 / sin (0 where parallel) */
+    double sn;    /* sin, as re__exit_clearance computes it (0 where parallel) */
+    unsigned h;
+} re__clear_line_t;
+
+/* Over a run of sorted lines: the least a, the largest k and s; the
+   angles' ends come from the run's first and last lines. */
+typedef struct re__clear_node_t {
+    double amin, kmax, smax;
+    unsigned first, last;
+} re__clear_node_t;
+
+/* The tree of one face plane: nodes[1 .. 2 p2) in heap order, leaf
+   p2 + b over lines [b L, (b + 1) L) of its sorted run. */
+typedef struct re__clear_tree_t {
+    double o[3], n[3], e1[3], e2[3]; /* origin, g's normal, a basis of g */
+    double cmax; /* the largest |c| of g and its neighbours and |o|: the rounding scale */
+    re__clear_node_t *nodes;
+    re__clear_line_t *lines; /* the bordering planes, sorted by phi */
+    unsigned p2;
+} re__clear_tree_t;
+
+/* What re__clear_tree_min knows of X: its place in the tree's basis. */
+typedef struct re__clear_at_t {
+    double P[2], plen, phi; /* in g, from o */
+    double z;               /* |n_g.(X - o)| */
+    double eta;             /* 1e-9 of the rounding scale */
+} re__clear_at_t;
+
+/* A lower bound on the distances from X to node nd's lines (HUGE_VAL when
+   it has none): a - u.P - k z, with u.P at most |P| when P's angle lies
+   within the run's and at one of its ends' otherwise (u.P is largest
+   nearest P's direction), less eta s for the rounding. */
+static double re__clear_bound(const re__clear_line_t *lines, const re__clear_node_t *nd, const re__clear_at_t *X)
+{
+    const re__clear_line_t *l0, *l1;
+    double reach;
+    if (nd->first > nd->last) return HUGE_VAL;
+    l0 = &lines[nd->first], l1 = &lines[nd->last];
+    if (X->phi >= l0->phi && X->phi <= l1->phi) reach = X->plen;
+    else reach = re__max(l0->u[0] * X->P[0] + l0->u[1] * X->P[1], l1->u[0] * X->P[0] + l1->u[1] * X->P[1]);
+    return nd->amin - reach - nd->kmax * X->z - nd->smax * X->eta;
+}
+
+/* The least in-plane distance (see re__exit_clearance) from x (on g) to the
+   lines of g's bordering planes in tree T, skipping planes marked
+   owner[h] == mark, when below D; else D. Subtrees whose lower bound
+   exceeds D are skipped (the bound gives up 1e-9 of the rounding scale
+   over sin to be safe), the nearer child first; the distances themselves
+   are the brute loop's. */
+static double re__clear_tree_min(const re__final_t *F, const re__clear_tree_t *T, const unsigned *owner, unsigned mark,
+                                 const double x[3], double D)
+{
+    const re__clear_line_t *lines = T->lines;
+    re__clear_at_t X;
+    double d3[3], bnd[2 * 32 + 2];
+    unsigned stack[2 * 32 + 2], sp = 1;
+    re__sub(x, T->o, d3);
+    X.P[0] = re__dot(T->e1, d3), X.P[1] = re__dot(T->e2, d3);
+    X.plen = sqrt(X.P[0] * X.P[0] + X.P[1] * X.P[1]);
+    X.phi = atan2(X.P[1], X.P[0]);
+    X.z = fabs(re__dot(T->n, d3));
+    X.eta = 1e-9 * (T->cmax + re__len(d3));
+    stack[0] = 1, bnd[0] = re__clear_bound(lines, &T->nodes[1], &X);
+    while (sp) {
+        unsigned i = stack[--sp];
+        const re__clear_node_t *nd = &T->nodes[i];
+        if (bnd[sp] > D) continue;
+        if (i >= T->p2) {
+            unsigned q;
+            for (q = nd->first; q <= nd->last; q++) {
+                const re__plane_t *h = &F->planes[lines[q].h];
+                if (owner[lines[q].h] == mark || !(lines[q].sn > 0)) continue;
+                D = re__min(D, re__max(0.0, h->c - re__dot(h->n, x)) / lines[q].sn);
+            }
+        } else {
+            double b0 = re__clear_bound(lines, &T->nodes[2 * i], &X), b1 = re__clear_bound(lines, &T->nodes[2 * i + 1], &X);
+            unsigned near = b0 <= b1 ? 2 * i : 2 * i + 1;
+            stack[sp] = 4 * i + 1 - near, bnd[sp++] = b0 <= b1 ? b1 : b0;
+            stack[sp] = near, bnd[sp++] = b0 <= b1 ? b0 : b1;
+        }
+    }
+    return D;
+}
+
+/* Corner k's own planes (its face planes, one per reference) into own;
+   returns how many. */
+static unsigned re__corner_own_planes(const re__final_t *F, unsigned k, unsigned *own)
+{
+    const unsigned *ref = F->refs + F->pk[RE__PKA_K_FIRST][k];
+    unsigned j, np = F->corners[k].np;
+    for (j = 0; j < np; j++) own[j] = F->cyls[ref[j] >> 1].p[ref[j] & 1u ? 0 : 1];
+    return np;
+}
+
+/* c0 (corner k's first sphere centre) seen on plane g. */
+static void re__clear_foot(const re__final_t *F, unsigned k, const re__plane_t *g, double out[3])
+{
+    const double *c0 = F->sph + 3 * (size_t)F->pk[RE__PKA_K_SFIRST][k];
+    re__madd(c0, g->c - re__dot(g->n, c0), g->n, out);
+}
+
+/* The angular tree of face plane g over its bordering planes adj[0 .. m)
+   (see re__clear_tree_min), its origin o on g. */
+static void re__clear_tree_build(const re__final_t *F, unsigned g, const unsigned *adj, unsigned m, const double o[3],
+                                 re__clear_tree_t *T, re__clear_line_t *lines, re__clear_node_t *nodes)
+{
+    const re__plane_t *G = &F->planes[g];
+    unsigned q, i, p2 = 1;
+    memcpy(T->o, o, sizeof T->o);
+    memcpy(T->n, G->n, sizeof T->n);
+    re__frame(G->n, T->e1, T->e2);
+    T->cmax = re__max(fabs(G->c), re__len(o));
+    for (q = 0; q < m; q++) {
+        const re__plane_t *h = &F->planes[adj[q]];
+        re__clear_line_t *l = &lines[q];
+        double cs = re__dot(G->n, h->n), w0 = re__dot(T->e1, h->n), w1 = re__dot(T->e2, h->n), wl = sqrt(w0 * w0 + w1 * w1);
+        l->h = adj[q];
+        l->sn = sqrt(re__max(0.0, 1 - cs * cs));
+        T->cmax = re__max(T->cmax, fabs(h->c));
+        if (l->sn > 0 && wl > 0) {
+            l->u[0] = w0 / wl, l->u[1] = w1 / wl;
+            l->s = 1 / l->sn, l->k = fabs(cs) * l->s;
+            l->a = (h->c - re__dot(h->n, o)) * l->s;
+        } else
+            l->u[0] = 1, l->u[1] = 0, l->s = l->k = 0, l->a = HUGE_VAL;
+        l->phi = atan2(l->u[1], l->u[0]);
+    }
+    re__sort(lines, m, sizeof *lines, re__cmp_double);
+    while (p2 * RE__CLEAR_LEAF < m) p2 *= 2;
+    T->nodes = nodes, T->p2 = p2;
+    for (i = 0; i < p2; i++) { /* leaves; an empty one has first > last */
+        re__clear_node_t *nd = &nodes[p2 + i];
+        unsigned first = i * RE__CLEAR_LEAF, end = first + RE__CLEAR_LEAF < m ? first + RE__CLEAR_LEAF : m;
+        nd->first = first < m ? first : 1, nd->last = first < m ? end - 1 : 0;
+        nd->amin = HUGE_VAL, nd->kmax = nd->smax = 0;
+        for (q = first; q < end; q++) {
+            nd->amin = re__min(nd->amin, lines[q].a);
+            nd->kmax = re__max(nd->kmax, lines[q].k), nd->smax = re__max(nd->smax, lines[q].s);
+        }
+    }
+    for (i = p2 - 1; i >= 1; i--) {
+        re__clear_node_t *nd = &nodes[i];
+        const re__clear_node_t *l = &nodes[2 * i], *r = &nodes[2 * i + 1];
+        nd->amin = re__min(l->amin, r->amin);
+        nd->kmax = re__max(l->kmax, r->kmax), nd->smax = re__max(l->smax, r->smax);
+        nd->first = l->first, nd->last = r->first <= r->last ? r->last : l->last;
+    }
+}
+
 /* Each corner's gate for re_secondary_origin (re__corner_t.clear): D, the
    smallest distance, within one of the corner's face planes g, from the
    first sphere's foot on g to a line where g meets a plane h that borders
@@ -4421,7 +4606,9 @@ static unsigned char re__clear_code(double ratio)
    edge farther away. */
 static re_result_t re__exit_clearance(re__an_t *an, re__arena_t *ar, re__final_t *F)
 {
-    unsigned *start, *adj, *owner, i, k, j, q, own[RE_MAX_CORNER_PLANES];
+    unsigned *start, *adj, *owner, *tix, i, k, j, q, np, nt = 0, own[RE_MAX_CORNER_PLANES];
+    re__clear_tree_t *trees = NULL;
+    double *osum = NULL;
     size_t mark = ar->used;
     RE__TAKE(start, unsigned, F->n_planes + 2);
     RE__TAKE(adj, unsigned, 2 * (size_t)F->n_edge_cyls);
@@ -4446,16 +4633,45 @@ static re_result_t re__exit_clearance(re__an_t *an, re__arena_t *ar, re__final_t
     }
     start[F->n_planes] = j;
     memset(owner, 0, sizeof(unsigned) * (F->n_planes + 1));
+    /* planes with many neighbours (a fine polygon's face) get an angular
+       tree, its origin the mean of their corners' feet */
+    RE__TAKE(tix, unsigned, F->n_planes + 1);
+    for (i = 0; i < F->n_planes; i++) tix[i] = start[i + 1] - start[i] > RE__CLEAR_TREE_MIN ? nt++ : RE__NONE;
+    if (nt) {
+        RE__TAKE(trees, re__clear_tree_t, nt);
+        RE__TAKE(osum, double, 4 * (size_t)nt);
+        memset(osum, 0, sizeof(double) * 4 * nt);
+        for (k = 0; k < F->n_corners; k++)
+            for (np = re__corner_own_planes(F, k, own), j = 0; j < np; j++) {
+                double *o, x[3];
+                if (tix[own[j]] == RE__NONE) continue;
+                o = osum + 4 * (size_t)tix[own[j]];
+                re__clear_foot(F, k, &F->planes[own[j]], x);
+                o[0] += x[0], o[1] += x[1], o[2] += x[2], o[3] += 1;
+            }
+        for (i = 0; i < F->n_planes; i++) {
+            unsigned m = start[i + 1] - start[i], p2 = 1;
+            double *o, oc[3];
+            re__clear_line_t *lines;
+            re__clear_node_t *nodes;
+            if (tix[i] == RE__NONE) continue;
+            o = osum + 4 * (size_t)tix[i];
+            while (p2 * RE__CLEAR_LEAF < m) p2 *= 2;
+            RE__TAKE(lines, re__clear_line_t, m);
+            RE__TAKE(nodes, re__clear_node_t, 2 * (size_t)p2);
+            for (q = 0; q < 3; q++) oc[q] = o[3] > 0 ? o[q] / o[3] : F->planes[i].c * F->planes[i].n[q];
+            re__clear_tree_build(F, i, adj + start[i], m, oc, &trees[tix[i]], lines, nodes);
+            trees[tix[i]].lines = lines;
+        }
+    }
     for (k = 0; k < F->n_corners; k++) {
         re__corner_t *K = &F->corners[k];
-        const unsigned *ref = F->refs + F->pk[RE__PKA_K_FIRST][k];
-        const double *c0 = F->sph + 3 * (size_t)F->pk[RE__PKA_K_SFIRST][k];
-        double D = HUGE_VAL;
-        for (j = 0; j < K->np; j++) own[j] = F->cyls[ref[j] >> 1].p[ref[j] & 1u ? 0 : 1], owner[own[j]] = k + 1;
-        for (j = 0; j < K->np; j++) {
+        double D = HUGE_VAL, c0g[3];
+        for (np = re__corner_own_planes(F, k, own), j = 0; j < np; j++) owner[own[j]] = k + 1;
+        for (j = 0; j < np; j++) {
             const re__plane_t *g = &F->planes[own[j]];
-            double c0g[3];
-            re__madd(c0, g->c - re__dot(g->n, c0), g->n, c0g); /* the sphere seen on face g */
+            if (tix[own[j]] != RE__NONE) continue; /* after the short lists: D is smaller then */
+            re__clear_foot(F, k, g, c0g); /* the sphere seen on face g */
             for (q = start[own[j]]; q < start[own[j] + 1]; q++) {
                 const re__plane_t *h = &F->planes[adj[q]];
                 double cs, sn;
@@ -4466,6 +4682,11 @@ static re_result_t re__exit_clearance(re__an_t *an, re__arena_t *ar, re__final_t
                 if (sn > 0) D = re__min(D, re__max(0.0, h->c - re__dot(h->n, c0g)) / sn);
             }
         }
+        for (j = 0; j < np; j++)
+            if (tix[own[j]] != RE__NONE) {
+                re__clear_foot(F, k, &F->planes[own[j]], c0g);
+                D = re__clear_tree_min(F, &trees[tix[own[j]]], owner, k + 1, c0g, D);
+            }
         K->clear = re__clear_code(D / (double)K->walk);
     }
     ar->used = mark;
@@ -6378,18 +6599,6 @@ static int re__bv_unit(const double a[3], double out[3])
     return 1;
 }
 
-/* Orthonormal t, b completing unit n (Duff et al. 2017, "Building an
-   orthonormal basis, revisited"): branch-free apart from the sign, exact for
-   axis-aligned n, so probes on a box face run along its edges. */
-static void re__bv_frame(const double n[3], double t[3], double b[3])
-{
-    double s = n[2] >= 0 ? 1.0 : -1.0;
-    double a = -1.0 / (s + n[2]);
-    double c = n[0] * n[1] * a;
-    t[0] = 1.0 + s * n[0] * n[0] * a; t[1] = s * c; t[2] = -s * n[0];
-    b[0] = c; b[1] = s + n[1] * n[1] * a; b[2] = -n[1];
-}
-
 /* Seed -> uniform [0,1): splitmix64 finaliser, so nearby seeds decorrelate. */
 static double re__bv_seed_unit(unsigned seed, unsigned long long stream)
 {
@@ -6441,7 +6650,7 @@ RE_DEF re_result_t re_bevel_blog(const re_bevel_blog_desc_t *desc, const double 
         || rays < 1)
         return RE_ERR_INVALID_ARG;
     if (!re__bv_unit(n, nu)) return RE_ERR_INVALID_ARG;
-    re__bv_frame(nu, t, b);
+    re__frame(nu, t, b);
     /* Blog, line 10: the probe origin lies delta below P along -N. */
     for (k = 0; k < 3; k++) { o[k] = p[k] - desc->delta * nu[k]; sum[k] = nu[k]; }
     /* The blog perturbs N by Perlin noise, which it calls "rather awful" for
@@ -6516,7 +6725,7 @@ RE_DEF re_result_t re_bevel_cycles(const re_bevel_cycles_desc_t *desc, const dou
     samples = desc->samples == 0 ? 4 : desc->samples;
     if (!(R > 0) || !(R < HUGE_VAL) || samples < 1) return RE_ERR_INVALID_ARG;
     if (!re__bv_unit(n, axes[0])) return RE_ERR_INVALID_ARG;
-    re__bv_frame(axes[0], axes[1], axes[2]);
+    re__frame(axes[0], axes[1], axes[2]);
     step = RE_BEVEL_STEP_REL * R;
     /* Hammersley points (i + 1/2)/n, radical inverse of i, shifted by a
        seeded Cranley-Patterson rotation: stratified, and unbiased over seeds. */

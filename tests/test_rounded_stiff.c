@@ -1456,6 +1456,107 @@ static void fine_cylinders_do_not_chain_into_one_plane(void)
     fine_cylinder_case(1000, 0, RE_FLAT_SIN_LIMIT, 1);
 }
 
+/* The exit clearance of every corner of object o (re__corner_t.clear)
+   against its definition read off the scene, over every bordering plane:
+   the code of D / walk, D the least in-plane distance from the first
+   sphere's foot on an own face to the line of a bordering plane that is
+   not its own. Returns the corners whose code lies outside the codes of
+   D (1 -+ 1e-12). */
+static long clearance_mismatches(const re__object_t *o, long *checked)
+{
+    unsigned i, k, j, q, *deg, *first, *nbr;
+    long bad = 0;
+    deg = (unsigned *)calloc(o->n_planes + 1, sizeof *deg);
+    first = (unsigned *)calloc(o->n_planes + 2, sizeof *first);
+    nbr = (unsigned *)malloc(sizeof *nbr * (2 * (size_t)o->n_edge_cyls + 1));
+    for (i = 0; i < o->n_edge_cyls; i++) deg[o->cyls[i].p[0]]++, deg[o->cyls[i].p[1]]++;
+    for (i = 0; i < o->n_planes; i++) first[i + 1] = first[i] + deg[i], deg[i] = 0;
+    for (i = 0; i < o->n_edge_cyls; i++) {
+        unsigned p0 = o->cyls[i].p[0], p1 = o->cyls[i].p[1];
+        nbr[first[p0] + deg[p0]++] = p1;
+        nbr[first[p1] + deg[p1]++] = p0;
+    }
+    for (k = 0; k < o->n_corners; k++) {
+        re__kv_t K = re__kview(o, k);
+        unsigned own[RE_MAX_CORNER_PLANES];
+        double c0[3], D = HUGE_VAL;
+        unsigned char lo, hi;
+        re__centre(o, K.sfirst, c0);
+        for (j = 0; j < K.np; j++) own[j] = re__corner_plane(o, &K, j);
+        for (j = 0; j < K.np; j++) {
+            const re__plane_t *g = &o->planes[own[j]];
+            double x[3], t = g->c - (g->n[0] * c0[0] + g->n[1] * c0[1] + g->n[2] * c0[2]);
+            for (q = 0; q < 3; q++) x[q] = c0[q] + t * g->n[q];
+            for (q = first[own[j]]; q < first[own[j] + 1]; q++) {
+                const re__plane_t *h = &o->planes[nbr[q]];
+                double cs = g->n[0] * h->n[0] + g->n[1] * h->n[1] + g->n[2] * h->n[2], sn = sqrt(fmax(0, 1 - cs * cs));
+                unsigned mine = 0, a;
+                for (a = 0; a < K.np; a++) mine |= own[a] == nbr[q];
+                if (mine || !(sn > 0)) continue;
+                D = fmin(D, fmax(0, h->c - (h->n[0] * x[0] + h->n[1] * x[1] + h->n[2] * x[2])) / sn);
+            }
+        }
+        lo = re__clear_code(D * (1 - 1e-12) / (double)o->corners[k].walk);
+        hi = re__clear_code(D * (1 + 1e-12) / (double)o->corners[k].walk);
+        if (o->corners[k].clear < lo || o->corners[k].clear > hi) {
+            if (bad < 3)
+                T_FAIL("corner %u: clear %u, its definition %u..%u (D %.17g, walk %g)", k, o->corners[k].clear, lo, hi, D,
+                       (double)o->corners[k].walk);
+            bad++;
+        }
+        (*checked)++;
+    }
+    free(deg), free(first), free(nbr);
+    return bad;
+}
+
+/* Faces bordered by more than RE__CLEAR_TREE_MIN planes (a fine polygon's
+   caps) find their corners' exit clearance through an angular tree of
+   their neighbours instead of reading them all, which was quadratic: a
+   12 000-gon prism built in 1.15 s, 0.2 s after (docs, "Limits"). Regular
+   and random convex polygons of 65 to 3 000 sides, fanned caps, radii from
+   1e-4 to 0.3 of the size, at the origin and 1e6 away: every corner's code
+   as its definition over all neighbours gives it, both layouts. */
+static void fine_polygon_exit_clearance_as_defined(void)
+{
+    static const int sides[] = {65, 66, 200, 3000, 129, 1000};
+    static const double radii[] = {1e-4, 0.01, 0.3};
+    t_rng_t rng = {2026};
+    long checked = 0, bad = 0;
+    unsigned it;
+    for (it = 0; it < 2 * sizeof sides / sizeof sides[0]; it++) {
+        const int n = sides[it % 6];
+        const int irregular = it % 6 >= 4, layout = (int)(it / 6);
+        double (*q)[2] = (double (*)[2])malloc(sizeof *q * (size_t)n), r = radii[it % 3], off = it % 2 ? 1e6 : 0;
+        tm_mesh_t m = {0};
+        re_mesh_t mesh;
+        re_scene_desc_t desc;
+        re_scene_t *s = NULL;
+        re_diag_t dg;
+        int i;
+        for (i = 0; i < n; i++) { /* irregular: jittered angles on an ellipse (convex, edges 0.34..1.66 of the mean) */
+            double a = 2 * M_PI * (i + (irregular ? t_rng_range(&rng, -0.33, 0.33) : 0)) / n;
+            q[i][0] = (irregular ? 1.2 : 1.0) * cos(a), q[i][1] = (irregular ? 0.8 : 1.0) * sin(a);
+        }
+        tm_prism(&m, NULL, (const double(*)[2])q, n, 0.5);
+        for (i = 0; i < (int)m.nv; i++) m.v[3 * i] += off, m.v[3 * i + 2] -= off;
+        memset(&mesh, 0, sizeof mesh);
+        memset(&desc, 0, sizeof desc);
+        mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.radius = r;
+        desc.objects = &mesh, desc.object_count = 1, desc.radius_policy = RE_RADIUS_CLAMP;
+        desc.layout = layout ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
+        if (T_INT_EQ(re_build(&desc, &s, &dg), RE_OK)) {
+            T_GE(s->objects[0].n_corners, (unsigned)(2 * n)); /* every rim corner rounded */
+            bad += clearance_mismatches(&s->objects[0], &checked);
+        }
+        re_free(s);
+        tm_free(&m);
+        free(q);
+    }
+    T_INT_EQ(bad, 0);
+    T_GE(checked, 17840); /* 2 n corners a prism */
+}
+
 /* n-gon prisms with their caps fanned from a rim corner (how triangulated
    n-gons usually come), in float positions, turned and moved up to 100
    times their size from the origin: the fan's thin triangles (altitude
@@ -1771,7 +1872,7 @@ int main(int argc, char **argv)
         T_CASE(float_icosphere_random_motions),
         T_CASE(float_boxes_rotated_keep_quads_flat),
         T_CASE(fine_cylinders_do_not_chain_into_one_plane),
-        T_CASE(float_fanned_prisms_far_from_origin),
+        T_CASE(float_fanned_prisms_far_from_origin), T_CASE(fine_polygon_exit_clearance_as_defined),
         T_CASE(compact_layout_coordinates_offset_1e6),
         T_CASE(compact_layout_tiny_radius_1e6_of_size_hull),
         T_CASE(compact_layout_float_icosphere_random_motions),
