@@ -4440,7 +4440,7 @@ static void re__frame(const double n[3], double t[3], double b[3])
 typedef struct re__clear_line_t {
     double phi;   /* angle of u in g's basis (the sort key: first member) */
     double u[2];  /* u in g's basis */
-    double a;     /* the distance from o, signed (HUGE_VAL where h is parallel to g) */
+    double a;     /* the distance from o, signed (HUGE_VAL where h is parallel to g; -HUGE_VAL where u cannot follow sn: never skipped) */
     double k, s;  /* |cos| / sin and 1 / sin (0 where parallel) */
     double sn;    /* sin, as re__exit_clearance computes it (0 where parallel) */
     unsigned h;
@@ -4561,12 +4561,18 @@ static void re__clear_tree_build(const re__final_t *F, unsigned g, const unsigne
         l->h = adj[q];
         l->sn = sqrt(re__max(0.0, 1 - cs * cs));
         T->cmax = re__max(T->cmax, fabs(h->c));
-        if (l->sn > 0 && wl > 0) {
+        /* the distance divides by sn, the bound's u by wl: they agree to
+           (wl - sn) / sn of u.P, within the slack (1e-9 of the scale over sn)
+           while |wl - sn| <= 1e-10. A crease a few 1e-8 off flat has
+           cos^2 rounded by 2^-53, sn then 40% off wl (|wl - sn| ~ 1e-16 /
+           sn): such a line's node is never skipped (a = -HUGE_VAL; also
+           where sn > 0 but wl = 0, which the leaf still reads) */
+        if (l->sn > 0 && wl > 0 && fabs(wl - l->sn) <= 1e-10) {
             l->u[0] = w0 / wl, l->u[1] = w1 / wl;
             l->s = 1 / l->sn, l->k = fabs(cs) * l->s;
             l->a = (h->c - re__dot(h->n, o)) * l->s;
         } else
-            l->u[0] = 1, l->u[1] = 0, l->s = l->k = 0, l->a = HUGE_VAL;
+            l->u[0] = 1, l->u[1] = 0, l->s = l->k = 0, l->a = l->sn > 0 ? -HUGE_VAL : HUGE_VAL;
         l->phi = atan2(l->u[1], l->u[0]);
     }
     re__sort(lines, m, sizeof *lines, re__cmp_double);

@@ -1557,6 +1557,69 @@ static void fine_polygon_exit_clearance_as_defined(void)
     T_GE(checked, 17840); /* 2 n corners a prism */
 }
 
+/* A fine polygon's cap g (74 neighbours: an angular tree) beside a sliver
+   face h tilted by theta = 1.2e-8 .. 1.5e-8 about their common edge (a
+   convex crease, rounded; double positions at the origin). cos(g, h)
+   rounds to 1 - 2^-53, so re__exit_clearance's sine sqrt(1 - cos^2) is
+   2.1e-8 while h's part in g, which the tree's unit u divides by, has
+   length theta: the distance (c_h - n_h.x) / sin is a - (theta / sin) u.P,
+   not a - u.P, and the bound over-reached it by far more than its
+   1e-9 / sin slack. Corner X, whose nearest line is h's, skipped h's leaf:
+   D 1.48 (its side face's far edge) where the definition gives 1.13 to
+   1.41, codes 195 against 189 to 194. The outline: X (-1, 0), B (1, -0.4),
+   E (1.05, 0) (h: B E A), A (1, 0.4), a 70-edge arc to T (-0.2, 2.2),
+   turned by -3 about y so that h's line sorts last, alone in its leaf. */
+static void sliver_crease_beside_fine_cap_exit_clearance(void)
+{
+    static const double thetas[] = {1.2e-8, 1.4e-8, 1.5e-8}; /* 1.3e-8 leaves the solid sharp */
+    long checked = 0, bad = 0;
+    unsigned it;
+    for (it = 0; it < 2 * sizeof thetas / sizeof thetas[0]; it++) {
+        const int narc = 70, n = narc + 4, layout = (int)(it / 3);
+        const double H = 1.5, th = thetas[it % 3], psi = -3.0;
+        double q[74][2];
+        tm_mesh_t m = {0};
+        re_mesh_t mesh;
+        re_scene_desc_t desc;
+        re_scene_t *s = NULL;
+        re_diag_t dg;
+        unsigned top;
+        int i;
+        q[0][0] = -1, q[0][1] = 0, q[1][0] = 1, q[1][1] = -0.4, q[2][0] = 1.05, q[2][1] = 0, q[3][0] = 1, q[3][1] = 0.4;
+        for (i = 1; i <= narc; i++) { /* quadratic Bezier A, (0.2, 2.2), T: convex */
+            double u = (double)i / narc, c0 = (1 - u) * (1 - u), c1 = 2 * u * (1 - u), c2 = u * u;
+            q[3 + i][0] = c0 * 1 + c1 * 0.2 + c2 * -0.2, q[3 + i][1] = c0 * 0.4 + c1 * 2.2 + c2 * 2.2;
+        }
+        for (i = 0; i < 2 * n; i++) {
+            double x = q[i % n][0], z = q[i % n][1], y = i < n ? -H / 2 : i == n + 2 ? H / 2 - th * 0.05 : H / 2;
+            tm_vert(&m, cos(psi) * x - sin(psi) * z, y, sin(psi) * x + cos(psi) * z);
+        }
+        for (i = 0; i < n; i++) {
+            unsigned a = (unsigned)i, c = (unsigned)((i + 1) % n);
+            tm_quad(&m, a, c, c + (unsigned)n, a + (unsigned)n);
+        }
+        for (i = 1; i + 1 < n; i++) tm_tri(&m, 0, (unsigned)i + 1, (unsigned)i);
+        top = (unsigned)n;
+        tm_tri(&m, top, top + 1, top + 3); /* g: X B A arc T, fanned from X */
+        for (i = 3; i + 1 < n; i++) tm_tri(&m, top, top + (unsigned)i, top + (unsigned)i + 1);
+        tm_tri(&m, top + 1, top + 2, top + 3); /* h */
+        tm_orient_outward(&m);
+        memset(&mesh, 0, sizeof mesh);
+        memset(&desc, 0, sizeof desc);
+        mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.radius = 0.05;
+        desc.objects = &mesh, desc.object_count = 1, desc.radius_policy = RE_RADIUS_CLAMP;
+        desc.layout = layout ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
+        if (T_INT_EQ(re_build(&desc, &s, &dg), RE_OK)) {
+            T_INT_EQ(s->objects[0].n_corners, (unsigned)(2 * n)); /* every corner rounded, the crease's too */
+            bad += clearance_mismatches(&s->objects[0], &checked);
+        }
+        re_free(s);
+        tm_free(&m);
+    }
+    T_INT_EQ(bad, 0);
+    T_INT_EQ(checked, 6 * 148);
+}
+
 /* n-gon prisms with their caps fanned from a rim corner (how triangulated
    n-gons usually come), in float positions, turned and moved up to 100
    times their size from the origin: the fan's thin triangles (altitude
@@ -1873,6 +1936,7 @@ int main(int argc, char **argv)
         T_CASE(float_boxes_rotated_keep_quads_flat),
         T_CASE(fine_cylinders_do_not_chain_into_one_plane),
         T_CASE(float_fanned_prisms_far_from_origin), T_CASE(fine_polygon_exit_clearance_as_defined),
+        T_CASE(sliver_crease_beside_fine_cap_exit_clearance),
         T_CASE(compact_layout_coordinates_offset_1e6),
         T_CASE(compact_layout_tiny_radius_1e6_of_size_hull),
         T_CASE(compact_layout_float_icosphere_random_motions),
