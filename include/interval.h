@@ -867,7 +867,8 @@ IV_DEF iv_t iv_hypot(iv_t x, iv_t y);
    with any infinite part (no operation makes one; a struct literal, or
    parts copied from an overflowed computation) is unbounded too: it
    stands for any real, as an overflow does, so iv_from_affine gives the
-   entire line and every operation answers as for (0, 0, inf). */
+   entire line and every operation answers as for (0, 0, inf) (neg
+   negates the parts: the same set). */
 typedef struct iv_affine_t {
     double c; /* centre */
     double t; /* coefficient of the shared ray symbol eps_t */

@@ -20,7 +20,8 @@
    sqrt sqr ends at most one double outside the correctly rounded ones;
    exp log sin cos tan atan pow of a point within the documented ulp
    bound; the pair path equal to the scalar path; affine forms within their
-   error radius at sampled symbol values; the array forms equal to the
+   error radius at sampled symbol values, and a form with an infinite part
+   answering as the unbounded form (0, 0, inf) does; the array forms equal to the
    per-call forms bit for bit. A failed check aborts (a crash for
    libFuzzer), after printing the case. */
 #define IV_IMPLEMENTATION
@@ -146,16 +147,33 @@ static void fz_interval(int op, int n, const double *d)
 }
 
 #ifndef IV_NO_AFFINE
-/* A form from raw doubles: finite parts with e >= 0 as they are, e = inf
-   the unbounded form, anything else the empty form. */
+/* A form from raw doubles, e made >= 0: finite parts as they are, any
+   NaN part the empty form, else (some part infinite) the parts as they are:
+   a form with an infinite part, which interval.h reads as the unbounded
+   form (0, 0, inf). */
 static iv_affine_t fz_form(double c, double t, double e)
 {
     iv_affine_t f;
     f.c = c, f.t = t, f.e = fabs(e);
-    if (fz_finite(c) && fz_finite(t) && fz_finite(e)) return f;
-    if (f.e == HUGE_VAL) f.c = f.t = 0;
-    else f.c = f.t = f.e = NAN;
+    if (c != c || t != t || e != e) f.c = f.t = f.e = NAN;
     return f;
+}
+static int fz_infinite_part(iv_affine_t f) { return !iv_affine_is_empty(f) && !(fz_finite(f.c) && fz_finite(f.t) && fz_finite(f.e)); }
+/* the unbounded form a form with an infinite part stands for */
+static iv_affine_t fz_canonical(iv_affine_t f)
+{
+    if (fz_infinite_part(f)) f.c = f.t = 0, f.e = HUGE_VAL;
+    return f;
+}
+/* the same set: both empty, both unbounded (e = inf or an infinite part:
+   neg keeps the parts, negated), or the same parts */
+static int fz_same_form(iv_affine_t x, iv_affine_t y)
+{
+    int ux = !iv_affine_is_empty(x) && (x.e == HUGE_VAL || fz_infinite_part(x));
+    int uy = !iv_affine_is_empty(y) && (y.e == HUGE_VAL || fz_infinite_part(y));
+    if (iv_affine_is_empty(x) || iv_affine_is_empty(y)) return iv_affine_is_empty(x) && iv_affine_is_empty(y);
+    if (ux || uy) return ux && uy;
+    return memcmp(&x, &y, sizeof x) == 0;
 }
 
 /* a noise symbol's value in [-1, 1] from a raw double */
@@ -173,6 +191,17 @@ static void fz_affine(int op, int n, int method, const double *d)
     z = eval_aff(op, a, b, d[6], n, method);
     zi = iv_from_affine(z);
     fz_valid(zi, "iv_from_affine");
+    /* a form with an infinite part answers as the unbounded form (interval.h) */
+    if (fz_infinite_part(a) || (is_binary(op) && !is_scalar(op) && fz_infinite_part(b))) {
+        iv_affine_t w = eval_aff(op, fz_canonical(a), is_binary(op) && !is_scalar(op) ? fz_canonical(b) : b, d[6], n, method);
+        iv_t wi = iv_from_affine(fz_canonical(a));
+        FUZZ_CHECK(fz_same_form(z, w), "affine %s(n=%d, method %d): a=(%a,%a,%a) b=(%a,%a,%a) d=%a -> (%a,%a,%a), as (0,0,inf): (%a,%a,%a)",
+                   op_name[op], n, method, a.c, a.t, a.e, b.c, b.t, b.e, d[6], z.c, z.t, z.e, w.c, w.t, w.e);
+        FUZZ_CHECK(!fz_infinite_part(a) || (wi.lo == -HUGE_VAL && wi.hi == HUGE_VAL && iv_from_affine(a).lo == -HUGE_VAL &&
+                                            iv_from_affine(a).hi == HUGE_VAL),
+                   "iv_from_affine(%a,%a,%a) is not the entire line", a.c, a.t, a.e);
+        return;
+    }
     if (iv_affine_is_empty(a) || (is_binary(op) && !is_scalar(op) && iv_affine_is_empty(b)) ||
         (is_scalar(op) && !fz_finite(d[6]))) {
         FUZZ_CHECK(iv_affine_is_empty(z), "affine %s: an empty operand gives the empty form, not (%a,%a,%a)", op_name[op],
@@ -181,7 +210,7 @@ static void fz_affine(int op, int n, int method, const double *d)
     }
     FUZZ_CHECK(iv_affine_is_empty(z) || (z.e >= 0 && fz_finite(z.c) && fz_finite(z.t)),
                "affine %s: (%a,%a,%a) is not a form", op_name[op], z.c, z.t, z.e);
-    if (a.e == HUGE_VAL || b.e == HUGE_VAL) return;
+    if (a.e == HUGE_VAL || b.e == HUGE_VAL || fz_infinite_part(a) || fz_infinite_part(b)) return;
     for (k = 0; k < 4; k++) {
         q_t et = k == 0 ? 1 : k == 1 ? -1 : fz_eps(d[7 + k]), ea = fz_eps(d[8 + k]), eb = fz_eps(d[9 + k]), v, dev, slack;
         q_t x = form_at(a, et, ea), y = is_scalar(op) ? (q_t)d[6] : form_at(b, et, eb);
