@@ -1510,6 +1510,23 @@ static long clearance_mismatches(const re__object_t *o, long *checked)
     return bad;
 }
 
+/* m built as one object of radius r, clamped, in the given layout (1:
+   compact); NULL (a failed check) when the build fails. */
+static re_scene_t *build_clamped(const tm_mesh_t *m, double r, int layout)
+{
+    re_mesh_t mesh;
+    re_scene_desc_t desc;
+    re_scene_t *s = NULL;
+    re_diag_t dg;
+    memset(&mesh, 0, sizeof mesh);
+    memset(&desc, 0, sizeof desc);
+    mesh.positions = m->v, mesh.vertex_count = m->nv, mesh.indices = m->idx, mesh.index_count = m->ni, mesh.radius = r;
+    desc.objects = &mesh, desc.object_count = 1, desc.radius_policy = RE_RADIUS_CLAMP;
+    desc.layout = layout ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
+    if (!T_INT_EQ(re_build(&desc, &s, &dg), RE_OK)) return NULL;
+    return s;
+}
+
 /* Faces bordered by more than RE__CLEAR_TREE_MIN planes (a fine polygon's
    caps) find their corners' exit clearance through an angular tree of
    their neighbours instead of reading them all, which was quadratic: a
@@ -1529,10 +1546,7 @@ static void fine_polygon_exit_clearance_as_defined(void)
         const int irregular = it % 6 >= 4, layout = (int)(it / 6);
         double (*q)[2] = (double (*)[2])malloc(sizeof *q * (size_t)n), r = radii[it % 3], off = it % 2 ? 1e6 : 0;
         tm_mesh_t m = {0};
-        re_mesh_t mesh;
-        re_scene_desc_t desc;
-        re_scene_t *s = NULL;
-        re_diag_t dg;
+        re_scene_t *s;
         int i;
         for (i = 0; i < n; i++) { /* irregular: jittered angles on an ellipse (convex, edges 0.34..1.66 of the mean) */
             double a = 2 * M_PI * (i + (irregular ? t_rng_range(&rng, -0.33, 0.33) : 0)) / n;
@@ -1540,12 +1554,7 @@ static void fine_polygon_exit_clearance_as_defined(void)
         }
         tm_prism(&m, NULL, (const double(*)[2])q, n, 0.5);
         for (i = 0; i < (int)m.nv; i++) m.v[3 * i] += off, m.v[3 * i + 2] -= off;
-        memset(&mesh, 0, sizeof mesh);
-        memset(&desc, 0, sizeof desc);
-        mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.radius = r;
-        desc.objects = &mesh, desc.object_count = 1, desc.radius_policy = RE_RADIUS_CLAMP;
-        desc.layout = layout ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
-        if (T_INT_EQ(re_build(&desc, &s, &dg), RE_OK)) {
+        if ((s = build_clamped(&m, r, layout)) != NULL) {
             T_GE(s->objects[0].n_corners, (unsigned)(2 * n)); /* every rim corner rounded */
             bad += clearance_mismatches(&s->objects[0], &checked);
         }
@@ -1579,10 +1588,7 @@ static void sliver_crease_beside_fine_cap_exit_clearance(void)
         const double H = 1.5, th = thetas[it % 3], psi = -3.0;
         double q[74][2];
         tm_mesh_t m = {0};
-        re_mesh_t mesh;
-        re_scene_desc_t desc;
-        re_scene_t *s = NULL;
-        re_diag_t dg;
+        re_scene_t *s;
         unsigned top;
         int i;
         q[0][0] = -1, q[0][1] = 0, q[1][0] = 1, q[1][1] = -0.4, q[2][0] = 1.05, q[2][1] = 0, q[3][0] = 1, q[3][1] = 0.4;
@@ -1604,12 +1610,7 @@ static void sliver_crease_beside_fine_cap_exit_clearance(void)
         for (i = 3; i + 1 < n; i++) tm_tri(&m, top, top + (unsigned)i, top + (unsigned)i + 1);
         tm_tri(&m, top + 1, top + 2, top + 3); /* h */
         tm_orient_outward(&m);
-        memset(&mesh, 0, sizeof mesh);
-        memset(&desc, 0, sizeof desc);
-        mesh.positions = m.v, mesh.vertex_count = m.nv, mesh.indices = m.idx, mesh.index_count = m.ni, mesh.radius = 0.05;
-        desc.objects = &mesh, desc.object_count = 1, desc.radius_policy = RE_RADIUS_CLAMP;
-        desc.layout = layout ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
-        if (T_INT_EQ(re_build(&desc, &s, &dg), RE_OK)) {
+        if ((s = build_clamped(&m, 0.05, layout)) != NULL) {
             T_INT_EQ(s->objects[0].n_corners, (unsigned)(2 * n)); /* every corner rounded, the crease's too */
             bad += clearance_mismatches(&s->objects[0], &checked);
         }
