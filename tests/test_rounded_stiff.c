@@ -1510,20 +1510,16 @@ static long clearance_mismatches(const re__object_t *o, long *checked)
     return bad;
 }
 
-/* m built as one object of radius r, clamped, in the given layout (1:
-   compact); NULL (a failed check) when the build fails. */
-static re_scene_t *build_clamped(const tm_mesh_t *m, double r, int layout)
+/* build1 (test_rounded_rays.h: one object, the radius clamped) in the
+   given layout (1: compact); NULL, a failed check, when it fails */
+static re_scene_t *build1_in(const tm_mesh_t *m, double r, int layout)
 {
-    re_mesh_t mesh;
-    re_scene_desc_t desc;
-    re_scene_t *s = NULL;
     re_diag_t dg;
-    memset(&mesh, 0, sizeof mesh);
-    memset(&desc, 0, sizeof desc);
-    mesh.positions = m->v, mesh.vertex_count = m->nv, mesh.indices = m->idx, mesh.index_count = m->ni, mesh.radius = r;
-    desc.objects = &mesh, desc.object_count = 1, desc.radius_policy = RE_RADIUS_CLAMP;
-    desc.layout = layout ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
-    if (!T_INT_EQ(re_build(&desc, &s, &dg), RE_OK)) return NULL;
+    re_scene_t *s;
+    g_layout = layout ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
+    s = build1(m, r, &dg);
+    g_layout = RE_LAYOUT_FAST;
+    if (!T_CHECK(s != NULL)) fprintf(stderr, "    %s\n", dg.message);
     return s;
 }
 
@@ -1554,7 +1550,7 @@ static void fine_polygon_exit_clearance_as_defined(void)
         }
         tm_prism(&m, NULL, (const double(*)[2])q, n, 0.5);
         for (i = 0; i < (int)m.nv; i++) m.v[3 * i] += off, m.v[3 * i + 2] -= off;
-        if ((s = build_clamped(&m, r, layout)) != NULL) {
+        if ((s = build1_in(&m, r, layout)) != NULL) {
             T_GE(s->objects[0].n_corners, (unsigned)(2 * n)); /* every rim corner rounded */
             bad += clearance_mismatches(&s->objects[0], &checked);
         }
@@ -1610,7 +1606,7 @@ static void sliver_crease_beside_fine_cap_exit_clearance(void)
         for (i = 3; i + 1 < n; i++) tm_tri(&m, top, top + (unsigned)i, top + (unsigned)i + 1);
         tm_tri(&m, top + 1, top + 2, top + 3); /* h */
         tm_orient_outward(&m);
-        if ((s = build_clamped(&m, 0.05, layout)) != NULL) {
+        if ((s = build1_in(&m, 0.05, layout)) != NULL) {
             T_INT_EQ(s->objects[0].n_corners, (unsigned)(2 * n)); /* every corner rounded, the crease's too */
             bad += clearance_mismatches(&s->objects[0], &checked);
         }
