@@ -702,6 +702,17 @@ static double re__min(double a, double b) { return a < b ? a : b; }
 
 /* ---- Tolerances (all relative; see docs/rounded_edges.md "Tolerances") ---- */
 
+/* Detection's zone test is inlined into its loop, and its copy for the
+   rare checks of answers kept out of the query's body (re__zone_holds):
+   left to itself, gcc called it out of line from the loop. */
+#if defined(__GNUC__) || defined(__clang__)
+#define RE__HOT_INLINE __attribute__((always_inline)) inline
+#define RE__NOINLINE __attribute__((noinline))
+#else
+#define RE__HOT_INLINE inline
+#define RE__NOINLINE
+#endif
+
 /* DBL_EPSILON and FLT_EPSILON: the units of the rounding-scaled tolerances
    below (for the flat test the positions' own type decides which). */
 #define RE__DBL_EPS 2.220446049250313e-16
@@ -778,6 +789,14 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    volume beside a sharp corner (faces at sine 0.32) came back unchanged
    (fuzz_rounded_exact). */
 #define RE__FLAT_ULPS (4.0 * RE__DBL_EPS)
+/* A pass-through's exit is checked against the set's reach (re__near_corner)
+   when the ray stays within RE__ALONG_FACE_R r + RE__ALONG_FACE_ULPS |I, X|_1
+   of one face plane of the set from I to the exit: a ray that only touches
+   the rounded solid, its capsule contact lost to rounding, runs in a face
+   within the features' placement noise (well below both terms); others
+   meet a capsule first and skip the check. */
+#define RE__ALONG_FACE_R 1e-3
+#define RE__ALONG_FACE_ULPS (1024.0 * RE__DBL_EPS)
 /* A host that traces in float reports t late or early by ~1e-7 relative;
    when its hit point lands just inside a rounding capsule (next to the
    tangent line), the capsule entry up to this fraction of t_host before
@@ -6102,42 +6121,62 @@ static int re__band_flat(const re__object_t *o, unsigned triangle, double u, dou
 #endif
 }
 
-/* Query step 1 for edge cylinder c of I's kd leaf: is I within its
-   detection cylinder? Adds the corners that have plane f to S, and sets
-   *c0 when f is one of the edge's own faces; returns 1 if detected. */
-static inline unsigned re__detect(const re__object_t *o, unsigned c, const double I[3], unsigned f, re__set_t *S,
-                                  re__best_t *best, unsigned *c0)
+/* Is X within edge cylinder c's detection zone (paper §3.1's detection
+   cylinder, widened to cover the exact corners)? *si0, *si1 get the
+   cylinder's end spheres. */
+static RE__HOT_INLINE int re__in_zone(const re__object_t *o, unsigned c, const double X[3], re__best_t *best,
+                                      unsigned *si0, unsigned *si1)
 {
     const re__ecyl_t *cy = &o->cyls[c];
     const re__plane_t *P0 = &o->planes[cy->p[0]], *P1 = &o->planes[cy->p[1]];
     double g = RE__COMPACT(o) ? re__det8(o->det8[2 * c], o->det_e0) : re__det(o->det[2 * c]), m, keep[3], u[3], w[3], L2, t, a0, a1, cs;
     const double *s0, *s1;
-    unsigned ka, kb, si0, si1;
-    re__kv_t Ka, Kb;
+    unsigned sa, sb;
     /* across first: distance to the mesh edge's line, from the two face
        planes' signed distances a0, a1: (a0^2 + a1^2 - 2 a0 a1 cos) / sin^2.
        It rejects most of a leaf's edges, and the face planes are shared by
        many edges (warm in cache) where the end spheres are not: the render
        profile showed the loop waiting on the sphere loads. */
-    a0 = re__dot(P0->n, I) - P0->c;
+    a0 = re__dot(P0->n, X) - P0->c;
     /* the line lies in both planes, so it is at least |a0| and |a1| away:
        (a0^2 + a1^2 - 2 a0 a1 cos) - a0^2 sin^2 = (a1 - a0 cos)^2 >= 0. Most
        candidates fail on one plane, before the other plane and cos are read */
     if (a0 * a0 > g * g) return 0;
-    a1 = re__dot(P1->n, I) - P1->c;
+    a1 = re__dot(P1->n, X) - P1->c;
     if (a1 * a1 > g * g) return 0;
     cs = re__dot(P0->n, P1->n);
     if (a0 * a0 + a1 * a1 - 2 * a0 * a1 * cs > g * g * (1 - cs * cs)) return 0;
     /* along the axis: within m of the end spheres */
     m = RE__COMPACT(o) ? re__det8(o->det8[2 * c + 1], o->det_e0) : re__det(o->det[2 * c + 1]);
-    si0 = re__pk_id(&o->c_s0, c);
-    si1 = re__cyl_s1(o, c, si0);
-    re__cpair(o, best, si0, si1, &s0, &s1, keep);
+    sa = re__pk_id(&o->c_s0, c);
+    sb = re__cyl_s1(o, c, sa);
+    *si0 = sa, *si1 = sb;
+    re__cpair(o, best, sa, sb, &s0, &s1, keep);
     re__sub(s1, s0, u);
-    re__sub(I, s0, w);
+    re__sub(X, s0, w);
     L2 = re__dot(u, u);
     t = re__dot(w, u);
-    if ((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2)) return 0;
+    return !((t < 0 && t * t > m * m * L2) || (t > L2 && (t - L2) * (t - L2) > m * m * L2));
+}
+
+/* re__in_zone for the rare checks of answers (re__one_edge,
+   re__in_edge_zone), a call of its own kept out of the query's body. */
+RE__NOINLINE static int re__zone_holds(const re__object_t *o, unsigned c, const double X[3], re__best_t *best)
+{
+    unsigned s0, s1;
+    return re__in_zone(o, c, X, best, &s0, &s1);
+}
+
+/* Query step 1 for edge cylinder c of I's kd leaf: is I within its
+   detection zone? Adds the corners that have plane f to S, and sets *c0
+   when f is one of the edge's own faces; returns 1 if detected. */
+static inline unsigned re__detect(const re__object_t *o, unsigned c, const double I[3], unsigned f, re__set_t *S,
+                                  re__best_t *best, unsigned *c0)
+{
+    const re__ecyl_t *cy = &o->cyls[c];
+    unsigned ka, kb, si0, si1;
+    re__kv_t Ka, Kb;
+    if (!re__in_zone(o, c, I, best, &si0, &si1)) return 0;
     ka = re__s_corner(o, si0), kb = re__s_corner(o, si1);
     if (cy->p[0] == f || cy->p[1] == f) { /* both corners have plane f */
         re__set_add(S, ka);
@@ -6273,7 +6312,93 @@ static int re__one_edge(const re__object_t *o, const re__set_t *S, unsigned c0, 
         double wk = (double)o->corners[S->c[i]].walk;
         if (re__dist2_segment(re__cptr(o, best, re__pk_id(&o->k_sfirst, S->c[i])), I, IP, inv_l2) <= wk * wk) return 0;
     }
-    return 1;
+    /* a pass-through leaves within the edge's zone, unless the ray runs
+       along a face out of it (re__near_corner): the general search decides */
+    return best->s <= *s_exit || re__zone_holds(o, c0, P, best);
+}
+
+/* Is X, a pass-through's exit, where the set's features describe the
+   sharp mesh: within `walk` of a corner of S (re__near_corner), or within
+   the detection zone of one of its edges (re__in_edge_zone)? A ray inside
+   the removed volume stays there until it leaves the mesh (leaving the
+   volume, it would enter a capsule first), and the removed volume near a
+   corner lies within its walk, near an edge's middle within the edge's
+   zone; the walk (re__walk_grow) adds each corner the ray comes near. The
+   exit is out of reach only when the ray ran along a face plane on the
+   flat part, touching the rounded solid without entering it: a tangent
+   contact with a capsule that its rounding lost (a ray through a vertex
+   lying in a face: fuzz_rounded_exact, 2026-12-06). Past that contact the
+   face is the surface, and S's planes say nothing of where the mesh ends. */
+static int re__near_corner(const re__object_t *o, const re__set_t *S, re__best_t *b, const double X[3])
+{
+    unsigned i;
+    for (i = 0; i < S->n; i++) {
+        unsigned k = S->c[i];
+        double wk = (double)o->corners[k].walk, d[3];
+        re__sub(X, re__cptr(o, b, re__pk_id(&o->k_sfirst, k)), d);
+        if (re__dot(d, d) <= wk * wk) return 1;
+    }
+    return 0;
+}
+static int re__in_edge_zone(const re__object_t *o, const re__set_t *S, re__best_t *b, const double X[3])
+{
+    unsigned i, j;
+    for (i = 0; i < S->n; i++) {
+        re__kv_t K = re__kview(o, S->c[i]);
+        for (j = 0; j < K.np; j++)
+            if (re__zone_holds(o, o->refs[K.first + j] >> 1, X, b)) return 1;
+    }
+    return 0;
+}
+
+/* The plane of S the segment I -> X lies in most nearly (the face a ray
+   out of reach ran along, re__near_corner), and in *dmin the segment's
+   largest distance from it. */
+static unsigned re__plane_along(const re__object_t *o, const re__set_t *S, const double I[3], const double X[3], double *dmin)
+{
+    unsigned i, j, best = RE__NONE;
+    *dmin = HUGE_VAL;
+    for (i = 0; i < S->n; i++) {
+        re__kv_t K = re__kview(o, S->c[i]);
+        for (j = 0; j < K.np; j++) {
+            unsigned gi = re__corner_plane(o, &K, j);
+            const re__plane_t *g = &o->planes[gi];
+            double dv = re__max(fabs(re__dot(g->n, I) - g->c), fabs(re__dot(g->n, X) - g->c));
+            if (dv < *dmin) *dmin = dv, best = gi;
+        }
+    }
+    return best;
+}
+
+/* A pass-through whose exit is out of the set's reach (re__near_corner),
+   or no answer at all (neither a capsule nor a plane of S ahead: the ray
+   left the set's reach, so I is not on a flat part either), leaves at I
+   instead, along the face the ray runs in: the ray only touches the
+   rounded solid, and the host, tracing on from I, finds where it really
+   leaves the mesh (if anywhere: it runs in a face's plane). Only a ray
+   within RE__ALONG_FACE_R r + RE__ALONG_FACE_ULPS |I, X|_1 of a plane of S
+   all the way can be out of reach (one deeper meets a capsule), so other
+   pass-throughs skip the edge zones. */
+static void re__exit_within_reach(const re__object_t *o, const re__set_t *S, re__best_t *b, const double I[3],
+                                  const double dir[3], double *s_exit, unsigned *exit_plane)
+{
+    double X[3], dmin, mag;
+    unsigned along;
+    if (!(*s_exit < b->s) && b->s < HUGE_VAL) return; /* a rounded hit */
+    if (*s_exit < HUGE_VAL) {
+        re__madd(I, *s_exit, dir, X);
+        if (re__near_corner(o, S, b, X)) return; /* most pass-throughs here: cheap */
+    } else {
+        re__madd(I, o->size / re__len(dir), dir, X); /* a size along, to find the face it runs in */
+    }
+    along = re__plane_along(o, S, I, X, &dmin);
+    if (along == RE__NONE) return;
+    mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]) + fabs(X[0]) + fabs(X[1]) + fabs(X[2]);
+    if (*s_exit < HUGE_VAL &&
+        (!(dmin <= RE__ALONG_FACE_R * o->rmax + RE__ALONG_FACE_ULPS * mag) || re__in_edge_zone(o, S, b, X)))
+        return;
+    *s_exit = 0;
+    *exit_plane = along;
 }
 
 /* Query step 5: the rounded hit at best.s, the pass-through at s_exit
@@ -6347,6 +6472,7 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
         s_exit = re__exit(o, &S, I, dir, &exit_plane);
         if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &best, I, dir, re__min(best.s, s_exit))) break;
     }
+    re__exit_within_reach(o, &S, &best, I, dir, &s_exit, &exit_plane);
     return re__answer(o, &best, s_exit, exit_plane, I, dir, t_on, out);
 }
 

@@ -785,6 +785,107 @@ static void rays_grazing_a_face(void)
     tm_free(&m);
 }
 
+/* One hull, rays lying exactly in its top face's plane y = 1 through a
+   vertex or edge point of that face (found by fuzz_rounded_exact: a ray
+   through a vertex, along a face whose edge from it runs 0.9 degrees off
+   the ray). Such a ray only touches the rounded solid: tangent to a
+   capsule, then on the face's flat part. Whatever the answer, its point
+   lies on the rounded surface, or a pass-through's on the sharp hull with
+   a face's normal through it, never past the hull, and the ray never goes
+   deeper than tol into the rounded solid before it. Returns the rays that
+   hit the hull. */
+static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t *rng, long *bad)
+{
+    static const double tilt[5] = {0, 1e-16, -1e-16, 1e-13, -1e-13};
+    tm_mesh_t m = {0};
+    tm_eroded_t E;
+    static tm_poly_t P;
+    re_scene_t *s;
+    re_diag_t dg;
+    double scale, tol;
+    long i, hits = 0;
+    int a, k, top[3], nt = 0;
+    memset(&P, 0, sizeof P);
+    tm_hull(pts, n, &m, &P);
+    scale = tm_size(m.v, m.nv);
+    tol = 1e-9 * scale;
+    s = build1(&m, r_rel * scale, &dg);
+    if (!T_CHECK(s != NULL)) { tm_free(&m); return 0; }
+    E.P = &P, E.r = re_object_radius(s, 0);
+    tm_erode(&P, E.r);
+    for (k = 0; k < n && nt < 3; k++)
+        if (pts[k][1] == 1) top[nt++] = k;
+    for (i = 0; i < 600 && nt == 3; i++) {
+        double phi = t_rng_range(rng, 0, 2 * M_PI), f = i % 3 ? 0 : t_rng_unit(rng), d[3], o[3], p[3], t_host, bu, bv;
+        const double *va = pts[top[i % 3]], *vb = pts[top[(i + 1) % 3]];
+        unsigned tri;
+        re_hit_t h;
+        /* in the plane, or tilted by 1e-16 or 1e-13 out of it or into the solid */
+        d[0] = cos(phi), d[1] = tilt[i % 5], d[2] = sin(phi);
+        for (a = 0; a < 3; a++) o[a] = va[a] + f * (vb[a] - va[a]) - 3 * scale * d[a];
+        if (d[1] == 0) o[1] = 1;
+        if (!tm_hit_uv(&m, o, d, &t_host, &tri, &bu, &bv)) continue;
+        hits++;
+        re_query(s, o, d, 0, tri, t_host, &h);
+        check_query_uv(s, o, d, tri, t_host, bu, bv, &h);
+        for (a = 0; a < 3; a++) p[a] = o[a] + h.t * d[a];
+        if (h.kind == RE_PASS_THROUGH) {
+            double side = 0, dn = 0;
+            if (!(h.t >= t_host && tm_hull_exit_ok(&P, p, h.normal, tol, &side, &dn))) {
+                if (++*bad < 5) T_FAIL("r %g ray %ld: pass-through at t %.17g (host %.17g), %.3g outside the hull", r_rel, i, h.t,
+                                       t_host, side);
+                continue;
+            }
+        } else if (!(fabs(tm_eroded_sdf(&E, p)) <= tol) || (h.kind == RE_HIT_ROUNDED && !check_feature(s, &h, tol, scale))) {
+            if (++*bad < 5) T_FAIL("r %g ray %ld: kind %d at t %.17g is %.3g off the rounded surface (host triangle %u)", r_rel, i,
+                                   (int)h.kind, h.t, tm_eroded_sdf(&E, p), tri);
+            continue;
+        }
+        for (k = 0; k <= 64; k++) { /* never inside the rounded solid before the answer */
+            double q[3], tt = t_host - 1e-3 * scale + (h.t - t_host + 1e-3 * scale) * k / 64.0;
+            for (a = 0; a < 3; a++) q[a] = o[a] + tt * d[a];
+            if (!(tm_eroded_sdf(&E, q) > -tol)) {
+                if (++*bad < 5) T_FAIL("r %g ray %ld: kind %d at t %.17g, but %.3g deep in the rounded solid at t %.17g", r_rel, i,
+                                       (int)h.kind, h.t, -tm_eroded_sdf(&E, q), tt);
+                break;
+            }
+        }
+    }
+    re_free(s);
+    tm_free(&m);
+    return hits;
+}
+
+/* Rays along the top face through its vertices and edges (along_face_rays)
+   on the fuzzer's hull and on random hulls with a top face at y = 1, at
+   radii from 2^-25 to 0.05 of the size. */
+static void rays_along_a_face_through_its_vertices(void)
+{
+    static const double fuzz_hull[10][3] = {
+        {0.018600747692072872, 1, -0.99215686274509807},   {0.77315938048371091, -0.30202182040131231, -0.5136339360646982},
+        {-0.4514076447699702, -0.52809948882276647, 0.44136720836194399}, {0.31163500419623102, -0.87542534523537041, -0.67376211184863055},
+        {0.79583428702220194, 0.24818799114976731, -0.37285420004577707}, {-0.80450141145952547, -0.24217593652246894, 0.93368429083695736},
+        {-0.024948500801098672, 0.92336919203479062, -0.3134050507362478}, {-0.48946364538033116, -0.56060120546272985, -0.19316395819027998},
+        {-0.01377889677271682, 1, 1}, {1, 1, 1}};
+    static const double radii[4] = {2.98023223876953125e-8, 1e-6, 1e-3, 0.05};
+    t_rng_t rng = {29};
+    long bad = 0, hits = 0;
+    int j, h, k;
+    for (j = 0; j < 4; j++) hits += along_face_rays(fuzz_hull, 10, radii[j], &rng, &bad);
+    for (h = 0; h < 12; h++) {
+        double pts[9][3];
+        for (k = 0; k < 9; k++) {
+            double u = t_rng_range(&rng, 0, 2 * M_PI), R = t_rng_range(&rng, 0.3, 1);
+            pts[k][0] = R * cos(u), pts[k][2] = R * sin(u);
+            pts[k][1] = k < 3 ? 1 : t_rng_range(&rng, -1, 0.8);
+        }
+        for (j = 0; j < 4; j++) hits += along_face_rays((const double(*)[3])pts, 9, radii[j], &rng, &bad);
+    }
+    T_INT_EQ(bad, 0);
+    T_GT(hits, 10000);
+    fprintf(stderr, "    %ld rays along the top face hit the hull\n", hits);
+}
+
 /* Rays lying exactly in the top or bottom face's plane, entering through
    the side x = lo at its edge, so tangent to the rounding of that edge and
    to the flat part they run along (found by fuzz_rounded_exact on a hull):
@@ -1718,6 +1819,10 @@ static void compact_layout_tiny_radius_1e6_of_size_hull(void) { with_compact_lay
 static void float_icosphere_random_motions(void);
 static void compact_layout_float_icosphere_random_motions(void) { with_compact_layout(float_icosphere_random_motions); }
 static void compact_layout_long_straight_chains(void) { with_compact_layout(long_straight_chains); }
+static void compact_layout_rays_along_a_face_through_its_vertices(void)
+{
+    with_compact_layout(rays_along_a_face_through_its_vertices);
+}
 static void compact_layout_grazing_along_a_subdivided_edge(void) { with_compact_layout(grazing_along_a_subdivided_edge); }
 
 /* the example author's repro: rotation 0.3 about y, moved by (1.3, 1, 0.2) */
@@ -1924,6 +2029,8 @@ int main(int argc, char **argv)
         T_CASE(rays_exactly_through_edges_and_vertices),
         T_CASE(rays_grazing_a_face),
         T_CASE(rays_lying_in_a_face_plane),
+        T_CASE(rays_along_a_face_through_its_vertices),
+        T_CASE(compact_layout_rays_along_a_face_through_its_vertices),
         T_CASE(flat_test_beside_a_sharp_corner_far_out),
         T_CASE(grazing_along_a_subdivided_edge),
         T_CASE(long_straight_chains),
