@@ -792,9 +792,10 @@ static void rays_grazing_a_face(void)
    capsule, then on the face's flat part. Whatever the answer, its point
    lies on the rounded surface, or a pass-through's on the sharp hull with
    a face's normal through it, never past the hull, and the ray never goes
-   deeper than tol into the rounded solid before it. Returns the rays that
-   hit the hull. */
-static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t *rng, long *bad)
+   deeper than tol into the rounded solid before it; a rounded hit's
+   reflected ray starts on the sharp hull, pushed out (counted in
+   *n_round). Returns the rays that hit the hull. */
+static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t *rng, long *bad, long *n_round)
 {
     static const double tilt[5] = {0, 1e-16, -1e-16, 1e-13, -1e-13};
     tm_mesh_t m = {0};
@@ -817,7 +818,7 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
         if (pts[k][1] == 1) top[nt++] = k;
     for (i = 0; i < 600 && nt == 3; i++) {
         double phi = t_rng_range(rng, 0, 2 * M_PI), f = i % 3 ? 0 : t_rng_unit(rng), d[3], o[3], p[3], t_host, bu, bv;
-        const double *va = pts[top[i % 3]], *vb = pts[top[(i + 1) % 3]];
+        const double *va = pts[top[i / 3 % 3]], *vb = pts[top[(i / 3 + 1) % 3]];
         unsigned tri;
         re_hit_t h;
         /* in the plane, or tilted by 1e-16 or 1e-13 out of it or into the solid */
@@ -840,6 +841,16 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
             if (++*bad < 5) T_FAIL("r %g ray %ld: kind %d at t %.17g is %.3g off the rounded surface (host triangle %u)", r_rel, i,
                                    (int)h.kind, h.t, tm_eroded_sdf(&E, p), tri);
             continue;
+        } else if (h.kind == RE_HIT_ROUNDED) { /* the reflected ray's origin: on the sharp hull, pushed out */
+            double d2[3], org[3], out = 0, off_line = 0, dn = tm_dot(d, h.normal), lo = RE_ORIGIN_OFFSET_REL * scale,
+                   hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * scale;
+            for (a = 0; a < 3; a++) d2[a] = dn < 0 ? d[a] - 2 * dn * h.normal[a] : d[a];
+            re_secondary_origin(s, &h, d2, org);
+            ++*n_round;
+            if (!tm_origin_ok(&P, org, h.point, d2, lo, hi, 8 * RE__DBL_EPS * (scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2])),
+                              &out, &off_line) &&
+                ++*bad < 5)
+                T_FAIL("r %g ray %ld: the secondary origin is %.3g outside the sharp hull, %.3g off its ray", r_rel, i, out, off_line);
         }
         for (k = 0; k <= 64; k++) { /* never inside the rounded solid before the answer */
             double q[3], tt = t_host - 1e-3 * scale + (h.t - t_host + 1e-3 * scale) * k / 64.0;
@@ -869,9 +880,9 @@ static void rays_along_a_face_through_its_vertices(void)
         {-0.01377889677271682, 1, 1}, {1, 1, 1}};
     static const double radii[4] = {2.98023223876953125e-8, 1e-6, 1e-3, 0.05};
     t_rng_t rng = {29};
-    long bad = 0, hits = 0;
+    long bad = 0, hits = 0, n_round = 0;
     int j, h, k;
-    for (j = 0; j < 4; j++) hits += along_face_rays(fuzz_hull, 10, radii[j], &rng, &bad);
+    for (j = 0; j < 4; j++) hits += along_face_rays(fuzz_hull, 10, radii[j], &rng, &bad, &n_round);
     for (h = 0; h < 12; h++) {
         double pts[9][3];
         for (k = 0; k < 9; k++) {
@@ -879,11 +890,12 @@ static void rays_along_a_face_through_its_vertices(void)
             pts[k][0] = R * cos(u), pts[k][2] = R * sin(u);
             pts[k][1] = k < 3 ? 1 : t_rng_range(&rng, -1, 0.8);
         }
-        for (j = 0; j < 4; j++) hits += along_face_rays((const double(*)[3])pts, 9, radii[j], &rng, &bad);
+        for (j = 0; j < 4; j++) hits += along_face_rays((const double(*)[3])pts, 9, radii[j], &rng, &bad, &n_round);
     }
     T_INT_EQ(bad, 0);
     T_GT(hits, 10000);
-    fprintf(stderr, "    %ld rays along the top face hit the hull\n", hits);
+    T_GT(n_round, 1000);
+    fprintf(stderr, "    %ld rays along the top face hit the hull, %ld rounded hits\n", hits, n_round);
 }
 
 /* Rays lying exactly in the top or bottom face's plane, entering through
