@@ -789,13 +789,25 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    volume beside a sharp corner (faces at sine 0.32) came back unchanged
    (fuzz_rounded_exact). */
 #define RE__FLAT_ULPS (4.0 * RE__DBL_EPS)
-/* A pass-through's exit is checked against the set's reach (re__near_corner)
-   when the ray stays within RE__ALONG_FACE_R r + RE__ALONG_FACE_ULPS |I, X|_1
-   of one face plane of the set from I to the exit: a ray that only touches
-   the rounded solid, its capsule contact lost to rounding, runs in a face
-   within the features' placement noise (well below both terms); others
-   meet a capsule first and skip the check. */
+/* A pass-through's exit X is checked against the set's reach
+   (re__near_corner) when the ray stays within RE__ALONG_FACE_R r +
+   RE__ALONG_FACE_ULPS |I, X|_1 (1 + |X - I| / r) of one face plane of the
+   set from I to X. A capsule contact is lost to rounding only when the
+   ray meets the capsule within its features' placement noise (ulps of the
+   coordinates), so it runs along a face at a slope of at most about that
+   noise over r: it has sunk below the face by at most the noise times
+   |X - I| / r (a ray at 1e-10 to a face, r = 5e-8 of the size, 7e-11 deep
+   at its far edge: rays_along_a_face_through_its_vertices). Others meet a
+   capsule first and skip the check. */
 #define RE__ALONG_FACE_R 1e-3
+/* The slab check runs only where a lost contact could turn a normal by
+   more than this (radians): radii far below the coordinates' size. */
+#define RE__SLAB_ANGLE 1e-4
+/* A rounded hit whose normal is within acos(RE__SLAB_COS) of a face's is
+   checked for lying in that face's slab (re__hit_in_slab): such bogus
+   entries meet the capsule just past the tangent line, sqrt(2 depth / r)
+   off the face's normal, the depth a ray along the face reaches below it. */
+#define RE__SLAB_COS 0.5
 #define RE__ALONG_FACE_ULPS (1024.0 * RE__DBL_EPS)
 /* A host that traces in float reports t late or early by ~1e-7 relative;
    when its hit point lands just inside a rounding capsule (next to the
@@ -5755,14 +5767,31 @@ static inline int re__quadric_roots(const double w[3], const double dp[3], doubl
     return 1;
 }
 
+/* Where a ray with roots s0 < s1 (A as in re__quadric_roots, the ray's
+   own |d|^2 in dd) meets a capsule of radius r when entries before smin
+   <= 0 are not accepted (RE__HOST_T_SLACK): s0, or smin when the ray is
+   inside there by at most the slack's length |smin| |d| (a late host's
+   point, just past the surface), or HUGE_VAL. Deeper inside at smin, the
+   host's hit lies well inside the capsule, which a closed mesh never
+   allows: a self-intersecting one put the clamped point 0.248 deep in a
+   cylinder of r = 0.25 (fuzz_rounded_build), a rounded hit off its own
+   feature. (r^2 - |w + smin d|^2 = A (smin - s0)(s1 - smin), about 2 r
+   times the depth.) */
+static double re__capsule_entry(double s0, double s1, double A, double dd, double r, double smin)
+{
+    if (s0 >= smin) return s0;
+    if (s1 < smin || A * (smin - s0) * (s1 - smin) > -2 * r * smin * sqrt(dd)) return HUGE_VAL;
+    return smin;
+}
+
 /* Entry of the ray I + s*d into a sphere: the smaller root (not before
-   smin <= 0, see RE__HOST_T_SLACK), or HUGE_VAL. */
+   smin <= 0, see re__capsule_entry), or HUGE_VAL. */
 static double re__sphere_entry(const double I[3], const double d[3], const double c[3], double r, double smin)
 {
     double w[3], A = re__dot(d, d), s0, s1;
     re__sub(I, c, w);
     if (!re__quadric_roots(w, d, A, re__dot(d, w), r, &s0, &s1)) return HUGE_VAL;
-    return s1 < smin ? HUGE_VAL : re__max(s0, smin);
+    return re__capsule_entry(s0, s1, A, A, r, smin);
 }
 
 /* Entry into the side of the finite cylinder of radius r around a -> b;
@@ -5784,8 +5813,8 @@ static double re__cyl_entry(const double I[3], const double d[3], const double a
     re__madd(d, -du * inv, u, dp);
     re__madd(w, -wu * inv, u, wp);
     A = re__dot(dp, dp);
-    if (!re__quadric_roots(wp, dp, A, re__dot(dp, wp), r, &s0, &s1) || s1 < smin) return HUGE_VAL;
-    s0 = re__max(s0, smin);
+    if (!re__quadric_roots(wp, dp, A, re__dot(dp, wp), r, &s0, &s1)) return HUGE_VAL;
+    if (s0 < smin && (s0 = re__capsule_entry(s0, s1, A, re__dot(d, d), r, smin)) == HUGE_VAL) return HUGE_VAL;
     hh = wu + s0 * du;
     if (hh < 0 || hh > L2) return HUGE_VAL; /* beyond the span: a sphere cap */
     *h = hh * inv;
@@ -6351,15 +6380,27 @@ static int re__in_edge_zone(const re__object_t *o, const re__set_t *S, re__best_
     return 0;
 }
 
+/* How far from a face plane a ray whose capsule contact rounding may have
+   lost can run from I to X: RE__ALONG_FACE_R r + RE__ALONG_FACE_ULPS
+   |I, X|_1 (1 + |X - I| / r). */
+static double re__along_tol(const double I[3], const double X[3], double r)
+{
+    double D[3], mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]) + fabs(X[0]) + fabs(X[1]) + fabs(X[2]);
+    re__sub(X, I, D);
+    return RE__ALONG_FACE_R * r + RE__ALONG_FACE_ULPS * mag * (1 + re__len(D) / r);
+}
+
 /* The plane of S the segment I -> X lies in most nearly (the face a ray
-   out of reach ran along, re__near_corner), and in *dmin the segment's
-   largest distance from it. */
-static unsigned re__plane_along(const re__object_t *o, const re__set_t *S, const double I[3], const double X[3], double *dmin)
+   out of reach ran along, re__near_corner), in *dmin the segment's largest
+   distance from it, in *rmin the smallest radius of S's corners. */
+static unsigned re__plane_along(const re__object_t *o, const re__set_t *S, const double I[3], const double X[3], double *dmin,
+                                double *rmin)
 {
     unsigned i, j, best = RE__NONE;
-    *dmin = HUGE_VAL;
+    *dmin = *rmin = HUGE_VAL;
     for (i = 0; i < S->n; i++) {
         re__kv_t K = re__kview(o, S->c[i]);
+        *rmin = re__min(*rmin, re__k_radius(o, K.k));
         for (j = 0; j < K.np; j++) {
             unsigned gi = re__corner_plane(o, &K, j);
             const re__plane_t *g = &o->planes[gi];
@@ -6376,13 +6417,13 @@ static unsigned re__plane_along(const re__object_t *o, const re__set_t *S, const
    instead, along the face the ray runs in: the ray only touches the
    rounded solid, and the host, tracing on from I, finds where it really
    leaves the mesh (if anywhere: it runs in a face's plane). Only a ray
-   within RE__ALONG_FACE_R r + RE__ALONG_FACE_ULPS |I, X|_1 of a plane of S
-   all the way can be out of reach (one deeper meets a capsule), so other
-   pass-throughs skip the edge zones. */
+   near a plane of S all the way can be out of reach (RE__ALONG_FACE_R:
+   one deeper meets a capsule), so other pass-throughs skip the edge
+   zones. */
 static void re__exit_within_reach(const re__object_t *o, const re__set_t *S, re__best_t *b, const double I[3],
                                   const double dir[3], double *s_exit, unsigned *exit_plane)
 {
-    double X[3], dmin, mag;
+    double X[3], dmin, rmin;
     unsigned along;
     if (!(*s_exit < b->s) && b->s < HUGE_VAL) return; /* a rounded hit */
     if (*s_exit < HUGE_VAL) {
@@ -6391,14 +6432,81 @@ static void re__exit_within_reach(const re__object_t *o, const re__set_t *S, re_
     } else {
         re__madd(I, o->size / re__len(dir), dir, X); /* a size along, to find the face it runs in */
     }
-    along = re__plane_along(o, S, I, X, &dmin);
+    along = re__plane_along(o, S, I, X, &dmin, &rmin);
     if (along == RE__NONE) return;
-    mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]) + fabs(X[0]) + fabs(X[1]) + fabs(X[2]);
-    if (*s_exit < HUGE_VAL &&
-        (!(dmin <= RE__ALONG_FACE_R * o->rmax + RE__ALONG_FACE_ULPS * mag) || re__in_edge_zone(o, S, b, X)))
-        return;
+    if (*s_exit < HUGE_VAL && (!(dmin <= re__along_tol(I, X, rmin)) || re__in_edge_zone(o, S, b, X))) return;
     *s_exit = 0;
     *exit_plane = along;
+}
+
+/* re__hit_in_slab's test below for any hit of an object of one radius
+   (I and X in its box, |X - I| at most its diagonal): for every radius of
+   the renders it says no, without a lookup or a call. */
+static inline int re__slab_check_needed(const re__object_t *o)
+{
+    double r = o->radii[0], mag = 2 * (fabs(o->origin[0]) + fabs(o->origin[1]) + fabs(o->origin[2]) + 3 * o->size);
+    return o->n_radii != 1 || 2 * RE__ALONG_FACE_ULPS * mag * (1 + o->size / r) > RE__SLAB_ANGLE * RE__SLAB_ANGLE * r;
+}
+
+/* Is the rounded hit X = I + best.s dir (on feature best) inside the slab
+   under one of its feature's faces g: X below g, with g's normal within
+   acos(RE__SLAB_COS) of nx, the ray within re__along_tol of g from I to X,
+   and X over g's flat part (moved onto g and down by r, strictly inside
+   every other shifted plane of S's corners by re__on_flat_part's slack:
+   a hit just past a tangent line, or beside a sharp corner far out, stays
+   a hit)? Such a capsule "entry" lies inside the rounded solid: the ray
+   ran along g inside it, having met the surface at a tangent contact that
+   rounding lost (fuzz_rounded_exact's rays along a face: a cylinder
+   entered from the slab 1.66 sizes on, its normal 0.079 rad off). A
+   capsule entered from g's slab belongs to an edge or corner of g, so only
+   the feature's own faces are tried. Returns g, or RE__NONE. */
+RE__NOINLINE static unsigned re__hit_in_slab(const re__object_t *o, const re__set_t *S, re__best_t *best, const double I[3],
+                                             const double dir[3])
+{
+    double X[3], nx[3], mag, r, tol, L;
+    unsigned nc, i, q, k, gi, kc;
+    re__kv_t K;
+    re__cyl_t cy;
+    int is_cyl = best->kind == RE_FEATURE_CYLINDER;
+    kc = is_cyl ? (best->index < o->n_edge_cyls ? re__s_corner(o, re__pk_id(&o->c_s0, best->index))
+                                                : re__pk_id(&o->x_corner, best->index - o->n_edge_cyls))
+                : re__s_corner(o, best->index);
+    r = re__k_radius(o, kc);
+    re__madd(I, best->s, dir, X);
+    mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]) + fabs(X[0]) + fabs(X[1]) + fabs(X[2]);
+    L = best->s * re__len(dir);
+    /* a slope lost to rounding sinks the ray at most RE__ALONG_FACE_ULPS mag
+       (1 + L / r) below the face by X, where the capsule's normal turns by
+       the square root of twice that over r: below RE__SLAB_ANGLE (every
+       radius of the renders) there is nothing to mend */
+    if (2 * RE__ALONG_FACE_ULPS * mag * (1 + L / r) <= RE__SLAB_ANGLE * RE__SLAB_ANGLE * r) return RE__NONE;
+    re__feature_normal(o, best, X, nx);
+    mag = fabs(X[0]) + fabs(X[1]) + fabs(X[2]);
+    if (is_cyl) cy = re__cyl(o, best->index), nc = 2;
+    else nc = 0;
+    K = re__kview(o, kc);
+    if (!is_cyl) nc = K.np;
+    tol = re__along_tol(I, X, r);
+    for (i = 0; i < nc; i++) {
+        const re__plane_t *g = &o->planes[gi = is_cyl ? cy.p[i] : re__corner_plane(o, &K, i)];
+        double h = g->c - re__dot(g->n, X), Y[3];
+        int flat = 1;
+        if (re__dot(g->n, nx) < RE__SLAB_COS || !(h > RE__FLAT_ULPS * (fabs(g->c) + mag + r)) || !(h <= tol) ||
+            !(fabs(re__dot(g->n, I) - g->c) <= tol))
+            continue;
+        re__madd(X, h - r, g->n, Y); /* onto g, then down r: a point of the eroded face if X is over its flat part */
+        for (q = 0; q < S->n && flat; q++) {
+            re__kv_t Q = re__kview(o, S->c[q]);
+            double rq = re__k_radius(o, Q.k);
+            for (k = 0; k < Q.np && flat; k++) {
+                unsigned hi = re__corner_plane(o, &Q, k);
+                const re__plane_t *hp = &o->planes[hi];
+                if (hi != gi && !(re__dot(hp->n, Y) - (hp->c - rq) < -RE__FLAT_ULPS * (fabs(hp->c) + mag + rq))) flat = 0;
+            }
+        }
+        if (flat) return gi;
+    }
+    return RE__NONE;
 }
 
 /* Query step 5: the rounded hit at best.s, the pass-through at s_exit
@@ -6473,6 +6581,13 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
         if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &best, I, dir, re__min(best.s, s_exit))) break;
     }
     re__exit_within_reach(o, &S, &best, I, dir, &s_exit, &exit_plane);
+    /* a rounded hit past I: not from inside a slab (re__hit_in_slab). Before I
+       (a late host's t, best.smin) the ray met the capsule next to where it
+       crossed the host's face, and that hit stands */
+    if (best.s <= s_exit && best.s > 0 && best.s < HUGE_VAL && re__slab_check_needed(o)) {
+        unsigned g = re__hit_in_slab(o, &S, &best, I, dir);
+        if (g != RE__NONE) best.s = HUGE_VAL, s_exit = 0, exit_plane = g;
+    }
     return re__answer(o, &best, s_exit, exit_plane, I, dir, t_on, out);
 }
 

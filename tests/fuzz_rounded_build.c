@@ -48,6 +48,9 @@
 /* A failed check: abort for libFuzzer; tests/test_rounded_fuzz_replay.c
    counts it instead (every use is followed by a return or is safe to go
    on from). */
+#ifndef RFZ_WHY
+#define RFZ_WHY(w) (void)(w) /* the failed check's words (a replay can print them) */
+#endif
 #ifndef RFZ_FAIL
 #define RFZ_FAIL() abort()
 #endif
@@ -308,7 +311,7 @@ static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *
             if (!(fabs(len - 1) < 1e-6)) RFZ_FAIL();
             if (h.feature_index >= (h.feature == RE_FEATURE_SPHERE ? ns : nc)) RFZ_FAIL();
             /* on the feature it names, whatever the mesh (rc_feature_ok) */
-            if (!rc_feature_ok(s, &h, 1e-9 * mag, mag, why, sizeof why)) RFZ_FAIL();
+            if (!rc_feature_ok(s, &h, 1e-9 * mag, mag, why, sizeof why)) { RFZ_WHY(why); RFZ_FAIL(); }
             re_secondary_origin(s, &h, d, org);
         }
     }

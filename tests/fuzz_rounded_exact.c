@@ -11,7 +11,9 @@
              largest valid one: RE_RADIUS_CLAMP, one patch on a hull)
      byte 2  flags: bit 0 RE_LAYOUT_COMPACT, bit 1 positions rounded to
              float and built as RE_FLOAT32, bit 2 the points offset by
-             1e6 (1e3 in float), bit 3 odd rays start inside
+             1e6 (1e3 in float), bit 3 odd rays start inside; bits 4-7
+             equal to 5: even rays go along a face (fx_along_face)
+             instead of at an aim point
      then    the points, 6 bytes each (three 16-bit coordinates in [-1, 1])
      then    rays, 7 bytes each, at most FX_MAX_RAYS: two vertex ids and a
              fraction (the aim point on the chord between them), a jitter
@@ -179,6 +181,7 @@ typedef struct fx_case_t {
     double smin;                  /* the hull's smallest crease sine */
     double dmax;                  /* the largest distance from a sphere to its corner's vertex (fx_noise) */
     int exits;                    /* odd rays start inside (re_query_exit) */
+    int along;                    /* rays through a vertex or edge point along its face (fx_along_face) */
 } fx_case_t;
 
 /* How far each side's eroded polytope may lie from the true one (e,
@@ -345,6 +348,30 @@ static void fx_exit_ray(const fx_case_t *C, const double tgt[3], double f, const
     fx_on_surface(C, o, dir, &h, t_host, "exit", ray);
 }
 
+/* A ray through a vertex or edge point of a hull triangle, lying in its
+   plane or tilted off it by 1e-16 to 1e-10 (the flags' mode "along"): it
+   only touches the rounded solid, and the capsule contact is a toss of
+   the rounding (docs/rounded_edges.md, "Rays along a face"). b[0] picks
+   the triangle, b[1] its vertex, b[2] a point on the edge to the next one
+   (when odd), b[3] the angle in the plane, b[4] the tilt. */
+static void fx_along_face(const fx_case_t *C, const uint8_t *b, double o[3], double dir[3])
+{
+    static const double tilt[7] = {0, 1e-16, -1e-16, 1e-13, -1e-13, 1e-10, -1e-10};
+    const tm_mesh_t *m = C->mw;
+    unsigned t = b[0] % (m->ni / 3), k = b[1] % 3, a;
+    const double *va = m->v + 3 * m->idx[3 * t + k], *vb = m->v + 3 * m->idx[3 * t + (k + 1) % 3];
+    double n[3], e1[3], e2[3], f = b[2] & 1 ? b[2] / 255.0 : 0, th = fx_angle(b[3]), p[3];
+    (void)fx_tri(m, t, 0, n);
+    tm_sub(vb, va, e1);
+    tm_norm(e1);
+    tm_cross(n, e1, e2);
+    for (a = 0; a < 3; a++) {
+        dir[a] = cos(th) * e1[a] + sin(th) * e2[a] + tilt[b[4] % 7] * n[a];
+        p[a] = va[a] + f * (vb[a] - va[a]);
+        o[a] = p[a] - 3 * C->scale * dir[a];
+    }
+}
+
 /* One ray: the host's hit on the sharp hull, the query, the reference. */
 static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
 {
@@ -361,8 +388,13 @@ static void fx_ray(const fx_case_t *C, const uint8_t *b, int ray)
         fx_exit_ray(C, tgt, b[3] / 255.0, dir, ray);
         return;
     }
-    for (a = 0; a < 3; a++) o[a] = tgt[a] - 3 * scale * dir[a], ol[a] = o[a] - C->off[a];
-    if (!tm_hit_uv(m, o, dir, &t_host, &tri, &bu, &bv)) return;
+    if (C->along && !(ray & 1)) fx_along_face(C, b, o, dir);
+    else
+        for (a = 0; a < 3; a++) o[a] = tgt[a] - 3 * scale * dir[a];
+    for (a = 0; a < 3; a++) ol[a] = o[a] - C->off[a];
+    /* rays along a face: the exact host (tm_hit_exact_uv), since the double
+       one's t and slack are noise there */
+    if (!(C->along && !(ray & 1) ? tm_hit_exact_uv : tm_hit_uv)(m, o, dir, &t_host, &tri, &bu, &bv)) return;
     re_query(C->s, o, dir, 0, tri, t_host, &h);
     re_query_uv(C->s, o, dir, 0, tri, t_host, bu, bv, &hu);
     fx_same_answer(&h, &hu, "host", ray);
@@ -455,7 +487,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK(E.r > 0 && E.r <= mesh.radius, "radius %.17g for a requested %.17g", E.r, mesh.radius);
     tm_erode(&P, E.r);
     fx_keep_true_edges(&P);
-    C.s = s, C.mw = &mw, C.E = &E, C.exits = (data[2] & 8) != 0;
+    C.s = s, C.mw = &mw, C.E = &E, C.exits = (data[2] & 8) != 0, C.along = (data[2] >> 4) == 5;
     for (C.dmax = 0, i = 0; i < (int)re_sphere_count(s, 0); i++) {
         re_sphere_t sp;
         double dd[3];

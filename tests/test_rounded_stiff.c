@@ -797,7 +797,7 @@ static void rays_grazing_a_face(void)
    *n_round). Returns the rays that hit the hull. */
 static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t *rng, long *bad, long *n_round)
 {
-    static const double tilt[5] = {0, 1e-16, -1e-16, 1e-13, -1e-13};
+    static const double tilt[7] = {0, 1e-16, -1e-16, 1e-13, -1e-13, 1e-10, -1e-10};
     tm_mesh_t m = {0};
     tm_eroded_t E;
     static tm_poly_t P;
@@ -821,11 +821,11 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
         const double *va = pts[top[i / 3 % 3]], *vb = pts[top[(i / 3 + 1) % 3]];
         unsigned tri;
         re_hit_t h;
-        /* in the plane, or tilted by 1e-16 or 1e-13 out of it or into the solid */
-        d[0] = cos(phi), d[1] = tilt[i % 5], d[2] = sin(phi);
+        /* in the plane, or tilted by 1e-16, 1e-13 or 1e-10 out of it or into the solid */
+        d[0] = cos(phi), d[1] = tilt[i % 7], d[2] = sin(phi);
         for (a = 0; a < 3; a++) o[a] = va[a] + f * (vb[a] - va[a]) - 3 * scale * d[a];
         if (d[1] == 0) o[1] = 1;
-        if (!tm_hit_uv(&m, o, d, &t_host, &tri, &bu, &bv)) continue;
+        if (!tm_hit_exact_uv(&m, o, d, &t_host, &tri, &bu, &bv)) continue; /* tm_hit_uv's t is noise here */
         hits++;
         re_query(s, o, d, 0, tri, t_host, &h);
         check_query_uv(s, o, d, tri, t_host, bu, bv, &h);
@@ -841,7 +841,19 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
             if (++*bad < 5) T_FAIL("r %g ray %ld: kind %d at t %.17g is %.3g off the rounded surface (host triangle %u)", r_rel, i,
                                    (int)h.kind, h.t, tm_eroded_sdf(&E, p), tri);
             continue;
-        } else if (h.kind == RE_HIT_ROUNDED) { /* the reflected ray's origin: on the sharp hull, pushed out */
+        } else if (h.kind == RE_HIT_ROUNDED) {
+            /* the normal the reference's, to what a seam allows (as fuzz_rounded_exact's fx_normal: the
+               features' noise e, and p's distance dp from the eroded polytope) */
+            double y[3], nref[3], dp = tm_eroded_nearest(&E, p, y) + E.r, e = 1e-12 * (scale + fabs(p[0]) + fabs(p[1]) + fabs(p[2])),
+                   dn_ok = 1e-6 + (sqrt(e * (E.r + dp)) + fabs(E.r - dp)) / E.r, dd;
+            tm_sub(p, y, nref);
+            tm_norm(nref);
+            dd = fabs(nref[0] - h.normal[0]) + fabs(nref[1] - h.normal[1]) + fabs(nref[2] - h.normal[2]);
+            if (!(dd <= dn_ok) && ++*bad < 5)
+                T_FAIL("r %g ray %ld: rounded hit (feature %d %u) at t %.17g, its normal %.3g from the reference's (bound %.3g)", r_rel,
+                       i, (int)h.feature, h.feature_index, h.t, dd, dn_ok);
+        }
+        if (h.kind == RE_HIT_ROUNDED) { /* the reflected ray's origin: on the sharp hull, pushed out */
             double d2[3], org[3], out = 0, off_line = 0, dn = tm_dot(d, h.normal), lo = RE_ORIGIN_OFFSET_REL * scale,
                    hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * scale;
             for (a = 0; a < 3; a++) d2[a] = dn < 0 ? d[a] - 2 * dn * h.normal[a] : d[a];

@@ -99,6 +99,38 @@ static int tm_hit_uv(const tm_mesh_t *m, const double o[3], const double d[3], d
     *t_out = best;
     return found;
 }
+/* tm_hit_uv with every product and sum in __float128 and u, v inside the
+   triangle to 1e-24: the host for rays along a face. A ray 1e-10 off
+   a face's plane makes tm_hit_uv's double t noisy by about 1e-16 / 1e-10
+   of the size, and its slack accepts a triangle the ray passes beside
+   (fuzz_rounded_exact found a point 1e-5 along the ray, past the face's
+   edge and 1.1e-6 outside the hull: the host's fault). */
+static int tm_hit_exact_uv(const tm_mesh_t *m, const double o[3], const double d[3], double *t_out, unsigned *tri_out,
+                           double *u_out, double *v_out)
+{
+    unsigned t, a;
+    __float128 best = 0;
+    int found = 0;
+    for (t = 0; t < m->ni / 3; t++) {
+        const double *A = m->v + 3 * m->idx[3 * t], *B = m->v + 3 * m->idx[3 * t + 1], *C = m->v + 3 * m->idx[3 * t + 2];
+        __float128 e1[3], e2[3], n[3], w[3], num = 0, den = 0, tt, d00 = 0, d01 = 0, d11 = 0, d20 = 0, d21 = 0, det, uu, vv;
+        for (a = 0; a < 3; a++) e1[a] = (__float128)B[a] - A[a], e2[a] = (__float128)C[a] - A[a];
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        for (a = 0; a < 3; a++) num += n[a] * ((__float128)A[a] - o[a]), den += n[a] * d[a];
+        if (!(den < 0)) continue; /* a back face, or a ray in the plane */
+        tt = num / den;
+        if (!(tt > 0) || (found && !(tt < best))) continue;
+        for (a = 0; a < 3; a++) w[a] = (__float128)o[a] + tt * d[a] - A[a];
+        for (a = 0; a < 3; a++)
+            d00 += e1[a] * e1[a], d01 += e1[a] * e2[a], d11 += e2[a] * e2[a], d20 += w[a] * e1[a], d21 += w[a] * e2[a];
+        det = d00 * d11 - d01 * d01;
+        uu = (d11 * d20 - d01 * d21) / det, vv = (d00 * d21 - d01 * d20) / det;
+        if (uu < -1e-24 || vv < -1e-24 || uu + vv > 1 + 1e-24) continue; /* a ray exactly through a vertex or edge */
+        best = tt, found = 1, *tri_out = t, *u_out = (double)uu, *v_out = (double)vv;
+    }
+    *t_out = found ? (double)best : HUGE_VAL;
+    return found;
+}
 static int tm_hit(const tm_mesh_t *m, const double o[3], const double d[3], double *t_out, unsigned *tri_out)
 {
     double u, v;
