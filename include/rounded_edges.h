@@ -6380,14 +6380,18 @@ static int re__in_edge_zone(const re__object_t *o, const re__set_t *S, re__best_
     return 0;
 }
 
-/* How far from a face plane a ray whose capsule contact rounding may have
-   lost can run from I to X: RE__ALONG_FACE_R r + RE__ALONG_FACE_ULPS
-   |I, X|_1 (1 + |X - I| / r). */
+/* How far below a face a ray whose capsule contact rounding lost can sink
+   over a run L, coordinates of magnitude mag (|I|_1 + |X|_1): at a slope
+   of at most the features' noise over r, RE__ALONG_FACE_ULPS mag (1 + L / r). */
+static double re__lost_depth(double mag, double L, double r) { return RE__ALONG_FACE_ULPS * mag * (1 + L / r); }
+
+/* How far from a face plane such a ray can run from I to X: that depth
+   plus RE__ALONG_FACE_R r. */
 static double re__along_tol(const double I[3], const double X[3], double r)
 {
     double D[3], mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]) + fabs(X[0]) + fabs(X[1]) + fabs(X[2]);
     re__sub(X, I, D);
-    return RE__ALONG_FACE_R * r + RE__ALONG_FACE_ULPS * mag * (1 + re__len(D) / r);
+    return RE__ALONG_FACE_R * r + re__lost_depth(mag, re__len(D), r);
 }
 
 /* The plane of S the segment I -> X lies in most nearly (the face a ray
@@ -6445,7 +6449,7 @@ static void re__exit_within_reach(const re__object_t *o, const re__set_t *S, re_
 static inline int re__slab_check_needed(const re__object_t *o)
 {
     double r = o->radii[0], mag = 2 * (fabs(o->origin[0]) + fabs(o->origin[1]) + fabs(o->origin[2]) + 3 * o->size);
-    return o->n_radii != 1 || 2 * RE__ALONG_FACE_ULPS * mag * (1 + o->size / r) > RE__SLAB_ANGLE * RE__SLAB_ANGLE * r;
+    return o->n_radii != 1 || 2 * re__lost_depth(mag, o->size, r) > RE__SLAB_ANGLE * RE__SLAB_ANGLE * r;
 }
 
 /* Is the rounded hit X = I + best.s dir (on feature best) inside the slab
@@ -6463,7 +6467,7 @@ static inline int re__slab_check_needed(const re__object_t *o)
 RE__NOINLINE static unsigned re__hit_in_slab(const re__object_t *o, const re__set_t *S, re__best_t *best, const double I[3],
                                              const double dir[3])
 {
-    double X[3], nx[3], mag, r, tol, L;
+    double X[3], nx[3], mag, r, tol;
     unsigned nc, i, q, k, gi, kc;
     re__kv_t K;
     re__cyl_t cy;
@@ -6473,19 +6477,16 @@ RE__NOINLINE static unsigned re__hit_in_slab(const re__object_t *o, const re__se
                 : re__s_corner(o, best->index);
     r = re__k_radius(o, kc);
     re__madd(I, best->s, dir, X);
-    mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]) + fabs(X[0]) + fabs(X[1]) + fabs(X[2]);
-    L = best->s * re__len(dir);
-    /* a slope lost to rounding sinks the ray at most RE__ALONG_FACE_ULPS mag
-       (1 + L / r) below the face by X, where the capsule's normal turns by
-       the square root of twice that over r: below RE__SLAB_ANGLE (every
-       radius of the renders) there is nothing to mend */
-    if (2 * RE__ALONG_FACE_ULPS * mag * (1 + L / r) <= RE__SLAB_ANGLE * RE__SLAB_ANGLE * r) return RE__NONE;
+    /* the capsule's normal turns by sqrt(2 depth / r) at the lost depth (by
+       X): below RE__SLAB_ANGLE (every radius of the renders) nothing to mend */
+    if (2 * re__lost_depth(fabs(I[0]) + fabs(I[1]) + fabs(I[2]) + fabs(X[0]) + fabs(X[1]) + fabs(X[2]), best->s * re__len(dir), r) <=
+        RE__SLAB_ANGLE * RE__SLAB_ANGLE * r)
+        return RE__NONE;
     re__feature_normal(o, best, X, nx);
-    mag = fabs(X[0]) + fabs(X[1]) + fabs(X[2]);
-    if (is_cyl) cy = re__cyl(o, best->index), nc = 2;
-    else nc = 0;
+    mag = fabs(X[0]) + fabs(X[1]) + fabs(X[2]); /* the flat test's slack */
     K = re__kview(o, kc);
-    if (!is_cyl) nc = K.np;
+    if (is_cyl) cy = re__cyl(o, best->index), nc = 2;
+    else nc = K.np;
     tol = re__along_tol(I, X, r);
     for (i = 0; i < nc; i++) {
         const re__plane_t *g = &o->planes[gi = is_cyl ? cy.p[i] : re__corner_plane(o, &K, i)];
