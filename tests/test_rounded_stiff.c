@@ -1922,6 +1922,43 @@ static void early_host_t_next_to_seams(void)
    all at 1e-5). Kept vertices on three common planes are now one. Every
    convex edge rounded, no corner reported, and rays against the eroded
    polytope (1e-7 of the size). */
+/* The reference itself (tm_erode) where three of a hull's planes lie
+   within 2e-3 rad of each other: the 10 points of a fuzz_rounded_exact
+   input (coordinates as its 16-bit codes), r = 2^-25 of the size. Solved
+   in double, the triple's point came out 4.3e-8 (0.8 r) outside four
+   other planes, inside the double solve's own tolerance, and became a
+   vertex of the "eroded polytope": the reference's nearest point moved
+   0.3 r off the true edge and the fuzzer blamed the library's normal
+   (0.2 rad). Every eroded vertex must lie inside every plane, checked in
+   __float128, to the rounding of a double vertex (4 ulps of its size). */
+static void reference_erosion_at_nearly_parallel_planes(void)
+{
+    static const unsigned char code[60] = {
+        0x61, 0x00, 0x02, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x59, 0x41, 0x9e, 0x5f, 0x29,
+        0xbe, 0xbd, 0x75, 0x9e, 0x1a, 0xdd, 0x9c, 0x73, 0x91, 0x30, 0x89, 0x29, 0x77, 0xb2, 0x15, 0x27, 0xa7, 0x40,
+        0xa7, 0x17, 0x00, 0x00, 0x00, 0x00, 0xa7, 0xa7, 0xa7, 0x00, 0xa7, 0x00, 0x00, 0xa7, 0xa7, 0xa7, 0xa7, 0x3b,
+        0x61, 0xa7, 0xa7, 0x9e, 0x5f, 0x29};
+    double p[10][3], r, worst = -HUGE_VAL;
+    static tm_poly_t P;
+    tm_mesh_t m = {0};
+    int i, g, a;
+    for (i = 0; i < 10; i++)
+        for (a = 0; a < 3; a++) p[i][a] = (double)(code[6 * i + 2 * a] | code[6 * i + 2 * a + 1] << 8) / 32767.5 - 1.0;
+    memset(&P, 0, sizeof P);
+    tm_hull((const double(*)[3])p, 10, &m, &P);
+    r = ldexp(tm_size(p[0], 10), -25);
+    tm_erode(&P, r);
+    T_GE(P.nv, 16); /* a hull of 16 triangles, its creases rounded */
+    for (i = 0; i < P.nv; i++)
+        for (g = 0; g < P.np; g++) {
+            __float128 sv = -((__float128)P.c[g] - r);
+            for (a = 0; a < 3; a++) sv += (__float128)P.n[g][a] * P.v[i][a];
+            worst = fmax(worst, (double)sv / (4 * DBL_EPSILON * (fabs(P.v[i][0]) + fabs(P.v[i][1]) + fabs(P.v[i][2]) + 1)));
+        }
+    T_LE(worst, 1.0);
+    tm_free(&m);
+}
+
 static void nearly_flat_off_centre_apex(void)
 {
     static const double cases[6][3] = {{6, 0.004096, 0.003}, {8, 0.008, 0.001}, {6, 0.0123, 1e-4},
@@ -2073,6 +2110,7 @@ int main(int argc, char **argv)
         T_CASE(compact_layout_grazing_along_a_subdivided_edge),
         T_CASE(early_host_t_next_to_seams),
         T_CASE(nearly_flat_off_centre_apex),
+        T_CASE(reference_erosion_at_nearly_parallel_planes),
         T_CASE(fine_round_rim_under_a_large_radius),
     };
     return T_RUN(argc, argv, cases);

@@ -239,6 +239,49 @@ typedef struct tm_poly_t {
     int e[8192][2];
 } tm_poly_t;
 
+/* The point where planes i, j, k of P, each moved in by r, meet, solved
+   and checked against every plane in __float128: the double planes' own
+   polytope, to the rounding of its vertices to double. A double solve's
+   error grows as 1/det where three planes are nearly parallel (found by
+   fuzz_rounded_exact: at r = 5e-8, three planes within 2e-3 rad of each
+   other gave a vertex 4e-8 outside four planes, accepted by a tolerance
+   of the solve's size, and the reference's nearest point moved 0.3 r).
+   x comes in as the double solve, off by at most err: planes it lies
+   deeper in than 1e-6 + err need no quad check. *mk gets the planes
+   within 1e-9 of the point. Returns 0 where the point lies outside a
+   plane. */
+static int tm_eroded_vertex(const tm_poly_t *P, double r, int i, int j, int k, double err, double x[3],
+                            unsigned long long mk[2])
+{
+    const int id[3] = {i, j, k};
+    __float128 n[3][3], c[3], a[3], b[3], cc[3], det, xq[3];
+    int g, q;
+    for (g = 0; g < 3; g++) {
+        for (q = 0; q < 3; q++) n[g][q] = P->n[id[g]][q];
+        c[g] = (__float128)P->c[id[g]] - r;
+    }
+    for (q = 0; q < 3; q++) {
+        int u = (q + 1) % 3, w = (q + 2) % 3;
+        a[q] = n[1][u] * n[2][w] - n[1][w] * n[2][u];
+        b[q] = n[2][u] * n[0][w] - n[2][w] * n[0][u];
+        cc[q] = n[0][u] * n[1][w] - n[0][w] * n[1][u];
+    }
+    det = n[0][0] * a[0] + n[0][1] * a[1] + n[0][2] * a[2];
+    for (q = 0; q < 3; q++) xq[q] = (c[0] * a[q] + c[1] * b[q] + c[2] * cc[q]) / det;
+    mk[0] = mk[1] = 0;
+    for (g = 0; g < P->np; g++) {
+        __float128 sv = -((__float128)P->c[g] - r);
+        if (tm_dot(P->n[g], x) - (P->c[g] - r) < -(1e-6 + err)) continue;
+        for (q = 0; q < 3; q++) sv += (__float128)P->n[g][q] * xq[q];
+        /* the quad solve's own rounding (113-bit, over det): far below a
+           double's ulp down to the det of 1e-12 that tm_erode keeps */
+        if (sv > 1e-28 * (1 + fabs((double)c[0]) + fabs((double)c[1]) + fabs((double)c[2])) / fabs((double)det)) return 0;
+        if (sv > -1e-9) mk[g >> 6] |= 1ull << (g & 63);
+    }
+    for (q = 0; q < 3; q++) x[q] = (double)xq[q];
+    return 1;
+}
+
 static void tm_erode(tm_poly_t *P, double r)
 {
     int i, j, k, g, q;
@@ -248,23 +291,20 @@ static void tm_erode(tm_poly_t *P, double r)
             for (k = j + 1; k < P->np; k++) {
                 double a[3], b[3], cc[3], x[3], det, feas, ci = P->c[i] - r, cj = P->c[j] - r, ck = P->c[k] - r;
                 int ok = 1;
-                unsigned long long mk[2] = {0, 0};
+                unsigned long long mk[2];
                 tm_cross(P->n[j], P->n[k], a);
                 tm_cross(P->n[k], P->n[i], b);
                 tm_cross(P->n[i], P->n[j], cc);
                 det = tm_dot(P->n[i], a);
                 if (fabs(det) < 1e-12) continue;
                 for (q = 0; q < 3; q++) x[q] = (ci * a[q] + cj * b[q] + ck * cc[q]) / det;
-                /* the solve's own rounding, large where two of the planes
-                   are nearly parallel (a shallow crease: fuzz_rounded_exact
-                   found a vertex rejected at 1e-11) */
-                feas = fmax(1e-11, 64 * DBL_EPSILON * (fabs(ci) + fabs(cj) + fabs(ck)) / fabs(det));
-                for (g = 0; g < P->np && ok; g++) {
-                    double sv = tm_dot(P->n[g], x) - (P->c[g] - r);
-                    if (sv > feas) ok = 0;
-                    else if (sv > -1e-9) mk[g >> 6] |= 1ull << (g & 63);
-                }
-                if (!ok) continue;
+                /* a double pre-filter, lenient by far more than the solve's
+                   rounding (large where two of the planes are nearly
+                   parallel); tm_eroded_vertex decides */
+                feas = fmax(1e-9, 1024 * DBL_EPSILON * (fabs(ci) + fabs(cj) + fabs(ck)) / fabs(det));
+                for (g = 0; g < P->np && ok; g++)
+                    if (tm_dot(P->n[g], x) - (P->c[g] - r) > feas) ok = 0;
+                if (!ok || !tm_eroded_vertex(P, r, i, j, k, feas, x, mk)) continue;
                 for (q = 0; q < P->nv; q++) { double dd[3]; tm_sub(P->v[q], x, dd); if (tm_len(dd) < 1e-11) break; }
                 if (q < P->nv) { P->mask[q][0] |= mk[0], P->mask[q][1] |= mk[1]; continue; }
                 if (P->nv == 512) continue;
