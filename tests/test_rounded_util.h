@@ -273,9 +273,12 @@ static int tm_eroded_vertex(const tm_poly_t *P, double r, int i, int j, int k, d
         __float128 sv = -((__float128)P->c[g] - r);
         if (tm_dot(P->n[g], x) - (P->c[g] - r) < -(1e-6 + err)) continue;
         for (q = 0; q < 3; q++) sv += (__float128)P->n[g][q] * xq[q];
-        /* the quad solve's own rounding (113-bit, over det): far below a
-           double's ulp down to the det of 1e-12 that tm_erode keeps */
-        if (sv > 1e-28 * (1 + fabs((double)c[0]) + fabs((double)c[1]) + fabs((double)c[2])) / fabs((double)det)) return 0;
+        /* 1e-11 outside, as tm_erode always allowed: at the largest
+           valid radius the polytope shrinks to a point or a segment, which
+           the double planes may miss by their own rounding (the library's
+           clamped radius is a double too). The quad solve's own error lies
+           far below that down to the det of 1e-12 that tm_erode keeps. */
+        if (sv > 1e-11) return 0;
         if (sv > -1e-9) mk[g >> 6] |= 1ull << (g & 63);
     }
     for (q = 0; q < 3; q++) x[q] = (double)xq[q];
