@@ -790,7 +790,7 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    (fuzz_rounded_exact). */
 #define RE__FLAT_ULPS (4.0 * RE__DBL_EPS)
 /* A pass-through's exit X is checked against the set's reach
-   (re__near_corner) when the ray stays within RE__ALONG_FACE_R r +
+   (re__exit_on_edge_of) when the ray stays within RE__ALONG_FACE_R r +
    RE__ALONG_FACE_ULPS |I, X|_1 (1 + |X - I| / r) of one face plane of the
    set from I to X. A capsule contact is lost to rounding only when the
    ray meets the capsule within its features' placement noise (ulps of the
@@ -6189,7 +6189,7 @@ static RE__HOT_INLINE int re__in_zone(const re__object_t *o, unsigned c, const d
 }
 
 /* re__in_zone for the rare checks of answers (re__one_edge,
-   re__in_edge_zone), a call of its own kept out of the query's body. */
+   re__exit_on_edge_of), a call of its own kept out of the query's body. */
 RE__NOINLINE static int re__zone_holds(const re__object_t *o, unsigned c, const double X[3], re__best_t *best)
 {
     unsigned s0, s1;
@@ -6342,40 +6342,45 @@ static int re__one_edge(const re__object_t *o, const re__set_t *S, unsigned c0, 
         if (re__dist2_segment(re__cptr(o, best, re__pk_id(&o->k_sfirst, S->c[i])), I, IP, inv_l2) <= wk * wk) return 0;
     }
     /* a pass-through leaves within the edge's zone, unless the ray runs
-       along a face out of it (re__near_corner): the general search decides */
+       along a face out of it (re__exit_on_edge_of): the general search decides */
     return best->s <= *s_exit || re__zone_holds(o, c0, P, best);
 }
 
-/* Is X, a pass-through's exit, where the set's features describe the
-   sharp mesh: within `walk` of a corner of S (re__near_corner), or within
-   the detection zone of one of its edges (re__in_edge_zone)? A ray inside
-   the removed volume stays there until it leaves the mesh (leaving the
-   volume, it would enter a capsule first), and the removed volume near a
-   corner lies within its walk, near an edge's middle within the edge's
-   zone; the walk (re__walk_grow) adds each corner the ray comes near. The
-   exit is out of reach only when the ray ran along a face plane on the
-   flat part, touching the rounded solid without entering it: a tangent
-   contact with a capsule that its rounding lost (a ray through a vertex
-   lying in a face: fuzz_rounded_exact, 2026-12-06). Past that contact the
-   face is the surface, and S's planes say nothing of where the mesh ends. */
-static int re__near_corner(const re__object_t *o, const re__set_t *S, re__best_t *b, const double X[3])
-{
-    unsigned i;
-    for (i = 0; i < S->n; i++) {
-        unsigned k = S->c[i];
-        double wk = (double)o->corners[k].walk, d[3];
-        re__sub(X, re__cptr(o, b, re__pk_id(&o->k_sfirst, k)), d);
-        if (re__dot(d, d) <= wk * wk) return 1;
-    }
-    return 0;
-}
-static int re__in_edge_zone(const re__object_t *o, const re__set_t *S, re__best_t *b, const double X[3])
+/* For a ray running in face g's plane from I to a pass-through's exit X
+   on plane h: is X where such a ray can leave the mesh, on an edge of g
+   that borders h (any edge of g when h is g: a ray entering near an edge
+   of g and leaving by g beside it)? Checked against the edges of S's
+   corners: X within `walk` of the corner or within the edge's detection
+   zone (the removed volume near a corner lies within its walk, near an
+   edge's middle within the edge's zone, and the walk, re__walk_grow, adds
+   each corner the ray comes near). The exit is out of reach when the ray
+   ran along g on its flat part, touching the rounded solid without
+   entering it: a tangent contact with a capsule that its rounding lost (a
+   ray through a vertex lying in a face: fuzz_rounded_exact, 2026-12-06).
+   Past that contact g is the surface, and S's planes say nothing of where
+   the mesh ends. Neither test alone bounds it: at a narrow corner the walk
+   spans the faces' reach, up to the object's size (walk 2.83 at a degree-5
+   vertex of a hull of size 1.9: an exit 0.93 outside the mesh), and an
+   exit 0.71 outside lay in the zone of an edge of another face; a ray in
+   g's plane "leaving" by g far on was 0.97 outside, within a walk. */
+static int re__exit_on_edge_of(const re__object_t *o, const re__set_t *S, re__best_t *b, const double X[3], unsigned g,
+                               unsigned h)
 {
     unsigned i, j;
     for (i = 0; i < S->n; i++) {
-        re__kv_t K = re__kview(o, S->c[i]);
-        for (j = 0; j < K.np; j++)
-            if (re__zone_holds(o, o->refs[K.first + j] >> 1, X, b)) return 1;
+        unsigned k = S->c[i];
+        re__kv_t K = re__kview(o, k);
+        int near = -1;
+        for (j = 0; j < K.np; j++) {
+            unsigned c = o->refs[K.first + j] >> 1, p0 = o->cyls[c].p[0], p1 = o->cyls[c].p[1];
+            if (!(g != h ? (p0 == g && p1 == h) || (p0 == h && p1 == g) : p0 == g || p1 == g)) continue;
+            if (near < 0) {
+                double wk = (double)o->corners[k].walk, d[3];
+                re__sub(X, re__cptr(o, b, re__pk_id(&o->k_sfirst, k)), d);
+                near = re__dot(d, d) <= wk * wk;
+            }
+            if (near || re__zone_holds(o, c, X, b)) return 1;
+        }
     }
     return 0;
 }
@@ -6395,7 +6400,7 @@ static double re__along_tol(const double I[3], const double X[3], double r)
 }
 
 /* The plane of S the segment I -> X lies in most nearly (the face a ray
-   out of reach ran along, re__near_corner), in *dmin the segment's largest
+   out of reach ran along, re__exit_on_edge_of), in *dmin the segment's largest
    distance from it, in *rmin the smallest radius of S's corners. */
 static unsigned re__plane_along(const re__object_t *o, const re__set_t *S, const double I[3], const double X[3], double *dmin,
                                 double *rmin)
@@ -6415,32 +6420,45 @@ static unsigned re__plane_along(const re__object_t *o, const re__set_t *S, const
     return best;
 }
 
-/* A pass-through whose exit is out of the set's reach (re__near_corner),
+/* Does the ray run in plane g (index gi) from I and "leave" by g itself at
+   X, more than a radius on? Such an exit is noise: a ray lying in a plane
+   crosses it anywhere (a ray in a face's plane through a vertex "left" by
+   it 0.97 outside the mesh, within an edge's zone). A ray that starts
+   below g and leaves by it a little on, across a strip near an edge of g,
+   is a true exit. */
+static int re__runs_in(const re__object_t *o, unsigned gi, unsigned h, const double I[3], const double X[3], double r)
+{
+    const re__plane_t *g = &o->planes[gi];
+    double D[3];
+    re__sub(X, I, D);
+    return gi == h && re__dot(D, D) > r * r &&
+           fabs(re__dot(g->n, I) - g->c) <= re__lost_depth(fabs(I[0]) + fabs(I[1]) + fabs(I[2]), 0, r);
+}
+
+/* A pass-through whose exit is out of the set's reach (re__exit_on_edge_of),
    or no answer at all (neither a capsule nor a plane of S ahead: the ray
    left the set's reach, so I is not on a flat part either), leaves at I
-   instead, along the face the ray runs in: the ray only touches the
-   rounded solid, and the host, tracing on from I, finds where it really
-   leaves the mesh (if anywhere: it runs in a face's plane). Only a ray
-   near a plane of S all the way can be out of reach (RE__ALONG_FACE_R:
-   one deeper meets a capsule), so other pass-throughs skip the edge
-   zones. */
+   instead, through the host's face f there: the ray runs along a face and
+   only touches the rounded solid, and the host, tracing on from I, finds
+   where it really leaves the mesh (if anywhere: it runs in a face's
+   plane). Only a ray near a plane of S all the way can be out of reach
+   (RE__ALONG_FACE_R: one deeper meets a capsule), so other pass-throughs
+   skip the edge tests. */
 static void re__exit_within_reach(const re__object_t *o, const re__set_t *S, re__best_t *b, const double I[3],
-                                  const double dir[3], double *s_exit, unsigned *exit_plane)
+                                  const double dir[3], unsigned f, double *s_exit, unsigned *exit_plane)
 {
     double X[3], dmin, rmin;
     unsigned along;
     if (!(*s_exit < b->s) && b->s < HUGE_VAL) return; /* a rounded hit */
-    if (*s_exit < HUGE_VAL) {
-        re__madd(I, *s_exit, dir, X);
-        if (re__near_corner(o, S, b, X)) return; /* most pass-throughs here: cheap */
-    } else {
-        re__madd(I, o->size / re__len(dir), dir, X); /* a size along, to find the face it runs in */
-    }
+    if (*s_exit < HUGE_VAL) re__madd(I, *s_exit, dir, X);
+    else re__madd(I, o->size / re__len(dir), dir, X); /* a size along, to find the face it runs in */
     along = re__plane_along(o, S, I, X, &dmin, &rmin);
     if (along == RE__NONE) return;
-    if (*s_exit < HUGE_VAL && (!(dmin <= re__along_tol(I, X, rmin)) || re__in_edge_zone(o, S, b, X))) return;
+    if (*s_exit < HUGE_VAL && (!(dmin <= re__along_tol(I, X, rmin)) ||
+                               (re__exit_on_edge_of(o, S, b, X, along, *exit_plane) && !re__runs_in(o, along, *exit_plane, I, X, rmin))))
+        return;
     *s_exit = 0;
-    *exit_plane = along;
+    *exit_plane = f;
 }
 
 /* re__hit_in_slab's test below for any hit of an object of one radius
@@ -6581,7 +6599,7 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
         s_exit = re__exit(o, &S, I, dir, &exit_plane);
         if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &best, I, dir, re__min(best.s, s_exit))) break;
     }
-    re__exit_within_reach(o, &S, &best, I, dir, &s_exit, &exit_plane);
+    re__exit_within_reach(o, &S, &best, I, dir, f, &s_exit, &exit_plane);
     /* a rounded hit past I: not from inside a slab (re__hit_in_slab). Before I
        (a late host's t, best.smin) the ray met the capsule next to where it
        crossed the host's face, and that hit stands */

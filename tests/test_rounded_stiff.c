@@ -879,6 +879,124 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
     return hits;
 }
 
+/* Rays through every vertex of the hull (v, t) at r_rel of its size, each
+   in the plane of one of the triangles there, in nr directions, tilted by
+   up to 1e-10 (the host in __float128): each answer lies on the rounded
+   surface, or a pass-through on the sharp hull with a face's normal
+   through it, and the ray is nowhere 1e-9 of the size deep in the rounded
+   solid before it. Adds to *hits the rays that hit and returns the
+   failures. */
+static long rays_along_faces_of(const double (*v)[3], unsigned nv, const unsigned (*t)[3], unsigned nt, double r_rel, long nr,
+                                long *hits)
+{
+    static const double tilt[7] = {0, 1e-16, -1e-16, 1e-13, -1e-13, 1e-10, -1e-10};
+    static tm_poly_t P;
+    tm_mesh_t m = {0}, hm = {0};
+    tm_eroded_t E;
+    re_scene_t *s;
+    re_diag_t dg;
+    double scale = tm_size(v[0], nv), tol = 1e-9 * scale, n[3], e1[3], e2[3];
+    unsigned k;
+    long i, f, bad = 0;
+    int a;
+    for (k = 0; k < nv; k++) tm_vert(&m, v[k][0], v[k][1], v[k][2]);
+    for (k = 0; k < nt; k++) tm_tri(&m, t[k][0], t[k][1], t[k][2]);
+    memset(&P, 0, sizeof P);
+    tm_hull(v, (int)nv, &hm, &P);
+    s = build1(&m, r_rel * scale, &dg);
+    if (!T_CHECK(s != NULL)) { tm_free(&m); tm_free(&hm); return 1; }
+    E.P = &P, E.r = re_object_radius(s, 0);
+    tm_erode(&P, E.r);
+    for (f = 0; f < 3 * (long)nt; f++) { /* triangle f / 3, from its vertex f % 3 */
+        const double *va = v[t[f / 3][f % 3]], *vb = v[t[f / 3][(f + 1) % 3]], *vc = v[t[f / 3][(f + 2) % 3]];
+        tm_sub(vb, va, e1);
+        tm_sub(vc, va, e2);
+        tm_cross(e1, e2, n);
+        tm_norm(n);
+        tm_norm(e1);
+        tm_cross(n, e1, e2);
+        for (i = 0; i < nr; i++) {
+            double th = 2 * M_PI * (double)i / (double)nr, d[3], o[3], p[3], t_host, bu, bv;
+            unsigned tri;
+            re_hit_t h;
+            for (a = 0; a < 3; a++) d[a] = cos(th) * e1[a] + sin(th) * e2[a] + tilt[i % 7] * n[a], o[a] = va[a] - 3 * scale * d[a];
+            if (!tm_hit_exact_uv(&m, o, d, &t_host, &tri, &bu, &bv)) continue;
+            ++*hits;
+            re_query(s, o, d, 0, tri, t_host, &h);
+            for (a = 0; a < 3; a++) p[a] = o[a] + h.t * d[a];
+            if (h.kind == RE_PASS_THROUGH) {
+                double side = 0, dn = 0;
+                if (!(h.t >= t_host && tm_hull_exit_ok(&P, p, h.normal, tol, &side, &dn)) && ++bad < 5)
+                    T_FAIL("triangle %ld vertex %ld ray %ld: pass-through at t %.17g (host %.17g), %.3g outside the hull", f / 3,
+                           f % 3, i, h.t, t_host, side);
+            } else if (!(fabs(tm_eroded_sdf(&E, p)) <= tol) && ++bad < 5)
+                T_FAIL("triangle %ld vertex %ld ray %ld: kind %d at t %.17g is %.3g off the rounded surface", f / 3, f % 3, i,
+                       (int)h.kind, h.t, tm_eroded_sdf(&E, p));
+            for (k = 0; k <= 16; k++) { /* never inside the rounded solid before the answer */
+                double q[3], tt = t_host - 1e-3 * scale + (h.t - t_host + 1e-3 * scale) * k / 16.0;
+                for (a = 0; a < 3; a++) q[a] = o[a] + tt * d[a];
+                if (!(tm_eroded_sdf(&E, q) > -tol)) {
+                    if (++bad < 5)
+                        T_FAIL("triangle %ld vertex %ld ray %ld: kind %d at t %.17g, but %.3g deep at t %.17g", f / 3, f % 3, i,
+                               (int)h.kind, h.t, -tm_eroded_sdf(&E, q), tt);
+                    break;
+                }
+            }
+        }
+    }
+    re_free(s);
+    tm_free(&m);
+    tm_free(&hm);
+    return bad;
+}
+
+/* Rays along the faces of two hulls of fuzz_rounded_exact's mode for rays
+   along a face (rays_along_faces_of; as the fuzzer built them, r = 2^-5
+   of the size), through every vertex in 2 000 directions in each
+   triangle's plane there. On the first, vertex 2 is of degree 5 and so
+   narrow that its corner's walk (2.83) spans more than the size (1.9): a
+   ray through it in the plane of triangle 2 6 8, tilted by -1e-16, met no
+   capsule, and the exit the search found, by the plane of a corner it
+   reached, lay far past the face's far edge, 0.93 outside the hull, which
+   passed for within reach. On the second, a ray through vertex 5 in the
+   plane of triangle 4 8 5 left 0.71 outside the hull, in the detection
+   zone of an edge of another face. Before the exit check's edge test
+   (re__edge_joins) 9 of the first hull's 43 271 hitting rays fail and 25
+   of the second's 56 505 (built with fused multiply-adds; the fuzzer's
+   own rays fail without them); with the test near corners only, 4 of the
+   second's; with an exit by the face's own plane let through, 1 (0.97
+   outside the hull). */
+static void rays_along_a_face_past_a_sharp_corner(void)
+{
+    static const double v1[12][3] = {
+        {0.18458838788433662, -0.66100556954299228, 0.5775997558556496}, {-0.0028839551384756135, 0.03953612573434051, -0.93173113603418023},
+        {-0.73434042877851535, 0.13887235828183409, 0.4543373769741359}, {0.10795757991912724, -0.84856946669718469, -0.43660639353017472},
+        {-0.11305409323262383, -0.88696116578927287, -0.15611505302510109}, {-0.29765774013885715, -0.65429159990844588, 0.24638742656595713},
+        {0.5186999313344014, -0.2112001220721752, 0.9356374456397345}, {-0.44963759822995342, -0.94985885404745551, 0.94827191577019909},
+        {0.15870908674753959, 0.79699397268635086, -0.27254139009689482}, {-0.55422293430991076, 0.45110246433203627, -0.75005722133211261},
+        {-0.37981231403067062, -0.94113069352254519, 0.9675593194476233}, {0.87618829633020523, -0.59795529106584266, 0.45110246433203627}};
+    static const unsigned t1[16][3] = {{1, 3, 9}, {1, 11, 3}, {1, 9, 8},  {1, 8, 11}, {2, 6, 8},  {2, 10, 6}, {2, 9, 7},  {2, 7, 10},
+                                       {2, 8, 9}, {3, 4, 9},  {3, 10, 4}, {3, 11, 10}, {4, 7, 9}, {4, 10, 7}, {6, 11, 8}, {6, 10, 11}};
+    static const double v2[12][3] = {
+        {0.99258411535820557, 1, 1}, {1, -0.65609216449225605, -0.99520866712443734}, {-1, 0.25004959182116426, -0.2141298542763409},
+        {-0.88149843595025557, -0.0016632333867399041, 0.26189059281300064}, {0.48384832532234689, -0.99194323643854432, 0.51668574044403748},
+        {-0.10182345311665519, -0.16191348134584571, 1}, {1, 0.99902342259861143, 1},
+        {-0.24980544747081712, -0.93487449454489968, 0.22395666437781347}, {0.5136644541084916, 0.16234073395895332, 0.95510795757991906},
+        {-0.26478980697337295, 0.59255359731441204, 0.75930418860151061}, {-0.64461738002594027, 0.78823529411764715, -0.68938735027084763},
+        {0.88949416342412446, -0.69057755397878995, -0.93145647364003969}};
+    static const unsigned t2[20][3] = {{0, 5, 6},  {0, 9, 5},  {0, 6, 10}, {0, 10, 9}, {1, 6, 4},   {1, 4, 11}, {1, 10, 6},
+                                       {1, 11, 10}, {2, 7, 3},  {2, 3, 9},  {2, 11, 7}, {2, 9, 10},  {2, 10, 11}, {3, 7, 5},
+                                       {3, 5, 9},  {4, 5, 7},  {4, 8, 5},  {4, 6, 8},  {4, 7, 11}, {5, 8, 6}};
+    long nr = t_count(2000), hits1 = 0, hits2 = 0, bad1, bad2;
+    bad1 = rays_along_faces_of(v1, 12, t1, 16, 0.03125, nr, &hits1);
+    bad2 = rays_along_faces_of(v2, 12, t2, 20, 0.03125, nr, &hits2);
+    T_INT_EQ(bad1, 0);
+    T_INT_EQ(bad2, 0);
+    T_GT(hits1, nr * 16);
+    T_GT(hits2, nr * 16);
+    fprintf(stderr, "    %ld and %ld rays hit the hulls\n", hits1, hits2);
+}
+
 /* Rays along the top face through its vertices and edges (along_face_rays)
    on the fuzzer's hull and on random hulls with a top face at y = 1, at
    radii from 2^-25 to 0.05 of the size. */
@@ -2093,6 +2211,7 @@ int main(int argc, char **argv)
         T_CASE(rays_lying_in_a_face_plane),
         T_CASE(rays_along_a_face_through_its_vertices),
         T_CASE(compact_layout_rays_along_a_face_through_its_vertices),
+        T_CASE(rays_along_a_face_past_a_sharp_corner),
         T_CASE(flat_test_beside_a_sharp_corner_far_out),
         T_CASE(grazing_along_a_subdivided_edge),
         T_CASE(long_straight_chains),
