@@ -6455,7 +6455,7 @@ static void re__exit_within_reach(const re__object_t *o, const re__set_t *S, re_
     along = re__plane_along(o, S, I, X, &dmin, &rmin);
     if (along == RE__NONE) return;
     if (*s_exit < HUGE_VAL && (!(dmin <= re__along_tol(I, X, rmin)) ||
-                               (re__exit_on_edge_of(o, S, b, X, along, *exit_plane) && !re__runs_in(o, along, *exit_plane, I, X, rmin))))
+                               (!re__runs_in(o, along, *exit_plane, I, X, rmin) && re__exit_on_edge_of(o, S, b, X, along, *exit_plane))))
         return;
     *s_exit = 0;
     *exit_plane = f;

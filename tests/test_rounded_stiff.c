@@ -785,6 +785,43 @@ static void rays_grazing_a_face(void)
     tm_free(&m);
 }
 
+/* An answer h to the ray o + t d (host hit at t_host) against the sharp
+   hull P and the rounded solid E, to tol: a pass-through leaves the hull
+   at or past t_host through a face with its normal, any other answer lies
+   on the rounded surface. 0 and the reason in why when not. */
+static int along_answer_on_surface(const tm_poly_t *P, const tm_eroded_t *E, const double o[3], const double d[3],
+                                   double t_host, const re_hit_t *h, double tol, char *why, size_t n)
+{
+    double p[3], side = 0, dn = 0;
+    int a;
+    for (a = 0; a < 3; a++) p[a] = o[a] + h->t * d[a];
+    if (h->kind == RE_PASS_THROUGH) {
+        if (h->t >= t_host && tm_hull_exit_ok(P, p, h->normal, tol, &side, &dn)) return 1;
+        snprintf(why, n, "pass-through at t %.17g (host %.17g), %.3g outside the hull", h->t, t_host, side);
+        return 0;
+    }
+    if (fabs(tm_eroded_sdf(E, p)) <= tol) return 1;
+    snprintf(why, n, "kind %d at t %.17g is %.3g off the rounded surface", (int)h->kind, h->t, tm_eroded_sdf(E, p));
+    return 0;
+}
+/* The ray nowhere tol deep in the rounded solid from 1e-3 of the size
+   before t_host to the answer, at steps + 1 points. */
+static int along_answer_not_deep(const tm_eroded_t *E, const double o[3], const double d[3], double t_host,
+                                 const re_hit_t *h, double scale, double tol, int steps, char *why, size_t n)
+{
+    int k, a;
+    for (k = 0; k <= steps; k++) {
+        double q[3], tt = t_host - 1e-3 * scale + (h->t - t_host + 1e-3 * scale) * k / (double)steps;
+        for (a = 0; a < 3; a++) q[a] = o[a] + tt * d[a];
+        if (!(tm_eroded_sdf(E, q) > -tol)) {
+            snprintf(why, n, "kind %d at t %.17g, but %.3g deep in the rounded solid at t %.17g", (int)h->kind, h->t,
+                     -tm_eroded_sdf(E, q), tt);
+            return 0;
+        }
+    }
+    return 1;
+}
+
 /* One hull, rays lying exactly in its top face's plane y = 1 through a
    vertex or edge point of that face (found by fuzz_rounded_exact: a ray
    through a vertex, along a face whose edge from it runs 0.9 degrees off
@@ -819,6 +856,7 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
     for (i = 0; i < 600 && nt == 3; i++) {
         double phi = t_rng_range(rng, 0, 2 * M_PI), f = i % 3 ? 0 : t_rng_unit(rng), d[3], o[3], p[3], t_host, bu, bv;
         const double *va = pts[top[i / 3 % 3]], *vb = pts[top[(i / 3 + 1) % 3]];
+        char why[160];
         unsigned tri;
         re_hit_t h;
         /* in the plane, or tilted by 1e-16, 1e-13 or 1e-10 out of it or into the solid */
@@ -830,16 +868,12 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
         re_query(s, o, d, 0, tri, t_host, &h);
         check_query_uv(s, o, d, tri, t_host, bu, bv, &h);
         for (a = 0; a < 3; a++) p[a] = o[a] + h.t * d[a];
-        if (h.kind == RE_PASS_THROUGH) {
-            double side = 0, dn = 0;
-            if (!(h.t >= t_host && tm_hull_exit_ok(&P, p, h.normal, tol, &side, &dn))) {
-                if (++*bad < 5) T_FAIL("r %g ray %ld: pass-through at t %.17g (host %.17g), %.3g outside the hull", r_rel, i, h.t,
-                                       t_host, side);
-                continue;
-            }
-        } else if (!(fabs(tm_eroded_sdf(&E, p)) <= tol) || (h.kind == RE_HIT_ROUNDED && !check_feature(s, &h, tol, scale))) {
-            if (++*bad < 5) T_FAIL("r %g ray %ld: kind %d at t %.17g is %.3g off the rounded surface (host triangle %u)", r_rel, i,
-                                   (int)h.kind, h.t, tm_eroded_sdf(&E, p), tri);
+        if (!along_answer_on_surface(&P, &E, o, d, t_host, &h, tol, why, sizeof why)) {
+            if (++*bad < 5) T_FAIL("r %g ray %ld: %s (host triangle %u)", r_rel, i, why, tri);
+            continue;
+        }
+        if (h.kind == RE_HIT_ROUNDED && !check_feature(s, &h, tol, scale)) {
+            if (++*bad < 5) T_FAIL("r %g ray %ld: rounded hit at t %.17g off its feature (host triangle %u)", r_rel, i, h.t, tri);
             continue;
         } else if (h.kind == RE_HIT_ROUNDED) {
             /* the normal the reference's, to what a seam allows (as fuzz_rounded_exact's fx_normal: the
@@ -864,15 +898,8 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
                 ++*bad < 5)
                 T_FAIL("r %g ray %ld: the secondary origin is %.3g outside the sharp hull, %.3g off its ray", r_rel, i, out, off_line);
         }
-        for (k = 0; k <= 64; k++) { /* never inside the rounded solid before the answer */
-            double q[3], tt = t_host - 1e-3 * scale + (h.t - t_host + 1e-3 * scale) * k / 64.0;
-            for (a = 0; a < 3; a++) q[a] = o[a] + tt * d[a];
-            if (!(tm_eroded_sdf(&E, q) > -tol)) {
-                if (++*bad < 5) T_FAIL("r %g ray %ld: kind %d at t %.17g, but %.3g deep in the rounded solid at t %.17g", r_rel, i,
-                                       (int)h.kind, h.t, -tm_eroded_sdf(&E, q), tt);
-                break;
-            }
-        }
+        if (!along_answer_not_deep(&E, o, d, t_host, &h, scale, tol, 64, why, sizeof why) && ++*bad < 5)
+            T_FAIL("r %g ray %ld: %s", r_rel, i, why);
     }
     re_free(s);
     tm_free(&m);
@@ -916,32 +943,18 @@ static long rays_along_faces_of(const double (*v)[3], unsigned nv, const unsigne
         tm_norm(e1);
         tm_cross(n, e1, e2);
         for (i = 0; i < nr; i++) {
-            double th = 2 * M_PI * (double)i / (double)nr, d[3], o[3], p[3], t_host, bu, bv;
+            double th = 2 * M_PI * (double)i / (double)nr, d[3], o[3], t_host, bu, bv;
+            char why[160];
             unsigned tri;
             re_hit_t h;
             for (a = 0; a < 3; a++) d[a] = cos(th) * e1[a] + sin(th) * e2[a] + tilt[i % 7] * n[a], o[a] = va[a] - 3 * scale * d[a];
             if (!tm_hit_exact_uv(&m, o, d, &t_host, &tri, &bu, &bv)) continue;
             ++*hits;
             re_query(s, o, d, 0, tri, t_host, &h);
-            for (a = 0; a < 3; a++) p[a] = o[a] + h.t * d[a];
-            if (h.kind == RE_PASS_THROUGH) {
-                double side = 0, dn = 0;
-                if (!(h.t >= t_host && tm_hull_exit_ok(&P, p, h.normal, tol, &side, &dn)) && ++bad < 5)
-                    T_FAIL("triangle %ld vertex %ld ray %ld: pass-through at t %.17g (host %.17g), %.3g outside the hull", f / 3,
-                           f % 3, i, h.t, t_host, side);
-            } else if (!(fabs(tm_eroded_sdf(&E, p)) <= tol) && ++bad < 5)
-                T_FAIL("triangle %ld vertex %ld ray %ld: kind %d at t %.17g is %.3g off the rounded surface", f / 3, f % 3, i,
-                       (int)h.kind, h.t, tm_eroded_sdf(&E, p));
-            for (k = 0; k <= 16; k++) { /* never inside the rounded solid before the answer */
-                double q[3], tt = t_host - 1e-3 * scale + (h.t - t_host + 1e-3 * scale) * k / 16.0;
-                for (a = 0; a < 3; a++) q[a] = o[a] + tt * d[a];
-                if (!(tm_eroded_sdf(&E, q) > -tol)) {
-                    if (++bad < 5)
-                        T_FAIL("triangle %ld vertex %ld ray %ld: kind %d at t %.17g, but %.3g deep at t %.17g", f / 3, f % 3, i,
-                               (int)h.kind, h.t, -tm_eroded_sdf(&E, q), tt);
-                    break;
-                }
-            }
+            if (!along_answer_on_surface(&P, &E, o, d, t_host, &h, tol, why, sizeof why) && ++bad < 5)
+                T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
+            if (!along_answer_not_deep(&E, o, d, t_host, &h, scale, tol, 16, why, sizeof why) && ++bad < 5)
+                T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
         }
     }
     re_free(s);
