@@ -808,6 +808,10 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    entries meet the capsule just past the tangent line, sqrt(2 depth / r)
    off the face's normal, the depth a ray along the face reaches below it. */
 #define RE__SLAB_COS 0.5
+/* A ray and a capsule's axis whose directions' squared sine is below this
+   are parallel for their closest approach (re__ray_seg_approach): it
+   starts from the ray's first point instead of the normal equations. */
+#define RE__PARALLEL_SIN2 1e-12
 #define RE__ALONG_FACE_ULPS (1024.0 * RE__DBL_EPS)
 /* A host that traces in float reports t late or early by ~1e-7 relative;
    when its hit point lands just inside a rounding capsule (next to the
@@ -6435,6 +6439,161 @@ static int re__runs_in(const re__object_t *o, unsigned gi, unsigned h, const dou
            fabs(re__dot(g->n, I) - g->c) <= re__lost_depth(fabs(I[0]) + fabs(I[1]) + fabs(I[2]), 0, r);
 }
 
+/* Where does the ray I + s d, along face g (index gi), first lie inside the
+   rounded solid before s_end, as judged from g's flat part: below g by
+   more than the rounding of that depth (RE__FLAT_ULPS of the magnitudes,
+   mag = |I|_1 + |X|_1, as the flat test) and less than the smallest
+   radius of S, with its foot on g, moved down by each corner's radius,
+   strictly inside every other shifted plane of S (re__on_flat_part's
+   test with re__hit_in_slab's strict slack). There the ball of radius r under g's flat part holds the
+   ray. Each condition is linear in s, so they meet in an interval; its
+   start, or HUGE_VAL when it is empty or the ray does not sink. */
+static double re__sinks_in_flat(const re__object_t *o, const re__set_t *S, unsigned gi, const double I[3], const double d[3],
+                                double s_end, double mag)
+{
+    const re__plane_t *g = &o->planes[gi];
+    double gd = re__dot(g->n, d), d0 = g->c - re__dot(g->n, I), tau = RE__FLAT_ULPS * (fabs(g->c) + mag);
+    double lo, hi = s_end, rmin = HUGE_VAL;
+    unsigned i, j;
+    if (!(gd < 0)) return HUGE_VAL; /* depth d0 - s gd grows only when the ray heads below g */
+    lo = re__max(0.0, (tau - d0) / -gd);
+    for (i = 0; i < S->n; i++) {
+        re__kv_t K = re__kview(o, S->c[i]);
+        double rq = re__k_radius(o, K.k);
+        rmin = re__min(rmin, rq);
+        for (j = 0; j < K.np; j++) {
+            unsigned hk = re__corner_plane(o, &K, j);
+            const re__plane_t *h = &o->planes[hk];
+            double gh = re__dot(h->n, g->n), a, b;
+            if (hk == gi) continue;
+            /* n_h . (I + s d + (d0 - s gd - rq) n_g) - (c_h - rq) + slack < 0 */
+            a = re__dot(h->n, I) + (d0 - rq) * gh - (h->c - rq) + RE__FLAT_ULPS * (fabs(h->c) + mag + rq);
+            b = re__dot(h->n, d) - gd * gh;
+            if (b > 0) hi = re__min(hi, -a / b);
+            else if (b < 0) lo = re__max(lo, -a / b);
+            else if (!(a < 0)) return HUGE_VAL;
+        }
+    }
+    hi = re__min(hi, (rmin - d0) / -gd);
+    return lo < hi ? lo : HUGE_VAL;
+}
+
+/* Closest approach of the ray segment I + s d, s in [s0, s1], to the
+   segment a + h u, h in [0, 1] (the clamped normal equations, solved for
+   s, then h, then s again: Ericson, Real-Time Collision Detection §5.1.9).
+   Returns the squared distance; *s, *h the parameters. */
+static double re__ray_seg_approach(const double I[3], const double d[3], double s0, double s1, const double a[3],
+                                   const double u[3], double *s, double *h)
+{
+    double w[3], A = re__dot(d, d), B = re__dot(d, u), C = re__dot(u, u), D, E, det, P[3], Q[3];
+    re__sub(I, a, w);
+    D = re__dot(d, w), E = re__dot(u, w), det = A * C - B * B;
+    *s = det > RE__PARALLEL_SIN2 * A * C ? (B * E - C * D) / det : s0; /* parallel: the earliest point */
+    *s = re__max(s0, re__min(s1, *s));
+    *h = C > 0 ? re__max(0.0, re__min(1.0, (*s * B + E) / C)) : 0;
+    *s = re__max(s0, re__min(s1, (*h * B - D) / A));
+    *h = C > 0 ? re__max(0.0, re__min(1.0, (*s * B + E) / C)) : 0;
+    re__madd(I, *s, d, P);
+    re__madd(a, *h, u, Q);
+    re__sub(P, Q, w);
+    return re__dot(w, w);
+}
+
+/* Is the ray's closest approach I + s d to a capsule, A the nearest point
+   of its axis, a contact on g's seam: within tau of g's plane, and the
+   capsule's normal there within acos(RE__SLAB_COS) of g's? A ray
+   inside the solid also passes near capsules, from below (the far side of
+   a shallow crease's cylinder, 2 r under the faces). */
+static int re__on_seam_of(const re__plane_t *g, const double I[3], const double d[3], double s, const double A[3],
+                          double tau)
+{
+    double P[3], nrm[3], len;
+    re__madd(I, s, d, P);
+    re__sub(P, A, nrm);
+    len = re__len(nrm);
+    return fabs(re__dot(g->n, P) - g->c) <= tau && re__dot(g->n, nrm) >= RE__SLAB_COS * len;
+}
+
+/* The capsule of an edge or corner of face g (index gi) that the ray
+   I + s d, s in [s0, s1], comes closest to on g's seam (re__on_seam_of),
+   measured by the distance's excess over the capsule's radius: its closest
+   approach goes into b as the hit (s, kind, index, h). Returns that excess
+   (HUGE_VAL: none). The contact a tangent ray's rounding lost is there. */
+static double re__nearest_contact(const re__object_t *o, const re__set_t *S, re__best_t *b, unsigned gi, const double I[3],
+                                  const double d[3], double s0, double s1, double tau)
+{
+    const re__plane_t *g = &o->planes[gi];
+    double best = HUGE_VAL, zero[3] = {0, 0, 0};
+    unsigned i, j;
+    for (i = 0; i < S->n; i++) {
+        re__kv_t K = re__kview(o, S->c[i]);
+        double r = re__k_radius(o, K.k), s, h, e, A[3];
+        if (!re__corner_has_plane(o, &K, gi)) continue;
+        for (j = 0; j < K.ns; j++) {
+            const double *C = re__cptr(o, b, K.sfirst + j);
+            e = sqrt(re__ray_seg_approach(I, d, s0, s1, C, zero, &s, &h)) - r;
+            if (e < best && re__on_seam_of(g, I, d, s, C, tau))
+                best = e, b->s = s, b->kind = RE_FEATURE_SPHERE, b->index = K.sfirst + j, b->h = 0;
+        }
+        for (j = 0; j < K.np + K.nx; j++) {
+            unsigned c = j < K.np ? o->refs[K.first + j] >> 1 : re__k_xfirst(o, K.k) + (j - K.np), sp[2];
+            re__cyl_t cy = re__cyl(o, c);
+            double keep[3], u[3];
+            const double *a, *z;
+            if (cy.p[0] != gi && cy.p[1] != gi) continue;
+            re__cyl_spheres(o, c, sp);
+            re__cpair(o, b, sp[0], sp[1], &a, &z, keep);
+            re__sub(z, a, u);
+            e = sqrt(re__ray_seg_approach(I, d, s0, s1, a, u, &s, &h)) - r;
+            re__madd(a, h, u, A);
+            if (e < best && re__on_seam_of(g, I, d, s, A, tau))
+                best = e, b->s = s, b->kind = RE_FEATURE_CYLINDER, b->index = c, b->h = h;
+        }
+    }
+    return best;
+}
+
+/* A ray along face g (index gi: the ray within re__along_tol of its plane
+   from I to I + s_end d) that the search let pass, or let hit a capsule
+   at s_end, but that sinks into the rounded solid under g's flat part
+   before (re__sinks_in_flat) entered it on the way, at a tangent contact
+   its rounding lost by less than the features' noise: the closest
+   approach to a capsule of g's edges and corners on g's seam, within
+   that noise (RE__SIDE_ULPS of the magnitudes), is the hit (1; b holds
+   it). The capsule's normal there is turned past the seam by the ray's
+   slope, so a reflection about it sinks into g: re_secondary_origin
+   starts such a ray at the contact (re__leaves_on_face). Found by
+   fuzz_rounded_exact at offset 1e6, r 2^-22 of the size: a cylinder
+   passed 1.8e-11 outside at its seam with g, then the ray 4.5 r deep
+   under g (a pass-through), or 2 r deep on to another capsule, entered
+   from inside (ray_sinking_past_a_lost_tangent_contact). 0: the answer
+   stands. */
+static int re__lost_entry(const re__object_t *o, const re__set_t *S, re__best_t *b, unsigned gi, const double I[3],
+                          const double d[3], double s_end)
+{
+    re__best_t c = *b;
+    double X[3], mag, s_in, tau;
+    re__madd(I, s_end, d, X);
+    mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]) + fabs(X[0]) + fabs(X[1]) + fabs(X[2]);
+    tau = RE__SIDE_ULPS * (fabs(o->planes[gi].c) + mag);
+    s_in = re__sinks_in_flat(o, S, gi, I, d, s_end, mag);
+    if (!(s_in < HUGE_VAL) || !(re__nearest_contact(o, S, &c, gi, I, d, b->smin, s_in, tau) <= tau)) return 0;
+    *b = c;
+    return 1;
+}
+
+/* re__lost_entry for a rounded hit at b.s past I, on the face the ray runs
+   along from I to it, if any. */
+RE__NOINLINE static int re__hit_after_lost_entry(const re__object_t *o, const re__set_t *S, re__best_t *b, const double I[3],
+                                                 const double d[3])
+{
+    double X[3], dmin, rmin;
+    unsigned along;
+    re__madd(I, b->s, d, X);
+    along = re__plane_along(o, S, I, X, &dmin, &rmin);
+    return along != RE__NONE && dmin <= re__along_tol(I, X, rmin) && re__lost_entry(o, S, b, along, I, d, b->s);
+}
+
 /* A pass-through whose exit is out of the set's reach (re__exit_on_edge_of),
    or no answer at all (neither a capsule nor a plane of S ahead: the ray
    left the set's reach, so I is not on a flat part either), leaves at I
@@ -6449,13 +6608,16 @@ static void re__exit_within_reach(const re__object_t *o, const re__set_t *S, re_
 {
     double X[3], dmin, rmin;
     unsigned along;
+    int runs_along;
     if (!(*s_exit < b->s) && b->s < HUGE_VAL) return; /* a rounded hit */
     if (*s_exit < HUGE_VAL) re__madd(I, *s_exit, dir, X);
     else re__madd(I, o->size / re__len(dir), dir, X); /* a size along, to find the face it runs in */
     along = re__plane_along(o, S, I, X, &dmin, &rmin);
     if (along == RE__NONE) return;
-    if (*s_exit < HUGE_VAL && (!(dmin <= re__along_tol(I, X, rmin)) ||
-                               (!re__runs_in(o, along, *exit_plane, I, X, rmin) && re__exit_on_edge_of(o, S, b, X, along, *exit_plane))))
+    runs_along = dmin <= re__along_tol(I, X, rmin);
+    if (runs_along && re__lost_entry(o, S, b, along, I, dir, re__min(*s_exit, o->size / re__len(dir)))) return;
+    if (*s_exit < HUGE_VAL && (!runs_along || (!re__runs_in(o, along, *exit_plane, I, X, rmin) &&
+                                               re__exit_on_edge_of(o, S, b, X, along, *exit_plane))))
         return;
     *s_exit = 0;
     *exit_plane = f;
@@ -6603,7 +6765,8 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
     /* a rounded hit past I: not from inside a slab (re__hit_in_slab). Before I
        (a late host's t, best.smin) the ray met the capsule next to where it
        crossed the host's face, and that hit stands */
-    if (best.s <= s_exit && best.s > 0 && best.s < HUGE_VAL && re__slab_check_needed(o)) {
+    if (best.s <= s_exit && best.s > 0 && best.s < HUGE_VAL && re__slab_check_needed(o) &&
+        !re__hit_after_lost_entry(o, &S, &best, I, dir)) {
         unsigned g = re__hit_in_slab(o, &S, &best, I, dir);
         if (g != RE__NONE) best.s = HUGE_VAL, s_exit = 0, exit_plane = g;
     }
@@ -6763,6 +6926,57 @@ static int re__exit_on_face(const re__object_t *o, const re__set_t *S, re__best_
    2026-12-06 a direction exactly tangent got the unpushed hit point
    (found by fuzz_rounded_exact's short run in make test). */
 #define RE__INTO_SOLID_EPS (8.0 * RE__DBL_EPS)
+/* Bound on how far a capsule's axis may lie from r below one of its
+   corner's planes, relative to r (re__leaves_on_face's filter): above
+   the centres' solve tolerance (RE__SPHERE_SOLVE_CAP) and the erosion's
+   feasibility (RE__CORNER_EPS). */
+#define RE__SEAM_NOISE_R 1e-6
+
+/* Does the ray from a rounded hit P (normal n) along dir, whose walk
+   found its exit s_exit on, leave the sharp mesh at P itself instead,
+   through a plane g of S that P lies on (a seam, where a capsule meets
+   g's flat part: within half the origin's push, or the rounding of the
+   test, RE__FLAT_ULPS of the magnitudes, if larger)? It does when it
+   would otherwise sink under g's flat part before s_exit
+   (re__sinks_in_flat): inside the rounded solid, so the direction left it
+   only up to the capsule normal's turn at the seam. That is the
+   reflection of a ray along g about the normal of a lost contact
+   (re__lost_entry), turned past the seam by the ray's slope: the walk
+   followed it along g, inside the sharp mesh by noise, to a crossing 0.33
+   of the size outside the mesh (fuzz_rounded_exact, rays along a face at
+   r 2^-6 of the size). A ray heading under g toward its edge stays in the
+   removed volume, and its walk stands; so does a hit farther from g's
+   plane (at offset 1e6 and r 2^-25 of the size a hit 0.3 r inside g, its
+   origin then inside the sharp mesh). 1 and *plane g. */
+static int re__leaves_on_face(const re__object_t *o, const re__set_t *S, const double P[3], const double n[3],
+                              const double dir[3], double s_exit, double push, unsigned *plane)
+{
+    double mag = fabs(P[0]) + fabs(P[1]) + fabs(P[2]), r = re__k_radius(o, S->c[0]), turn, s_end, X[3];
+    unsigned i, j;
+    /* P within tau <= max(2 RE__FLAT_ULPS mag, push / 2) of g's plane, on
+       a capsule whose axis lies r below g up to the centres' noise
+       (RE__SEAM_NOISE_R r): n . n_g >= 1 - (tau / r + noise), so
+       |n - n_g|^2 <= 2 (tau / r + noise), and dir . n <= |dir| |n - n_g|
+       when dir . n_g <= 0. Other directions (nearly all) skip the test. */
+    turn = sqrt(2 * (re__max(2 * RE__FLAT_ULPS * mag, 0.5 * push) / r + RE__SEAM_NOISE_R));
+    if (!(re__dot(dir, n) <= (RE__INTO_SOLID_EPS + turn) * re__len(dir))) return 0;
+    s_end = re__min(s_exit, o->size / re__len(dir));
+    re__madd(P, s_end, dir, X);
+    for (i = 0; i < S->n; i++) {
+        re__kv_t K = re__kview(o, S->c[i]);
+        for (j = 0; j < K.np; j++) {
+            unsigned gi = re__corner_plane(o, &K, j);
+            const re__plane_t *g = &o->planes[gi];
+            if (re__dot(g->n, dir) > 0 ||
+                !(fabs(re__dot(g->n, P) - g->c) <= re__max(RE__FLAT_ULPS * (fabs(g->c) + mag), 0.5 * push)))
+                continue;
+            if (re__sinks_in_flat(o, S, gi, P, dir, s_end, mag + fabs(X[0]) + fabs(X[1]) + fabs(X[2])) < HUGE_VAL)
+                return *plane = gi, 1;
+        }
+    }
+    return 0;
+}
+
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
 {
     const re__object_t *o;
@@ -6800,7 +7014,11 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
             if (!iter && re__exit_on_face(o, &S, &b, hit->point, dir, s, plane)) break;
             if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &b, hit->point, dir, s)) break;
         }
-        if (s < HUGE_VAL) {
+        if (S.n && re__leaves_on_face(o, &S, hit->point, nrm, dir, s, push, &plane)) { /* onto that face */
+            const re__plane_t *g = &o->planes[plane];
+            re__madd(hit->point, g->c - re__dot(g->n, hit->point), g->n, origin);
+            nrm = g->n;
+        } else if (s < HUGE_VAL) {
             re__madd(hit->point, s, dir, origin);
             nrm = o->planes[plane].n;
         }

@@ -906,13 +906,33 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
     return hits;
 }
 
+/* A rounded hit h of the ray along d: its reflected ray's origin
+   (re_secondary_origin) lies on the sharp hull P, pushed out by the
+   documented offset, on that ray. 0 and the reason in why when not. */
+static int along_reflection_starts_on_hull(const re_scene_t *s, const tm_poly_t *P, const double d[3], const re_hit_t *h,
+                                           double scale, char *why, size_t n)
+{
+    double d2[3], org[3], out = 0, off_line = 0, dn = tm_dot(d, h->normal), lo = RE_ORIGIN_OFFSET_REL * scale,
+           hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * scale;
+    int a;
+    for (a = 0; a < 3; a++) d2[a] = dn < 0 ? d[a] - 2 * dn * h->normal[a] : d[a];
+    re_secondary_origin(s, h, d2, org);
+    if (tm_origin_ok(P, org, h->point, d2, lo, hi, 8 * RE__DBL_EPS * (scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2])), &out,
+                     &off_line))
+        return 1;
+    snprintf(why, n, "rounded hit (feature %d %u) at t %.17g: its reflection starts %.3g outside the sharp hull, %.3g off its ray",
+             (int)h->feature, h->feature_index, h->t, out, off_line);
+    return 0;
+}
+
 /* Rays through every vertex of the hull (v, t) at r_rel of its size, each
    in the plane of one of the triangles there, in nr directions, tilted by
    up to 1e-10 (the host in __float128): each answer lies on the rounded
    surface, or a pass-through on the sharp hull with a face's normal
    through it, and the ray is nowhere 1e-9 of the size deep in the rounded
-   solid before it. Adds to *hits the rays that hit and returns the
-   failures. */
+   solid before it; a rounded hit's reflected ray starts on the sharp
+   hull (along_reflection_starts_on_hull). Adds to *hits the rays that hit
+   and returns the failures. */
 static long rays_along_faces_of(const double (*v)[3], unsigned nv, const unsigned (*t)[3], unsigned nt, double r_rel, long nr,
                                 long *hits)
 {
@@ -954,6 +974,8 @@ static long rays_along_faces_of(const double (*v)[3], unsigned nv, const unsigne
             if (!along_answer_on_surface(&P, &E, o, d, t_host, &h, tol, why, sizeof why) && ++bad < 5)
                 T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
             if (!along_answer_not_deep(&E, o, d, t_host, &h, scale, tol, 16, why, sizeof why) && ++bad < 5)
+                T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
+            if (h.kind == RE_HIT_ROUNDED && !along_reflection_starts_on_hull(s, &P, d, &h, scale, why, sizeof why) && ++bad < 5)
                 T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
         }
     }
@@ -1779,6 +1801,168 @@ static re_scene_t *build1_in(const tm_mesh_t *m, double r, int layout)
     return s;
 }
 
+/* fuzz_rounded_exact, 2026-12-06 (its mode for rays along a face, compact
+   layout): a 16-point hull at r = 2^-6 of its size, and its family of
+   rays along triangle 12 through each of its vertices: 256 angles in the
+   plane, 7 tilts up to 1e-10, the host in __float128. Each answer is on
+   the rounded surface or a pass-through on the sharp hull, never 1e-9 of
+   the size deep before it, and a rounded hit's reflected ray starts on
+   the sharp hull. Its ray (vertex 0, angle 15/256, tilted 1e-13 into the
+   solid) lost its tangent contact with a cylinder and sank under the
+   face. Answered
+   with a rounded hit at the contact (re__lost_entry), the cylinder's
+   normal there, turned past the seam by the ray's slope, reflected it on
+   into the face, and the secondary origin's walk along the face found a
+   crossing 0.33 outside the sharp hull. Such a reflection now starts at
+   the contact, on the face (re__leaves_on_face); without that, 7 rays
+   fail in the clang build (gcc's fused multiply-adds miss them). */
+static void lost_contact_along_a_face_reflects_off_it(void)
+{
+    static const double q[16][3] = {
+        {-0.70415808346684972, 0.16182192721446564, -0.007888914320592022}, {0.63338673990997174, 0.31758602273594261, 0.02873273823147926},
+        {-0.55358205539024952, -0.011062790875104866, 0.63338673990997174}, {0.31758602273594261, 0.02873273823147926, -0.55358205539024952},
+        {-0.089188982986190601, -0.4160677500572213, 0.052079041733424924}, {-0.57177080949111159, 0.47127489127946909, 0.65731288624399187},
+        {-0.99765011062790876, -1, -1}, {-1, -1, -1},
+        {-0.36699473563744567, -0.70415808346684972, 0.16182192721446564}, {1, 1, 1},
+        {-0.98440527962157631, -0.007888914320592022, 0.63338673990997174}, {0.31758602273594261, 0.02873273823147926, -0.6238956282902266},
+        {-0.089188982986190601, 0.38100251773861293, -0.89956511787594418}, {-1, -0.99902342259861143, -0.88079652094300753},
+        {0.73687342641336695, 0.42302586404211495, 0.9811093308918899}, {-0.99218738078889146, -0.99221789883268485, -0.92968642710002292}};
+    static const double tilt[7] = {0, 1e-16, -1e-16, 1e-13, -1e-13, 1e-10, -1e-10};
+    static tm_poly_t P;
+    tm_mesh_t m = {0};
+    tm_eroded_t E;
+    re_scene_t *s;
+    double scale = tm_size(q[0], 16), tol = 1e-9 * scale;
+    long i, hits = 0, bad = 0, n_round = 0;
+    int a;
+    memset(&P, 0, sizeof P);
+    tm_hull(q, 16, &m, &P);
+    s = build1_in(&m, 0.015625 * scale, 1);
+    if (!s) { tm_free(&m); return; }
+    E.P = &P, E.r = re_object_radius(s, 0);
+    tm_erode(&P, E.r);
+    for (i = 0; i < 3 * 256 * 7; i++) { /* triangle 12 from each vertex, 256 angles in its plane, 7 tilts (the fuzzer's) */
+        const unsigned *t = m.idx + 3 * 12;
+        const double *va = m.v + 3 * t[i / 1792], *vb = m.v + 3 * t[(i / 1792 + 1) % 3], *vc = m.v + 3 * t[(i / 1792 + 2) % 3];
+        double e1[3], e2[3], n[3], th = (double)(i / 7 % 256) * (2 * M_PI / 256), d[3], o[3], t_host, bu, bv;
+        char why[160];
+        unsigned tri;
+        re_hit_t h;
+        (void)vc;
+        tm_sub(m.v + 3 * t[1], m.v + 3 * t[0], e1); /* the normal as the fuzzer takes it */
+        tm_sub(m.v + 3 * t[2], m.v + 3 * t[0], e2);
+        tm_cross(e1, e2, n);
+        tm_norm(n);
+        tm_sub(vb, va, e1);
+        tm_norm(e1);
+        tm_cross(n, e1, e2);
+        for (a = 0; a < 3; a++) d[a] = cos(th) * e1[a] + sin(th) * e2[a] + tilt[i % 7] * n[a], o[a] = va[a] - 3 * scale * d[a];
+        if (!tm_hit_exact_uv(&m, o, d, &t_host, &tri, &bu, &bv)) continue;
+        hits++;
+        re_query(s, o, d, 0, tri, t_host, &h);
+        n_round += h.kind == RE_HIT_ROUNDED;
+        if ((!along_answer_on_surface(&P, &E, o, d, t_host, &h, tol, why, sizeof why) ||
+             !along_answer_not_deep(&E, o, d, t_host, &h, scale, tol, 16, why, sizeof why) ||
+             (h.kind == RE_HIT_ROUNDED && !along_reflection_starts_on_hull(s, &P, d, &h, scale, why, sizeof why))) &&
+            ++bad <= 4)
+            T_FAIL("vertex %ld, angle %ld/256, tilt %g: %s", i / 1792, i / 7 % 256, tilt[i % 7], why);
+    }
+    T_INT_EQ(bad, 0);
+    T_GT(hits, 1792);
+    T_GT(n_round, 0);
+    fprintf(stderr, "    %ld rays hit the hull, %ld of them the rounded surface\n", hits, n_round);
+    re_free(s);
+    tm_free(&m);
+}
+
+/* fuzz_rounded_exact, 2026-12-06 (compact layout, offset 1e6): a 5-point
+   hull at r = 2^-22 of its size, about 4 000 ulps of its coordinates, and
+   rays straight up (+z) at points of its edge 0-2 lifted by 0 to 7 r (the
+   fuzzer's ray family: 256 fractions, 8 lifts). Face 1 beside that edge
+   is within 1e-5 rad of vertical, so such a ray runs along it: the
+   fuzzer's ray 6 (fraction 213/255, lift 7) passed the edge's cylinder
+   1.8e-11 outside at its seam with face 1, below the coordinates' ulp
+   (1.2e-10), then sank below face 1 at a slope of 9.3e-6, 2.1e-6 (4.5 r)
+   deep, and was answered with a pass-through at the host's hit. Each
+   answer lies on the rounded surface (a pass-through: on the sharp hull),
+   and the ray is nowhere 1e-7 of the size deep in the rounded solid
+   before it nor, after a pass-through, up to 4 sizes on (the fuzzer's
+   bound); a rounded hit's reflected ray starts on the sharp hull, pushed
+   out. */
+static void ray_sinking_past_a_lost_tangent_contact(void)
+{
+    static const double q[5][3] = {{-0.89999237048905167, -0.89999237048905167, -0.49999237048905165},
+                                   {0.99963378347447929, 0.99374380102235449, 0.1215686274509804},
+                                   {0.99963378347447929, 1, -0.98440527962157631},
+                                   {0.11723506523231864, -0.99563591973754484, -1},
+                                   {-1, -1, 0.99221789883268485}};
+    static const double off[3] = {1e6, -1e6, 1e6};
+    static tm_poly_t P;
+    tm_mesh_t m = {0}, mw = {0};
+    tm_eroded_t E;
+    re_scene_t *s;
+    double scale = tm_size(q[0], 5), tol = 1e-9 * scale, deep_tol = 1e-7 * scale, d[3] = {0, 0, 1};
+    long k, hits = 0, bad = 0, n_round = 0;
+    unsigned i;
+    int a;
+    memset(&P, 0, sizeof P);
+    tm_hull(q, 5, &m, &P);
+    for (i = 0; i < m.nv; i++) tm_vert(&mw, m.v[3 * i] + off[0], m.v[3 * i + 1] + off[1], m.v[3 * i + 2] + off[2]);
+    for (i = 0; i < m.ni; i += 3) tm_tri(&mw, m.idx[i], m.idx[i + 1], m.idx[i + 2]);
+    s = build1_in(&mw, ldexp(scale, -22), 1);
+    if (!s) { tm_free(&m); tm_free(&mw); return; }
+    E.P = &P, E.r = re_object_radius(s, 0);
+    tm_erode(&P, E.r);
+    for (k = 0; k < 256 * 8; k++) {
+        double f = (double)(k % 256) / 255.0, o[3], ol[3], t_host, bu, bv, worst = 0, tw = 0;
+        char why[160];
+        unsigned tri;
+        re_hit_t h;
+        for (a = 0; a < 3; a++) {
+            o[a] = q[0][a] + off[a] + f * (q[2][a] - q[0][a]) + (a == 2 ? (double)(k / 256) * E.r - 3 * scale : 0);
+            ol[a] = o[a] - off[a];
+        }
+        if (!tm_hit_uv(&mw, o, d, &t_host, &tri, &bu, &bv)) continue;
+        hits++;
+        re_query(s, o, d, 0, tri, t_host, &h);
+        n_round += h.kind == RE_HIT_ROUNDED;
+        if (!along_answer_on_surface(&P, &E, ol, d, t_host, &h, tol, why, sizeof why) ||
+            !along_answer_not_deep(&E, ol, d, t_host, &h, scale, deep_tol, 64, why, sizeof why)) {
+            if (++bad <= 4) T_FAIL("fraction %ld/255 lift %ld r: %s", k % 256, k / 256, why);
+            continue;
+        }
+        if (h.kind == RE_HIT_ROUNDED) { /* the reflected ray's origin: on the sharp hull, pushed out */
+            double d2[3], org[3], orgl[3], pl[3], out = 0, off_line = 0, dn = tm_dot(d, h.normal),
+                   lo = RE_ORIGIN_OFFSET_REL * scale, hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * scale;
+            for (a = 0; a < 3; a++) d2[a] = dn < 0 ? d[a] - 2 * dn * h.normal[a] : d[a];
+            re_secondary_origin(s, &h, d2, org);
+            for (a = 0; a < 3; a++) orgl[a] = org[a] - off[a], pl[a] = h.point[a] - off[a];
+            if (!tm_origin_ok(&P, orgl, pl, d2, lo, hi, 8 * RE__DBL_EPS * (scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2])),
+                              &out, &off_line) &&
+                ++bad <= 4)
+                T_FAIL("fraction %ld/255 lift %ld r: the secondary origin is %.3g outside the sharp hull, %.3g off its ray",
+                       k % 256, k / 256, out, off_line);
+        }
+        if (h.kind != RE_PASS_THROUGH) continue;
+        for (i = 0; i <= 8192; i++) { /* past a pass-through: outside the rounded solid, to deep_tol */
+            double tt = h.t + 4 * scale * i / 8192.0, p[3], sd;
+            for (a = 0; a < 3; a++) p[a] = ol[a] + tt * d[a];
+            sd = tm_eroded_sdf(&E, p);
+            if (sd < worst) worst = sd, tw = tt;
+        }
+        if (!(worst > -deep_tol) && ++bad <= 4)
+            T_FAIL("fraction %ld/255 lift %ld r: pass-through at t %.17g (host %.17g), %.3g deep in the rounded solid at t %.17g",
+                   k % 256, k / 256, h.t, t_host, -worst, tw);
+    }
+    T_INT_EQ(bad, 0);
+    T_GT(hits, 256 * 6);
+    T_GT(n_round, 0);
+    fprintf(stderr, "    %ld rays hit the hull, %ld of them the rounded surface\n", hits, n_round);
+    re_free(s);
+    tm_free(&m);
+    tm_free(&mw);
+}
+
 /* Faces bordered by more than RE__CLEAR_TREE_MIN planes (a fine polygon's
    caps) find their corners' exit clearance through an angular tree of
    their neighbours instead of reading them all, which was quadratic: a
@@ -2225,6 +2409,8 @@ int main(int argc, char **argv)
         T_CASE(rays_along_a_face_through_its_vertices),
         T_CASE(compact_layout_rays_along_a_face_through_its_vertices),
         T_CASE(rays_along_a_face_past_a_sharp_corner),
+        T_CASE(ray_sinking_past_a_lost_tangent_contact),
+        T_CASE(lost_contact_along_a_face_reflects_off_it),
         T_CASE(flat_test_beside_a_sharp_corner_far_out),
         T_CASE(grazing_along_a_subdivided_edge),
         T_CASE(long_straight_chains),
