@@ -6116,13 +6116,21 @@ static void re__feature_normal(const re__object_t *o, re__best_t *b, const doubl
         re__sub(P, re__cptr(o, b, b->index), nrm);
     } else {
         unsigned sp[2];
-        double keep[3], u[3];
+        double keep[3], u[3], L2, t;
         const double *a, *z;
+        int near_a = b->h <= 0.5;
         re__cyl_spheres(o, b->index, sp);
         re__cpair(o, b, sp[0], sp[1], &a, &z, keep);
         re__sub(z, a, u);
-        re__madd(a, b->h, u, c);
-        re__sub(P, c, nrm);
+        /* P's offset from the axis, from the nearer end (b->h picks it): the
+           axis point a + h u is off along the axis by ulps of h times the
+           axis length, which turns the normal by that over r (an edge 1e6
+           long, r 6e-8: 2e-3 rad; fuzz_rounded_build) */
+        L2 = re__dot(u, u);
+        re__sub(P, near_a ? a : z, c);
+        t = L2 > 0 ? re__dot(c, u) / L2 : 0; /* the axis point's offset from that end, clamped to the span */
+        t = near_a ? re__max(0.0, re__min(1.0, t)) : re__max(-1.0, re__min(0.0, t));
+        re__madd(c, -t, u, nrm);
     }
     len = re__len(nrm);
     if (len > 0) nrm[0] /= len, nrm[1] /= len, nrm[2] /= len;

@@ -1801,6 +1801,59 @@ static re_scene_t *build1_in(const tm_mesh_t *m, double r, int layout)
     return s;
 }
 
+/* A box 1e6 long and 1 wide, r = 1e-4: rays at its four long edges between
+   x = -2e4 and -1e4, far from the x = -1e6 end, where the cylinders' axes
+   start (the edges' lower vertex). A cylinder's normal is taken
+   from the axis point a + h u; from the far end, h's rounding moved that
+   point by ulps of the axis length (1.2e-10), which turned the normal by
+   about 1e-6 (fuzz_rounded_build: 2e-3 rad at r = 6e-8). From the nearer
+   end it is within 4 ulps of the hit's coordinates over r of the exact
+   rounded box's. */
+static void normals_far_from_a_long_edges_far_end(void)
+{
+    static const double lo[3] = {-1e6, 0, 0}, hi[3] = {0, 1, 1}; /* tm_box's first vertex, an axis's start, at the far end */
+    tm_mesh_t m = {0};
+    re_diag_t dg;
+    re_scene_t *s;
+    t_rng_t rng = {77};
+    double r = 1e-4, worst = 0;
+    long i, n_round = 0;
+    int a;
+    tm_box(&m, lo, hi);
+    s = build1(&m, r, &dg);
+    if (!T_CHECK(s != NULL)) { tm_free(&m); return; }
+    for (i = 0; i < 4000; i++) {
+        double tgt[3], o[3], d[3], t_host, bu, bv, q[3], nref[3], len, dn = 0, bound;
+        unsigned tri;
+        re_hit_t h;
+        int e = (int)(i % 4);
+        tgt[0] = t_rng_range(&rng, -2e4, -1e4), tgt[1] = e & 1 ? 1 : 0, tgt[2] = e & 2 ? 1 : 0;
+        d[0] = t_rng_range(&rng, -0.3, 0.3), d[1] = (e & 1 ? -1 : 1) * t_rng_range(&rng, 0.2, 1),
+        d[2] = (e & 2 ? -1 : 1) * t_rng_range(&rng, 0.2, 1);
+        for (a = 0; a < 3; a++) tgt[a] += t_rng_range(&rng, -2, 2) * r * (a > 0), o[a] = tgt[a] - 3 * d[a];
+        if (!tm_hit_uv(&m, o, d, &t_host, &tri, &bu, &bv)) continue;
+        re_query(s, o, d, 0, tri, t_host, &h);
+        if (h.kind != RE_HIT_ROUNDED) continue;
+        n_round++;
+        for (a = 0; a < 3; a++) { /* the exact rounded box's normal: from the inner box's nearest point */
+            double c = h.point[a] < lo[a] + r ? lo[a] + r : h.point[a] > hi[a] - r ? hi[a] - r : h.point[a];
+            q[a] = h.point[a] - c;
+        }
+        len = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        for (a = 0; a < 3; a++) nref[a] = q[a] / len, dn += fabs(nref[a] - h.normal[a]);
+        bound = 4 * RE__DBL_EPS * (fabs(h.point[0]) + fabs(h.point[1]) + fabs(h.point[2])) / r;
+        if (dn / bound > worst) worst = dn / bound;
+        if (!(dn <= bound)) {
+            T_FAIL("ray %ld: rounded hit at x %.17g, normal %.3g off the exact one (bound %.3g)", i, h.point[0], dn, bound);
+            break;
+        }
+    }
+    T_GT(n_round, 500);
+    fprintf(stderr, "    %ld rounded hits, worst normal %.2f of the bound\n", n_round, worst);
+    re_free(s);
+    tm_free(&m);
+}
+
 /* fuzz_rounded_exact, 2026-12-06 (its mode for rays along a face, compact
    layout): a 16-point hull at r = 2^-6 of its size, and its family of
    rays along triangle 12 through each of its vertices: 256 angles in the
@@ -2411,6 +2464,7 @@ int main(int argc, char **argv)
         T_CASE(rays_along_a_face_past_a_sharp_corner),
         T_CASE(ray_sinking_past_a_lost_tangent_contact),
         T_CASE(lost_contact_along_a_face_reflects_off_it),
+        T_CASE(normals_far_from_a_long_edges_far_end),
         T_CASE(flat_test_beside_a_sharp_corner_far_out),
         T_CASE(grazing_along_a_subdivided_edge),
         T_CASE(long_straight_chains),

@@ -359,11 +359,19 @@ static int tm_origin_ok(const tm_poly_t *P, const double org[3], const double st
 /* The point of segment ab nearest to p in q; returns its distance. */
 static double tm_seg_nearest(const double p[3], const double a[3], const double b[3], double q[3])
 {
-    double ab[3], ap[3], t, dq[3];
-    tm_sub(b, a, ab); tm_sub(p, a, ap);
+    double ab[3], ap[3], bp[3], t, dq[3];
+    tm_sub(b, a, ab); tm_sub(p, a, ap); tm_sub(p, b, bp);
     t = tm_dot(ab, ab) > 0 ? tm_dot(ap, ab) / tm_dot(ab, ab) : 0;
     t = t < 0 ? 0 : t > 1 ? 1 : t;
-    q[0] = a[0] + t * ab[0], q[1] = a[1] + t * ab[1], q[2] = a[2] + t * ab[2];
+    /* from the nearer end: t's rounding moves q along the segment by ulps
+       of its length times t, which turns p - q by that over |p - q| (an
+       edge 1e6 long, r 6e-8: 2.5e-3 rad from a; fuzz_rounded_build) */
+    if (t <= 0.5) q[0] = a[0] + t * ab[0], q[1] = a[1] + t * ab[1], q[2] = a[2] + t * ab[2];
+    else {
+        double u = tm_dot(ab, ab) > 0 ? -tm_dot(bp, ab) / tm_dot(ab, ab) : 0; /* 1 - t, from b */
+        u = u < 0 ? 0 : u > 1 ? 1 : u;
+        q[0] = b[0] - u * ab[0], q[1] = b[1] - u * ab[1], q[2] = b[2] - u * ab[2];
+    }
     tm_sub(q, p, dq);
     return tm_len(dq);
 }
