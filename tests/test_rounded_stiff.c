@@ -822,6 +822,27 @@ static int along_answer_not_deep(const tm_eroded_t *E, const double o[3], const 
     return 1;
 }
 
+/* A rounded hit h of the ray along d: its reflected ray's origin
+   (re_secondary_origin) lies on the sharp hull P, pushed out by the
+   documented offset, on that ray. off: the scene's coordinates minus P's
+   (NULL: none). 0 and the reason in why when not. */
+static int along_reflection_starts_on_hull(const re_scene_t *s, const tm_poly_t *P, const double off[3], const double d[3],
+                                           const re_hit_t *h, double scale, char *why, size_t n)
+{
+    double d2[3], org[3], orgl[3], pl[3], out = 0, off_line = 0, dn = tm_dot(d, h->normal), lo = RE_ORIGIN_OFFSET_REL * scale,
+           hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * scale;
+    int a;
+    for (a = 0; a < 3; a++) d2[a] = dn < 0 ? d[a] - 2 * dn * h->normal[a] : d[a];
+    re_secondary_origin(s, h, d2, org);
+    for (a = 0; a < 3; a++) orgl[a] = org[a] - (off ? off[a] : 0), pl[a] = h->point[a] - (off ? off[a] : 0);
+    if (tm_origin_ok(P, orgl, pl, d2, lo, hi, 8 * RE__DBL_EPS * (scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2])), &out,
+                     &off_line))
+        return 1;
+    snprintf(why, n, "rounded hit (feature %d %u) at t %.17g: its reflection starts %.3g outside the sharp hull, %.3g off its ray",
+             (int)h->feature, h->feature_index, h->t, out, off_line);
+    return 0;
+}
+
 /* One hull, rays lying exactly in its top face's plane y = 1 through a
    vertex or edge point of that face (found by fuzz_rounded_exact: a ray
    through a vertex, along a face whose edge from it runs 0.9 degrees off
@@ -888,15 +909,9 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
                        i, (int)h.feature, h.feature_index, h.t, dd, dn_ok);
         }
         if (h.kind == RE_HIT_ROUNDED) { /* the reflected ray's origin: on the sharp hull, pushed out */
-            double d2[3], org[3], out = 0, off_line = 0, dn = tm_dot(d, h.normal), lo = RE_ORIGIN_OFFSET_REL * scale,
-                   hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * scale;
-            for (a = 0; a < 3; a++) d2[a] = dn < 0 ? d[a] - 2 * dn * h.normal[a] : d[a];
-            re_secondary_origin(s, &h, d2, org);
             ++*n_round;
-            if (!tm_origin_ok(&P, org, h.point, d2, lo, hi, 8 * RE__DBL_EPS * (scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2])),
-                              &out, &off_line) &&
-                ++*bad < 5)
-                T_FAIL("r %g ray %ld: the secondary origin is %.3g outside the sharp hull, %.3g off its ray", r_rel, i, out, off_line);
+            if (!along_reflection_starts_on_hull(s, &P, NULL, d, &h, scale, why, sizeof why) && ++*bad < 5)
+                T_FAIL("r %g ray %ld: %s", r_rel, i, why);
         }
         if (!along_answer_not_deep(&E, o, d, t_host, &h, scale, tol, 64, why, sizeof why) && ++*bad < 5)
             T_FAIL("r %g ray %ld: %s", r_rel, i, why);
@@ -904,25 +919,6 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
     re_free(s);
     tm_free(&m);
     return hits;
-}
-
-/* A rounded hit h of the ray along d: its reflected ray's origin
-   (re_secondary_origin) lies on the sharp hull P, pushed out by the
-   documented offset, on that ray. 0 and the reason in why when not. */
-static int along_reflection_starts_on_hull(const re_scene_t *s, const tm_poly_t *P, const double d[3], const re_hit_t *h,
-                                           double scale, char *why, size_t n)
-{
-    double d2[3], org[3], out = 0, off_line = 0, dn = tm_dot(d, h->normal), lo = RE_ORIGIN_OFFSET_REL * scale,
-           hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * scale;
-    int a;
-    for (a = 0; a < 3; a++) d2[a] = dn < 0 ? d[a] - 2 * dn * h->normal[a] : d[a];
-    re_secondary_origin(s, h, d2, org);
-    if (tm_origin_ok(P, org, h->point, d2, lo, hi, 8 * RE__DBL_EPS * (scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2])), &out,
-                     &off_line))
-        return 1;
-    snprintf(why, n, "rounded hit (feature %d %u) at t %.17g: its reflection starts %.3g outside the sharp hull, %.3g off its ray",
-             (int)h->feature, h->feature_index, h->t, out, off_line);
-    return 0;
 }
 
 /* Rays through every vertex of the hull (v, t) at r_rel of its size, each
@@ -975,7 +971,7 @@ static long rays_along_faces_of(const double (*v)[3], unsigned nv, const unsigne
                 T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
             if (!along_answer_not_deep(&E, o, d, t_host, &h, scale, tol, 16, why, sizeof why) && ++bad < 5)
                 T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
-            if (h.kind == RE_HIT_ROUNDED && !along_reflection_starts_on_hull(s, &P, d, &h, scale, why, sizeof why) && ++bad < 5)
+            if (h.kind == RE_HIT_ROUNDED && !along_reflection_starts_on_hull(s, &P, NULL, d, &h, scale, why, sizeof why) && ++bad < 5)
                 T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
         }
     }
@@ -1916,7 +1912,7 @@ static void lost_contact_along_a_face_reflects_off_it(void)
         n_round += h.kind == RE_HIT_ROUNDED;
         if ((!along_answer_on_surface(&P, &E, o, d, t_host, &h, tol, why, sizeof why) ||
              !along_answer_not_deep(&E, o, d, t_host, &h, scale, tol, 16, why, sizeof why) ||
-             (h.kind == RE_HIT_ROUNDED && !along_reflection_starts_on_hull(s, &P, d, &h, scale, why, sizeof why))) &&
+             (h.kind == RE_HIT_ROUNDED && !along_reflection_starts_on_hull(s, &P, NULL, d, &h, scale, why, sizeof why))) &&
             ++bad <= 4)
             T_FAIL("vertex %ld, angle %ld/256, tilt %g: %s", i / 1792, i / 7 % 256, tilt[i % 7], why);
     }
@@ -1984,18 +1980,8 @@ static void ray_sinking_past_a_lost_tangent_contact(void)
             if (++bad <= 4) T_FAIL("fraction %ld/255 lift %ld r: %s", k % 256, k / 256, why);
             continue;
         }
-        if (h.kind == RE_HIT_ROUNDED) { /* the reflected ray's origin: on the sharp hull, pushed out */
-            double d2[3], org[3], orgl[3], pl[3], out = 0, off_line = 0, dn = tm_dot(d, h.normal),
-                   lo = RE_ORIGIN_OFFSET_REL * scale, hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * scale;
-            for (a = 0; a < 3; a++) d2[a] = dn < 0 ? d[a] - 2 * dn * h.normal[a] : d[a];
-            re_secondary_origin(s, &h, d2, org);
-            for (a = 0; a < 3; a++) orgl[a] = org[a] - off[a], pl[a] = h.point[a] - off[a];
-            if (!tm_origin_ok(&P, orgl, pl, d2, lo, hi, 8 * RE__DBL_EPS * (scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2])),
-                              &out, &off_line) &&
-                ++bad <= 4)
-                T_FAIL("fraction %ld/255 lift %ld r: the secondary origin is %.3g outside the sharp hull, %.3g off its ray",
-                       k % 256, k / 256, out, off_line);
-        }
+        if (h.kind == RE_HIT_ROUNDED && !along_reflection_starts_on_hull(s, &P, off, d, &h, scale, why, sizeof why) && ++bad <= 4)
+            T_FAIL("fraction %ld/255 lift %ld r: %s", k % 256, k / 256, why); /* on the sharp hull, pushed out */
         if (h.kind != RE_PASS_THROUGH) continue;
         for (i = 0; i <= 8192; i++) { /* past a pass-through: outside the rounded solid, to deep_tol */
             double tt = h.t + 4 * scale * i / 8192.0, p[3], sd;
