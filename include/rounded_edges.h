@@ -58,6 +58,13 @@
                         re_bevel_cycles and their types)
      RE_NO_COMPACT      leave out RE_LAYOUT_COMPACT (re_build() then rejects
                         it): the query loses its layout tests
+     RE_SET_CAP         most corners one query holds (default 1024; 12 bytes
+                        each on the query's stack, touched only as far as
+                        the query uses them; at least 16). A query that had
+                        to drop a corner says so:
+                        re_hit_t.flags gets RE_HIT_INCOMPLETE. Only finely
+                        tessellated faces under large radii come near it
+                        (docs/rounded_edges.md, Limits)
    MEMORY
      re_build() and re_build_sizes() allocate their scratch and scene blocks
      with RE_MALLOC. On Linux, with the default allocator, they ask the
@@ -418,7 +425,14 @@ typedef struct re_hit_t {
     re_feature_t feature;
     unsigned feature_index;
     unsigned object;
+    unsigned flags;        /* RE_HIT_INCOMPLETE or 0 */
 } re_hit_t;
+
+/* re_hit_t.flags: the query met more corners than it holds (RE_SET_CAP)
+   and dropped some, so the answer can be sharp or off where a dropped
+   corner's rounding was the nearest. Never set on the benchmark scenes;
+   see docs/rounded_edges.md, Limits. */
+#define RE_HIT_INCOMPLETE 1u
 
 /* The host found `dir`-ray (o + t*dir) hits `triangle` of `object` at t_host,
    from outside. Returns out->kind (also the return value). Pure, const,
@@ -827,8 +841,16 @@ static double re__min(double a, double b) { return a < b ? a : b; }
    the walk adds. A finely tessellated round rim under a large radius puts
    hundreds of them within reach of one point (a 512-gon prism at r = 0.4
    of its radius: 188 detected, 66 of them needed); 64 dropped some
-   (found by review, 2026-12-06). 4 KiB of stack; nothing is cleared. */
-#define RE__SET_CAP 1024
+   (found by review, 2026-12-06). 12 KiB of stack with its table
+   (re__set_t); a corner dropped sets re__set_t.full, and the answer's
+   RE_HIT_INCOMPLETE. */
+#ifndef RE_SET_CAP
+#define RE_SET_CAP 1024
+#endif
+#if RE_SET_CAP < 16
+#error "RE_SET_CAP: a query needs room for at least 16 corners"
+#endif
+#define RE__SET_CAP ((unsigned)(RE_SET_CAP))
 
 #define RE__NONE 0xFFFFFFFFu
 
@@ -5952,29 +5974,75 @@ static int re__corner_has_plane(const re__object_t *o, const re__kv_t *K, unsign
     return 0;
 }
 
-/* The corners a query works on, with a 64-bit filter of their ids, so "is
-   w in the set?" mostly needs no search. */
+/* The corners a query works on. "Is w in the set?" is asked for every
+   candidate the detection and the walk meet: up to RE__SET_SCAN corners,
+   a 64-bit filter of their ids mostly answers it without a search; past
+   that (a finely tessellated rim under a large radius: hundreds of
+   corners, where the scans were 90% of a query's time) an open-addressed
+   table of their positions, filled once when the set outgrows the scan.
+   Only the first RE__SET_SCAN slots of c and, past them, the table are
+   ever written: nothing is cleared for the common small set. */
+#define RE__SET_SCAN 64u
+#define RE__SET_TAB (2u * RE__SET_CAP) /* table slots: at most half full */
 typedef struct re__set_t {
     unsigned c[RE__SET_CAP], n;
+    unsigned full; /* a corner was dropped: the set was at RE__SET_CAP */
     unsigned long long bloom;
+    unsigned tab[RE__SET_TAB]; /* past RE__SET_SCAN: position + 1 of the corner hashed there, 0 empty */
 } re__set_t;
 
-static unsigned long long re__bloom_bit(unsigned c) { return 1ull << ((c * 0x9E3779B1u) >> 26); }
+static void re__set_init(re__set_t *S)
+{
+    S->n = 0;
+    S->full = 0;
+    S->bloom = 0;
+}
 
-/* Position of corner w in the set, or n. */
-static unsigned re__set_find(const re__set_t *S, unsigned w)
+static unsigned long long re__bloom_bit(unsigned c) { return 1ull << ((c * 0x9E3779B1u) >> 26); }
+static unsigned re__set_slot(unsigned c) { return (c * 0x9E3779B1u) % RE__SET_TAB; }
+
+/* re__set_find past RE__SET_SCAN corners: the table, out of the common path. */
+RE__NOINLINE static unsigned re__set_find_in_table(const re__set_t *S, unsigned w)
 {
     unsigned q;
+    for (q = re__set_slot(w); S->tab[q]; q = (q + 1u) % RE__SET_TAB)
+        if (S->c[S->tab[q] - 1u] == w) return S->tab[q] - 1u;
+    return S->n;
+}
+
+/* Position of corner w in the set, or n. */
+static inline unsigned re__set_find(const re__set_t *S, unsigned w)
+{
+    unsigned q;
+    if (S->n > RE__SET_SCAN) return re__set_find_in_table(S, w);
     if (!(S->bloom & re__bloom_bit(w))) return S->n;
     for (q = 0; q < S->n && S->c[q] != w; q++) {}
     return q;
 }
 
+/* Enters position i of the set into the table. */
+static void re__set_hash(re__set_t *S, unsigned i)
+{
+    unsigned q;
+    for (q = re__set_slot(S->c[i]); S->tab[q]; q = (q + 1u) % RE__SET_TAB) {}
+    S->tab[q] = i + 1u;
+}
+
 static int re__set_add(re__set_t *S, unsigned c)
 {
-    if (re__set_find(S, c) < S->n || S->n == RE__SET_CAP) return 0;
+    unsigned i;
+    if (re__set_find(S, c) < S->n) return 0;
+    if (S->n == RE__SET_CAP) {
+        S->full = 1;
+        return 0;
+    }
     S->c[S->n++] = c;
     S->bloom |= re__bloom_bit(c);
+    if (S->n == RE__SET_SCAN + 1u) { /* outgrew the scan: the table, from here on */
+        memset(S->tab, 0, sizeof S->tab);
+        for (i = 0; i < S->n; i++) re__set_hash(S, i);
+    } else if (S->n > RE__SET_SCAN + 1u)
+        re__set_hash(S, S->n - 1u);
     return 1;
 }
 
@@ -6245,7 +6313,7 @@ static int re__walk_grow(const re__object_t *o, re__set_t *S, re__best_t *b, con
     re__madd(I, s < HUGE_VAL ? s : 0.0, dir, P);
     re__sub(P, I, IP);
     inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
-    for (i = 0; i < S->n && S->n < RE__SET_CAP; i++) {
+    for (i = 0; i < S->n; i++) {
         re__kv_t K = re__kview(o, S->c[i]);
         for (j = 0; j < K.np; j++) {
             unsigned w = re__s_corner(o, re__far_sphere(o, o->refs[K.first + j]));
@@ -6744,6 +6812,13 @@ static double re__onto_face(const re__object_t *o, unsigned f, const double I[3]
     return sf;
 }
 
+/* The answer's RE_HIT_INCOMPLETE when the query dropped a corner (RE_SET_CAP). */
+static re_hit_kind_t re__flag_dropped(const re__set_t *S, re_hit_t *out, re_hit_kind_t kind)
+{
+    if (S->full) out->flags |= RE_HIT_INCOMPLETE;
+    return kind;
+}
+
 /* Query steps 1-5 for a hit I0 on face plane f of object o (out holds the
    answer "unchanged" from re__query_start). */
 static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const double I0[3], const double dir[3], double t_host,
@@ -6753,14 +6828,13 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
     unsigned iter, exit_plane, ndet, c0 = RE__NONE;
     re__best_t best;
     double s_exit, I[3], t_on = t_host + re__onto_face(o, f, I0, dir, t_host, I);
-    S.n = 0;
-    S.bloom = 0;
+    re__set_init(&S);
     best.cvalid = 0;
     ndet = re__detect_leaf(o, f, I, &S, &best, &c0);
-    if (!S.n || re__on_flat_part(o, &S, f, I)) return RE_UNCHANGED;
+    if (!S.n || re__on_flat_part(o, &S, f, I)) return re__flag_dropped(&S, out, RE_UNCHANGED);
     best.smin = -RE__HOST_T_SLACK * fabs(t_host);
     if (ndet == 1 && c0 != RE__NONE && S.n == 2 && re__one_edge(o, &S, c0, I, dir, &best, &s_exit, &exit_plane))
-        return re__answer(o, &best, s_exit, exit_plane, I, dir, t_on, out);
+        return re__flag_dropped(&S, out, re__answer(o, &best, s_exit, exit_plane, I, dir, t_on, out));
     /* inside the removed volume: nearest capsule or the exit, walking the
        adjacency graph (cylinder -> corner) while the ray runs toward corners
        not yet in the set (grazing rays, §3.1) */
@@ -6778,7 +6852,7 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
         unsigned g = re__hit_in_slab(o, &S, &best, I, dir);
         if (g != RE__NONE) best.s = HUGE_VAL, s_exit = 0, exit_plane = g;
     }
-    return re__answer(o, &best, s_exit, exit_plane, I, dir, t_on, out);
+    return re__flag_dropped(&S, out, re__answer(o, &best, s_exit, exit_plane, I, dir, t_on, out));
 }
 
 /* re_query and re_query_uv (with_uv: the host's barycentrics first). */
@@ -6819,6 +6893,7 @@ static re_hit_kind_t re__query_exit(const re_scene_t *scene, const double o3[3],
     }
     case RE_PASS_THROUGH: break;
     }
+    face.flags = out->flags;
     *out = face;
     out->kind = RE_PASS_THROUGH;
     return RE_PASS_THROUGH;
@@ -6985,6 +7060,37 @@ static int re__leaves_on_face(const re__object_t *o, const re__set_t *S, const d
     return 0;
 }
 
+/* The origin of a ray that leaves through plane g at the hit P, before
+   the push: P moved down onto g when above it (so the origin stands out of
+   the mesh by the push, not by the push and P's height), P itself when
+   below (moved up, the origin would leave the ray by that depth and the
+   push: 9e-15 past a push of 3.46e-9 at a seam hit sinking into its face,
+   fuzz_rounded_exact, seed seam_hit_below_its_face). */
+static void re__down_onto(const re__plane_t *g, const double P[3], double origin[3])
+{
+    re__madd(P, -re__max(0.0, re__dot(g->n, P) - g->c), g->n, origin);
+}
+
+/* Does the rounded hit P lie on the plane g its ray leaves by: below g by
+   no more than the plane test's rounding (RE__FLAT_ULPS of the
+   magnitudes), above it by no more than the features' noise (RE__SIDE_ULPS,
+   or half the push if larger: a capsule may stand out of its faces by the
+   centres' noise)? Then the ray leaves through g at P itself, and the
+   origin starts there (re__down_onto). From rounding alone the crossing
+   side / (dir . n_g) means nothing: a reflection along g (dir . n_g =
+   1e-16, P 1e-16 below g) crossed 1.14 sizes on, past g's far edge, its
+   origin 0.54 outside the mesh; and a hit 6.9e-15 above g left its origin
+   that much more than the push outside (fuzz_rounded_exact, seeds
+   reflection_along_a_face_from_its_seam, hit_above_its_exit_plane). Below
+   g by more, the crossing stands: started at P, the origin would lie inside
+   the mesh by that depth less the push (at offset 1e6 a hit 1.7e-8 below g
+   against a push of 2e-9, seed seam_hit_far_out_keeps_its_walk). */
+static int re__on_exit_plane(const re__plane_t *g, const double P[3], double push)
+{
+    double side = re__dot(g->n, P) - g->c, mag = fabs(g->c) + fabs(P[0]) + fabs(P[1]) + fabs(P[2]);
+    return side >= -RE__FLAT_ULPS * mag && side <= re__max(RE__SIDE_ULPS * mag, 0.5 * push);
+}
+
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
 {
     const re__object_t *o;
@@ -7006,8 +7112,7 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
         if (dn != dn || (dn < 0 && dn * dn > RE__INTO_SOLID_EPS * RE__INTO_SOLID_EPS * re__dot(dir, dir))) return;
     }
     if (hit->kind == RE_HIT_ROUNDED && dir) {
-        S.n = 0;
-        S.bloom = 0;
+        re__set_init(&S);
         if (hit->feature == RE_FEATURE_SPHERE && hit->feature_index < o->n_spheres) {
             re__set_add(&S, re__s_corner(o, hit->feature_index));
         } else if (hit->feature == RE_FEATURE_CYLINDER && hit->feature_index < o->n_cyls) {
@@ -7022,13 +7127,14 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
             if (!iter && re__exit_on_face(o, &S, &b, hit->point, dir, s, plane)) break;
             if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &b, hit->point, dir, s)) break;
         }
-        if (S.n && re__leaves_on_face(o, &S, hit->point, nrm, dir, s, push, &plane)) { /* onto that face */
-            const re__plane_t *g = &o->planes[plane];
-            re__madd(hit->point, g->c - re__dot(g->n, hit->point), g->n, origin);
-            nrm = g->n;
-        } else if (s < HUGE_VAL) {
-            re__madd(hit->point, s, dir, origin);
+        if (S.n && re__leaves_on_face(o, &S, hit->point, nrm, dir, s, push, &plane)) { /* at P, through that face */
+            re__down_onto(&o->planes[plane], hit->point, origin);
             nrm = o->planes[plane].n;
+        } else if (s < HUGE_VAL) {
+            const re__plane_t *g = &o->planes[plane];
+            if (re__on_exit_plane(g, hit->point, push)) re__down_onto(g, hit->point, origin);
+            else re__madd(hit->point, s, dir, origin);
+            nrm = g->n;
         }
     }
     re__madd(origin, push, nrm, origin);

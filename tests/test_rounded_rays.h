@@ -303,4 +303,94 @@ static void poly_rays(const tm_mesh_t *m, tm_poly_t *P, double r_req, long nrays
     re_free(s);
 }
 
+/* A round rim finely tessellated: an n-sided prism (circumradius 1, z in
+   [-1, 1], caps fanned from their centres; top cap triangle i is 2n + i),
+   and the distance in the cap's plane from (x, y) to its rounding's eroded
+   n-gon (apothem cos(pi/n) - r), 0 inside it. */
+static void rim_prism(tm_mesh_t *m, int n)
+{
+    int i;
+    unsigned top_c, bottom_c;
+    for (i = 0; i < n; i++) tm_vert(m, cos(2 * M_PI * i / n), sin(2 * M_PI * i / n), -1);
+    for (i = 0; i < n; i++) tm_vert(m, cos(2 * M_PI * i / n), sin(2 * M_PI * i / n), 1);
+    bottom_c = tm_vert(m, 0, 0, -1), top_c = tm_vert(m, 0, 0, 1);
+    for (i = 0; i < n; i++) tm_quad(m, (unsigned)i, (unsigned)((i + 1) % n), (unsigned)(n + (i + 1) % n), (unsigned)(n + i));
+    for (i = 0; i < n; i++) tm_tri(m, top_c, (unsigned)(n + i), (unsigned)(n + (i + 1) % n));
+    for (i = 0; i < n; i++) tm_tri(m, bottom_c, (unsigned)((i + 1) % n), (unsigned)i);
+}
+static double rim_eroded_distance(int n, double x, double y, double r)
+{
+    double sc = (cos(M_PI / n) - r) / cos(M_PI / n), best = HUGE_VAL;
+    int i, inside = 1;
+    for (i = 0; i < n; i++) {
+        double a0 = 2 * M_PI * i / n, a1 = 2 * M_PI * (i + 1) / n;
+        double px = sc * cos(a0), py = sc * sin(a0), ex = sc * cos(a1) - px, ey = sc * sin(a1) - py;
+        double t = ((x - px) * ex + (y - py) * ey) / (ex * ex + ey * ey);
+        if (ex * (y - py) - ey * (x - px) < 0) inside = 0;
+        t = t < 0 ? 0 : t > 1 ? 1 : t;
+        best = fmin(best, hypot(x - px - t * ex, y - py - t * ey));
+    }
+    return inside ? 0 : best;
+}
+
+/* Answers on rim_prism(n) rounded with r against the exact rounded prism
+   (the eroded n-gon times [-1 + r, 1 - r], plus a ball): for each of
+   `count` points near the rim, a ray down onto the top cap (re_query) and
+   one up from inside it (re_query_exit). Counts the wrong answers, those
+   flagged RE_HIT_INCOMPLETE, and the wrong ones not flagged. */
+typedef struct rim_tally_t { long queries, wrong, flagged, wrong_unflagged; } rim_tally_t;
+static void rim_check(rim_tally_t *t, int layout, const char *how, double x, double y, re_hit_kind_t want, double z,
+                      double r, re_hit_kind_t got, const re_hit_t *h)
+{
+    int wrong = got != want || (got == RE_HIT_ROUNDED && fabs(h->point[2] - z) > 1e-9 * r);
+    t->queries++;
+    t->flagged += (h->flags & RE_HIT_INCOMPLETE) != 0;
+    if (!wrong) return;
+    if (t->wrong++ < 3)
+        fprintf(stderr, "    layout %d %s at (%.17g, %.17g): kind %d z %.12g flags %u, want %d z %.12g\n", layout, how, x, y,
+                got, h->point[2], h->flags, want, z);
+    t->wrong_unflagged += !(h->flags & RE_HIT_INCOMPLETE);
+}
+static void rim_rays(const re_scene_t *s, int n, double r, int count, int layout, rim_tally_t *t)
+{
+    int k, m = count / 20 > 1 ? count / 20 : 2;
+    for (k = 0; k < 20 * m; k++) {
+        double phi = 2 * M_PI * (k % m) / m + 0.001, rho = 0.62 + 0.37 * (k / m) / 20.0;
+        double x = rho * cos(phi), y = rho * sin(phi), dd = rim_eroded_distance(n, x, y, r);
+        double z = (1 - r) + sqrt(r * r - dd * dd), down[3] = {0, 0, -1}, up[3] = {0, 0, 1};
+        double o_down[3], o_up[3];
+        unsigned tri = 2 * (unsigned)n + (unsigned)(phi / (2 * M_PI / n)) % (unsigned)n;
+        re_hit_t h;
+        re_hit_kind_t want = dd > 0 ? RE_HIT_ROUNDED : RE_UNCHANGED;
+        o_down[0] = o_up[0] = x, o_down[1] = o_up[1] = y, o_down[2] = 3, o_up[2] = 0;
+        rim_check(t, layout, "down", x, y, want, z, r, re_query(s, o_down, down, 0, tri, 2.0, &h), &h);
+        rim_check(t, layout, "up", x, y, want, z, r, re_query_exit(s, o_up, up, 0, tri, 1.0, &h), &h);
+    }
+}
+/* rim_prism(sides) built with r (not clamped) in `layout`, then rim_rays
+   at `count` points into *t; 0 when the build failed (a failed check). */
+static int rim_run(int sides, double r, int count, int layout, rim_tally_t *t)
+{
+    tm_mesh_t m = {0};
+    re_diag_t dg;
+    re_scene_t *s;
+    memset(t, 0, sizeof *t);
+    rim_prism(&m, sides);
+    g_layout = layout ? RE_LAYOUT_COMPACT : RE_LAYOUT_FAST;
+    s = build1(&m, r, &dg);
+    g_layout = RE_LAYOUT_FAST;
+    if (!T_CHECK(s != NULL)) {
+        fprintf(stderr, "    %s\n", dg.message);
+        tm_free(&m);
+        return 0;
+    }
+    T_CHECK(re_object_radius(s, 0) == r);
+    rim_rays(s, sides, r, count, layout, t);
+    fprintf(stderr, "    %d sides, layout %d: %ld queries, %ld wrong, %ld flagged\n", sides, layout, t->queries, t->wrong,
+            t->flagged);
+    re_free(s);
+    tm_free(&m);
+    return 1;
+}
+
 #endif
