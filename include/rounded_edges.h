@@ -7091,6 +7091,24 @@ static int re__on_exit_plane(const re__plane_t *g, const double P[3], double pus
     return side >= -RE__FLAT_ULPS * mag && side <= re__max(RE__SIDE_ULPS * mag, 0.5 * push);
 }
 
+/* A hit P below its exit plane g by more than re__on_exit_plane allows but
+   within half the push, whose crossing X = P + s dir of g lies on no edge
+   of g that the set reaches (re__exit_on_edge_of, as for a pass-through
+   along a face): the ray ran along g, on the mesh's surface, and rounding
+   put the crossing past g's far edge (a direction rising by 1e-17 from a
+   hit 1e-9 below g crossed 1e8 sizes on; reflection_along_a_face_from_below_its_seam).
+   It leaves through g at P, its origin then outside the mesh by at least
+   half the push. Only such hits reach the edge test. */
+static int re__crossing_out_of_reach(const re__object_t *o, const re__set_t *S, re__best_t *b, unsigned g, const double P[3],
+                                     const double dir[3], double s, double push)
+{
+    const re__plane_t *pg = &o->planes[g];
+    double X[3];
+    if (!(re__dot(pg->n, P) - pg->c >= -0.5 * push)) return 0;
+    re__madd(P, s, dir, X);
+    return !re__exit_on_edge_of(o, S, b, X, g, g);
+}
+
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
 {
     const re__object_t *o;
@@ -7132,8 +7150,10 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
             nrm = o->planes[plane].n;
         } else if (s < HUGE_VAL) {
             const re__plane_t *g = &o->planes[plane];
-            if (re__on_exit_plane(g, hit->point, push)) re__down_onto(g, hit->point, origin);
-            else re__madd(hit->point, s, dir, origin);
+            if (re__on_exit_plane(g, hit->point, push) || re__crossing_out_of_reach(o, &S, &b, plane, hit->point, dir, s, push))
+                re__down_onto(g, hit->point, origin);
+            else
+                re__madd(hit->point, s, dir, origin);
             nrm = g->n;
         }
     }

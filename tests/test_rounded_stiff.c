@@ -2384,6 +2384,56 @@ static void finest_rim_flags_the_corners_it_drops(void)
     T_GT(t.flagged, 0);
 }
 
+/* A reflection along a face from a seam hit a little below it: the hit on
+   the rounding cylinder of a 4 x 1 x 0.5 box's long top edge (r = 0.05), at
+   the middle of its seam with the top face, given 0, 1e-3, 0.25 and 0.45
+   of the push below the top plane (a host's rounding far out), the
+   direction across the top face, rising by 1e-17 or exactly level. Its
+   crossing of the top plane is rounding over rounding: 1e8 sizes on
+   before re__crossing_out_of_reach (the origin that far off). The origin
+   must lie outside the box by between half the push and the push, and off
+   the ray by at most the push, up to the coordinates' rounding. */
+static void reflection_along_a_face_from_below_its_seam(void)
+{
+    static const double lo[3] = {-2, -0.5, -0.25}, hi[3] = {2, 0.5, 0.25};
+    static const double below[4] = {0, 1e-3, 0.25, 0.45}, rise[2] = {1e-17, 0};
+    tm_mesh_t m = {0};
+    re_scene_t *s;
+    unsigned c, found = RE__NONE, k, j, a, n = 0;
+    double push = RE_ORIGIN_OFFSET_REL * sqrt(16 + 1 + 0.25), tol = 8 * RE__DBL_EPS * 3;
+    tm_box(&m, lo, hi);
+    s = build1_in(&m, 0.05, 0);
+    if (!s) return;
+    for (c = 0; c < re_cylinder_count(s, 0); c++) { /* the edge y = 0.5, z = 0.25 */
+        re_cylinder_t cy;
+        re_get_cylinder(s, 0, c, &cy);
+        if (fabs(cy.a[1] - 0.45) < 1e-12 && fabs(cy.a[2] - 0.2) < 1e-12 && fabs(cy.b[1] - 0.45) < 1e-12) found = c;
+    }
+    if (!T_CHECK(found != RE__NONE)) { re_free(s); tm_free(&m); return; }
+    for (k = 0; k < 4; k++)
+        for (j = 0; j < 2; j++) {
+            re_hit_t h;
+            double d[3] = {0, -1, 0}, org[3], w[3], x[3], out = -HUGE_VAL, off;
+            memset(&h, 0, sizeof h);
+            h.kind = RE_HIT_ROUNDED, h.feature = RE_FEATURE_CYLINDER, h.feature_index = found, h.object = 0;
+            h.point[0] = 0.0, h.point[1] = 0.45, h.point[2] = 0.25 - below[k] * push;
+            h.normal[2] = 1;
+            d[2] = rise[j];
+            re_secondary_origin(s, &h, d, org);
+            for (a = 0; a < 3; a++) out = fmax(out, fmax(org[a] - hi[a], lo[a] - org[a]));
+            tm_sub(org, h.point, w);
+            tm_cross(w, d, x);
+            off = tm_len(x) / tm_len(d);
+            if (!T_GE(out, 0.5 * push - tol) || !T_LE(out, push + tol) || !T_LE(off, push + tol))
+                fprintf(stderr, "    %g of the push below, rise %g: origin %.3g outside, %.3g off the ray (push %.3g)\n",
+                        below[k], rise[j], out, off, push);
+            n++;
+        }
+    T_INT_EQ(n, 8);
+    re_free(s);
+    tm_free(&m);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -2438,6 +2488,7 @@ int main(int argc, char **argv)
         T_CASE(reference_erosion_at_nearly_parallel_planes),
         T_CASE(fine_round_rim_under_a_large_radius),
         T_CASE(finest_rim_flags_the_corners_it_drops),
+        T_CASE(reflection_along_a_face_from_below_its_seam),
     };
     return T_RUN(argc, argv, cases);
 }
