@@ -485,11 +485,14 @@ RE_DEF re_hit_kind_t re_query_exit_uv(const re_scene_t *scene, const double o[3]
    of the corners the query's walk reaches along the ray; the rounded patch
    is convex), pushed out along the crossed face's normal by
    RE_ORIGIN_OFFSET_REL times the object's size so the host's own
-   self-intersection guard is not needed. For other kinds: hit->point pushed
-   out the same way. A dir into the solid (dir . hit->normal < 0 by more
-   than rounding, 8 ulps of |dir|; e.g. refraction) gets hit->point itself:
-   the exit walk assumes a ray leaving the rounded surface (it gave points
-   up to 66 sizes away). A tangent dir (dir . hit->normal = 0) leaves. */
+   self-intersection guard is not needed. A ray that leaves through a face
+   the hit lies on (a seam), or runs along it within rounding, starts at
+   the hit itself, moved down onto that face if above it. For other kinds:
+   hit->point pushed out the same way. A dir into the solid (dir .
+   hit->normal < 0 by more than rounding, 8 ulps of |dir|; e.g. refraction)
+   gets hit->point itself: the exit walk assumes a ray leaving the rounded
+   surface (it gave points up to 66 sizes away). A tangent dir (dir .
+   hit->normal = 0) leaves. */
 #define RE_ORIGIN_OFFSET_REL 1e-9
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit,
                                 const double dir[3], double origin[3]);
