@@ -310,8 +310,19 @@ static void rfz_check_scene(const re_scene_t *s, const rfz_mesh_t *m, rfz_in_t *
             char why[256];
             if (!(fabs(len - 1) < 1e-6)) RFZ_FAIL();
             if (h.feature_index >= (h.feature == RE_FEATURE_SPHERE ? ns : nc)) RFZ_FAIL();
-            /* on the feature it names, whatever the mesh (rc_feature_ok) */
-            if (!rc_feature_ok(s, &h, 1e-9 * mag, mag, why, sizeof why)) { RFZ_WHY(why); RFZ_FAIL(); }
+            /* on the feature it names, whatever the mesh (rc_feature_ok), or
+               an entry before the host's t clamped to the earliest one
+               accepted: inside its feature by at most the slack's length
+               (docs: "Float hosts"). Capsules stand out of a mesh whose
+               noise exceeds r (float positions, r = 2^-25 of the size: a
+               chain's middle vertex 1.5e-8 inside a cylinder of r 3e-8),
+               and a host hit there is a late one (seed
+               clamped_entry_where_a_capsule_stands_out) */
+            if (!rc_feature_ok(s, &h, 1e-9 * mag, mag, why, sizeof why) &&
+                !(h.t < dist && rc_feature_ok(s, &h, 1e-9 * mag + RE__HOST_T_SLACK * dist * sqrt(tm_dot(d, d)), mag, why, sizeof why))) {
+                RFZ_WHY(why);
+                RFZ_FAIL();
+            }
             re_secondary_origin(s, &h, d, org);
         }
     }
