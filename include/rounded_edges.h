@@ -4969,9 +4969,11 @@ static double re__final_spheres(const re__an_t *an, re__final_t *F, const re__nu
     double dm = 0;
     for (j = 0; j < an->c_ns[c]; j++) {
         unsigned sid = N->sbase[c] + j, tri = an->s_tri[an->c_sfirst[c] + j];
-        double *sp = F->sph + 3 * (size_t)sid, dd[3], x[3], ldd;
+        double *sp = F->sph + 3 * (size_t)sid, dd[3], u[3], x[3], lu;
+        const double *su = an->su + 3 * (size_t)(an->c_sfirst[c] + j);
         unsigned short info = RE__SPH_STORED;
-        re__madd(v, r, an->su + 3 * (size_t)(an->c_sfirst[c] + j), sp);
+        u[0] = su[0], u[1] = su[1], u[2] = su[2]; /* before sp is written: F->sph is su's own memory */
+        re__madd(v, r, u, sp);
         F->pk[RE__PKA_S_CORNER][sid] = kid;
         if (tri != RE__NONE && RE__WANT_COMPACT(an->desc) && qslot[tri & 255u] < RE__SOLVED_SLOTS &&
             qslot[tri >> 8 & 255u] < RE__SOLVED_SLOTS && qslot[tri >> 16] < RE__SOLVED_SLOTS) {
@@ -4997,14 +4999,22 @@ static double re__final_spheres(const re__an_t *an, re__final_t *F, const re__nu
             F->n_xsph++;
         }
         re__sub(sp, v, dd);
-        ldd = re__len(dd);
-        dm = re__max(dm, ldd);
+        dm = re__max(dm, re__len(dd));
+        /* the reach from the erosion's own offset u (per unit radius), not
+           sp - v: far from the origin that difference carries the
+           coordinates' rounding (6e-11 at 1e6), above the tangency test's
+           1e-9 r, so no centre counted, the reach fell to the edges'
+           strips, and the corner caps of the bands (query step 0) missed
+           removed points (a degree-5 corner at offset 1e6, r 2^-7 of the
+           size: reach 0.013 for 0.031; fuzz_rounded_exact, seed
+           band_cap_far_from_the_origin) */
+        lu = re__len(u);
         for (k = 0; k < an->c_np[c]; k++) {
             const double *n = an->planes[an->c_planes[pf + k]].n;
-            double h = re__dot(n, dd), tg[3];
-            if (fabs(h + r) > RE__CORNER_EPS * re__max(r, ldd)) continue;
-            re__madd(dd, -h, n, tg);
-            *freach = re__max(*freach, re__len(tg));
+            double h = re__dot(n, u), tg[3];
+            if (fabs(h + 1) > RE__CORNER_EPS * re__max(1.0, lu)) continue;
+            re__madd(u, -h, n, tg);
+            *freach = re__max(*freach, r * re__len(tg));
         }
     }
     return dm;

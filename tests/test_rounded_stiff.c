@@ -2434,6 +2434,90 @@ static void reflection_along_a_face_from_below_its_seam(void)
     tm_free(&m);
 }
 
+/* A corner's reach on its faces (construction step 7: the projected
+   sphere centres and the edges' strips; it sizes the bands' corner caps,
+   the walk and the detection zones) does not depend on where the object
+   sits: random hulls of 6 to 16 points and steep off-centre pyramids
+   (corners of degree 3 to 8), r = 0.03 and 0.08 of their size, built at
+   the origin and moved to 1e6; every corner's stored walk reach agrees to
+   1e-6. It was measured from sphere centres minus the vertex, which carry
+   the coordinates' rounding at 1e6 (6e-11, above the tangency test's
+   1e-9 r): no centre counted, the reach fell to the edges' strips, and
+   the bands called removed points flat (fuzz_rounded_exact, seed
+   band_cap_far_from_the_origin: a degree-5 corner's reach 0.013 for
+   0.031). Host hits within 5 r of every vertex then get re_query's answer
+   from re_query_uv, bit for bit. */
+static void corner_reach_far_from_the_origin(void)
+{
+    static tm_poly_t P;
+    t_rng_t rng = {77};
+    int hull, rk, k, n = (int)t_count(12);
+    long corners = 0, short_reach = 0, queries = 0, differ = 0;
+    if (n < 4) n = 4;
+    for (hull = 0; hull < n; hull++)
+        for (rk = 0; rk < 2; rk++) {
+            tm_mesh_t m = {0};
+            re_scene_t *s0, *s;
+            unsigned t, a, c;
+            double r;
+            if (hull & 2) { /* a steep off-centre pyramid: an apex of 4 to 8 planes */
+                double q[9][3];
+                int nb = 4 + hull % 5, i;
+                for (i = 0; i < nb; i++) {
+                    double ang = 2 * M_PI * (i + 0.3 * t_rng_unit(&rng)) / nb;
+                    q[i][0] = cos(ang), q[i][1] = sin(ang), q[i][2] = 0;
+                }
+                q[nb][0] = t_rng_range(&rng, -0.5, 0.5), q[nb][1] = t_rng_range(&rng, -0.5, 0.5), q[nb][2] = t_rng_range(&rng, 1.5, 4);
+                tm_hull((const double(*)[3])q, nb + 1, &m, &P);
+            } else
+                tm_random_hull(&rng, 6 + hull % 11, 0.6, 1.0, &m, &P);
+            r = (rk ? 0.08 : 0.03) * tm_size(m.v, m.nv);
+            s0 = build1_in(&m, r, hull & 1);
+            for (a = 0; a < 3 * m.nv; a++) m.v[a] += 1e6;
+            s = build1_in(&m, r, hull & 1);
+            if (s0 && s && T_INT_EQ(s->objects[0].n_corners, s0->objects[0].n_corners))
+                for (c = 0; c < s->objects[0].n_corners; c++, corners++)
+                    if (!((double)s->objects[0].corners[c].walk >= (1 - 1e-6) * (double)s0->objects[0].corners[c].walk)) {
+                        if (short_reach++ < 3)
+                            fprintf(stderr, "    hull %d r %g corner %u: walk %.9g at 1e6, %.9g at the origin\n", hull, r, c,
+                                    (double)s->objects[0].corners[c].walk, (double)s0->objects[0].corners[c].walk);
+                    }
+            for (t = 0; s && t < m.ni / 3; t++)
+                for (k = 0; k < 24; k++) {
+                    const double *pc[3];
+                    double e1[3], e2[3], nrm[3], jit[3], X[3], o[3], d[3], l[3], u, v;
+                    re_hit_t h, hu;
+                    int cc = k % 3;
+                    /* within 5 r of corner cc along its two edges */
+                    pc[0] = m.v + 3 * m.idx[3 * t], pc[1] = m.v + 3 * m.idx[3 * t + 1], pc[2] = m.v + 3 * m.idx[3 * t + 2];
+                    tm_sub(pc[(cc + 1) % 3], pc[cc], e1), tm_sub(pc[(cc + 2) % 3], pc[cc], e2);
+                    u = fmin(0.45, 5 * r / tm_len(e1)) * t_rng_unit(&rng), v = fmin(0.45, 5 * r / tm_len(e2)) * t_rng_unit(&rng);
+                    l[cc] = 1 - u - v, l[(cc + 1) % 3] = u, l[(cc + 2) % 3] = v;
+                    for (a = 0; a < 3; a++) X[a] = l[0] * pc[0][a] + l[1] * pc[1][a] + l[2] * pc[2][a];
+                    tm_sub(pc[1], pc[0], e1), tm_sub(pc[2], pc[0], e2), tm_cross(e1, e2, nrm), tm_norm(nrm);
+                    tm_rand_dir(&rng, jit);
+                    for (a = 0; a < 3; a++) d[a] = -nrm[a] + 0.5 * jit[a];
+                    if (!(tm_dot(d, nrm) < -0.3)) continue;
+                    for (a = 0; a < 3; a++) o[a] = X[a] - d[a];
+                    re_query(s, o, d, 0, t, 1.0, &h);
+                    re_query_uv(s, o, d, 0, t, 1.0, l[1], l[2], &hu);
+                    queries++;
+                    if ((h.kind != hu.kind || h.t != hu.t) && differ++ < 3)
+                        fprintf(stderr, "    hull %d r %g triangle %u: re_query kind %d t %.17g, re_query_uv kind %d\n", hull, r, t,
+                                (int)h.kind, h.t, (int)hu.kind);
+                }
+            if (s0) re_free(s0);
+            if (s) re_free(s);
+            tm_free(&m);
+        }
+    fprintf(stderr, "    %ld corners, %ld with a shorter reach at 1e6; %ld queries, %ld answers differ\n", corners, short_reach,
+            queries, differ);
+    T_INT_EQ(short_reach, 0);
+    T_INT_EQ(differ, 0);
+    T_GT(corners, 4 * n);
+    T_GT(queries, 200 * n);
+}
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
@@ -2489,6 +2573,7 @@ int main(int argc, char **argv)
         T_CASE(fine_round_rim_under_a_large_radius),
         T_CASE(finest_rim_flags_the_corners_it_drops),
         T_CASE(reflection_along_a_face_from_below_its_seam),
+        T_CASE(corner_reach_far_from_the_origin),
     };
     return T_RUN(argc, argv, cases);
 }
