@@ -6810,13 +6810,18 @@ static re_hit_kind_t re__answer(const re__object_t *o, re__best_t *best, double 
    found by review, 2026-12-06). So an I outside the plane by more than the
    plane test's rounding is moved along the ray onto it, when that is at
    most RE__HOST_T_SLACK t_host; returns the distance moved (in t). A late
-   t (I inside) is left to the capsule search's slack (best.smin). */
+   t (I inside) is left to the capsule search's slack (best.smin). The
+   rounding counts I's own, o + t_host dir's: ulps of |o| + |t_host dir|,
+   up to |I| + 2 |t_host dir|. A ray along f (an exact host, 1e-10 to the
+   face) whose I was off by that rounding alone was moved 3.6e-6 along it,
+   over the edge it leaves by and out of the mesh (fuzz_rounded_exact:
+   a pass-through 9.4e-7 outside, through the wrong face). */
 static double re__onto_face(const re__object_t *o, unsigned f, const double I[3], const double dir[3], double t_host,
                             double Ip[3])
 {
     const re__plane_t *pf = &o->planes[f];
     double h = re__dot(pf->n, I) - pf->c, nd = re__dot(pf->n, dir), sf;
-    double mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]);
+    double mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]) + 2 * fabs(t_host) * (fabs(dir[0]) + fabs(dir[1]) + fabs(dir[2]));
     Ip[0] = I[0], Ip[1] = I[1], Ip[2] = I[2];
     if (!(h > RE__FLAT_ULPS * (fabs(pf->c) + mag)) || !(nd < 0)) return 0;
     sf = -h / nd;

@@ -393,4 +393,126 @@ static int rim_run(int sides, double r, int count, int layout, rim_tally_t *t)
     return 1;
 }
 
+/* Rays along a face (test_rounded_stiff, test_rounded_unfused). */
+/* An answer h to the ray o + t d (host hit at t_host) against the sharp
+   hull P and the rounded solid E, to tol: a pass-through leaves the hull
+   at or past t_host through a face with its normal, any other answer lies
+   on the rounded surface. 0 and the reason in why when not. */
+static int along_answer_on_surface(const tm_poly_t *P, const tm_eroded_t *E, const double o[3], const double d[3],
+                                   double t_host, const re_hit_t *h, double tol, char *why, size_t n)
+{
+    double p[3], side = 0, dn = 0;
+    int a;
+    for (a = 0; a < 3; a++) p[a] = o[a] + h->t * d[a];
+    if (h->kind == RE_PASS_THROUGH) {
+        if (h->t >= t_host && tm_hull_exit_ok(P, p, h->normal, tol, &side, &dn)) return 1;
+        snprintf(why, n, "pass-through at t %.17g (host %.17g), %.3g outside the hull", h->t, t_host, side);
+        return 0;
+    }
+    if (fabs(tm_eroded_sdf(E, p)) <= tol) return 1;
+    snprintf(why, n, "kind %d at t %.17g is %.3g off the rounded surface", (int)h->kind, h->t, tm_eroded_sdf(E, p));
+    return 0;
+}
+/* The ray nowhere tol deep in the rounded solid from 1e-3 of the size
+   before t_host to the answer, at steps + 1 points. */
+static int along_answer_not_deep(const tm_eroded_t *E, const double o[3], const double d[3], double t_host,
+                                 const re_hit_t *h, double scale, double tol, int steps, char *why, size_t n)
+{
+    int k, a;
+    for (k = 0; k <= steps; k++) {
+        double q[3], tt = t_host - 1e-3 * scale + (h->t - t_host + 1e-3 * scale) * k / (double)steps;
+        for (a = 0; a < 3; a++) q[a] = o[a] + tt * d[a];
+        if (!(tm_eroded_sdf(E, q) > -tol)) {
+            snprintf(why, n, "kind %d at t %.17g, but %.3g deep in the rounded solid at t %.17g", (int)h->kind, h->t,
+                     -tm_eroded_sdf(E, q), tt);
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* A rounded hit h of the ray along d: its reflected ray's origin
+   (re_secondary_origin) lies on the sharp hull P, pushed out by the
+   documented offset, on that ray. off: the scene's coordinates minus P's
+   (NULL: none). 0 and the reason in why when not. */
+static int along_reflection_starts_on_hull(const re_scene_t *s, const tm_poly_t *P, const double off[3], const double d[3],
+                                           const re_hit_t *h, double scale, char *why, size_t n)
+{
+    double d2[3], org[3], orgl[3], pl[3], out = 0, off_line = 0, dn = tm_dot(d, h->normal), lo = RE_ORIGIN_OFFSET_REL * scale,
+           hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * scale;
+    int a;
+    for (a = 0; a < 3; a++) d2[a] = dn < 0 ? d[a] - 2 * dn * h->normal[a] : d[a];
+    re_secondary_origin(s, h, d2, org);
+    for (a = 0; a < 3; a++) orgl[a] = org[a] - (off ? off[a] : 0), pl[a] = h->point[a] - (off ? off[a] : 0);
+    if (tm_origin_ok(P, orgl, pl, d2, lo, hi, 8 * RE__DBL_EPS * (scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2])), &out,
+                     &off_line))
+        return 1;
+    snprintf(why, n, "rounded hit (feature %d %u) at t %.17g: its reflection starts %.3g outside the sharp hull, %.3g off its ray",
+             (int)h->feature, h->feature_index, h->t, out, off_line);
+    return 0;
+}
+
+/* Rays through every vertex of the hull (v, t) at r_rel of its size (or,
+   frac > 0, through the point frac of the way along each triangle's edge
+   from that vertex to the next), each in the plane of one of the
+   triangles there, in nr directions, tilted by
+   up to 1e-10 (the host in __float128): each answer lies on the rounded
+   surface, or a pass-through on the sharp hull with a face's normal
+   through it, and the ray is nowhere 1e-9 of the size deep in the rounded
+   solid before it; a rounded hit's reflected ray starts on the sharp
+   hull (along_reflection_starts_on_hull). Adds to *hits the rays that hit
+   and returns the failures. */
+static long rays_along_faces_of(const double (*v)[3], unsigned nv, const unsigned (*t)[3], unsigned nt, double r_rel, double frac,
+                                long nr, long *hits)
+{
+    static const double tilt[7] = {0, 1e-16, -1e-16, 1e-13, -1e-13, 1e-10, -1e-10};
+    static tm_poly_t P;
+    tm_mesh_t m = {0}, hm = {0};
+    tm_eroded_t E;
+    re_scene_t *s;
+    re_diag_t dg;
+    double scale = tm_size(v[0], nv), tol = 1e-9 * scale, n[3], e1[3], e2[3];
+    unsigned k;
+    long i, f, bad = 0;
+    int a;
+    for (k = 0; k < nv; k++) tm_vert(&m, v[k][0], v[k][1], v[k][2]);
+    for (k = 0; k < nt; k++) tm_tri(&m, t[k][0], t[k][1], t[k][2]);
+    memset(&P, 0, sizeof P);
+    tm_hull(v, (int)nv, &hm, &P);
+    s = build1(&m, r_rel * scale, &dg);
+    if (!T_CHECK(s != NULL)) { tm_free(&m); tm_free(&hm); return 1; }
+    E.P = &P, E.r = re_object_radius(s, 0);
+    tm_erode(&P, E.r);
+    for (f = 0; f < 3 * (long)nt; f++) { /* triangle f / 3, from its vertex f % 3 */
+        const double *va = v[t[f / 3][f % 3]], *vb = v[t[f / 3][(f + 1) % 3]], *vc = v[t[f / 3][(f + 2) % 3]];
+        tm_sub(vb, va, e1);
+        tm_sub(vc, va, e2);
+        tm_cross(e1, e2, n);
+        tm_norm(n);
+        tm_norm(e1);
+        tm_cross(n, e1, e2);
+        for (i = 0; i < nr; i++) {
+            double th = 2 * M_PI * (double)i / (double)nr, d[3], o[3], t_host, bu, bv;
+            char why[160];
+            unsigned tri;
+            re_hit_t h;
+            for (a = 0; a < 3; a++)
+                d[a] = cos(th) * e1[a] + sin(th) * e2[a] + tilt[i % 7] * n[a], o[a] = va[a] + frac * (vb[a] - va[a]) - 3 * scale * d[a];
+            if (!tm_hit_exact_uv(&m, o, d, &t_host, &tri, &bu, &bv)) continue;
+            ++*hits;
+            re_query(s, o, d, 0, tri, t_host, &h);
+            if (!along_answer_on_surface(&P, &E, o, d, t_host, &h, tol, why, sizeof why) && ++bad < 5)
+                T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
+            if (!along_answer_not_deep(&E, o, d, t_host, &h, scale, tol, 16, why, sizeof why) && ++bad < 5)
+                T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
+            if (h.kind == RE_HIT_ROUNDED && !along_reflection_starts_on_hull(s, &P, NULL, d, &h, scale, why, sizeof why) && ++bad < 5)
+                T_FAIL("triangle %ld vertex %ld ray %ld: %s", f / 3, f % 3, i, why);
+        }
+    }
+    re_free(s);
+    tm_free(&m);
+    tm_free(&hm);
+    return bad;
+}
+
 #endif
