@@ -7083,11 +7083,15 @@ static int re__leaves_on_face(const re__object_t *o, const re__set_t *S, const d
    the mesh by the push, not by the push and P's height), P itself when
    below (moved up, the origin would leave the ray by that depth and the
    push: 9e-15 past a push of 3.46e-9 at a seam hit sinking into its face,
-   fuzz_rounded_exact, seed seam_hit_below_its_face). */
-static void re__down_onto(const re__plane_t *g, const double P[3], double origin[3])
+   fuzz_rounded_exact, seed seam_hit_below_its_face). side: P's height
+   over g, n_g . P - c_g. */
+static void re__down_onto(const re__plane_t *g, const double P[3], double side, double origin[3])
 {
-    re__madd(P, -re__max(0.0, re__dot(g->n, P) - g->c), g->n, origin);
+    re__madd(P, -re__max(0.0, side), g->n, origin);
 }
+
+/* P's height over plane g. */
+static double re__side_of(const re__plane_t *g, const double P[3]) { return re__dot(g->n, P) - g->c; }
 
 /* Does the rounded hit P lie on the plane g its ray leaves by: below g by
    no more than the plane test's rounding (RE__FLAT_ULPS of the
@@ -7102,10 +7106,11 @@ static void re__down_onto(const re__plane_t *g, const double P[3], double origin
    reflection_along_a_face_from_its_seam, hit_above_its_exit_plane). Below
    g by more, the crossing stands: started at P, the origin would lie inside
    the mesh by that depth less the push (at offset 1e6 a hit 1.7e-8 below g
-   against a push of 2e-9, seed seam_hit_far_out_keeps_its_walk). */
-static int re__on_exit_plane(const re__plane_t *g, const double P[3], double push)
+   against a push of 2e-9, seed seam_hit_far_out_keeps_its_walk). side:
+   P's height over g (re__side_of). */
+static int re__on_exit_plane(const re__plane_t *g, const double P[3], double side, double push)
 {
-    double side = re__dot(g->n, P) - g->c, mag = fabs(g->c) + fabs(P[0]) + fabs(P[1]) + fabs(P[2]);
+    double mag = fabs(g->c) + fabs(P[0]) + fabs(P[1]) + fabs(P[2]);
     return side >= -RE__FLAT_ULPS * mag && side <= re__max(RE__SIDE_ULPS * mag, 0.5 * push);
 }
 
@@ -7116,13 +7121,13 @@ static int re__on_exit_plane(const re__plane_t *g, const double P[3], double pus
    put the crossing past g's far edge (a direction rising by 1e-17 from a
    hit 1e-9 below g crossed 1e8 sizes on; reflection_along_a_face_from_below_its_seam).
    It leaves through g at P, its origin then outside the mesh by at least
-   half the push. Only such hits reach the edge test. */
+   half the push. Only such hits reach the edge test (side: P's height
+   over g). */
 static int re__crossing_out_of_reach(const re__object_t *o, const re__set_t *S, re__best_t *b, unsigned g, const double P[3],
-                                     const double dir[3], double s, double push)
+                                     double side, const double dir[3], double s, double push)
 {
-    const re__plane_t *pg = &o->planes[g];
     double X[3];
-    if (!(re__dot(pg->n, P) - pg->c >= -0.5 * push)) return 0;
+    if (!(side >= -0.5 * push)) return 0;
     re__madd(P, s, dir, X);
     return !re__exit_on_edge_of(o, S, b, X, g, g);
 }
@@ -7164,12 +7169,15 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
             if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &b, hit->point, dir, s)) break;
         }
         if (S.n && re__leaves_on_face(o, &S, hit->point, nrm, dir, s, push, &plane)) { /* at P, through that face */
-            re__down_onto(&o->planes[plane], hit->point, origin);
-            nrm = o->planes[plane].n;
+            const re__plane_t *g = &o->planes[plane];
+            re__down_onto(g, hit->point, re__side_of(g, hit->point), origin);
+            nrm = g->n;
         } else if (s < HUGE_VAL) {
             const re__plane_t *g = &o->planes[plane];
-            if (re__on_exit_plane(g, hit->point, push) || re__crossing_out_of_reach(o, &S, &b, plane, hit->point, dir, s, push))
-                re__down_onto(g, hit->point, origin);
+            double side = re__side_of(g, hit->point);
+            if (re__on_exit_plane(g, hit->point, side, push) ||
+                re__crossing_out_of_reach(o, &S, &b, plane, hit->point, side, dir, s, push))
+                re__down_onto(g, hit->point, side, origin);
             else
                 re__madd(hit->point, s, dir, origin);
             nrm = g->n;
