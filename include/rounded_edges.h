@@ -6014,13 +6014,20 @@ static void re__set_init(re__set_t *S)
 static unsigned long long re__bloom_bit(unsigned c) { return 1ull << ((c * 0x9E3779B1u) >> 26); }
 static unsigned re__set_slot(unsigned c) { return (c * 0x9E3779B1u) % RE__SET_TAB; }
 
+/* The table slot of corner w: the one holding it, or the empty one where
+   its probe (linear, from re__set_slot) ends. */
+static unsigned re__set_probe(const re__set_t *S, unsigned w)
+{
+    unsigned q;
+    for (q = re__set_slot(w); S->tab[q] && S->c[S->tab[q] - 1u] != w; q = (q + 1u) % RE__SET_TAB) {}
+    return q;
+}
+
 /* re__set_find past RE__SET_SCAN corners: the table, out of the common path. */
 RE__NOINLINE static unsigned re__set_find_in_table(const re__set_t *S, unsigned w)
 {
-    unsigned q;
-    for (q = re__set_slot(w); S->tab[q]; q = (q + 1u) % RE__SET_TAB)
-        if (S->c[S->tab[q] - 1u] == w) return S->tab[q] - 1u;
-    return S->n;
+    unsigned q = re__set_probe(S, w);
+    return S->tab[q] ? S->tab[q] - 1u : S->n;
 }
 
 /* Position of corner w in the set, or n. */
@@ -6033,13 +6040,9 @@ static inline unsigned re__set_find(const re__set_t *S, unsigned w)
     return q;
 }
 
-/* Enters position i of the set into the table. */
-static void re__set_hash(re__set_t *S, unsigned i)
-{
-    unsigned q;
-    for (q = re__set_slot(S->c[i]); S->tab[q]; q = (q + 1u) % RE__SET_TAB) {}
-    S->tab[q] = i + 1u;
-}
+/* Enters position i of the set into the table (its corner is not there
+   yet: the set holds each corner once). */
+static void re__set_hash(re__set_t *S, unsigned i) { S->tab[re__set_probe(S, S->c[i])] = i + 1u; }
 
 static int re__set_add(re__set_t *S, unsigned c)
 {
