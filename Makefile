@@ -42,14 +42,20 @@ HEADERS  := $(wildcard include/*.h)
 TEST_C   := $(wildcard tests/test_*.c)
 TEST_CPP := $(wildcard tests/test_*.cpp)
 TESTS    := $(patsubst tests/%.c,$(B)/tests/%,$(TEST_C)) $(patsubst tests/%.cpp,$(B)/tests/%,$(TEST_CPP))
-SAN_TESTS:= $(patsubst $(B)/tests/%,$(B)/san/%,$(TESTS))
+# built once, by gcc, without sanitizers: test_rounded_unfused checks the
+# arithmetic of unfused builds (the fuzzers, clang-built and unfused, cover
+# the rest), and each further build of a test holding rounded_edges.h's
+# implementation costs 25-50 s of make test's 15 minutes
+ONCE_TESTS := test_rounded_unfused
+SAN_TESTS:= $(filter-out $(addprefix $(B)/san/,$(ONCE_TESTS)),$(patsubst $(B)/tests/%,$(B)/san/%,$(TESTS)))
 FUZZERS  := $(patsubst tests/%.c,$(B)/fuzz/%,$(wildcard tests/fuzz_*.c))
 # the interval and rounded-edge tests again, built by clang, and the frep and
 # grooves tests that hold answers to bounds against independent references
 # (the rest of theirs passed under clang at full scale on 2026-12-05, by
 # hand): the bounds must hold under its code generation and fma contraction
-CLANG_TESTS := $(patsubst tests/%.c,$(B)/clang/%,$(wildcard tests/test_interval*.c tests/test_rounded*.c) \
-               tests/test_frep_interval.c tests/test_frep_solve.c tests/test_frep_trace.c tests/test_grooves_oracle.c)
+CLANG_TESTS := $(filter-out $(addprefix $(B)/clang/,$(ONCE_TESTS)), \
+               $(patsubst tests/%.c,$(B)/clang/%,$(wildcard tests/test_interval*.c tests/test_rounded*.c) \
+               tests/test_frep_interval.c tests/test_frep_solve.c tests/test_frep_trace.c tests/test_grooves_oracle.c))
 # GCC's own headers (quadmath.h for the __float128 references), searched
 # after clang's
 GCC_INCLUDE := $(shell gcc -print-file-name=include)
