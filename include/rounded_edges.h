@@ -864,6 +864,9 @@ typedef struct re__plane_t {
     double c;    /* n.x = c on the face; n.x <= c inside */
 } re__plane_t;
 
+/* P's height over plane g: positive outside. */
+static double re__side_of(const re__plane_t *g, const double P[3]) { return re__dot(g->n, P) - g->c; }
+
 /* A rounding sphere is its corner (re__object_t.s_corner) and, in the
    compact layout, 2 bytes saying where its centre comes from
    (re__object_t.sinfo). Most centres are the point where three of the
@@ -6509,7 +6512,7 @@ static unsigned re__plane_along(const re__object_t *o, const re__set_t *S, const
         for (j = 0; j < K.np; j++) {
             unsigned gi = re__corner_plane(o, &K, j);
             const re__plane_t *g = &o->planes[gi];
-            double dv = re__max(fabs(re__dot(g->n, I) - g->c), fabs(re__dot(g->n, X) - g->c));
+            double dv = re__max(fabs(re__side_of(g, I)), fabs(re__side_of(g, X)));
             if (dv < *dmin) *dmin = dv, best = gi;
         }
     }
@@ -6528,7 +6531,7 @@ static int re__runs_in(const re__object_t *o, unsigned gi, unsigned h, const dou
     double D[3];
     re__sub(X, I, D);
     return gi == h && re__dot(D, D) > r * r &&
-           fabs(re__dot(g->n, I) - g->c) <= re__lost_depth(fabs(I[0]) + fabs(I[1]) + fabs(I[2]), 0, r);
+           fabs(re__side_of(g, I)) <= re__lost_depth(fabs(I[0]) + fabs(I[1]) + fabs(I[2]), 0, r);
 }
 
 /* Where does the ray I + s d, along face g (index gi), first lie inside the
@@ -6603,7 +6606,7 @@ static int re__on_seam_of(const re__plane_t *g, const double I[3], const double 
     re__madd(I, s, d, P);
     re__sub(P, A, nrm);
     len = re__len(nrm);
-    return fabs(re__dot(g->n, P) - g->c) <= tau && re__dot(g->n, nrm) >= RE__SLAB_COS * len;
+    return fabs(re__side_of(g, P)) <= tau && re__dot(g->n, nrm) >= RE__SLAB_COS * len;
 }
 
 /* The capsule of an edge or corner of face g (index gi) that the ray
@@ -6765,7 +6768,7 @@ RE__NOINLINE static unsigned re__hit_in_slab(const re__object_t *o, const re__se
         double h = g->c - re__dot(g->n, X), Y[3];
         int flat = 1;
         if (re__dot(g->n, nx) < RE__SLAB_COS || !(h > RE__FLAT_ULPS * (fabs(g->c) + mag + r)) || !(h <= tol) ||
-            !(fabs(re__dot(g->n, I) - g->c) <= tol))
+            !(fabs(re__side_of(g, I)) <= tol))
             continue;
         re__madd(X, h - r, g->n, Y); /* onto g, then down r: a point of the eroded face if X is over its flat part */
         for (q = 0; q < S->n && flat; q++) {
@@ -6823,7 +6826,7 @@ static double re__onto_face(const re__object_t *o, unsigned f, const double I[3]
                             double Ip[3])
 {
     const re__plane_t *pf = &o->planes[f];
-    double h = re__dot(pf->n, I) - pf->c, nd = re__dot(pf->n, dir), sf;
+    double h = re__side_of(pf, I), nd = re__dot(pf->n, dir), sf;
     double mag = fabs(I[0]) + fabs(I[1]) + fabs(I[2]) + 2 * fabs(t_host) * (fabs(dir[0]) + fabs(dir[1]) + fabs(dir[2]));
     Ip[0] = I[0], Ip[1] = I[1], Ip[2] = I[2];
     if (!(h > RE__FLAT_ULPS * (fabs(pf->c) + mag)) || !(nd < 0)) return 0;
@@ -7072,7 +7075,7 @@ static int re__leaves_on_face(const re__object_t *o, const re__set_t *S, const d
             unsigned gi = re__corner_plane(o, &K, j);
             const re__plane_t *g = &o->planes[gi];
             if (re__dot(g->n, dir) > 0 ||
-                !(fabs(re__dot(g->n, P) - g->c) <= re__max(RE__FLAT_ULPS * (fabs(g->c) + mag), 0.5 * push)))
+                !(fabs(re__side_of(g, P)) <= re__max(RE__FLAT_ULPS * (fabs(g->c) + mag), 0.5 * push)))
                 continue;
             if (re__sinks_in_flat(o, S, gi, P, dir, s_end, mag + fabs(X[0]) + fabs(X[1]) + fabs(X[2])) < HUGE_VAL)
                 return *plane = gi, 1;
@@ -7093,8 +7096,6 @@ static void re__down_onto(const re__plane_t *g, const double P[3], double side, 
     re__madd(P, -re__max(0.0, side), g->n, origin);
 }
 
-/* P's height over plane g. */
-static double re__side_of(const re__plane_t *g, const double P[3]) { return re__dot(g->n, P) - g->c; }
 
 /* Does the rounded hit P lie on the plane g its ray leaves by: below g by
    no more than the plane test's rounding (RE__FLAT_ULPS of the
