@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every built test binary (normal pass; the interval and rounded-edge
-# tests built by clang, from BUILD_DIR/../clang; the ASan+UBSan pass) and the
+# tests built by clang, unfused, from BUILD_DIR/../clang; the ASan+UBSan pass) and the
 # header compile matrix, then prints the grand total as its last line:
 # `N passed, M failed`. Exit status 1 when anything failed or a binary crashed.
 # Usage: tests/run_all.sh BUILD_DIR SAN_BUILD_DIR [case filters...]
@@ -75,8 +75,9 @@ echo "== tests" >&2
 filters=("$@")
 run_pass "$build" normal "${filters[@]}"
 if ls "$build"/../clang/test_* > /dev/null 2>&1; then
-  # another compiler's code, not more cases: a quarter of the batteries
-  echo "== interval, rounded-edge and four frep and grooves tests built by clang (FILIGREE_TEST_SCALE=${FILIGREE_CLANG_SCALE:-0.25})" >&2
+  # another compiler's code, unfused (the Makefile's CLANG_UNFUSED), not
+  # more cases: a quarter of the batteries
+  echo "== interval, rounded-edge and four frep and grooves tests built by clang, unfused (FILIGREE_TEST_SCALE=${FILIGREE_CLANG_SCALE:-0.25})" >&2
   FILIGREE_TEST_SCALE=${FILIGREE_CLANG_SCALE:-0.25} run_pass "$build/../clang" clang "${filters[@]}"
 fi
 echo "== tests under ASan + UBSan (FILIGREE_TEST_SCALE=${FILIGREE_SAN_SCALE:-0.05})" >&2

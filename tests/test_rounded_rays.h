@@ -393,7 +393,7 @@ static int rim_run(int sides, double r, int count, int layout, rim_tally_t *t)
     return 1;
 }
 
-/* Rays along a face (test_rounded_stiff, test_rounded_unfused). */
+/* Rays along a face (test_rounded_stiff). */
 /* An answer h to the ray o + t d (host hit at t_host) against the sharp
    hull P and the rounded solid E, to tol: a pass-through leaves the hull
    at or past t_host through a face with its normal, any other answer lies

@@ -2400,9 +2400,54 @@ static void corner_reach_far_from_the_origin(void)
     T_GT(queries, 200 * n);
 }
 
+/* fuzz_rounded_exact, 2026-12-07: rays along the faces of its tetrahedron
+   (float positions, r = 0.04 of its size) through points on their edges,
+   in 2 000 directions each (rays_along_faces_of), half of them leaving the
+   face over that edge. A ray leaving over the edge at 1e-10 into the face
+   crosses its plane just before the edge, where the exact host reports it,
+   so I (o + t_host d, 4.9 sizes from o) is off the plane by the rounding
+   of o and t_host d: 3.6e-16 when t_host d is rounded before the sum. The
+   host-t mend (re__onto_face) took that for a float host's early t, since
+   its slack counted |I| only, and moved I 3.6e-6 along the ray onto the
+   plane, past the edge and out of the mesh: a pass-through 9.4e-7 outside
+   the hull, through the wrong face. Before the mend's slack counted I's
+   rounding, 17 of the 31 762 rays that hit failed (up to 5.6e-7 outside)
+   in a build without fused multiply-adds, clang's here; gcc's builds fuse
+   o + t d into one rounding to I's magnitude and miss them. */
+static void rays_along_a_face_over_its_edges(void)
+{
+    static const double v[4][3] = {{-0.99224841594696045, -1, -0.998687744140625},
+                                   {0.35158312320709229, -0.21474021673202515, 0.16581979393959045},
+                                   {0.48793774843215942, 0.33040359616279602, 0.62911421060562134},
+                                   {-0.35771724581718445, -0.7286335825920105, -0.39195850491523743}};
+    static const unsigned t[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    static const double fracs[2] = {0.65490196078431373, 0.3};
+    long nr = t_count(2000), hits = 0, bad = 0;
+    int k;
+    for (k = 0; k < 2; k++) bad += rays_along_faces_of(v, 4, t, 4, 0.02, fracs[k], nr, &hits);
+    T_INT_EQ(bad, 0);
+    T_GT(hits, nr * 8);
+    fprintf(stderr, "    %ld rays hit the tetrahedron\n", hits);
+}
+
+#ifdef __clang__
+/* The clang build is the unfused one (the Makefile's CLANG_UNFUSED): a * b
+   + c as re__madd writes it is rounded twice ((1 + 2^-30)^2 - (1 + 2^-29)
+   is 2^-60 fused, 0 not), so this unit's bounds are checked both ways. */
+static void clang_build_rounds_every_product(void)
+{
+    volatile double a = 1 + 0x1p-30, c = -(1 + 0x1p-29);
+    double x = a, z = c;
+    T_CHECK(x * x + z == 0);
+}
+#endif
+
 int main(int argc, char **argv)
 {
     static const t_case_t cases[] = {
+#ifdef __clang__
+        T_CASE(clang_build_rounds_every_product),
+#endif
         T_CASE(tiny_radius_1e6_of_size_box),
         T_CASE(tiny_radius_1e6_of_size_hull),
         T_CASE(largest_valid_radius_box),
@@ -2432,6 +2477,7 @@ int main(int argc, char **argv)
         T_CASE(rays_along_a_face_past_a_sharp_corner),
         T_CASE(ray_sinking_past_a_lost_tangent_contact),
         T_CASE(lost_contact_along_a_face_reflects_off_it),
+        T_CASE(rays_along_a_face_over_its_edges),
         T_CASE(normals_far_from_a_long_edges_far_end),
         T_CASE(flat_test_beside_a_sharp_corner_far_out),
         T_CASE(grazing_along_a_subdivided_edge),
