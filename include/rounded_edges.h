@@ -6176,13 +6176,24 @@ static void re__nearest_feature(const re__object_t *o, const re__set_t *S, const
 
 /* Where the ray leaves the sharp mesh: the first shifted-out plane among
    the corners' faces (the mesh is convex around a rounded corner). The
-   candidates are compared as fractions, one division at the end. */
-static double re__exit(const re__object_t *o, const re__set_t *S, const double I[3], const double d[3], unsigned *plane)
+   candidates are compared as fractions, one division at the end. The
+   walk's rounds (re__query_kd, re_secondary_origin) only add corners to
+   S, so each call scans the planes of the corners added since the last
+   (from E->from on) and keeps the first crossing so far: the comparisons
+   of a scan of the whole set, in its order, each made once. */
+typedef struct re__exit_t {
+    double bn, bd;  /* the first crossing so far is at bn / bd */
+    unsigned plane; /* its plane, RE__NONE before any */
+    unsigned from;  /* S's corners before this one are scanned */
+} re__exit_t;
+
+static void re__exit_init(re__exit_t *E) { E->bn = HUGE_VAL, E->bd = 1, E->plane = RE__NONE, E->from = 0; }
+
+static double re__exit(const re__object_t *o, const re__set_t *S, const double I[3], const double d[3], re__exit_t *E,
+                       unsigned *plane)
 {
-    double bn = HUGE_VAL, bd = 1;
     unsigned i, j;
-    *plane = RE__NONE;
-    for (i = 0; i < S->n; i++) {
+    for (i = E->from; i < S->n; i++) {
         re__kv_t K = re__kview(o, S->c[i]);
         for (j = 0; j < K.np; j++) {
             unsigned gi = re__corner_plane(o, &K, j);
@@ -6190,10 +6201,12 @@ static double re__exit(const re__object_t *o, const re__set_t *S, const double I
             double nd = re__dot(g->n, d), num;
             if (!(nd > 0)) continue;
             num = re__max(0.0, g->c - re__dot(g->n, I));
-            if (num * bd < bn * nd) bn = num, bd = nd, *plane = gi;
+            if (num * E->bd < E->bn * nd) E->bn = num, E->bd = nd, E->plane = gi;
         }
     }
-    return *plane == RE__NONE ? HUGE_VAL : bn / bd;
+    E->from = S->n;
+    *plane = E->plane;
+    return E->plane == RE__NONE ? HUGE_VAL : E->bn / E->bd;
 }
 
 static void re__feature_normal(const re__object_t *o, re__best_t *b, const double P[3], double nrm[3])
@@ -6322,9 +6335,13 @@ static inline unsigned re__detect(const re__object_t *o, unsigned c, const doubl
    its own in the adjacency graph whose reach comes within the segment
    I -> I + s dir, or the whole half-line when s is HUGE_VAL (nothing found
    yet: the ray runs along the edges, out of reach of the set's faces).
-   1 when the set grew. */
+   1 when the set grew. Each call expands the corners from *from on, those
+   added since the last: from round to round the segment only shortens
+   (the nearest hit and the exit only come earlier as S grows), so a
+   neighbour an earlier round left out stays out, and the old corners
+   would add nothing. */
 static int re__walk_grow(const re__object_t *o, re__set_t *S, re__best_t *b, const double I[3], const double dir[3],
-                         double s)
+                         double s, unsigned *from)
 {
     double P[3], IP[3], inv_l2;
     unsigned i, j;
@@ -6332,7 +6349,7 @@ static int re__walk_grow(const re__object_t *o, re__set_t *S, re__best_t *b, con
     re__madd(I, s < HUGE_VAL ? s : 0.0, dir, P);
     re__sub(P, I, IP);
     inv_l2 = re__dot(IP, IP) > 0 ? 1 / re__dot(IP, IP) : 0;
-    for (i = 0; i < S->n; i++) {
+    for (i = *from; i < S->n; i++) {
         re__kv_t K = re__kview(o, S->c[i]);
         for (j = 0; j < K.np; j++) {
             unsigned w = re__s_corner(o, re__far_sphere(o, o->refs[K.first + j]));
@@ -6352,6 +6369,7 @@ static int re__walk_grow(const re__object_t *o, re__set_t *S, re__best_t *b, con
             if (d2 <= g * g && re__set_add(S, w)) grown = 1;
         }
     }
+    *from = S->n;
     return grown;
 }
 
@@ -6849,7 +6867,8 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
                                   re_hit_t *out)
 {
     re__set_t S;
-    unsigned iter, exit_plane, ndet, c0 = RE__NONE;
+    re__exit_t E;
+    unsigned iter, exit_plane, ndet, c0 = RE__NONE, walked = 0;
     re__best_t best;
     double s_exit, I[3], t_on = t_host + re__onto_face(o, f, I0, dir, t_host, I);
     re__set_init(&S);
@@ -6862,10 +6881,11 @@ static re_hit_kind_t re__query_kd(const re__object_t *o, unsigned f, const doubl
     /* inside the removed volume: nearest capsule or the exit, walking the
        adjacency graph (cylinder -> corner) while the ray runs toward corners
        not yet in the set (grazing rays, §3.1) */
+    re__exit_init(&E);
     for (iter = 0;; iter++) {
         re__nearest_feature(o, &S, I, dir, &best);
-        s_exit = re__exit(o, &S, I, dir, &exit_plane);
-        if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &best, I, dir, re__min(best.s, s_exit))) break;
+        s_exit = re__exit(o, &S, I, dir, &E, &exit_plane);
+        if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &best, I, dir, re__min(best.s, s_exit), &walked)) break;
     }
     re__exit_within_reach(o, &S, &best, I, dir, f, &s_exit, &exit_plane);
     /* a rounded hit past I: not from inside a slab (re__hit_in_slab). Before I
@@ -7140,8 +7160,9 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
 {
     const re__object_t *o;
     re__set_t S;
+    re__exit_t E;
     re__best_t b;
-    unsigned plane, iter;
+    unsigned plane, iter, walked = 0;
     double s, push, ds[3];
     const double *nrm;
     if (!origin) return;
@@ -7167,10 +7188,11 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
             re__set_add(&S, re__s_corner(o, sp[1]));
         }
         b.cvalid = 0;
+        re__exit_init(&E);
         for (iter = 0;; iter++) { /* the planes the ray may leave by: the walk, as in the query */
-            s = re__exit(o, &S, hit->point, dir, &plane);
+            s = re__exit(o, &S, hit->point, dir, &E, &plane);
             if (!iter && re__exit_on_face(o, &S, &b, hit->point, dir, s, plane)) break;
-            if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &b, hit->point, dir, s)) break;
+            if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &b, hit->point, dir, s, &walked)) break;
         }
         if (S.n && re__leaves_on_face(o, &S, hit->point, nrm, dir, s, push, &plane)) { /* at P, through that face */
             const re__plane_t *g = &o->planes[plane];
