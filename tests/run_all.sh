@@ -36,12 +36,24 @@ run_one() { # $1 = binary, $2 = label, rest = case filters; writes $log/<label>_
 export -f run_one
 export log
 
-run_pass() { # $1 = dir, $2 = label, rest = case filters; binaries run $jobs at a time
-  local dir=$1 label=$2 t name status secs
-  shift 2
-  ls "$dir"/test_* 2>/dev/null | xargs -r -P "$jobs" -I{} bash -c 'run_one "$@"' _ {} "$label" "$@"
-  for t in "$dir"/test_*; do
+# the binaries of $1 whose source is still in tests/ (a working copy keeps
+# the binary of a test that was deleted or renamed: not ours to run)
+current_tests() {
+  local t name
+  for t in "$1"/test_*; do
     [ -x "$t" ] || continue
+    name=$(basename "$t")
+    if [ -f "tests/$name.c" ] || [ -f "tests/$name.cpp" ]; then echo "$t"
+    else echo "$2 $name: no tests/$name.c or .cpp, a stale binary: not run" >&2; fi
+  done
+}
+
+run_pass() { # $1 = dir, $2 = label, rest = case filters; binaries run $jobs at a time
+  local dir=$1 label=$2 t name status secs list
+  shift 2
+  list=$(current_tests "$dir" "$label")
+  [ -n "$list" ] && printf '%s\n' $list | xargs -r -P "$jobs" -I{} bash -c 'run_one "$@"' _ {} "$label" "$@"
+  for t in $list; do
     name=$(basename "$t")
     read -r status secs < "$log/${label}_$name.status" || { status=99; secs=0; }
     [ "$status" -ne 0 ] && grep -E 'FAIL|ERROR|runtime error' "$log/${label}_$name.all" | head -n 20 >&2
