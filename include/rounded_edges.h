@@ -6783,7 +6783,7 @@ RE__NOINLINE static unsigned re__hit_in_slab(const re__object_t *o, const re__se
     tol = re__along_tol(I, X, r);
     for (i = 0; i < nc; i++) {
         const re__plane_t *g = &o->planes[gi = is_cyl ? cy.p[i] : re__corner_plane(o, &K, i)];
-        double h = g->c - re__dot(g->n, X), Y[3];
+        double h = -re__side_of(g, X), Y[3];
         int flat = 1;
         if (re__dot(g->n, nx) < RE__SLAB_COS || !(h > RE__FLAT_ULPS * (fabs(g->c) + mag + r)) || !(h <= tol) ||
             !(fabs(re__side_of(g, I)) <= tol))
@@ -7115,7 +7115,6 @@ static void re__down_onto(const re__plane_t *g, const double P[3], double side, 
 {
     re__madd(P, -re__max(0.0, side), g->n, origin);
 }
-
 
 /* Does the rounded hit P lie on the plane g its ray leaves by: below g by
    no more than the plane test's rounding (RE__FLAT_ULPS of the
