@@ -5130,29 +5130,37 @@ static void re__final_edge_cyls(const re__an_t *an, re__final_t *F, const re__nu
    face reach of the edge's two corners, of the mesh edge. The query tests
    the distance to the edge's line (from the two face planes, so the
    vertices need not be stored) and the axial position along the rounding
-   axis, whose end spheres lie within m - g = the larger |sphere - vertex|
-   of the vertices. Both are rounded up (bfloat16, or one byte on a shared
-   exponent in the compact layout). The kd box (relative to the origin,
-   box[6 i ..], and their hull [lo, hi]) holds that set: the axis extended
-   by m at both ends, widened by g + (m - g) (the edge line is that close
-   to the axis). */
+   axis: within g of the edge's vertices, so within m of its end spheres,
+   m - g the larger offset of a vertex from its end sphere along the axis.
+   Both are rounded up (bfloat16, or one byte on a shared exponent in the
+   compact layout). The kd box (relative to the origin, box[6 i ..], and
+   their hull [lo, hi]) holds that set: the axis extended by M at both
+   ends, widened by M, where M - g, the larger dmax of the two corners, is
+   at least |sphere - vertex| (the edge line is that close to the axis).
+   (Before 2026-12-07 the query's m was M too; a box of radius g around the
+   edge line instead: docs, "Tried and dropped".) */
 static re_result_t re__detection_boxes(re__an_t *an, re__arena_t *ar, re__final_t *F, const re__numbering_t *N, double *box,
                                        double lo[3], double hi[3])
 {
     unsigned char *cshort = NULL; /* with straight chains: per edge cylinder, its box's ends at split vertices */
-    unsigned i, a;
+    unsigned i, a, ei;
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
     F->det_e0 = 1;
-    for (i = 0; i < F->n_edge_cyls; i++) { /* the largest m fits re__det8 */
-        unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
-        unsigned ex = re__det8_exp((re__max(N->reach[ka], N->reach[kb]) + re__max(N->dmax[ka], N->dmax[kb])) * (1 + 1e-6));
-        F->det_e0 = ex > 16u && ex - 15u > F->det_e0 ? ex - 15u : F->det_e0;
+    if (F->det8) { /* the largest M fits re__det8 (re__det8_exp is monotone: one call for it) */
+        double most = 0;
+        unsigned ex;
+        for (i = 0; i < F->n_edge_cyls; i++) {
+            unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
+            most = re__max(most, (re__max(N->reach[ka], N->reach[kb]) + re__max(N->dmax[ka], N->dmax[kb])) * (1 + 1e-6));
+        }
+        ex = re__det8_exp(most);
+        F->det_e0 = ex > 16u ? ex - 15u : 1u;
     }
     /* a segment inside a straight chain (re__chain_respan: its cylinder
        spans the chain) is detected only along its own span, and the
        segments' boxes join along the chain: at a split vertex the box is
-       not extended by m, and it is the tight box of the cylinder of radius
-       m around the axis (a box widened by m along the axis too held a point
+       not extended by M, and it is the tight box of the cylinder of radius
+       M around the axis (a box widened by M along the axis too held a point
        of a finely split edge in hundreds of segments' boxes) */
     if (N->csph) {
         RE__TAKE(cshort, unsigned char, F->n_edge_cyls + 1);
@@ -5162,30 +5170,39 @@ static re_result_t re__detection_boxes(re__an_t *an, re__arena_t *ar, re__final_
                 cshort[N->ecyl[i]] = (unsigned char)(4u | (an->c_np[an->vcorner[an->edges[i].v[0]]] == 2 ? 1u : 0u) |
                                                      (an->c_np[an->vcorner[an->edges[i].v[1]]] == 2 ? 2u : 0u));
     }
-    for (i = 0; i < F->n_edge_cyls; i++) {
+    for (i = 0, ei = 0; i < F->n_edge_cyls; i++, ei++) {
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
         unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
-        double g, m, u[3], L, e0[3], e1[3];
-        double gr = re__max(N->reach[ka], N->reach[kb]) * (1 + 1e-6),
-               mr = (re__max(N->reach[ka], N->reach[kb]) + re__max(N->dmax[ka], N->dmax[kb])) * (1 + 1e-6);
-        if (F->det8) {
-            F->det8[2 * i] = re__det8_up(gr, F->det_e0);
-            F->det8[2 * i + 1] = re__det8_up(mr, F->det_e0);
-            g = re__det8(F->det8[2 * i + 1], F->det_e0);
-        } else {
-            F->det[2 * i] = re__det_up(gr);
-            F->det[2 * i + 1] = re__det_up(mr);
-            g = re__det(F->det[2 * i + 1]);
-        }
-        m = g;
+        double u[3], L, e0[3], e1[3], d0[3], d1[3], m;
+        double g = re__max(N->reach[ka], N->reach[kb]), M = (g + re__max(N->dmax[ka], N->dmax[kb])) * (1 + 1e-6);
+        while (N->ecyl[ei] != i) ei++; /* cylinders are numbered in edge order (re__numbering) */
         re__sub(s1, s0, u);
         L = re__len(u);
         if (L > 0) u[0] /= L, u[1] /= L, u[2] /= L;
-        re__madd(s0, cshort && (cshort[i] & 1u) ? 0.0 : -m, u, e0);
-        re__madd(s1, cshort && (cshort[i] & 2u) ? 0.0 : m, u, e1);
+        re__sub(an->pos + 3 * (size_t)an->edges[ei].v[0], s0, d0);
+        re__sub(an->pos + 3 * (size_t)an->edges[ei].v[1], s1, d1);
+        /* at most M. A straight chain's segment has offset 0 at a split
+           vertex (its sphere lies beside it); the query measures from the
+           chain's end spheres (re__chain_respan, after this step), and the
+           segment's zone, held to its own span by its box, lies between
+           them */
+        m = re__min(M, (g + re__max(fabs(re__dot(d0, u)), fabs(re__dot(d1, u)))) * (1 + 1e-6));
+        g *= 1 + 1e-6;
+        if (F->det8) {
+            F->det8[2 * i] = re__det8_up(g, F->det_e0);
+            F->det8[2 * i + 1] = re__det8_up(m, F->det_e0);
+            M = re__det8(re__det8_up(M, F->det_e0), F->det_e0);
+        } else {
+            F->det[2 * i] = re__det_up(g);
+            F->det[2 * i + 1] = re__det_up(m);
+            M = re__det(re__det_up(M));
+        }
+        /* the box from M (as rounded up for storage, like g and m) */
+        re__madd(s0, cshort && (cshort[i] & 1u) ? 0.0 : -M, u, e0);
+        re__madd(s1, cshort && (cshort[i] & 2u) ? 0.0 : M, u, e1);
         for (a = 0; a < 3; a++) {
             /* across the axis only, for a chain's segment; rounded up */
-            double wa = cshort && cshort[i] ? g * sqrt(re__max(0.0, 1 - u[a] * u[a])) * (1 + 1e-9) + 1e-12 * g : g;
+            double wa = cshort && cshort[i] ? M * sqrt(re__max(0.0, 1 - u[a] * u[a])) * (1 + 1e-9) + 1e-12 * M : M;
             box[6 * i + a] = re__min(e0[a], e1[a]) - wa - an->origin[a];
             box[6 * i + 3 + a] = re__max(e0[a], e1[a]) + wa - an->origin[a];
             lo[a] = re__min(lo[a], box[6 * i + a]);
