@@ -5139,6 +5139,16 @@ static void re__final_edge_cyls(const re__an_t *an, re__final_t *F, const re__nu
    at least |sphere - vertex| (the edge line is that close to the axis).
    (Before 2026-12-07 the query's m was M too; a box of radius g around the
    edge line instead: docs, "Tried and dropped".) */
+/* Edge cylinder i's reach across, g (returned, without margin), and *M =
+   g + the larger dmax of its two corners, with the 1e-6 margin. */
+static double re__det_reaches(const re__final_t *F, const re__numbering_t *N, unsigned i, double *M)
+{
+    unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
+    double g = re__max(N->reach[ka], N->reach[kb]);
+    *M = (g + re__max(N->dmax[ka], N->dmax[kb])) * (1 + 1e-6);
+    return g;
+}
+
 static re_result_t re__detection_boxes(re__an_t *an, re__arena_t *ar, re__final_t *F, const re__numbering_t *N, double *box,
                                        double lo[3], double hi[3])
 {
@@ -5147,11 +5157,11 @@ static re_result_t re__detection_boxes(re__an_t *an, re__arena_t *ar, re__final_
     for (i = 0; i < 3; i++) lo[i] = HUGE_VAL, hi[i] = -HUGE_VAL;
     F->det_e0 = 1;
     if (F->det8) { /* the largest M fits re__det8 (re__det8_exp is monotone: one call for it) */
-        double most = 0;
+        double most = 0, M;
         unsigned ex;
         for (i = 0; i < F->n_edge_cyls; i++) {
-            unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
-            most = re__max(most, (re__max(N->reach[ka], N->reach[kb]) + re__max(N->dmax[ka], N->dmax[kb])) * (1 + 1e-6));
+            (void)re__det_reaches(F, N, i, &M);
+            most = re__max(most, M);
         }
         ex = re__det8_exp(most);
         F->det_e0 = ex > 16u ? ex - 15u : 1u;
@@ -5172,9 +5182,7 @@ static re_result_t re__detection_boxes(re__an_t *an, re__arena_t *ar, re__final_
     }
     for (i = 0, ei = 0; i < F->n_edge_cyls; i++, ei++) {
         const double *s0 = F->sph + 3 * (size_t)F->cyls[i].s[0], *s1 = F->sph + 3 * (size_t)F->cyls[i].s[1];
-        unsigned ka = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[0]], kb = F->pk[RE__PKA_S_CORNER][F->cyls[i].s[1]];
-        double u[3], L, e0[3], e1[3], d0[3], d1[3], m;
-        double g = re__max(N->reach[ka], N->reach[kb]), M = (g + re__max(N->dmax[ka], N->dmax[kb])) * (1 + 1e-6);
+        double u[3], L, e0[3], e1[3], d0[3], d1[3], m, M, g = re__det_reaches(F, N, i, &M);
         while (N->ecyl[ei] != i) ei++; /* cylinders are numbered in edge order (re__numbering) */
         re__sub(s1, s0, u);
         L = re__len(u);
