@@ -200,16 +200,19 @@ $(B)/bench/%: bench/%.cpp $(TEST_DEPS) $(wildcard bench/*.h examples/*/*.h) $(EX
 
 # BENCH=rounded runs only the benchmarks whose name contains "rounded".
 # Each benchmark's stdout goes to out/bench/<name>.txt; stderr shows its wall
-# time and the load average at its start. Plots are drawn into a temporary
+# time, and the load average and the CPU at its start. Plots are drawn into a temporary
 # directory and moved to docs/img/ only when gnuplot succeeds, so with BENCH
 # set a plot whose CSV this run did not write is skipped and its old SVG kept.
+# The CPU the timings were taken on (its model name, family and model, as
+# `lscpu` gives them): CPU times compare only on one kind of CPU.
+BENCH_CPU = $(shell awk -F': *' '/^model name/ && !n {n=$$2} /^cpu family/ && !f {f=$$2} /^model[ \t]*:/ && !m {m=$$2} END {print n ", family " f " model " m}' /proc/cpuinfo 2>/dev/null)
 BENCH_RUN = $(strip $(if $(BENCH),$(foreach b,$(BENCHES),$(if $(findstring $(BENCH),$(notdir $(b))),$(b))),$(BENCHES)))
 bench: deps-bench
 	@$(if $(BENCH_RUN),,echo "no benchmark matches BENCH=$(BENCH)" >&2; exit 1)
 	@$(MAKE) --no-print-directory $(BENCH_RUN)
 	@mkdir -p out/bench docs/img
 	@set -e; for b in $(BENCH_RUN); do n=$$(basename $$b); \
-	  echo "== $$n (load $$(cut -d' ' -f1 /proc/loadavg), $$(date -u '+%F %T') UTC)" >&2; \
+	  echo "== $$n (load $$(cut -d' ' -f1 /proc/loadavg), $$(date -u '+%F %T') UTC, $(BENCH_CPU))" >&2; \
 	  s=$$(date +%s); $$b out/bench > out/bench/$$n.txt; cat out/bench/$$n.txt; \
 	  echo "== $$n took $$(( $$(date +%s) - s )) s" >&2; done
 	@set -e; tmp=$$(mktemp -d); for g in $(wildcard bench/*.gp); do \
