@@ -36,7 +36,7 @@ static void run_jobs(void *(*fn)(void *), long n, unsigned long long seed, job_t
     for (k = 0; k < 2; k++) pthread_join(th[k], NULL);
     memset(out, 0, sizeof *out);
     for (k = 0; k < 2; k++) {
-        for (m = 0; m < 8 && m < j[k].bad; m++) T_FAIL("%s", j[k].first[m]);
+        for (m = 0; m < 8 && m < j[k].bad; m++) T_FAIL("%.500s", j[k].first[m]);
         out->bad += j[k].bad; out->checked += j[k].checked; out->n += j[k].n;
         for (m = 0; m < 32; m++) out->per_op[m] += j[k].per_op[m];
     }
