@@ -5136,9 +5136,7 @@ static void re__final_edge_cyls(const re__an_t *an, re__final_t *F, const re__nu
    compact layout). The kd box (relative to the origin, box[6 i ..], and
    their hull [lo, hi]) holds that set: the axis extended by M at both
    ends, widened by M, where M - g, the larger dmax of the two corners, is
-   at least |sphere - vertex| (the edge line is that close to the axis).
-   (Before 2026-12-07 the query's m was M too; a box of radius g around the
-   edge line instead: docs, "Tried and dropped".) */
+   at least |sphere - vertex| (the edge line is that close to the axis). */
 /* Edge cylinder i's reach across, g (returned, without margin), and *M =
    g + the larger dmax of its two corners, with the 1e-6 margin. */
 static double re__det_reaches(const re__final_t *F, const re__numbering_t *N, unsigned i, double *M)

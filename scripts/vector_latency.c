@@ -1,0 +1,94 @@
+/* Latency of the vector instructions interval.h's pair path puts on a
+   dependency chain, in cycles of this CPU: each instruction timed in a
+   chain of ten copies (thread CPU time, best of 5 rounds), divided by a
+   chain of 64-bit integer adds (1 cycle on every x86). docs/interval.md,
+   "Why the latency goal is out of reach", quotes its output.
+   Build and run by hand (not part of make test; x86-64 with AVX2 and FMA,
+   the AVX-512 rows where the compiler targets them):
+     gcc -O2 -march=native scripts/vector_latency.c -o /tmp/vector_latency && /tmp/vector_latency */
+#include <immintrin.h>
+#include <stdio.h>
+#include <time.h>
+
+enum { REPS = 20000000, ROUNDS = 5 };
+
+static double cpu_ns(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return (double)t.tv_sec * 1e9 + (double)t.tv_nsec;
+}
+
+#define TEN(s) s s s s s s s s s s
+/* ns per instruction of a chain x = ins(x, y, z) */
+#define VEC_CHAIN(fn, ins)                                                                      \
+    static double fn(void)                                                                      \
+    {                                                                                           \
+        __m128d x = _mm_set_pd(1.0, 1.0), y = _mm_set_pd(1e-300, 1e-300), z = _mm_setzero_pd(); \
+        volatile double keep;                                                                   \
+        double t0 = cpu_ns();                                                                   \
+        long i;                                                                                 \
+        for (i = 0; i < REPS; i++) __asm__ volatile(TEN(ins "\n") : "+x"(x) : "x"(y), "x"(z));  \
+        keep = _mm_cvtsd_f64(x);                                                                \
+        (void)keep;                                                                             \
+        return (cpu_ns() - t0) / (REPS * 10.0);                                                 \
+    }
+
+static double int_add(void)
+{
+    long x = 1, y = 3, i;
+    volatile long keep;
+    double t0 = cpu_ns();
+    for (i = 0; i < REPS; i++) __asm__ volatile(TEN("add %1, %0\n") : "+r"(x) : "r"(y));
+    keep = x;
+    (void)keep;
+    return (cpu_ns() - t0) / (REPS * 10.0);
+}
+
+VEC_CHAIN(addsd, "vaddsd %1, %0, %0")
+VEC_CHAIN(addpd, "vaddpd %1, %0, %0")
+VEC_CHAIN(mulpd, "vmulpd %1, %0, %0")
+VEC_CHAIN(fmadd, "vfmadd231pd %1, %2, %0")
+VEC_CHAIN(fmaddsub, "vfmaddsub231pd %1, %2, %0")
+VEC_CHAIN(andpd, "vandpd %1, %0, %0")
+VEC_CHAIN(xorpd, "vxorpd %1, %0, %0")
+VEC_CHAIN(minpd, "vminpd %1, %0, %0")
+VEC_CHAIN(unpcklpd, "vunpcklpd %1, %0, %0")
+VEC_CHAIN(movddup, "vmovddup %0, %0")
+VEC_CHAIN(vpermilpd, "vpermilpd $1, %0, %0")
+VEC_CHAIN(blendvpd, "vblendvpd %0, %1, %0, %0")
+VEC_CHAIN(vpaddq, "vpaddq %1, %0, %0")
+#if defined(__AVX512VL__) && defined(__AVX512DQ__)
+VEC_CHAIN(vrangepd, "vrangepd $2, %1, %0, %0")
+VEC_CHAIN(vpmaxsq, "vpmaxsq %1, %0, %0")
+#endif
+
+typedef struct {
+    const char *name;
+    double (*fn)(void);
+} probe_t;
+
+int main(void)
+{
+    static const probe_t probes[] = {
+        {"add (int)", int_add}, {"vaddsd", addsd},       {"vaddpd", addpd},       {"vmulpd", mulpd},
+        {"vfmadd", fmadd},        {"vfmaddsub", fmaddsub}, {"vandpd", andpd},       {"vxorpd", xorpd},
+        {"vminpd", minpd},      {"vunpcklpd", unpcklpd}, {"vmovddup", movddup},   {"vpermilpd", vpermilpd},
+        {"vblendvpd", blendvpd}, {"vpaddq", vpaddq},
+#if defined(__AVX512VL__) && defined(__AVX512DQ__)
+        {"vrangepd", vrangepd}, {"vpmaxsq", vpmaxsq},
+#endif
+    };
+    enum { NP = sizeof probes / sizeof probes[0] };
+    double best[NP];
+    int k, r;
+    for (k = 0; k < NP; k++) best[k] = 1e30;
+    for (r = 0; r < ROUNDS; r++) /* interleaved: a slow spell hits every row */
+        for (k = 0; k < NP; k++) {
+            double t = probes[k].fn();
+            if (t < best[k]) best[k] = t;
+        }
+    printf("instruction  ns     cycles (integer add = 1, %.2f GHz)\n", 1 / best[0]);
+    for (k = 0; k < NP; k++) printf("%-11s  %.4f %.2f\n", probes[k].name, best[k], best[k] / best[0]);
+    return 0;
+}
