@@ -785,6 +785,14 @@ static void rays_grazing_a_face(void)
     tm_free(&m);
 }
 
+/* Rays per hull and radius: 600, and under the sanitizers' scale still 63,
+   a whole period of the tilts (i % 7) and the vertex pairs (i / 3 % 3). */
+static long along_face_ray_count(void)
+{
+    long n = t_count(600);
+    return n < 63 ? 63 : n;
+}
+
 /* One hull, rays lying exactly in its top face's plane y = 1 through a
    vertex or edge point of that face (found by fuzz_rounded_exact: a ray
    through a vertex, along a face whose edge from it runs 0.9 degrees off
@@ -795,13 +803,6 @@ static void rays_grazing_a_face(void)
    deeper than tol into the rounded solid before it; a rounded hit's
    reflected ray starts on the sharp hull, pushed out (counted in
    *n_round). Returns the rays that hit the hull. */
-/* Rays per hull and radius: 600, and under the sanitizers' scale still 63,
-   a whole period of the tilts (i % 7) and the vertex pairs (i / 3 % 3). */
-static long along_face_ray_count(void)
-{
-    long n = t_count(600);
-    return n < 63 ? 63 : n;
-}
 static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t *rng, long *bad, long *n_round)
 {
     static const double tilt[7] = {0, 1e-16, -1e-16, 1e-13, -1e-13, 1e-10, -1e-10};
