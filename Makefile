@@ -99,14 +99,13 @@ deps-test:
 tests: $(TESTS) $(SAN_TESTS) $(FUZZERS) $(CLANG_TESTS)
 # built by make test so that a bench that no longer compiles fails CI
 benches: $(BENCHES)
-# make test's build of the benches, the fingerprint programs and the latency
-# probe (scripts/vector_latency.c): a compile and
+# make test's build of the benches and fingerprint programs: a compile and
 # link check only, at -O0 in a tree of its own (a fifth of the -O2 build's
 # time: about 40 s of make test's 15 minutes; make bench and make
 # fingerprint build their own at -O2; check-headers compiles the headers'
 # code optimised)
 compile-checks:
-	@$(MAKE) --no-print-directory B=$(B)/check OPT=-O0 benches fingerprints $(B)/check/scripts/vector_latency
+	@$(MAKE) --no-print-directory B=$(B)/check OPT=-O0 benches fingerprints
 # the same for the fingerprint programs (scripts/fingerprint, make fingerprint)
 FP_NAMES := interval rounded grooves frep
 FINGERPRINTS := $(addprefix $(B)/fingerprint/fp_,$(FP_NAMES))
@@ -255,12 +254,6 @@ $(B)/fingerprint/fp_%: scripts/fingerprint/fp_%.c scripts/fingerprint/fp.h $(TES
 	@mkdir -p $(dir $@)
 	$(CC) $(TEST_CFLAGS) -c $< -o $@.o
 	$(CXX) -o $@ $@.o $(EX_COMMON_OBJ) $(BENCH_LDLIBS)
-
-# the vector latency probe (docs/interval.md; run by hand, x86-64 only):
-# make test compiles it so that it keeps compiling
-$(B)/scripts/vector_latency: scripts/vector_latency.c
-	@mkdir -p $(dir $@)
-	$(CC) $(TEST_CFLAGS) $< -o $@
 
 # ---------------------------------------------------------------- install
 install:

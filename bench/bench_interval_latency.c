@@ -1,11 +1,11 @@
 /* Latency of the vector instructions interval.h's pair path puts on a
    dependency chain, in cycles of this CPU: each instruction timed in a
-   chain of ten copies (thread CPU time, best of 5 rounds), divided by a
-   chain of 64-bit integer adds (1 cycle on every x86). docs/interval.md,
-   "Why the latency goal is out of reach", quotes its output.
-   Build and run by hand (not part of make test; x86-64 with AVX2 and FMA,
-   the AVX-512 rows where the compiler targets them):
-     gcc -O2 -march=native scripts/vector_latency.c -o /tmp/vector_latency && /tmp/vector_latency */
+   chain of ten copies (thread CPU time, best of 5 interleaved rounds),
+   divided by a chain of 64-bit integer adds (1 cycle on every x86). The
+   floors of docs/interval.md ("Why the latency goal is out of reach") are
+   sums of these; bench_interval_ops measures the chains they bound.
+   x86-64 only; the AVX-512 rows where the compiler targets them.
+   Output: table on stdout, out/bench/interval_latency.csv. */
 #include <immintrin.h>
 #include <stdio.h>
 #include <time.h>
@@ -68,11 +68,11 @@ typedef struct {
     double (*fn)(void);
 } probe_t;
 
-int main(void)
+int main(int argc, char **argv)
 {
     static const probe_t probes[] = {
         {"add (int)", int_add}, {"vaddsd", addsd},       {"vaddpd", addpd},       {"vmulpd", mulpd},
-        {"vfmadd", fmadd},        {"vfmaddsub", fmaddsub}, {"vandpd", andpd},       {"vxorpd", xorpd},
+        {"vfmadd", fmadd},      {"vfmaddsub", fmaddsub}, {"vandpd", andpd},       {"vxorpd", xorpd},
         {"vminpd", minpd},      {"vunpcklpd", unpcklpd}, {"vmovddup", movddup},   {"vpermilpd", vpermilpd},
         {"vblendvpd", blendvpd}, {"vpaddq", vpaddq},
 #if defined(__AVX512VL__) && defined(__AVX512DQ__)
@@ -80,15 +80,35 @@ int main(void)
 #endif
     };
     enum { NP = sizeof probes / sizeof probes[0] };
+    const char *dir = argc > 1 ? argv[1] : "out/bench";
+    char path[512];
     double best[NP];
+    FILE *csv;
     int k, r;
     for (k = 0; k < NP; k++) best[k] = 1e30;
-    for (r = 0; r < ROUNDS; r++) /* interleaved: a slow spell hits every row */
+    for (r = 0; r < ROUNDS; r++) { /* interleaved: a slow spell hits every row */
+        fprintf(stderr, "latency round %d of %d\n", r + 1, ROUNDS);
         for (k = 0; k < NP; k++) {
             double t = probes[k].fn();
             if (t < best[k]) best[k] = t;
         }
-    printf("instruction  ns     cycles (integer add = 1, %.2f GHz)\n", 1 / best[0]);
-    for (k = 0; k < NP; k++) printf("%-11s  %.4f %.2f\n", probes[k].name, best[k], best[k] / best[0]);
+    }
+    snprintf(path, sizeof path, "%s/interval_latency.csv", dir);
+    csv = fopen(path, "w");
+    if (!csv) {
+        fprintf(stderr, "cannot write %s\n", path);
+        return 1;
+    }
+    fprintf(csv, "instruction,ns,cycles\n");
+    printf("latency of one instruction in a dependent chain (best of %d rounds; cycles: against the integer add, 1 cycle, "
+           "here %.2f GHz)\n",
+           ROUNDS, 1 / best[0]);
+    printf("instruction      ns  cycles\n");
+    for (k = 0; k < NP; k++) {
+        printf("%-11s  %.4f  %6.2f\n", probes[k].name, best[k], best[k] / best[0]);
+        fprintf(csv, "%s,%.5f,%.3f\n", probes[k].name, best[k], best[k] / best[0]);
+    }
+    fclose(csv);
+    printf("wrote %s\n", path);
     return 0;
 }
