@@ -812,7 +812,7 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
     re_scene_t *s;
     re_diag_t dg;
     double scale, tol;
-    long i, hits = 0;
+    long i, hits = 0, n_rays = along_face_ray_count();
     int a, k, top[3], nt = 0;
     memset(&P, 0, sizeof P);
     tm_hull(pts, n, &m, &P);
@@ -824,7 +824,7 @@ static long along_face_rays(const double (*pts)[3], int n, double r_rel, t_rng_t
     tm_erode(&P, E.r);
     for (k = 0; k < n && nt < 3; k++)
         if (pts[k][1] == 1) top[nt++] = k;
-    for (i = 0; i < along_face_ray_count() && nt == 3; i++) {
+    for (i = 0; i < n_rays && nt == 3; i++) {
         double phi = t_rng_range(rng, 0, 2 * M_PI), f = i % 3 ? 0 : t_rng_unit(rng), d[3], o[3], p[3], t_host, bu, bv;
         const double *va = pts[top[i / 3 % 3]], *vb = pts[top[(i / 3 + 1) % 3]];
         char why[160];
@@ -931,7 +931,7 @@ static void rays_along_a_face_through_its_vertices(void)
         {-0.01377889677271682, 1, 1}, {1, 1, 1}};
     static const double radii[4] = {2.98023223876953125e-8, 1e-6, 1e-3, 0.05};
     t_rng_t rng = {29};
-    long bad = 0, hits = 0, n_round = 0;
+    long bad = 0, hits = 0, n_round = 0, n_rays = along_face_ray_count();
     int j, h, k;
     for (j = 0; j < 4; j++) hits += along_face_rays(fuzz_hull, 10, radii[j], &rng, &bad, &n_round);
     for (h = 0; h < 12; h++) {
@@ -944,8 +944,8 @@ static void rays_along_a_face_through_its_vertices(void)
         for (j = 0; j < 4; j++) hits += along_face_rays((const double(*)[3])pts, 9, radii[j], &rng, &bad, &n_round);
     }
     T_INT_EQ(bad, 0);
-    T_GT(hits, 10000 * along_face_ray_count() / 600);
-    T_GT(n_round, 1000 * along_face_ray_count() / 600);
+    T_GT(hits, 10000 * n_rays / 600);
+    T_GT(n_round, 1000 * n_rays / 600);
     fprintf(stderr, "    %ld rays along the top face hit the hull, %ld rounded hits\n", hits, n_round);
 }
 
