@@ -7077,16 +7077,31 @@ static int re__exit_on_face(const re__object_t *o, const re__set_t *S, re__best_
    (found by fuzz_rounded_exact's short run in make test). */
 #define RE__INTO_SOLID_EPS (8.0 * RE__DBL_EPS)
 /* Bound on how far a capsule's axis may lie from r below one of its
-   corner's planes, relative to r (re__leaves_on_face's filter): above
+   corner's planes, relative to r (re__may_run_along_face's filter): above
    the centres' solve tolerance (RE__SPHERE_SOLVE_CAP) and the erosion's
    feasibility (RE__CORNER_EPS). */
 #define RE__SEAM_NOISE_R 1e-6
 
-/* Does the ray from a rounded hit P (normal n) along dir, whose walk
-   found its exit s_exit on, leave the sharp mesh at P itself instead,
-   through a plane g of S that P lies on (a seam, where a capsule meets
-   g's flat part: within half the origin's push, or the rounding of the
-   test, RE__FLAT_ULPS of the magnitudes, if larger)? It does when it
+/* Can the ray from a rounded hit P (normal n, on a capsule of S) along dir
+   run along or under a plane g of S that P lies on (within tau <=
+   max(2 RE__FLAT_ULPS mag, push / 2) of it)? Such a capsule's axis lies r
+   below g up to the centres' noise (RE__SEAM_NOISE_R r), so n . n_g >= 1 -
+   (tau / r + noise), |n - n_g|^2 <= 2 (tau / r + noise), and dir . n <=
+   |dir| |n - n_g| when dir . n_g <= 0. Other directions (nearly all) skip
+   re__leaves_on_face and re__along_out_of_reach. */
+static int re__may_run_along_face(const re__object_t *o, const re__set_t *S, const double P[3], const double n[3],
+                                  const double dir[3], double push)
+{
+    double mag = fabs(P[0]) + fabs(P[1]) + fabs(P[2]), r = re__k_radius(o, S->c[0]);
+    double turn = sqrt(2 * (re__max(2 * RE__FLAT_ULPS * mag, 0.5 * push) / r + RE__SEAM_NOISE_R));
+    return re__dot(dir, n) <= (RE__INTO_SOLID_EPS + turn) * re__len(dir);
+}
+
+/* Does the ray from a rounded hit P along dir (past re__may_run_along_face),
+   whose walk found its exit s_exit on, leave the sharp mesh at P itself
+   instead, through a plane g of S that P lies on (a seam, where a capsule
+   meets g's flat part: within half the origin's push, or the rounding of
+   the test, RE__FLAT_ULPS of the magnitudes, if larger)? It does when it
    would otherwise sink under g's flat part before s_exit
    (re__sinks_in_flat): inside the rounded solid, so the direction left it
    only up to the capsule normal's turn at the seam. That is the
@@ -7098,18 +7113,11 @@ static int re__exit_on_face(const re__object_t *o, const re__set_t *S, re__best_
    removed volume, and its walk stands; so does a hit farther from g's
    plane (at offset 1e6 and r 2^-25 of the size a hit 0.3 r inside g, its
    origin then inside the sharp mesh). 1 and *plane g. */
-static int re__leaves_on_face(const re__object_t *o, const re__set_t *S, const double P[3], const double n[3],
-                              const double dir[3], double s_exit, double push, unsigned *plane)
+static int re__leaves_on_face(const re__object_t *o, const re__set_t *S, const double P[3], const double dir[3],
+                              double s_exit, double push, unsigned *plane)
 {
-    double mag = fabs(P[0]) + fabs(P[1]) + fabs(P[2]), r = re__k_radius(o, S->c[0]), turn, s_end, X[3];
+    double mag = fabs(P[0]) + fabs(P[1]) + fabs(P[2]), s_end, X[3];
     unsigned i, j;
-    /* P within tau <= max(2 RE__FLAT_ULPS mag, push / 2) of g's plane, on
-       a capsule whose axis lies r below g up to the centres' noise
-       (RE__SEAM_NOISE_R r): n . n_g >= 1 - (tau / r + noise), so
-       |n - n_g|^2 <= 2 (tau / r + noise), and dir . n <= |dir| |n - n_g|
-       when dir . n_g <= 0. Other directions (nearly all) skip the test. */
-    turn = sqrt(2 * (re__max(2 * RE__FLAT_ULPS * mag, 0.5 * push) / r + RE__SEAM_NOISE_R));
-    if (!(re__dot(dir, n) <= (RE__INTO_SOLID_EPS + turn) * re__len(dir))) return 0;
     s_end = re__min(s_exit, o->size / re__len(dir));
     re__madd(P, s_end, dir, X);
     for (i = 0; i < S->n; i++) {
@@ -7178,6 +7186,36 @@ static int re__crossing_out_of_reach(const re__object_t *o, const re__set_t *S, 
     return !re__exit_on_edge_of(o, S, b, X, g, g);
 }
 
+/* A ray from the rounded hit P (past re__may_run_along_face), on a plane
+   a of S (within half the push, or the plane test's rounding if larger,
+   as in re__leaves_on_face), that runs along a to its exit X = P + s dir
+   on plane h (within re__along_tol of a all the way, as a pass-through's
+   re__exit_within_reach) and whose exit lies on no edge of a bordering h
+   that the set reaches (re__exit_on_edge_of): it runs on the mesh's
+   surface, and the crossing of h, which S's planes put there, is not
+   where it leaves. It leaves at P through a (returned; RE__NONE when the
+   walk's exit stands). Found: a reflection at a cylinder's end, where its
+   sphere meets face a, along a to within 3e-17 of a's plane (sinking too
+   slowly for re__sinks_in_flat), its walk's exit by a plane of the far
+   corner 0.013 outside the mesh (fuzz_rounded_exact, rays along a face at
+   r 2^-6 of the size, unfused builds; seed
+   reflection_along_a_face_from_a_cylinder_end). */
+static unsigned re__along_out_of_reach(const re__object_t *o, const re__set_t *S, re__best_t *b, const double P[3],
+                                       const double dir[3], double s, unsigned h, double push)
+{
+    double X[3], dmin, rmin, mag = fabs(P[0]) + fabs(P[1]) + fabs(P[2]);
+    unsigned a;
+    const re__plane_t *g;
+    re__madd(P, s, dir, X);
+    a = re__plane_along(o, S, P, X, &dmin, &rmin);
+    if (a == RE__NONE || !(dmin <= re__along_tol(P, X, rmin))) return RE__NONE;
+    g = &o->planes[a];
+    if (!(fabs(re__side_of(g, P)) <= re__max(RE__FLAT_ULPS * (fabs(g->c) + mag), 0.5 * push)) ||
+        re__exit_on_edge_of(o, S, b, X, a, h))
+        return RE__NONE;
+    return a;
+}
+
 RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, const double dir[3], double origin[3])
 {
     const re__object_t *o;
@@ -7187,6 +7225,7 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
     unsigned plane, iter, walked = 0;
     double s, push, ds[3];
     const double *nrm;
+    int level;
     if (!origin) return;
     if (!hit) return;
     if (dir && re__dir_scale(dir, ds) != 0) dir = ds; /* the same ray (s only changes its units) */
@@ -7216,18 +7255,24 @@ RE_DEF void re_secondary_origin(const re_scene_t *scene, const re_hit_t *hit, co
             if (!iter && re__exit_on_face(o, &S, &b, hit->point, dir, s, plane)) break;
             if (iter == RE__MAX_WALK || !re__walk_grow(o, &S, &b, hit->point, dir, s, &walked)) break;
         }
-        if (S.n && re__leaves_on_face(o, &S, hit->point, nrm, dir, s, push, &plane)) { /* at P, through that face */
+        level = S.n && re__may_run_along_face(o, &S, hit->point, nrm, dir, push);
+        if (level && re__leaves_on_face(o, &S, hit->point, dir, s, push, &plane)) { /* at P, through that face */
             const re__plane_t *g = &o->planes[plane];
             re__down_onto(g, hit->point, re__side_of(g, hit->point), origin);
             nrm = g->n;
         } else if (s < HUGE_VAL) {
             const re__plane_t *g = &o->planes[plane];
             double side = re__side_of(g, hit->point);
+            unsigned along;
             if (re__on_exit_plane(g, hit->point, side, push) ||
-                re__crossing_out_of_reach(o, &S, &b, plane, hit->point, side, dir, s, push))
+                re__crossing_out_of_reach(o, &S, &b, plane, hit->point, side, dir, s, push)) {
                 re__down_onto(g, hit->point, side, origin);
-            else
+            } else if (level && (along = re__along_out_of_reach(o, &S, &b, hit->point, dir, s, plane, push)) != RE__NONE) {
+                g = &o->planes[along];
+                re__down_onto(g, hit->point, re__side_of(g, hit->point), origin);
+            } else {
                 re__madd(hit->point, s, dir, origin);
+            }
             nrm = g->n;
         }
     }

@@ -574,8 +574,8 @@ static void object_sizes_outside_the_range_rejected(void)
 /* Directions 2^-600 ... 2^600 long (exact scalings of the same rays): the
    query traces them rescaled, so every answer is the unit ray's, its t
    scaled (within 1e-12, the rescaled direction differs from the unit one
-   by a power of 2 too), through re_query, re_query_uv, re_query_exit and
-   re_secondary_origin. At 1e+-200 a third of the rounded hits had come
+   by a power of 2 too), through re_query, re_query_uv, re_query_exit,
+   re_query_exit_uv and re_secondary_origin. At 1e+-200 a third of the rounded hits had come
    back unchanged, or with the point left on the sharp face. */
 static void extreme_direction_lengths(void)
 {
@@ -601,16 +601,20 @@ static void extreme_direction_lengths(void)
         rounded += h0.kind == RE_HIT_ROUNDED;
         for (k = 0; k < 4; k++) {
             double ds[3], f = ldexp(1.0, exps[k]), so[3];
-            re_hit_t h, hu, x;
+            re_hit_t h, hu, x, xu;
             for (a = 0; a < 3; a++) ds[a] = d[a] * f;
             re_query(sc, o, ds, 0, tri, t_host / f, &h);
             re_query_uv(sc, o, ds, 0, tri, t_host / f, u, v, &hu);
             re_query_exit(sc, o, ds, 0, tri, t_host / f, &x);
+            re_query_exit_uv(sc, o, ds, 0, tri, t_host / f, u, v, &xu);
             re_secondary_origin(sc, &h, ds, so);
-            if (!T_INT_EQ(h.kind, h0.kind) || !T_INT_EQ(hu.kind, h0.kind) || !T_INT_EQ(x.kind, x0.kind)) continue;
+            if (!T_INT_EQ(h.kind, h0.kind) || !T_INT_EQ(hu.kind, h0.kind) || !T_INT_EQ(x.kind, x0.kind) ||
+                !T_INT_EQ(xu.kind, x0.kind))
+                continue;
             T_NEAR(h.t * f, h0.t, 1e-12 * (1 + h0.t));
             T_NEAR(hu.t * f, h0.t, 1e-12 * (1 + h0.t));
             T_NEAR(x.t * f, x0.t, 1e-12 * (1 + x0.t));
+            T_NEAR(xu.t * f, x0.t, 1e-12 * (1 + x0.t));
             for (a = 0; a < 3; a++) {
                 T_NEAR(h.point[a], h0.point[a], 1e-12);
                 T_NEAR(so[a], so0[a], 1e-12);
@@ -1740,62 +1744,46 @@ static void normals_far_from_a_long_edges_far_end(void)
     tm_free(&m);
 }
 
-/* fuzz_rounded_exact, 2026-12-06 (its mode for rays along a face, compact
-   layout): a 16-point hull at r = 2^-6 of its size, and its family of
-   rays along triangle 12 through each of its vertices: 256 angles in the
+/* The fuzzer's family of rays along triangle tri_byte % (its triangle
+   count) of the hull of q (n points; fuzz_rounded_exact's mode for rays along a face, compact layout,
+   r = 2^-6 of the size) through each of its vertices: 256 angles in the
    plane, 7 tilts up to 1e-10, the host in __float128. Each answer is on
    the rounded surface or a pass-through on the sharp hull, never 1e-9 of
    the size deep before it, and a rounded hit's reflected ray starts on
-   the sharp hull. Its ray (vertex 0, angle 15/256, tilted 1e-13 into the
-   solid) lost its tangent contact with a cylinder and sank under the
-   face. Answered
-   with a rounded hit at the contact (re__lost_entry), the cylinder's
-   normal there, turned past the seam by the ray's slope, reflected it on
-   into the face, and the secondary origin's walk along the face found a
-   crossing 0.33 outside the sharp hull. Such a reflection now starts at
-   the contact, on the face (re__leaves_on_face); without that, 7 rays
-   fail in the clang build (gcc's fused multiply-adds miss them). */
-static void lost_contact_along_a_face_reflects_off_it(void)
+   the sharp hull, pushed out. */
+static void along_face_family_on_hull(const double (*q)[3], unsigned n, unsigned tri_byte)
 {
-    static const double q[16][3] = {
-        {-0.70415808346684972, 0.16182192721446564, -0.007888914320592022}, {0.63338673990997174, 0.31758602273594261, 0.02873273823147926},
-        {-0.55358205539024952, -0.011062790875104866, 0.63338673990997174}, {0.31758602273594261, 0.02873273823147926, -0.55358205539024952},
-        {-0.089188982986190601, -0.4160677500572213, 0.052079041733424924}, {-0.57177080949111159, 0.47127489127946909, 0.65731288624399187},
-        {-0.99765011062790876, -1, -1}, {-1, -1, -1},
-        {-0.36699473563744567, -0.70415808346684972, 0.16182192721446564}, {1, 1, 1},
-        {-0.98440527962157631, -0.007888914320592022, 0.63338673990997174}, {0.31758602273594261, 0.02873273823147926, -0.6238956282902266},
-        {-0.089188982986190601, 0.38100251773861293, -0.89956511787594418}, {-1, -0.99902342259861143, -0.88079652094300753},
-        {0.73687342641336695, 0.42302586404211495, 0.9811093308918899}, {-0.99218738078889146, -0.99221789883268485, -0.92968642710002292}};
     static const double tilt[7] = {0, 1e-16, -1e-16, 1e-13, -1e-13, 1e-10, -1e-10};
     static tm_poly_t P;
     tm_mesh_t m = {0};
     tm_eroded_t E;
     re_scene_t *s;
-    double scale = tm_size(q[0], 16), tol = 1e-9 * scale;
+    double scale = tm_size(q[0], n), tol = 1e-9 * scale;
     long i, hits = 0, bad = 0, n_round = 0;
+    unsigned tri_along;
     int a;
     memset(&P, 0, sizeof P);
-    tm_hull(q, 16, &m, &P);
+    tm_hull(q, n, &m, &P);
+    tri_along = tri_byte % (m.ni / 3);
     s = build1_in(&m, 0.015625 * scale, 1);
     if (!s) { tm_free(&m); return; }
     E.P = &P, E.r = re_object_radius(s, 0);
     tm_erode(&P, E.r);
-    for (i = 0; i < 3 * 256 * 7; i++) { /* triangle 12 from each vertex, 256 angles in its plane, 7 tilts (the fuzzer's) */
-        const unsigned *t = m.idx + 3 * 12;
-        const double *va = m.v + 3 * t[i / 1792], *vb = m.v + 3 * t[(i / 1792 + 1) % 3], *vc = m.v + 3 * t[(i / 1792 + 2) % 3];
-        double e1[3], e2[3], n[3], th = (double)(i / 7 % 256) * (2 * M_PI / 256), d[3], o[3], t_host, bu, bv;
+    for (i = 0; i < 3 * 256 * 7; i++) { /* from each vertex, 256 angles in its plane, 7 tilts (the fuzzer's) */
+        const unsigned *t = m.idx + 3 * tri_along;
+        const double *va = m.v + 3 * t[i / 1792], *vb = m.v + 3 * t[(i / 1792 + 1) % 3];
+        double e1[3], e2[3], nt[3], th = (double)(i / 7 % 256) * (2 * M_PI / 256), d[3], o[3], t_host, bu, bv;
         char why[160];
         unsigned tri;
         re_hit_t h;
-        (void)vc;
         tm_sub(m.v + 3 * t[1], m.v + 3 * t[0], e1); /* the normal as the fuzzer takes it */
         tm_sub(m.v + 3 * t[2], m.v + 3 * t[0], e2);
-        tm_cross(e1, e2, n);
-        tm_norm(n);
+        tm_cross(e1, e2, nt);
+        tm_norm(nt);
         tm_sub(vb, va, e1);
         tm_norm(e1);
-        tm_cross(n, e1, e2);
-        for (a = 0; a < 3; a++) d[a] = cos(th) * e1[a] + sin(th) * e2[a] + tilt[i % 7] * n[a], o[a] = va[a] - 3 * scale * d[a];
+        tm_cross(nt, e1, e2);
+        for (a = 0; a < 3; a++) d[a] = cos(th) * e1[a] + sin(th) * e2[a] + tilt[i % 7] * nt[a], o[a] = va[a] - 3 * scale * d[a];
         if (!tm_hit_exact_uv(&m, o, d, &t_host, &tri, &bu, &bv)) continue;
         hits++;
         re_query(s, o, d, 0, tri, t_host, &h);
@@ -1812,6 +1800,52 @@ static void lost_contact_along_a_face_reflects_off_it(void)
     fprintf(stderr, "    %ld rays hit the hull, %ld of them the rounded surface\n", hits, n_round);
     re_free(s);
     tm_free(&m);
+}
+
+/* fuzz_rounded_exact, 2026-12-06: its ray along triangle 12 of this hull
+   (vertex 0, angle 15/256, tilted 1e-13 into the solid) lost its tangent
+   contact with a cylinder and sank under the face. Answered with a
+   rounded hit at the contact (re__lost_entry), the cylinder's normal
+   there, turned past the seam by the ray's slope, reflected it on into
+   the face, and the secondary origin's walk along the face found a
+   crossing 0.33 outside the sharp hull. Such a reflection now starts at
+   the contact, on the face (re__leaves_on_face); without that, 7 rays
+   fail in the clang build (gcc's fused multiply-adds miss them). */
+static void lost_contact_along_a_face_reflects_off_it(void)
+{
+    static const double q[16][3] = {
+        {-0.70415808346684972, 0.16182192721446564, -0.007888914320592022}, {0.63338673990997174, 0.31758602273594261, 0.02873273823147926},
+        {-0.55358205539024952, -0.011062790875104866, 0.63338673990997174}, {0.31758602273594261, 0.02873273823147926, -0.55358205539024952},
+        {-0.089188982986190601, -0.4160677500572213, 0.052079041733424924}, {-0.57177080949111159, 0.47127489127946909, 0.65731288624399187},
+        {-0.99765011062790876, -1, -1}, {-1, -1, -1},
+        {-0.36699473563744567, -0.70415808346684972, 0.16182192721446564}, {1, 1, 1},
+        {-0.98440527962157631, -0.007888914320592022, 0.63338673990997174}, {0.31758602273594261, 0.02873273823147926, -0.6238956282902266},
+        {-0.089188982986190601, 0.38100251773861293, -0.89956511787594418}, {-1, -0.99902342259861143, -0.88079652094300753},
+        {0.73687342641336695, 0.42302586404211495, 0.9811093308918899}, {-0.99218738078889146, -0.99221789883268485, -0.92968642710002292}};
+    along_face_family_on_hull(q, 16, 12);
+}
+
+/* fuzz_rounded_exact, 2026-12-07: its ray along triangle 15 of this hull
+   (through vertex 0 of the triangle in its plane, untilted) hit a
+   cylinder at its end, where the corner's sphere meets another face g,
+   and the reflection ran along g to within 3e-17 of its plane: sinking
+   too slowly for re__leaves_on_face, it went to the walk's exit, the
+   crossing of a plane of the cylinder's far corner, 0.013 outside the
+   sharp hull (the true exit, g's edge, lies out of the set's reach).
+   Such a reflection now leaves at the hit, through g
+   (re__along_out_of_reach). */
+static void reflection_along_a_face_from_a_cylinder_end(void)
+{
+    static const double q[16][3] = {
+        {-0.70415808346684972, 0.16182192721446564, -0.007888914320592022}, {0.63338673990997174, 0.31758602273594261, 0.02873273823147926},
+        {-0.55358205539024952, -0.089188982986190601, -0.54869916838330668}, {0.47127489127946909, 0.65731288624399187, 0.11174181734950794},
+        {0.12153810940718701, 0.37575341420614938, -0.89956511787594418}, {-0.38078889143205918, 0.73687342641336695, 0.42302586404211495},
+        {0.9811093308918899, -0.99218738078889146, -0.99221789883268485}, {-1, 0.99240100709544521, 1},
+        {1, 1, -0.98712138551918827}, {0.68007934691386285, -0.94634927901121535, -0.45271992065308608},
+        {0.16993972686350811, -0.72970168612191966, -0.028549629968719015}, {-0.30873579003585871, 0.71969176775768684, -0.19795529106584264},
+        {-0.068833447775997536, 0.053635461966887954, 0.86102082856488904}, {-0.42272068360418102, -0.6857251850156405, 0.38667887388418398},
+        {0.99920653086137179, 1, 1}, {1, -0.96850537880521859, -1}};
+    along_face_family_on_hull(q, 16, 215);
 }
 
 /* fuzz_rounded_exact, 2026-12-06 (compact layout, offset 1e6): a 5-point
@@ -2486,6 +2520,7 @@ int main(int argc, char **argv)
         T_CASE(rays_along_a_face_past_a_sharp_corner),
         T_CASE(ray_sinking_past_a_lost_tangent_contact),
         T_CASE(lost_contact_along_a_face_reflects_off_it),
+        T_CASE(reflection_along_a_face_from_a_cylinder_end),
         T_CASE(rays_along_a_face_over_its_edges),
         T_CASE(normals_far_from_a_long_edges_far_end),
         T_CASE(flat_test_beside_a_sharp_corner_far_out),
