@@ -7097,6 +7097,15 @@ static int re__may_run_along_face(const re__object_t *o, const re__set_t *S, con
     return re__dot(dir, n) <= (RE__INTO_SOLID_EPS + turn) * re__len(dir);
 }
 
+/* Does the rounded hit P (coordinates of magnitude mag, |P|_1) lie on
+   plane g, within half the origin's push or the plane test's rounding
+   (RE__FLAT_ULPS of the magnitudes) if larger? A ray leaving through g
+   there starts at P (re__leaves_on_face, re__along_out_of_reach). */
+static int re__hit_on_plane(const re__plane_t *g, const double P[3], double mag, double push)
+{
+    return fabs(re__side_of(g, P)) <= re__max(RE__FLAT_ULPS * (fabs(g->c) + mag), 0.5 * push);
+}
+
 /* Does the ray from a rounded hit P along dir (past re__may_run_along_face),
    whose walk found its exit s_exit on, leave the sharp mesh at P itself
    instead, through a plane g of S that P lies on (a seam, where a capsule
@@ -7125,9 +7134,7 @@ static int re__leaves_on_face(const re__object_t *o, const re__set_t *S, const d
         for (j = 0; j < K.np; j++) {
             unsigned gi = re__corner_plane(o, &K, j);
             const re__plane_t *g = &o->planes[gi];
-            if (re__dot(g->n, dir) > 0 ||
-                !(fabs(re__side_of(g, P)) <= re__max(RE__FLAT_ULPS * (fabs(g->c) + mag), 0.5 * push)))
-                continue;
+            if (re__dot(g->n, dir) > 0 || !re__hit_on_plane(g, P, mag, push)) continue;
             if (re__sinks_in_flat(o, S, gi, P, dir, s_end, mag + fabs(X[0]) + fabs(X[1]) + fabs(X[2])) < HUGE_VAL)
                 return *plane = gi, 1;
         }
@@ -7210,8 +7217,7 @@ static unsigned re__along_out_of_reach(const re__object_t *o, const re__set_t *S
     a = re__plane_along(o, S, P, X, &dmin, &rmin);
     if (a == RE__NONE || !(dmin <= re__along_tol(P, X, rmin))) return RE__NONE;
     g = &o->planes[a];
-    if (!(fabs(re__side_of(g, P)) <= re__max(RE__FLAT_ULPS * (fabs(g->c) + mag), 0.5 * push)) ||
-        re__exit_on_edge_of(o, S, b, X, a, h))
+    if (!re__hit_on_plane(g, P, mag, push) || re__exit_on_edge_of(o, S, b, X, a, h))
         return RE__NONE;
     return a;
 }
