@@ -86,7 +86,7 @@ EXAMPLES := $(addprefix $(B)/examples/,$(EX_NAMES))
 EX_COMMON:= $(wildcard examples/common/*.c examples/common/*.cpp)
 EX_COMMON_OBJ := $(patsubst examples/common/%,$(B)/examples/common/%.o,$(EX_COMMON))
 
-.PHONY: all test tests benches compile-checks fingerprints fingerprint check-headers demo bench fuzz fuzz-fast coverage install clean deps-test deps-demo deps-bench examples
+.PHONY: all test tests benches compile-checks fingerprints fingerprint check-headers demo bench fuzz fuzz-fast fuzz-fused coverage install clean deps-test deps-demo deps-bench examples
 .DELETE_ON_ERROR:
 # the examples/common objects are shared by every example and bench: keep them
 .SECONDARY: $(EX_COMMON_OBJ) $(IMPL_OBJS)
@@ -126,6 +126,12 @@ $(B)/fuzz/%: tests/%.c $(TEST_DEPS)
 $(B)/fuzz_fast/%: tests/%.c $(TEST_DEPS)
 	@mkdir -p $(dir $@)
 	clang -std=gnu11 -O2 $(DBG) -Iinclude -Itests $(FUZZ_FLAGS_$*) -fsanitize=fuzzer $< -o $@ $(FUZZ_LIBS_$*) -lm
+# the same with fused multiply-adds (-march=native -ffp-contract=fast), the
+# arithmetic of gcc's test builds and of hosts built for FMA machines; the
+# unfused and fused builds round differently and find different inputs
+$(B)/fuzz_fused/%: tests/%.c $(TEST_DEPS)
+	@mkdir -p $(dir $@)
+	clang -std=gnu11 -O2 $(DBG) -march=native -ffp-contract=fast -Iinclude -Itests $(FUZZ_FLAGS_$*) -fsanitize=fuzzer $< -o $@ $(FUZZ_LIBS_$*) -lm
 
 check-headers:
 	@tests/check_headers.sh
@@ -225,17 +231,28 @@ bench: deps-bench
 
 # ---------------------------------------------------------------- fuzzing
 FUZZ_SECONDS ?= 600
+# FUZZ=rounded runs only the fuzz targets whose name contains "rounded"
+FUZZ_RUN = $(strip $(if $(FUZZ),$(foreach f,$(FUZZERS),$(if $(findstring $(FUZZ),$(notdir $(f))),$(f))),$(FUZZERS)))
 fuzz:
+	@$(if $(FUZZ_RUN),,echo "no fuzz target matches FUZZ=$(FUZZ)" >&2; exit 1)
 	@scripts/deps.sh fuzz
-	@$(MAKE) --no-print-directory $(FUZZERS)
-	@set -e; for f in $(FUZZERS); do n=$$(basename $$f); mkdir -p $$f.corpus; \
+	@$(MAKE) --no-print-directory $(FUZZ_RUN)
+	@set -e; for f in $(FUZZ_RUN); do n=$$(basename $$f); mkdir -p $$f.corpus; \
 	  $$f -max_total_time=$(FUZZ_SECONDS) $$f.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
 # answers only (no memory checks), sharing make fuzz's grown corpora
 fuzz-fast:
+	@$(if $(FUZZ_RUN),,echo "no fuzz target matches FUZZ=$(FUZZ)" >&2; exit 1)
 	@scripts/deps.sh fuzz
-	@$(MAKE) --no-print-directory $(subst /fuzz/,/fuzz_fast/,$(FUZZERS))
-	@set -e; for f in $(FUZZERS); do n=$$(basename $$f); mkdir -p $$f.corpus; \
+	@$(MAKE) --no-print-directory $(subst /fuzz/,/fuzz_fast/,$(FUZZ_RUN))
+	@set -e; for f in $(FUZZ_RUN); do n=$$(basename $$f); mkdir -p $$f.corpus; \
 	  $(B)/fuzz_fast/$$n -max_total_time=$(FUZZ_SECONDS) $$f.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
+# fuzz-fast's run on the fused build
+fuzz-fused:
+	@$(if $(FUZZ_RUN),,echo "no fuzz target matches FUZZ=$(FUZZ)" >&2; exit 1)
+	@scripts/deps.sh fuzz
+	@$(MAKE) --no-print-directory $(subst /fuzz/,/fuzz_fused/,$(FUZZ_RUN))
+	@set -e; for f in $(FUZZ_RUN); do n=$$(basename $$f); mkdir -p $$f.corpus; \
+	  $(B)/fuzz_fused/$$n -max_total_time=$(FUZZ_SECONDS) $$f.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
 
 # ---------------------------------------------------------------- coverage
 MODULES ?=
