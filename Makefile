@@ -233,26 +233,24 @@ bench: deps-bench
 FUZZ_SECONDS ?= 600
 # FUZZ=rounded runs only the fuzz targets whose name contains "rounded"
 FUZZ_RUN = $(strip $(if $(FUZZ),$(foreach f,$(FUZZERS),$(if $(findstring $(FUZZ),$(notdir $(f))),$(f))),$(FUZZERS)))
-fuzz:
+# $(call fuzz_in,DIR): build the chosen targets into $(B)/DIR and run each
+# for FUZZ_SECONDS on its grown corpus and its seeds
+define fuzz_in
 	@$(if $(FUZZ_RUN),,echo "no fuzz target matches FUZZ=$(FUZZ)" >&2; exit 1)
 	@scripts/deps.sh fuzz
-	@$(MAKE) --no-print-directory $(FUZZ_RUN)
+	@$(MAKE) --no-print-directory $(subst /fuzz/,/$(1)/,$(FUZZ_RUN))
 	@set -e; for f in $(FUZZ_RUN); do n=$$(basename $$f); mkdir -p $$f.corpus; \
-	  $$f -max_total_time=$(FUZZ_SECONDS) $$f.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
+	  $(B)/$(1)/$$n -max_total_time=$(FUZZ_SECONDS) $$f.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
+endef
+# under ASan and UBSan
+fuzz:
+	$(call fuzz_in,fuzz)
 # answers only (no memory checks), sharing make fuzz's grown corpora
 fuzz-fast:
-	@$(if $(FUZZ_RUN),,echo "no fuzz target matches FUZZ=$(FUZZ)" >&2; exit 1)
-	@scripts/deps.sh fuzz
-	@$(MAKE) --no-print-directory $(subst /fuzz/,/fuzz_fast/,$(FUZZ_RUN))
-	@set -e; for f in $(FUZZ_RUN); do n=$$(basename $$f); mkdir -p $$f.corpus; \
-	  $(B)/fuzz_fast/$$n -max_total_time=$(FUZZ_SECONDS) $$f.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
+	$(call fuzz_in,fuzz_fast)
 # fuzz-fast's run on the fused build
 fuzz-fused:
-	@$(if $(FUZZ_RUN),,echo "no fuzz target matches FUZZ=$(FUZZ)" >&2; exit 1)
-	@scripts/deps.sh fuzz
-	@$(MAKE) --no-print-directory $(subst /fuzz/,/fuzz_fused/,$(FUZZ_RUN))
-	@set -e; for f in $(FUZZ_RUN); do n=$$(basename $$f); mkdir -p $$f.corpus; \
-	  $(B)/fuzz_fused/$$n -max_total_time=$(FUZZ_SECONDS) $$f.corpus $$(ls -d tests/corpus/$$n 2>/dev/null); done
+	$(call fuzz_in,fuzz_fused)
 
 # ---------------------------------------------------------------- coverage
 MODULES ?=
