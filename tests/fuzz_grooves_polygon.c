@@ -29,6 +29,7 @@
 #define GR_IMPLEMENTATION
 #include "grooves.h"
 #include "fuzz_check.h"
+#include "test_even_odd.h"
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -67,23 +68,11 @@ static gr_polyset_t fp_polyset(const fp_set_t *s)
     return p;
 }
 
-/* Even-odd crossing number of the ring of n points at p (rings of fewer
-   than 3 points enclose nothing). */
-static int fp_in_ring(const double *p, int n, double x, double y)
-{
-    int i, c = 0;
-    if (n < 3) return 0;
-    for (i = 0; i < n; i++) {
-        const double *u = p + 2 * i, *v = p + 2 * ((i + 1) % n);
-        if ((u[1] > y) != (v[1] > y) && x < u[0] + (y - u[1]) * (v[0] - u[0]) / (v[1] - u[1])) c = !c;
-    }
-    return c;
-}
 static int fp_in_set(const fp_set_t *s, double x, double y)
 {
     int r, first = 0;
     for (r = 0; r < s->rings; r++) {
-        if (fp_in_ring(s->pts + 2 * first, s->sizes[r], x, y)) return 1;
+        if (teo_in_ring(s->pts + 2 * first, s->sizes[r], x, y)) return 1;
         first += s->sizes[r];
     }
     return 0;

@@ -55,6 +55,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include "test_even_odd.h"
 
 #define GRO_MAX_FACETS 32
 #define GRO_MAX_LIGHTS 8
@@ -277,13 +278,10 @@ static double gro__seg_dist(double x, double y, const double *a, const double *b
    than m: even-odd rule plus a distance test to every edge. */
 static int gro__in_section(const double *sec, int n, double b, double w, double m)
 {
-    int k, in = 0;
-    for (k = 0; k < n; k++) {
-        const double *a = sec + 2 * k, *c = sec + 2 * ((k + 1) % n);
-        if ((a[1] > w) != (c[1] > w) && b < a[0] + (w - a[1]) * (c[0] - a[0]) / (c[1] - a[1])) in = !in;
-        if (gro__seg_dist(b, w, a, c) <= m) return 0;
-    }
-    return in;
+    int k;
+    for (k = 0; k < n; k++)
+        if (gro__seg_dist(b, w, sec + 2 * k, sec + 2 * ((k + 1) % n)) <= m) return 0;
+    return teo_in_ring(sec, n, b, w);
 }
 
 /* 1 when the local point x lies strictly inside an instance other than

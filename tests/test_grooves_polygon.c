@@ -6,6 +6,7 @@
    them), and an independent raster of even-odd point-in-polygon tests. */
 #include "grooves.h"
 #include "test.h"
+#include "test_even_odd.h"
 
 #define MAXP 64
 
@@ -50,17 +51,6 @@ static int star(t_rng_t *g, double *p, int n, double cx, double cy, double r0, d
         p[2 * i + 1] = cy + r * sin(ang);
     }
     return n;
-}
-
-/* independent even-odd point-in-polygon (crossing number) */
-static int inside(const double *p, int n, double x, double y)
-{
-    int i, c = 0;
-    for (i = 0; i < n; i++) {
-        const double *u = p + 2 * i, *v = p + 2 * ((i + 1) % n);
-        if ((u[1] > y) != (v[1] > y) && x < u[0] + (y - u[1]) * (v[0] - u[0]) / (v[1] - u[1])) c = !c;
-    }
-    return c;
 }
 
 static void area_square_orientation(void)
@@ -191,7 +181,7 @@ static void rast_cell(rast_t *R, const int *edges, int ne, double x0, double y0,
         }
         return;
     }
-    for (i = 0; i < 2; i++) in[i] = inside(R->p[i], R->n[i], x0 + w / 2, y0 + w / 2);
+    for (i = 0; i < 2; i++) in[i] = teo_in_ring(R->p[i], R->n[i], x0 + w / 2, y0 + w / 2);
     for (op = 0; op < 4; op++) {
         int least = 1, most = 0, ia, ib;
         for (ia = 0; ia < 2; ia++)
