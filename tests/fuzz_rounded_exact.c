@@ -243,39 +243,75 @@ static void fx_normal(const fx_case_t *C, const double p[3], const re_hit_t *h, 
                h->normal[2], g[0] / d_ref, g[1] / d_ref, g[2] / d_ref, r, e);
 }
 
-/* How far apart, at the local point q, the sharp mesh's triangles and the
-   reference planes they lie on can place q: the largest difference of
-   q's height over a triangle's own plane and over its face's reference
-   plane (the triangles whose vertices lie within near of that plane). The
-   mesh's vertices are the hull's, rounded, so a sliver triangle's plane
-   tilts from its face's: a face of one triangle 0.0019 high had two
-   vertices 2.8e-14 off its reference plane, and 6.1e-14 off at a rounded
-   hit beside it, which the library, whose face plane is that triangle's,
-   rightly measured from it (seed secondary_origin_above_a_sliver_face,
-   fused builds). The triangle planes here are the test's own cross
-   products, whose rounding only adds to the gap. */
-static double fx_mesh_gap(const fx_case_t *C, const double q[3], double near)
+/* The tolerance of a pushed origin q's height over reference plane g,
+   whose coordinates' rounding alone allows tol: the larger of tol and the
+   rounding of the library's plane for g's face, plus the reference
+   plane's own error, since both planes may stand off the face they stand
+   for. The face is the mesh's triangles whose vertices lie within near of
+   g; they are exact (their vertices are the input points), and their true
+   plane is computed here in __float128 (each product of two edge
+   components exact, one rounding per difference). The reference plane's
+   part is its distance from the true one at q (tm_hull computes it in
+   double from three vertices, which a sliver tilts); the library's is the
+   rounding of a plane computed in double from the face's largest
+   triangle, as the library's is (construction step 3): 4 DBL_EPSILON
+   |e1| |e2| / |e1 x e2| (the normal's rounding, magnified by a sliver)
+   times q's distance from that triangle's farthest vertex, which tol
+   covers unless the triangle is a sliver. Found: a face of one triangle
+   0.0019 high, two of its vertices 2.8e-14 off the reference plane; at a
+   rounded hit beside it the reference plane was 2.8e-14 from the true
+   one and the library's 3.3e-14 the other way, so the origin stood
+   6.1e-14 past the push by the reference (seed
+   secondary_origin_above_a_sliver_face, clang's fused build). */
+static double fx_height_tol(const fx_case_t *C, int g, const double q[3], double near, double tol)
 {
     const tm_mesh_t *m = C->mw;
     const tm_poly_t *P = C->E->P;
-    double gap = 0, v[3][3], e1[3], e2[3], n[3], len;
+    double hq = tm_dot(P->n[g], q) - P->c[g], ref = 0, rounding = 0, largest = 0, v[3][3];
     unsigned t, k, a;
-    int g;
     for (t = 0; t + 2 < m->ni; t += 3) {
+        __float128 e1[3], e2[3], n[3], nq = 0, nn = 0;
+        double far = 0, l1, l2;
         for (k = 0; k < 3; k++)
             for (a = 0; a < 3; a++) v[k][a] = m->v[3 * m->idx[t + k] + a] - C->off[a]; /* exact (fx_case_t) */
-        tm_sub(v[1], v[0], e1), tm_sub(v[2], v[0], e2), tm_cross(e1, e2, n);
-        if (!((len = tm_len(n)) > 0)) continue;
-        for (g = 0; g < P->np; g++) {
-            double hq = tm_dot(P->n[g], q) - P->c[g], ht;
-            for (k = 0; k < 3 && fabs(tm_dot(P->n[g], v[k]) - P->c[g]) <= near; k++) {}
-            if (k < 3) continue;
-            tm_sub(q, v[0], e1);
-            ht = tm_dot(n, e1) / len;
-            gap = fmax(gap, fabs(ht - hq));
+        for (k = 0; k < 3 && fabs(tm_dot(P->n[g], v[k]) - P->c[g]) <= near; k++) {}
+        if (k < 3) continue;
+        for (a = 0; a < 3; a++) e1[a] = (__float128)v[1][a] - v[0][a], e2[a] = (__float128)v[2][a] - v[0][a];
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        for (a = 0; a < 3; a++) nq += n[a] * ((__float128)q[a] - v[0][a]), nn += n[a] * n[a];
+        if (!(nn > 0)) continue;
+        ref = fmax(ref, fabs((double)nq / sqrt((double)nn) - hq));
+        if (!((double)nn > largest)) continue;
+        largest = (double)nn;
+        l1 = sqrt((double)(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]));
+        l2 = sqrt((double)(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]));
+        for (k = 0; k < 3; k++) {
+            double w[3];
+            tm_sub(q, v[k], w);
+            far = fmax(far, tm_len(w));
         }
+        rounding = 4 * RE__DBL_EPS * l1 * l2 / sqrt(largest) * far;
     }
-    return gap;
+    return fmax(tol, rounding) + ref;
+}
+
+/* Is the origin q outside the reference hull by the push, lo..hi, each
+   plane's height to its own tolerance (fx_height_tol)? *out: the
+   largest height. */
+static int fx_pushed_out(const fx_case_t *C, const double q[3], double lo, double hi, double tol, double *out)
+{
+    const tm_poly_t *P = C->E->P;
+    int g, reached = 0;
+    *out = -HUGE_VAL;
+    for (g = 0; g < P->np; g++) {
+        double h = tm_dot(P->n[g], q) - P->c[g], t;
+        *out = fmax(*out, h);
+        if (h < 0.5 * lo) continue; /* far inside g: its tolerance cannot matter */
+        t = fx_height_tol(C, g, q, 1e-9 * C->scale, tol);
+        if (h > hi + t) return 0;
+        reached |= h >= lo - t;
+    }
+    return reached;
 }
 
 /* The origin for a secondary ray from a rounded hit (re_secondary_origin,
@@ -285,26 +321,25 @@ static double fx_mesh_gap(const fx_case_t *C, const double q[3], double near)
    hull's diagonal (between 1 and sqrt(3) times the size). So it lies
    outside the hull by that push, and off the ray by at most the push, up
    to the rounding of the world coordinates (a few ulps of their
-   magnitude mag: 8 DBL_EPSILON mag) and, for the height, the gap between
-   the mesh's triangles and the reference planes at the origin
-   (fx_mesh_gap). The hull is the reference's, all its planes (the library
+   magnitude mag: 8 DBL_EPSILON mag), the height over each face also to
+   that face's planes' own rounding (fx_height_tol). The hull is the reference's, all its planes (the library
    looks among the planes of the corners its walk reaches; until
    2026-12-05 of the hit feature's corners only, which put origins up to
    120 sizes past the hull or left them inside it). */
 static void fx_secondary(const fx_case_t *C, const double dir[3], const re_hit_t *h, int ray)
 {
-    double d2[3], org[3], q[3], st[3], dn = tm_dot(dir, h->normal), out, tol, gap, off_line,
+    double d2[3], org[3], q[3], st[3], dn = tm_dot(dir, h->normal), out, tol, off_line,
            lo = RE_ORIGIN_OFFSET_REL * C->scale, hi = RE_ORIGIN_OFFSET_REL * sqrt(3.0) * C->scale;
     unsigned a;
     for (a = 0; a < 3; a++) d2[a] = dn < 0 ? dir[a] - 2 * dn * h->normal[a] : dir[a];
     re_secondary_origin(C->s, h, d2, org);
     tol = 8 * RE__DBL_EPS * (C->scale + fabs(org[0]) + fabs(org[1]) + fabs(org[2]));
     for (a = 0; a < 3; a++) q[a] = org[a] - C->off[a], st[a] = h->point[a] - C->off[a];
-    gap = fx_mesh_gap(C, q, 1e-9 * C->scale);
-    FUZZ_CHECK(tm_origin_ok(C->E->P, q, st, d2, lo, hi, tol + gap, &out, &off_line) && off_line <= hi + tol,
+    (void)tm_origin_ok(C->E->P, q, st, d2, lo, hi, tol, &out, &off_line); /* for off_line */
+    FUZZ_CHECK(fx_pushed_out(C, q, lo, hi, tol, &out) && off_line <= hi + tol,
                "ray %d: secondary origin of a rounded hit (feature %d %u) is %.17g outside the sharp hull (the push: "
-               "%.17g..%.17g, tolerance %.3g, the mesh's gap %.3g) and %.17g off its ray", ray, (int)h->feature,
-               h->feature_index, out, lo, hi, tol, gap, off_line);
+               "%.17g..%.17g, tolerance %.3g, more for sliver faces: fx_height_tol) and %.17g off its ray", ray,
+               (int)h->feature, h->feature_index, out, lo, hi, tol, off_line);
 }
 
 /* The build's features against the reference hull, once per input
