@@ -296,36 +296,28 @@ static double fx_height_tol(const fx_case_t *C, int g, const double q[3], double
 }
 
 /* Is the origin q outside the reference hull by the push, lo..hi, each
-   plane's height to its own tolerance (fx_height_tol)? *out: the
-   largest height. */
+   plane's height to its own tolerance (fx_height_tol, at least tol, so
+   only heights tol cannot settle need it: above hi + tol, or, when none
+   reaches lo - tol, those of the planes q is near)? *out: the largest
+   height. */
 static int fx_pushed_out(const fx_case_t *C, const double q[3], double lo, double hi, double tol, double *out)
 {
     const tm_poly_t *P = C->E->P;
-    int g, reached = 0;
+    double near = 1e-9 * C->scale;
+    int g;
     *out = -HUGE_VAL;
     for (g = 0; g < P->np; g++) {
-        double h = tm_dot(P->n[g], q) - P->c[g], t;
+        double h = tm_dot(P->n[g], q) - P->c[g];
         *out = fmax(*out, h);
-        if (h < 0.5 * lo) continue; /* far inside g: its tolerance cannot matter */
-        t = fx_height_tol(C, g, q, 1e-9 * C->scale, tol);
-        if (h > hi + t) return 0;
-        reached |= h >= lo - t;
+        if (h > hi + tol && h > hi + fx_height_tol(C, g, q, near, tol)) return 0;
     }
-    return reached;
+    if (*out >= lo - tol) return 1;
+    for (g = 0; g < P->np; g++) {
+        double h = tm_dot(P->n[g], q) - P->c[g];
+        if (h > -hi - tol && h >= lo - fx_height_tol(C, g, q, near, tol)) return 1;
+    }
+    return 0;
 }
-
-/* The origin for a secondary ray from a rounded hit (re_secondary_origin,
-   I'' of paper section 4), the ray reflected about the normal or, leaving
-   outward already, the ray itself: where that ray leaves the sharp hull,
-   pushed out along the face it crosses by RE_ORIGIN_OFFSET_REL of the
-   hull's diagonal (between 1 and sqrt(3) times the size). So it lies
-   outside the hull by that push, and off the ray by at most the push, up
-   to the rounding of the world coordinates (a few ulps of their
-   magnitude mag: 8 DBL_EPSILON mag), the height over each face also to
-   that face's planes' own rounding (fx_height_tol). The hull is the reference's, all its planes (the library
-   looks among the planes of the corners its walk reaches; until
-   2026-12-05 of the hit feature's corners only, which put origins up to
-   120 sizes past the hull or left them inside it). */
 static void fx_secondary(const fx_case_t *C, const double dir[3], const re_hit_t *h, int ray)
 {
     double d2[3], org[3], q[3], st[3], dn = tm_dot(dir, h->normal), out, tol, off_line,
